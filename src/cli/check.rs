@@ -1,0 +1,24 @@
+//! `tirecontact check PRESET`: parse and validate, print a summary.
+
+use super::{CliResult, load_scene};
+use std::path::Path;
+use tirecontact::Simulation;
+
+pub fn check(path: &Path) -> CliResult {
+    let scene = load_scene(Some(path))?;
+    // also reads a measured road file and factors the modes
+    let sim = Simulation::new(&scene)?;
+    println!(
+        "{}: ok — \"{}\": {} point(s), {} mode(s), road {}, {:.3} m/s, dt {:e} s, {} steps",
+        path.display(),
+        scene.name,
+        scene.num_points(),
+        scene.modes().len(),
+        scene.road.kind(),
+        scene.speed_mps,
+        scene.dt_s,
+        scene.num_steps()
+    );
+    drop(sim);
+    Ok(())
+}

@@ -1,0 +1,92 @@
+//! Error types: every error carries the context a user needs to act on it.
+
+use std::path::PathBuf;
+use thiserror::Error;
+
+/// One invalid value in a scene: which field, what it was, what was expected.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldError {
+    /// Path of the field in the scene, e.g. `tyre.modes[2].damping_ratio`.
+    pub field: String,
+    /// The offending value, as the user wrote it (formatted).
+    pub value: String,
+    /// What would have been accepted.
+    pub expected: String,
+}
+
+impl std::fmt::Display for FieldError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} = {}: expected {}", self.field, self.value, self.expected)
+    }
+}
+
+/// Errors while reading or validating a scene.
+#[derive(Debug, Error)]
+pub enum SceneError {
+    /// The RON text does not parse (line and column are 1-based).
+    #[error("{file}:{line}:{col}: {message}")]
+    Syntax {
+        file: String,
+        line: usize,
+        col: usize,
+        message: String,
+    },
+    /// The scene parses but some values are out of range.
+    #[error("{}", format_invalid(.file, .errors))]
+    Invalid {
+        file: String,
+        errors: Vec<FieldError>,
+    },
+    /// A file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A measured road profile is unusable.
+    #[error("road profile {path}: {message}")]
+    RoadFile { path: PathBuf, message: String },
+}
+
+fn format_invalid(file: &str, errors: &[FieldError]) -> String {
+    let mut s = format!("{file}: {} invalid value(s)", errors.len());
+    for e in errors {
+        s.push_str("\n  ");
+        s.push_str(&e.to_string());
+    }
+    s
+}
+
+/// Errors of the time stepper. A step that fails leaves the simulation at the
+/// start of that step.
+#[derive(Debug, Clone, Error, PartialEq)]
+pub enum SolverError {
+    /// The contact system of the active points could not be solved.
+    #[error(
+        "singular contact system at t = {t_s:.6e} s for points {points:?} (pivot {pivot:.3e} after scaling): the modal model cannot hold these points on the road independently (too few modes for the points in contact?)"
+    )]
+    SingularContactSystem {
+        t_s: f64,
+        points: Vec<usize>,
+        pivot: f64,
+    },
+    /// A displacement, velocity or force became NaN or infinite.
+    #[error("non-finite {quantity} at t = {t_s:.6e} s, point {point}")]
+    NonFinite {
+        t_s: f64,
+        point: usize,
+        quantity: &'static str,
+    },
+    /// A measured road profile was sampled outside its extent.
+    #[error(
+        "road profile sampled at x = {x_m} m (t = {t_s:.6e} s, point {point}) outside its extent [{min_m}, {max_m}] m: set `looped: true`, shorten `duration_s`, or extend the file"
+    )]
+    RoadOutOfRange {
+        t_s: f64,
+        point: usize,
+        x_m: f64,
+        min_m: f64,
+        max_m: f64,
+    },
+}

@@ -1,0 +1,62 @@
+//! `tirecontact`: without a subcommand, the visualiser on the embedded default
+//! preset (or a headless run of it when built without the `gui` feature).
+
+mod cli;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser)]
+#[command(name = "tirecontact", version, about = "Dynamic tyre/road contact by fast modal convolution")]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scene headless and write its time histories as CSV.
+    Run(cli::run::RunArgs),
+    /// Parse and validate a scene preset.
+    Check {
+        /// Scene preset (RON).
+        preset: PathBuf,
+    },
+}
+
+fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Some(Command::Run(args)) => cli::run::run(&args),
+        Some(Command::Check { preset }) => cli::check::check(&preset),
+        None => default_action(),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+#[cfg(feature = "gui")]
+fn default_action() -> cli::CliResult {
+    // The visualiser lands with its own issue; until then, run the default preset.
+    headless_default()
+}
+
+#[cfg(not(feature = "gui"))]
+fn default_action() -> cli::CliResult {
+    headless_default()
+}
+
+fn headless_default() -> cli::CliResult {
+    cli::run::run(&cli::run::RunArgs {
+        preset: None,
+        output: None,
+        dt: None,
+        duration: None,
+        every: 1,
+    })
+}

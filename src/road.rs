@@ -1,0 +1,291 @@
+//! Road profiles `z(x)` and the smooth ramp of preload and road (SPEC §4).
+//!
+//! Road seen by point `i` at time `t` (the tyre rolls at speed `V`):
+//!
+//! ```text
+//! r_i(t) = w(t) * ( z(x_i + V t) - h_i ),   w(t) = 3 s^2 - 2 s^3,  s = clamp(t / T_ramp, 0, 1)
+//! ```
+
+use crate::error::SceneError;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
+use std::path::{Path, PathBuf};
+
+/// One sinusoidal component `a sin(2π x / λ + φ)` of a multi-harmonic road.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Harmonic {
+    /// Amplitude `a` (m).
+    pub amplitude_m: f64,
+    /// Wavelength `λ` (m), > 0.
+    pub wavelength_m: f64,
+    /// Phase `φ` (rad); default 0.
+    #[serde(default)]
+    pub phase_rad: f64,
+}
+
+/// A road profile as written in a scene file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Road {
+    /// `z(x) = a sin(2π x / λ)` (SPEC §4).
+    Sine {
+        /// Amplitude `a` (m), >= 0.
+        amplitude_m: f64,
+        /// Wavelength `λ` (m), > 0.
+        wavelength_m: f64,
+    },
+    /// Sum of harmonics `Σ a_k sin(2π x / λ_k + φ_k)`.
+    Harmonics { components: Vec<Harmonic> },
+    /// A measured profile: CSV of `x_m, z_m` rows (header optional), linearly
+    /// interpolated. Sampling past its ends is an error unless `looped`, in
+    /// which case the profile repeats with period `x_last - x_first`.
+    Measured {
+        /// Path of the CSV, relative to the scene file's folder.
+        file: PathBuf,
+        /// Repeat the profile past its ends.
+        #[serde(default)]
+        looped: bool,
+    },
+}
+
+impl Road {
+    /// Short human name of the road type.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Road::Sine { .. } => "sine",
+            Road::Harmonics { .. } => "harmonics",
+            Road::Measured { .. } => "measured",
+        }
+    }
+}
+
+/// A road ready to be sampled: `z(x)` (m) and `dz/dx` (-).
+#[derive(Debug, Clone, PartialEq)]
+pub enum RoadProfile {
+    Harmonics(Vec<Harmonic>),
+    Measured {
+        x_m: Vec<f64>,
+        z_m: Vec<f64>,
+        looped: bool,
+    },
+}
+
+/// Sampling a measured profile past its ends (without `looped`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OutOfRange {
+    pub x_m: f64,
+    pub min_m: f64,
+    pub max_m: f64,
+}
+
+impl RoadProfile {
+    /// Builds the profile; a measured file is read relative to `base_dir`.
+    pub fn new(road: &Road, base_dir: Option<&Path>) -> Result<Self, SceneError> {
+        Ok(match road {
+            Road::Sine {
+                amplitude_m,
+                wavelength_m,
+            } => RoadProfile::Harmonics(vec![Harmonic {
+                amplitude_m: *amplitude_m,
+                wavelength_m: *wavelength_m,
+                phase_rad: 0.0,
+            }]),
+            Road::Harmonics { components } => RoadProfile::Harmonics(components.clone()),
+            Road::Measured { file, looped } => {
+                let path = match base_dir {
+                    Some(d) if file.is_relative() => d.join(file),
+                    _ => file.clone(),
+                };
+                let (x_m, z_m) = read_profile_csv(&path)?;
+                RoadProfile::Measured {
+                    x_m,
+                    z_m,
+                    looped: *looped,
+                }
+            }
+        })
+    }
+
+    /// A length scale of the profile (m): largest possible |z|.
+    pub fn scale_m(&self) -> f64 {
+        match self {
+            RoadProfile::Harmonics(h) => h.iter().map(|c| c.amplitude_m.abs()).sum(),
+            RoadProfile::Measured { z_m, .. } => z_m.iter().fold(0.0, |m, z| m.max(z.abs())),
+        }
+    }
+
+    /// Height `z(x)` (m) and slope `dz/dx` at `x` (m).
+    #[inline]
+    pub fn sample(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
+        match self {
+            RoadProfile::Harmonics(h) => {
+                let mut z = 0.0;
+                let mut dz = 0.0;
+                for c in h {
+                    let k = TAU / c.wavelength_m;
+                    let (s, co) = (k * x + c.phase_rad).sin_cos();
+                    z += c.amplitude_m * s;
+                    dz += c.amplitude_m * k * co;
+                }
+                Ok((z, dz))
+            }
+            RoadProfile::Measured { x_m, z_m, looped } => {
+                let (x0, x1) = (x_m[0], x_m[x_m.len() - 1]);
+                let xx = if *looped {
+                    x0 + (x - x0).rem_euclid(x1 - x0)
+                } else if x < x0 || x > x1 {
+                    return Err(OutOfRange {
+                        x_m: x,
+                        min_m: x0,
+                        max_m: x1,
+                    });
+                } else {
+                    x
+                };
+                // Segment k with x_m[k] <= xx <= x_m[k+1].
+                let k = x_m.partition_point(|&xi| xi <= xx).clamp(1, x_m.len() - 1) - 1;
+                let slope = (z_m[k + 1] - z_m[k]) / (x_m[k + 1] - x_m[k]);
+                Ok((z_m[k] + slope * (xx - x_m[k]), slope))
+            }
+        }
+    }
+}
+
+/// Largest measured profile accepted (rows).
+pub const MAX_PROFILE_ROWS: usize = 20_000_000;
+
+/// Reads a `x_m, z_m` CSV: optional header, strictly increasing finite `x`.
+pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>), SceneError> {
+    let err = |message: String| SceneError::RoadFile {
+        path: path.to_path_buf(),
+        message,
+    };
+    let file = std::fs::File::open(path).map_err(|e| err(format!("cannot open: {e}")))?;
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .flexible(true)
+        .from_reader(file);
+    let (mut xs, mut zs) = (Vec::new(), Vec::new());
+    for (row, rec) in rdr.records().enumerate() {
+        let line = row + 1;
+        let rec = rec.map_err(|e| err(format!("line {line}: {e}")))?;
+        if rec.len() < 2 {
+            return Err(err(format!(
+                "line {line}: expected two columns `x_m, z_m`, found {}",
+                rec.len()
+            )));
+        }
+        let (sx, sz) = (&rec[0], &rec[1]);
+        let (x, z) = match (sx.parse::<f64>(), sz.parse::<f64>()) {
+            (Ok(x), Ok(z)) => (x, z),
+            _ if row == 0 => continue, // header
+            _ => {
+                return Err(err(format!(
+                    "line {line}: expected two numbers `x_m, z_m`, found `{sx}, {sz}`"
+                )));
+            }
+        };
+        if !x.is_finite() || !z.is_finite() {
+            return Err(err(format!(
+                "line {line}: x = {x}, z = {z}: expected finite numbers"
+            )));
+        }
+        if let Some(&last) = xs.last()
+            && x <= last
+        {
+            return Err(err(format!(
+                "line {line}: x = {x} m after x = {last} m: expected strictly increasing x"
+            )));
+        }
+        if xs.len() >= MAX_PROFILE_ROWS {
+            return Err(err(format!(
+                "more than {MAX_PROFILE_ROWS} rows: expected a smaller profile (resample it)"
+            )));
+        }
+        xs.push(x);
+        zs.push(z);
+    }
+    if xs.len() < 2 {
+        return Err(err(format!(
+            "{} data row(s): expected at least two `x_m, z_m` rows",
+            xs.len()
+        )));
+    }
+    Ok((xs, zs))
+}
+
+/// The ramp `w(t) = 3 s^2 - 2 s^3`, `s = clamp(t / T, 0, 1)`, and `dw/dt`
+/// (SPEC §4). `T = 0` gives `w = 1`.
+#[inline]
+pub fn ramp(t_s: f64, ramp_s: f64) -> (f64, f64) {
+    if ramp_s <= 0.0 || t_s >= ramp_s {
+        return (1.0, 0.0);
+    }
+    if t_s <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let s = t_s / ramp_s;
+    (s * s * (3.0 - 2.0 * s), 6.0 * s * (1.0 - s) / ramp_s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ramp_is_smooth_and_monotone() {
+        let t = 0.1;
+        assert_eq!(ramp(0.0, t), (0.0, 0.0));
+        assert_eq!(ramp(t, t), (1.0, 0.0));
+        let (w, dw) = ramp(0.05, t);
+        assert!((w - 0.5).abs() < 1e-15);
+        assert!((dw - 1.5 / t).abs() < 1e-12);
+        // derivative against a central difference
+        let e = 1e-7;
+        let fd = (ramp(0.03 + e, t).0 - ramp(0.03 - e, t).0) / (2.0 * e);
+        assert!((fd - ramp(0.03, t).1).abs() < 1e-6);
+    }
+
+    #[test]
+    fn measured_profile_interpolates_and_refuses_outside() {
+        let p = RoadProfile::Measured {
+            x_m: vec![0.0, 1.0, 3.0],
+            z_m: vec![0.0, 1.0, -1.0],
+            looped: false,
+        };
+        assert_eq!(p.sample(0.5).unwrap(), (0.5, 1.0));
+        assert_eq!(p.sample(2.0).unwrap(), (0.0, -1.0));
+        assert_eq!(p.sample(3.0).unwrap(), (-1.0, -1.0));
+        assert!(p.sample(3.5).is_err());
+        assert!(p.sample(-0.1).is_err());
+        let l = RoadProfile::Measured {
+            x_m: vec![0.0, 1.0, 3.0],
+            z_m: vec![0.0, 1.0, -1.0],
+            looped: true,
+        };
+        assert!((l.sample(3.5).unwrap().0 - 0.5).abs() < 1e-15);
+        assert!((l.sample(-1.0).unwrap().0 - 0.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn harmonic_slope_matches_difference() {
+        let p = RoadProfile::Harmonics(vec![
+            Harmonic {
+                amplitude_m: 0.002,
+                wavelength_m: 0.5,
+                phase_rad: 0.3,
+            },
+            Harmonic {
+                amplitude_m: 0.001,
+                wavelength_m: 0.13,
+                phase_rad: 0.0,
+            },
+        ]);
+        let e = 1e-7;
+        let fd = (p.sample(0.2 + e).unwrap().0 - p.sample(0.2 - e).unwrap().0) / (2.0 * e);
+        assert!((fd - p.sample(0.2).unwrap().1).abs() < 1e-7);
+    }
+}

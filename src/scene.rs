@@ -1,0 +1,407 @@
+//! Scenes: what is simulated, as written in RON preset files, and their
+//! validation. Every validation error names the field, the value and what was
+//! expected; syntax errors give file, line and column.
+
+use crate::error::{FieldError, SceneError};
+use crate::road::Road;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// How contact is decided inside a time step (SPEC §4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum ContactScheme {
+    /// Impacts and releases located inside the step (second order). Default.
+    #[default]
+    Located,
+    /// The paper's plain scheme: contact decided at step ends (first order).
+    Paper,
+}
+
+/// One mode of the modal model (SPEC §2). Give either `residue` (P×P, row i =
+/// receiving point, column j = loaded point, in 1/kg) or `shape` (P values,
+/// `A = φ φᵀ`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Mode {
+    /// Natural frequency `f_k` (Hz), > 0.
+    pub freq_hz: f64,
+    /// Damping ratio `ξ_k` (-), >= 0 (0 undamped, 1 critical, > 1 overdamped).
+    pub damping_ratio: f64,
+    /// Residue matrix `A_k` (1/kg), P×P. Empty when `shape` is given.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub residue: Vec<Vec<f64>>,
+    /// Mode shape `φ_k` (1/√kg), P values; `A_k = φ_k φ_kᵀ`. Empty when `residue` is given.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub shape: Vec<f64>,
+}
+
+impl Mode {
+    /// The residue matrix `A_k` (P×P), from `residue` or from `shape`.
+    pub fn residue_matrix(&self) -> Vec<Vec<f64>> {
+        if !self.residue.is_empty() {
+            self.residue.clone()
+        } else {
+            self.shape
+                .iter()
+                .map(|a| self.shape.iter().map(|b| a * b).collect())
+                .collect()
+        }
+    }
+}
+
+/// Source of the tyre's Green functions.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Tyre {
+    /// A modal model given mode by mode (SPEC §2).
+    Modal { modes: Vec<Mode> },
+}
+
+/// A contact point on the contact line.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Point {
+    /// Longitudinal position `x_i` (m) along the contact line.
+    pub x_m: f64,
+    /// Undeformed height `h_i` (m) above the mean road plane; < 0 is preload.
+    pub h_m: f64,
+}
+
+/// A complete scene: tyre, contact points, road, speed and time stepping.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Display name.
+    pub name: String,
+    /// Free text shown with the scene (optional).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub description: String,
+    /// The tyre model. Changing it restarts the run.
+    pub tyre: Tyre,
+    /// Contact points. Changing them restarts the run.
+    pub points: Vec<Point>,
+    /// Road profile. Applied live.
+    pub road: Road,
+    /// Rolling speed `V` (m/s), >= 0. Applied live.
+    pub speed_mps: f64,
+    /// Ramp time `T_ramp` (s) of preload and road, >= 0; default 0.
+    #[serde(default)]
+    pub ramp_s: f64,
+    /// Time step (s), > 0. Changing it restarts the run.
+    pub dt_s: f64,
+    /// Duration of a run (s), >= dt_s.
+    pub duration_s: f64,
+    /// Contact scheme; default `Located`.
+    #[serde(default)]
+    pub contact_scheme: ContactScheme,
+    /// Folder the scene was loaded from (for relative road files). Not saved.
+    #[serde(skip)]
+    pub base_dir: Option<PathBuf>,
+}
+
+/// Largest number of steps a run may have (bounds memory and time).
+pub const MAX_STEPS: f64 = 1e10;
+
+fn ron_options() -> ron::Options {
+    ron::Options::default()
+}
+
+impl Scene {
+    /// Parses RON text; `file` names the source in messages.
+    pub fn from_ron_str(text: &str, file: &str) -> Result<Scene, SceneError> {
+        ron_options()
+            .from_str::<Scene>(text)
+            .map_err(|e| SceneError::Syntax {
+                file: file.to_string(),
+                line: e.span.start.line,
+                col: e.span.start.col,
+                message: e.code.to_string(),
+            })
+    }
+
+    /// Parses and validates RON text.
+    pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
+        let scene = Self::from_ron_str(text, file)?;
+        scene.validate().map_err(|errors| SceneError::Invalid {
+            file: file.to_string(),
+            errors,
+        })?;
+        Ok(scene)
+    }
+
+    /// Reads, parses and validates a scene file; relative road files are
+    /// resolved against its folder.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let mut scene = Self::parse(&text, &path.display().to_string())?;
+        scene.base_dir = path.parent().map(Path::to_path_buf);
+        Ok(scene)
+    }
+
+    /// The scene as pretty RON text.
+    pub fn to_ron_string(&self) -> String {
+        let cfg = ron::ser::PrettyConfig::new()
+            .struct_names(true)
+            .depth_limit(4)
+            .indentor("    ".to_string());
+        // Serialising plain data structures cannot fail.
+        ron_options()
+            .to_string_pretty(self, cfg)
+            .unwrap_or_else(|e| format!("// serialisation failed: {e}"))
+    }
+
+    /// Saves atomically: writes a temporary file in the same folder, flushes
+    /// it to disk, then renames it over `path`. A failed write leaves the old
+    /// file intact.
+    pub fn save(&self, path: &Path) -> Result<(), SceneError> {
+        crate::output::write_atomic(path, self.to_ron_string().as_bytes()).map_err(|source| {
+            SceneError::Io {
+                path: path.to_path_buf(),
+                source,
+            }
+        })
+    }
+
+    /// Number of contact points `P`.
+    pub fn num_points(&self) -> usize {
+        self.points.len()
+    }
+
+    /// Number of steps of a full run.
+    pub fn num_steps(&self) -> u64 {
+        (self.duration_s / self.dt_s).round().max(1.0) as u64
+    }
+
+    /// The modes of the modal model.
+    pub fn modes(&self) -> &[Mode] {
+        match &self.tyre {
+            Tyre::Modal { modes } => modes,
+        }
+    }
+
+    /// Checks every value; returns all problems found.
+    pub fn validate(&self) -> Result<(), Vec<FieldError>> {
+        let mut v = Validator::default();
+        let p = self.points.len();
+        if p == 0 {
+            v.push("points", "[]", "at least one contact point");
+        }
+        for (i, pt) in self.points.iter().enumerate() {
+            v.finite(&format!("points[{i}].x_m"), pt.x_m, "a finite position in m");
+            v.finite(&format!("points[{i}].h_m"), pt.h_m, "a finite height in m");
+            if pt.h_m.abs() > 1.0 {
+                v.push(
+                    &format!("points[{i}].h_m"),
+                    pt.h_m,
+                    "|h| <= 1 m (a tyre deflection, in metres)",
+                );
+            }
+            for (j, q) in self.points.iter().enumerate().take(i) {
+                if pt.x_m == q.x_m {
+                    v.push(
+                        &format!("points[{i}].x_m"),
+                        pt.x_m,
+                        &format!("a position different from points[{j}].x_m (coincident points make the contact system singular)"),
+                    );
+                }
+            }
+        }
+        match &self.tyre {
+            Tyre::Modal { modes } => {
+                if modes.is_empty() {
+                    v.push("tyre.modes", "[]", "at least one mode");
+                }
+                for (k, m) in modes.iter().enumerate() {
+                    validate_mode(&mut v, &format!("tyre.modes[{k}]"), m, p);
+                }
+            }
+        }
+        validate_road(&mut v, &self.road);
+        v.nonneg("speed_mps", self.speed_mps, "a speed >= 0 m/s");
+        if self.speed_mps > 1000.0 {
+            v.push("speed_mps", self.speed_mps, "a speed <= 1000 m/s");
+        }
+        v.nonneg("ramp_s", self.ramp_s, "a ramp time >= 0 s");
+        if self.ramp_s == 0.0 {
+            if let Road::Sine { .. } | Road::Harmonics { .. } = self.road {
+                let prof = crate::road::RoadProfile::new(&self.road, None);
+                if let Ok(prof) = prof {
+                    for (i, pt) in self.points.iter().enumerate() {
+                        if let Ok((z, _)) = prof.sample(pt.x_m)
+                            && z - pt.h_m > 0.0
+                        {
+                            v.push(
+                                "ramp_s",
+                                0.0,
+                                &format!("a ramp time > 0 s: point {i} starts {:.3e} m below the road (SPEC §4)", z - pt.h_m),
+                            );
+                            break;
+                        }
+                    }
+                }
+            }
+        }
+        v.positive("dt_s", self.dt_s, "a time step > 0 s");
+        if self.dt_s > 0.1 {
+            v.push("dt_s", self.dt_s, "a time step <= 0.1 s");
+        }
+        v.positive("duration_s", self.duration_s, "a duration > 0 s");
+        if self.dt_s > 0.0 && self.duration_s > 0.0 {
+            if self.dt_s > self.duration_s {
+                v.push(
+                    "dt_s",
+                    self.dt_s,
+                    &format!("a time step <= duration_s = {} s", self.duration_s),
+                );
+            } else if self.duration_s / self.dt_s > MAX_STEPS {
+                v.push(
+                    "duration_s",
+                    self.duration_s,
+                    &format!(
+                        "at most {MAX_STEPS:e} steps of dt_s = {} s ({:.3e} requested)",
+                        self.dt_s,
+                        self.duration_s / self.dt_s
+                    ),
+                );
+            }
+        }
+        v.finish()
+    }
+}
+
+fn validate_mode(v: &mut Validator, at: &str, m: &Mode, p: usize) {
+    v.positive(&format!("{at}.freq_hz"), m.freq_hz, "a frequency > 0 Hz");
+    if m.freq_hz > 1e6 {
+        v.push(&format!("{at}.freq_hz"), m.freq_hz, "a frequency <= 1e6 Hz");
+    }
+    v.nonneg(
+        &format!("{at}.damping_ratio"),
+        m.damping_ratio,
+        "a damping ratio >= 0 (0 undamped, 1 critical, > 1 overdamped)",
+    );
+    if m.damping_ratio > 1e4 {
+        v.push(&format!("{at}.damping_ratio"), m.damping_ratio, "a damping ratio <= 1e4");
+    }
+    match (m.residue.is_empty(), m.shape.is_empty()) {
+        (true, true) => v.push(
+            &format!("{at}.residue"),
+            "(missing)",
+            &format!("a {p}x{p} residue matrix or a shape of {p} values"),
+        ),
+        (false, false) => v.push(
+            &format!("{at}.shape"),
+            format!("{:?}", m.shape),
+            "either `residue` or `shape`, not both",
+        ),
+        (false, true) => {
+            if m.residue.len() != p || m.residue.iter().any(|r| r.len() != p) {
+                let shape: Vec<usize> = m.residue.iter().map(Vec::len).collect();
+                v.push(
+                    &format!("{at}.residue"),
+                    format!("{} rows of lengths {shape:?}", m.residue.len()),
+                    &format!("a {p}x{p} matrix (one row and column per contact point)"),
+                );
+            }
+            for (i, row) in m.residue.iter().enumerate() {
+                for (j, a) in row.iter().enumerate() {
+                    v.finite(&format!("{at}.residue[{i}][{j}]"), *a, "a finite residue in 1/kg");
+                }
+            }
+        }
+        (true, false) => {
+            if m.shape.len() != p {
+                v.push(
+                    &format!("{at}.shape"),
+                    format!("{} values", m.shape.len()),
+                    &format!("{p} values (one per contact point)"),
+                );
+            }
+            for (i, a) in m.shape.iter().enumerate() {
+                v.finite(&format!("{at}.shape[{i}]"), *a, "a finite value in 1/sqrt(kg)");
+            }
+        }
+    }
+}
+
+fn validate_road(v: &mut Validator, road: &Road) {
+    match road {
+        Road::Sine {
+            amplitude_m,
+            wavelength_m,
+        } => {
+            v.nonneg("road.amplitude_m", *amplitude_m, "an amplitude >= 0 m");
+            if *amplitude_m > 1.0 {
+                v.push("road.amplitude_m", *amplitude_m, "an amplitude <= 1 m");
+            }
+            v.positive("road.wavelength_m", *wavelength_m, "a wavelength > 0 m");
+        }
+        Road::Harmonics { components } => {
+            if components.is_empty() {
+                v.push("road.components", "[]", "at least one harmonic");
+            }
+            for (k, c) in components.iter().enumerate() {
+                v.finite(
+                    &format!("road.components[{k}].amplitude_m"),
+                    c.amplitude_m,
+                    "a finite amplitude in m",
+                );
+                v.positive(
+                    &format!("road.components[{k}].wavelength_m"),
+                    c.wavelength_m,
+                    "a wavelength > 0 m",
+                );
+                v.finite(
+                    &format!("road.components[{k}].phase_rad"),
+                    c.phase_rad,
+                    "a finite phase in rad",
+                );
+            }
+        }
+        Road::Measured { file, .. } => {
+            if file.as_os_str().is_empty() {
+                v.push("road.file", "\"\"", "the path of a CSV of `x_m, z_m` rows");
+            }
+        }
+    }
+}
+
+#[derive(Default)]
+struct Validator {
+    errors: Vec<FieldError>,
+}
+
+impl Validator {
+    fn push(&mut self, field: &str, value: impl std::fmt::Display, expected: &str) {
+        self.errors.push(FieldError {
+            field: field.to_string(),
+            value: value.to_string(),
+            expected: expected.to_string(),
+        });
+    }
+    fn finite(&mut self, field: &str, x: f64, expected: &str) -> bool {
+        if !x.is_finite() {
+            self.push(field, x, expected);
+            return false;
+        }
+        true
+    }
+    fn nonneg(&mut self, field: &str, x: f64, expected: &str) {
+        if !(x.is_finite() && x >= 0.0) {
+            self.push(field, x, expected);
+        }
+    }
+    fn positive(&mut self, field: &str, x: f64, expected: &str) {
+        if !(x.is_finite() && x > 0.0) {
+            self.push(field, x, expected);
+        }
+    }
+    fn finish(self) -> Result<(), Vec<FieldError>> {
+        if self.errors.is_empty() {
+            Ok(())
+        } else {
+            Err(self.errors)
+        }
+    }
+}
