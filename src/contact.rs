@@ -40,7 +40,11 @@ impl DenseSolver {
     }
 
     /// Factorises the `n × n` matrix given by `entry(r, c)`.
-    pub fn factor(&mut self, n: usize, entry: impl Fn(usize, usize) -> f64) -> Result<(), Singular> {
+    pub fn factor(
+        &mut self,
+        n: usize,
+        entry: impl Fn(usize, usize) -> f64,
+    ) -> Result<(), Singular> {
         assert!(n <= self.cap, "contact system larger than its buffers");
         self.n = n;
         let a = &mut self.a[..n * n];
@@ -52,7 +56,11 @@ impl DenseSolver {
         // Row, then column equilibration to unit max-norm.
         for r in 0..n {
             let m = (0..n).map(|c| a[r * n + c].abs()).fold(0.0, f64::max);
-            let s = if m > 0.0 && m.is_finite() { 1.0 / m } else { 1.0 };
+            let s = if m > 0.0 && m.is_finite() {
+                1.0 / m
+            } else {
+                1.0
+            };
             self.row_scale[r] = s;
             for c in 0..n {
                 a[r * n + c] *= s;
@@ -60,7 +68,11 @@ impl DenseSolver {
         }
         for c in 0..n {
             let m = (0..n).map(|r| a[r * n + c].abs()).fold(0.0, f64::max);
-            let s = if m > 0.0 && m.is_finite() { 1.0 / m } else { 1.0 };
+            let s = if m > 0.0 && m.is_finite() {
+                1.0 / m
+            } else {
+                1.0
+            };
             self.col_scale[c] = s;
             for r in 0..n {
                 a[r * n + c] *= s;
@@ -141,7 +153,10 @@ mod tests {
         // rows of scale 1e-5 and 1, as in the Gauss-point system at dt = 1e-5
         let m = [[2e-5, 1e-5, 3e-6], [0.5, -1.0, 0.2], [1e3, 2e2, 5e3]];
         let x = [1.0, -2.0, 0.5];
-        let mut b: Vec<f64> = m.iter().map(|r| r.iter().zip(&x).map(|(a, b)| a * b).sum()).collect();
+        let mut b: Vec<f64> = m
+            .iter()
+            .map(|r| r.iter().zip(&x).map(|(a, b)| a * b).sum())
+            .collect();
         let mut s = DenseSolver::new(4);
         s.factor(3, |r, c| m[r][c]).unwrap();
         s.solve(&mut b);

@@ -93,7 +93,8 @@ pub fn mode_step(omega: f64, xi: f64, tau_s: f64) -> ModeStep {
     let mut gm = [m1, mv];
     for _ in 0..s {
         let phi = phi_of(e, a, w2);
-        let apply = |p: &[f64; 4], y: [f64; 2]| [p[0] * y[0] + p[1] * y[1], p[2] * y[0] + p[3] * y[1]];
+        let apply =
+            |p: &[f64; 4], y: [f64; 2]| [p[0] * y[0] + p[1] * y[1], p[2] * y[0] + p[3] * y[1]];
         let shifted = [gm[0] + delta * g0[0], gm[1] + delta * g0[1]];
         let pg = apply(&phi, shifted);
         gm = [gm[0] + pg[0], gm[1] + pg[1]];
@@ -107,8 +108,14 @@ pub fn mode_step(omega: f64, xi: f64, tau_s: f64) -> ModeStep {
     let w_start = g1;
     let w_end = [g0[0] - g1[0], g0[1] - g1[1]];
     let w_gauss = [
-        [GA * w_start[0] - GB * w_end[0], GA * w_start[1] - GB * w_end[1]],
-        [-GB * w_start[0] + GA * w_end[0], -GB * w_start[1] + GA * w_end[1]],
+        [
+            GA * w_start[0] - GB * w_end[0],
+            GA * w_start[1] - GB * w_end[1],
+        ],
+        [
+            -GB * w_start[0] + GA * w_end[0],
+            -GB * w_start[1] + GA * w_end[1],
+        ],
     ];
     ModeStep {
         phi,
@@ -417,17 +424,35 @@ mod tests {
         let m = mode_step(omega, xi, tau);
         let (h, hd) = unit_impulse(omega, xi, tau);
         let scale_h = tau.min(1.0 / omega);
-        assert!((m.h[0] - h).abs() <= 1e-12 * scale_h, "h: xi={xi} wt={}: {} vs {h}", omega * tau, m.h[0]);
-        assert!((m.h[1] - hd).abs() <= 1e-12, "h': xi={xi} wt={}: {} vs {hd}", omega * tau, m.h[1]);
+        assert!(
+            (m.h[0] - h).abs() <= 1e-12 * scale_h,
+            "h: xi={xi} wt={}: {} vs {h}",
+            omega * tau,
+            m.h[0]
+        );
+        assert!(
+            (m.h[1] - hd).abs() <= 1e-12,
+            "h': xi={xi} wt={}: {} vs {hd}",
+            omega * tau,
+            m.h[1]
+        );
         // constant-force weight: step response (1 - h' - 2ξωh)/ω², fine only where it does not cancel
         if omega * tau > 0.5 {
             let step = (1.0 - hd - 2.0 * xi * omega * h) / (omega * omega);
             // 16 doublings at ξ = 50, ωτ = 250 leave ~1e-12 relative (round-off growth of the doublings)
-            assert!((m.w_const[0] - step).abs() <= 1e-11 / (omega * omega), "I0 xi={xi} wt={}: {} vs {step}", omega * tau, m.w_const[0]);
+            assert!(
+                (m.w_const[0] - step).abs() <= 1e-11 / (omega * omega),
+                "I0 xi={xi} wt={}: {} vs {step}",
+                omega * tau,
+                m.w_const[0]
+            );
         } else {
             // small ωτ: I0 ≈ τ²/2 (1 - (2ξω) τ/3 ...)
             let approx = tau * tau / 2.0;
-            assert!((m.w_const[0] / approx - 1.0).abs() < 2.0 * (omega + 2.0 * xi * omega) * tau + 1e-12);
+            assert!(
+                (m.w_const[0] / approx - 1.0).abs()
+                    < 2.0 * (omega + 2.0 * xi * omega) * tau + 1e-12
+            );
         }
     }
 
@@ -448,9 +473,18 @@ mod tests {
         let m = mode_step(omega, xi, tau);
         let quad = |f: &dyn Fn(f64) -> f64| {
             let n = 400;
-            let g = [(-1.0 / 3f64.sqrt() + 1.0) / 2.0, (1.0 / 3f64.sqrt() + 1.0) / 2.0];
+            let g = [
+                (-1.0 / 3f64.sqrt() + 1.0) / 2.0,
+                (1.0 / 3f64.sqrt() + 1.0) / 2.0,
+            ];
             let hs = tau / n as f64;
-            (0..n).map(|k| g.iter().map(|&x| f((k as f64 + x) * hs) * hs / 2.0).sum::<f64>()).sum::<f64>()
+            (0..n)
+                .map(|k| {
+                    g.iter()
+                        .map(|&x| f((k as f64 + x) * hs) * hs / 2.0)
+                        .sum::<f64>()
+                })
+                .sum::<f64>()
         };
         // linear force through the ends: q(s) = 2 + 3 s/τ
         let q = |s: f64| 2.0 + 3.0 * s / tau;
@@ -458,7 +492,10 @@ mod tests {
         let w = 2.0 * m.w_ends[0][0] + 5.0 * m.w_ends[1][0];
         assert!((w - exact).abs() < 1e-9 * exact.abs(), "{w} vs {exact}");
         // same force through the Gauss points
-        let (s1, s2) = (tau * (1.0 - 1.0 / 3f64.sqrt()) / 2.0, tau * (1.0 + 1.0 / 3f64.sqrt()) / 2.0);
+        let (s1, s2) = (
+            tau * (1.0 - 1.0 / 3f64.sqrt()) / 2.0,
+            tau * (1.0 + 1.0 / 3f64.sqrt()) / 2.0,
+        );
         let wg = q(s1) * m.w_gauss[0][0] + q(s2) * m.w_gauss[1][0];
         assert!((wg - exact).abs() < 1e-9 * exact.abs(), "{wg} vs {exact}");
         let exact_v = quad(&|s| unit_impulse(omega, xi, tau - s).1 * q(s));

@@ -16,7 +16,11 @@ pub struct FieldError {
 
 impl std::fmt::Display for FieldError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} = {}: expected {}", self.field, self.value, self.expected)
+        write!(
+            f,
+            "{} = {}: expected {}",
+            self.field, self.value, self.expected
+        )
     }
 }
 

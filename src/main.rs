@@ -7,7 +7,11 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
 #[derive(Parser)]
-#[command(name = "tirecontact", version, about = "Dynamic tyre/road contact by fast modal convolution")]
+#[command(
+    name = "tirecontact",
+    version,
+    about = "Dynamic tyre/road contact by fast modal convolution"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,

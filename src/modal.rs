@@ -170,7 +170,10 @@ mod tests {
                 let (h, d) = unit_impulse(w, xi, t);
                 // dh/dξ is O(t² ω h): the step of 1e-9 moves h by ~1e-9 relative at most
                 let tol = 4.0 * (xi - 1.0).abs() * (1.0 + (w * t).powi(2)) + 1e-14;
-                assert!((h - h1).abs() <= tol * h1.abs(), "xi={xi} t={t}: {h} vs {h1}");
+                assert!(
+                    (h - h1).abs() <= tol * h1.abs(),
+                    "xi={xi} t={t}: {h} vs {h1}"
+                );
                 assert!((d - d1).abs() <= tol * (d1.abs() + h1.abs() * w), "xi={xi}");
             }
         }
@@ -184,7 +187,10 @@ mod tests {
                 let e = 1e-8;
                 let fd = (unit_impulse(w, xi, t + e).0 - unit_impulse(w, xi, t - e).0) / (2.0 * e);
                 let (_, d) = unit_impulse(w, xi, t);
-                assert!((fd - d).abs() < 1e-6 * (1.0 + d.abs()), "xi={xi} t={t}: {fd} vs {d}");
+                assert!(
+                    (fd - d).abs() < 1e-6 * (1.0 + d.abs()),
+                    "xi={xi} t={t}: {fd} vs {d}"
+                );
             }
         }
     }

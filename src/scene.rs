@@ -189,7 +189,11 @@ impl Scene {
             v.push("points", "[]", "at least one contact point");
         }
         for (i, pt) in self.points.iter().enumerate() {
-            v.finite(&format!("points[{i}].x_m"), pt.x_m, "a finite position in m");
+            v.finite(
+                &format!("points[{i}].x_m"),
+                pt.x_m,
+                "a finite position in m",
+            );
             v.finite(&format!("points[{i}].h_m"), pt.h_m, "a finite height in m");
             if pt.h_m.abs() > 1.0 {
                 v.push(
@@ -282,7 +286,11 @@ fn validate_mode(v: &mut Validator, at: &str, m: &Mode, p: usize) {
         "a damping ratio >= 0 (0 undamped, 1 critical, > 1 overdamped)",
     );
     if m.damping_ratio > 1e4 {
-        v.push(&format!("{at}.damping_ratio"), m.damping_ratio, "a damping ratio <= 1e4");
+        v.push(
+            &format!("{at}.damping_ratio"),
+            m.damping_ratio,
+            "a damping ratio <= 1e4",
+        );
     }
     match (m.residue.is_empty(), m.shape.is_empty()) {
         (true, true) => v.push(
@@ -306,7 +314,11 @@ fn validate_mode(v: &mut Validator, at: &str, m: &Mode, p: usize) {
             }
             for (i, row) in m.residue.iter().enumerate() {
                 for (j, a) in row.iter().enumerate() {
-                    v.finite(&format!("{at}.residue[{i}][{j}]"), *a, "a finite residue in 1/kg");
+                    v.finite(
+                        &format!("{at}.residue[{i}][{j}]"),
+                        *a,
+                        "a finite residue in 1/kg",
+                    );
                 }
             }
         }
@@ -319,7 +331,11 @@ fn validate_mode(v: &mut Validator, at: &str, m: &Mode, p: usize) {
                 );
             }
             for (i, a) in m.shape.iter().enumerate() {
-                v.finite(&format!("{at}.shape[{i}]"), *a, "a finite value in 1/sqrt(kg)");
+                v.finite(
+                    &format!("{at}.shape[{i}]"),
+                    *a,
+                    "a finite value in 1/sqrt(kg)",
+                );
             }
         }
     }

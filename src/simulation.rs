@@ -5,8 +5,8 @@
 use crate::contact::DenseSolver;
 use crate::convolution::{Influence, ModalBasis, ModalState, StepTable};
 use crate::error::{SceneError, SolverError};
-use crate::road::{RoadProfile, ramp};
 use crate::road::Road;
+use crate::road::{RoadProfile, ramp};
 use crate::scene::{ContactScheme, Scene};
 
 /// Values of a linear force at the step start and end from its Gauss-point values.
@@ -257,13 +257,16 @@ impl Simulation {
         let vel = self.scene.speed_mps;
         for (i, pt) in self.scene.points.iter().enumerate() {
             let x = pt.x_m + vel * t;
-            let (z, dz) = self.road.sample(x).map_err(|e| SolverError::RoadOutOfRange {
-                t_s: t,
-                point: i,
-                x_m: e.x_m,
-                min_m: e.min_m,
-                max_m: e.max_m,
-            })?;
+            let (z, dz) = self
+                .road
+                .sample(x)
+                .map_err(|e| SolverError::RoadOutOfRange {
+                    t_s: t,
+                    point: i,
+                    x_m: e.x_m,
+                    min_m: e.min_m,
+                    max_m: e.max_m,
+                })?;
             self.re[i] = w * (z - pt.h_m);
             self.rde[i] = dw * (z - pt.h_m) + w * dz * vel;
         }
@@ -377,7 +380,11 @@ impl Simulation {
         let mut pen = 0.0f64;
         for i in 0..self.p {
             self.q_mean[i] = self.impulse[i] / self.dt_s;
-            let checks = [(self.u[i], "displacement"), (self.v[i], "velocity"), (self.q_mean[i], "force")];
+            let checks = [
+                (self.u[i], "displacement"),
+                (self.v[i], "velocity"),
+                (self.q_mean[i], "force"),
+            ];
             for (x, quantity) in checks {
                 if !x.is_finite() {
                     return Err(SolverError::NonFinite {
@@ -495,7 +502,11 @@ impl Simulation {
                 let (q1, q2) = (self.q1[j], self.q2[j]);
                 let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
                 if qe < 0.0 {
-                    let th = if qs > 0.0 { remaining * qs / (qs - qe) } else { 0.0 };
+                    let th = if qs > 0.0 {
+                        remaining * qs / (qs - qe)
+                    } else {
+                        0.0
+                    };
                     let better = match release {
                         None => true,
                         Some((_, t2, e2)) => th < t2 || (th == t2 && qe < e2),
@@ -521,7 +532,8 @@ impl Simulation {
                 }
                 let (g0, d0) = (self.u[i] - self.r[i], self.v[i] - self.rd[i]);
                 let (g1, d1) = (self.ue[i] - self.re[i], self.ve[i] - self.rde[i]);
-                if let Some(y) = first_crossing(g0, d0 * remaining, g1, d1 * remaining, self.pen_tol_m)
+                if let Some(y) =
+                    first_crossing(g0, d0 * remaining, g1, d1 * remaining, self.pen_tol_m)
                 {
                     let th = y * remaining;
                     if impact.is_none_or(|(_, t2)| th < t2) {
@@ -617,7 +629,11 @@ impl Simulation {
             self.impulse[j] += self.q1[j];
         }
         for a in 0..p {
-            self.v[a] += self.active.iter().map(|&j| self.jump[a * p + j] * self.q1[j]).sum::<f64>();
+            self.v[a] += self
+                .active
+                .iter()
+                .map(|&j| self.jump[a * p + j] * self.q1[j])
+                .sum::<f64>();
         }
         Ok(solves)
     }
@@ -630,7 +646,12 @@ pub fn first_crossing(g0: f64, d0: f64, g1: f64, d1: f64, tol: f64) -> Option<f6
     if g0 < -tol {
         return None;
     }
-    let c = [g0, d0, -3.0 * g0 - 2.0 * d0 + 3.0 * g1 - d1, 2.0 * g0 + d0 - 2.0 * g1 + d1];
+    let c = [
+        g0,
+        d0,
+        -3.0 * g0 - 2.0 * d0 + 3.0 * g1 - d1,
+        2.0 * g0 + d0 - 2.0 * g1 + d1,
+    ];
     let p = |y: f64| ((c[3] * y + c[2]) * y + c[1]) * y + c[0];
     // cheap rejection: all of the cubic is above -tol
     if g1 >= -tol && (d0 >= 0.0 && d1 <= 0.0 || g0.min(g1) - 0.25 * (d0.abs() + d1.abs()) >= -tol) {

@@ -38,7 +38,9 @@ pub fn scene_with_overrides(args: &RunArgs) -> Result<Scene, SceneError> {
         .preset
         .as_ref()
         .map_or("(embedded preset)".to_string(), |p| p.display().to_string());
-    scene.validate().map_err(|errors| SceneError::Invalid { file, errors })?;
+    scene
+        .validate()
+        .map_err(|errors| SceneError::Invalid { file, errors })?;
     Ok(scene)
 }
 
@@ -90,7 +92,9 @@ pub fn run(args: &RunArgs) -> CliResult {
     }
     let wall = start.elapsed().as_secs_f64();
     let st = sim.stats();
-    let fmt_list = |v: &[f64], f: &dyn Fn(f64) -> String| v.iter().map(|&x| f(x)).collect::<Vec<_>>().join(" ");
+    let fmt_list = |v: &[f64], f: &dyn Fn(f64) -> String| {
+        v.iter().map(|&x| f(x)).collect::<Vec<_>>().join(" ")
+    };
     println!(
         "{}: {} steps of {:e} s to t = {:.4} s in {:.3} s wall ({:.2}x real time, {:.0} steps/s); max force [N]: {}; contact fraction: {}; events {}; worst penetration {:.2e} m{}",
         scene.name,

@@ -8,7 +8,13 @@ use std::io::Write;
 /// The header row for `p` points.
 pub fn header(p: usize) -> Vec<String> {
     let mut h = vec!["t_s".to_string()];
-    for (prefix, suffix) in [("u", "_m"), ("v", "_mps"), ("q", "_N"), ("gap", "_m"), ("contact", "")] {
+    for (prefix, suffix) in [
+        ("u", "_m"),
+        ("v", "_mps"),
+        ("q", "_N"),
+        ("gap", "_m"),
+        ("contact", ""),
+    ] {
         h.extend((0..p).map(|i| format!("{prefix}{i}{suffix}")));
     }
     h
@@ -62,11 +68,16 @@ impl<W: Write> RunWriter<W> {
         let p = sim.num_points();
         self.row.clear();
         self.row.push(format!("{:.9e}", sim.time_s()));
-        self.row.extend(sim.displacement_m().iter().map(|x| format!("{x:.9e}")));
-        self.row.extend(sim.velocity_mps().iter().map(|x| format!("{x:.9e}")));
-        self.row.extend(self.q_sum.iter().map(|x| format!("{:.9e}", x / n as f64)));
-        self.row.extend((0..p).map(|i| format!("{:.9e}", sim.gap_m(i))));
-        self.row.extend(sim.in_contact().iter().map(|&c| (c as u8).to_string()));
+        self.row
+            .extend(sim.displacement_m().iter().map(|x| format!("{x:.9e}")));
+        self.row
+            .extend(sim.velocity_mps().iter().map(|x| format!("{x:.9e}")));
+        self.row
+            .extend(self.q_sum.iter().map(|x| format!("{:.9e}", x / n as f64)));
+        self.row
+            .extend((0..p).map(|i| format!("{:.9e}", sim.gap_m(i))));
+        self.row
+            .extend(sim.in_contact().iter().map(|&c| (c as u8).to_string()));
         self.w.write_record(&self.row)
     }
 

@@ -1,6 +1,7 @@
 //! Output: CSV time histories, atomic file writes, headless figures.
 
 pub mod csv;
+pub mod figures;
 
 use std::io::Write;
 use std::path::Path;

@@ -1,0 +1,295 @@
+//! Headless PNG figures (plotters, bitmap backend, font from
+//! `epaint_default_fonts`): stacked panels of line or marker series, each
+//! with a title, axis labels with units, and a legend.
+
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Style {
+    Line,
+    /// Filled circles of the given radius (px).
+    Markers(u32),
+    /// Hollow circles of the given radius (px).
+    HollowMarkers(u32),
+}
+
+/// One named series of `(x, y)` points.
+#[derive(Debug, Clone)]
+pub struct Series {
+    pub name: String,
+    pub points: Vec<(f64, f64)>,
+    pub style: Style,
+    /// Colour index into the palette (`None`: by position).
+    pub color: Option<usize>,
+}
+
+impl Series {
+    pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Series {
+            name: name.into(),
+            points,
+            style: Style::Line,
+            color: None,
+        }
+    }
+}
+
+/// One chart panel.
+#[derive(Debug, Clone, Default)]
+pub struct Panel {
+    pub title: String,
+    /// Axis labels, with units, e.g. `"time (s)"`.
+    pub x_label: String,
+    pub y_label: String,
+    pub series: Vec<Series>,
+    pub log_x: bool,
+    pub log_y: bool,
+}
+
+/// A figure: a title, an optional subtitle line (scene parameters), panels
+/// stacked top to bottom.
+#[derive(Debug, Clone, Default)]
+pub struct Figure {
+    pub title: String,
+    pub subtitle: String,
+    pub panels: Vec<Panel>,
+}
+
+/// Errors of figure rendering.
+#[derive(Debug, thiserror::Error)]
+pub enum FigureError {
+    #[error("cannot draw figure {path}: {message}")]
+    Draw { path: String, message: String },
+    #[error("figure size {width}x{height} px: expected 200..=8000 px per side")]
+    Size { width: u32, height: u32 },
+}
+
+/// A colour-blind-friendly palette (Okabe-Ito, then a few more).
+pub const PALETTE: [RGBColor; 10] = [
+    RGBColor(0, 114, 178),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 0, 0),
+    RGBColor(240, 228, 66),
+    RGBColor(128, 128, 128),
+    RGBColor(140, 86, 75),
+];
+
+fn register_fonts() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The embedded font is valid; a failure would only lose text.
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            epaint_default_fonts::UBUNTU_LIGHT,
+        );
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Bold,
+            epaint_default_fonts::UBUNTU_LIGHT,
+        );
+    });
+}
+
+fn range(vals: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in vals {
+        if v.is_finite() && (!log || v > 0.0) {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    if !lo.is_finite() {
+        return if log { (1e-3, 1.0) } else { (0.0, 1.0) };
+    }
+    if log {
+        if hi <= lo {
+            return (lo / 2.0, hi * 2.0);
+        }
+        let f = (hi / lo).powf(0.04);
+        return (lo / f, hi * f);
+    }
+    if hi <= lo {
+        let d = if lo == 0.0 { 1.0 } else { lo.abs() * 0.1 };
+        return (lo - d, hi + d);
+    }
+    let pad = 0.04 * (hi - lo);
+    (lo - pad, hi + pad)
+}
+
+/// Renders `fig` as a PNG of `width × height` px at `path`.
+pub fn render_png(fig: &Figure, path: &Path, width: u32, height: u32) -> Result<(), FigureError> {
+    if !(200..=8000).contains(&width) || !(200..=8000).contains(&height) {
+        return Err(FigureError::Size { width, height });
+    }
+    register_fonts();
+    let err = |e: &dyn std::fmt::Display| FigureError::Draw {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    };
+    let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let scale = (height.min(width) as f64 / 800.0).clamp(0.6, 3.0);
+    let fs = |s: f64| (s * scale).round() as i32;
+    let mut top = fs(10.0);
+    root.draw(&Text::new(
+        fig.title.clone(),
+        (fs(12.0), top),
+        ("sans-serif", fs(24.0)).into_font().color(&BLACK),
+    ))
+    .map_err(|e| err(&e))?;
+    top += fs(30.0);
+    if !fig.subtitle.is_empty() {
+        root.draw(&Text::new(
+            fig.subtitle.clone(),
+            (fs(12.0), top),
+            ("sans-serif", fs(15.0))
+                .into_font()
+                .color(&RGBColor(70, 70, 70)),
+        ))
+        .map_err(|e| err(&e))?;
+        top += fs(22.0);
+    }
+    let body = root.margin(top as u32, 0, 0, 0);
+    let n = fig.panels.len().max(1);
+    let areas = body.split_evenly((n, 1));
+    for (panel, area) in fig.panels.iter().zip(areas.iter()) {
+        draw_panel(panel, area, scale).map_err(|e| err(&e))?;
+    }
+    root.present().map_err(|e| err(&e))?;
+    Ok(())
+}
+
+fn draw_panel(
+    panel: &Panel,
+    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    scale: f64,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let fs = |s: f64| (s * scale).round() as u32;
+    let xs = range(
+        panel
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.0)),
+        panel.log_x,
+    );
+    let ys = range(
+        panel
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.1)),
+        panel.log_y,
+    );
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .caption(&panel.title, ("sans-serif", fs(18.0) as i32))
+        .margin(fs(10.0))
+        .x_label_area_size(fs(45.0))
+        .y_label_area_size(fs(85.0));
+    macro_rules! finish {
+        ($chart:expr) => {{
+            let mut chart = $chart;
+            chart
+                .configure_mesh()
+                .x_desc(panel.x_label.as_str())
+                .y_desc(panel.y_label.as_str())
+                .label_style(("sans-serif", fs(14.0) as i32))
+                .axis_desc_style(("sans-serif", fs(16.0) as i32))
+                .light_line_style(RGBColor(235, 235, 235))
+                .draw()?;
+            for (k, s) in panel.series.iter().enumerate() {
+                let c = PALETTE[s.color.unwrap_or(k) % PALETTE.len()];
+                let pts = s
+                    .points
+                    .iter()
+                    .copied()
+                    .filter(|p| p.0.is_finite() && p.1.is_finite());
+                let stroke = (scale * 1.6).max(1.0) as u32;
+                match s.style {
+                    Style::Line => {
+                        chart
+                            .draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
+                            .label(s.name.clone())
+                            .legend(move |(x, y)| {
+                                PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(stroke))
+                            });
+                    }
+                    Style::Markers(r) | Style::HollowMarkers(r) => {
+                        let filled = matches!(s.style, Style::Markers(_));
+                        let style = if filled {
+                            c.filled()
+                        } else {
+                            c.stroke_width(1)
+                        };
+                        chart
+                            .draw_series(pts.map(move |p| Circle::new(p, r, style)))?
+                            .label(s.name.clone())
+                            .legend(move |(x, y)| Circle::new((x + 10, y), r, style));
+                    }
+                }
+            }
+            if panel.series.iter().any(|s| !s.name.is_empty()) {
+                chart
+                    .configure_series_labels()
+                    .background_style(WHITE.mix(0.85))
+                    .border_style(RGBColor(180, 180, 180))
+                    .label_font(("sans-serif", fs(14.0) as i32))
+                    .position(SeriesLabelPosition::UpperRight)
+                    .draw()?;
+            }
+        }};
+    }
+    match (panel.log_x, panel.log_y) {
+        (false, false) => finish!(builder.build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)?),
+        (true, false) => finish!(builder.build_cartesian_2d((xs.0..xs.1).log_scale(), ys.0..ys.1)?),
+        (false, true) => finish!(builder.build_cartesian_2d(xs.0..xs.1, (ys.0..ys.1).log_scale())?),
+        (true, true) => {
+            finish!(builder.build_cartesian_2d((xs.0..xs.1).log_scale(), (ys.0..ys.1).log_scale())?)
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn renders_a_png_of_the_requested_size() {
+        let dir = std::env::temp_dir().join(format!("tc-fig-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("f.png");
+        let fig = Figure {
+            title: "test".into(),
+            subtitle: "a = 1".into(),
+            panels: vec![Panel {
+                title: "sine".into(),
+                x_label: "time (s)".into(),
+                y_label: "u (mm)".into(),
+                series: vec![Series::line(
+                    "u0",
+                    (0..100)
+                        .map(|k| (k as f64, (k as f64 * 0.1).sin()))
+                        .collect(),
+                )],
+                ..Panel::default()
+            }],
+        };
+        render_png(&fig, &path, 640, 400).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        assert_eq!(&bytes[1..4], b"PNG");
+        // IHDR width and height
+        let w = u32::from_be_bytes(bytes[16..20].try_into().unwrap());
+        let h = u32::from_be_bytes(bytes[20..24].try_into().unwrap());
+        assert_eq!((w, h), (640, 400));
+        assert!(render_png(&fig, &path, 10, 400).is_err());
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
