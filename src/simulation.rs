@@ -109,6 +109,12 @@ impl Simulation {
         let p = scene.num_points();
         let basis = ModalBasis::new(scene.modes(), p);
         let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
+        if let Some(e) = scene.ramp_error(&road) {
+            return Err(SceneError::Invalid {
+                file: scene.name.clone(),
+                errors: vec![e],
+            });
+        }
         let full = StepTable::new(&basis, scene.dt_s);
         let full_inf = Influence::new(&basis, &full);
         let jump = basis.velocity_jump();
@@ -607,14 +613,26 @@ impl Simulation {
             }
             self.solver.solve(&mut self.rhs[..n]);
             solves += 1;
+            // Velocity a pulling impulse stands for; below v_tol it is round-off
+            // or the tail of a converged impact cascade, and the point stays on.
+            let v_tol = 1e-9
+                * act
+                    .iter()
+                    .map(|&j| self.rd[j].abs().max(self.v[j].abs()))
+                    .fold(1e-6, f64::max);
             let worst = (0..n)
-                .map(|k| (k, self.rhs[k]))
-                .filter(|&(_, x)| x < 0.0)
+                .map(|k| (k, self.rhs[k] * self.jump[act[k] * p + act[k]]))
+                .filter(|&(_, dv)| dv < -v_tol)
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             match worst {
                 Some((k, _)) => {
+                    // Thrown off with a positive relative velocity: it may land
+                    // again later in this step (a located event). Only the landing
+                    // point itself, if it cannot land, is kept off until the next step.
                     let j = self.active.remove(k);
-                    self.released[j] = true;
+                    if j == i {
+                        self.released[j] = true;
+                    }
                 }
                 None => break,
             }
