@@ -62,5 +62,7 @@ fn headless_default() -> cli::CliResult {
         dt: None,
         duration: None,
         every: 1,
+        plot: None,
+        plot_size: (1400, 900),
     })
 }
