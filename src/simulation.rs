@@ -33,6 +33,9 @@ pub struct RunStats {
     pub events: u64,
     pub solves: u64,
     pub max_solves_per_step: u32,
+    /// LU factorisations of contact systems (fewer than solves: reused while
+    /// the active set is unchanged).
+    pub factorisations: u64,
     /// Worst penetration left at any step end (m).
     pub worst_penetration_m: f64,
     /// Largest step-mean force per point (N).
@@ -96,6 +99,9 @@ pub struct Simulation {
     active: Vec<usize>,
     released: Vec<bool>,
     solver: DenseSolver,
+    full_solver: DenseSolver,
+    full_set: Vec<usize>,
+    full_factored: bool,
     stats: RunStats,
 }
 
@@ -161,6 +167,9 @@ impl Simulation {
             active: Vec::with_capacity(p),
             released: vec![false; p],
             solver: DenseSolver::new(2 * p),
+            full_solver: DenseSolver::new(2 * p),
+            full_set: Vec::with_capacity(p),
+            full_factored: false,
             stats: RunStats::default(),
         };
         sim.reset();
@@ -305,33 +314,51 @@ impl Simulation {
         if n == 0 {
             return Ok(());
         }
-        let (_, g) = match sel {
-            Table::Full => (&self.full, &self.full_inf),
-            Table::Sub => (&self.sub, &self.sub_inf),
+        let g = match sel {
+            Table::Full => &self.full_inf,
+            Table::Sub => &self.sub_inf,
         };
         let act = &self.active;
-        let res = self.solver.factor(2 * n, |r, c| {
-            let (i, j) = (act[r % n], act[c % n]);
-            let m = match (r < n, c < n) {
-                (true, true) => &g.gx1,
-                (true, false) => &g.gx2,
-                (false, true) => &g.gv1,
-                (false, false) => &g.gv2,
-            };
-            m[i * p + j]
-        });
-        if let Err(s) = res {
-            return Err(SolverError::SingularContactSystem {
-                t_s: t_end,
-                points: self.active.clone(),
-                pivot: s.pivot,
+        // The full-step operator depends only on the active set: its
+        // factorisation is reused while the set is unchanged.
+        let reuse = sel == Table::Full && self.full_factored && self.full_set == *act;
+        let solver = match sel {
+            Table::Full => &mut self.full_solver,
+            Table::Sub => &mut self.solver,
+        };
+        if !reuse {
+            self.stats.factorisations += 1;
+            let res = solver.factor(2 * n, |r, c| {
+                let (i, j) = (act[r % n], act[c % n]);
+                let m = match (r < n, c < n) {
+                    (true, true) => &g.gx1,
+                    (true, false) => &g.gx2,
+                    (false, true) => &g.gv1,
+                    (false, false) => &g.gv2,
+                };
+                m[i * p + j]
             });
+            if sel == Table::Full {
+                self.full_factored = res.is_ok();
+                self.full_set.clone_from(act);
+            }
+            if let Err(s) = res {
+                return Err(SolverError::SingularContactSystem {
+                    t_s: t_end,
+                    points: self.active.clone(),
+                    pivot: s.pivot,
+                });
+            }
         }
         for (k, &i) in act.iter().enumerate() {
             self.rhs[k] = self.re[i] - self.uh[i];
             self.rhs[n + k] = self.rde[i] - self.vh[i];
         }
-        self.solver.solve(&mut self.rhs[..2 * n]);
+        match sel {
+            Table::Full => self.full_solver.solve(&mut self.rhs[..2 * n]),
+            Table::Sub => self.solver.solve(&mut self.rhs[..2 * n]),
+        }
+        let act = &self.active;
         self.q1.fill(0.0);
         self.q2.fill(0.0);
         for (k, &j) in act.iter().enumerate() {
