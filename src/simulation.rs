@@ -102,18 +102,49 @@ pub struct Simulation {
     full_solver: DenseSolver,
     full_set: Vec<usize>,
     full_factored: bool,
+    options: SolverOptions,
     stats: RunStats,
+}
+
+/// Switches for the work a scene does not need; all on by default. Turning
+/// one off gives the "before" of a benchmark; results agree to round-off.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SolverOptions {
+    /// Keep one state per rank term of each residue (rank 1 for a mode
+    /// shape) instead of one per (mode, source).
+    pub rank_reduction: bool,
+    /// Reuse the LU factorisation of the full-step contact operator while
+    /// the active set is unchanged.
+    pub reuse_factorisation: bool,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        SolverOptions {
+            rank_reduction: true,
+            reuse_factorisation: true,
+        }
+    }
 }
 
 impl Simulation {
     /// Builds the simulation of a validated scene; reads a measured road file.
     pub fn new(scene: &Scene) -> Result<Self, SceneError> {
+        Self::with_options(scene, SolverOptions::default())
+    }
+
+    /// As [`Simulation::new`], with explicit [`SolverOptions`].
+    pub fn with_options(scene: &Scene, options: SolverOptions) -> Result<Self, SceneError> {
         scene.validate().map_err(|errors| SceneError::Invalid {
             file: scene.name.clone(),
             errors,
         })?;
         let p = scene.num_points();
-        let basis = ModalBasis::new(scene.modes(), p);
+        let basis = if options.rank_reduction {
+            ModalBasis::new(scene.modes(), p)
+        } else {
+            ModalBasis::per_source(scene.modes(), p)
+        };
         let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
         if let Some(e) = scene.ramp_error(&road) {
             return Err(SceneError::Invalid {
@@ -170,6 +201,7 @@ impl Simulation {
             full_solver: DenseSolver::new(2 * p),
             full_set: Vec::with_capacity(p),
             full_factored: false,
+            options,
             stats: RunStats::default(),
         };
         sim.reset();
@@ -321,7 +353,10 @@ impl Simulation {
         let act = &self.active;
         // The full-step operator depends only on the active set: its
         // factorisation is reused while the set is unchanged.
-        let reuse = sel == Table::Full && self.full_factored && self.full_set == *act;
+        let reuse = sel == Table::Full
+            && self.options.reuse_factorisation
+            && self.full_factored
+            && self.full_set == *act;
         let solver = match sel {
             Table::Full => &mut self.full_solver,
             Table::Sub => &mut self.solver,
