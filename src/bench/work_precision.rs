@@ -379,7 +379,7 @@ pub fn to_markdown(rows: &[Row]) -> String {
             let Some(finest) = sr
                 .iter()
                 .filter(|r| r.method == m && r.disp_err.is_finite())
-                .last()
+                .next_back()
             else {
                 continue;
             };
