@@ -376,11 +376,7 @@ pub fn to_markdown(rows: &[Row]) -> String {
         let sr: Vec<Row> = rows.iter().filter(|r| r.scene == sc).cloned().collect();
         let located: Vec<&Row> = sr.iter().filter(|r| r.method == Method::Located).collect();
         for m in [Method::Paper, Method::AlphaBeta, Method::Direct] {
-            let Some(finest) = sr
-                .iter()
-                .filter(|r| r.method == m && r.disp_err.is_finite())
-                .next_back()
-            else {
+            let Some(finest) = sr.iter().rfind(|r| r.method == m && r.disp_err.is_finite()) else {
                 continue;
             };
             let target = finest.disp_err;
