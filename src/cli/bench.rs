@@ -73,7 +73,7 @@ pub fn bench(args: &BenchArgs) -> CliResult {
     write(&args.output.join("work_precision.csv"), &csv)?;
     let mut md = String::from("# Work-precision study\n\n");
     md.push_str(&work_precision::to_markdown(&rows));
-    md.push_str("\n");
+    md.push('\n');
     md.push_str(&skip);
     md.push('\n');
     md.push_str(&alpha_beta_overflow()?);
