@@ -419,25 +419,24 @@ impl Simulation {
                     self.ve[i] += dv;
                 }
             }
-            Table::Sub => {
-                // through the states: O(states (|S| + P)), no P x P influence
-                self.delta.x.fill(0.0);
-                self.delta.v.fill(0.0);
-                self.delta.add_gauss_forces(
-                    &self.basis,
-                    &self.sub,
-                    &self.active,
-                    &self.q1,
-                    &self.q2,
-                );
-                self.delta.project(&self.basis, &mut self.du, &mut self.dv);
-                for i in 0..p {
-                    self.ue[i] += self.du[i];
-                    self.ve[i] += self.dv[i];
-                }
-            }
+            Table::Sub => self.end_values_sub(),
         }
         Ok(())
+    }
+
+    /// End displacement/velocity of every point under the Gauss-point forces
+    /// `q1`, `q2` of the active points over the sub-step (after `predict`),
+    /// through the states: O(states (|S| + P)), no P x P influence.
+    fn end_values_sub(&mut self) {
+        self.delta.x.fill(0.0);
+        self.delta.v.fill(0.0);
+        self.delta
+            .add_gauss_forces(&self.basis, &self.sub, &self.active, &self.q1, &self.q2);
+        self.delta.project(&self.basis, &mut self.du, &mut self.dv);
+        for i in 0..self.p {
+            self.ue[i] = self.uh[i] + self.du[i];
+            self.ve[i] = self.vh[i] + self.dv[i];
+        }
     }
 
     /// The `|S| x |S|` blocks of the sub-step influence of the active points
@@ -625,12 +624,13 @@ impl Simulation {
             self.predict(t, remaining, sel)?;
             self.solve_active(t + remaining, sel)?;
             solves += !self.active.is_empty() as u32;
-            // releases: the linear force's end value is negative
+            // releases: the linear force ends negative (release where it crosses
+            // zero) or is negative on average from the start (release now)
             let mut release: Option<(usize, f64, f64)> = None; // (k, θ, end value)
             for (k, &j) in self.active.iter().enumerate() {
                 let (q1, q2) = (self.q1[j], self.q2[j]);
                 let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
-                if qe < 0.0 {
+                if qe < 0.0 || qs + qe < 0.0 {
                     let th = if qs > 0.0 {
                         remaining * qs / (qs - qe)
                     } else {
@@ -656,13 +656,16 @@ impl Simulation {
             // impacts: first root of the Hermite cubic of the gap of a free point
             let mut impact: Option<(usize, f64)> = None;
             for i in 0..self.p {
-                if self.released[i] || self.active.contains(&i) {
+                if self.active.contains(&i) {
                     continue;
                 }
                 let (g0, d0) = (self.u[i] - self.r[i], self.v[i] - self.rd[i]);
                 let (g1, d1) = (self.ue[i] - self.re[i], self.ve[i] - self.rde[i]);
+                // a point released in this step lands again only after it rose
+                // clear of the road (no cycling at the release instant)
+                let rise = self.released[i];
                 if let Some(y) =
-                    first_crossing(g0, d0 * remaining, g1, d1 * remaining, self.pen_tol_m)
+                    first_crossing(g0, d0 * remaining, g1, d1 * remaining, self.pen_tol_m, rise)
                 {
                     let th = y * remaining;
                     if impact.is_none_or(|(_, t2)| th < t2) {
@@ -683,11 +686,37 @@ impl Simulation {
                 t += remaining;
                 remaining = 0.0;
             } else if th > 0.0 {
+                // The trial forces restricted to [0, θ]: the trajectory whose
+                // event was located, forces that stay >= 0 up to a release;
+                // active points stay on the road to O(θ⁴). A point whose force
+                // dips below zero at the start and would pull on average over
+                // [0, θ] is released now instead.
+                let f = th / remaining;
+                let pulling = self.active.iter().position(|&j| {
+                    let (qs, qe) = (
+                        GA * self.q1[j] - GB * self.q2[j],
+                        -GB * self.q1[j] + GA * self.q2[j],
+                    );
+                    let mean = qs + 0.5 * (qe - qs) * f;
+                    mean < -1e-9 * (qs.abs() + qe.abs())
+                });
+                if let Some(k) = pulling {
+                    let j = self.active.remove(k);
+                    self.released[j] = true;
+                    events += 1;
+                    continue;
+                }
+                let (ya, yb) = (0.5 - 0.5 / 3f64.sqrt(), 0.5 + 0.5 / 3f64.sqrt());
+                for &j in &self.active {
+                    let (q1, q2) = (self.q1[j], self.q2[j]);
+                    let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
+                    self.q1[j] = qs + (qe - qs) * f * ya;
+                    self.q2[j] = qs + (qe - qs) * f * yb;
+                }
                 self.prepare_sub(th);
                 sel = Table::Sub;
                 self.predict(t, th, sel)?;
-                self.solve_active(t + th, sel)?;
-                solves += !self.active.is_empty() as u32;
+                self.end_values_sub();
                 self.commit(th, sel);
                 t += th;
                 remaining -= th;
@@ -781,12 +810,21 @@ impl Simulation {
 }
 
 /// First `y ∈ (0, 1]` where the cubic Hermite interpolant with values `g0`,
-/// `g1` and scaled slopes `d0`, `d1` (slope × interval) goes below `-tol`,
-/// starting from `g0 >= -tol`; returns the zero crossing before it.
-pub fn first_crossing(g0: f64, d0: f64, g1: f64, d1: f64, tol: f64) -> Option<f64> {
-    if g0 < -tol {
-        return None;
-    }
+/// `g1` and scaled slopes `d0`, `d1` (slope × interval) goes below `-tol`;
+/// returns the zero crossing before it. With
+/// `require_rise`, only a crossing after the cubic rose above `+tol` counts.
+pub fn first_crossing(
+    g0: f64,
+    d0: f64,
+    g1: f64,
+    d1: f64,
+    tol: f64,
+    require_rise: bool,
+) -> Option<f64> {
+    // A start slightly below the road (round-off, or the O(θ⁴) gap of a point
+    // just thrown off) counts as on the road: falling, it lands at once;
+    // rising, it lands where it comes back.
+    let g0 = g0.max(0.0);
     let c = [
         g0,
         d0,
@@ -794,11 +832,11 @@ pub fn first_crossing(g0: f64, d0: f64, g1: f64, d1: f64, tol: f64) -> Option<f6
         2.0 * g0 + d0 - 2.0 * g1 + d1,
     ];
     let p = |y: f64| ((c[3] * y + c[2]) * y + c[1]) * y + c[0];
-    // cheap rejection: all of the cubic is above -tol
+    // cheap rejection: all of the cubic is above -tol (|H10|, |H11| <= 4/27)
     if g1 >= -tol && (d0 >= 0.0 && d1 <= 0.0 || g0.min(g1) - 0.25 * (d0.abs() + d1.abs()) >= -tol) {
         return None;
     }
-    // breakpoints: critical points of the cubic in (0, 1)
+    // breakpoints: critical points of the cubic in (0, 1), then 1
     let (qa, qb, qc) = (3.0 * c[3], 2.0 * c[2], c[1]);
     let mut bp = [1.0f64; 3];
     let mut nb = 0;
@@ -825,8 +863,10 @@ pub fn first_crossing(g0: f64, d0: f64, g1: f64, d1: f64, tol: f64) -> Option<f6
     let bps = &mut bp[..nb + 1];
     bps.sort_by(f64::total_cmp);
     let mut ya = 0.0;
+    let mut risen = !require_rise || g0 > tol;
     for &yb in bps.iter() {
-        if p(yb) < -tol {
+        let pb = p(yb);
+        if risen && pb < -tol {
             // monotone decreasing on [ya, yb]: bisect for p = 0
             if p(ya) < 0.0 {
                 return Some(ya);
@@ -842,6 +882,7 @@ pub fn first_crossing(g0: f64, d0: f64, g1: f64, d1: f64, tol: f64) -> Option<f6
             }
             return Some(0.5 * (lo + hi));
         }
+        risen |= pb > tol;
         ya = yb;
     }
     None
