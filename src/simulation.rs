@@ -107,7 +107,7 @@ impl Simulation {
             errors,
         })?;
         let p = scene.num_points();
-        let basis = ModalBasis::new(scene.modes(), p);
+        let basis = ModalBasis::new(&scene.modes()?, p);
         let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
         let full = StepTable::new(&basis, scene.dt_s);
         let full_inf = Influence::new(&basis, &full);

@@ -1,6 +1,7 @@
 //! Headless command line: one file per subcommand.
 
 pub mod check;
+pub mod identify;
 pub mod run;
 
 use std::path::{Path, PathBuf};
