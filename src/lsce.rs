@@ -55,7 +55,8 @@ pub struct IdentifyOptions {
     /// Stabilisation: smallest MAC of the residue vectors (-). Default 0.95.
     pub stable_mac_min: f64,
     /// Automatic order: the smallest order whose in-band model's fit error
-    /// is at most `(1 + order_tolerance)` times the best (-). Default 0.05.
+    /// is at most `(1 + order_tolerance)` times the best, plus
+    /// [`EXACT_FIT`] (-). Default 0.05.
     pub order_tolerance: f64,
 }
 
@@ -281,6 +282,10 @@ pub struct Identification {
     pub diagram: Vec<DiagramOrder>,
     pub report: FitReport,
 }
+
+/// A relative fit error below which every order counts as exact (automatic
+/// order selection).
+pub const EXACT_FIT: f64 = 1e-6;
 
 /// A continuous-time pole: `ω` (rad/s) and `ξ`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -627,7 +632,7 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
                 .iter()
                 .find(|d| {
                     !d.poles.is_empty()
-                        && d.band_time_error <= (1.0 + opts.order_tolerance) * best + 1e-9
+                        && d.band_time_error <= (1.0 + opts.order_tolerance) * best + EXACT_FIT
                 })
                 .map_or(m_max, |d| d.order)
         }
