@@ -151,11 +151,30 @@ impl ModalBasis {
     /// gives its SVD terms above `1e-13 σ_max` (rank 1 for `φφᵀ`, 2 for the
     /// ring's degenerate pairs, at most `P`).
     pub fn new(modes: &[Mode], num_points: usize) -> Self {
+        Self::build(modes, num_points, true)
+    }
+
+    /// One state per (mode, source) as SPEC §3 states it, without rank
+    /// reduction: the "before" of the rank-1 optimisation, for benchmarks.
+    pub fn per_source(modes: &[Mode], num_points: usize) -> Self {
+        Self::build(modes, num_points, false)
+    }
+
+    fn build(modes: &[Mode], num_points: usize, reduce: bool) -> Self {
         let p = num_points;
         let mut terms: Vec<(usize, Vec<f64>, Vec<f64>)> = Vec::new();
         let mut params = Vec::with_capacity(modes.len());
         for (k, m) in modes.iter().enumerate() {
             params.push((TAU * m.freq_hz, m.damping_ratio));
+            if !reduce {
+                let a = m.residue_matrix();
+                for j in 0..p {
+                    let mut e = vec![0.0; p];
+                    e[j] = 1.0;
+                    terms.push((k, (0..p).map(|i| a[i][j]).collect(), e));
+                }
+                continue;
+            }
             if !m.shape.is_empty() {
                 terms.push((k, m.shape.clone(), m.shape.clone()));
                 continue;

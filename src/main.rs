@@ -23,6 +23,8 @@ enum Command {
     Run(cli::run::RunArgs),
     /// Identify the modal model of a ring-tyre scene by LSCE (SPEC §5-6).
     Identify(cli::identify::IdentifyArgs),
+    /// Work-precision study and before/after timings of skipped work.
+    Bench(cli::bench::BenchArgs),
     /// Parse and validate a scene preset.
     Check {
         /// Scene preset (RON).
@@ -36,6 +38,7 @@ fn main() -> std::process::ExitCode {
         Some(Command::Run(args)) => cli::run::run(&args),
         Some(Command::Check { preset }) => cli::check::check(&preset),
         Some(Command::Identify(args)) => cli::identify::identify(&args),
+        Some(Command::Bench(args)) => cli::bench::bench(&args),
         None => default_action(),
     };
     match result {
@@ -65,5 +68,7 @@ fn headless_default() -> cli::CliResult {
         dt: None,
         duration: None,
         every: 1,
+        plot: None,
+        plot_size: (1400, 900),
     })
 }

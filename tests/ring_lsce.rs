@@ -528,7 +528,9 @@ fn paper_preset_runs_end_to_end() {
     for _ in 0..scene.num_steps() {
         sim.step().unwrap();
         for (i, &q) in sim.force_n().iter().enumerate() {
-            assert!(q >= 0.0, "point {i}: force {q} N at t = {}", sim.time_s());
+            // round-off allowed (measured: -3e-18 N in the first step, at
+            // the start of the ramp); a real pull would be many N
+            assert!(q >= -1e-9, "point {i}: force {q} N at t = {}", sim.time_s());
         }
         let now = sim.in_contact();
         changes += now.iter().zip(&prev).filter(|(a, b)| a != b).count();
