@@ -17,7 +17,8 @@
 //! stable when the previous order has a pole within the frequency, damping and
 //! residue-MAC tolerances. Residues are fitted with every physical pole up to
 //! the Nyquist frequency (so out-of-band modes keep their share of the
-//! responses); the model keeps the in-band ones. The model order is the given
+//! responses); the model keeps the in-band ones whose share of the responses
+//! is at least `min_contribution`. The model order is the given
 //! one or, automatically, the smallest whose in-band model's time-domain fit
 //! error is within `order_tolerance` of the best over all orders.
 
@@ -48,7 +49,7 @@ pub enum LsceError {
     #[error("LSCE: {0}")]
     Input(String),
     #[error(
-        "LSCE: no stable pole pair in the band {lo_hz}..{hi_hz} Hz at model order {order} (raise the order or widen the band)"
+        "LSCE: no physical pole pair with a share of the responses in the band {lo_hz}..{hi_hz} Hz at model order {order} (raise the order or widen the band)"
     )]
     NoModes {
         lo_hz: f64,
@@ -490,18 +491,31 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
         }
     };
     let all = poles_of_order(&rmat, 2 * chosen, dt, opts)?;
-    let kept: Vec<usize> = (0..all.len()).filter(|&c| all[c].in_band(opts)).collect();
-    if kept.is_empty() {
-        return Err(LsceError::NoModes {
-            lo_hz: opts.band_hz.0,
-            hi_hz: opts.band_hz.1,
-            order: chosen,
-        });
+    let no_modes = LsceError::NoModes {
+        lo_hz: opts.band_hz.0,
+        hi_hz: opts.band_hz.1,
+        order: chosen,
+    };
+    if !all.iter().any(|pl| pl.in_band(opts)) {
+        return Err(no_modes);
     }
     let n_all = all.len();
     // complex-residue fit (sin and cos parts): the discarded part
     let full = svd_solve(&basis(&all, dt, len, true), &data, 1e-14)?;
     let fit_all = fit_order(all, &data, dt, true)?;
+    // in band, and with a share of the responses (a spurious pole fitted to
+    // round-off has none)
+    let b_all = basis(&fit_all.poles, dt, len, false);
+    let data_norm = data.norm();
+    let kept: Vec<usize> = (0..n_all)
+        .filter(|&c| {
+            let share = b_all.column(c).norm() * fit_all.residues.row(c).norm();
+            fit_all.poles[c].in_band(opts) && share >= opts.min_contribution * data_norm
+        })
+        .collect();
+    if kept.is_empty() {
+        return Err(no_modes);
+    }
     let discarded_ratio = kept
         .iter()
         .map(|&c| {

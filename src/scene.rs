@@ -53,6 +53,7 @@ impl Mode {
 
 /// Source of the tyre's Green functions.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Tyre {
     /// A modal model given mode by mode (SPEC §2).
     Modal { modes: Vec<Mode> },

@@ -487,6 +487,13 @@ fn ring_scene_validation_names_fields() {
     assert!(err.contains("tyre.identification.band_hz"), "{err}");
     let bad = text.replace("radius_m: 0.31,", "radius_m: 0.31, spokes: 5,");
     assert!(Scene::parse(&bad, "bad.ron").is_err());
+    let bad = text.replace(
+        "sample_rate_hz: 4000.0,",
+        "sample_rate_hz: 4000.0, window: 1,",
+    );
+    assert!(Scene::parse(&bad, "bad.ron").is_err());
+    let bad = text.replace("identification: (", "identifcation: (");
+    assert!(Scene::parse(&bad, "bad.ron").is_err());
 }
 
 #[test]
@@ -548,4 +555,64 @@ fn paper_preset_runs_end_to_end() {
     };
     let back = Scene::parse(&modal.to_ron_string(), "modal.ron").unwrap();
     assert_eq!(back.modes().unwrap().len(), modes.len());
+}
+
+#[test]
+fn identification_failure_is_an_error_naming_the_scene() {
+    let text = std::fs::read_to_string("presets/paper.ron").unwrap();
+    // a band above every mode of a ring cut at n = 2 (top mode ~ 230 Hz)
+    let text = text
+        .replace("max_order: 40", "max_order: 2")
+        .replace("band_hz: (0.0, 500.0)", "band_hz: (1500.0, 1900.0)");
+    let scene = Scene::parse(&text, "high_band.ron").unwrap();
+    let err = match Simulation::new(&scene) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("identified modes in an empty band"),
+    };
+    assert!(
+        err.contains("identification failed") && err.contains("band"),
+        "{err}"
+    );
+}
+
+#[test]
+fn identify_cli_writes_a_runnable_modal_scene_diagram_and_responses() {
+    let dir = std::env::temp_dir().join(format!("tc-identify-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (modal, png, csv) = (dir.join("m.ron"), dir.join("s.png"), dir.join("g.csv"));
+    let bin = env!("CARGO_BIN_EXE_tirecontact");
+    let o = std::process::Command::new(bin)
+        .args(["identify", "presets/paper.ron", "-o"])
+        .arg(&modal)
+        .arg("--diagram")
+        .arg(&png)
+        .arg("--responses")
+        .arg(&csv)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("mode(s) identified"));
+    let scene = Scene::load(&modal).unwrap();
+    assert!(matches!(scene.tyre, Tyre::Modal { .. }));
+    assert!(&std::fs::read(&png).unwrap()[1..4] == b"PNG");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    assert_eq!(header.len(), 1 + 25);
+    assert_eq!((header[0], header[1], header[25]), ("t_s", "g0_0", "g4_4"));
+    assert_eq!(text.lines().count(), 1 + 1000);
+    let o = std::process::Command::new(bin)
+        .arg("run")
+        .arg(&modal)
+        .args(["--duration", "0.005"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // a modal scene has nothing to identify
+    let o = std::process::Command::new(bin)
+        .arg("identify")
+        .arg(&modal)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -37,6 +37,10 @@ pub struct IdentifyOptions {
     /// is at most `(1 + order_tolerance)` times the best, plus
     /// [`super::EXACT_FIT`] (-). Default 0.05.
     pub order_tolerance: f64,
+    /// Smallest share of a kept mode in the responses,
+    /// `||h_k|| ||A_k|| / ||g||` over all responses (-), in [0, 1). Default
+    /// 1e-6 (drops poles fitted to round-off).
+    pub min_contribution: f64,
 }
 
 impl Default for IdentifyOptions {
@@ -52,6 +56,7 @@ impl Default for IdentifyOptions {
             stable_damping_tol: 0.05,
             stable_mac_min: 0.95,
             order_tolerance: 0.05,
+            min_contribution: 1e-6,
         }
     }
 }
@@ -150,6 +155,13 @@ impl IdentifyOptions {
                 "order_tolerance",
                 self.order_tolerance.to_string(),
                 "a relative tolerance >= 0".into(),
+            );
+        }
+        if !(self.min_contribution.is_finite() && (0.0..1.0).contains(&self.min_contribution)) {
+            push(
+                "min_contribution",
+                self.min_contribution.to_string(),
+                "a share in [0, 1)".into(),
             );
         }
         errors
