@@ -46,7 +46,8 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
         .into());
     };
     let x: Vec<f64> = scene.points.iter().map(|p| p.x_m).collect();
-    let id = identify_ring(ring, &x, identification)?;
+    let id = identify_ring(ring, &x, identification)
+        .map_err(|e| format!("{}: {e}", args.preset.display()))?;
     print!("{}", summary(&scene, &id));
     let mut modal = scene.clone();
     modal.tyre = Tyre::Modal {
