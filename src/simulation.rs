@@ -72,7 +72,12 @@ pub struct Simulation {
     full: StepTable,
     full_inf: Influence,
     sub: StepTable,
-    sub_inf: Influence,
+    /// `|S| x |S|` blocks of the sub-step influence (4 |S|² used).
+    gss: Vec<f64>,
+    /// State increment of the solved sub-step forces.
+    delta: ModalState,
+    du: Vec<f64>,
+    dv: Vec<f64>,
     jump: Vec<f64>,
     state: ModalState,
     free: ModalState,
@@ -170,7 +175,10 @@ impl Simulation {
             pen_tol_m: 1e-12 * scale,
             max_events: 4 * p as u32 + 16,
             sub: full.clone(),
-            sub_inf: full_inf.clone(),
+            gss: vec![0.0; 4 * p * p],
+            delta: state.clone(),
+            du: vec![0.0; p],
+            dv: vec![0.0; p],
             full,
             full_inf,
             jump,
@@ -323,7 +331,6 @@ impl Simulation {
 
     fn prepare_sub(&mut self, tau: f64) {
         self.sub.fill(&self.basis, tau);
-        self.sub_inf.fill(&self.basis, &self.sub);
     }
 
     /// Free prediction over `tau` from `t`: `free`, `uh`, `vh`, road at `t + tau`.
@@ -347,36 +354,35 @@ impl Simulation {
         if n == 0 {
             return Ok(());
         }
-        let g = match sel {
-            Table::Full => &self.full_inf,
-            Table::Sub => &self.sub_inf,
-        };
-        let act = &self.active;
+        if sel == Table::Sub {
+            self.fill_sub_block();
+        }
         // The full-step operator depends only on the active set: its
         // factorisation is reused while the set is unchanged.
         let reuse = sel == Table::Full
             && self.options.reuse_factorisation
             && self.full_factored
-            && self.full_set == *act;
-        let solver = match sel {
-            Table::Full => &mut self.full_solver,
-            Table::Sub => &mut self.solver,
-        };
+            && self.full_set == self.active;
         if !reuse {
             self.stats.factorisations += 1;
-            let res = solver.factor(2 * n, |r, c| {
-                let (i, j) = (act[r % n], act[c % n]);
-                let m = match (r < n, c < n) {
-                    (true, true) => &g.gx1,
-                    (true, false) => &g.gx2,
-                    (false, true) => &g.gv1,
-                    (false, false) => &g.gv2,
-                };
-                m[i * p + j]
-            });
+            let act = &self.active;
+            let (g, gss) = (&self.full_inf, &self.gss);
+            let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
+            let entry = |r: usize, c: usize| {
+                let blk = 2 * (r >= n) as usize + (c >= n) as usize;
+                match sel {
+                    Table::Full => blocks[blk][act[r % n] * p + act[c % n]],
+                    Table::Sub => gss[blk * n * n + (r % n) * n + c % n],
+                }
+            };
+            let solver = match sel {
+                Table::Full => &mut self.full_solver,
+                Table::Sub => &mut self.solver,
+            };
+            let res = solver.factor(2 * n, entry);
             if sel == Table::Full {
                 self.full_factored = res.is_ok();
-                self.full_set.clone_from(act);
+                self.full_set.clone_from(&self.active);
             }
             if let Err(s) = res {
                 return Err(SolverError::SingularContactSystem {
@@ -386,7 +392,7 @@ impl Simulation {
                 });
             }
         }
-        for (k, &i) in act.iter().enumerate() {
+        for (k, &i) in self.active.iter().enumerate() {
             self.rhs[k] = self.re[i] - self.uh[i];
             self.rhs[n + k] = self.rde[i] - self.vh[i];
         }
@@ -394,34 +400,89 @@ impl Simulation {
             Table::Full => self.full_solver.solve(&mut self.rhs[..2 * n]),
             Table::Sub => self.solver.solve(&mut self.rhs[..2 * n]),
         }
-        let act = &self.active;
         self.q1.fill(0.0);
         self.q2.fill(0.0);
-        for (k, &j) in act.iter().enumerate() {
+        for (k, &j) in self.active.iter().enumerate() {
             self.q1[j] = self.rhs[k];
             self.q2[j] = self.rhs[n + k];
         }
-        for i in 0..p {
-            let (mut du, mut dv) = (0.0, 0.0);
-            for &j in act {
-                du += g.gx1[i * p + j] * self.q1[j] + g.gx2[i * p + j] * self.q2[j];
-                dv += g.gv1[i * p + j] * self.q1[j] + g.gv2[i * p + j] * self.q2[j];
+        match sel {
+            Table::Full => {
+                // O(P |S|) with the precomputed full influence
+                let g = &self.full_inf;
+                for i in 0..p {
+                    let (mut du, mut dv) = (0.0, 0.0);
+                    for &j in &self.active {
+                        du += g.gx1[i * p + j] * self.q1[j] + g.gx2[i * p + j] * self.q2[j];
+                        dv += g.gv1[i * p + j] * self.q1[j] + g.gv2[i * p + j] * self.q2[j];
+                    }
+                    self.ue[i] += du;
+                    self.ve[i] += dv;
+                }
             }
-            self.ue[i] += du;
-            self.ve[i] += dv;
+            Table::Sub => {
+                // through the states: O(states (|S| + P)), no P x P influence
+                self.delta.x.fill(0.0);
+                self.delta.v.fill(0.0);
+                self.delta.add_gauss_forces(
+                    &self.basis,
+                    &self.sub,
+                    &self.active,
+                    &self.q1,
+                    &self.q2,
+                );
+                self.delta.project(&self.basis, &mut self.du, &mut self.dv);
+                for i in 0..p {
+                    self.ue[i] += self.du[i];
+                    self.ve[i] += self.dv[i];
+                }
+            }
         }
         Ok(())
     }
 
+    /// The `|S| x |S|` blocks of the sub-step influence of the active points
+    /// (only what the solve needs: `O(|S|² states)`).
+    fn fill_sub_block(&mut self) {
+        let n = self.active.len();
+        let (p, ns) = (self.p, self.basis.num_states());
+        let g = &mut self.gss[..4 * n * n];
+        g.fill(0.0);
+        for s in 0..ns {
+            let (w1, w2) = (self.sub.w1[s], self.sub.w2[s]);
+            let inp = &self.basis.inp[s * p..(s + 1) * p];
+            for (a, &i) in self.active.iter().enumerate() {
+                let o = self.basis.out[i * ns + s];
+                if o == 0.0 {
+                    continue;
+                }
+                for (b, &j) in self.active.iter().enumerate() {
+                    let ab = o * inp[j];
+                    let k = a * n + b;
+                    g[k] += ab * w1[0];
+                    g[n * n + k] += ab * w2[0];
+                    g[2 * n * n + k] += ab * w1[1];
+                    g[3 * n * n + k] += ab * w2[1];
+                }
+            }
+        }
+    }
+
     /// Accepts the solved sub-step of length `tau`: state, impulses, outputs.
     fn commit(&mut self, tau: f64, sel: Table) {
-        let (table, _) = match sel {
-            Table::Full => (&self.full, &self.full_inf),
-            Table::Sub => (&self.sub, &self.sub_inf),
-        };
         self.state.copy_from(&self.free);
-        self.state
-            .add_gauss_forces(&self.basis, table, &self.active, &self.q1, &self.q2);
+        if !self.active.is_empty() {
+            match sel {
+                Table::Full => self.state.add_gauss_forces(
+                    &self.basis,
+                    &self.full,
+                    &self.active,
+                    &self.q1,
+                    &self.q2,
+                ),
+                Table::Sub => self.state.add(&self.delta),
+            }
+        }
         for &j in &self.active {
             self.impulse[j] += 0.5 * tau * (self.q1[j] + self.q2[j]);
         }

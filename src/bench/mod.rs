@@ -2,4 +2,5 @@
 //! baselines it compares against (SPEC §3 α/β form, direct convolution).
 
 pub mod baselines;
+pub mod scenes;
 pub mod work_precision;

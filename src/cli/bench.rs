@@ -77,6 +77,8 @@ pub fn bench(args: &BenchArgs) -> CliResult {
     md.push_str(&skip);
     md.push('\n');
     md.push_str(&alpha_beta_overflow()?);
+    md.push('\n');
+    md.push_str(&speed(&scenes, args.quick)?);
     write(&args.output.join("work_precision.md"), &md)?;
     for scene in &scenes {
         let name = file_stem(&scene.name);
@@ -112,6 +114,36 @@ fn file_stem(name: &str) -> String {
             }
         })
         .collect()
+}
+
+/// Steps per second and real-time factor of each scene and of synthetic
+/// larger ones (5 points x 20 modes, 50 points x 200 rank-1 modes).
+fn speed(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::error::Error>> {
+    use tirecontact::bench::scenes::many_points;
+    let mut list: Vec<Scene> = scenes.to_vec();
+    list.push(many_points(5, 20));
+    list.push(many_points(50, 200));
+    let mut s = String::from(
+        "## Speed (release build, one core)\n\n| scene | points | modes | dt (s) | steps | wall (s) | steps/s | real-time factor | located events per step |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for mut sc in list {
+        sc.duration_s = if quick { 0.02 } else { 0.2 };
+        let (wall, sim) = work_precision::time_stable(&sc, SolverOptions::default())?;
+        let st = sim.stats();
+        writeln!(
+            s,
+            "| {} | {} | {} | {:e} | {} | {wall:.3} | {:.0} | {:.2} | {:.4} |",
+            sc.name,
+            sc.num_points(),
+            sc.modes().len(),
+            sc.dt_s,
+            st.steps,
+            st.steps as f64 / wall,
+            sim.time_s() / wall,
+            st.events as f64 / st.steps.max(1) as f64
+        )?;
+    }
+    Ok(s)
 }
 
 /// The α/β form against the stable form on a 4 kHz, ξ = 0.1 mode (SPEC §3):
