@@ -22,6 +22,9 @@
 //! | [`road`] | road profiles and the preload/road ramp | §4 |
 //! | [`contact`] | scaled dense solves for the Gauss-point and impulse systems | §4 |
 //! | [`simulation`] | the time stepper: active set, complementarity, events inside the step | §4 |
+//! | [`ring`] | ring tyre on an elastic foundation: orders, modes, radial Green functions | §5 |
+//! | [`lsce`] | LSCE identification, stabilisation diagram, fit report | §6 |
+//! | [`identify`] | ring -> sampled responses -> LSCE, cached per scene | §5-6 |
 //! | [`scene`] | RON scenes and their validation | — |
 //! | [`output`] | CSV writer | — |
 
@@ -29,8 +32,11 @@ pub mod bench;
 pub mod contact;
 pub mod convolution;
 pub mod error;
+pub mod identify;
+pub mod lsce;
 pub mod modal;
 pub mod output;
+pub mod ring;
 pub mod road;
 pub mod scene;
 pub mod simulation;

@@ -21,6 +21,8 @@ struct Cli {
 enum Command {
     /// Run a scene headless and write its time histories as CSV.
     Run(cli::run::RunArgs),
+    /// Identify the modal model of a ring-tyre scene by LSCE (SPEC §5-6).
+    Identify(cli::identify::IdentifyArgs),
     /// Work-precision study and before/after timings of skipped work.
     Bench(cli::bench::BenchArgs),
     /// Parse and validate a scene preset.
@@ -35,6 +37,7 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Some(Command::Run(args)) => cli::run::run(&args),
         Some(Command::Check { preset }) => cli::check::check(&preset),
+        Some(Command::Identify(args)) => cli::identify::identify(&args),
         Some(Command::Bench(args)) => cli::bench::bench(&args),
         None => default_action(),
     };

@@ -3,6 +3,8 @@
 //! expected; syntax errors give file, line and column.
 
 use crate::error::{FieldError, SceneError};
+use crate::lsce::IdentifyOptions;
+use crate::ring::RingParams;
 use crate::road::Road;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -51,9 +53,19 @@ impl Mode {
 
 /// Source of the tyre's Green functions.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Tyre {
     /// A modal model given mode by mode (SPEC §2).
     Modal { modes: Vec<Mode> },
+    /// The ring tyre (SPEC §5), its radial Green functions at the contact
+    /// points identified by LSCE (SPEC §6) into a modal model. Both fields
+    /// default (the SPEC's passenger tyre, the default options).
+    Ring {
+        #[serde(default)]
+        ring: RingParams,
+        #[serde(default)]
+        identification: IdentifyOptions,
+    },
 }
 
 /// A contact point on the contact line.
@@ -174,10 +186,25 @@ impl Scene {
         (self.duration_s / self.dt_s).round().max(1.0) as u64
     }
 
-    /// The modes of the modal model.
-    pub fn modes(&self) -> &[Mode] {
+    /// The modes of the modal model: those given (`Tyre::Modal`), or those
+    /// identified from the ring tyre at the points' positions (`Tyre::Ring`,
+    /// SPEC §5-6), computed once per distinct ring, options and positions
+    /// (cached, [`crate::identify::ring_modes_cached`]).
+    pub fn modes(&self) -> Result<Vec<Mode>, SceneError> {
         match &self.tyre {
-            Tyre::Modal { modes } => modes,
+            Tyre::Modal { modes } => Ok(modes.clone()),
+            Tyre::Ring {
+                ring,
+                identification,
+            } => {
+                let x: Vec<f64> = self.points.iter().map(|p| p.x_m).collect();
+                crate::identify::ring_modes_cached(ring, &x, identification)
+                    .map(|m| m.as_ref().clone())
+                    .map_err(|e| SceneError::Identification {
+                        scene: self.name.clone(),
+                        message: e.to_string(),
+                    })
+            }
         }
     }
 
@@ -239,6 +266,14 @@ impl Scene {
                 for (k, m) in modes.iter().enumerate() {
                     validate_mode(&mut v, &format!("tyre.modes[{k}]"), m, p);
                 }
+            }
+            Tyre::Ring {
+                ring,
+                identification,
+            } => {
+                v.errors.extend(ring.validate("tyre.ring"));
+                v.errors
+                    .extend(identification.validate("tyre.identification"));
             }
         }
         validate_road(&mut v, &self.road);

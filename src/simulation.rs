@@ -145,10 +145,11 @@ impl Simulation {
             errors,
         })?;
         let p = scene.num_points();
+        let modes = scene.modes()?;
         let basis = if options.rank_reduction {
-            ModalBasis::new(scene.modes(), p)
+            ModalBasis::new(&modes, p)
         } else {
-            ModalBasis::per_source(scene.modes(), p)
+            ModalBasis::per_source(&modes, p)
         };
         let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
         if let Some(e) = scene.ramp_error(&road) {

@@ -37,7 +37,7 @@ pub struct BaselineRun {
 /// (the α/β form needs `ξ < 1`).
 pub fn run_baseline(scene: &Scene, kernel: Kernel, n_steps: usize) -> Result<BaselineRun, String> {
     let p = scene.num_points();
-    let model = ModalModel::from_modes(scene.modes(), p);
+    let model = ModalModel::from_modes(&scene.modes().map_err(|e| e.to_string())?, p);
     if kernel == Kernel::AlphaBeta && model.modes.iter().any(|m| m.damping_ratio >= 1.0) {
         return Err("the α/β form needs every damping ratio < 1".into());
     }

@@ -135,7 +135,7 @@ fn speed(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::error::Er
             "| {} | {} | {} | {:e} | {} | {wall:.3} | {:.0} | {:.2} | {:.4} |",
             sc.name,
             sc.num_points(),
-            sc.modes().len(),
+            sc.modes()?.len(),
             sc.dt_s,
             st.steps,
             st.steps as f64 / wall,

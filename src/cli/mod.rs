@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod check;
+pub mod identify;
 pub mod run;
 
 use std::path::{Path, PathBuf};

@@ -58,7 +58,7 @@ pub fn scene_summary(scene: &Scene) -> String {
     format!(
         "{} point(s), {} mode(s), {road}, V = {:.1} m/s ({:.0} km/h), dt = {:e} s, scheme {:?}",
         scene.num_points(),
-        scene.modes().len(),
+        scene.modes().map_or(0, |m| m.len()),
         scene.speed_mps,
         scene.speed_mps * 3.6,
         scene.dt_s,
