@@ -23,7 +23,7 @@ fn steps(c: &mut Criterion) {
             b.iter(|| black_box(sim.step().unwrap()))
         });
         // the bound: predict + project of the same states, nothing else
-        let basis = ModalBasis::new(scene.modes(), p);
+        let basis = ModalBasis::new(&scene.modes().unwrap(), p);
         let table = StepTable::new(&basis, scene.dt_s);
         let (mut s0, mut s1) = (ModalState::zeros(&basis), ModalState::zeros(&basis));
         s0.x.iter_mut()
@@ -71,7 +71,7 @@ fn contact_solve(c: &mut Criterion) {
 fn presets(c: &mut Criterion) {
     let mut g = c.benchmark_group("preset");
     g.sample_size(10);
-    for name in ["single_mode", "three_points", "paper_modal"] {
+    for name in ["single_mode", "three_points", "paper"] {
         let path = format!("presets/{name}.ron");
         let Ok(mut scene) = Scene::load(std::path::Path::new(&path)) else {
             continue;

@@ -26,7 +26,7 @@ fn default_presets() -> Vec<PathBuf> {
     [
         "presets/single_mode.ron",
         "presets/three_points.ron",
-        "presets/paper_modal.ron",
+        "presets/paper.ron",
     ]
     .iter()
     .map(PathBuf::from)
