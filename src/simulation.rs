@@ -8,7 +8,7 @@ use crate::contact::DenseSolver;
 use crate::convolution::{Influence, ModalBasis, ModalState, StepTable};
 use crate::error::{SceneError, SolverError};
 use crate::road::Road;
-use crate::road::{RoadProfile, ramp};
+use crate::road::{PointsRoad, RoadProfile, ramp};
 use crate::scene::{ContactScheme, Scene};
 pub use events::first_crossing;
 
@@ -67,7 +67,11 @@ enum Table {
 pub struct Simulation {
     scene: Scene,
     basis: ModalBasis,
-    road: RoadProfile,
+    road: PointsRoad,
+    /// Added to `V t` so that the distance rolled stays continuous when the speed changes (m).
+    x_offset_m: f64,
+    zbuf: Vec<f64>,
+    dzbuf: Vec<f64>,
     p: usize,
     dt_s: f64,
     pen_tol_m: f64,
@@ -171,7 +175,12 @@ impl Simulation {
             .map(|pt| pt.h_m.abs())
             .fold(road.scale_m(), f64::max)
             .max(1e-6);
+        let xs: Vec<f64> = scene.points.iter().map(|pt| pt.x_m).collect();
+        let road = PointsRoad::new(road, &xs);
         let mut sim = Simulation {
+            x_offset_m: 0.0,
+            zbuf: vec![0.0; p],
+            dzbuf: vec![0.0; p],
             scene: scene.clone(),
             p,
             dt_s: scene.dt_s,
@@ -224,6 +233,7 @@ impl Simulation {
     pub fn reset(&mut self) {
         self.state.reset();
         self.t_s = 0.0;
+        self.x_offset_m = 0.0;
         self.steps = 0;
         for x in [&mut self.u, &mut self.v, &mut self.q_mean] {
             x.fill(0.0);
@@ -245,21 +255,24 @@ impl Simulation {
 
     /// Replaces the road profile live (no restart).
     pub fn set_road(&mut self, road: &Road) -> Result<(), SceneError> {
-        self.road = RoadProfile::new(road, self.scene.base_dir.as_deref())?;
+        let xs: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
+        self.road = PointsRoad::new(RoadProfile::new(road, self.scene.base_dir.as_deref())?, &xs);
         self.scene.road = road.clone();
         let scale = self
             .scene
             .points
             .iter()
             .map(|pt| pt.h_m.abs())
-            .fold(self.road.scale_m(), f64::max)
+            .fold(self.road.profile.scale_m(), f64::max)
             .max(1e-6);
         self.pen_tol_m = 1e-12 * scale;
         Ok(())
     }
 
     /// Changes the rolling speed live (m/s, no restart).
+    /// The distance rolled stays continuous: the road does not jump.
     pub fn set_speed(&mut self, speed_mps: f64) {
+        self.x_offset_m += (self.scene.speed_mps - speed_mps) * self.t_s;
         self.scene.speed_mps = speed_mps;
     }
 
@@ -314,18 +327,18 @@ impl Simulation {
     fn road_at(&mut self, t: f64, _sel: Table) -> Result<(), SolverError> {
         let (w, dw) = ramp(t, self.scene.ramp_s);
         let vel = self.scene.speed_mps;
+        let rolled_m = vel * t + self.x_offset_m;
+        self.road
+            .sample_all(rolled_m, &mut self.zbuf, &mut self.dzbuf)
+            .map_err(|(i, e)| SolverError::RoadOutOfRange {
+                t_s: t,
+                point: i,
+                x_m: e.x_m,
+                min_m: e.min_m,
+                max_m: e.max_m,
+            })?;
         for (i, pt) in self.scene.points.iter().enumerate() {
-            let x = pt.x_m + vel * t;
-            let (z, dz) = self
-                .road
-                .sample(x)
-                .map_err(|e| SolverError::RoadOutOfRange {
-                    t_s: t,
-                    point: i,
-                    x_m: e.x_m,
-                    min_m: e.min_m,
-                    max_m: e.max_m,
-                })?;
+            let (z, dz) = (self.zbuf[i], self.dzbuf[i]);
             self.re[i] = w * (z - pt.h_m);
             self.rde[i] = dw * (z - pt.h_m) + w * dz * vel;
         }
