@@ -1,0 +1,966 @@
+//! Independent reference checks of the contact solver and the fast convolution
+//! (issue 3, "Tests that can fail"; SPEC §1-4).
+//!
+//! Every expected value here comes from the physics, written in this file:
+//! closed-form oscillator responses, an event-driven one-point contact
+//! solution with analytic free flight and root-found impacts and releases,
+//! static compliance solves, and self-convergence. Nothing is recorded from
+//! the solver. Run with `--nocapture` to see the tables.
+
+use std::f64::consts::TAU;
+use std::time::Instant;
+
+use tirecontact::Simulation;
+use tirecontact::road::Road;
+use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
+
+// ---------------------------------------------------------------------------
+// Own closed forms of the unit oscillator h'' + 2ξω h' + ω² h = δ(t)
+// ---------------------------------------------------------------------------
+
+/// `S(x) = sinh(√x)/√x` (x > 0) or `sin(√-x)/√-x` (x < 0), and
+/// `C(x) = cosh(√x)` or `cos(√-x)`, by their common power series near 0.
+fn s_c(x: f64) -> (f64, f64) {
+    if x.abs() < 1.0 {
+        // S = Σ x^n/(2n+1)!, C = Σ x^n/(2n)!
+        let (mut s, mut c) = (0.0, 0.0);
+        let mut term = 1.0; // x^n / (2n)!
+        for n in 0..30 {
+            let nf = n as f64;
+            c += term;
+            let ts = term / (2.0 * nf + 1.0);
+            s += ts;
+            term *= x / ((2.0 * nf + 1.0) * (2.0 * nf + 2.0));
+        }
+        (s, c)
+    } else if x > 0.0 {
+        let r = x.sqrt();
+        (r.sinh() / r, r.cosh())
+    } else {
+        let r = (-x).sqrt();
+        (r.sin() / r, r.cos())
+    }
+}
+
+/// `(h, h')` of the unit oscillator at `t >= 0`, one formula for every ξ:
+/// `h = e^{-ξωt} t S((ξ²-1)ω²t²)`, `h' = e^{-ξωt} (C - ξωt S)`.
+fn my_h(omega: f64, xi: f64, t: f64) -> (f64, f64) {
+    let a = xi * omega;
+    if xi > 1.5 {
+        // two real poles, written directly (no cancellation here)
+        let kappa = omega * (xi * xi - 1.0).sqrt();
+        let (lp, lm) = (-a + kappa, -a - kappa);
+        let (ep, em) = ((lp * t).exp(), (lm * t).exp());
+        return (
+            (ep - em) / (2.0 * kappa),
+            (lp * ep - lm * em) / (2.0 * kappa),
+        );
+    }
+    let x = (xi - 1.0) * (xi + 1.0) * omega * omega * t * t;
+    let (s, c) = s_c(x);
+    let e = (-a * t).exp();
+    (e * t * s, e * (c - a * t * s))
+}
+
+/// Unit step response `∫_0^t h = (1 - e^{-ξωt}(C + ξωt S))/ω²`.
+fn my_step(omega: f64, xi: f64, t: f64) -> f64 {
+    let (h, hd) = my_h(omega, xi, t);
+    // h' + 2ξω h = e^{-at}(C + a t S)
+    (1.0 - (hd + 2.0 * xi * omega * h)) / (omega * omega)
+}
+
+/// Receptance `1/(ω² - Ω² + 2iξωΩ)` as (re, im).
+fn my_receptance(omega: f64, xi: f64, big: f64) -> (f64, f64) {
+    let (re, im) = (omega * omega - big * big, 2.0 * xi * omega * big);
+    let d = re * re + im * im;
+    (re / d, -im / d)
+}
+
+/// Response from rest to `cos(Ωt)`: steady state plus the free solution that
+/// cancels its initial displacement and velocity.
+fn my_harmonic(omega: f64, xi: f64, big: f64, t: f64) -> f64 {
+    let (hr, hi) = my_receptance(omega, xi, big);
+    let (s, c) = (big * t).sin_cos();
+    let steady = hr * c - hi * s; // Re(H e^{iΩt})
+    let y0 = -hr; // cancels u(0) = Re H
+    let yd0 = big * hi; // cancels u'(0) = Re(iΩH) = -Ω Im H
+    let (h, hd) = my_h(omega, xi, t);
+    steady + y0 * (hd + 2.0 * xi * omega * h) + yd0 * h
+}
+
+/// Seeded splitmix64 in [-1, 1).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}
+
+fn order(e_coarse: f64, e_fine: f64, ratio: f64) -> f64 {
+    (e_coarse / e_fine).ln() / ratio.ln()
+}
+
+// ---------------------------------------------------------------------------
+// Scenes and runs
+// ---------------------------------------------------------------------------
+
+#[allow(clippy::too_many_arguments)]
+fn scene(
+    modes: Vec<Mode>,
+    points: Vec<Point>,
+    amplitude_m: f64,
+    wavelength_m: f64,
+    speed_mps: f64,
+    ramp_s: f64,
+    dt_s: f64,
+    duration_s: f64,
+    scheme: ContactScheme,
+) -> Scene {
+    Scene {
+        name: "reference test".into(),
+        description: String::new(),
+        tyre: Tyre::Modal { modes },
+        points,
+        road: Road::Sine {
+            amplitude_m,
+            wavelength_m,
+        },
+        speed_mps,
+        ramp_s,
+        dt_s,
+        duration_s,
+        contact_scheme: scheme,
+        base_dir: None,
+    }
+}
+
+/// Time history of a run: per step end `u` (point-major rows), step-mean
+/// force, contact flags, located events.
+struct Run {
+    dt: f64,
+    u: Vec<Vec<f64>>,
+    q: Vec<Vec<f64>>,
+    contact: Vec<Vec<bool>>,
+    events: Vec<u32>,
+    worst_penetration_m: f64,
+}
+
+fn run(sc: &Scene) -> Run {
+    let mut sim = Simulation::new(sc).expect("valid scene");
+    let n = sc.num_steps() as usize;
+    let p = sc.points.len();
+    let mut out = Run {
+        dt: sc.dt_s,
+        u: Vec::with_capacity(n),
+        q: Vec::with_capacity(n),
+        contact: Vec::with_capacity(n),
+        events: Vec::with_capacity(n),
+        worst_penetration_m: 0.0,
+    };
+    for _ in 0..n {
+        let rep = sim.step().unwrap_or_else(|e| panic!("solver error: {e}"));
+        assert_eq!(sim.displacement_m().len(), p);
+        out.u.push(sim.displacement_m().to_vec());
+        out.q.push(sim.force_n().to_vec());
+        out.contact.push(sim.in_contact().to_vec());
+        out.events.push(rep.events);
+    }
+    out.worst_penetration_m = sim.stats().worst_penetration_m;
+    out
+}
+
+// ---------------------------------------------------------------------------
+// 1. One point, one mode on a sine road: event-driven reference
+// ---------------------------------------------------------------------------
+
+/// The road seen by one point, `r(t) = w(t) (a sin(k(x0 + V t)) - h)`, and
+/// its first two derivatives (SPEC §4).
+#[derive(Clone, Copy)]
+struct SineRoad {
+    a: f64,
+    k: f64,
+    v: f64,
+    x0: f64,
+    h: f64,
+    ramp: f64,
+}
+
+impl SineRoad {
+    fn eval(&self, t: f64) -> (f64, f64, f64) {
+        let (w, wd, wdd) = if t >= self.ramp {
+            (1.0, 0.0, 0.0)
+        } else if t <= 0.0 {
+            (0.0, 0.0, 0.0)
+        } else {
+            let s = t / self.ramp;
+            (
+                s * s * (3.0 - 2.0 * s),
+                6.0 * s * (1.0 - s) / self.ramp,
+                6.0 * (1.0 - 2.0 * s) / (self.ramp * self.ramp),
+            )
+        };
+        let ph = self.k * (self.x0 + self.v * t);
+        let kv = self.k * self.v;
+        let z = self.a * ph.sin() - self.h;
+        let zd = self.a * kv * ph.cos();
+        let zdd = -self.a * kv * kv * ph.sin();
+        (w * z, wd * z + w * zd, wdd * z + 2.0 * wd * zd + w * zdd)
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Seg {
+    /// On the road from `t0`.
+    Contact { t0: f64 },
+    /// Free flight from `(t0, u0, v0)`.
+    Free { t0: f64, u0: f64, v0: f64 },
+}
+
+/// Event-driven exact solution for one point on one mode `u'' + 2ξωu' + ω²u = A q`.
+struct OnePointReference {
+    omega: f64,
+    xi: f64,
+    res: f64,
+    road: SineRoad,
+    /// Segments with their start times (sorted).
+    segs: Vec<Seg>,
+    starts: Vec<f64>,
+    /// Impacts: (time, impulse N·s).
+    impacts: Vec<(f64, f64)>,
+    releases: usize,
+}
+
+impl OnePointReference {
+    /// Contact force if the point follows the road at `t`.
+    fn q_contact(&self, t: f64) -> f64 {
+        let (r, rd, rdd) = self.road.eval(t);
+        (rdd + 2.0 * self.xi * self.omega * rd + self.omega * self.omega * r) / self.res
+    }
+
+    fn free(&self, t0: f64, u0: f64, v0: f64, t: f64) -> (f64, f64) {
+        let (h, hd) = my_h(self.omega, self.xi, t - t0);
+        (
+            u0 * (hd + 2.0 * self.xi * self.omega * h) + v0 * h,
+            -self.omega * self.omega * u0 * h + v0 * hd,
+        )
+    }
+
+    /// First `t` in `(t0, t_end]` where `f` turns negative (f(t0+) >= 0),
+    /// bisected to adjacent floats; `breaks` are forced scan points.
+    fn first_negative(
+        f: impl Fn(f64) -> f64,
+        t0: f64,
+        t_end: f64,
+        scan: f64,
+        breaks: &[f64],
+    ) -> Option<f64> {
+        let mut lo = t0;
+        loop {
+            if lo >= t_end {
+                return None;
+            }
+            let mut hi = (lo + scan).min(t_end);
+            for &b in breaks {
+                if b > lo && b < hi {
+                    hi = b;
+                }
+            }
+            if f(hi) < 0.0 {
+                let (mut a, mut b) = (lo, hi);
+                loop {
+                    let m = 0.5 * (a + b);
+                    if m <= a || m >= b {
+                        return Some(b);
+                    }
+                    if f(m) < 0.0 {
+                        b = m;
+                    } else {
+                        a = m;
+                    }
+                }
+            }
+            lo = hi;
+        }
+    }
+
+    fn new(omega: f64, xi: f64, res: f64, road: SineRoad, t_end: f64) -> Self {
+        let mut me = OnePointReference {
+            omega,
+            xi,
+            res,
+            road,
+            segs: Vec::new(),
+            starts: Vec::new(),
+            impacts: Vec::new(),
+            releases: 0,
+        };
+        let scan = 2e-6;
+        let breaks = [road.ramp];
+        // At rest on the road at t = 0 (zero gap).
+        let mut seg = Seg::Contact { t0: 0.0 };
+        // Contact at t = 0 only if the force starts non-negative.
+        if me.q_contact(1e-12) < 0.0 {
+            seg = Seg::Free {
+                t0: 0.0,
+                u0: 0.0,
+                v0: 0.0,
+            };
+        }
+        loop {
+            assert!(me.segs.len() < 100_000, "reference: too many events");
+            me.segs.push(seg);
+            match seg {
+                Seg::Contact { t0 } => {
+                    me.starts.push(t0);
+                    let Some(tr) =
+                        Self::first_negative(|t| me.q_contact(t), t0, t_end, scan, &breaks)
+                    else {
+                        break;
+                    };
+                    me.releases += 1;
+                    let (r, rd, _) = road.eval(tr);
+                    seg = Seg::Free {
+                        t0: tr,
+                        u0: r,
+                        v0: rd,
+                    };
+                }
+                Seg::Free { t0, u0, v0 } => {
+                    me.starts.push(t0);
+                    let gap = |t: f64| me.free(t0, u0, v0, t).0 - road.eval(t).0;
+                    let Some(ti) = Self::first_negative(gap, t0, t_end, scan, &[]) else {
+                        break;
+                    };
+                    let (_, v_minus) = me.free(t0, u0, v0, ti);
+                    let (r, rd, _) = road.eval(ti);
+                    me.impacts.push((ti, (rd - v_minus) / res));
+                    seg = if me.q_contact(ti * (1.0 + 1e-15) + 1e-18) >= 0.0 {
+                        Seg::Contact { t0: ti }
+                    } else {
+                        me.releases += 1;
+                        Seg::Free {
+                            t0: ti,
+                            u0: r,
+                            v0: rd,
+                        }
+                    };
+                }
+            }
+        }
+        me
+    }
+
+    fn seg_at(&self, t: f64) -> usize {
+        self.starts.partition_point(|&s| s <= t).saturating_sub(1)
+    }
+
+    fn displacement(&self, t: f64) -> f64 {
+        match self.segs[self.seg_at(t)] {
+            Seg::Contact { .. } => self.road.eval(t).0,
+            Seg::Free { t0, u0, v0 } => self.free(t0, u0, v0, t).0,
+        }
+    }
+
+    /// Impulse (N·s) the road gives in `[a, b)`: impacts plus `∫ q` over
+    /// contact, by 5-point Gauss-Legendre on pieces of at most 20 µs.
+    fn impulse(&self, a: f64, b: f64) -> f64 {
+        const GL5: [(f64, f64); 5] = [
+            (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
+            (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+            (0.0, 0.568_888_888_888_888_9),
+            (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+            (0.906_179_845_938_664, 0.236_926_885_056_189_1),
+        ];
+        let mut total: f64 = self
+            .impacts
+            .iter()
+            .filter(|&&(t, _)| t >= a && t < b)
+            .map(|&(_, i)| i)
+            .sum();
+        // cut points: segment starts and the ramp end inside [a, b]
+        let mut cuts = vec![a, b];
+        cuts.extend(self.starts.iter().copied().filter(|&s| s > a && s < b));
+        if self.road.ramp > a && self.road.ramp < b {
+            cuts.push(self.road.ramp);
+        }
+        cuts.sort_by(f64::total_cmp);
+        for w in cuts.windows(2) {
+            let (c0, c1) = (w[0], w[1]);
+            if c1 <= c0 {
+                continue;
+            }
+            if !matches!(self.segs[self.seg_at(0.5 * (c0 + c1))], Seg::Contact { .. }) {
+                continue;
+            }
+            let n = ((c1 - c0) / 2e-5).ceil().max(1.0) as usize;
+            let hs = (c1 - c0) / n as f64;
+            for k in 0..n {
+                let mid = c0 + (k as f64 + 0.5) * hs;
+                for &(x, wgt) in &GL5 {
+                    total += 0.5 * hs * wgt * self.q_contact(mid + 0.5 * hs * x);
+                }
+            }
+        }
+        total
+    }
+}
+
+/// Relative RMS displacement error and relative RMS error of the impulses
+/// over `window` (s) of a one-point run against the reference.
+fn one_point_errors(
+    run: &Run,
+    refsol: &OnePointReference,
+    window: f64,
+    ref_u: &mut Vec<f64>,
+) -> (f64, f64) {
+    let dt = run.dt;
+    let n = run.u.len();
+    ref_u.clear();
+    ref_u.extend((1..=n).map(|k| refsol.displacement(k as f64 * dt)));
+    let (mut num, mut den) = (0.0, 0.0);
+    for k in 0..n {
+        let e = run.u[k][0] - ref_u[k];
+        num += e * e;
+        den += ref_u[k] * ref_u[k];
+    }
+    let eu = (num / den).sqrt();
+    let per = (window / dt).round() as usize;
+    assert!((per as f64 * dt - window).abs() < 1e-9 * window);
+    let (mut num, mut den) = (0.0, 0.0);
+    for w in 0..n / per {
+        let solver: f64 = (w * per..(w + 1) * per).map(|k| run.q[k][0] * dt).sum();
+        let reference = refsol.impulse(w as f64 * window, (w + 1) as f64 * window);
+        num += (solver - reference).powi(2);
+        den += reference * reference;
+    }
+    (eu, (num / den).sqrt())
+}
+
+#[test]
+fn one_point_sine_road_against_event_driven_reference() {
+    let (f, xi, res) = (100.0, 0.05, 0.1);
+    let (a, lambda, speed, h, ramp, duration) = (0.002, 0.5, 20.0, -0.001, 0.05, 0.3);
+    let omega = TAU * f;
+    let road = SineRoad {
+        a,
+        k: TAU / lambda,
+        v: speed,
+        x0: 0.0,
+        h,
+        ramp,
+    };
+    let t0 = Instant::now();
+    let refsol = OnePointReference::new(omega, xi, res, road, duration + 1e-3);
+    println!(
+        "\n[1] one point, one mode (100 Hz, ξ 0.05, A 0.1/kg), 2 mm 0.5 m sine at 20 m/s, 1 mm preload, {duration} s:\n    reference: {} impacts, {} releases, built in {:.2} s",
+        refsol.impacts.len(),
+        refsol.releases,
+        t0.elapsed().as_secs_f64()
+    );
+    assert!(
+        refsol.impacts.len() >= 5 && refsol.releases >= 5,
+        "the scenario must lose and regain contact repeatedly"
+    );
+    let dts = [4e-5, 2e-5, 1e-5, 5e-6];
+    let window = 1e-3;
+    let mut table: Vec<(ContactScheme, Vec<(f64, f64)>)> = Vec::new();
+    let mut ref_u = Vec::new();
+    for scheme in [ContactScheme::Located, ContactScheme::Paper] {
+        let mut errs = Vec::new();
+        for &dt in &dts {
+            let sc = scene(
+                vec![Mode {
+                    freq_hz: f,
+                    damping_ratio: xi,
+                    residue: vec![vec![res]],
+                    shape: vec![],
+                }],
+                vec![Point { x_m: 0.0, h_m: h }],
+                a,
+                lambda,
+                speed,
+                ramp,
+                dt,
+                duration,
+                scheme,
+            );
+            let r = run(&sc);
+            errs.push(one_point_errors(&r, &refsol, window, &mut ref_u));
+        }
+        table.push((scheme, errs));
+    }
+    println!("    scheme   dt       disp err   order   impulse(1 ms) err   order");
+    for (scheme, errs) in &table {
+        for (k, &(eu, eq)) in errs.iter().enumerate() {
+            let (ou, oq) = if k == 0 {
+                (String::from("   -  "), String::from("   -  "))
+            } else {
+                (
+                    format!("{:6.2}", order(errs[k - 1].0, eu, 2.0)),
+                    format!("{:6.2}", order(errs[k - 1].1, eq, 2.0)),
+                )
+            };
+            println!(
+                "    {:8} {:.0e}  {eu:9.3e}  {ou}   {eq:9.3e}          {oq}",
+                format!("{scheme:?}"),
+                dts[k]
+            );
+        }
+    }
+    println!("    total time {:.2} s", t0.elapsed().as_secs_f64());
+    let loc = &table[0].1;
+    let pap = &table[1].1;
+    // One point on one mode: in contact the state (u, v) = (r, r') is imposed
+    // exactly, so the only errors come from event location; they may reach
+    // round-off, where an order means nothing. Below FLOOR a pair passes.
+    const FLOOR: f64 = 1e-12;
+    for k in 1..loc.len() {
+        for (what, c, fine) in [
+            ("displacement", loc[k - 1].0, loc[k].0),
+            ("impulse", loc[k - 1].1, loc[k].1),
+        ] {
+            let o = order(c, fine, 2.0);
+            assert!(
+                o >= 1.8 || fine <= FLOOR,
+                "Located {what} order {o:.2} between dt {} and {} (errors {c:.3e}, {fine:.3e})",
+                dts[k - 1],
+                dts[k],
+            );
+        }
+    }
+    let last = loc.len() - 1;
+    assert!(
+        10.0 * loc[last].0 <= pap[last].0,
+        "Located displacement error {:.3e} not 10x below Paper's {:.3e} at dt {}",
+        loc[last].0,
+        pap[last].0,
+        dts[last]
+    );
+    assert!(
+        10.0 * loc[last].1 <= pap[last].1,
+        "Located impulse error {:.3e} not 10x below Paper's {:.3e} at dt {}",
+        loc[last].1,
+        pap[last].1,
+        dts[last]
+    );
+}
+
+// ---------------------------------------------------------------------------
+// 2. Three points, coupled modes: an impact throws a neighbour off the road
+// ---------------------------------------------------------------------------
+
+fn three_point_modes() -> Vec<Mode> {
+    let m = |f: f64, shape: [f64; 3]| Mode {
+        freq_hz: f,
+        damping_ratio: 0.05,
+        residue: vec![],
+        shape: shape.to_vec(),
+    };
+    vec![
+        m(60.0, [0.3, 0.3, 0.3]),
+        m(110.0, [0.3, 0.0, -0.3]),
+        m(170.0, [0.15, -0.3, 0.15]),
+    ]
+}
+
+fn three_point_scene(dt: f64, duration: f64, scheme: ContactScheme) -> Scene {
+    scene(
+        three_point_modes(),
+        vec![
+            Point {
+                x_m: -0.05,
+                h_m: -0.001,
+            },
+            Point {
+                x_m: 0.0,
+                h_m: -0.001,
+            },
+            Point {
+                x_m: 0.05,
+                h_m: -0.001,
+            },
+        ],
+        0.002,
+        0.5,
+        20.0,
+        0.05,
+        dt,
+        duration,
+        scheme,
+    )
+}
+
+/// Steps where a point in contact leaves the road while another lands.
+fn throw_offs(r: &Run) -> Vec<(usize, usize, usize)> {
+    let mut out = Vec::new();
+    for k in 1..r.contact.len() {
+        let (before, after) = (&r.contact[k - 1], &r.contact[k]);
+        for i in 0..before.len() {
+            if before[i] && !after[i] {
+                for j in 0..before.len() {
+                    if !before[j] && after[j] {
+                        out.push((k, j, i));
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Relative RMS difference of displacement between a run and a finer one
+/// (`m` times finer), on the coarse grid.
+fn rms_diff(coarse: &Run, fine: &Run) -> f64 {
+    let m = (coarse.dt / fine.dt).round() as usize;
+    let (mut num, mut den) = (0.0, 0.0);
+    for (k, uc) in coarse.u.iter().enumerate() {
+        let uf = &fine.u[(k + 1) * m - 1];
+        for (a, b) in uc.iter().zip(uf) {
+            num += (a - b) * (a - b);
+            den += b * b;
+        }
+    }
+    (num / den).sqrt()
+}
+
+#[test]
+fn three_points_impact_throws_neighbour_off() {
+    let duration = 0.3;
+    let t0 = Instant::now();
+    let dts = [2e-5, 1e-5, 5e-6];
+    let fine_dt = dts[2] / 8.0;
+    let fine = run(&three_point_scene(
+        fine_dt,
+        duration,
+        ContactScheme::Located,
+    ));
+    println!(
+        "\n[2] three points (x = -5, 0, 5 cm), modes 60/110/170 Hz with coupled shapes, 2 mm 0.5 m sine at 20 m/s, 1 mm preload, {duration} s\n    reference: Located at dt {fine_dt:.2e}; Richardson differences need no reference"
+    );
+    println!(
+        "    scheme   dt      err vs fine  order   |u(dt)-u(dt/2)|  order   throw-off steps  located events  worst penetration"
+    );
+    let mut results = Vec::new();
+    for scheme in [ContactScheme::Located, ContactScheme::Paper] {
+        let runs: Vec<Run> = dts
+            .iter()
+            .map(|&dt| run(&three_point_scene(dt, duration, scheme)))
+            .collect();
+        let errs: Vec<f64> = runs.iter().map(|r| rms_diff(r, &fine)).collect();
+        let rich = [rms_diff(&runs[0], &runs[1]), rms_diff(&runs[1], &runs[2])];
+        for (k, r) in runs.iter().enumerate() {
+            let throws = throw_offs(r);
+            assert!(
+                !throws.is_empty(),
+                "{scheme:?} dt {}: no step where a point in contact leaves while another lands",
+                dts[k]
+            );
+            let eo = if k == 0 {
+                "   -  ".to_string()
+            } else {
+                format!("{:6.2}", order(errs[k - 1], errs[k], 2.0))
+            };
+            let (rd, ro) = match k {
+                0 => (format!("{:9.3e}", rich[0]), "   -  ".to_string()),
+                1 => (
+                    format!("{:9.3e}", rich[1]),
+                    format!("{:6.2}", order(rich[0], rich[1], 2.0)),
+                ),
+                _ => ("     -   ".to_string(), "      ".to_string()),
+            };
+            println!(
+                "    {:8} {:.0e}  {:9.3e}   {eo}   {rd}        {ro}   {:6} (first t {:.5} s)  {:6}  {:.2e} m",
+                format!("{scheme:?}"),
+                dts[k],
+                errs[k],
+                throws.len(),
+                (throws[0].0 + 1) as f64 * dts[k],
+                r.events.iter().sum::<u32>(),
+                r.worst_penetration_m
+            );
+        }
+        results.push((scheme, errs, rich));
+    }
+    println!("    total time {:.2} s", t0.elapsed().as_secs_f64());
+    let (_, le, lr) = &results[0];
+    let (_, pe, pr) = &results[1];
+    let lo = [order(le[0], le[1], 2.0), order(le[1], le[2], 2.0)];
+    let lro = order(lr[0], lr[1], 2.0);
+    let po = [order(pe[0], pe[1], 2.0), order(pe[1], pe[2], 2.0)];
+    let pro = order(pr[0], pr[1], 2.0);
+    assert!(
+        po.iter().all(|&o| o < 1.5) && pro < 1.5,
+        "Paper orders {po:?} / Richardson {pro:.2}: expected first order (< 1.5)"
+    );
+    assert!(
+        lo.iter().all(|&o| o >= 1.8) && lro >= 1.8,
+        "Located displacement orders {lo:?} (vs dt {fine_dt:e}), Richardson {lro:.2}: expected >= 1.8 \
+         (errors {le:?}, differences {lr:?})"
+    );
+}
+
+// ---------------------------------------------------------------------------
+// 3. Static preload: steady force from the static compliance
+// ---------------------------------------------------------------------------
+
+/// Own dense solve (Gaussian elimination with partial pivoting).
+fn gauss_solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
+    let n = b.len();
+    for k in 0..n {
+        let p = (k..n)
+            .max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))
+            .unwrap();
+        a.swap(k, p);
+        b.swap(k, p);
+        for i in k + 1..n {
+            let f = a[i][k] / a[k][k];
+            for j in k..n {
+                a[i][j] -= f * a[k][j];
+            }
+            b[i] -= f * b[k];
+        }
+    }
+    let mut x = vec![0.0; n];
+    for i in (0..n).rev() {
+        let s: f64 = (i + 1..n).map(|j| a[i][j] * x[j]).sum();
+        x[i] = (b[i] - s) / a[i][i];
+    }
+    x
+}
+
+/// Outcome of a static-preload run: mean step force over the last `WINDOW`
+/// steps, last displacement, steps of that window not all in contact, and the
+/// located events in it.
+struct StaticOutcome {
+    q: Vec<f64>,
+    u: Vec<f64>,
+    lost: usize,
+    events: u32,
+    first_all_in_contact_s: Option<f64>,
+}
+
+const WINDOW: usize = 500;
+
+fn static_run(modes: Vec<Mode>, points: Vec<Point>, scheme: ContactScheme) -> StaticOutcome {
+    let dt = 2e-5;
+    let sc = scene(modes, points, 0.0, 0.5, 20.0, 0.05, dt, 0.6, scheme);
+    let r = run(&sc);
+    let n = r.q.len();
+    let p = sc.points.len();
+    let tail = n - WINDOW..n;
+    StaticOutcome {
+        q: (0..p)
+            .map(|i| r.q[tail.clone()].iter().map(|row| row[i]).sum::<f64>() / WINDOW as f64)
+            .collect(),
+        u: r.u[n - 1].clone(),
+        lost: r.contact[tail.clone()]
+            .iter()
+            .filter(|c| !c.iter().all(|&x| x))
+            .count(),
+        events: r.events[tail].iter().sum(),
+        first_all_in_contact_s: r
+            .contact
+            .iter()
+            .position(|c| c.iter().all(|&x| x))
+            .map(|k| (k + 1) as f64 * dt),
+    }
+}
+
+#[test]
+fn static_preload_matches_static_compliance() {
+    println!("\n[3] static preload (no road amplitude, 50 ms ramp, hold to 0.6 s, dt 2e-5)");
+    let mut failures = Vec::new();
+    // one point, two modes: q = penetration / Σ A_k / ω_k²
+    let modes1 = vec![
+        Mode {
+            freq_hz: 100.0,
+            damping_ratio: 0.05,
+            residue: vec![vec![0.1]],
+            shape: vec![],
+        },
+        Mode {
+            freq_hz: 260.0,
+            damping_ratio: 0.08,
+            residue: vec![vec![0.05]],
+            shape: vec![],
+        },
+    ];
+    let pen = 0.0012;
+    let c: f64 = modes1
+        .iter()
+        .map(|m| m.residue[0][0] / (TAU * m.freq_hz).powi(2))
+        .sum();
+    let expected = pen / c;
+    for scheme in [ContactScheme::Located, ContactScheme::Paper] {
+        let o = static_run(
+            modes1.clone(),
+            vec![Point {
+                x_m: 0.0,
+                h_m: -pen,
+            }],
+            scheme,
+        );
+        let rel = (o.q[0] - expected).abs() / expected;
+        println!(
+            "    1 point  {scheme:?}: force {:.9e} N, expected pen/C = {expected:.9e} N, rel err {rel:.2e}; u - pen {:.1e} m; steps off the road in the last {WINDOW}: {}",
+            o.q[0],
+            o.u[0] - pen,
+            o.lost
+        );
+        if !(rel < 1e-7 && (o.u[0] - pen).abs() < 1e-12 && o.lost == 0) {
+            failures.push(format!(
+                "1 point {scheme:?}: force {} vs {expected}, u {} vs {pen}, {} steps off",
+                o.q[0], o.u[0], o.lost
+            ));
+        }
+    }
+    // three points: three coupled modes plus a rank-3 residue matrix mode
+    let mut modes3 = three_point_modes();
+    modes3.push(Mode {
+        freq_hz: 240.0,
+        damping_ratio: 0.1,
+        residue: vec![
+            vec![0.04, 0.01, -0.005],
+            vec![0.01, 0.03, 0.01],
+            vec![-0.005, 0.01, 0.04],
+        ],
+        shape: vec![],
+    });
+    let x_m = [0.0, 0.05, 0.1];
+    let mut cmat = vec![vec![0.0; 3]; 3];
+    for m in &modes3 {
+        let a = m.residue_matrix();
+        let w2 = (TAU * m.freq_hz).powi(2);
+        for i in 0..3 {
+            for j in 0..3 {
+                cmat[i][j] += a[i][j] / w2;
+            }
+        }
+    }
+    // preloads chosen to give compressive forces everywhere (about 3-4 kN)
+    let design = [3000.0, 4000.0, 3500.0];
+    let hs: Vec<f64> = (0..3)
+        .map(|i| -(0..3).map(|j| cmat[i][j] * design[j]).sum::<f64>())
+        .collect();
+    let points: Vec<Point> = (0..3)
+        .map(|i| Point {
+            x_m: x_m[i],
+            h_m: hs[i],
+        })
+        .collect();
+    let expected = gauss_solve(cmat.clone(), hs.iter().map(|h| -h).collect());
+    for i in 0..3 {
+        let r: f64 = (0..3).map(|j| cmat[i][j] * expected[j]).sum::<f64>() + hs[i];
+        assert!(r.abs() < 1e-15, "own solve residual {r}");
+        assert!((expected[i] - design[i]).abs() < 1e-8 * design[i]);
+    }
+    for scheme in [ContactScheme::Located, ContactScheme::Paper] {
+        let o = static_run(modes3.clone(), points.clone(), scheme);
+        let rel = (0..3)
+            .map(|i| (o.q[i] - expected[i]).abs() / expected[i])
+            .fold(0.0, f64::max);
+        let du = (0..3).map(|i| (o.u[i] + hs[i]).abs()).fold(0.0, f64::max);
+        println!(
+            "    3 points {scheme:?}: forces {:.4?} N, expected C⁻¹ pen {expected:.4?} N, max rel err {rel:.2e}; max |u - pen| {du:.1e} m\n             steps not all in contact in the last {WINDOW}: {}, located events there: {}, first step end with all in contact: {:?} s",
+            o.q, o.lost, o.events, o.first_all_in_contact_s
+        );
+        if !(rel < 1e-7 && du < 1e-12 && o.lost == 0) {
+            failures.push(format!(
+                "3 points {scheme:?}: forces {:?} vs {expected:?}, max |u - pen| {du:e}, {} of the last {WINDOW} steps not all in contact",
+                o.q, o.lost
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+// ---------------------------------------------------------------------------
+// 4. Stability of the bounded recursion; overflow of the paper's α/β form
+// ---------------------------------------------------------------------------
+
+#[test]
+fn bounded_recursion_stable_alpha_beta_overflows() {
+    use tirecontact::convolution::paper_alpha_beta::AlphaBeta;
+    use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
+    let (f, xi, dt) = (4000.0, 0.1, 1e-5);
+    let steps: usize = 10_000_000;
+    let omega = TAU * f;
+    let modes = [Mode {
+        freq_hz: f,
+        damping_ratio: xi,
+        residue: vec![vec![1.0]],
+        shape: vec![],
+    }];
+    let basis = ModalBasis::new(&modes, 1);
+    let table = StepTable::new(&basis, dt);
+    let mut s0 = ModalState::zeros(&basis);
+    let mut s1 = ModalState::zeros(&basis);
+    let (mut u, mut v) = ([0.0], [0.0]);
+    // bounded force: a 1 kHz harmonic plus seeded noise, |q| <= 1.5
+    let big = TAU * 1000.0;
+    let mut rng = Rng(7);
+    let force = |k: usize, rng: &mut Rng| (big * (k as f64 + 0.5) * dt).sin() + 0.5 * rng.next();
+    let wd = omega * (1.0 - xi * xi).sqrt();
+    let bound = 1.5 / (xi * omega * wd); // ∫|h| <= 1/(ξω ω_d)
+    let start = Instant::now();
+    let mut umax = 0.0f64;
+    let mut ab = AlphaBeta::new(omega, xi, dt);
+    let overflow_t = ab.overflow_time_s();
+    let mut ab_bad_at = None;
+    let mut ab_err_early = 0.0f64;
+    let mut rng_ab = Rng(7);
+    for k in 0..steps {
+        let q = [force(k, &mut rng)];
+        s0.predict_into(&table, &mut s1);
+        s1.add_constant_forces(&basis, &table, &q);
+        std::mem::swap(&mut s0, &mut s1);
+        if k % 64 == 0 || k + 1 == steps {
+            s0.project(&basis, &mut u, &mut v);
+            umax = umax.max(u[0].abs());
+            assert!(
+                u[0].is_finite() && v[0].is_finite(),
+                "non-finite at step {k}"
+            );
+        }
+        if ab_bad_at.is_none() {
+            let qa = force(k, &mut rng_ab);
+            let ua = ab.step(qa);
+            if !ua.is_finite() {
+                ab_bad_at = Some((k + 1) as f64 * dt);
+            } else if (k + 1) as f64 * dt <= 0.05 {
+                s0.project(&basis, &mut u, &mut v);
+                ab_err_early = ab_err_early.max((ua - u[0]).abs());
+            }
+        }
+    }
+    let elapsed = start.elapsed().as_secs_f64();
+    s0.project(&basis, &mut u, &mut v);
+    println!(
+        "\n[4] {steps:e} steps of a {f} Hz, ξ {xi} mode at dt {dt:e} ({:.0} s simulated) in {elapsed:.2} s: max |u| {umax:.3e} (bound ∫|h| max|q| = {bound:.3e}), final u {:.3e}",
+        steps as f64 * dt,
+        u[0]
+    );
+    println!(
+        "    α/β baseline: agrees to {ab_err_early:.1e} m until 0.05 s, first non-finite at t = {:?} s (overflow_time_s = {overflow_t:.4} s)",
+        ab_bad_at
+    );
+    assert!(
+        umax <= bound && umax > 0.1 * bound,
+        "max |u| {umax} vs bound {bound}"
+    );
+    assert!(
+        ab_err_early <= 1e-9 * umax,
+        "α/β disagrees early: {ab_err_early}"
+    );
+    let bad = ab_bad_at.expect("α/β baseline should overflow");
+    assert!(
+        bad >= 0.95 * overflow_t && bad <= overflow_t + 0.02,
+        "α/β went non-finite at {bad} s, overflow time {overflow_t} s"
+    );
+    assert!(steps as f64 * dt > 100.0 * overflow_t);
+}
