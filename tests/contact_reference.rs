@@ -964,3 +964,392 @@ fn bounded_recursion_stable_alpha_beta_overflows() {
     );
     assert!(steps as f64 * dt > 100.0 * overflow_t);
 }
+
+// ---------------------------------------------------------------------------
+// 5. Fast convolution against direct quadrature; observed orders
+// ---------------------------------------------------------------------------
+
+/// Gauss points of the step, as fractions: `(1 ∓ 1/√3)/2`.
+fn gauss_fractions() -> (f64, f64) {
+    let r = 1.0 / 3f64.sqrt();
+    ((1.0 - r) / 2.0, (1.0 + r) / 2.0)
+}
+
+#[test]
+fn fast_convolution_matches_direct_quadrature() {
+    use tirecontact::convolution::direct::direct_convolution;
+    use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
+    // two points: a rank-2 residue mode, a mode shape, an overdamped and an undamped mode
+    let modes = vec![
+        Mode {
+            freq_hz: 200.0,
+            damping_ratio: 0.05,
+            residue: vec![vec![0.1, 0.03], vec![0.03, 0.08]],
+            shape: vec![],
+        },
+        Mode {
+            freq_hz: 450.0,
+            damping_ratio: 0.02,
+            residue: vec![],
+            shape: vec![0.2, -0.1],
+        },
+        Mode {
+            freq_hz: 90.0,
+            damping_ratio: 3.0,
+            residue: vec![vec![0.05, 0.02], vec![0.02, 0.05]],
+            shape: vec![],
+        },
+        Mode {
+            freq_hz: 300.0,
+            damping_ratio: 0.0,
+            residue: vec![],
+            shape: vec![0.1, 0.15],
+        },
+    ];
+    let res: Vec<Vec<Vec<f64>>> = modes.iter().map(Mode::residue_matrix).collect();
+    let green = |i: usize, j: usize, t: f64| -> f64 {
+        modes
+            .iter()
+            .zip(&res)
+            .map(|(m, a)| a[i][j] * my_h(TAU * m.freq_hz, m.damping_ratio, t).0)
+            .sum()
+    };
+    let basis = ModalBasis::new(&modes, 2);
+    let (dt, n) = (5e-5, 300usize);
+    let table = StepTable::new(&basis, dt);
+    let (g1, g2) = gauss_fractions();
+    let mut rng = Rng(2011);
+    // per step, per point: constant value, and Gauss-point values of a linear force
+    let qc: Vec<[f64; 2]> = (0..n).map(|_| [rng.next(), rng.next()]).collect();
+    let ql: Vec<[[f64; 2]; 2]> = (0..n)
+        .map(|_| [[rng.next(), rng.next()], [rng.next(), rng.next()]])
+        .collect();
+    let start = Instant::now();
+    let mut worst = [0.0f64; 2];
+    for (shape, w) in worst.iter_mut().enumerate() {
+        // fast
+        let mut s0 = ModalState::zeros(&basis);
+        let mut s1 = ModalState::zeros(&basis);
+        let (mut u, mut v) = ([0.0; 2], [0.0; 2]);
+        let mut fast = Vec::with_capacity(n);
+        for m in 0..n {
+            s0.predict_into(&table, &mut s1);
+            if shape == 0 {
+                s1.add_constant_forces(&basis, &table, &qc[m]);
+            } else {
+                let q1 = [ql[m][0][0], ql[m][0][1]];
+                let q2 = [ql[m][1][0], ql[m][1][1]];
+                s1.add_gauss_forces(&basis, &table, &[0, 1], &q1, &q2);
+            }
+            std::mem::swap(&mut s0, &mut s1);
+            s0.project(&basis, &mut u, &mut v);
+            fast.push(u);
+        }
+        // direct: u_i = Σ_j ∫ g_ij q_j
+        let (qc, ql) = (&qc, &ql);
+        let force = move |j: usize| {
+            move |m: usize, s: f64| -> f64 {
+                if shape == 0 {
+                    qc[m][j]
+                } else {
+                    let (a, b) = (ql[m][0][j], ql[m][1][j]);
+                    a + (b - a) * (s / dt - g1) / (g2 - g1)
+                }
+            }
+        };
+        let mut scale = 0.0f64;
+        let mut err = 0.0f64;
+        for i in 0..2 {
+            let d0 = direct_convolution(|t| green(i, 0, t), force(0), dt, n, 2);
+            let d1 = direct_convolution(|t| green(i, 1, t), force(1), dt, n, 2);
+            for m in 0..n {
+                let d = d0[m] + d1[m];
+                scale = scale.max(d.abs());
+                err = err.max((fast[m][i] - d).abs());
+            }
+        }
+        *w = err / scale;
+    }
+    println!(
+        "\n[5] fast vs direct quadrature, 2 points, 4 modes (ξ 0.05 rank 2, 0.02, 3, 0), {n} steps of {dt:e} s, seeded random forces:\n    piecewise-constant max rel diff {:.2e}, linear (Gauss points) {:.2e}  ({:.2} s)",
+        worst[0],
+        worst[1],
+        start.elapsed().as_secs_f64()
+    );
+    assert!(worst[0] < 1e-12, "piecewise-constant: {:e}", worst[0]);
+    assert!(worst[1] < 1e-12, "linear: {:e}", worst[1]);
+}
+
+/// Response from rest to `cos(Ωt + φ)`.
+fn my_harmonic_phase(omega: f64, xi: f64, big: f64, phi: f64, t: f64) -> f64 {
+    let (hr, hi) = my_receptance(omega, xi, big);
+    // H e^{iφ}
+    let (c0, s0) = (phi.cos(), phi.sin());
+    let (pr, pi) = (hr * c0 - hi * s0, hr * s0 + hi * c0);
+    let (s, c) = (big * t).sin_cos();
+    let steady = pr * c - pi * s;
+    let (u0, ud0) = (pr, -big * pi);
+    let (h, hd) = my_h(omega, xi, t);
+    steady - u0 * (hd + 2.0 * xi * omega * h) - ud0 * h
+}
+
+#[test]
+fn smooth_force_orders_of_the_force_shapes() {
+    use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
+    let (f, xi) = (200.0, 0.05);
+    let omega = TAU * f;
+    let modes = [Mode {
+        freq_hz: f,
+        damping_ratio: xi,
+        residue: vec![vec![1.0]],
+        shape: vec![],
+    }];
+    let basis = ModalBasis::new(&modes, 1);
+    // q = 0.2 + sin(2π 150 t) + 0.5 cos(2π 370 t + 0.3), exact response in closed form
+    let (b1, b2) = (TAU * 150.0, TAU * 370.0);
+    let q = |t: f64| 0.2 + (b1 * t).sin() + 0.5 * (b2 * t + 0.3).cos();
+    let exact = |t: f64| {
+        0.2 * my_step(omega, xi, t)
+            + my_harmonic_phase(omega, xi, b1, -std::f64::consts::FRAC_PI_2, t)
+            + 0.5 * my_harmonic_phase(omega, xi, b2, 0.3, t)
+    };
+    let t_end: f64 = 0.02;
+    let dts: [f64; 4] = [2e-4, 1e-4, 5e-5, 2.5e-5];
+    let (g1, g2) = gauss_fractions();
+    let mut errs = [[0.0f64; 4]; 3];
+    for (kd, &dt) in dts.iter().enumerate() {
+        let n = (t_end / dt).round() as usize;
+        let table = StepTable::new(&basis, dt);
+        for (shape, row) in errs.iter_mut().enumerate() {
+            let mut s0 = ModalState::zeros(&basis);
+            let mut s1 = ModalState::zeros(&basis);
+            let (mut u, mut v) = ([0.0], [0.0]);
+            let (mut e, mut scale) = (0.0f64, 0.0f64);
+            for m in 0..n {
+                let t = m as f64 * dt;
+                s0.predict_into(&table, &mut s1);
+                match shape {
+                    // piecewise constant, sampled at the step start
+                    0 => s1.add_constant_forces(&basis, &table, &[q(t)]),
+                    // linear through the step ends
+                    1 => {
+                        let (qa, qb) = (q(t), q(t + dt));
+                        let q1 = [qa + (qb - qa) * g1];
+                        let q2 = [qa + (qb - qa) * g2];
+                        s1.add_gauss_forces(&basis, &table, &[0], &q1, &q2);
+                    }
+                    // linear through the Gauss points
+                    _ => s1.add_gauss_forces(
+                        &basis,
+                        &table,
+                        &[0],
+                        &[q(t + g1 * dt)],
+                        &[q(t + g2 * dt)],
+                    ),
+                }
+                std::mem::swap(&mut s0, &mut s1);
+                s0.project(&basis, &mut u, &mut v);
+                let x = exact(t + dt);
+                e = e.max((u[0] - x).abs());
+                scale = scale.max(x.abs());
+            }
+            row[kd] = e / scale;
+        }
+    }
+    println!(
+        "\n[5b] smooth force, 200 Hz ξ 0.05 mode, 20 ms: max rel error against the closed form"
+    );
+    println!("    shape                    dt=2e-4     1e-4        5e-5        2.5e-5      orders");
+    let names = [
+        "piecewise constant (start)",
+        "linear through ends",
+        "linear through Gauss pts",
+    ];
+    let expected = [(0.8, 1.3), (1.8, 2.3), (3.7, 4.5)];
+    for (s, row) in errs.iter().enumerate() {
+        let orders: Vec<f64> = (1..4).map(|k| order(row[k - 1], row[k], 2.0)).collect();
+        println!(
+            "    {:26} {:.3e}  {:.3e}  {:.3e}  {:.3e}  {:.2?}",
+            names[s], row[0], row[1], row[2], row[3], orders
+        );
+        for &o in &orders {
+            assert!(
+                o >= expected[s].0 && o <= expected[s].1,
+                "{}: order {o:.2} outside {:?} (errors {row:?})",
+                names[s],
+                expected[s]
+            );
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// 6. Impulse, step and harmonic responses of every damping regime
+// ---------------------------------------------------------------------------
+
+const REGIMES: [f64; 6] = [0.0, 0.05, 1.0, 1.0 - 1e-9, 1.0 + 1e-9, 3.0];
+
+#[test]
+fn impulse_and_step_responses_every_regime() {
+    use tirecontact::convolution::{ModalBasis, ModalState, StepTable, mode_step};
+    use tirecontact::modal::{ModalMode, unit_impulse};
+    let omega = TAU * 150.0;
+    let mut worst = [0.0f64; 6];
+    let mut local_w = 0.0f64;
+    for &xi in &REGIMES {
+        let mode = ModalMode {
+            omega_rad_s: omega,
+            damping_ratio: xi,
+            residue: vec![1.0],
+        };
+        // closed forms at ωt from 1e-4 to 40
+        for k in 0..=200 {
+            let wt = 1e-4 * (4e5f64).powf(k as f64 / 200.0);
+            let t = wt / omega;
+            let (h, hd) = my_h(omega, xi, t);
+            // dimensionless amplitude envelope |ωh| + |h'| (never zero), times
+            // 1 + ωt for the round-off of the phase
+            let env = (h.abs() * omega + hd.abs()) * (1.0 + wt);
+            let (h2, hd2) = unit_impulse(omega, xi, t);
+            let eh = (h2 - h).abs() * omega / env;
+            let ed = (hd2 - hd).abs() / env;
+            let es =
+                (mode.step_response(t) - my_step(omega, xi, t)).abs() * omega * omega / (1.0 + wt);
+            // the step tables are built by doubling: their errors are
+            // round-off of the peak |ωh| + |h'| = O(1), not of the local value
+            let ms = mode_step(omega, xi, t);
+            let peak = 1.0 + wt;
+            let emh = ((ms.h[0] - h).abs() * omega + (ms.h[1] - hd).abs()) / peak;
+            let emw = (ms.w_const[0] - my_step(omega, xi, t)).abs() * omega * omega / peak
+                + (ms.w_const[1] - h).abs() * omega / peak;
+            if xi > 0.99 {
+                local_w = local_w.max((ms.w_const[1] - h).abs() / h.abs());
+            }
+            for (w, e) in worst.iter_mut().zip([eh, ed, es, emh, emw, 0.0]) {
+                *w = w.max(e);
+            }
+            assert!(
+                eh < 1e-13 && ed < 1e-13 && es < 1e-13 && emh < 1e-12 && emw < 1e-12,
+                "ξ {xi} ωt {wt:.3e}: h {h2:e} vs {h:e}, h' {hd2:e} vs {hd:e}, step {:e} vs {:e}, mode_step h {:?} w_const {:?}",
+                mode.step_response(t),
+                my_step(omega, xi, t),
+                ms.h,
+                ms.w_const
+            );
+        }
+        // the recursion itself: impulse and step responses stepped over 2000 steps
+        let modes = [Mode {
+            freq_hz: omega / TAU,
+            damping_ratio: xi,
+            residue: vec![vec![1.0]],
+            shape: vec![],
+        }];
+        let basis = ModalBasis::new(&modes, 1);
+        let dt = 0.02 / omega;
+        let table = StepTable::new(&basis, dt);
+        let mut imp = ModalState::zeros(&basis);
+        imp.add_impulses(&basis, &[0], &[1.0]);
+        let mut stp = ModalState::zeros(&basis);
+        let mut tmp = ModalState::zeros(&basis);
+        let (mut u, mut v) = ([0.0], [0.0]);
+        for m in 1..=2000 {
+            let t = m as f64 * dt;
+            let wt = omega * t;
+            imp.predict_into(&table, &mut tmp);
+            std::mem::swap(&mut imp, &mut tmp);
+            stp.predict_into(&table, &mut tmp);
+            tmp.add_constant_forces(&basis, &table, &[1.0]);
+            std::mem::swap(&mut stp, &mut tmp);
+            let (h, hd) = my_h(omega, xi, t);
+            // stepped errors are round-off of the peak (|ωh| + |h'| <= √2)
+            let env = 1.0 + wt;
+            imp.project(&basis, &mut u, &mut v);
+            let e_imp = ((u[0] - h).abs() * omega + (v[0] - hd).abs()) / env;
+            stp.project(&basis, &mut u, &mut v);
+            let e_stp = (u[0] - my_step(omega, xi, t)).abs() * omega * omega / (1.0 + wt)
+                + (v[0] - h).abs() * omega / env;
+            worst[5] = worst[5].max(e_imp).max(e_stp);
+            assert!(
+                e_imp < 1e-12 && e_stp < 1e-12,
+                "recursion ξ {xi} step {m}: impulse ({}, {}) vs ({h:e}, {hd:e}); step u {} vs {}",
+                u[0],
+                v[0],
+                u[0],
+                my_step(omega, xi, t)
+            );
+        }
+    }
+    println!(
+        "\n[6] impulse/step responses, ξ in {REGIMES:?}: worst scaled errors h {:.1e}, h' {:.1e}, step {:.1e}, mode_step h {:.1e}, weights {:.1e}, stepped recursion {:.1e}\n    (mode_step w_const[1] = h(τ) relative to the local value of h, ξ >= 1 - 1e-9, ωτ <= 40: worst {local_w:.1e})",
+        worst[0], worst[1], worst[2], worst[3], worst[4], worst[5]
+    );
+}
+
+#[test]
+fn harmonic_responses_every_regime() {
+    use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
+    use tirecontact::modal::ModalModel;
+    let f = 150.0;
+    let omega = TAU * f;
+    let mut worst = (0.0f64, 0.0f64);
+    for &xi in &REGIMES {
+        let modes = [Mode {
+            freq_hz: f,
+            damping_ratio: xi,
+            residue: vec![vec![0.7]],
+            shape: vec![],
+        }];
+        let model = ModalModel::from_modes(&modes, 1);
+        for ratio in [0.0, 0.3, 0.97, 1.0, 1.6, 7.0] {
+            if xi == 0.0 && ratio == 1.0 {
+                continue;
+            }
+            let (hr, hi) = my_receptance(omega, xi, ratio * omega);
+            let g = model.frequency_response(0, 0, ratio * f);
+            let e = ((g.re - 0.7 * hr).powi(2) + (g.im - 0.7 * hi).powi(2)).sqrt()
+                / (0.7 * hr.hypot(hi));
+            worst.0 = worst.0.max(e);
+            assert!(
+                e < 1e-13,
+                "G(ω) ξ {xi} Ω/ω {ratio}: {g:?} vs 0.7 × ({hr}, {hi})"
+            );
+        }
+        // time domain: cos(Ωt) from rest through the recursion (Gauss-point force shape)
+        let basis = ModalBasis::new(&modes, 1);
+        let dt = 0.01 / omega;
+        let table = StepTable::new(&basis, dt);
+        let (g1, g2) = gauss_fractions();
+        for ratio in [0.4, 1.3, 3.0] {
+            let big = ratio * omega;
+            let mut s0 = ModalState::zeros(&basis);
+            let mut s1 = ModalState::zeros(&basis);
+            let (mut u, mut v) = ([0.0], [0.0]);
+            let (mut e, mut scale) = (0.0f64, 0.0f64);
+            for m in 0..6000 {
+                let t = m as f64 * dt;
+                s0.predict_into(&table, &mut s1);
+                s1.add_gauss_forces(
+                    &basis,
+                    &table,
+                    &[0],
+                    &[(big * (t + g1 * dt)).cos()],
+                    &[(big * (t + g2 * dt)).cos()],
+                );
+                std::mem::swap(&mut s0, &mut s1);
+                s0.project(&basis, &mut u, &mut v);
+                let x = 0.7 * my_harmonic(omega, xi, big, t + dt);
+                e = e.max((u[0] - x).abs());
+                scale = scale.max(x.abs());
+            }
+            worst.1 = worst.1.max(e / scale);
+            assert!(
+                e < 1e-7 * scale,
+                "harmonic ξ {xi} Ω/ω {ratio}: max err {e:e} of {scale:e}"
+            );
+        }
+    }
+    println!(
+        "\n[6b] harmonic: G(ω) vs 1/(ω²-Ω²+2iξωΩ) worst rel {:.1e}; time-domain response to cos(Ωt) from rest (ωdt 0.01, ωt to 60) worst rel {:.1e}",
+        worst.0, worst.1
+    );
+}
