@@ -25,6 +25,7 @@
 //! | [`scene`] | RON scenes and their validation | — |
 //! | [`output`] | CSV writer | — |
 
+pub mod bench;
 pub mod contact;
 pub mod convolution;
 pub mod error;
@@ -36,7 +37,7 @@ pub mod simulation;
 
 pub use error::{SceneError, SolverError};
 pub use scene::Scene;
-pub use simulation::{Simulation, StepReport};
+pub use simulation::{Simulation, SolverOptions, StepReport};
 
 /// The preset opened when no file is given (embedded in the binary).
 pub const DEFAULT_PRESET: &str = include_str!("../presets/single_mode.ron");

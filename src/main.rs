@@ -21,6 +21,8 @@ struct Cli {
 enum Command {
     /// Run a scene headless and write its time histories as CSV.
     Run(cli::run::RunArgs),
+    /// Work-precision study and before/after timings of skipped work.
+    Bench(cli::bench::BenchArgs),
     /// Parse and validate a scene preset.
     Check {
         /// Scene preset (RON).
@@ -33,6 +35,7 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Some(Command::Run(args)) => cli::run::run(&args),
         Some(Command::Check { preset }) => cli::check::check(&preset),
+        Some(Command::Bench(args)) => cli::bench::bench(&args),
         None => default_action(),
     };
     match result {
@@ -62,5 +65,7 @@ fn headless_default() -> cli::CliResult {
         dt: None,
         duration: None,
         every: 1,
+        plot: None,
+        plot_size: (1400, 900),
     })
 }

@@ -181,6 +181,25 @@ impl Scene {
         }
     }
 
+    /// `T_ramp = 0` is allowed only where no point starts below the road
+    /// (`z(x_i) - h_i <= 0` for all `i`, SPEC §4).
+    pub fn ramp_error(&self, road: &crate::road::RoadProfile) -> Option<FieldError> {
+        if self.ramp_s != 0.0 {
+            return None;
+        }
+        self.points.iter().enumerate().find_map(|(i, pt)| {
+            let z = road.sample(pt.x_m).map(|s| s.0).unwrap_or(0.0);
+            (z - pt.h_m > 0.0).then(|| FieldError {
+                field: "ramp_s".into(),
+                value: "0".into(),
+                expected: format!(
+                    "a ramp time > 0 s: point {i} starts {:.3e} m below the road (SPEC §4)",
+                    z - pt.h_m
+                ),
+            })
+        })
+    }
+
     /// Checks every value; returns all problems found.
     pub fn validate(&self) -> Result<(), Vec<FieldError>> {
         let mut v = Validator::default();
@@ -228,24 +247,11 @@ impl Scene {
             v.push("speed_mps", self.speed_mps, "a speed <= 1000 m/s");
         }
         v.nonneg("ramp_s", self.ramp_s, "a ramp time >= 0 s");
-        if self.ramp_s == 0.0 {
-            if let Road::Sine { .. } | Road::Harmonics { .. } = self.road {
-                let prof = crate::road::RoadProfile::new(&self.road, None);
-                if let Ok(prof) = prof {
-                    for (i, pt) in self.points.iter().enumerate() {
-                        if let Ok((z, _)) = prof.sample(pt.x_m)
-                            && z - pt.h_m > 0.0
-                        {
-                            v.push(
-                                "ramp_s",
-                                0.0,
-                                &format!("a ramp time > 0 s: point {i} starts {:.3e} m below the road (SPEC §4)", z - pt.h_m),
-                            );
-                            break;
-                        }
-                    }
-                }
-            }
+        if !matches!(self.road, Road::Measured { .. })
+            && let Ok(prof) = crate::road::RoadProfile::new(&self.road, None)
+            && let Some(e) = self.ramp_error(&prof)
+        {
+            v.errors.push(e);
         }
         v.positive("dt_s", self.dt_s, "a time step > 0 s");
         if self.dt_s > 0.1 {

@@ -33,6 +33,9 @@ pub struct RunStats {
     pub events: u64,
     pub solves: u64,
     pub max_solves_per_step: u32,
+    /// LU factorisations of contact systems (fewer than solves: reused while
+    /// the active set is unchanged).
+    pub factorisations: u64,
     /// Worst penetration left at any step end (m).
     pub worst_penetration_m: f64,
     /// Largest step-mean force per point (N).
@@ -69,7 +72,12 @@ pub struct Simulation {
     full: StepTable,
     full_inf: Influence,
     sub: StepTable,
-    sub_inf: Influence,
+    /// `|S| x |S|` blocks of the sub-step influence (4 |S|² used).
+    gss: Vec<f64>,
+    /// State increment of the solved sub-step forces.
+    delta: ModalState,
+    du: Vec<f64>,
+    dv: Vec<f64>,
     jump: Vec<f64>,
     state: ModalState,
     free: ModalState,
@@ -96,19 +104,59 @@ pub struct Simulation {
     active: Vec<usize>,
     released: Vec<bool>,
     solver: DenseSolver,
+    full_solver: DenseSolver,
+    full_set: Vec<usize>,
+    full_factored: bool,
+    options: SolverOptions,
     stats: RunStats,
+}
+
+/// Switches for the work a scene does not need; all on by default. Turning
+/// one off gives the "before" of a benchmark; results agree to round-off.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SolverOptions {
+    /// Keep one state per rank term of each residue (rank 1 for a mode
+    /// shape) instead of one per (mode, source).
+    pub rank_reduction: bool,
+    /// Reuse the LU factorisation of the full-step contact operator while
+    /// the active set is unchanged.
+    pub reuse_factorisation: bool,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        SolverOptions {
+            rank_reduction: true,
+            reuse_factorisation: true,
+        }
+    }
 }
 
 impl Simulation {
     /// Builds the simulation of a validated scene; reads a measured road file.
     pub fn new(scene: &Scene) -> Result<Self, SceneError> {
+        Self::with_options(scene, SolverOptions::default())
+    }
+
+    /// As [`Simulation::new`], with explicit [`SolverOptions`].
+    pub fn with_options(scene: &Scene, options: SolverOptions) -> Result<Self, SceneError> {
         scene.validate().map_err(|errors| SceneError::Invalid {
             file: scene.name.clone(),
             errors,
         })?;
         let p = scene.num_points();
-        let basis = ModalBasis::new(scene.modes(), p);
+        let basis = if options.rank_reduction {
+            ModalBasis::new(scene.modes(), p)
+        } else {
+            ModalBasis::per_source(scene.modes(), p)
+        };
         let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
+        if let Some(e) = scene.ramp_error(&road) {
+            return Err(SceneError::Invalid {
+                file: scene.name.clone(),
+                errors: vec![e],
+            });
+        }
         let full = StepTable::new(&basis, scene.dt_s);
         let full_inf = Influence::new(&basis, &full);
         let jump = basis.velocity_jump();
@@ -126,7 +174,10 @@ impl Simulation {
             pen_tol_m: 1e-12 * scale,
             max_events: 4 * p as u32 + 16,
             sub: full.clone(),
-            sub_inf: full_inf.clone(),
+            gss: vec![0.0; 4 * p * p],
+            delta: state.clone(),
+            du: vec![0.0; p],
+            dv: vec![0.0; p],
             full,
             full_inf,
             jump,
@@ -155,6 +206,10 @@ impl Simulation {
             active: Vec::with_capacity(p),
             released: vec![false; p],
             solver: DenseSolver::new(2 * p),
+            full_solver: DenseSolver::new(2 * p),
+            full_set: Vec::with_capacity(p),
+            full_factored: false,
+            options,
             stats: RunStats::default(),
         };
         sim.reset();
@@ -275,7 +330,6 @@ impl Simulation {
 
     fn prepare_sub(&mut self, tau: f64) {
         self.sub.fill(&self.basis, tau);
-        self.sub_inf.fill(&self.basis, &self.sub);
     }
 
     /// Free prediction over `tau` from `t`: `free`, `uh`, `vh`, road at `t + tau`.
@@ -299,60 +353,135 @@ impl Simulation {
         if n == 0 {
             return Ok(());
         }
-        let (_, g) = match sel {
-            Table::Full => (&self.full, &self.full_inf),
-            Table::Sub => (&self.sub, &self.sub_inf),
-        };
-        let act = &self.active;
-        let res = self.solver.factor(2 * n, |r, c| {
-            let (i, j) = (act[r % n], act[c % n]);
-            let m = match (r < n, c < n) {
-                (true, true) => &g.gx1,
-                (true, false) => &g.gx2,
-                (false, true) => &g.gv1,
-                (false, false) => &g.gv2,
-            };
-            m[i * p + j]
-        });
-        if let Err(s) = res {
-            return Err(SolverError::SingularContactSystem {
-                t_s: t_end,
-                points: self.active.clone(),
-                pivot: s.pivot,
-            });
+        if sel == Table::Sub {
+            self.fill_sub_block();
         }
-        for (k, &i) in act.iter().enumerate() {
+        // The full-step operator depends only on the active set: its
+        // factorisation is reused while the set is unchanged.
+        let reuse = sel == Table::Full
+            && self.options.reuse_factorisation
+            && self.full_factored
+            && self.full_set == self.active;
+        if !reuse {
+            self.stats.factorisations += 1;
+            let act = &self.active;
+            let (g, gss) = (&self.full_inf, &self.gss);
+            let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
+            let entry = |r: usize, c: usize| {
+                let blk = 2 * (r >= n) as usize + (c >= n) as usize;
+                match sel {
+                    Table::Full => blocks[blk][act[r % n] * p + act[c % n]],
+                    Table::Sub => gss[blk * n * n + (r % n) * n + c % n],
+                }
+            };
+            let solver = match sel {
+                Table::Full => &mut self.full_solver,
+                Table::Sub => &mut self.solver,
+            };
+            let res = solver.factor(2 * n, entry);
+            if sel == Table::Full {
+                self.full_factored = res.is_ok();
+                self.full_set.clone_from(&self.active);
+            }
+            if let Err(s) = res {
+                return Err(SolverError::SingularContactSystem {
+                    t_s: t_end,
+                    points: self.active.clone(),
+                    pivot: s.pivot,
+                });
+            }
+        }
+        for (k, &i) in self.active.iter().enumerate() {
             self.rhs[k] = self.re[i] - self.uh[i];
             self.rhs[n + k] = self.rde[i] - self.vh[i];
         }
-        self.solver.solve(&mut self.rhs[..2 * n]);
+        match sel {
+            Table::Full => self.full_solver.solve(&mut self.rhs[..2 * n]),
+            Table::Sub => self.solver.solve(&mut self.rhs[..2 * n]),
+        }
         self.q1.fill(0.0);
         self.q2.fill(0.0);
-        for (k, &j) in act.iter().enumerate() {
+        for (k, &j) in self.active.iter().enumerate() {
             self.q1[j] = self.rhs[k];
             self.q2[j] = self.rhs[n + k];
         }
-        for i in 0..p {
-            let (mut du, mut dv) = (0.0, 0.0);
-            for &j in act {
-                du += g.gx1[i * p + j] * self.q1[j] + g.gx2[i * p + j] * self.q2[j];
-                dv += g.gv1[i * p + j] * self.q1[j] + g.gv2[i * p + j] * self.q2[j];
+        match sel {
+            Table::Full => {
+                // O(P |S|) with the precomputed full influence
+                let g = &self.full_inf;
+                for i in 0..p {
+                    let (mut du, mut dv) = (0.0, 0.0);
+                    for &j in &self.active {
+                        du += g.gx1[i * p + j] * self.q1[j] + g.gx2[i * p + j] * self.q2[j];
+                        dv += g.gv1[i * p + j] * self.q1[j] + g.gv2[i * p + j] * self.q2[j];
+                    }
+                    self.ue[i] += du;
+                    self.ve[i] += dv;
+                }
             }
-            self.ue[i] += du;
-            self.ve[i] += dv;
+            Table::Sub => {
+                // through the states: O(states (|S| + P)), no P x P influence
+                self.delta.x.fill(0.0);
+                self.delta.v.fill(0.0);
+                self.delta.add_gauss_forces(
+                    &self.basis,
+                    &self.sub,
+                    &self.active,
+                    &self.q1,
+                    &self.q2,
+                );
+                self.delta.project(&self.basis, &mut self.du, &mut self.dv);
+                for i in 0..p {
+                    self.ue[i] += self.du[i];
+                    self.ve[i] += self.dv[i];
+                }
+            }
         }
         Ok(())
     }
 
+    /// The `|S| x |S|` blocks of the sub-step influence of the active points
+    /// (only what the solve needs: `O(|S|² states)`).
+    fn fill_sub_block(&mut self) {
+        let n = self.active.len();
+        let (p, ns) = (self.p, self.basis.num_states());
+        let g = &mut self.gss[..4 * n * n];
+        g.fill(0.0);
+        for s in 0..ns {
+            let (w1, w2) = (self.sub.w1[s], self.sub.w2[s]);
+            let inp = &self.basis.inp[s * p..(s + 1) * p];
+            for (a, &i) in self.active.iter().enumerate() {
+                let o = self.basis.out[i * ns + s];
+                if o == 0.0 {
+                    continue;
+                }
+                for (b, &j) in self.active.iter().enumerate() {
+                    let ab = o * inp[j];
+                    let k = a * n + b;
+                    g[k] += ab * w1[0];
+                    g[n * n + k] += ab * w2[0];
+                    g[2 * n * n + k] += ab * w1[1];
+                    g[3 * n * n + k] += ab * w2[1];
+                }
+            }
+        }
+    }
+
     /// Accepts the solved sub-step of length `tau`: state, impulses, outputs.
     fn commit(&mut self, tau: f64, sel: Table) {
-        let (table, _) = match sel {
-            Table::Full => (&self.full, &self.full_inf),
-            Table::Sub => (&self.sub, &self.sub_inf),
-        };
         self.state.copy_from(&self.free);
-        self.state
-            .add_gauss_forces(&self.basis, table, &self.active, &self.q1, &self.q2);
+        if !self.active.is_empty() {
+            match sel {
+                Table::Full => self.state.add_gauss_forces(
+                    &self.basis,
+                    &self.full,
+                    &self.active,
+                    &self.q1,
+                    &self.q2,
+                ),
+                Table::Sub => self.state.add(&self.delta),
+            }
+        }
         for &j in &self.active {
             self.impulse[j] += 0.5 * tau * (self.q1[j] + self.q2[j]);
         }
@@ -607,14 +736,26 @@ impl Simulation {
             }
             self.solver.solve(&mut self.rhs[..n]);
             solves += 1;
+            // Velocity a pulling impulse stands for; below v_tol it is round-off
+            // or the tail of a converged impact cascade, and the point stays on.
+            let v_tol = 1e-9
+                * act
+                    .iter()
+                    .map(|&j| self.rd[j].abs().max(self.v[j].abs()))
+                    .fold(1e-6, f64::max);
             let worst = (0..n)
-                .map(|k| (k, self.rhs[k]))
-                .filter(|&(_, x)| x < 0.0)
+                .map(|k| (k, self.rhs[k] * self.jump[act[k] * p + act[k]]))
+                .filter(|&(_, dv)| dv < -v_tol)
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             match worst {
                 Some((k, _)) => {
+                    // Thrown off with a positive relative velocity: it may land
+                    // again later in this step (a located event). Only the landing
+                    // point itself, if it cannot land, is kept off until the next step.
                     let j = self.active.remove(k);
-                    self.released[j] = true;
+                    if j == i {
+                        self.released[j] = true;
+                    }
                 }
                 None => break,
             }

@@ -1,5 +1,6 @@
 //! Headless command line: one file per subcommand.
 
+pub mod bench;
 pub mod check;
 pub mod run;
 
