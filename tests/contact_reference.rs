@@ -631,6 +631,21 @@ fn rms_diff(coarse: &Run, fine: &Run) -> f64 {
     (num / den).sqrt()
 }
 
+/// RK4 sub-steps per 5 µs of the multi-point reference (h = 0.625 µs).
+const REF_SUB: usize = 8;
+
+/// Relative RMS difference of two displacement histories.
+fn rel_rms(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
+    let (mut num, mut den) = (0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        for (p, q) in x.iter().zip(y) {
+            num += (p - q) * (p - q);
+            den += q * q;
+        }
+    }
+    (num / den).sqrt()
+}
+
 /// Relative RMS displacement error of a run against reference displacements
 /// sampled every `grid` seconds.
 fn rms_err_vs_ref(r: &Run, reference: &[Vec<f64>], grid: f64) -> f64 {
@@ -667,30 +682,29 @@ fn three_points_impact_throws_neighbour_off() {
     let refsys = MultiReference::new(&three_point_modes(), roads);
     let grid = 5e-6;
     let n = (duration / grid).round() as usize;
-    let (reference, rst) = refsys.solve(grid, n, 4, 1e-8);
+    let (reference, rst) = refsys.solve(grid, n, REF_SUB, 1e-8);
     let t_ref = t0.elapsed().as_secs_f64();
     // the reference against itself with half the RK4 step
-    let (check, _) = refsys.solve(grid, n, 8, 1e-8);
-    let self_diff = {
-        let (mut num, mut den) = (0.0, 0.0);
-        for (a, b) in reference.iter().zip(&check) {
-            for (x, y) in a.iter().zip(b) {
-                num += (x - y) * (x - y);
-                den += y * y;
-            }
-        }
-        (num / den).sqrt()
-    };
+    let (check, _) = refsys.solve(grid, n, REF_SUB / 2, 1e-8);
+    // Uncertainty of the reference: its difference from the run with twice
+    // the RK4 step. It does not fall as h⁴ below ~1e-11 (round-off of ~5e5
+    // projected RK4 steps and event bisections), so it is taken raw.
+    let ref_err = rel_rms(&reference, &check);
     println!(
-        "\n[2] three points (x = -5, 0, 5 cm), modes 60/110/170 Hz with coupled shapes, 2 mm 0.5 m sine at 20 m/s, 1 mm preload, {duration} s\n    event-driven reference: {} impacts, {} releases, {} throw-offs, {} Zeno tails cut; RK4 h 1.25e-6 vs 6.25e-7 differ by {self_diff:.1e} (built in {t_ref:.2} s)",
-        rst.impacts, rst.releases, rst.throw_offs, rst.zeno_cuts
+        "\n[2] three points (x = -5, 0, 5 cm), modes 60/110/170 Hz with coupled shapes, 2 mm 0.5 m sine at 20 m/s, 1 mm preload, {duration} s\n    event-driven reference: {} impacts, {} releases, {} throw-offs, {} Zeno tails cut; RK4 h {:.2e}, differs from h x 2 by {ref_err:.1e} (built in {t_ref:.2} s)",
+        rst.impacts,
+        rst.releases,
+        rst.throw_offs,
+        rst.zeno_cuts,
+        grid / REF_SUB as f64
     );
-    assert!(self_diff < 1e-10, "reference not converged: {self_diff:e}");
+    assert!(ref_err < 1e-11, "reference not converged: {ref_err:e}");
     assert!(
         rst.throw_offs > 0,
         "the reference scenario has no throw-off"
     );
-    let dts = [2e-5, 1e-5, 5e-6];
+    let dts = [8e-5, 4e-5, 2e-5, 1e-5, 5e-6];
+    let nd = dts.len();
     println!(
         "    scheme   dt      err vs ref   order   |u(dt)-u(dt/2)|  order   throw-off steps  located events  worst penetration"
     );
@@ -704,7 +718,7 @@ fn three_points_impact_throws_neighbour_off() {
             .iter()
             .map(|r| rms_err_vs_ref(r, &reference, grid))
             .collect();
-        let rich = [rms_diff(&runs[0], &runs[1]), rms_diff(&runs[1], &runs[2])];
+        let rich: Vec<f64> = (1..nd).map(|k| rms_diff(&runs[k - 1], &runs[k])).collect();
         for (k, r) in runs.iter().enumerate() {
             let throws = throw_offs(r);
             assert!(
@@ -717,13 +731,13 @@ fn three_points_impact_throws_neighbour_off() {
             } else {
                 format!("{:6.2}", order(errs[k - 1], errs[k], 2.0))
             };
-            let (rd, ro) = match k {
-                0 => (format!("{:9.3e}", rich[0]), "   -  ".to_string()),
-                1 => (
-                    format!("{:9.3e}", rich[1]),
-                    format!("{:6.2}", order(rich[0], rich[1], 2.0)),
-                ),
-                _ => ("     -   ".to_string(), "      ".to_string()),
+            let rd = rich
+                .get(k)
+                .map_or("     -   ".to_string(), |d| format!("{d:9.3e}"));
+            let ro = if k == 0 || k + 1 >= nd {
+                "   -  ".to_string()
+            } else {
+                format!("{:6.2}", order(rich[k - 1], rich[k], 2.0))
             };
             println!(
                 "    {:8} {:.0e}  {:9.3e}   {eo}   {rd}        {ro}   {:6} (first t {:.5} s)  {:6}  {:.2e} m",
@@ -741,24 +755,38 @@ fn three_points_impact_throws_neighbour_off() {
     println!("    total time {:.2} s", t0.elapsed().as_secs_f64());
     let (_, le, lr) = &results[0];
     let (_, pe, _) = &results[1];
-    let lo = [order(le[0], le[1], 2.0), order(le[1], le[2], 2.0)];
-    let lro = order(lr[0], lr[1], 2.0);
-    let po = [order(pe[0], pe[1], 2.0), order(pe[1], pe[2], 2.0)];
+    let lo: Vec<f64> = (1..nd).map(|k| order(le[k - 1], le[k], 2.0)).collect();
+    let lro: Vec<f64> = (1..nd - 1).map(|k| order(lr[k - 1], lr[k], 2.0)).collect();
+    let po: Vec<f64> = (1..nd).map(|k| order(pe[k - 1], pe[k], 2.0)).collect();
     let mut failures = Vec::new();
     if !po.iter().all(|&o| o < 1.5) {
         failures.push(format!(
             "Paper orders {po:?} (errors {pe:?}): expected first order (< 1.5)"
         ));
     }
-    if !(lo.iter().all(|&o| o >= 1.8) && lro >= 1.8) {
+    // an error within 3x the reference's own uncertainty cannot show an order;
+    // nor can a Richardson difference at that level
+    let floor = 3.0 * ref_err;
+    // dt = 8e-5 (ω dt up to 0.09, several events per step) is printed but
+    // pre-asymptotic; the asserted range is dt <= 4e-5.
+    let first = 2;
+    let lo_ok = (first..nd).all(|k| lo[k - 1] >= 1.8 || le[k] <= floor);
+    let lro_ok = (first..nd - 1).all(|k| lro[k - 1] >= 1.8 || lr[k] <= floor);
+    println!(
+        "    Located orders vs reference {lo:.2?}, Richardson {lro:.2?} (asserted for dt <= {:e}; errors below {floor:.1e} are at the reference's floor)\n    Paper orders vs reference {po:.2?}",
+        dts[first - 1]
+    );
+    if !(lo_ok && lro_ok) {
         failures.push(format!(
-            "Located orders {lo:?} vs the reference (errors {le:?}), Richardson {lro:.2} (differences {lr:?}): expected >= 1.8"
+            "Located orders {lo:?} vs the reference (errors {le:?}, floor {floor:e}), Richardson {lro:?} (differences {lr:?}): expected >= 1.8"
         ));
     }
-    if 10.0 * le[2] > pe[2] {
+    if 10.0 * le[nd - 1] > pe[nd - 1] {
         failures.push(format!(
             "Located error {:.3e} not 10x below Paper's {:.3e} at dt {}",
-            le[2], pe[2], dts[2]
+            le[nd - 1],
+            pe[nd - 1],
+            dts[nd - 1]
         ));
     }
     assert!(failures.is_empty(), "{failures:#?}");
@@ -1740,5 +1768,108 @@ fn harmonic_responses_every_regime() {
     println!(
         "\n[6b] harmonic: G(ω) vs 1/(ω²-Ω²+2iξωΩ) worst rel {:.1e}; time-domain response to cos(Ωt) from rest (ωdt 0.01, ωt to 60) worst rel {:.1e}",
         worst.0, worst.1
+    );
+}
+
+// ---------------------------------------------------------------------------
+// 1b. One point, two modes: contact no longer fixes the whole state
+// ---------------------------------------------------------------------------
+
+/// With one mode, contact imposes the whole state `(u, v) = (r, r')`, so the
+/// located scheme's errors are erased at every landing (test 1 reaches
+/// round-off). A second mode leaves an internal coordinate free while in
+/// contact: this is the one-point case where the order can be observed.
+#[test]
+fn one_point_two_modes_against_event_driven_reference() {
+    let duration: f64 = 0.3;
+    let modes = vec![
+        Mode {
+            freq_hz: 100.0,
+            damping_ratio: 0.05,
+            residue: vec![],
+            shape: vec![0.1f64.sqrt()],
+        },
+        Mode {
+            freq_hz: 230.0,
+            damping_ratio: 0.05,
+            residue: vec![],
+            shape: vec![0.03f64.sqrt()],
+        },
+    ];
+    let h = -0.001;
+    let road = SineRoad {
+        a: 0.002,
+        k: TAU / 0.5,
+        v: 20.0,
+        x0: 0.0,
+        h,
+        ramp: 0.05,
+    };
+    let t0 = Instant::now();
+    let refsys = MultiReference::new(&modes, vec![road]);
+    let grid = 5e-6;
+    let n = (duration / grid).round() as usize;
+    let (reference, st) = refsys.solve(grid, n, REF_SUB, 1e-8);
+    let (check, _) = refsys.solve(grid, n, REF_SUB / 2, 1e-8);
+    let ref_err = rel_rms(&reference, &check);
+    println!(
+        "\n[1b] one point, two modes (100 Hz A 0.1, 230 Hz A 0.03, ξ 0.05), same road: reference {} impacts, {} releases, differs from RK4 h x 2 by {ref_err:.1e} ({:.2} s)",
+        st.impacts,
+        st.releases,
+        t0.elapsed().as_secs_f64()
+    );
+    assert!(ref_err < 1e-11, "reference not converged: {ref_err:e}");
+    assert!(
+        st.impacts >= 5 && st.releases >= 5,
+        "must lose and regain contact"
+    );
+    // coarser than test 1: the located errors reach the reference's floor
+    // (~1e-11) already near dt = 1e-5
+    let dts = [1.6e-4, 8e-5, 4e-5, 2e-5, 1e-5];
+    let mut errs = Vec::new();
+    for scheme in [ContactScheme::Located, ContactScheme::Paper] {
+        let e: Vec<f64> = dts
+            .iter()
+            .map(|&dt| {
+                let sc = scene(
+                    modes.clone(),
+                    vec![Point { x_m: 0.0, h_m: h }],
+                    0.002,
+                    0.5,
+                    20.0,
+                    0.05,
+                    dt,
+                    duration,
+                    scheme,
+                );
+                rms_err_vs_ref(&run(&sc), &reference, grid)
+            })
+            .collect();
+        let orders: Vec<f64> = (1..e.len()).map(|k| order(e[k - 1], e[k], 2.0)).collect();
+        println!(
+            "    {:8} disp err {e:?}  orders {orders:.2?}",
+            format!("{scheme:?}")
+        );
+        errs.push(e);
+    }
+    let (loc, pap) = (&errs[0], &errs[1]);
+    // an error within 3x the reference's own uncertainty cannot show an order
+    let floor = 3.0 * ref_err;
+    println!("    (errors below {floor:.1e} are at the reference's floor)");
+    for k in 1..loc.len() {
+        let o = order(loc[k - 1], loc[k], 2.0);
+        assert!(
+            o >= 1.8 || loc[k] <= floor,
+            "Located order {o:.2} between dt {} and {} (errors {loc:?}, floor {floor:e})",
+            dts[k - 1],
+            dts[k]
+        );
+    }
+    let last = loc.len() - 1;
+    assert!(
+        10.0 * loc[last] <= pap[last],
+        "Located {:.3e} not 10x below Paper {:.3e}",
+        loc[last],
+        pap[last]
     );
 }
