@@ -106,6 +106,9 @@ pub struct Simulation {
     rde: Vec<f64>,
     q1: Vec<f64>,
     q2: Vec<f64>,
+    /// Trial Gauss-point forces restricted to the interval before an event.
+    rq1: Vec<f64>,
+    rq2: Vec<f64>,
     impulse: Vec<f64>,
     rhs: Vec<f64>,
     active: Vec<usize>,
@@ -214,6 +217,8 @@ impl Simulation {
             rde: vec![0.0; p],
             q1: vec![0.0; p],
             q2: vec![0.0; p],
+            rq1: vec![0.0; p],
+            rq2: vec![0.0; p],
             impulse: vec![0.0; p],
             rhs: vec![0.0; 2 * p],
             active: Vec::with_capacity(p),
@@ -458,6 +463,25 @@ impl Simulation {
         }
     }
 
+    /// End values of every point for the current forces, with either table.
+    fn end_values_sub_or_full(&mut self, sel: Table) {
+        match sel {
+            Table::Sub => self.end_values_sub(),
+            Table::Full => {
+                let (p, g) = (self.p, &self.full_inf);
+                for i in 0..p {
+                    let (mut du, mut dv) = (0.0, 0.0);
+                    for &j in &self.active {
+                        du += g.gx1[i * p + j] * self.q1[j] + g.gx2[i * p + j] * self.q2[j];
+                        dv += g.gv1[i * p + j] * self.q1[j] + g.gv2[i * p + j] * self.q2[j];
+                    }
+                    self.ue[i] = self.uh[i] + du;
+                    self.ve[i] = self.vh[i] + dv;
+                }
+            }
+        }
+    }
+
     /// The `|S| x |S|` blocks of the sub-step influence of the active points
     /// (only what the solve needs: `O(|S|² states)`).
     fn fill_sub_block(&mut self) {
@@ -602,6 +626,19 @@ impl Simulation {
                 Some((i, _)) => self.active.push(i),
                 None => break,
             }
+        }
+        // At the solve bound, a point still pulling is let go (its force
+        // zeroed): the forces stay non-negative, any penetration is reported.
+        if self.active.iter().any(|&j| self.q1[j] + self.q2[j] < 0.0) {
+            let (q1, q2) = (&mut self.q1, &mut self.q2);
+            self.active.retain(|&j| {
+                let keep = q1[j] + q2[j] >= 0.0;
+                if !keep {
+                    (q1[j], q2[j]) = (0.0, 0.0);
+                }
+                keep
+            });
+            self.end_values_sub_or_full(sel);
         }
         self.commit(tau, sel);
         Ok(solves)

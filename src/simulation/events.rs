@@ -77,7 +77,7 @@ impl Simulation {
                 }
             }
             if let Some((k, th, _)) = release
-                && (th <= 0.0 || self.leaves_at_once(t, span, sel, k, &mut solves)?)
+                && th <= 0.0
             {
                 let j = self.active.remove(k);
                 self.released[j] = true;
@@ -117,12 +117,15 @@ impl Simulation {
                 self.commit(span, sel);
                 t += span;
                 remaining -= span;
-            } else if th > 0.0 {
-                // The trial forces restricted to [0, θ]: the trajectory whose
-                // event was located, forces that stay >= 0 up to a release;
-                // active points stay on the road to O(θ⁴). A point whose force
-                // dips below zero at the start and would pull on average over
-                // [0, θ] is released now instead.
+            } else if th > 1e-9 * span {
+                // (an event within 1e-9 of the sub-step start happens at its start:
+                // no degenerate sub-step is solved)
+                // Up to a release: the trial forces restricted to [0, θ]
+                // (they stay >= 0 up to the crossing; active points stay on the
+                // road to O(θ⁴)). Up to an impact: re-solved so that the active
+                // points are exactly on the road at the impact. A point whose
+                // force dips below zero at the start and would pull on average
+                // over [0, θ] is released now instead.
                 let f = th / span;
                 let pulling = self.active.iter().position(|&j| {
                     let (qs, qe) = (
@@ -142,13 +145,28 @@ impl Simulation {
                 for &j in &self.active {
                     let (q1, q2) = (self.q1[j], self.q2[j]);
                     let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
-                    self.q1[j] = qs + (qe - qs) * f * ya;
-                    self.q2[j] = qs + (qe - qs) * f * yb;
+                    self.rq1[j] = qs + (qe - qs) * f * ya;
+                    self.rq2[j] = qs + (qe - qs) * f * yb;
                 }
                 self.prepare_sub(th);
                 sel = Table::Sub;
                 self.predict(t, th, sel)?;
-                self.end_values_sub();
+                let mut restricted = th_imp > th_rel;
+                if !restricted {
+                    self.solve_active(t + th, sel)?;
+                    solves += !self.active.is_empty() as u32;
+                    // a re-solve that would pull somewhere keeps the trial's forces
+                    restricted = self.active.iter().any(|&j| {
+                        let (q1, q2) = (self.q1[j], self.q2[j]);
+                        q1 + q2 < -1e-9 * (q1.abs() + q2.abs())
+                    });
+                }
+                if restricted {
+                    for &j in &self.active {
+                        (self.q1[j], self.q2[j]) = (self.rq1[j], self.rq2[j]);
+                    }
+                    self.end_values_sub();
+                }
                 self.commit(th, sel);
                 t += th;
                 remaining -= th;
@@ -206,43 +224,6 @@ impl Simulation {
             }
         }
         span
-    }
-
-    /// Whether active point `active[k]`, whose trial force turns negative in
-    /// the sub-step, leaves the road at its start: released now, with the
-    /// other points' forces re-solved, it stays above the road over the whole
-    /// sub-step (a road falling away, e.g. a kink of a measured profile, where
-    /// a linear force would first push hard and then pull). If not, the trial
-    /// is restored and the release is located at the force's zero crossing.
-    fn leaves_at_once(
-        &mut self,
-        t: f64,
-        remaining: f64,
-        sel: Table,
-        k: usize,
-        solves: &mut u32,
-    ) -> Result<bool, SolverError> {
-        let j = self.active.remove(k);
-        self.solve_active(t + remaining, sel)?;
-        *solves += 1;
-        let (g0, d0) = (self.u[j] - self.r[j], self.v[j] - self.rd[j]);
-        let (g1, d1) = (self.ue[j] - self.re[j], self.ve[j] - self.rde[j]);
-        let stays_above = first_crossing(
-            g0,
-            d0 * remaining,
-            g1,
-            d1 * remaining,
-            self.pen_tol_m,
-            false,
-        )
-        .is_none()
-            && g1 >= 0.0;
-        self.active.insert(k, j);
-        if !stays_above {
-            self.solve_active(t + remaining, sel)?;
-            *solves += 1;
-        }
-        Ok(stays_above)
     }
 
     /// Perfectly inelastic impact of point `i` at `t`: impulses on all points on
