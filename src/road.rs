@@ -432,4 +432,33 @@ mod tests {
         let fd = (p.sample(0.2 + e).unwrap().0 - p.sample(0.2 - e).unwrap().0) / (2.0 * e);
         assert!((fd - p.sample(0.2).unwrap().1).abs() < 1e-7);
     }
+
+    #[test]
+    fn random_road_fields_are_validated_by_name() {
+        let road = |len: f64, lo: f64, hi: f64| Road::Random {
+            class: RoadClass::E,
+            seed: 1,
+            length_m: len,
+            min_wavenumber_cpm: lo,
+            max_wavenumber_cpm: hi,
+        };
+        let fields = |r: Road| -> Vec<String> {
+            let e = r.random_errors("road");
+            assert!(RoadProfile::new(&r, None).is_err() == !e.is_empty());
+            e.into_iter().map(|e| e.field).collect()
+        };
+        assert!(fields(road(100.0, 1.0, 100.0)).is_empty());
+        assert_eq!(fields(road(-1.0, 1.0, 100.0)), ["road.length_m"]);
+        assert_eq!(fields(road(f64::NAN, 1.0, 100.0)), ["road.length_m"]);
+        assert_eq!(fields(road(100.0, 0.0, 100.0)), ["road.min_wavenumber_cpm"]);
+        assert_eq!(fields(road(100.0, 5.0, 2.0)), ["road.max_wavenumber_cpm"]);
+        // grid too large: named with the limit
+        assert_eq!(fields(road(1e6, 1.0, 100.0)), ["road.length_m"]);
+        // no spectral line in the band
+        assert_eq!(fields(road(1.0, 1.2, 1.8)), ["road.max_wavenumber_cpm"]);
+        // a validated random road samples anywhere (periodic)
+        let p = RoadProfile::new(&road(10.0, 1.0, 20.0), None).unwrap();
+        assert!(p.sample(-1e4).is_ok() && p.sample(1e4).is_ok());
+        assert!(p.scale_m() > 0.0);
+    }
 }
