@@ -444,7 +444,7 @@ mod tests {
         };
         let fields = |r: Road| -> Vec<String> {
             let e = r.random_errors("road");
-            assert!(RoadProfile::new(&r, None).is_err() == !e.is_empty());
+            assert_eq!(RoadProfile::new(&r, None).is_err(), !e.is_empty());
             e.into_iter().map(|e| e.field).collect()
         };
         assert!(fields(road(100.0, 1.0, 100.0)).is_empty());
