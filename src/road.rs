@@ -256,9 +256,18 @@ impl RoadProfile {
         }
     }
 
-    /// Height `z(x)` (m) and slope `dz/dx` at `x` (m).
+    /// Height `z(x)` (m) and slope `dz/dx` at `x` (m); at a breakpoint of a
+    /// measured profile, the slope of the segment after it.
     #[inline]
     pub fn sample(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
+        self.sample_side(x, true)
+    }
+
+    /// As [`RoadProfile::sample`]; at a breakpoint, the slope after it
+    /// (`after`) or before it (the road velocity at the end of an interval
+    /// that reaches the breakpoint).
+    #[inline]
+    pub fn sample_side(&self, x: f64, after: bool) -> Result<(f64, f64), OutOfRange> {
         match self {
             RoadProfile::Harmonics(h) => {
                 let mut z = 0.0;
@@ -285,7 +294,14 @@ impl RoadProfile {
                     x
                 };
                 // Segment k with x_m[k] <= xx <= x_m[k+1].
-                let k = x_m.partition_point(|&xi| xi <= xx).clamp(1, x_m.len() - 1) - 1;
+                // a breakpoint within KINK_SNAP_M of xx (round-off of x + V t)
+                // counts as reached: the side decides the segment
+                let k = if after {
+                    x_m.partition_point(|&xi| xi <= xx + KINK_SNAP_M)
+                } else {
+                    x_m.partition_point(|&xi| xi < xx - KINK_SNAP_M)
+                };
+                let k = k.clamp(1, x_m.len() - 1) - 1;
                 let slope = (z_m[k + 1] - z_m[k]) / (x_m[k + 1] - x_m[k]);
                 Ok((z_m[k] + slope * (xx - x_m[k]), slope))
             }
@@ -295,6 +311,108 @@ impl RoadProfile {
         }
     }
 }
+
+/// The road under a fixed set of points `x_i` shifted by the distance rolled
+/// `s`: `z(x_i + s)` and `dz/dx`. For harmonic roads one `sin_cos` per
+/// harmonic and step (angle addition from precomputed `sin_cos(κ x_i + φ)`)
+/// instead of one per point and harmonic.
+#[derive(Debug, Clone)]
+pub struct PointsRoad {
+    pub profile: RoadProfile,
+    x_m: Vec<f64>,
+    /// `(sin, cos)` of `κ_h x_i + φ_h`, harmonic-major.
+    phase: Vec<(f64, f64)>,
+}
+
+impl PointsRoad {
+    pub fn new(profile: RoadProfile, x_m: &[f64]) -> Self {
+        let phase = match &profile {
+            RoadProfile::Harmonics(h) => h
+                .iter()
+                .flat_map(|c| {
+                    x_m.iter()
+                        .map(move |&x| (TAU / c.wavelength_m * x + c.phase_rad).sin_cos())
+                })
+                .collect(),
+            RoadProfile::Measured { .. } => Vec::new(),
+        };
+        PointsRoad {
+            profile,
+            x_m: x_m.to_vec(),
+            phase,
+        }
+    }
+
+    /// The first breakpoint of a measured profile that point `i` meets
+    /// strictly inside `(s0, s1)` (as a rolled distance, m); `None` for
+    /// smooth roads. Breakpoints within `1e-9 (s1 - s0)` of either end are
+    /// ignored.
+    pub fn next_kink(&self, i: usize, s0: f64, s1: f64) -> Option<f64> {
+        let RoadProfile::Measured { x_m, looped, .. } = &self.profile else {
+            return None;
+        };
+        let eps = 1e-9 * (s1 - s0);
+        let (x0, x1) = (x_m[0], x_m[x_m.len() - 1]);
+        let xa = self.x_m[i] + s0;
+        let xa = if *looped {
+            x0 + (xa - x0).rem_euclid(x1 - x0)
+        } else {
+            xa
+        };
+        let k = x_m.partition_point(|&x| x <= xa + eps);
+        let xk = *x_m.get(k)?;
+        let sk = s0 + (xk - xa);
+        (sk < s1 - eps).then_some(sk)
+    }
+
+    /// Whether point `i` sits on a breakpoint at rolled distance `s` (within `eps` m).
+    pub fn at_kink(&self, i: usize, s: f64, eps: f64) -> bool {
+        self.next_kink(i, s - eps, s + eps).is_some()
+    }
+
+    /// `z_i`, `dz/dx_i` at `x_i + s_m` (slopes after or before a
+    /// breakpoint, see [`RoadProfile::sample_side`]); on a measured profile's edge, the
+    /// point index and the range error.
+    #[inline]
+    pub fn sample_all(
+        &self,
+        s_m: f64,
+        after: bool,
+        z: &mut [f64],
+        dz: &mut [f64],
+    ) -> Result<(), (usize, OutOfRange)> {
+        match &self.profile {
+            RoadProfile::Harmonics(h) => {
+                z.fill(0.0);
+                dz.fill(0.0);
+                let p = self.x_m.len();
+                for (k, c) in h.iter().enumerate() {
+                    let kappa = TAU / c.wavelength_m;
+                    let (sn, cs) = (kappa * s_m).sin_cos();
+                    for i in 0..p {
+                        let (s0, c0) = self.phase[k * p + i];
+                        z[i] += c.amplitude_m * (s0 * cs + c0 * sn);
+                        dz[i] += c.amplitude_m * kappa * (c0 * cs - s0 * sn);
+                    }
+                }
+                Ok(())
+            }
+            RoadProfile::Measured { .. } => {
+                for (i, &x) in self.x_m.iter().enumerate() {
+                    (z[i], dz[i]) = self
+                        .profile
+                        .sample_side(x + s_m, after)
+                        .map_err(|e| (i, e))?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Distance (m) within which a point is taken to sit on a breakpoint of a
+/// measured profile (far below any profile spacing, far above round-off).
+pub const KINK_SNAP_M: f64 = 1e-12;
 
 /// Largest measured profile accepted (rows).
 pub const MAX_PROFILE_ROWS: usize = 20_000_000;
@@ -412,6 +530,54 @@ mod tests {
         };
         assert!((l.sample(3.5).unwrap().0 - 0.5).abs() < 1e-15);
         assert!((l.sample(-1.0).unwrap().0 - 0.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn kinks_of_a_measured_profile() {
+        let prof = RoadProfile::Measured {
+            x_m: vec![0.0, 1.0, 3.0],
+            z_m: vec![0.0, 1.0, -1.0],
+            looped: false,
+        };
+        let pr = PointsRoad::new(prof, &[0.5, -0.2]);
+        assert_eq!(pr.next_kink(0, 0.0, 1.0), Some(0.5));
+        assert_eq!(pr.next_kink(0, 0.5, 1.0), None); // at the start: ignored
+        assert_eq!(pr.next_kink(1, 0.3, 1.5), Some(1.2));
+        let looped = RoadProfile::Measured {
+            x_m: vec![0.0, 1.0, 3.0],
+            z_m: vec![0.0, 1.0, 0.0],
+            looped: true,
+        };
+        let pr = PointsRoad::new(looped, &[0.0]);
+        assert!((pr.next_kink(0, 2.5, 3.6).unwrap() - 3.0).abs() < 1e-12); // the wrap point
+        assert!((pr.next_kink(0, 3.2, 4.5).unwrap() - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn points_road_matches_direct_sampling() {
+        let prof = RoadProfile::Harmonics(vec![
+            Harmonic {
+                amplitude_m: 0.002,
+                wavelength_m: 0.5,
+                phase_rad: 0.3,
+            },
+            Harmonic {
+                amplitude_m: 0.001,
+                wavelength_m: 0.013,
+                phase_rad: -1.0,
+            },
+        ]);
+        let xs = [-0.05, 0.0, 0.031];
+        let pr = PointsRoad::new(prof.clone(), &xs);
+        let (mut z, mut dz) = ([0.0; 3], [0.0; 3]);
+        for s in [0.0, 0.37, 123.456] {
+            pr.sample_all(s, true, &mut z, &mut dz).unwrap();
+            for i in 0..3 {
+                let (zd, dzd) = prof.sample(xs[i] + s).unwrap();
+                assert!((z[i] - zd).abs() < 1e-14, "{} vs {zd}", z[i]);
+                assert!((dz[i] - dzd).abs() < 1e-11 * dzd.abs().max(1.0));
+            }
+        }
     }
 
     #[test]

@@ -9,7 +9,7 @@ use crate::contact::DenseSolver;
 use crate::convolution::{Influence, ModalBasis, ModalState, StepTable};
 use crate::error::{SceneError, SolverError};
 use crate::road::Road;
-use crate::road::{RoadProfile, ramp};
+use crate::road::{PointsRoad, RoadProfile, ramp};
 use crate::scene::{ContactScheme, Scene};
 pub use events::first_crossing;
 
@@ -68,7 +68,11 @@ enum Table {
 pub struct Simulation {
     scene: Scene,
     basis: ModalBasis,
-    road: RoadProfile,
+    road: PointsRoad,
+    /// Added to `V t` so that the distance rolled stays continuous when the speed changes (m).
+    x_offset_m: f64,
+    zbuf: Vec<f64>,
+    dzbuf: Vec<f64>,
     p: usize,
     dt_s: f64,
     pen_tol_m: f64,
@@ -174,7 +178,12 @@ impl Simulation {
             .map(|pt| pt.h_m.abs())
             .fold(road.scale_m(), f64::max)
             .max(1e-6);
+        let xs: Vec<f64> = scene.points.iter().map(|pt| pt.x_m).collect();
+        let road = PointsRoad::new(road, &xs);
         let mut sim = Simulation {
+            x_offset_m: 0.0,
+            zbuf: vec![0.0; p],
+            dzbuf: vec![0.0; p],
             scene: scene.clone(),
             p,
             dt_s: scene.dt_s,
@@ -228,13 +237,14 @@ impl Simulation {
     pub fn reset(&mut self) {
         self.state.reset();
         self.t_s = 0.0;
+        self.x_offset_m = 0.0;
         self.steps = 0;
         for x in [&mut self.u, &mut self.v, &mut self.q_mean] {
             x.fill(0.0);
         }
         self.contact.fill(false);
         // road at t = 0 (zero while ramping; a validated scene samples in range)
-        if self.road_at(0.0, Table::Full).is_err() {
+        if self.road_at(0.0, true).is_err() {
             self.re.fill(0.0);
             self.rde.fill(0.0);
         }
@@ -249,21 +259,24 @@ impl Simulation {
 
     /// Replaces the road profile live (no restart).
     pub fn set_road(&mut self, road: &Road) -> Result<(), SceneError> {
-        self.road = RoadProfile::new(road, self.scene.base_dir.as_deref())?;
+        let xs: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
+        self.road = PointsRoad::new(RoadProfile::new(road, self.scene.base_dir.as_deref())?, &xs);
         self.scene.road = road.clone();
         let scale = self
             .scene
             .points
             .iter()
             .map(|pt| pt.h_m.abs())
-            .fold(self.road.scale_m(), f64::max)
+            .fold(self.road.profile.scale_m(), f64::max)
             .max(1e-6);
         self.pen_tol_m = 1e-12 * scale;
         Ok(())
     }
 
     /// Changes the rolling speed live (m/s, no restart).
+    /// The distance rolled stays continuous: the road does not jump.
     pub fn set_speed(&mut self, speed_mps: f64) {
+        self.x_offset_m += (self.scene.speed_mps - speed_mps) * self.t_s;
         self.scene.speed_mps = speed_mps;
     }
 
@@ -315,21 +328,23 @@ impl Simulation {
     }
 
     /// Road heights and rates at `t` into `re`, `rde`.
-    fn road_at(&mut self, t: f64, _sel: Table) -> Result<(), SolverError> {
+    /// Road heights and rates at `t` into `re`, `rde`; at a breakpoint of a
+    /// measured road, the rate after it (`after`) or before it.
+    fn road_at(&mut self, t: f64, after: bool) -> Result<(), SolverError> {
         let (w, dw) = ramp(t, self.scene.ramp_s);
         let vel = self.scene.speed_mps;
+        let rolled_m = vel * t + self.x_offset_m;
+        self.road
+            .sample_all(rolled_m, after, &mut self.zbuf, &mut self.dzbuf)
+            .map_err(|(i, e)| SolverError::RoadOutOfRange {
+                t_s: t,
+                point: i,
+                x_m: e.x_m,
+                min_m: e.min_m,
+                max_m: e.max_m,
+            })?;
         for (i, pt) in self.scene.points.iter().enumerate() {
-            let x = pt.x_m + vel * t;
-            let (z, dz) = self
-                .road
-                .sample(x)
-                .map_err(|e| SolverError::RoadOutOfRange {
-                    t_s: t,
-                    point: i,
-                    x_m: e.x_m,
-                    min_m: e.min_m,
-                    max_m: e.max_m,
-                })?;
+            let (z, dz) = (self.zbuf[i], self.dzbuf[i]);
             self.re[i] = w * (z - pt.h_m);
             self.rde[i] = dw * (z - pt.h_m) + w * dz * vel;
         }
@@ -348,7 +363,7 @@ impl Simulation {
         };
         self.state.predict_into(table, &mut self.free);
         self.free.project(&self.basis, &mut self.uh, &mut self.vh);
-        self.road_at(t + tau, sel)
+        self.road_at(t + tau, false)
     }
 
     /// Solves the Gauss-point system of `active` (after `predict`) and the end
