@@ -334,7 +334,7 @@ impl PointsRoad {
                         .map(move |&x| (TAU / c.wavelength_m * x + c.phase_rad).sin_cos())
                 })
                 .collect(),
-            RoadProfile::Measured { .. } => Vec::new(),
+            RoadProfile::Measured { .. } | RoadProfile::Gridded { .. } => Vec::new(),
         };
         PointsRoad {
             profile,
@@ -397,7 +397,7 @@ impl PointsRoad {
                 }
                 Ok(())
             }
-            RoadProfile::Measured { .. } => {
+            RoadProfile::Measured { .. } | RoadProfile::Gridded { .. } => {
                 for (i, &x) in self.x_m.iter().enumerate() {
                     (z[i], dz[i]) = self
                         .profile
