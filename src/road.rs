@@ -145,7 +145,7 @@ impl Road {
                     length_m,
                     format!(
                         "length_m x max_wavenumber_cpm <= {:.0} (the profile grid has {} points per shortest wavelength, at most {} points)",
-                        random::MAX_GRID_POINTS as f64 / (2.0 * random::POINTS_PER_WAVELENGTH),
+                        random::MAX_GRID_POINTS as f64 / random::POINTS_PER_WAVELENGTH,
                         random::POINTS_PER_WAVELENGTH,
                         random::MAX_GRID_POINTS
                     ),
@@ -620,6 +620,9 @@ mod tests {
         assert_eq!(fields(road(100.0, 5.0, 2.0)), ["road.max_wavenumber_cpm"]);
         // grid too large: named with the limit
         assert_eq!(fields(road(1e6, 1.0, 100.0)), ["road.length_m"]);
+        // the limit is length_m x max_wavenumber_cpm <= 2^22 / 8 (checked without generating)
+        assert!(road(5242.88, 1.0, 100.0).random_errors("road").is_empty());
+        assert_eq!(road(5243.0, 1.0, 100.0).random_errors("road").len(), 1);
         // no spectral line in the band
         assert_eq!(fields(road(1.0, 1.2, 1.8)), ["road.max_wavenumber_cpm"]);
         // a validated random road samples anywhere (periodic)

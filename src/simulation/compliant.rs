@@ -366,6 +366,10 @@ mod robustness {
                 other => panic!("{c}: {other:?}"),
             }
         }
-        assert!(three_points("Compliant(stiffness_n_m: [1e6, 2e6, 3e6])").is_ok());
+        // valid per-point stiffnesses survive saving and re-reading
+        let scene = three_points("Compliant(stiffness_n_m: [1e6, 2e6, 3e6])").unwrap();
+        let again = Scene::parse(&scene.to_ron_string(), "roundtrip").unwrap();
+        assert_eq!(again.contact, scene.contact);
+        assert_eq!(again.contact.stiffness_per_point(3), [1e6, 2e6, 3e6]);
     }
 }
