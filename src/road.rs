@@ -6,7 +6,10 @@
 //! r_i(t) = w(t) * ( z(x_i + V t) - h_i ),   w(t) = 3 s^2 - 2 s^3,  s = clamp(t / T_ramp, 0, 1)
 //! ```
 
-use crate::error::SceneError;
+pub mod random;
+
+use crate::error::{FieldError, SceneError};
+pub use random::RoadClass;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
@@ -47,6 +50,39 @@ pub enum Road {
         #[serde(default)]
         looped: bool,
     },
+    /// A random road of an ISO 8608 class (see [`random`]): displacement PSD
+    /// `Gd(n) = 16e-6 · 4^k (n / 0.1)^-2` m³ (`k = 0` for A … 7 for H) over
+    /// `[min_wavenumber_cpm, max_wavenumber_cpm]`, a sum of cosines with
+    /// seeded random phases, periodic with period `length_m`.
+    Random {
+        /// ISO 8608 class, `A` (smoothest) … `H` (roughest).
+        class: RoadClass,
+        /// Seed of the phases (ChaCha8): the same seed gives the same road.
+        seed: u64,
+        /// Loop length `L` (m), > 0; the road repeats with this period and
+        /// its spectral lines are `1/L` apart. Default 100 m.
+        #[serde(default = "default_random_length_m")]
+        length_m: f64,
+        /// Lowest spatial frequency (cycles/m), > 0; default 1 (wavelength
+        /// 1 m: longer waves move the whole contact patch together).
+        #[serde(default = "default_min_cpm")]
+        min_wavenumber_cpm: f64,
+        /// Highest spatial frequency (cycles/m); default 100 (wavelength
+        /// 1 cm). ISO 8608 classifies over 0.011-2.83 cycles/m; above, the
+        /// `n^-2` law is extrapolated, as usual in tyre/road models.
+        #[serde(default = "default_max_cpm")]
+        max_wavenumber_cpm: f64,
+    },
+}
+
+fn default_random_length_m() -> f64 {
+    100.0
+}
+fn default_min_cpm() -> f64 {
+    1.0
+}
+fn default_max_cpm() -> f64 {
+    100.0
 }
 
 impl Road {
@@ -56,7 +92,76 @@ impl Road {
             Road::Sine { .. } => "sine",
             Road::Harmonics { .. } => "harmonics",
             Road::Measured { .. } => "measured",
+            Road::Random { .. } => "random",
         }
+    }
+
+    /// Field errors of a random road (`at` prefixes the field names); empty
+    /// for other roads and valid random ones.
+    pub fn random_errors(&self, at: &str) -> Vec<FieldError> {
+        let Road::Random {
+            length_m,
+            min_wavenumber_cpm: lo,
+            max_wavenumber_cpm: hi,
+            ..
+        } = *self
+        else {
+            return Vec::new();
+        };
+        let mut e = Vec::new();
+        let push = |e: &mut Vec<FieldError>, field: &str, value: f64, expected: String| {
+            e.push(FieldError {
+                field: format!("{at}.{field}"),
+                value: value.to_string(),
+                expected,
+            })
+        };
+        let ok = |x: f64| x.is_finite() && x > 0.0;
+        if !ok(length_m) {
+            push(&mut e, "length_m", length_m, "a loop length > 0 m".into());
+        }
+        if !ok(lo) {
+            push(
+                &mut e,
+                "min_wavenumber_cpm",
+                lo,
+                "a spatial frequency > 0 cycles/m".into(),
+            );
+        }
+        if !ok(hi) || (ok(lo) && hi < lo) {
+            push(
+                &mut e,
+                "max_wavenumber_cpm",
+                hi,
+                format!("a spatial frequency >= min_wavenumber_cpm = {lo} cycles/m"),
+            );
+        }
+        if e.is_empty() {
+            let grid = random::grid_points(length_m, hi);
+            if grid > random::MAX_GRID_POINTS as f64 {
+                push(
+                    &mut e,
+                    "length_m",
+                    length_m,
+                    format!(
+                        "length_m x max_wavenumber_cpm <= {:.0} (the profile grid has {} points per shortest wavelength, at most {} points)",
+                        random::MAX_GRID_POINTS as f64 / random::POINTS_PER_WAVELENGTH,
+                        random::POINTS_PER_WAVELENGTH,
+                        random::MAX_GRID_POINTS
+                    ),
+                );
+            } else if random::harmonic_range(length_m, lo, hi).is_empty() {
+                push(
+                    &mut e,
+                    "max_wavenumber_cpm",
+                    hi,
+                    format!(
+                        "a band [{lo}, {hi}] cycles/m holding at least one line j / length_m = j / {length_m} m"
+                    ),
+                );
+            }
+        }
+        e
     }
 }
 
@@ -68,6 +173,13 @@ pub enum RoadProfile {
         x_m: Vec<f64>,
         z_m: Vec<f64>,
         looped: bool,
+    },
+    /// Periodic grid of heights and slopes `x = m dx_m`, cubic Hermite
+    /// interpolation (random roads).
+    Gridded {
+        dx_m: f64,
+        z_m: Vec<f64>,
+        dz: Vec<f64>,
     },
 }
 
@@ -104,6 +216,33 @@ impl RoadProfile {
                     looped: *looped,
                 }
             }
+            Road::Random {
+                class,
+                seed,
+                length_m,
+                min_wavenumber_cpm,
+                max_wavenumber_cpm,
+            } => {
+                let errors = road.random_errors("road");
+                if !errors.is_empty() {
+                    return Err(SceneError::Invalid {
+                        file: "road".into(),
+                        errors,
+                    });
+                }
+                let (z_m, dz) = random::generate(
+                    *class,
+                    *seed,
+                    *length_m,
+                    *min_wavenumber_cpm,
+                    *max_wavenumber_cpm,
+                );
+                RoadProfile::Gridded {
+                    dx_m: length_m / z_m.len() as f64,
+                    z_m,
+                    dz,
+                }
+            }
         })
     }
 
@@ -111,7 +250,9 @@ impl RoadProfile {
     pub fn scale_m(&self) -> f64 {
         match self {
             RoadProfile::Harmonics(h) => h.iter().map(|c| c.amplitude_m.abs()).sum(),
-            RoadProfile::Measured { z_m, .. } => z_m.iter().fold(0.0, |m, z| m.max(z.abs())),
+            RoadProfile::Measured { z_m, .. } | RoadProfile::Gridded { z_m, .. } => {
+                z_m.iter().fold(0.0, |m, z| m.max(z.abs()))
+            }
         }
     }
 
@@ -164,6 +305,9 @@ impl RoadProfile {
                 let slope = (z_m[k + 1] - z_m[k]) / (x_m[k + 1] - x_m[k]);
                 Ok((z_m[k] + slope * (xx - x_m[k]), slope))
             }
+            RoadProfile::Gridded { dx_m, z_m, dz } => {
+                Ok(random::sample_periodic(z_m, dz, *dx_m, x))
+            }
         }
     }
 }
@@ -190,7 +334,7 @@ impl PointsRoad {
                         .map(move |&x| (TAU / c.wavelength_m * x + c.phase_rad).sin_cos())
                 })
                 .collect(),
-            RoadProfile::Measured { .. } => Vec::new(),
+            RoadProfile::Measured { .. } | RoadProfile::Gridded { .. } => Vec::new(),
         };
         PointsRoad {
             profile,
@@ -253,7 +397,7 @@ impl PointsRoad {
                 }
                 Ok(())
             }
-            RoadProfile::Measured { .. } => {
+            RoadProfile::Measured { .. } | RoadProfile::Gridded { .. } => {
                 for (i, &x) in self.x_m.iter().enumerate() {
                     (z[i], dz[i]) = self
                         .profile
@@ -453,5 +597,37 @@ mod tests {
         let e = 1e-7;
         let fd = (p.sample(0.2 + e).unwrap().0 - p.sample(0.2 - e).unwrap().0) / (2.0 * e);
         assert!((fd - p.sample(0.2).unwrap().1).abs() < 1e-7);
+    }
+
+    #[test]
+    fn random_road_fields_are_validated_by_name() {
+        let road = |len: f64, lo: f64, hi: f64| Road::Random {
+            class: RoadClass::E,
+            seed: 1,
+            length_m: len,
+            min_wavenumber_cpm: lo,
+            max_wavenumber_cpm: hi,
+        };
+        let fields = |r: Road| -> Vec<String> {
+            let e = r.random_errors("road");
+            assert_eq!(RoadProfile::new(&r, None).is_err(), !e.is_empty());
+            e.into_iter().map(|e| e.field).collect()
+        };
+        assert!(fields(road(100.0, 1.0, 100.0)).is_empty());
+        assert_eq!(fields(road(-1.0, 1.0, 100.0)), ["road.length_m"]);
+        assert_eq!(fields(road(f64::NAN, 1.0, 100.0)), ["road.length_m"]);
+        assert_eq!(fields(road(100.0, 0.0, 100.0)), ["road.min_wavenumber_cpm"]);
+        assert_eq!(fields(road(100.0, 5.0, 2.0)), ["road.max_wavenumber_cpm"]);
+        // grid too large: named with the limit
+        assert_eq!(fields(road(1e6, 1.0, 100.0)), ["road.length_m"]);
+        // the limit is length_m x max_wavenumber_cpm <= 2^22 / 8 (checked without generating)
+        assert!(road(5242.88, 1.0, 100.0).random_errors("road").is_empty());
+        assert_eq!(road(5243.0, 1.0, 100.0).random_errors("road").len(), 1);
+        // no spectral line in the band
+        assert_eq!(fields(road(1.0, 1.2, 1.8)), ["road.max_wavenumber_cpm"]);
+        // a validated random road samples anywhere (periodic)
+        let p = RoadProfile::new(&road(10.0, 1.0, 20.0), None).unwrap();
+        assert!(p.sample(-1e4).is_ok() && p.sample(1e4).is_ok());
+        assert!(p.scale_m() > 0.0);
     }
 }

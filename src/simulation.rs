@@ -2,6 +2,7 @@
 //! of the active points, the monotone complementarity rule, and (default
 //! `Located` scheme) impacts and releases located inside the step.
 
+mod compliant;
 mod events;
 
 use crate::contact::DenseSolver;
@@ -119,6 +120,8 @@ pub struct Simulation {
     full_factored: bool,
     options: SolverOptions,
     stats: RunStats,
+    /// Tread stiffness per point (N/m) of compliant contact; empty: rigid.
+    tread_k_n_m: Vec<f64>,
 }
 
 /// Switches for the work a scene does not need; all on by default. Turning
@@ -229,6 +232,7 @@ impl Simulation {
             full_factored: false,
             options,
             stats: RunStats::default(),
+            tread_k_n_m: scene.contact.stiffness_per_point(p),
         };
         sim.reset();
         Ok(sim)
@@ -539,7 +543,9 @@ impl Simulation {
         let t0 = self.t_s;
         self.impulse.fill(0.0);
         self.released.fill(false);
+        let compliant = !self.tread_k_n_m.is_empty();
         let (events, solves) = match self.scene.contact_scheme {
+            _ if compliant => (0, self.compliant_step(t0)?),
             ContactScheme::Paper => {
                 let s = self.paper_substep(t0, self.dt_s, Table::Full)?;
                 (0, s)
@@ -566,7 +572,10 @@ impl Simulation {
                 }
             }
             self.contact[i] = self.active.contains(&i);
-            pen = pen.max(self.r[i] - self.u[i]);
+            // a compliant contact's compression is its spring's, not a penetration
+            if !(compliant && self.contact[i]) {
+                pen = pen.max(self.r[i] - self.u[i]);
+            }
             self.stats.max_force_n[i] = self.stats.max_force_n[i].max(self.q_mean[i]);
             self.stats.contact_steps[i] += self.contact[i] as u64;
         }

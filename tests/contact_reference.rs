@@ -138,6 +138,7 @@ fn scene(
         dt_s,
         duration_s,
         contact_scheme: scheme,
+        contact: Default::default(),
         base_dir: None,
     }
 }

@@ -77,6 +77,7 @@ proptest! {
             dt_s: 10f64.powf(dt_exp),
             duration_s: 200.0 * 10f64.powf(dt_exp),
             contact_scheme: if paper { ContactScheme::Paper } else { ContactScheme::Located },
+            contact: Default::default(),
             base_dir: None,
         };
         let f_max = modes.iter().map(|m| m.0).fold(0.0, f64::max);

@@ -35,6 +35,7 @@ fn one_point(freq_hz: f64, xi: f64, dt_s: f64, steps: usize) -> Scene {
         dt_s,
         duration_s: steps as f64 * dt_s,
         contact_scheme: ContactScheme::Located,
+        contact: Default::default(),
         base_dir: None,
     }
 }
