@@ -23,11 +23,14 @@
 //! | [`contact`] | scaled dense solves for the Gauss-point and impulse systems | §4 |
 //! | [`simulation`] | the time stepper: active set, complementarity, events inside the step | §4 |
 //! | [`scene`] | RON scenes and their validation | — |
-//! | [`output`] | CSV writer | — |
+//! | [`output`] | CSV writer, headless PNG figures | — |
+//! | `gui` | the visualiser (feature `gui`) | — |
 
 pub mod contact;
 pub mod convolution;
 pub mod error;
+#[cfg(feature = "gui")]
+pub mod gui;
 pub mod modal;
 pub mod output;
 pub mod road;

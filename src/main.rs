@@ -46,8 +46,7 @@ fn main() -> std::process::ExitCode {
 
 #[cfg(feature = "gui")]
 fn default_action() -> cli::CliResult {
-    // The visualiser lands with its own issue; until then, run the default preset.
-    headless_default()
+    tirecontact::gui::run().map_err(|e| format!("cannot open the visualiser: {e}").into())
 }
 
 #[cfg(not(feature = "gui"))]
@@ -55,6 +54,7 @@ fn default_action() -> cli::CliResult {
     headless_default()
 }
 
+#[cfg(not(feature = "gui"))]
 fn headless_default() -> cli::CliResult {
     cli::run::run(&cli::run::RunArgs {
         preset: None,

@@ -207,6 +207,10 @@ impl Simulation {
     pub fn scene(&self) -> &Scene {
         &self.scene
     }
+    /// The road profile being sampled (for drawing it).
+    pub fn road_profile(&self) -> &RoadProfile {
+        &self.road
+    }
     pub fn time_s(&self) -> f64 {
         self.t_s
     }
