@@ -26,6 +26,13 @@ enum Command {
         /// Scene preset (RON).
         preset: PathBuf,
     },
+    /// Open the visualiser on a preset (without a subcommand: the last
+    /// session or the embedded default preset).
+    #[cfg(feature = "gui")]
+    Gui {
+        /// Scene preset (RON).
+        preset: Option<PathBuf>,
+    },
 }
 
 fn main() -> std::process::ExitCode {
@@ -33,6 +40,9 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Some(Command::Run(args)) => cli::run::run(&args),
         Some(Command::Check { preset }) => cli::check::check(&preset),
+        #[cfg(feature = "gui")]
+        Some(Command::Gui { preset }) => tirecontact::gui::run_with_preset(preset)
+            .map_err(|e| format!("cannot open the visualiser: {e}").into()),
         None => default_action(),
     };
     match result {

@@ -3,6 +3,7 @@
 
 use super::command::{Command, Discarding, View};
 use super::export::{CsvJob, LiveEdit};
+use super::frame_rate::FrameRate;
 use super::history::{DEFAULT_BUDGET, History};
 use super::panels::{self, toolbar};
 use super::presets::SHIPPED;
@@ -65,38 +66,6 @@ pub struct App {
     fps: FrameRate,
 }
 
-/// Frames per second measured over one-second windows.
-#[derive(Debug, Clone)]
-pub struct FrameRate {
-    start: Instant,
-    frames: u32,
-    pub fps: f64,
-    log: bool,
-}
-
-impl FrameRate {
-    fn new() -> Self {
-        FrameRate {
-            start: Instant::now(),
-            frames: 0,
-            fps: 0.0,
-            log: std::env::var_os("TIRECONTACT_FPS_LOG").is_some(),
-        }
-    }
-    fn tick(&mut self, t_s: f64, playing: bool) {
-        self.frames += 1;
-        let el = self.start.elapsed().as_secs_f64();
-        if el >= 1.0 {
-            self.fps = self.frames as f64 / el;
-            if self.log {
-                eprintln!("fps {:.1} t_s {t_s:.5} playing {playing}", self.fps);
-            }
-            self.frames = 0;
-            self.start = Instant::now();
-        }
-    }
-}
-
 impl App {
     /// An app on `scene` (already validated), loaded from `path` if any.
     pub fn new(scene: Scene, path: Option<PathBuf>) -> Result<Self, String> {
@@ -148,7 +117,11 @@ impl App {
                 .as_ref()
                 .map_or("(last session)".to_string(), |p| p.display().to_string());
             if let Ok(mut scene) = Scene::parse(&s.scene_ron, &file) {
-                scene.base_dir = s.path.as_deref().and_then(Path::parent).map(Path::to_path_buf);
+                scene.base_dir = s
+                    .path
+                    .as_deref()
+                    .and_then(Path::parent)
+                    .map(Path::to_path_buf);
                 if let Ok(mut app) = App::new(scene, s.path.clone()) {
                     if s.dirty {
                         // the saved version is the file's, if it still reads
@@ -167,6 +140,14 @@ impl App {
             }
         }
         App::with_default_preset()
+    }
+
+    /// The app on the preset at `path`; on error, the default preset with
+    /// the error shown.
+    pub fn open_at_start(path: &Path) -> Self {
+        let mut app = App::with_default_preset();
+        app.open(path);
+        app
     }
 
     fn session(&self) -> Session {
@@ -207,8 +188,14 @@ impl App {
         let job = self.csv_job.take()?;
         let r = job.wait();
         self.message = Some(match &r {
-            Ok(t) => Message { error: false, text: t.clone() },
-            Err(e) => Message { error: true, text: format!("CSV export failed: {e}") },
+            Ok(t) => Message {
+                error: false,
+                text: t.clone(),
+            },
+            Err(e) => Message {
+                error: true,
+                text: format!("CSV export failed: {e}"),
+            },
         });
         Some(r)
     }
@@ -228,10 +215,16 @@ impl App {
     }
 
     fn info(&mut self, text: impl Into<String>) {
-        self.message = Some(Message { error: false, text: text.into() });
+        self.message = Some(Message {
+            error: false,
+            text: text.into(),
+        });
     }
     fn error(&mut self, text: impl Into<String>) {
-        self.message = Some(Message { error: true, text: text.into() });
+        self.message = Some(Message {
+            error: true,
+            text: text.into(),
+        });
     }
 
     /// Runs one command. The only place the app's state changes.
@@ -280,9 +273,16 @@ impl App {
             }
             Command::SavePath(p) => self.save_to(&p),
             Command::ExportPngDialog => {
-                self.png_dialog = Some(PngSettings { width: 1600, height: 1200 });
+                self.png_dialog = Some(PngSettings {
+                    width: 1600,
+                    height: 1200,
+                });
             }
-            Command::ExportPng { path, width, height } => {
+            Command::ExportPng {
+                path,
+                width,
+                height,
+            } => {
                 self.png_dialog = None;
                 match super::export::export_png(
                     &path,
@@ -364,7 +364,9 @@ impl App {
             Discarding::OpenPath(p) => self.open(&p),
             Discarding::Preset(k) => match SHIPPED.get(k) {
                 Some((name, file, text)) => match Scene::parse(text, file) {
-                    Ok(scene) => self.replace(scene, None, &format!("opened shipped preset “{name}”")),
+                    Ok(scene) => {
+                        self.replace(scene, None, &format!("opened shipped preset “{name}”"))
+                    }
                     Err(e) => self.error(format!("shipped preset {file}: {e}")),
                 },
                 None => self.error(format!("no shipped preset #{k}")),
@@ -402,7 +404,9 @@ impl App {
                 self.reset_run();
                 self.info(what.to_string());
             }
-            Err(e) => self.error(format!("Cannot use this scene; the current scene is kept.\n{e}")),
+            Err(e) => self.error(format!(
+                "Cannot use this scene; the current scene is kept.\n{e}"
+            )),
         }
     }
 
@@ -515,6 +519,15 @@ impl App {
             if i.key_pressed(egui::Key::R) && i.modifiers.is_none() {
                 cmds.push(Command::Reset);
             }
+            for (key, view) in [
+                (egui::Key::Num1, View::TimePlots),
+                (egui::Key::Num2, View::Scene),
+                (egui::Key::Num3, View::Green),
+            ] {
+                if i.key_pressed(key) {
+                    cmds.push(Command::ShowView(view));
+                }
+            }
         });
     }
 
@@ -601,7 +614,13 @@ fn default_scene() -> Scene {
 fn file_stem(name: &str) -> String {
     let s: String = name
         .chars()
-        .map(|c| if c.is_alphanumeric() { c.to_ascii_lowercase() } else { '_' })
+        .map(|c| {
+            if c.is_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
         .collect();
     if s.is_empty() { "scene".to_string() } else { s }
 }

@@ -19,7 +19,7 @@ impl View {
     pub fn label(self) -> &'static str {
         match self {
             View::TimePlots => "Time plots",
-            View::Scene => "Scene",
+            View::Scene => "Scene view",
             View::Green => "Green functions",
         }
     }

@@ -12,7 +12,10 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
     let (fill, color) = if m.error {
         (Color32::from_rgb(255, 235, 235), ERROR_COLOR)
     } else {
-        (Color32::from_rgb(232, 245, 238), Color32::from_rgb(0, 110, 80))
+        (
+            Color32::from_rgb(232, 245, 238),
+            Color32::from_rgb(0, 110, 80),
+        )
     };
     egui::Frame::new()
         .fill(fill)
@@ -38,7 +41,7 @@ pub fn status_bar(ui: &mut Ui, app: &App) {
             .as_ref()
             .map_or("unsaved scene".to_string(), |p| p.display().to_string());
         if app.is_dirty() {
-            ui.label(RichText::new(format!("● {file} (unsaved changes)")).color(ERROR_COLOR));
+            ui.label(RichText::new(format!("{file} (unsaved changes)")).color(ERROR_COLOR));
         } else {
             ui.label(file);
         }
@@ -81,7 +84,9 @@ pub fn confirm_window(ctx: &egui::Context, pending: Option<&Discarding>, cmds: &
     };
     egui::Modal::new(egui::Id::unique("tirecontact.confirm")).show(ctx, |ui| {
         ui.heading("Unsaved changes");
-        ui.label(format!("The scene has unsaved changes. Discard them and {what}?"));
+        ui.label(format!(
+            "The scene has unsaved changes. Discard them and {what}?"
+        ));
         ui.horizontal(|ui| {
             if ui.button("Discard changes").clicked() {
                 cmds.push(Command::ConfirmDiscard);
@@ -98,7 +103,11 @@ pub fn confirm_window(ctx: &egui::Context, pending: Option<&Discarding>, cmds: &
 }
 
 /// PNG export settings: size in pixels, then the file dialog.
-pub fn png_window(ctx: &egui::Context, settings: &mut Option<PngSettings>, cmds: &mut Vec<Command>) {
+pub fn png_window(
+    ctx: &egui::Context,
+    settings: &mut Option<PngSettings>,
+    cmds: &mut Vec<Command>,
+) {
     let Some(s) = settings else { return };
     let mut open = true;
     let mut go = false;

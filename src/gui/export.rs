@@ -61,7 +61,12 @@ pub fn time_figure(scene: &Scene, history: &History, shown: &[bool]) -> Figure {
         (Quantity::Displacement, "displacement", "u (mm, up)", 1e3),
         (Quantity::Force, "contact force (step mean)", "q (N)", 1.0),
         (Quantity::Gap, "gap to the road", "gap (mm)", 1e3),
-        (Quantity::Contact, "contact state (lane per point, raised = contact)", "point", 1.0),
+        (
+            Quantity::Contact,
+            "contact state (lane per point, raised = contact)",
+            "point",
+            1.0,
+        ),
     ];
     let panels = defs
         .iter()

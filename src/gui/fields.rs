@@ -151,7 +151,9 @@ impl<'a> NumField<'a> {
                                 let shown: Vec<String> = if mine.is_empty() {
                                     errors.iter().map(ToString::to_string).collect()
                                 } else {
-                                    mine.iter().map(|e| format!("expected {}", e.expected)).collect()
+                                    mine.iter()
+                                        .map(|e| format!("expected {}", e.expected))
+                                        .collect()
                                 };
                                 st.error = Some(format!("refused: {}", shown.join("; ")));
                             }
@@ -160,7 +162,7 @@ impl<'a> NumField<'a> {
                 }
             }
             if let Some(e) = &st.error {
-                ui.label(RichText::new(format!("⚠ {e}")).color(ERROR_COLOR))
+                ui.label(RichText::new(e.as_str()).color(ERROR_COLOR))
                     .on_hover_text("the scene keeps its previous value");
             }
         });
@@ -189,7 +191,11 @@ pub fn parse_number(text: &str) -> Result<f64, String> {
 /// Formats a value compactly with up to 6 significant digits.
 pub fn format_number(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
-        return if x == 0.0 { "0".to_string() } else { x.to_string() };
+        return if x == 0.0 {
+            "0".to_string()
+        } else {
+            x.to_string()
+        };
     }
     let a = x.abs();
     if (1e-3..1e6).contains(&a) {

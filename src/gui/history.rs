@@ -189,7 +189,11 @@ impl History {
             return Vec::new();
         }
         let (lo, hi) = self.index_range(t0, t1);
-        decimate_min_max(&self.t[lo..hi], |k| self.value(what, i, lo + k) * scale, buckets)
+        decimate_min_max(
+            &self.t[lo..hi],
+            |k| self.value(what, i, lo + k) * scale,
+            buckets,
+        )
     }
 }
 
@@ -239,7 +243,13 @@ mod tests {
     fn decimation_keeps_peaks_and_bounds_points() {
         let n = 1_000_000;
         let t: Vec<f64> = (0..n).map(|k| k as f64).collect();
-        let y = |k: usize| if k == 123_457 { 10.0 } else { (k as f64 * 0.01).sin() };
+        let y = |k: usize| {
+            if k == 123_457 {
+                10.0
+            } else {
+                (k as f64 * 0.01).sin()
+            }
+        };
         let d = decimate_min_max(&t, y, 500);
         assert!(d.len() <= 1000);
         assert!(d.iter().any(|p| p[1] == 10.0));

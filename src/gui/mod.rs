@@ -11,6 +11,7 @@ pub mod command;
 pub mod dialogs;
 pub mod export;
 pub mod fields;
+pub mod frame_rate;
 pub mod history;
 pub mod panels;
 pub mod presets;
@@ -23,6 +24,12 @@ pub use command::Command;
 /// Opens the visualiser window on the last session, else the embedded
 /// default preset.
 pub fn run() -> eframe::Result {
+    run_with_preset(None)
+}
+
+/// Opens the visualiser on `preset` (a broken file shows its error over the
+/// default preset), or as [`run`] when `None`.
+pub fn run_with_preset(preset: Option<std::path::PathBuf>) -> eframe::Result {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("tirecontact")
@@ -33,6 +40,12 @@ pub fn run() -> eframe::Result {
     eframe::run_native(
         "tirecontact",
         options,
-        Box::new(|cc| Ok(Box::new(App::restore(cc.storage)))),
+        Box::new(move |cc| {
+            let app = match preset {
+                Some(path) => App::open_at_start(&path),
+                None => App::restore(cc.storage),
+            };
+            Ok(Box::new(app))
+        }),
     )
 }

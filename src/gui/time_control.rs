@@ -100,7 +100,11 @@ impl TimeControl {
     }
 
     pub fn toggle(&mut self) {
-        if self.playing { self.pause() } else { self.play() }
+        if self.playing {
+            self.pause()
+        } else {
+            self.play()
+        }
     }
 
     /// Pauses and queues `n` steps (taken over the next frames if the budget
@@ -201,7 +205,10 @@ mod tests {
     fn long_frames_are_clamped() {
         let mut tc = TimeControl::default();
         tc.play();
-        assert_eq!(tc.steps_this_frame(5.0, DT), (MAX_FRAME_S / DT).round() as u64);
+        assert_eq!(
+            tc.steps_this_frame(5.0, DT),
+            (MAX_FRAME_S / DT).round() as u64
+        );
         assert_eq!(tc.steps_this_frame(f64::NAN, DT), 0);
     }
 

@@ -29,9 +29,8 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                 let name = format!("tyre.modes[{k}].freq_hz");
                 push_edit(
                     cmds,
-                    NumField::new(&name, m.freq_hz, "Hz", Apply::Restart).show(ui, |v| {
-                        with_mode(scene, k, |m| m.freq_hz = v)
-                    }),
+                    NumField::new(&name, m.freq_hz, "Hz", Apply::Restart)
+                        .show(ui, |v| with_mode(scene, k, |m| m.freq_hz = v)),
                 );
                 let name = format!("tyre.modes[{k}].damping_ratio");
                 push_edit(
@@ -51,7 +50,8 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                         ms.insert(k + 1, m.clone());
                         cmds.push(Command::EditScene(Box::new(s)));
                     }
-                    let remove = ui.add_enabled(modes.len() > 1, egui::Button::new("Remove").small());
+                    let remove =
+                        ui.add_enabled(modes.len() > 1, egui::Button::new("Remove").small());
                     if remove
                         .on_disabled_hover_text("a scene needs at least one mode")
                         .clicked()
@@ -106,12 +106,13 @@ fn shape_grid(ui: &mut Ui, scene: &Scene, k: usize, m: &Mode, cmds: &mut Vec<Com
             let name = format!("tyre.modes[{k}].shape[{i}]");
             push_edit(
                 cmds,
-                NumField::new(&name, a, "1/√kg", Apply::Restart)
-                    .show(ui, |v| with_mode(scene, k, |m| {
+                NumField::new(&name, a, "1/√kg", Apply::Restart).show(ui, |v| {
+                    with_mode(scene, k, |m| {
                         if let Some(x) = m.shape.get_mut(i) {
                             *x = v;
                         }
-                    })),
+                    })
+                }),
             );
             ui.end_row();
         }
@@ -135,11 +136,13 @@ fn residue_grid(ui: &mut Ui, scene: &Scene, k: usize, m: &Mode, cmds: &mut Vec<C
                     cmds,
                     NumField::new(&name, a, "", Apply::Restart)
                         .width(60.0)
-                        .show(ui, |v| with_mode(scene, k, |m| {
-                            if let Some(x) = m.residue.get_mut(i).and_then(|r| r.get_mut(j)) {
-                                *x = v;
-                            }
-                        })),
+                        .show(ui, |v| {
+                            with_mode(scene, k, |m| {
+                                if let Some(x) = m.residue.get_mut(i).and_then(|r| r.get_mut(j)) {
+                                    *x = v;
+                                }
+                            })
+                        }),
                 );
             }
             ui.end_row();

@@ -30,9 +30,8 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                 let name = format!("points[{i}].x_m");
                 push_edit(
                     cmds,
-                    NumField::new(&name, pt.x_m, "m", Apply::Restart).show(ui, |v| {
-                        with_point(scene, i, |pt| pt.x_m = v)
-                    }),
+                    NumField::new(&name, pt.x_m, "m", Apply::Restart)
+                        .show(ui, |v| with_point(scene, i, |pt| pt.x_m = v)),
                 );
                 let name = format!("points[{i}].h_m");
                 push_edit(
@@ -52,7 +51,10 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
             }
         });
     if p > MAX_LISTED {
-        ui.label(format!("… {} more points (edit them in the preset file)", p - MAX_LISTED));
+        ui.label(format!(
+            "… {} more points (edit them in the preset file)",
+            p - MAX_LISTED
+        ));
     }
     if ui
         .button("Add point")
@@ -75,7 +77,11 @@ fn with_point(scene: &Scene, i: usize, f: impl FnOnce(&mut Point)) -> Scene {
 pub fn add_point(scene: &Scene) -> Scene {
     let mut s = scene.clone();
     let p = s.points.len();
-    let last = s.points.last().copied().unwrap_or(Point { x_m: 0.0, h_m: 0.0 });
+    let last = s
+        .points
+        .last()
+        .copied()
+        .unwrap_or(Point { x_m: 0.0, h_m: 0.0 });
     let spacing = if p >= 2 {
         last.x_m - s.points[p - 2].x_m
     } else {
@@ -91,7 +97,12 @@ pub fn add_point(scene: &Scene) -> Scene {
             m.shape.push(a);
         }
         if !m.residue.is_empty() {
-            let d = m.residue.last().and_then(|r| r.last()).copied().unwrap_or(0.0);
+            let d = m
+                .residue
+                .last()
+                .and_then(|r| r.last())
+                .copied()
+                .unwrap_or(0.0);
             for row in &mut m.residue {
                 row.push(0.0);
             }

@@ -23,10 +23,13 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                     NumField::new("road.amplitude_m", *amplitude_m, "mm", Apply::Live)
                         .scale(1e3)
                         .show(ui, |v| {
-                            with_road(scene, Road::Sine {
-                                amplitude_m: v,
-                                wavelength_m: *wavelength_m,
-                            })
+                            with_road(
+                                scene,
+                                Road::Sine {
+                                    amplitude_m: v,
+                                    wavelength_m: *wavelength_m,
+                                },
+                            )
                         }),
                 );
                 ui.end_row();
@@ -36,10 +39,13 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                     NumField::new("road.wavelength_m", *wavelength_m, "m", Apply::Live).show(
                         ui,
                         |v| {
-                            with_road(scene, Road::Sine {
-                                amplitude_m: *amplitude_m,
-                                wavelength_m: v,
-                            })
+                            with_road(
+                                scene,
+                                Road::Sine {
+                                    amplitude_m: *amplitude_m,
+                                    wavelength_m: v,
+                                },
+                            )
                         },
                     ),
                 );
@@ -65,24 +71,26 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
         }
     }
     section(ui, "Speed", Apply::Live);
-    Grid::new("tirecontact.speed").num_columns(2).show(ui, |ui| {
-        ui.label("speed V");
-        push_edit(
-            cmds,
-            NumField::new("speed_kmh", scene.speed_mps, "km/h", Apply::Live)
-                .field("speed_mps")
-                .scale(3.6)
-                .show(ui, |v| with_speed(scene, v)),
-        );
-        ui.end_row();
-        ui.label("");
-        push_edit(
-            cmds,
-            NumField::new("speed_mps", scene.speed_mps, "m/s", Apply::Live)
-                .show(ui, |v| with_speed(scene, v)),
-        );
-        ui.end_row();
-    });
+    Grid::new("tirecontact.speed")
+        .num_columns(2)
+        .show(ui, |ui| {
+            ui.label("speed V");
+            push_edit(
+                cmds,
+                NumField::new("speed_kmh", scene.speed_mps, "km/h", Apply::Live)
+                    .field("speed_mps")
+                    .scale(3.6)
+                    .show(ui, |v| with_speed(scene, v)),
+            );
+            ui.end_row();
+            ui.label("");
+            push_edit(
+                cmds,
+                NumField::new("speed_mps", scene.speed_mps, "m/s", Apply::Live)
+                    .show(ui, |v| with_speed(scene, v)),
+            );
+            ui.end_row();
+        });
 }
 
 fn road_type(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
@@ -99,12 +107,17 @@ fn road_type(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                             .map_or((0.002, 0.5), |c| (c.amplitude_m.abs(), c.wavelength_m)),
                         _ => (0.002, 0.5),
                     };
-                    cmds.push(edit(with_road(scene, Road::Sine {
-                        amplitude_m: a,
-                        wavelength_m: l,
-                    })));
+                    cmds.push(edit(with_road(
+                        scene,
+                        Road::Sine {
+                            amplitude_m: a,
+                            wavelength_m: l,
+                        },
+                    )));
                 }
-                if ui.selectable_label(kind == "harmonics", "harmonics").clicked()
+                if ui
+                    .selectable_label(kind == "harmonics", "harmonics")
+                    .clicked()
                     && kind != "harmonics"
                 {
                     let first = match &scene.road {
@@ -122,13 +135,23 @@ fn road_type(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                             phase_rad: 0.0,
                         },
                     };
-                    cmds.push(edit(with_road(scene, Road::Harmonics {
-                        components: vec![first],
-                    })));
+                    cmds.push(edit(with_road(
+                        scene,
+                        Road::Harmonics {
+                            components: vec![first],
+                        },
+                    )));
                 }
-                ui.add_enabled(false, egui::Button::selectable(kind == "measured", "measured"))
-                    .on_disabled_hover_text("measured profiles are set in the preset file (road: Measured(file: ...))");
-            });
+                ui.add_enabled(
+                    false,
+                    egui::Button::selectable(kind == "measured", "measured"),
+                )
+                .on_disabled_hover_text(
+                    "measured profiles are set in the preset file (road: Measured(file: ...))",
+                );
+            })
+            .response
+            .accessible_name("road type");
     });
 }
 

@@ -52,7 +52,9 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                 for s in [ContactScheme::Located, ContactScheme::Paper] {
                     ui.selectable_value(&mut scheme, s, scheme_text(s));
                 }
-            });
+            })
+            .response
+            .accessible_name("contact scheme");
         if scheme != scene.contact_scheme {
             let mut s = scene.clone();
             s.contact_scheme = scheme;
@@ -60,9 +62,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
         }
         ui.end_row();
     });
-    ui.label(
-        egui::RichText::new(format!("{} steps per run", scene.num_steps())).weak(),
-    );
+    ui.label(egui::RichText::new(format!("{} steps per run", scene.num_steps())).weak());
 }
 
 fn scheme_text(s: ContactScheme) -> &'static str {

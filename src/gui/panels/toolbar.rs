@@ -22,7 +22,11 @@ pub struct ToolbarStatus {
 pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {
-            if ui.button("New").on_hover_text("the default scene").clicked() {
+            if ui
+                .button("New")
+                .on_hover_text("the default scene")
+                .clicked()
+            {
                 cmds.push(Command::New);
             }
             if ui.button("Open…").clicked() {
@@ -67,8 +71,11 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             }
         });
         ui.separator();
-        for v in View::ALL {
-            if ui.selectable_label(st.view == v, v.label()).clicked() && st.view != v {
+        for (k, v) in View::ALL.into_iter().enumerate() {
+            let r = ui
+                .selectable_label(st.view == v, v.label())
+                .on_hover_text(format!("key {}", k + 1));
+            if r.clicked() && st.view != v {
                 cmds.push(Command::ShowView(v));
             }
         }
@@ -78,7 +85,7 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
 /// Transport controls and the clock.
 pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
     ui.horizontal(|ui| {
-        let play = if st.playing { "⏸ Pause" } else { "▶ Play" };
+        let play = if st.playing { "Pause" } else { "Play" };
         if ui
             .button(RichText::new(play).strong())
             .on_hover_text("Space")
@@ -86,18 +93,34 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         {
             cmds.push(Command::TogglePlay);
         }
-        if ui.button("Step").on_hover_text("one solver step (→)").clicked() {
+        if ui
+            .button("Step")
+            .on_hover_text("one solver step (Right arrow)")
+            .clicked()
+        {
             cmds.push(Command::Step(1));
         }
         let id = Id::unique("tirecontact.n_steps");
         let mut n: u64 = ui.data(|d| d.get_temp(id)).unwrap_or(100);
-        if ui.button("Step N").on_hover_text("N solver steps").clicked() {
+        if ui
+            .button("Step N")
+            .on_hover_text("N solver steps")
+            .clicked()
+        {
             cmds.push(Command::Step(n));
         }
-        ui.add(egui::DragValue::new(&mut n).range(1..=10_000_000).speed(10.0))
-            .accessible_name("N steps");
+        ui.add(
+            egui::DragValue::new(&mut n)
+                .range(1..=10_000_000)
+                .speed(10.0),
+        )
+        .accessible_name("N steps");
         ui.data_mut(|d| d.insert_temp(id, n));
-        if ui.button("⟲ Reset").on_hover_text("back to t = 0 (R)").clicked() {
+        if ui
+            .button("Reset")
+            .on_hover_text("back to t = 0 (R)")
+            .clicked()
+        {
             cmds.push(Command::Reset);
         }
         ui.separator();
@@ -111,6 +134,7 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
                 }
             })
             .response
+            .accessible_name("speed")
             .on_hover_text("simulated time per wall-clock time");
         if speed != st.speed {
             cmds.push(Command::SetSpeed(speed));

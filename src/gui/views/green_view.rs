@@ -35,7 +35,10 @@ pub fn time_window(model: &ModalModel) -> f64 {
 /// Frequency range (Hz) around the modes: a decade below the lowest, half a
 /// decade above the highest.
 pub fn freq_range(model: &ModalModel) -> (f64, f64) {
-    let fs = model.modes.iter().map(|m| m.omega_rad_s / std::f64::consts::TAU);
+    let fs = model
+        .modes
+        .iter()
+        .map(|m| m.omega_rad_s / std::f64::consts::TAU);
     let lo = fs.clone().fold(f64::INFINITY, f64::min);
     let hi = fs.fold(0.0, f64::max);
     if lo.is_finite() && hi > 0.0 {
@@ -54,7 +57,10 @@ fn log_marks(input: GridInput) -> Vec<GridMark> {
     }
     let mut d = a.floor();
     while d <= b.ceil() {
-        out.push(GridMark { value: d, step_size: 1.0 });
+        out.push(GridMark {
+            value: d,
+            step_size: 1.0,
+        });
         if b - a < 4.0 {
             for k in 2..10 {
                 out.push(GridMark {
@@ -88,7 +94,9 @@ pub fn show(ui: &mut Ui, scene: &Scene, opts: &mut GreenOptions) {
                 for i in 0..p {
                     ui.selectable_value(&mut opts.receiver, i, i.to_string());
                 }
-            });
+            })
+            .response
+            .accessible_name("receiving point");
         ui.checkbox(&mut opts.all_sources, "all loaded points j (else j = i)");
         ui.separator();
         let freqs: Vec<String> = scene
@@ -99,7 +107,11 @@ pub fn show(ui: &mut Ui, scene: &Scene, opts: &mut GreenOptions) {
         ui.label(format!("modes: {}", freqs.join(", ")));
     });
     let i = opts.receiver;
-    let sources: Vec<usize> = if opts.all_sources { (0..p).collect() } else { vec![i] };
+    let sources: Vec<usize> = if opts.all_sources {
+        (0..p).collect()
+    } else {
+        vec![i]
+    };
     let half = ((ui.available_height() - ui.spacing().item_spacing.y) / 2.0).max(100.0);
     let tw = time_window(&model);
     let n = 1500;
@@ -118,9 +130,12 @@ pub fn show(ui: &mut Ui, scene: &Scene, opts: &mut GreenOptions) {
                     })
                     .collect();
                 pui.line(
-                    Line::new(format!("g_{i}{j}: response at {i} to an impulse at {j}"), pts)
-                        .color(point_color(j))
-                        .width(1.5),
+                    Line::new(
+                        format!("g_{i}{j}: response at {i} to an impulse at {j}"),
+                        pts,
+                    )
+                    .color(point_color(j))
+                    .width(1.5),
                 );
             }
         });
@@ -173,7 +188,10 @@ mod tests {
         assert!(a < 100.0 && b > 100.0);
         // 100 Hz, 5 %: decay 1/(0.05*628) = 32 ms; 4 decays = 0.127 s; 15 periods = 0.15 s
         let t = time_window(&model);
-        assert!((t - 4.0 / (0.05 * 200.0 * std::f64::consts::PI)).abs() < 1e-9, "{t}");
+        assert!(
+            (t - 4.0 / (0.05 * 200.0 * std::f64::consts::PI)).abs() < 1e-9,
+            "{t}"
+        );
         assert_eq!(pow10_label(2.0), "100");
         assert_eq!(pow10_label(2.3), "");
     }

@@ -98,7 +98,7 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
         ui.separator();
         let n_contact = contact.iter().filter(|c| **c).count();
         ui.label(format!(
-            "t = {t:.5} s   V = {:.1} km/h   road moves ← under the tyre   {} of {} points in contact",
+            "t = {t:.5} s   V = {:.1} km/h   road moves to the left under the tyre   {} of {} points in contact",
             scene.speed_mps * 3.6,
             n_contact,
             contact.len()
@@ -130,7 +130,11 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
         })
         .collect();
     let undeformed: Vec<[f64; 2]> = pts.iter().map(|p| [p.x_m, e * p.h_m]).collect();
-    let displaced: Vec<[f64; 2]> = pts.iter().zip(u).map(|(p, u)| [p.x_m, e * (p.h_m + u)]).collect();
+    let displaced: Vec<[f64; 2]> = pts
+        .iter()
+        .zip(u)
+        .map(|(p, u)| [p.x_m, e * (p.h_m + u)])
+        .collect();
     let y_floor = -e * hmax * 2.5;
     let qmax = sim
         .stats()
@@ -149,7 +153,11 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
     }
     Plot::new("tirecontact.scene_view")
         .data_aspect(1.0)
-        .legend(Legend::default().position(Corner::RightTop).follow_insertion_order(true))
+        .legend(
+            Legend::default()
+                .position(Corner::RightTop)
+                .follow_insertion_order(true),
+        )
         .x_axis_label("position along the contact line x (m)")
         .y_axis_label("height (mm, true scale)")
         .y_axis_formatter(move |m, _| super::super::fields::format_number(m.value / e * 1e3))
@@ -177,22 +185,32 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
                     .filled(false)
                     .radius(4.0),
             );
-            pui.line(Line::new("tyre (displaced)", displaced.clone()).color(Color32::from_rgb(60, 60, 60)).width(2.0));
+            pui.line(
+                Line::new("tyre (displaced)", displaced.clone())
+                    .color(Color32::from_rgb(60, 60, 60))
+                    .width(2.0),
+            );
             let (on, off): (Vec<_>, Vec<_>) =
                 displaced.iter().enumerate().partition(|(i, _)| contact[*i]);
             pui.points(
-                Points::new("in contact", on.into_iter().map(|(_, p)| *p).collect::<Vec<_>>())
-                    .color(CONTACT_COLOR)
-                    .shape(MarkerShape::Circle)
-                    .filled(true)
-                    .radius(7.0),
+                Points::new(
+                    "in contact",
+                    on.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
+                )
+                .color(CONTACT_COLOR)
+                .shape(MarkerShape::Circle)
+                .filled(true)
+                .radius(7.0),
             );
             pui.points(
-                Points::new("in flight", off.into_iter().map(|(_, p)| *p).collect::<Vec<_>>())
-                    .color(FLIGHT_COLOR)
-                    .shape(MarkerShape::Diamond)
-                    .filled(true)
-                    .radius(7.0),
+                Points::new(
+                    "in flight",
+                    off.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
+                )
+                .color(FLIGHT_COLOR)
+                .shape(MarkerShape::Diamond)
+                .filled(true)
+                .radius(7.0),
             );
             if !a_from.is_empty() {
                 pui.arrows(

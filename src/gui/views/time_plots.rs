@@ -73,7 +73,10 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
     header(ui, opts);
     let t_end = history.last_time().unwrap_or(0.0).max(now_s);
     let (t0, t1) = if opts.follow {
-        ((t_end - opts.window_s).max(0.0), t_end.max(opts.window_s.min(1e9)))
+        (
+            (t_end - opts.window_s).max(0.0),
+            t_end.max(opts.window_s.min(1e9)),
+        )
     } else {
         (0.0, t_end.max(1e-9))
     };
@@ -85,7 +88,11 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         let last = k == PLOTS.len() - 1;
         let mut plot = Plot::new(("tirecontact.time_plot", k))
             .height(h)
-            .legend(Legend::default().position(Corner::RightTop).follow_insertion_order(true))
+            .legend(
+                Legend::default()
+                    .position(Corner::RightTop)
+                    .follow_insertion_order(true),
+            )
             .link_axis(link, [true, false])
             .link_cursor(link, [true, false])
             .y_axis_label(def.y_label)
