@@ -323,7 +323,15 @@ impl App {
         }
     }
 
+    /// Drops an informational message (errors stay until dismissed).
+    fn clear_info(&mut self) {
+        if self.message.as_ref().is_some_and(|m| !m.error) {
+            self.message = None;
+        }
+    }
+
     fn play(&mut self) {
+        self.clear_info();
         if self.sim.finished() {
             self.reset_run();
         }
@@ -331,6 +339,7 @@ impl App {
     }
 
     fn reset_run(&mut self) {
+        self.clear_info();
         self.sim.reset();
         self.time.reset();
         self.run_start = self.sim.scene().clone();
@@ -545,6 +554,7 @@ impl App {
 
     /// One frame of the whole UI (also driven headless by the tests).
     pub fn show(&mut self, ui: &mut egui::Ui) {
+        let started = Instant::now();
         let ctx = ui.ctx().clone();
         let frame_s = ctx.input(|i| f64::from(i.unstable_dt));
         self.poll_jobs();
@@ -592,7 +602,11 @@ impl App {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.title = title;
         }
-        self.fps.tick(self.sim.time_s(), self.time.is_playing());
+        self.fps.tick(
+            self.sim.time_s(),
+            self.time.is_playing(),
+            started.elapsed().as_secs_f64(),
+        );
         if self.time.is_playing() || self.time.pending_steps() > 0 || self.csv_job.is_some() {
             ctx.request_repaint();
         }
@@ -601,6 +615,11 @@ impl App {
     /// Measured frames per second (0 until a second has passed).
     pub fn fps(&self) -> f64 {
         self.fps.fps
+    }
+
+    /// Mean time per frame spent in solver steps and UI code (ms).
+    pub fn app_ms(&self) -> f64 {
+        self.fps.app_ms
     }
 }
 

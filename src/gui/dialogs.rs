@@ -68,7 +68,11 @@ pub fn status_bar(ui: &mut Ui, app: &App) {
             ui.label("writing CSV…");
         }
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-            ui.label(RichText::new(format!("{:.0} fps", app.fps())).weak());
+            ui.label(RichText::new(format!("{:.0} fps", app.fps())).weak())
+                .on_hover_text(format!(
+                    "frames per second; solver and UI code take {:.1} ms per frame",
+                    app.app_ms()
+                ));
         });
     });
 }

@@ -102,9 +102,20 @@ pub fn show(ui: &mut Ui, scene: &Scene, opts: &mut GreenOptions) {
         let freqs: Vec<String> = scene
             .modes()
             .iter()
-            .map(|m| format!("{} Hz ξ={}", m.freq_hz, m.damping_ratio))
+            .take(6)
+            .map(|m| format!("{:.1} Hz ξ={}", m.freq_hz, m.damping_ratio))
             .collect();
-        ui.label(format!("modes: {}", freqs.join(", ")));
+        let more = scene.modes().len().saturating_sub(6);
+        let more = if more > 0 {
+            format!(" … and {more} more")
+        } else {
+            String::new()
+        };
+        ui.label(format!(
+            "{} modes: {}{more}",
+            scene.modes().len(),
+            freqs.join(", ")
+        ));
     });
     let i = opts.receiver;
     let sources: Vec<usize> = if opts.all_sources {

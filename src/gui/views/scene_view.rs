@@ -7,7 +7,7 @@ use super::{CONTACT_COLOR, FLIGHT_COLOR};
 use crate::Simulation;
 use crate::road::{Road, ramp};
 use egui::{Color32, RichText, Ui};
-use egui_plot::{Arrows, Corner, Legend, Line, LineStyle, MarkerShape, Plot, Points};
+use egui_plot::{Arrows, Corner, GridMark, Legend, Line, LineStyle, MarkerShape, Plot, Points};
 
 /// Presentation options of the scene view.
 #[derive(Debug, Clone, PartialEq)]
@@ -61,6 +61,25 @@ fn x_extent(sim: &Simulation) -> (f64, f64) {
     };
     let margin = (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05);
     (lo - margin, hi + margin)
+}
+
+/// About eight grid marks at 1-2-5 steps of the displayed unit (`value × to_unit`).
+fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
+    let (a, b) = (bounds.0 * to_unit, bounds.1 * to_unit);
+    if !(a.is_finite() && b.is_finite() && b > a) {
+        return Vec::new();
+    }
+    let step = round_125((b - a) / 8.0);
+    let mut out = Vec::new();
+    let mut k = (a / step).ceil();
+    while k * step <= b && out.len() < 100 {
+        out.push(GridMark {
+            value: k * step / to_unit,
+            step_size: step / to_unit,
+        });
+        k += 1.0;
+    }
+    out
 }
 
 pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
@@ -137,8 +156,7 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
         .collect();
     let y_floor = -e * hmax * 2.5;
     let qmax = sim
-        .stats()
-        .max_force_n
+        .force_n()
         .iter()
         .fold(0.0, |m: f64, q| m.max(*q))
         .max(1e-12);
@@ -160,7 +178,11 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
         )
         .x_axis_label("position along the contact line x (m)")
         .y_axis_label("height (mm, true scale)")
+        .x_grid_spacer(|g| nice_marks(g.bounds, 1.0))
+        .x_axis_formatter(|m, _| super::super::fields::format_number(m.value))
+        .y_grid_spacer(move |g| nice_marks(g.bounds, 1e3 / e))
         .y_axis_formatter(move |m, _| super::super::fields::format_number(m.value / e * 1e3))
+        .y_axis_min_width(44.0)
         .include_x(x0)
         .include_x(x1)
         .include_y(y_floor)
@@ -214,7 +236,7 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
             );
             if !a_from.is_empty() {
                 pui.arrows(
-                    Arrows::new("contact force (relative)", a_from, a_to)
+                    Arrows::new("contact force (relative to the largest now)", a_from, a_to)
                         .color(Color32::from_rgb(0, 114, 178))
                         .tip_length(8.0),
                 );

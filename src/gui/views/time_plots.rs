@@ -24,7 +24,7 @@ impl Default for TimePlotOptions {
     fn default() -> Self {
         TimePlotOptions {
             follow: true,
-            window_s: 0.2,
+            window_s: 0.1,
             shown: Vec::new(),
         }
     }
@@ -96,7 +96,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             .link_axis(link, [true, false])
             .link_cursor(link, [true, false])
             .y_axis_label(def.y_label)
-            .y_axis_min_width(48.0)
+            .y_axis_min_width(64.0)
             .allow_scroll(false)
             .auto_bounds([!opts.follow, true]);
         if last {
@@ -104,8 +104,11 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         }
         if def.what == Quantity::Contact {
             plot = plot
-                .y_axis_formatter(|m, _| {
-                    if m.value >= 0.0 && (m.value - m.value.round()).abs() < 1e-9 {
+                .y_axis_formatter(move |m, _| {
+                    if m.value >= 0.0
+                        && m.value < p as f64
+                        && (m.value - m.value.round()).abs() < 1e-9
+                    {
                         format!("p{}", m.value.round() as i64)
                     } else {
                         String::new()
