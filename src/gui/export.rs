@@ -76,7 +76,8 @@ pub fn time_figure(scene: &Scene, history: &History, shown: &[bool]) -> Figure {
             y_label: y_label.to_string(),
             series: (0..history.num_points())
                 .filter(|&i| shown.get(i).copied().unwrap_or(true))
-                .map(|i| {
+                .enumerate()
+                .map(|(lane, i)| {
                     let mut pts: Vec<(f64, f64)> = history
                         .decimated(what, i, 0.0, t1, FIGURE_BUCKETS, scale)
                         .into_iter()
@@ -84,7 +85,7 @@ pub fn time_figure(scene: &Scene, history: &History, shown: &[bool]) -> Figure {
                         .collect();
                     if what == Quantity::Contact {
                         for p in &mut pts {
-                            p.1 = i as f64 + 0.7 * p.1;
+                            p.1 = lane as f64 + 0.7 * p.1;
                         }
                     }
                     let mut s = Series::line(format!("point {i}"), pts);

@@ -30,13 +30,17 @@ pub fn run() -> eframe::Result {
 /// Opens the visualiser on `preset` (a broken file shows its error over the
 /// default preset), or as [`run`] when `None`.
 pub fn run_with_preset(preset: Option<std::path::PathBuf>) -> eframe::Result {
-    let options = eframe::NativeOptions {
+    let mut options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("tirecontact")
             .with_inner_size([1500.0, 950.0])
             .with_min_inner_size([900.0, 600.0]),
         ..Default::default()
     };
+    // Software GL (Xvfb, remote desktops) can block on vsync; allow turning it off.
+    if std::env::var_os("TIRECONTACT_NO_VSYNC").is_some() {
+        options.glow_options.vsync = false;
+    }
     eframe::run_native(
         "tirecontact",
         options,

@@ -103,19 +103,22 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             plot = plot.x_axis_label("time t (s)");
         }
         if def.what == Quantity::Contact {
+            // one lane per shown point, labelled with the point's index
+            let lanes: Vec<usize> = (0..p)
+                .filter(|&i| opts.shown.get(i).copied().unwrap_or(false))
+                .collect();
+            let n = lanes.len();
             plot = plot
                 .y_axis_formatter(move |m, _| {
-                    if m.value >= 0.0
-                        && m.value < p as f64
-                        && (m.value - m.value.round()).abs() < 1e-9
-                    {
-                        format!("p{}", m.value.round() as i64)
+                    let k = m.value.round();
+                    if (m.value - k).abs() < 1e-9 && k >= 0.0 && (k as usize) < n {
+                        format!("p{}", lanes[k as usize])
                     } else {
                         String::new()
                     }
                 })
                 .include_y(-0.2)
-                .include_y(p as f64 - 0.1);
+                .include_y(n.max(1) as f64 - 0.1);
         }
         let shown = opts.shown.clone();
         let follow = opts.follow;
@@ -136,12 +139,17 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
 
 fn draw_series(pui: &mut PlotUi<'_>, h: &History, def: &PlotDef, shown: &[bool], a: f64, b: f64) {
     let buckets = (pui.response().rect.width() as usize).clamp(100, 4000);
-    for (i, _) in shown.iter().enumerate().filter(|(_, s)| **s) {
+    let shown_points = shown
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| **s)
+        .map(|(i, _)| i);
+    for (lane, i) in shown_points.enumerate() {
         let mut pts = h.decimated(def.what, i, a, b, buckets, def.scale);
         if def.what == Quantity::Contact {
-            // one lane per point: lane i, raised by 0.7 while in contact
+            // lane of the point, raised by 0.7 while in contact
             for p in &mut pts {
-                p[1] = i as f64 + 0.7 * p[1];
+                p[1] = lane as f64 + 0.7 * p[1];
             }
         }
         pui.line(
