@@ -90,7 +90,7 @@ impl DenseSolver {
             }
             self.perm[k] = p;
             min_pivot = min_pivot.min(best);
-            if !(best > PIVOT_TOL) {
+            if best.is_nan() || best <= PIVOT_TOL {
                 self.min_pivot = best;
                 return Err(Singular { pivot: best });
             }

@@ -126,6 +126,50 @@ pub fn mode_step(omega: f64, xi: f64, tau_s: f64) -> ModeStep {
     }
 }
 
+/// Dot product with four independent accumulators (lets the compiler use
+/// SIMD lanes; the summation order is fixed, so results are deterministic).
+#[inline]
+pub fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (ca, cb) = (a[..n].chunks_exact(4), b[..n].chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    let mut acc = [0.0f64; 4];
+    for (x, y) in ca.zip(cb) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let mut s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+    for (x, y) in ra.iter().zip(rb) {
+        s += x * y;
+    }
+    s
+}
+
+/// `(a·x, a·v)` in one pass over `a`, four accumulators each.
+#[inline]
+pub fn dot2(a: &[f64], x: &[f64], v: &[f64]) -> (f64, f64) {
+    let n = a.len().min(x.len()).min(v.len());
+    let (a, x, v) = (&a[..n], &x[..n], &v[..n]);
+    let m = n - n % 4;
+    let (mut su, mut sv) = ([0.0f64; 4], [0.0f64; 4]);
+    for c in (0..m).step_by(4) {
+        for k in 0..4 {
+            su[k] += a[c + k] * x[c + k];
+            sv[k] += a[c + k] * v[c + k];
+        }
+    }
+    let (mut ru, mut rv) = (
+        (su[0] + su[1]) + (su[2] + su[3]),
+        (sv[0] + sv[1]) + (sv[2] + sv[3]),
+    );
+    for c in m..n {
+        ru += a[c] * x[c];
+        rv += a[c] * v[c];
+    }
+    (ru, rv)
+}
+
 #[inline]
 fn phi_of(e: [f64; 2], a: f64, w2: f64) -> [f64; 4] {
     let (h, hd) = (e[0], e[1]);
@@ -151,11 +195,30 @@ impl ModalBasis {
     /// gives its SVD terms above `1e-13 σ_max` (rank 1 for `φφᵀ`, 2 for the
     /// ring's degenerate pairs, at most `P`).
     pub fn new(modes: &[Mode], num_points: usize) -> Self {
+        Self::build(modes, num_points, true)
+    }
+
+    /// One state per (mode, source) as SPEC §3 states it, without rank
+    /// reduction: the "before" of the rank-1 optimisation, for benchmarks.
+    pub fn per_source(modes: &[Mode], num_points: usize) -> Self {
+        Self::build(modes, num_points, false)
+    }
+
+    fn build(modes: &[Mode], num_points: usize, reduce: bool) -> Self {
         let p = num_points;
         let mut terms: Vec<(usize, Vec<f64>, Vec<f64>)> = Vec::new();
         let mut params = Vec::with_capacity(modes.len());
         for (k, m) in modes.iter().enumerate() {
             params.push((TAU * m.freq_hz, m.damping_ratio));
+            if !reduce {
+                let a = m.residue_matrix();
+                for j in 0..p {
+                    let mut e = vec![0.0; p];
+                    e[j] = 1.0;
+                    terms.push((k, (0..p).map(|i| a[i][j]).collect(), e));
+                }
+                continue;
+            }
             if !m.shape.is_empty() {
                 terms.push((k, m.shape.clone(), m.shape.clone()));
                 continue;
@@ -394,13 +457,17 @@ impl ModalState {
         let ns = self.x.len();
         for i in 0..basis.num_points {
             let a = &basis.out[i * ns..(i + 1) * ns];
-            let (mut su, mut sv) = (0.0, 0.0);
-            for s in 0..ns {
-                su += a[s] * self.x[s];
-                sv += a[s] * self.v[s];
-            }
-            u[i] = su;
-            v[i] = sv;
+            (u[i], v[i]) = dot2(a, &self.x, &self.v);
+        }
+    }
+
+    /// Adds another state of the same size.
+    pub fn add(&mut self, other: &ModalState) {
+        for (a, b) in self.x.iter_mut().zip(&other.x) {
+            *a += b;
+        }
+        for (a, b) in self.v.iter_mut().zip(&other.v) {
+            *a += b;
         }
     }
 

@@ -51,6 +51,9 @@ pub enum SceneError {
     /// A measured road profile is unusable.
     #[error("road profile {path}: {message}")]
     RoadFile { path: PathBuf, message: String },
+    /// The modal model of a ring tyre could not be identified (SPEC §6).
+    #[error("scene \"{scene}\": tyre identification failed: {message}")]
+    Identification { scene: String, message: String },
 }
 
 fn format_invalid(file: &str, errors: &[FieldError]) -> String {

@@ -22,24 +22,31 @@
 //! | [`road`] | road profiles and the preload/road ramp | §4 |
 //! | [`contact`] | scaled dense solves for the Gauss-point and impulse systems | §4 |
 //! | [`simulation`] | the time stepper: active set, complementarity, events inside the step | §4 |
+//! | [`ring`] | ring tyre on an elastic foundation: orders, modes, radial Green functions | §5 |
+//! | [`lsce`] | LSCE identification, stabilisation diagram, fit report | §6 |
+//! | [`identify`] | ring -> sampled responses -> LSCE, cached per scene | §5-6 |
 //! | [`scene`] | RON scenes and their validation | — |
 //! | [`output`] | CSV writer, headless PNG figures | — |
 //! | `gui` | the visualiser (feature `gui`) | — |
 
+pub mod bench;
 pub mod contact;
 pub mod convolution;
 pub mod error;
 #[cfg(feature = "gui")]
 pub mod gui;
+pub mod identify;
+pub mod lsce;
 pub mod modal;
 pub mod output;
+pub mod ring;
 pub mod road;
 pub mod scene;
 pub mod simulation;
 
 pub use error::{SceneError, SolverError};
 pub use scene::Scene;
-pub use simulation::{Simulation, StepReport};
+pub use simulation::{Simulation, SolverOptions, StepReport};
 
 /// The preset opened when no file is given (embedded in the binary).
 pub const DEFAULT_PRESET: &str = include_str!("../presets/single_mode.ron");

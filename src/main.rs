@@ -21,6 +21,10 @@ struct Cli {
 enum Command {
     /// Run a scene headless and write its time histories as CSV.
     Run(cli::run::RunArgs),
+    /// Identify the modal model of a ring-tyre scene by LSCE (SPEC §5-6).
+    Identify(cli::identify::IdentifyArgs),
+    /// Work-precision study and before/after timings of skipped work.
+    Bench(cli::bench::BenchArgs),
     /// Parse and validate a scene preset.
     Check {
         /// Scene preset (RON).
@@ -43,6 +47,8 @@ fn main() -> std::process::ExitCode {
         #[cfg(feature = "gui")]
         Some(Command::Gui { preset }) => tirecontact::gui::run_with_preset(preset)
             .map_err(|e| format!("cannot open the visualiser: {e}").into()),
+        Some(Command::Identify(args)) => cli::identify::identify(&args),
+        Some(Command::Bench(args)) => cli::bench::bench(&args),
         None => default_action(),
     };
     match result {
@@ -72,5 +78,7 @@ fn headless_default() -> cli::CliResult {
         dt: None,
         duration: None,
         every: 1,
+        plot: None,
+        plot_size: (1400, 900),
     })
 }

@@ -152,6 +152,72 @@ impl RoadProfile {
     }
 }
 
+/// The road under a fixed set of points `x_i` shifted by the distance rolled
+/// `s`: `z(x_i + s)` and `dz/dx`. For harmonic roads one `sin_cos` per
+/// harmonic and step (angle addition from precomputed `sin_cos(κ x_i + φ)`)
+/// instead of one per point and harmonic.
+#[derive(Debug, Clone)]
+pub struct PointsRoad {
+    pub profile: RoadProfile,
+    x_m: Vec<f64>,
+    /// `(sin, cos)` of `κ_h x_i + φ_h`, harmonic-major.
+    phase: Vec<(f64, f64)>,
+}
+
+impl PointsRoad {
+    pub fn new(profile: RoadProfile, x_m: &[f64]) -> Self {
+        let phase = match &profile {
+            RoadProfile::Harmonics(h) => h
+                .iter()
+                .flat_map(|c| {
+                    x_m.iter()
+                        .map(move |&x| (TAU / c.wavelength_m * x + c.phase_rad).sin_cos())
+                })
+                .collect(),
+            RoadProfile::Measured { .. } => Vec::new(),
+        };
+        PointsRoad {
+            profile,
+            x_m: x_m.to_vec(),
+            phase,
+        }
+    }
+
+    /// `z_i`, `dz/dx_i` at `x_i + s_m`; on a measured profile's edge, the
+    /// point index and the range error.
+    #[inline]
+    pub fn sample_all(
+        &self,
+        s_m: f64,
+        z: &mut [f64],
+        dz: &mut [f64],
+    ) -> Result<(), (usize, OutOfRange)> {
+        match &self.profile {
+            RoadProfile::Harmonics(h) => {
+                z.fill(0.0);
+                dz.fill(0.0);
+                let p = self.x_m.len();
+                for (k, c) in h.iter().enumerate() {
+                    let kappa = TAU / c.wavelength_m;
+                    let (sn, cs) = (kappa * s_m).sin_cos();
+                    for i in 0..p {
+                        let (s0, c0) = self.phase[k * p + i];
+                        z[i] += c.amplitude_m * (s0 * cs + c0 * sn);
+                        dz[i] += c.amplitude_m * kappa * (c0 * cs - s0 * sn);
+                    }
+                }
+                Ok(())
+            }
+            RoadProfile::Measured { .. } => {
+                for (i, &x) in self.x_m.iter().enumerate() {
+                    (z[i], dz[i]) = self.profile.sample(x + s_m).map_err(|e| (i, e))?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
 /// Largest measured profile accepted (rows).
 pub const MAX_PROFILE_ROWS: usize = 20_000_000;
 
@@ -268,6 +334,33 @@ mod tests {
         };
         assert!((l.sample(3.5).unwrap().0 - 0.5).abs() < 1e-15);
         assert!((l.sample(-1.0).unwrap().0 - 0.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn points_road_matches_direct_sampling() {
+        let prof = RoadProfile::Harmonics(vec![
+            Harmonic {
+                amplitude_m: 0.002,
+                wavelength_m: 0.5,
+                phase_rad: 0.3,
+            },
+            Harmonic {
+                amplitude_m: 0.001,
+                wavelength_m: 0.013,
+                phase_rad: -1.0,
+            },
+        ]);
+        let xs = [-0.05, 0.0, 0.031];
+        let pr = PointsRoad::new(prof.clone(), &xs);
+        let (mut z, mut dz) = ([0.0; 3], [0.0; 3]);
+        for s in [0.0, 0.37, 123.456] {
+            pr.sample_all(s, &mut z, &mut dz).unwrap();
+            for i in 0..3 {
+                let (zd, dzd) = prof.sample(xs[i] + s).unwrap();
+                assert!((z[i] - zd).abs() < 1e-14, "{} vs {zd}", z[i]);
+                assert!((dz[i] - dzd).abs() < 1e-11 * dzd.abs().max(1.0));
+            }
+        }
     }
 
     #[test]

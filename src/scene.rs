@@ -3,6 +3,8 @@
 //! expected; syntax errors give file, line and column.
 
 use crate::error::{FieldError, SceneError};
+use crate::lsce::IdentifyOptions;
+use crate::ring::RingParams;
 use crate::road::Road;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -51,9 +53,19 @@ impl Mode {
 
 /// Source of the tyre's Green functions.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Tyre {
     /// A modal model given mode by mode (SPEC §2).
     Modal { modes: Vec<Mode> },
+    /// The ring tyre (SPEC §5), its radial Green functions at the contact
+    /// points identified by LSCE (SPEC §6) into a modal model. Both fields
+    /// default (the SPEC's passenger tyre, the default options).
+    Ring {
+        #[serde(default)]
+        ring: RingParams,
+        #[serde(default)]
+        identification: IdentifyOptions,
+    },
 }
 
 /// A contact point on the contact line.
@@ -174,11 +186,45 @@ impl Scene {
         (self.duration_s / self.dt_s).round().max(1.0) as u64
     }
 
-    /// The modes of the modal model.
-    pub fn modes(&self) -> &[Mode] {
+    /// The modes of the modal model: those given (`Tyre::Modal`), or those
+    /// identified from the ring tyre at the points' positions (`Tyre::Ring`,
+    /// SPEC §5-6), computed once per distinct ring, options and positions
+    /// (cached, [`crate::identify::ring_modes_cached`]).
+    pub fn modes(&self) -> Result<Vec<Mode>, SceneError> {
         match &self.tyre {
-            Tyre::Modal { modes } => modes,
+            Tyre::Modal { modes } => Ok(modes.clone()),
+            Tyre::Ring {
+                ring,
+                identification,
+            } => {
+                let x: Vec<f64> = self.points.iter().map(|p| p.x_m).collect();
+                crate::identify::ring_modes_cached(ring, &x, identification)
+                    .map(|m| m.as_ref().clone())
+                    .map_err(|e| SceneError::Identification {
+                        scene: self.name.clone(),
+                        message: e.to_string(),
+                    })
+            }
         }
+    }
+
+    /// `T_ramp = 0` is allowed only where no point starts below the road
+    /// (`z(x_i) - h_i <= 0` for all `i`, SPEC §4).
+    pub fn ramp_error(&self, road: &crate::road::RoadProfile) -> Option<FieldError> {
+        if self.ramp_s != 0.0 {
+            return None;
+        }
+        self.points.iter().enumerate().find_map(|(i, pt)| {
+            let z = road.sample(pt.x_m).map(|s| s.0).unwrap_or(0.0);
+            (z - pt.h_m > 0.0).then(|| FieldError {
+                field: "ramp_s".into(),
+                value: "0".into(),
+                expected: format!(
+                    "a ramp time > 0 s: point {i} starts {:.3e} m below the road (SPEC §4)",
+                    z - pt.h_m
+                ),
+            })
+        })
     }
 
     /// Checks every value; returns all problems found.
@@ -221,6 +267,14 @@ impl Scene {
                     validate_mode(&mut v, &format!("tyre.modes[{k}]"), m, p);
                 }
             }
+            Tyre::Ring {
+                ring,
+                identification,
+            } => {
+                v.errors.extend(ring.validate("tyre.ring"));
+                v.errors
+                    .extend(identification.validate("tyre.identification"));
+            }
         }
         validate_road(&mut v, &self.road);
         v.nonneg("speed_mps", self.speed_mps, "a speed >= 0 m/s");
@@ -228,24 +282,11 @@ impl Scene {
             v.push("speed_mps", self.speed_mps, "a speed <= 1000 m/s");
         }
         v.nonneg("ramp_s", self.ramp_s, "a ramp time >= 0 s");
-        if self.ramp_s == 0.0 {
-            if let Road::Sine { .. } | Road::Harmonics { .. } = self.road {
-                let prof = crate::road::RoadProfile::new(&self.road, None);
-                if let Ok(prof) = prof {
-                    for (i, pt) in self.points.iter().enumerate() {
-                        if let Ok((z, _)) = prof.sample(pt.x_m)
-                            && z - pt.h_m > 0.0
-                        {
-                            v.push(
-                                "ramp_s",
-                                0.0,
-                                &format!("a ramp time > 0 s: point {i} starts {:.3e} m below the road (SPEC §4)", z - pt.h_m),
-                            );
-                            break;
-                        }
-                    }
-                }
-            }
+        if !matches!(self.road, Road::Measured { .. })
+            && let Ok(prof) = crate::road::RoadProfile::new(&self.road, None)
+            && let Some(e) = self.ramp_error(&prof)
+        {
+            v.errors.push(e);
         }
         v.positive("dt_s", self.dt_s, "a time step > 0 s");
         if self.dt_s > 0.1 {

@@ -2,12 +2,15 @@
 //! of the active points, the monotone complementarity rule, and (default
 //! `Located` scheme) impacts and releases located inside the step.
 
+mod events;
+
 use crate::contact::DenseSolver;
 use crate::convolution::{Influence, ModalBasis, ModalState, StepTable};
 use crate::error::{SceneError, SolverError};
 use crate::road::Road;
-use crate::road::{RoadProfile, ramp};
+use crate::road::{PointsRoad, RoadProfile, ramp};
 use crate::scene::{ContactScheme, Scene};
+pub use events::first_crossing;
 
 /// Values of a linear force at the step start and end from its Gauss-point values.
 const GA: f64 = 1.366_025_403_784_438_6;
@@ -33,6 +36,9 @@ pub struct RunStats {
     pub events: u64,
     pub solves: u64,
     pub max_solves_per_step: u32,
+    /// LU factorisations of contact systems (fewer than solves: reused while
+    /// the active set is unchanged).
+    pub factorisations: u64,
     /// Worst penetration left at any step end (m).
     pub worst_penetration_m: f64,
     /// Largest step-mean force per point (N).
@@ -61,7 +67,11 @@ enum Table {
 pub struct Simulation {
     scene: Scene,
     basis: ModalBasis,
-    road: RoadProfile,
+    road: PointsRoad,
+    /// Added to `V t` so that the distance rolled stays continuous when the speed changes (m).
+    x_offset_m: f64,
+    zbuf: Vec<f64>,
+    dzbuf: Vec<f64>,
     p: usize,
     dt_s: f64,
     pen_tol_m: f64,
@@ -69,7 +79,12 @@ pub struct Simulation {
     full: StepTable,
     full_inf: Influence,
     sub: StepTable,
-    sub_inf: Influence,
+    /// `|S| x |S|` blocks of the sub-step influence (4 |S|² used).
+    gss: Vec<f64>,
+    /// State increment of the solved sub-step forces.
+    delta: ModalState,
+    du: Vec<f64>,
+    dv: Vec<f64>,
     jump: Vec<f64>,
     state: ModalState,
     free: ModalState,
@@ -96,19 +111,60 @@ pub struct Simulation {
     active: Vec<usize>,
     released: Vec<bool>,
     solver: DenseSolver,
+    full_solver: DenseSolver,
+    full_set: Vec<usize>,
+    full_factored: bool,
+    options: SolverOptions,
     stats: RunStats,
+}
+
+/// Switches for the work a scene does not need; all on by default. Turning
+/// one off gives the "before" of a benchmark; results agree to round-off.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SolverOptions {
+    /// Keep one state per rank term of each residue (rank 1 for a mode
+    /// shape) instead of one per (mode, source).
+    pub rank_reduction: bool,
+    /// Reuse the LU factorisation of the full-step contact operator while
+    /// the active set is unchanged.
+    pub reuse_factorisation: bool,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        SolverOptions {
+            rank_reduction: true,
+            reuse_factorisation: true,
+        }
+    }
 }
 
 impl Simulation {
     /// Builds the simulation of a validated scene; reads a measured road file.
     pub fn new(scene: &Scene) -> Result<Self, SceneError> {
+        Self::with_options(scene, SolverOptions::default())
+    }
+
+    /// As [`Simulation::new`], with explicit [`SolverOptions`].
+    pub fn with_options(scene: &Scene, options: SolverOptions) -> Result<Self, SceneError> {
         scene.validate().map_err(|errors| SceneError::Invalid {
             file: scene.name.clone(),
             errors,
         })?;
         let p = scene.num_points();
-        let basis = ModalBasis::new(scene.modes(), p);
+        let modes = scene.modes()?;
+        let basis = if options.rank_reduction {
+            ModalBasis::new(&modes, p)
+        } else {
+            ModalBasis::per_source(&modes, p)
+        };
         let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
+        if let Some(e) = scene.ramp_error(&road) {
+            return Err(SceneError::Invalid {
+                file: scene.name.clone(),
+                errors: vec![e],
+            });
+        }
         let full = StepTable::new(&basis, scene.dt_s);
         let full_inf = Influence::new(&basis, &full);
         let jump = basis.velocity_jump();
@@ -119,14 +175,22 @@ impl Simulation {
             .map(|pt| pt.h_m.abs())
             .fold(road.scale_m(), f64::max)
             .max(1e-6);
+        let xs: Vec<f64> = scene.points.iter().map(|pt| pt.x_m).collect();
+        let road = PointsRoad::new(road, &xs);
         let mut sim = Simulation {
+            x_offset_m: 0.0,
+            zbuf: vec![0.0; p],
+            dzbuf: vec![0.0; p],
             scene: scene.clone(),
             p,
             dt_s: scene.dt_s,
             pen_tol_m: 1e-12 * scale,
             max_events: 4 * p as u32 + 16,
             sub: full.clone(),
-            sub_inf: full_inf.clone(),
+            gss: vec![0.0; 4 * p * p],
+            delta: state.clone(),
+            du: vec![0.0; p],
+            dv: vec![0.0; p],
             full,
             full_inf,
             jump,
@@ -155,6 +219,10 @@ impl Simulation {
             active: Vec::with_capacity(p),
             released: vec![false; p],
             solver: DenseSolver::new(2 * p),
+            full_solver: DenseSolver::new(2 * p),
+            full_set: Vec::with_capacity(p),
+            full_factored: false,
+            options,
             stats: RunStats::default(),
         };
         sim.reset();
@@ -165,6 +233,7 @@ impl Simulation {
     pub fn reset(&mut self) {
         self.state.reset();
         self.t_s = 0.0;
+        self.x_offset_m = 0.0;
         self.steps = 0;
         for x in [&mut self.u, &mut self.v, &mut self.q_mean] {
             x.fill(0.0);
@@ -186,21 +255,24 @@ impl Simulation {
 
     /// Replaces the road profile live (no restart).
     pub fn set_road(&mut self, road: &Road) -> Result<(), SceneError> {
-        self.road = RoadProfile::new(road, self.scene.base_dir.as_deref())?;
+        let xs: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
+        self.road = PointsRoad::new(RoadProfile::new(road, self.scene.base_dir.as_deref())?, &xs);
         self.scene.road = road.clone();
         let scale = self
             .scene
             .points
             .iter()
             .map(|pt| pt.h_m.abs())
-            .fold(self.road.scale_m(), f64::max)
+            .fold(self.road.profile.scale_m(), f64::max)
             .max(1e-6);
         self.pen_tol_m = 1e-12 * scale;
         Ok(())
     }
 
     /// Changes the rolling speed live (m/s, no restart).
+    /// The distance rolled stays continuous: the road does not jump.
     pub fn set_speed(&mut self, speed_mps: f64) {
+        self.x_offset_m += (self.scene.speed_mps - speed_mps) * self.t_s;
         self.scene.speed_mps = speed_mps;
     }
 
@@ -209,7 +281,11 @@ impl Simulation {
     }
     /// The road profile being sampled (for drawing it).
     pub fn road_profile(&self) -> &RoadProfile {
-        &self.road
+        &self.road.profile
+    }
+    /// Distance rolled so far (m): point `i` sees the road at `x_i + rolled_m()`.
+    pub fn rolled_m(&self) -> f64 {
+        self.scene.speed_mps * self.t_s + self.x_offset_m
     }
     pub fn time_s(&self) -> f64 {
         self.t_s
@@ -259,18 +335,18 @@ impl Simulation {
     fn road_at(&mut self, t: f64, _sel: Table) -> Result<(), SolverError> {
         let (w, dw) = ramp(t, self.scene.ramp_s);
         let vel = self.scene.speed_mps;
+        let rolled_m = vel * t + self.x_offset_m;
+        self.road
+            .sample_all(rolled_m, &mut self.zbuf, &mut self.dzbuf)
+            .map_err(|(i, e)| SolverError::RoadOutOfRange {
+                t_s: t,
+                point: i,
+                x_m: e.x_m,
+                min_m: e.min_m,
+                max_m: e.max_m,
+            })?;
         for (i, pt) in self.scene.points.iter().enumerate() {
-            let x = pt.x_m + vel * t;
-            let (z, dz) = self
-                .road
-                .sample(x)
-                .map_err(|e| SolverError::RoadOutOfRange {
-                    t_s: t,
-                    point: i,
-                    x_m: e.x_m,
-                    min_m: e.min_m,
-                    max_m: e.max_m,
-                })?;
+            let (z, dz) = (self.zbuf[i], self.dzbuf[i]);
             self.re[i] = w * (z - pt.h_m);
             self.rde[i] = dw * (z - pt.h_m) + w * dz * vel;
         }
@@ -279,7 +355,6 @@ impl Simulation {
 
     fn prepare_sub(&mut self, tau: f64) {
         self.sub.fill(&self.basis, tau);
-        self.sub_inf.fill(&self.basis, &self.sub);
     }
 
     /// Free prediction over `tau` from `t`: `free`, `uh`, `vh`, road at `t + tau`.
@@ -303,60 +378,134 @@ impl Simulation {
         if n == 0 {
             return Ok(());
         }
-        let (_, g) = match sel {
-            Table::Full => (&self.full, &self.full_inf),
-            Table::Sub => (&self.sub, &self.sub_inf),
-        };
-        let act = &self.active;
-        let res = self.solver.factor(2 * n, |r, c| {
-            let (i, j) = (act[r % n], act[c % n]);
-            let m = match (r < n, c < n) {
-                (true, true) => &g.gx1,
-                (true, false) => &g.gx2,
-                (false, true) => &g.gv1,
-                (false, false) => &g.gv2,
-            };
-            m[i * p + j]
-        });
-        if let Err(s) = res {
-            return Err(SolverError::SingularContactSystem {
-                t_s: t_end,
-                points: self.active.clone(),
-                pivot: s.pivot,
-            });
+        if sel == Table::Sub {
+            self.fill_sub_block();
         }
-        for (k, &i) in act.iter().enumerate() {
+        // The full-step operator depends only on the active set: its
+        // factorisation is reused while the set is unchanged.
+        let reuse = sel == Table::Full
+            && self.options.reuse_factorisation
+            && self.full_factored
+            && self.full_set == self.active;
+        if !reuse {
+            self.stats.factorisations += 1;
+            let act = &self.active;
+            let (g, gss) = (&self.full_inf, &self.gss);
+            let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
+            let entry = |r: usize, c: usize| {
+                let blk = 2 * (r >= n) as usize + (c >= n) as usize;
+                match sel {
+                    Table::Full => blocks[blk][act[r % n] * p + act[c % n]],
+                    Table::Sub => gss[blk * n * n + (r % n) * n + c % n],
+                }
+            };
+            let solver = match sel {
+                Table::Full => &mut self.full_solver,
+                Table::Sub => &mut self.solver,
+            };
+            let res = solver.factor(2 * n, entry);
+            if sel == Table::Full {
+                self.full_factored = res.is_ok();
+                self.full_set.clone_from(&self.active);
+            }
+            if let Err(s) = res {
+                return Err(SolverError::SingularContactSystem {
+                    t_s: t_end,
+                    points: self.active.clone(),
+                    pivot: s.pivot,
+                });
+            }
+        }
+        for (k, &i) in self.active.iter().enumerate() {
             self.rhs[k] = self.re[i] - self.uh[i];
             self.rhs[n + k] = self.rde[i] - self.vh[i];
         }
-        self.solver.solve(&mut self.rhs[..2 * n]);
+        match sel {
+            Table::Full => self.full_solver.solve(&mut self.rhs[..2 * n]),
+            Table::Sub => self.solver.solve(&mut self.rhs[..2 * n]),
+        }
         self.q1.fill(0.0);
         self.q2.fill(0.0);
-        for (k, &j) in act.iter().enumerate() {
+        for (k, &j) in self.active.iter().enumerate() {
             self.q1[j] = self.rhs[k];
             self.q2[j] = self.rhs[n + k];
         }
-        for i in 0..p {
-            let (mut du, mut dv) = (0.0, 0.0);
-            for &j in act {
-                du += g.gx1[i * p + j] * self.q1[j] + g.gx2[i * p + j] * self.q2[j];
-                dv += g.gv1[i * p + j] * self.q1[j] + g.gv2[i * p + j] * self.q2[j];
+        match sel {
+            Table::Full => {
+                // O(P |S|) with the precomputed full influence
+                let g = &self.full_inf;
+                for i in 0..p {
+                    let (mut du, mut dv) = (0.0, 0.0);
+                    for &j in &self.active {
+                        du += g.gx1[i * p + j] * self.q1[j] + g.gx2[i * p + j] * self.q2[j];
+                        dv += g.gv1[i * p + j] * self.q1[j] + g.gv2[i * p + j] * self.q2[j];
+                    }
+                    self.ue[i] += du;
+                    self.ve[i] += dv;
+                }
             }
-            self.ue[i] += du;
-            self.ve[i] += dv;
+            Table::Sub => self.end_values_sub(),
         }
         Ok(())
     }
 
+    /// End displacement/velocity of every point under the Gauss-point forces
+    /// `q1`, `q2` of the active points over the sub-step (after `predict`),
+    /// through the states: O(states (|S| + P)), no P x P influence.
+    fn end_values_sub(&mut self) {
+        self.delta.x.fill(0.0);
+        self.delta.v.fill(0.0);
+        self.delta
+            .add_gauss_forces(&self.basis, &self.sub, &self.active, &self.q1, &self.q2);
+        self.delta.project(&self.basis, &mut self.du, &mut self.dv);
+        for i in 0..self.p {
+            self.ue[i] = self.uh[i] + self.du[i];
+            self.ve[i] = self.vh[i] + self.dv[i];
+        }
+    }
+
+    /// The `|S| x |S|` blocks of the sub-step influence of the active points
+    /// (only what the solve needs: `O(|S|² states)`).
+    fn fill_sub_block(&mut self) {
+        let n = self.active.len();
+        let (p, ns) = (self.p, self.basis.num_states());
+        let g = &mut self.gss[..4 * n * n];
+        g.fill(0.0);
+        for s in 0..ns {
+            let (w1, w2) = (self.sub.w1[s], self.sub.w2[s]);
+            let inp = &self.basis.inp[s * p..(s + 1) * p];
+            for (a, &i) in self.active.iter().enumerate() {
+                let o = self.basis.out[i * ns + s];
+                if o == 0.0 {
+                    continue;
+                }
+                for (b, &j) in self.active.iter().enumerate() {
+                    let ab = o * inp[j];
+                    let k = a * n + b;
+                    g[k] += ab * w1[0];
+                    g[n * n + k] += ab * w2[0];
+                    g[2 * n * n + k] += ab * w1[1];
+                    g[3 * n * n + k] += ab * w2[1];
+                }
+            }
+        }
+    }
+
     /// Accepts the solved sub-step of length `tau`: state, impulses, outputs.
     fn commit(&mut self, tau: f64, sel: Table) {
-        let (table, _) = match sel {
-            Table::Full => (&self.full, &self.full_inf),
-            Table::Sub => (&self.sub, &self.sub_inf),
-        };
         self.state.copy_from(&self.free);
-        self.state
-            .add_gauss_forces(&self.basis, table, &self.active, &self.q1, &self.q2);
+        if !self.active.is_empty() {
+            match sel {
+                Table::Full => self.state.add_gauss_forces(
+                    &self.basis,
+                    &self.full,
+                    &self.active,
+                    &self.q1,
+                    &self.q2,
+                ),
+                Table::Sub => self.state.add(&self.delta),
+            }
+        }
         for &j in &self.active {
             self.impulse[j] += 0.5 * tau * (self.q1[j] + self.q2[j]);
         }
@@ -463,249 +612,4 @@ impl Simulation {
         self.commit(tau, sel);
         Ok(solves)
     }
-
-    /// A step with events located inside it (SPEC §4, "Events inside the step").
-    fn located_step(&mut self, t_start: f64) -> Result<(u32, u32), SolverError> {
-        let dt = self.dt_s;
-        let mut t = t_start;
-        let mut remaining = dt;
-        let (mut events, mut solves) = (0u32, 0u32);
-        // the active set carries over: points in contact at the step start
-        self.active.clear();
-        for i in 0..self.p {
-            if self.contact[i] {
-                self.active.push(i);
-            }
-        }
-        // a point left below the road by the last step lands now
-        let deepest = (0..self.p)
-            .filter(|&i| !self.contact[i])
-            .map(|i| (i, self.u[i] - self.r[i]))
-            .filter(|&(_, g)| g < -self.pen_tol_m)
-            .min_by(|a, b| a.1.total_cmp(&b.1));
-        if let Some((i, _)) = deepest {
-            solves += self.impact(t, i)?;
-            events += 1;
-        }
-        let mut sel = Table::Full;
-        while remaining > 1e-12 * dt {
-            if events > self.max_events {
-                // Zeno-like cascade: finish the step with the paper's rule.
-                if sel == Table::Full {
-                    self.prepare_sub(remaining);
-                }
-                solves += self.paper_substep(t, remaining, Table::Sub)?;
-                break;
-            }
-            self.predict(t, remaining, sel)?;
-            self.solve_active(t + remaining, sel)?;
-            solves += !self.active.is_empty() as u32;
-            // releases: the linear force's end value is negative
-            let mut release: Option<(usize, f64, f64)> = None; // (k, θ, end value)
-            for (k, &j) in self.active.iter().enumerate() {
-                let (q1, q2) = (self.q1[j], self.q2[j]);
-                let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
-                if qe < 0.0 {
-                    let th = if qs > 0.0 {
-                        remaining * qs / (qs - qe)
-                    } else {
-                        0.0
-                    };
-                    let better = match release {
-                        None => true,
-                        Some((_, t2, e2)) => th < t2 || (th == t2 && qe < e2),
-                    };
-                    if better {
-                        release = Some((k, th, qe));
-                    }
-                }
-            }
-            if let Some((k, th, _)) = release
-                && th <= 0.0
-            {
-                let j = self.active.remove(k);
-                self.released[j] = true;
-                events += 1;
-                continue;
-            }
-            // impacts: first root of the Hermite cubic of the gap of a free point
-            let mut impact: Option<(usize, f64)> = None;
-            for i in 0..self.p {
-                if self.released[i] || self.active.contains(&i) {
-                    continue;
-                }
-                let (g0, d0) = (self.u[i] - self.r[i], self.v[i] - self.rd[i]);
-                let (g1, d1) = (self.ue[i] - self.re[i], self.ve[i] - self.rde[i]);
-                if let Some(y) =
-                    first_crossing(g0, d0 * remaining, g1, d1 * remaining, self.pen_tol_m)
-                {
-                    let th = y * remaining;
-                    if impact.is_none_or(|(_, t2)| th < t2) {
-                        impact = Some((i, th));
-                    }
-                }
-            }
-            let th_rel = release.map_or(f64::INFINITY, |r| r.1);
-            let th_imp = impact.map_or(f64::INFINITY, |r| r.1);
-            let th = th_rel.min(th_imp);
-            if !th.is_finite() {
-                self.commit(remaining, sel);
-                break;
-            }
-            // advance to the event
-            if th >= remaining * (1.0 - 1e-12) {
-                self.commit(remaining, sel);
-                t += remaining;
-                remaining = 0.0;
-            } else if th > 0.0 {
-                self.prepare_sub(th);
-                sel = Table::Sub;
-                self.predict(t, th, sel)?;
-                self.solve_active(t + th, sel)?;
-                solves += !self.active.is_empty() as u32;
-                self.commit(th, sel);
-                t += th;
-                remaining -= th;
-            }
-            events += 1;
-            if th_imp <= th_rel {
-                let (i, _) = impact.unwrap_or((0, 0.0));
-                solves += self.impact(t, i)?;
-            } else if let Some((k, _, _)) = release {
-                let j = self.active.remove(k);
-                self.released[j] = true;
-            }
-            if remaining > 1e-12 * dt {
-                self.prepare_sub(remaining);
-                sel = Table::Sub;
-            }
-        }
-        Ok((events, solves))
-    }
-
-    /// Perfectly inelastic impact of point `i` at `t`: impulses on all points on
-    /// the road together so that their velocities equal the road's; a point
-    /// whose impulse would pull is thrown off (monotone, most negative first).
-    fn impact(&mut self, t: f64, i: usize) -> Result<u32, SolverError> {
-        self.road_at(t, Table::Sub)?;
-        self.r.copy_from_slice(&self.re);
-        self.rd.copy_from_slice(&self.rde);
-        if !self.active.contains(&i) {
-            self.active.push(i);
-        }
-        let p = self.p;
-        let mut solves = 0;
-        while !self.active.is_empty() {
-            let n = self.active.len();
-            let act = &self.active;
-            let jump = &self.jump;
-            if let Err(s) = self.solver.factor(n, |r, c| jump[act[r] * p + act[c]]) {
-                return Err(SolverError::SingularContactSystem {
-                    t_s: t,
-                    points: self.active.clone(),
-                    pivot: s.pivot,
-                });
-            }
-            for (k, &j) in act.iter().enumerate() {
-                self.rhs[k] = self.rd[j] - self.v[j];
-            }
-            self.solver.solve(&mut self.rhs[..n]);
-            solves += 1;
-            let worst = (0..n)
-                .map(|k| (k, self.rhs[k]))
-                .filter(|&(_, x)| x < 0.0)
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            match worst {
-                Some((k, _)) => {
-                    let j = self.active.remove(k);
-                    self.released[j] = true;
-                }
-                None => break,
-            }
-        }
-        let n = self.active.len();
-        self.q1.fill(0.0);
-        for k in 0..n {
-            self.q1[self.active[k]] = self.rhs[k];
-        }
-        self.state.add_impulses(&self.basis, &self.active, &self.q1);
-        for &j in &self.active {
-            self.impulse[j] += self.q1[j];
-        }
-        for a in 0..p {
-            self.v[a] += self
-                .active
-                .iter()
-                .map(|&j| self.jump[a * p + j] * self.q1[j])
-                .sum::<f64>();
-        }
-        Ok(solves)
-    }
-}
-
-/// First `y ∈ (0, 1]` where the cubic Hermite interpolant with values `g0`,
-/// `g1` and scaled slopes `d0`, `d1` (slope × interval) goes below `-tol`,
-/// starting from `g0 >= -tol`; returns the zero crossing before it.
-pub fn first_crossing(g0: f64, d0: f64, g1: f64, d1: f64, tol: f64) -> Option<f64> {
-    if g0 < -tol {
-        return None;
-    }
-    let c = [
-        g0,
-        d0,
-        -3.0 * g0 - 2.0 * d0 + 3.0 * g1 - d1,
-        2.0 * g0 + d0 - 2.0 * g1 + d1,
-    ];
-    let p = |y: f64| ((c[3] * y + c[2]) * y + c[1]) * y + c[0];
-    // cheap rejection: all of the cubic is above -tol
-    if g1 >= -tol && (d0 >= 0.0 && d1 <= 0.0 || g0.min(g1) - 0.25 * (d0.abs() + d1.abs()) >= -tol) {
-        return None;
-    }
-    // breakpoints: critical points of the cubic in (0, 1)
-    let (qa, qb, qc) = (3.0 * c[3], 2.0 * c[2], c[1]);
-    let mut bp = [1.0f64; 3];
-    let mut nb = 0;
-    if qa.abs() > 1e-300 {
-        let disc = qb * qb - 4.0 * qa * qc;
-        if disc >= 0.0 {
-            let sq = disc.sqrt();
-            let qq = -0.5 * (qb + qb.signum() * sq);
-            for y in [qq / qa, if qq != 0.0 { qc / qq } else { f64::NAN }] {
-                if y > 0.0 && y < 1.0 {
-                    bp[nb] = y;
-                    nb += 1;
-                }
-            }
-        }
-    } else if qb.abs() > 1e-300 {
-        let y = -qc / qb;
-        if y > 0.0 && y < 1.0 {
-            bp[nb] = y;
-            nb += 1;
-        }
-    }
-    bp[nb] = 1.0;
-    let bps = &mut bp[..nb + 1];
-    bps.sort_by(f64::total_cmp);
-    let mut ya = 0.0;
-    for &yb in bps.iter() {
-        if p(yb) < -tol {
-            // monotone decreasing on [ya, yb]: bisect for p = 0
-            if p(ya) < 0.0 {
-                return Some(ya);
-            }
-            let (mut lo, mut hi) = (ya, yb);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                if p(mid) >= 0.0 {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            return Some(0.5 * (lo + hi));
-        }
-        ya = yb;
-    }
-    None
 }

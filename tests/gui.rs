@@ -23,7 +23,7 @@ fn tmp_dir(name: &str) -> PathBuf {
 }
 
 fn freq0(app: &App) -> f64 {
-    app.scene().modes()[0].freq_hz
+    app.modes()[0].freq_hz
 }
 
 /// Replaces the text of the field named `name` and commits it with Enter.
@@ -88,7 +88,10 @@ fn editing_a_field_changes_the_scene_and_restarts() {
     h.run();
     type_into(&mut h, "tyre.modes[0].freq_hz", "120");
     assert_eq!(freq0(h.state()), 120.0);
-    assert_eq!(h.state().simulation().scene().modes()[0].freq_hz, 120.0);
+    assert_eq!(
+        h.state().simulation().scene().modes().unwrap()[0].freq_hz,
+        120.0
+    );
     // a mode change restarts the run
     assert_eq!(h.state().simulation().steps(), 0);
     assert!(h.state().is_dirty());
@@ -131,7 +134,7 @@ fn a_bad_value_is_refused_at_the_field_with_the_reason() {
     assert!(!h.state().is_dirty());
 
     type_into(&mut h, "tyre.modes[0].damping_ratio", "abc");
-    assert_eq!(h.state().scene().modes()[0].damping_ratio, 0.05);
+    assert_eq!(h.state().modes()[0].damping_ratio, 0.05);
     assert!(h.query_by_label_contains("is not a number").is_some());
 }
 
@@ -199,7 +202,10 @@ fn unsaved_changes_are_confirmed_before_they_are_dropped() {
     h.state_mut().apply(Command::SavePath(path.clone()));
     h.run();
     assert!(!h.state().is_dirty());
-    assert_eq!(Scene::load(&path).unwrap().modes()[0].freq_hz, 130.0);
+    assert_eq!(
+        Scene::load(&path).unwrap().modes().unwrap()[0].freq_hz,
+        130.0
+    );
     h.state_mut().apply(Command::OpenPath(path));
     h.run();
     assert!(h.state().pending_confirmation().is_none());
@@ -326,4 +332,24 @@ fn views_switch_and_render() {
     h.get_by_label("Time plots").click();
     h.run();
     assert!(h.query_by_label("follow latest").is_some());
+}
+
+#[test]
+fn every_shipped_preset_opens() {
+    let mut h = harness(App::with_default_preset());
+    h.run();
+    for (k, (name, _, _)) in tirecontact::gui::presets::SHIPPED.iter().enumerate() {
+        h.state_mut().apply(Command::OpenPreset(k));
+        h.run();
+        assert_eq!(
+            &h.state().scene().name.as_str(),
+            name,
+            "{:?}",
+            h.state().message()
+        );
+        assert!(!h.state().modes().is_empty());
+        h.state_mut().apply(Command::Step(20));
+        h.run();
+        assert_eq!(h.state().simulation().steps(), 20);
+    }
 }

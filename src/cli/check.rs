@@ -13,7 +13,7 @@ pub fn check(path: &Path) -> CliResult {
         path.display(),
         scene.name,
         scene.num_points(),
-        scene.modes().len(),
+        scene.modes()?.len(),
         scene.road.kind(),
         scene.speed_mps,
         scene.dt_s,

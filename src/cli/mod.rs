@@ -1,6 +1,8 @@
 //! Headless command line: one file per subcommand.
 
+pub mod bench;
 pub mod check;
+pub mod identify;
 pub mod run;
 
 use std::path::{Path, PathBuf};

@@ -23,6 +23,47 @@ pub struct RunArgs {
     /// Write one CSV row every N steps (forces averaged over them).
     #[arg(long, default_value_t = 1)]
     pub every: u64,
+    /// Also draw displacements and forces of every point to this PNG.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Size of the PNG, WIDTHxHEIGHT in pixels.
+    #[arg(long, default_value = "1400x900", value_parser = parse_size)]
+    pub plot_size: (u32, u32),
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let err = || format!("`{s}`: expected WIDTHxHEIGHT in pixels, e.g. 1400x900");
+    let (w, h) = s.split_once('x').ok_or_else(err)?;
+    Ok((
+        w.trim().parse().map_err(|_| err())?,
+        h.trim().parse().map_err(|_| err())?,
+    ))
+}
+
+/// One line of scene parameters for figure subtitles.
+pub fn scene_summary(scene: &Scene) -> String {
+    let road = match &scene.road {
+        tirecontact::road::Road::Sine {
+            amplitude_m,
+            wavelength_m,
+        } => {
+            format!(
+                "sine road {:.2} mm / {:.3} m",
+                amplitude_m * 1e3,
+                wavelength_m
+            )
+        }
+        r => format!("{} road", r.kind()),
+    };
+    format!(
+        "{} point(s), {} mode(s), {road}, V = {:.1} m/s ({:.0} km/h), dt = {:e} s, scheme {:?}",
+        scene.num_points(),
+        scene.modes().map_or(0, |m| m.len()),
+        scene.speed_mps,
+        scene.speed_mps * 3.6,
+        scene.dt_s,
+        scene.contact_scheme
+    )
 }
 
 /// Applies command-line overrides and re-validates.
@@ -60,6 +101,10 @@ pub fn run(args: &RunArgs) -> CliResult {
         }
         None => None,
     };
+    let mut rec = args
+        .plot
+        .as_ref()
+        .map(|_| tirecontact::output::record::Recording::new(scene.num_points(), n, 4000));
     let start = Instant::now();
     let bar = ProgressBar::with_draw_target(Some(n), indicatif::ProgressDrawTarget::stderr());
     bar.set_style(
@@ -72,6 +117,9 @@ pub fn run(args: &RunArgs) -> CliResult {
         sim.step()?;
         if let Some(w) = writer.as_mut() {
             w.after_step(&sim)?;
+        }
+        if let Some(r) = rec.as_mut() {
+            r.after_step(&sim);
         }
         if k % 1024 == 0 {
             let el = start.elapsed();
@@ -91,6 +139,11 @@ pub fn run(args: &RunArgs) -> CliResult {
         w.finish()?;
     }
     let wall = start.elapsed().as_secs_f64();
+    if let (Some(r), Some(path)) = (rec, &args.plot) {
+        let fig = r.figure(&scene.name, &scene_summary(&scene), scene.dt_s);
+        tirecontact::output::figures::render_png(&fig, path, args.plot_size.0, args.plot_size.1)?;
+        eprintln!("wrote {}", path.display());
+    }
     let st = sim.stats();
     let fmt_list = |v: &[f64], f: &dyn Fn(f64) -> String| {
         v.iter().map(|&x| f(x)).collect::<Vec<_>>().join(" ")

@@ -9,6 +9,7 @@ use super::panels::{self, toolbar};
 use super::presets::SHIPPED;
 use super::time_control::TimeControl;
 use super::views::{green_view, scene_view, time_plots};
+use crate::scene::Mode;
 use crate::{DEFAULT_PRESET, Scene, Simulation};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -47,6 +48,8 @@ pub struct App {
     saved: Scene,
     pub(super) path: Option<PathBuf>,
     pub(super) sim: Simulation,
+    /// The modal model of the scene: given, or identified from the ring tyre.
+    pub(super) modes: Vec<Mode>,
     /// The scene the current run started from, and its live edits.
     run_start: Scene,
     live_edits: Vec<LiveEdit>,
@@ -72,7 +75,9 @@ impl App {
         let sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
         let mut history = History::new(scene.num_points(), DEFAULT_BUDGET);
         history.record_initial(&sim);
+        let modes = scene.modes().map_err(|e| e.to_string())?;
         Ok(App {
+            modes,
             saved: scene.clone(),
             run_start: scene.clone(),
             scene,
@@ -160,6 +165,10 @@ impl App {
 
     pub fn scene(&self) -> &Scene {
         &self.scene
+    }
+    /// The modal model in use (given, or identified from the ring tyre).
+    pub fn modes(&self) -> &[Mode] {
+        &self.modes
     }
     pub fn simulation(&self) -> &Simulation {
         &self.sim
@@ -289,6 +298,7 @@ impl App {
                     width,
                     height,
                     &self.scene,
+                    &self.modes,
                     &self.history,
                     &self.plot_opts.shown,
                 ) {
@@ -403,9 +413,10 @@ impl App {
 
     /// Replaces the document (scene, file) and restarts the run.
     fn replace(&mut self, scene: Scene, path: Option<PathBuf>, what: &str) {
-        match Simulation::new(&scene) {
-            Ok(sim) => {
+        match Simulation::new(&scene).and_then(|sim| Ok((sim, scene.modes()?))) {
+            Ok((sim, modes)) => {
                 self.sim = sim;
+                self.modes = modes;
                 self.saved = scene.clone();
                 self.scene = scene;
                 self.path = path;
@@ -446,10 +457,11 @@ impl App {
             || new.ramp_s != old.ramp_s
             || new.contact_scheme != old.contact_scheme;
         if restart {
-            match Simulation::new(&new) {
-                Ok(sim) => {
+            match Simulation::new(&new).and_then(|sim| Ok((sim, new.modes()?))) {
+                Ok((sim, modes)) => {
                     let playing = self.time.is_playing();
                     self.sim = sim;
+                    self.modes = modes;
                     self.scene = new;
                     self.reset_run();
                     if playing {
@@ -581,7 +593,9 @@ impl App {
         egui::Panel::left("tirecontact.edit")
             .resizable(true)
             .default_size(380.0)
-            .show(ui, |ui| panels::side_panel(ui, &self.scene, &mut cmds));
+            .show(ui, |ui| {
+                panels::side_panel(ui, &self.scene, &self.modes, &mut cmds)
+            });
         egui::CentralPanel::default().show(ui, |ui| {
             super::dialogs::banner(ui, self.message.as_ref(), &mut cmds);
             match self.view {
@@ -589,7 +603,9 @@ impl App {
                     time_plots::show(ui, &self.history, &mut self.plot_opts, self.sim.time_s());
                 }
                 View::Scene => scene_view::show(ui, &self.sim, &mut self.scene_opts),
-                View::Green => green_view::show(ui, &self.scene, &mut self.green_opts),
+                View::Green => {
+                    green_view::show(ui, &self.scene, &self.modes, &mut self.green_opts);
+                }
             }
         });
         super::dialogs::confirm_window(&ctx, self.confirm.as_ref(), &mut cmds);

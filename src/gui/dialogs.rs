@@ -51,7 +51,7 @@ pub fn status_bar(ui: &mut Ui, app: &App) {
         ui.label(format!(
             "{} points, {} modes · {} steps · {} events · {} in contact",
             app.scene.num_points(),
-            app.scene.modes().len(),
+            app.modes.len(),
             st.steps,
             st.events,
             in_contact

@@ -11,6 +11,7 @@ use super::history::{History, Quantity};
 use crate::output::csv::RunWriter;
 use crate::output::figures::{Figure, Panel, Series, render_png};
 use crate::road::Road;
+use crate::scene::Mode;
 use crate::{Scene, Simulation};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{Receiver, channel};
@@ -28,10 +29,11 @@ pub struct LiveEdit {
 }
 
 /// One line of scene parameters for figure subtitles.
-pub fn scene_summary(scene: &Scene) -> String {
-    let modes: Vec<String> = scene
-        .modes()
+pub fn scene_summary(scene: &Scene, modes: &[Mode]) -> String {
+    let n_modes = modes.len();
+    let modes: Vec<String> = modes
         .iter()
+        .take(8)
         .map(|m| format!("{} Hz/{}", m.freq_hz, m.damping_ratio))
         .collect();
     let road = match &scene.road {
@@ -43,7 +45,7 @@ pub fn scene_summary(scene: &Scene) -> String {
         Road::Measured { file, .. } => format!("measured {}", file.display()),
     };
     format!(
-        "{} points; modes (f/ξ): {}; road {}; V = {} m/s ({:.1} km/h); ramp {} s; dt = {:e} s",
+        "{} points; {n_modes} modes (f/ξ): {}; road {}; V = {} m/s ({:.1} km/h); ramp {} s; dt = {:e} s",
         scene.num_points(),
         modes.join(", "),
         road,
@@ -55,7 +57,7 @@ pub fn scene_summary(scene: &Scene) -> String {
 }
 
 /// The figure of the time plots over the whole recorded run.
-pub fn time_figure(scene: &Scene, history: &History, shown: &[bool]) -> Figure {
+pub fn time_figure(scene: &Scene, modes: &[Mode], history: &History, shown: &[bool]) -> Figure {
     let t1 = history.last_time().unwrap_or(0.0);
     let defs = [
         (Quantity::Displacement, "displacement", "u (mm, up)", 1e3),
@@ -98,7 +100,7 @@ pub fn time_figure(scene: &Scene, history: &History, shown: &[bool]) -> Figure {
         .collect();
     Figure {
         title: format!("{} — t = 0 … {:.4} s", scene.name, t1),
-        subtitle: scene_summary(scene),
+        subtitle: scene_summary(scene, modes),
         panels,
     }
 }
@@ -109,10 +111,11 @@ pub fn export_png(
     width: u32,
     height: u32,
     scene: &Scene,
+    modes: &[Mode],
     history: &History,
     shown: &[bool],
 ) -> Result<(), String> {
-    let fig = time_figure(scene, history, shown);
+    let fig = time_figure(scene, modes, history, shown);
     render_png(&fig, path, width, height).map_err(|e| e.to_string())
 }
 

@@ -10,6 +10,8 @@ use std::sync::Once;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Style {
     Line,
+    /// A line with a filled circle of the given radius (px) at each point.
+    LineMarkers(u32),
     /// Filled circles of the given radius (px).
     Markers(u32),
     /// Hollow circles of the given radius (px).
@@ -124,6 +126,21 @@ fn range(vals: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
+/// A compact tick label: `1e-5` on log axes, `90000`, `0.25`, `1.5e-7` otherwise.
+pub fn tick_label(v: f64, log: bool) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    let a = v.abs();
+    if log || !(1e-3..1e6).contains(&a) {
+        let s = format!("{v:.1e}");
+        return s.replace(".0e", "e");
+    }
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    s.to_string()
+}
+
 /// Renders `fig` as a PNG of `width × height` px at `path`.
 pub fn render_png(fig: &Figure, path: &Path, width: u32, height: u32) -> Result<(), FigureError> {
     if !(200..=8000).contains(&width) || !(200..=8000).contains(&height) {
@@ -196,8 +213,13 @@ fn draw_panel(
     macro_rules! finish {
         ($chart:expr) => {{
             let mut chart = $chart;
+            let (lx, ly) = (panel.log_x, panel.log_y);
+            let fx = move |v: &f64| tick_label(*v, lx);
+            let fy = move |v: &f64| tick_label(*v, ly);
             chart
                 .configure_mesh()
+                .x_label_formatter(&fx)
+                .y_label_formatter(&fy)
                 .x_desc(panel.x_label.as_str())
                 .y_desc(panel.y_label.as_str())
                 .label_style(("sans-serif", fs(14.0) as i32))
@@ -214,6 +236,16 @@ fn draw_panel(
                 let stroke = (scale * 1.6).max(1.0) as u32;
                 match s.style {
                     Style::Line => {
+                        chart
+                            .draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
+                            .label(s.name.clone())
+                            .legend(move |(x, y)| {
+                                PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(stroke))
+                            });
+                    }
+                    Style::LineMarkers(r) => {
+                        let pts: Vec<(f64, f64)> = pts.collect();
+                        chart.draw_series(pts.iter().map(|&p| Circle::new(p, r, c.filled())))?;
                         chart
                             .draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
                             .label(s.name.clone())

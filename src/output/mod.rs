@@ -2,6 +2,7 @@
 
 pub mod csv;
 pub mod figures;
+pub mod record;
 
 use std::io::Write;
 use std::path::Path;

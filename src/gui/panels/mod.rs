@@ -11,10 +11,12 @@ use super::command::Command;
 use crate::Scene;
 use crate::scene::{Mode, Tyre};
 
-/// The modes of a scene, mutably (for building edited copies).
-pub(crate) fn modes_mut(scene: &mut Scene) -> &mut Vec<Mode> {
+/// The given modes of a scene, mutably (for building edited copies); a ring
+/// tyre's modes are identified, not edited (`None`).
+pub(crate) fn modes_mut(scene: &mut Scene) -> Option<&mut Vec<Mode>> {
     match &mut scene.tyre {
-        Tyre::Modal { modes } => modes,
+        Tyre::Modal { modes } => Some(modes),
+        Tyre::Ring { .. } => None,
     }
 }
 
@@ -25,7 +27,7 @@ pub(crate) fn push_edit(cmds: &mut Vec<Command>, c: Option<Command>) {
 }
 
 /// The whole editing side panel.
-pub fn side_panel(ui: &mut egui::Ui, scene: &Scene, cmds: &mut Vec<Command>) {
+pub fn side_panel(ui: &mut egui::Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>) {
     egui::ScrollArea::vertical().show(ui, |ui| {
         ui.heading(&scene.name);
         if !scene.description.is_empty() {
@@ -43,7 +45,7 @@ pub fn side_panel(ui: &mut egui::Ui, scene: &Scene, cmds: &mut Vec<Command>) {
         ui.separator();
         run_panel::show(ui, scene, cmds);
         ui.separator();
-        modes_table::show(ui, scene, cmds);
+        modes_table::show(ui, scene, modes, cmds);
         ui.separator();
         points_panel::show(ui, scene, cmds);
     });

@@ -5,15 +5,19 @@ use super::{modes_mut, push_edit};
 use crate::Scene;
 use crate::gui::command::Command;
 use crate::gui::fields::{Apply, NumField, section};
-use crate::scene::Mode;
+use crate::ring::RingParams;
+use crate::scene::{Mode, Tyre};
 use egui::{Grid, Ui};
 
 /// Largest number of points whose residue matrix is edited inline.
 const MAX_INLINE_MATRIX: usize = 8;
 
-pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
+pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>) {
+    if let Tyre::Ring { ring, .. } = &scene.tyre {
+        ring_summary(ui, scene, ring, modes, cmds);
+        return;
+    }
     section(ui, "Modes", Apply::Restart);
-    let modes = scene.modes();
     let p = scene.num_points();
     Grid::new("tirecontact.modes")
         .striped(true)
@@ -46,9 +50,10 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                         .clicked()
                     {
                         let mut s = scene.clone();
-                        let ms = modes_mut(&mut s);
-                        ms.insert(k + 1, m.clone());
-                        cmds.push(Command::EditScene(Box::new(s)));
+                        if let Some(ms) = modes_mut(&mut s) {
+                            ms.insert(k + 1, m.clone());
+                            cmds.push(Command::EditScene(Box::new(s)));
+                        }
                     }
                     let remove =
                         ui.add_enabled(modes.len() > 1, egui::Button::new("Remove").small());
@@ -57,8 +62,10 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                         .clicked()
                     {
                         let mut s = scene.clone();
-                        modes_mut(&mut s).remove(k);
-                        cmds.push(Command::EditScene(Box::new(s)));
+                        if let Some(ms) = modes_mut(&mut s) {
+                            ms.remove(k);
+                            cmds.push(Command::EditScene(Box::new(s)));
+                        }
                     }
                 });
                 ui.end_row();
@@ -70,16 +77,17 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
         .clicked()
     {
         let mut s = scene.clone();
-        let ms = modes_mut(&mut s);
-        let mut m = ms.last().cloned().unwrap_or(Mode {
-            freq_hz: 100.0,
-            damping_ratio: 0.05,
-            residue: Vec::new(),
-            shape: vec![0.3; p],
-        });
-        m.freq_hz *= 1.5;
-        ms.push(m);
-        cmds.push(Command::EditScene(Box::new(s)));
+        if let Some(ms) = modes_mut(&mut s) {
+            let mut m = ms.last().cloned().unwrap_or(Mode {
+                freq_hz: 100.0,
+                damping_ratio: 0.05,
+                residue: Vec::new(),
+                shape: vec![0.3; p],
+            });
+            m.freq_hz *= 1.5;
+            ms.push(m);
+            cmds.push(Command::EditScene(Box::new(s)));
+        }
     }
     for (k, m) in modes.iter().enumerate() {
         let title = if m.shape.is_empty() {
@@ -153,8 +161,76 @@ fn residue_grid(ui: &mut Ui, scene: &Scene, k: usize, m: &Mode, cmds: &mut Vec<C
 /// The scene with mode `k` changed by `f`.
 fn with_mode(scene: &Scene, k: usize, f: impl FnOnce(&mut Mode)) -> Scene {
     let mut s = scene.clone();
-    if let Some(m) = modes_mut(&mut s).get_mut(k) {
+    if let Some(m) = modes_mut(&mut s).and_then(|ms| ms.get_mut(k)) {
         f(m);
     }
     s
+}
+
+/// A ring tyre: its parameters and the modes identified from it (read-only),
+/// and a way to turn them into an editable modal model.
+fn ring_summary(
+    ui: &mut Ui,
+    scene: &Scene,
+    ring: &RingParams,
+    modes: &[Mode],
+    cmds: &mut Vec<Command>,
+) {
+    section(ui, "Tyre: ring model (SPEC §5)", Apply::Restart);
+    Grid::new("tirecontact.ring").num_columns(2).show(ui, |ui| {
+        let rows = [
+            ("radius", ring.radius_m, "m"),
+            ("belt width", ring.belt_width_m, "m"),
+            ("mass per length", ring.mass_per_length_kg_m, "kg/m"),
+            ("inflation", ring.inflation_pa * 1e-5, "bar"),
+            ("radial stiffness", ring.radial_stiffness_n_m2, "N/m²"),
+            (
+                "tangential stiffness",
+                ring.tangential_stiffness_n_m2,
+                "N/m²",
+            ),
+            ("bending stiffness EI", ring.bending_stiffness_n_m2, "N m²"),
+            ("damping ratio", ring.damping_ratio, ""),
+        ];
+        for (name, v, unit) in rows {
+            ui.label(name);
+            ui.label(format!("{} {unit}", crate::gui::fields::format_number(v)));
+            ui.end_row();
+        }
+    });
+    ui.label(
+        egui::RichText::new("ring parameters are edited in the preset file; the modes below are identified from the ring by LSCE at the points' positions")
+            .weak(),
+    );
+    if ui
+        .button("Edit as a modal model")
+        .on_hover_text(
+            "replace the ring by its identified modes, which can then be tuned one by one",
+        )
+        .clicked()
+    {
+        let mut s = scene.clone();
+        s.tyre = Tyre::Modal {
+            modes: modes.to_vec(),
+        };
+        cmds.push(Command::EditScene(Box::new(s)));
+    }
+    egui::CollapsingHeader::new(format!("{} identified modes", modes.len()))
+        .id_salt("tirecontact.ring_modes")
+        .show(ui, |ui| {
+            Grid::new("tirecontact.ring_modes_grid")
+                .striped(true)
+                .show(ui, |ui| {
+                    ui.label("#");
+                    ui.label("frequency (Hz)");
+                    ui.label("damping ratio");
+                    ui.end_row();
+                    for (k, m) in modes.iter().enumerate() {
+                        ui.label(k.to_string());
+                        ui.label(format!("{:.2}", m.freq_hz));
+                        ui.label(format!("{:.4}", m.damping_ratio));
+                        ui.end_row();
+                    }
+                });
+        });
 }

@@ -92,7 +92,7 @@ pub fn add_point(scene: &Scene) -> Scene {
         x_m: last.x_m + spacing,
         h_m: last.h_m,
     });
-    for m in modes_mut(&mut s) {
+    for m in modes_mut(&mut s).into_iter().flatten() {
         if let Some(&a) = m.shape.last() {
             m.shape.push(a);
         }
@@ -121,7 +121,7 @@ pub fn remove_point(scene: &Scene, i: usize) -> Scene {
         return s;
     }
     s.points.remove(i);
-    for m in modes_mut(&mut s) {
+    for m in modes_mut(&mut s).into_iter().flatten() {
         if i < m.shape.len() {
             m.shape.remove(i);
         }

@@ -5,6 +5,7 @@
 use super::point_color;
 use crate::Scene;
 use crate::modal::ModalModel;
+use crate::scene::Mode;
 use egui::{Color32, Ui};
 use egui_plot::{Corner, GridInput, GridMark, Legend, Line, LineStyle, Plot, VLine};
 
@@ -82,9 +83,9 @@ fn pow10_label(v: f64) -> String {
     super::super::fields::format_number(x)
 }
 
-pub fn show(ui: &mut Ui, scene: &Scene, opts: &mut GreenOptions) {
+pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions) {
     let p = scene.num_points();
-    let model = ModalModel::from_modes(scene.modes(), p);
+    let model = ModalModel::from_modes(modes, p);
     opts.receiver = opts.receiver.min(p.saturating_sub(1));
     ui.horizontal_wrapped(|ui| {
         ui.label("receiving point i");
@@ -99,23 +100,18 @@ pub fn show(ui: &mut Ui, scene: &Scene, opts: &mut GreenOptions) {
             .accessible_name("receiving point");
         ui.checkbox(&mut opts.all_sources, "all loaded points j (else j = i)");
         ui.separator();
-        let freqs: Vec<String> = scene
-            .modes()
+        let freqs: Vec<String> = modes
             .iter()
             .take(6)
             .map(|m| format!("{:.1} Hz ξ={}", m.freq_hz, m.damping_ratio))
             .collect();
-        let more = scene.modes().len().saturating_sub(6);
+        let more = modes.len().saturating_sub(6);
         let more = if more > 0 {
             format!(" … and {more} more")
         } else {
             String::new()
         };
-        ui.label(format!(
-            "{} modes: {}{more}",
-            scene.modes().len(),
-            freqs.join(", ")
-        ));
+        ui.label(format!("{} modes: {}{more}", modes.len(), freqs.join(", ")));
     });
     let i = opts.receiver;
     let sources: Vec<usize> = if opts.all_sources {
@@ -175,7 +171,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, opts: &mut GreenOptions) {
                         .width(1.5),
                 );
             }
-            for m in scene.modes() {
+            for m in modes {
                 if m.freq_hz > 0.0 {
                     pui.vline(
                         VLine::new("mode frequencies", m.freq_hz.log10())
@@ -194,7 +190,7 @@ mod tests {
     #[test]
     fn windows_cover_the_modes() {
         let scene = Scene::parse(crate::DEFAULT_PRESET, "d").unwrap();
-        let model = ModalModel::from_modes(scene.modes(), 1);
+        let model = ModalModel::from_modes(&scene.modes().unwrap(), 1);
         let (a, b) = freq_range(&model);
         assert!(a < 100.0 && b > 100.0);
         // 100 Hz, 5 %: decay 1/(0.05*628) = 32 ms; 4 decays = 0.127 s; 15 periods = 0.15 s

@@ -144,7 +144,7 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
     let road: Vec<[f64; 2]> = (0..=n)
         .filter_map(|k| {
             let x = x0 + (x1 - x0) * k as f64 / n as f64;
-            let z = sim.road_profile().sample(x + scene.speed_mps * t).ok()?.0;
+            let z = sim.road_profile().sample(x + sim.rolled_m()).ok()?.0;
             Some([x, e * (w * z + (1.0 - w) * h_at(x))])
         })
         .collect();

@@ -1,0 +1,94 @@
+//! criterion benchmarks (`cargo bench`): one step per (mode x source), the
+//! bare state-update loop of the same size (the bound), the contact solve,
+//! the shipped presets end to end. Ratios, not absolute times, are what the
+//! README reports.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use std::hint::black_box;
+use tirecontact::bench::scenes::many_points;
+use tirecontact::contact::DenseSolver;
+use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
+use tirecontact::{Scene, Simulation};
+
+fn steps(c: &mut Criterion) {
+    for (p, m) in [(5, 20), (50, 200)] {
+        let mut scene = many_points(p, m);
+        scene.duration_s = 10.0;
+        // the full step, warmed up past the ramp (contact, events)
+        let mut sim = Simulation::new(&scene).unwrap();
+        for _ in 0..3000 {
+            sim.step().unwrap();
+        }
+        c.bench_function(&format!("step/full/{p}x{m}"), |b| {
+            b.iter(|| black_box(sim.step().unwrap()))
+        });
+        // the bound: predict + project of the same states, nothing else
+        let basis = ModalBasis::new(&scene.modes().unwrap(), p);
+        let table = StepTable::new(&basis, scene.dt_s);
+        let (mut s0, mut s1) = (ModalState::zeros(&basis), ModalState::zeros(&basis));
+        s0.x.iter_mut()
+            .enumerate()
+            .for_each(|(k, x)| *x = 1e-6 * (k as f64).sin());
+        let (mut u, mut v) = (vec![0.0; p], vec![0.0; p]);
+        c.bench_function(&format!("step/bare_loop/{p}x{m}"), |b| {
+            b.iter(|| {
+                s0.predict_into(&table, &mut s1);
+                s1.project(&basis, &mut u, &mut v);
+                std::mem::swap(&mut s0, &mut s1);
+                black_box(u[0])
+            })
+        });
+    }
+}
+
+fn contact_solve(c: &mut Criterion) {
+    // the 2|S| Gauss-point system of 5 active points, badly scaled rows as at dt = 1e-5
+    let n = 10;
+    let a: Vec<f64> = (0..n * n)
+        .map(|k| {
+            let (r, col) = (k / n, k % n);
+            let scale = if r < 5 { 1e-5 } else { 1.0 };
+            scale
+                * (if r == col {
+                    4.0
+                } else {
+                    1.0 / (1.0 + (r as f64 - col as f64).abs())
+                })
+        })
+        .collect();
+    let mut solver = DenseSolver::new(n);
+    let mut rhs = vec![1.0; n];
+    c.bench_function("contact/factor_and_solve/10x10", |b| {
+        b.iter(|| {
+            solver.factor(n, |r, col| a[r * n + col]).unwrap();
+            rhs.fill(1.0);
+            solver.solve(&mut rhs);
+            black_box(rhs[0])
+        })
+    });
+}
+
+fn presets(c: &mut Criterion) {
+    let mut g = c.benchmark_group("preset");
+    g.sample_size(10);
+    for name in ["single_mode", "three_points", "paper"] {
+        let path = format!("presets/{name}.ron");
+        let Ok(mut scene) = Scene::load(std::path::Path::new(&path)) else {
+            continue;
+        };
+        scene.duration_s = 0.1;
+        g.bench_function(format!("{name}/0.1s"), |b| {
+            b.iter(|| {
+                let mut sim = Simulation::new(&scene).unwrap();
+                while !sim.finished() {
+                    sim.step().unwrap();
+                }
+                black_box(sim.time_s())
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, steps, contact_solve, presets);
+criterion_main!(benches);

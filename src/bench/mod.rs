@@ -1,0 +1,6 @@
+//! Measurements: the work-precision study behind `tirecontact bench`, and the
+//! baselines it compares against (SPEC §3 α/β form, direct convolution).
+
+pub mod baselines;
+pub mod scenes;
+pub mod work_precision;

@@ -1,0 +1,450 @@
+//! Work-precision study: run time against error for each method, over a
+//! range of time steps, against a converged reference (a Located run at a
+//! quarter of the finest step).
+//!
+//! Errors: displacement, RMS relative over a common sampling grid; force,
+//! RMS relative of its means over windows (impacts are impulses, so only
+//! window means compare).
+
+use crate::bench::baselines::{BaselineRun, Kernel, run_baseline};
+use crate::output::figures::{Figure, Panel, Series, Style};
+use crate::scene::{ContactScheme, Scene};
+use crate::simulation::{Simulation, SolverOptions};
+use std::time::Instant;
+
+/// The methods compared.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Stable convolution, events located inside the step (the default).
+    Located,
+    /// Stable convolution, the paper's step-end contact rule.
+    Paper,
+    /// The paper's α/β convolution with its contact rule.
+    AlphaBeta,
+    /// Direct O(N²) convolution with the paper's contact rule.
+    Direct,
+}
+
+impl Method {
+    pub const ALL: [Method; 4] = [
+        Method::Located,
+        Method::Paper,
+        Method::AlphaBeta,
+        Method::Direct,
+    ];
+    pub fn label(self) -> &'static str {
+        match self {
+            Method::Located => "stable + located events",
+            Method::Paper => "stable + paper contact",
+            Method::AlphaBeta => "paper alpha/beta",
+            Method::Direct => "direct convolution O(N^2)",
+        }
+    }
+    pub fn key(self) -> &'static str {
+        match self {
+            Method::Located => "located",
+            Method::Paper => "paper",
+            Method::AlphaBeta => "alpha_beta",
+            Method::Direct => "direct",
+        }
+    }
+}
+
+/// What to run.
+#[derive(Debug, Clone)]
+pub struct Config {
+    /// Time steps, coarse to fine (s); each divides the first.
+    pub dts: Vec<f64>,
+    /// Run length of the stable methods and α/β (s).
+    pub duration_s: f64,
+    /// Run length of the direct method (s): it is O(N²).
+    pub direct_duration_s: f64,
+    /// Largest number of steps of a direct run.
+    pub direct_max_steps: usize,
+    /// Force window (s).
+    pub force_window_s: f64,
+}
+
+impl Config {
+    /// The default study: dt from 4e-5 s to 1.25e-6 s.
+    pub fn standard() -> Self {
+        Config {
+            dts: (0..6).map(|k| 4e-5 / 2f64.powi(k)).collect(),
+            duration_s: 0.2,
+            direct_duration_s: 0.1,
+            direct_max_steps: 10_000,
+            force_window_s: 1e-3,
+        }
+    }
+    /// A small study for tests.
+    pub fn quick() -> Self {
+        Config {
+            dts: vec![4e-5, 2e-5, 1e-5],
+            duration_s: 0.08,
+            direct_duration_s: 0.08,
+            direct_max_steps: 2_000,
+            force_window_s: 1e-3,
+        }
+    }
+}
+
+/// One run of the study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    pub scene: String,
+    pub method: Method,
+    pub dt_s: f64,
+    pub steps: usize,
+    pub wall_s: f64,
+    /// RMS relative displacement error.
+    pub disp_err: f64,
+    /// RMS relative error of the window-mean forces.
+    pub force_err: f64,
+    /// Observed order of the displacement error against the previous dt.
+    pub order: Option<f64>,
+    pub note: String,
+}
+
+/// Sampled histories: displacements on the grid of the coarsest step, window-mean forces.
+struct Sampled {
+    u: Vec<f64>,
+    q: Vec<f64>,
+}
+
+fn sample(
+    t_s: &[f64],
+    u: &[Vec<f64>],
+    q: &[Vec<f64>],
+    grid_s: f64,
+    window_s: f64,
+    dt: f64,
+    t_end: f64,
+) -> Sampled {
+    let every = (grid_s / dt).round() as usize;
+    let nwin = (t_end / window_s).floor() as usize;
+    let p = u.first().map_or(0, Vec::len);
+    let mut qs = vec![0.0; nwin * p];
+    let per = (window_s / dt).round();
+    let mut us = Vec::new();
+    for (k, (t, (uk, qk))) in t_s.iter().zip(u.iter().zip(q)).enumerate() {
+        if (k + 1) % every == 0 {
+            us.extend_from_slice(uk);
+        }
+        let w = ((t - 0.5 * dt) / window_s).floor() as usize;
+        if w < nwin {
+            for i in 0..p {
+                qs[w * p + i] += qk[i] / per;
+            }
+        }
+    }
+    Sampled { u: us, q: qs }
+}
+
+fn rms_rel(a: &[f64], reference: &[f64]) -> f64 {
+    let n = a.len().min(reference.len());
+    let num: f64 = (0..n).map(|k| (a[k] - reference[k]).powi(2)).sum();
+    let den: f64 = (0..n).map(|k| reference[k].powi(2)).sum();
+    if a[..n].iter().any(|x| !x.is_finite()) {
+        return f64::INFINITY;
+    }
+    (num / den.max(f64::MIN_POSITIVE)).sqrt()
+}
+
+/// Runs the stable solver and records every step.
+pub fn run_stable(
+    scene: &Scene,
+    scheme: ContactScheme,
+    dt: f64,
+    duration: f64,
+    options: SolverOptions,
+) -> Result<(BaselineRun, f64), String> {
+    let mut s = scene.clone();
+    s.dt_s = dt;
+    s.duration_s = duration;
+    s.contact_scheme = scheme;
+    let n = s.num_steps() as usize;
+    let mut sim = Simulation::with_options(&s, options).map_err(|e| e.to_string())?;
+    let mut run = BaselineRun {
+        t_s: Vec::with_capacity(n),
+        u_m: Vec::with_capacity(n),
+        q_n: Vec::with_capacity(n),
+        overflow_t_s: None,
+    };
+    let start = Instant::now();
+    for _ in 0..n {
+        sim.step().map_err(|e| e.to_string())?;
+        run.t_s.push(sim.time_s());
+        run.u_m.push(sim.displacement_m().to_vec());
+        run.q_n.push(sim.force_n().to_vec());
+    }
+    Ok((run, start.elapsed().as_secs_f64()))
+}
+
+/// Times a bare run (no recording) of the stable solver, in seconds.
+pub fn time_stable(scene: &Scene, options: SolverOptions) -> Result<(f64, Simulation), String> {
+    let mut sim = Simulation::with_options(scene, options).map_err(|e| e.to_string())?;
+    let start = Instant::now();
+    for _ in 0..scene.num_steps() {
+        sim.step().map_err(|e| e.to_string())?;
+    }
+    Ok((start.elapsed().as_secs_f64(), sim))
+}
+
+/// The study of one scene. `progress` is told each run as it starts.
+pub fn study(
+    scene: &Scene,
+    cfg: &Config,
+    mut progress: impl FnMut(&str),
+) -> Result<Vec<Row>, String> {
+    let grid = cfg.dts[0];
+    let dt_ref = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min) / 4.0;
+    progress(&format!(
+        "{}: reference, located at dt = {dt_ref:e} s",
+        scene.name
+    ));
+    let (reference, _) = run_stable(
+        scene,
+        ContactScheme::Located,
+        dt_ref,
+        cfg.duration_s,
+        SolverOptions::default(),
+    )?;
+    let ref_s = sample(
+        &reference.t_s,
+        &reference.u_m,
+        &reference.q_n,
+        grid,
+        cfg.force_window_s,
+        dt_ref,
+        cfg.duration_s,
+    );
+    let mut rows = Vec::new();
+    for method in Method::ALL {
+        let mut prev: Option<(f64, f64)> = None;
+        for &dt in &cfg.dts {
+            let duration = if method == Method::Direct {
+                cfg.direct_duration_s
+            } else {
+                cfg.duration_s
+            };
+            let steps = (duration / dt).round() as usize;
+            if method == Method::Direct && steps > cfg.direct_max_steps {
+                continue;
+            }
+            progress(&format!(
+                "{}: {} at dt = {dt:e} s",
+                scene.name,
+                method.label()
+            ));
+            let (run, wall) = match method {
+                Method::Located | Method::Paper => {
+                    let scheme = if method == Method::Located {
+                        ContactScheme::Located
+                    } else {
+                        ContactScheme::Paper
+                    };
+                    run_stable(scene, scheme, dt, duration, SolverOptions::default())?
+                }
+                Method::AlphaBeta | Method::Direct => {
+                    let kernel = if method == Method::AlphaBeta {
+                        Kernel::AlphaBeta
+                    } else {
+                        Kernel::Direct
+                    };
+                    let mut s = scene.clone();
+                    s.dt_s = dt;
+                    let start = Instant::now();
+                    let run = match run_baseline(&s, kernel, steps) {
+                        Ok(r) => r,
+                        Err(e) => {
+                            progress(&format!("  skipped: {e}"));
+                            break;
+                        }
+                    };
+                    (run, start.elapsed().as_secs_f64())
+                }
+            };
+            let smp = sample(
+                &run.t_s,
+                &run.u_m,
+                &run.q_n,
+                grid,
+                cfg.force_window_s,
+                dt,
+                duration,
+            );
+            let disp_err = rms_rel(&smp.u, &ref_s.u);
+            let force_err = rms_rel(&smp.q, &ref_s.q);
+            let order = prev.and_then(|(pdt, pe)| {
+                (disp_err.is_finite() && pe.is_finite() && disp_err > 0.0)
+                    .then(|| (pe / disp_err).ln() / (pdt / dt).ln())
+            });
+            prev = Some((dt, disp_err));
+            let note = match run.overflow_t_s {
+                Some(t) => format!("overflow (non-finite) from t = {t:.4} s"),
+                None if method == Method::Direct => format!("{duration} s run (O(N^2))"),
+                None => String::new(),
+            };
+            rows.push(Row {
+                scene: scene.name.clone(),
+                method,
+                dt_s: dt,
+                steps,
+                wall_s: wall,
+                disp_err,
+                force_err,
+                order,
+                note,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// Interpolated run time (s) of `method` at displacement error `target`
+/// (log-log between the bracketing runs), if its runs bracket it.
+pub fn time_at_error(rows: &[Row], method: Method, target: f64) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r.method == method && r.disp_err.is_finite() && r.disp_err > 0.0)
+        .map(|r| (r.disp_err, r.wall_s.max(1e-9)))
+        .collect();
+    pts.windows(2).find_map(|w| {
+        let ((e0, t0), (e1, t1)) = (w[0], w[1]);
+        let (lo, hi) = (e0.min(e1), e0.max(e1));
+        (lo <= target && target <= hi && e0 != e1).then(|| {
+            let f = (target.ln() - e0.ln()) / (e1.ln() - e0.ln());
+            (t0.ln() + f * (t1.ln() - t0.ln())).exp()
+        })
+    })
+}
+
+/// CSV of the rows.
+pub fn to_csv(rows: &[Row]) -> Result<String, csv::Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record([
+        "scene",
+        "method",
+        "dt_s",
+        "steps",
+        "wall_s",
+        "disp_rms_rel_err",
+        "force_window_rms_rel_err",
+        "disp_order",
+        "note",
+    ])?;
+    for r in rows {
+        w.write_record([
+            r.scene.clone(),
+            r.method.key().to_string(),
+            format!("{:e}", r.dt_s),
+            r.steps.to_string(),
+            format!("{:.6e}", r.wall_s),
+            format!("{:.6e}", r.disp_err),
+            format!("{:.6e}", r.force_err),
+            r.order.map_or(String::new(), |o| format!("{o:.3}")),
+            r.note.clone(),
+        ])?;
+    }
+    let bytes = w.into_inner().map_err(|e| e.into_error())?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// Markdown table of the rows, plus speed-ups at equal error.
+pub fn to_markdown(rows: &[Row]) -> String {
+    let mut s = String::from(
+        "| scene | method | dt (s) | steps | run time (s) | displacement error | force error (window means) | order | note |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        s.push_str(&format!(
+            "| {} | {} | {:e} | {} | {:.4} | {:.2e} | {:.2e} | {} | {} |\n",
+            r.scene,
+            r.method.label(),
+            r.dt_s,
+            r.steps,
+            r.wall_s,
+            r.disp_err,
+            r.force_err,
+            r.order.map_or("".into(), |o| format!("{o:.2}")),
+            r.note
+        ));
+    }
+    let mut scenes: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
+    scenes.dedup();
+    s.push_str("\nSpeed-up of the default method (stable + located events) at equal displacement error: the error of each other method's finest run, and the time the located method needs for it (interpolated log-log; `>=` when its coarsest run is already more accurate).\n\n| scene | error | method | its run time (s) | located run time (s) | speed-up |\n|---|---|---|---|---|---|\n");
+    for sc in scenes {
+        let sr: Vec<Row> = rows.iter().filter(|r| r.scene == sc).cloned().collect();
+        let located: Vec<&Row> = sr.iter().filter(|r| r.method == Method::Located).collect();
+        for m in [Method::Paper, Method::AlphaBeta, Method::Direct] {
+            let Some(finest) = sr.iter().rfind(|r| r.method == m && r.disp_err.is_finite()) else {
+                continue;
+            };
+            let target = finest.disp_err;
+            let (tl, bound) = match time_at_error(&sr, Method::Located, target) {
+                Some(t) => (t, ""),
+                None => match located
+                    .iter()
+                    .filter(|r| r.disp_err <= target)
+                    .map(|r| r.wall_s)
+                    .reduce(f64::min)
+                {
+                    Some(t) => (t, ">= "),
+                    None => continue,
+                },
+            };
+            s.push_str(&format!(
+                "| {sc} | {target:.2e} | {} | {:.4} | {tl:.5} | {bound}{:.0}x |\n",
+                m.label(),
+                finest.wall_s,
+                finest.wall_s / tl.max(1e-9)
+            ));
+        }
+    }
+    s
+}
+
+/// The diagram: error against run time, log-log, one line per method.
+pub fn figure(rows: &[Row], scene: &str) -> Figure {
+    let mk = |force: bool| Panel {
+        title: if force {
+            "Contact force (means over 1 ms windows)"
+        } else {
+            "Displacement"
+        }
+        .into(),
+        x_label: "run time (s)".into(),
+        y_label: if force {
+            "force RMS relative error (-)"
+        } else {
+            "displacement RMS relative error (-)"
+        }
+        .into(),
+        series: Method::ALL
+            .iter()
+            .enumerate()
+            .map(|(k, &m)| Series {
+                name: m.label().into(),
+                points: rows
+                    .iter()
+                    .filter(|r| r.method == m && r.scene == scene)
+                    .map(|r| {
+                        (
+                            r.wall_s.max(1e-6),
+                            if force { r.force_err } else { r.disp_err },
+                        )
+                    })
+                    .filter(|p| p.1.is_finite() && p.1 > 0.0)
+                    .collect(),
+                style: Style::LineMarkers(4),
+                color: Some(k),
+            })
+            .collect(),
+        log_x: true,
+        log_y: true,
+    };
+    Figure {
+        title: format!("Work-precision: {scene}"),
+        subtitle: "each line runs dt from coarse (left) to fine (right); reference: located events at a quarter of the finest dt".into(),
+        panels: vec![mk(false), mk(true)],
+    }
+}

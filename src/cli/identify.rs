@@ -1,0 +1,313 @@
+//! `tirecontact identify PRESET [-o modal.ron] [--diagram stab.png]
+//! [--responses irf.csv] [--figures DIR]`: identifies the modal model of a
+//! ring-tyre scene by LSCE (SPEC §5-6) and writes what was asked.
+
+use super::{CliResult, load_scene};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use tirecontact::identify::{RingIdentification, identify_ring};
+use tirecontact::lsce::{Identification, Responses, Stability};
+use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
+use tirecontact::output::write_atomic;
+use tirecontact::scene::Tyre;
+use tirecontact::{Scene, Simulation};
+
+#[derive(Debug, clap::Args)]
+pub struct IdentifyArgs {
+    /// Scene preset (RON) with `tyre: Ring(...)`.
+    pub preset: PathBuf,
+    /// Write the identified modal scene (`tyre: Modal(...)`, loadable by `run`).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Write the stabilisation diagram (PNG).
+    #[arg(long)]
+    pub diagram: Option<PathBuf>,
+    /// Write the sampled impulse responses (CSV: `t_s`, `g{i}_{j}` in m/(N·s)).
+    #[arg(long)]
+    pub responses: Option<PathBuf>,
+    /// Also run the identified scene and write `{stem}_fig1_displacement.png`
+    /// and `{stem}_fig2_force.png` (the paper's Fig. 1 and 2) into this folder.
+    #[arg(long)]
+    pub figures: Option<PathBuf>,
+}
+
+pub fn identify(args: &IdentifyArgs) -> CliResult {
+    let scene = load_scene(Some(&args.preset))?;
+    let Tyre::Ring {
+        ring,
+        identification,
+    } = &scene.tyre
+    else {
+        return Err(format!(
+            "{}: tyre is not `Ring(...)`: nothing to identify",
+            args.preset.display()
+        )
+        .into());
+    };
+    let x: Vec<f64> = scene.points.iter().map(|p| p.x_m).collect();
+    let id = identify_ring(ring, &x, identification)
+        .map_err(|e| format!("{}: {e}", args.preset.display()))?;
+    print!("{}", summary(&scene, &id));
+    let mut modal = scene.clone();
+    modal.tyre = Tyre::Modal {
+        modes: id.identification.modes.clone(),
+    };
+    modal.name = format!("{} (identified)", scene.name);
+    if let Some(out) = &args.output {
+        modal.save(out)?;
+        println!("wrote {}", out.display());
+    }
+    if let Some(path) = &args.diagram {
+        render_png(&diagram_figure(&scene, &id.identification), path, 1200, 900)?;
+        println!("wrote {}", path.display());
+    }
+    if let Some(path) = &args.responses {
+        write_atomic(path, responses_csv(&id.responses).as_bytes())
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    if let Some(dir) = &args.figures {
+        let stem = args
+            .preset
+            .file_stem()
+            .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+        run_figures(&modal, dir, &stem)?;
+    }
+    Ok(())
+}
+
+fn summary(scene: &Scene, id: &RingIdentification) -> String {
+    let ident = &id.identification;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{}: {} mode(s) identified at model order {} in {:.3} s; fit error: time {:.3e} (kept modes), {:.3e} (all poles), |G| (sampled) {:.3e}, |G| vs full ring {:.3e}",
+        scene.name,
+        ident.modes.len(),
+        ident.model_order,
+        id.elapsed_s,
+        ident.report.time_error,
+        ident.report.time_error_all_poles,
+        ident.report.magnitude_error,
+        id.ring_magnitude_error
+    );
+    for (k, m) in ident.modes.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "  mode {k:2}: {:8.2} Hz  xi {:.4}  {}  discarded cos part {:.2e}",
+            m.freq_hz,
+            m.damping_ratio,
+            if ident.stable[k] {
+                "stable  "
+            } else {
+                "unstable"
+            },
+            ident.discarded_ratio[k]
+        );
+    }
+    s
+}
+
+fn diagram_figure(scene: &Scene, id: &Identification) -> Figure {
+    let cats = [
+        (
+            Stability::Stable,
+            "stable: f, xi, MAC",
+            Style::Markers(5),
+            2,
+        ),
+        (
+            Stability::FrequencyDamping,
+            "stable: f, xi",
+            Style::HollowMarkers(5),
+            0,
+        ),
+        (
+            Stability::Frequency,
+            "stable: f",
+            Style::HollowMarkers(4),
+            4,
+        ),
+        (
+            Stability::New,
+            "new / not stable",
+            Style::HollowMarkers(2),
+            8,
+        ),
+    ];
+    let series = cats
+        .iter()
+        .map(|&(cat, name, style, color)| Series {
+            name: name.into(),
+            points: id
+                .diagram
+                .iter()
+                .flat_map(|d| {
+                    d.poles
+                        .iter()
+                        .filter(move |p| p.stability == cat)
+                        .map(move |p| (p.freq_hz, d.order as f64))
+                })
+                .collect(),
+            style,
+            color: Some(color),
+        })
+        .collect();
+    let mut chosen = Series::line(
+        format!("selected order {}", id.model_order),
+        id.modes
+            .iter()
+            .map(|m| (m.freq_hz, id.model_order as f64))
+            .collect(),
+    );
+    chosen.style = Style::HollowMarkers(9);
+    chosen.color = Some(6);
+    let mut panels = vec![Panel {
+        title: "LSCE stabilisation diagram".into(),
+        x_label: "frequency (Hz)".into(),
+        y_label: "model order M (pole pairs)".into(),
+        series: [series, vec![chosen]].concat(),
+        ..Panel::default()
+    }];
+    panels.push(Panel {
+        title: "relative L2 fit error in time vs model order".into(),
+        x_label: "model order M (pole pairs)".into(),
+        y_label: "log10 of the fit error (-)".into(),
+        series: vec![
+            Series::line(
+                "log10 time-domain error, all responses",
+                id.diagram
+                    .iter()
+                    .filter(|d| d.time_error > 0.0)
+                    .map(|d| (d.order as f64, d.time_error.log10()))
+                    .collect(),
+            ),
+            Series::line(
+                "log10 time-domain error of the in-band poles only",
+                id.diagram
+                    .iter()
+                    .filter(|d| d.band_time_error > 0.0)
+                    .map(|d| (d.order as f64, d.band_time_error.log10()))
+                    .collect(),
+            ),
+        ],
+        ..Panel::default()
+    });
+    Figure {
+        title: format!("{}: LSCE identification", scene.name),
+        subtitle: format!(
+            "{} point(s); {} mode(s) at order {}; time error {:.2e}, |G| error {:.2e}",
+            scene.num_points(),
+            id.modes.len(),
+            id.model_order,
+            id.report.time_error,
+            id.report.magnitude_error
+        ),
+        panels,
+    }
+}
+
+/// `t_s`, then `g{i}_{j}` (m/(N·s)) for every `i, j` (mirrored from `i <= j`).
+fn responses_csv(r: &Responses) -> String {
+    let p = r.num_points;
+    let mut col = vec![vec![None; p]; p];
+    for (c, &(i, j)) in r.pairs.iter().enumerate() {
+        col[i][j] = Some(c);
+        if col[j][i].is_none() {
+            col[j][i] = Some(c);
+        }
+    }
+    let cols: Vec<(usize, usize, usize)> = (0..p)
+        .flat_map(|i| (0..p).map(move |j| (i, j)))
+        .filter_map(|(i, j)| col[i][j].map(|c| (i, j, c)))
+        .collect();
+    let mut s = String::from("t_s");
+    for (i, j, _) in &cols {
+        let _ = write!(s, ",g{i}_{j}");
+    }
+    s.push('\n');
+    let len = r.data.first().map_or(0, Vec::len);
+    for k in 0..len {
+        let _ = write!(s, "{:e}", k as f64 * r.dt_s);
+        for (_, _, c) in &cols {
+            let _ = write!(s, ",{:e}", r.data[*c][k]);
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// Runs `scene` and draws displacements (mm) and forces (N) of every point.
+fn run_figures(scene: &Scene, dir: &Path, stem: &str) -> CliResult {
+    let start = Instant::now();
+    let mut sim = Simulation::new(scene)?;
+    let p = scene.num_points();
+    let n = scene.num_steps();
+    // forces are averaged over each plotted interval (impulses kept)
+    let every = (n / 1000).max(1);
+    let mut u: Vec<Vec<(f64, f64)>> = vec![vec![(0.0, 0.0)]; p];
+    let mut q: Vec<Vec<(f64, f64)>> = vec![vec![(0.0, 0.0)]; p];
+    let mut q_sum = vec![0.0; p];
+    for k in 1..=n {
+        sim.step()?;
+        for (s, f) in q_sum.iter_mut().zip(sim.force_n()) {
+            *s += f;
+        }
+        if k % every == 0 {
+            let t = sim.time_s();
+            for i in 0..p {
+                u[i].push((t, 1e3 * sim.displacement_m()[i]));
+                q[i].push((t, q_sum[i] / every as f64));
+            }
+            q_sum.fill(0.0);
+        }
+    }
+    let wall = start.elapsed().as_secs_f64();
+    let name = |i: usize| format!("point {i} (x = {} m)", scene.points[i].x_m);
+    let sub = format!(
+        "{}: V = {} m/s, road {}, dt = {:e} s ({} steps in {:.2} s wall)",
+        scene.name,
+        scene.speed_mps,
+        scene.road.kind(),
+        scene.dt_s,
+        n,
+        wall
+    );
+    let figs = [
+        (
+            "fig1_displacement",
+            "Fig. 1: displacement of the contact points",
+            "displacement u (mm), up",
+            u,
+        ),
+        (
+            "fig2_force",
+            "Fig. 2: contact force on the contact points",
+            "contact force q (N), mean over each plotted interval",
+            q,
+        ),
+    ];
+    for (file, title, ylabel, data) in figs {
+        let fig = Figure {
+            title: title.into(),
+            subtitle: sub.clone(),
+            panels: vec![Panel {
+                title: String::new(),
+                x_label: "time (s)".into(),
+                y_label: ylabel.into(),
+                series: data
+                    .into_iter()
+                    .enumerate()
+                    .map(|(i, pts)| Series::line(name(i), pts))
+                    .collect(),
+                ..Panel::default()
+            }],
+        };
+        let path = dir.join(format!("{stem}_{file}.png"));
+        render_png(&fig, &path, 1200, 700)?;
+        println!("wrote {}", path.display());
+    }
+    println!("run: {n} steps of {:e} s in {wall:.2} s wall", scene.dt_s);
+    Ok(())
+}

@@ -1,0 +1,612 @@
+//! LSCE identification (least-squares complex exponential, SPEC §6).
+//!
+//! From impulse responses `g_r(k dt)` sampled at `dt`, the linear prediction
+//! `g_r(k + p) + Σ_{l<p} a_l g_r(k + l) = 0` of order `p = 2M` (`M` pole
+//! pairs) is stacked over all responses (each scaled to unit peak) and solved
+//! by least squares. One QR factor of the Hankel matrix with `2 M_max + 1`
+//! columns serves every order (the first `p + 1` columns of `R` are the order
+//! `p` system). The roots `z` of `z^p + Σ a_l z^l` (eigenvalues of the
+//! companion matrix, nalgebra's Schur form) give the poles `s = ln(z) / dt`;
+//! the physical ones are conjugate pairs with `Re(s) < 0` (`ξ > 0`, SPEC §6's
+//! sign check) inside the band. Residues are fitted by least squares on the
+//! responses with the real modal form of SPEC §2, `g = Σ A_k h_k`; a second fit
+//! with the companion `e^{-ξωt} cos(ω_d t)` terms measures the part of the
+//! complex residues that the real form discards (reported per mode).
+//!
+//! The stabilisation diagram repeats this for `M = 1..=M_max`; a pole is
+//! stable when the previous order has a pole within the frequency, damping and
+//! residue-MAC tolerances. Residues are fitted with every physical pole up to
+//! the Nyquist frequency (so out-of-band modes keep their share of the
+//! responses); the model keeps the in-band ones whose share of the responses
+//! is at least `min_contribution`. The model order is the given
+//! one or, automatically, the smallest whose in-band model's time-domain fit
+//! error is within `order_tolerance` of the best over all orders.
+
+use crate::modal::unit_impulse;
+use crate::scene::Mode;
+use nalgebra::{Complex, DMatrix};
+use std::f64::consts::TAU;
+
+mod options;
+pub use options::IdentifyOptions;
+
+/// Sampled impulse responses `g_ij(k dt)` (m/(N·s)) of `num_points` points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Responses {
+    /// Sample interval (s).
+    pub dt_s: f64,
+    /// Number of points `P`.
+    pub num_points: usize,
+    /// `(i, j)` of each response: receiving point, loaded point.
+    pub pairs: Vec<(usize, usize)>,
+    /// One sample vector per pair, all of the same length, `k = 0..len`.
+    pub data: Vec<Vec<f64>>,
+}
+
+/// Errors of the identification.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LsceError {
+    #[error("LSCE: {0}")]
+    Input(String),
+    #[error(
+        "LSCE: no physical pole pair with a share of the responses in the band {lo_hz}..{hi_hz} Hz at model order {order} (raise the order or widen the band)"
+    )]
+    NoModes {
+        lo_hz: f64,
+        hi_hz: f64,
+        order: usize,
+    },
+    #[error("LSCE: {0} did not converge")]
+    Numerical(&'static str),
+}
+
+/// How a pole of the stabilisation diagram compares with the previous order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stability {
+    /// No pole of the previous order within the frequency tolerance.
+    New,
+    /// Frequency stable only.
+    Frequency,
+    /// Frequency and damping stable.
+    FrequencyDamping,
+    /// Frequency, damping and residue MAC stable.
+    Stable,
+}
+
+/// One pole of the stabilisation diagram.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DiagramPole {
+    pub freq_hz: f64,
+    pub damping_ratio: f64,
+    pub stability: Stability,
+}
+
+/// One model order of the stabilisation diagram.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DiagramOrder {
+    /// Model order `M` (pole pairs).
+    pub order: usize,
+    /// Physical poles in the band.
+    pub poles: Vec<DiagramPole>,
+    /// Relative L2 error in time over all responses, with every physical
+    /// pole of this order (-).
+    pub time_error: f64,
+    /// The same with the in-band poles only (what the model keeps) (-).
+    pub band_time_error: f64,
+}
+
+/// Fit of one response.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ResponseFit {
+    pub pair: (usize, usize),
+    /// `||g_fit - g|| / ||g||` over the samples (-).
+    pub time_error: f64,
+    /// `|| |G_fit| - |G| || / || |G| ||` over the band, `G` the DTFT of the
+    /// samples (-).
+    pub magnitude_error: f64,
+}
+
+/// Fit report (SPEC §6).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitReport {
+    /// Relative L2 error in time over all responses of the kept (in-band)
+    /// modes (-). Out-of-band content of the responses counts as error.
+    pub time_error: f64,
+    /// The same with every physical pole of the chosen order, out-of-band
+    /// ones included (the error of the LSCE fit itself) (-).
+    pub time_error_all_poles: f64,
+    /// Relative L2 error of `|G(ω)|` over the band, all responses (-).
+    pub magnitude_error: f64,
+    pub per_response: Vec<ResponseFit>,
+}
+
+/// Result of an identification.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Identification {
+    /// Identified modes, by frequency, with symmetric P×P residues (1/kg).
+    pub modes: Vec<Mode>,
+    /// The model order used `M`.
+    pub model_order: usize,
+    /// Per mode: stable (frequency, damping and MAC) against order `M - 1`.
+    pub stable: Vec<bool>,
+    /// Per mode: norm of the discarded `cos` part of the complex residue over
+    /// the norm of the kept `sin` part (`b_k` vs `A_k / ω_d`) (-).
+    pub discarded_ratio: Vec<f64>,
+    pub diagram: Vec<DiagramOrder>,
+    pub report: FitReport,
+}
+
+/// A relative fit error below which every order counts as exact (automatic
+/// order selection).
+pub const EXACT_FIT: f64 = 1e-6;
+
+/// A continuous-time pole: `ω` (rad/s) and `ξ`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Pole {
+    omega: f64,
+    xi: f64,
+}
+
+impl Pole {
+    fn freq_hz(&self) -> f64 {
+        self.omega / TAU
+    }
+    fn in_band(&self, opts: &IdentifyOptions) -> bool {
+        let f = self.freq_hz();
+        f >= opts.band_hz.0 && f <= opts.band_hz.1
+    }
+}
+
+fn check_input(r: &Responses) -> Result<usize, LsceError> {
+    if r.data.is_empty() || r.data.len() != r.pairs.len() {
+        return Err(LsceError::Input(format!(
+            "{} responses for {} pairs: expected at least one, one per pair",
+            r.data.len(),
+            r.pairs.len()
+        )));
+    }
+    if !(r.dt_s.is_finite() && r.dt_s > 0.0) {
+        return Err(LsceError::Input(format!(
+            "dt_s = {}: expected a sample interval > 0 s",
+            r.dt_s
+        )));
+    }
+    let len = r.data[0].len();
+    for (k, (d, &(i, j))) in r.data.iter().zip(&r.pairs).enumerate() {
+        if d.len() != len {
+            return Err(LsceError::Input(format!(
+                "response {k} has {} samples, response 0 has {len}",
+                d.len()
+            )));
+        }
+        if i >= r.num_points || j >= r.num_points {
+            return Err(LsceError::Input(format!(
+                "pair ({i}, {j}) names a point >= P = {}",
+                r.num_points
+            )));
+        }
+        if let Some(x) = d.iter().find(|x| !x.is_finite()) {
+            return Err(LsceError::Input(format!(
+                "response {k} holds a non-finite sample {x}"
+            )));
+        }
+    }
+    Ok(len)
+}
+
+fn svd_solve(a: &DMatrix<f64>, b: &DMatrix<f64>, rcond: f64) -> Result<DMatrix<f64>, LsceError> {
+    let svd = a
+        .clone()
+        .try_svd(true, true, f64::EPSILON, 100_000)
+        .ok_or(LsceError::Numerical("SVD"))?;
+    let smax = svd.singular_values.max();
+    svd.solve(b, smax * rcond)
+        .map_err(|_| LsceError::Numerical("SVD solve"))
+}
+
+/// The triangular factor `R` of the stacked Hankel matrix with `cols` columns
+/// (rows `[g(k), ..., g(k + cols - 1)]`, responses scaled to unit peak).
+fn hankel_r(r: &Responses, len: usize, cols: usize) -> Result<DMatrix<f64>, LsceError> {
+    let rows = len - cols + 1;
+    let mut acc = DMatrix::<f64>::zeros(0, cols);
+    // a few responses at a time keeps the stacked block small
+    for chunk in r.data.chunks(4) {
+        let blocks: Vec<&Vec<f64>> = chunk
+            .iter()
+            .filter(|d| d.iter().any(|x| *x != 0.0))
+            .collect();
+        if blocks.is_empty() {
+            continue;
+        }
+        let n = acc.nrows() + rows * blocks.len();
+        let mut m = DMatrix::<f64>::zeros(n, cols);
+        m.view_mut((0, 0), (acc.nrows(), cols)).copy_from(&acc);
+        let mut row = acc.nrows();
+        for d in blocks {
+            let peak = d.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+            for k in 0..rows {
+                for c in 0..cols {
+                    m[(row, c)] = d[k + c] / peak;
+                }
+                row += 1;
+            }
+        }
+        let r = m.qr().r();
+        acc = r;
+    }
+    if acc.nrows() == 0 {
+        return Err(LsceError::Input("every response is zero".into()));
+    }
+    Ok(acc)
+}
+
+/// Roots of the order-`p` prediction polynomial -> the physical poles
+/// (`0 < ξ < max_damping_ratio`) up to the Nyquist frequency.
+fn poles_of_order(
+    rmat: &DMatrix<f64>,
+    p: usize,
+    dt: f64,
+    opts: &IdentifyOptions,
+) -> Result<Vec<Pole>, LsceError> {
+    let k = p.min(rmat.nrows());
+    let a_mat = rmat.view((0, 0), (k, p)).clone_owned();
+    let b = -rmat.view((0, p), (k, 1)).clone_owned();
+    let a = svd_solve(&a_mat, &b, 1e-13)?;
+    let mut comp = DMatrix::<f64>::zeros(p, p);
+    for i in 0..p - 1 {
+        comp[(i, i + 1)] = 1.0;
+    }
+    for l in 0..p {
+        comp[(p - 1, l)] = -a[(l, 0)];
+    }
+    let schur = nalgebra::linalg::Schur::try_new(comp, f64::EPSILON, 100_000)
+        .ok_or(LsceError::Numerical("companion eigenvalues"))?;
+    let roots = schur.complex_eigenvalues();
+    let mut poles: Vec<Pole> = roots
+        .iter()
+        .filter(|z| z.im > 0.0 && z.norm() > 0.0)
+        .map(|z: &Complex<f64>| {
+            let s = Complex::new(z.norm().ln(), z.im.atan2(z.re)) / dt;
+            let omega = s.norm();
+            Pole {
+                omega,
+                xi: -s.re / omega,
+            }
+        })
+        .filter(|pl| pl.xi > 0.0 && pl.xi < opts.max_damping_ratio)
+        .collect();
+    poles.sort_by(|x, y| x.omega.total_cmp(&y.omega));
+    Ok(poles)
+}
+
+/// Sampled `h_k` (and, with `with_cos`, `e^{-ξωt} cos(ω_d t)`) per pole.
+fn basis(poles: &[Pole], dt: f64, len: usize, with_cos: bool) -> DMatrix<f64> {
+    let k = poles.len();
+    let cols = if with_cos { 2 * k } else { k };
+    DMatrix::from_fn(len, cols, |n, c| {
+        let t = n as f64 * dt;
+        let pl = poles[c % k];
+        if c < k {
+            unit_impulse(pl.omega, pl.xi, t).0
+        } else {
+            let wd = pl.omega * ((1.0 - pl.xi) * (1.0 + pl.xi)).sqrt();
+            (-pl.xi * pl.omega * t).exp() * (wd * t).cos()
+        }
+    })
+}
+
+fn data_matrix(r: &Responses, len: usize) -> DMatrix<f64> {
+    DMatrix::from_fn(len, r.data.len(), |n, c| r.data[c][n])
+}
+
+/// Relative L2 error `||fit - data|| / ||data||` per column and overall.
+fn time_errors(fit: &DMatrix<f64>, data: &DMatrix<f64>) -> (Vec<f64>, f64) {
+    let (mut num, mut den) = (0.0, 0.0);
+    let per = (0..data.ncols())
+        .map(|c| {
+            let e = (fit.column(c) - data.column(c)).norm_squared();
+            let d = data.column(c).norm_squared();
+            num += e;
+            den += d;
+            if d > 0.0 { (e / d).sqrt() } else { e.sqrt() }
+        })
+        .collect();
+    (per, if den > 0.0 { (num / den).sqrt() } else { 0.0 })
+}
+
+fn mac(a: &[f64], b: &[f64]) -> f64 {
+    let ab: f64 = a.iter().zip(b).map(|(x, y)| x * y).sum();
+    let aa: f64 = a.iter().map(|x| x * x).sum();
+    let bb: f64 = b.iter().map(|x| x * x).sum();
+    if aa > 0.0 && bb > 0.0 {
+        ab * ab / (aa * bb)
+    } else {
+        0.0
+    }
+}
+
+struct OrderFit {
+    poles: Vec<Pole>,
+    /// Residue per pole and response (K × responses).
+    residues: DMatrix<f64>,
+    time_error: f64,
+}
+
+/// Residues by least squares through the normal equations (cheap, used for
+/// the diagram) or the SVD of the basis (`accurate`).
+fn fit_order(
+    poles: Vec<Pole>,
+    data: &DMatrix<f64>,
+    dt: f64,
+    accurate: bool,
+) -> Result<OrderFit, LsceError> {
+    let len = data.nrows();
+    if poles.is_empty() {
+        let zero = DMatrix::zeros(len, data.ncols());
+        return Ok(OrderFit {
+            poles,
+            residues: DMatrix::zeros(0, data.ncols()),
+            time_error: time_errors(&zero, data).1,
+        });
+    }
+    let b = basis(&poles, dt, len, false);
+    let residues = if accurate {
+        svd_solve(&b, data, 1e-14)?
+    } else {
+        let gram = b.transpose() * &b;
+        svd_solve(&gram, &(b.transpose() * data), 1e-15)?
+    };
+    let fit = &b * &residues;
+    Ok(OrderFit {
+        poles,
+        time_error: time_errors(&fit, data).1,
+        residues,
+    })
+}
+
+fn stability(
+    pole: &Pole,
+    res: &[f64],
+    prev: Option<&(Vec<Pole>, Vec<Vec<f64>>)>,
+    opts: &IdentifyOptions,
+) -> Stability {
+    let Some((pp, pr)) = prev else {
+        return Stability::New;
+    };
+    let best = pp
+        .iter()
+        .enumerate()
+        .min_by(|a, b| {
+            (a.1.omega - pole.omega)
+                .abs()
+                .total_cmp(&(b.1.omega - pole.omega).abs())
+        })
+        .map(|(k, q)| (k, *q));
+    let Some((k, q)) = best else {
+        return Stability::New;
+    };
+    if (q.omega - pole.omega).abs() > opts.stable_freq_tol * pole.omega {
+        return Stability::New;
+    }
+    if (q.xi - pole.xi).abs() > opts.stable_damping_tol * pole.xi {
+        return Stability::Frequency;
+    }
+    if mac(res, &pr[k]) < opts.stable_mac_min {
+        return Stability::FrequencyDamping;
+    }
+    Stability::Stable
+}
+
+/// DTFT `dt Σ g_k e^{-iΩ k dt}` magnitudes of each column at `freqs_hz`.
+fn dtft_magnitudes(m: &DMatrix<f64>, dt: f64, freqs_hz: &[f64]) -> DMatrix<f64> {
+    DMatrix::from_fn(freqs_hz.len(), m.ncols(), |f, c| {
+        let w = TAU * freqs_hz[f] * dt;
+        let (mut re, mut im) = (0.0, 0.0);
+        for (n, g) in m.column(c).iter().enumerate() {
+            let (s, co) = (w * n as f64).sin_cos();
+            re += g * co;
+            im -= g * s;
+        }
+        dt * re.hypot(im)
+    })
+}
+
+/// Identifies a modal model from sampled impulse responses (SPEC §6).
+pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification, LsceError> {
+    let errors = opts.validate("options");
+    if let Some(e) = errors.first() {
+        return Err(LsceError::Input(e.to_string()));
+    }
+    let len = check_input(r)?;
+    let dt = r.dt_s;
+    let m_max = opts.max_model_order;
+    let cols = 2 * m_max + 1;
+    if len < 2 * cols {
+        return Err(LsceError::Input(format!(
+            "{len} samples per response: expected at least {} for max_model_order = {m_max}",
+            2 * cols
+        )));
+    }
+    let rmat = hankel_r(r, len, cols)?;
+    let data = data_matrix(r, len);
+    let orders: Vec<usize> = match opts.model_order {
+        Some(m) if m > m_max => return Err(LsceError::Input(format!("model order {m} > {m_max}"))),
+        _ => (1..=m_max).collect(),
+    };
+    let mut diagram = Vec::with_capacity(orders.len());
+    let mut prev: Option<(Vec<Pole>, Vec<Vec<f64>>)> = None;
+    for &m in &orders {
+        let poles = poles_of_order(&rmat, 2 * m, dt, opts)?;
+        // residues with every physical pole, so that the out-of-band ones
+        // take their own share of the responses; the diagram shows the band
+        let fit = fit_order(poles, &data, dt, false)?;
+        let (band_poles, res): (Vec<Pole>, Vec<Vec<f64>>) = fit
+            .poles
+            .iter()
+            .zip(fit.residues.row_iter())
+            .filter(|(pl, _)| pl.in_band(opts))
+            .map(|(pl, row)| (*pl, row.iter().copied().collect()))
+            .unzip();
+        let dpoles: Vec<DiagramPole> = band_poles
+            .iter()
+            .zip(&res)
+            .map(|(pl, rv)| DiagramPole {
+                freq_hz: pl.freq_hz(),
+                damping_ratio: pl.xi,
+                stability: stability(pl, rv, prev.as_ref(), opts),
+            })
+            .collect();
+        let in_band: Vec<usize> = (0..fit.poles.len())
+            .filter(|&c| fit.poles[c].in_band(opts))
+            .collect();
+        let band_fit = basis(
+            &in_band.iter().map(|&c| fit.poles[c]).collect::<Vec<_>>(),
+            dt,
+            len,
+            false,
+        ) * fit.residues.select_rows(in_band.iter());
+        diagram.push(DiagramOrder {
+            order: m,
+            poles: dpoles,
+            time_error: fit.time_error,
+            band_time_error: time_errors(&band_fit, &data).1,
+        });
+        prev = Some((band_poles, res));
+    }
+    let chosen = match opts.model_order {
+        Some(m) => m,
+        None => {
+            let best = diagram
+                .iter()
+                .filter(|d| !d.poles.is_empty())
+                .map(|d| d.band_time_error)
+                .fold(f64::INFINITY, f64::min);
+            diagram
+                .iter()
+                .find(|d| {
+                    !d.poles.is_empty()
+                        && d.band_time_error <= (1.0 + opts.order_tolerance) * best + EXACT_FIT
+                })
+                .map_or(m_max, |d| d.order)
+        }
+    };
+    let all = poles_of_order(&rmat, 2 * chosen, dt, opts)?;
+    let no_modes = LsceError::NoModes {
+        lo_hz: opts.band_hz.0,
+        hi_hz: opts.band_hz.1,
+        order: chosen,
+    };
+    if !all.iter().any(|pl| pl.in_band(opts)) {
+        return Err(no_modes);
+    }
+    let n_all = all.len();
+    // complex-residue fit (sin and cos parts): the discarded part
+    let full = svd_solve(&basis(&all, dt, len, true), &data, 1e-14)?;
+    let fit_all = fit_order(all, &data, dt, true)?;
+    // in band, and with a share of the responses (a spurious pole fitted to
+    // round-off has none)
+    let b_all = basis(&fit_all.poles, dt, len, false);
+    let data_norm = data.norm();
+    let kept: Vec<usize> = (0..n_all)
+        .filter(|&c| {
+            let share = b_all.column(c).norm() * fit_all.residues.row(c).norm();
+            fit_all.poles[c].in_band(opts) && share >= opts.min_contribution * data_norm
+        })
+        .collect();
+    if kept.is_empty() {
+        return Err(no_modes);
+    }
+    let discarded_ratio = kept
+        .iter()
+        .map(|&c| {
+            let pl = fit_all.poles[c];
+            let wd = pl.omega * ((1.0 - pl.xi) * (1.0 + pl.xi)).sqrt();
+            let sin_part = full.row(c).norm() / wd;
+            let cos_part = full.row(n_all + c).norm();
+            if sin_part > 0.0 {
+                cos_part / sin_part
+            } else {
+                f64::INFINITY
+            }
+        })
+        .collect();
+    let fit = OrderFit {
+        poles: kept.iter().map(|&c| fit_all.poles[c]).collect(),
+        residues: fit_all.residues.select_rows(kept.iter()),
+        time_error: fit_all.time_error,
+    };
+    let time_error_all_poles = fit.time_error;
+    let k = kept.len();
+    let p = r.num_points;
+    let modes: Vec<Mode> = (0..k)
+        .map(|c| {
+            let mut a = vec![vec![0.0; p]; p];
+            let mut seen = vec![vec![false; p]; p];
+            for (col, &(i, j)) in r.pairs.iter().enumerate() {
+                a[i][j] = fit.residues[(c, col)];
+                seen[i][j] = true;
+            }
+            for (col, &(i, j)) in r.pairs.iter().enumerate() {
+                if !seen[j][i] {
+                    a[j][i] = fit.residues[(c, col)];
+                }
+            }
+            Mode {
+                freq_hz: fit.poles[c].freq_hz(),
+                damping_ratio: fit.poles[c].xi,
+                residue: a,
+                shape: Vec::new(),
+            }
+        })
+        .collect();
+    let fitted = basis(&fit.poles, dt, len, false) * &fit.residues;
+    let (per_time, time_error) = time_errors(&fitted, &data);
+    let nf = 200;
+    let (lo, hi) = opts.band_hz;
+    let freqs: Vec<f64> = (0..nf)
+        .map(|q| lo + (hi - lo) * (q as f64 + 0.5) / nf as f64)
+        .collect();
+    let gd = dtft_magnitudes(&data, dt, &freqs);
+    let gf = dtft_magnitudes(&fitted, dt, &freqs);
+    let (per_mag, magnitude_error) = time_errors(&gf, &gd);
+    let per_response = r
+        .pairs
+        .iter()
+        .enumerate()
+        .map(|(c, &pair)| ResponseFit {
+            pair,
+            time_error: per_time[c],
+            magnitude_error: per_mag[c],
+        })
+        .collect();
+    // a mode is stable when it is stable against order M - 1 or persists,
+    // stable, at order M + 1
+    let at = |m: usize| diagram.iter().find(|d| d.order == m);
+    let stable = fit
+        .poles
+        .iter()
+        .map(|pl| {
+            let f = pl.freq_hz();
+            let near = |d: &DiagramOrder| {
+                d.poles.iter().any(|dp| {
+                    dp.stability == Stability::Stable
+                        && (dp.freq_hz - f).abs() <= opts.stable_freq_tol * f
+                })
+            };
+            at(chosen).is_some_and(near) || at(chosen + 1).is_some_and(near)
+        })
+        .collect();
+    Ok(Identification {
+        modes,
+        model_order: chosen,
+        stable,
+        discarded_ratio,
+        diagram,
+        report: FitReport {
+            time_error,
+            time_error_all_poles,
+            magnitude_error,
+            per_response,
+        },
+    })
+}

@@ -1,0 +1,307 @@
+//! Events inside the step (SPEC §4, "where we go beyond the paper"): the
+//! `Located` scheme's step, inelastic multi-point impacts, and the Hermite
+//! location of landings.
+
+use super::{GA, GB, Simulation, Table};
+use crate::error::SolverError;
+
+impl Simulation {
+    /// A step with events located inside it (SPEC §4, "Events inside the step").
+    pub(super) fn located_step(&mut self, t_start: f64) -> Result<(u32, u32), SolverError> {
+        let dt = self.dt_s;
+        let mut t = t_start;
+        let mut remaining = dt;
+        let (mut events, mut solves) = (0u32, 0u32);
+        // the active set carries over: points in contact at the step start
+        self.active.clear();
+        for i in 0..self.p {
+            if self.contact[i] {
+                self.active.push(i);
+            }
+        }
+        // a point left below the road by the last step lands now
+        let deepest = (0..self.p)
+            .filter(|&i| !self.contact[i])
+            .map(|i| (i, self.u[i] - self.r[i]))
+            .filter(|&(_, g)| g < -self.pen_tol_m)
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((i, _)) = deepest {
+            solves += self.impact(t, i)?;
+            events += 1;
+        }
+        let mut sel = Table::Full;
+        while remaining > 1e-12 * dt {
+            if events > self.max_events {
+                // Zeno-like cascade: finish the step with the paper's rule.
+                if sel == Table::Full {
+                    self.prepare_sub(remaining);
+                }
+                solves += self.paper_substep(t, remaining, Table::Sub)?;
+                break;
+            }
+            self.predict(t, remaining, sel)?;
+            self.solve_active(t + remaining, sel)?;
+            solves += !self.active.is_empty() as u32;
+            // releases: the linear force ends negative (release where it crosses
+            // zero) or is negative on average from the start (release now)
+            let mut release: Option<(usize, f64, f64)> = None; // (k, θ, end value)
+            for (k, &j) in self.active.iter().enumerate() {
+                let (q1, q2) = (self.q1[j], self.q2[j]);
+                let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
+                if qe < 0.0 || qs + qe < 0.0 {
+                    let th = if qs > 0.0 {
+                        remaining * qs / (qs - qe)
+                    } else {
+                        0.0
+                    };
+                    let better = match release {
+                        None => true,
+                        Some((_, t2, e2)) => th < t2 || (th == t2 && qe < e2),
+                    };
+                    if better {
+                        release = Some((k, th, qe));
+                    }
+                }
+            }
+            if let Some((k, th, _)) = release
+                && th <= 0.0
+            {
+                let j = self.active.remove(k);
+                self.released[j] = true;
+                events += 1;
+                continue;
+            }
+            // impacts: first root of the Hermite cubic of the gap of a free point
+            let mut impact: Option<(usize, f64)> = None;
+            for i in 0..self.p {
+                if self.active.contains(&i) {
+                    continue;
+                }
+                let (g0, d0) = (self.u[i] - self.r[i], self.v[i] - self.rd[i]);
+                let (g1, d1) = (self.ue[i] - self.re[i], self.ve[i] - self.rde[i]);
+                // a point released in this step lands again only after it rose
+                // clear of the road (no cycling at the release instant)
+                let rise = self.released[i];
+                if let Some(y) =
+                    first_crossing(g0, d0 * remaining, g1, d1 * remaining, self.pen_tol_m, rise)
+                {
+                    let th = y * remaining;
+                    if impact.is_none_or(|(_, t2)| th < t2) {
+                        impact = Some((i, th));
+                    }
+                }
+            }
+            let th_rel = release.map_or(f64::INFINITY, |r| r.1);
+            let th_imp = impact.map_or(f64::INFINITY, |r| r.1);
+            let th = th_rel.min(th_imp);
+            if !th.is_finite() {
+                self.commit(remaining, sel);
+                break;
+            }
+            // advance to the event
+            if th >= remaining * (1.0 - 1e-12) {
+                self.commit(remaining, sel);
+                t += remaining;
+                remaining = 0.0;
+            } else if th > 0.0 {
+                // The trial forces restricted to [0, θ]: the trajectory whose
+                // event was located, forces that stay >= 0 up to a release;
+                // active points stay on the road to O(θ⁴). A point whose force
+                // dips below zero at the start and would pull on average over
+                // [0, θ] is released now instead.
+                let f = th / remaining;
+                let pulling = self.active.iter().position(|&j| {
+                    let (qs, qe) = (
+                        GA * self.q1[j] - GB * self.q2[j],
+                        -GB * self.q1[j] + GA * self.q2[j],
+                    );
+                    let mean = qs + 0.5 * (qe - qs) * f;
+                    mean < -1e-9 * (qs.abs() + qe.abs())
+                });
+                if let Some(k) = pulling {
+                    let j = self.active.remove(k);
+                    self.released[j] = true;
+                    events += 1;
+                    continue;
+                }
+                let (ya, yb) = (0.5 - 0.5 / 3f64.sqrt(), 0.5 + 0.5 / 3f64.sqrt());
+                for &j in &self.active {
+                    let (q1, q2) = (self.q1[j], self.q2[j]);
+                    let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
+                    self.q1[j] = qs + (qe - qs) * f * ya;
+                    self.q2[j] = qs + (qe - qs) * f * yb;
+                }
+                self.prepare_sub(th);
+                sel = Table::Sub;
+                self.predict(t, th, sel)?;
+                self.end_values_sub();
+                self.commit(th, sel);
+                t += th;
+                remaining -= th;
+            }
+            events += 1;
+            if th_imp <= th_rel {
+                let (i, _) = impact.unwrap_or((0, 0.0));
+                solves += self.impact(t, i)?;
+            } else if let Some((k, _, _)) = release {
+                let j = self.active.remove(k);
+                self.released[j] = true;
+            }
+            if remaining > 1e-12 * dt {
+                self.prepare_sub(remaining);
+                sel = Table::Sub;
+            }
+        }
+        Ok((events, solves))
+    }
+
+    /// Perfectly inelastic impact of point `i` at `t`: impulses on all points on
+    /// the road together so that their velocities equal the road's; a point
+    /// whose impulse would pull is thrown off (monotone, most negative first).
+    fn impact(&mut self, t: f64, i: usize) -> Result<u32, SolverError> {
+        self.road_at(t, Table::Sub)?;
+        self.r.copy_from_slice(&self.re);
+        self.rd.copy_from_slice(&self.rde);
+        if !self.active.contains(&i) {
+            self.active.push(i);
+        }
+        let p = self.p;
+        let mut solves = 0;
+        while !self.active.is_empty() {
+            let n = self.active.len();
+            let act = &self.active;
+            let jump = &self.jump;
+            if let Err(s) = self.solver.factor(n, |r, c| jump[act[r] * p + act[c]]) {
+                return Err(SolverError::SingularContactSystem {
+                    t_s: t,
+                    points: self.active.clone(),
+                    pivot: s.pivot,
+                });
+            }
+            for (k, &j) in act.iter().enumerate() {
+                self.rhs[k] = self.rd[j] - self.v[j];
+            }
+            self.solver.solve(&mut self.rhs[..n]);
+            solves += 1;
+            // Velocity a pulling impulse stands for; below v_tol it is round-off
+            // or the tail of a converged impact cascade, and the point stays on.
+            let v_tol = 1e-9
+                * act
+                    .iter()
+                    .map(|&j| self.rd[j].abs().max(self.v[j].abs()))
+                    .fold(1e-6, f64::max);
+            let worst = (0..n)
+                .map(|k| (k, self.rhs[k] * self.jump[act[k] * p + act[k]]))
+                .filter(|&(_, dv)| dv < -v_tol)
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            match worst {
+                Some((k, _)) => {
+                    // Thrown off with a positive relative velocity: it may land
+                    // again later in this step (a located event). Only the landing
+                    // point itself, if it cannot land, is kept off until the next step.
+                    let j = self.active.remove(k);
+                    if j == i {
+                        self.released[j] = true;
+                    }
+                }
+                None => break,
+            }
+        }
+        let n = self.active.len();
+        self.q1.fill(0.0);
+        for k in 0..n {
+            self.q1[self.active[k]] = self.rhs[k];
+        }
+        self.state.add_impulses(&self.basis, &self.active, &self.q1);
+        for &j in &self.active {
+            self.impulse[j] += self.q1[j];
+        }
+        for a in 0..p {
+            self.v[a] += self
+                .active
+                .iter()
+                .map(|&j| self.jump[a * p + j] * self.q1[j])
+                .sum::<f64>();
+        }
+        Ok(solves)
+    }
+}
+
+/// First `y ∈ (0, 1]` where the cubic Hermite interpolant with values `g0`,
+/// `g1` and scaled slopes `d0`, `d1` (slope × interval) goes below `-tol`;
+/// returns the zero crossing before it. With
+/// `require_rise`, only a crossing after the cubic rose above `+tol` counts.
+pub fn first_crossing(
+    g0: f64,
+    d0: f64,
+    g1: f64,
+    d1: f64,
+    tol: f64,
+    require_rise: bool,
+) -> Option<f64> {
+    // A start slightly below the road (round-off, or the O(θ⁴) gap of a point
+    // just thrown off) counts as on the road: falling, it lands at once;
+    // rising, it lands where it comes back.
+    let g0 = g0.max(0.0);
+    let c = [
+        g0,
+        d0,
+        -3.0 * g0 - 2.0 * d0 + 3.0 * g1 - d1,
+        2.0 * g0 + d0 - 2.0 * g1 + d1,
+    ];
+    let p = |y: f64| ((c[3] * y + c[2]) * y + c[1]) * y + c[0];
+    // cheap rejection: all of the cubic is above -tol (|H10|, |H11| <= 4/27)
+    if g1 >= -tol && (d0 >= 0.0 && d1 <= 0.0 || g0.min(g1) - 0.25 * (d0.abs() + d1.abs()) >= -tol) {
+        return None;
+    }
+    // breakpoints: critical points of the cubic in (0, 1), then 1
+    let (qa, qb, qc) = (3.0 * c[3], 2.0 * c[2], c[1]);
+    let mut bp = [1.0f64; 3];
+    let mut nb = 0;
+    if qa.abs() > 1e-300 {
+        let disc = qb * qb - 4.0 * qa * qc;
+        if disc >= 0.0 {
+            let sq = disc.sqrt();
+            let qq = -0.5 * (qb + qb.signum() * sq);
+            for y in [qq / qa, if qq != 0.0 { qc / qq } else { f64::NAN }] {
+                if y > 0.0 && y < 1.0 {
+                    bp[nb] = y;
+                    nb += 1;
+                }
+            }
+        }
+    } else if qb.abs() > 1e-300 {
+        let y = -qc / qb;
+        if y > 0.0 && y < 1.0 {
+            bp[nb] = y;
+            nb += 1;
+        }
+    }
+    bp[nb] = 1.0;
+    let bps = &mut bp[..nb + 1];
+    bps.sort_by(f64::total_cmp);
+    let mut ya = 0.0;
+    let mut risen = !require_rise || g0 > tol;
+    for &yb in bps.iter() {
+        let pb = p(yb);
+        if risen && pb < -tol {
+            // monotone decreasing on [ya, yb]: bisect for p = 0
+            if p(ya) < 0.0 {
+                return Some(ya);
+            }
+            let (mut lo, mut hi) = (ya, yb);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if p(mid) >= 0.0 {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            return Some(0.5 * (lo + hi));
+        }
+        risen |= pb > tol;
+        ya = yb;
+    }
+    None
+}

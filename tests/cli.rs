@@ -1,0 +1,82 @@
+//! The command line: `run` writes the documented CSV and a one-line summary;
+//! errors exit non-zero with a message naming the problem.
+
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_tirecontact"))
+}
+
+fn tmpdir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("tc-cli-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn run_writes_csv_and_summary() {
+    let d = tmpdir("run");
+    let out = d.join("out.csv");
+    let o = bin()
+        .args([
+            "run",
+            "presets/three_points.ron",
+            "--duration",
+            "0.002",
+            "--every",
+            "10",
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        summary.contains("200 steps") && summary.contains("contact fraction"),
+        "{summary}"
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header[0], "t_s");
+    assert_eq!(&header[1..4], ["u0_m", "u1_m", "u2_m"]);
+    assert_eq!(header[4], "v0_mps");
+    assert_eq!(header[7], "q0_N");
+    assert_eq!(header[10], "gap0_m");
+    assert_eq!(&header[13..16], ["contact0", "contact1", "contact2"]);
+    // initial row + 20 rows of 10 steps
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 21);
+    assert!((rows[20][0] - 0.002).abs() < 1e-12);
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn bad_preset_exits_nonzero_with_location() {
+    let d = tmpdir("bad");
+    let p = d.join("bad.ron");
+    std::fs::write(&p, "Scene(\n  name: \"x\",\n  tyre: Modal(modes: [)\n)").unwrap();
+    for cmd in ["check", "run"] {
+        let o = bin().arg(cmd).arg(&p).output().unwrap();
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("bad.ron:3:"), "{cmd}: {err}");
+    }
+    let o = bin().args(["check", "no/such/file.ron"]).output().unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no/such/file.ron"));
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn check_accepts_shipped_presets() {
+    let o = bin()
+        .args(["check", "presets/single_mode.ron"])
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stdout).contains("ok"));
+}

@@ -1,0 +1,103 @@
+//! Property tests: arbitrary bytes and mutated presets never panic the
+//! parser or validator; arbitrary structured scenes either validate and run
+//! a short bounded run with finite, non-negative outputs, or fail with field
+//! errors. (A longer fuzzing campaign runs the same properties with more cases:
+//! `PROPTEST_CASES=100000 cargo test --release --test fuzz_scenes`.)
+
+use proptest::prelude::*;
+use tirecontact::road::Road;
+use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
+use tirecontact::{SceneError, Simulation};
+
+fn presets() -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir("presets")
+        .unwrap()
+        .map(|e| std::fs::read_to_string(e.unwrap().path()).unwrap())
+        .collect();
+    v.sort();
+    v
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+    #[test]
+    fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..400)) {
+        let text = String::from_utf8_lossy(&bytes);
+        let _ = Scene::parse(&text, "fuzz.ron");
+    }
+
+    #[test]
+    fn mutated_presets_never_panic(which in 0usize..8, pos in 0usize..4000, len in 0usize..20, junk in "[ -~]{0,12}") {
+        let all = presets();
+        let text = &all[which % all.len()];
+        let mut b = text.clone().into_bytes();
+        let p = pos % (b.len() + 1);
+        let end = (p + len).min(b.len());
+        b.splice(p..end, junk.bytes());
+        let text = String::from_utf8_lossy(&b);
+        match Scene::parse(&text, "m.ron") {
+            Ok(scene) => {
+                let mut s = scene.clone();
+                s.duration_s = 50.0 * s.dt_s;
+                if let Ok(mut sim) = Simulation::new(&s) {
+                    for _ in 0..50 {
+                        if sim.step().is_err() { break; }
+                    }
+                }
+            }
+            Err(SceneError::Syntax { line, col, .. }) => prop_assert!(line >= 1 && col >= 1),
+            Err(SceneError::Invalid { errors, .. }) => prop_assert!(!errors.is_empty()),
+            Err(_) => {}
+        }
+    }
+
+    #[test]
+    fn structured_scenes_run_or_fail_cleanly(
+        p in 1usize..5,
+        modes in proptest::collection::vec((1.0f64..5000.0, 0.0f64..3.0, proptest::collection::vec(-1.0f64..1.0, 5)), 1..6),
+        h in proptest::collection::vec(-0.003f64..0.001, 5),
+        amp in 0.0f64..0.004,
+        wl in 0.01f64..2.0,
+        speed in 0.0f64..60.0,
+        ramp in 0.0f64..0.02,
+        dt_exp in -6.5f64..-3.0,
+        paper in any::<bool>(),
+    ) {
+        let scene = Scene {
+            name: "prop".into(),
+            description: String::new(),
+            tyre: Tyre::Modal { modes: modes.iter().map(|(f, xi, shape)| Mode {
+                freq_hz: *f, damping_ratio: *xi, residue: vec![], shape: shape[..p].to_vec(),
+            }).collect() },
+            points: (0..p).map(|i| Point { x_m: 0.03 * i as f64, h_m: h[i] }).collect(),
+            road: Road::Sine { amplitude_m: amp, wavelength_m: wl },
+            speed_mps: speed,
+            ramp_s: ramp,
+            dt_s: 10f64.powf(dt_exp),
+            duration_s: 200.0 * 10f64.powf(dt_exp),
+            contact_scheme: if paper { ContactScheme::Paper } else { ContactScheme::Located },
+            base_dir: None,
+        };
+        match Simulation::new(&scene) {
+            Err(SceneError::Invalid { errors, .. }) => {
+                prop_assert!(errors.iter().all(|e| !e.field.is_empty() && !e.expected.is_empty()));
+            }
+            Err(e) => prop_assert!(false, "unexpected error {e}"),
+            Ok(mut sim) => {
+                for _ in 0..200 {
+                    match sim.step() {
+                        Ok(_) => {
+                            prop_assert!(sim.displacement_m().iter().all(|u| u.is_finite()));
+                            // forces are step means of non-negative impulses (round-off aside)
+                            let scale = sim.force_n().iter().fold(1.0f64, |m, q| m.max(q.abs()));
+                            prop_assert!(sim.force_n().iter().all(|&q| q >= -1e-6 * scale), "{:?}", sim.force_n());
+                        }
+                        // too few modes for the points in contact is a typed error, not a panic
+                        Err(_) => break,
+                    }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,61 @@
+//! Zero heap allocations per step once a simulation is built, for both
+//! contact schemes and through located impacts and releases (a counting
+//! global allocator; this file is its own test binary).
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+static ALLOCS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn steps_do_not_allocate() {
+    for scheme in ["Located", "Paper"] {
+        let text = std::fs::read_to_string("presets/three_points.ron")
+            .unwrap()
+            .replace(
+                "contact_scheme: Located",
+                &format!("contact_scheme: {scheme}"),
+            );
+        let scene = tirecontact::Scene::parse(&text, "three_points").unwrap();
+        let mut sim = tirecontact::Simulation::new(&scene).unwrap();
+        // warm up: the first event sizes the scratch tables
+        for _ in 0..5000 {
+            sim.step().unwrap();
+        }
+        let events_before = sim.stats().events;
+        let before = ALLOCS.load(Ordering::Relaxed);
+        for _ in 0..20000 {
+            sim.step().unwrap();
+        }
+        let allocs = ALLOCS.load(Ordering::Relaxed) - before;
+        let events = sim.stats().events - events_before;
+        assert_eq!(
+            allocs, 0,
+            "{scheme}: {allocs} allocations in 20000 steps ({events} events)"
+        );
+        if scheme == "Located" {
+            assert!(
+                events > 50,
+                "the window must contain located events: {events}"
+            );
+        }
+    }
+}
