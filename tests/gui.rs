@@ -338,15 +338,11 @@ fn views_switch_and_render() {
 fn every_shipped_preset_opens() {
     let mut h = harness(App::with_default_preset());
     h.run();
-    for (k, (name, _, _)) in tirecontact::gui::presets::SHIPPED.iter().enumerate() {
+    for (k, (_, file, text)) in tirecontact::gui::presets::SHIPPED.iter().enumerate() {
+        let expected = Scene::parse(text, file).unwrap();
         h.state_mut().apply(Command::OpenPreset(k));
         h.run();
-        assert_eq!(
-            &h.state().scene().name.as_str(),
-            name,
-            "{:?}",
-            h.state().message()
-        );
+        assert_eq!(h.state().scene(), &expected, "{:?}", h.state().message());
         assert!(!h.state().modes().is_empty());
         h.state_mut().apply(Command::Step(20));
         h.run();
