@@ -134,7 +134,7 @@ impl TimeControl {
         if !self.playing {
             return self.pending_steps;
         }
-        if !(dt_s > 0.0) {
+        if dt_s.is_nan() || dt_s <= 0.0 {
             return 0;
         }
         match self.speed {
@@ -146,7 +146,10 @@ impl TimeControl {
                     0.0
                 };
                 let want = frame_s * f / dt_s + self.carry;
-                let n = want.floor().min(MAX_SPEED_STEPS as f64);
+                // tolerate round-off so that e.g. 0.01 s / 1e-5 s is 1000 steps, not 999
+                let n = (want + 1e-9 * want.max(1.0))
+                    .floor()
+                    .min(MAX_SPEED_STEPS as f64);
                 self.carry = (want - n).clamp(0.0, 1.0);
                 n as u64
             }
