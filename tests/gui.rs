@@ -349,3 +349,37 @@ fn every_shipped_preset_opens() {
         assert_eq!(h.state().simulation().steps(), 20);
     }
 }
+
+#[derive(Default)]
+struct MemStorage(std::collections::HashMap<String, String>);
+
+impl eframe::Storage for MemStorage {
+    fn get_string(&self, key: &str) -> Option<String> {
+        self.0.get(key).cloned()
+    }
+    fn set_string(&mut self, key: &str, value: String) {
+        self.0.insert(key.to_string(), value);
+    }
+    fn remove_string(&mut self, key: &str) {
+        self.0.remove(key);
+    }
+    fn flush(&mut self) {}
+}
+
+#[test]
+fn the_last_session_is_restored() {
+    use eframe::App as _;
+    use eframe::Storage as _;
+    let mut h = harness(App::with_default_preset());
+    h.run();
+    type_into(&mut h, "tyre.modes[0].freq_hz", "140");
+    let mut storage = MemStorage::default();
+    h.state_mut().save(&mut storage);
+    let restored = App::restore(Some(&storage));
+    assert_eq!(restored.scene(), h.state().scene());
+    assert!(restored.is_dirty(), "unsaved edits stay marked as unsaved");
+    // nothing stored, or garbage: the default preset
+    assert_eq!(freq0(&App::restore(None)), 100.0);
+    storage.set_string("tirecontact.session", "not ron".to_string());
+    assert_eq!(freq0(&App::restore(Some(&storage))), 100.0);
+}
