@@ -34,7 +34,7 @@ pub fn scene_summary(scene: &Scene, modes: &[Mode]) -> String {
     let modes: Vec<String> = modes
         .iter()
         .take(8)
-        .map(|m| format!("{} Hz/{}", m.freq_hz, m.damping_ratio))
+        .map(|m| format!("{:.1} Hz/{:.3}", m.freq_hz, m.damping_ratio))
         .collect();
     let road = match &scene.road {
         Road::Sine {

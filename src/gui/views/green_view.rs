@@ -103,7 +103,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
         let freqs: Vec<String> = modes
             .iter()
             .take(6)
-            .map(|m| format!("{:.1} Hz ξ={}", m.freq_hz, m.damping_ratio))
+            .map(|m| format!("{:.1} Hz ξ={:.3}", m.freq_hz, m.damping_ratio))
             .collect();
         let more = modes.len().saturating_sub(6);
         let more = if more > 0 {
