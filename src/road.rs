@@ -115,9 +115,18 @@ impl RoadProfile {
         }
     }
 
-    /// Height `z(x)` (m) and slope `dz/dx` at `x` (m).
+    /// Height `z(x)` (m) and slope `dz/dx` at `x` (m); at a breakpoint of a
+    /// measured profile, the slope of the segment after it.
     #[inline]
     pub fn sample(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
+        self.sample_side(x, true)
+    }
+
+    /// As [`RoadProfile::sample`]; at a breakpoint, the slope after it
+    /// (`after`) or before it (the road velocity at the end of an interval
+    /// that reaches the breakpoint).
+    #[inline]
+    pub fn sample_side(&self, x: f64, after: bool) -> Result<(f64, f64), OutOfRange> {
         match self {
             RoadProfile::Harmonics(h) => {
                 let mut z = 0.0;
@@ -144,7 +153,14 @@ impl RoadProfile {
                     x
                 };
                 // Segment k with x_m[k] <= xx <= x_m[k+1].
-                let k = x_m.partition_point(|&xi| xi <= xx).clamp(1, x_m.len() - 1) - 1;
+                // a breakpoint within KINK_SNAP_M of xx (round-off of x + V t)
+                // counts as reached: the side decides the segment
+                let k = if after {
+                    x_m.partition_point(|&xi| xi <= xx + KINK_SNAP_M)
+                } else {
+                    x_m.partition_point(|&xi| xi < xx - KINK_SNAP_M)
+                };
+                let k = k.clamp(1, x_m.len() - 1) - 1;
                 let slope = (z_m[k + 1] - z_m[k]) / (x_m[k + 1] - x_m[k]);
                 Ok((z_m[k] + slope * (xx - x_m[k]), slope))
             }
@@ -183,12 +199,41 @@ impl PointsRoad {
         }
     }
 
-    /// `z_i`, `dz/dx_i` at `x_i + s_m`; on a measured profile's edge, the
+    /// The first breakpoint of a measured profile that point `i` meets
+    /// strictly inside `(s0, s1)` (as a rolled distance, m); `None` for
+    /// smooth roads. Breakpoints within `1e-9 (s1 - s0)` of either end are
+    /// ignored.
+    pub fn next_kink(&self, i: usize, s0: f64, s1: f64) -> Option<f64> {
+        let RoadProfile::Measured { x_m, looped, .. } = &self.profile else {
+            return None;
+        };
+        let eps = 1e-9 * (s1 - s0);
+        let (x0, x1) = (x_m[0], x_m[x_m.len() - 1]);
+        let xa = self.x_m[i] + s0;
+        let xa = if *looped {
+            x0 + (xa - x0).rem_euclid(x1 - x0)
+        } else {
+            xa
+        };
+        let k = x_m.partition_point(|&x| x <= xa + eps);
+        let xk = *x_m.get(k)?;
+        let sk = s0 + (xk - xa);
+        (sk < s1 - eps).then_some(sk)
+    }
+
+    /// Whether point `i` sits on a breakpoint at rolled distance `s` (within `eps` m).
+    pub fn at_kink(&self, i: usize, s: f64, eps: f64) -> bool {
+        self.next_kink(i, s - eps, s + eps).is_some()
+    }
+
+    /// `z_i`, `dz/dx_i` at `x_i + s_m` (slopes after or before a
+    /// breakpoint, see [`RoadProfile::sample_side`]); on a measured profile's edge, the
     /// point index and the range error.
     #[inline]
     pub fn sample_all(
         &self,
         s_m: f64,
+        after: bool,
         z: &mut [f64],
         dz: &mut [f64],
     ) -> Result<(), (usize, OutOfRange)> {
@@ -210,13 +255,20 @@ impl PointsRoad {
             }
             RoadProfile::Measured { .. } => {
                 for (i, &x) in self.x_m.iter().enumerate() {
-                    (z[i], dz[i]) = self.profile.sample(x + s_m).map_err(|e| (i, e))?;
+                    (z[i], dz[i]) = self
+                        .profile
+                        .sample_side(x + s_m, after)
+                        .map_err(|e| (i, e))?;
                 }
                 Ok(())
             }
         }
     }
 }
+
+/// Distance (m) within which a point is taken to sit on a breakpoint of a
+/// measured profile (far below any profile spacing, far above round-off).
+pub const KINK_SNAP_M: f64 = 1e-12;
 
 /// Largest measured profile accepted (rows).
 pub const MAX_PROFILE_ROWS: usize = 20_000_000;
@@ -337,6 +389,27 @@ mod tests {
     }
 
     #[test]
+    fn kinks_of_a_measured_profile() {
+        let prof = RoadProfile::Measured {
+            x_m: vec![0.0, 1.0, 3.0],
+            z_m: vec![0.0, 1.0, -1.0],
+            looped: false,
+        };
+        let pr = PointsRoad::new(prof, &[0.5, -0.2]);
+        assert_eq!(pr.next_kink(0, 0.0, 1.0), Some(0.5));
+        assert_eq!(pr.next_kink(0, 0.5, 1.0), None); // at the start: ignored
+        assert_eq!(pr.next_kink(1, 0.3, 1.5), Some(1.2));
+        let looped = RoadProfile::Measured {
+            x_m: vec![0.0, 1.0, 3.0],
+            z_m: vec![0.0, 1.0, 0.0],
+            looped: true,
+        };
+        let pr = PointsRoad::new(looped, &[0.0]);
+        assert!((pr.next_kink(0, 2.5, 3.6).unwrap() - 3.0).abs() < 1e-12); // the wrap point
+        assert!((pr.next_kink(0, 3.2, 4.5).unwrap() - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
     fn points_road_matches_direct_sampling() {
         let prof = RoadProfile::Harmonics(vec![
             Harmonic {
@@ -354,7 +427,7 @@ mod tests {
         let pr = PointsRoad::new(prof.clone(), &xs);
         let (mut z, mut dz) = ([0.0; 3], [0.0; 3]);
         for s in [0.0, 0.37, 123.456] {
-            pr.sample_all(s, &mut z, &mut dz).unwrap();
+            pr.sample_all(s, true, &mut z, &mut dz).unwrap();
             for i in 0..3 {
                 let (zd, dzd) = prof.sample(xs[i] + s).unwrap();
                 assert!((z[i] - zd).abs() < 1e-14, "{} vs {zd}", z[i]);

@@ -240,7 +240,7 @@ impl Simulation {
         }
         self.contact.fill(false);
         // road at t = 0 (zero while ramping; a validated scene samples in range)
-        if self.road_at(0.0, Table::Full).is_err() {
+        if self.road_at(0.0, true).is_err() {
             self.re.fill(0.0);
             self.rde.fill(0.0);
         }
@@ -332,12 +332,14 @@ impl Simulation {
     }
 
     /// Road heights and rates at `t` into `re`, `rde`.
-    fn road_at(&mut self, t: f64, _sel: Table) -> Result<(), SolverError> {
+    /// Road heights and rates at `t` into `re`, `rde`; at a breakpoint of a
+    /// measured road, the rate after it (`after`) or before it.
+    fn road_at(&mut self, t: f64, after: bool) -> Result<(), SolverError> {
         let (w, dw) = ramp(t, self.scene.ramp_s);
         let vel = self.scene.speed_mps;
         let rolled_m = vel * t + self.x_offset_m;
         self.road
-            .sample_all(rolled_m, &mut self.zbuf, &mut self.dzbuf)
+            .sample_all(rolled_m, after, &mut self.zbuf, &mut self.dzbuf)
             .map_err(|(i, e)| SolverError::RoadOutOfRange {
                 t_s: t,
                 point: i,
@@ -365,7 +367,7 @@ impl Simulation {
         };
         self.state.predict_into(table, &mut self.free);
         self.free.project(&self.basis, &mut self.uh, &mut self.vh);
-        self.road_at(t + tau, sel)
+        self.road_at(t + tau, false)
     }
 
     /// Solves the Gauss-point system of `active` (after `predict`) and the end
