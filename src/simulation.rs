@@ -288,6 +288,14 @@ impl Simulation {
     pub fn scene(&self) -> &Scene {
         &self.scene
     }
+    /// The road profile being sampled (for drawing it).
+    pub fn road_profile(&self) -> &RoadProfile {
+        &self.road.profile
+    }
+    /// Distance rolled so far (m): point `i` sees the road at `x_i + rolled_m()`.
+    pub fn rolled_m(&self) -> f64 {
+        self.scene.speed_mps * self.t_s + self.x_offset_m
+    }
     pub fn time_s(&self) -> f64 {
         self.t_s
     }
