@@ -43,6 +43,7 @@ pub fn scene_summary(scene: &Scene, modes: &[Mode]) -> String {
         } => format!("sine a = {} mm, λ = {} m", amplitude_m * 1e3, wavelength_m),
         Road::Harmonics { components } => format!("{} harmonics", components.len()),
         Road::Measured { file, .. } => format!("measured {}", file.display()),
+        Road::Random { class, seed, .. } => format!("ISO 8608 class {class:?}, seed {seed}"),
     };
     format!(
         "{} points; {n_modes} modes (f/ξ): {}; road {}; V = {} m/s ({:.1} km/h); ramp {} s; dt = {:e} s",

@@ -69,6 +69,19 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                 if *looped { "looped" } else { "not looped" }
             ));
         }
+        Road::Random {
+            class,
+            seed,
+            length_m,
+            min_wavenumber_cpm,
+            max_wavenumber_cpm,
+        } => {
+            ui.label(format!(
+                "random road, ISO 8608 class {class:?}, seed {seed}; loop {length_m} m; wavelengths {:.3} to {:.3} m (edit in the preset file)",
+                1.0 / max_wavenumber_cpm,
+                1.0 / min_wavenumber_cpm
+            ));
+        }
     }
     section(ui, "Speed", Apply::Live);
     Grid::new("tirecontact.speed")

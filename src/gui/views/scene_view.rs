@@ -58,6 +58,9 @@ fn x_extent(sim: &Simulation) -> (f64, f64) {
             .map(|c| c.wavelength_m)
             .fold(0.0, f64::max),
         Road::Measured { .. } => 0.5,
+        Road::Random {
+            min_wavenumber_cpm, ..
+        } => 1.0 / min_wavenumber_cpm,
     };
     let margin = (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05);
     (lo - margin, hi + margin)
