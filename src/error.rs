@@ -48,8 +48,8 @@ pub enum SceneError {
         #[source]
         source: std::io::Error,
     },
-    /// A measured road profile is unusable.
-    #[error("road profile {path}: {message}")]
+    /// A measured road profile (`road.file`) is unusable.
+    #[error("road.file = {path}: {message}")]
     RoadFile { path: PathBuf, message: String },
     /// The modal model of a ring tyre could not be identified (SPEC §6).
     #[error("scene \"{scene}\": tyre identification failed: {message}")]

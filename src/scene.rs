@@ -120,14 +120,15 @@ fn ron_options() -> ron::Options {
 impl Scene {
     /// Parses RON text; `file` names the source in messages.
     pub fn from_ron_str(text: &str, file: &str) -> Result<Scene, SceneError> {
-        ron_options()
-            .from_str::<Scene>(text)
-            .map_err(|e| SceneError::Syntax {
+        ron_options().from_str::<Scene>(text).map_err(|e| {
+            let (line, col) = skip_blanks(text, e.span.start.line, e.span.start.col);
+            SceneError::Syntax {
                 file: file.to_string(),
-                line: e.span.start.line,
-                col: e.span.start.col,
-                message: e.code.to_string(),
-            })
+                line,
+                col,
+                message: format!("{}{}", e.code, source_excerpt(text, line, col)),
+            }
+        })
     }
 
     /// Parses and validates RON text.
@@ -240,8 +241,9 @@ impl Scene {
                 pt.x_m,
                 "a finite position in m",
             );
-            v.finite(&format!("points[{i}].h_m"), pt.h_m, "a finite height in m");
-            if pt.h_m.abs() > 1.0 {
+            if v.finite(&format!("points[{i}].h_m"), pt.h_m, "a finite height in m")
+                && pt.h_m.abs() > 1.0
+            {
                 v.push(
                     &format!("points[{i}].h_m"),
                     pt.h_m,
@@ -277,8 +279,9 @@ impl Scene {
             }
         }
         validate_road(&mut v, &self.road);
-        v.nonneg("speed_mps", self.speed_mps, "a speed >= 0 m/s");
-        if self.speed_mps > 1000.0 {
+        if v.nonneg("speed_mps", self.speed_mps, "a finite speed >= 0 m/s")
+            && self.speed_mps > 1000.0
+        {
             v.push("speed_mps", self.speed_mps, "a speed <= 1000 m/s");
         }
         v.nonneg("ramp_s", self.ramp_s, "a ramp time >= 0 s");
@@ -288,12 +291,13 @@ impl Scene {
         {
             v.errors.push(e);
         }
-        v.positive("dt_s", self.dt_s, "a time step > 0 s");
-        if self.dt_s > 0.1 {
+        // one message per field: an infinite dt_s is "not > 0 and finite", not
+        // also "too large"
+        if v.positive("dt_s", self.dt_s, "a finite time step > 0 s") && self.dt_s > 0.1 {
             v.push("dt_s", self.dt_s, "a time step <= 0.1 s");
         }
-        v.positive("duration_s", self.duration_s, "a duration > 0 s");
-        if self.dt_s > 0.0 && self.duration_s > 0.0 {
+        let duration_ok = v.positive("duration_s", self.duration_s, "a finite duration > 0 s");
+        if duration_ok && self.dt_s.is_finite() && self.dt_s > 0.0 && self.dt_s <= 0.1 {
             if self.dt_s > self.duration_s {
                 v.push(
                     "dt_s",
@@ -316,17 +320,70 @@ impl Scene {
     }
 }
 
+/// RON reports some errors (a value of the wrong type) where it starts
+/// reading, before the blanks that precede the offending token: move the
+/// position (1-based line and column, in characters) forward over blanks to
+/// that token. Unchanged when only blanks follow.
+fn skip_blanks(text: &str, line: usize, col: usize) -> (usize, usize) {
+    let (mut l, mut c) = (1, 1);
+    let mut chars = text.chars().peekable();
+    while (l, c) < (line, col) {
+        match chars.next() {
+            Some('\n') => (l, c) = (l + 1, 1),
+            Some(_) => c += 1,
+            None => return (line, col),
+        }
+    }
+    while let Some(&ch) = chars.peek() {
+        if !ch.is_whitespace() {
+            return (l, c);
+        }
+        if ch == '\n' {
+            (l, c) = (l + 1, 1);
+        } else {
+            c += 1;
+        }
+        chars.next();
+    }
+    (line, col)
+}
+
+/// The source line `line` (1-based) with a caret under column `col` (1-based,
+/// in characters, as RON counts them), so that a syntax or type error shows the
+/// field and the value it is about. Empty when the line does not exist.
+fn source_excerpt(text: &str, line: usize, col: usize) -> String {
+    let Some(src) = text.lines().nth(line.wrapping_sub(1)) else {
+        return String::new();
+    };
+    // long lines (minified files, fuzzed bytes) are cut around the column
+    let chars: Vec<char> = src.chars().collect();
+    let c = col.saturating_sub(1).min(chars.len());
+    let from = c.saturating_sub(60);
+    let to = (c + 60).min(chars.len());
+    let shown: String = chars[from..to].iter().collect();
+    let caret = " ".repeat(c - from);
+    format!(
+        "\n  {line:>4} | {}{shown}\n       | {}{caret}^",
+        if from > 0 { "..." } else { "" },
+        if from > 0 { "   " } else { "" }
+    )
+}
+
 fn validate_mode(v: &mut Validator, at: &str, m: &Mode, p: usize) {
-    v.positive(&format!("{at}.freq_hz"), m.freq_hz, "a frequency > 0 Hz");
-    if m.freq_hz > 1e6 {
+    if v.positive(
+        &format!("{at}.freq_hz"),
+        m.freq_hz,
+        "a finite frequency > 0 Hz",
+    ) && m.freq_hz > 1e6
+    {
         v.push(&format!("{at}.freq_hz"), m.freq_hz, "a frequency <= 1e6 Hz");
     }
-    v.nonneg(
+    if v.nonneg(
         &format!("{at}.damping_ratio"),
         m.damping_ratio,
-        "a damping ratio >= 0 (0 undamped, 1 critical, > 1 overdamped)",
-    );
-    if m.damping_ratio > 1e4 {
+        "a finite damping ratio >= 0 (0 undamped, 1 critical, > 1 overdamped)",
+    ) && m.damping_ratio > 1e4
+    {
         v.push(
             &format!("{at}.damping_ratio"),
             m.damping_ratio,
@@ -388,8 +445,9 @@ fn validate_road(v: &mut Validator, road: &Road) {
             amplitude_m,
             wavelength_m,
         } => {
-            v.nonneg("road.amplitude_m", *amplitude_m, "an amplitude >= 0 m");
-            if *amplitude_m > 1.0 {
+            if v.nonneg("road.amplitude_m", *amplitude_m, "an amplitude >= 0 m")
+                && *amplitude_m > 1.0
+            {
                 v.push("road.amplitude_m", *amplitude_m, "an amplitude <= 1 m");
             }
             v.positive("road.wavelength_m", *wavelength_m, "a wavelength > 0 m");
@@ -444,15 +502,19 @@ impl Validator {
         }
         true
     }
-    fn nonneg(&mut self, field: &str, x: f64, expected: &str) {
+    fn nonneg(&mut self, field: &str, x: f64, expected: &str) -> bool {
         if !(x.is_finite() && x >= 0.0) {
             self.push(field, x, expected);
+            return false;
         }
+        true
     }
-    fn positive(&mut self, field: &str, x: f64, expected: &str) {
+    fn positive(&mut self, field: &str, x: f64, expected: &str) -> bool {
         if !(x.is_finite() && x > 0.0) {
             self.push(field, x, expected);
+            return false;
         }
+        true
     }
     fn finish(self) -> Result<(), Vec<FieldError>> {
         if self.errors.is_empty() {
