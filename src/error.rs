@@ -79,7 +79,9 @@ pub enum SolverError {
         pivot: f64,
     },
     /// A displacement, velocity or force became NaN or infinite.
-    #[error("non-finite {quantity} at t = {t_s:.6e} s, point {point}")]
+    #[error(
+        "non-finite {quantity} at t = {t_s:.6e} s, point {point}: the step cannot be solved in floating point (a road, slope or preload far beyond a tyre's deflection, e.g. huge values in a measured road file?)"
+    )]
     NonFinite {
         t_s: f64,
         point: usize,
