@@ -890,7 +890,21 @@ fn bad_command_line_values_are_refused() {
             &["--max-output-gb", "0"][..],
             "--max-output-gb = 0: expected a finite size > 0 GB",
         ),
+        // refused before the run (1e7 steps), not after it
+        (
+            &["--duration", "100", "--plot", "x.png", "--plot-size", "0x0"][..],
+            "--plot-size 0x0: expected 200..=8000 px per side",
+        ),
+        (
+            &["--duration", "100", "--plot", "no/such/folder/x.png"][..],
+            "--plot no/such/folder/x.png: no folder no/such/folder",
+        ),
+        (
+            &["--duration", "100", "-o", "no/such/folder/x.csv"][..],
+            "no/such/folder/x.csv: No such file or directory",
+        ),
     ] {
+        let t = std::time::Instant::now();
         let o = bin()
             .args(["run", "presets/single_mode.ron"])
             .args(args)
@@ -898,6 +912,11 @@ fn bad_command_line_values_are_refused() {
             .unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            t.elapsed().as_secs_f64() < 0.5,
+            "{args:?} ran: {:?}",
+            t.elapsed()
+        );
         assert!(
             err.contains(want) && !err.contains("panicked"),
             "{args:?}: {err}"

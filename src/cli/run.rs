@@ -72,6 +72,31 @@ pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> 
     Ok(())
 }
 
+/// A figure that could not be drawn after the run is refused before it.
+fn check_plot_args(args: &RunArgs) -> Result<(), String> {
+    let Some(path) = &args.plot else {
+        return Ok(());
+    };
+    let (w, h) = args.plot_size;
+    if !(200..=8000).contains(&w) || !(200..=8000).contains(&h) {
+        return Err(format!(
+            "--plot-size {w}x{h}: expected 200..=8000 px per side"
+        ));
+    }
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(std::path::Path::new("."));
+    if !dir.is_dir() {
+        return Err(format!(
+            "--plot {}: no folder {}: expected a PNG path in an existing folder",
+            path.display(),
+            dir.display()
+        ));
+    }
+    Ok(())
+}
+
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let err = || format!("`{s}`: expected WIDTHxHEIGHT in pixels, e.g. 1400x900");
     let (w, h) = s.split_once('x').ok_or_else(err)?;
@@ -133,6 +158,7 @@ pub fn run(args: &RunArgs) -> CliResult {
     let scene = scene_with_overrides(args)?;
     // before anything is built, computed or written
     check_output_budget(&scene, args)?;
+    check_plot_args(args)?;
     let mut sim = Simulation::new(&scene)?;
     let n = scene.num_steps();
     let mut writer = match &args.output {
