@@ -113,6 +113,10 @@ pub struct Scene {
 /// Largest number of steps a run may have (bounds memory and time).
 pub const MAX_STEPS: f64 = 1e10;
 
+/// Largest number of contact points: the contact solver keeps about 16 P²
+/// numbers (operators and their factorisations), 0.5 GB at 2000 points.
+pub const MAX_POINTS: usize = 2000;
+
 fn ron_options() -> ron::Options {
     ron::Options::default()
 }
@@ -234,6 +238,17 @@ impl Scene {
         let p = self.points.len();
         if p == 0 {
             v.push("points", "[]", "at least one contact point");
+        }
+        if p > MAX_POINTS {
+            v.push(
+                "points",
+                format!("{p} points"),
+                &format!(
+                    "at most {MAX_POINTS} contact points (the contact solver keeps ~16 P² numbers)"
+                ),
+            );
+            // the per-point checks below are quadratic: stop here
+            return v.finish();
         }
         for (i, pt) in self.points.iter().enumerate() {
             v.finite(

@@ -508,6 +508,24 @@ fn cases() -> Vec<Case> {
             "the path of a CSV",
         ),
     ];
+    // more contact points than the solver's memory bound
+    let many: String = (0..2001)
+        .map(|i| format!("Point(x_m: {}, h_m: 0.0), ", i as f64 * 1e-3))
+        .collect();
+    let text = edit(&[(
+        "points: [\n        Point(x_m: 0.0, h_m: -0.001),\n        Point(x_m: 0.05, h_m: -0.001),\n    ],",
+        &format!("points: [{many}],"),
+    )]);
+    v.push(Case {
+        name: "too many points",
+        text,
+        files: vec![],
+        expect: Expect::Field {
+            field: "points",
+            value: "2001 points",
+            expected: "at most 2000 contact points",
+        },
+    });
     // ring parameters out of range (the identification is never reached)
     let modal = "tyre: Modal(modes: [\n        Mode(freq_hz: 100.0, damping_ratio: 0.05, shape: [0.3, 0.3]),\n        Mode(freq_hz: 200.0, damping_ratio: 0.04, residue: [[0.09, -0.09], [-0.09, 0.09]]),\n    ]),";
     for (name, from, to, f, val, exp) in [
