@@ -199,10 +199,20 @@ pub fn read_profile_csv_limited(
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
         .flexible(true)
-        .from_reader(file);
+        // a file growing while read, or a device, is cut one byte past the limit
+        .from_reader(std::io::Read::take(file, max_bytes.saturating_add(1)));
     let (mut xs, mut zs) = (Vec::new(), Vec::new());
-    for (row, rec) in rdr.records().enumerate() {
-        let rec = rec.map_err(|e| err(format!("record {}: {e}", row + 1)))?;
+    let mut rec = csv::StringRecord::new();
+    for row in 0usize.. {
+        let more = rdr.read_record(&mut rec);
+        if rdr.position().byte() > max_bytes {
+            return Err(err(format!(
+                "more than {max_bytes} bytes: expected at most {max_bytes} bytes ({max_rows} rows; resample the profile)"
+            )));
+        }
+        if !more.map_err(|e| err(format!("record {}: {e}", row + 1)))? {
+            break;
+        }
         // the file's own line number (comment lines are skipped by the reader)
         let line = rec.position().map_or(row as u64 + 1, |p| p.line());
         if rec.len() < 2 {

@@ -113,6 +113,10 @@ pub struct Scene {
 /// Largest number of steps a run may have (bounds memory and time).
 pub const MAX_STEPS: f64 = 1e10;
 
+/// Largest scene file read (bytes): 64 MiB, far above any preset (mode
+/// shapes take 20 bytes per point and mode).
+pub const MAX_SCENE_BYTES: u64 = 64 << 20;
+
 /// Largest number of contact points: the contact solver keeps about 16 P²
 /// numbers (operators and their factorisations), 0.5 GB at 2000 points.
 pub const MAX_POINTS: usize = 2000;
@@ -148,10 +152,23 @@ impl Scene {
     /// Reads, parses and validates a scene file; relative road files are
     /// resolved against its folder.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        let io = |source| SceneError::Io {
             path: path.to_path_buf(),
             source,
-        })?;
+        };
+        // bounded read: a runaway file or a device (`/dev/zero`) is refused
+        let mut text = String::new();
+        std::io::Read::read_to_string(
+            &mut std::io::Read::take(std::fs::File::open(path).map_err(io)?, MAX_SCENE_BYTES + 1),
+            &mut text,
+        )
+        .map_err(io)?;
+        if text.len() as u64 > MAX_SCENE_BYTES {
+            return Err(io(std::io::Error::other(format!(
+                "more than {MAX_SCENE_BYTES} bytes: expected a scene file of at most {} MiB",
+                MAX_SCENE_BYTES >> 20
+            ))));
+        }
         let mut scene = Self::parse(&text, &path.display().to_string())?;
         scene.base_dir = path.parent().map(Path::to_path_buf);
         Ok(scene)

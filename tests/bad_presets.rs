@@ -941,3 +941,30 @@ fn bad_command_line_values_are_refused() {
         );
     }
 }
+
+/// Endless inputs (a device, a file growing while read) are read only up to
+/// the limit: a preset of `/dev/zero` is refused after 64 MiB, a road file
+/// one byte past its byte limit.
+#[test]
+fn endless_inputs_are_read_up_to_the_limit() {
+    let zero = Path::new("/dev/zero");
+    if !zero.exists() {
+        return;
+    }
+    let o = bin().arg("check").arg(zero).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(
+            "/dev/zero: more than 67108864 bytes: expected a scene file of at most 64 MiB"
+        ),
+        "{err}"
+    );
+    let e = read_profile_csv_limited(zero, 10, 1000)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("road.file = /dev/zero: more than 1000 bytes: expected at most 1000 bytes"),
+        "{e}"
+    );
+}
