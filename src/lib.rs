@@ -26,12 +26,15 @@
 //! | [`lsce`] | LSCE identification, stabilisation diagram, fit report | §6 |
 //! | [`identify`] | ring -> sampled responses -> LSCE, cached per scene | §5-6 |
 //! | [`scene`] | RON scenes and their validation | — |
-//! | [`output`] | CSV writer | — |
+//! | [`output`] | CSV writer, headless PNG figures | — |
+//! | `gui` | the visualiser (feature `gui`) | — |
 
 pub mod bench;
 pub mod contact;
 pub mod convolution;
 pub mod error;
+#[cfg(feature = "gui")]
+pub mod gui;
 pub mod identify;
 pub mod lsce;
 pub mod modal;

@@ -197,10 +197,7 @@ fn cases() -> Vec<Case> {
             "unknown road variant",
             edit(&[("Sine(", "Sinus(")]),
             Some("Sinus"),
-            &[
-                "Unexpected variant named `Sinus`",
-                "`Sine`, `Harmonics`, or `Measured`",
-            ],
+            &["Unexpected variant named `Sinus`", "`Sine`", "`Measured`"],
         ),
         syntax(
             "missing required field",
