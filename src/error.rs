@@ -48,8 +48,8 @@ pub enum SceneError {
         #[source]
         source: std::io::Error,
     },
-    /// A measured road profile is unusable.
-    #[error("road profile {path}: {message}")]
+    /// A measured road profile (`road.file`) is unusable.
+    #[error("road.file = {path}: {message}")]
     RoadFile { path: PathBuf, message: String },
     /// The modal model of a ring tyre could not be identified (SPEC §6).
     #[error("scene \"{scene}\": tyre identification failed: {message}")]
@@ -79,7 +79,9 @@ pub enum SolverError {
         pivot: f64,
     },
     /// A displacement, velocity or force became NaN or infinite.
-    #[error("non-finite {quantity} at t = {t_s:.6e} s, point {point}")]
+    #[error(
+        "non-finite {quantity} at t = {t_s:.6e} s, point {point}: the step cannot be solved in floating point (a road, slope or preload far beyond a tyre's deflection, e.g. huge values in a measured road file?)"
+    )]
     NonFinite {
         t_s: f64,
         point: usize,

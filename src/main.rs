@@ -78,6 +78,7 @@ fn headless_default() -> cli::CliResult {
         dt: None,
         duration: None,
         every: 1,
+        max_output_gb: cli::run::DEFAULT_MAX_OUTPUT_GB,
         plot: None,
         plot_size: (1400, 900),
     })

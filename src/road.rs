@@ -414,26 +414,69 @@ impl PointsRoad {
 /// measured profile (far below any profile spacing, far above round-off).
 pub const KINK_SNAP_M: f64 = 1e-12;
 
-/// Largest measured profile accepted (rows).
+/// Largest measured profile accepted (rows): 20 million rows are 320 MB of
+/// `f64` in memory.
 pub const MAX_PROFILE_ROWS: usize = 20_000_000;
 
-/// Reads a `x_m, z_m` CSV: optional header, strictly increasing finite `x`.
+/// Largest measured profile file accepted (bytes), checked before reading:
+/// 64 bytes per row of [`MAX_PROFILE_ROWS`] (a row of two full-precision
+/// numbers is about 45 bytes), so a huge or runaway file is refused at once
+/// instead of being read.
+pub const MAX_PROFILE_BYTES: u64 = 64 * MAX_PROFILE_ROWS as u64;
+
+/// Reads a `x_m, z_m` CSV: optional header, strictly increasing finite `x`,
+/// at most [`MAX_PROFILE_ROWS`] rows and [`MAX_PROFILE_BYTES`] bytes.
 pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>), SceneError> {
+    read_profile_csv_limited(path, MAX_PROFILE_ROWS, MAX_PROFILE_BYTES)
+}
+
+/// [`read_profile_csv`] with explicit limits (rows, bytes), so that the limit
+/// logic can be tested on small files.
+pub fn read_profile_csv_limited(
+    path: &Path,
+    max_rows: usize,
+    max_bytes: u64,
+) -> Result<(Vec<f64>, Vec<f64>), SceneError> {
     let err = |message: String| SceneError::RoadFile {
         path: path.to_path_buf(),
         message,
     };
     let file = std::fs::File::open(path).map_err(|e| err(format!("cannot open: {e}")))?;
+    let meta = file
+        .metadata()
+        .map_err(|e| err(format!("cannot read: {e}")))?;
+    if meta.is_dir() {
+        return Err(err(
+            "is a folder: expected a CSV file of `x_m, z_m` rows".into()
+        ));
+    }
+    if meta.len() > max_bytes {
+        return Err(err(format!(
+            "{} bytes: expected at most {max_bytes} bytes ({max_rows} rows; resample the profile)",
+            meta.len()
+        )));
+    }
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(false)
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
         .flexible(true)
-        .from_reader(file);
+        // a file growing while read, or a device, is cut one byte past the limit
+        .from_reader(std::io::Read::take(file, max_bytes.saturating_add(1)));
     let (mut xs, mut zs) = (Vec::new(), Vec::new());
-    for (row, rec) in rdr.records().enumerate() {
-        let line = row + 1;
-        let rec = rec.map_err(|e| err(format!("line {line}: {e}")))?;
+    let mut rec = csv::StringRecord::new();
+    for row in 0usize.. {
+        let more = rdr.read_record(&mut rec);
+        if rdr.position().byte() > max_bytes {
+            return Err(err(format!(
+                "more than {max_bytes} bytes: expected at most {max_bytes} bytes ({max_rows} rows; resample the profile)"
+            )));
+        }
+        if !more.map_err(|e| err(format!("record {}: {e}", row + 1)))? {
+            break;
+        }
+        // the file's own line number (comment lines are skipped by the reader)
+        let line = rec.position().map_or(row as u64 + 1, |p| p.line());
         if rec.len() < 2 {
             return Err(err(format!(
                 "line {line}: expected two columns `x_m, z_m`, found {}",
@@ -462,9 +505,9 @@ pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>), SceneError>
                 "line {line}: x = {x} m after x = {last} m: expected strictly increasing x"
             )));
         }
-        if xs.len() >= MAX_PROFILE_ROWS {
+        if xs.len() >= max_rows {
             return Err(err(format!(
-                "more than {MAX_PROFILE_ROWS} rows: expected a smaller profile (resample it)"
+                "line {line}: more than {max_rows} rows: expected at most {max_rows} rows (resample the profile)"
             )));
         }
         xs.push(x);

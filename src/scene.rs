@@ -151,6 +151,14 @@ pub struct Scene {
 /// Largest number of steps a run may have (bounds memory and time).
 pub const MAX_STEPS: f64 = 1e10;
 
+/// Largest scene file read (bytes): 64 MiB, far above any preset (mode
+/// shapes take 20 bytes per point and mode).
+pub const MAX_SCENE_BYTES: u64 = 64 << 20;
+
+/// Largest number of contact points: the contact solver keeps about 16 P²
+/// numbers (operators and their factorisations), 0.5 GB at 2000 points.
+pub const MAX_POINTS: usize = 2000;
+
 fn ron_options() -> ron::Options {
     ron::Options::default()
 }
@@ -158,14 +166,15 @@ fn ron_options() -> ron::Options {
 impl Scene {
     /// Parses RON text; `file` names the source in messages.
     pub fn from_ron_str(text: &str, file: &str) -> Result<Scene, SceneError> {
-        ron_options()
-            .from_str::<Scene>(text)
-            .map_err(|e| SceneError::Syntax {
+        ron_options().from_str::<Scene>(text).map_err(|e| {
+            let (line, col) = skip_blanks(text, e.span.start.line, e.span.start.col);
+            SceneError::Syntax {
                 file: file.to_string(),
-                line: e.span.start.line,
-                col: e.span.start.col,
-                message: e.code.to_string(),
-            })
+                line,
+                col,
+                message: format!("{}{}", e.code, source_excerpt(text, line, col)),
+            }
+        })
     }
 
     /// Parses and validates RON text.
@@ -181,10 +190,23 @@ impl Scene {
     /// Reads, parses and validates a scene file; relative road files are
     /// resolved against its folder.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        let io = |source| SceneError::Io {
             path: path.to_path_buf(),
             source,
-        })?;
+        };
+        // bounded read: a runaway file or a device (`/dev/zero`) is refused
+        let mut text = String::new();
+        std::io::Read::read_to_string(
+            &mut std::io::Read::take(std::fs::File::open(path).map_err(io)?, MAX_SCENE_BYTES + 1),
+            &mut text,
+        )
+        .map_err(io)?;
+        if text.len() as u64 > MAX_SCENE_BYTES {
+            return Err(io(std::io::Error::other(format!(
+                "more than {MAX_SCENE_BYTES} bytes: expected a scene file of at most {} MiB",
+                MAX_SCENE_BYTES >> 20
+            ))));
+        }
         let mut scene = Self::parse(&text, &path.display().to_string())?;
         scene.base_dir = path.parent().map(Path::to_path_buf);
         Ok(scene)
@@ -272,14 +294,26 @@ impl Scene {
         if p == 0 {
             v.push("points", "[]", "at least one contact point");
         }
+        if p > MAX_POINTS {
+            v.push(
+                "points",
+                format!("{p} points"),
+                &format!(
+                    "at most {MAX_POINTS} contact points (the contact solver keeps ~16 P² numbers)"
+                ),
+            );
+            // the per-point checks below are quadratic: stop here
+            return v.finish();
+        }
         for (i, pt) in self.points.iter().enumerate() {
             v.finite(
                 &format!("points[{i}].x_m"),
                 pt.x_m,
                 "a finite position in m",
             );
-            v.finite(&format!("points[{i}].h_m"), pt.h_m, "a finite height in m");
-            if pt.h_m.abs() > 1.0 {
+            if v.finite(&format!("points[{i}].h_m"), pt.h_m, "a finite height in m")
+                && pt.h_m.abs() > 1.0
+            {
                 v.push(
                     &format!("points[{i}].h_m"),
                     pt.h_m,
@@ -333,8 +367,9 @@ impl Scene {
                 }
             }
         }
-        v.nonneg("speed_mps", self.speed_mps, "a speed >= 0 m/s");
-        if self.speed_mps > 1000.0 {
+        if v.nonneg("speed_mps", self.speed_mps, "a finite speed >= 0 m/s")
+            && self.speed_mps > 1000.0
+        {
             v.push("speed_mps", self.speed_mps, "a speed <= 1000 m/s");
         }
         v.nonneg("ramp_s", self.ramp_s, "a ramp time >= 0 s");
@@ -344,12 +379,13 @@ impl Scene {
         {
             v.errors.push(e);
         }
-        v.positive("dt_s", self.dt_s, "a time step > 0 s");
-        if self.dt_s > 0.1 {
+        // one message per field: an infinite dt_s is "not > 0 and finite", not
+        // also "too large"
+        if v.positive("dt_s", self.dt_s, "a finite time step > 0 s") && self.dt_s > 0.1 {
             v.push("dt_s", self.dt_s, "a time step <= 0.1 s");
         }
-        v.positive("duration_s", self.duration_s, "a duration > 0 s");
-        if self.dt_s > 0.0 && self.duration_s > 0.0 {
+        let duration_ok = v.positive("duration_s", self.duration_s, "a finite duration > 0 s");
+        if duration_ok && self.dt_s.is_finite() && self.dt_s > 0.0 && self.dt_s <= 0.1 {
             if self.dt_s > self.duration_s {
                 v.push(
                     "dt_s",
@@ -372,17 +408,70 @@ impl Scene {
     }
 }
 
+/// RON reports some errors (a value of the wrong type) where it starts
+/// reading, before the blanks that precede the offending token: move the
+/// position (1-based line and column, in characters) forward over blanks to
+/// that token. Unchanged when only blanks follow.
+fn skip_blanks(text: &str, line: usize, col: usize) -> (usize, usize) {
+    let (mut l, mut c) = (1, 1);
+    let mut chars = text.chars().peekable();
+    while (l, c) < (line, col) {
+        match chars.next() {
+            Some('\n') => (l, c) = (l + 1, 1),
+            Some(_) => c += 1,
+            None => return (line, col),
+        }
+    }
+    while let Some(&ch) = chars.peek() {
+        if !ch.is_whitespace() {
+            return (l, c);
+        }
+        if ch == '\n' {
+            (l, c) = (l + 1, 1);
+        } else {
+            c += 1;
+        }
+        chars.next();
+    }
+    (line, col)
+}
+
+/// The source line `line` (1-based) with a caret under column `col` (1-based,
+/// in characters, as RON counts them), so that a syntax or type error shows the
+/// field and the value it is about. Empty when the line does not exist.
+fn source_excerpt(text: &str, line: usize, col: usize) -> String {
+    let Some(src) = text.lines().nth(line.wrapping_sub(1)) else {
+        return String::new();
+    };
+    // long lines (minified files, fuzzed bytes) are cut around the column
+    let chars: Vec<char> = src.chars().collect();
+    let c = col.saturating_sub(1).min(chars.len());
+    let from = c.saturating_sub(60);
+    let to = (c + 60).min(chars.len());
+    let shown: String = chars[from..to].iter().collect();
+    let caret = " ".repeat(c - from);
+    format!(
+        "\n  {line:>4} | {}{shown}\n       | {}{caret}^",
+        if from > 0 { "..." } else { "" },
+        if from > 0 { "   " } else { "" }
+    )
+}
+
 fn validate_mode(v: &mut Validator, at: &str, m: &Mode, p: usize) {
-    v.positive(&format!("{at}.freq_hz"), m.freq_hz, "a frequency > 0 Hz");
-    if m.freq_hz > 1e6 {
+    if v.positive(
+        &format!("{at}.freq_hz"),
+        m.freq_hz,
+        "a finite frequency > 0 Hz",
+    ) && m.freq_hz > 1e6
+    {
         v.push(&format!("{at}.freq_hz"), m.freq_hz, "a frequency <= 1e6 Hz");
     }
-    v.nonneg(
+    if v.nonneg(
         &format!("{at}.damping_ratio"),
         m.damping_ratio,
-        "a damping ratio >= 0 (0 undamped, 1 critical, > 1 overdamped)",
-    );
-    if m.damping_ratio > 1e4 {
+        "a finite damping ratio >= 0 (0 undamped, 1 critical, > 1 overdamped)",
+    ) && m.damping_ratio > 1e4
+    {
         v.push(
             &format!("{at}.damping_ratio"),
             m.damping_ratio,
@@ -444,8 +533,9 @@ fn validate_road(v: &mut Validator, road: &Road) {
             amplitude_m,
             wavelength_m,
         } => {
-            v.nonneg("road.amplitude_m", *amplitude_m, "an amplitude >= 0 m");
-            if *amplitude_m > 1.0 {
+            if v.nonneg("road.amplitude_m", *amplitude_m, "an amplitude >= 0 m")
+                && *amplitude_m > 1.0
+            {
                 v.push("road.amplitude_m", *amplitude_m, "an amplitude <= 1 m");
             }
             v.positive("road.wavelength_m", *wavelength_m, "a wavelength > 0 m");
@@ -501,15 +591,19 @@ impl Validator {
         }
         true
     }
-    fn nonneg(&mut self, field: &str, x: f64, expected: &str) {
+    fn nonneg(&mut self, field: &str, x: f64, expected: &str) -> bool {
         if !(x.is_finite() && x >= 0.0) {
             self.push(field, x, expected);
+            return false;
         }
+        true
     }
-    fn positive(&mut self, field: &str, x: f64, expected: &str) {
+    fn positive(&mut self, field: &str, x: f64, expected: &str) -> bool {
         if !(x.is_finite() && x > 0.0) {
             self.push(field, x, expected);
+            return false;
         }
+        true
     }
     fn finish(self) -> Result<(), Vec<FieldError>> {
         if self.errors.is_empty() {

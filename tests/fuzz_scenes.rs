@@ -1,11 +1,12 @@
 //! Property tests: arbitrary bytes and mutated presets never panic the
 //! parser or validator; arbitrary structured scenes either validate and run
 //! a short bounded run with finite, non-negative outputs, or fail with field
-//! errors. (A longer fuzzing campaign runs the same properties with more cases:
+//! errors; arbitrary road files never panic the reader or a run over them.
+//! (A longer fuzzing campaign runs the same properties with more cases:
 //! `PROPTEST_CASES=100000 cargo test --release --test fuzz_scenes`.)
 
 use proptest::prelude::*;
-use tirecontact::road::Road;
+use tirecontact::road::{Road, read_profile_csv};
 use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
 use tirecontact::{SceneError, Simulation};
 
@@ -18,13 +19,89 @@ fn presets() -> Vec<String> {
     v
 }
 
+/// 400 cases per property, or `PROPTEST_CASES` (an explicit `cases` in the
+/// config would otherwise override the variable).
+fn cases() -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(400)
+}
+
+/// Builds the simulation and runs at most 50 steps; errors are fine, panics are not.
+fn short_run(scene: &Scene) {
+    let mut s = scene.clone();
+    s.duration_s = 50.0 * s.dt_s;
+    if let Ok(mut sim) = Simulation::new(&s) {
+        for _ in 0..50 {
+            if sim.step().is_err() {
+                break;
+            }
+        }
+    }
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: cases(), ..ProptestConfig::default() })]
 
     #[test]
     fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..400)) {
         let text = String::from_utf8_lossy(&bytes);
-        let _ = Scene::parse(&text, "fuzz.ron");
+        match Scene::parse(&text, "fuzz.ron") {
+            Ok(scene) => short_run(&scene),
+            Err(SceneError::Syntax { line, col, message, .. }) => {
+                prop_assert!(line >= 1 && col >= 1 && !message.is_empty());
+            }
+            Err(_) => {}
+        }
+    }
+
+    /// Road files: arbitrary bytes, or text made of what CSV numbers are made
+    /// of, never panic the reader; what it accepts is strictly increasing
+    /// and finite, and a short run over it (looped or not) never panics.
+    #[test]
+    fn road_files_never_panic(
+        bytes in prop_oneof![
+            proptest::collection::vec(any::<u8>(), 0..300),
+            "[-+0-9.eE,\n #a-zN]{0,200}".prop_map(String::into_bytes),
+            proptest::collection::vec((-1e3f64..1e3, prop_oneof![-1e3f64..1e3, Just(1e308), Just(-1e308)]), 0..8)
+                // sorted, so that most are accepted and run over
+                .prop_map(|mut rows| {
+                    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    rows.iter().map(|(x, z)| format!("{x},{z}\n")).collect::<String>().into_bytes()
+                }),
+        ],
+        looped in any::<bool>(),
+        speed in 0.0f64..100.0,
+    ) {
+        let dir = std::env::temp_dir().join(format!("tc-fuzz-road-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("r.csv");
+        std::fs::write(&path, &bytes).unwrap();
+        match read_profile_csv(&path) {
+            Ok((x, z)) => {
+                prop_assert!(x.len() >= 2 && x.len() == z.len());
+                prop_assert!(x.windows(2).all(|w| w[0] < w[1]));
+                prop_assert!(x.iter().chain(&z).all(|v| v.is_finite()));
+                let scene = Scene {
+                    name: "road".into(),
+                    description: String::new(),
+                    tyre: Tyre::Modal { modes: vec![Mode { freq_hz: 100.0, damping_ratio: 0.05, residue: vec![], shape: vec![0.3, 0.2] }] },
+                    points: vec![Point { x_m: x[0], h_m: 0.0 }, Point { x_m: x[0] + 0.5 * (x[1] - x[0]), h_m: -0.001 }],
+                    road: Road::Measured { file: path.clone(), looped },
+                    speed_mps: speed,
+                    ramp_s: 0.001,
+                    dt_s: 1e-4,
+                    duration_s: 5e-3,
+                    contact_scheme: ContactScheme::Located,
+                    contact: Default::default(),
+                    base_dir: None,
+                };
+                short_run(&scene);
+            }
+            Err(SceneError::RoadFile { message, .. }) => prop_assert!(!message.is_empty()),
+            Err(e) => prop_assert!(false, "unexpected error {e}"),
+        }
     }
 
     #[test]
@@ -37,15 +114,7 @@ proptest! {
         b.splice(p..end, junk.bytes());
         let text = String::from_utf8_lossy(&b);
         match Scene::parse(&text, "m.ron") {
-            Ok(scene) => {
-                let mut s = scene.clone();
-                s.duration_s = 50.0 * s.dt_s;
-                if let Ok(mut sim) = Simulation::new(&s) {
-                    for _ in 0..50 {
-                        if sim.step().is_err() { break; }
-                    }
-                }
-            }
+            Ok(scene) => short_run(&scene),
             Err(SceneError::Syntax { line, col, .. }) => prop_assert!(line >= 1 && col >= 1),
             Err(SceneError::Invalid { errors, .. }) => prop_assert!(!errors.is_empty()),
             Err(_) => {}

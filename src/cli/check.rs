@@ -9,7 +9,7 @@ pub fn check(path: &Path) -> CliResult {
     // also reads a measured road file and factors the modes
     let sim = Simulation::new(&scene)?;
     println!(
-        "{}: ok — \"{}\": {} point(s), {} mode(s), road {}, {:.3} m/s, dt {:e} s, {} steps",
+        "{}: ok — \"{}\": {} point(s), {} mode(s), road {}, {:.3} m/s, dt {:e} s, {} steps; CSV of `run -o` about {} (--every 1)",
         path.display(),
         scene.name,
         scene.num_points(),
@@ -17,7 +17,12 @@ pub fn check(path: &Path) -> CliResult {
         scene.road.kind(),
         scene.speed_mps,
         scene.dt_s,
-        scene.num_steps()
+        scene.num_steps(),
+        tirecontact::output::csv::human_bytes(tirecontact::output::csv::estimated_bytes(
+            scene.num_steps(),
+            1,
+            scene.num_points()
+        ))
     );
     drop(sim);
     Ok(())

@@ -4,7 +4,7 @@ use super::{CliResult, load_scene};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
-use tirecontact::output::csv::RunWriter;
+use tirecontact::output::csv::{self as csv_out, RunWriter};
 use tirecontact::{Scene, SceneError, Simulation};
 
 #[derive(Debug, clap::Args)]
@@ -26,9 +26,75 @@ pub struct RunArgs {
     /// Also draw displacements and forces of every point to this PNG.
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// Refuse up front a run whose CSV (`-o`) would be larger than this
+    /// (decimal GB; estimated as rows × columns × 17 bytes).
+    #[arg(long, default_value_t = DEFAULT_MAX_OUTPUT_GB)]
+    pub max_output_gb: f64,
     /// Size of the PNG, WIDTHxHEIGHT in pixels.
     #[arg(long, default_value = "1400x900", value_parser = parse_size)]
     pub plot_size: (u32, u32),
+}
+
+/// Default budget of the CSV written by `run -o` (decimal GB): a larger
+/// output is refused before anything is computed or written, naming the
+/// estimate and the `--every` that fits. Runs without `-o` stream and keep
+/// no history, whatever their length.
+pub const DEFAULT_MAX_OUTPUT_GB: f64 = 20.0;
+
+/// Refuses an output larger than the budget, with the estimate and a way out.
+pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> {
+    let budget_gb = args.max_output_gb;
+    if !(budget_gb.is_finite() && budget_gb > 0.0) {
+        return Err(format!(
+            "--max-output-gb = {budget_gb}: expected a finite size > 0 GB"
+        ));
+    }
+    let Some(path) = &args.output else {
+        return Ok(());
+    };
+    let (n, p) = (scene.num_steps(), scene.num_points());
+    let est = csv_out::estimated_bytes(n, args.every, p);
+    let budget = budget_gb * 1e9;
+    if est > budget {
+        let rows = n.div_ceil(args.every.max(1));
+        let fit = (args.every as f64 * est / budget).ceil();
+        return Err(format!(
+            "-o {}: the CSV would be about {} ({rows} rows × {} columns × ~{} bytes: {n} steps of {:e} s, --every {}), over the output budget of {} (--max-output-gb {budget_gb}): expected a smaller output: write one row every N steps with --every {fit:.0} or more, shorten it with --duration, or raise --max-output-gb",
+            path.display(),
+            csv_out::human_bytes(est),
+            1 + 5 * p,
+            csv_out::BYTES_PER_VALUE,
+            scene.dt_s,
+            args.every,
+            csv_out::human_bytes(budget),
+        ));
+    }
+    Ok(())
+}
+
+/// A figure that could not be drawn after the run is refused before it.
+fn check_plot_args(args: &RunArgs) -> Result<(), String> {
+    let Some(path) = &args.plot else {
+        return Ok(());
+    };
+    let (w, h) = args.plot_size;
+    if !(200..=8000).contains(&w) || !(200..=8000).contains(&h) {
+        return Err(format!(
+            "--plot-size {w}x{h}: expected 200..=8000 px per side"
+        ));
+    }
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(std::path::Path::new("."));
+    if !dir.is_dir() {
+        return Err(format!(
+            "--plot {}: no folder {}: expected a PNG path in an existing folder",
+            path.display(),
+            dir.display()
+        ));
+    }
+    Ok(())
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -90,6 +156,9 @@ pub fn run(args: &RunArgs) -> CliResult {
         return Err("--every = 0: expected a number of steps >= 1".into());
     }
     let scene = scene_with_overrides(args)?;
+    // before anything is built, computed or written
+    check_output_budget(&scene, args)?;
+    check_plot_args(args)?;
     let mut sim = Simulation::new(&scene)?;
     let n = scene.num_steps();
     let mut writer = match &args.output {

@@ -20,6 +20,35 @@ pub fn header(p: usize) -> Vec<String> {
     h
 }
 
+/// Bytes of one value in a row: `-1.234567890e-03` and its comma.
+pub const BYTES_PER_VALUE: u64 = 17;
+
+/// Estimated size (bytes) of the CSV of a run of `steps` steps of `p` points
+/// written every `every` steps: rows (header, initial state, one per `every`
+/// steps and a last partial one) × columns (`1 + 5 p`) × [`BYTES_PER_VALUE`].
+/// An overestimate for the 0/1 contact columns; exact enough to refuse a run
+/// up front.
+pub fn estimated_bytes(steps: u64, every: u64, p: usize) -> f64 {
+    let rows = steps.div_ceil(every.max(1)) as f64 + 3.0;
+    rows * (1 + 5 * p) as f64 * BYTES_PER_VALUE as f64
+}
+
+/// A byte count for messages, in decimal units (`8.52 TB`).
+pub fn human_bytes(b: f64) -> String {
+    let units = ["bytes", "kB", "MB", "GB", "TB", "PB", "EB"];
+    let mut x = b;
+    let mut k = 0;
+    while x >= 1000.0 && k + 1 < units.len() {
+        x /= 1000.0;
+        k += 1;
+    }
+    if k == 0 {
+        format!("{x:.0} bytes")
+    } else {
+        format!("{x:.2} {}", units[k])
+    }
+}
+
 /// Streams rows of a run, averaging forces over `every` steps.
 pub struct RunWriter<W: Write> {
     w: csv::Writer<W>,
