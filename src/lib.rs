@@ -32,6 +32,7 @@ pub mod bench;
 pub mod contact;
 pub mod convolution;
 pub mod error;
+pub mod fidelity;
 pub mod identify;
 pub mod lsce;
 pub mod modal;
@@ -40,6 +41,8 @@ pub mod ring;
 pub mod road;
 pub mod scene;
 pub mod simulation;
+pub mod spectrum;
+pub mod sweep;
 
 pub use error::{SceneError, SolverError};
 pub use scene::Scene;

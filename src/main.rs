@@ -23,6 +23,8 @@ enum Command {
     Run(cli::run::RunArgs),
     /// Identify the modal model of a ring-tyre scene by LSCE (SPEC §5-6).
     Identify(cli::identify::IdentifyArgs),
+    /// Run a scene over a range of one parameter; summary and band levels per value.
+    Sweep(cli::sweep::SweepArgs),
     /// Work-precision study and before/after timings of skipped work.
     Bench(cli::bench::BenchArgs),
     /// Parse and validate a scene preset.
@@ -39,6 +41,7 @@ fn main() -> std::process::ExitCode {
         Some(Command::Check { preset }) => cli::check::check(&preset),
         Some(Command::Identify(args)) => cli::identify::identify(&args),
         Some(Command::Bench(args)) => cli::bench::bench(&args),
+        Some(Command::Sweep(args)) => cli::sweep::sweep(&args),
         None => default_action(),
     };
     match result {
@@ -70,5 +73,9 @@ fn headless_default() -> cli::CliResult {
         every: 1,
         plot: None,
         plot_size: (1400, 900),
+        spectrum: None,
+        spectrum_plot: None,
+        spectrum_from: None,
+        spectrum_max_hz: 5000.0,
     })
 }

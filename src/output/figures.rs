@@ -18,7 +18,7 @@ pub enum Style {
     HollowMarkers(u32),
 }
 
-/// One named series of `(x, y)` points.
+/// One named series of `(x, y)` points (an empty name: no legend entry).
 #[derive(Debug, Clone)]
 pub struct Series {
     pub name: String,
@@ -236,22 +236,24 @@ fn draw_panel(
                 let stroke = (scale * 1.6).max(1.0) as u32;
                 match s.style {
                     Style::Line => {
-                        chart
-                            .draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
-                            .label(s.name.clone())
-                            .legend(move |(x, y)| {
+                        let anno =
+                            chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?;
+                        if !s.name.is_empty() {
+                            anno.label(s.name.clone()).legend(move |(x, y)| {
                                 PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(stroke))
                             });
+                        }
                     }
                     Style::LineMarkers(r) => {
                         let pts: Vec<(f64, f64)> = pts.collect();
                         chart.draw_series(pts.iter().map(|&p| Circle::new(p, r, c.filled())))?;
-                        chart
-                            .draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
-                            .label(s.name.clone())
-                            .legend(move |(x, y)| {
+                        let anno =
+                            chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?;
+                        if !s.name.is_empty() {
+                            anno.label(s.name.clone()).legend(move |(x, y)| {
                                 PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(stroke))
                             });
+                        }
                     }
                     Style::Markers(r) | Style::HollowMarkers(r) => {
                         let filled = matches!(s.style, Style::Markers(_));
@@ -260,10 +262,11 @@ fn draw_panel(
                         } else {
                             c.stroke_width(1)
                         };
-                        chart
-                            .draw_series(pts.map(move |p| Circle::new(p, r, style)))?
-                            .label(s.name.clone())
-                            .legend(move |(x, y)| Circle::new((x + 10, y), r, style));
+                        let anno = chart.draw_series(pts.map(move |p| Circle::new(p, r, style)))?;
+                        if !s.name.is_empty() {
+                            anno.label(s.name.clone())
+                                .legend(move |(x, y)| Circle::new((x + 10, y), r, style));
+                        }
                     }
                 }
             }
