@@ -224,7 +224,12 @@ pub fn removal_costs(
 }
 
 /// `|G_ij(f)|` (m/N) of a matrix on a grid, for plotting beside another.
-pub fn magnitude_curve(g: &dyn GreenMatrix, i: usize, j: usize, freq_hz: &[f64]) -> Vec<(f64, f64)> {
+pub fn magnitude_curve(
+    g: &dyn GreenMatrix,
+    i: usize,
+    j: usize,
+    freq_hz: &[f64],
+) -> Vec<(f64, f64)> {
     freq_hz
         .iter()
         .map(|&f| (f, g.receptance(i, j, f).norm()))

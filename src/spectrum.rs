@@ -145,7 +145,9 @@ pub fn spectrum(
         .zip(&w)
         .map(|(&v, &wn)| Complex64::new((v - mean) * wn, 0.0))
         .collect();
-    FftPlanner::<f64>::new().plan_fft_forward(n).process(&mut buf);
+    FftPlanner::<f64>::new()
+        .plan_fft_forward(n)
+        .process(&mut buf);
     let half = n / 2;
     let df = sample_rate_hz / n as f64;
     let mut psd = Vec::with_capacity(half + 1);
@@ -195,7 +197,11 @@ impl Spectrum {
             .map(|(k, &a)| {
                 // DC and Nyquist bins hold no √2 (they are not sinusoids).
                 let edge = k == 0 || (self.num_samples % 2 == 0 && 2 * k == self.num_samples);
-                let rms = if edge { a } else { a / std::f64::consts::SQRT_2 };
+                let rms = if edge {
+                    a
+                } else {
+                    a / std::f64::consts::SQRT_2
+                };
                 20.0 * (rms / reference).log10()
             })
             .collect()

@@ -8,8 +8,8 @@
 //! Every run is independent and deterministic, so a sweep point equals the
 //! single run of the scene with that value, whatever the thread count.
 
-use crate::scene::{Scene, Tyre};
 use crate::road::Road;
+use crate::scene::{Scene, Tyre};
 use crate::simulation::Simulation;
 use crate::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder};
 use crate::spectrum::{BandLevel, Window};
@@ -64,8 +64,14 @@ fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
         }
         Road::Harmonics { components } => {
             for (k, c) in components.iter_mut().enumerate() {
-                f.push((format!("road.components[{k}].amplitude_m"), &mut c.amplitude_m));
-                f.push((format!("road.components[{k}].wavelength_m"), &mut c.wavelength_m));
+                f.push((
+                    format!("road.components[{k}].amplitude_m"),
+                    &mut c.amplitude_m,
+                ));
+                f.push((
+                    format!("road.components[{k}].wavelength_m"),
+                    &mut c.wavelength_m,
+                ));
                 f.push((format!("road.components[{k}].phase_rad"), &mut c.phase_rad));
             }
         }
@@ -75,7 +81,10 @@ fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
         Tyre::Modal { modes } => {
             for (k, m) in modes.iter_mut().enumerate() {
                 f.push((format!("tyre.modes[{k}].freq_hz"), &mut m.freq_hz));
-                f.push((format!("tyre.modes[{k}].damping_ratio"), &mut m.damping_ratio));
+                f.push((
+                    format!("tyre.modes[{k}].damping_ratio"),
+                    &mut m.damping_ratio,
+                ));
                 for (i, a) in m.shape.iter_mut().enumerate() {
                     f.push((format!("tyre.modes[{k}].shape[{i}]"), a));
                 }
@@ -94,18 +103,36 @@ fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
             f.extend([
                 ("tyre.ring.radius_m".to_string(), &mut r.radius_m),
                 ("tyre.ring.belt_width_m".into(), &mut r.belt_width_m),
-                ("tyre.ring.mass_per_length_kg_m".into(), &mut r.mass_per_length_kg_m),
+                (
+                    "tyre.ring.mass_per_length_kg_m".into(),
+                    &mut r.mass_per_length_kg_m,
+                ),
                 ("tyre.ring.inflation_pa".into(), &mut r.inflation_pa),
-                ("tyre.ring.radial_stiffness_n_m2".into(), &mut r.radial_stiffness_n_m2),
-                ("tyre.ring.tangential_stiffness_n_m2".into(), &mut r.tangential_stiffness_n_m2),
-                ("tyre.ring.bending_stiffness_n_m2".into(), &mut r.bending_stiffness_n_m2),
-                ("tyre.ring.extensional_stiffness_n".into(), &mut r.extensional_stiffness_n),
+                (
+                    "tyre.ring.radial_stiffness_n_m2".into(),
+                    &mut r.radial_stiffness_n_m2,
+                ),
+                (
+                    "tyre.ring.tangential_stiffness_n_m2".into(),
+                    &mut r.tangential_stiffness_n_m2,
+                ),
+                (
+                    "tyre.ring.bending_stiffness_n_m2".into(),
+                    &mut r.bending_stiffness_n_m2,
+                ),
+                (
+                    "tyre.ring.extensional_stiffness_n".into(),
+                    &mut r.extensional_stiffness_n,
+                ),
                 ("tyre.ring.damping_ratio".into(), &mut r.damping_ratio),
             ]);
             let o = identification;
             f.push(("tyre.identification.band_hz.0".into(), &mut o.band_hz.0));
             f.push(("tyre.identification.band_hz.1".into(), &mut o.band_hz.1));
-            f.push(("tyre.identification.sample_rate_hz".into(), &mut o.sample_rate_hz));
+            f.push((
+                "tyre.identification.sample_rate_hz".into(),
+                &mut o.sample_rate_hz,
+            ));
             f.push(("tyre.identification.duration_s".into(), &mut o.duration_s));
         }
     }
@@ -134,13 +161,20 @@ fn wildcard(path: &str) -> String {
 }
 
 fn matches(pattern: &str, path: &str) -> bool {
-    pattern == path || (pattern.contains("[*]") && wildcard(path) == wildcard(pattern) && {
-        // every explicit index of the pattern must agree
-        let idx = |s: &str| -> Vec<String> {
-            s.split('[').skip(1).map(|t| t.split(']').next().unwrap_or("").to_string()).collect()
-        };
-        idx(pattern).iter().zip(idx(path)).all(|(a, b)| a == "*" || *a == b)
-    })
+    pattern == path
+        || (pattern.contains("[*]") && wildcard(path) == wildcard(pattern) && {
+            // every explicit index of the pattern must agree
+            let idx = |s: &str| -> Vec<String> {
+                s.split('[')
+                    .skip(1)
+                    .map(|t| t.split(']').next().unwrap_or("").to_string())
+                    .collect()
+            };
+            idx(pattern)
+                .iter()
+                .zip(idx(path))
+                .all(|(a, b)| a == "*" || *a == b)
+        })
 }
 
 /// The numeric parameter paths of `scene` (what [`set_param`] accepts; a
@@ -170,7 +204,11 @@ fn unknown(scene: &Scene, path: &str) -> SweepError {
         if w != p && shown.iter().any(|s| wildcard(s) == w) {
             continue;
         }
-        shown.push(if w != p { w.replacen("[*]", "[i]", 1) } else { p });
+        shown.push(if w != p {
+            w.replacen("[*]", "[i]", 1)
+        } else {
+            p
+        });
     }
     SweepError::UnknownParam {
         path: path.to_string(),

@@ -29,9 +29,16 @@ fn on_bin_sinusoid_reads_its_level_and_frequency() {
             let peak = (1..levels.len())
                 .max_by(|&a, &b| levels[a].total_cmp(&levels[b]))
                 .unwrap();
-            assert!((s.freq_hz[peak] - f).abs() <= df, "{window:?}: peak at {}", s.freq_hz[peak]);
+            assert!(
+                (s.freq_hz[peak] - f).abs() <= df,
+                "{window:?}: peak at {}",
+                s.freq_hz[peak]
+            );
             let err = levels[bin] - rms_db(amp);
-            assert!(err.abs() < 0.1, "{window:?} bin {bin}: level error {err} dB");
+            assert!(
+                err.abs() < 0.1,
+                "{window:?} bin {bin}: level error {err} dB"
+            );
             assert!(err.abs() < 1e-9, "on-bin reading is exact: {err} dB");
             assert!((s.removed_mean - 5.0).abs() < 1e-9);
         }
@@ -49,7 +56,11 @@ fn off_bin_sinusoid_tone_power_within_a_tenth_of_a_db() {
         let x = tone(n, fs, f, amp, 1.1, 0.0);
         let s = spectrum(&x, fs, Window::Hann, true).unwrap();
         let t = s.tone(f, 5.0 * df).unwrap();
-        assert!((t.freq_hz - f).abs() <= df, "frac {frac}: {} vs {f}", t.freq_hz);
+        assert!(
+            (t.freq_hz - f).abs() <= df,
+            "frac {frac}: {} vs {f}",
+            t.freq_hz
+        );
         let err = 10.0 * (t.mean_square / (amp * amp / 2.0)).log10();
         worst = worst.max(err.abs());
         assert!(err.abs() < 0.1, "frac {frac}: {err} dB");
@@ -104,9 +115,8 @@ fn parseval_psd_integral_equals_mean_square() {
 #[test]
 fn iec_third_octave_centres_and_edges() {
     let nominal = [
-        20.0, 25.0, 31.5, 40.0, 50.0, 63.0, 80.0, 100.0, 125.0, 160.0, 200.0, 250.0, 315.0,
-        400.0, 500.0, 630.0, 800.0, 1000.0, 1250.0, 1600.0, 2000.0, 2500.0, 3150.0, 4000.0,
-        5000.0,
+        20.0, 25.0, 31.5, 40.0, 50.0, 63.0, 80.0, 100.0, 125.0, 160.0, 200.0, 250.0, 315.0, 400.0,
+        500.0, 630.0, 800.0, 1000.0, 1250.0, 1600.0, 2000.0, 2500.0, 3150.0, 4000.0, 5000.0,
     ];
     let bands = third_octave_bands(20.0, 5000.0);
     let got: Vec<f64> = bands.iter().map(|b| b.nominal_hz).collect();
@@ -115,7 +125,10 @@ fn iec_third_octave_centres_and_edges() {
         // exact centre within 2 % of the nominal one, G = 10^(3/10) base-10 ratios
         assert!((b.centre_hz / b.nominal_hz - 1.0).abs() < 0.02, "{b:?}");
         assert!((b.upper_hz / b.lower_hz - 10f64.powf(0.1)).abs() < 1e-12);
-        assert!((b.lower_hz * b.upper_hz - b.centre_hz * b.centre_hz).abs() < 1e-9 * b.centre_hz * b.centre_hz);
+        assert!(
+            (b.lower_hz * b.upper_hz - b.centre_hz * b.centre_hz).abs()
+                < 1e-9 * b.centre_hz * b.centre_hz
+        );
     }
     for w in bands.windows(2) {
         assert!((w[0].upper_hz - w[1].lower_hz).abs() < 1e-9 * w[1].lower_hz);
@@ -143,7 +156,9 @@ fn flat_multisine_band_levels_match_closed_form() {
         spec[k] = c;
         spec[n - k] = c.conj();
     }
-    FftPlanner::<f64>::new().plan_fft_inverse(n).process(&mut spec);
+    FftPlanner::<f64>::new()
+        .plan_fft_inverse(n)
+        .process(&mut spec);
     let x: Vec<f64> = spec.iter().map(|c| c.re).collect();
     // spot check one sample against the direct sum
     let x5: f64 = (1..n / 2)
@@ -187,7 +202,12 @@ fn sinusoid_band_level_and_neighbours() {
     let x = tone(n, fs, 997.0, amp, 0.2, 300.0);
     let s = spectrum(&x, fs, Window::Hann, true).unwrap();
     let levels = s.third_octave_levels(20.0, 5000.0, 1.0);
-    let at = |nominal: f64| levels.iter().find(|b| b.band.nominal_hz == nominal).unwrap();
+    let at = |nominal: f64| {
+        levels
+            .iter()
+            .find(|b| b.band.nominal_hz == nominal)
+            .unwrap()
+    };
     let err = at(1000.0).level_db - rms_db(amp);
     assert!(err.abs() < 0.01, "1 kHz band: {err} dB");
     assert!(at(800.0).level_db < rms_db(amp) - 60.0);

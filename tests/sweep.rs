@@ -33,7 +33,9 @@ fn parameter_paths_get_and_set() {
     set_param(&mut s, "tyre.modes[2].freq_hz", 321.0).unwrap();
     assert_eq!(get_param(&s, "tyre.modes[2].freq_hz").unwrap(), 321.0);
     let tyre_ok = match &s.tyre {
-        tirecontact::scene::Tyre::Modal { modes } => modes[2].freq_hz == 321.0 && modes[1].freq_hz == 150.0,
+        tirecontact::scene::Tyre::Modal { modes } => {
+            modes[2].freq_hz == 321.0 && modes[1].freq_hz == 150.0
+        }
         _ => false,
     };
     assert!(tyre_ok);
@@ -45,10 +47,18 @@ fn parameter_paths_get_and_set() {
     let e = set_param(&mut s, "speed_kmh", 50.0).unwrap_err();
     let msg = e.to_string();
     assert!(matches!(e, SweepError::UnknownParam { .. }));
-    assert!(msg.contains("speed_kmh") && msg.contains("speed_mps") && msg.contains("points[i].h_m"), "{msg}");
+    assert!(
+        msg.contains("speed_kmh") && msg.contains("speed_mps") && msg.contains("points[i].h_m"),
+        "{msg}"
+    );
     let e = set_param(&mut s, "dt_s", -1.0).unwrap_err().to_string();
-    assert!(e.contains("dt_s") && e.contains("-1") && e.contains("> 0"), "{e}");
-    let e = set_param(&mut s, "tyre.modes[7].freq_hz", 1.0).unwrap_err().to_string();
+    assert!(
+        e.contains("dt_s") && e.contains("-1") && e.contains("> 0"),
+        "{e}"
+    );
+    let e = set_param(&mut s, "tyre.modes[7].freq_hz", 1.0)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("tyre.modes[7].freq_hz"), "{e}");
 }
 
@@ -97,7 +107,11 @@ fn a_sweep_point_equals_the_single_run() {
     let sweep = |threads| {
         run_sweep(
             &base,
-            &Sweep { param: "speed_mps".into(), values: values.clone(), threads },
+            &Sweep {
+                param: "speed_mps".into(),
+                values: values.clone(),
+                threads,
+            },
             &|_, _| {},
             &cancel,
         )
@@ -113,18 +127,35 @@ fn a_sweep_point_equals_the_single_run() {
         let r = two[k].result.as_ref().unwrap();
         assert_eq!(two[k].value, v);
         assert_eq!(r.max_force_n, m.max_force_n, "v = {v}");
-        let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-12 * y.abs().max(1e-300));
-        assert!(close(&r.force_rms_n, &m.force_rms_n), "v = {v}: {:?} vs {:?}", r.force_rms_n, m.force_rms_n);
+        let close = |a: &[f64], b: &[f64]| {
+            a.iter()
+                .zip(b)
+                .all(|(x, y)| (x - y).abs() <= 1e-12 * y.abs().max(1e-300))
+        };
+        assert!(
+            close(&r.force_rms_n, &m.force_rms_n),
+            "v = {v}: {:?} vs {:?}",
+            r.force_rms_n,
+            m.force_rms_n
+        );
         assert_eq!(r.contact_fraction, m.contact_fraction, "v = {v}");
         let s = spectrum(&m.total_force_n, 1.0 / scene.dt_s, Window::Hann, true).unwrap();
         let bands = s.third_octave_levels(20.0, 5000.0, 1.0);
         assert_eq!(r.bands.len(), bands.len());
         for (a, b) in r.bands.iter().zip(&bands) {
             assert_eq!(a.band, b.band);
-            assert!((a.level_db - b.level_db).abs() < 1e-9, "v = {v}, {} Hz", a.band.nominal_hz);
+            assert!(
+                (a.level_db - b.level_db).abs() < 1e-9,
+                "v = {v}, {} Hz",
+                a.band.nominal_hz
+            );
         }
         // something happens: the points leave the road at these speeds
-        assert!(m.contact_fraction.iter().any(|&c| c < 1.0), "{:?}", m.contact_fraction);
+        assert!(
+            m.contact_fraction.iter().any(|&c| c < 1.0),
+            "{:?}",
+            m.contact_fraction
+        );
     }
     // the summaries differ between values (the parameter was applied)
     assert_ne!(two[0].result, two[2].result);
@@ -136,7 +167,11 @@ fn an_invalid_value_stops_the_sweep_before_running() {
     let cancel = AtomicBool::new(false);
     let e = run_sweep(
         &base,
-        &Sweep { param: "road.wavelength_m".into(), values: vec![0.1, 0.0], threads: 2 },
+        &Sweep {
+            param: "road.wavelength_m".into(),
+            values: vec![0.1, 0.0],
+            threads: 2,
+        },
         &|_, _| {},
         &cancel,
     )

@@ -228,7 +228,8 @@ fn write_spectra(args: &RunArgs, scene: &Scene, rec: &SteadyRecorder) -> CliResu
     if let Some(path) = &args.spectrum {
         let mut buf = Vec::new();
         spectra.write_csv(&mut buf, args.spectrum_max_hz)?;
-        tirecontact::output::write_atomic(path, &buf).map_err(|e| format!("{}: {e}", path.display()))?;
+        tirecontact::output::write_atomic(path, &buf)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
         let bands = bands_path(path);
         let mut buf = Vec::new();
         spectra.write_bands_csv(&mut buf, DEFAULT_BANDS_HZ.0, DEFAULT_BANDS_HZ.1)?;
@@ -244,7 +245,12 @@ fn write_spectra(args: &RunArgs, scene: &Scene, rec: &SteadyRecorder) -> CliResu
             &marks,
             args.spectrum_max_hz,
         );
-        tirecontact::output::figures::render_png(&fig, path, args.plot_size.0, args.plot_size.1.max(1200))?;
+        tirecontact::output::figures::render_png(
+            &fig,
+            path,
+            args.plot_size.0,
+            args.plot_size.1.max(1200),
+        )?;
         eprintln!("wrote {}", path.display());
     }
     Ok(())

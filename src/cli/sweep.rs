@@ -80,12 +80,14 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
     };
     let bar = ProgressBar::with_draw_target(Some(1), ProgressDrawTarget::stderr());
     bar.set_style(
-        ProgressStyle::with_template(
-            "{elapsed_precise} [{bar:40}] {percent}% {msg} (eta {eta})",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {percent}% {msg} (eta {eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    bar.set_message(format!("{} runs of {} on {threads} thread(s)", sweep.values.len(), args.param));
+    bar.set_message(format!(
+        "{} runs of {} on {threads} thread(s)",
+        sweep.values.len(),
+        args.param
+    ));
     let start = Instant::now();
     let cancel = AtomicBool::new(false);
     let progress = |done: u64, total: u64| {
@@ -99,7 +101,8 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
     if let Some(path) = &args.output {
         let mut buf = Vec::new();
         report::write_csv(&mut buf, &args.param, &points, p)?;
-        tirecontact::output::write_atomic(path, &buf).map_err(|e| format!("{}: {e}", path.display()))?;
+        tirecontact::output::write_atomic(path, &buf)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
         eprintln!("wrote {}", path.display());
     }
     if let Some(path) = &args.plot {
@@ -121,7 +124,12 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
     }
     let failed: Vec<String> = points
         .iter()
-        .filter_map(|pt| pt.result.as_ref().err().map(|e| format!("{} = {}: {e}", args.param, pt.value)))
+        .filter_map(|pt| {
+            pt.result
+                .as_ref()
+                .err()
+                .map(|e| format!("{} = {}: {e}", args.param, pt.value))
+        })
         .collect();
     for f in &failed {
         eprintln!("run failed: {f}");

@@ -206,7 +206,12 @@ impl RunSpectra {
 
     /// Writes the band table: `band, centre_hz, lower_hz, upper_hz,
     /// resolved, q_total_db_re_1N, q{i}_db_re_1N.., u{i}_db_re_1m..`.
-    pub fn write_bands_csv<W: Write>(&self, out: W, lo_hz: f64, hi_hz: f64) -> Result<(), csv::Error> {
+    pub fn write_bands_csv<W: Write>(
+        &self,
+        out: W,
+        lo_hz: f64,
+        hi_hz: f64,
+    ) -> Result<(), csv::Error> {
         let mut w = csv::Writer::from_writer(out);
         let p = self.force.len();
         let mut header: Vec<String> = ["band_hz", "centre_hz", "lower_hz", "upper_hz", "resolved"]

@@ -127,8 +127,9 @@ pub fn figure(
                 ..Panel::default()
             },
             Panel {
-                title: "Total contact force, third-octave bands 315 Hz - 2 kHz (Hann, mean removed)"
-                    .into(),
+                title:
+                    "Total contact force, third-octave bands 315 Hz - 2 kHz (Hann, mean removed)"
+                        .into(),
                 x_label: param.to_string(),
                 y_label: "band level (dB re 1 N)".into(),
                 series: bands,
