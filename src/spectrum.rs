@@ -153,7 +153,7 @@ pub fn spectrum(
     let mut psd = Vec::with_capacity(half + 1);
     let mut amplitude = Vec::with_capacity(half + 1);
     for (k, xk) in buf.iter().take(half + 1).enumerate() {
-        let edge = k == 0 || (n % 2 == 0 && k == half);
+        let edge = k == 0 || (n.is_multiple_of(2) && k == half);
         let c = if edge { 1.0 } else { 2.0 };
         psd.push(c * xk.norm_sqr() / (sample_rate_hz * s2));
         amplitude.push(c * xk.norm() / s1);
@@ -196,7 +196,7 @@ impl Spectrum {
             .enumerate()
             .map(|(k, &a)| {
                 // DC and Nyquist bins hold no √2 (they are not sinusoids).
-                let edge = k == 0 || (self.num_samples % 2 == 0 && 2 * k == self.num_samples);
+                let edge = k == 0 || 2 * k == self.num_samples;
                 let rms = if edge {
                     a
                 } else {

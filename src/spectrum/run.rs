@@ -341,7 +341,7 @@ fn floor_levels(panel: &mut Panel, range_db: f64) {
     }
     for s in &mut panel.series {
         for p in &mut s.points {
-            if !(p.1 >= top - range_db) {
+            if p.1.is_nan() || p.1 < top - range_db {
                 p.1 = top - range_db;
             }
         }
