@@ -29,6 +29,7 @@
 //! | [`output`] | CSV writer | — |
 
 pub mod bench;
+pub mod compare;
 pub mod contact;
 pub mod convolution;
 pub mod error;
