@@ -166,6 +166,17 @@ impl RunSpectra {
         )
     }
 
+    /// A short description for panel titles.
+    pub fn describe_short(&self) -> String {
+        let s = self.first();
+        format!(
+            "t >= {:.3} s, {} window, bin {:.2} Hz, mean removed",
+            self.start_s,
+            s.window.name(),
+            s.df_hz
+        )
+    }
+
     /// Writes `freq_hz, q{i}_db_re_1N.., q_total_db_re_1N, u{i}_db_re_1m..`
     /// for the bins up to `max_hz`.
     pub fn write_csv<W: Write>(&self, out: W, max_hz: f64) -> Result<(), csv::Error> {
@@ -263,12 +274,16 @@ impl RunSpectra {
                         .take_while(|(f, _)| **f <= max_hz)
                         .map(|(&f, l)| (f, l))
                         .collect();
-                    Series::line(format!("{name}{i}"), pts)
+                    Series {
+                        style: Style::ThinLine,
+                        ..Series::line(format!("{name}{i}"), pts)
+                    }
                 })
                 .collect()
         };
         let mut force = curves(&self.force, "q");
-        let mut total = curves(std::slice::from_ref(&self.total_force), "total q");
+        let mut total = curves(std::slice::from_ref(&self.total_force), "");
+        total[0].name = "total q".into();
         total[0].color = Some(6);
         force.append(&mut total);
         let disp = curves(&self.displacement, "u");
@@ -291,7 +306,7 @@ impl RunSpectra {
         bands.push(band_series(&tb, "total q".into(), Some(6)));
         let mut panels = vec![
             Panel {
-                title: "Contact force spectrum (one bin per line)".into(),
+                title: format!("Contact force spectrum, {}", self.describe_short()),
                 x_label: "frequency f (Hz)".into(),
                 y_label: "force level (dB re 1 N)".into(),
                 series: force,
@@ -317,11 +332,14 @@ impl RunSpectra {
         ];
         for panel in &mut panels {
             floor_levels(panel, 120.0);
+        }
+        // markers on the two narrow-band panels (the band panel stays readable)
+        for panel in &mut panels[..2] {
             add_markers(panel, marks, s.df_hz, max_hz);
         }
         Figure {
             title: title.to_string(),
-            subtitle: format!("{subtitle}; {}", self.describe()),
+            subtitle: subtitle.to_string(),
             panels,
         }
     }
