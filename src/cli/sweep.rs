@@ -108,13 +108,7 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
     if let Some(path) = &args.plot {
         let fig = report::figure(
             &format!("{}: sweep of {}", scene.name, args.param),
-            &format!(
-                "{} values {} .. {}; other parameters: {}",
-                sweep.values.len(),
-                args.from,
-                args.to,
-                super::run::scene_summary(&scene)
-            ),
+            &format!("base scene: {}", super::run::scene_summary(&scene)),
             &args.param,
             &points,
             p,
