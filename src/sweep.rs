@@ -23,7 +23,8 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 pub enum SweepError {
     #[error("unknown parameter `{path}`: expected one of {}", .valid.join(", "))]
     UnknownParam { path: String, valid: Vec<String> },
-    #[error("{path} = {value}: {message}")]
+    /// The scene is invalid with the value; `message` names every bad field.
+    #[error("{message}")]
     InvalidValue {
         path: String,
         value: f64,
@@ -230,14 +231,20 @@ pub fn set_param(scene: &mut Scene, path: &str, value: f64) -> Result<(), SweepE
     if hits == 0 {
         return Err(unknown(&before, path));
     }
-    scene.validate().map_err(|errors| SweepError::InvalidValue {
-        path: path.to_string(),
-        value,
-        message: errors
+    scene.validate().map_err(|errors| {
+        let mut message = errors
             .iter()
             .map(ToString::to_string)
             .collect::<Vec<_>>()
-            .join("; "),
+            .join("; ");
+        if !errors.iter().any(|e| matches(path, &e.field)) {
+            message = format!("with {path} = {value}: {message}");
+        }
+        SweepError::InvalidValue {
+            path: path.to_string(),
+            value,
+            message,
+        }
     })
 }
 

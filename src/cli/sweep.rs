@@ -18,10 +18,10 @@ pub struct SweepArgs {
     #[arg(long)]
     pub param: String,
     /// First value.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub from: f64,
     /// Last value.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub to: f64,
     /// Number of values, evenly spaced, both ends included.
     #[arg(long, default_value_t = 10)]
