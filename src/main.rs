@@ -32,6 +32,13 @@ enum Command {
         /// Scene preset (RON).
         preset: PathBuf,
     },
+    /// Open the visualiser on a preset (without a subcommand: the last
+    /// session or the embedded default preset).
+    #[cfg(feature = "gui")]
+    Gui {
+        /// Scene preset (RON).
+        preset: Option<PathBuf>,
+    },
 }
 
 fn main() -> std::process::ExitCode {
@@ -39,6 +46,9 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Some(Command::Run(args)) => cli::run::run(&args),
         Some(Command::Check { preset }) => cli::check::check(&preset),
+        #[cfg(feature = "gui")]
+        Some(Command::Gui { preset }) => tirecontact::gui::run_with_preset(preset)
+            .map_err(|e| format!("cannot open the visualiser: {e}").into()),
         Some(Command::Identify(args)) => cli::identify::identify(&args),
         Some(Command::Bench(args)) => cli::bench::bench(&args),
         Some(Command::Sweep(args)) => cli::sweep::sweep(&args),
@@ -55,8 +65,7 @@ fn main() -> std::process::ExitCode {
 
 #[cfg(feature = "gui")]
 fn default_action() -> cli::CliResult {
-    // The visualiser lands with its own issue; until then, run the default preset.
-    headless_default()
+    tirecontact::gui::run().map_err(|e| format!("cannot open the visualiser: {e}").into())
 }
 
 #[cfg(not(feature = "gui"))]
@@ -64,6 +73,7 @@ fn default_action() -> cli::CliResult {
     headless_default()
 }
 
+#[cfg(not(feature = "gui"))]
 fn headless_default() -> cli::CliResult {
     cli::run::run(&cli::run::RunArgs {
         preset: None,

@@ -6,7 +6,10 @@
 //! r_i(t) = w(t) * ( z(x_i + V t) - h_i ),   w(t) = 3 s^2 - 2 s^3,  s = clamp(t / T_ramp, 0, 1)
 //! ```
 
-use crate::error::SceneError;
+pub mod random;
+
+use crate::error::{FieldError, SceneError};
+pub use random::RoadClass;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
@@ -47,6 +50,39 @@ pub enum Road {
         #[serde(default)]
         looped: bool,
     },
+    /// A random road of an ISO 8608 class (see [`random`]): displacement PSD
+    /// `Gd(n) = 16e-6 · 4^k (n / 0.1)^-2` m³ (`k = 0` for A … 7 for H) over
+    /// `[min_wavenumber_cpm, max_wavenumber_cpm]`, a sum of cosines with
+    /// seeded random phases, periodic with period `length_m`.
+    Random {
+        /// ISO 8608 class, `A` (smoothest) … `H` (roughest).
+        class: RoadClass,
+        /// Seed of the phases (ChaCha8): the same seed gives the same road.
+        seed: u64,
+        /// Loop length `L` (m), > 0; the road repeats with this period and
+        /// its spectral lines are `1/L` apart. Default 100 m.
+        #[serde(default = "default_random_length_m")]
+        length_m: f64,
+        /// Lowest spatial frequency (cycles/m), > 0; default 1 (wavelength
+        /// 1 m: longer waves move the whole contact patch together).
+        #[serde(default = "default_min_cpm")]
+        min_wavenumber_cpm: f64,
+        /// Highest spatial frequency (cycles/m); default 100 (wavelength
+        /// 1 cm). ISO 8608 classifies over 0.011-2.83 cycles/m; above, the
+        /// `n^-2` law is extrapolated, as usual in tyre/road models.
+        #[serde(default = "default_max_cpm")]
+        max_wavenumber_cpm: f64,
+    },
+}
+
+fn default_random_length_m() -> f64 {
+    100.0
+}
+fn default_min_cpm() -> f64 {
+    1.0
+}
+fn default_max_cpm() -> f64 {
+    100.0
 }
 
 impl Road {
@@ -56,7 +92,76 @@ impl Road {
             Road::Sine { .. } => "sine",
             Road::Harmonics { .. } => "harmonics",
             Road::Measured { .. } => "measured",
+            Road::Random { .. } => "random",
         }
+    }
+
+    /// Field errors of a random road (`at` prefixes the field names); empty
+    /// for other roads and valid random ones.
+    pub fn random_errors(&self, at: &str) -> Vec<FieldError> {
+        let Road::Random {
+            length_m,
+            min_wavenumber_cpm: lo,
+            max_wavenumber_cpm: hi,
+            ..
+        } = *self
+        else {
+            return Vec::new();
+        };
+        let mut e = Vec::new();
+        let push = |e: &mut Vec<FieldError>, field: &str, value: f64, expected: String| {
+            e.push(FieldError {
+                field: format!("{at}.{field}"),
+                value: value.to_string(),
+                expected,
+            })
+        };
+        let ok = |x: f64| x.is_finite() && x > 0.0;
+        if !ok(length_m) {
+            push(&mut e, "length_m", length_m, "a loop length > 0 m".into());
+        }
+        if !ok(lo) {
+            push(
+                &mut e,
+                "min_wavenumber_cpm",
+                lo,
+                "a spatial frequency > 0 cycles/m".into(),
+            );
+        }
+        if !ok(hi) || (ok(lo) && hi < lo) {
+            push(
+                &mut e,
+                "max_wavenumber_cpm",
+                hi,
+                format!("a spatial frequency >= min_wavenumber_cpm = {lo} cycles/m"),
+            );
+        }
+        if e.is_empty() {
+            let grid = random::grid_points(length_m, hi);
+            if grid > random::MAX_GRID_POINTS as f64 {
+                push(
+                    &mut e,
+                    "length_m",
+                    length_m,
+                    format!(
+                        "length_m x max_wavenumber_cpm <= {:.0} (the profile grid has {} points per shortest wavelength, at most {} points)",
+                        random::MAX_GRID_POINTS as f64 / random::POINTS_PER_WAVELENGTH,
+                        random::POINTS_PER_WAVELENGTH,
+                        random::MAX_GRID_POINTS
+                    ),
+                );
+            } else if random::harmonic_range(length_m, lo, hi).is_empty() {
+                push(
+                    &mut e,
+                    "max_wavenumber_cpm",
+                    hi,
+                    format!(
+                        "a band [{lo}, {hi}] cycles/m holding at least one line j / length_m = j / {length_m} m"
+                    ),
+                );
+            }
+        }
+        e
     }
 }
 
@@ -68,6 +173,13 @@ pub enum RoadProfile {
         x_m: Vec<f64>,
         z_m: Vec<f64>,
         looped: bool,
+    },
+    /// Periodic grid of heights and slopes `x = m dx_m`, cubic Hermite
+    /// interpolation (random roads).
+    Gridded {
+        dx_m: f64,
+        z_m: Vec<f64>,
+        dz: Vec<f64>,
     },
 }
 
@@ -104,6 +216,33 @@ impl RoadProfile {
                     looped: *looped,
                 }
             }
+            Road::Random {
+                class,
+                seed,
+                length_m,
+                min_wavenumber_cpm,
+                max_wavenumber_cpm,
+            } => {
+                let errors = road.random_errors("road");
+                if !errors.is_empty() {
+                    return Err(SceneError::Invalid {
+                        file: "road".into(),
+                        errors,
+                    });
+                }
+                let (z_m, dz) = random::generate(
+                    *class,
+                    *seed,
+                    *length_m,
+                    *min_wavenumber_cpm,
+                    *max_wavenumber_cpm,
+                );
+                RoadProfile::Gridded {
+                    dx_m: length_m / z_m.len() as f64,
+                    z_m,
+                    dz,
+                }
+            }
         })
     }
 
@@ -111,13 +250,24 @@ impl RoadProfile {
     pub fn scale_m(&self) -> f64 {
         match self {
             RoadProfile::Harmonics(h) => h.iter().map(|c| c.amplitude_m.abs()).sum(),
-            RoadProfile::Measured { z_m, .. } => z_m.iter().fold(0.0, |m, z| m.max(z.abs())),
+            RoadProfile::Measured { z_m, .. } | RoadProfile::Gridded { z_m, .. } => {
+                z_m.iter().fold(0.0, |m, z| m.max(z.abs()))
+            }
         }
     }
 
-    /// Height `z(x)` (m) and slope `dz/dx` at `x` (m).
+    /// Height `z(x)` (m) and slope `dz/dx` at `x` (m); at a breakpoint of a
+    /// measured profile, the slope of the segment after it.
     #[inline]
     pub fn sample(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
+        self.sample_side(x, true)
+    }
+
+    /// As [`RoadProfile::sample`]; at a breakpoint, the slope after it
+    /// (`after`) or before it (the road velocity at the end of an interval
+    /// that reaches the breakpoint).
+    #[inline]
+    pub fn sample_side(&self, x: f64, after: bool) -> Result<(f64, f64), OutOfRange> {
         match self {
             RoadProfile::Harmonics(h) => {
                 let mut z = 0.0;
@@ -144,13 +294,125 @@ impl RoadProfile {
                     x
                 };
                 // Segment k with x_m[k] <= xx <= x_m[k+1].
-                let k = x_m.partition_point(|&xi| xi <= xx).clamp(1, x_m.len() - 1) - 1;
+                // a breakpoint within KINK_SNAP_M of xx (round-off of x + V t)
+                // counts as reached: the side decides the segment
+                let k = if after {
+                    x_m.partition_point(|&xi| xi <= xx + KINK_SNAP_M)
+                } else {
+                    x_m.partition_point(|&xi| xi < xx - KINK_SNAP_M)
+                };
+                let k = k.clamp(1, x_m.len() - 1) - 1;
                 let slope = (z_m[k + 1] - z_m[k]) / (x_m[k + 1] - x_m[k]);
                 Ok((z_m[k] + slope * (xx - x_m[k]), slope))
+            }
+            RoadProfile::Gridded { dx_m, z_m, dz } => {
+                Ok(random::sample_periodic(z_m, dz, *dx_m, x))
             }
         }
     }
 }
+
+/// The road under a fixed set of points `x_i` shifted by the distance rolled
+/// `s`: `z(x_i + s)` and `dz/dx`. For harmonic roads one `sin_cos` per
+/// harmonic and step (angle addition from precomputed `sin_cos(κ x_i + φ)`)
+/// instead of one per point and harmonic.
+#[derive(Debug, Clone)]
+pub struct PointsRoad {
+    pub profile: RoadProfile,
+    x_m: Vec<f64>,
+    /// `(sin, cos)` of `κ_h x_i + φ_h`, harmonic-major.
+    phase: Vec<(f64, f64)>,
+}
+
+impl PointsRoad {
+    pub fn new(profile: RoadProfile, x_m: &[f64]) -> Self {
+        let phase = match &profile {
+            RoadProfile::Harmonics(h) => h
+                .iter()
+                .flat_map(|c| {
+                    x_m.iter()
+                        .map(move |&x| (TAU / c.wavelength_m * x + c.phase_rad).sin_cos())
+                })
+                .collect(),
+            RoadProfile::Measured { .. } | RoadProfile::Gridded { .. } => Vec::new(),
+        };
+        PointsRoad {
+            profile,
+            x_m: x_m.to_vec(),
+            phase,
+        }
+    }
+
+    /// The first breakpoint of a measured profile that point `i` meets
+    /// strictly inside `(s0, s1)` (as a rolled distance, m); `None` for
+    /// smooth roads. Breakpoints within `1e-9 (s1 - s0)` of either end are
+    /// ignored.
+    pub fn next_kink(&self, i: usize, s0: f64, s1: f64) -> Option<f64> {
+        let RoadProfile::Measured { x_m, looped, .. } = &self.profile else {
+            return None;
+        };
+        let eps = 1e-9 * (s1 - s0);
+        let (x0, x1) = (x_m[0], x_m[x_m.len() - 1]);
+        let xa = self.x_m[i] + s0;
+        let xa = if *looped {
+            x0 + (xa - x0).rem_euclid(x1 - x0)
+        } else {
+            xa
+        };
+        let k = x_m.partition_point(|&x| x <= xa + eps);
+        let xk = *x_m.get(k)?;
+        let sk = s0 + (xk - xa);
+        (sk < s1 - eps).then_some(sk)
+    }
+
+    /// Whether point `i` sits on a breakpoint at rolled distance `s` (within `eps` m).
+    pub fn at_kink(&self, i: usize, s: f64, eps: f64) -> bool {
+        self.next_kink(i, s - eps, s + eps).is_some()
+    }
+
+    /// `z_i`, `dz/dx_i` at `x_i + s_m` (slopes after or before a
+    /// breakpoint, see [`RoadProfile::sample_side`]); on a measured profile's edge, the
+    /// point index and the range error.
+    #[inline]
+    pub fn sample_all(
+        &self,
+        s_m: f64,
+        after: bool,
+        z: &mut [f64],
+        dz: &mut [f64],
+    ) -> Result<(), (usize, OutOfRange)> {
+        match &self.profile {
+            RoadProfile::Harmonics(h) => {
+                z.fill(0.0);
+                dz.fill(0.0);
+                let p = self.x_m.len();
+                for (k, c) in h.iter().enumerate() {
+                    let kappa = TAU / c.wavelength_m;
+                    let (sn, cs) = (kappa * s_m).sin_cos();
+                    for i in 0..p {
+                        let (s0, c0) = self.phase[k * p + i];
+                        z[i] += c.amplitude_m * (s0 * cs + c0 * sn);
+                        dz[i] += c.amplitude_m * kappa * (c0 * cs - s0 * sn);
+                    }
+                }
+                Ok(())
+            }
+            RoadProfile::Measured { .. } | RoadProfile::Gridded { .. } => {
+                for (i, &x) in self.x_m.iter().enumerate() {
+                    (z[i], dz[i]) = self
+                        .profile
+                        .sample_side(x + s_m, after)
+                        .map_err(|e| (i, e))?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Distance (m) within which a point is taken to sit on a breakpoint of a
+/// measured profile (far below any profile spacing, far above round-off).
+pub const KINK_SNAP_M: f64 = 1e-12;
 
 /// Largest measured profile accepted (rows).
 pub const MAX_PROFILE_ROWS: usize = 20_000_000;
@@ -271,6 +533,54 @@ mod tests {
     }
 
     #[test]
+    fn kinks_of_a_measured_profile() {
+        let prof = RoadProfile::Measured {
+            x_m: vec![0.0, 1.0, 3.0],
+            z_m: vec![0.0, 1.0, -1.0],
+            looped: false,
+        };
+        let pr = PointsRoad::new(prof, &[0.5, -0.2]);
+        assert_eq!(pr.next_kink(0, 0.0, 1.0), Some(0.5));
+        assert_eq!(pr.next_kink(0, 0.5, 1.0), None); // at the start: ignored
+        assert_eq!(pr.next_kink(1, 0.3, 1.5), Some(1.2));
+        let looped = RoadProfile::Measured {
+            x_m: vec![0.0, 1.0, 3.0],
+            z_m: vec![0.0, 1.0, 0.0],
+            looped: true,
+        };
+        let pr = PointsRoad::new(looped, &[0.0]);
+        assert!((pr.next_kink(0, 2.5, 3.6).unwrap() - 3.0).abs() < 1e-12); // the wrap point
+        assert!((pr.next_kink(0, 3.2, 4.5).unwrap() - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn points_road_matches_direct_sampling() {
+        let prof = RoadProfile::Harmonics(vec![
+            Harmonic {
+                amplitude_m: 0.002,
+                wavelength_m: 0.5,
+                phase_rad: 0.3,
+            },
+            Harmonic {
+                amplitude_m: 0.001,
+                wavelength_m: 0.013,
+                phase_rad: -1.0,
+            },
+        ]);
+        let xs = [-0.05, 0.0, 0.031];
+        let pr = PointsRoad::new(prof.clone(), &xs);
+        let (mut z, mut dz) = ([0.0; 3], [0.0; 3]);
+        for s in [0.0, 0.37, 123.456] {
+            pr.sample_all(s, true, &mut z, &mut dz).unwrap();
+            for i in 0..3 {
+                let (zd, dzd) = prof.sample(xs[i] + s).unwrap();
+                assert!((z[i] - zd).abs() < 1e-14, "{} vs {zd}", z[i]);
+                assert!((dz[i] - dzd).abs() < 1e-11 * dzd.abs().max(1.0));
+            }
+        }
+    }
+
+    #[test]
     fn harmonic_slope_matches_difference() {
         let p = RoadProfile::Harmonics(vec![
             Harmonic {
@@ -287,5 +597,37 @@ mod tests {
         let e = 1e-7;
         let fd = (p.sample(0.2 + e).unwrap().0 - p.sample(0.2 - e).unwrap().0) / (2.0 * e);
         assert!((fd - p.sample(0.2).unwrap().1).abs() < 1e-7);
+    }
+
+    #[test]
+    fn random_road_fields_are_validated_by_name() {
+        let road = |len: f64, lo: f64, hi: f64| Road::Random {
+            class: RoadClass::E,
+            seed: 1,
+            length_m: len,
+            min_wavenumber_cpm: lo,
+            max_wavenumber_cpm: hi,
+        };
+        let fields = |r: Road| -> Vec<String> {
+            let e = r.random_errors("road");
+            assert_eq!(RoadProfile::new(&r, None).is_err(), !e.is_empty());
+            e.into_iter().map(|e| e.field).collect()
+        };
+        assert!(fields(road(100.0, 1.0, 100.0)).is_empty());
+        assert_eq!(fields(road(-1.0, 1.0, 100.0)), ["road.length_m"]);
+        assert_eq!(fields(road(f64::NAN, 1.0, 100.0)), ["road.length_m"]);
+        assert_eq!(fields(road(100.0, 0.0, 100.0)), ["road.min_wavenumber_cpm"]);
+        assert_eq!(fields(road(100.0, 5.0, 2.0)), ["road.max_wavenumber_cpm"]);
+        // grid too large: named with the limit
+        assert_eq!(fields(road(1e6, 1.0, 100.0)), ["road.length_m"]);
+        // the limit is length_m x max_wavenumber_cpm <= 2^22 / 8 (checked without generating)
+        assert!(road(5242.88, 1.0, 100.0).random_errors("road").is_empty());
+        assert_eq!(road(5243.0, 1.0, 100.0).random_errors("road").len(), 1);
+        // no spectral line in the band
+        assert_eq!(fields(road(1.0, 1.2, 1.8)), ["road.max_wavenumber_cpm"]);
+        // a validated random road samples anywhere (periodic)
+        let p = RoadProfile::new(&road(10.0, 1.0, 20.0), None).unwrap();
+        assert!(p.sample(-1e4).is_ok() && p.sample(1e4).is_ok());
+        assert!(p.scale_m() > 0.0);
     }
 }

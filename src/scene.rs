@@ -19,6 +19,41 @@ pub enum ContactScheme {
     Paper,
 }
 
+/// Contact law between a tyre point and the road (issue 9).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub enum Contact {
+    /// The paper's rigid kinematic contact (SPEC §4): while in contact the
+    /// point follows the road in position and velocity. Default.
+    #[default]
+    Rigid,
+    /// A tread spring in series with the tyre at each point: force
+    /// `q = k max(0, r - u)` (see `simulation/compliant.rs`). Overrides
+    /// `contact_scheme`.
+    Compliant {
+        /// Tread stiffness `k` (N/m), > 0: one value for every point, or one
+        /// per point.
+        stiffness_n_m: Vec<f64>,
+    },
+}
+
+impl Contact {
+    pub fn is_rigid(&self) -> bool {
+        matches!(self, Contact::Rigid)
+    }
+
+    /// Stiffness per point (N/m) for `p` points; empty for rigid contact.
+    pub fn stiffness_per_point(&self, p: usize) -> Vec<f64> {
+        match self {
+            Contact::Rigid => Vec::new(),
+            Contact::Compliant { stiffness_n_m: k } if k.len() == 1 => vec![k[0]; p],
+            Contact::Compliant { stiffness_n_m: k } => k.clone(),
+        }
+    }
+}
+
+/// Largest tread stiffness accepted (N/m).
+pub const MAX_TREAD_STIFFNESS_N_M: f64 = 1e16;
+
 /// One mode of the modal model (SPEC §2). Give either `residue` (P×P, row i =
 /// receiving point, column j = loaded point, in 1/kg) or `shape` (P values,
 /// `A = φ φᵀ`).
@@ -105,6 +140,9 @@ pub struct Scene {
     /// Contact scheme; default `Located`.
     #[serde(default)]
     pub contact_scheme: ContactScheme,
+    /// Contact law; default `Rigid` (the paper's kinematic contact).
+    #[serde(default, skip_serializing_if = "Contact::is_rigid")]
+    pub contact: Contact,
     /// Folder the scene was loaded from (for relative road files). Not saved.
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
@@ -277,6 +315,24 @@ impl Scene {
             }
         }
         validate_road(&mut v, &self.road);
+        if let Contact::Compliant { stiffness_n_m } = &self.contact {
+            if stiffness_n_m.len() != 1 && stiffness_n_m.len() != p {
+                v.push(
+                    "contact.stiffness_n_m",
+                    format!("{} values", stiffness_n_m.len()),
+                    &format!("one stiffness for all points or {p} (one per point)"),
+                );
+            }
+            for (i, &k) in stiffness_n_m.iter().enumerate() {
+                if !(k.is_finite() && k > 0.0 && k <= MAX_TREAD_STIFFNESS_N_M) {
+                    v.push(
+                        &format!("contact.stiffness_n_m[{i}]"),
+                        k,
+                        &format!("a tread stiffness > 0 and <= {MAX_TREAD_STIFFNESS_N_M:e} N/m"),
+                    );
+                }
+            }
+        }
         v.nonneg("speed_mps", self.speed_mps, "a speed >= 0 m/s");
         if self.speed_mps > 1000.0 {
             v.push("speed_mps", self.speed_mps, "a speed <= 1000 m/s");
@@ -421,6 +477,7 @@ fn validate_road(v: &mut Validator, road: &Road) {
                 v.push("road.file", "\"\"", "the path of a CSV of `x_m, z_m` rows");
             }
         }
+        Road::Random { .. } => v.errors.extend(road.random_errors("road")),
     }
 }
 

@@ -2,13 +2,14 @@
 //! of the active points, the monotone complementarity rule, and (default
 //! `Located` scheme) impacts and releases located inside the step.
 
+mod compliant;
 mod events;
 
 use crate::contact::DenseSolver;
 use crate::convolution::{Influence, ModalBasis, ModalState, StepTable};
 use crate::error::{SceneError, SolverError};
 use crate::road::Road;
-use crate::road::{RoadProfile, ramp};
+use crate::road::{PointsRoad, RoadProfile, ramp};
 use crate::scene::{ContactScheme, Scene};
 pub use events::first_crossing;
 
@@ -67,7 +68,11 @@ enum Table {
 pub struct Simulation {
     scene: Scene,
     basis: ModalBasis,
-    road: RoadProfile,
+    road: PointsRoad,
+    /// Added to `V t` so that the distance rolled stays continuous when the speed changes (m).
+    x_offset_m: f64,
+    zbuf: Vec<f64>,
+    dzbuf: Vec<f64>,
     p: usize,
     dt_s: f64,
     pen_tol_m: f64,
@@ -102,6 +107,9 @@ pub struct Simulation {
     rde: Vec<f64>,
     q1: Vec<f64>,
     q2: Vec<f64>,
+    /// Trial Gauss-point forces restricted to the interval before an event.
+    rq1: Vec<f64>,
+    rq2: Vec<f64>,
     impulse: Vec<f64>,
     rhs: Vec<f64>,
     active: Vec<usize>,
@@ -112,6 +120,8 @@ pub struct Simulation {
     full_factored: bool,
     options: SolverOptions,
     stats: RunStats,
+    /// Tread stiffness per point (N/m) of compliant contact; empty: rigid.
+    tread_k_n_m: Vec<f64>,
 }
 
 /// Switches for the work a scene does not need; all on by default. Turning
@@ -171,7 +181,12 @@ impl Simulation {
             .map(|pt| pt.h_m.abs())
             .fold(road.scale_m(), f64::max)
             .max(1e-6);
+        let xs: Vec<f64> = scene.points.iter().map(|pt| pt.x_m).collect();
+        let road = PointsRoad::new(road, &xs);
         let mut sim = Simulation {
+            x_offset_m: 0.0,
+            zbuf: vec![0.0; p],
+            dzbuf: vec![0.0; p],
             scene: scene.clone(),
             p,
             dt_s: scene.dt_s,
@@ -205,6 +220,8 @@ impl Simulation {
             rde: vec![0.0; p],
             q1: vec![0.0; p],
             q2: vec![0.0; p],
+            rq1: vec![0.0; p],
+            rq2: vec![0.0; p],
             impulse: vec![0.0; p],
             rhs: vec![0.0; 2 * p],
             active: Vec::with_capacity(p),
@@ -215,6 +232,7 @@ impl Simulation {
             full_factored: false,
             options,
             stats: RunStats::default(),
+            tread_k_n_m: scene.contact.stiffness_per_point(p),
         };
         sim.reset();
         Ok(sim)
@@ -224,13 +242,14 @@ impl Simulation {
     pub fn reset(&mut self) {
         self.state.reset();
         self.t_s = 0.0;
+        self.x_offset_m = 0.0;
         self.steps = 0;
         for x in [&mut self.u, &mut self.v, &mut self.q_mean] {
             x.fill(0.0);
         }
         self.contact.fill(false);
         // road at t = 0 (zero while ramping; a validated scene samples in range)
-        if self.road_at(0.0, Table::Full).is_err() {
+        if self.road_at(0.0, true).is_err() {
             self.re.fill(0.0);
             self.rde.fill(0.0);
         }
@@ -245,26 +264,37 @@ impl Simulation {
 
     /// Replaces the road profile live (no restart).
     pub fn set_road(&mut self, road: &Road) -> Result<(), SceneError> {
-        self.road = RoadProfile::new(road, self.scene.base_dir.as_deref())?;
+        let xs: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
+        self.road = PointsRoad::new(RoadProfile::new(road, self.scene.base_dir.as_deref())?, &xs);
         self.scene.road = road.clone();
         let scale = self
             .scene
             .points
             .iter()
             .map(|pt| pt.h_m.abs())
-            .fold(self.road.scale_m(), f64::max)
+            .fold(self.road.profile.scale_m(), f64::max)
             .max(1e-6);
         self.pen_tol_m = 1e-12 * scale;
         Ok(())
     }
 
     /// Changes the rolling speed live (m/s, no restart).
+    /// The distance rolled stays continuous: the road does not jump.
     pub fn set_speed(&mut self, speed_mps: f64) {
+        self.x_offset_m += (self.scene.speed_mps - speed_mps) * self.t_s;
         self.scene.speed_mps = speed_mps;
     }
 
     pub fn scene(&self) -> &Scene {
         &self.scene
+    }
+    /// The road profile being sampled (for drawing it).
+    pub fn road_profile(&self) -> &RoadProfile {
+        &self.road.profile
+    }
+    /// Distance rolled so far (m): point `i` sees the road at `x_i + rolled_m()`.
+    pub fn rolled_m(&self) -> f64 {
+        self.scene.speed_mps * self.t_s + self.x_offset_m
     }
     pub fn time_s(&self) -> f64 {
         self.t_s
@@ -311,21 +341,23 @@ impl Simulation {
     }
 
     /// Road heights and rates at `t` into `re`, `rde`.
-    fn road_at(&mut self, t: f64, _sel: Table) -> Result<(), SolverError> {
+    /// Road heights and rates at `t` into `re`, `rde`; at a breakpoint of a
+    /// measured road, the rate after it (`after`) or before it.
+    fn road_at(&mut self, t: f64, after: bool) -> Result<(), SolverError> {
         let (w, dw) = ramp(t, self.scene.ramp_s);
         let vel = self.scene.speed_mps;
+        let rolled_m = vel * t + self.x_offset_m;
+        self.road
+            .sample_all(rolled_m, after, &mut self.zbuf, &mut self.dzbuf)
+            .map_err(|(i, e)| SolverError::RoadOutOfRange {
+                t_s: t,
+                point: i,
+                x_m: e.x_m,
+                min_m: e.min_m,
+                max_m: e.max_m,
+            })?;
         for (i, pt) in self.scene.points.iter().enumerate() {
-            let x = pt.x_m + vel * t;
-            let (z, dz) = self
-                .road
-                .sample(x)
-                .map_err(|e| SolverError::RoadOutOfRange {
-                    t_s: t,
-                    point: i,
-                    x_m: e.x_m,
-                    min_m: e.min_m,
-                    max_m: e.max_m,
-                })?;
+            let (z, dz) = (self.zbuf[i], self.dzbuf[i]);
             self.re[i] = w * (z - pt.h_m);
             self.rde[i] = dw * (z - pt.h_m) + w * dz * vel;
         }
@@ -344,7 +376,7 @@ impl Simulation {
         };
         self.state.predict_into(table, &mut self.free);
         self.free.project(&self.basis, &mut self.uh, &mut self.vh);
-        self.road_at(t + tau, sel)
+        self.road_at(t + tau, false)
     }
 
     /// Solves the Gauss-point system of `active` (after `predict`) and the end
@@ -443,6 +475,25 @@ impl Simulation {
         }
     }
 
+    /// End values of every point for the current forces, with either table.
+    fn end_values_sub_or_full(&mut self, sel: Table) {
+        match sel {
+            Table::Sub => self.end_values_sub(),
+            Table::Full => {
+                let (p, g) = (self.p, &self.full_inf);
+                for i in 0..p {
+                    let (mut du, mut dv) = (0.0, 0.0);
+                    for &j in &self.active {
+                        du += g.gx1[i * p + j] * self.q1[j] + g.gx2[i * p + j] * self.q2[j];
+                        dv += g.gv1[i * p + j] * self.q1[j] + g.gv2[i * p + j] * self.q2[j];
+                    }
+                    self.ue[i] = self.uh[i] + du;
+                    self.ve[i] = self.vh[i] + dv;
+                }
+            }
+        }
+    }
+
     /// The `|S| x |S|` blocks of the sub-step influence of the active points
     /// (only what the solve needs: `O(|S|² states)`).
     fn fill_sub_block(&mut self) {
@@ -500,7 +551,9 @@ impl Simulation {
         let t0 = self.t_s;
         self.impulse.fill(0.0);
         self.released.fill(false);
+        let compliant = !self.tread_k_n_m.is_empty();
         let (events, solves) = match self.scene.contact_scheme {
+            _ if compliant => (0, self.compliant_step(t0)?),
             ContactScheme::Paper => {
                 let s = self.paper_substep(t0, self.dt_s, Table::Full)?;
                 (0, s)
@@ -527,7 +580,10 @@ impl Simulation {
                 }
             }
             self.contact[i] = self.active.contains(&i);
-            pen = pen.max(self.r[i] - self.u[i]);
+            // a compliant contact's compression is its spring's, not a penetration
+            if !(compliant && self.contact[i]) {
+                pen = pen.max(self.r[i] - self.u[i]);
+            }
             self.stats.max_force_n[i] = self.stats.max_force_n[i].max(self.q_mean[i]);
             self.stats.contact_steps[i] += self.contact[i] as u64;
         }
@@ -587,6 +643,19 @@ impl Simulation {
                 Some((i, _)) => self.active.push(i),
                 None => break,
             }
+        }
+        // At the solve bound, a point still pulling is let go (its force
+        // zeroed): the forces stay non-negative, any penetration is reported.
+        if self.active.iter().any(|&j| self.q1[j] + self.q2[j] < 0.0) {
+            let (q1, q2) = (&mut self.q1, &mut self.q2);
+            self.active.retain(|&j| {
+                let keep = q1[j] + q2[j] >= 0.0;
+                if !keep {
+                    (q1[j], q2[j]) = (0.0, 0.0);
+                }
+                keep
+            });
+            self.end_values_sub_or_full(sel);
         }
         self.commit(tau, sel);
         Ok(solves)

@@ -347,14 +347,15 @@ pub struct Markers {
 }
 
 /// Markers of a scene up to `max_hz`: road excitation frequencies of a sine
-/// or multi-harmonic road (none for a measured profile) with harmonics up to
+/// or multi-harmonic road (none for a measured or random profile) with harmonics up to
 /// `max_harmonic`, and the modal frequencies.
 pub fn markers(scene: &crate::Scene, max_hz: f64, max_harmonic: u32) -> Markers {
     use crate::road::Road;
     let wavelengths: Vec<f64> = match &scene.road {
         Road::Sine { wavelength_m, .. } => vec![*wavelength_m],
         Road::Harmonics { components } => components.iter().map(|c| c.wavelength_m).collect(),
-        Road::Measured { .. } => Vec::new(),
+        // broadband roads: no discrete excitation lines
+        Road::Measured { .. } | Road::Random { .. } => Vec::new(),
     };
     let mut excitation = Vec::new();
     for lambda in wavelengths {

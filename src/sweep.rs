@@ -9,7 +9,7 @@
 //! single run of the scene with that value, whatever the thread count.
 
 use crate::road::Road;
-use crate::scene::{Scene, Tyre};
+use crate::scene::{Contact, Scene, Tyre};
 use crate::simulation::Simulation;
 use crate::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder};
 use crate::spectrum::{BandLevel, Window};
@@ -76,7 +76,22 @@ fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
                 f.push((format!("road.components[{k}].phase_rad"), &mut c.phase_rad));
             }
         }
+        Road::Random {
+            length_m,
+            min_wavenumber_cpm,
+            max_wavenumber_cpm,
+            ..
+        } => {
+            f.push(("road.length_m".into(), length_m));
+            f.push(("road.min_wavenumber_cpm".into(), min_wavenumber_cpm));
+            f.push(("road.max_wavenumber_cpm".into(), max_wavenumber_cpm));
+        }
         Road::Measured { .. } => {}
+    }
+    if let Contact::Compliant { stiffness_n_m } = &mut scene.contact {
+        for (i, k) in stiffness_n_m.iter_mut().enumerate() {
+            f.push((format!("contact.stiffness_n_m[{i}]"), k));
+        }
     }
     match &mut scene.tyre {
         Tyre::Modal { modes } => {

@@ -27,12 +27,17 @@ static GLOBAL: Counting = Counting;
 
 #[test]
 fn steps_do_not_allocate() {
-    for scheme in ["Located", "Paper"] {
+    // "Compliant": the tread spring of issue 9 (overrides the scheme)
+    for scheme in ["Located", "Paper", "Compliant"] {
         let text = std::fs::read_to_string("presets/three_points.ron")
             .unwrap()
             .replace(
                 "contact_scheme: Located",
-                &format!("contact_scheme: {scheme}"),
+                &if scheme == "Compliant" {
+                    "contact: Compliant(stiffness_n_m: [3e6])".to_string()
+                } else {
+                    format!("contact_scheme: {scheme}")
+                },
             );
         let scene = tirecontact::Scene::parse(&text, "three_points").unwrap();
         let mut sim = tirecontact::Simulation::new(&scene).unwrap();

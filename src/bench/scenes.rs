@@ -46,6 +46,7 @@ pub fn many_points(points: usize, n_modes: usize) -> Scene {
         dt_s: 1e-5,
         duration_s: 0.1,
         contact_scheme: ContactScheme::Located,
+        contact: Default::default(),
         base_dir: None,
     }
 }

@@ -29,18 +29,35 @@ impl Simulation {
             solves += self.impact(t, i)?;
             events += 1;
         }
-        let mut sel = Table::Full;
+        let mut sel;
         while remaining > 1e-12 * dt {
             if events > self.max_events {
                 // Zeno-like cascade: finish the step with the paper's rule.
-                if sel == Table::Full {
-                    self.prepare_sub(remaining);
-                }
+                self.prepare_sub(remaining);
                 solves += self.paper_substep(t, remaining, Table::Sub)?;
                 break;
             }
-            self.predict(t, remaining, sel)?;
-            self.solve_active(t + remaining, sel)?;
+            // An active point on a breakpoint where the road turns upward
+            // is hit by it: an inelastic impulse (a downward turn releases
+            // it in the trial below).
+            if let Some(i) = self.kinked_up(t)? {
+                solves += self.impact(t, i)?;
+                events += 1;
+            }
+            // The sub-step ends at the step end or where an active point meets
+            // a kink of the road (a measured profile's breakpoint: the road
+            // velocity jumps there, which no smooth force can follow).
+            let span = self.kink_limit(t, remaining);
+            if span == dt {
+                sel = Table::Full;
+            } else {
+                if self.sub.tau_s != span {
+                    self.prepare_sub(span);
+                }
+                sel = Table::Sub;
+            }
+            self.predict(t, span, sel)?;
+            self.solve_active(t + span, sel)?;
             solves += !self.active.is_empty() as u32;
             // releases: the linear force ends negative (release where it crosses
             // zero) or is negative on average from the start (release now)
@@ -49,11 +66,7 @@ impl Simulation {
                 let (q1, q2) = (self.q1[j], self.q2[j]);
                 let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
                 if qe < 0.0 || qs + qe < 0.0 {
-                    let th = if qs > 0.0 {
-                        remaining * qs / (qs - qe)
-                    } else {
-                        0.0
-                    };
+                    let th = if qs > 0.0 { span * qs / (qs - qe) } else { 0.0 };
                     let better = match release {
                         None => true,
                         Some((_, t2, e2)) => th < t2 || (th == t2 && qe < e2),
@@ -82,10 +95,9 @@ impl Simulation {
                 // a point released in this step lands again only after it rose
                 // clear of the road (no cycling at the release instant)
                 let rise = self.released[i];
-                if let Some(y) =
-                    first_crossing(g0, d0 * remaining, g1, d1 * remaining, self.pen_tol_m, rise)
+                if let Some(y) = first_crossing(g0, d0 * span, g1, d1 * span, self.pen_tol_m, rise)
                 {
-                    let th = y * remaining;
+                    let th = y * span;
                     if impact.is_none_or(|(_, t2)| th < t2) {
                         impact = Some((i, th));
                     }
@@ -95,21 +107,26 @@ impl Simulation {
             let th_imp = impact.map_or(f64::INFINITY, |r| r.1);
             let th = th_rel.min(th_imp);
             if !th.is_finite() {
-                self.commit(remaining, sel);
-                break;
+                self.commit(span, sel);
+                t += span;
+                remaining -= span;
+                continue;
             }
             // advance to the event
-            if th >= remaining * (1.0 - 1e-12) {
-                self.commit(remaining, sel);
-                t += remaining;
-                remaining = 0.0;
-            } else if th > 0.0 {
-                // The trial forces restricted to [0, θ]: the trajectory whose
-                // event was located, forces that stay >= 0 up to a release;
-                // active points stay on the road to O(θ⁴). A point whose force
-                // dips below zero at the start and would pull on average over
-                // [0, θ] is released now instead.
-                let f = th / remaining;
+            if th >= span * (1.0 - 1e-12) {
+                self.commit(span, sel);
+                t += span;
+                remaining -= span;
+            } else if th > 1e-9 * span {
+                // (an event within 1e-9 of the sub-step start happens at its start:
+                // no degenerate sub-step is solved)
+                // Up to a release: the trial forces restricted to [0, θ]
+                // (they stay >= 0 up to the crossing; active points stay on the
+                // road to O(θ⁴)). Up to an impact: re-solved so that the active
+                // points are exactly on the road at the impact. A point whose
+                // force dips below zero at the start and would pull on average
+                // over [0, θ] is released now instead.
+                let f = th / span;
                 let pulling = self.active.iter().position(|&j| {
                     let (qs, qe) = (
                         GA * self.q1[j] - GB * self.q2[j],
@@ -128,13 +145,28 @@ impl Simulation {
                 for &j in &self.active {
                     let (q1, q2) = (self.q1[j], self.q2[j]);
                     let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
-                    self.q1[j] = qs + (qe - qs) * f * ya;
-                    self.q2[j] = qs + (qe - qs) * f * yb;
+                    self.rq1[j] = qs + (qe - qs) * f * ya;
+                    self.rq2[j] = qs + (qe - qs) * f * yb;
                 }
                 self.prepare_sub(th);
                 sel = Table::Sub;
                 self.predict(t, th, sel)?;
-                self.end_values_sub();
+                let mut restricted = th_imp > th_rel;
+                if !restricted {
+                    self.solve_active(t + th, sel)?;
+                    solves += !self.active.is_empty() as u32;
+                    // a re-solve that would pull somewhere keeps the trial's forces
+                    restricted = self.active.iter().any(|&j| {
+                        let (q1, q2) = (self.q1[j], self.q2[j]);
+                        q1 + q2 < -1e-9 * (q1.abs() + q2.abs())
+                    });
+                }
+                if restricted {
+                    for &j in &self.active {
+                        (self.q1[j], self.q2[j]) = (self.rq1[j], self.rq2[j]);
+                    }
+                    self.end_values_sub();
+                }
                 self.commit(th, sel);
                 t += th;
                 remaining -= th;
@@ -147,19 +179,58 @@ impl Simulation {
                 let j = self.active.remove(k);
                 self.released[j] = true;
             }
-            if remaining > 1e-12 * dt {
-                self.prepare_sub(remaining);
-                sel = Table::Sub;
-            }
         }
         Ok((events, solves))
+    }
+
+    /// At a breakpoint of a measured road under an active point: the road
+    /// rates become those after it, and the point whose road now rises
+    /// faster than it moves (the road turns up into it) is returned.
+    fn kinked_up(&mut self, t: f64) -> Result<Option<usize>, SolverError> {
+        let vel = self.scene.speed_mps;
+        if vel <= 0.0 {
+            return Ok(None);
+        }
+        let s = vel * t + self.x_offset_m;
+        let eps = 1e-9 * vel * self.dt_s;
+        let Some(&i) = self.active.iter().find(|&&i| self.road.at_kink(i, s, eps)) else {
+            return Ok(None);
+        };
+        // from here on the road's rate is the one after the breakpoint
+        self.road_at(t, true)?;
+        self.r.copy_from_slice(&self.re);
+        self.rd.copy_from_slice(&self.rde);
+        let scale = self.rde.iter().fold(1e-6, |m: f64, x| m.max(x.abs()));
+        let up = self
+            .active
+            .iter()
+            .any(|&j| self.rde[j] > self.v[j] + 1e-9 * scale);
+        Ok(up.then_some(i))
+    }
+
+    /// Length of the next sub-step from `t`: `remaining`, or less where an
+    /// active point reaches a breakpoint of a measured road first.
+    fn kink_limit(&self, t: f64, remaining: f64) -> f64 {
+        let vel = self.scene.speed_mps;
+        if vel <= 0.0 || self.active.is_empty() {
+            return remaining;
+        }
+        let s0 = vel * t + self.x_offset_m;
+        let s1 = s0 + vel * remaining;
+        let mut span = remaining;
+        for &i in &self.active {
+            if let Some(sk) = self.road.next_kink(i, s0, s1) {
+                span = span.min((sk - s0) / vel);
+            }
+        }
+        span
     }
 
     /// Perfectly inelastic impact of point `i` at `t`: impulses on all points on
     /// the road together so that their velocities equal the road's; a point
     /// whose impulse would pull is thrown off (monotone, most negative first).
     fn impact(&mut self, t: f64, i: usize) -> Result<u32, SolverError> {
-        self.road_at(t, Table::Sub)?;
+        self.road_at(t, true)?;
         self.r.copy_from_slice(&self.re);
         self.rd.copy_from_slice(&self.rde);
         if !self.active.contains(&i) {

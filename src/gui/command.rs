@@ -1,0 +1,81 @@
+//! Everything a user can ask for. Panels and the keyboard push commands;
+//! `App::apply` is the one place they change the app's state.
+
+use super::time_control::Speed;
+use crate::Scene;
+use std::path::PathBuf;
+
+/// A main view of the central area.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum View {
+    #[default]
+    TimePlots,
+    Scene,
+    Green,
+}
+
+impl View {
+    pub const ALL: [View; 3] = [View::TimePlots, View::Scene, View::Green];
+    pub fn label(self) -> &'static str {
+        match self {
+            View::TimePlots => "Time plots",
+            View::Scene => "Scene view",
+            View::Green => "Green functions",
+        }
+    }
+}
+
+/// An action that would drop unsaved edits, held until the user confirms.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Discarding {
+    New,
+    OpenDialog,
+    OpenPath(PathBuf),
+    Preset(usize),
+    Quit,
+}
+
+/// A user request.
+#[must_use = "a Command does nothing until App::apply runs it"]
+#[derive(Debug, Clone, PartialEq)]
+pub enum Command {
+    Play,
+    Pause,
+    TogglePlay,
+    /// Pause and take `n` solver steps.
+    Step(u64),
+    /// Back to t = 0 with the current scene.
+    Reset,
+    SetSpeed(Speed),
+    /// Replace the scene by an edited, already validated one. Road and speed
+    /// changes apply live; anything else restarts the run.
+    EditScene(Box<Scene>),
+    /// New scene (the embedded default preset), after confirmation if dirty.
+    New,
+    /// Open a preset through the file dialog, after confirmation if dirty.
+    OpenDialog,
+    /// Open a preset file, after confirmation if dirty.
+    OpenPath(PathBuf),
+    /// Open a shipped preset (index into `presets::SHIPPED`).
+    OpenPreset(usize),
+    /// Save to the current file (Save As if there is none).
+    Save,
+    SaveAsDialog,
+    SavePath(PathBuf),
+    /// Show the PNG export settings.
+    ExportPngDialog,
+    ExportPng {
+        path: PathBuf,
+        width: u32,
+        height: u32,
+    },
+    ExportCsvDialog,
+    ExportCsv(PathBuf),
+    /// The user confirmed dropping unsaved edits.
+    ConfirmDiscard,
+    CancelDiscard,
+    /// Close the window (after confirmation if dirty).
+    Quit,
+    DismissMessage,
+    ShowView(View),
+}

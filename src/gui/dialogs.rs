@@ -1,0 +1,157 @@
+//! Message banner, status bar, unsaved-changes confirmation and the PNG export
+//! settings. They push `Command`s; the PNG settings are dialog-local state.
+
+use super::app::{App, Message, PngSettings};
+use super::command::{Command, Discarding};
+use super::fields::ERROR_COLOR;
+use egui::{Color32, RichText, Ui};
+
+/// The message banner above the views (errors in red, with a dismiss button).
+pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
+    let Some(m) = msg else { return };
+    let (fill, color) = if m.error {
+        (Color32::from_rgb(255, 235, 235), ERROR_COLOR)
+    } else {
+        (
+            Color32::from_rgb(232, 245, 238),
+            Color32::from_rgb(0, 110, 80),
+        )
+    };
+    egui::Frame::new()
+        .fill(fill)
+        .inner_margin(6.0)
+        .corner_radius(4.0)
+        .show(ui, |ui| {
+            ui.horizontal(|ui| {
+                ui.label(RichText::new(&m.text).color(color));
+                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                    if ui.small_button("Dismiss").clicked() {
+                        cmds.push(Command::DismissMessage);
+                    }
+                });
+            });
+        });
+}
+
+/// File, run statistics and frame rate.
+pub fn status_bar(ui: &mut Ui, app: &App) {
+    ui.horizontal(|ui| {
+        let file = app
+            .path
+            .as_ref()
+            .map_or("unsaved scene".to_string(), |p| p.display().to_string());
+        if app.is_dirty() {
+            ui.label(RichText::new(format!("{file} (unsaved changes)")).color(ERROR_COLOR));
+        } else {
+            ui.label(file);
+        }
+        ui.separator();
+        let st = app.sim.stats();
+        let in_contact = app.sim.in_contact().iter().filter(|c| **c).count();
+        ui.label(format!(
+            "{} points, {} modes · {} steps · {} events · {} in contact",
+            app.scene.num_points(),
+            app.modes.len(),
+            st.steps,
+            st.events,
+            in_contact
+        ));
+        ui.separator();
+        ui.label(format!(
+            "history: {} samples, 1 per {} step(s)",
+            app.history.len(),
+            app.history.stride()
+        ));
+        if app.exporting_csv() {
+            ui.separator();
+            ui.spinner();
+            ui.label("writing CSV…");
+        }
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+            ui.label(RichText::new(format!("{:.0} fps", app.fps())).weak())
+                .on_hover_text(format!(
+                    "frames per second; solver and UI code take {:.1} ms per frame",
+                    app.app_ms()
+                ));
+        });
+    });
+}
+
+/// Asks before dropping unsaved edits.
+pub fn confirm_window(ctx: &egui::Context, pending: Option<&Discarding>, cmds: &mut Vec<Command>) {
+    let Some(d) = pending else { return };
+    let what = match d {
+        Discarding::New => "start a new scene",
+        Discarding::OpenDialog | Discarding::OpenPath(_) => "open another preset",
+        Discarding::Preset(_) => "open a shipped preset",
+        Discarding::Quit => "quit",
+    };
+    egui::Modal::new(egui::Id::unique("tirecontact.confirm")).show(ctx, |ui| {
+        ui.heading("Unsaved changes");
+        ui.label(format!(
+            "The scene has unsaved changes. Discard them and {what}?"
+        ));
+        ui.horizontal(|ui| {
+            if ui.button("Discard changes").clicked() {
+                cmds.push(Command::ConfirmDiscard);
+            }
+            if ui.button("Save first").clicked() {
+                cmds.push(Command::CancelDiscard);
+                cmds.push(Command::Save);
+            }
+            if ui.button("Cancel").clicked() {
+                cmds.push(Command::CancelDiscard);
+            }
+        });
+    });
+}
+
+/// PNG export settings: size in pixels, then the file dialog.
+pub fn png_window(
+    ctx: &egui::Context,
+    settings: &mut Option<PngSettings>,
+    cmds: &mut Vec<Command>,
+) {
+    let Some(s) = settings else { return };
+    let mut open = true;
+    let mut go = false;
+    egui::Window::new("Export plots as PNG")
+        .open(&mut open)
+        .collapsible(false)
+        .resizable(false)
+        .show(ctx, |ui| {
+            ui.label("Displacement, force, gap and contact of the shown points over the whole run, with the scene parameters as subtitle.");
+            egui::Grid::new("tirecontact.png").show(ui, |ui| {
+                ui.label("width");
+                ui.add(egui::DragValue::new(&mut s.width).range(200..=8000).suffix(" px"));
+                ui.end_row();
+                ui.label("height");
+                ui.add(egui::DragValue::new(&mut s.height).range(200..=8000).suffix(" px"));
+                ui.end_row();
+            });
+            ui.horizontal(|ui| {
+                for (w, h) in [(1200, 900), (1600, 1200), (2400, 1800), (3200, 2400)] {
+                    if ui.small_button(format!("{w}x{h}")).clicked() {
+                        s.width = w;
+                        s.height = h;
+                    }
+                }
+            });
+            go = ui.button("Choose file and export…").clicked();
+        });
+    if go {
+        if let Some(path) = rfd::FileDialog::new()
+            .add_filter("PNG image", &["png"])
+            .set_file_name("tirecontact_plots.png")
+            .save_file()
+        {
+            cmds.push(Command::ExportPng {
+                path,
+                width: s.width,
+                height: s.height,
+            });
+        }
+    } else if !open {
+        *settings = None;
+    }
+}

@@ -1,0 +1,189 @@
+//! Export: the time plots as a PNG (headless figure: title, scene parameters,
+//! axes with units, legends) and the run as CSV in the format of
+//! `tirecontact run`.
+//!
+//! The CSV is written by re-running the scene from t = 0 on a background
+//! thread, every step, replaying the live edits (road, speed) at the steps
+//! where they were made: the file holds exactly the run that was shown, at
+//! full resolution, whatever the history's decimation.
+
+use super::history::{History, Quantity};
+use crate::output::csv::RunWriter;
+use crate::output::figures::{Figure, Panel, Series, render_png};
+use crate::road::Road;
+use crate::scene::Mode;
+use crate::{Scene, Simulation};
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{Receiver, channel};
+
+/// Samples per series in an exported figure (min/max decimated).
+const FIGURE_BUCKETS: usize = 2000;
+
+/// A road or speed change made while the run was going.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LiveEdit {
+    /// Solver steps taken before the change.
+    pub step: u64,
+    pub road: Road,
+    pub speed_mps: f64,
+}
+
+/// One line of scene parameters for figure subtitles.
+pub fn scene_summary(scene: &Scene, modes: &[Mode]) -> String {
+    let n_modes = modes.len();
+    let modes: Vec<String> = modes
+        .iter()
+        .take(8)
+        .map(|m| format!("{:.1} Hz/{:.3}", m.freq_hz, m.damping_ratio))
+        .collect();
+    let road = match &scene.road {
+        Road::Sine {
+            amplitude_m,
+            wavelength_m,
+        } => format!("sine a = {} mm, λ = {} m", amplitude_m * 1e3, wavelength_m),
+        Road::Harmonics { components } => format!("{} harmonics", components.len()),
+        Road::Measured { file, .. } => format!("measured {}", file.display()),
+    };
+    format!(
+        "{} points; {n_modes} modes (f/ξ): {}; road {}; V = {} m/s ({:.1} km/h); ramp {} s; dt = {:e} s",
+        scene.num_points(),
+        modes.join(", "),
+        road,
+        scene.speed_mps,
+        scene.speed_mps * 3.6,
+        scene.ramp_s,
+        scene.dt_s
+    )
+}
+
+/// The figure of the time plots over the whole recorded run.
+pub fn time_figure(scene: &Scene, modes: &[Mode], history: &History, shown: &[bool]) -> Figure {
+    let t1 = history.last_time().unwrap_or(0.0);
+    let defs = [
+        (Quantity::Displacement, "displacement", "u (mm, up)", 1e3),
+        (Quantity::Force, "contact force (step mean)", "q (N)", 1.0),
+        (Quantity::Gap, "gap to the road", "gap (mm)", 1e3),
+        (
+            Quantity::Contact,
+            "contact state (lane per point, raised = contact)",
+            "point",
+            1.0,
+        ),
+    ];
+    let panels = defs
+        .iter()
+        .map(|&(what, title, y_label, scale)| Panel {
+            title: title.to_string(),
+            x_label: "time t (s)".to_string(),
+            y_label: y_label.to_string(),
+            series: (0..history.num_points())
+                .filter(|&i| shown.get(i).copied().unwrap_or(true))
+                .enumerate()
+                .map(|(lane, i)| {
+                    let mut pts: Vec<(f64, f64)> = history
+                        .decimated(what, i, 0.0, t1, FIGURE_BUCKETS, scale)
+                        .into_iter()
+                        .map(|[t, y]| (t, y))
+                        .collect();
+                    if what == Quantity::Contact {
+                        for p in &mut pts {
+                            p.1 = lane as f64 + 0.7 * p.1;
+                        }
+                    }
+                    let mut s = Series::line(format!("point {i}"), pts);
+                    s.color = Some(i);
+                    s
+                })
+                .collect(),
+            ..Panel::default()
+        })
+        .collect();
+    Figure {
+        title: format!("{} — t = 0 … {:.4} s", scene.name, t1),
+        subtitle: scene_summary(scene, modes),
+        panels,
+    }
+}
+
+/// Writes the time plots as a `width × height` PNG.
+pub fn export_png(
+    path: &Path,
+    width: u32,
+    height: u32,
+    scene: &Scene,
+    modes: &[Mode],
+    history: &History,
+    shown: &[bool],
+) -> Result<(), String> {
+    let fig = time_figure(scene, modes, history, shown);
+    render_png(&fig, path, width, height).map_err(|e| e.to_string())
+}
+
+/// Re-runs `start` for `steps` steps, replaying `edits`, into `path` (CSV).
+pub fn write_csv(
+    path: &Path,
+    start: &Scene,
+    edits: &[LiveEdit],
+    steps: u64,
+) -> Result<String, String> {
+    let mut sim = Simulation::new(start).map_err(|e| e.to_string())?;
+    let mut bytes = Vec::new();
+    {
+        let mut w = RunWriter::new(&mut bytes, start.num_points(), 1).map_err(|e| e.to_string())?;
+        w.write_initial(&sim).map_err(|e| e.to_string())?;
+        let mut next = 0;
+        for k in 0..steps {
+            while next < edits.len() && edits[next].step <= k {
+                sim.set_road(&edits[next].road).map_err(|e| e.to_string())?;
+                sim.set_speed(edits[next].speed_mps);
+                next += 1;
+            }
+            sim.step().map_err(|e| e.to_string())?;
+            w.after_step(&sim).map_err(|e| e.to_string())?;
+        }
+        w.finish().map_err(|e| e.to_string())?;
+    }
+    crate::output::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(format!(
+        "wrote {} ({} steps, t = 0 … {:.5} s)",
+        path.display(),
+        steps,
+        sim.time_s()
+    ))
+}
+
+/// A CSV export running on its own thread.
+pub struct CsvJob {
+    pub path: PathBuf,
+    rx: Receiver<Result<String, String>>,
+}
+
+impl CsvJob {
+    pub fn spawn(path: PathBuf, start: Scene, edits: Vec<LiveEdit>, steps: u64) -> Self {
+        let (tx, rx) = channel();
+        let p = path.clone();
+        std::thread::spawn(move || {
+            // the receiver may be gone if the app closed; nothing to do then
+            let _ = tx.send(write_csv(&p, &start, &edits, steps));
+        });
+        CsvJob { path, rx }
+    }
+
+    /// The result, once the thread has finished.
+    pub fn poll(&self) -> Option<Result<String, String>> {
+        match self.rx.try_recv() {
+            Ok(r) => Some(r),
+            Err(std::sync::mpsc::TryRecvError::Empty) => None,
+            Err(std::sync::mpsc::TryRecvError::Disconnected) => {
+                Some(Err("the CSV export thread stopped unexpectedly".to_string()))
+            }
+        }
+    }
+
+    /// Blocks until the export ends (tests).
+    pub fn wait(self) -> Result<String, String> {
+        self.rx
+            .recv()
+            .unwrap_or_else(|_| Err("the CSV export thread stopped unexpectedly".to_string()))
+    }
+}

@@ -1,0 +1,248 @@
+//! Numeric fields that refuse invalid values at the field, with the reason.
+//!
+//! A field shows a value of the scene in a display unit. When the user
+//! commits a new text (Enter or focus lost), the text is parsed, the scene is
+//! rebuilt with the new value and validated as a whole; if that fails the
+//! value is refused and the reason stays next to the field (the scene keeps
+//! its old value), otherwise a `Command::EditScene` is returned. The typed
+//! text and the reason are widget state, kept in egui's memory.
+
+use super::command::Command;
+use crate::Scene;
+use egui::{Color32, Id, RichText, Ui};
+
+/// Colour of refused values and error text.
+pub const ERROR_COLOR: Color32 = Color32::from_rgb(220, 50, 47);
+/// Colour of the "live" tag.
+pub const LIVE_COLOR: Color32 = Color32::from_rgb(0, 158, 115);
+/// Colour of the "restart" tag.
+pub const RESTART_COLOR: Color32 = Color32::from_rgb(230, 159, 0);
+
+/// How a change of a field reaches the running simulation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Apply {
+    /// Applied to the running simulation at once.
+    Live,
+    /// Changing it restarts the run from t = 0.
+    Restart,
+}
+
+impl Apply {
+    pub fn tooltip(self) -> &'static str {
+        match self {
+            Apply::Live => "applied live: the run goes on",
+            Apply::Restart => "changing this restarts the run from t = 0",
+        }
+    }
+}
+
+/// A section heading with its live/restart tag.
+pub fn section(ui: &mut Ui, title: &str, apply: Apply) {
+    ui.horizontal(|ui| {
+        ui.strong(title);
+        tag(ui, apply);
+    });
+}
+
+/// The small coloured "live" / "restart" tag.
+pub fn tag(ui: &mut Ui, apply: Apply) {
+    let (text, color) = match apply {
+        Apply::Live => ("live", LIVE_COLOR),
+        Apply::Restart => ("restart", RESTART_COLOR),
+    };
+    ui.label(RichText::new(text).small().color(color))
+        .on_hover_text(apply.tooltip());
+}
+
+#[derive(Clone, Default)]
+struct FieldState {
+    /// Model value (SI) the text was last synchronised with.
+    shown: f64,
+    text: String,
+    error: Option<String>,
+}
+
+/// One numeric field.
+pub struct NumField<'a> {
+    /// Accessible name and memory key, e.g. `tyre.modes[0].freq_hz`.
+    pub name: &'a str,
+    /// Scene field checked by validation (often equal to `name`).
+    pub field: &'a str,
+    /// Current value (SI).
+    pub value: f64,
+    /// Display value = SI value × scale (e.g. 1000 for mm).
+    pub scale: f64,
+    /// Display unit, shown after the field.
+    pub unit: &'a str,
+    pub apply: Apply,
+    pub width: f32,
+}
+
+impl<'a> NumField<'a> {
+    pub fn new(name: &'a str, value: f64, unit: &'a str, apply: Apply) -> Self {
+        NumField {
+            name,
+            field: name,
+            value,
+            scale: 1.0,
+            unit,
+            apply,
+            width: 70.0,
+        }
+    }
+    pub fn scale(mut self, scale: f64) -> Self {
+        self.scale = scale;
+        self
+    }
+    pub fn field(mut self, field: &'a str) -> Self {
+        self.field = field;
+        self
+    }
+    pub fn width(mut self, width: f32) -> Self {
+        self.width = width;
+        self
+    }
+
+    /// Shows the field; `with` builds the edited scene from a new SI value.
+    pub fn show(self, ui: &mut Ui, with: impl FnOnce(f64) -> Scene) -> Option<Command> {
+        let id = Id::unique(("tirecontact.field", self.name));
+        let mut st: FieldState = ui.data(|d| d.get_temp(id)).unwrap_or_else(|| FieldState {
+            shown: f64::NAN,
+            ..FieldState::default()
+        });
+        let focused = ui.memory(|m| m.has_focus(id));
+        if !focused && !same(st.shown, self.value) {
+            st = FieldState {
+                shown: self.value,
+                text: format_number(self.value * self.scale),
+                error: None,
+            };
+        }
+        let mut cmd = None;
+        ui.horizontal(|ui| {
+            let mut edit = egui::TextEdit::singleline(&mut st.text)
+                .id(id)
+                .desired_width(self.width);
+            if st.error.is_some() {
+                edit = edit.text_color(ERROR_COLOR);
+            }
+            let resp = ui
+                .add(edit)
+                .accessible_name(self.name)
+                .on_hover_text(format!("{} ({})", self.name, self.apply.tooltip()));
+            if !self.unit.is_empty() {
+                ui.label(self.unit);
+            }
+            if resp.lost_focus() && st.text.trim() != format_number(self.value * self.scale) {
+                match parse_number(&st.text) {
+                    Err(e) => st.error = Some(e),
+                    Ok(x) => {
+                        let v = x / self.scale;
+                        let scene = with(v);
+                        match scene.validate() {
+                            Ok(()) => {
+                                st.error = None;
+                                st.shown = v;
+                                cmd = Some(Command::EditScene(Box::new(scene)));
+                            }
+                            Err(errors) => {
+                                let mine: Vec<_> =
+                                    errors.iter().filter(|e| e.field == self.field).collect();
+                                let shown: Vec<String> = if mine.is_empty() {
+                                    errors.iter().map(ToString::to_string).collect()
+                                } else {
+                                    mine.iter()
+                                        .map(|e| format!("expected {}", e.expected))
+                                        .collect()
+                                };
+                                st.error = Some(format!("refused: {}", shown.join("; ")));
+                            }
+                        }
+                    }
+                }
+            }
+            if let Some(e) = &st.error {
+                ui.label(RichText::new(e.as_str()).color(ERROR_COLOR))
+                    .on_hover_text("the scene keeps its previous value");
+            }
+        });
+        ui.data_mut(|d| d.insert_temp(id, st));
+        cmd
+    }
+}
+
+fn same(a: f64, b: f64) -> bool {
+    a == b || (a.is_nan() && b.is_nan())
+}
+
+/// Parses a number as typed by a person: `1.5`, `1,5`, `2e-3`, ` 7 `.
+pub fn parse_number(text: &str) -> Result<f64, String> {
+    let t = text.trim().replace(',', ".");
+    if t.is_empty() {
+        return Err("refused: empty; expected a number".to_string());
+    }
+    match t.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        Ok(_) => Err(format!("refused: {t}; expected a finite number")),
+        Err(_) => Err(format!("refused: '{t}' is not a number")),
+    }
+}
+
+/// Formats a value compactly with up to 6 significant digits.
+pub fn format_number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return if x == 0.0 {
+            "0".to_string()
+        } else {
+            x.to_string()
+        };
+    }
+    let a = x.abs();
+    if (1e-3..1e6).contains(&a) {
+        let digits = (5 - a.log10().floor() as i32).max(0) as usize;
+        let s = format!("{x:.digits$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    } else {
+        let s = format!("{x:.5e}");
+        match s.split_once('e') {
+            Some((m, e)) => {
+                let m = if m.contains('.') {
+                    m.trim_end_matches('0').trim_end_matches('.')
+                } else {
+                    m
+                };
+                format!("{m}e{e}")
+            }
+            None => s,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_format_compactly() {
+        assert_eq!(format_number(100.0), "100");
+        assert_eq!(format_number(0.05), "0.05");
+        assert_eq!(format_number(-1.0), "-1");
+        assert_eq!(format_number(1e-5), "1e-5");
+        assert_eq!(format_number(72.0), "72");
+        assert_eq!(format_number(0.123456789), "0.123457");
+        assert_eq!(format_number(2.5e7), "2.5e7");
+    }
+
+    #[test]
+    fn numbers_parse_as_typed() {
+        assert_eq!(parse_number(" 1,5 "), Ok(1.5));
+        assert_eq!(parse_number("2e-3"), Ok(2e-3));
+        assert!(parse_number("abc").is_err());
+        assert!(parse_number("").is_err());
+        assert!(parse_number("inf").is_err());
+    }
+}

@@ -1,0 +1,282 @@
+//! Bounded time histories of a run, and min/max decimation for drawing.
+//!
+//! Samples are recorded every `stride` solver steps (forces averaged over the
+//! stride, so impulses are kept). When the buffers are full, pairs of samples
+//! are merged and the stride doubles: memory stays bounded however long the
+//! run, and the whole run stays visible at a coarser resolution.
+
+use crate::Simulation;
+
+/// Samples kept across all series (bounds memory to a few tens of MB).
+pub const DEFAULT_BUDGET: usize = 8_000_000;
+
+/// Which quantity of a point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// Displacement `u_i` (m).
+    Displacement,
+    /// Step-mean contact force `q_i` (N).
+    Force,
+    /// Gap `u_i - r_i` (m).
+    Gap,
+    /// Contact state (0/1).
+    Contact,
+}
+
+/// Per-point time histories.
+#[derive(Debug, Clone)]
+pub struct History {
+    p: usize,
+    capacity: usize,
+    stride: u64,
+    /// Steps since the last recorded sample.
+    count: u64,
+    q_sum: Vec<f64>,
+    contact_any: Vec<bool>,
+    t: Vec<f64>,
+    u: Vec<Vec<f32>>,
+    q: Vec<Vec<f32>>,
+    gap: Vec<Vec<f32>>,
+    contact: Vec<Vec<u8>>,
+}
+
+impl History {
+    /// Histories for `p` points within a budget of `budget` samples.
+    pub fn new(p: usize, budget: usize) -> Self {
+        let capacity = (budget / (4 * p.max(1) + 1)).max(1024) & !1;
+        History {
+            p,
+            capacity,
+            stride: 1,
+            count: 0,
+            q_sum: vec![0.0; p],
+            contact_any: vec![false; p],
+            t: Vec::new(),
+            u: vec![Vec::new(); p],
+            q: vec![Vec::new(); p],
+            gap: vec![Vec::new(); p],
+            contact: vec![Vec::new(); p],
+        }
+    }
+
+    pub fn num_points(&self) -> usize {
+        self.p
+    }
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+    /// Solver steps per recorded sample.
+    pub fn stride(&self) -> u64 {
+        self.stride
+    }
+    pub fn capacity(&self) -> usize {
+        self.capacity
+    }
+    pub fn times(&self) -> &[f64] {
+        &self.t
+    }
+    pub fn last_time(&self) -> Option<f64> {
+        self.t.last().copied()
+    }
+
+    /// Forgets everything (same points and budget).
+    pub fn clear(&mut self) {
+        let capacity = self.capacity;
+        *self = History::new(self.p, 0);
+        self.capacity = capacity;
+    }
+
+    /// Records the state at `t = 0` (or after a reset).
+    pub fn record_initial(&mut self, sim: &Simulation) {
+        self.q_sum.fill(0.0);
+        self.contact_any.fill(false);
+        self.count = 0;
+        self.push(sim, 1);
+    }
+
+    /// Call after every solver step.
+    pub fn after_step(&mut self, sim: &Simulation) {
+        for ((s, q), c) in self
+            .q_sum
+            .iter_mut()
+            .zip(sim.force_n())
+            .zip(self.contact_any.iter_mut())
+        {
+            *s += q;
+            *c |= *q > 0.0;
+        }
+        self.count += 1;
+        if self.count >= self.stride {
+            let n = self.count;
+            self.push(sim, n);
+            self.count = 0;
+            self.q_sum.fill(0.0);
+            self.contact_any.fill(false);
+        }
+    }
+
+    fn push(&mut self, sim: &Simulation, n: u64) {
+        if self.t.len() >= self.capacity {
+            self.compact();
+        }
+        self.t.push(sim.time_s());
+        let contact = sim.in_contact();
+        for i in 0..self.p.min(sim.num_points()) {
+            self.u[i].push(sim.displacement_m()[i] as f32);
+            self.q[i].push((self.q_sum[i] / n as f64) as f32);
+            self.gap[i].push(sim.gap_m(i) as f32);
+            self.contact[i].push(u8::from(contact[i] || self.contact_any[i]));
+        }
+    }
+
+    /// Merges pairs of samples: keeps the later time and state, averages the
+    /// force, and keeps contact if either sample had it.
+    fn compact(&mut self) {
+        let n = self.t.len() / 2;
+        for k in 0..n {
+            self.t[k] = self.t[2 * k + 1];
+        }
+        self.t.truncate(n);
+        for i in 0..self.p {
+            for k in 0..n {
+                self.u[i][k] = self.u[i][2 * k + 1];
+                self.gap[i][k] = self.gap[i][2 * k + 1];
+                self.q[i][k] = 0.5 * (self.q[i][2 * k] + self.q[i][2 * k + 1]);
+                self.contact[i][k] = self.contact[i][2 * k].max(self.contact[i][2 * k + 1]);
+            }
+            self.u[i].truncate(n);
+            self.gap[i].truncate(n);
+            self.q[i].truncate(n);
+            self.contact[i].truncate(n);
+        }
+        self.stride *= 2;
+    }
+
+    /// The value of `what` for point `i` at sample `k` (SI units; contact 0/1).
+    pub fn value(&self, what: Quantity, i: usize, k: usize) -> f64 {
+        match what {
+            Quantity::Displacement => f64::from(self.u[i][k]),
+            Quantity::Force => f64::from(self.q[i][k]),
+            Quantity::Gap => f64::from(self.gap[i][k]),
+            Quantity::Contact => f64::from(self.contact[i][k]),
+        }
+    }
+
+    /// Sample indices `[lo, hi)` whose times lie in `[t0, t1]`, widened by one
+    /// sample on each side so that lines reach the edges.
+    pub fn index_range(&self, t0: f64, t1: f64) -> (usize, usize) {
+        let lo = self.t.partition_point(|&t| t < t0).saturating_sub(1);
+        let hi = (self.t.partition_point(|&t| t <= t1) + 1).min(self.t.len());
+        (lo, hi.max(lo))
+    }
+
+    /// Min/max decimation of `what` for point `i` over `[t0, t1]` into at most
+    /// about `2 * buckets` points `[t, value * scale]`: each bucket contributes
+    /// its minimum and its maximum in time order, so peaks survive.
+    pub fn decimated(
+        &self,
+        what: Quantity,
+        i: usize,
+        t0: f64,
+        t1: f64,
+        buckets: usize,
+        scale: f64,
+    ) -> Vec<[f64; 2]> {
+        if i >= self.p {
+            return Vec::new();
+        }
+        let (lo, hi) = self.index_range(t0, t1);
+        decimate_min_max(
+            &self.t[lo..hi],
+            |k| self.value(what, i, lo + k) * scale,
+            buckets,
+        )
+    }
+}
+
+/// Min/max decimation of `(t[k], y(k))` into at most `2 * buckets` points.
+pub fn decimate_min_max(t: &[f64], y: impl Fn(usize) -> f64, buckets: usize) -> Vec<[f64; 2]> {
+    let n = t.len();
+    let buckets = buckets.max(1);
+    if n <= 2 * buckets {
+        return (0..n).map(|k| [t[k], y(k)]).collect();
+    }
+    let mut out = Vec::with_capacity(2 * buckets + 2);
+    for b in 0..buckets {
+        let a = b * n / buckets;
+        let e = ((b + 1) * n / buckets).max(a + 1);
+        let (mut kmin, mut kmax) = (a, a);
+        let (mut vmin, mut vmax) = (y(a), y(a));
+        for k in a + 1..e {
+            let v = y(k);
+            if v < vmin {
+                vmin = v;
+                kmin = k;
+            }
+            if v > vmax {
+                vmax = v;
+                kmax = k;
+            }
+        }
+        if kmin <= kmax {
+            out.push([t[kmin], vmin]);
+            if kmax != kmin {
+                out.push([t[kmax], vmax]);
+            }
+        } else {
+            out.push([t[kmax], vmax]);
+            out.push([t[kmin], vmin]);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scene;
+
+    #[test]
+    fn decimation_keeps_peaks_and_bounds_points() {
+        let n = 1_000_000;
+        let t: Vec<f64> = (0..n).map(|k| k as f64).collect();
+        let y = |k: usize| {
+            if k == 123_457 {
+                10.0
+            } else {
+                (k as f64 * 0.01).sin()
+            }
+        };
+        let d = decimate_min_max(&t, y, 500);
+        assert!(d.len() <= 1000);
+        assert!(d.iter().any(|p| p[1] == 10.0));
+        assert!(d.windows(2).all(|w| w[0][0] <= w[1][0]));
+    }
+
+    #[test]
+    fn small_series_are_not_decimated() {
+        let t = [0.0, 1.0, 2.0];
+        assert_eq!(decimate_min_max(&t, |k| k as f64, 10).len(), 3);
+    }
+
+    #[test]
+    fn history_stays_bounded_and_doubles_stride() {
+        let scene = Scene::parse(crate::DEFAULT_PRESET, "default").unwrap();
+        let mut sim = Simulation::new(&scene).unwrap();
+        let mut h = History::new(1, 4 * 1024 + 1);
+        assert_eq!(h.capacity(), 1024);
+        h.record_initial(&sim);
+        for _ in 0..5000 {
+            sim.step().unwrap();
+            h.after_step(&sim);
+        }
+        assert!(h.len() <= h.capacity());
+        assert!(h.stride() >= 4);
+        let last = h.last_time().unwrap();
+        assert!((last - sim.time_s()).abs() <= h.stride() as f64 * scene.dt_s + 1e-12);
+        assert!(h.times().windows(2).all(|w| w[0] < w[1]));
+    }
+}

@@ -1,0 +1,55 @@
+//! The visualiser (feature `gui`): edit a scene, play it, watch it, save it,
+//! export plots and runs.
+//!
+//! Data flow is one way: `Scene` → `Simulation` (stepped within a per-frame
+//! time budget, so the UI stays responsive however slow the solver) →
+//! `History` → views. Panels push `Command`s; `App::apply` is the only place
+//! that changes state; views only read.
+
+pub mod app;
+pub mod command;
+pub mod dialogs;
+pub mod export;
+pub mod fields;
+pub mod frame_rate;
+pub mod history;
+pub mod panels;
+pub mod presets;
+pub mod time_control;
+pub mod views;
+
+pub use app::App;
+pub use command::Command;
+
+/// Opens the visualiser window on the last session, else the embedded
+/// default preset.
+pub fn run() -> eframe::Result {
+    run_with_preset(None)
+}
+
+/// Opens the visualiser on `preset` (a broken file shows its error over the
+/// default preset), or as [`run`] when `None`.
+pub fn run_with_preset(preset: Option<std::path::PathBuf>) -> eframe::Result {
+    let mut options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title("tirecontact")
+            .with_inner_size([1500.0, 950.0])
+            .with_min_inner_size([900.0, 600.0]),
+        ..Default::default()
+    };
+    // Software GL (Xvfb, remote desktops) can block on vsync; allow turning it off.
+    if std::env::var_os("TIRECONTACT_NO_VSYNC").is_some() {
+        options.glow_options.vsync = false;
+    }
+    eframe::run_native(
+        "tirecontact",
+        options,
+        Box::new(move |cc| {
+            let app = match preset {
+                Some(path) => App::open_at_start(&path),
+                None => App::restore(cc.storage),
+            };
+            Ok(Box::new(app))
+        }),
+    )
+}

@@ -1,0 +1,236 @@
+//! The modes table: frequency, damping ratio, mode shape or residue matrix;
+//! add, duplicate, remove. Every change restarts the run.
+
+use super::{modes_mut, push_edit};
+use crate::Scene;
+use crate::gui::command::Command;
+use crate::gui::fields::{Apply, NumField, section};
+use crate::ring::RingParams;
+use crate::scene::{Mode, Tyre};
+use egui::{Grid, Ui};
+
+/// Largest number of points whose residue matrix is edited inline.
+const MAX_INLINE_MATRIX: usize = 8;
+
+pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>) {
+    if let Tyre::Ring { ring, .. } = &scene.tyre {
+        ring_summary(ui, scene, ring, modes, cmds);
+        return;
+    }
+    section(ui, "Modes", Apply::Restart);
+    let p = scene.num_points();
+    Grid::new("tirecontact.modes")
+        .striped(true)
+        .num_columns(4)
+        .show(ui, |ui| {
+            ui.label("#");
+            ui.label("frequency");
+            ui.label("damping ratio");
+            ui.label("");
+            ui.end_row();
+            for (k, m) in modes.iter().enumerate() {
+                ui.label(k.to_string());
+                let name = format!("tyre.modes[{k}].freq_hz");
+                push_edit(
+                    cmds,
+                    NumField::new(&name, m.freq_hz, "Hz", Apply::Restart)
+                        .show(ui, |v| with_mode(scene, k, |m| m.freq_hz = v)),
+                );
+                let name = format!("tyre.modes[{k}].damping_ratio");
+                push_edit(
+                    cmds,
+                    NumField::new(&name, m.damping_ratio, "", Apply::Restart)
+                        .width(55.0)
+                        .show(ui, |v| with_mode(scene, k, |m| m.damping_ratio = v)),
+                );
+                ui.horizontal(|ui| {
+                    if ui
+                        .small_button("Duplicate")
+                        .on_hover_text("add a copy of this mode after it")
+                        .clicked()
+                    {
+                        let mut s = scene.clone();
+                        if let Some(ms) = modes_mut(&mut s) {
+                            ms.insert(k + 1, m.clone());
+                            cmds.push(Command::EditScene(Box::new(s)));
+                        }
+                    }
+                    let remove =
+                        ui.add_enabled(modes.len() > 1, egui::Button::new("Remove").small());
+                    if remove
+                        .on_disabled_hover_text("a scene needs at least one mode")
+                        .clicked()
+                    {
+                        let mut s = scene.clone();
+                        if let Some(ms) = modes_mut(&mut s) {
+                            ms.remove(k);
+                            cmds.push(Command::EditScene(Box::new(s)));
+                        }
+                    }
+                });
+                ui.end_row();
+            }
+        });
+    if ui
+        .button("Add mode")
+        .on_hover_text("a new mode at 1.5x the last frequency, same shape")
+        .clicked()
+    {
+        let mut s = scene.clone();
+        if let Some(ms) = modes_mut(&mut s) {
+            let mut m = ms.last().cloned().unwrap_or(Mode {
+                freq_hz: 100.0,
+                damping_ratio: 0.05,
+                residue: Vec::new(),
+                shape: vec![0.3; p],
+            });
+            m.freq_hz *= 1.5;
+            ms.push(m);
+            cmds.push(Command::EditScene(Box::new(s)));
+        }
+    }
+    for (k, m) in modes.iter().enumerate() {
+        let title = if m.shape.is_empty() {
+            format!("mode {k}: residue matrix A (1/kg), {p}x{p}")
+        } else {
+            format!("mode {k}: shape φ (1/√kg), {p} values")
+        };
+        egui::CollapsingHeader::new(title)
+            .id_salt(("tirecontact.mode_detail", k))
+            .show(ui, |ui| {
+                if m.shape.is_empty() {
+                    residue_grid(ui, scene, k, m, cmds);
+                } else {
+                    shape_grid(ui, scene, k, m, cmds);
+                }
+            });
+    }
+}
+
+fn shape_grid(ui: &mut Ui, scene: &Scene, k: usize, m: &Mode, cmds: &mut Vec<Command>) {
+    Grid::new(("tirecontact.shape", k)).show(ui, |ui| {
+        for (i, &a) in m.shape.iter().enumerate() {
+            ui.label(format!("point {i}"));
+            let name = format!("tyre.modes[{k}].shape[{i}]");
+            push_edit(
+                cmds,
+                NumField::new(&name, a, "1/√kg", Apply::Restart).show(ui, |v| {
+                    with_mode(scene, k, |m| {
+                        if let Some(x) = m.shape.get_mut(i) {
+                            *x = v;
+                        }
+                    })
+                }),
+            );
+            ui.end_row();
+        }
+    });
+}
+
+fn residue_grid(ui: &mut Ui, scene: &Scene, k: usize, m: &Mode, cmds: &mut Vec<Command>) {
+    let p = m.residue.len();
+    if p > MAX_INLINE_MATRIX {
+        ui.label(format!(
+            "{p}x{p} matrix: edit it in the preset file (inline editing up to {MAX_INLINE_MATRIX} points)"
+        ));
+        return;
+    }
+    ui.label("row i = receiving point, column j = loaded point");
+    Grid::new(("tirecontact.residue", k)).show(ui, |ui| {
+        for (i, row) in m.residue.iter().enumerate() {
+            for (j, &a) in row.iter().enumerate() {
+                let name = format!("tyre.modes[{k}].residue[{i}][{j}]");
+                push_edit(
+                    cmds,
+                    NumField::new(&name, a, "", Apply::Restart)
+                        .width(60.0)
+                        .show(ui, |v| {
+                            with_mode(scene, k, |m| {
+                                if let Some(x) = m.residue.get_mut(i).and_then(|r| r.get_mut(j)) {
+                                    *x = v;
+                                }
+                            })
+                        }),
+                );
+            }
+            ui.end_row();
+        }
+    });
+}
+
+/// The scene with mode `k` changed by `f`.
+fn with_mode(scene: &Scene, k: usize, f: impl FnOnce(&mut Mode)) -> Scene {
+    let mut s = scene.clone();
+    if let Some(m) = modes_mut(&mut s).and_then(|ms| ms.get_mut(k)) {
+        f(m);
+    }
+    s
+}
+
+/// A ring tyre: its parameters and the modes identified from it (read-only),
+/// and a way to turn them into an editable modal model.
+fn ring_summary(
+    ui: &mut Ui,
+    scene: &Scene,
+    ring: &RingParams,
+    modes: &[Mode],
+    cmds: &mut Vec<Command>,
+) {
+    section(ui, "Tyre: ring model (SPEC §5)", Apply::Restart);
+    Grid::new("tirecontact.ring").num_columns(2).show(ui, |ui| {
+        let rows = [
+            ("radius", ring.radius_m, "m"),
+            ("belt width", ring.belt_width_m, "m"),
+            ("mass per length", ring.mass_per_length_kg_m, "kg/m"),
+            ("inflation", ring.inflation_pa * 1e-5, "bar"),
+            ("radial stiffness", ring.radial_stiffness_n_m2, "N/m²"),
+            (
+                "tangential stiffness",
+                ring.tangential_stiffness_n_m2,
+                "N/m²",
+            ),
+            ("bending stiffness EI", ring.bending_stiffness_n_m2, "N m²"),
+            ("damping ratio", ring.damping_ratio, ""),
+        ];
+        for (name, v, unit) in rows {
+            ui.label(name);
+            ui.label(format!("{} {unit}", crate::gui::fields::format_number(v)));
+            ui.end_row();
+        }
+    });
+    ui.label(
+        egui::RichText::new("ring parameters are edited in the preset file; the modes below are identified from the ring by LSCE at the points' positions")
+            .weak(),
+    );
+    if ui
+        .button("Edit as a modal model")
+        .on_hover_text(
+            "replace the ring by its identified modes, which can then be tuned one by one",
+        )
+        .clicked()
+    {
+        let mut s = scene.clone();
+        s.tyre = Tyre::Modal {
+            modes: modes.to_vec(),
+        };
+        cmds.push(Command::EditScene(Box::new(s)));
+    }
+    egui::CollapsingHeader::new(format!("{} identified modes", modes.len()))
+        .id_salt("tirecontact.ring_modes")
+        .show(ui, |ui| {
+            Grid::new("tirecontact.ring_modes_grid")
+                .striped(true)
+                .show(ui, |ui| {
+                    ui.label("#");
+                    ui.label("frequency (Hz)");
+                    ui.label("damping ratio");
+                    ui.end_row();
+                    for (k, m) in modes.iter().enumerate() {
+                        ui.label(k.to_string());
+                        ui.label(format!("{:.2}", m.freq_hz));
+                        ui.label(format!("{:.4}", m.damping_ratio));
+                        ui.end_row();
+                    }
+                });
+        });
+}

@@ -1,0 +1,178 @@
+//! Menu bar (File, Presets, Export, View) and the transport controls:
+//! play/pause, step, N steps, reset, speed, current time and real-time factor.
+
+use crate::gui::command::{Command, View};
+use crate::gui::presets::SHIPPED;
+use crate::gui::time_control::Speed;
+use egui::{Id, RichText, Ui};
+
+/// What the toolbar shows (read-only snapshot of the app).
+pub struct ToolbarStatus {
+    pub playing: bool,
+    pub speed: Speed,
+    pub time_s: f64,
+    pub duration_s: f64,
+    pub steps: u64,
+    pub achieved_factor: f64,
+    pub view: View,
+    pub exporting_csv: bool,
+}
+
+/// The menu bar.
+pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
+    egui::MenuBar::new().ui(ui, |ui| {
+        ui.menu_button("File", |ui| {
+            if ui
+                .button("New")
+                .on_hover_text("the default scene")
+                .clicked()
+            {
+                cmds.push(Command::New);
+            }
+            if ui.button("Open…").clicked() {
+                cmds.push(Command::OpenDialog);
+            }
+            ui.menu_button("Open shipped preset", |ui| {
+                for (k, (name, file, _)) in SHIPPED.iter().enumerate() {
+                    if ui.button(*name).on_hover_text(*file).clicked() {
+                        cmds.push(Command::OpenPreset(k));
+                    }
+                }
+            });
+            ui.separator();
+            if ui.button("Save").clicked() {
+                cmds.push(Command::Save);
+            }
+            if ui.button("Save As…").clicked() {
+                cmds.push(Command::SaveAsDialog);
+            }
+            ui.separator();
+            if ui.button("Quit").clicked() {
+                cmds.push(Command::Quit);
+            }
+        });
+        ui.menu_button("Presets", |ui| {
+            for (k, (name, file, _)) in SHIPPED.iter().enumerate() {
+                if ui.button(*name).on_hover_text(*file).clicked() {
+                    cmds.push(Command::OpenPreset(k));
+                }
+            }
+        });
+        ui.menu_button("Export", |ui| {
+            if ui.button("Plots as PNG…").clicked() {
+                cmds.push(Command::ExportPngDialog);
+            }
+            let csv = ui.add_enabled(!st.exporting_csv, egui::Button::new("Run as CSV…"));
+            if csv
+                .on_hover_text("the run so far, every step, same columns as `tirecontact run`")
+                .clicked()
+            {
+                cmds.push(Command::ExportCsvDialog);
+            }
+        });
+        ui.separator();
+        for (k, v) in View::ALL.into_iter().enumerate() {
+            let r = ui
+                .selectable_label(st.view == v, v.label())
+                .on_hover_text(format!("key {}", k + 1));
+            if r.clicked() && st.view != v {
+                cmds.push(Command::ShowView(v));
+            }
+        }
+    });
+}
+
+/// Transport controls and the clock.
+pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
+    ui.horizontal(|ui| {
+        let play = if st.playing { "Pause" } else { "Play" };
+        if ui
+            .button(RichText::new(play).strong())
+            .on_hover_text("Space")
+            .clicked()
+        {
+            cmds.push(Command::TogglePlay);
+        }
+        if ui
+            .button("Step")
+            .on_hover_text("one solver step (Right arrow)")
+            .clicked()
+        {
+            cmds.push(Command::Step(1));
+        }
+        let id = Id::unique("tirecontact.n_steps");
+        let mut n: u64 = ui.data(|d| d.get_temp(id)).unwrap_or(100);
+        if ui
+            .button("Step N")
+            .on_hover_text("N solver steps")
+            .clicked()
+        {
+            cmds.push(Command::Step(n));
+        }
+        ui.add(
+            egui::DragValue::new(&mut n)
+                .range(1..=10_000_000)
+                .speed(10.0),
+        )
+        .accessible_name("N steps");
+        ui.data_mut(|d| d.insert_temp(id, n));
+        if ui
+            .button("Reset")
+            .on_hover_text("back to t = 0 (R)")
+            .clicked()
+        {
+            cmds.push(Command::Reset);
+        }
+        ui.separator();
+        ui.label("speed");
+        let mut speed = st.speed;
+        egui::ComboBox::from_id_salt("tirecontact.speed")
+            .selected_text(speed_text(speed))
+            .show_ui(ui, |ui| {
+                for s in Speed::CHOICES {
+                    ui.selectable_value(&mut speed, s, speed_text(s));
+                }
+            })
+            .response
+            .accessible_name("speed")
+            .on_hover_text("simulated time per wall-clock time");
+        if speed != st.speed {
+            cmds.push(Command::SetSpeed(speed));
+        }
+        ui.separator();
+        ui.label(
+            RichText::new(format!("t = {:.5} s", st.time_s))
+                .monospace()
+                .strong(),
+        )
+        .on_hover_text(format!("{} solver steps", st.steps));
+        ui.label(format!("/ {} s", st.duration_s));
+        let rt = if st.playing {
+            format!("running at {}x real time", sig3(st.achieved_factor))
+        } else {
+            "paused".to_string()
+        };
+        ui.label(RichText::new(rt).weak());
+    });
+}
+
+fn speed_text(s: Speed) -> String {
+    match s {
+        Speed::Factor(f) => format!("{}x real time", sig3(f)),
+        Speed::Max => "as fast as possible".to_string(),
+    }
+}
+
+/// Three significant digits, no trailing zeros.
+pub fn sig3(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return "0".to_string();
+    }
+    let d = (2 - x.abs().log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.d$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}

@@ -1,0 +1,273 @@
+//! Play / pause / step / speed: how many solver steps to take this frame.
+//!
+//! Pure logic, no egui: the app feeds it the wall-clock time of each frame
+//! and the solver's time step, and it answers how many steps to take. The app
+//! then takes at most that many within its per-frame time budget and reports
+//! back what it did, so that the real-time factor actually achieved can be
+//! shown.
+
+/// Playback speed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Speed {
+    /// Simulated seconds per wall-clock second (1 = real time, 0.01 = slow motion).
+    Factor(f64),
+    /// As fast as the per-frame budget allows.
+    Max,
+}
+
+impl Speed {
+    /// The speeds offered in the toolbar.
+    pub const CHOICES: [Speed; 9] = [
+        Speed::Factor(0.001),
+        Speed::Factor(0.01),
+        Speed::Factor(0.1),
+        Speed::Factor(0.25),
+        Speed::Factor(0.5),
+        Speed::Factor(1.0),
+        Speed::Factor(2.0),
+        Speed::Factor(10.0),
+        Speed::Max,
+    ];
+
+    /// Short label, e.g. `0.1x` or `max`.
+    pub fn label(self) -> String {
+        match self {
+            Speed::Factor(f) => format!("{f}x"),
+            Speed::Max => "max".to_string(),
+        }
+    }
+}
+
+/// Longest wall-clock frame time honoured (s): after a stall (a file dialog,
+/// a dragged window) the simulation does not try to catch up.
+pub const MAX_FRAME_S: f64 = 0.1;
+
+/// Steps requested per frame at `Speed::Max` (the time budget cuts it short).
+pub const MAX_SPEED_STEPS: u64 = 1 << 40;
+
+/// Playback state of the simulation clock.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimeControl {
+    playing: bool,
+    speed: Speed,
+    /// Single steps requested while paused and not yet taken.
+    pending_steps: u64,
+    /// Fraction of a step owed from earlier frames (0..1).
+    carry: f64,
+    /// Smoothed achieved real-time factor (simulated s per wall s).
+    achieved: f64,
+}
+
+impl Default for TimeControl {
+    fn default() -> Self {
+        TimeControl {
+            playing: false,
+            speed: Speed::Factor(1.0),
+            pending_steps: 0,
+            carry: 0.0,
+            achieved: 0.0,
+        }
+    }
+}
+
+impl TimeControl {
+    pub fn is_playing(&self) -> bool {
+        self.playing
+    }
+    pub fn speed(&self) -> Speed {
+        self.speed
+    }
+    /// Real-time factor achieved over the last frames (smoothed).
+    pub fn achieved_factor(&self) -> f64 {
+        self.achieved
+    }
+    /// Steps requested by Step(n) and not yet taken.
+    pub fn pending_steps(&self) -> u64 {
+        self.pending_steps
+    }
+
+    pub fn play(&mut self) {
+        self.playing = true;
+        self.pending_steps = 0;
+        self.carry = 0.0;
+    }
+
+    pub fn pause(&mut self) {
+        self.playing = false;
+        self.pending_steps = 0;
+        self.carry = 0.0;
+        self.achieved = 0.0;
+    }
+
+    pub fn toggle(&mut self) {
+        if self.playing {
+            self.pause()
+        } else {
+            self.play()
+        }
+    }
+
+    /// Pauses and queues `n` steps (taken over the next frames if the budget
+    /// does not allow them all at once).
+    pub fn step(&mut self, n: u64) {
+        self.pause();
+        self.pending_steps = n;
+    }
+
+    /// Back to a paused clock (speed kept).
+    pub fn reset(&mut self) {
+        self.pause();
+    }
+
+    pub fn set_speed(&mut self, speed: Speed) {
+        self.speed = match speed {
+            Speed::Factor(f) if f.is_finite() && f > 0.0 => Speed::Factor(f),
+            Speed::Factor(_) => self.speed,
+            Speed::Max => Speed::Max,
+        };
+        self.carry = 0.0;
+    }
+
+    /// How many solver steps to take in a frame that lasted `frame_s` of wall
+    /// time, for a solver step of `dt_s`.
+    pub fn steps_this_frame(&mut self, frame_s: f64, dt_s: f64) -> u64 {
+        if !self.playing {
+            return self.pending_steps;
+        }
+        if dt_s.is_nan() || dt_s <= 0.0 {
+            return 0;
+        }
+        match self.speed {
+            Speed::Max => MAX_SPEED_STEPS,
+            Speed::Factor(f) => {
+                let frame_s = if frame_s.is_finite() {
+                    frame_s.clamp(0.0, MAX_FRAME_S)
+                } else {
+                    0.0
+                };
+                let want = frame_s * f / dt_s + self.carry;
+                // tolerate round-off so that e.g. 0.01 s / 1e-5 s is 1000 steps, not 999
+                let n = (want + 1e-9 * want.max(1.0))
+                    .floor()
+                    .min(MAX_SPEED_STEPS as f64);
+                self.carry = (want - n).clamp(0.0, 1.0);
+                n as u64
+            }
+        }
+    }
+
+    /// Reports what the frame did: `taken` steps of `dt_s` in a frame of
+    /// `frame_s` wall seconds. Steps the budget could not take are dropped
+    /// (the run goes slower than asked, it does not pile up a debt).
+    pub fn report(&mut self, taken: u64, dt_s: f64, frame_s: f64) {
+        self.pending_steps = self.pending_steps.saturating_sub(taken);
+        if self.playing && frame_s > 0.0 && frame_s.is_finite() {
+            let f = taken as f64 * dt_s / frame_s.min(MAX_FRAME_S);
+            self.achieved = if self.achieved == 0.0 {
+                f
+            } else {
+                0.9 * self.achieved + 0.1 * f
+            };
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const DT: f64 = 1e-5;
+
+    #[test]
+    fn paused_takes_no_steps() {
+        let mut tc = TimeControl::default();
+        assert_eq!(tc.steps_this_frame(1.0 / 60.0, DT), 0);
+    }
+
+    #[test]
+    fn real_time_takes_frame_over_dt_steps() {
+        let mut tc = TimeControl::default();
+        tc.play();
+        // 10 ms frame at 1x with dt 1e-5: 1000 steps
+        assert_eq!(tc.steps_this_frame(0.01, DT), 1000);
+    }
+
+    #[test]
+    fn slow_motion_accumulates_fractions() {
+        let mut tc = TimeControl::default();
+        tc.set_speed(Speed::Factor(0.001));
+        tc.play();
+        // 0.001 * 0.004 s / 1e-5 = 0.4 step per frame: 2 steps in 5 frames
+        let total: u64 = (0..5).map(|_| tc.steps_this_frame(0.004, DT)).sum();
+        assert_eq!(total, 2);
+        let total: u64 = (0..500).map(|_| tc.steps_this_frame(0.004, DT)).sum();
+        assert_eq!(total, 200);
+    }
+
+    #[test]
+    fn long_frames_are_clamped() {
+        let mut tc = TimeControl::default();
+        tc.play();
+        assert_eq!(
+            tc.steps_this_frame(5.0, DT),
+            (MAX_FRAME_S / DT).round() as u64
+        );
+        assert_eq!(tc.steps_this_frame(f64::NAN, DT), 0);
+    }
+
+    #[test]
+    fn step_n_pauses_and_counts_down() {
+        let mut tc = TimeControl::default();
+        tc.play();
+        tc.step(5);
+        assert!(!tc.is_playing());
+        assert_eq!(tc.steps_this_frame(0.016, DT), 5);
+        tc.report(3, DT, 0.016);
+        assert_eq!(tc.steps_this_frame(0.016, DT), 2);
+        tc.report(2, DT, 0.016);
+        assert_eq!(tc.steps_this_frame(0.016, DT), 0);
+    }
+
+    #[test]
+    fn max_speed_asks_for_as_many_as_possible() {
+        let mut tc = TimeControl::default();
+        tc.set_speed(Speed::Max);
+        tc.play();
+        assert_eq!(tc.steps_this_frame(0.016, DT), MAX_SPEED_STEPS);
+    }
+
+    #[test]
+    fn invalid_speed_is_ignored() {
+        let mut tc = TimeControl::default();
+        tc.set_speed(Speed::Factor(2.0));
+        tc.set_speed(Speed::Factor(-1.0));
+        tc.set_speed(Speed::Factor(f64::NAN));
+        assert_eq!(tc.speed(), Speed::Factor(2.0));
+    }
+
+    #[test]
+    fn achieved_factor_reflects_budget_cuts() {
+        let mut tc = TimeControl::default();
+        tc.play();
+        let want = tc.steps_this_frame(0.02, DT);
+        assert_eq!(want, 2000);
+        // the budget allowed only half
+        tc.report(1000, DT, 0.02);
+        assert!((tc.achieved_factor() - 0.5).abs() < 1e-12);
+        // no debt: the next frame asks for one frame's worth again
+        assert_eq!(tc.steps_this_frame(0.02, DT), 2000);
+    }
+
+    #[test]
+    fn toggle_and_reset() {
+        let mut tc = TimeControl::default();
+        tc.toggle();
+        assert!(tc.is_playing());
+        tc.toggle();
+        assert!(!tc.is_playing());
+        tc.play();
+        tc.reset();
+        assert!(!tc.is_playing());
+        assert_eq!(tc.steps_this_frame(0.016, DT), 0);
+    }
+}

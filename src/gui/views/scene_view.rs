@@ -1,0 +1,259 @@
+//! The scene: the road profile moving under the contact line, the undeformed
+//! and displaced contact points coloured by contact state, and the contact
+//! forces as arrows. Heights are exaggerated (factor shown); the height axis
+//! is labelled in true millimetres.
+
+use super::{CONTACT_COLOR, FLIGHT_COLOR};
+use crate::Simulation;
+use crate::road::{Road, ramp};
+use egui::{Color32, RichText, Ui};
+use egui_plot::{Arrows, Corner, GridMark, Legend, Line, LineStyle, MarkerShape, Plot, Points};
+
+/// Presentation options of the scene view.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneViewOptions {
+    /// Choose the exaggeration from the scene's heights.
+    pub auto: bool,
+    /// Vertical exaggeration (heights drawn this many times larger).
+    pub exaggeration: f64,
+}
+
+impl Default for SceneViewOptions {
+    fn default() -> Self {
+        SceneViewOptions {
+            auto: true,
+            exaggeration: 20.0,
+        }
+    }
+}
+
+/// Rounds to 1, 2 or 5 times a power of ten.
+pub fn round_125(x: f64) -> f64 {
+    if !(x.is_finite() && x > 0.0) {
+        return 1.0;
+    }
+    let e = 10f64.powf(x.log10().floor());
+    let m = x / e;
+    let m = if m < 1.5 {
+        1.0
+    } else if m < 3.5 {
+        2.0
+    } else if m < 7.5 {
+        5.0
+    } else {
+        10.0
+    };
+    m * e
+}
+
+/// Horizontal extent drawn (m): the contact line and about a wavelength around it.
+fn x_extent(sim: &Simulation) -> (f64, f64) {
+    let pts = &sim.scene().points;
+    let lo = pts.iter().map(|p| p.x_m).fold(f64::INFINITY, f64::min);
+    let hi = pts.iter().map(|p| p.x_m).fold(f64::NEG_INFINITY, f64::max);
+    let lambda = match &sim.scene().road {
+        Road::Sine { wavelength_m, .. } => *wavelength_m,
+        Road::Harmonics { components } => components
+            .iter()
+            .map(|c| c.wavelength_m)
+            .fold(0.0, f64::max),
+        Road::Measured { .. } => 0.5,
+    };
+    let margin = (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05);
+    (lo - margin, hi + margin)
+}
+
+/// About eight grid marks at 1-2-5 steps of the displayed unit (`value × to_unit`).
+fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
+    let (a, b) = (bounds.0 * to_unit, bounds.1 * to_unit);
+    if !(a.is_finite() && b.is_finite() && b > a) {
+        return Vec::new();
+    }
+    let step = round_125((b - a) / 8.0);
+    let mut out = Vec::new();
+    let mut k = (a / step).ceil();
+    while k * step <= b && out.len() < 100 {
+        out.push(GridMark {
+            value: k * step / to_unit,
+            step_size: step / to_unit,
+        });
+        k += 1.0;
+    }
+    out
+}
+
+pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
+    let scene = sim.scene();
+    let t = sim.time_s();
+    let (w, _) = ramp(t, scene.ramp_s);
+    let (x0, x1) = x_extent(sim);
+    let u = sim.displacement_m();
+    let contact = sim.in_contact();
+    let hmax = scene
+        .points
+        .iter()
+        .zip(u)
+        .map(|(p, u)| p.h_m.abs().max((p.h_m + u).abs()))
+        .fold(sim.road_profile().scale_m(), f64::max)
+        .max(1e-6);
+    if opts.auto {
+        opts.exaggeration = round_125(0.12 * (x1 - x0) / hmax);
+    }
+    let e = opts.exaggeration;
+    ui.horizontal_wrapped(|ui| {
+        ui.label(
+            RichText::new(format!("vertical exaggeration ×{}", super::super::fields::format_number(e)))
+                .strong(),
+        )
+        .on_hover_text("heights are drawn this many times larger than lengths; the height axis shows true mm");
+        ui.checkbox(&mut opts.auto, "auto");
+        ui.add_enabled(
+            !opts.auto,
+            egui::DragValue::new(&mut opts.exaggeration)
+                .range(1.0..=1e6)
+                .speed(1.0)
+                .prefix("×"),
+        );
+        ui.separator();
+        let n_contact = contact.iter().filter(|c| **c).count();
+        ui.label(format!(
+            "t = {t:.5} s   V = {:.1} km/h   road moves to the left under the tyre   {} of {} points in contact",
+            scene.speed_mps * 3.6,
+            n_contact,
+            contact.len()
+        ));
+        if w < 1.0 {
+            ui.label(RichText::new(format!("ramping in: w = {w:.2}")).color(Color32::from_rgb(230, 159, 0)));
+        }
+    });
+    // road seen in the tyre's frame: w z(x + V t) + (1 - w) h(x), h interpolated between points
+    let pts = &scene.points;
+    let mut sorted: Vec<(f64, f64)> = pts.iter().map(|p| (p.x_m, p.h_m)).collect();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let h_at = |x: f64| -> f64 {
+        match sorted.iter().position(|p| p.0 >= x) {
+            None => sorted.last().map_or(0.0, |p| p.1),
+            Some(0) => sorted[0].1,
+            Some(k) => {
+                let (a, b) = (sorted[k - 1], sorted[k]);
+                a.1 + (b.1 - a.1) * (x - a.0) / (b.0 - a.0)
+            }
+        }
+    };
+    let n = 400;
+    let road: Vec<[f64; 2]> = (0..=n)
+        .filter_map(|k| {
+            let x = x0 + (x1 - x0) * k as f64 / n as f64;
+            let z = sim.road_profile().sample(x + sim.rolled_m()).ok()?.0;
+            Some([x, e * (w * z + (1.0 - w) * h_at(x))])
+        })
+        .collect();
+    let undeformed: Vec<[f64; 2]> = pts.iter().map(|p| [p.x_m, e * p.h_m]).collect();
+    let displaced: Vec<[f64; 2]> = pts
+        .iter()
+        .zip(u)
+        .map(|(p, u)| [p.x_m, e * (p.h_m + u)])
+        .collect();
+    let y_floor = -e * hmax * 2.5;
+    let qmax = sim
+        .force_n()
+        .iter()
+        .fold(0.0, |m: f64, q| m.max(*q))
+        .max(1e-12);
+    let arrow_len = 0.25 * e * hmax * 2.0;
+    let (mut a_from, mut a_to) = (Vec::new(), Vec::new());
+    for (i, q) in sim.force_n().iter().enumerate() {
+        if *q > 0.0 {
+            let [x, y] = displaced[i];
+            a_from.push([x, y - arrow_len * q / qmax]);
+            a_to.push([x, y]);
+        }
+    }
+    Plot::new("tirecontact.scene_view")
+        .data_aspect(1.0)
+        .legend(
+            Legend::default()
+                .position(Corner::RightTop)
+                .follow_insertion_order(true),
+        )
+        .x_axis_label("position along the contact line x (m)")
+        .y_axis_label("height (mm, true scale)")
+        .x_grid_spacer(|g| nice_marks(g.bounds, 1.0))
+        .x_axis_formatter(|m, _| super::super::fields::format_number(m.value))
+        .y_grid_spacer(move |g| nice_marks(g.bounds, 1e3 / e))
+        .y_axis_formatter(move |m, _| super::super::fields::format_number(m.value / e * 1e3))
+        .y_axis_min_width(44.0)
+        .include_x(x0)
+        .include_x(x1)
+        .include_y(y_floor)
+        .include_y(-y_floor)
+        .allow_scroll(false)
+        .show(ui, |pui| {
+            pui.line(
+                Line::new("road (moving)", road)
+                    .color(Color32::from_rgb(140, 86, 75))
+                    .width(2.0)
+                    .fill(y_floor as f32)
+                    .fill_alpha(0.25),
+            );
+            pui.line(
+                Line::new("undeformed tyre", undeformed.clone())
+                    .color(Color32::GRAY)
+                    .style(LineStyle::dashed_dense()),
+            );
+            pui.points(
+                Points::new("undeformed tyre", undeformed)
+                    .color(Color32::GRAY)
+                    .filled(false)
+                    .radius(4.0),
+            );
+            pui.line(
+                Line::new("tyre (displaced)", displaced.clone())
+                    .color(Color32::from_rgb(60, 60, 60))
+                    .width(2.0),
+            );
+            let (on, off): (Vec<_>, Vec<_>) =
+                displaced.iter().enumerate().partition(|(i, _)| contact[*i]);
+            pui.points(
+                Points::new(
+                    "in contact",
+                    on.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
+                )
+                .color(CONTACT_COLOR)
+                .shape(MarkerShape::Circle)
+                .filled(true)
+                .radius(7.0),
+            );
+            pui.points(
+                Points::new(
+                    "in flight",
+                    off.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
+                )
+                .color(FLIGHT_COLOR)
+                .shape(MarkerShape::Diamond)
+                .filled(true)
+                .radius(7.0),
+            );
+            if !a_from.is_empty() {
+                pui.arrows(
+                    Arrows::new("contact force (relative to the largest now)", a_from, a_to)
+                        .color(Color32::from_rgb(0, 114, 178))
+                        .tip_length(8.0),
+                );
+            }
+        });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::round_125;
+
+    #[test]
+    fn exaggeration_rounds_to_1_2_5() {
+        assert_eq!(round_125(1.0), 1.0);
+        assert_eq!(round_125(3.0), 2.0);
+        assert_eq!(round_125(4.0), 5.0);
+        assert_eq!(round_125(80.0), 100.0);
+        assert_eq!(round_125(f64::NAN), 1.0);
+    }
+}

@@ -1,0 +1,191 @@
+//! Time plots per contact point: displacement, force, gap and contact state,
+//! with linked time axes, legends, units, follow-latest window and min/max
+//! decimation (drawing cost scales with the plot width, not the run length).
+
+use super::point_color;
+use crate::gui::history::{History, Quantity};
+use egui::{Id, Ui};
+use egui_plot::{Corner, Legend, Line, Plot, PlotUi};
+
+/// Points shown by default.
+const DEFAULT_SHOWN: usize = 8;
+
+/// Presentation options of the time plots.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimePlotOptions {
+    /// Keep the latest `window_s` seconds in view.
+    pub follow: bool,
+    pub window_s: f64,
+    /// Which points are drawn.
+    pub shown: Vec<bool>,
+}
+
+impl Default for TimePlotOptions {
+    fn default() -> Self {
+        TimePlotOptions {
+            follow: true,
+            window_s: 0.1,
+            shown: Vec::new(),
+        }
+    }
+}
+
+impl TimePlotOptions {
+    /// Adapts the point selection to `p` points.
+    pub fn fit_points(&mut self, p: usize) {
+        if self.shown.len() != p {
+            self.shown = (0..p).map(|i| i < DEFAULT_SHOWN).collect();
+        }
+    }
+}
+
+struct PlotDef {
+    what: Quantity,
+    y_label: &'static str,
+    scale: f64,
+}
+
+const PLOTS: [PlotDef; 4] = [
+    PlotDef {
+        what: Quantity::Displacement,
+        y_label: "displacement u (mm, up)",
+        scale: 1e3,
+    },
+    PlotDef {
+        what: Quantity::Force,
+        y_label: "contact force q (N)",
+        scale: 1.0,
+    },
+    PlotDef {
+        what: Quantity::Gap,
+        y_label: "gap u − r (mm)",
+        scale: 1e3,
+    },
+    PlotDef {
+        what: Quantity::Contact,
+        y_label: "in contact (per point)",
+        scale: 1.0,
+    },
+];
+
+pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f64) {
+    opts.fit_points(history.num_points());
+    header(ui, opts);
+    let t_end = history.last_time().unwrap_or(0.0).max(now_s);
+    let (t0, t1) = if opts.follow {
+        (
+            (t_end - opts.window_s).max(0.0),
+            t_end.max(opts.window_s.min(1e9)),
+        )
+    } else {
+        (0.0, t_end.max(1e-9))
+    };
+    let gap = ui.spacing().item_spacing.y;
+    let h = ((ui.available_height() - 3.0 * gap) / 4.0).max(80.0);
+    let link = Id::unique("tirecontact.time_axes");
+    let p = history.num_points();
+    for (k, def) in PLOTS.iter().enumerate() {
+        let last = k == PLOTS.len() - 1;
+        let mut plot = Plot::new(("tirecontact.time_plot", k))
+            .height(h)
+            .legend(
+                Legend::default()
+                    .position(Corner::RightTop)
+                    .follow_insertion_order(true),
+            )
+            .link_axis(link, [true, false])
+            .link_cursor(link, [true, false])
+            .y_axis_label(def.y_label)
+            .y_axis_min_width(64.0)
+            .allow_scroll(false)
+            .auto_bounds([!opts.follow, true]);
+        if last {
+            plot = plot.x_axis_label("time t (s)");
+        }
+        if def.what == Quantity::Contact {
+            // one lane per shown point, labelled with the point's index
+            let lanes: Vec<usize> = (0..p)
+                .filter(|&i| opts.shown.get(i).copied().unwrap_or(false))
+                .collect();
+            let n = lanes.len();
+            plot = plot
+                .y_axis_formatter(move |m, _| {
+                    let k = m.value.round();
+                    if (m.value - k).abs() < 1e-9 && k >= 0.0 && (k as usize) < n {
+                        format!("p{}", lanes[k as usize])
+                    } else {
+                        String::new()
+                    }
+                })
+                .include_y(-0.2)
+                .include_y(n.max(1) as f64 - 0.1);
+        }
+        let shown = opts.shown.clone();
+        let follow = opts.follow;
+        plot.show(ui, move |pui| {
+            let (a, b) = if follow {
+                pui.set_plot_bounds_x(t0..=t1);
+                (t0, t1)
+            } else if pui.auto_bounds().x {
+                (t0, t1)
+            } else {
+                let bnd = pui.plot_bounds();
+                (bnd.min()[0], bnd.max()[0])
+            };
+            draw_series(pui, history, def, &shown, a, b);
+        });
+    }
+}
+
+fn draw_series(pui: &mut PlotUi<'_>, h: &History, def: &PlotDef, shown: &[bool], a: f64, b: f64) {
+    let buckets = (pui.response().rect.width() as usize).clamp(100, 4000);
+    let shown_points = shown
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| **s)
+        .map(|(i, _)| i);
+    for (lane, i) in shown_points.enumerate() {
+        let mut pts = h.decimated(def.what, i, a, b, buckets, def.scale);
+        if def.what == Quantity::Contact {
+            // lane of the point, raised by 0.7 while in contact
+            for p in &mut pts {
+                p[1] = lane as f64 + 0.7 * p[1];
+            }
+        }
+        pui.line(
+            Line::new(format!("point {i}"), pts)
+                .color(point_color(i))
+                .width(1.5),
+        );
+    }
+}
+
+fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
+    ui.horizontal_wrapped(|ui| {
+        ui.checkbox(&mut opts.follow, "follow latest")
+            .on_hover_text("keep the latest time window in view; off: zoom and pan freely (double-click resets)");
+        ui.add_enabled(
+            opts.follow,
+            egui::DragValue::new(&mut opts.window_s)
+                .range(1e-4..=1e4)
+                .speed(0.01)
+                .suffix(" s"),
+        )
+        .on_hover_text("width of the followed time window");
+        ui.separator();
+        ui.label("points:");
+        let n = opts.shown.len();
+        for (i, s) in opts.shown.iter_mut().enumerate().take(24) {
+            ui.checkbox(s, egui::RichText::new(i.to_string()).color(point_color(i)));
+        }
+        if n > 24 {
+            ui.label(format!("(+{} more)", n - 24));
+        }
+        if ui.small_button("all").clicked() {
+            opts.shown.iter_mut().for_each(|s| *s = true);
+        }
+        if ui.small_button("none").clicked() {
+            opts.shown.iter_mut().for_each(|s| *s = false);
+        }
+    });
+}
