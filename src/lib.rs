@@ -27,12 +27,18 @@
 //! | [`identify`] | ring -> sampled responses -> LSCE, cached per scene | §5-6 |
 //! | [`scene`] | RON scenes and their validation | — |
 //! | [`output`] | CSV writer, headless PNG figures | — |
+//! | [`spectrum`] | amplitude/PSD spectra, third-octave bands, run spectra | — |
+//! | [`sweep`] | scene parameters by path, multi-threaded sweeps | — |
+//! | [`fidelity`] | relative L2 error of a modal model against a reference `G(ω)` | §5-6 |
+//! | [`compare`] | a pinned reference run and the difference to it | — |
 //! | `gui` | the visualiser (feature `gui`) | — |
 
 pub mod bench;
+pub mod compare;
 pub mod contact;
 pub mod convolution;
 pub mod error;
+pub mod fidelity;
 #[cfg(feature = "gui")]
 pub mod gui;
 pub mod identify;
@@ -43,6 +49,8 @@ pub mod ring;
 pub mod road;
 pub mod scene;
 pub mod simulation;
+pub mod spectrum;
+pub mod sweep;
 
 pub use error::{SceneError, SolverError};
 pub use scene::Scene;

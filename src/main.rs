@@ -23,6 +23,8 @@ enum Command {
     Run(cli::run::RunArgs),
     /// Identify the modal model of a ring-tyre scene by LSCE (SPEC §5-6).
     Identify(cli::identify::IdentifyArgs),
+    /// Run a scene over a range of one parameter; summary and band levels per value.
+    Sweep(cli::sweep::SweepArgs),
     /// Work-precision study and before/after timings of skipped work.
     Bench(cli::bench::BenchArgs),
     /// Parse and validate a scene preset.
@@ -49,6 +51,7 @@ fn main() -> std::process::ExitCode {
             .map_err(|e| format!("cannot open the visualiser: {e}").into()),
         Some(Command::Identify(args)) => cli::identify::identify(&args),
         Some(Command::Bench(args)) => cli::bench::bench(&args),
+        Some(Command::Sweep(args)) => cli::sweep::sweep(&args),
         None => default_action(),
     };
     match result {
@@ -81,5 +84,9 @@ fn headless_default() -> cli::CliResult {
         max_output_gb: cli::run::DEFAULT_MAX_OUTPUT_GB,
         plot: None,
         plot_size: (1400, 900),
+        spectrum: None,
+        spectrum_plot: None,
+        spectrum_from: None,
+        spectrum_max_hz: 5000.0,
     })
 }

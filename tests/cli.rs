@@ -80,3 +80,72 @@ fn check_accepts_shipped_presets() {
     assert!(o.status.success());
     assert!(String::from_utf8_lossy(&o.stdout).contains("ok"));
 }
+
+#[test]
+fn run_spectrum_and_sweep_write_their_tables() {
+    let d = tmpdir("spectrum");
+    let spec = d.join("spectrum.csv");
+    let o = bin()
+        .args([
+            "run",
+            "presets/three_points.ron",
+            "--duration",
+            "0.08",
+            "--spectrum",
+        ])
+        .arg(&spec)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&spec).unwrap();
+    assert!(text.starts_with(
+        "freq_hz,q0_db_re_1N,q1_db_re_1N,q2_db_re_1N,q_total_db_re_1N,u0_db_re_1m,u1_db_re_1m,u2_db_re_1m\n"
+    ));
+    let bands = std::fs::read_to_string(d.join("spectrum_bands.csv")).unwrap();
+    assert!(bands.lines().any(|l| l.starts_with("315,")), "{bands}");
+
+    let table = d.join("sweep.csv");
+    let o = bin()
+        .args([
+            "sweep",
+            "presets/three_points.ron",
+            "--param",
+            "points[*].h_m",
+            "--from",
+            "-0.001",
+            "--to",
+            "-0.002",
+            "--steps",
+            "3",
+            "--duration",
+            "0.05",
+            "-o",
+        ])
+        .arg(&table)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&table).unwrap();
+    assert_eq!(text.lines().count(), 4);
+    assert!(text.starts_with("points[*].h_m,max_force_n_q0,"));
+    let o = bin()
+        .args([
+            "sweep",
+            "presets/three_points.ron",
+            "--param",
+            "speed_kmh",
+            "--from",
+            "1",
+            "--to",
+            "2",
+        ])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("speed_kmh") && err.contains("speed_mps"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -4,6 +4,7 @@ pub mod bench;
 pub mod check;
 pub mod identify;
 pub mod run;
+pub mod sweep;
 
 use std::path::{Path, PathBuf};
 use tirecontact::{DEFAULT_PRESET, DEFAULT_PRESET_NAME, Scene, SceneError};

@@ -5,6 +5,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use tirecontact::output::csv::{self as csv_out, RunWriter};
+use tirecontact::spectrum::Window;
+use tirecontact::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder, scene_markers};
 use tirecontact::{Scene, SceneError, Simulation};
 
 #[derive(Debug, clap::Args)]
@@ -33,6 +35,29 @@ pub struct RunArgs {
     /// Size of the PNG, WIDTHxHEIGHT in pixels.
     #[arg(long, default_value = "1400x900", value_parser = parse_size)]
     pub plot_size: (u32, u32),
+    /// Write force and displacement spectra of the steady part (from
+    /// `ramp_s`, Hann window, dB re 1 N / 1 m) to this CSV, and their
+    /// third-octave band levels to `<stem>_bands.csv` beside it.
+    #[arg(long)]
+    pub spectrum: Option<PathBuf>,
+    /// Also draw the spectra, with the road excitation and modal frequencies
+    /// marked, to this PNG.
+    #[arg(long)]
+    pub spectrum_plot: Option<PathBuf>,
+    /// Start of the analysed steady part (s); default the ramp time `ramp_s`.
+    #[arg(long)]
+    pub spectrum_from: Option<f64>,
+    /// Highest frequency of the spectrum CSV and figure (Hz).
+    #[arg(long, default_value_t = 5000.0)]
+    pub spectrum_max_hz: f64,
+}
+
+/// `spectrum.csv` -> `spectrum_bands.csv` beside it.
+pub fn bands_path(path: &std::path::Path) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map_or("spectrum".into(), |s| s.to_string_lossy().into_owned());
+    path.with_file_name(format!("{stem}_bands.csv"))
 }
 
 /// Default budget of the CSV written by `run -o` (decimal GB): a larger
@@ -174,6 +199,28 @@ pub fn run(args: &RunArgs) -> CliResult {
         .plot
         .as_ref()
         .map(|_| tirecontact::output::record::Recording::new(scene.num_points(), n, 4000));
+    let want_spectrum = args.spectrum.is_some() || args.spectrum_plot.is_some();
+    if want_spectrum && !(args.spectrum_max_hz.is_finite() && args.spectrum_max_hz > 0.0) {
+        return Err(format!(
+            "--spectrum-max-hz = {}: expected a frequency > 0 Hz",
+            args.spectrum_max_hz
+        )
+        .into());
+    }
+    if let Some(from) = args.spectrum_from
+        && !(from.is_finite() && from >= 0.0 && from < scene.duration_s)
+    {
+        return Err(format!(
+            "--spectrum-from = {from}: expected a start time >= 0 s and < duration_s = {} s",
+            scene.duration_s
+        )
+        .into());
+    }
+    let mut steady = if want_spectrum {
+        Some(SteadyRecorder::new(&scene, args.spectrum_from)?)
+    } else {
+        None
+    };
     let start = Instant::now();
     let bar = ProgressBar::with_draw_target(Some(n), indicatif::ProgressDrawTarget::stderr());
     bar.set_style(
@@ -188,6 +235,9 @@ pub fn run(args: &RunArgs) -> CliResult {
             w.after_step(&sim)?;
         }
         if let Some(r) = rec.as_mut() {
+            r.after_step(&sim);
+        }
+        if let Some(r) = steady.as_mut() {
             r.after_step(&sim);
         }
         if k % 1024 == 0 {
@@ -213,6 +263,9 @@ pub fn run(args: &RunArgs) -> CliResult {
         tirecontact::output::figures::render_png(&fig, path, args.plot_size.0, args.plot_size.1)?;
         eprintln!("wrote {}", path.display());
     }
+    if let Some(r) = steady {
+        write_spectra(args, &scene, &r)?;
+    }
     let st = sim.stats();
     let fmt_list = |v: &[f64], f: &dyn Fn(f64) -> String| {
         v.iter().map(|&x| f(x)).collect::<Vec<_>>().join(" ")
@@ -234,5 +287,40 @@ pub fn run(args: &RunArgs) -> CliResult {
             .as_ref()
             .map_or(String::new(), |p| format!("; wrote {}", p.display()))
     );
+    Ok(())
+}
+
+/// Writes the spectrum CSV, its band table and the spectrum figure.
+fn write_spectra(args: &RunArgs, scene: &Scene, rec: &SteadyRecorder) -> CliResult {
+    let spectra = rec.spectra(Window::Hann)?;
+    eprintln!("spectra: {}", spectra.describe());
+    if let Some(path) = &args.spectrum {
+        let mut buf = Vec::new();
+        spectra.write_csv(&mut buf, args.spectrum_max_hz)?;
+        tirecontact::output::write_atomic(path, &buf)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        let bands = bands_path(path);
+        let mut buf = Vec::new();
+        spectra.write_bands_csv(&mut buf, DEFAULT_BANDS_HZ.0, DEFAULT_BANDS_HZ.1)?;
+        tirecontact::output::write_atomic(&bands, &buf)
+            .map_err(|e| format!("{}: {e}", bands.display()))?;
+        eprintln!("wrote {} and {}", path.display(), bands.display());
+    }
+    if let Some(path) = &args.spectrum_plot {
+        let marks = scene_markers(scene, args.spectrum_max_hz);
+        let fig = spectra.figure(
+            &format!("{}: spectra", scene.name),
+            &scene_summary(scene),
+            &marks,
+            args.spectrum_max_hz,
+        );
+        tirecontact::output::figures::render_png(
+            &fig,
+            path,
+            args.plot_size.0,
+            args.plot_size.1.max(1200),
+        )?;
+        eprintln!("wrote {}", path.display());
+    }
     Ok(())
 }

@@ -10,6 +10,9 @@ use std::sync::Once;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Style {
     Line,
+    /// A one-pixel line: for dense, spiky data (spectra), where wide
+    /// polylines overshoot at sharp peaks.
+    ThinLine,
     /// A line with a filled circle of the given radius (px) at each point.
     LineMarkers(u32),
     /// Filled circles of the given radius (px).
@@ -18,7 +21,7 @@ pub enum Style {
     HollowMarkers(u32),
 }
 
-/// One named series of `(x, y)` points.
+/// One named series of `(x, y)` points (an empty name: no legend entry).
 #[derive(Debug, Clone)]
 pub struct Series {
     pub name: String,
@@ -184,6 +187,60 @@ pub fn render_png(fig: &Figure, path: &Path, width: u32, height: u32) -> Result<
     Ok(())
 }
 
+/// The corner of the panel with the fewest data points under a legend-sized
+/// box (a quarter of the width; `entry_frac` of the plot height per entry);
+/// upper right on ties.
+fn legend_corner(panel: &Panel, entry_frac: f64) -> SeriesLabelPosition {
+    let xs = range(
+        panel
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.0)),
+        panel.log_x,
+    );
+    let ys = range(
+        panel
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.1)),
+        panel.log_y,
+    );
+    let norm = |v: f64, (lo, hi): (f64, f64), log: bool| {
+        if log {
+            (v.ln() - lo.ln()) / (hi.ln() - lo.ln())
+        } else {
+            (v - lo) / (hi - lo)
+        }
+    };
+    let corners = [
+        (SeriesLabelPosition::UpperRight, true, true),
+        (SeriesLabelPosition::UpperLeft, false, true),
+        (SeriesLabelPosition::LowerRight, true, false),
+        (SeriesLabelPosition::LowerLeft, false, false),
+    ];
+    let entries = panel.series.iter().filter(|s| !s.name.is_empty()).count();
+    let h = (entry_frac * (entries as f64 + 0.5)).min(0.95);
+    let mut counts = [0usize; 4];
+    for s in &panel.series {
+        for p in &s.points {
+            let (x, y) = (norm(p.0, xs, panel.log_x), norm(p.1, ys, panel.log_y));
+            if !(x.is_finite() && y.is_finite()) {
+                continue;
+            }
+            for (c, &(_, right, upper)) in counts.iter_mut().zip(&corners) {
+                let in_x = if right { x > 0.75 } else { x < 0.25 };
+                let in_y = if upper { y > 1.0 - h } else { y < h };
+                *c += usize::from(in_x && in_y);
+            }
+        }
+    }
+    let best = (0..4).min_by_key(|&k| (counts[k], k)).unwrap_or(0);
+    corners
+        .into_iter()
+        .nth(best)
+        .map_or(SeriesLabelPosition::UpperRight, |c| c.0)
+}
+
 fn draw_panel(
     panel: &Panel,
     area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
@@ -204,6 +261,10 @@ fn draw_panel(
             .flat_map(|s| s.points.iter().map(|p| p.1)),
         panel.log_y,
     );
+    // legend entry height over the plot's height (caption, axis area, margins off)
+    let area_h = f64::from(area.dim_in_pixel().1);
+    let plot_h = (area_h - f64::from(fs(45.0) + fs(27.0) + 2 * fs(10.0))).max(1.0);
+    let entry_frac = 1.6 * f64::from(fs(14.0)) / plot_h;
     let mut builder = ChartBuilder::on(area);
     builder
         .caption(&panel.title, ("sans-serif", fs(18.0) as i32))
@@ -234,24 +295,31 @@ fn draw_panel(
                     .copied()
                     .filter(|p| p.0.is_finite() && p.1.is_finite());
                 let stroke = (scale * 1.6).max(1.0) as u32;
+                let stroke = if s.style == Style::ThinLine {
+                    1
+                } else {
+                    stroke
+                };
                 match s.style {
-                    Style::Line => {
-                        chart
-                            .draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
-                            .label(s.name.clone())
-                            .legend(move |(x, y)| {
+                    Style::Line | Style::ThinLine => {
+                        let anno =
+                            chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?;
+                        if !s.name.is_empty() {
+                            anno.label(s.name.clone()).legend(move |(x, y)| {
                                 PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(stroke))
                             });
+                        }
                     }
                     Style::LineMarkers(r) => {
                         let pts: Vec<(f64, f64)> = pts.collect();
                         chart.draw_series(pts.iter().map(|&p| Circle::new(p, r, c.filled())))?;
-                        chart
-                            .draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
-                            .label(s.name.clone())
-                            .legend(move |(x, y)| {
+                        let anno =
+                            chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?;
+                        if !s.name.is_empty() {
+                            anno.label(s.name.clone()).legend(move |(x, y)| {
                                 PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(stroke))
                             });
+                        }
                     }
                     Style::Markers(r) | Style::HollowMarkers(r) => {
                         let filled = matches!(s.style, Style::Markers(_));
@@ -260,10 +328,11 @@ fn draw_panel(
                         } else {
                             c.stroke_width(1)
                         };
-                        chart
-                            .draw_series(pts.map(move |p| Circle::new(p, r, style)))?
-                            .label(s.name.clone())
-                            .legend(move |(x, y)| Circle::new((x + 10, y), r, style));
+                        let anno = chart.draw_series(pts.map(move |p| Circle::new(p, r, style)))?;
+                        if !s.name.is_empty() {
+                            anno.label(s.name.clone())
+                                .legend(move |(x, y)| Circle::new((x + 10, y), r, style));
+                        }
                     }
                 }
             }
@@ -273,7 +342,7 @@ fn draw_panel(
                     .background_style(WHITE.mix(0.85))
                     .border_style(RGBColor(180, 180, 180))
                     .label_font(("sans-serif", fs(14.0) as i32))
-                    .position(SeriesLabelPosition::UpperRight)
+                    .position(legend_corner(panel, entry_frac))
                     .draw()?;
             }
         }};

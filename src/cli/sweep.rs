@@ -1,0 +1,144 @@
+//! `tirecontact sweep PRESET --param PATH --from A --to B --steps N [-o sweep.csv] [--plot sweep.png]`.
+
+use super::{CliResult, load_scene};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::path::PathBuf;
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+use tirecontact::sweep::{Sweep, get_param, linspace, report, run_sweep, set_param};
+use tirecontact::{Scene, SceneError};
+
+#[derive(Debug, clap::Args)]
+pub struct SweepArgs {
+    /// Scene preset (RON). Without it, the embedded default preset.
+    pub preset: Option<PathBuf>,
+    /// Path of the numeric scene field to sweep, e.g. `speed_mps`,
+    /// `road.amplitude_m`, `points[2].h_m`, `points[*].h_m` (all points),
+    /// `tyre.modes[0].freq_hz`, `tyre.ring.inflation_pa`.
+    #[arg(long)]
+    pub param: String,
+    /// First value.
+    #[arg(long, allow_negative_numbers = true)]
+    pub from: f64,
+    /// Last value.
+    #[arg(long, allow_negative_numbers = true)]
+    pub to: f64,
+    /// Number of values, evenly spaced, both ends included.
+    #[arg(long, default_value_t = 10)]
+    pub steps: usize,
+    /// Write the table (one row per value) to this CSV.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Draw max force, force RMS, contact fraction and band levels to this PNG.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Worker threads; default all cores.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Override the time step (s) of every run.
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Override the duration (s) of every run.
+    #[arg(long)]
+    pub duration: Option<f64>,
+}
+
+fn base_scene(args: &SweepArgs) -> Result<Scene, SceneError> {
+    let mut scene = load_scene(args.preset.as_deref())?;
+    if let Some(dt) = args.dt {
+        scene.dt_s = dt;
+    }
+    if let Some(d) = args.duration {
+        scene.duration_s = d;
+    }
+    let file = args
+        .preset
+        .as_ref()
+        .map_or("(embedded preset)".to_string(), |p| p.display().to_string());
+    scene
+        .validate()
+        .map_err(|errors| SceneError::Invalid { file, errors })?;
+    Ok(scene)
+}
+
+pub fn sweep(args: &SweepArgs) -> CliResult {
+    let scene = base_scene(args)?;
+    // check the path (and the range ends) before any run
+    get_param(&scene, &args.param)?;
+    for v in [args.from, args.to] {
+        set_param(&mut scene.clone(), &args.param, v)?;
+    }
+    let threads = match args.threads {
+        Some(0) => return Err("--threads = 0: expected at least 1 thread".into()),
+        Some(n) => n,
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    };
+    let sweep = Sweep {
+        param: args.param.clone(),
+        values: linspace(args.from, args.to, args.steps)?,
+        threads,
+    };
+    let bar = ProgressBar::with_draw_target(Some(1), ProgressDrawTarget::stderr());
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {percent}% {msg} (eta {eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar.set_message(format!(
+        "{} runs of {} on {threads} thread(s)",
+        sweep.values.len(),
+        args.param
+    ));
+    let start = Instant::now();
+    let cancel = AtomicBool::new(false);
+    let progress = |done: u64, total: u64| {
+        bar.set_length(total);
+        bar.set_position(done);
+    };
+    let points = run_sweep(&scene, &sweep, &progress, &cancel)?;
+    bar.finish_and_clear();
+    let wall = start.elapsed().as_secs_f64();
+    let p = scene.num_points();
+    if let Some(path) = &args.output {
+        let mut buf = Vec::new();
+        report::write_csv(&mut buf, &args.param, &points, p)?;
+        tirecontact::output::write_atomic(path, &buf)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        eprintln!("wrote {}", path.display());
+    }
+    if let Some(path) = &args.plot {
+        let fig = report::figure(
+            &format!("{}: sweep of {}", scene.name, args.param),
+            &format!("base scene: {}", super::run::scene_summary(&scene)),
+            &args.param,
+            &points,
+            p,
+        );
+        tirecontact::output::figures::render_png(&fig, path, 1400, 1400)?;
+        eprintln!("wrote {}", path.display());
+    }
+    let failed: Vec<String> = points
+        .iter()
+        .filter_map(|pt| {
+            pt.result
+                .as_ref()
+                .err()
+                .map(|e| format!("{} = {}: {e}", args.param, pt.value))
+        })
+        .collect();
+    for f in &failed {
+        eprintln!("run failed: {f}");
+    }
+    println!(
+        "{}: {} runs of {} from {} to {} on {threads} thread(s) in {wall:.3} s wall ({} failed)",
+        scene.name,
+        points.len(),
+        args.param,
+        args.from,
+        args.to,
+        failed.len()
+    );
+    if failed.len() == points.len() {
+        return Err("every run of the sweep failed".into());
+    }
+    Ok(())
+}

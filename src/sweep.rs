@@ -1,0 +1,420 @@
+//! Parameter sweeps: the numeric fields of a scene by path
+//! (`speed_mps`, `road.amplitude_m`, `points[2].h_m`, `tyre.modes[0].freq_hz`,
+//! `tyre.ring.inflation_pa`, ...; `[*]` sets every index at once), and runs
+//! of a scene over a list of values on several threads, each summarised over
+//! its steady part (`t >= ramp_s`): max force, force RMS and contact fraction
+//! per point, third-octave band levels of the total force.
+//!
+//! Every run is independent and deterministic, so a sweep point equals the
+//! single run of the scene with that value, whatever the thread count.
+
+use crate::road::Road;
+use crate::scene::{Contact, Scene, Tyre};
+use crate::simulation::Simulation;
+use crate::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder};
+use crate::spectrum::{BandLevel, Window};
+pub mod report;
+
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+/// Errors of a sweep.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SweepError {
+    #[error("unknown parameter `{path}`: expected one of {}", .valid.join(", "))]
+    UnknownParam { path: String, valid: Vec<String> },
+    /// The scene is invalid with the value; `message` names every bad field.
+    #[error("{message}")]
+    InvalidValue {
+        path: String,
+        value: f64,
+        message: String,
+    },
+    #[error("sweep: {0}")]
+    Input(String),
+    #[error("{param} = {value}: {message}")]
+    Run {
+        param: String,
+        value: f64,
+        message: String,
+    },
+    #[error("sweep cancelled")]
+    Cancelled,
+}
+
+/// Every numeric field of the scene with its path, as mutable references.
+/// Integer fields (`tyre.ring.max_order`, ...) and text are not listed.
+fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
+    let mut f: Vec<(String, &mut f64)> = vec![
+        ("speed_mps".into(), &mut scene.speed_mps),
+        ("ramp_s".into(), &mut scene.ramp_s),
+        ("dt_s".into(), &mut scene.dt_s),
+        ("duration_s".into(), &mut scene.duration_s),
+    ];
+    for (i, p) in scene.points.iter_mut().enumerate() {
+        f.push((format!("points[{i}].x_m"), &mut p.x_m));
+        f.push((format!("points[{i}].h_m"), &mut p.h_m));
+    }
+    match &mut scene.road {
+        Road::Sine {
+            amplitude_m,
+            wavelength_m,
+        } => {
+            f.push(("road.amplitude_m".into(), amplitude_m));
+            f.push(("road.wavelength_m".into(), wavelength_m));
+        }
+        Road::Harmonics { components } => {
+            for (k, c) in components.iter_mut().enumerate() {
+                f.push((
+                    format!("road.components[{k}].amplitude_m"),
+                    &mut c.amplitude_m,
+                ));
+                f.push((
+                    format!("road.components[{k}].wavelength_m"),
+                    &mut c.wavelength_m,
+                ));
+                f.push((format!("road.components[{k}].phase_rad"), &mut c.phase_rad));
+            }
+        }
+        Road::Random {
+            length_m,
+            min_wavenumber_cpm,
+            max_wavenumber_cpm,
+            ..
+        } => {
+            f.push(("road.length_m".into(), length_m));
+            f.push(("road.min_wavenumber_cpm".into(), min_wavenumber_cpm));
+            f.push(("road.max_wavenumber_cpm".into(), max_wavenumber_cpm));
+        }
+        Road::Measured { .. } => {}
+    }
+    if let Contact::Compliant { stiffness_n_m } = &mut scene.contact {
+        for (i, k) in stiffness_n_m.iter_mut().enumerate() {
+            f.push((format!("contact.stiffness_n_m[{i}]"), k));
+        }
+    }
+    match &mut scene.tyre {
+        Tyre::Modal { modes } => {
+            for (k, m) in modes.iter_mut().enumerate() {
+                f.push((format!("tyre.modes[{k}].freq_hz"), &mut m.freq_hz));
+                f.push((
+                    format!("tyre.modes[{k}].damping_ratio"),
+                    &mut m.damping_ratio,
+                ));
+                for (i, a) in m.shape.iter_mut().enumerate() {
+                    f.push((format!("tyre.modes[{k}].shape[{i}]"), a));
+                }
+                for (i, row) in m.residue.iter_mut().enumerate() {
+                    for (j, a) in row.iter_mut().enumerate() {
+                        f.push((format!("tyre.modes[{k}].residue[{i}][{j}]"), a));
+                    }
+                }
+            }
+        }
+        Tyre::Ring {
+            ring,
+            identification,
+        } => {
+            let r = ring;
+            f.extend([
+                ("tyre.ring.radius_m".to_string(), &mut r.radius_m),
+                ("tyre.ring.belt_width_m".into(), &mut r.belt_width_m),
+                (
+                    "tyre.ring.mass_per_length_kg_m".into(),
+                    &mut r.mass_per_length_kg_m,
+                ),
+                ("tyre.ring.inflation_pa".into(), &mut r.inflation_pa),
+                (
+                    "tyre.ring.radial_stiffness_n_m2".into(),
+                    &mut r.radial_stiffness_n_m2,
+                ),
+                (
+                    "tyre.ring.tangential_stiffness_n_m2".into(),
+                    &mut r.tangential_stiffness_n_m2,
+                ),
+                (
+                    "tyre.ring.bending_stiffness_n_m2".into(),
+                    &mut r.bending_stiffness_n_m2,
+                ),
+                (
+                    "tyre.ring.extensional_stiffness_n".into(),
+                    &mut r.extensional_stiffness_n,
+                ),
+                ("tyre.ring.damping_ratio".into(), &mut r.damping_ratio),
+            ]);
+            let o = identification;
+            f.push(("tyre.identification.band_hz.0".into(), &mut o.band_hz.0));
+            f.push(("tyre.identification.band_hz.1".into(), &mut o.band_hz.1));
+            f.push((
+                "tyre.identification.sample_rate_hz".into(),
+                &mut o.sample_rate_hz,
+            ));
+            f.push(("tyre.identification.duration_s".into(), &mut o.duration_s));
+        }
+    }
+    f
+}
+
+/// `points[3].h_m` -> `points[*].h_m`.
+fn wildcard(path: &str) -> String {
+    let mut out = String::with_capacity(path.len());
+    let mut in_index = false;
+    for c in path.chars() {
+        match c {
+            '[' => {
+                in_index = true;
+                out.push_str("[*");
+            }
+            ']' => {
+                in_index = false;
+                out.push(']');
+            }
+            _ if in_index => {}
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+fn matches(pattern: &str, path: &str) -> bool {
+    pattern == path
+        || (pattern.contains("[*]") && wildcard(path) == wildcard(pattern) && {
+            // every explicit index of the pattern must agree
+            let idx = |s: &str| -> Vec<String> {
+                s.split('[')
+                    .skip(1)
+                    .map(|t| t.split(']').next().unwrap_or("").to_string())
+                    .collect()
+            };
+            idx(pattern)
+                .iter()
+                .zip(idx(path))
+                .all(|(a, b)| a == "*" || *a == b)
+        })
+}
+
+/// The numeric parameter paths of `scene` (what [`set_param`] accepts; a
+/// `[*]` in place of an index addresses every index).
+pub fn param_paths(scene: &Scene) -> Vec<String> {
+    let mut s = scene.clone();
+    numeric_fields(&mut s).into_iter().map(|(p, _)| p).collect()
+}
+
+/// The value of the parameter at `path` (the first match of a wildcard).
+pub fn get_param(scene: &Scene, path: &str) -> Result<f64, SweepError> {
+    let mut s = scene.clone();
+    let fields = numeric_fields(&mut s);
+    fields
+        .into_iter()
+        .find(|(p, _)| matches(path, p))
+        .map(|(_, v)| *v)
+        .ok_or_else(|| unknown(scene, path))
+}
+
+fn unknown(scene: &Scene, path: &str) -> SweepError {
+    let mut valid = param_paths(scene);
+    // collapse long indexed lists for the message
+    let mut shown: Vec<String> = Vec::new();
+    for p in valid.drain(..) {
+        let w = wildcard(&p);
+        if w != p && shown.iter().any(|s| wildcard(s) == w) {
+            continue;
+        }
+        shown.push(if w != p {
+            w.replacen("[*]", "[i]", 1)
+        } else {
+            p
+        });
+    }
+    SweepError::UnknownParam {
+        path: path.to_string(),
+        valid: shown,
+    }
+}
+
+/// Sets the parameter at `path` (every match of a wildcard) to `value` and
+/// validates the scene; an invalid result names the field and what it expects.
+pub fn set_param(scene: &mut Scene, path: &str, value: f64) -> Result<(), SweepError> {
+    let before = scene.clone();
+    let mut hits = 0;
+    for (p, v) in numeric_fields(scene) {
+        if matches(path, &p) {
+            *v = value;
+            hits += 1;
+        }
+    }
+    if hits == 0 {
+        return Err(unknown(&before, path));
+    }
+    scene.validate().map_err(|errors| {
+        let mut message = errors
+            .iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>()
+            .join("; ");
+        if !errors.iter().any(|e| matches(path, &e.field)) {
+            message = format!("with {path} = {value}: {message}");
+        }
+        SweepError::InvalidValue {
+            path: path.to_string(),
+            value,
+            message,
+        }
+    })
+}
+
+/// `steps` values from `from` to `to`, evenly spaced (both ends included).
+pub fn linspace(from: f64, to: f64, steps: usize) -> Result<Vec<f64>, SweepError> {
+    if !(from.is_finite() && to.is_finite()) {
+        return Err(SweepError::Input(format!(
+            "range {from} .. {to}: expected finite values"
+        )));
+    }
+    match steps {
+        0 => Err(SweepError::Input("steps = 0: expected at least 1".into())),
+        1 => Ok(vec![from]),
+        n => Ok((0..n)
+            .map(|k| from + (to - from) * k as f64 / (n - 1) as f64)
+            .collect()),
+    }
+}
+
+/// The summary of one run's steady part.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    /// Largest step-mean force per point (N).
+    pub max_force_n: Vec<f64>,
+    /// RMS of the step-mean force per point, static part included (N).
+    pub force_rms_n: Vec<f64>,
+    /// Fraction of the steps ending in contact per point (-).
+    pub contact_fraction: Vec<f64>,
+    /// Third-octave levels of the total force (dB re 1 N, Hann window,
+    /// mean removed), bands 20 Hz - 5 kHz below Nyquist.
+    pub bands: Vec<BandLevel>,
+    /// Steps run.
+    pub steps: u64,
+}
+
+/// Runs `scene` to its end and summarises its steady part (`t >= ramp_s`).
+/// `on_steps` is called with the number of steps done since its last call
+/// (every 1024 steps and at the end); `cancel` stops the run early.
+pub fn run_summary(
+    scene: &Scene,
+    on_steps: &dyn Fn(u64),
+    cancel: &AtomicBool,
+) -> Result<RunSummary, String> {
+    let mut sim = Simulation::new(scene).map_err(|e| e.to_string())?;
+    let mut rec = SteadyRecorder::new(scene, None).map_err(|e| e.to_string())?;
+    let n = scene.num_steps();
+    let mut reported = 0;
+    for k in 0..n {
+        sim.step().map_err(|e| e.to_string())?;
+        rec.after_step(&sim);
+        if k % 1024 == 1023 {
+            if cancel.load(Ordering::Relaxed) {
+                return Err("cancelled".into());
+            }
+            on_steps(k + 1 - reported);
+            reported = k + 1;
+        }
+    }
+    on_steps(n - reported);
+    let fs = 1.0 / scene.dt_s;
+    let hi = DEFAULT_BANDS_HZ.1.min(0.5 * fs / 10f64.powf(0.05));
+    let bands = crate::spectrum::spectrum(&rec.total_force_n(), fs, Window::Hann, true)
+        .map(|s| s.third_octave_levels(DEFAULT_BANDS_HZ.0, hi, 1.0))
+        .map_err(|e| e.to_string())?;
+    Ok(RunSummary {
+        max_force_n: rec.max_force_n(),
+        force_rms_n: rec.force_rms_n(),
+        contact_fraction: rec.contact_fraction(),
+        bands,
+        steps: n,
+    })
+}
+
+/// One point of a sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepPoint {
+    pub value: f64,
+    pub result: Result<RunSummary, String>,
+}
+
+/// A sweep's definition.
+#[derive(Debug, Clone)]
+pub struct Sweep {
+    pub param: String,
+    pub values: Vec<f64>,
+    /// Worker threads (>= 1).
+    pub threads: usize,
+}
+
+/// The scenes of a sweep, one per value, checked before anything runs.
+pub fn sweep_scenes(base: &Scene, sweep: &Sweep) -> Result<Vec<Scene>, SweepError> {
+    if sweep.values.is_empty() {
+        return Err(SweepError::Input("no values to sweep".into()));
+    }
+    sweep
+        .values
+        .iter()
+        .map(|&v| {
+            let mut s = base.clone();
+            set_param(&mut s, &sweep.param, v)?;
+            Ok(s)
+        })
+        .collect()
+}
+
+/// Runs the sweep on `sweep.threads` threads (values taken in order by the
+/// next free thread). `progress(done_steps, total_steps)` is called from the
+/// workers; `cancel` stops every run. Failed runs keep their message.
+pub fn run_sweep(
+    base: &Scene,
+    sweep: &Sweep,
+    progress: &(dyn Fn(u64, u64) + Sync),
+    cancel: &AtomicBool,
+) -> Result<Vec<SweepPoint>, SweepError> {
+    let scenes = sweep_scenes(base, sweep)?;
+    // identify a ring tyre once up front (cached) rather than in every thread
+    // at once; a swept ring parameter is identified per value in the threads
+    scenes[0]
+        .modes()
+        .map_err(|e| SweepError::Input(e.to_string()))?;
+    let total: u64 = scenes.iter().map(Scene::num_steps).sum();
+    let done = std::sync::atomic::AtomicU64::new(0);
+    let next = AtomicUsize::new(0);
+    let results: Mutex<Vec<Option<Result<RunSummary, String>>>> =
+        Mutex::new(vec![None; scenes.len()]);
+    let threads = sweep.threads.clamp(1, scenes.len());
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(|| {
+                loop {
+                    let k = next.fetch_add(1, Ordering::Relaxed);
+                    if k >= scenes.len() || cancel.load(Ordering::Relaxed) {
+                        break;
+                    }
+                    let on_steps = |d: u64| {
+                        let now = done.fetch_add(d, Ordering::Relaxed) + d;
+                        progress(now, total);
+                    };
+                    let r = run_summary(&scenes[k], &on_steps, cancel);
+                    results.lock().unwrap_or_else(|e| e.into_inner())[k] = Some(r);
+                }
+            });
+        }
+    });
+    if cancel.load(Ordering::Relaxed) {
+        return Err(SweepError::Cancelled);
+    }
+    let results = results.into_inner().unwrap_or_else(|e| e.into_inner());
+    Ok(sweep
+        .values
+        .iter()
+        .zip(results)
+        .map(|(&value, r)| SweepPoint {
+            value,
+            result: r.unwrap_or_else(|| Err("not run".into())),
+        })
+        .collect())
+}

@@ -1,0 +1,142 @@
+//! Sweep results as a CSV table and a PNG figure.
+
+use super::SweepPoint;
+use crate::output::figures::{Figure, Panel, Series, Style};
+use crate::spectrum::{band_label, third_octave_bands};
+use std::io::Write;
+
+/// Nominal centres of the bands of the sweep table (Hz): 20 Hz - 5 kHz.
+fn table_bands() -> Vec<f64> {
+    third_octave_bands(20.0, 5000.0)
+        .iter()
+        .map(|b| b.nominal_hz)
+        .collect()
+}
+
+/// Level of the band of nominal centre `nominal_hz` in a point (NaN when
+/// the run failed or the band was not computed, e.g. above Nyquist).
+fn band_db(p: &SweepPoint, nominal_hz: f64) -> f64 {
+    p.result
+        .as_ref()
+        .ok()
+        .and_then(|r| r.bands.iter().find(|b| b.band.nominal_hz == nominal_hz))
+        .map_or(f64::NAN, |b| b.level_db)
+}
+
+/// Writes one row per value: `<param>`, `max_force_n_q{i}`..,
+/// `force_rms_n_q{i}`.., `contact_fraction_q{i}`..,
+/// `band_{f}hz_db_re_1N`.. (total force), `error` (empty when the run
+/// succeeded; its other columns are then NaN).
+pub fn write_csv<W: Write>(
+    out: W,
+    param: &str,
+    points: &[SweepPoint],
+    num_points: usize,
+) -> Result<(), csv::Error> {
+    let mut w = csv::Writer::from_writer(out);
+    let bands = table_bands();
+    let mut header = vec![param.to_string()];
+    for name in ["max_force_n", "force_rms_n", "contact_fraction"] {
+        header.extend((0..num_points).map(|i| format!("{name}_q{i}")));
+    }
+    header.extend(
+        bands
+            .iter()
+            .map(|&b| format!("band_{}hz_db_re_1N", band_label(b))),
+    );
+    header.push("error".into());
+    w.write_record(&header)?;
+    for p in points {
+        let mut row = vec![format!("{}", p.value)];
+        match &p.result {
+            Ok(r) => {
+                for v in [&r.max_force_n, &r.force_rms_n, &r.contact_fraction] {
+                    row.extend(v.iter().map(|x| format!("{x}")));
+                }
+            }
+            Err(_) => row.extend((0..3 * num_points).map(|_| "NaN".to_string())),
+        }
+        row.extend(bands.iter().map(|&b| format!("{:.6}", band_db(p, b))));
+        row.push(p.result.as_ref().err().cloned().unwrap_or_default());
+        w.write_record(&row)?;
+    }
+    w.flush()?;
+    Ok(())
+}
+
+/// The sweep figure: max force, force RMS, contact fraction per point and
+/// the rolling-noise bands (315, 500, 800, 1250, 2000 Hz) of the total
+/// force, against the parameter.
+pub fn figure(
+    title: &str,
+    subtitle: &str,
+    param: &str,
+    points: &[SweepPoint],
+    num_points: usize,
+) -> Figure {
+    let ok: Vec<(f64, &super::RunSummary)> = points
+        .iter()
+        .filter_map(|p| p.result.as_ref().ok().map(|r| (p.value, r)))
+        .collect();
+    let per_point = |get: &dyn Fn(&super::RunSummary) -> &Vec<f64>, name: &str| -> Vec<Series> {
+        (0..num_points)
+            .map(|i| Series {
+                name: format!("{name}{i}"),
+                points: ok.iter().map(|(v, r)| (*v, get(r)[i])).collect(),
+                style: Style::LineMarkers(3),
+                color: None,
+            })
+            .collect()
+    };
+    // every other band of 315 Hz - 2 kHz (all of them are in the CSV)
+    let bands: Vec<Series> = third_octave_bands(315.0, 2000.0)
+        .iter()
+        .step_by(2)
+        .map(|b| Series {
+            name: format!("{} Hz", band_label(b.nominal_hz)),
+            points: points
+                .iter()
+                .map(|p| (p.value, band_db(p, b.nominal_hz)))
+                .filter(|p| p.1.is_finite())
+                .collect(),
+            style: Style::LineMarkers(3),
+            color: None,
+        })
+        .collect();
+    Figure {
+        title: title.to_string(),
+        subtitle: subtitle.to_string(),
+        panels: vec![
+            Panel {
+                title: "Largest step-mean contact force (steady part)".into(),
+                x_label: param.to_string(),
+                y_label: "max force (N)".into(),
+                series: per_point(&|r| &r.max_force_n, "q"),
+                ..Panel::default()
+            },
+            Panel {
+                title: "RMS contact force (steady part, static load included)".into(),
+                x_label: param.to_string(),
+                y_label: "force RMS (N)".into(),
+                series: per_point(&|r| &r.force_rms_n, "q"),
+                ..Panel::default()
+            },
+            Panel {
+                title: "Fraction of steps in contact (steady part)".into(),
+                x_label: param.to_string(),
+                y_label: "contact fraction (-)".into(),
+                series: per_point(&|r| &r.contact_fraction, "point "),
+                ..Panel::default()
+            },
+            Panel {
+                title:
+                    "Total contact force, third-octave bands 315 Hz - 2 kHz, every other band (Hann, mean removed)"
+                        .into(),
+                x_label: param.to_string(),
+                y_label: "band level (dB re 1 N)".into(),
+                series: bands,
+                ..Panel::default()
+            },
+        ],
+    }
+}
