@@ -441,22 +441,8 @@ impl Simulation {
             self.q1[j] = self.rhs[k];
             self.q2[j] = self.rhs[n + k];
         }
-        match sel {
-            Table::Full => {
-                // O(P |S|) with the precomputed full influence
-                let g = &self.full_inf;
-                for i in 0..p {
-                    let (mut du, mut dv) = (0.0, 0.0);
-                    for &j in &self.active {
-                        du += g.gx1[i * p + j] * self.q1[j] + g.gx2[i * p + j] * self.q2[j];
-                        dv += g.gv1[i * p + j] * self.q1[j] + g.gv2[i * p + j] * self.q2[j];
-                    }
-                    self.ue[i] += du;
-                    self.ve[i] += dv;
-                }
-            }
-            Table::Sub => self.end_values_sub(),
-        }
+        // O(P |S|) with the precomputed full influence; through the states on sub-steps
+        self.end_values_sub_or_full(sel);
         Ok(())
     }
 
@@ -475,7 +461,9 @@ impl Simulation {
         }
     }
 
-    /// End values of every point for the current forces, with either table.
+    /// End values of every point for the current forces: with the full-step
+    /// table through the precomputed P x P influence (O(P |S|)), on sub-steps
+    /// through the states.
     fn end_values_sub_or_full(&mut self, sel: Table) {
         match sel {
             Table::Sub => self.end_values_sub(),
