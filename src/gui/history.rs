@@ -264,7 +264,8 @@ mod tests {
 
     #[test]
     fn history_stays_bounded_and_doubles_stride() {
-        let scene = Scene::parse(crate::DEFAULT_PRESET, "default").unwrap();
+        let scene =
+            Scene::parse(include_str!("../../presets/single_mode.ron"), "single_mode").unwrap();
         let mut sim = Simulation::new(&scene).unwrap();
         let mut h = History::new(1, 4 * 1024 + 1);
         assert_eq!(h.capacity(), 1024);

@@ -143,7 +143,11 @@ mod tests {
 
     #[test]
     fn adding_and_removing_points_keeps_the_scene_valid() {
-        let scene = Scene::parse(crate::DEFAULT_PRESET, "default").unwrap();
+        let scene = Scene::parse(
+            include_str!("../../../presets/single_mode.ron"),
+            "single_mode",
+        )
+        .unwrap();
         let two = add_point(&scene);
         assert_eq!(two.num_points(), 2);
         assert!(two.validate().is_ok(), "{:?}", two.validate());

@@ -189,7 +189,11 @@ mod tests {
 
     #[test]
     fn windows_cover_the_modes() {
-        let scene = Scene::parse(crate::DEFAULT_PRESET, "d").unwrap();
+        let scene = Scene::parse(
+            include_str!("../../../presets/single_mode.ron"),
+            "single_mode",
+        )
+        .unwrap();
         let model = ModalModel::from_modes(&scene.modes().unwrap(), 1);
         let (a, b) = freq_range(&model);
         assert!(a < 100.0 && b > 100.0);
