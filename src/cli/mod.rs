@@ -21,5 +21,26 @@ pub fn load_scene(path: Option<&Path>) -> Result<Scene, SceneError> {
     }
 }
 
+/// Loads a preset (or the embedded default), applies the `--dt` and
+/// `--duration` overrides and validates the result.
+pub fn load_with_overrides(
+    path: Option<&Path>,
+    dt_s: Option<f64>,
+    duration_s: Option<f64>,
+) -> Result<Scene, SceneError> {
+    let mut scene = load_scene(path)?;
+    if let Some(dt) = dt_s {
+        scene.dt_s = dt;
+    }
+    if let Some(d) = duration_s {
+        scene.duration_s = d;
+    }
+    let file = path.map_or("(embedded preset)".to_string(), |p| p.display().to_string());
+    scene
+        .validate()
+        .map_err(|errors| SceneError::Invalid { file, errors })?;
+    Ok(scene)
+}
+
 /// A boxed error for the command line, printed as `error: ...`.
 pub type CliResult = Result<(), Box<dyn std::error::Error>>;

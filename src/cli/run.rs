@@ -1,6 +1,6 @@
 //! `tirecontact run PRESET [-o out.csv] [--dt S] [--duration S] [--every N]`.
 
-use super::{CliResult, load_scene};
+use super::CliResult;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -159,21 +159,7 @@ pub fn scene_summary(scene: &Scene) -> String {
 
 /// Applies command-line overrides and re-validates.
 pub fn scene_with_overrides(args: &RunArgs) -> Result<Scene, SceneError> {
-    let mut scene = load_scene(args.preset.as_deref())?;
-    if let Some(dt) = args.dt {
-        scene.dt_s = dt;
-    }
-    if let Some(d) = args.duration {
-        scene.duration_s = d;
-    }
-    let file = args
-        .preset
-        .as_ref()
-        .map_or("(embedded preset)".to_string(), |p| p.display().to_string());
-    scene
-        .validate()
-        .map_err(|errors| SceneError::Invalid { file, errors })?;
-    Ok(scene)
+    super::load_with_overrides(args.preset.as_deref(), args.dt, args.duration)
 }
 
 pub fn run(args: &RunArgs) -> CliResult {

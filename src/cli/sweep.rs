@@ -1,6 +1,6 @@
 //! `tirecontact sweep PRESET --param PATH --from A --to B --steps N [-o sweep.csv] [--plot sweep.png]`.
 
-use super::{CliResult, load_scene};
+use super::CliResult;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
@@ -44,21 +44,7 @@ pub struct SweepArgs {
 }
 
 fn base_scene(args: &SweepArgs) -> Result<Scene, SceneError> {
-    let mut scene = load_scene(args.preset.as_deref())?;
-    if let Some(dt) = args.dt {
-        scene.dt_s = dt;
-    }
-    if let Some(d) = args.duration {
-        scene.duration_s = d;
-    }
-    let file = args
-        .preset
-        .as_ref()
-        .map_or("(embedded preset)".to_string(), |p| p.display().to_string());
-    scene
-        .validate()
-        .map_err(|errors| SceneError::Invalid { file, errors })?;
-    Ok(scene)
+    super::load_with_overrides(args.preset.as_deref(), args.dt, args.duration)
 }
 
 pub fn sweep(args: &SweepArgs) -> CliResult {
