@@ -57,6 +57,6 @@ pub use scene::Scene;
 pub use simulation::{Simulation, SolverOptions, StepReport};
 
 /// The preset opened when no file is given (embedded in the binary).
-pub const DEFAULT_PRESET: &str = include_str!("../presets/single_mode.ron");
+pub const DEFAULT_PRESET: &str = include_str!("../presets/paper.ron");
 /// File name of the embedded default preset, for messages.
-pub const DEFAULT_PRESET_NAME: &str = "presets/single_mode.ron";
+pub const DEFAULT_PRESET_NAME: &str = "presets/paper.ron";

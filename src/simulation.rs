@@ -111,6 +111,8 @@ pub struct Simulation {
     rq1: Vec<f64>,
     rq2: Vec<f64>,
     impulse: Vec<f64>,
+    /// Impulses of the impacts located in the last step (N·s).
+    impact_impulse: Vec<f64>,
     rhs: Vec<f64>,
     active: Vec<usize>,
     released: Vec<bool>,
@@ -223,6 +225,7 @@ impl Simulation {
             rq1: vec![0.0; p],
             rq2: vec![0.0; p],
             impulse: vec![0.0; p],
+            impact_impulse: vec![0.0; p],
             rhs: vec![0.0; 2 * p],
             active: Vec::with_capacity(p),
             released: vec![false; p],
@@ -244,7 +247,12 @@ impl Simulation {
         self.t_s = 0.0;
         self.x_offset_m = 0.0;
         self.steps = 0;
-        for x in [&mut self.u, &mut self.v, &mut self.q_mean] {
+        for x in [
+            &mut self.u,
+            &mut self.v,
+            &mut self.q_mean,
+            &mut self.impact_impulse,
+        ] {
             x.fill(0.0);
         }
         self.contact.fill(false);
@@ -315,6 +323,12 @@ impl Simulation {
     /// Velocities `v_i` (m/s) at the current time.
     pub fn velocity_mps(&self) -> &[f64] {
         &self.v
+    }
+    /// Impulses of the impacts located inside the last step (N·s), included
+    /// in [`Self::force_n`] as impulse / dt; zero without impacts and for the
+    /// paper's scheme and compliant contact, which have none.
+    pub fn impact_impulse_ns(&self) -> &[f64] {
+        &self.impact_impulse
     }
     /// Step-mean contact forces of the last step (N): impulse / dt.
     pub fn force_n(&self) -> &[f64] {
@@ -538,6 +552,7 @@ impl Simulation {
     pub fn step(&mut self) -> Result<StepReport, SolverError> {
         let t0 = self.t_s;
         self.impulse.fill(0.0);
+        self.impact_impulse.fill(0.0);
         self.released.fill(false);
         let compliant = !self.tread_k_n_m.is_empty();
         let (events, solves) = match self.scene.contact_scheme {

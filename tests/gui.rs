@@ -22,6 +22,20 @@ fn tmp_dir(name: &str) -> PathBuf {
     d
 }
 
+/// The single-mode preset (a modal tyre whose modes the tests edit).
+fn single_mode_app() -> App {
+    let text = include_str!("../presets/single_mode.ron");
+    App::new(Scene::parse(text, "presets/single_mode.ron").unwrap(), None).unwrap()
+}
+
+fn default_scene() -> Scene {
+    Scene::parse(
+        tirecontact::DEFAULT_PRESET,
+        tirecontact::DEFAULT_PRESET_NAME,
+    )
+    .unwrap()
+}
+
 fn freq0(app: &App) -> f64 {
     app.modes()[0].freq_hz
 }
@@ -34,6 +48,24 @@ fn type_into(h: &mut Harness<'_, App>, name: &str, text: &str) {
     h.run();
     h.key_press(egui::Key::Enter);
     h.run();
+}
+
+#[test]
+fn the_app_opens_on_the_paper_preset_one_click_from_playing() {
+    let mut h = harness(App::with_default_preset());
+    h.run();
+    let scene = h.state().scene().clone();
+    assert_eq!(scene, default_scene());
+    assert!(matches!(scene.tyre, tirecontact::scene::Tyre::Ring { .. }));
+    assert_eq!(scene.num_points(), 5);
+    assert!(
+        !h.state().modes().is_empty(),
+        "the ring's modes are identified"
+    );
+    assert!(!h.state().is_dirty());
+    h.get_by_label("Play").click();
+    h.run_steps(5);
+    assert!(h.state().simulation().time_s() > 0.0);
 }
 
 #[test]
@@ -82,7 +114,7 @@ fn step_play_pause_and_reset_move_the_clock() {
 
 #[test]
 fn editing_a_field_changes_the_scene_and_restarts() {
-    let mut h = harness(App::with_default_preset());
+    let mut h = harness(single_mode_app());
     h.run();
     h.state_mut().apply(Command::Step(10));
     h.run();
@@ -124,7 +156,7 @@ fn live_edits_keep_the_run_going() {
 
 #[test]
 fn a_bad_value_is_refused_at_the_field_with_the_reason() {
-    let mut h = harness(App::with_default_preset());
+    let mut h = harness(single_mode_app());
     h.run();
     type_into(&mut h, "tyre.modes[0].freq_hz", "-5");
     assert_eq!(freq0(h.state()), 100.0, "the old value must be kept");
@@ -177,7 +209,7 @@ fn a_broken_preset_shows_its_error_and_keeps_the_scene() {
 #[test]
 fn unsaved_changes_are_confirmed_before_they_are_dropped() {
     let dir = tmp_dir("dirty");
-    let mut h = harness(App::with_default_preset());
+    let mut h = harness(single_mode_app());
     h.run();
     type_into(&mut h, "tyre.modes[0].freq_hz", "150");
     assert!(h.state().is_dirty());
@@ -193,8 +225,13 @@ fn unsaved_changes_are_confirmed_before_they_are_dropped() {
     h.run();
     h.get_by_label("Discard changes").click();
     h.run();
-    assert_eq!(freq0(h.state()), 100.0);
+    assert_eq!(h.state().scene(), &default_scene());
     assert!(!h.state().is_dirty());
+    // back to a modal scene to edit its first mode
+    h.state_mut()
+        .apply(Command::OpenPath("presets/single_mode.ron".into()));
+    h.run();
+    assert_eq!(freq0(h.state()), 100.0);
 
     // save, reopen: not dirty, same scene
     type_into(&mut h, "tyre.modes[0].freq_hz", "130");
@@ -256,7 +293,7 @@ fn export_writes_a_png_of_the_requested_size_that_is_not_blank() {
 #[test]
 fn csv_export_matches_the_run_including_live_edits() {
     let dir = tmp_dir("csv");
-    let mut h = harness(App::with_default_preset());
+    let mut h = harness(single_mode_app());
     h.run();
     h.state_mut().apply(Command::Step(200));
     h.run();
@@ -370,7 +407,7 @@ impl eframe::Storage for MemStorage {
 fn the_last_session_is_restored() {
     use eframe::App as _;
     use eframe::Storage as _;
-    let mut h = harness(App::with_default_preset());
+    let mut h = harness(single_mode_app());
     h.run();
     type_into(&mut h, "tyre.modes[0].freq_hz", "140");
     let mut storage = MemStorage::default();
@@ -379,7 +416,7 @@ fn the_last_session_is_restored() {
     assert_eq!(restored.scene(), h.state().scene());
     assert!(restored.is_dirty(), "unsaved edits stay marked as unsaved");
     // nothing stored, or garbage: the default preset
-    assert_eq!(freq0(&App::restore(None)), 100.0);
+    assert_eq!(App::restore(None).scene(), &default_scene());
     storage.set_string("tirecontact.session", "not ron".to_string());
-    assert_eq!(freq0(&App::restore(Some(&storage))), 100.0);
+    assert_eq!(App::restore(Some(&storage)).scene(), &default_scene());
 }

@@ -17,6 +17,9 @@ pub enum Quantity {
     Displacement,
     /// Step-mean contact force `q_i` (N).
     Force,
+    /// Step-mean contact force without the impulses of located impacts (N):
+    /// the force a plot's range should fit (an impact adds impulse / dt).
+    ForceWithoutImpacts,
     /// Gap `u_i - r_i` (m).
     Gap,
     /// Contact state (0/1).
@@ -32,10 +35,14 @@ pub struct History {
     /// Steps since the last recorded sample.
     count: u64,
     q_sum: Vec<f64>,
+    /// Sum of the impact impulses / dt since the last sample.
+    q_impact_sum: Vec<f64>,
     contact_any: Vec<bool>,
     t: Vec<f64>,
     u: Vec<Vec<f32>>,
     q: Vec<Vec<f32>>,
+    /// Impact part of `q` (N).
+    q_impact: Vec<Vec<f32>>,
     gap: Vec<Vec<f32>>,
     contact: Vec<Vec<u8>>,
 }
@@ -43,17 +50,19 @@ pub struct History {
 impl History {
     /// Histories for `p` points within a budget of `budget` samples.
     pub fn new(p: usize, budget: usize) -> Self {
-        let capacity = (budget / (4 * p.max(1) + 1)).max(1024) & !1;
+        let capacity = (budget / (5 * p.max(1) + 1)).max(1024) & !1;
         History {
             p,
             capacity,
             stride: 1,
             count: 0,
             q_sum: vec![0.0; p],
+            q_impact_sum: vec![0.0; p],
             contact_any: vec![false; p],
             t: Vec::new(),
             u: vec![Vec::new(); p],
             q: vec![Vec::new(); p],
+            q_impact: vec![Vec::new(); p],
             gap: vec![Vec::new(); p],
             contact: vec![Vec::new(); p],
         }
@@ -92,6 +101,7 @@ impl History {
     /// Records the state at `t = 0` (or after a reset).
     pub fn record_initial(&mut self, sim: &Simulation) {
         self.q_sum.fill(0.0);
+        self.q_impact_sum.fill(0.0);
         self.contact_any.fill(false);
         self.count = 0;
         self.push(sim, 1);
@@ -108,12 +118,17 @@ impl History {
             *s += q;
             *c |= *q > 0.0;
         }
+        let dt_s = sim.dt_s();
+        for (s, j) in self.q_impact_sum.iter_mut().zip(sim.impact_impulse_ns()) {
+            *s += j / dt_s;
+        }
         self.count += 1;
         if self.count >= self.stride {
             let n = self.count;
             self.push(sim, n);
             self.count = 0;
             self.q_sum.fill(0.0);
+            self.q_impact_sum.fill(0.0);
             self.contact_any.fill(false);
         }
     }
@@ -127,6 +142,7 @@ impl History {
         for i in 0..self.p.min(sim.num_points()) {
             self.u[i].push(sim.displacement_m()[i] as f32);
             self.q[i].push((self.q_sum[i] / n as f64) as f32);
+            self.q_impact[i].push((self.q_impact_sum[i] / n as f64) as f32);
             self.gap[i].push(sim.gap_m(i) as f32);
             self.contact[i].push(u8::from(contact[i] || self.contact_any[i]));
         }
@@ -145,11 +161,13 @@ impl History {
                 self.u[i][k] = self.u[i][2 * k + 1];
                 self.gap[i][k] = self.gap[i][2 * k + 1];
                 self.q[i][k] = 0.5 * (self.q[i][2 * k] + self.q[i][2 * k + 1]);
+                self.q_impact[i][k] = 0.5 * (self.q_impact[i][2 * k] + self.q_impact[i][2 * k + 1]);
                 self.contact[i][k] = self.contact[i][2 * k].max(self.contact[i][2 * k + 1]);
             }
             self.u[i].truncate(n);
             self.gap[i].truncate(n);
             self.q[i].truncate(n);
+            self.q_impact[i].truncate(n);
             self.contact[i].truncate(n);
         }
         self.stride *= 2;
@@ -160,6 +178,7 @@ impl History {
         match what {
             Quantity::Displacement => f64::from(self.u[i][k]),
             Quantity::Force => f64::from(self.q[i][k]),
+            Quantity::ForceWithoutImpacts => f64::from(self.q[i][k] - self.q_impact[i][k]),
             Quantity::Gap => f64::from(self.gap[i][k]),
             Quantity::Contact => f64::from(self.contact[i][k]),
         }
@@ -279,5 +298,41 @@ mod tests {
         let last = h.last_time().unwrap();
         assert!((last - sim.time_s()).abs() <= h.stride() as f64 * scene.dt_s + 1e-12);
         assert!(h.times().windows(2).all(|w| w[0] < w[1]));
+    }
+
+    /// The force without impacts is the recorded force minus the impacts'
+    /// impulse / dt the solver reports, step by step; on the single-mode
+    /// preset impacts dominate the force's range and the rest does not.
+    #[test]
+    fn force_without_impacts_removes_exactly_the_impact_impulses() {
+        let scene =
+            Scene::parse(include_str!("../../presets/single_mode.ron"), "single_mode").unwrap();
+        let mut sim = Simulation::new(&scene).unwrap();
+        let mut h = History::new(1, 1 << 20);
+        h.record_initial(&sim);
+        let (mut impacts, mut max_q, mut max_smooth) = (0, 0.0f64, 0.0f64);
+        for k in 1..=20_000 {
+            let report = sim.step().unwrap();
+            h.after_step(&sim);
+            assert_eq!(h.stride(), 1);
+            let j = sim.impact_impulse_ns()[0];
+            assert!(j >= 0.0, "an impact pushes: {j}");
+            if j > 0.0 {
+                impacts += 1;
+                assert!(report.events > 0, "impulse without an event at step {k}");
+            }
+            let q = h.value(Quantity::Force, 0, k);
+            let smooth = h.value(Quantity::ForceWithoutImpacts, 0, k);
+            let expected = (sim.force_n()[0] - j / scene.dt_s) as f32 as f64;
+            assert!(
+                (smooth - expected).abs() <= 1e-6 * q.abs().max(1.0),
+                "{smooth} {expected}"
+            );
+            max_q = max_q.max(q);
+            max_smooth = max_smooth.max(smooth);
+        }
+        assert!(impacts > 5, "the preset bounces: {impacts} impacts");
+        assert!(max_q > 5.0 * max_smooth, "{max_q} vs {max_smooth}");
+        assert!(max_smooth > 0.0);
     }
 }

@@ -286,6 +286,7 @@ impl Simulation {
         self.state.add_impulses(&self.basis, &self.active, &self.q1);
         for &j in &self.active {
             self.impulse[j] += self.q1[j];
+            self.impact_impulse[j] += self.q1[j];
         }
         for a in 0..p {
             self.v[a] += self

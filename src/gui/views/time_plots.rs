@@ -5,7 +5,7 @@
 use super::point_color;
 use crate::gui::history::{History, Quantity};
 use egui::{Id, Ui};
-use egui_plot::{Corner, Legend, Line, Plot, PlotUi};
+use egui_plot::{Corner, Legend, Line, MarkerShape, Plot, PlotUi, Points};
 
 /// Points shown by default.
 const DEFAULT_SHOWN: usize = 8;
@@ -18,6 +18,10 @@ pub struct TimePlotOptions {
     pub window_s: f64,
     /// Which points are drawn.
     pub shown: Vec<bool>,
+    /// Fit the force plot's range to the force without impact impulses (an
+    /// impact's step-mean force impulse / dt would otherwise set the range);
+    /// clipped impacts are marked at the top edge.
+    pub clip_impacts: bool,
 }
 
 impl Default for TimePlotOptions {
@@ -26,6 +30,7 @@ impl Default for TimePlotOptions {
             follow: true,
             window_s: 0.1,
             shown: Vec::new(),
+            clip_impacts: true,
         }
     }
 }
@@ -122,6 +127,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         }
         let shown = opts.shown.clone();
         let follow = opts.follow;
+        let clip = opts.clip_impacts && def.what == Quantity::Force;
         plot.show(ui, move |pui| {
             let (a, b) = if follow {
                 pui.set_plot_bounds_x(t0..=t1);
@@ -133,6 +139,9 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
                 (bnd.min()[0], bnd.max()[0])
             };
             draw_series(pui, history, def, &shown, a, b);
+            if clip {
+                clip_impacts(pui, history, &shown, a, b);
+            }
         });
     }
 }
@@ -158,6 +167,53 @@ fn draw_series(pui: &mut PlotUi<'_>, h: &History, def: &PlotDef, shown: &[bool],
                 .width(1.5),
         );
     }
+}
+
+/// Fits the force plot's range to the force without impacts over `[a, b]`
+/// and marks the samples whose impact spike goes past the top edge.
+fn clip_impacts(pui: &mut PlotUi<'_>, h: &History, shown: &[bool], a: f64, b: f64) {
+    let buckets = (pui.response().rect.width() as usize).clamp(100, 4000);
+    let points: Vec<usize> = (0..h.num_points())
+        .filter(|&i| shown.get(i).copied().unwrap_or(false))
+        .collect();
+    let Some((lo, hi)) = force_range(h, &points, a, b, buckets) else {
+        return;
+    };
+    let pad = 0.08 * (hi - lo).max(1.0);
+    let top = hi + pad;
+    pui.set_plot_bounds_y(lo.min(0.0) - pad..=top);
+    let mut marks = Vec::new();
+    for &i in &points {
+        let pts = h.decimated(Quantity::Force, i, a, b, buckets, 1.0);
+        marks.extend(pts.iter().filter(|p| p[1] > top).map(|p| [p[0], top]));
+    }
+    if !marks.is_empty() {
+        pui.points(
+            Points::new("impact (impulse / dt, clipped)", marks)
+                .shape(MarkerShape::Down)
+                .filled(true)
+                .radius(4.0)
+                .color(egui::Color32::from_gray(200)),
+        );
+    }
+}
+
+/// Lowest and highest force without impacts of `points` over `[a, b]` (N).
+pub fn force_range(
+    h: &History,
+    points: &[usize],
+    a: f64,
+    b: f64,
+    buckets: usize,
+) -> Option<(f64, f64)> {
+    points
+        .iter()
+        .flat_map(|&i| h.decimated(Quantity::ForceWithoutImpacts, i, a, b, buckets, 1.0))
+        .map(|p| p[1])
+        .fold(None, |acc, y| match acc {
+            None => Some((y, y)),
+            Some((lo, hi)) => Some((f64::min(lo, y), f64::max(hi, y))),
+        })
 }
 
 fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
@@ -187,5 +243,11 @@ fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
         if ui.small_button("none").clicked() {
             opts.shown.iter_mut().for_each(|s| *s = false);
         }
+        ui.separator();
+        ui.checkbox(&mut opts.clip_impacts, "clip impact spikes").on_hover_text(
+            "Rigid contact makes an impact an impulse: its step is drawn as impulse / dt, \
+             far above the contact force. On: the force axis fits the force without \
+             impacts and clipped impacts are marked ▼ at the top. Off: the full range.",
+        );
     });
 }
