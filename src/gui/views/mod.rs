@@ -30,3 +30,89 @@ pub fn point_color(i: usize) -> Color32 {
 /// Colour of a point in contact / in flight in the scene view.
 pub const CONTACT_COLOR: Color32 = Color32::from_rgb(0, 158, 115);
 pub const FLIGHT_COLOR: Color32 = Color32::from_rgb(213, 94, 0);
+
+/// The smallest of 1, 2, 5 × 10^k that is at least `x` (> 0).
+pub fn nice_step(x: f64) -> f64 {
+    let p = 10f64.powf(x.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&s| s >= x * (1.0 - 1e-12))
+        .unwrap_or(10.0 * p)
+}
+
+/// Decimals that show a multiple of `step` exactly (0.05 → 2, 0.2 → 1, 100 → 0).
+pub fn decimals_for_step(step: f64) -> usize {
+    (-step.log10() - 1e-9).ceil().max(0.0) as usize
+}
+
+/// A value axis with 1-2-5 ticks and labels every ~30 px: egui_plot's default
+/// powers of ten leave a 0–700 N axis with the single label "0".
+pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
+    plot.y_grid_spacer(|input| {
+        let unit = input.base_step_size.abs();
+        if !(unit > 0.0) || !unit.is_finite() {
+            return Vec::new();
+        }
+        // labelled steps >= 30 px (the grid's minimum spacing is 8 px), with
+        // nested finer and coarser steps: 1 → (0.5, 5), 2 → (1, 10), 5 → (1, 10)
+        let major = nice_step(3.75 * unit);
+        let mantissa = (major / 10f64.powf(major.log10().floor())).round();
+        let (fine, coarse) = match mantissa as i64 {
+            1 => (0.5, 5.0),
+            2 => (0.5, 5.0),
+            _ => (0.2, 2.0),
+        };
+        let steps = [major * fine, major, major * coarse];
+        let (lo, hi) = input.bounds;
+        let mut marks: Vec<egui_plot::GridMark> = Vec::new();
+        let first = (lo / steps[0]).ceil() as i64;
+        let last = (hi / steps[0]).floor() as i64;
+        if last - first > 10_000 {
+            return Vec::new();
+        }
+        for n in first..=last {
+            let value = n as f64 * steps[0];
+            let step_size = steps
+                .iter()
+                .rev()
+                .copied()
+                .find(|s| (value / s - (value / s).round()).abs() < 1e-6)
+                .unwrap_or(steps[0]);
+            marks.push(egui_plot::GridMark { value, step_size });
+        }
+        marks
+    })
+    .y_axis_formatter(|mark, _range| {
+        format!("{:.*}", decimals_for_step(mark.step_size), mark.value)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nice_steps_are_1_2_5_decades_at_least_the_request() {
+        for (x, s) in [
+            (0.7, 1.0),
+            (1.0, 1.0),
+            (1.01, 2.0),
+            (3.0, 5.0),
+            (6.0, 10.0),
+            (0.013, 0.02),
+            (420.0, 500.0),
+        ] {
+            assert!(
+                (nice_step(x) - s).abs() < 1e-12 * s,
+                "{x}: {} vs {s}",
+                nice_step(x)
+            );
+        }
+        assert_eq!(decimals_for_step(0.05), 2);
+        assert_eq!(decimals_for_step(0.5), 1);
+        assert_eq!(decimals_for_step(0.2), 1);
+        assert_eq!(decimals_for_step(1.0), 0);
+        assert_eq!(decimals_for_step(100.0), 0);
+    }
+}

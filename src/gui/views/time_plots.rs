@@ -107,6 +107,9 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         if last {
             plot = plot.x_axis_label("time t (s)");
         }
+        if def.what != Quantity::Contact {
+            plot = super::nice_y_axis(plot);
+        }
         if def.what == Quantity::Contact {
             // one lane per shown point, labelled with the point's index
             let lanes: Vec<usize> = (0..p)
@@ -138,15 +141,26 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
                 let bnd = pui.plot_bounds();
                 (bnd.min()[0], bnd.max()[0])
             };
-            draw_series(pui, history, def, &shown, a, b);
-            if clip {
-                clip_impacts(pui, history, &shown, a, b);
-            }
+            let top = if clip {
+                clip_top(pui, history, &shown, a, b)
+            } else {
+                None
+            };
+            draw_series(pui, history, def, &shown, a, b, top);
         });
     }
 }
 
-fn draw_series(pui: &mut PlotUi<'_>, h: &History, def: &PlotDef, shown: &[bool], a: f64, b: f64) {
+fn draw_series(
+    pui: &mut PlotUi<'_>,
+    h: &History,
+    def: &PlotDef,
+    shown: &[bool],
+    a: f64,
+    b: f64,
+    clip_top: Option<f64>,
+) {
+    let mut marks = Vec::new();
     let buckets = (pui.response().rect.width() as usize).clamp(100, 4000);
     let shown_points = shown
         .iter()
@@ -161,31 +175,19 @@ fn draw_series(pui: &mut PlotUi<'_>, h: &History, def: &PlotDef, shown: &[bool],
                 p[1] = lane as f64 + 0.7 * p[1];
             }
         }
+        if let Some(top) = clip_top {
+            for p in &mut pts {
+                if p[1] > top {
+                    p[1] = top;
+                    marks.push(*p);
+                }
+            }
+        }
         pui.line(
             Line::new(format!("point {i}"), pts)
                 .color(point_color(i))
                 .width(1.5),
         );
-    }
-}
-
-/// Fits the force plot's range to the force without impacts over `[a, b]`
-/// and marks the samples whose impact spike goes past the top edge.
-fn clip_impacts(pui: &mut PlotUi<'_>, h: &History, shown: &[bool], a: f64, b: f64) {
-    let buckets = (pui.response().rect.width() as usize).clamp(100, 4000);
-    let points: Vec<usize> = (0..h.num_points())
-        .filter(|&i| shown.get(i).copied().unwrap_or(false))
-        .collect();
-    let Some((lo, hi)) = force_range(h, &points, a, b, buckets) else {
-        return;
-    };
-    let pad = 0.08 * (hi - lo).max(1.0);
-    let top = hi + pad;
-    pui.set_plot_bounds_y(lo.min(0.0) - pad..=top);
-    let mut marks = Vec::new();
-    for &i in &points {
-        let pts = h.decimated(Quantity::Force, i, a, b, buckets, 1.0);
-        marks.extend(pts.iter().filter(|p| p[1] > top).map(|p| [p[0], top]));
     }
     if !marks.is_empty() {
         pui.points(
@@ -196,6 +198,17 @@ fn clip_impacts(pui: &mut PlotUi<'_>, h: &History, shown: &[bool], a: f64, b: f6
                 .color(egui::Color32::from_gray(200)),
         );
     }
+}
+
+/// The level at which the force plot clips impact spikes: a margin above
+/// the force without impacts of the shown points over `[a, b]` (N).
+fn clip_top(pui: &PlotUi<'_>, h: &History, shown: &[bool], a: f64, b: f64) -> Option<f64> {
+    let buckets = (pui.response().rect.width() as usize).clamp(100, 4000);
+    let points: Vec<usize> = (0..h.num_points())
+        .filter(|&i| shown.get(i).copied().unwrap_or(false))
+        .collect();
+    let (lo, hi) = force_range(h, &points, a, b, buckets)?;
+    Some(hi + 0.1 * (hi - lo).max(1.0))
 }
 
 /// Lowest and highest force without impacts of `points` over `[a, b]` (N).
