@@ -51,7 +51,7 @@ pub fn decimals_for_step(step: f64) -> usize {
 pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
     plot.y_grid_spacer(|input| {
         let unit = input.base_step_size.abs();
-        if !(unit > 0.0) || !unit.is_finite() {
+        if unit.is_nan() || unit <= 0.0 || !unit.is_finite() {
             return Vec::new();
         }
         // labelled steps >= 30 px (the grid's minimum spacing is 8 px), with
