@@ -149,3 +149,64 @@ fn run_spectrum_and_sweep_write_their_tables() {
     );
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// A run that fails half-way (a measured road shorter than the run) exits
+/// non-zero and leaves an existing output file as it was, with no temporary.
+#[test]
+fn a_failed_run_keeps_the_old_output_file() {
+    let d = tmpdir("failed-run");
+    std::fs::write(
+        d.join("road.csv"),
+        "x_m,z_m\n0.0,0.0\n0.05,0.001\n0.1,0.0\n",
+    )
+    .unwrap();
+    let preset = d.join("short.ron");
+    std::fs::write(
+        &preset,
+        r#"Scene(
+        name: "short road",
+        tyre: Modal(modes: [Mode(freq_hz: 100.0, damping_ratio: 0.05, residue: [[0.1]])]),
+        points: [Point(x_m: 0.0, h_m: -0.001)],
+        road: Measured(file: "road.csv"),
+        speed_mps: 10.0,
+        ramp_s: 0.002,
+        dt_s: 1e-5,
+        duration_s: 0.05,
+    )"#,
+    )
+    .unwrap();
+    let out = d.join("out.csv");
+    std::fs::write(&out, "old results\n").unwrap();
+    let o = bin()
+        .arg("run")
+        .arg(&preset)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("outside its extent"), "{err}");
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "old results\n");
+    let left: Vec<_> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".tmp-"))
+        .collect();
+    assert!(left.is_empty(), "temporaries left: {left:?}");
+    // the same run to a good end replaces the file
+    let o = bin()
+        .args([
+            "run",
+            "presets/single_mode.ron",
+            "--duration",
+            "0.001",
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::read_to_string(&out).unwrap().starts_with("t_s,"));
+    std::fs::remove_dir_all(d).ok();
+}

@@ -174,8 +174,10 @@ pub fn run(args: &RunArgs) -> CliResult {
     let n = scene.num_steps();
     let mut writer = match &args.output {
         Some(path) => {
-            let f = std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
-            let mut w = RunWriter::new(std::io::BufWriter::new(f), scene.num_points(), args.every)?;
+            // written beside `path` and renamed at the end: a failed run keeps the old file
+            let f = tirecontact::output::AtomicFile::create(path)
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            let mut w = RunWriter::new(f, scene.num_points(), args.every)?;
             w.write_initial(&sim)?;
             Some(w)
         }
@@ -241,7 +243,7 @@ pub fn run(args: &RunArgs) -> CliResult {
     }
     bar.finish_and_clear();
     if let Some(w) = writer {
-        w.finish()?;
+        w.finish()?.commit()?;
     }
     let wall = start.elapsed().as_secs_f64();
     if let (Some(r), Some(path)) = (rec, &args.plot) {
