@@ -420,3 +420,26 @@ fn the_last_session_is_restored() {
     storage.set_string("tirecontact.session", "not ron".to_string());
     assert_eq!(App::restore(Some(&storage)).scene(), &default_scene());
 }
+
+/// A minimised window stops simulating (and asking for frames) and resumes
+/// where it was when shown again.
+#[test]
+fn a_minimised_window_does_not_simulate() {
+    let mut h = harness(single_mode_app());
+    h.run();
+    h.state_mut().apply(Command::Play);
+    h.run_steps(3);
+    let t_playing = h.state().simulation().time_s();
+    assert!(t_playing > 0.0);
+    let id = egui::ViewportId::ROOT;
+    h.input_mut().viewports.entry(id).or_default().minimized = Some(true);
+    h.run_steps(5);
+    assert_eq!(h.state().simulation().time_s(), t_playing);
+    assert!(
+        h.state().time_control().is_playing(),
+        "still playing, only hidden"
+    );
+    h.input_mut().viewports.entry(id).or_default().minimized = Some(false);
+    h.run_steps(3);
+    assert!(h.state().simulation().time_s() > t_playing);
+}

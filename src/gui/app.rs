@@ -569,8 +569,13 @@ impl App {
         let started = Instant::now();
         let ctx = ui.ctx().clone();
         let frame_s = ctx.input(|i| f64::from(i.unstable_dt));
+        // a minimised window neither simulates nor asks for frames: the run
+        // resumes where it was when the window is shown again
+        let hidden = ctx.input(|i| i.viewport().minimized == Some(true));
         self.poll_jobs();
-        self.advance(frame_s);
+        if !hidden {
+            self.advance(frame_s);
+        }
         let mut cmds = Vec::new();
         self.keyboard(&ctx, &mut cmds);
         let status = toolbar::ToolbarStatus {
@@ -623,7 +628,9 @@ impl App {
             self.time.is_playing(),
             started.elapsed().as_secs_f64(),
         );
-        if self.time.is_playing() || self.time.pending_steps() > 0 || self.csv_job.is_some() {
+        if self.csv_job.is_some()
+            || (!hidden && (self.time.is_playing() || self.time.pending_steps() > 0))
+        {
             ctx.request_repaint();
         }
     }
