@@ -58,6 +58,16 @@ pub enum LsceError {
     },
     #[error("LSCE: {0} did not converge")]
     Numerical(&'static str),
+    #[error(
+        "LSCE: the identified modes miss the source: |G| error {magnitude_error:.3} over {lo_hz}..{hi_hz} Hz (expected below {limit}); the source's lowest mode is at {lowest_source_hz:.1} Hz: move the band (identification.band_hz) to cover the source's modes"
+    )]
+    PoorFit {
+        magnitude_error: f64,
+        limit: f64,
+        lo_hz: f64,
+        hi_hz: f64,
+        lowest_source_hz: f64,
+    },
 }
 
 /// How a pole of the stabilisation diagram compares with the previous order.

@@ -19,7 +19,8 @@
 //!
 //! and the mass `m I`: each order gives a 2×2 symmetric eigenproblem, two
 //! modes, each a degenerate cos/sin pair for `n >= 1`. With the radial motion
-//! alone (`motion: RadialOnly`, `EA = 0`) this is SPEC §5's tensioned beam,
+//! alone (`motion: RadialOnly`, the membrane term left out) this is SPEC §5's
+//! tensioned beam,
 //! `ω_n² = (EI (n/R)⁴ + T (n/R)² + k_r) / m`; with no foundation, no tension
 //! and `EA -> ∞` it is the free inextensional ring of NAFEMS VM09.
 //!
@@ -49,7 +50,7 @@ pub enum RingMotion {
     #[default]
     RadialTangential,
     /// Radial only (`v = 0`): the tensioned beam on an elastic foundation
-    /// closed on itself (SPEC §5's closed form when `EA = 0`).
+    /// closed on itself (SPEC §5's closed form; `EA` plays no part).
     RadialOnly,
 }
 
@@ -78,7 +79,7 @@ pub struct RingParams {
     pub bending_stiffness_n_m2: f64,
     /// Membrane (extensional) stiffness of the belt `EA` (N), >= 0. Default
     /// 5.0e6 N (assumed: a nearly inextensible steel belt; its extensional
-    /// modes lie above 500 Hz).
+    /// modes lie above 500 Hz). Not used with `motion: RadialOnly`.
     pub extensional_stiffness_n: f64,
     /// Modal damping ratio `ξ` of every mode (-), in [0, 1). Default 0.05.
     pub damping_ratio: f64,
@@ -164,7 +165,10 @@ impl RingParams {
             tangential,
         };
         if self.motion == RingMotion::RadialOnly {
-            return vec![mk(k[0][0] / m, 1.0, 0.0)];
+            // v = 0 and no membrane term: the tensioned beam of SPEC §5,
+            // ω² = (EI (n/R)⁴ + T (n/R)² + k_r) / m, whatever EA is
+            let ea = self.extensional_stiffness_n / (self.radius_m * self.radius_m);
+            return vec![mk((k[0][0] - ea) / m, 1.0, 0.0)];
         }
         let (a, b, d) = (k[0][0] / m, k[0][1] / m, k[1][1] / m);
         if b == 0.0 {

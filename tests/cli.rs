@@ -210,3 +210,34 @@ fn a_failed_run_keeps_the_old_output_file() {
     assert!(std::fs::read_to_string(&out).unwrap().starts_with("t_s,"));
     std::fs::remove_dir_all(d).ok();
 }
+
+/// A time step too coarse for the scene leaves penetration at step ends:
+/// `run` still finishes but warns and suggests a smaller step; a resolved
+/// run does not warn.
+#[test]
+fn run_warns_when_the_time_step_leaves_penetration() {
+    let run = |dt: &str| {
+        bin()
+            .args([
+                "run",
+                "presets/three_points.ron",
+                "--duration",
+                "0.2",
+                "--dt",
+                dt,
+            ])
+            .output()
+            .unwrap()
+    };
+    let coarse = run("5e-4");
+    assert!(coarse.status.success());
+    let err = String::from_utf8_lossy(&coarse.stderr);
+    assert!(
+        err.contains("warning: a point was left") && err.contains("--dt"),
+        "{err}"
+    );
+    let fine = run("1e-5");
+    assert!(fine.status.success());
+    let err = String::from_utf8_lossy(&fine.stderr);
+    assert!(!err.contains("warning"), "{err}");
+}

@@ -50,6 +50,17 @@ fn tensioned_beam_frequencies_match_closed_form() {
         let got = spec_ring.order_frequencies_hz(n)[0];
         assert!((got - f).abs() < 0.051, "n={n}: {got}");
     }
+    // the membrane stiffness plays no part in the radial-only beam: the
+    // default EA (5e6 N) gives the same closed form
+    let with_ea = RingParams {
+        extensional_stiffness_n: RingParams::default().extensional_stiffness_n,
+        ..spec_ring.clone()
+    };
+    assert!(with_ea.extensional_stiffness_n > 0.0);
+    for (n, f) in spec.iter().enumerate() {
+        let got = with_ea.order_frequencies_hz(n)[0];
+        assert!((got - f).abs() < 0.051, "n={n} with EA: {got}");
+    }
 }
 
 #[test]
@@ -517,10 +528,7 @@ fn identification_is_cached_per_ring_options_and_positions() {
         max_order: 12,
         ..RingParams::default()
     };
-    let opts = IdentifyOptions {
-        max_model_order: 20,
-        ..IdentifyOptions::default()
-    };
+    let opts = IdentifyOptions::default();
     let xs = [0.0, 0.03];
     let a = ring_modes_cached(&ring, &xs, &opts).unwrap();
     let b = ring_modes_cached(&ring, &xs, &opts).unwrap();
@@ -630,4 +638,37 @@ fn identify_cli_writes_a_runnable_modal_scene_diagram_and_responses() {
         .unwrap();
     assert!(!o.status.success());
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A ring whose modes all lie above the identification band: the band holds
+/// only their static tail, and whatever LSCE finds there does not represent
+/// the ring. That is an error naming the band and the ring's lowest mode, not
+/// a silently wrong tyre.
+#[test]
+fn an_identification_that_misses_the_ring_is_an_error() {
+    let stiff = RingParams {
+        motion: RingMotion::RadialOnly,
+        // n = 0 at about 600 Hz: every mode above the 0-500 Hz band
+        radial_stiffness_n_m2: 3.7 * (TAU * 600.0f64).powi(2),
+        max_order: 20,
+        ..RingParams::default()
+    };
+    let lowest = stiff.order_frequencies_hz(0)[0];
+    assert!((lowest - 600.0).abs() < 1.0, "{lowest}");
+    let xs = [-0.05, -0.025, 0.0, 0.025, 0.05];
+    let opts = IdentifyOptions::default();
+    assert_eq!(opts.band_hz, (0.0, 500.0));
+    let e = identify_ring(&stiff, &xs, &opts).unwrap_err().to_string();
+    assert!(
+        e.contains("500 Hz") || e.contains("no physical pole"),
+        "the error names the band: {e}"
+    );
+    // the same ring identified over a band that covers its modes is accepted
+    let wide = IdentifyOptions {
+        band_hz: (0.0, 1500.0),
+        sample_rate_hz: 8000.0,
+        ..IdentifyOptions::default()
+    };
+    let ok = identify_ring(&stiff, &xs, &wide).unwrap();
+    assert!(ok.ring_magnitude_error < tirecontact::identify::MAX_MAGNITUDE_ERROR);
 }
