@@ -44,6 +44,7 @@ pub mod gui;
 pub mod identify;
 pub mod lsce;
 pub mod modal;
+pub mod phase;
 pub mod output;
 pub mod ring;
 pub mod road;

@@ -4,6 +4,7 @@
 
 mod compliant;
 mod events;
+mod contributions;
 
 use crate::contact::DenseSolver;
 use crate::convolution::{Influence, ModalBasis, ModalState, StepTable};
