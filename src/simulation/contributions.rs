@@ -89,7 +89,7 @@ mod tests {
         // of a 1x1 residue by SVD: a b = 0.1), so u = contribution exactly
         let scene =
             Scene::parse(include_str!("../../presets/single_mode.ron"), "single").unwrap();
-        let mut sim = Simulation::new(&scene).unwrap();
+        let sim = Simulation::new(&scene).unwrap();
         let mut c = [7.0, 7.0];
         sim.mode_displacement_m(0, &mut c);
         assert_eq!(c, [0.0, 7.0]);
