@@ -38,6 +38,9 @@ enum Command {
     Gui {
         /// Scene preset (RON).
         preset: Option<PathBuf>,
+        /// Start in classroom mode (large fonts, presenter layout, slow motion).
+        #[arg(long)]
+        classroom: bool,
     },
 }
 
@@ -47,7 +50,7 @@ fn main() -> std::process::ExitCode {
         Some(Command::Run(args)) => cli::run::run(&args),
         Some(Command::Check { preset }) => cli::check::check(&preset),
         #[cfg(feature = "gui")]
-        Some(Command::Gui { preset }) => tirecontact::gui::run_with_preset(preset)
+        Some(Command::Gui { preset, classroom }) => tirecontact::gui::run_with_options(preset, classroom)
             .map_err(|e| format!("cannot open the visualiser: {e}").into()),
         Some(Command::Identify(args)) => cli::identify::identify(&args),
         Some(Command::Bench(args)) => cli::bench::bench(&args),

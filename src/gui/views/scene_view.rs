@@ -86,6 +86,17 @@ fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
 }
 
 pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
+    show_with(ui, sim, opts, |_, _| {});
+}
+
+/// [`show`], with `extra(plot, displaced)` drawing more items over the scene
+/// (`displaced[i]` = drawn position of point `i`, exaggerated plot units).
+pub fn show_with(
+    ui: &mut Ui,
+    sim: &Simulation,
+    opts: &mut SceneViewOptions,
+    extra: impl FnOnce(&mut egui_plot::PlotUi<'_>, &[[f64; 2]]),
+) {
     let scene = sim.scene();
     let t = sim.time_s();
     let (w, _) = ramp(t, scene.ramp_s);
@@ -244,6 +255,7 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
                         .tip_length(8.0),
                 );
             }
+            extra(pui, &displaced);
         });
 }
 
