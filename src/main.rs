@@ -50,8 +50,10 @@ fn main() -> std::process::ExitCode {
         Some(Command::Run(args)) => cli::run::run(&args),
         Some(Command::Check { preset }) => cli::check::check(&preset),
         #[cfg(feature = "gui")]
-        Some(Command::Gui { preset, classroom }) => tirecontact::gui::run_with_options(preset, classroom)
-            .map_err(|e| format!("cannot open the visualiser: {e}").into()),
+        Some(Command::Gui { preset, classroom }) => {
+            tirecontact::gui::run_with_options(preset, classroom)
+                .map_err(|e| format!("cannot open the visualiser: {e}").into())
+        }
         Some(Command::Identify(args)) => cli::identify::identify(&args),
         Some(Command::Bench(args)) => cli::bench::bench(&args),
         Some(Command::Sweep(args)) => cli::sweep::sweep(&args),

@@ -3,8 +3,8 @@
 //! `Located` scheme) impacts and releases located inside the step.
 
 mod compliant;
-mod events;
 mod contributions;
+mod events;
 
 use crate::contact::DenseSolver;
 use crate::convolution::{Influence, ModalBasis, ModalState, StepTable};

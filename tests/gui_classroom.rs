@@ -40,7 +40,10 @@ fn classroom_toggle_scales_fonts_and_switches_to_the_presenter_layout() {
     let mut h = harness(app_on("single_mode.ron"), [1280.0, 720.0]);
     h.run();
     let normal = body_size(&h);
-    assert!(h.query_by_label("road type").is_some(), "editing panel shown");
+    assert!(
+        h.query_by_label("road type").is_some(),
+        "editing panel shown"
+    );
     assert!(h.query_by_label_contains("contact phase").is_none());
 
     h.get_by_label("Classroom").click();
@@ -52,7 +55,10 @@ fn classroom_toggle_scales_fonts_and_switches_to_the_presenter_layout() {
         (big / normal - FONT_SCALE).abs() < 1e-4,
         "{normal} -> {big}"
     );
-    assert!(h.query_by_label("road type").is_none(), "editing panel hidden");
+    assert!(
+        h.query_by_label("road type").is_none(),
+        "editing panel hidden"
+    );
     assert!(h.query_by_label_contains("contact phase").is_some());
     assert!(h.query_by_label("Mode contributions").is_some());
     // slow motion
@@ -104,17 +110,35 @@ fn muting_a_mode_changes_the_scene_and_the_bars_and_unmuting_restores_it() {
     h.state().simulation().mode_displacement_m(0, &mut c);
     assert!(c[1].abs() > 0.0, "mode 1 contributes before muting");
 
+    h.state_mut().apply(Command::Play);
+    h.step();
     h.get_all_by_label("Mute").nth(1).unwrap().click();
-    h.run();
+    h.step();
+    h.step();
+    assert!(
+        h.state().time_control().is_playing(),
+        "keeps playing after the restart"
+    );
+    h.state_mut().apply(Command::Pause);
+    h.state_mut().apply(Command::Reset);
     h.run();
     let Tyre::Modal { modes } = &h.state().scene().tyre else {
         panic!("modal tyre expected")
     };
-    assert!(modes[1].residue_matrix().iter().flatten().all(|a| *a == 0.0));
+    assert!(
+        modes[1]
+            .residue_matrix()
+            .iter()
+            .flatten()
+            .all(|a| *a == 0.0)
+    );
     assert!(modes[0].residue_matrix()[0][0] > 0.0);
     assert_eq!(h.state().mutes().unwrap().muted, [false, true, false]);
     assert_eq!(h.state().simulation().time_s(), 0.0, "the run restarted");
-    assert!(h.query_by_label("muted").is_some(), "the user sees the mute");
+    assert!(
+        h.query_by_label("muted").is_some(),
+        "the user sees the mute"
+    );
     h.state_mut().apply(Command::Step(3000));
     h.run();
     h.state().simulation().mode_displacement_m(0, &mut c);
@@ -207,7 +231,10 @@ fn the_compliant_switch_edits_the_contact_and_restarts() {
             stiffness_n_m: vec![2e6]
         }
     );
-    assert_eq!(h.state().simulation().scene().contact, h.state().scene().contact);
+    assert_eq!(
+        h.state().simulation().scene().contact,
+        h.state().scene().contact
+    );
     assert_eq!(h.state().simulation().steps(), 0, "restarted");
     // 5 kN/mm = 5e6 N/m
     let name = "contact.stiffness_n_m[0]";
@@ -221,7 +248,10 @@ fn the_compliant_switch_edits_the_contact_and_restarts() {
         let Contact::Compliant { stiffness_n_m } = h.state().scene().contact.clone() else {
             panic!()
         };
-        assert!((stiffness_n_m[0] - expect).abs() < 1e-6, "{text}: {stiffness_n_m:?}");
+        assert!(
+            (stiffness_n_m[0] - expect).abs() < 1e-6,
+            "{text}: {stiffness_n_m:?}"
+        );
         if text == "-1" {
             assert!(h.query_by_label_contains("refused: expected").is_some());
         }
@@ -261,7 +291,10 @@ fn animation_export_writes_n_frames_of_the_right_size() {
         let non_white = img.pixels().filter(|p| p.0 != [255, 255, 255]).count();
         assert!(non_white as f64 > 0.02 * 400.0 * 300.0, "frame {k} blank");
         // road fill and contact/flight markers are drawn
-        assert!(img.pixels().any(|p| p.0 == [213, 94, 0] || p.0 == [0, 158, 115]));
+        assert!(
+            img.pixels()
+                .any(|p| p.0 == [213, 94, 0] || p.0 == [0, 158, 115])
+        );
     }
     // frames differ: the road moves
     let a = image::open(frame_path(&dir, 0)).unwrap().to_rgb8();
@@ -270,7 +303,10 @@ fn animation_export_writes_n_frames_of_the_right_size() {
     // bad settings are refused with the field named
     h.state_mut().apply(Command::ExportFrames {
         dir: dir.clone(),
-        settings: FrameSettings { fps: -1.0, ..settings },
+        settings: FrameSettings {
+            fps: -1.0,
+            ..settings
+        },
     });
     let m = h.state().message().unwrap();
     assert!(m.error && m.text.contains("fps = -1"), "{m:?}");

@@ -118,7 +118,9 @@ fn validation_names_field_value_and_expectation() {
 
 /// Contact fraction per point over a whole run of a shipped preset.
 fn contact_fraction(name: &str) -> Vec<f64> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets").join(name);
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("presets")
+        .join(name);
     let scene = Scene::load(&p).unwrap();
     let mut sim = Simulation::new(&scene).unwrap();
     while !sim.finished() {
@@ -142,6 +144,9 @@ fn guided_tour_descriptions_match_the_runs() {
     assert!(slow > 0.99 && fast < 0.5, "slow {slow}, fast {fast}");
     let long = contact_fraction("guided_4a_long_wavelength.ron");
     let short = contact_fraction("guided_4b_short_wavelength.ron");
-    assert!(long[0] > 0.99 && long[2] > 0.99 && long[1] < 0.1, "{long:?}");
+    assert!(
+        long[0] > 0.99 && long[2] > 0.99 && long[1] < 0.1,
+        "{long:?}"
+    );
     assert!(short.iter().all(|c| (0.2..0.6).contains(c)), "{short:?}");
 }

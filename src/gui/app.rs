@@ -7,8 +7,8 @@ use super::export::{CsvJob, LiveEdit};
 use super::frame_rate::FrameRate;
 use super::frames::{FramesDialog, FramesJob};
 use super::guided::GUIDED;
-use super::mutes::{self, Mutes};
 use super::history::{DEFAULT_BUDGET, History};
+use super::mutes::{self, Mutes};
 use super::panels::{self, toolbar};
 use super::presets::SHIPPED;
 use super::time_control::TimeControl;
@@ -426,7 +426,11 @@ impl App {
             }
         }
         // an edit of the tyre other than by the mutes ends them
-        if self.mutes.as_ref().is_some_and(|m| m.tyre != self.scene.tyre) {
+        if self
+            .mutes
+            .as_ref()
+            .is_some_and(|m| m.tyre != self.scene.tyre)
+        {
             self.mutes = None;
         }
     }
@@ -443,7 +447,9 @@ impl App {
             self.apply(Command::UnmuteAll);
             return;
         }
-        if let Some(why) = mutes::refusal(&base, &muted, self.scene.num_points(), &self.scene.contact) {
+        if let Some(why) =
+            mutes::refusal(&base, &muted, self.scene.num_points(), &self.scene.contact)
+        {
             self.error(format!("Mute refused: {why}"));
             return;
         }
@@ -784,8 +790,10 @@ impl App {
     fn classroom_layout(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
         egui::Panel::right("tirecontact.classroom_bars")
             .resizable(true)
-            .default_size(0.3 * ui.available_width())
+            .default_size(0.34 * ui.available_width())
             .show(ui, |ui| {
+                classroom::explanation(ui, &self.scene.name, &self.scene.description);
+                ui.separator();
                 classroom::mode_bars(
                     ui,
                     &self.sim,
@@ -797,9 +805,8 @@ impl App {
             });
         egui::CentralPanel::default().show(ui, |ui| {
             super::dialogs::banner(ui, self.message.as_ref(), cmds);
-            classroom::explanation(ui, &self.scene.name, &self.scene.description);
             classroom::phase_strip(ui, self.sim.time_s(), &self.phases);
-            let h = (ui.available_height() * 0.62).max(150.0);
+            let h = (ui.available_height() * 0.64).max(150.0);
             let w = ui.available_width();
             ui.allocate_ui(egui::vec2(w, h), |ui| {
                 ui.set_min_size(egui::vec2(w, h));

@@ -28,8 +28,8 @@ pub const EVENT_COLOR: Color32 = Color32::from_rgb(204, 0, 102);
 #[derive(Debug, Clone, Default)]
 pub struct Classroom {
     pub on: bool,
-    /// Text styles before classroom mode scaled them.
-    saved: Option<BTreeMap<TextStyle, FontId>>,
+    /// Text styles and theme preference before classroom mode changed them.
+    saved: Option<(BTreeMap<TextStyle, FontId>, egui::ThemePreference)>,
     /// Point of the plot and the bars.
     pub point: usize,
     /// What the plot shows: force or displacement.
@@ -43,7 +43,10 @@ impl Classroom {
     pub fn sync_style(&mut self, ctx: &egui::Context) {
         match (self.on, self.saved.is_some()) {
             (true, false) => {
-                self.saved = Some(ctx.global_style().text_styles.clone());
+                let theme = ctx.options(|o| o.theme_preference);
+                self.saved = Some((ctx.global_style().text_styles.clone(), theme));
+                // dark text on white reads best on a projector
+                ctx.set_theme(egui::ThemePreference::Light);
                 ctx.all_styles_mut(|s| {
                     for f in s.text_styles.values_mut() {
                         f.size *= FONT_SCALE;
@@ -52,7 +55,8 @@ impl Classroom {
                 });
             }
             (false, true) => {
-                if let Some(saved) = self.saved.take() {
+                if let Some((saved, theme)) = self.saved.take() {
+                    ctx.set_theme(theme);
                     ctx.all_styles_mut(|s| {
                         s.text_styles = saved.clone();
                         s.spacing.interact_size.y /= 1.3;
@@ -90,21 +94,23 @@ pub fn scene_with_phases(
 ) {
     let t = sim.time_s();
     let size = ui.text_style_height(&TextStyle::Heading);
+    let normal_legend = std::mem::replace(&mut opts.legend_style, TextStyle::Small);
     scene_view::show_with(ui, sim, opts, |pui, displaced| {
         let b = pui.plot_bounds();
-        let dy = 0.12 * (b.max()[1] - b.min()[1]);
+        // below the points, in the road, clear of the legend (top right);
+        // neighbours staggered so that their labels do not overlap
+        let dy = 0.1 * (b.max()[1] - b.min()[1]);
         for (i, d) in displaced.iter().enumerate() {
+            let y = d[1] - dy * (1.0 + 0.9 * (i % 2) as f64);
             let ph = phases.phase(i, t);
             let text = RichText::new(phase_text(i, ph))
                 .size(if ph.is_event() { size * 1.25 } else { size })
                 .strong()
                 .color(phase_color(ph));
-            pui.text(
-                Text::new("", PlotPoint::new(d[0], d[1] + dy), text)
-                    .anchor(egui::Align2::CENTER_BOTTOM),
-            );
+            pui.text(Text::new("", PlotPoint::new(d[0], y), text).anchor(egui::Align2::CENTER_TOP));
         }
     });
+    opts.legend_style = normal_legend;
 }
 
 /// A strip of the phases of every point (also what the tests read).
@@ -113,12 +119,16 @@ pub fn phase_strip(ui: &mut Ui, t_s: f64, phases: &PhaseTracker) {
         ui.label(RichText::new("contact phase:").strong());
         for i in 0..phases.num_points().min(24) {
             let ph = phases.phase(i, t_s);
-            ui.label(RichText::new(phase_text(i, ph)).strong().color(phase_color(ph)))
-                .on_hover_text(format!(
-                    "{} impacts, {} releases so far",
-                    phases.impacts(i),
-                    phases.releases(i)
-                ));
+            ui.label(
+                RichText::new(phase_text(i, ph))
+                    .strong()
+                    .color(phase_color(ph)),
+            )
+            .on_hover_text(format!(
+                "{} impacts, {} releases so far",
+                phases.impacts(i),
+                phases.releases(i)
+            ));
         }
     });
 }
@@ -183,10 +193,11 @@ pub fn mode_bars(
     cls: &mut Classroom,
     cmds: &mut Vec<Command>,
 ) {
-    ui.heading("Mode contributions");
+    ui.label(RichText::new("Mode contributions").strong());
     point_picker(ui, cls, sim.num_points());
     let i = cls.point;
     let mut c = vec![0.0; sim.num_modes()];
+    let n = c.len();
     sim.mode_displacement_m(i, &mut c);
     let u = sim.displacement_m().get(i).copied().unwrap_or(0.0);
     ui.label(format!(
@@ -214,12 +225,12 @@ pub fn mode_bars(
         .enumerate()
         .map(|(k, m)| format!("{k}: {:.0} Hz", m.freq_hz))
         .collect();
-    let n = c.len();
     let ymax = c.iter().fold(1e-3f64, |a, v| a.max(v.abs() * 1e3)) * 1.1;
-    let h = (ui.available_height() * 0.55).max(140.0);
+    let row = ui.spacing().interact_size.y + ui.spacing().item_spacing.y;
+    let h = (ui.available_height() - row * (n as f32 + 1.2)).max(150.0);
     Plot::new("tirecontact.mode_bars")
         .height(h)
-        .legend(Legend::default().position(Corner::RightTop))
+        .legend(Legend::default().position(Corner::RightBottom))
         .x_axis_label("mode")
         .y_axis_label("contribution to u (mm)")
         .x_axis_formatter(move |m, _| {
@@ -238,17 +249,12 @@ pub fn mode_bars(
         .allow_drag(false)
         .allow_zoom(false)
         .show(ui, |pui| {
-            pui.bar_chart(BarChart::new("contribution now (mm)", bars).color(point_color(1)));
+            pui.bar_chart(BarChart::new("now (mm)", bars).color(point_color(1)));
         });
     egui::Grid::new("tirecontact.mode_mutes")
         .striped(true)
         .num_columns(4)
         .show(ui, |ui| {
-            ui.label("mode");
-            ui.label("now");
-            ui.label("");
-            ui.label("");
-            ui.end_row();
             for (k, v) in c.iter().enumerate() {
                 let f = modes.get(k).map_or(0.0, |m| m.freq_hz);
                 ui.label(format!("{k}: {f:.0} Hz"));
@@ -286,11 +292,16 @@ pub fn explanation(ui: &mut Ui, name: &str, description: &str) {
         return;
     }
     egui::Frame::new()
-        .fill(Color32::from_rgb(238, 244, 252))
+        .fill(ui.visuals().faint_bg_color)
+        .stroke(ui.visuals().widgets.noninteractive.bg_stroke)
         .inner_margin(8.0)
         .corner_radius(4.0)
         .show(ui, |ui| {
-            ui.label(RichText::new(name).strong());
-            ui.label(description);
+            ui.label(RichText::new(name).strong().heading());
+            egui::ScrollArea::vertical()
+                .max_height(ui.available_height() * 0.25)
+                .show(ui, |ui| {
+                    ui.label(RichText::new(description).color(ui.visuals().strong_text_color()));
+                });
         });
 }

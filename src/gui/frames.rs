@@ -24,7 +24,10 @@ impl FramesDialog {
     /// Defaults for a scene: its whole duration at 25 fps, 20x slow motion,
     /// 1280x720 px, into `frames/` beside the working directory.
     pub fn for_scene(scene: &Scene, now_s: f64) -> Self {
-        let t1 = scene.duration_s.min(now_s.max(scene.ramp_s + 0.05)).max(1e-3);
+        let t1 = scene
+            .duration_s
+            .min(now_s.max(scene.ramp_s + 0.05))
+            .max(1e-3);
         FramesDialog {
             settings: FrameSettings {
                 t0_s: 0.0,
@@ -98,9 +101,9 @@ impl FramesJob {
         match self.rx.try_recv() {
             Ok(r) => Some(r),
             Err(TryRecvError::Empty) => None,
-            Err(TryRecvError::Disconnected) => {
-                Some(Err("the frames export thread stopped unexpectedly".to_string()))
-            }
+            Err(TryRecvError::Disconnected) => Some(Err(
+                "the frames export thread stopped unexpectedly".to_string(),
+            )),
         }
     }
 
@@ -121,43 +124,68 @@ pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<C
         .open(&mut open)
         .show(ctx, |ui| {
             let s = &mut d.settings;
-            egui::Grid::new("tirecontact.frames").num_columns(2).show(ui, |ui| {
-                ui.label("from t0");
-                ui.add(egui::DragValue::new(&mut s.t0_s).speed(0.001).range(0.0..=1e6).suffix(" s"));
-                ui.end_row();
-                ui.label("to t1");
-                ui.add(egui::DragValue::new(&mut s.t1_s).speed(0.001).range(0.0..=1e6).suffix(" s"));
-                ui.end_row();
-                ui.label("frame rate");
-                ui.add(egui::DragValue::new(&mut s.fps).speed(1.0).range(1.0..=240.0).suffix(" fps"));
-                ui.end_row();
-                ui.label("slow motion");
-                ui.add(
-                    egui::DragValue::new(&mut s.slow_motion)
-                        .speed(1.0)
-                        .range(0.01..=1e5)
-                        .suffix(" video s per simulated s"),
-                );
-                ui.end_row();
-                ui.label("size");
-                ui.horizontal(|ui| {
-                    ui.add(egui::DragValue::new(&mut s.width).range(200..=4000).suffix(" px"));
-                    ui.label("×");
-                    ui.add(egui::DragValue::new(&mut s.height).range(200..=4000).suffix(" px"));
+            egui::Grid::new("tirecontact.frames")
+                .num_columns(2)
+                .show(ui, |ui| {
+                    ui.label("from t0");
+                    ui.add(
+                        egui::DragValue::new(&mut s.t0_s)
+                            .speed(0.001)
+                            .range(0.0..=1e6)
+                            .suffix(" s"),
+                    );
+                    ui.end_row();
+                    ui.label("to t1");
+                    ui.add(
+                        egui::DragValue::new(&mut s.t1_s)
+                            .speed(0.001)
+                            .range(0.0..=1e6)
+                            .suffix(" s"),
+                    );
+                    ui.end_row();
+                    ui.label("frame rate");
+                    ui.add(
+                        egui::DragValue::new(&mut s.fps)
+                            .speed(1.0)
+                            .range(1.0..=240.0)
+                            .suffix(" fps"),
+                    );
+                    ui.end_row();
+                    ui.label("slow motion");
+                    ui.add(
+                        egui::DragValue::new(&mut s.slow_motion)
+                            .speed(1.0)
+                            .range(0.01..=1e5)
+                            .suffix(" video s per simulated s"),
+                    );
+                    ui.end_row();
+                    ui.label("size");
+                    ui.horizontal(|ui| {
+                        ui.add(
+                            egui::DragValue::new(&mut s.width)
+                                .range(200..=4000)
+                                .suffix(" px"),
+                        );
+                        ui.label("×");
+                        ui.add(
+                            egui::DragValue::new(&mut s.height)
+                                .range(200..=4000)
+                                .suffix(" px"),
+                        );
+                    });
+                    ui.end_row();
+                    ui.label("folder");
+                    ui.horizontal(|ui| {
+                        ui.add(egui::TextEdit::singleline(&mut d.dir).desired_width(220.0))
+                            .accessible_name("frames folder");
+                        if ui.button("Choose…").clicked()
+                            && let Some(p) = rfd::FileDialog::new().pick_folder()
+                        {
+                            d.dir = p.display().to_string();
+                        }
+                    });
+                    ui.end_row();
                 });
-                ui.end_row();
-                ui.label("folder");
-                ui.horizontal(|ui| {
-                    ui.add(egui::TextEdit::singleline(&mut d.dir).desired_width(220.0))
-                        .accessible_name("frames folder");
-                    if ui.button("Choose…").clicked()
-                        && let Some(p) = rfd::FileDialog::new().pick_folder()
-                    {
-                        d.dir = p.display().to_string();
-                    }
-                });
-                ui.end_row();
-            });
             let n = d.settings.frame_count();
             ui.label(format!(
                 "{n} frames = {:.2} s of video showing {:.4} s of the run (frame_00000.png …)",
@@ -188,9 +216,7 @@ pub fn progress(ctx: &Context, job: Option<&FramesJob>, cmds: &mut Vec<Command>)
                 job.total,
                 job.dir.display()
             ));
-            ui.add(
-                egui::ProgressBar::new(done as f32 / job.total.max(1) as f32).show_percentage(),
-            );
+            ui.add(egui::ProgressBar::new(done as f32 / job.total.max(1) as f32).show_percentage());
             if ui.button("Cancel").clicked() {
                 cmds.push(Command::CancelFrames);
             }

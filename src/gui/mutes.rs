@@ -112,7 +112,13 @@ mod tests {
         };
         assert_eq!(modes[0], base[0]);
         assert_eq!(modes[2], base[2]);
-        assert!(modes[1].residue_matrix().iter().flatten().all(|a| *a == 0.0));
+        assert!(
+            modes[1]
+                .residue_matrix()
+                .iter()
+                .flatten()
+                .all(|a| *a == 0.0)
+        );
         assert_eq!(modes[1].freq_hz, base[1].freq_hz);
     }
 

@@ -9,9 +9,9 @@
 //! `round((t1 - t0) × slow_motion × fps)` frames.
 
 use super::figures::register_fonts;
+use crate::Simulation;
 use crate::phase::{ContactPhase, PhaseTracker};
 use crate::road::ramp;
-use crate::Simulation;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -110,7 +110,11 @@ struct Extents {
 
 fn extents(sim: &Simulation) -> Extents {
     let scene = sim.scene();
-    let lo = scene.points.iter().map(|p| p.x_m).fold(f64::INFINITY, f64::min);
+    let lo = scene
+        .points
+        .iter()
+        .map(|p| p.x_m)
+        .fold(f64::INFINITY, f64::min);
     let hi = scene
         .points
         .iter()

@@ -53,7 +53,10 @@ mod tests {
             }
         }
         assert!(largest > 1e-5, "the run never moved: {largest}");
-        assert!(worst <= 1e-12 * largest.max(1e-6), "sum differs by {worst} m");
+        assert!(
+            worst <= 1e-12 * largest.max(1e-6),
+            "sum differs by {worst} m"
+        );
     }
 
     #[test]
@@ -67,7 +70,10 @@ mod tests {
         let text = include_str!("../../presets/three_points.ron")
             .replace("shape: [0.3, 0.0, -0.3]", "shape: [0.0, 0.0, 0.0]")
             // two modes cannot hold three points rigidly: use tread springs
-            .replace("contact_scheme: Located,", "contact: Compliant(stiffness_n_m: [2e6]),");
+            .replace(
+                "contact_scheme: Located,",
+                "contact: Compliant(stiffness_n_m: [2e6]),",
+            );
         let scene = Scene::parse(&text, "muted").unwrap();
         let mut sim = Simulation::new(&scene).unwrap();
         let mut c = vec![0.0; 3];
@@ -87,8 +93,7 @@ mod tests {
     fn single_mode_contribution_is_the_modal_coordinate_times_residue() {
         // one point, one mode, residue 0.1: the basis term is a = 0.1 (shape
         // of a 1x1 residue by SVD: a b = 0.1), so u = contribution exactly
-        let scene =
-            Scene::parse(include_str!("../../presets/single_mode.ron"), "single").unwrap();
+        let scene = Scene::parse(include_str!("../../presets/single_mode.ron"), "single").unwrap();
         let sim = Simulation::new(&scene).unwrap();
         let mut c = [7.0, 7.0];
         sim.mode_displacement_m(0, &mut c);

@@ -26,7 +26,9 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
         }
         if ui
             .selectable_label(!rigid, "Compliant")
-            .on_hover_text("a tread spring k (N/m) between each point and the road: q = k max(0, r - u)")
+            .on_hover_text(
+                "a tread spring k (N/m) between each point and the road: q = k max(0, r - u)",
+            )
             .clicked()
             && rigid
         {
@@ -43,27 +45,29 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
     };
     let p = scene.num_points();
     let per_point = stiffness_n_m.len() > 1;
-    Grid::new("tirecontact.contact").num_columns(2).show(ui, |ui| {
-        for (i, &k) in stiffness_n_m.iter().enumerate() {
-            ui.label(if per_point {
-                format!("tread stiffness, point {i}")
-            } else {
-                "tread stiffness (all points)".to_string()
-            });
-            let name = format!("contact.stiffness_n_m[{i}]");
-            push_edit(
-                cmds,
-                NumField::new(&name, k, "kN/mm", Apply::Restart)
-                    .scale(1e-6)
-                    .show(ui, |v| {
-                        let mut ks = stiffness_n_m.clone();
-                        ks[i] = v;
-                        scene_with(scene, Contact::Compliant { stiffness_n_m: ks })
-                    }),
-            );
-            ui.end_row();
-        }
-    });
+    Grid::new("tirecontact.contact")
+        .num_columns(2)
+        .show(ui, |ui| {
+            for (i, &k) in stiffness_n_m.iter().enumerate() {
+                ui.label(if per_point {
+                    format!("tread stiffness, point {i}")
+                } else {
+                    "tread stiffness (all points)".to_string()
+                });
+                let name = format!("contact.stiffness_n_m[{i}]");
+                push_edit(
+                    cmds,
+                    NumField::new(&name, k, "kN/mm", Apply::Restart)
+                        .scale(1e-6)
+                        .show(ui, |v| {
+                            let mut ks = stiffness_n_m.clone();
+                            ks[i] = v;
+                            scene_with(scene, Contact::Compliant { stiffness_n_m: ks })
+                        }),
+                );
+                ui.end_row();
+            }
+        });
     if p > 1 {
         let label = if per_point {
             "one stiffness for all points"
@@ -76,7 +80,10 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
             } else {
                 vec![stiffness_n_m[0]; p]
             };
-            cmds.push(with_contact(scene, Contact::Compliant { stiffness_n_m: ks }));
+            cmds.push(with_contact(
+                scene,
+                Contact::Compliant { stiffness_n_m: ks },
+            ));
         }
     }
     ui.label(egui::RichText::new("1 kN/mm = 1e6 N/m; larger values tend to rigid contact").weak());

@@ -68,7 +68,9 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                 })
                 .response
                 .accessible_name("road class")
-                .on_hover_text("displacement PSD Gd(0.1 cycles/m) = 16e-6 × 4^k m³, k = 0 for A … 7 for H");
+                .on_hover_text(
+                    "displacement PSD Gd(0.1 cycles/m) = 16e-6 × 4^k m³, k = 0 for A … 7 for H",
+                );
             if chosen != class {
                 cmds.push(Command::EditScene(Box::new(with(&|r| {
                     if let Road::Random { class, .. } = r {

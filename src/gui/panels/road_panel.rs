@@ -143,7 +143,9 @@ fn road_type(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                         },
                     )));
                 }
-                if ui.selectable_label(kind == "random", "random (ISO 8608)").clicked()
+                if ui
+                    .selectable_label(kind == "random", "random (ISO 8608)")
+                    .clicked()
                     && kind != "random"
                 {
                     cmds.push(edit(with_road(scene, super::random_road::default_road())));

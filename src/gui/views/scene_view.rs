@@ -16,6 +16,9 @@ pub struct SceneViewOptions {
     pub auto: bool,
     /// Vertical exaggeration (heights drawn this many times larger).
     pub exaggeration: f64,
+    /// Text style of the legend (classroom mode: small, so that the legend
+    /// leaves the points visible).
+    pub legend_style: egui::TextStyle,
 }
 
 impl Default for SceneViewOptions {
@@ -23,6 +26,7 @@ impl Default for SceneViewOptions {
         SceneViewOptions {
             auto: true,
             exaggeration: 20.0,
+            legend_style: egui::TextStyle::Body,
         }
     }
 }
@@ -188,7 +192,8 @@ pub fn show_with(
         .legend(
             Legend::default()
                 .position(Corner::RightTop)
-                .follow_insertion_order(true),
+                .follow_insertion_order(true)
+                .text_style(opts.legend_style.clone()),
         )
         .x_axis_label("position along the contact line x (m)")
         .y_axis_label("height (mm, true scale)")
