@@ -93,5 +93,11 @@ fn headless_default() -> cli::CliResult {
         spectrum_plot: None,
         spectrum_from: None,
         spectrum_max_hz: 5000.0,
+        frames: None,
+        fps: 25.0,
+        slow_motion: 20.0,
+        frames_from: 0.0,
+        frames_to: None,
+        frame_size: (1280, 720),
     })
 }
