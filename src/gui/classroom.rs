@@ -93,18 +93,33 @@ pub fn scene_with_phases(
     phases: &PhaseTracker,
 ) {
     let t = sim.time_s();
-    let size = ui.text_style_height(&TextStyle::Heading);
+    let heading = ui.text_style_height(&TextStyle::Heading);
+    let body = ui.text_style_height(&TextStyle::Body);
     let normal_legend = std::mem::replace(&mut opts.legend_style, TextStyle::Small);
     scene_view::show_with(ui, sim, opts, |pui, displaced| {
+        // Labels go below the points, in the road, clear of the legend (top
+        // right). One point: its phase, large. Several points: only impacts
+        // and releases (the points' colours and the strip above give the
+        // steady phases), in three lanes of text height below the lowest
+        // point, so that neighbours' labels never overlap.
         let b = pui.plot_bounds();
-        // below the points, in the road, clear of the legend (top right);
-        // neighbours staggered so that their labels do not overlap
-        let dy = 0.1 * (b.max()[1] - b.min()[1]);
+        let per_px = pui.transform().dvalue_dpos()[1].abs();
+        let several = displaced.len() > 1;
+        let lowest = displaced.iter().map(|d| d[1]).fold(f64::INFINITY, f64::min);
         for (i, d) in displaced.iter().enumerate() {
-            let y = d[1] - dy * (1.0 + 0.9 * (i % 2) as f64);
             let ph = phases.phase(i, t);
+            let (y, size) = if several {
+                if !ph.is_event() {
+                    continue;
+                }
+                let lane_px = f64::from(body * 1.1);
+                (lowest - per_px * lane_px * (0.3 + (i % 3) as f64), body)
+            } else {
+                let y = d[1] - 0.1 * (b.max()[1] - b.min()[1]);
+                (y, if ph.is_event() { heading * 1.25 } else { heading })
+            };
             let text = RichText::new(phase_text(i, ph))
-                .size(if ph.is_event() { size * 1.25 } else { size })
+                .size(size)
                 .strong()
                 .color(phase_color(ph));
             pui.text(Text::new("", PlotPoint::new(d[0], y), text).anchor(egui::Align2::CENTER_TOP));
@@ -232,7 +247,7 @@ pub fn mode_bars(
         .height(h)
         .legend(Legend::default().position(Corner::RightBottom))
         .x_axis_label("mode")
-        .y_axis_label("contribution to u (mm)")
+        .y_axis_label("part of u (mm)")
         .x_axis_formatter(move |m, _| {
             let k = m.value.round();
             if (m.value - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < labels.len() {
@@ -245,6 +260,23 @@ pub fn mode_bars(
         .include_x(n as f64 - 0.4)
         .include_y(-ymax)
         .include_y(ymax)
+        .y_grid_spacer(|g| {
+            // about three labelled marks at 1-2-5 steps (mm): large text
+            // needs room between labels
+            let (a, b) = g.bounds;
+            let step = scene_view::round_125((b - a) / 3.0);
+            let mut out = Vec::new();
+            let mut k = (a / step).ceil();
+            while k * step <= b && out.len() < 50 {
+                out.push(egui_plot::GridMark {
+                    value: k * step,
+                    step_size: step,
+                });
+                k += 1.0;
+            }
+            out
+        })
+        .y_axis_formatter(|m, _| crate::gui::fields::format_number(m.value))
         .allow_scroll(false)
         .allow_drag(false)
         .allow_zoom(false)
