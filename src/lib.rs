@@ -45,6 +45,7 @@ pub mod identify;
 pub mod lsce;
 pub mod modal;
 pub mod output;
+pub mod phase;
 pub mod ring;
 pub mod road;
 pub mod scene;

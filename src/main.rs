@@ -38,6 +38,9 @@ enum Command {
     Gui {
         /// Scene preset (RON).
         preset: Option<PathBuf>,
+        /// Start in classroom mode (large fonts, presenter layout, slow motion).
+        #[arg(long)]
+        classroom: bool,
     },
 }
 
@@ -47,8 +50,10 @@ fn main() -> std::process::ExitCode {
         Some(Command::Run(args)) => cli::run::run(&args),
         Some(Command::Check { preset }) => cli::check::check(&preset),
         #[cfg(feature = "gui")]
-        Some(Command::Gui { preset }) => tirecontact::gui::run_with_preset(preset)
-            .map_err(|e| format!("cannot open the visualiser: {e}").into()),
+        Some(Command::Gui { preset, classroom }) => {
+            tirecontact::gui::run_with_options(preset, classroom)
+                .map_err(|e| format!("cannot open the visualiser: {e}").into())
+        }
         Some(Command::Identify(args)) => cli::identify::identify(&args),
         Some(Command::Bench(args)) => cli::bench::bench(&args),
         Some(Command::Sweep(args)) => cli::sweep::sweep(&args),
@@ -88,5 +93,11 @@ fn headless_default() -> cli::CliResult {
         spectrum_plot: None,
         spectrum_from: None,
         spectrum_max_hz: 5000.0,
+        frames: None,
+        fps: 25.0,
+        slow_motion: 20.0,
+        frames_from: 0.0,
+        frames_to: None,
+        frame_size: (1280, 720),
     })
 }

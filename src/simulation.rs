@@ -3,6 +3,7 @@
 //! `Located` scheme) impacts and releases located inside the step.
 
 mod compliant;
+mod contributions;
 mod events;
 
 use crate::contact::DenseSolver;

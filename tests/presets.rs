@@ -115,3 +115,38 @@ fn validation_names_field_value_and_expectation() {
     let e = invalid(&two);
     assert!(e.iter().any(|e| e.field == "points[1].x_m"), "{e:?}");
 }
+
+/// Contact fraction per point over a whole run of a shipped preset.
+fn contact_fraction(name: &str) -> Vec<f64> {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("presets")
+        .join(name);
+    let scene = Scene::load(&p).unwrap();
+    let mut sim = Simulation::new(&scene).unwrap();
+    while !sim.finished() {
+        sim.step().unwrap();
+    }
+    sim.stats().contact_fraction()
+}
+
+/// What the guided-tour descriptions tell the class to watch holds: the
+/// first preset of each pair and the second differ as described.
+#[test]
+fn guided_tour_descriptions_match_the_runs() {
+    let soft = contact_fraction("guided_1a_soft_tyre.ron")[0];
+    let stiff = contact_fraction("guided_1b_stiff_tyre.ron")[0];
+    assert!(soft < 0.6 && stiff > 0.99, "soft {soft}, stiff {stiff}");
+    let low = contact_fraction("guided_2a_low_damping.ron")[0];
+    let high = contact_fraction("guided_2b_high_damping.ron")[0];
+    assert!(high > low && low < 0.6, "low {low}, high {high}");
+    let slow = contact_fraction("guided_3a_slow.ron")[0];
+    let fast = contact_fraction("guided_3b_fast.ron")[0];
+    assert!(slow > 0.99 && fast < 0.5, "slow {slow}, fast {fast}");
+    let long = contact_fraction("guided_4a_long_wavelength.ron");
+    let short = contact_fraction("guided_4b_short_wavelength.ron");
+    assert!(
+        long[0] > 0.99 && long[2] > 0.99 && long[1] < 0.1,
+        "{long:?}"
+    );
+    assert!(short.iter().all(|c| (0.2..0.6).contains(c)), "{short:?}");
+}

@@ -50,6 +50,61 @@ pub struct RunArgs {
     /// Highest frequency of the spectrum CSV and figure (Hz).
     #[arg(long, default_value_t = 5000.0)]
     pub spectrum_max_hz: f64,
+    /// Write animation frames of the scene (frame_00000.png, …) into this folder.
+    #[arg(long)]
+    pub frames: Option<PathBuf>,
+    /// Frames per second of the animation (Hz).
+    #[arg(long, default_value_t = 25.0)]
+    pub fps: f64,
+    /// Video seconds per simulated second (20 = 0.05x real time).
+    #[arg(long, default_value_t = 20.0)]
+    pub slow_motion: f64,
+    /// First animated time (s).
+    #[arg(long, default_value_t = 0.0)]
+    pub frames_from: f64,
+    /// End of the animated interval (s); default the scene's duration.
+    #[arg(long)]
+    pub frames_to: Option<f64>,
+    /// Size of the frames, WIDTHxHEIGHT in pixels.
+    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    pub frame_size: (u32, u32),
+}
+
+/// `--frames DIR`: the animation frames, before the run proper.
+fn write_frames(scene: &Scene, args: &RunArgs) -> CliResult {
+    use std::sync::atomic::{AtomicBool, AtomicU64};
+    use tirecontact::output::animation::{FrameSettings, export_frames};
+    let Some(dir) = &args.frames else {
+        return Ok(());
+    };
+    let settings = FrameSettings {
+        t0_s: args.frames_from,
+        t1_s: args.frames_to.unwrap_or(scene.duration_s),
+        fps: args.fps,
+        slow_motion: args.slow_motion,
+        width: args.frame_size.0,
+        height: args.frame_size.1,
+    };
+    settings
+        .check(scene.duration_s)
+        .map_err(|e| format!("--frames: {e}"))?;
+    let n = export_frames(
+        Simulation::new(scene)?,
+        |_, _| Ok(()),
+        dir,
+        &settings,
+        &AtomicU64::new(0),
+        &AtomicBool::new(false),
+    )?;
+    eprintln!(
+        "wrote {n} frames ({}x{} px, {} fps, {}x slow motion) into {}",
+        settings.width,
+        settings.height,
+        settings.fps,
+        settings.slow_motion,
+        dir.display()
+    );
+    Ok(())
 }
 
 /// `spectrum.csv` -> `spectrum_bands.csv` beside it.
@@ -174,6 +229,7 @@ pub fn run(args: &RunArgs) -> CliResult {
     // before anything is built, computed or written
     check_output_budget(&scene, args)?;
     check_plot_args(args)?;
+    write_frames(&scene, args)?;
     let mut sim = Simulation::new(&scene)?;
     let n = scene.num_steps();
     let mut writer = match &args.output {

@@ -1,14 +1,19 @@
 //! The app: owns the scene, the simulation, the history and the UI state.
 //! `App::apply` is the one place where a `Command` changes anything.
 
+use super::classroom::{self, Classroom};
 use super::command::{Command, Discarding, View};
 use super::export::{CsvJob, LiveEdit};
 use super::frame_rate::FrameRate;
+use super::frames::{FramesDialog, FramesJob};
+use super::guided::GUIDED;
 use super::history::{DEFAULT_BUDGET, History};
+use super::mutes::{self, Mutes};
 use super::panels::{self, toolbar};
 use super::presets::SHIPPED;
 use super::time_control::TimeControl;
 use super::views::{green_view, scene_view, time_plots};
+use crate::phase::PhaseTracker;
 use crate::scene::Mode;
 use crate::{DEFAULT_PRESET, Scene, Simulation};
 use serde::{Deserialize, Serialize};
@@ -67,6 +72,12 @@ pub struct App {
     pub(super) green_opts: green_view::GreenOptions,
     title: String,
     fps: FrameRate,
+    pub(super) classroom: Classroom,
+    /// Contact phase of every point (classroom labels).
+    pub(super) phases: PhaseTracker,
+    pub(super) mutes: Option<Mutes>,
+    frames_dialog: Option<FramesDialog>,
+    frames_job: Option<FramesJob>,
 }
 
 impl App {
@@ -76,6 +87,7 @@ impl App {
         let mut history = History::new(scene.num_points(), DEFAULT_BUDGET);
         history.record_initial(&sim);
         let modes = scene.modes().map_err(|e| e.to_string())?;
+        let phases = PhaseTracker::new(scene.num_points(), 0.0);
         Ok(App {
             modes,
             saved: scene.clone(),
@@ -98,6 +110,11 @@ impl App {
             green_opts: Default::default(),
             title: String::new(),
             fps: FrameRate::new(),
+            classroom: Classroom::default(),
+            phases,
+            mutes: None,
+            frames_dialog: None,
+            frames_job: None,
         })
     }
 
@@ -178,6 +195,35 @@ impl App {
     }
     pub fn time_control(&self) -> &TimeControl {
         &self.time
+    }
+    /// Whether classroom mode is on.
+    pub fn classroom(&self) -> bool {
+        self.classroom.on
+    }
+    /// Contact phases of the points in the current run.
+    pub fn phases(&self) -> &PhaseTracker {
+        &self.phases
+    }
+    /// Muted modes (`None`: every mode plays, the scene's own tyre).
+    pub fn mutes(&self) -> Option<&Mutes> {
+        self.mutes.as_ref()
+    }
+    /// Whether an animation export is running.
+    pub fn exporting_frames(&self) -> bool {
+        self.frames_job.is_some()
+    }
+    /// Blocks until a running frames export ends; returns its result.
+    pub fn wait_frames_export(&mut self) -> Option<Result<u64, String>> {
+        let job = self.frames_job.take()?;
+        let r = job.wait();
+        self.frames_done(&r);
+        Some(r)
+    }
+    fn frames_done(&mut self, r: &Result<u64, String>) {
+        match r {
+            Ok(n) => self.info(format!("wrote {n} animation frames")),
+            Err(e) => self.error(format!("Animation export stopped: {e}")),
+        }
     }
     pub fn message(&self) -> Option<&Message> {
         self.message.as_ref()
@@ -330,6 +376,94 @@ impl App {
             }
             Command::DismissMessage => self.message = None,
             Command::ShowView(v) => self.view = v,
+            Command::SetClassroom(on) => {
+                self.classroom.on = on;
+                if on {
+                    self.view = View::Scene;
+                    self.time
+                        .set_speed(super::time_control::Speed::Factor(classroom::SLOW_MOTION));
+                }
+            }
+            Command::OpenGuided(k) => self.guard(Discarding::Guided(k)),
+            Command::ShowModeBars(on) => self.classroom.bars = on,
+            Command::ToggleMute(k) => self.set_mutes(k, false),
+            Command::SoloMode(k) => self.set_mutes(k, true),
+            Command::UnmuteAll => {
+                if let Some(m) = self.mutes.take() {
+                    let mut s = self.scene.clone();
+                    s.tyre = m.original.clone();
+                    self.edit(s);
+                    if self.scene.tyre != m.original {
+                        self.mutes = Some(m);
+                    }
+                }
+            }
+            Command::ExportFramesDialog => {
+                self.frames_dialog = Some(FramesDialog::for_scene(&self.scene, self.sim.time_s()));
+            }
+            Command::ExportFrames { dir, settings } => {
+                if self.frames_job.is_some() {
+                    self.error("an animation export is already running");
+                } else {
+                    match FramesJob::spawn(
+                        dir,
+                        settings,
+                        self.run_start.clone(),
+                        self.live_edits.clone(),
+                    ) {
+                        Ok(job) => {
+                            self.frames_dialog = None;
+                            self.frames_job = Some(job);
+                        }
+                        Err(e) => self.error(format!("Animation export refused: {e}")),
+                    }
+                }
+            }
+            Command::CancelFrames => {
+                if let Some(job) = &self.frames_job {
+                    job.cancel();
+                }
+            }
+        }
+        // an edit of the tyre other than by the mutes ends them
+        if self
+            .mutes
+            .as_ref()
+            .is_some_and(|m| m.tyre != self.scene.tyre)
+        {
+            self.mutes = None;
+        }
+    }
+
+    /// Mutes (or solos) mode `k` through a scene edit, refused with the
+    /// reason when the muted model cannot be simulated.
+    fn set_mutes(&mut self, k: usize, solo: bool) {
+        let (original, base, current) = match &self.mutes {
+            Some(m) => (m.original.clone(), m.base.clone(), m.muted.clone()),
+            None => (self.scene.tyre.clone(), self.modes.clone(), Vec::new()),
+        };
+        let muted = mutes::toggled(&current, base.len(), k, solo);
+        if muted.iter().all(|m| !m) {
+            self.apply(Command::UnmuteAll);
+            return;
+        }
+        if let Some(why) =
+            mutes::refusal(&base, &muted, self.scene.num_points(), &self.scene.contact)
+        {
+            self.error(format!("Mute refused: {why}"));
+            return;
+        }
+        let tyre = mutes::muted_tyre(&base, &muted);
+        let mut s = self.scene.clone();
+        s.tyre = tyre.clone();
+        self.edit(s);
+        if self.scene.tyre == tyre {
+            self.mutes = Some(Mutes {
+                original,
+                base,
+                muted,
+                tyre,
+            });
         }
     }
 
@@ -356,6 +490,7 @@ impl App {
         self.live_edits.clear();
         self.history = History::new(self.sim.num_points(), DEFAULT_BUDGET);
         self.history.record_initial(&self.sim);
+        self.phases = PhaseTracker::new(self.sim.num_points(), self.phases.hold_s);
     }
 
     /// Runs `d` now if there is nothing to lose, else asks first.
@@ -389,6 +524,13 @@ impl App {
                     Err(e) => self.error(format!("shipped preset {file}: {e}")),
                 },
                 None => self.error(format!("no shipped preset #{k}")),
+            },
+            Discarding::Guided(k) => match GUIDED.get(k) {
+                Some((name, file, text)) => match Scene::parse(text, file) {
+                    Ok(scene) => self.replace(scene, None, &format!("guided tour: “{name}”")),
+                    Err(e) => self.error(format!("guided preset {file}: {e}")),
+                },
+                None => self.error(format!("no guided preset #{k}")),
             },
             Discarding::Quit => {
                 self.allow_close = true;
@@ -455,7 +597,8 @@ impl App {
             || new.dt_s != old.dt_s
             || new.duration_s != old.duration_s
             || new.ramp_s != old.ramp_s
-            || new.contact_scheme != old.contact_scheme;
+            || new.contact_scheme != old.contact_scheme
+            || new.contact != old.contact;
         if restart {
             match Simulation::new(&new).and_then(|sim| Ok((sim, new.modes()?))) {
                 Ok((sim, modes)) => {
@@ -509,6 +652,11 @@ impl App {
             match self.sim.step() {
                 Ok(_) => {
                     self.history.after_step(&self.sim);
+                    self.phases.after_step(
+                        self.sim.time_s(),
+                        self.sim.in_contact(),
+                        self.sim.force_n(),
+                    );
                     taken += 1;
                 }
                 Err(e) => {
@@ -562,6 +710,12 @@ impl App {
                 Err(e) => self.error(format!("CSV export failed: {e}")),
             }
         }
+        if let Some(job) = &self.frames_job
+            && let Some(r) = job.poll()
+        {
+            self.frames_job = None;
+            self.frames_done(&r);
+        }
     }
 
     /// One frame of the whole UI (also driven headless by the tests).
@@ -587,7 +741,17 @@ impl App {
             achieved_factor: self.time.achieved_factor(),
             view: self.view,
             exporting_csv: self.csv_job.is_some(),
+            classroom: self.classroom.on,
+            mode_bars: self.classroom.bars,
+            exporting_frames: self.frames_job.is_some(),
         };
+        self.classroom.sync_style(&ctx);
+        // impacts and releases stay up EVENT_HOLD_WALL_S of wall-clock time
+        self.phases.hold_s = match self.time.speed() {
+            super::time_control::Speed::Factor(f) => classroom::EVENT_HOLD_WALL_S * f,
+            super::time_control::Speed::Max => 0.0,
+        }
+        .max(20.0 * self.sim.dt_s());
         egui::Panel::top("tirecontact.top").show(ui, |ui| {
             toolbar::menu_bar(ui, &status, &mut cmds);
             toolbar::transport(ui, &status, &mut cmds);
@@ -595,26 +759,15 @@ impl App {
         egui::Panel::bottom("tirecontact.status").show(ui, |ui| {
             super::dialogs::status_bar(ui, self);
         });
-        egui::Panel::left("tirecontact.edit")
-            .resizable(true)
-            .default_size(380.0)
-            .show(ui, |ui| {
-                panels::side_panel(ui, &self.scene, &self.modes, &mut cmds)
-            });
-        egui::CentralPanel::default().show(ui, |ui| {
-            super::dialogs::banner(ui, self.message.as_ref(), &mut cmds);
-            match self.view {
-                View::TimePlots => {
-                    time_plots::show(ui, &self.history, &mut self.plot_opts, self.sim.time_s());
-                }
-                View::Scene => scene_view::show(ui, &self.sim, &mut self.scene_opts),
-                View::Green => {
-                    green_view::show(ui, &self.scene, &self.modes, &mut self.green_opts);
-                }
-            }
-        });
+        if self.classroom.on {
+            self.classroom_layout(ui, &mut cmds);
+        } else {
+            self.normal_layout(ui, &mut cmds);
+        }
         super::dialogs::confirm_window(&ctx, self.confirm.as_ref(), &mut cmds);
         super::dialogs::png_window(&ctx, &mut self.png_dialog, &mut cmds);
+        super::frames::dialog(&ctx, &mut self.frames_dialog, &mut cmds);
+        super::frames::progress(&ctx, self.frames_job.as_ref(), &mut cmds);
         for c in cmds {
             self.apply(c);
         }
@@ -629,10 +782,79 @@ impl App {
             started.elapsed().as_secs_f64(),
         );
         if self.csv_job.is_some()
+            || self.frames_job.is_some()
             || (!hidden && (self.time.is_playing() || self.time.pending_steps() > 0))
         {
             ctx.request_repaint();
         }
+    }
+
+    /// Presenter layout: explanation, the scene large with phase labels, one
+    /// plot of a chosen point, the mode bars on the right; no editing panel.
+    fn classroom_layout(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        egui::Panel::right("tirecontact.classroom_bars")
+            .resizable(true)
+            .default_size(0.34 * ui.available_width())
+            .show(ui, |ui| {
+                classroom::explanation(ui, &self.scene.name, &self.scene.description);
+                ui.separator();
+                classroom::mode_bars(
+                    ui,
+                    &self.sim,
+                    &self.modes,
+                    self.mutes.as_ref(),
+                    &mut self.classroom,
+                    cmds,
+                );
+            });
+        egui::CentralPanel::default().show(ui, |ui| {
+            super::dialogs::banner(ui, self.message.as_ref(), cmds);
+            classroom::phase_strip(ui, self.sim.time_s(), &self.phases);
+            let h = (ui.available_height() * 0.64).max(150.0);
+            let w = ui.available_width();
+            ui.allocate_ui(egui::vec2(w, h), |ui| {
+                ui.set_min_size(egui::vec2(w, h));
+                classroom::scene_with_phases(ui, &self.sim, &mut self.scene_opts, &self.phases);
+            });
+            classroom::point_plot(ui, &self.history, &mut self.classroom, self.sim.time_s());
+        });
+    }
+
+    fn normal_layout(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        let cmds_left = &mut *cmds;
+        egui::Panel::left("tirecontact.edit")
+            .resizable(true)
+            .default_size(380.0)
+            .show(ui, |ui| {
+                panels::side_panel(ui, &self.scene, &self.modes, cmds_left)
+            });
+        if self.classroom.bars {
+            egui::Panel::right("tirecontact.mode_bars")
+                .resizable(true)
+                .default_size(320.0)
+                .show(ui, |ui| {
+                    classroom::mode_bars(
+                        ui,
+                        &self.sim,
+                        &self.modes,
+                        self.mutes.as_ref(),
+                        &mut self.classroom,
+                        cmds,
+                    );
+                });
+        }
+        egui::CentralPanel::default().show(ui, |ui| {
+            super::dialogs::banner(ui, self.message.as_ref(), cmds);
+            match self.view {
+                View::TimePlots => {
+                    time_plots::show(ui, &self.history, &mut self.plot_opts, self.sim.time_s());
+                }
+                View::Scene => scene_view::show(ui, &self.sim, &mut self.scene_opts),
+                View::Green => {
+                    green_view::show(ui, &self.scene, &self.modes, &mut self.green_opts);
+                }
+            }
+        });
     }
 
     /// Measured frames per second (0 until a second has passed).

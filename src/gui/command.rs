@@ -33,6 +33,8 @@ pub enum Discarding {
     OpenPath(PathBuf),
     Preset(usize),
     Quit,
+    /// A guided-tour preset (index into `guided::GUIDED`).
+    Guided(usize),
 }
 
 /// A user request.
@@ -78,4 +80,22 @@ pub enum Command {
     Quit,
     DismissMessage,
     ShowView(View),
+    /// Classroom mode on/off: large fonts, presenter layout, slow motion.
+    SetClassroom(bool),
+    /// Open a guided-tour preset (index into `guided::GUIDED`).
+    OpenGuided(usize),
+    /// Show the mode contribution bars in the normal layout.
+    ShowModeBars(bool),
+    /// Mute or un-mute mode `k` (residue × 0; restarts the run).
+    ToggleMute(usize),
+    /// Mute every mode but `k`, or un-mute all if `k` is already solo.
+    SoloMode(usize),
+    UnmuteAll,
+    /// Show the animation export settings.
+    ExportFramesDialog,
+    ExportFrames {
+        dir: PathBuf,
+        settings: crate::output::animation::FrameSettings,
+    },
+    CancelFrames,
 }

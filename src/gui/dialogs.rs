@@ -84,6 +84,7 @@ pub fn confirm_window(ctx: &egui::Context, pending: Option<&Discarding>, cmds: &
         Discarding::New => "start a new scene",
         Discarding::OpenDialog | Discarding::OpenPath(_) => "open another preset",
         Discarding::Preset(_) => "open a shipped preset",
+        Discarding::Guided(_) => "open a guided-tour preset",
         Discarding::Quit => "quit",
     };
     egui::Modal::new(egui::Id::unique("tirecontact.confirm")).show(ctx, |ui| {

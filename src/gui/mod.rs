@@ -7,12 +7,16 @@
 //! that changes state; views only read.
 
 pub mod app;
+pub mod classroom;
 pub mod command;
 pub mod dialogs;
 pub mod export;
 pub mod fields;
 pub mod frame_rate;
+pub mod frames;
+pub mod guided;
 pub mod history;
+pub mod mutes;
 pub mod panels;
 pub mod presets;
 pub mod time_control;
@@ -30,6 +34,11 @@ pub fn run() -> eframe::Result {
 /// Opens the visualiser on `preset` (a broken file shows its error over the
 /// default preset), or as [`run`] when `None`.
 pub fn run_with_preset(preset: Option<std::path::PathBuf>) -> eframe::Result {
+    run_with_options(preset, false)
+}
+
+/// [`run_with_preset`], starting in classroom mode when `classroom`.
+pub fn run_with_options(preset: Option<std::path::PathBuf>, classroom: bool) -> eframe::Result {
     let mut options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("tirecontact")
@@ -49,6 +58,10 @@ pub fn run_with_preset(preset: Option<std::path::PathBuf>) -> eframe::Result {
                 Some(path) => App::open_at_start(&path),
                 None => App::restore(cc.storage),
             };
+            let mut app = app;
+            if classroom {
+                app.apply(Command::SetClassroom(true));
+            }
             Ok(Box::new(app))
         }),
     )

@@ -86,7 +86,7 @@ pub const PALETTE: [RGBColor; 10] = [
     RGBColor(140, 86, 75),
 ];
 
-fn register_fonts() {
+pub(crate) fn register_fonts() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         // The embedded font is valid; a failure would only lose text.

@@ -1,5 +1,6 @@
 //! Output: CSV time histories, atomic file writes, headless figures.
 
+pub mod animation;
 pub mod csv;
 pub mod figures;
 pub mod record;

@@ -1,8 +1,10 @@
 //! Editing panels. They read the scene and push `Command`s; they never touch
 //! the simulation.
 
+pub mod contact_panel;
 pub mod modes_table;
 pub mod points_panel;
+pub mod random_road;
 pub mod road_panel;
 pub mod run_panel;
 pub mod toolbar;
@@ -48,5 +50,7 @@ pub fn side_panel(ui: &mut egui::Ui, scene: &Scene, modes: &[Mode], cmds: &mut V
         modes_table::show(ui, scene, modes, cmds);
         ui.separator();
         points_panel::show(ui, scene, cmds);
+        ui.separator();
+        contact_panel::show(ui, scene, cmds);
     });
 }

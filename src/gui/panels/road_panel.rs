@@ -69,19 +69,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                 if *looped { "looped" } else { "not looped" }
             ));
         }
-        Road::Random {
-            class,
-            seed,
-            length_m,
-            min_wavenumber_cpm,
-            max_wavenumber_cpm,
-        } => {
-            ui.label(format!(
-                "random road, ISO 8608 class {class:?}, seed {seed}; loop {length_m} m; wavelengths {:.3} to {:.3} m (edit in the preset file)",
-                1.0 / max_wavenumber_cpm,
-                1.0 / min_wavenumber_cpm
-            ));
-        }
+        Road::Random { .. } => super::random_road::show(ui, scene, cmds),
     }
     section(ui, "Speed", Apply::Live);
     Grid::new("tirecontact.speed")
@@ -154,6 +142,13 @@ fn road_type(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                             components: vec![first],
                         },
                     )));
+                }
+                if ui
+                    .selectable_label(kind == "random", "random (ISO 8608)")
+                    .clicked()
+                    && kind != "random"
+                {
+                    cmds.push(edit(with_road(scene, super::random_road::default_road())));
                 }
                 ui.add_enabled(
                     false,

@@ -16,6 +16,9 @@ pub struct ToolbarStatus {
     pub achieved_factor: f64,
     pub view: View,
     pub exporting_csv: bool,
+    pub classroom: bool,
+    pub mode_bars: bool,
+    pub exporting_frames: bool,
 }
 
 /// The menu bar.
@@ -58,7 +61,24 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
                 }
             }
         });
+        ui.menu_button("Guided tour", |ui| {
+            for (k, (name, file, _)) in crate::gui::guided::GUIDED.iter().enumerate() {
+                if ui.button(*name).on_hover_text(*file).clicked() {
+                    cmds.push(Command::OpenGuided(k));
+                }
+            }
+        });
         ui.menu_button("Export", |ui| {
+            let frames = ui.add_enabled(
+                !st.exporting_frames,
+                egui::Button::new("Animation frames (PNG)…"),
+            );
+            if frames
+                .on_hover_text("numbered PNG frames of the scene view, for slides")
+                .clicked()
+            {
+                cmds.push(Command::ExportFramesDialog);
+            }
             if ui.button("Plots as PNG…").clicked() {
                 cmds.push(Command::ExportPngDialog);
             }
@@ -78,6 +98,21 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             if r.clicked() && st.view != v {
                 cmds.push(Command::ShowView(v));
             }
+        }
+        ui.separator();
+        if ui
+            .selectable_label(st.mode_bars, "Mode bars")
+            .on_hover_text("per-mode contributions to a point's displacement, with mute and solo")
+            .clicked()
+        {
+            cmds.push(Command::ShowModeBars(!st.mode_bars));
+        }
+        if ui
+            .selectable_label(st.classroom, "Classroom")
+            .on_hover_text("large fonts, scene and one plot, slow motion, contact phases labelled")
+            .clicked()
+        {
+            cmds.push(Command::SetClassroom(!st.classroom));
         }
     });
 }

@@ -16,6 +16,9 @@ pub struct SceneViewOptions {
     pub auto: bool,
     /// Vertical exaggeration (heights drawn this many times larger).
     pub exaggeration: f64,
+    /// Text style of the legend (classroom mode: small, so that the legend
+    /// leaves the points visible).
+    pub legend_style: egui::TextStyle,
 }
 
 impl Default for SceneViewOptions {
@@ -23,6 +26,7 @@ impl Default for SceneViewOptions {
         SceneViewOptions {
             auto: true,
             exaggeration: 20.0,
+            legend_style: egui::TextStyle::Body,
         }
     }
 }
@@ -86,6 +90,17 @@ fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
 }
 
 pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
+    show_with(ui, sim, opts, |_, _| {});
+}
+
+/// [`show`], with `extra(plot, displaced)` drawing more items over the scene
+/// (`displaced[i]` = drawn position of point `i`, exaggerated plot units).
+pub fn show_with(
+    ui: &mut Ui,
+    sim: &Simulation,
+    opts: &mut SceneViewOptions,
+    extra: impl FnOnce(&mut egui_plot::PlotUi<'_>, &[[f64; 2]]),
+) {
     let scene = sim.scene();
     let t = sim.time_s();
     let (w, _) = ramp(t, scene.ramp_s);
@@ -177,7 +192,8 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
         .legend(
             Legend::default()
                 .position(Corner::RightTop)
-                .follow_insertion_order(true),
+                .follow_insertion_order(true)
+                .text_style(opts.legend_style.clone()),
         )
         .x_axis_label("position along the contact line x (m)")
         .y_axis_label("height (mm, true scale)")
@@ -244,6 +260,7 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
                         .tip_length(8.0),
                 );
             }
+            extra(pui, &displaced);
         });
 }
 

@@ -1,0 +1,346 @@
+//! Classroom mode (issue 9): large fonts, a presenter layout (the scene large
+//! with the contact phase of every point written over it, one time plot of a
+//! chosen point below, the mode contribution bars beside), slow motion, and
+//! the guided preset's explanation shown prominently.
+
+use super::command::Command;
+use super::history::{History, Quantity};
+use super::mutes::Mutes;
+use super::views::{CONTACT_COLOR, FLIGHT_COLOR, point_color, scene_view};
+use crate::Simulation;
+use crate::phase::{ContactPhase, PhaseTracker};
+use crate::scene::Mode;
+use egui::{Color32, FontId, RichText, TextStyle, Ui};
+use egui_plot::{Bar, BarChart, Corner, Legend, Line, Plot, PlotPoint, Text};
+use std::collections::BTreeMap;
+
+/// Text sizes in classroom mode, relative to the normal ones.
+pub const FONT_SCALE: f32 = 1.7;
+/// Playback speed set when classroom mode starts (simulated s per wall s).
+pub const SLOW_MOTION: f64 = 0.05;
+/// How long an impact or release label stays up (wall-clock s at the
+/// current playback speed).
+pub const EVENT_HOLD_WALL_S: f64 = 0.6;
+/// Colour of impact / release labels.
+pub const EVENT_COLOR: Color32 = Color32::from_rgb(204, 0, 102);
+
+/// Classroom presentation state (the phases are tracked by the app).
+#[derive(Debug, Clone, Default)]
+pub struct Classroom {
+    pub on: bool,
+    /// Text styles and theme preference before classroom mode changed them.
+    saved: Option<(BTreeMap<TextStyle, FontId>, egui::ThemePreference)>,
+    /// Point of the plot and the bars.
+    pub point: usize,
+    /// What the plot shows: force or displacement.
+    pub show_force: bool,
+    /// Mode bars shown in the normal layout too.
+    pub bars: bool,
+}
+
+impl Classroom {
+    /// Scales the text styles up when `on`, back when not (idempotent).
+    pub fn sync_style(&mut self, ctx: &egui::Context) {
+        match (self.on, self.saved.is_some()) {
+            (true, false) => {
+                let theme = ctx.options(|o| o.theme_preference);
+                self.saved = Some((ctx.global_style().text_styles.clone(), theme));
+                // dark text on white reads best on a projector
+                ctx.set_theme(egui::ThemePreference::Light);
+                ctx.all_styles_mut(|s| {
+                    for f in s.text_styles.values_mut() {
+                        f.size *= FONT_SCALE;
+                    }
+                    s.spacing.interact_size.y *= 1.3;
+                });
+            }
+            (false, true) => {
+                if let Some((saved, theme)) = self.saved.take() {
+                    ctx.set_theme(theme);
+                    ctx.all_styles_mut(|s| {
+                        s.text_styles = saved.clone();
+                        s.spacing.interact_size.y /= 1.3;
+                    });
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+fn phase_color(p: ContactPhase) -> Color32 {
+    match p {
+        ContactPhase::Impact | ContactPhase::Release => EVENT_COLOR,
+        ContactPhase::InContact => CONTACT_COLOR,
+        ContactPhase::FreeFlight => FLIGHT_COLOR,
+    }
+}
+
+/// `p0: IMPACT` (events in capitals).
+pub fn phase_text(i: usize, p: ContactPhase) -> String {
+    if p.is_event() {
+        format!("p{i}: {}", p.label().to_uppercase())
+    } else {
+        format!("p{i}: {}", p.label())
+    }
+}
+
+/// The scene view with each point's phase written above it.
+pub fn scene_with_phases(
+    ui: &mut Ui,
+    sim: &Simulation,
+    opts: &mut scene_view::SceneViewOptions,
+    phases: &PhaseTracker,
+) {
+    let t = sim.time_s();
+    let heading = ui.text_style_height(&TextStyle::Heading);
+    let body = ui.text_style_height(&TextStyle::Body);
+    let normal_legend = std::mem::replace(&mut opts.legend_style, TextStyle::Small);
+    scene_view::show_with(ui, sim, opts, |pui, displaced| {
+        // Labels go below the points, in the road, clear of the legend (top
+        // right). One point: its phase, large. Several points: only impacts
+        // and releases (the points' colours and the strip above give the
+        // steady phases), in three lanes of text height below the lowest
+        // point, so that neighbours' labels never overlap.
+        let b = pui.plot_bounds();
+        let per_px = pui.transform().dvalue_dpos()[1].abs();
+        let several = displaced.len() > 1;
+        let lowest = displaced.iter().map(|d| d[1]).fold(f64::INFINITY, f64::min);
+        for (i, d) in displaced.iter().enumerate() {
+            let ph = phases.phase(i, t);
+            let (y, size) = if several {
+                if !ph.is_event() {
+                    continue;
+                }
+                let lane_px = f64::from(body * 1.1);
+                (lowest - per_px * lane_px * (0.3 + (i % 3) as f64), body)
+            } else {
+                let y = d[1] - 0.1 * (b.max()[1] - b.min()[1]);
+                (
+                    y,
+                    if ph.is_event() {
+                        heading * 1.25
+                    } else {
+                        heading
+                    },
+                )
+            };
+            let text = RichText::new(phase_text(i, ph))
+                .size(size)
+                .strong()
+                .color(phase_color(ph));
+            pui.text(Text::new("", PlotPoint::new(d[0], y), text).anchor(egui::Align2::CENTER_TOP));
+        }
+    });
+    opts.legend_style = normal_legend;
+}
+
+/// A strip of the phases of every point (also what the tests read).
+pub fn phase_strip(ui: &mut Ui, t_s: f64, phases: &PhaseTracker) {
+    ui.horizontal_wrapped(|ui| {
+        ui.label(RichText::new("contact phase:").strong());
+        for i in 0..phases.num_points().min(24) {
+            let ph = phases.phase(i, t_s);
+            ui.label(
+                RichText::new(phase_text(i, ph))
+                    .strong()
+                    .color(phase_color(ph)),
+            )
+            .on_hover_text(format!(
+                "{} impacts, {} releases so far",
+                phases.impacts(i),
+                phases.releases(i)
+            ));
+        }
+    });
+}
+
+/// Point picker shared by the plot and the bars.
+pub fn point_picker(ui: &mut Ui, cls: &mut Classroom, p: usize) {
+    if p > 1 {
+        ui.horizontal(|ui| {
+            ui.label("point");
+            for i in 0..p.min(24) {
+                ui.selectable_value(
+                    &mut cls.point,
+                    i,
+                    RichText::new(i.to_string()).color(point_color(i)),
+                );
+            }
+        });
+    }
+    cls.point = cls.point.min(p.saturating_sub(1));
+}
+
+/// One plot of the chosen point: force or displacement over the last 0.1 s.
+pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f64) {
+    ui.horizontal(|ui| {
+        ui.selectable_value(&mut cls.show_force, true, "contact force");
+        ui.selectable_value(&mut cls.show_force, false, "displacement");
+    });
+    let i = cls.point.min(history.num_points().saturating_sub(1));
+    let (what, label, scale) = if cls.show_force {
+        (Quantity::Force, "contact force q (N)", 1.0)
+    } else {
+        (Quantity::Displacement, "displacement u (mm, up)", 1e3)
+    };
+    let window = 0.1;
+    let t1 = history.last_time().unwrap_or(0.0).max(now_s).max(window);
+    let t0 = t1 - window;
+    let buckets = (ui.available_width() as usize).clamp(100, 4000);
+    let pts = history.decimated(what, i, t0, t1, buckets, scale);
+    Plot::new("tirecontact.classroom_plot")
+        .legend(Legend::default().position(Corner::LeftTop))
+        .x_axis_label("time t (s)")
+        .y_axis_label(label)
+        .allow_scroll(false)
+        .allow_drag(false)
+        .include_y(0.0)
+        .show(ui, |pui| {
+            pui.set_plot_bounds_x(t0..=t1);
+            pui.line(
+                Line::new(format!("point {i}"), pts)
+                    .color(point_color(i))
+                    .width(2.5),
+            );
+        });
+}
+
+/// Per-mode contribution bars of the chosen point, with mute and solo.
+pub fn mode_bars(
+    ui: &mut Ui,
+    sim: &Simulation,
+    modes: &[Mode],
+    mutes: Option<&Mutes>,
+    cls: &mut Classroom,
+    cmds: &mut Vec<Command>,
+) {
+    ui.label(RichText::new("Mode contributions").strong());
+    point_picker(ui, cls, sim.num_points());
+    let i = cls.point;
+    let mut c = vec![0.0; sim.num_modes()];
+    let n = c.len();
+    sim.mode_displacement_m(i, &mut c);
+    let u = sim.displacement_m().get(i).copied().unwrap_or(0.0);
+    ui.label(format!(
+        "point {i}: u = {:+.3} mm = sum of the bars",
+        u * 1e3
+    ));
+    let muted = |k: usize| mutes.is_some_and(|m| m.muted.get(k).copied().unwrap_or(false));
+    let bars: Vec<Bar> = c
+        .iter()
+        .enumerate()
+        .map(|(k, v)| {
+            let color = if muted(k) {
+                Color32::GRAY
+            } else {
+                point_color(k + 1)
+            };
+            Bar::new(k as f64, v * 1e3)
+                .width(0.7)
+                .fill(color)
+                .name(format!("mode {k}"))
+        })
+        .collect();
+    let labels: Vec<String> = modes
+        .iter()
+        .enumerate()
+        .map(|(k, m)| format!("{k}: {:.0} Hz", m.freq_hz))
+        .collect();
+    let ymax = c.iter().fold(1e-3f64, |a, v| a.max(v.abs() * 1e3)) * 1.1;
+    let row = ui.spacing().interact_size.y + ui.spacing().item_spacing.y;
+    let h = (ui.available_height() - row * (n as f32 + 1.2)).max(150.0);
+    Plot::new("tirecontact.mode_bars")
+        .height(h)
+        .legend(Legend::default().position(Corner::RightBottom))
+        .x_axis_label("mode")
+        .y_axis_label("part of u (mm)")
+        .x_axis_formatter(move |m, _| {
+            let k = m.value.round();
+            if (m.value - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < labels.len() {
+                labels[k as usize].clone()
+            } else {
+                String::new()
+            }
+        })
+        .include_x(-0.6)
+        .include_x(n as f64 - 0.4)
+        .include_y(-ymax)
+        .include_y(ymax)
+        .y_grid_spacer(|g| {
+            // about three labelled marks at 1-2-5 steps (mm): large text
+            // needs room between labels
+            let (a, b) = g.bounds;
+            let step = scene_view::round_125((b - a) / 3.0);
+            let mut out = Vec::new();
+            let mut k = (a / step).ceil();
+            while k * step <= b && out.len() < 50 {
+                out.push(egui_plot::GridMark {
+                    value: k * step,
+                    step_size: step,
+                });
+                k += 1.0;
+            }
+            out
+        })
+        .y_axis_formatter(|m, _| crate::gui::fields::format_number(m.value))
+        .allow_scroll(false)
+        .allow_drag(false)
+        .allow_zoom(false)
+        .show(ui, |pui| {
+            pui.bar_chart(BarChart::new("now (mm)", bars).color(point_color(1)));
+        });
+    egui::Grid::new("tirecontact.mode_mutes")
+        .striped(true)
+        .num_columns(4)
+        .show(ui, |ui| {
+            for (k, v) in c.iter().enumerate() {
+                let f = modes.get(k).map_or(0.0, |m| m.freq_hz);
+                ui.label(format!("{k}: {f:.0} Hz"));
+                if muted(k) {
+                    ui.label(RichText::new("muted").color(Color32::GRAY).strong());
+                } else {
+                    ui.label(format!("{:+.3} mm", v * 1e3));
+                }
+                let m = ui
+                    .selectable_label(muted(k), "Mute")
+                    .on_hover_text("remove this mode's contribution (residue × 0); restarts the run; click again to bring it back");
+                if m.clicked() {
+                    cmds.push(Command::ToggleMute(k));
+                }
+                let soloed = mutes.is_some_and(|ms| {
+                    ms.muted.iter().enumerate().all(|(j, x)| *x == (j != k))
+                });
+                let s = ui
+                    .selectable_label(soloed, "Solo")
+                    .on_hover_text("mute every other mode; click again to bring them back");
+                if s.clicked() {
+                    cmds.push(Command::SoloMode(k));
+                }
+                ui.end_row();
+            }
+        });
+    if mutes.is_some() && ui.button("Un-mute all").clicked() {
+        cmds.push(Command::UnmuteAll);
+    }
+}
+
+/// The explanation of the scene, large (the guided presets' "what to watch").
+pub fn explanation(ui: &mut Ui, name: &str, description: &str) {
+    if description.is_empty() {
+        return;
+    }
+    egui::Frame::new()
+        .fill(ui.visuals().faint_bg_color)
+        .stroke(ui.visuals().widgets.noninteractive.bg_stroke)
+        .inner_margin(8.0)
+        .corner_radius(4.0)
+        .show(ui, |ui| {
+            ui.label(RichText::new(name).strong().heading());
+            egui::ScrollArea::vertical()
+                .max_height(ui.available_height() * 0.25)
+                .show(ui, |ui| {
+                    ui.label(RichText::new(description).color(ui.visuals().strong_text_color()));
+                });
+        });
+}

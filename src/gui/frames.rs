@@ -1,0 +1,224 @@
+//! Animation export from the GUI: a settings dialog, and the export running on
+//! its own thread (`output::animation`) with a progress bar and Cancel. The
+//! run is replayed from t = 0 with its live edits, as for the CSV export.
+
+use super::command::Command;
+use super::export::LiveEdit;
+use crate::Scene;
+use crate::Simulation;
+use crate::output::animation::{FrameSettings, export_frames};
+use egui::{Context, RichText};
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc::{Receiver, TryRecvError, channel};
+
+/// The dialog's editable settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FramesDialog {
+    pub settings: FrameSettings,
+    pub dir: String,
+}
+
+impl FramesDialog {
+    /// Defaults for a scene: its whole duration at 25 fps, 20x slow motion,
+    /// 1280x720 px, into `frames/` beside the working directory.
+    pub fn for_scene(scene: &Scene, now_s: f64) -> Self {
+        let t1 = scene
+            .duration_s
+            .min(now_s.max(scene.ramp_s + 0.05))
+            .max(1e-3);
+        FramesDialog {
+            settings: FrameSettings {
+                t0_s: 0.0,
+                t1_s: t1.min(scene.duration_s),
+                fps: 25.0,
+                slow_motion: 20.0,
+                width: 1280,
+                height: 720,
+            },
+            dir: "frames".to_string(),
+        }
+    }
+}
+
+/// A frames export running on its own thread.
+pub struct FramesJob {
+    pub dir: PathBuf,
+    pub total: u64,
+    progress: Arc<AtomicU64>,
+    cancel: Arc<AtomicBool>,
+    rx: Receiver<Result<u64, String>>,
+}
+
+impl FramesJob {
+    pub fn spawn(
+        dir: PathBuf,
+        settings: FrameSettings,
+        start: Scene,
+        edits: Vec<LiveEdit>,
+    ) -> Result<Self, String> {
+        settings.check(start.duration_s)?;
+        let sim = Simulation::new(&start).map_err(|e| e.to_string())?;
+        let (tx, rx) = channel();
+        let progress = Arc::new(AtomicU64::new(0));
+        let cancel = Arc::new(AtomicBool::new(false));
+        let (p, c, d) = (progress.clone(), cancel.clone(), dir.clone());
+        std::thread::spawn(move || {
+            let mut next = 0;
+            let replay = |sim: &mut Simulation, k: u64| -> Result<(), String> {
+                while next < edits.len() && edits[next].step <= k {
+                    sim.set_road(&edits[next].road).map_err(|e| e.to_string())?;
+                    sim.set_speed(edits[next].speed_mps);
+                    next += 1;
+                }
+                Ok(())
+            };
+            // the receiver may be gone if the app closed; nothing to do then
+            let _ = tx.send(export_frames(sim, replay, &d, &settings, &p, &c));
+        });
+        Ok(FramesJob {
+            dir,
+            total: settings.frame_count(),
+            progress,
+            cancel,
+            rx,
+        })
+    }
+
+    /// Frames written so far.
+    pub fn done(&self) -> u64 {
+        self.progress.load(Ordering::Relaxed)
+    }
+
+    /// Asks the thread to stop after the current frame.
+    pub fn cancel(&self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+
+    /// The result, once the thread has finished.
+    pub fn poll(&self) -> Option<Result<u64, String>> {
+        match self.rx.try_recv() {
+            Ok(r) => Some(r),
+            Err(TryRecvError::Empty) => None,
+            Err(TryRecvError::Disconnected) => Some(Err(
+                "the frames export thread stopped unexpectedly".to_string(),
+            )),
+        }
+    }
+
+    /// Blocks until the export ends (tests).
+    pub fn wait(self) -> Result<u64, String> {
+        self.rx
+            .recv()
+            .unwrap_or_else(|_| Err("the frames export thread stopped unexpectedly".to_string()))
+    }
+}
+
+/// The settings window; Export pushes `Command::ExportFrames`.
+pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<Command>) {
+    let Some(d) = dialog else { return };
+    let mut open = true;
+    egui::Window::new("Export animation frames")
+        .collapsible(false)
+        .open(&mut open)
+        .show(ctx, |ui| {
+            let s = &mut d.settings;
+            egui::Grid::new("tirecontact.frames")
+                .num_columns(2)
+                .show(ui, |ui| {
+                    ui.label("from t0");
+                    ui.add(
+                        egui::DragValue::new(&mut s.t0_s)
+                            .speed(0.001)
+                            .range(0.0..=1e6)
+                            .suffix(" s"),
+                    );
+                    ui.end_row();
+                    ui.label("to t1");
+                    ui.add(
+                        egui::DragValue::new(&mut s.t1_s)
+                            .speed(0.001)
+                            .range(0.0..=1e6)
+                            .suffix(" s"),
+                    );
+                    ui.end_row();
+                    ui.label("frame rate");
+                    ui.add(
+                        egui::DragValue::new(&mut s.fps)
+                            .speed(1.0)
+                            .range(1.0..=240.0)
+                            .suffix(" fps"),
+                    );
+                    ui.end_row();
+                    ui.label("slow motion");
+                    ui.add(
+                        egui::DragValue::new(&mut s.slow_motion)
+                            .speed(1.0)
+                            .range(0.01..=1e5)
+                            .suffix(" video s per simulated s"),
+                    );
+                    ui.end_row();
+                    ui.label("size");
+                    ui.horizontal(|ui| {
+                        ui.add(
+                            egui::DragValue::new(&mut s.width)
+                                .range(200..=4000)
+                                .suffix(" px"),
+                        );
+                        ui.label("×");
+                        ui.add(
+                            egui::DragValue::new(&mut s.height)
+                                .range(200..=4000)
+                                .suffix(" px"),
+                        );
+                    });
+                    ui.end_row();
+                    ui.label("folder");
+                    ui.horizontal(|ui| {
+                        ui.add(egui::TextEdit::singleline(&mut d.dir).desired_width(220.0))
+                            .accessible_name("frames folder");
+                        if ui.button("Choose…").clicked()
+                            && let Some(p) = rfd::FileDialog::new().pick_folder()
+                        {
+                            d.dir = p.display().to_string();
+                        }
+                    });
+                    ui.end_row();
+                });
+            let n = d.settings.frame_count();
+            ui.label(format!(
+                "{n} frames = {:.2} s of video showing {:.4} s of the run (frame_00000.png …)",
+                n as f64 / d.settings.fps.max(1e-9),
+                d.settings.t1_s - d.settings.t0_s
+            ));
+            if ui.button(RichText::new("Export").strong()).clicked() {
+                cmds.push(Command::ExportFrames {
+                    dir: PathBuf::from(d.dir.trim()),
+                    settings: d.settings,
+                });
+            }
+        });
+    if !open {
+        *dialog = None;
+    }
+}
+
+/// The progress window of a running export, with Cancel.
+pub fn progress(ctx: &Context, job: Option<&FramesJob>, cmds: &mut Vec<Command>) {
+    let Some(job) = job else { return };
+    egui::Window::new("Exporting frames")
+        .collapsible(false)
+        .show(ctx, |ui| {
+            let done = job.done();
+            ui.label(format!(
+                "{done} of {} frames into {}",
+                job.total,
+                job.dir.display()
+            ));
+            ui.add(egui::ProgressBar::new(done as f32 / job.total.max(1) as f32).show_percentage());
+            if ui.button("Cancel").clicked() {
+                cmds.push(Command::CancelFrames);
+            }
+        });
+}

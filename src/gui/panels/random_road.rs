@@ -1,0 +1,165 @@
+//! Random road (ISO 8608 class A–H, seed, loop length, band of spatial
+//! frequencies). Applied live: a new class or seed regenerates the profile
+//! under the running simulation.
+
+use super::push_edit;
+use crate::Scene;
+use crate::gui::command::Command;
+use crate::gui::fields::{Apply, NumField};
+use crate::road::{Road, RoadClass};
+use egui::{Grid, Ui};
+
+pub const CLASSES: [(RoadClass, &str); 8] = [
+    (RoadClass::A, "A (very good)"),
+    (RoadClass::B, "B (good)"),
+    (RoadClass::C, "C (average)"),
+    (RoadClass::D, "D (poor)"),
+    (RoadClass::E, "E (very poor)"),
+    (RoadClass::F, "F"),
+    (RoadClass::G, "G"),
+    (RoadClass::H, "H (roughest)"),
+];
+
+/// The road offered when switching to "random".
+pub fn default_road() -> Road {
+    Road::Random {
+        class: RoadClass::C,
+        seed: 1,
+        length_m: 100.0,
+        min_wavenumber_cpm: 1.0,
+        max_wavenumber_cpm: 20.0,
+    }
+}
+
+fn class_name(c: RoadClass) -> &'static str {
+    CLASSES
+        .iter()
+        .find(|(k, _)| *k == c)
+        .map_or("?", |(_, n)| n)
+}
+
+pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
+    let Road::Random {
+        class,
+        seed,
+        length_m,
+        min_wavenumber_cpm,
+        max_wavenumber_cpm,
+    } = scene.road.clone()
+    else {
+        return;
+    };
+    let with = |f: &dyn Fn(&mut Road)| {
+        let mut s = scene.clone();
+        f(&mut s.road);
+        s
+    };
+    Grid::new("tirecontact.random_road")
+        .num_columns(2)
+        .show(ui, |ui| {
+            ui.label("ISO 8608 class");
+            let mut chosen = class;
+            egui::ComboBox::from_id_salt("tirecontact.road_class")
+                .selected_text(class_name(class))
+                .show_ui(ui, |ui| {
+                    for (c, name) in CLASSES {
+                        ui.selectable_value(&mut chosen, c, name);
+                    }
+                })
+                .response
+                .accessible_name("road class")
+                .on_hover_text(
+                    "displacement PSD Gd(0.1 cycles/m) = 16e-6 × 4^k m³, k = 0 for A … 7 for H",
+                );
+            if chosen != class {
+                cmds.push(Command::EditScene(Box::new(with(&|r| {
+                    if let Road::Random { class, .. } = r {
+                        *class = chosen;
+                    }
+                }))));
+            }
+            ui.end_row();
+            ui.label("seed");
+            ui.horizontal(|ui| {
+                let mut s = seed;
+                ui.add(egui::DragValue::new(&mut s).speed(1.0))
+                    .accessible_name("road seed")
+                    .on_hover_text("phases of the road: the same seed gives the same road");
+                if ui.small_button("new road").clicked() {
+                    s = seed.wrapping_add(1);
+                }
+                if s != seed {
+                    cmds.push(Command::EditScene(Box::new(with(&|r| {
+                        if let Road::Random { seed, .. } = r {
+                            *seed = s;
+                        }
+                    }))));
+                }
+            });
+            ui.end_row();
+            ui.label("loop length L");
+            push_edit(
+                cmds,
+                NumField::new("road.length_m", length_m, "m", Apply::Live).show(ui, |v| {
+                    with(&|r| {
+                        if let Road::Random { length_m, .. } = r {
+                            *length_m = v;
+                        }
+                    })
+                }),
+            );
+            ui.end_row();
+            ui.label("lowest n");
+            push_edit(
+                cmds,
+                NumField::new(
+                    "road.min_wavenumber_cpm",
+                    min_wavenumber_cpm,
+                    "cycles/m",
+                    Apply::Live,
+                )
+                .show(ui, |v| {
+                    with(&|r| {
+                        if let Road::Random {
+                            min_wavenumber_cpm, ..
+                        } = r
+                        {
+                            *min_wavenumber_cpm = v;
+                        }
+                    })
+                }),
+            );
+            ui.end_row();
+            ui.label("highest n");
+            push_edit(
+                cmds,
+                NumField::new(
+                    "road.max_wavenumber_cpm",
+                    max_wavenumber_cpm,
+                    "cycles/m",
+                    Apply::Live,
+                )
+                .show(ui, |v| {
+                    with(&|r| {
+                        if let Road::Random {
+                            max_wavenumber_cpm, ..
+                        } = r
+                        {
+                            *max_wavenumber_cpm = v;
+                        }
+                    })
+                }),
+            );
+            ui.end_row();
+        });
+    ui.label(
+        egui::RichText::new(format!(
+            "wavelengths {:.3} m to {:.3} m; excitation {:.1} Hz to {:.1} Hz at V",
+            1.0 / max_wavenumber_cpm,
+            1.0 / min_wavenumber_cpm,
+            scene.speed_mps * min_wavenumber_cpm,
+            scene.speed_mps * max_wavenumber_cpm
+        ))
+        .weak(),
+    );
+}

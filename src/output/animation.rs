@@ -1,0 +1,412 @@
+//! Animation frames of the scene view for slides (issue 9): numbered PNGs
+//! `frame_00000.png`, … of the road moving under the contact line and the
+//! displaced points coloured by contact state, with the contact phase of each
+//! point written above it. Drawn headlessly with plotters (no GPU, no egui),
+//! by re-running the scene from t = 0: the frames hold exactly the run.
+//!
+//! Frame `k` shows simulated time `t0 + k / (fps × slow_motion)`: with
+//! `slow_motion = 20`, one second of video shows 50 ms of the run. There are
+//! `round((t1 - t0) × slow_motion × fps)` frames.
+
+use super::figures::register_fonts;
+use crate::Simulation;
+use crate::phase::{ContactPhase, PhaseTracker};
+use crate::road::ramp;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+
+/// Most frames one export may write.
+pub const MAX_FRAMES: u64 = 100_000;
+
+/// What to export.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameSettings {
+    /// First frame's simulated time (s).
+    pub t0_s: f64,
+    /// End of the interval (s), exclusive.
+    pub t1_s: f64,
+    /// Frames per second of the video (Hz).
+    pub fps: f64,
+    /// Video seconds per simulated second (1 = real time, 20 = 0.05x).
+    pub slow_motion: f64,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl FrameSettings {
+    /// Number of frames: `round((t1 - t0) × slow_motion × fps)`.
+    pub fn frame_count(&self) -> u64 {
+        let n = ((self.t1_s - self.t0_s) * self.slow_motion * self.fps).round();
+        if n.is_finite() && n > 0.0 {
+            n as u64
+        } else {
+            0
+        }
+    }
+
+    /// Simulated time between frames (s).
+    pub fn frame_dt_s(&self) -> f64 {
+        1.0 / (self.fps * self.slow_motion)
+    }
+
+    /// Simulated time of frame `k` (s).
+    pub fn frame_time_s(&self, k: u64) -> f64 {
+        self.t0_s + k as f64 * self.frame_dt_s()
+    }
+
+    /// Refuses settings that cannot be exported, naming field, value and expectation.
+    pub fn check(&self, duration_s: f64) -> Result<(), String> {
+        let bad = |f: &str, v: f64, e: &str| Err(format!("{f} = {v}: expected {e}"));
+        if !(self.fps.is_finite() && self.fps > 0.0 && self.fps <= 240.0) {
+            return bad("fps", self.fps, "a frame rate in (0, 240] Hz");
+        }
+        if !(self.slow_motion.is_finite() && self.slow_motion > 0.0 && self.slow_motion <= 1e6) {
+            return bad(
+                "slow_motion",
+                self.slow_motion,
+                "video seconds per simulated second in (0, 1e6]",
+            );
+        }
+        if !(self.t0_s.is_finite() && self.t0_s >= 0.0) {
+            return bad("t0_s", self.t0_s, "a start time >= 0 s");
+        }
+        if !(self.t1_s.is_finite() && self.t1_s > self.t0_s && self.t1_s <= duration_s + 1e-12) {
+            return bad(
+                "t1_s",
+                self.t1_s,
+                &format!(
+                    "an end time after t0 = {} s and at most the scene's duration {duration_s} s",
+                    self.t0_s
+                ),
+            );
+        }
+        for (f, v) in [("width", self.width), ("height", self.height)] {
+            if !(200..=4000).contains(&v) {
+                return bad(f, f64::from(v), "200..=4000 px");
+            }
+        }
+        let n = self.frame_count();
+        if n == 0 || n > MAX_FRAMES {
+            return Err(format!(
+                "(t1 - t0) × slow_motion × fps = {n} frames: expected 1..={MAX_FRAMES}"
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Path of frame `k` in `dir`.
+pub fn frame_path(dir: &Path, k: u64) -> PathBuf {
+    dir.join(format!("frame_{k:05}.png"))
+}
+
+/// Fixed drawing ranges of a scene for every frame: x (m) and height (mm).
+struct Extents {
+    x0: f64,
+    x1: f64,
+    y_mm: f64,
+}
+
+fn extents(sim: &Simulation) -> Extents {
+    let scene = sim.scene();
+    let lo = scene
+        .points
+        .iter()
+        .map(|p| p.x_m)
+        .fold(f64::INFINITY, f64::min);
+    let hi = scene
+        .points
+        .iter()
+        .map(|p| p.x_m)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let lambda = match &scene.road {
+        crate::road::Road::Sine { wavelength_m, .. } => *wavelength_m,
+        crate::road::Road::Harmonics { components } => components
+            .iter()
+            .map(|c| c.wavelength_m)
+            .fold(0.0, f64::max),
+        crate::road::Road::Measured { .. } => 0.5,
+        crate::road::Road::Random {
+            min_wavenumber_cpm, ..
+        } => 1.0 / min_wavenumber_cpm,
+    };
+    let margin = (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05);
+    let hmax = scene
+        .points
+        .iter()
+        .map(|p| p.h_m.abs())
+        .fold(sim.road_profile().scale_m(), f64::max)
+        .max(1e-6);
+    Extents {
+        x0: lo - margin,
+        x1: hi + margin,
+        y_mm: 2.5 * hmax * 1e3,
+    }
+}
+
+const ROAD: RGBColor = RGBColor(140, 86, 75);
+const CONTACT: RGBColor = RGBColor(0, 158, 115);
+const FLIGHT: RGBColor = RGBColor(213, 94, 0);
+const EVENT: RGBColor = RGBColor(204, 0, 102);
+
+/// Draws the current state of `sim` as one PNG at `path`.
+fn draw_frame(
+    sim: &Simulation,
+    phases: &PhaseTracker,
+    ext: &Extents,
+    path: &Path,
+    width: u32,
+    height: u32,
+) -> Result<(), String> {
+    register_fonts();
+    let err = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let scene = sim.scene();
+    let t = sim.time_s();
+    let (w, _) = ramp(t, scene.ramp_s);
+    let scale = (f64::from(height.min(width)) / 720.0).clamp(0.5, 4.0);
+    let fs = |s: f64| (s * scale).round() as i32;
+    let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let caption = format!(
+        "{} — t = {:.4} s, V = {:.1} km/h",
+        scene.name,
+        t,
+        scene.speed_mps * 3.6
+    );
+    let mut chart = ChartBuilder::on(&root)
+        .caption(caption, ("sans-serif", fs(26.0)))
+        .margin(fs(12.0))
+        .x_label_area_size(fs(55.0))
+        .y_label_area_size(fs(80.0))
+        .build_cartesian_2d(ext.x0..ext.x1, -ext.y_mm..ext.y_mm)
+        .map_err(|e| err(&e))?;
+    chart
+        .configure_mesh()
+        .x_desc("position along the contact line x (m)")
+        .y_desc("height (mm)")
+        .label_style(("sans-serif", fs(18.0)))
+        .axis_desc_style(("sans-serif", fs(20.0)))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()
+        .map_err(|e| err(&e))?;
+    // road in the tyre's frame, as in the scene view
+    let mut sorted: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, p.h_m)).collect();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let h_at = |x: f64| -> f64 {
+        match sorted.iter().position(|p| p.0 >= x) {
+            None => sorted.last().map_or(0.0, |p| p.1),
+            Some(0) => sorted[0].1,
+            Some(k) => {
+                let (a, b) = (sorted[k - 1], sorted[k]);
+                a.1 + (b.1 - a.1) * (x - a.0) / (b.0 - a.0)
+            }
+        }
+    };
+    let n = 600;
+    let road: Vec<(f64, f64)> = (0..=n)
+        .filter_map(|k| {
+            let x = ext.x0 + (ext.x1 - ext.x0) * k as f64 / n as f64;
+            let z = sim.road_profile().sample(x + sim.rolled_m()).ok()?.0;
+            Some((x, 1e3 * (w * z + (1.0 - w) * h_at(x))))
+        })
+        .collect();
+    let floor = -ext.y_mm;
+    chart
+        .draw_series(std::iter::once(Polygon::new(
+            road.iter()
+                .copied()
+                .chain([(ext.x1, floor), (ext.x0, floor)])
+                .collect::<Vec<_>>(),
+            ROAD.mix(0.25).filled(),
+        )))
+        .map_err(|e| err(&e))?;
+    chart
+        .draw_series(LineSeries::new(road, ROAD.stroke_width(fs(3.0) as u32)))
+        .map_err(|e| err(&e))?
+        .label("road (moving left)")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], ROAD.stroke_width(3)));
+    let und: Vec<(f64, f64)> = sorted.iter().map(|&(x, h)| (x, 1e3 * h)).collect();
+    chart
+        .draw_series(LineSeries::new(und, BLACK.mix(0.4).stroke_width(1)))
+        .map_err(|e| err(&e))?
+        .label("undeformed tyre")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.4)));
+    let u = sim.displacement_m();
+    let mut disp: Vec<(f64, f64, usize)> = scene
+        .points
+        .iter()
+        .zip(u)
+        .enumerate()
+        .map(|(i, (p, u))| (p.x_m, 1e3 * (p.h_m + u), i))
+        .collect();
+    disp.sort_by(|a, b| a.0.total_cmp(&b.0));
+    chart
+        .draw_series(LineSeries::new(
+            disp.iter().map(|d| (d.0, d.1)),
+            RGBColor(60, 60, 60).stroke_width(fs(2.0) as u32),
+        ))
+        .map_err(|e| err(&e))?
+        .label("tyre (displaced)")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(60, 60, 60)));
+    let contact = sim.in_contact();
+    let r = fs(9.0);
+    for (on, name, color) in [(true, "in contact", CONTACT), (false, "in flight", FLIGHT)] {
+        chart
+            .draw_series(
+                disp.iter()
+                    .filter(|d| contact.get(d.2).copied().unwrap_or(false) == on)
+                    .map(|d| Circle::new((d.0, d.1), r, color.filled())),
+            )
+            .map_err(|e| err(&e))?
+            .label(name)
+            .legend(move |(x, y)| Circle::new((x + 10, y), 6, color.filled()));
+    }
+    // phase labels above the points
+    for d in &disp {
+        let ph = phases.phase(d.2, t);
+        let color = match ph {
+            ContactPhase::Impact | ContactPhase::Release => EVENT,
+            ContactPhase::InContact => CONTACT,
+            ContactPhase::FreeFlight => FLIGHT,
+        };
+        let text = if ph.is_event() {
+            ph.label().to_uppercase()
+        } else {
+            ph.label().to_string()
+        };
+        let style = ("sans-serif", fs(if ph.is_event() { 26.0 } else { 20.0 }))
+            .into_font()
+            .color(&color)
+            .pos(plotters::style::text_anchor::Pos::new(
+                plotters::style::text_anchor::HPos::Center,
+                plotters::style::text_anchor::VPos::Bottom,
+            ));
+        let y = d.1 + 0.22 * ext.y_mm;
+        chart
+            .draw_series(std::iter::once(Text::new(
+                format!("p{}: {text}", d.2),
+                (d.0, y),
+                style,
+            )))
+            .map_err(|e| err(&e))?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .label_font(("sans-serif", fs(18.0)))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.3))
+        .draw()
+        .map_err(|e| err(&e))?;
+    root.present().map_err(|e| err(&e))?;
+    Ok(())
+}
+
+/// Runs `sim` (fresh, at t = 0) and writes the frames of `settings` into
+/// `dir`. `before_step(sim, k)` runs before solver step `k` (replays live
+/// edits). `progress` counts frames written; setting `cancel` stops the
+/// export after the current frame. Returns the number of frames written.
+pub fn export_frames(
+    mut sim: Simulation,
+    mut before_step: impl FnMut(&mut Simulation, u64) -> Result<(), String>,
+    dir: &Path,
+    settings: &FrameSettings,
+    progress: &AtomicU64,
+    cancel: &AtomicBool,
+) -> Result<u64, String> {
+    settings.check(sim.scene().duration_s)?;
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let ext = extents(&sim);
+    let n = settings.frame_count();
+    let dt = sim.dt_s();
+    let mut phases = PhaseTracker::new(sim.num_points(), settings.frame_dt_s().max(dt));
+    for k in 0..n {
+        if cancel.load(Ordering::Relaxed) {
+            return Err(format!("cancelled after {k} of {n} frames"));
+        }
+        let t = settings.frame_time_s(k);
+        while sim.time_s() < t - 0.5 * dt && !sim.finished() {
+            let step = sim.steps();
+            before_step(&mut sim, step)?;
+            sim.step().map_err(|e| e.to_string())?;
+            phases.after_step(sim.time_s(), sim.in_contact(), sim.force_n());
+        }
+        draw_frame(
+            &sim,
+            &phases,
+            &ext,
+            &frame_path(dir, k),
+            settings.width,
+            settings.height,
+        )?;
+        progress.store(k + 1, Ordering::Relaxed);
+    }
+    Ok(n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scene;
+
+    fn settings() -> FrameSettings {
+        FrameSettings {
+            t0_s: 0.0,
+            t1_s: 0.1,
+            fps: 25.0,
+            slow_motion: 2.0,
+            width: 320,
+            height: 240,
+        }
+    }
+
+    #[test]
+    fn frame_count_is_interval_times_rate() {
+        assert_eq!(settings().frame_count(), 5);
+        let s = FrameSettings {
+            slow_motion: 20.0,
+            ..settings()
+        };
+        assert_eq!(s.frame_count(), 50);
+        assert!((s.frame_time_s(10) - 0.02).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bad_settings_name_field_value_and_expectation() {
+        let e = FrameSettings {
+            fps: 0.0,
+            ..settings()
+        }
+        .check(1.0)
+        .unwrap_err();
+        assert!(e.contains("fps = 0") && e.contains("expected"), "{e}");
+        let e = FrameSettings {
+            t1_s: 2.0,
+            ..settings()
+        }
+        .check(1.0)
+        .unwrap_err();
+        assert!(e.contains("t1_s = 2") && e.contains("duration"), "{e}");
+        let e = FrameSettings {
+            width: 10,
+            ..settings()
+        }
+        .check(1.0)
+        .unwrap_err();
+        assert!(e.contains("width = 10"), "{e}");
+    }
+
+    #[test]
+    fn cancel_stops_before_writing() {
+        let scene = Scene::parse(include_str!("../../presets/single_mode.ron"), "s").unwrap();
+        let sim = Simulation::new(&scene).unwrap();
+        let dir = std::env::temp_dir().join(format!("tc-anim-cancel-{}", std::process::id()));
+        let cancel = AtomicBool::new(true);
+        let progress = AtomicU64::new(0);
+        let r = export_frames(sim, |_, _| Ok(()), &dir, &settings(), &progress, &cancel);
+        assert!(r.unwrap_err().contains("cancelled after 0 of 5"));
+        assert!(!frame_path(&dir, 0).exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
