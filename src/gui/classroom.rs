@@ -116,7 +116,14 @@ pub fn scene_with_phases(
                 (lowest - per_px * lane_px * (0.3 + (i % 3) as f64), body)
             } else {
                 let y = d[1] - 0.1 * (b.max()[1] - b.min()[1]);
-                (y, if ph.is_event() { heading * 1.25 } else { heading })
+                (
+                    y,
+                    if ph.is_event() {
+                        heading * 1.25
+                    } else {
+                        heading
+                    },
+                )
             };
             let text = RichText::new(phase_text(i, ph))
                 .size(size)
