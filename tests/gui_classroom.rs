@@ -73,6 +73,15 @@ fn classroom_toggle_scales_fonts_and_switches_to_the_presenter_layout() {
     assert!(!h.state().classroom());
     assert_eq!(body_size(&h), normal);
     assert!(h.query_by_label("road type").is_some());
+
+    // choosing another view leaves classroom mode
+    h.state_mut().apply(Command::SetClassroom(true));
+    h.run();
+    h.get_by_label("Time plots").click();
+    h.run();
+    h.run();
+    assert!(!h.state().classroom());
+    assert_eq!(body_size(&h), normal);
 }
 
 #[test]
@@ -324,4 +333,35 @@ fn every_guided_preset_opens_from_the_menu() {
         assert!(!m.error, "{file}: {m:?}");
         assert!(!h.state().scene().description.is_empty());
     }
+}
+
+#[test]
+fn muting_a_ring_tyre_mode_uses_its_identified_modes_and_unmuting_gives_the_ring_back() {
+    let mut h = harness(app_on("paper.ron"), [1280.0, 720.0]);
+    h.state_mut().apply(Command::ShowModeBars(true));
+    h.run();
+    assert!(matches!(h.state().scene().tyre, Tyre::Ring { .. }));
+    let n = h.state().modes().len();
+    assert!(n > 5, "{n} identified modes");
+    let identified = h.state().modes().to_vec();
+    h.state_mut().apply(Command::ToggleMute(n - 1));
+    h.run();
+    let m = h.state().message();
+    assert!(m.is_none_or(|m| !m.error), "{m:?}");
+    let Tyre::Modal { modes } = &h.state().scene().tyre else {
+        panic!("muting turns the ring into its identified modes")
+    };
+    assert_eq!(modes.len(), n);
+    assert_eq!(modes[0], identified[0]);
+    assert!(
+        modes[n - 1]
+            .residue_matrix()
+            .iter()
+            .flatten()
+            .all(|a| *a == 0.0)
+    );
+    h.state_mut().apply(Command::UnmuteAll);
+    h.run();
+    assert!(matches!(h.state().scene().tyre, Tyre::Ring { .. }));
+    assert!(h.state().mutes().is_none());
 }

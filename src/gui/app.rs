@@ -375,7 +375,11 @@ impl App {
                 }
             }
             Command::DismissMessage => self.message = None,
-            Command::ShowView(v) => self.view = v,
+            Command::ShowView(v) => {
+                // the presenter layout has one view; another one leaves it
+                self.classroom.on = false;
+                self.view = v;
+            }
             Command::SetClassroom(on) => {
                 self.classroom.on = on;
                 if on {

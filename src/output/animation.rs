@@ -262,7 +262,12 @@ fn draw_frame(
             .label(name)
             .legend(move |(x, y)| Circle::new((x + 10, y), 6, color.filled()));
     }
-    // phase labels above the points
+    // phase labels above the highest point, in lanes of text height by
+    // point index (i % 3), so that close neighbours' labels do not overlap
+    let top = disp.iter().map(|d| d.1).fold(f64::NEG_INFINITY, f64::max);
+    let plot_px = (f64::from(height) - f64::from(fs(26.0 + 55.0 + 24.0))).max(50.0);
+    let lane = 2.0 * ext.y_mm * f64::from(fs(30.0)) / plot_px;
+    let several = disp.len() > 1;
     for d in &disp {
         let ph = phases.phase(d.2, t);
         let color = match ph {
@@ -275,14 +280,22 @@ fn draw_frame(
         } else {
             ph.label().to_string()
         };
-        let style = ("sans-serif", fs(if ph.is_event() { 26.0 } else { 20.0 }))
-            .into_font()
-            .color(&color)
-            .pos(plotters::style::text_anchor::Pos::new(
+        let size = match (several, ph.is_event()) {
+            (true, _) => 22.0,
+            (false, true) => 26.0,
+            (false, false) => 20.0,
+        };
+        let style = ("sans-serif", fs(size)).into_font().color(&color).pos(
+            plotters::style::text_anchor::Pos::new(
                 plotters::style::text_anchor::HPos::Center,
                 plotters::style::text_anchor::VPos::Bottom,
-            ));
-        let y = d.1 + 0.22 * ext.y_mm;
+            ),
+        );
+        let y = if several {
+            top + lane * (0.5 + (d.2 % 3) as f64)
+        } else {
+            d.1 + 0.22 * ext.y_mm
+        };
         chart
             .draw_series(std::iter::once(Text::new(
                 format!("p{}: {text}", d.2),
