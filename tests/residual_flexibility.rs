@@ -2,43 +2,9 @@
 //! `f_c` replaced by their static compliance `Σ A_k / ω_k²`.
 
 use std::f64::consts::TAU;
-use tirecontact::bench::scenes::many_points;
-use tirecontact::road::Road;
 use tirecontact::{Scene, Simulation, SolverOptions};
 
-/// Three points on twelve rank-1 modes (40 Hz to 527 Hz), each preloaded so
-/// that the static force is `force_n` at every point, on a sine road of
-/// `amplitude_m`, 0.2 m long, at `speed_mps`.
-fn scene(
-    xi: f64,
-    force_n: f64,
-    amplitude_m: f64,
-    speed_mps: f64,
-    ramp_s: f64,
-    dt_s: f64,
-    duration_s: f64,
-) -> Scene {
-    let mut s = many_points(3, 12);
-    if let tirecontact::scene::Tyre::Modal { modes } = &mut s.tyre {
-        for m in modes {
-            m.damping_ratio = xi;
-        }
-    }
-    let (all, _) = static_compliance(&s, 0.0);
-    let u = all * nalgebra::DVector::from_element(s.num_points(), force_n);
-    for (i, pt) in s.points.iter_mut().enumerate() {
-        pt.h_m = -u[i];
-    }
-    s.road = Road::Sine {
-        amplitude_m,
-        wavelength_m: 0.2,
-    };
-    s.speed_mps = speed_mps;
-    s.ramp_s = ramp_s;
-    s.dt_s = dt_s;
-    s.duration_s = duration_s;
-    s
-}
+use tirecontact::bench::scenes::preloaded_three_points as scene;
 
 fn options(fc: Option<f64>) -> SolverOptions {
     SolverOptions {
