@@ -132,8 +132,12 @@ pub(super) fn add_gauss_forces(
     let n = x.len();
     assert!(
         v.len() >= n
-            && [&c.w1x, &c.w1v, &c.w2x, &c.w2v].iter().all(|w| w.len() >= n)
-            && active.iter().all(|&j| j < q1.len() && j < q2.len() && (j + 1) * n <= inp_t.len())
+            && [&c.w1x, &c.w1v, &c.w2x, &c.w2v]
+                .iter()
+                .all(|w| w.len() >= n)
+            && active
+                .iter()
+                .all(|&j| j < q1.len() && j < q2.len() && (j + 1) * n <= inp_t.len())
     );
     #[cfg(target_arch = "x86_64")]
     {
@@ -165,7 +169,12 @@ unsafe fn add_gauss_forces_avx(
     let n = x.len();
     let full = n - n % BLOCK;
     let (xp, vp) = (x.as_mut_ptr(), v.as_mut_ptr());
-    let (w1x, w1v, w2x, w2v) = (c.w1x.as_ptr(), c.w1v.as_ptr(), c.w2x.as_ptr(), c.w2v.as_ptr());
+    let (w1x, w1v, w2x, w2v) = (
+        c.w1x.as_ptr(),
+        c.w1v.as_ptr(),
+        c.w2x.as_ptr(),
+        c.w2v.as_ptr(),
+    );
     let mut c0 = 0;
     // SAFETY (all loads and stores): c0 + BLOCK <= full <= n; x, v and the
     // weight columns hold n entries, inp_t (j + 1) n for every active j
