@@ -1,7 +1,6 @@
 //! Residual flexibility (`SolverOptions::residual_above_hz`): modes above
 //! `f_c` replaced by their static compliance `Σ A_k / ω_k²`.
 
-use std::f64::consts::TAU;
 use tirecontact::{Scene, Simulation, SolverOptions};
 
 use tirecontact::bench::scenes::preloaded_three_points as scene;
@@ -11,22 +10,6 @@ fn options(fc: Option<f64>) -> SolverOptions {
         residual_above_hz: fc,
         ..SolverOptions::default()
     }
-}
-
-/// Full static compliance `Σ_k φ_k φ_kᵀ / ω_k²` (m/N).
-fn static_compliance(s: &Scene, above_hz: f64) -> (nalgebra::DMatrix<f64>, nalgebra::DMatrix<f64>) {
-    let p = s.num_points();
-    let mut all = nalgebra::DMatrix::zeros(p, p);
-    let mut kept = nalgebra::DMatrix::zeros(p, p);
-    for m in s.modes().unwrap() {
-        let w2 = (TAU * m.freq_hz).powi(2);
-        let a = nalgebra::DMatrix::from_fn(p, p, |i, j| m.shape[i] * m.shape[j] / w2);
-        all += &a;
-        if m.freq_hz <= above_hz {
-            kept += &a;
-        }
-    }
-    (all, kept)
 }
 
 fn settled_forces(s: &Scene, fc: Option<f64>) -> Vec<f64> {
