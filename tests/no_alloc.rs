@@ -6,30 +6,30 @@
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 struct Counting;
-static ALLOCS: AtomicUsize = AtomicUsize::new(0);
 
 thread_local! {
     /// Up while this thread measures: its allocations are counted.
     static MEASURING: Cell<bool> = const { Cell::new(false) };
+    /// This thread's count (per thread: tests run in parallel).
+    static ALLOCS: Cell<usize> = const { Cell::new(0) };
 }
 
 fn count() {
-    // `try_with`: no panic while the thread-local is being torn down
+    // `try_with`: no panic while the thread-locals are being torn down
     if MEASURING.try_with(Cell::get).unwrap_or(false) {
-        ALLOCS.fetch_add(1, Ordering::Relaxed);
+        let _ = ALLOCS.try_with(|n| n.set(n.get() + 1));
     }
 }
 
 /// Allocations made by this thread while `f` runs.
 fn allocations_in(f: impl FnOnce()) -> usize {
-    let before = ALLOCS.load(Ordering::Relaxed);
+    let before = ALLOCS.with(Cell::get);
     MEASURING.with(|m| m.set(true));
     f();
     MEASURING.with(|m| m.set(false));
-    ALLOCS.load(Ordering::Relaxed) - before
+    ALLOCS.with(Cell::get) - before
 }
 
 unsafe impl GlobalAlloc for Counting {
