@@ -284,3 +284,65 @@ fn add_gauss_forces_body(
         c0 += len;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Deterministic values of mixed sign and scale (no RNG needed).
+    fn vals(n: usize, seed: f64) -> Vec<f64> {
+        (0..n)
+            .map(|k| ((k as f64 + 1.0) * seed).sin() * 10f64.powi((k % 7) as i32 - 3))
+            .collect()
+    }
+
+    fn columns(n: usize) -> StepColumns {
+        StepColumns {
+            pxx: vals(n, 0.31),
+            pxv: vals(n, 0.47),
+            pvx: vals(n, 0.53),
+            pvv: vals(n, 0.61),
+            w1x: vals(n, 0.71),
+            w1v: vals(n, 0.83),
+            w2x: vals(n, 0.97),
+            w2v: vals(n, 1.09),
+        }
+    }
+
+    #[test]
+    fn dispatched_kernels_equal_the_scalar_code_bit_for_bit() {
+        // every remainder of the 4-wide lanes and the 16-state blocks
+        for ns in [1, 3, 4, 5, 15, 16, 17, 33, 65, 70] {
+            for p in [1, 3, 4, 5, 9] {
+                let (x, v) = (vals(ns, 1.3), vals(ns, 1.7));
+                let out = vals(p * ns, 2.1);
+                let (mut u1, mut w1, mut u2, mut w2) =
+                    (vec![0.0; p], vec![0.0; p], vec![0.0; p], vec![0.0; p]);
+                project(&out, p, &x, &v, &mut u1, &mut w1);
+                project_body(&out, p, &x, &v, &mut u2, &mut w2);
+                let bits = |a: &[f64]| a.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&u1), bits(&u2), "project u, ns {ns}, p {p}");
+                assert_eq!(bits(&w1), bits(&w2), "project v, ns {ns}, p {p}");
+
+                let c = columns(ns);
+                let inp_t = vals(p * ns, 2.9);
+                let (q1, q2) = (vals(p, 3.1), vals(p, 3.7));
+                let active: Vec<usize> = (0..p).rev().step_by(2).collect();
+                let (mut xa, mut va, mut xb, mut vb) = (x.clone(), v.clone(), x.clone(), v.clone());
+                add_gauss_forces(&c, &inp_t, &active, &q1, &q2, &mut xa, &mut va);
+                add_gauss_forces_body(&c, &inp_t, &active, &q1, &q2, &mut xb, &mut vb);
+                assert_eq!(bits(&xa), bits(&xb), "forces x, ns {ns}, p {p}");
+                assert_eq!(bits(&va), bits(&vb), "forces v, ns {ns}, p {p}");
+                // and the forces did something
+                assert_ne!(bits(&xa), bits(&x));
+
+                let (mut ox1, mut ov1, mut ox2, mut ov2) =
+                    (vec![0.0; ns], vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]);
+                predict(&c, &x, &v, &mut ox1, &mut ov1);
+                predict_body(&c, &x, &v, &mut ox2, &mut ov2);
+                assert_eq!(bits(&ox1), bits(&ox2));
+                assert_eq!(bits(&ov1), bits(&ov2));
+            }
+        }
+    }
+}
