@@ -11,15 +11,28 @@ use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
 use tirecontact::{Scene, Simulation};
 
 fn steps(c: &mut Criterion) {
-    for (p, m) in [(5, 20), (50, 200)] {
-        let mut scene = many_points(p, m);
+    let mut scenes: Vec<(String, Scene, usize)> = [(5, 20), (50, 200)]
+        .into_iter()
+        .map(|(p, m)| {
+            let mut scene = many_points(p, m);
+            scene.duration_s = 10.0;
+            (format!("{p}x{m}"), scene, 3000)
+        })
+        .collect();
+    // the paper preset: 5 points, 13 identified modes of full-rank residues
+    // (65 states); warmed up past its 0.05 s ramp
+    if let Ok(mut scene) = Scene::load(std::path::Path::new("presets/paper.ron")) {
         scene.duration_s = 10.0;
+        scenes.push(("paper".into(), scene, 6000));
+    }
+    for (name, scene, warm_up) in scenes {
+        let p = scene.num_points();
         // the full step, warmed up past the ramp (contact, events)
         let mut sim = Simulation::new(&scene).unwrap();
-        for _ in 0..3000 {
+        for _ in 0..warm_up {
             sim.step().unwrap();
         }
-        c.bench_function(&format!("step/full/{p}x{m}"), |b| {
+        c.bench_function(&format!("step/full/{name}"), |b| {
             b.iter(|| black_box(sim.step().unwrap()))
         });
         // the bound: predict + project of the same states, nothing else
@@ -30,7 +43,7 @@ fn steps(c: &mut Criterion) {
             .enumerate()
             .for_each(|(k, x)| *x = 1e-6 * (k as f64).sin());
         let (mut u, mut v) = (vec![0.0; p], vec![0.0; p]);
-        c.bench_function(&format!("step/bare_loop/{p}x{m}"), |b| {
+        c.bench_function(&format!("step/bare_loop/{name}"), |b| {
             b.iter(|| {
                 s0.predict_into(&table, &mut s1);
                 s1.project(&basis, &mut u, &mut v);

@@ -28,6 +28,7 @@
 //! naive O(N²) quadrature of SPEC eq. 3 in [`direct`], as baseline and control.
 
 pub mod direct;
+mod kernels;
 pub mod paper_alpha_beta;
 
 use crate::scene::Mode;
@@ -188,6 +189,9 @@ pub struct ModalBasis {
     pub out: Vec<f64>,
     /// `b_s[j]`, stored state-major: `inp[s * P + j]`.
     pub inp: Vec<f64>,
+    /// The same `b_s[j]`, stored point-major: `inp_t[j * ns + s]` (the
+    /// force kernels run over contiguous states).
+    pub inp_t: Vec<f64>,
 }
 
 impl ModalBasis {
@@ -249,10 +253,12 @@ impl ModalBasis {
         let ns = terms.len();
         let mut out = vec![0.0; p * ns];
         let mut inp = vec![0.0; ns * p];
+        let mut inp_t = vec![0.0; ns * p];
         for (s, (_, a, b)) in terms.iter().enumerate() {
             for i in 0..p {
                 out[i * ns + s] = a[i];
                 inp[s * p + i] = b[i];
+                inp_t[i * ns + s] = b[i];
             }
         }
         ModalBasis {
@@ -261,6 +267,7 @@ impl ModalBasis {
             mode_of_state: terms.iter().map(|t| t.0).collect(),
             out,
             inp,
+            inp_t,
         }
     }
 
@@ -292,6 +299,22 @@ pub struct StepTable {
     pub w1: Vec<[f64; 2]>,
     pub w2: Vec<[f64; 2]>,
     per_mode: Vec<ModeStep>,
+    /// The same propagators and Gauss-point weights as separate columns
+    /// (structure of arrays, for the vectorised kernels).
+    soa: StepColumns,
+}
+
+/// `Φ` and the Gauss-point weights of every state, one array per entry.
+#[derive(Debug, Clone, Default)]
+struct StepColumns {
+    pxx: Vec<f64>,
+    pxv: Vec<f64>,
+    pvx: Vec<f64>,
+    pvv: Vec<f64>,
+    w1x: Vec<f64>,
+    w1v: Vec<f64>,
+    w2x: Vec<f64>,
+    w2v: Vec<f64>,
 }
 
 impl StepTable {
@@ -318,6 +341,22 @@ impl StepTable {
             self.w_const[s] = m.w_const;
             self.w1[s] = m.w_gauss[0];
             self.w2[s] = m.w_gauss[1];
+        }
+        let c = &mut self.soa;
+        let cols = [
+            &mut c.pxx, &mut c.pxv, &mut c.pvx, &mut c.pvv, &mut c.w1x, &mut c.w1v, &mut c.w2x,
+            &mut c.w2v,
+        ];
+        for (k, col) in cols.into_iter().enumerate() {
+            col.clear();
+            col.extend(basis.mode_of_state.iter().map(|&m| {
+                let st = &self.per_mode[m];
+                match k {
+                    0..=3 => st.phi[k],
+                    4 | 5 => st.w_gauss[0][k - 4],
+                    _ => st.w_gauss[1][k - 6],
+                }
+            }));
         }
     }
 }
@@ -392,11 +431,7 @@ impl ModalState {
     /// `out = Φ(τ) self` (free evolution over the step, no new force).
     #[inline]
     pub fn predict_into(&self, table: &StepTable, out: &mut ModalState) {
-        for (s, p) in table.phi.iter().enumerate() {
-            let (x, v) = (self.x[s], self.v[s]);
-            out.x[s] = p[0] * x + p[1] * v;
-            out.v[s] = p[2] * x + p[3] * v;
-        }
+        kernels::predict(&table.soa, &self.x, &self.v, &mut out.x, &mut out.v);
     }
 
     /// Adds the response at the step end to Gauss-point forces `q1`, `q2`
@@ -413,18 +448,15 @@ impl ModalState {
         if active.is_empty() {
             return;
         }
-        let p = basis.num_points;
-        for s in 0..self.x.len() {
-            let b = &basis.inp[s * p..(s + 1) * p];
-            let (mut b1, mut b2) = (0.0, 0.0);
-            for &j in active {
-                b1 += b[j] * q1[j];
-                b2 += b[j] * q2[j];
-            }
-            let (w1, w2) = (table.w1[s], table.w2[s]);
-            self.x[s] += w1[0] * b1 + w2[0] * b2;
-            self.v[s] += w1[1] * b1 + w2[1] * b2;
-        }
+        kernels::add_gauss_forces(
+            &table.soa,
+            &basis.inp_t,
+            active,
+            q1,
+            q2,
+            &mut self.x,
+            &mut self.v,
+        );
     }
 
     /// Adds the response to forces constant over the step (N), all points.
@@ -454,11 +486,7 @@ impl ModalState {
     /// Point displacements `u` (m) and velocities `v` (m/s) from the state.
     #[inline]
     pub fn project(&self, basis: &ModalBasis, u: &mut [f64], v: &mut [f64]) {
-        let ns = self.x.len();
-        for i in 0..basis.num_points {
-            let a = &basis.out[i * ns..(i + 1) * ns];
-            (u[i], v[i]) = dot2(a, &self.x, &self.v);
-        }
+        kernels::project(&basis.out, basis.num_points, &self.x, &self.v, u, v);
     }
 
     /// Adds another state of the same size.

@@ -125,11 +125,14 @@ pub struct Simulation {
     stats: RunStats,
     /// Tread stiffness per point (N/m) of compliant contact; empty: rigid.
     tread_k_n_m: Vec<f64>,
+    /// Residual compliance of the dropped modes (m/N, P x P row-major);
+    /// empty: all modes in the convolution.
+    residual: Vec<f64>,
 }
 
 /// Switches for the work a scene does not need; all on by default. Turning
 /// one off gives the "before" of a benchmark; results agree to round-off.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolverOptions {
     /// Keep one state per rank term of each residue (rank 1 for a mode
     /// shape) instead of one per (mode, source).
@@ -137,6 +140,17 @@ pub struct SolverOptions {
     /// Reuse the LU factorisation of the full-step contact operator while
     /// the active set is unchanged.
     pub reuse_factorisation: bool,
+    /// Residual flexibility (off by default; changes results): modes above
+    /// this frequency (Hz) are dropped from the convolution and replaced by
+    /// their static contribution `Σ A_k / ω_k²` (their `G(0)`), applied to
+    /// the contact forces as a quasi-static compliance. Impulses (rigid
+    /// impacts) see only the kept modes: their impact mass changes. Meant
+    /// for scenes that stay on the road: the static term answers a force
+    /// jump at once (no mass), so with the `Located` scheme a release can
+    /// drop a point below the road and cascade into located impacts (see
+    /// the bench's "Residual flexibility" table); the paper's step-end rule
+    /// and compliant contact do not cascade.
+    pub residual_above_hz: Option<f64>,
 }
 
 impl Default for SolverOptions {
@@ -144,7 +158,76 @@ impl Default for SolverOptions {
         SolverOptions {
             rank_reduction: true,
             reuse_factorisation: true,
+            residual_above_hz: None,
         }
+    }
+}
+
+/// The modes kept in the convolution and the residual compliance
+/// `Σ_dropped A_k / ω_k²` (m/N, row-major P x P; empty when none is dropped).
+fn split_residual(
+    scene: &Scene,
+    modes: Vec<crate::scene::Mode>,
+    above_hz: Option<f64>,
+) -> Result<(Vec<crate::scene::Mode>, Vec<f64>), SceneError> {
+    let Some(fc) = above_hz else {
+        return Ok((modes, Vec::new()));
+    };
+    let invalid = |expected: String| SceneError::Invalid {
+        file: scene.name.clone(),
+        errors: vec![crate::error::FieldError {
+            field: "solver_options.residual_above_hz".into(),
+            value: format!("{fc}"),
+            expected,
+        }],
+    };
+    if !(fc.is_finite() && fc > 0.0) {
+        return Err(invalid("a finite frequency > 0 Hz".into()));
+    }
+    let lowest = modes
+        .iter()
+        .map(|m| m.freq_hz)
+        .fold(f64::INFINITY, f64::min);
+    if modes.iter().all(|m| m.freq_hz > fc) {
+        return Err(invalid(format!(
+            "a frequency that keeps at least one mode (the lowest is {lowest} Hz)"
+        )));
+    }
+    let p = scene.num_points();
+    let mut residual = vec![0.0; p * p];
+    let mut kept = Vec::with_capacity(modes.len());
+    for m in modes {
+        if m.freq_hz <= fc {
+            kept.push(m);
+            continue;
+        }
+        let w2 = (std::f64::consts::TAU * m.freq_hz).powi(2);
+        for (i, row) in m.residue_matrix().iter().enumerate().take(p) {
+            for (j, a) in row.iter().enumerate().take(p) {
+                residual[i * p + j] += a / w2;
+            }
+        }
+    }
+    if residual.iter().all(|&c| c == 0.0) {
+        residual.clear();
+    }
+    Ok((kept, residual))
+}
+
+/// `√3`: the slope of a linear force is `√3 (q2 - q1) / τ` from its
+/// Gauss-point values.
+const SQRT3: f64 = 1.732_050_807_568_877_2;
+
+/// Adds the residual compliance `c` (P x P) to the influence of Gauss-point
+/// forces over a step `tau_s`: the end value `-GB q1 + GA q2` on the
+/// displacement, the slope `√3 (q2 - q1) / τ` on the velocity.
+fn add_residual(g: &mut Influence, c: &[f64], tau_s: f64) {
+    let rate = SQRT3 / tau_s;
+    for (k, &ck) in c.iter().enumerate() {
+        g.gx1[k] += -GB * ck;
+        g.gx2[k] += GA * ck;
+        g.gv1[k] += -rate * ck;
+        g.gv2[k] += rate * ck;
     }
 }
 
@@ -161,7 +244,7 @@ impl Simulation {
             errors,
         })?;
         let p = scene.num_points();
-        let modes = scene.modes()?;
+        let (modes, residual) = split_residual(scene, scene.modes()?, options.residual_above_hz)?;
         let basis = if options.rank_reduction {
             ModalBasis::new(&modes, p)
         } else {
@@ -175,7 +258,10 @@ impl Simulation {
             });
         }
         let full = StepTable::new(&basis, scene.dt_s);
-        let full_inf = Influence::new(&basis, &full);
+        let mut full_inf = Influence::new(&basis, &full);
+        if !residual.is_empty() {
+            add_residual(&mut full_inf, &residual, scene.dt_s);
+        }
         let jump = basis.velocity_jump();
         let state = ModalState::zeros(&basis);
         let scale = scene
@@ -237,6 +323,7 @@ impl Simulation {
             options,
             stats: RunStats::default(),
             tread_k_n_m: scene.contact.stiffness_per_point(p),
+            residual,
         };
         sim.reset();
         Ok(sim)
@@ -474,6 +561,19 @@ impl Simulation {
             self.ue[i] = self.uh[i] + self.du[i];
             self.ve[i] = self.vh[i] + self.dv[i];
         }
+        if !self.residual.is_empty() {
+            let (p, rate) = (self.p, SQRT3 / self.sub.tau_s);
+            for i in 0..p {
+                let (mut du, mut dv) = (0.0, 0.0);
+                for &j in &self.active {
+                    let c = self.residual[i * p + j];
+                    du += c * (-GB * self.q1[j] + GA * self.q2[j]);
+                    dv += c * rate * (self.q2[j] - self.q1[j]);
+                }
+                self.ue[i] += du;
+                self.ve[i] += dv;
+            }
+        }
     }
 
     /// End values of every point for the current forces: with the full-step
@@ -522,11 +622,24 @@ impl Simulation {
                 }
             }
         }
+        if !self.residual.is_empty() {
+            let rate = SQRT3 / self.sub.tau_s;
+            for (a, &i) in self.active.iter().enumerate() {
+                for (b, &j) in self.active.iter().enumerate() {
+                    let (c, k) = (self.residual[i * p + j], a * n + b);
+                    g[k] += -GB * c;
+                    g[n * n + k] += GA * c;
+                    g[2 * n * n + k] += -rate * c;
+                    g[3 * n * n + k] += rate * c;
+                }
+            }
+        }
     }
 
     /// Accepts the solved sub-step of length `tau`: state, impulses, outputs.
     fn commit(&mut self, tau: f64, sel: Table) {
-        self.state.copy_from(&self.free);
+        // `free` is rewritten by the next prediction before it is read again
+        std::mem::swap(&mut self.state, &mut self.free);
         if !self.active.is_empty() {
             match sel {
                 Table::Full => self.state.add_gauss_forces(

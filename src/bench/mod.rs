@@ -2,5 +2,6 @@
 //! baselines it compares against (SPEC §3 α/β form, direct convolution).
 
 pub mod baselines;
+pub mod residual;
 pub mod scenes;
 pub mod work_precision;

@@ -50,3 +50,46 @@ pub fn many_points(points: usize, n_modes: usize) -> Scene {
         base_dir: None,
     }
 }
+
+/// [`many_points`]`(3, 12)` (40 Hz to 527 Hz) with damping `xi`, each point
+/// preloaded so that the static force is `force_n` at every point (through
+/// the full static compliance `Σ φ_k φ_kᵀ / ω_k²`), on a 0.2 m sine road of
+/// `amplitude_m` at `speed_mps`. With a large preload, a small amplitude
+/// and a slow ramp the points never leave the road: a smooth scene.
+pub fn preloaded_three_points(
+    xi: f64,
+    force_n: f64,
+    amplitude_m: f64,
+    speed_mps: f64,
+    ramp_s: f64,
+    dt_s: f64,
+    duration_s: f64,
+) -> Scene {
+    let mut s = many_points(3, 12);
+    s.name = "3 points x 12 modes, always in contact".into();
+    let p = s.num_points();
+    let mut compliance = vec![0.0; p * p];
+    if let Tyre::Modal { modes } = &mut s.tyre {
+        for m in modes {
+            m.damping_ratio = xi;
+            let w2 = (std::f64::consts::TAU * m.freq_hz).powi(2);
+            for i in 0..p {
+                for j in 0..p {
+                    compliance[i * p + j] += m.shape[i] * m.shape[j] / w2;
+                }
+            }
+        }
+    }
+    for (i, pt) in s.points.iter_mut().enumerate() {
+        pt.h_m = -(0..p).map(|j| compliance[i * p + j] * force_n).sum::<f64>();
+    }
+    s.road = Road::Sine {
+        amplitude_m,
+        wavelength_m: 0.2,
+    };
+    s.speed_mps = speed_mps;
+    s.ramp_s = ramp_s;
+    s.dt_s = dt_s;
+    s.duration_s = duration_s;
+    s
+}

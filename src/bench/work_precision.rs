@@ -106,12 +106,12 @@ pub struct Row {
 }
 
 /// Sampled histories: displacements on the grid of the coarsest step, window-mean forces.
-struct Sampled {
-    u: Vec<f64>,
-    q: Vec<f64>,
+pub(crate) struct Sampled {
+    pub(crate) u: Vec<f64>,
+    pub(crate) q: Vec<f64>,
 }
 
-fn sample(
+pub(crate) fn sample(
     t_s: &[f64],
     u: &[Vec<f64>],
     q: &[Vec<f64>],
@@ -140,7 +140,7 @@ fn sample(
     Sampled { u: us, q: qs }
 }
 
-fn rms_rel(a: &[f64], reference: &[f64]) -> f64 {
+pub(crate) fn rms_rel(a: &[f64], reference: &[f64]) -> f64 {
     let n = a.len().min(reference.len());
     let num: f64 = (0..n).map(|k| (a[k] - reference[k]).powi(2)).sum();
     let den: f64 = (0..n).map(|k| reference[k].powi(2)).sum();

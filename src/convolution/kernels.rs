@@ -1,0 +1,348 @@
+//! The per-step kernels over the states (structure of arrays). Each runs the
+//! same scalar code, compiled twice on x86-64: for the baseline target and,
+//! picked at run time when the CPU has it, for AVX2 (4-wide lanes). AVX2
+//! without FMA keeps every operation and its order: both builds give
+//! bit-identical results.
+
+use super::{StepColumns, dot2};
+
+/// States per block of the force kernel (the block's projections of the
+/// forces stay in registers / on the stack).
+const BLOCK: usize = 16;
+
+/// Defines `pub(super) fn $name` calling `$body`, through an AVX2 build of
+/// it where the CPU supports AVX2.
+macro_rules! dispatch {
+    ($(#[$doc:meta])* $name:ident => $body:ident ($($arg:ident : $ty:ty),* $(,)?)) => {
+        $(#[$doc])*
+        #[inline]
+        pub(super) fn $name($($arg: $ty),*) {
+            #[cfg(target_arch = "x86_64")]
+            {
+                if std::arch::is_x86_feature_detected!("avx2") {
+                    #[target_feature(enable = "avx2")]
+                    fn wide($($arg: $ty),*) {
+                        $body($($arg),*)
+                    }
+                    // SAFETY: the CPU supports AVX2 (checked just above).
+                    return unsafe { wide($($arg),*) };
+                }
+            }
+            $body($($arg),*)
+        }
+    };
+}
+
+dispatch!(
+    /// `(ox, ov) = Φ (x, v)` per state.
+    predict => predict_body(c: &StepColumns, x: &[f64], v: &[f64], ox: &mut [f64], ov: &mut [f64])
+);
+
+/// `(u_i, v_i) = (a_i · x, a_i · v)` for every point `i` (rows of `out`),
+/// each sum in [`dot2`]'s order.
+#[inline]
+pub(super) fn project(out: &[f64], p: usize, x: &[f64], v: &[f64], u: &mut [f64], w: &mut [f64]) {
+    let ns = x.len();
+    assert!(out.len() >= p * ns && v.len() >= ns && u.len() >= p && w.len() >= p);
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: the CPU supports AVX (checked just above); the slice
+            // lengths the kernel reads were asserted above.
+            unsafe { project_avx(out, p, x, v, u, w) };
+            return;
+        }
+    }
+    project_body(out, p, x, v, u, w);
+}
+
+/// [`project`] with AVX lanes: the four accumulators of [`dot2`] are the four
+/// lanes of one register, rows taken four at a time so that eight
+/// independent additions are in flight. Same operations in the same order
+/// as [`dot2`] (no FMA): bit-identical.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+unsafe fn project_avx(out: &[f64], p: usize, x: &[f64], v: &[f64], u: &mut [f64], w: &mut [f64]) {
+    use std::arch::x86_64::*;
+    let ns = x.len();
+    let m = ns - ns % 4;
+    let lanes = |r: __m256d| {
+        let mut a = [0.0f64; 4];
+        // SAFETY: `a` holds four f64.
+        unsafe { _mm256_storeu_pd(a.as_mut_ptr(), r) };
+        (a[0] + a[1]) + (a[2] + a[3])
+    };
+    let (xp, vp) = (x.as_ptr(), v.as_ptr());
+    let mut i = 0;
+    while i < p {
+        let rows = (p - i).min(4);
+        let mut su = [_mm256_setzero_pd(); 4];
+        let mut sv = [_mm256_setzero_pd(); 4];
+        // SAFETY (all loads): c + 3 < m <= ns, rows of `out` have ns entries
+        // (out.len() >= p * ns, asserted by the caller), i + r < p.
+        unsafe {
+            let base = out.as_ptr().add(i * ns);
+            let mut c = 0;
+            if rows == 4 {
+                while c < m {
+                    let (xc, vc) = (_mm256_loadu_pd(xp.add(c)), _mm256_loadu_pd(vp.add(c)));
+                    for r in 0..4 {
+                        let a = _mm256_loadu_pd(base.add(r * ns + c));
+                        su[r] = _mm256_add_pd(su[r], _mm256_mul_pd(a, xc));
+                        sv[r] = _mm256_add_pd(sv[r], _mm256_mul_pd(a, vc));
+                    }
+                    c += 4;
+                }
+            } else {
+                while c < m {
+                    let (xc, vc) = (_mm256_loadu_pd(xp.add(c)), _mm256_loadu_pd(vp.add(c)));
+                    for r in 0..rows {
+                        let a = _mm256_loadu_pd(base.add(r * ns + c));
+                        su[r] = _mm256_add_pd(su[r], _mm256_mul_pd(a, xc));
+                        sv[r] = _mm256_add_pd(sv[r], _mm256_mul_pd(a, vc));
+                    }
+                    c += 4;
+                }
+            }
+        }
+        for r in 0..rows {
+            let row = &out[(i + r) * ns..(i + r + 1) * ns];
+            let (mut ru, mut rv) = (lanes(su[r]), lanes(sv[r]));
+            for c in m..ns {
+                ru += row[c] * x[c];
+                rv += row[c] * v[c];
+            }
+            (u[i + r], w[i + r]) = (ru, rv);
+        }
+        i += rows;
+    }
+}
+
+/// `(x, v) += w1 (b · q1) + w2 (b · q2)` per state, over the active points.
+#[inline]
+pub(super) fn add_gauss_forces(
+    c: &StepColumns,
+    inp_t: &[f64],
+    active: &[usize],
+    q1: &[f64],
+    q2: &[f64],
+    x: &mut [f64],
+    v: &mut [f64],
+) {
+    let n = x.len();
+    assert!(
+        v.len() >= n
+            && [&c.w1x, &c.w1v, &c.w2x, &c.w2v]
+                .iter()
+                .all(|w| w.len() >= n)
+            && active
+                .iter()
+                .all(|&j| j < q1.len() && j < q2.len() && (j + 1) * n <= inp_t.len())
+    );
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: the CPU supports AVX (checked just above); the lengths
+            // the kernel reads were asserted above.
+            unsafe { add_gauss_forces_avx(c, inp_t, active, q1, q2, x, v) };
+            return;
+        }
+    }
+    add_gauss_forces_body(c, inp_t, active, q1, q2, x, v);
+}
+
+/// [`add_gauss_forces`] with AVX lanes, 16 states per block (eight
+/// independent accumulations). Same operations in the same order as
+/// [`add_gauss_forces_body`] (no FMA): bit-identical.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+unsafe fn add_gauss_forces_avx(
+    c: &StepColumns,
+    inp_t: &[f64],
+    active: &[usize],
+    q1: &[f64],
+    q2: &[f64],
+    x: &mut [f64],
+    v: &mut [f64],
+) {
+    use std::arch::x86_64::*;
+    let n = x.len();
+    let full = n - n % BLOCK;
+    let (xp, vp) = (x.as_mut_ptr(), v.as_mut_ptr());
+    let (w1x, w1v, w2x, w2v) = (
+        c.w1x.as_ptr(),
+        c.w1v.as_ptr(),
+        c.w2x.as_ptr(),
+        c.w2v.as_ptr(),
+    );
+    let mut c0 = 0;
+    // SAFETY (all loads and stores): c0 + BLOCK <= full <= n; x, v and the
+    // weight columns hold n entries, inp_t (j + 1) n for every active j
+    // (asserted by the caller).
+    unsafe {
+        while c0 < full {
+            let mut b1 = [_mm256_setzero_pd(); 4];
+            let mut b2 = [_mm256_setzero_pd(); 4];
+            for &j in active {
+                let col = inp_t.as_ptr().add(j * n + c0);
+                let (qa, qb) = (_mm256_set1_pd(q1[j]), _mm256_set1_pd(q2[j]));
+                for k in 0..4 {
+                    let b = _mm256_loadu_pd(col.add(4 * k));
+                    b1[k] = _mm256_add_pd(b1[k], _mm256_mul_pd(b, qa));
+                    b2[k] = _mm256_add_pd(b2[k], _mm256_mul_pd(b, qb));
+                }
+            }
+            for k in 0..4 {
+                let o = c0 + 4 * k;
+                let dx = _mm256_add_pd(
+                    _mm256_mul_pd(_mm256_loadu_pd(w1x.add(o)), b1[k]),
+                    _mm256_mul_pd(_mm256_loadu_pd(w2x.add(o)), b2[k]),
+                );
+                let dv = _mm256_add_pd(
+                    _mm256_mul_pd(_mm256_loadu_pd(w1v.add(o)), b1[k]),
+                    _mm256_mul_pd(_mm256_loadu_pd(w2v.add(o)), b2[k]),
+                );
+                _mm256_storeu_pd(xp.add(o), _mm256_add_pd(_mm256_loadu_pd(xp.add(o)), dx));
+                _mm256_storeu_pd(vp.add(o), _mm256_add_pd(_mm256_loadu_pd(vp.add(o)), dv));
+            }
+            c0 += BLOCK;
+        }
+    }
+    // the last partial block: the scalar code on the tail of every column
+    for s in full..n {
+        let (mut b1, mut b2) = (0.0, 0.0);
+        for &j in active {
+            b1 += inp_t[j * n + s] * q1[j];
+            b2 += inp_t[j * n + s] * q2[j];
+        }
+        x[s] += c.w1x[s] * b1 + c.w2x[s] * b2;
+        v[s] += c.w1v[s] * b1 + c.w2v[s] * b2;
+    }
+}
+
+#[inline(always)]
+fn predict_body(c: &StepColumns, x: &[f64], v: &[f64], ox: &mut [f64], ov: &mut [f64]) {
+    let n = x.len();
+    let (v, ox, ov) = (&v[..n], &mut ox[..n], &mut ov[..n]);
+    let (a, b, cc, d) = (&c.pxx[..n], &c.pxv[..n], &c.pvx[..n], &c.pvv[..n]);
+    for s in 0..n {
+        ox[s] = a[s] * x[s] + b[s] * v[s];
+        ov[s] = cc[s] * x[s] + d[s] * v[s];
+    }
+}
+
+fn project_body(out: &[f64], p: usize, x: &[f64], v: &[f64], u: &mut [f64], w: &mut [f64]) {
+    let ns = x.len();
+    for i in 0..p {
+        (u[i], w[i]) = dot2(&out[i * ns..(i + 1) * ns], x, v);
+    }
+}
+
+#[inline(always)]
+fn add_gauss_forces_body(
+    c: &StepColumns,
+    inp_t: &[f64],
+    active: &[usize],
+    q1: &[f64],
+    q2: &[f64],
+    x: &mut [f64],
+    v: &mut [f64],
+) {
+    let n = x.len();
+    let v = &mut v[..n];
+    let (w1x, w1v, w2x, w2v) = (&c.w1x[..n], &c.w1v[..n], &c.w2x[..n], &c.w2v[..n]);
+    let mut c0 = 0;
+    while c0 < n {
+        let len = BLOCK.min(n - c0);
+        let (mut b1, mut b2) = ([0.0f64; BLOCK], [0.0f64; BLOCK]);
+        if len == BLOCK {
+            for &j in active {
+                let col = &inp_t[j * n + c0..j * n + c0 + BLOCK];
+                let (qa, qb) = (q1[j], q2[j]);
+                for k in 0..BLOCK {
+                    b1[k] += col[k] * qa;
+                    b2[k] += col[k] * qb;
+                }
+            }
+        } else {
+            for &j in active {
+                let col = &inp_t[j * n + c0..j * n + c0 + len];
+                let (qa, qb) = (q1[j], q2[j]);
+                for k in 0..len {
+                    b1[k] += col[k] * qa;
+                    b2[k] += col[k] * qb;
+                }
+            }
+        }
+        let (x, v) = (&mut x[c0..c0 + len], &mut v[c0..c0 + len]);
+        let (w1x, w1v) = (&w1x[c0..c0 + len], &w1v[c0..c0 + len]);
+        let (w2x, w2v) = (&w2x[c0..c0 + len], &w2v[c0..c0 + len]);
+        for k in 0..len {
+            x[k] += w1x[k] * b1[k] + w2x[k] * b2[k];
+            v[k] += w1v[k] * b1[k] + w2v[k] * b2[k];
+        }
+        c0 += len;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Deterministic values of mixed sign and scale (no RNG needed).
+    fn vals(n: usize, seed: f64) -> Vec<f64> {
+        (0..n)
+            .map(|k| ((k as f64 + 1.0) * seed).sin() * 10f64.powi((k % 7) as i32 - 3))
+            .collect()
+    }
+
+    fn columns(n: usize) -> StepColumns {
+        StepColumns {
+            pxx: vals(n, 0.31),
+            pxv: vals(n, 0.47),
+            pvx: vals(n, 0.53),
+            pvv: vals(n, 0.61),
+            w1x: vals(n, 0.71),
+            w1v: vals(n, 0.83),
+            w2x: vals(n, 0.97),
+            w2v: vals(n, 1.09),
+        }
+    }
+
+    #[test]
+    fn dispatched_kernels_equal_the_scalar_code_bit_for_bit() {
+        // every remainder of the 4-wide lanes and the 16-state blocks
+        for ns in [1, 3, 4, 5, 15, 16, 17, 33, 65, 70] {
+            for p in [1, 3, 4, 5, 9] {
+                let (x, v) = (vals(ns, 1.3), vals(ns, 1.7));
+                let out = vals(p * ns, 2.1);
+                let (mut u1, mut w1, mut u2, mut w2) =
+                    (vec![0.0; p], vec![0.0; p], vec![0.0; p], vec![0.0; p]);
+                project(&out, p, &x, &v, &mut u1, &mut w1);
+                project_body(&out, p, &x, &v, &mut u2, &mut w2);
+                let bits = |a: &[f64]| a.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&u1), bits(&u2), "project u, ns {ns}, p {p}");
+                assert_eq!(bits(&w1), bits(&w2), "project v, ns {ns}, p {p}");
+
+                let c = columns(ns);
+                let inp_t = vals(p * ns, 2.9);
+                let (q1, q2) = (vals(p, 3.1), vals(p, 3.7));
+                let active: Vec<usize> = (0..p).rev().step_by(2).collect();
+                let (mut xa, mut va, mut xb, mut vb) = (x.clone(), v.clone(), x.clone(), v.clone());
+                add_gauss_forces(&c, &inp_t, &active, &q1, &q2, &mut xa, &mut va);
+                add_gauss_forces_body(&c, &inp_t, &active, &q1, &q2, &mut xb, &mut vb);
+                assert_eq!(bits(&xa), bits(&xb), "forces x, ns {ns}, p {p}");
+                assert_eq!(bits(&va), bits(&vb), "forces v, ns {ns}, p {p}");
+                // and the forces did something
+                assert_ne!(bits(&xa), bits(&x));
+
+                let (mut ox1, mut ov1, mut ox2, mut ov2) =
+                    (vec![0.0; ns], vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]);
+                predict(&c, &x, &v, &mut ox1, &mut ov1);
+                predict_body(&c, &x, &v, &mut ox2, &mut ov2);
+                assert_eq!(bits(&ox1), bits(&ox2));
+                assert_eq!(bits(&ov1), bits(&ov2));
+            }
+        }
+    }
+}
