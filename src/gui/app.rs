@@ -67,6 +67,8 @@ pub struct App {
     pub(super) green_opts: green_view::GreenOptions,
     title: String,
     fps: FrameRate,
+    /// Researcher tools: spectra, sweep, pinned run, fidelity (issue #8).
+    pub(super) research: super::research::ResearchState,
 }
 
 impl App {
@@ -98,6 +100,7 @@ impl App {
             green_opts: Default::default(),
             title: String::new(),
             fps: FrameRate::new(),
+            research: Default::default(),
         })
     }
 
@@ -330,6 +333,7 @@ impl App {
             }
             Command::DismissMessage => self.message = None,
             Command::ShowView(v) => self.view = v,
+            Command::Research(c) => self.apply_research(c),
         }
     }
 
@@ -422,6 +426,7 @@ impl App {
                 self.path = path;
                 self.time.reset();
                 self.reset_run();
+                self.research_new_document();
                 self.info(what.to_string());
             }
             Err(e) => self.error(format!(
@@ -571,6 +576,7 @@ impl App {
         let frame_s = ctx.input(|i| f64::from(i.unstable_dt));
         self.poll_jobs();
         self.advance(frame_s);
+        self.research_frame(&ctx);
         let mut cmds = Vec::new();
         self.keyboard(&ctx, &mut cmds);
         let status = toolbar::ToolbarStatus {
@@ -605,6 +611,9 @@ impl App {
                 View::Scene => scene_view::show(ui, &self.sim, &mut self.scene_opts),
                 View::Green => {
                     green_view::show(ui, &self.scene, &self.modes, &mut self.green_opts);
+                }
+                View::Spectra | View::Sweep | View::Compare | View::Fidelity => {
+                    self.show_research_view(ui, &mut cmds);
                 }
             }
         });

@@ -15,6 +15,7 @@ pub mod frame_rate;
 pub mod history;
 pub mod panels;
 pub mod presets;
+pub mod research;
 pub mod time_control;
 pub mod views;
 
