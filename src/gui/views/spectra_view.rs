@@ -245,7 +245,8 @@ pub fn show(
                         pts.push([b.band.upper_hz.log10(), b.level_db]);
                     }
                 }
-                pui.line(Line::new(name, pts).color(c).width(1.5));
+                // steps: no min/max band merging of the vertical edges
+                pui.line(Line::new(name, pts).color(c).width(1.5).allow_band(false));
             }
             for &(n, f) in marks.excitation_hz.iter().filter(|m| m.1 <= hi) {
                 if n <= 3 {
