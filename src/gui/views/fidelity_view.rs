@@ -12,7 +12,7 @@ use crate::gui::research::state::FidelityOptions;
 use crate::modal::ModalModel;
 use crate::scene::{Mode, Tyre};
 use egui::{Color32, RichText, Ui};
-use egui_plot::{Bar, BarChart, Corner, Legend, Line, LineStyle, Plot};
+use egui_plot::{Bar, BarChart, Corner, HLine, Legend, Line, LineStyle, Plot};
 
 /// Points of the |G| curves.
 const CURVE_POINTS: usize = 800;
@@ -177,6 +177,14 @@ pub fn show(
         .show(ui, |pui| {
             pui.bar_chart(
                 BarChart::new("error with mode k removed (%)", bars).color(point_color(2)),
+            );
+            pui.hline(
+                HLine::new(
+                    format!("error now, all {} modes (%)", modes.len()),
+                    100.0 * figures.fidelity.relative_l2,
+                )
+                .color(Color32::from_gray(60))
+                .style(LineStyle::dashed_dense()),
             );
         });
 }

@@ -274,7 +274,11 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
                 Plot::new(id)
                     .width(w)
                     .height(h)
-                    .legend(Legend::default().position(Corner::RightTop))
+                    .legend(
+                        Legend::default()
+                            .position(Corner::LeftTop)
+                            .follow_insertion_order(true),
+                    )
                     .x_axis_label(x_label.clone())
                     .y_axis_label(y_label)
                     .y_axis_min_width(56.0)
