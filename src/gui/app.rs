@@ -549,6 +549,10 @@ impl App {
                 (egui::Key::Num1, View::TimePlots),
                 (egui::Key::Num2, View::Scene),
                 (egui::Key::Num3, View::Green),
+                (egui::Key::Num4, View::Spectra),
+                (egui::Key::Num5, View::Sweep),
+                (egui::Key::Num6, View::Compare),
+                (egui::Key::Num7, View::Fidelity),
             ] {
                 if i.key_pressed(key) {
                     cmds.push(Command::ShowView(view));

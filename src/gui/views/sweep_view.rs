@@ -200,6 +200,9 @@ pub fn show(
     }
 }
 
+/// Named, coloured curves of one plot.
+type Curves = Vec<(String, Color32, Vec<[f64; 2]>)>;
+
 fn plots(ui: &mut Ui, r: &SweepResult) {
     let x_label = format!("{} ({})", r.request.param, param_unit(&r.request.param));
     let ok: Vec<(f64, &RunSummary)> = r
@@ -210,19 +213,18 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
     let gap = ui.spacing().item_spacing;
     let w = ((ui.available_width() - gap.x) / 2.0).max(200.0);
     let h = ((ui.available_height() - gap.y) / 2.0).max(150.0);
-    let per_point =
-        |get: fn(&RunSummary) -> &Vec<f64>, scale: f64| -> Vec<(String, Color32, Vec<[f64; 2]>)> {
-            (0..r.num_points)
-                .map(|i| {
-                    (
-                        format!("point {i}"),
-                        point_color(i),
-                        ok.iter().map(|(v, s)| [*v, get(s)[i] * scale]).collect(),
-                    )
-                })
-                .collect()
-        };
-    let bands: Vec<(String, Color32, Vec<[f64; 2]>)> = third_octave_bands(315.0, 2000.0)
+    let per_point = |get: fn(&RunSummary) -> &Vec<f64>, scale: f64| -> Curves {
+        (0..r.num_points)
+            .map(|i| {
+                (
+                    format!("point {i}"),
+                    point_color(i),
+                    ok.iter().map(|(v, s)| [*v, get(s)[i] * scale]).collect(),
+                )
+            })
+            .collect()
+    };
+    let bands: Curves = third_octave_bands(315.0, 2000.0)
         .iter()
         .step_by(2)
         .enumerate()
@@ -242,7 +244,7 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
             )
         })
         .collect();
-    let grid: [(&str, &str, Vec<(String, Color32, Vec<[f64; 2]>)>); 4] = [
+    let grid: [(&str, &str, Curves); 4] = [
         (
             "tirecontact.sweep_max",
             "max contact force (N)",
