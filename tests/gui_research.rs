@@ -173,7 +173,10 @@ fn cancel_stops_a_sweep_and_leaves_the_app_usable() {
         h.state().research().sweep(),
         h.state().message()
     );
-    assert!(h.query_by_label_contains("cancelled").is_some());
+    assert!(
+        h.query_by_label_contains("The sweep was cancelled")
+            .is_some()
+    );
     // still usable
     advance(&mut h, 100);
     assert_eq!(h.state().simulation().steps(), 100);
