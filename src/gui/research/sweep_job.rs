@@ -183,6 +183,13 @@ impl SweepJob {
     }
 }
 
+impl Drop for SweepJob {
+    /// A job dropped while running (app closed, state replaced) stops its runs.
+    fn drop(&mut self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+}
+
 /// The sweep panel's state machine: idle, running, or the last outcome.
 #[derive(Debug, Default)]
 pub enum SweepState {
@@ -301,6 +308,16 @@ mod tests {
         .unwrap();
         assert_eq!(res.points, lib);
         assert_eq!(res.failed(), 0);
+    }
+
+    #[test]
+    fn dropping_a_running_job_cancels_its_runs() {
+        let mut s = scene();
+        s.duration_s = 5.0;
+        let job = SweepJob::start(&s, req("speed_mps", 10.0, 20.0, 8), 2).unwrap();
+        let flag = Arc::clone(&job.cancel);
+        drop(job);
+        assert!(flag.load(Ordering::Relaxed));
     }
 
     #[test]
