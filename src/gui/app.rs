@@ -78,6 +78,8 @@ pub struct App {
     pub(super) mutes: Option<Mutes>,
     frames_dialog: Option<FramesDialog>,
     frames_job: Option<FramesJob>,
+    /// Researcher tools: spectra, sweep, pinned run, fidelity (issue #8).
+    pub(super) research: super::research::ResearchState,
 }
 
 impl App {
@@ -115,6 +117,7 @@ impl App {
             mutes: None,
             frames_dialog: None,
             frames_job: None,
+            research: Default::default(),
         })
     }
 
@@ -380,6 +383,7 @@ impl App {
                 self.classroom.on = false;
                 self.view = v;
             }
+            Command::Research(c) => self.apply_research(c),
             Command::SetClassroom(on) => {
                 self.classroom.on = on;
                 if on {
@@ -568,6 +572,7 @@ impl App {
                 self.path = path;
                 self.time.reset();
                 self.reset_run();
+                self.research_new_document();
                 self.info(what.to_string());
             }
             Err(e) => self.error(format!(
@@ -696,6 +701,10 @@ impl App {
                 (egui::Key::Num1, View::TimePlots),
                 (egui::Key::Num2, View::Scene),
                 (egui::Key::Num3, View::Green),
+                (egui::Key::Num4, View::Spectra),
+                (egui::Key::Num5, View::Sweep),
+                (egui::Key::Num6, View::Compare),
+                (egui::Key::Num7, View::Fidelity),
             ] {
                 if i.key_pressed(key) {
                     cmds.push(Command::ShowView(view));
@@ -734,6 +743,7 @@ impl App {
         if !hidden {
             self.advance(frame_s);
         }
+        self.research_frame(&ctx);
         let mut cmds = Vec::new();
         self.keyboard(&ctx, &mut cmds);
         let status = toolbar::ToolbarStatus {
@@ -856,6 +866,9 @@ impl App {
                 View::Scene => scene_view::show(ui, &self.sim, &mut self.scene_opts),
                 View::Green => {
                     green_view::show(ui, &self.scene, &self.modes, &mut self.green_opts);
+                }
+                View::Spectra | View::Sweep | View::Compare | View::Fidelity => {
+                    self.show_research_view(ui, cmds);
                 }
             }
         });

@@ -12,15 +12,31 @@ pub enum View {
     TimePlots,
     Scene,
     Green,
+    Spectra,
+    Sweep,
+    Compare,
+    Fidelity,
 }
 
 impl View {
-    pub const ALL: [View; 3] = [View::TimePlots, View::Scene, View::Green];
+    pub const ALL: [View; 7] = [
+        View::TimePlots,
+        View::Scene,
+        View::Green,
+        View::Spectra,
+        View::Sweep,
+        View::Compare,
+        View::Fidelity,
+    ];
     pub fn label(self) -> &'static str {
         match self {
             View::TimePlots => "Time plots",
             View::Scene => "Scene view",
             View::Green => "Green functions",
+            View::Spectra => "Spectra",
+            View::Sweep => "Sweep",
+            View::Compare => "A/B compare",
+            View::Fidelity => "Fidelity",
         }
     }
 }
@@ -98,4 +114,6 @@ pub enum Command {
         settings: crate::output::animation::FrameSettings,
     },
     CancelFrames,
+    /// A researcher-tool request (spectra, sweep, A/B pin, exports).
+    Research(super::research::ResearchCommand),
 }

@@ -19,6 +19,7 @@ pub mod history;
 pub mod mutes;
 pub mod panels;
 pub mod presets;
+pub mod research;
 pub mod time_control;
 pub mod views;
 

@@ -91,7 +91,18 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             }
         });
         ui.separator();
-        for (k, v) in View::ALL.into_iter().enumerate() {
+        // first, so that it stays reachable with classroom mode's large text
+        if ui
+            .selectable_label(st.classroom, "Classroom")
+            .on_hover_text("large fonts, scene and one plot, slow motion, contact phases labelled")
+            .clicked()
+        {
+            cmds.push(Command::SetClassroom(!st.classroom));
+        }
+        ui.separator();
+        // the main views as tabs, the researcher tools in a menu
+        let (tabs, tools) = View::ALL.split_at(3);
+        for (k, &v) in tabs.iter().enumerate() {
             let r = ui
                 .selectable_label(st.view == v, v.label())
                 .on_hover_text(format!("key {}", k + 1));
@@ -99,6 +110,21 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
                 cmds.push(Command::ShowView(v));
             }
         }
+        let current_tool = tools.iter().find(|&&v| v == st.view);
+        let title = match current_tool {
+            Some(v) => format!("Research: {}", v.label()),
+            None => "Research".to_string(),
+        };
+        ui.menu_button(title, |ui| {
+            for (k, &v) in tools.iter().enumerate() {
+                let r = ui
+                    .selectable_label(st.view == v, v.label())
+                    .on_hover_text(format!("key {}", k + 4));
+                if r.clicked() && st.view != v {
+                    cmds.push(Command::ShowView(v));
+                }
+            }
+        });
         ui.separator();
         if ui
             .selectable_label(st.mode_bars, "Mode bars")
@@ -106,13 +132,6 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             .clicked()
         {
             cmds.push(Command::ShowModeBars(!st.mode_bars));
-        }
-        if ui
-            .selectable_label(st.classroom, "Classroom")
-            .on_hover_text("large fonts, scene and one plot, slow motion, contact phases labelled")
-            .clicked()
-        {
-            cmds.push(Command::SetClassroom(!st.classroom));
         }
     });
 }

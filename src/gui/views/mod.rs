@@ -2,8 +2,12 @@
 //! They read the scene, the simulation and the history; the only state they
 //! change is their own presentation options (window, exaggeration, ...).
 
+pub mod compare_view;
+pub mod fidelity_view;
 pub mod green_view;
 pub mod scene_view;
+pub mod spectra_view;
+pub mod sweep_view;
 pub mod time_plots;
 
 use egui::Color32;

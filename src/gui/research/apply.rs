@@ -1,0 +1,257 @@
+//! The researcher tools' side of `App::apply` and of the frame loop.
+
+use super::ResearchCommand;
+use super::compare::{pin_label, recording_from_history};
+use super::fidelity::FidelityRef;
+use super::spectra::{HistoryKey, history_spectra};
+use super::sweep_job::{SweepState, default_threads};
+use crate::compare::PinnedRun;
+use crate::gui::app::{App, Message};
+use crate::gui::command::{Command, View};
+use crate::spectrum::Window;
+use std::path::Path;
+
+impl App {
+    /// The researcher tools' state (spectra, sweep, pinned run, fidelity).
+    pub fn research(&self) -> &super::ResearchState {
+        &self.research
+    }
+
+    fn research_message(&mut self, error: bool, text: impl Into<String>) {
+        self.message = Some(Message {
+            error,
+            text: text.into(),
+        });
+    }
+
+    /// Runs one researcher-tool command (called from `App::apply`).
+    pub(crate) fn apply_research(&mut self, cmd: ResearchCommand) {
+        match cmd {
+            ResearchCommand::RecomputeSpectra => self.research.spectra_now = true,
+            ResearchCommand::StartSweep(req) => {
+                let text = format!(
+                    "sweep of {} from {} to {} in {} steps started",
+                    req.param, req.from, req.to, req.steps
+                );
+                match self
+                    .research
+                    .sweep
+                    .start(&self.scene, req, default_threads())
+                {
+                    Ok(()) => self.research_message(false, text),
+                    Err(e) => self.research_message(true, format!("Sweep refused: {e}")),
+                }
+            }
+            ResearchCommand::CancelSweep => {
+                if self.research.sweep.is_running() {
+                    self.research.sweep.cancel();
+                    self.research_message(false, "cancelling the sweep …");
+                }
+            }
+            ResearchCommand::ExportSweepCsvDialog => {
+                if let Some(p) = save_dialog("CSV", "csv", "sweep.csv") {
+                    self.apply_research(ResearchCommand::ExportSweepCsv(p));
+                }
+            }
+            ResearchCommand::ExportSweepCsv(path) => {
+                let r = match self.research.sweep.result() {
+                    Some(res) => {
+                        let mut buf = Vec::new();
+                        crate::sweep::report::write_csv(
+                            &mut buf,
+                            &res.request.param,
+                            &res.points,
+                            res.num_points,
+                        )
+                        .map_err(|e| e.to_string())
+                        .and_then(|()| write_file(&path, &buf))
+                    }
+                    None => Err("no finished sweep to export".into()),
+                };
+                self.report_export(&path, "sweep CSV", r);
+            }
+            ResearchCommand::ExportSweepPngDialog => {
+                if let Some(p) = save_dialog("PNG image", "png", "sweep.png") {
+                    self.apply_research(ResearchCommand::ExportSweepPng(p));
+                }
+            }
+            ResearchCommand::ExportSweepPng(path) => {
+                let r = match self.research.sweep.result() {
+                    Some(res) => {
+                        let fig = crate::sweep::report::figure(
+                            &format!("{}: sweep of {}", res.scene_name, res.request.param),
+                            &format!(
+                                "{} values from {} to {}; steady part t >= ramp_s of each run",
+                                res.points.len(),
+                                res.request.from,
+                                res.request.to
+                            ),
+                            &res.request.param,
+                            &res.points,
+                            res.num_points,
+                        );
+                        crate::output::figures::render_png(&fig, &path, 1400, 1400)
+                            .map_err(|e| e.to_string())
+                    }
+                    None => Err("no finished sweep to export".into()),
+                };
+                self.report_export(&path, "sweep PNG", r);
+            }
+            ResearchCommand::PinReference => {
+                let rec = recording_from_history(&self.history);
+                let label = pin_label(&self.scene, self.sim.time_s());
+                self.research.pinned = Some(PinnedRun::new(label.clone(), &self.scene, &rec));
+                self.research.difference.invalidate();
+                self.research_message(false, format!("pinned as reference: {label}"));
+            }
+            ResearchCommand::Unpin => {
+                self.research.pinned = None;
+                self.research.difference.invalidate();
+                self.research_message(false, "reference unpinned");
+            }
+            ResearchCommand::ExportPinnedCsvDialog => {
+                if let Some(p) = save_dialog("CSV", "csv", "reference.csv") {
+                    self.apply_research(ResearchCommand::ExportPinnedCsv(p));
+                }
+            }
+            ResearchCommand::ExportPinnedCsv(path) => {
+                let r = match &self.research.pinned {
+                    Some(pin) => {
+                        let mut buf = Vec::new();
+                        pin.write_csv(&mut buf)
+                            .map_err(|e| e.to_string())
+                            .and_then(|()| write_file(&path, &buf))
+                    }
+                    None => Err("no pinned run to export".into()),
+                };
+                self.report_export(&path, "reference CSV", r);
+            }
+        }
+    }
+
+    fn report_export(&mut self, path: &Path, what: &str, r: Result<(), String>) {
+        match r {
+            Ok(()) => self.research_message(false, format!("wrote {} ({what})", path.display())),
+            Err(e) => self.research_message(true, format!("{what} export failed: {e}")),
+        }
+    }
+
+    /// A new document (opened or new scene): a held ring reference belongs
+    /// to the old one.
+    pub(crate) fn research_new_document(&mut self) {
+        self.research.fidelity_ref = FidelityRef::of_scene(&self.scene);
+    }
+
+    /// Per frame: poll the sweep, follow the scene's ring reference, and
+    /// refresh what the shown view needs. Never blocks.
+    pub(crate) fn research_frame(&mut self, ctx: &egui::Context) {
+        if let Some(state) = self.research.sweep.poll() {
+            let (error, text) = match state {
+                SweepState::Finished(r) => (
+                    false,
+                    format!(
+                        "sweep of {} done: {} runs ({} failed) on {} threads in {:.1} s",
+                        r.request.param,
+                        r.points.len(),
+                        r.failed(),
+                        r.threads,
+                        r.wall_s
+                    ),
+                ),
+                SweepState::Cancelled => (
+                    false,
+                    "sweep cancelled; no results kept, the app is unchanged".to_string(),
+                ),
+                SweepState::Failed(e) => (true, format!("sweep failed: {e}")),
+                _ => (false, String::new()),
+            };
+            self.research_message(error, text);
+        }
+        if self.research.sweep.is_running() {
+            ctx.request_repaint();
+        }
+        let held = self.research.fidelity_ref.take();
+        self.research.fidelity_ref = FidelityRef::follow(held, &self.scene);
+        let key = HistoryKey::of(&self.history);
+        let playing = self.time.is_playing();
+        match self.view {
+            View::Spectra => {
+                let force = std::mem::take(&mut self.research.spectra_now);
+                let auto = self.research.spectra_opts.auto || !playing;
+                if auto || force {
+                    let (h, ramp, dt) = (&self.history, self.scene.ramp_s, self.sim.dt_s());
+                    self.research.spectra.refresh(key, playing, force, || {
+                        history_spectra(h, ramp, dt, Window::Hann)
+                    });
+                }
+            }
+            View::Compare => {
+                if let Some(pin) = &self.research.pinned {
+                    let h = &self.history;
+                    self.research.difference.refresh(key, playing, false, || {
+                        pin.difference(&recording_from_history(h))
+                    });
+                }
+            }
+            View::Fidelity => {
+                if let Some(r) = &self.research.fidelity_ref {
+                    let x: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
+                    self.research.fidelity.get(r, &x, &self.modes);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Draws the researcher view `self.view` (views only read the app; they
+    /// change their own presentation options and push commands).
+    pub(crate) fn show_research_view(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        use crate::gui::views::{compare_view, fidelity_view, spectra_view, sweep_view};
+        match self.view {
+            View::Spectra => spectra_view::show(
+                ui,
+                &self.scene,
+                &self.modes,
+                &self.research.spectra,
+                &mut self.research.spectra_opts,
+                self.time.is_playing(),
+                cmds,
+            ),
+            View::Sweep => sweep_view::show(
+                ui,
+                &self.scene,
+                &self.research.sweep,
+                &mut self.research.sweep_form,
+                cmds,
+            ),
+            View::Compare => compare_view::show(
+                ui,
+                &self.history,
+                self.research.pinned.as_ref(),
+                self.research.difference.get(),
+                &mut self.research.compare_opts,
+                cmds,
+            ),
+            View::Fidelity => fidelity_view::show(
+                ui,
+                &self.scene,
+                &self.modes,
+                self.research.fidelity_ref.as_ref(),
+                self.research.fidelity.last(),
+                &mut self.research.fidelity_opts,
+            ),
+            _ => {}
+        }
+    }
+}
+
+fn save_dialog(what: &str, ext: &str, name: &str) -> Option<std::path::PathBuf> {
+    rfd::FileDialog::new()
+        .add_filter(what, &[ext])
+        .set_file_name(name)
+        .save_file()
+}
+
+fn write_file(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    crate::output::write_atomic(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+}

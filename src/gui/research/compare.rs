@@ -1,0 +1,78 @@
+//! A/B comparison in the GUI (no egui here): the current run as a
+//! `Recording` built from the History, so that `crate::compare::PinnedRun`
+//! pins it and differences it.
+
+use crate::gui::history::{History, Quantity};
+use crate::output::record::Recording;
+
+/// The history's samples as a recording: `u`, window-mean `q`, and the road
+/// `r = u - gap` per point (SI units).
+pub fn recording_from_history(h: &History) -> Recording {
+    let p = h.num_points();
+    let n = h.len();
+    let series = |f: &dyn Fn(usize, usize) -> f64| -> Vec<Vec<f64>> {
+        (0..p).map(|i| (0..n).map(|k| f(i, k)).collect()).collect()
+    };
+    let mut r = Recording::default();
+    r.t_s = h.times().to_vec();
+    r.u_m = series(&|i, k| h.value(Quantity::Displacement, i, k));
+    r.q_n = series(&|i, k| h.value(Quantity::Force, i, k));
+    r.r_m = series(&|i, k| h.value(Quantity::Displacement, i, k) - h.value(Quantity::Gap, i, k));
+    r
+}
+
+/// A short label of a scene for legends: its name and speed.
+pub fn pin_label(scene: &crate::Scene, t_s: f64) -> String {
+    format!(
+        "{}, V = {:.3} m/s, up to t = {t_s:.4} s",
+        scene.name, scene.speed_mps
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scene;
+    use crate::compare::PinnedRun;
+    use crate::simulation::Simulation;
+
+    #[test]
+    fn a_run_against_itself_is_zero_and_a_changed_run_is_not() {
+        let scene = Scene::parse(
+            include_str!("../../../presets/three_points.ron"),
+            "three_points",
+        )
+        .unwrap();
+        let run = |s: &Scene| {
+            let mut sim = Simulation::new(s).unwrap();
+            let mut h = History::new(s.num_points(), 1 << 20);
+            h.record_initial(&sim);
+            for _ in 0..3000 {
+                sim.step().unwrap();
+                h.after_step(&sim);
+            }
+            (h, sim)
+        };
+        let (h, sim) = run(&scene);
+        let rec = recording_from_history(&h);
+        assert_eq!(rec.t_s.len(), h.len());
+        // road from the gap: equals the simulation's road at the last sample
+        for i in 0..3 {
+            let r = *rec.r_m[i].last().unwrap();
+            assert!(
+                (r - sim.road_m()[i]).abs() < 1e-6,
+                "{r} vs {}",
+                sim.road_m()[i]
+            );
+        }
+        let pin = PinnedRun::new(pin_label(&scene, 0.03), &scene, &rec);
+        let d = pin.difference(&rec);
+        assert_eq!(d.t_s.len(), rec.t_s.len());
+        assert!(d.rms_dq_n.iter().chain(&d.rms_du_m).all(|&x| x == 0.0));
+        let mut faster = scene.clone();
+        faster.speed_mps *= 1.2;
+        let (h2, _) = run(&faster);
+        let d = pin.difference(&recording_from_history(&h2));
+        assert!(d.rms_dq_n.iter().all(|&x| x > 0.0), "{:?}", d.rms_dq_n);
+    }
+}

@@ -1,0 +1,14 @@
+//! Researcher tools of the visualiser (issue #8): spectra of the current
+//! run, parameter sweeps on a background thread, A/B comparison with a
+//! pinned run, and the fidelity of the modal model against the ring's
+//! Green functions. The logic lives in egui-free submodules; `state` holds
+//! what the app keeps, `apply` runs their commands.
+
+pub mod apply;
+pub mod compare;
+pub mod fidelity;
+pub mod spectra;
+pub mod state;
+pub mod sweep_job;
+
+pub use state::{ResearchCommand, ResearchState};

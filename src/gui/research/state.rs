@@ -1,0 +1,145 @@
+//! What the app keeps for the researcher tools, and their commands.
+
+use super::fidelity::{FidelityCache, FidelityRef};
+use super::spectra::{HistoryCache, HistorySpectra};
+use super::sweep_job::{SweepRequest, SweepState};
+use crate::compare::{PinnedRun, RunDifference};
+use std::path::PathBuf;
+
+/// A request of the researcher tools (wrapped in `Command::Research`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ResearchCommand {
+    /// Recompute the spectra of the run now.
+    RecomputeSpectra,
+    /// Start a sweep of the current scene on a background thread.
+    StartSweep(SweepRequest),
+    /// Stop the running sweep (its partial results are dropped).
+    CancelSweep,
+    ExportSweepCsvDialog,
+    /// Write the last sweep as CSV (same table as `tirecontact sweep -o`).
+    ExportSweepCsv(PathBuf),
+    ExportSweepPngDialog,
+    /// Draw the last sweep to a PNG (same figure as `tirecontact sweep --plot`).
+    ExportSweepPng(PathBuf),
+    /// Pin the current run as the reference of the A/B comparison.
+    PinReference,
+    Unpin,
+    ExportPinnedCsvDialog,
+    /// Write the pinned run as CSV (`t_s, u{i}_m.., q{i}_N..`).
+    ExportPinnedCsv(PathBuf),
+}
+
+/// Presentation options of the spectra view.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpectraOptions {
+    pub log_x: bool,
+    /// Points drawn.
+    pub shown: Vec<bool>,
+    /// Draw the spectrum of the summed force of all points.
+    pub total: bool,
+    /// Highest frequency drawn (Hz).
+    pub max_hz: f64,
+    /// Recompute while the run plays (else only on the button or a pause).
+    pub auto: bool,
+}
+
+impl Default for SpectraOptions {
+    fn default() -> Self {
+        SpectraOptions {
+            log_x: true,
+            shown: Vec::new(),
+            total: true,
+            max_hz: 2000.0,
+            auto: true,
+        }
+    }
+}
+
+/// Form of the sweep panel (view-local until Run is pressed).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepForm {
+    pub param: String,
+    pub from: f64,
+    pub to: f64,
+    pub steps: usize,
+}
+
+impl Default for SweepForm {
+    fn default() -> Self {
+        SweepForm {
+            param: "speed_mps".into(),
+            from: 8.0,
+            to: 36.0,
+            steps: 8,
+        }
+    }
+}
+
+/// Presentation options of the A/B view.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompareOptions {
+    pub shown: Vec<bool>,
+    pub difference: bool,
+}
+
+impl Default for CompareOptions {
+    fn default() -> Self {
+        CompareOptions {
+            shown: Vec::new(),
+            difference: true,
+        }
+    }
+}
+
+/// Presentation options of the fidelity view.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct FidelityOptions {
+    /// Receiving point i and loaded point j of the curves.
+    pub i: usize,
+    pub j: usize,
+    pub log_x: bool,
+}
+
+/// The researcher tools' state held by the app.
+#[derive(Debug, Default)]
+pub struct ResearchState {
+    pub(crate) spectra: HistoryCache<Result<HistorySpectra, String>>,
+    pub(crate) spectra_now: bool,
+    pub(crate) spectra_opts: SpectraOptions,
+    pub(crate) sweep: SweepState,
+    pub(crate) sweep_form: SweepForm,
+    pub(crate) pinned: Option<PinnedRun>,
+    pub(crate) difference: HistoryCache<RunDifference>,
+    pub(crate) compare_opts: CompareOptions,
+    pub(crate) fidelity_ref: Option<FidelityRef>,
+    pub(crate) fidelity: FidelityCache,
+    pub(crate) fidelity_opts: FidelityOptions,
+}
+
+impl ResearchState {
+    /// The spectra last computed (or why there are none).
+    pub fn spectra(&self) -> Option<&Result<HistorySpectra, String>> {
+        self.spectra.get()
+    }
+    /// Times the spectra were computed.
+    pub fn spectra_computations(&self) -> u64 {
+        self.spectra.computations
+    }
+    pub fn sweep(&self) -> &SweepState {
+        &self.sweep
+    }
+    pub fn pinned(&self) -> Option<&PinnedRun> {
+        self.pinned.as_ref()
+    }
+    /// Current − pinned, as last computed for the A/B view.
+    pub fn difference(&self) -> Option<&RunDifference> {
+        self.difference.get()
+    }
+    pub fn fidelity_reference(&self) -> Option<&FidelityRef> {
+        self.fidelity_ref.as_ref()
+    }
+    /// The fidelity figures last computed for the panel.
+    pub fn fidelity(&self) -> Option<&Result<super::fidelity::FidelityFigures, String>> {
+        self.fidelity.last()
+    }
+}

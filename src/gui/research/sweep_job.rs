@@ -1,0 +1,336 @@
+//! A parameter sweep run from the GUI on a background thread (no egui here):
+//! the request is checked at once, the runs go to `crate::sweep::run_sweep`
+//! on every core, and the frame loop polls progress and the outcome; a
+//! cancel flag stops the runs.
+
+use crate::Scene;
+use crate::sweep::{self, Sweep, SweepError, SweepPoint};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc::{Receiver, TryRecvError, channel};
+
+/// What the user asked to sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepRequest {
+    /// Parameter path (`speed_mps`, `points[*].h_m`, ...; see `sweep::param_paths`).
+    pub param: String,
+    pub from: f64,
+    pub to: f64,
+    /// Values, both ends included (>= 1).
+    pub steps: usize,
+}
+
+impl SweepRequest {
+    /// The sweep of `base` this asks for, checked: known parameter, valid
+    /// scene at both ends, at least one value.
+    pub fn to_sweep(&self, base: &Scene, threads: usize) -> Result<Sweep, SweepError> {
+        sweep::get_param(base, &self.param)?;
+        let values = sweep::linspace(self.from, self.to, self.steps)?;
+        for v in [self.from, self.to] {
+            sweep::set_param(&mut base.clone(), &self.param, v)?;
+        }
+        Ok(Sweep {
+            param: self.param.clone(),
+            values,
+            threads: threads.max(1),
+        })
+    }
+}
+
+/// A finished sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepResult {
+    pub request: SweepRequest,
+    /// Name of the base scene.
+    pub scene_name: String,
+    pub num_points: usize,
+    pub points: Vec<SweepPoint>,
+    /// Wall time of the sweep (s), shown, never asserted.
+    pub wall_s: f64,
+    pub threads: usize,
+}
+
+impl SweepResult {
+    /// Runs that failed.
+    pub fn failed(&self) -> usize {
+        self.points.iter().filter(|p| p.result.is_err()).count()
+    }
+}
+
+/// How a sweep job ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SweepEnd {
+    Done(SweepResult),
+    Cancelled,
+    Failed(String),
+}
+
+/// A sweep running on a background thread.
+#[derive(Debug)]
+pub struct SweepJob {
+    pub request: SweepRequest,
+    pub threads: usize,
+    pub runs: usize,
+    done_steps: Arc<AtomicU64>,
+    total_steps: Arc<AtomicU64>,
+    cancel: Arc<AtomicBool>,
+    rx: Receiver<Result<Vec<SweepPoint>, SweepError>>,
+    started: std::time::Instant,
+    scene_name: String,
+    num_points: usize,
+}
+
+/// Worker threads for a sweep: every core.
+pub fn default_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+impl SweepJob {
+    /// Checks `request` against `base` and starts it on a background thread
+    /// (which runs `threads` workers). Errors name the field, value and
+    /// what was expected.
+    pub fn start(base: &Scene, request: SweepRequest, threads: usize) -> Result<Self, String> {
+        let sw = request.to_sweep(base, threads).map_err(|e| e.to_string())?;
+        let done_steps = Arc::new(AtomicU64::new(0));
+        let total_steps = Arc::new(AtomicU64::new(0));
+        let cancel = Arc::new(AtomicBool::new(false));
+        let (tx, rx) = channel();
+        let (d, t, c) = (
+            Arc::clone(&done_steps),
+            Arc::clone(&total_steps),
+            Arc::clone(&cancel),
+        );
+        let scene = base.clone();
+        let runs = sw.values.len();
+        let threads = sw.threads;
+        std::thread::Builder::new()
+            .name("tirecontact-sweep".into())
+            .spawn(move || {
+                let progress = |done: u64, total: u64| {
+                    t.store(total, Ordering::Relaxed);
+                    d.store(done, Ordering::Relaxed);
+                };
+                let r = sweep::run_sweep(&scene, &sw, &progress, &c);
+                // the receiver may be gone (app closed): nothing to report to
+                let _ = tx.send(r);
+            })
+            .map_err(|e| format!("cannot start the sweep thread: {e}"))?;
+        Ok(SweepJob {
+            scene_name: base.name.clone(),
+            num_points: base.num_points(),
+            request,
+            threads,
+            runs,
+            done_steps,
+            total_steps,
+            cancel,
+            rx,
+            started: std::time::Instant::now(),
+        })
+    }
+
+    /// Fraction of the solver steps done (0..=1).
+    pub fn progress(&self) -> f64 {
+        let total = self.total_steps.load(Ordering::Relaxed);
+        if total == 0 {
+            0.0
+        } else {
+            (self.done_steps.load(Ordering::Relaxed) as f64 / total as f64).min(1.0)
+        }
+    }
+
+    /// Asks the runs to stop; `poll` then reports `Cancelled`.
+    pub fn cancel(&self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+
+    pub fn cancel_requested(&self) -> bool {
+        self.cancel.load(Ordering::Relaxed)
+    }
+
+    /// The outcome once the thread finished, else `None` (never blocks).
+    pub fn poll(&self) -> Option<SweepEnd> {
+        match self.rx.try_recv() {
+            Ok(r) => Some(self.end(r)),
+            Err(TryRecvError::Empty) => None,
+            Err(TryRecvError::Disconnected) => Some(SweepEnd::Failed(
+                "the sweep thread stopped without a result".into(),
+            )),
+        }
+    }
+
+    /// Blocks until the thread finished (tests, shutdown).
+    pub fn wait(self) -> SweepEnd {
+        match self.rx.recv() {
+            Ok(r) => self.end(r),
+            Err(_) => SweepEnd::Failed("the sweep thread stopped without a result".into()),
+        }
+    }
+
+    fn end(&self, r: Result<Vec<SweepPoint>, SweepError>) -> SweepEnd {
+        match r {
+            Ok(points) => SweepEnd::Done(SweepResult {
+                request: self.request.clone(),
+                scene_name: self.scene_name.clone(),
+                num_points: self.num_points,
+                points,
+                wall_s: self.started.elapsed().as_secs_f64(),
+                threads: self.threads,
+            }),
+            Err(SweepError::Cancelled) => SweepEnd::Cancelled,
+            Err(e) => SweepEnd::Failed(e.to_string()),
+        }
+    }
+}
+
+impl Drop for SweepJob {
+    /// A job dropped while running (app closed, state replaced) stops its runs.
+    fn drop(&mut self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+}
+
+/// The sweep panel's state machine: idle, running, or the last outcome.
+#[derive(Debug, Default)]
+pub enum SweepState {
+    #[default]
+    Idle,
+    Running(SweepJob),
+    Finished(SweepResult),
+    Cancelled,
+    Failed(String),
+}
+
+impl SweepState {
+    pub fn is_running(&self) -> bool {
+        matches!(self, SweepState::Running(_))
+    }
+
+    /// Starts a sweep unless one runs; on a refused request the state is
+    /// unchanged and the error returned.
+    pub fn start(
+        &mut self,
+        base: &Scene,
+        request: SweepRequest,
+        threads: usize,
+    ) -> Result<(), String> {
+        if self.is_running() {
+            return Err("a sweep is already running: cancel it first".into());
+        }
+        *self = SweepState::Running(SweepJob::start(base, request, threads)?);
+        Ok(())
+    }
+
+    pub fn cancel(&self) {
+        if let SweepState::Running(job) = self {
+            job.cancel();
+        }
+    }
+
+    /// Moves a finished job to its outcome; returns it when it just ended.
+    pub fn poll(&mut self) -> Option<&SweepState> {
+        let end = match self {
+            SweepState::Running(job) => job.poll()?,
+            _ => return None,
+        };
+        *self = match end {
+            SweepEnd::Done(r) => SweepState::Finished(r),
+            SweepEnd::Cancelled => SweepState::Cancelled,
+            SweepEnd::Failed(e) => SweepState::Failed(e),
+        };
+        Some(self)
+    }
+
+    /// The finished result, if any.
+    pub fn result(&self) -> Option<&SweepResult> {
+        match self {
+            SweepState::Finished(r) => Some(r),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene() -> Scene {
+        let mut s = Scene::parse(
+            include_str!("../../../presets/single_mode.ron"),
+            "single_mode",
+        )
+        .unwrap();
+        s.duration_s = 0.08;
+        s
+    }
+
+    fn req(param: &str, from: f64, to: f64, steps: usize) -> SweepRequest {
+        SweepRequest {
+            param: param.into(),
+            from,
+            to,
+            steps,
+        }
+    }
+
+    #[test]
+    fn bad_requests_are_refused_before_anything_runs() {
+        let s = scene();
+        let mut st = SweepState::Idle;
+        let e = st.start(&s, req("speed", 1.0, 2.0, 3), 2).unwrap_err();
+        assert!(e.contains("unknown parameter `speed`"), "{e}");
+        let e = st.start(&s, req("speed_mps", 1.0, 2.0, 0), 2).unwrap_err();
+        assert!(e.contains("steps = 0"), "{e}");
+        let e = st.start(&s, req("dt_s", -1.0, 1e-5, 2), 2).unwrap_err();
+        assert!(e.contains("dt_s"), "{e}");
+        assert!(matches!(st, SweepState::Idle));
+    }
+
+    #[test]
+    fn a_sweep_finishes_with_the_library_result() {
+        let s = scene();
+        let r = req("speed_mps", 10.0, 20.0, 3);
+        let mut st = SweepState::Idle;
+        st.start(&s, r.clone(), 2).unwrap();
+        assert!(st.start(&s, r.clone(), 2).is_err(), "second start refused");
+        let SweepState::Running(job) = std::mem::take(&mut st) else {
+            panic!("not running")
+        };
+        let SweepEnd::Done(res) = job.wait() else {
+            panic!("not done")
+        };
+        let lib = sweep::run_sweep(
+            &s,
+            &r.to_sweep(&s, 1).unwrap(),
+            &|_, _| {},
+            &AtomicBool::new(false),
+        )
+        .unwrap();
+        assert_eq!(res.points, lib);
+        assert_eq!(res.failed(), 0);
+    }
+
+    #[test]
+    fn dropping_a_running_job_cancels_its_runs() {
+        let mut s = scene();
+        s.duration_s = 5.0;
+        let job = SweepJob::start(&s, req("speed_mps", 10.0, 20.0, 8), 2).unwrap();
+        let flag = Arc::clone(&job.cancel);
+        drop(job);
+        assert!(flag.load(Ordering::Relaxed));
+    }
+
+    #[test]
+    fn cancel_ends_in_cancelled() {
+        let mut s = scene();
+        s.duration_s = 5.0;
+        let mut st = SweepState::Idle;
+        st.start(&s, req("speed_mps", 10.0, 20.0, 8), 2).unwrap();
+        st.cancel();
+        let SweepState::Running(job) = std::mem::take(&mut st) else {
+            panic!("not running")
+        };
+        assert!(job.cancel_requested());
+        assert_eq!(job.wait(), SweepEnd::Cancelled);
+    }
+}

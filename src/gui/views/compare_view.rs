@@ -1,0 +1,189 @@
+//! A/B comparison: the current run's displacement and force per point with
+//! the pinned reference run overlaid (dashed, legend "ref: point i"), and
+//! the difference current − reference per quantity. The pin is kept by the
+//! app across parameter edits and restarts.
+
+use super::point_color;
+use crate::compare::{PinnedRun, RunDifference};
+use crate::gui::command::Command;
+use crate::gui::history::{History, Quantity, decimate_min_max};
+use crate::gui::research::ResearchCommand;
+use crate::gui::research::state::CompareOptions;
+use egui::{Id, RichText, Ui};
+use egui_plot::{Corner, Legend, Line, LineStyle, Plot};
+
+pub fn show(
+    ui: &mut Ui,
+    history: &History,
+    pinned: Option<&PinnedRun>,
+    diff: Option<&RunDifference>,
+    opts: &mut CompareOptions,
+    cmds: &mut Vec<Command>,
+) {
+    let p = history.num_points();
+    if opts.shown.len() != p {
+        opts.shown = (0..p).map(|i| i < 8).collect();
+    }
+    ui.horizontal_wrapped(|ui| {
+        if ui
+            .button(RichText::new("Pin as reference").strong())
+            .on_hover_text("keep the current run (its samples and scene) as the reference; it survives edits and restarts")
+            .clicked()
+        {
+            cmds.push(Command::Research(ResearchCommand::PinReference));
+        }
+        if ui.add_enabled(pinned.is_some(), egui::Button::new("Unpin")).clicked() {
+            cmds.push(Command::Research(ResearchCommand::Unpin));
+        }
+        if ui
+            .add_enabled(pinned.is_some(), egui::Button::new("Export reference CSV…"))
+            .on_hover_text("t_s, u{i}_m, q{i}_N of the pinned run")
+            .clicked()
+        {
+            cmds.push(Command::Research(ResearchCommand::ExportPinnedCsvDialog));
+        }
+        ui.separator();
+        ui.checkbox(&mut opts.difference, "show difference (current − reference)");
+        ui.separator();
+        ui.label("points:");
+        for (i, s) in opts.shown.iter_mut().enumerate().take(24) {
+            ui.checkbox(s, RichText::new(i.to_string()).color(point_color(i)));
+        }
+    });
+    match pinned {
+        Some(pin) => {
+            ui.label(RichText::new(format!("reference (dashed): {}", pin.label)).strong());
+            if let Some(d) = diff {
+                let rms: Vec<String> = (0..d.rms_dq_n.len())
+                    .map(|i| {
+                        format!(
+                            "p{i}: {:.4} N, {:.5} mm",
+                            d.rms_dq_n[i],
+                            d.rms_du_m[i] * 1e3
+                        )
+                    })
+                    .collect();
+                ui.label(format!(
+                    "RMS of current − reference over {} common samples: {}",
+                    d.t_s.len(),
+                    rms.join("; ")
+                ));
+            }
+        }
+        None => {
+            ui.label("No reference pinned: play a run, press “Pin as reference”, then change parameters; the pinned run is drawn dashed over the new one.");
+        }
+    }
+    let rows = if opts.difference && pinned.is_some() {
+        4
+    } else {
+        2
+    };
+    let gap = ui.spacing().item_spacing.y;
+    let h = ((ui.available_height() - (rows - 1) as f32 * gap) / rows as f32).max(90.0);
+    let link = Id::unique("tirecontact.compare_axes");
+    let t_end = history
+        .last_time()
+        .unwrap_or(0.0)
+        .max(
+            pinned
+                .and_then(|p| p.recording.t_s.last().copied())
+                .unwrap_or(0.0),
+        )
+        .max(1e-9);
+    let buckets = (ui.available_width() as usize).clamp(100, 3000);
+    let quantities = [
+        (Quantity::Displacement, "displacement u (mm, up)", 1e3),
+        (Quantity::Force, "contact force q (N)", 1.0),
+    ];
+    for (k, (what, y_label, scale)) in quantities.into_iter().enumerate() {
+        let last = rows == 2 && k == 1;
+        let mut plot = Plot::new(("tirecontact.compare", k))
+            .height(h)
+            .legend(Legend::default().position(Corner::RightTop))
+            .link_axis(link, [true, false])
+            .link_cursor(link, [true, false])
+            .y_axis_label(y_label)
+            .y_axis_min_width(64.0)
+            .include_x(0.0)
+            .include_x(t_end)
+            .allow_scroll(false);
+        if last {
+            plot = plot.x_axis_label("time t (s)");
+        }
+        plot.show(ui, |pui| {
+            let b = pui.plot_bounds();
+            let (t0, t1) = (b.min()[0], b.max()[0]);
+            for i in (0..p).filter(|&i| opts.shown[i]) {
+                let pts = history.decimated(what, i, t0, t1, buckets, scale);
+                pui.line(
+                    Line::new(format!("point {i}"), pts)
+                        .color(point_color(i))
+                        .width(1.5),
+                );
+                if let Some(pin) = pinned {
+                    let r = &pin.recording;
+                    let y = match what {
+                        Quantity::Force => r.q_n.get(i),
+                        _ => r.u_m.get(i),
+                    };
+                    if let Some(y) = y {
+                        let pts = window(&r.t_s, y, t0, t1, buckets, scale);
+                        pui.line(
+                            Line::new(format!("ref: point {i}"), pts)
+                                .color(point_color(i).gamma_multiply(0.6))
+                                .width(1.5)
+                                .style(LineStyle::dashed_dense()),
+                        );
+                    }
+                }
+            }
+        });
+    }
+    if rows == 4 {
+        let d = diff.cloned().unwrap_or_default();
+        let diffs = [
+            (&d.du_m, "Δu = current − ref (mm)", 1e3),
+            (&d.dq_n, "Δq = current − ref (N)", 1.0),
+        ];
+        for (k, (series, y_label, scale)) in diffs.into_iter().enumerate() {
+            let mut plot = Plot::new(("tirecontact.compare_diff", k))
+                .height(h)
+                .legend(Legend::default().position(Corner::RightTop))
+                .link_axis(link, [true, false])
+                .link_cursor(link, [true, false])
+                .y_axis_label(y_label)
+                .y_axis_min_width(64.0)
+                .allow_scroll(false);
+            if k == 1 {
+                plot = plot.x_axis_label("time t (s)");
+            }
+            plot.show(ui, |pui| {
+                let b = pui.plot_bounds();
+                let (t0, t1) = (b.min()[0], b.max()[0]);
+                for (i, y) in series.iter().enumerate() {
+                    if opts.shown.get(i).copied().unwrap_or(false) {
+                        let pts = window(&d.t_s, y, t0, t1, buckets, scale);
+                        pui.line(
+                            Line::new(format!("current − ref: point {i}"), pts)
+                                .color(point_color(i))
+                                .width(1.5),
+                        );
+                    }
+                }
+            });
+        }
+    }
+}
+
+/// Min/max-decimated `(t, y · scale)` over `[t0, t1]` (one sample beyond each end).
+fn window(t: &[f64], y: &[f64], t0: f64, t1: f64, buckets: usize, scale: f64) -> Vec<[f64; 2]> {
+    let lo = t.partition_point(|&x| x < t0).saturating_sub(1);
+    let hi = (t.partition_point(|&x| x <= t1) + 1)
+        .min(t.len())
+        .min(y.len());
+    if hi <= lo {
+        return Vec::new();
+    }
+    decimate_min_max(&t[lo..hi], |k| y[lo + k] * scale, buckets)
+}

@@ -1,0 +1,202 @@
+//! The fidelity panel: the ring tyre's source Green functions beside the
+//! modal sum in use (|G_ij(f)| over the band, per point pair), and the live
+//! relative L2 error (crate::fidelity) with its band, plus what removing
+//! each mode would cost. The reference is kept by the app after "Edit as a
+//! modal model", so detuning or removing modes updates the figure.
+
+use super::point_color;
+use super::spectra_view::{log_label, log_marks};
+use crate::Scene;
+use crate::gui::research::fidelity::{FidelityFigures, FidelityRef};
+use crate::gui::research::state::FidelityOptions;
+use crate::modal::ModalModel;
+use crate::scene::{Mode, Tyre};
+use egui::{Color32, RichText, Ui};
+use egui_plot::{Bar, BarChart, Corner, HLine, Legend, Line, LineStyle, Plot};
+
+/// Points of the |G| curves.
+const CURVE_POINTS: usize = 800;
+
+/// The error figure as shown (also what the tests read).
+pub fn error_text(f: &FidelityFigures, p: usize) -> String {
+    format!(
+        "relative L2 error of the modal sum against the ring: {:.3} % ({:.4e}) over {:.0}–{:.0} Hz ({} frequencies, all {p}×{p} pairs)",
+        100.0 * f.fidelity.relative_l2,
+        f.fidelity.relative_l2,
+        f.band_hz.0,
+        f.band_hz.1,
+        f.num_freqs
+    )
+}
+
+pub fn show(
+    ui: &mut Ui,
+    scene: &Scene,
+    modes: &[Mode],
+    reference: Option<&FidelityRef>,
+    figures: Option<&Result<FidelityFigures, String>>,
+    opts: &mut FidelityOptions,
+) {
+    let Some(reference) = reference else {
+        ui.label(RichText::new("No source Green functions for this scene.").strong());
+        ui.label("Its tyre is a modal model given directly (not derived from a ring tyre in this session), so there is nothing to measure its fidelity against. Open a ring-tyre preset (e.g. presets/paper.ron) and press “Edit as a modal model” in the tyre panel: the ring is then kept here as the reference while you detune or remove modes.");
+        return;
+    };
+    let p = scene.num_points();
+    opts.i = opts.i.min(p.saturating_sub(1));
+    opts.j = opts.j.min(p.saturating_sub(1));
+    let converted = matches!(scene.tyre, Tyre::Modal { .. });
+    ui.horizontal_wrapped(|ui| {
+        ui.label("receiving point i");
+        pick(ui, "tirecontact.fid_i", "fidelity point i", &mut opts.i, p);
+        ui.label("loaded point j");
+        pick(ui, "tirecontact.fid_j", "fidelity point j", &mut opts.j, p);
+        ui.checkbox(&mut opts.log_x, "log frequency axis");
+        ui.separator();
+        ui.label(
+            RichText::new(format!(
+                "reference: ring of “{}” (all orders to N = {}){}",
+                reference.source,
+                reference.ring.max_order,
+                if converted {
+                    ", kept after conversion to a modal model"
+                } else {
+                    ""
+                }
+            ))
+            .weak(),
+        );
+    });
+    let figures = match figures {
+        Some(Ok(f)) => f,
+        Some(Err(e)) => {
+            ui.label(
+                RichText::new(format!("No fidelity figure: {e}"))
+                    .color(crate::gui::fields::ERROR_COLOR),
+            );
+            return;
+        }
+        None => {
+            ui.label("computing …");
+            return;
+        }
+    };
+    let pair = figures
+        .fidelity
+        .per_pair
+        .get(opts.i * p + opts.j)
+        .copied()
+        .unwrap_or(f64::NAN);
+    ui.label(RichText::new(error_text(figures, p)).strong().size(16.0));
+    ui.label(format!(
+        "pair ({}, {}): {:.3} % — {} modes in the modal sum",
+        opts.i,
+        opts.j,
+        100.0 * pair,
+        modes.len()
+    ));
+    let x: Vec<f64> = scene.points.iter().map(|q| q.x_m).collect();
+    let src = reference.model(&x);
+    let model = ModalModel::from_modes(modes, p);
+    let (lo, hi) = figures.band_hz;
+    let log = opts.log_x;
+    let f0 = if log { lo.max(hi / 1000.0) } else { lo };
+    let freqs: Vec<f64> = (0..=CURVE_POINTS)
+        .map(|k| {
+            let s = k as f64 / CURVE_POINTS as f64;
+            if log {
+                f0 * (hi / f0).powf(s)
+            } else {
+                f0 + (hi - f0) * s
+            }
+        })
+        .collect();
+    let curve = |g: &ModalModel| -> Vec<[f64; 2]> {
+        freqs
+            .iter()
+            .filter_map(|&f| {
+                let v = g.frequency_response(opts.i, opts.j, f).norm();
+                (v > 0.0 && v.is_finite())
+                    .then(|| [if log { f.log10() } else { f }, 20.0 * v.log10()])
+            })
+            .collect()
+    };
+    let gap = ui.spacing().item_spacing.y;
+    let h = ui.available_height() - gap;
+    let mut plot = Plot::new("tirecontact.fidelity_g")
+        .height((0.62 * h).max(150.0))
+        .legend(Legend::default().position(Corner::RightTop))
+        .x_axis_label(if log {
+            "frequency f (Hz, log scale)"
+        } else {
+            "frequency f (Hz)"
+        })
+        .y_axis_label(format!("|G_{}{}(f)| (dB re 1 m/N)", opts.i, opts.j))
+        .y_axis_min_width(64.0)
+        .allow_scroll(false);
+    if log {
+        plot = plot
+            .x_grid_spacer(log_marks)
+            .x_axis_formatter(|m, _| log_label(m.value));
+    }
+    plot.show(ui, |pui| {
+        pui.line(
+            Line::new(format!("ring source |G_{}{}|", opts.i, opts.j), curve(&src))
+                .color(Color32::from_gray(60))
+                .width(2.5),
+        );
+        pui.line(
+            Line::new(
+                format!("modal sum |Ĝ_{}{}| ({} modes)", opts.i, opts.j, modes.len()),
+                curve(&model),
+            )
+            .color(point_color(1))
+            .width(1.5)
+            .style(LineStyle::dashed_dense()),
+        );
+    });
+    // what removing each mode would cost
+    let bars: Vec<Bar> = modes
+        .iter()
+        .zip(&figures.removal_costs)
+        .enumerate()
+        .map(|(k, (m, &c))| {
+            Bar::new(k as f64, 100.0 * c)
+                .width(0.7)
+                .name(format!("mode {k} ({:.1} Hz)", m.freq_hz))
+                .fill(point_color(2))
+        })
+        .collect();
+    Plot::new("tirecontact.fidelity_costs")
+        .height((0.38 * h - gap).max(100.0))
+        .legend(Legend::default().position(Corner::RightTop))
+        .x_axis_label("mode k (removed)")
+        .y_axis_label("error without mode k (%)")
+        .y_axis_min_width(64.0)
+        .allow_scroll(false)
+        .show(ui, |pui| {
+            pui.bar_chart(
+                BarChart::new("error with mode k removed (%)", bars).color(point_color(2)),
+            );
+            pui.hline(
+                HLine::new(
+                    format!("error now, all {} modes (%)", modes.len()),
+                    100.0 * figures.fidelity.relative_l2,
+                )
+                .color(Color32::from_gray(60))
+                .style(LineStyle::dashed_dense()),
+            );
+        });
+}
+
+fn pick(ui: &mut Ui, id: &str, name: &str, v: &mut usize, p: usize) {
+    egui::ComboBox::from_id_salt(id)
+        .selected_text(v.to_string())
+        .show_ui(ui, |ui| {
+            for k in 0..p {
+                ui.selectable_value(v, k, k.to_string());
+            }
+        })
+        .response
+        .accessible_name(name);
+}

@@ -1,0 +1,345 @@
+//! Spectra of the steady part of the current run: force (dB re 1 N) and
+//! displacement (dB re 1 m) levels against frequency per point, the summed
+//! force, third-octave band levels, and markers at the road excitation
+//! `n V/λ` and the modal frequencies. Computed by the app (cached by the
+//! history's length), only drawn here.
+
+use super::point_color;
+use crate::Scene;
+use crate::gui::command::Command;
+use crate::gui::research::ResearchCommand;
+use crate::gui::research::spectra::{HistoryCache, HistorySpectra};
+use crate::gui::research::state::SpectraOptions;
+use crate::scene::Mode;
+use crate::spectrum::run::DEFAULT_BANDS_HZ;
+use crate::spectrum::{Spectrum, band_label, markers};
+use egui::{Color32, RichText, Ui};
+use egui_plot::{
+    Corner, GridInput, GridMark, Legend, Line, LineStyle, Plot, PlotPoint, Text, VLine,
+};
+
+/// Harmonics of the road excitation marked.
+pub const HARMONICS: u32 = 10;
+/// Dynamic range drawn below the highest level (dB).
+const RANGE_DB: f64 = 120.0;
+const EXCITATION_COLOR: Color32 = Color32::from_rgb(200, 40, 40);
+const MODE_COLOR: Color32 = Color32::from_rgb(110, 110, 110);
+
+/// Grid marks of a log10 axis: decades, and 2..9 when few decades show.
+pub fn log_marks(input: GridInput) -> Vec<GridMark> {
+    let (a, b) = input.bounds;
+    let mut out = Vec::new();
+    if !(a.is_finite() && b.is_finite()) || b - a > 40.0 {
+        return out;
+    }
+    let mut d = a.floor();
+    while d <= b.ceil() {
+        out.push(GridMark {
+            value: d,
+            step_size: 1.0,
+        });
+        if b - a < 4.0 {
+            for k in 2..10 {
+                out.push(GridMark {
+                    value: d + (k as f64).log10(),
+                    step_size: 0.1,
+                });
+            }
+        }
+        d += 1.0;
+    }
+    out
+}
+
+/// Label of a log10 axis mark: the frequency at decades and at 2 and 5.
+pub fn log_label(v: f64) -> String {
+    let x = 10f64.powf(v);
+    let m = x / 10f64.powf(v.floor());
+    if [1.0, 2.0, 5.0].iter().any(|k| (m - k).abs() < 1e-6) {
+        crate::gui::fields::format_number(x)
+    } else {
+        String::new()
+    }
+}
+
+/// x coordinate of a frequency on the plot (log10 when `log`).
+fn fx(f: f64, log: bool) -> f64 {
+    if log { f.log10() } else { f }
+}
+
+/// The excitation summary shown above the plots (also what tests read).
+pub fn excitation_text(scene: &Scene) -> String {
+    let m = markers(scene, f64::INFINITY, 1);
+    match m.excitation_hz.first() {
+        Some((_, f)) => format!(
+            "road excitation V/λ = {f:.2} Hz (harmonics n·V/λ to n = {HARMONICS} marked red)"
+        ),
+        None => "road excitation: broadband road, no discrete V/λ line".to_string(),
+    }
+}
+
+pub fn show(
+    ui: &mut Ui,
+    scene: &Scene,
+    modes: &[Mode],
+    cache: &HistoryCache<Result<HistorySpectra, String>>,
+    opts: &mut SpectraOptions,
+    playing: bool,
+    cmds: &mut Vec<Command>,
+) {
+    let p = scene.num_points();
+    if opts.shown.len() != p {
+        opts.shown = (0..p).map(|i| i < 8).collect();
+    }
+    ui.horizontal_wrapped(|ui| {
+        if ui
+            .button("Recompute")
+            .on_hover_text("transform the run's steady part now")
+            .clicked()
+        {
+            cmds.push(Command::Research(ResearchCommand::RecomputeSpectra));
+        }
+        ui.checkbox(&mut opts.auto, "update while playing")
+            .on_hover_text(
+                "recompute when the run grew by 25 %; off: only on Recompute or when paused",
+            );
+        ui.checkbox(&mut opts.log_x, "log frequency axis");
+        ui.label("up to");
+        ui.add(
+            egui::DragValue::new(&mut opts.max_hz)
+                .range(10.0..=1e6)
+                .speed(10.0)
+                .suffix(" Hz"),
+        )
+        .accessible_name("highest frequency");
+        ui.separator();
+        ui.label("points:");
+        for (i, s) in opts.shown.iter_mut().enumerate().take(24) {
+            ui.checkbox(s, RichText::new(i.to_string()).color(point_color(i)));
+        }
+        ui.checkbox(&mut opts.total, "total force");
+    });
+    ui.label(RichText::new(excitation_text(scene)).color(EXCITATION_COLOR));
+    let hs = match cache.get() {
+        Some(Ok(hs)) => hs,
+        Some(Err(e)) => {
+            ui.label(format!("No spectrum yet: {e}"));
+            return;
+        }
+        None => {
+            ui.label(if playing {
+                "No spectrum yet: computing when the run has advanced."
+            } else {
+                "No spectrum yet: play the run past the ramp, then press Recompute."
+            });
+            return;
+        }
+    };
+    ui.label(RichText::new(format!("Window: {}", hs.caption())).strong());
+    let s = &hs.spectra;
+    let nyquist = 0.5 * hs.span.sample_rate_hz;
+    let max_hz = opts.max_hz.min(nyquist);
+    let marks = markers(scene, max_hz, HARMONICS);
+    let modal: Vec<f64> = modes
+        .iter()
+        .map(|m| m.freq_hz)
+        .filter(|&f| f > 0.0 && f <= max_hz)
+        .collect();
+    let gap = ui.spacing().item_spacing.y;
+    let h = ((ui.available_height() - 2.0 * gap) / 3.0).max(120.0);
+    let log = opts.log_x;
+    let x_label = if log {
+        "frequency f (Hz, log scale)"
+    } else {
+        "frequency f (Hz)"
+    };
+    let narrow = |ui: &mut Ui,
+                  id: &str,
+                  y_label: &str,
+                  specs: &[Spectrum],
+                  total: Option<&Spectrum>,
+                  unit: &str| {
+        // the top level and the floor of the drawn curves
+        let curves: Vec<(String, Color32, Vec<[f64; 2]>)> = specs
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| opts.shown.get(*i).copied().unwrap_or(false))
+            .map(|(i, sp)| (format!("{unit}{i}: point {i}"), point_color(i), sp))
+            .chain(
+                total
+                    .filter(|_| opts.total)
+                    .map(|sp| ("q total: sum of all points".to_string(), Color32::BLACK, sp)),
+            )
+            .map(|(name, c, sp)| (name, c, level_points(sp, max_hz, log)))
+            .collect();
+        let top = curves
+            .iter()
+            .flat_map(|c| c.2.iter().map(|p| p[1]))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let floor = top - RANGE_DB;
+        let mut plot = Plot::new(id)
+            .height(h)
+            .legend(Legend::default().position(Corner::RightTop))
+            .x_axis_label(x_label)
+            .y_axis_label(y_label)
+            .y_axis_min_width(64.0)
+            .allow_scroll(false);
+        if log {
+            plot = plot
+                .x_grid_spacer(log_marks)
+                .x_axis_formatter(|m, _| log_label(m.value));
+        }
+        plot.show(ui, |pui| {
+            for (name, c, pts) in curves {
+                let pts: Vec<[f64; 2]> = pts.into_iter().map(|p| [p[0], p[1].max(floor)]).collect();
+                pui.line(Line::new(name, pts).color(c).width(1.2));
+            }
+            if top.is_finite() {
+                draw_markers(pui, &marks.excitation_hz, &modal, log, top);
+            }
+        });
+    };
+    narrow(
+        ui,
+        "tirecontact.spectra_q",
+        "force level (dB re 1 N)",
+        &s.force,
+        Some(&s.total_force),
+        "q",
+    );
+    narrow(
+        ui,
+        "tirecontact.spectra_u",
+        "displacement level (dB re 1 m)",
+        &s.displacement,
+        None,
+        "u",
+    );
+    // third-octave bands of the forces, drawn as steps over the band edges
+    let hi = DEFAULT_BANDS_HZ.1.min(nyquist / 10f64.powf(0.05));
+    Plot::new("tirecontact.spectra_bands")
+        .height(h)
+        .legend(Legend::default().position(Corner::RightTop))
+        .x_axis_label("third-octave band (Hz, log scale; IEC 61260 base 10)")
+        .y_axis_label("band level (dB re 1 N)")
+        .y_axis_min_width(64.0)
+        .x_grid_spacer(log_marks)
+        .x_axis_formatter(|m, _| log_label(m.value))
+        .allow_scroll(false)
+        .show(ui, |pui| {
+            let mut series: Vec<(String, Color32, &Spectrum)> = s
+                .force
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| opts.shown.get(*i).copied().unwrap_or(false))
+                .map(|(i, sp)| (format!("q{i}: point {i}"), point_color(i), sp))
+                .collect();
+            if opts.total {
+                series.push(("q total".into(), Color32::BLACK, &s.total_force));
+            }
+            for (name, c, sp) in series {
+                let mut pts = Vec::new();
+                for b in sp.third_octave_levels(DEFAULT_BANDS_HZ.0, hi, 1.0) {
+                    if b.resolved && b.level_db.is_finite() {
+                        pts.push([b.band.lower_hz.log10(), b.level_db]);
+                        pts.push([b.band.upper_hz.log10(), b.level_db]);
+                    }
+                }
+                // steps: no min/max band merging of the vertical edges
+                pui.line(Line::new(name, pts).color(c).width(1.5).allow_band(false));
+            }
+            for &(n, f) in marks.excitation_hz.iter().filter(|m| m.1 <= hi) {
+                if n <= 3 {
+                    pui.vline(
+                        VLine::new("road n·V/λ", f.log10())
+                            .color(EXCITATION_COLOR)
+                            .style(LineStyle::dashed_loose()),
+                    );
+                }
+            }
+        });
+    if hi > DEFAULT_BANDS_HZ.0 {
+        ui.label(
+            RichText::new(format!(
+                "bands {}–{} Hz; only bands below Nyquist and at least one bin wide are drawn",
+                band_label(DEFAULT_BANDS_HZ.0),
+                band_label(hi)
+            ))
+            .weak(),
+        );
+    }
+}
+
+/// `(x, level)` of the bins from the first non-DC bin up to `max_hz`.
+fn level_points(sp: &Spectrum, max_hz: f64, log: bool) -> Vec<[f64; 2]> {
+    sp.freq_hz
+        .iter()
+        .zip(sp.levels_db(1.0))
+        .skip(1)
+        .take_while(|(f, _)| **f <= max_hz)
+        .filter(|(_, l)| l.is_finite())
+        .map(|(&f, l)| [fx(f, log), l])
+        .collect()
+}
+
+/// Vertical markers with labels: the road excitation harmonics (red,
+/// labelled `n·V/λ`) and the modal frequencies (grey, labelled `fk`).
+fn draw_markers(
+    pui: &mut egui_plot::PlotUi<'_>,
+    excitation: &[(u32, f64)],
+    modal: &[f64],
+    log: bool,
+    top: f64,
+) {
+    for &(n, f) in excitation {
+        pui.vline(
+            VLine::new("road n·V/λ", fx(f, log))
+                .color(EXCITATION_COLOR)
+                .width(1.0)
+                .style(LineStyle::dashed_loose()),
+        );
+        if n <= 5 {
+            let label = if n == 1 {
+                format!("V/λ {f:.0} Hz")
+            } else {
+                format!("{n}V/λ")
+            };
+            pui.text(
+                Text::new("road n·V/λ", PlotPoint::new(fx(f, log), top + 6.0), label)
+                    .color(EXCITATION_COLOR)
+                    .anchor(egui::Align2::LEFT_BOTTOM),
+            );
+        }
+    }
+    for (k, &f) in modal.iter().enumerate() {
+        pui.vline(
+            VLine::new("modal frequencies", fx(f, log))
+                .color(MODE_COLOR)
+                .width(1.0)
+                .style(LineStyle::dotted_loose()),
+        );
+        if modal.len() <= 12 {
+            pui.text(
+                Text::new(
+                    "modal frequencies",
+                    PlotPoint::new(fx(f, log), top - 6.0 - 5.0 * (k % 3) as f64),
+                    format!("f{k}"),
+                )
+                .color(MODE_COLOR)
+                .anchor(egui::Align2::LEFT_TOP),
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn log_labels_at_1_2_5() {
+        assert_eq!(log_label(2.0), "100");
+        assert_eq!(log_label(2.0f64.log10() + 2.0), "200");
+        assert_eq!(log_label(3.0f64.log10() + 2.0), "");
+    }
+}

@@ -1,0 +1,322 @@
+//! The sweep panel: a numeric scene field (every path `crate::sweep`
+//! accepts), from, to, steps; Run starts it on a background thread with a
+//! progress bar and Cancel; the results (max force, force RMS, contact
+//! fraction, rolling-noise band levels) are plotted against the parameter
+//! and exported as CSV and PNG like `tirecontact sweep`.
+
+use super::point_color;
+use crate::Scene;
+use crate::gui::command::Command;
+use crate::gui::research::ResearchCommand;
+use crate::gui::research::state::SweepForm;
+use crate::gui::research::sweep_job::{SweepRequest, SweepResult, SweepState, default_threads};
+use crate::spectrum::{band_label, third_octave_bands};
+use crate::sweep::{RunSummary, get_param, param_paths};
+use egui::{Color32, RichText, Ui};
+use egui_plot::{Corner, Legend, Line, MarkerShape, Plot, Points};
+
+/// The unit of a parameter, from its path's suffix (for the axis label).
+pub fn param_unit(path: &str) -> &'static str {
+    // longest suffixes first
+    let units = [
+        ("_mps", "m/s"),
+        ("_n_m2", "N/m²"),
+        ("_n_m", "N/m"),
+        ("_kg_m", "kg/m"),
+        ("_cpm", "cycles/m"),
+        ("_rad", "rad"),
+        ("_hz", "Hz"),
+        ("_pa", "Pa"),
+        ("_m", "m"),
+        ("_s", "s"),
+        ("_n", "N"),
+    ];
+    // the last named segment: `band_hz.0` -> `band_hz`, `stiffness_n_m[0]` -> `stiffness_n_m`
+    let last = path
+        .rsplit('.')
+        .find(|seg| !seg.chars().all(|c| c.is_ascii_digit()))
+        .unwrap_or(path);
+    let last = last.split('[').next().unwrap_or(last);
+    for (suffix, unit) in units {
+        if last.ends_with(suffix) {
+            return unit;
+        }
+    }
+    if last.contains("shape") {
+        "1/√kg"
+    } else if last.contains("residue") {
+        "1/kg"
+    } else {
+        "-"
+    }
+}
+
+pub fn show(
+    ui: &mut Ui,
+    scene: &Scene,
+    state: &SweepState,
+    form: &mut SweepForm,
+    cmds: &mut Vec<Command>,
+) {
+    let running = state.is_running();
+    let paths = param_paths(scene);
+    if get_param(scene, &form.param).is_err() {
+        form.param = paths.first().cloned().unwrap_or_default();
+    }
+    ui.horizontal_wrapped(|ui| {
+        ui.label("parameter");
+        let before = form.param.clone();
+        egui::ComboBox::from_id_salt("tirecontact.sweep_param")
+            .selected_text(&form.param)
+            .height(400.0)
+            .show_ui(ui, |ui| {
+                for p in &paths {
+                    ui.selectable_value(&mut form.param, p.clone(), p);
+                }
+            })
+            .response
+            .accessible_name("sweep parameter");
+        if form.param != before
+            && let Ok(v) = get_param(scene, &form.param)
+        {
+            // a range around the current value
+            (form.from, form.to) = if v != 0.0 {
+                (0.8 * v, 1.2 * v)
+            } else {
+                (0.0, 1.0)
+            };
+        }
+        let unit = param_unit(&form.param);
+        if let Ok(v) = get_param(scene, &form.param) {
+            ui.label(
+                RichText::new(format!(
+                    "(now {} {unit})",
+                    crate::gui::fields::format_number(v)
+                ))
+                .weak(),
+            );
+        }
+        ui.separator();
+        ui.label("from");
+        ui.add(
+            egui::DragValue::new(&mut form.from)
+                .speed(0.1)
+                .suffix(format!(" {unit}")),
+        )
+        .accessible_name("sweep from");
+        ui.label("to");
+        ui.add(
+            egui::DragValue::new(&mut form.to)
+                .speed(0.1)
+                .suffix(format!(" {unit}")),
+        )
+        .accessible_name("sweep to");
+        ui.label("steps");
+        ui.add(egui::DragValue::new(&mut form.steps).range(1..=500))
+            .accessible_name("sweep steps");
+        ui.separator();
+        let run = ui.add_enabled(
+            !running,
+            egui::Button::new(RichText::new("Run sweep").strong()),
+        );
+        if run
+            .on_hover_text(format!(
+                "runs the scene once per value, to its end, on {} threads in the background",
+                default_threads()
+            ))
+            .clicked()
+        {
+            cmds.push(Command::Research(ResearchCommand::StartSweep(
+                SweepRequest {
+                    param: form.param.clone(),
+                    from: form.from,
+                    to: form.to,
+                    steps: form.steps,
+                },
+            )));
+        }
+        if ui
+            .add_enabled(running, egui::Button::new("Cancel"))
+            .clicked()
+        {
+            cmds.push(Command::Research(ResearchCommand::CancelSweep));
+        }
+    });
+    match state {
+        SweepState::Idle => {
+            ui.label("No sweep yet: choose a parameter and a range, then Run sweep. Each run summarises its steady part (t ≥ ramp_s).");
+        }
+        SweepState::Running(job) => {
+            let f = job.progress();
+            ui.add(
+                egui::ProgressBar::new(f as f32)
+                    .show_percentage()
+                    .text(format!(
+                        "{} runs of {} on {} threads: {:.0} % of the solver steps{}",
+                        job.runs,
+                        job.request.param,
+                        job.threads,
+                        100.0 * f,
+                        if job.cancel_requested() {
+                            " (cancelling …)"
+                        } else {
+                            ""
+                        }
+                    )),
+            );
+        }
+        SweepState::Cancelled => {
+            ui.label(RichText::new("The sweep was cancelled; no results were kept. The scene and the run are unchanged.").color(Color32::from_rgb(180, 90, 0)));
+        }
+        SweepState::Failed(e) => {
+            ui.label(
+                RichText::new(format!("The sweep failed: {e}"))
+                    .color(crate::gui::fields::ERROR_COLOR),
+            );
+        }
+        SweepState::Finished(r) => {
+            ui.horizontal_wrapped(|ui| {
+                ui.label(format!(
+                    "{} runs of {} from {} to {} {} ({} failed) on {} threads in {:.1} s (scene “{}”)",
+                    r.points.len(),
+                    r.request.param,
+                    r.request.from,
+                    r.request.to,
+                    param_unit(&r.request.param),
+                    r.failed(),
+                    r.threads,
+                    r.wall_s,
+                    r.scene_name
+                ));
+                if ui.button("Export CSV…").on_hover_text("same table as `tirecontact sweep -o`").clicked() {
+                    cmds.push(Command::Research(ResearchCommand::ExportSweepCsvDialog));
+                }
+                if ui.button("Export PNG…").on_hover_text("same figure as `tirecontact sweep --plot`").clicked() {
+                    cmds.push(Command::Research(ResearchCommand::ExportSweepPngDialog));
+                }
+            });
+            plots(ui, r);
+        }
+    }
+}
+
+/// Named, coloured curves of one plot.
+type Curves = Vec<(String, Color32, Vec<[f64; 2]>)>;
+
+fn plots(ui: &mut Ui, r: &SweepResult) {
+    let x_label = format!("{} ({})", r.request.param, param_unit(&r.request.param));
+    let ok: Vec<(f64, &RunSummary)> = r
+        .points
+        .iter()
+        .filter_map(|p| p.result.as_ref().ok().map(|s| (p.value, s)))
+        .collect();
+    let gap = ui.spacing().item_spacing;
+    let w = ((ui.available_width() - gap.x) / 2.0).max(200.0);
+    let h = ((ui.available_height() - gap.y) / 2.0).max(150.0);
+    let per_point = |get: fn(&RunSummary) -> &Vec<f64>, scale: f64| -> Curves {
+        (0..r.num_points)
+            .map(|i| {
+                (
+                    format!("point {i}"),
+                    point_color(i),
+                    ok.iter().map(|(v, s)| [*v, get(s)[i] * scale]).collect(),
+                )
+            })
+            .collect()
+    };
+    let bands: Curves = third_octave_bands(315.0, 2000.0)
+        .iter()
+        .step_by(2)
+        .enumerate()
+        .map(|(k, b)| {
+            (
+                format!("{} Hz band", band_label(b.nominal_hz)),
+                point_color(k),
+                ok.iter()
+                    .filter_map(|(v, s)| {
+                        s.bands
+                            .iter()
+                            .find(|x| x.band.nominal_hz == b.nominal_hz)
+                            .filter(|x| x.level_db.is_finite())
+                            .map(|x| [*v, x.level_db])
+                    })
+                    .collect(),
+            )
+        })
+        .collect();
+    let grid: [(&str, &str, Curves); 4] = [
+        (
+            "tirecontact.sweep_max",
+            "max contact force (N)",
+            per_point(|s| &s.max_force_n, 1.0),
+        ),
+        (
+            "tirecontact.sweep_rms",
+            "contact force RMS (N)",
+            per_point(|s| &s.force_rms_n, 1.0),
+        ),
+        (
+            "tirecontact.sweep_contact",
+            "fraction of steps in contact (%)",
+            per_point(|s| &s.contact_fraction, 100.0),
+        ),
+        (
+            "tirecontact.sweep_bands",
+            "total force, third-octave level (dB re 1 N)",
+            bands,
+        ),
+    ];
+    let mut it = grid.into_iter();
+    for _ in 0..2 {
+        ui.horizontal(|ui| {
+            for _ in 0..2 {
+                let Some((id, y_label, series)) = it.next() else {
+                    return;
+                };
+                Plot::new(id)
+                    .width(w)
+                    .height(h)
+                    .legend(
+                        Legend::default()
+                            .position(Corner::LeftTop)
+                            .follow_insertion_order(true),
+                    )
+                    .x_axis_label(x_label.clone())
+                    .y_axis_label(y_label)
+                    .y_axis_min_width(56.0)
+                    .allow_scroll(false)
+                    .show(ui, |pui| {
+                        for (name, c, pts) in series {
+                            pui.line(Line::new(name.clone(), pts.clone()).color(c).width(1.5));
+                            pui.points(
+                                Points::new(name, pts)
+                                    .color(c)
+                                    .radius(3.0)
+                                    .shape(MarkerShape::Circle),
+                            );
+                        }
+                    });
+            }
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::param_unit;
+
+    #[test]
+    fn units_from_paths() {
+        assert_eq!(param_unit("speed_mps"), "m/s");
+        assert_eq!(param_unit("points[2].h_m"), "m");
+        assert_eq!(param_unit("tyre.modes[0].freq_hz"), "Hz");
+        assert_eq!(param_unit("tyre.ring.inflation_pa"), "Pa");
+        assert_eq!(param_unit("tyre.ring.radial_stiffness_n_m2"), "N/m²");
+        assert_eq!(param_unit("contact.stiffness_n_m[0]"), "N/m");
+        assert_eq!(param_unit("tyre.modes[0].damping_ratio"), "-");
+        assert_eq!(param_unit("tyre.modes[1].shape[0]"), "1/√kg");
+        assert_eq!(param_unit("dt_s"), "s");
+        assert_eq!(param_unit("tyre.ring.mass_per_length_kg_m"), "kg/m");
+        assert_eq!(param_unit("tyre.identification.band_hz.1"), "Hz");
+    }
+}
