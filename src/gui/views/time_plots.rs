@@ -151,6 +151,13 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
     }
 }
 
+/// Min/max buckets of a plot: one per two pixels of width, so each line
+/// has about one vertex per pixel (its min and max per bucket): the peaks
+/// survive and the renderer draws half the vertices of one bucket per pixel.
+fn buckets_for(pui: &PlotUi<'_>) -> usize {
+    ((pui.response().rect.width() / 2.0) as usize).clamp(100, 2000)
+}
+
 fn draw_series(
     pui: &mut PlotUi<'_>,
     h: &History,
@@ -161,7 +168,7 @@ fn draw_series(
     clip_top: Option<f64>,
 ) {
     let mut marks = Vec::new();
-    let buckets = (pui.response().rect.width() as usize).clamp(100, 4000);
+    let buckets = buckets_for(pui);
     let shown_points = shown
         .iter()
         .enumerate()
@@ -203,7 +210,7 @@ fn draw_series(
 /// The level at which the force plot clips impact spikes: a margin above
 /// the force without impacts of the shown points over `[a, b]` (N).
 fn clip_top(pui: &PlotUi<'_>, h: &History, shown: &[bool], a: f64, b: f64) -> Option<f64> {
-    let buckets = (pui.response().rect.width() as usize).clamp(100, 4000);
+    let buckets = buckets_for(pui);
     let points: Vec<usize> = (0..h.num_points())
         .filter(|&i| shown.get(i).copied().unwrap_or(false))
         .collect();
