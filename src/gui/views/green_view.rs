@@ -122,7 +122,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
     let half = ((ui.available_height() - ui.spacing().item_spacing.y) / 2.0).max(100.0);
     let tw = time_window(&model);
     let n = 1500;
-    Plot::new("tirecontact.green_t")
+    super::nice_y_axis(Plot::new("tirecontact.green_t"))
         .height(half)
         .legend(Legend::default().position(Corner::RightTop))
         .x_axis_label("time t (s)")
