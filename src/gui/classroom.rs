@@ -189,7 +189,7 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
     let t0 = t1 - window;
     let buckets = (ui.available_width() as usize).clamp(100, 4000);
     let pts = history.decimated(what, i, t0, t1, buckets, scale);
-    Plot::new("tirecontact.classroom_plot")
+    super::views::nice_y_axis(Plot::new("tirecontact.classroom_plot"))
         .legend(Legend::default().position(Corner::LeftTop))
         .x_axis_label("time t (s)")
         .y_axis_label(label)

@@ -98,7 +98,7 @@ pub fn show(
     ];
     for (k, (what, y_label, scale)) in quantities.into_iter().enumerate() {
         let last = rows == 2 && k == 1;
-        let mut plot = Plot::new(("tirecontact.compare", k))
+        let mut plot = super::nice_y_axis(Plot::new(("tirecontact.compare", k)))
             .height(h)
             .legend(Legend::default().position(Corner::RightTop))
             .link_axis(link, [true, false])
@@ -147,7 +147,7 @@ pub fn show(
             (&d.dq_n, "Δq = current − ref (N)", 1.0),
         ];
         for (k, (series, y_label, scale)) in diffs.into_iter().enumerate() {
-            let mut plot = Plot::new(("tirecontact.compare_diff", k))
+            let mut plot = super::nice_y_axis(Plot::new(("tirecontact.compare_diff", k)))
                 .height(h)
                 .legend(Legend::default().position(Corner::RightTop))
                 .link_axis(link, [true, false])

@@ -167,7 +167,7 @@ pub fn show(
                 .fill(point_color(2))
         })
         .collect();
-    Plot::new("tirecontact.fidelity_costs")
+    super::nice_y_axis(Plot::new("tirecontact.fidelity_costs"))
         .height((0.38 * h - gap).max(100.0))
         .legend(Legend::default().position(Corner::RightTop))
         .x_axis_label("mode k (removed)")

@@ -273,7 +273,7 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
                 let Some((id, y_label, series)) = it.next() else {
                     return;
                 };
-                Plot::new(id)
+                super::nice_y_axis(Plot::new(id))
                     .width(w)
                     .height(h)
                     .legend(
