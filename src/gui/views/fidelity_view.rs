@@ -4,8 +4,9 @@
 //! each mode would cost. The reference is kept by the app after "Edit as a
 //! modal model", so detuning or removing modes updates the figure.
 
+use super::log_marks;
 use super::point_color;
-use super::spectra_view::{log_label, log_marks};
+use super::spectra_view::log_label;
 use crate::Scene;
 use crate::gui::research::fidelity::{FidelityFigures, FidelityRef};
 use crate::gui::research::state::FidelityOptions;

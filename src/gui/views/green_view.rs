@@ -7,7 +7,7 @@ use crate::Scene;
 use crate::modal::ModalModel;
 use crate::scene::Mode;
 use egui::{Color32, Ui};
-use egui_plot::{Corner, GridInput, GridMark, Legend, Line, LineStyle, Plot, VLine};
+use egui_plot::{Corner, Legend, Line, LineStyle, Plot, VLine};
 
 /// Presentation options of the Green-function view.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -47,32 +47,6 @@ pub fn freq_range(model: &ModalModel) -> (f64, f64) {
     } else {
         (1.0, 1000.0)
     }
-}
-
-/// Grid marks of a log10 axis: decades (big) and 2..9 (small).
-fn log_marks(input: GridInput) -> Vec<GridMark> {
-    let (a, b) = input.bounds;
-    let mut out = Vec::new();
-    if !(a.is_finite() && b.is_finite()) || b - a > 40.0 {
-        return out;
-    }
-    let mut d = a.floor();
-    while d <= b.ceil() {
-        out.push(GridMark {
-            value: d,
-            step_size: 1.0,
-        });
-        if b - a < 4.0 {
-            for k in 2..10 {
-                out.push(GridMark {
-                    value: d + (k as f64).log10(),
-                    step_size: 0.1,
-                });
-            }
-        }
-        d += 1.0;
-    }
-    out
 }
 
 fn pow10_label(v: f64) -> String {
@@ -153,7 +127,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
         .legend(Legend::default().position(Corner::RightTop))
         .x_axis_label("frequency f (Hz, log scale)")
         .y_axis_label("|G_ij(f)| (dB re 1 m/N)")
-        .x_grid_spacer(log_marks)
+        .x_grid_spacer(super::log_marks)
         .x_axis_formatter(|m, _| pow10_label(m.value))
         .allow_scroll(false)
         .show(ui, |pui| {

@@ -92,6 +92,32 @@ pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
     })
 }
 
+/// Grid marks of a log10 axis: decades, and 2..9 when few decades show.
+pub fn log_marks(input: egui_plot::GridInput) -> Vec<egui_plot::GridMark> {
+    let (a, b) = input.bounds;
+    let mut out = Vec::new();
+    if !(a.is_finite() && b.is_finite()) || b - a > 40.0 {
+        return out;
+    }
+    let mut d = a.floor();
+    while d <= b.ceil() {
+        out.push(egui_plot::GridMark {
+            value: d,
+            step_size: 1.0,
+        });
+        if b - a < 4.0 {
+            for k in 2..10 {
+                out.push(egui_plot::GridMark {
+                    value: d + (k as f64).log10(),
+                    step_size: 0.1,
+                });
+            }
+        }
+        d += 1.0;
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -14,9 +14,7 @@ use crate::scene::Mode;
 use crate::spectrum::run::DEFAULT_BANDS_HZ;
 use crate::spectrum::{Spectrum, band_label, markers};
 use egui::{Color32, RichText, Ui};
-use egui_plot::{
-    Corner, GridInput, GridMark, Legend, Line, LineStyle, Plot, PlotPoint, Text, VLine,
-};
+use egui_plot::{Corner, Legend, Line, LineStyle, Plot, PlotPoint, Text, VLine};
 
 /// Harmonics of the road excitation marked.
 pub const HARMONICS: u32 = 10;
@@ -24,32 +22,6 @@ pub const HARMONICS: u32 = 10;
 const RANGE_DB: f64 = 120.0;
 const EXCITATION_COLOR: Color32 = Color32::from_rgb(200, 40, 40);
 const MODE_COLOR: Color32 = Color32::from_rgb(110, 110, 110);
-
-/// Grid marks of a log10 axis: decades, and 2..9 when few decades show.
-pub fn log_marks(input: GridInput) -> Vec<GridMark> {
-    let (a, b) = input.bounds;
-    let mut out = Vec::new();
-    if !(a.is_finite() && b.is_finite()) || b - a > 40.0 {
-        return out;
-    }
-    let mut d = a.floor();
-    while d <= b.ceil() {
-        out.push(GridMark {
-            value: d,
-            step_size: 1.0,
-        });
-        if b - a < 4.0 {
-            for k in 2..10 {
-                out.push(GridMark {
-                    value: d + (k as f64).log10(),
-                    step_size: 0.1,
-                });
-            }
-        }
-        d += 1.0;
-    }
-    out
-}
 
 /// Label of a log10 axis mark: the frequency at decades and at 2 and 5.
 pub fn log_label(v: f64) -> String {
@@ -186,7 +158,7 @@ pub fn show(
             .allow_scroll(false);
         if log {
             plot = plot
-                .x_grid_spacer(log_marks)
+                .x_grid_spacer(super::log_marks)
                 .x_axis_formatter(|m, _| log_label(m.value));
         }
         plot.show(ui, |pui| {
@@ -223,7 +195,7 @@ pub fn show(
         .x_axis_label("third-octave band (Hz, log scale; IEC 61260 base 10)")
         .y_axis_label("band level (dB re 1 N)")
         .y_axis_min_width(64.0)
-        .x_grid_spacer(log_marks)
+        .x_grid_spacer(super::log_marks)
         .x_axis_formatter(|m, _| log_label(m.value))
         .allow_scroll(false)
         .show(ui, |pui| {
