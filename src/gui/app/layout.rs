@@ -1,0 +1,77 @@
+//! The two layouts of a frame: the normal one (editing panel, views) and
+//! classroom mode's presenter layout.
+
+use super::*;
+
+impl App {
+    /// Presenter layout: explanation, the scene large with phase labels, one
+    /// plot of a chosen point, the mode bars on the right; no editing panel.
+    pub(super) fn classroom_layout(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        egui::Panel::right("tirecontact.classroom_bars")
+            .resizable(true)
+            .default_size(0.34 * ui.available_width())
+            .show(ui, |ui| {
+                classroom::explanation(ui, &self.scene.name, &self.scene.description);
+                ui.separator();
+                classroom::mode_bars(
+                    ui,
+                    &self.sim,
+                    &self.modes,
+                    self.mutes.as_ref(),
+                    &mut self.classroom,
+                    cmds,
+                );
+            });
+        egui::CentralPanel::default().show(ui, |ui| {
+            crate::gui::dialogs::banner(ui, self.message.as_ref(), cmds);
+            classroom::phase_strip(ui, self.sim.time_s(), &self.phases);
+            let h = (ui.available_height() * 0.64).max(150.0);
+            let w = ui.available_width();
+            ui.allocate_ui(egui::vec2(w, h), |ui| {
+                ui.set_min_size(egui::vec2(w, h));
+                classroom::scene_with_phases(ui, &self.sim, &mut self.scene_opts, &self.phases);
+            });
+            classroom::point_plot(ui, &self.history, &mut self.classroom, self.sim.time_s());
+        });
+    }
+
+    pub(super) fn normal_layout(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        let cmds_left = &mut *cmds;
+        egui::Panel::left("tirecontact.edit")
+            .resizable(true)
+            .default_size(380.0)
+            .show(ui, |ui| {
+                panels::side_panel(ui, &self.scene, &self.modes, cmds_left)
+            });
+        if self.classroom.bars {
+            egui::Panel::right("tirecontact.mode_bars")
+                .resizable(true)
+                .default_size(320.0)
+                .show(ui, |ui| {
+                    classroom::mode_bars(
+                        ui,
+                        &self.sim,
+                        &self.modes,
+                        self.mutes.as_ref(),
+                        &mut self.classroom,
+                        cmds,
+                    );
+                });
+        }
+        egui::CentralPanel::default().show(ui, |ui| {
+            crate::gui::dialogs::banner(ui, self.message.as_ref(), cmds);
+            match self.view {
+                View::TimePlots => {
+                    time_plots::show(ui, &self.history, &mut self.plot_opts, self.sim.time_s());
+                }
+                View::Scene => scene_view::show(ui, &self.sim, &mut self.scene_opts),
+                View::Green => {
+                    green_view::show(ui, &self.scene, &self.modes, &mut self.green_opts);
+                }
+                View::Spectra | View::Sweep | View::Compare | View::Fidelity => {
+                    self.show_research_view(ui, cmds);
+                }
+            }
+        });
+    }
+}
