@@ -17,9 +17,11 @@ pub enum Speed {
 
 impl Speed {
     /// The speeds offered in the toolbar.
-    pub const CHOICES: [Speed; 9] = [
+    pub const CHOICES: [Speed; 10] = [
         Speed::Factor(0.001),
         Speed::Factor(0.01),
+        // classroom mode's slow motion
+        Speed::Factor(0.05),
         Speed::Factor(0.1),
         Speed::Factor(0.25),
         Speed::Factor(0.5),
@@ -269,5 +271,16 @@ mod tests {
         tc.reset();
         assert!(!tc.is_playing());
         assert_eq!(tc.steps_this_frame(0.016, DT), 0);
+    }
+
+    #[test]
+    fn classroom_slow_motion_is_one_of_the_offered_speeds() {
+        let slow = Speed::Factor(crate::gui::classroom::SLOW_MOTION);
+        assert!(Speed::CHOICES.contains(&slow));
+        assert!(Speed::CHOICES.windows(2).all(|w| match (w[0], w[1]) {
+            (Speed::Factor(a), Speed::Factor(b)) => a < b,
+            (Speed::Factor(_), Speed::Max) => true,
+            _ => false,
+        }));
     }
 }
