@@ -46,6 +46,8 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
         ui.end_row();
         ui.label("contact scheme");
         let mut scheme = scene.contact_scheme;
+        let rigid = matches!(scene.contact, crate::scene::Contact::Rigid);
+        ui.add_enabled_ui(rigid, |ui| {
         egui::ComboBox::from_id_salt("tirecontact.scheme")
             .selected_text(scheme_text(scheme))
             .show_ui(ui, |ui| {
@@ -54,7 +56,9 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                 }
             })
             .response
-            .accessible_name("contact scheme");
+            .accessible_name("contact scheme")
+            .on_disabled_hover_text("compliant contact has its own scheme (tread springs, no events): this applies to rigid contact only");
+        });
         if scheme != scene.contact_scheme {
             let mut s = scene.clone();
             s.contact_scheme = scheme;
