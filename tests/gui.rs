@@ -7,6 +7,7 @@ use egui_kittest::kittest::Queryable;
 use std::path::PathBuf;
 use tirecontact::Scene;
 use tirecontact::gui::command::Discarding;
+use tirecontact::gui::time_control::Speed;
 use tirecontact::gui::{App, Command};
 
 fn harness(app: App) -> Harness<'static, App> {
@@ -63,6 +64,8 @@ fn the_app_opens_on_the_paper_preset_one_click_from_playing() {
         "the ring's modes are identified"
     );
     assert!(!h.state().is_dirty());
+    // its 0.2 s run opens in slow motion, so that it lasts 4 s on screen
+    assert_eq!(h.state().time_control().speed(), Speed::Factor(0.05));
     h.get_by_label("Play").click();
     h.run_steps(5);
     assert!(h.state().simulation().time_s() > 0.0);
@@ -339,6 +342,8 @@ fn a_solver_error_pauses_the_run_and_shows_the_message() {
     let scene = Scene::parse(&text, "short road").unwrap();
     let mut h = harness(App::new(scene, None).unwrap());
     h.run();
+    // a 0.05 s run opens in slow motion (watchable); play it at real time
+    h.state_mut().apply(Command::SetSpeed(Speed::Factor(1.0)));
     h.state_mut().apply(Command::Play);
     h.run_steps(30);
     assert!(!h.state().time_control().is_playing(), "the run must pause");

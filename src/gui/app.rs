@@ -92,6 +92,8 @@ impl App {
         history.record_initial(&sim);
         let modes = scene.modes().map_err(|e| e.to_string())?;
         let phases = PhaseTracker::new(scene.num_points(), 0.0);
+        let mut time = TimeControl::default();
+        time.set_speed(super::time_control::Speed::watchable(scene.duration_s));
         Ok(App {
             modes,
             saved: scene.clone(),
@@ -101,7 +103,7 @@ impl App {
             sim,
             live_edits: Vec::new(),
             history,
-            time: TimeControl::default(),
+            time,
             view: View::default(),
             message: None,
             confirm: None,
@@ -573,6 +575,7 @@ impl App {
                 self.scene = scene;
                 self.path = path;
                 self.time.reset();
+                self.set_watchable_speed();
                 self.reset_run();
                 self.research_new_document();
                 self.info(what.to_string());
@@ -581,6 +584,17 @@ impl App {
                 "Cannot use this scene; the current scene is kept.\n{e}"
             )),
         }
+    }
+
+    /// A freshly opened scene plays slowly enough to be watched (classroom
+    /// mode keeps its slow motion).
+    fn set_watchable_speed(&mut self) {
+        let speed = if self.classroom.on {
+            super::time_control::Speed::Factor(classroom::SLOW_MOTION)
+        } else {
+            super::time_control::Speed::watchable(self.scene.duration_s)
+        };
+        self.time.set_speed(speed);
     }
 
     fn save_to(&mut self, path: &Path) {

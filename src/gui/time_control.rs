@@ -40,6 +40,27 @@ impl Speed {
     }
 }
 
+/// Shortest wall-clock time a freshly opened run should take to play (s):
+/// the paper preset's 0.2 s at 1x would be over in a blink.
+pub const MIN_WATCH_S: f64 = 4.0;
+
+impl Speed {
+    /// The speed a freshly opened scene plays at: real time if the run lasts
+    /// at least [`MIN_WATCH_S`], else the fastest offered slow motion that
+    /// makes it last that long (0.2 s → 0.05x, 0.5 s → 0.1x).
+    pub fn watchable(duration_s: f64) -> Speed {
+        Speed::CHOICES
+            .iter()
+            .rev()
+            .copied()
+            .find(|s| match *s {
+                Speed::Factor(f) => f <= 1.0 && duration_s / f >= MIN_WATCH_S * (1.0 - 1e-12),
+                Speed::Max => false,
+            })
+            .unwrap_or(Speed::CHOICES[0])
+    }
+}
+
 /// Longest wall-clock frame time honoured (s): after a stall (a file dialog,
 /// a dragged window) the simulation does not try to catch up.
 pub const MAX_FRAME_S: f64 = 0.1;
@@ -282,5 +303,15 @@ mod tests {
             (Speed::Factor(_), Speed::Max) => true,
             _ => false,
         }));
+    }
+
+    #[test]
+    fn fresh_runs_play_slowly_enough_to_be_watched() {
+        assert_eq!(Speed::watchable(0.2), Speed::Factor(0.05));
+        assert_eq!(Speed::watchable(0.5), Speed::Factor(0.1));
+        assert_eq!(Speed::watchable(2.0), Speed::Factor(0.5));
+        assert_eq!(Speed::watchable(4.0), Speed::Factor(1.0));
+        assert_eq!(Speed::watchable(3600.0), Speed::Factor(1.0));
+        assert_eq!(Speed::watchable(1e-6), Speed::Factor(0.001));
     }
 }
