@@ -97,6 +97,36 @@ impl FrameSettings {
 }
 
 /// Path of frame `k` in `dir`.
+/// The road as the tyre sees it at the simulation's time, `n + 1` points
+/// `[x (m), height (m)]` over `[x0, x1]`: `w z(x + rolled) + (1 − w) h(x)`,
+/// the ramp weight `w` blending the point heights `h` (interpolated between
+/// the points) into the road profile `z` (shared by the scene view and the
+/// animation frames; positions off a measured profile are left out).
+pub fn road_in_tyre_frame(sim: &Simulation, x0: f64, x1: f64, n: usize) -> Vec<[f64; 2]> {
+    let scene = sim.scene();
+    let (w, _) = ramp(sim.time_s(), scene.ramp_s);
+    let mut sorted: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, p.h_m)).collect();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let h_at = |x: f64| -> f64 {
+        match sorted.iter().position(|p| p.0 >= x) {
+            None => sorted.last().map_or(0.0, |p| p.1),
+            Some(0) => sorted[0].1,
+            Some(k) => {
+                let (a, b) = (sorted[k - 1], sorted[k]);
+                a.1 + (b.1 - a.1) * (x - a.0) / (b.0 - a.0)
+            }
+        }
+    };
+    let n = n.max(1);
+    (0..=n)
+        .filter_map(|k| {
+            let x = x0 + (x1 - x0) * k as f64 / n as f64;
+            let z = sim.road_profile().sample(x + sim.rolled_m()).ok()?.0;
+            Some([x, w * z + (1.0 - w) * h_at(x)])
+        })
+        .collect()
+}
+
 pub fn frame_path(dir: &Path, k: u64) -> PathBuf {
     dir.join(format!("frame_{k:05}.png"))
 }
@@ -163,7 +193,6 @@ fn draw_frame(
     let err = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
     let scene = sim.scene();
     let t = sim.time_s();
-    let (w, _) = ramp(t, scene.ramp_s);
     let scale = (f64::from(height.min(width)) / 720.0).clamp(0.5, 4.0);
     let fs = |s: f64| (s * scale).round() as i32;
     let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
@@ -190,26 +219,9 @@ fn draw_frame(
         .light_line_style(WHITE.mix(0.0))
         .draw()
         .map_err(|e| err(&e))?;
-    // road in the tyre's frame, as in the scene view
-    let mut sorted: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, p.h_m)).collect();
-    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let h_at = |x: f64| -> f64 {
-        match sorted.iter().position(|p| p.0 >= x) {
-            None => sorted.last().map_or(0.0, |p| p.1),
-            Some(0) => sorted[0].1,
-            Some(k) => {
-                let (a, b) = (sorted[k - 1], sorted[k]);
-                a.1 + (b.1 - a.1) * (x - a.0) / (b.0 - a.0)
-            }
-        }
-    };
-    let n = 600;
-    let road: Vec<(f64, f64)> = (0..=n)
-        .filter_map(|k| {
-            let x = ext.x0 + (ext.x1 - ext.x0) * k as f64 / n as f64;
-            let z = sim.road_profile().sample(x + sim.rolled_m()).ok()?.0;
-            Some((x, 1e3 * (w * z + (1.0 - w) * h_at(x))))
-        })
+    let road: Vec<(f64, f64)> = road_in_tyre_frame(sim, ext.x0, ext.x1, 600)
+        .into_iter()
+        .map(|[x, y]| (x, 1e3 * y))
         .collect();
     let floor = -ext.y_mm;
     chart
@@ -226,7 +238,8 @@ fn draw_frame(
         .map_err(|e| err(&e))?
         .label("road (moving left)")
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], ROAD.stroke_width(3)));
-    let und: Vec<(f64, f64)> = sorted.iter().map(|&(x, h)| (x, 1e3 * h)).collect();
+    let mut und: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, 1e3 * p.h_m)).collect();
+    und.sort_by(|a, b| a.0.total_cmp(&b.0));
     chart
         .draw_series(LineSeries::new(und, BLACK.mix(0.4).stroke_width(1)))
         .map_err(|e| err(&e))?
@@ -371,6 +384,31 @@ mod tests {
             slow_motion: 2.0,
             width: 320,
             height: 240,
+        }
+    }
+
+    /// Before the ramp the tyre sees its own point heights (interpolated,
+    /// held beyond the end points); after it, the road profile itself.
+    #[test]
+    fn road_in_tyre_frame_blends_point_heights_into_the_road() {
+        let scene = Scene::parse(
+            include_str!("../../presets/three_points.ron"),
+            "three_points",
+        )
+        .unwrap();
+        let mut sim = Simulation::new(&scene).unwrap();
+        let at_start = road_in_tyre_frame(&sim, -0.1, 0.1, 8);
+        assert_eq!(at_start.len(), 9);
+        for [x, y] in &at_start {
+            // h = -1.5 mm at every point of this preset
+            assert!((y + 0.0015).abs() < 1e-15, "x = {x}: {y}");
+        }
+        while sim.time_s() < scene.ramp_s + 1e-3 {
+            sim.step().unwrap();
+        }
+        for [x, y] in road_in_tyre_frame(&sim, -0.1, 0.1, 8) {
+            let z = sim.road_profile().sample(x + sim.rolled_m()).unwrap().0;
+            assert!((y - z).abs() < 1e-15, "x = {x}: {y} vs {z}");
         }
     }
 

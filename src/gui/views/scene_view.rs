@@ -144,27 +144,11 @@ pub fn show_with(
             ui.label(RichText::new(format!("ramping in: w = {w:.2}")).color(Color32::from_rgb(230, 159, 0)));
         }
     });
-    // road seen in the tyre's frame: w z(x + V t) + (1 - w) h(x), h interpolated between points
+    // road seen in the tyre's frame: w z(x + V t) + (1 - w) h(x)
     let pts = &scene.points;
-    let mut sorted: Vec<(f64, f64)> = pts.iter().map(|p| (p.x_m, p.h_m)).collect();
-    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let h_at = |x: f64| -> f64 {
-        match sorted.iter().position(|p| p.0 >= x) {
-            None => sorted.last().map_or(0.0, |p| p.1),
-            Some(0) => sorted[0].1,
-            Some(k) => {
-                let (a, b) = (sorted[k - 1], sorted[k]);
-                a.1 + (b.1 - a.1) * (x - a.0) / (b.0 - a.0)
-            }
-        }
-    };
-    let n = 400;
-    let road: Vec<[f64; 2]> = (0..=n)
-        .filter_map(|k| {
-            let x = x0 + (x1 - x0) * k as f64 / n as f64;
-            let z = sim.road_profile().sample(x + sim.rolled_m()).ok()?.0;
-            Some([x, e * (w * z + (1.0 - w) * h_at(x))])
-        })
+    let road: Vec<[f64; 2]> = crate::output::animation::road_in_tyre_frame(sim, x0, x1, 400)
+        .into_iter()
+        .map(|[x, y]| [x, e * y])
         .collect();
     let undeformed: Vec<[f64; 2]> = pts.iter().map(|p| [p.x_m, e * p.h_m]).collect();
     let displaced: Vec<[f64; 2]> = pts
