@@ -36,7 +36,11 @@ fn steps(c: &mut Criterion) {
             b.iter(|| black_box(sim.step().unwrap()))
         });
         // the bound: predict + project of the same states, nothing else
-        let basis = ModalBasis::new(&scene.modes().unwrap(), p);
+        let basis = ModalBasis::with_rank_tolerance(
+            &scene.modes().unwrap(),
+            p,
+            tirecontact::DEFAULT_RANK_TOLERANCE,
+        );
         let table = StepTable::new(&basis, scene.dt_s);
         let (mut s0, mut s1) = (ModalState::zeros(&basis), ModalState::zeros(&basis));
         s0.x.iter_mut()

@@ -177,6 +177,10 @@ fn phi_of(e: [f64; 2], a: f64, w2: f64) -> [f64; 4] {
     [hd + 2.0 * a * h, h, -w2 * h, hd]
 }
 
+/// Relative singular-value cut below which a residue's SVD term is
+/// round-off ([`ModalBasis::new`]).
+pub const EXACT_RANK_TOLERANCE: f64 = 1e-13;
+
 /// The modes factored into rank terms: `A_k = Σ_r a_kr b_krᵀ`.
 #[derive(Debug, Clone)]
 pub struct ModalBasis {
@@ -197,24 +201,34 @@ pub struct ModalBasis {
 impl ModalBasis {
     /// Factors each mode: a `shape` gives one rank term; a `residue` matrix
     /// gives its SVD terms above `1e-13 σ_max` (rank 1 for `φφᵀ`, 2 for the
-    /// ring's degenerate pairs, at most `P`).
+    /// ring's degenerate pairs, at most `P`): exact to round-off.
     pub fn new(modes: &[Mode], num_points: usize) -> Self {
-        Self::build(modes, num_points, true)
+        Self::build(modes, num_points, Some(EXACT_RANK_TOLERANCE))
+    }
+
+    /// As [`ModalBasis::new`], keeping the SVD terms of each residue above
+    /// `rel_tol σ_max` (clamped to at least [`EXACT_RANK_TOLERANCE`]): a
+    /// truncated SVD, whose error on each residue is at most the largest
+    /// dropped singular value (2-norm). See `SolverOptions::rank_tolerance`.
+    pub fn with_rank_tolerance(modes: &[Mode], num_points: usize, rel_tol: f64) -> Self {
+        Self::build(modes, num_points, Some(rel_tol.max(EXACT_RANK_TOLERANCE)))
     }
 
     /// One state per (mode, source) as SPEC §3 states it, without rank
     /// reduction: the "before" of the rank-1 optimisation, for benchmarks.
     pub fn per_source(modes: &[Mode], num_points: usize) -> Self {
-        Self::build(modes, num_points, false)
+        Self::build(modes, num_points, None)
     }
 
-    fn build(modes: &[Mode], num_points: usize, reduce: bool) -> Self {
+    /// `reduce`: the relative singular-value cut of the rank reduction;
+    /// `None`: one state per (mode, source).
+    fn build(modes: &[Mode], num_points: usize, reduce: Option<f64>) -> Self {
         let p = num_points;
         let mut terms: Vec<(usize, Vec<f64>, Vec<f64>)> = Vec::new();
         let mut params = Vec::with_capacity(modes.len());
         for (k, m) in modes.iter().enumerate() {
             params.push((TAU * m.freq_hz, m.damping_ratio));
-            if !reduce {
+            let Some(rel_tol) = reduce else {
                 let a = m.residue_matrix();
                 for j in 0..p {
                     let mut e = vec![0.0; p];
@@ -222,7 +236,7 @@ impl ModalBasis {
                     terms.push((k, (0..p).map(|i| a[i][j]).collect(), e));
                 }
                 continue;
-            }
+            };
             if !m.shape.is_empty() {
                 terms.push((k, m.shape.clone(), m.shape.clone()));
                 continue;
@@ -241,7 +255,7 @@ impl ModalBasis {
             let smax = svd.singular_values.max();
             for r in 0..svd.singular_values.len() {
                 let sr = svd.singular_values[r];
-                if sr > 1e-13 * smax && sr > 0.0 {
+                if sr > rel_tol * smax && sr > 0.0 {
                     terms.push((
                         k,
                         (0..p).map(|i| u[(i, r)] * sr).collect(),

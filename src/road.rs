@@ -343,6 +343,12 @@ impl PointsRoad {
         }
     }
 
+    /// Whether the profile has breakpoints (a measured profile's kinks).
+    #[inline]
+    pub fn has_kinks(&self) -> bool {
+        matches!(self.profile, RoadProfile::Measured { .. })
+    }
+
     /// The first breakpoint of a measured profile that point `i` meets
     /// strictly inside `(s0, s1)` (as a rolled distance, m); `None` for
     /// smooth roads. Breakpoints within `1e-9 (s1 - s0)` of either end are

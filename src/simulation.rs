@@ -151,7 +151,22 @@ pub struct SolverOptions {
     /// the bench's "Residual flexibility" table); the paper's step-end rule
     /// and compliant contact do not cascade.
     pub residual_above_hz: Option<f64>,
+    /// Relative singular-value cut of the rank reduction (default
+    /// [`DEFAULT_RANK_TOLERANCE`]): the SVD terms of a mode's residue below
+    /// `rank_tolerance × σ_max` are dropped. Identified residues of the ring
+    /// tyre are rank 2 (its cos/sin mode pairs) plus fit noise 1e-6 to 1e-13
+    /// of σ_max; keeping the noise costs 2.5x the states (paper preset: 65
+    /// instead of 26) for a change of each residue below 1e-5 of its norm,
+    /// far below the identification's own error (|G| error 1.9e-2 on the
+    /// paper preset). [`crate::convolution::EXACT_RANK_TOLERANCE`] (1e-13)
+    /// keeps every term (exact to round-off). Ignored without
+    /// `rank_reduction`.
+    pub rank_tolerance: f64,
 }
+
+/// Default of [`SolverOptions::rank_tolerance`]: residue terms below 1e-5 of
+/// the largest are dropped.
+pub const DEFAULT_RANK_TOLERANCE: f64 = 1e-5;
 
 impl Default for SolverOptions {
     fn default() -> Self {
@@ -159,6 +174,7 @@ impl Default for SolverOptions {
             rank_reduction: true,
             reuse_factorisation: true,
             residual_above_hz: None,
+            rank_tolerance: DEFAULT_RANK_TOLERANCE,
         }
     }
 }
@@ -246,7 +262,7 @@ impl Simulation {
         let p = scene.num_points();
         let (modes, residual) = split_residual(scene, scene.modes()?, options.residual_above_hz)?;
         let basis = if options.rank_reduction {
-            ModalBasis::new(&modes, p)
+            ModalBasis::with_rank_tolerance(&modes, p, options.rank_tolerance)
         } else {
             ModalBasis::per_source(&modes, p)
         };
@@ -520,6 +536,10 @@ impl Simulation {
             if sel == Table::Full {
                 self.full_factored = res.is_ok();
                 self.full_set.clone_from(&self.active);
+                if res.is_ok() && self.options.reuse_factorisation {
+                    // reused while the set holds: solves become products
+                    self.full_solver.form_inverse();
+                }
             }
             if let Err(s) = res {
                 return Err(SolverError::SingularContactSystem {
@@ -534,6 +554,9 @@ impl Simulation {
             self.rhs[n + k] = self.rde[i] - self.vh[i];
         }
         match sel {
+            Table::Full if self.options.reuse_factorisation => {
+                self.full_solver.solve_by_inverse(&mut self.rhs[..2 * n])
+            }
             Table::Full => self.full_solver.solve(&mut self.rhs[..2 * n]),
             Table::Sub => self.solver.solve(&mut self.rhs[..2 * n]),
         }
@@ -655,10 +678,12 @@ impl Simulation {
         for &j in &self.active {
             self.impulse[j] += 0.5 * tau * (self.q1[j] + self.q2[j]);
         }
-        self.u.copy_from_slice(&self.ue);
-        self.v.copy_from_slice(&self.ve);
-        self.r.copy_from_slice(&self.re);
-        self.rd.copy_from_slice(&self.rde);
+        // the end values become the current ones; `ue`, `ve`, `re`, `rde`
+        // are rewritten in full before they are read again
+        std::mem::swap(&mut self.u, &mut self.ue);
+        std::mem::swap(&mut self.v, &mut self.ve);
+        std::mem::swap(&mut self.r, &mut self.re);
+        std::mem::swap(&mut self.rd, &mut self.rde);
     }
 
     /// Advances one step of `dt_s`. On error the state is that of the step start
@@ -680,23 +705,21 @@ impl Simulation {
         self.steps += 1;
         self.t_s = self.steps as f64 * self.dt_s;
         let mut pen = 0.0f64;
+        // one test of the sum: a NaN or an infinity anywhere makes it non-finite
+        let mut sum = 0.0;
+        let inv_dt = 1.0 / self.dt_s;
         for i in 0..self.p {
-            self.q_mean[i] = self.impulse[i] / self.dt_s;
-            let checks = [
-                (self.u[i], "displacement"),
-                (self.v[i], "velocity"),
-                (self.q_mean[i], "force"),
-            ];
-            for (x, quantity) in checks {
-                if !x.is_finite() {
-                    return Err(SolverError::NonFinite {
-                        t_s: self.t_s,
-                        point: i,
-                        quantity,
-                    });
-                }
-            }
-            self.contact[i] = self.active.contains(&i);
+            self.q_mean[i] = self.impulse[i] * inv_dt;
+            sum += self.u[i] + self.v[i] + self.q_mean[i];
+        }
+        if !sum.is_finite() {
+            return Err(self.non_finite());
+        }
+        self.contact.fill(false);
+        for &j in &self.active {
+            self.contact[j] = true;
+        }
+        for i in 0..self.p {
             // a compliant contact's compression is its spring's, not a penetration
             if !(compliant && self.contact[i]) {
                 pen = pen.max(self.r[i] - self.u[i]);
@@ -716,6 +739,34 @@ impl Simulation {
             solves,
             penetration_m: pen.max(0.0),
         })
+    }
+
+    /// The first non-finite output of the step just taken (the sum of all
+    /// of them was not finite).
+    #[cold]
+    fn non_finite(&self) -> SolverError {
+        let quantities = [
+            (&self.u, "displacement"),
+            (&self.v, "velocity"),
+            (&self.q_mean, "force"),
+        ];
+        for i in 0..self.p {
+            for (x, quantity) in quantities {
+                if !x[i].is_finite() {
+                    return SolverError::NonFinite {
+                        t_s: self.t_s,
+                        point: i,
+                        quantity,
+                    };
+                }
+            }
+        }
+        // finite values whose sum overflowed
+        SolverError::NonFinite {
+            t_s: self.t_s,
+            point: 0,
+            quantity: "displacement, velocity and force sum",
+        }
     }
 
     /// The paper's step (SPEC §4 steps 1-5) over `[t, t + tau]`: candidates from

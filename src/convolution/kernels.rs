@@ -176,7 +176,8 @@ unsafe fn add_gauss_forces_avx(
         c.w2v.as_ptr(),
     );
     let mut c0 = 0;
-    // SAFETY (all loads and stores): c0 + BLOCK <= full <= n; x, v and the
+    // SAFETY (all loads and stores): c0 + BLOCK <= full <= n (then
+    // c0 + 4 <= quads <= n); x, v and the
     // weight columns hold n entries, inp_t (j + 1) n for every active j
     // (asserted by the caller).
     unsafe {
@@ -207,9 +208,30 @@ unsafe fn add_gauss_forces_avx(
             }
             c0 += BLOCK;
         }
+        // the last partial block four states at a time
+        let quads = n - n % 4;
+        while c0 < quads {
+            let (mut b1, mut b2) = (_mm256_setzero_pd(), _mm256_setzero_pd());
+            for &j in active {
+                let b = _mm256_loadu_pd(inp_t.as_ptr().add(j * n + c0));
+                b1 = _mm256_add_pd(b1, _mm256_mul_pd(b, _mm256_set1_pd(q1[j])));
+                b2 = _mm256_add_pd(b2, _mm256_mul_pd(b, _mm256_set1_pd(q2[j])));
+            }
+            let dx = _mm256_add_pd(
+                _mm256_mul_pd(_mm256_loadu_pd(w1x.add(c0)), b1),
+                _mm256_mul_pd(_mm256_loadu_pd(w2x.add(c0)), b2),
+            );
+            let dv = _mm256_add_pd(
+                _mm256_mul_pd(_mm256_loadu_pd(w1v.add(c0)), b1),
+                _mm256_mul_pd(_mm256_loadu_pd(w2v.add(c0)), b2),
+            );
+            _mm256_storeu_pd(xp.add(c0), _mm256_add_pd(_mm256_loadu_pd(xp.add(c0)), dx));
+            _mm256_storeu_pd(vp.add(c0), _mm256_add_pd(_mm256_loadu_pd(vp.add(c0)), dv));
+            c0 += 4;
+        }
     }
-    // the last partial block: the scalar code on the tail of every column
-    for s in full..n {
+    // the last states: the scalar code on the tail of every column
+    for s in c0..n {
         let (mut b1, mut b2) = (0.0, 0.0);
         for &j in active {
             b1 += inp_t[j * n + s] * q1[j];

@@ -188,7 +188,7 @@ impl Simulation {
     /// faster than it moves (the road turns up into it) is returned.
     fn kinked_up(&mut self, t: f64) -> Result<Option<usize>, SolverError> {
         let vel = self.scene.speed_mps;
-        if vel <= 0.0 {
+        if vel <= 0.0 || !self.road.has_kinks() {
             return Ok(None);
         }
         let s = vel * t + self.x_offset_m;
@@ -212,7 +212,7 @@ impl Simulation {
     /// active point reaches a breakpoint of a measured road first.
     fn kink_limit(&self, t: f64, remaining: f64) -> f64 {
         let vel = self.scene.speed_mps;
-        if vel <= 0.0 || self.active.is_empty() {
+        if vel <= 0.0 || self.active.is_empty() || !self.road.has_kinks() {
             return remaining;
         }
         let s0 = vel * t + self.x_offset_m;
@@ -303,6 +303,7 @@ impl Simulation {
 /// `g1` and scaled slopes `d0`, `d1` (slope × interval) goes below `-tol`;
 /// returns the zero crossing before it. With
 /// `require_rise`, only a crossing after the cubic rose above `+tol` counts.
+#[inline]
 pub fn first_crossing(
     g0: f64,
     d0: f64,
@@ -315,6 +316,23 @@ pub fn first_crossing(
     // just thrown off) counts as on the road: falling, it lands at once;
     // rising, it lands where it comes back.
     let g0 = g0.max(0.0);
+    // cheap rejection (inlined: most free points of most steps): all of the
+    // cubic is above -tol (|H10|, |H11| <= 4/27)
+    if g1 >= -tol && (d0 >= 0.0 && d1 <= 0.0 || g0.min(g1) - 0.25 * (d0.abs() + d1.abs()) >= -tol) {
+        return None;
+    }
+    crossing_of_cubic(g0, d0, g1, d1, tol, require_rise)
+}
+
+/// [`first_crossing`] past its cheap rejection, `g0 >= 0`.
+fn crossing_of_cubic(
+    g0: f64,
+    d0: f64,
+    g1: f64,
+    d1: f64,
+    tol: f64,
+    require_rise: bool,
+) -> Option<f64> {
     let c = [
         g0,
         d0,
@@ -322,10 +340,6 @@ pub fn first_crossing(
         2.0 * g0 + d0 - 2.0 * g1 + d1,
     ];
     let p = |y: f64| ((c[3] * y + c[2]) * y + c[1]) * y + c[0];
-    // cheap rejection: all of the cubic is above -tol (|H10|, |H11| <= 4/27)
-    if g1 >= -tol && (d0 >= 0.0 && d1 <= 0.0 || g0.min(g1) - 0.25 * (d0.abs() + d1.abs()) >= -tol) {
-        return None;
-    }
     // breakpoints: critical points of the cubic in (0, 1), then 1
     let (qa, qb, qc) = (3.0 * c[3], 2.0 * c[2], c[1]);
     let mut bp = [1.0f64; 3];
