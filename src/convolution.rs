@@ -55,6 +55,17 @@ pub struct ModeStep {
     pub h: [f64; 2],
 }
 
+/// `1/n` for the Taylor terms of [`mode_step`] (index 0 unused).
+const RECIPROCALS: [f64; 84] = {
+    let mut r = [0.0; 84];
+    let mut n = 1;
+    while n < 84 {
+        r[n] = 1.0 / n as f64;
+        n += 1;
+    }
+    r
+};
+
 /// Exact step of the unit oscillator `h'' + 2ξω h' + ω² h = δ` over `tau_s`.
 pub fn mode_step(omega: f64, xi: f64, tau_s: f64) -> ModeStep {
     let a = xi * omega;
@@ -69,18 +80,21 @@ pub fn mode_step(omega: f64, xi: f64, tau_s: f64) -> ModeStep {
     // Taylor series on delta: T_n = c_n δ^n / n!, c_0 = 0, c_1 = 1,
     // c_{n+2} = -2a c_{n+1} - ω² c_n.
     let (ad, wd2) = (a * delta, w2 * delta * delta);
+    let (dd, inv_delta) = (delta * delta, 1.0 / delta);
     let (mut t0, mut t1) = (0.0f64, delta);
     let (mut h, mut hd, mut i0, mut m1, mut mv) = (0.0, 0.0, 0.0, 0.0, 0.0);
     let mut n = 0usize;
     loop {
         let nf = n as f64;
+        // reciprocals from the table: no division in the loop
+        let (r1, r2) = (RECIPROCALS[n + 1], RECIPROCALS[n + 2]);
         // term n of h, I0, M1 uses T_n; of h', ∫σh' uses T_{n+1}
         h += t0;
-        i0 += t0 * delta / (nf + 1.0);
-        m1 += t0 * delta * delta / (nf + 2.0);
-        hd += t1 * (nf + 1.0) / delta;
-        mv += t1 * (nf + 1.0) * delta / (nf + 2.0);
-        let t2 = -2.0 * ad * t1 / (nf + 2.0) - wd2 * t0 / ((nf + 2.0) * (nf + 1.0));
+        i0 += t0 * delta * r1;
+        m1 += t0 * dd * r2;
+        hd += t1 * (nf + 1.0) * inv_delta;
+        mv += t1 * (nf + 1.0) * delta * r2;
+        let t2 = -2.0 * ad * t1 * r2 - wd2 * t0 * (r2 * r1);
         t0 = t1;
         t1 = t2;
         n += 1;

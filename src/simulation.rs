@@ -80,6 +80,10 @@ pub struct Simulation {
     max_events: u32,
     full: StepTable,
     full_inf: Influence,
+    /// The same influence by source column: for point `j`, the columns `j`
+    /// of `gx1`, `gx2`, `gv1`, `gv2` one after the other (`4P` values), so
+    /// that the end values run over contiguous memory.
+    full_inf_cols: Vec<f64>,
     sub: StepTable,
     /// `|S| x |S|` blocks of the sub-step influence (4 |S|² used).
     gss: Vec<f64>,
@@ -247,6 +251,17 @@ fn add_residual(g: &mut Influence, c: &[f64], tau_s: f64) {
     }
 }
 
+/// [`Simulation::full_inf_cols`] of an influence.
+fn influence_columns(g: &Influence, p: usize) -> Vec<f64> {
+    let mut cols = Vec::with_capacity(4 * p * p);
+    for j in 0..p {
+        for m in [&g.gx1, &g.gx2, &g.gv1, &g.gv2] {
+            cols.extend((0..p).map(|i| m[i * p + j]));
+        }
+    }
+    cols
+}
+
 impl Simulation {
     /// Builds the simulation of a validated scene; reads a measured road file.
     pub fn new(scene: &Scene) -> Result<Self, SceneError> {
@@ -303,6 +318,7 @@ impl Simulation {
             du: vec![0.0; p],
             dv: vec![0.0; p],
             full,
+            full_inf_cols: influence_columns(&full_inf, p),
             full_inf,
             jump,
             free: state.clone(),
@@ -474,11 +490,7 @@ impl Simulation {
                 min_m: e.min_m,
                 max_m: e.max_m,
             })?;
-        for (i, pt) in self.scene.points.iter().enumerate() {
-            let (z, dz) = (self.zbuf[i], self.dzbuf[i]);
-            self.re[i] = w * (z - pt.h_m);
-            self.rde[i] = dw * (z - pt.h_m) + w * dz * vel;
-        }
+        self.apply_ramp(w, dw);
         Ok(())
     }
 
@@ -494,7 +506,49 @@ impl Simulation {
         };
         self.state.predict_into(table, &mut self.free);
         self.free.project(&self.basis, &mut self.uh, &mut self.vh);
-        self.road_at(t + tau, false)
+        if sel == Table::Full && t == self.t_s {
+            self.road_at_step_end()
+        } else {
+            self.road_at(t + tau, false)
+        }
+    }
+
+    /// [`Simulation::road_at`] the end of the current step (`t_s + dt`),
+    /// with the road advanced from the previous step end (one rotation per
+    /// harmonic instead of a `sin_cos`, see [`PointsRoad::sample_step`]).
+    fn road_at_step_end(&mut self) -> Result<(), SolverError> {
+        let t = self.t_s + self.dt_s;
+        let (w, dw) = ramp(t, self.scene.ramp_s);
+        let vel = self.scene.speed_mps;
+        let rolled_m = vel * t + self.x_offset_m;
+        self.road
+            .sample_step(
+                self.steps + 1,
+                rolled_m,
+                vel * self.dt_s,
+                &mut self.zbuf,
+                &mut self.dzbuf,
+            )
+            .map_err(|(i, e)| SolverError::RoadOutOfRange {
+                t_s: t,
+                point: i,
+                x_m: e.x_m,
+                min_m: e.min_m,
+                max_m: e.max_m,
+            })?;
+        self.apply_ramp(w, dw);
+        Ok(())
+    }
+
+    /// `re`, `rde` from the road samples in `zbuf`, `dzbuf` and the ramp
+    /// `w`, `dw/dt` (SPEC §4): `r = w (z - h)`, `r' = w' (z - h) + w z' V`.
+    fn apply_ramp(&mut self, w: f64, dw: f64) {
+        let vel = self.scene.speed_mps;
+        for (i, pt) in self.scene.points.iter().enumerate() {
+            let (z, dz) = (self.zbuf[i], self.dzbuf[i]);
+            self.re[i] = w * (z - pt.h_m);
+            self.rde[i] = dw * (z - pt.h_m) + w * dz * vel;
+        }
     }
 
     /// Solves the Gauss-point system of `active` (after `predict`) and the end
@@ -606,15 +660,20 @@ impl Simulation {
         match sel {
             Table::Sub => self.end_values_sub(),
             Table::Full => {
-                let (p, g) = (self.p, &self.full_inf);
-                for i in 0..p {
-                    let (mut du, mut dv) = (0.0, 0.0);
-                    for &j in &self.active {
-                        du += g.gx1[i * p + j] * self.q1[j] + g.gx2[i * p + j] * self.q2[j];
-                        dv += g.gv1[i * p + j] * self.q1[j] + g.gv2[i * p + j] * self.q2[j];
+                let p = self.p;
+                let (ue, ve) = (&mut self.ue[..p], &mut self.ve[..p]);
+                ue.copy_from_slice(&self.uh[..p]);
+                ve.copy_from_slice(&self.vh[..p]);
+                for &j in &self.active {
+                    let (a, b) = (self.q1[j], self.q2[j]);
+                    let c = &self.full_inf_cols[4 * p * j..4 * p * (j + 1)];
+                    let (x1, rest) = c.split_at(p);
+                    let (x2, rest) = rest.split_at(p);
+                    let (v1, v2) = rest.split_at(p);
+                    for i in 0..p {
+                        ue[i] += x1[i] * a + x2[i] * b;
+                        ve[i] += v1[i] * a + v2[i] * b;
                     }
-                    self.ue[i] = self.uh[i] + du;
-                    self.ve[i] = self.vh[i] + dv;
                 }
             }
         }

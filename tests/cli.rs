@@ -229,7 +229,9 @@ fn run_warns_when_the_time_step_leaves_penetration() {
             .output()
             .unwrap()
     };
-    let coarse = run("5e-4");
+    // 1e-3 s: 4e-6 m left behind whatever the round-off; at 5e-4 s the
+    // outcome hangs on round-off (one grazing landing located or not)
+    let coarse = run("1e-3");
     assert!(coarse.status.success());
     let err = String::from_utf8_lossy(&coarse.stderr);
     assert!(

@@ -57,12 +57,43 @@ pub(super) fn project(out: &[f64], p: usize, x: &[f64], v: &[f64], u: &mut [f64]
 }
 
 /// [`project`] with AVX lanes: the four accumulators of [`dot2`] are the four
-/// lanes of one register, rows taken four at a time so that eight
-/// independent additions are in flight. Same operations in the same order
-/// as [`dot2`] (no FMA): bit-identical.
+/// lanes of one register; rows are taken up to six at a time (twelve
+/// independent accumulations in registers: five rows, as in the paper's
+/// five points, in one pass). Same operations in the same order as
+/// [`dot2`] (no FMA): bit-identical.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 unsafe fn project_avx(out: &[f64], p: usize, x: &[f64], v: &[f64], u: &mut [f64], w: &mut [f64]) {
+    let mut i = 0;
+    while i < p {
+        let rows = (p - i).min(6);
+        // SAFETY: the caller asserted the lengths; rows i..i + rows exist.
+        unsafe {
+            match rows {
+                6 => project_rows_avx::<6>(out, i, x, v, u, w),
+                5 => project_rows_avx::<5>(out, i, x, v, u, w),
+                4 => project_rows_avx::<4>(out, i, x, v, u, w),
+                3 => project_rows_avx::<3>(out, i, x, v, u, w),
+                2 => project_rows_avx::<2>(out, i, x, v, u, w),
+                _ => project_rows_avx::<1>(out, i, x, v, u, w),
+            }
+        }
+        i += rows;
+    }
+}
+
+/// Rows `i .. i + R` of [`project_avx`].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+unsafe fn project_rows_avx<const R: usize>(
+    out: &[f64],
+    i: usize,
+    x: &[f64],
+    v: &[f64],
+    u: &mut [f64],
+    w: &mut [f64],
+) {
     use std::arch::x86_64::*;
     let ns = x.len();
     let m = ns - ns % 4;
@@ -73,48 +104,31 @@ unsafe fn project_avx(out: &[f64], p: usize, x: &[f64], v: &[f64], u: &mut [f64]
         (a[0] + a[1]) + (a[2] + a[3])
     };
     let (xp, vp) = (x.as_ptr(), v.as_ptr());
-    let mut i = 0;
-    while i < p {
-        let rows = (p - i).min(4);
-        let mut su = [_mm256_setzero_pd(); 4];
-        let mut sv = [_mm256_setzero_pd(); 4];
-        // SAFETY (all loads): c + 3 < m <= ns, rows of `out` have ns entries
-        // (out.len() >= p * ns, asserted by the caller), i + r < p.
-        unsafe {
-            let base = out.as_ptr().add(i * ns);
-            let mut c = 0;
-            if rows == 4 {
-                while c < m {
-                    let (xc, vc) = (_mm256_loadu_pd(xp.add(c)), _mm256_loadu_pd(vp.add(c)));
-                    for r in 0..4 {
-                        let a = _mm256_loadu_pd(base.add(r * ns + c));
-                        su[r] = _mm256_add_pd(su[r], _mm256_mul_pd(a, xc));
-                        sv[r] = _mm256_add_pd(sv[r], _mm256_mul_pd(a, vc));
-                    }
-                    c += 4;
-                }
-            } else {
-                while c < m {
-                    let (xc, vc) = (_mm256_loadu_pd(xp.add(c)), _mm256_loadu_pd(vp.add(c)));
-                    for r in 0..rows {
-                        let a = _mm256_loadu_pd(base.add(r * ns + c));
-                        su[r] = _mm256_add_pd(su[r], _mm256_mul_pd(a, xc));
-                        sv[r] = _mm256_add_pd(sv[r], _mm256_mul_pd(a, vc));
-                    }
-                    c += 4;
-                }
+    let mut su = [_mm256_setzero_pd(); R];
+    let mut sv = [_mm256_setzero_pd(); R];
+    // SAFETY (all loads): c + 3 < m <= ns, rows of `out` have ns entries
+    // (out.len() >= p * ns, asserted by `project`), i + r < p.
+    unsafe {
+        let base = out.as_ptr().add(i * ns);
+        let mut c = 0;
+        while c < m {
+            let (xc, vc) = (_mm256_loadu_pd(xp.add(c)), _mm256_loadu_pd(vp.add(c)));
+            for r in 0..R {
+                let a = _mm256_loadu_pd(base.add(r * ns + c));
+                su[r] = _mm256_add_pd(su[r], _mm256_mul_pd(a, xc));
+                sv[r] = _mm256_add_pd(sv[r], _mm256_mul_pd(a, vc));
             }
+            c += 4;
         }
-        for r in 0..rows {
-            let row = &out[(i + r) * ns..(i + r + 1) * ns];
-            let (mut ru, mut rv) = (lanes(su[r]), lanes(sv[r]));
-            for c in m..ns {
-                ru += row[c] * x[c];
-                rv += row[c] * v[c];
-            }
-            (u[i + r], w[i + r]) = (ru, rv);
+    }
+    for r in 0..R {
+        let row = &out[(i + r) * ns..(i + r + 1) * ns];
+        let (mut ru, mut rv) = (lanes(su[r]), lanes(sv[r]));
+        for c in m..ns {
+            ru += row[c] * x[c];
+            rv += row[c] * v[c];
         }
-        i += rows;
+        (u[i + r], w[i + r]) = (ru, rv);
     }
 }
 
