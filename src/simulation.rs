@@ -129,6 +129,11 @@ pub struct Simulation {
     stats: RunStats,
     /// Tread stiffness per point (N/m) of compliant contact; empty: rigid.
     tread_k_n_m: Vec<f64>,
+    /// `scene.num_steps()` (the scene is fixed for the simulation's life).
+    num_steps: u64,
+    /// The last step located events or released points: `impact_impulse`
+    /// and `released` need clearing.
+    had_event: bool,
     /// Residual compliance of the dropped modes (m/N, P x P row-major);
     /// empty: all modes in the convolution.
     residual: Vec<f64>,
@@ -356,6 +361,8 @@ impl Simulation {
             stats: RunStats::default(),
             tread_k_n_m: scene.contact.stiffness_per_point(p),
             residual,
+            had_event: true,
+            num_steps: scene.num_steps(),
         };
         sim.reset();
         Ok(sim)
@@ -471,7 +478,7 @@ impl Simulation {
     }
     /// Whether the run reached `duration_s`.
     pub fn finished(&self) -> bool {
-        self.steps >= self.scene.num_steps()
+        self.steps >= self.num_steps
     }
 
     /// Road heights and rates at `t` into `re`, `rde`.
@@ -556,9 +563,9 @@ impl Simulation {
     fn solve_active(&mut self, t_end: f64, sel: Table) -> Result<(), SolverError> {
         let n = self.active.len();
         let p = self.p;
-        self.ue.copy_from_slice(&self.uh);
-        self.ve.copy_from_slice(&self.vh);
         if n == 0 {
+            self.ue.copy_from_slice(&self.uh);
+            self.ve.copy_from_slice(&self.vh);
             return Ok(());
         }
         if sel == Table::Sub {
@@ -569,7 +576,8 @@ impl Simulation {
         let reuse = sel == Table::Full
             && self.options.reuse_factorisation
             && self.full_factored
-            && self.full_set == self.active;
+            && self.full_set.len() == n
+            && self.full_set.iter().zip(&self.active).all(|(a, b)| a == b);
         if !reuse {
             self.stats.factorisations += 1;
             let act = &self.active;
@@ -614,8 +622,7 @@ impl Simulation {
             Table::Full => self.full_solver.solve(&mut self.rhs[..2 * n]),
             Table::Sub => self.solver.solve(&mut self.rhs[..2 * n]),
         }
-        self.q1.fill(0.0);
-        self.q2.fill(0.0);
+        // only the active points' entries of q1, q2 are ever read
         for (k, &j) in self.active.iter().enumerate() {
             self.q1[j] = self.rhs[k];
             self.q2[j] = self.rhs[n + k];
@@ -750,8 +757,12 @@ impl Simulation {
     pub fn step(&mut self) -> Result<StepReport, SolverError> {
         let t0 = self.t_s;
         self.impulse.fill(0.0);
-        self.impact_impulse.fill(0.0);
-        self.released.fill(false);
+        if self.had_event {
+            self.impact_impulse.fill(0.0);
+            self.released.fill(false);
+        }
+        // until the step succeeds (an error mid-step may leave either set)
+        self.had_event = true;
         let compliant = !self.tread_k_n_m.is_empty();
         let (events, solves) = match self.scene.contact_scheme {
             _ if compliant => (0, self.compliant_step(t0)?),
@@ -761,6 +772,8 @@ impl Simulation {
             }
             ContactScheme::Located => self.located_step(t0)?,
         };
+        // every impact is a located event; releases set `released`
+        self.had_event = events > 0 || self.released.iter().any(|&r| r);
         self.steps += 1;
         self.t_s = self.steps as f64 * self.dt_s;
         let mut pen = 0.0f64;

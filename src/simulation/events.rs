@@ -87,15 +87,15 @@ impl Simulation {
             // impacts: first root of the Hermite cubic of the gap of a free point
             let mut impact: Option<(usize, f64)> = None;
             for i in 0..self.p {
-                if self.active.contains(&i) {
-                    continue;
-                }
                 let (g0, d0) = (self.u[i] - self.r[i], self.v[i] - self.rd[i]);
                 let (g1, d1) = (self.ue[i] - self.re[i], self.ve[i] - self.rde[i]);
                 // a point released in this step lands again only after it rose
                 // clear of the road (no cycling at the release instant)
                 let rise = self.released[i];
+                // (active points are skipped only past the cheap rejection,
+                // which most points of most steps take)
                 if let Some(y) = first_crossing(g0, d0 * span, g1, d1 * span, self.pen_tol_m, rise)
+                    && !self.active.contains(&i)
                 {
                     let th = y * span;
                     if impact.is_none_or(|(_, t2)| th < t2) {
