@@ -101,11 +101,14 @@ impl App {
                 let rec = recording_from_history(&self.history);
                 let label = pin_label(&self.scene, self.sim.time_s());
                 self.research.pinned = Some(PinnedRun::new(label.clone(), &self.scene, &rec));
+                self.research.pinned_force_without_impacts_n =
+                    super::compare::force_without_impacts(&self.history);
                 self.research.difference.invalidate();
                 self.research_message(false, format!("pinned as reference: {label}"));
             }
             ResearchCommand::Unpin => {
                 self.research.pinned = None;
+                self.research.pinned_force_without_impacts_n.clear();
                 self.research.difference.invalidate();
                 self.research_message(false, "reference unpinned");
             }
@@ -228,6 +231,7 @@ impl App {
                 ui,
                 &self.history,
                 self.research.pinned.as_ref(),
+                &self.research.pinned_force_without_impacts_n,
                 self.research.difference.get(),
                 &mut self.research.compare_opts,
                 cmds,

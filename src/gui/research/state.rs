@@ -80,6 +80,9 @@ impl Default for SweepForm {
 pub struct CompareOptions {
     pub shown: Vec<bool>,
     pub difference: bool,
+    /// Fit the force plot to the force without impacts, as the time plots
+    /// do (impacts clipped and marked ▼).
+    pub clip_impacts: bool,
 }
 
 impl Default for CompareOptions {
@@ -87,6 +90,7 @@ impl Default for CompareOptions {
         CompareOptions {
             shown: Vec::new(),
             difference: true,
+            clip_impacts: true,
         }
     }
 }
@@ -114,6 +118,9 @@ pub struct ResearchState {
     pub(crate) fidelity_ref: Option<FidelityRef>,
     pub(crate) fidelity: FidelityCache,
     pub(crate) fidelity_opts: FidelityOptions,
+    /// The pinned run's force without impacts per point (N), on its
+    /// recording's times (sets the compare view's clipped force axis).
+    pub(crate) pinned_force_without_impacts_n: Vec<Vec<f64>>,
 }
 
 impl ResearchState {

@@ -1,9 +1,11 @@
 //! A/B comparison: the current run's displacement and force per point with
 //! the pinned reference run overlaid (dashed, legend "ref: point i"), and
 //! the difference current − reference per quantity. The pin is kept by the
-//! app across parameter edits and restarts.
+//! app across parameter edits and restarts. As in the time plots, the force
+//! plot can clip impact spikes (fit the force without impacts, mark ▼).
 
 use super::point_color;
+use super::time_plots::{clip_at, clip_checkbox, clip_level, force_range, impact_marks, y_range};
 use crate::compare::{PinnedRun, RunDifference};
 use crate::gui::command::Command;
 use crate::gui::history::{History, Quantity, decimate_min_max};
@@ -12,10 +14,16 @@ use crate::gui::research::state::CompareOptions;
 use egui::{Id, RichText, Ui};
 use egui_plot::{Corner, Legend, Line, LineStyle, Plot};
 
+/// Plot id of the force plot (its bounds are read by the tests).
+pub const FORCE_PLOT_ID: &str = "tirecontact.compare.force";
+
+/// `pinned_force_without_impacts_n`: the pinned run's force without impacts
+/// per point (N), on its recording's times.
 pub fn show(
     ui: &mut Ui,
     history: &History,
     pinned: Option<&PinnedRun>,
+    pinned_force_without_impacts_n: &[Vec<f64>],
     diff: Option<&RunDifference>,
     opts: &mut CompareOptions,
     cmds: &mut Vec<Command>,
@@ -44,6 +52,7 @@ pub fn show(
         }
         ui.separator();
         ui.checkbox(&mut opts.difference, "show difference (current − reference)");
+        clip_checkbox(ui, &mut opts.clip_impacts);
         ui.separator();
         ui.label("points:");
         for (i, s) in opts.shown.iter_mut().enumerate().take(24) {
@@ -111,11 +120,42 @@ pub fn show(
         if last {
             plot = plot.x_axis_label("time t (s)");
         }
+        let clip = opts.clip_impacts && what == Quantity::Force;
+        if what == Quantity::Force {
+            plot = plot.id(Id::unique(FORCE_PLOT_ID));
+        }
+        let shown: Vec<usize> = (0..p).filter(|&i| opts.shown[i]).collect();
         plot.show(ui, |pui| {
             let b = pui.plot_bounds();
             let (t0, t1) = (b.min()[0], b.max()[0]);
-            for i in (0..p).filter(|&i| opts.shown[i]) {
-                let pts = history.decimated(what, i, t0, t1, buckets, scale);
+            // the clip level fits the force without impacts of both runs
+            let top = if clip {
+                let current = force_range(history, &shown, t0, t1, buckets);
+                let reference = pinned.and_then(|pin| {
+                    y_range(
+                        shown
+                            .iter()
+                            .filter_map(|&i| pinned_force_without_impacts_n.get(i))
+                            .flat_map(|y| window(&pin.recording.t_s, y, t0, t1, buckets, 1.0))
+                            .map(|p| p[1]),
+                    )
+                });
+                y_range(
+                    current
+                        .into_iter()
+                        .chain(reference)
+                        .flat_map(|(lo, hi)| [lo, hi]),
+                )
+                .map(clip_level)
+            } else {
+                None
+            };
+            let mut marks = Vec::new();
+            for &i in &shown {
+                let mut pts = history.decimated(what, i, t0, t1, buckets, scale);
+                if let Some(top) = top {
+                    clip_at(&mut pts, top, &mut marks);
+                }
                 pui.line(
                     Line::new(format!("point {i}"), pts)
                         .color(point_color(i))
@@ -128,7 +168,10 @@ pub fn show(
                         _ => r.u_m.get(i),
                     };
                     if let Some(y) = y {
-                        let pts = window(&r.t_s, y, t0, t1, buckets, scale);
+                        let mut pts = window(&r.t_s, y, t0, t1, buckets, scale);
+                        if let Some(top) = top {
+                            clip_at(&mut pts, top, &mut marks);
+                        }
                         pui.line(
                             Line::new(format!("ref: point {i}"), pts)
                                 .color(point_color(i).gamma_multiply(0.6))
@@ -138,6 +181,7 @@ pub fn show(
                     }
                 }
             }
+            impact_marks(pui, marks);
         });
     }
     if rows == 4 {
