@@ -8,11 +8,14 @@ use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
 use std::path::Path;
 use tirecontact::Scene;
+use tirecontact::compare::PinnedRun;
 use tirecontact::gui::command::View;
 use tirecontact::gui::history::Quantity;
-use tirecontact::gui::views::compare_view::FORCE_PLOT_ID;
+use tirecontact::gui::research::compare::{recording_from_history, recording_without_impacts};
+use tirecontact::gui::views::compare_view::{FORCE_DIFF_PLOT_ID, FORCE_PLOT_ID};
 use tirecontact::gui::views::time_plots::clip_level;
 use tirecontact::gui::{App, Command};
+use tirecontact::scene::Tyre;
 
 fn harness(app: App) -> Harness<'static, App> {
     Harness::builder()
@@ -34,11 +37,22 @@ fn advance(h: &mut Harness<'_, App>, n: u64) {
     assert_eq!(h.state().simulation().steps(), target);
 }
 
-/// Lowest and highest y of the compare view's force plot, as drawn.
-fn force_axis(h: &Harness<'_, App>) -> (f64, f64) {
-    let mem = PlotMemory::load(&h.ctx, egui::Id::unique(FORCE_PLOT_ID)).expect("force plot shown");
+/// Lowest and highest y of the compare view's plot `id`, as drawn.
+fn y_axis(h: &Harness<'_, App>, id: &str) -> (f64, f64) {
+    let mem = PlotMemory::load(&h.ctx, egui::Id::unique(id)).expect("plot shown");
     let b = mem.bounds();
     (b.min()[1], b.max()[1])
+}
+
+fn force_axis(h: &Harness<'_, App>) -> (f64, f64) {
+    y_axis(h, FORCE_PLOT_ID)
+}
+
+fn range(ys: &[f64]) -> (f64, f64) {
+    ys.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &y| {
+            (lo.min(y), hi.max(y))
+        })
 }
 
 /// Lowest and highest sample of `what` of point 0 over the whole history.
@@ -99,4 +113,53 @@ fn the_compare_force_axis_fits_the_force_without_impacts_when_clipping() {
         h.query_by_label_contains("impact (impulse / dt, clipped)")
             .is_none()
     );
+}
+
+/// The force difference current − reference is clipped at both edges by the
+/// difference of the forces without impacts (impacts of either run make
+/// spikes of either sign).
+#[test]
+fn the_compare_force_difference_is_clipped_at_both_edges() {
+    let scene = Scene::load(Path::new("presets/single_mode.ron")).unwrap();
+    let mut h = harness(App::new(scene.clone(), None).unwrap());
+    h.run();
+    advance(&mut h, 20_000);
+    h.state_mut().apply(Command::ShowView(View::Compare));
+    h.run_steps(2);
+    h.get_by_label("Pin as reference").click();
+    h.run_steps(2);
+    let pin = PinnedRun::new("a", &scene, &recording_from_history(h.state().history()));
+    let pin_smooth = PinnedRun::new("a", &scene, &recording_without_impacts(h.state().history()));
+    let mut edited = scene.clone();
+    if let Tyre::Modal { modes } = &mut edited.tyre {
+        modes[0].freq_hz *= 1.1;
+    }
+    h.state_mut().apply(Command::EditScene(Box::new(edited)));
+    h.run_steps(1);
+    advance(&mut h, 20_000);
+    h.run_steps(4);
+
+    let raw = range(
+        &pin.difference(&recording_from_history(h.state().history()))
+            .dq_n[0],
+    );
+    let smooth = range(
+        &pin_smooth
+            .difference(&recording_without_impacts(h.state().history()))
+            .dq_n[0],
+    );
+    let (top, bottom) = (clip_level(smooth), -clip_level((-smooth.1, -smooth.0)));
+    assert!(
+        raw.1 > 2.0 * top && raw.0 < 2.0 * bottom,
+        "impacts make spikes of both signs: {raw:?} vs {bottom}..{top} N"
+    );
+    let (lo, hi) = y_axis(&h, FORCE_DIFF_PLOT_ID);
+    let margin = 0.1 * (top - bottom);
+    assert!(hi >= top && hi <= top + margin, "{hi} vs {top} N");
+    assert!(lo <= bottom && lo >= bottom - margin, "{lo} vs {bottom} N");
+
+    h.get_by_label("clip impact spikes").click();
+    h.run_steps(4);
+    let (lo, hi) = y_axis(&h, FORCE_DIFF_PLOT_ID);
+    assert!(hi >= raw.1 && lo <= raw.0, "{lo}..{hi} vs {raw:?} N");
 }

@@ -1,7 +1,7 @@
 //! The researcher tools' side of `App::apply` and of the frame loop.
 
 use super::ResearchCommand;
-use super::compare::{pin_label, recording_from_history};
+use super::compare::{pin_label, recording_from_history, recording_without_impacts};
 use super::fidelity::FidelityRef;
 use super::spectra::{HistoryKey, history_spectra};
 use super::sweep_job::{SweepState, default_threads};
@@ -101,14 +101,19 @@ impl App {
                 let rec = recording_from_history(&self.history);
                 let label = pin_label(&self.scene, self.sim.time_s());
                 self.research.pinned = Some(PinnedRun::new(label.clone(), &self.scene, &rec));
-                self.research.pinned_force_without_impacts_n =
-                    super::compare::force_without_impacts(&self.history);
+                self.research.pinned_without_impacts = Some(PinnedRun::new(
+                    label.clone(),
+                    &self.scene,
+                    &recording_without_impacts(&self.history),
+                ));
+                self.research.difference_without_impacts.invalidate();
                 self.research.difference.invalidate();
                 self.research_message(false, format!("pinned as reference: {label}"));
             }
             ResearchCommand::Unpin => {
                 self.research.pinned = None;
-                self.research.pinned_force_without_impacts_n.clear();
+                self.research.pinned_without_impacts = None;
+                self.research.difference_without_impacts.invalidate();
                 self.research.difference.invalidate();
                 self.research_message(false, "reference unpinned");
             }
@@ -195,6 +200,14 @@ impl App {
                         pin.difference(&recording_from_history(h))
                     });
                 }
+                if let Some(pin) = &self.research.pinned_without_impacts {
+                    let h = &self.history;
+                    self.research
+                        .difference_without_impacts
+                        .refresh(key, playing, false, || {
+                            pin.difference(&recording_without_impacts(h))
+                        });
+                }
             }
             View::Fidelity => {
                 if let Some(r) = &self.research.fidelity_ref {
@@ -231,8 +244,9 @@ impl App {
                 ui,
                 &self.history,
                 self.research.pinned.as_ref(),
-                &self.research.pinned_force_without_impacts_n,
+                self.research.pinned_without_impacts.as_ref(),
                 self.research.difference.get(),
+                self.research.difference_without_impacts.get(),
                 &mut self.research.compare_opts,
                 cmds,
             ),

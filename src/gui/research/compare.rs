@@ -21,16 +21,18 @@ pub fn recording_from_history(h: &History) -> Recording {
     r
 }
 
-/// The history's force without impacts per point (N), on its times: what
-/// a clipped force plot of the pinned run fits.
-pub fn force_without_impacts(h: &History) -> Vec<Vec<f64>> {
-    (0..h.num_points())
+/// [`recording_from_history`] with the force without impacts as `q`: what
+/// a clipped force plot fits.
+pub fn recording_without_impacts(h: &History) -> Recording {
+    let mut r = recording_from_history(h);
+    r.q_n = (0..h.num_points())
         .map(|i| {
             (0..h.len())
                 .map(|k| h.value(Quantity::ForceWithoutImpacts, i, k))
                 .collect()
         })
-        .collect()
+        .collect();
+    r
 }
 
 /// A short label of a scene for legends: its name and speed.

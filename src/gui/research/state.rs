@@ -118,9 +118,10 @@ pub struct ResearchState {
     pub(crate) fidelity_ref: Option<FidelityRef>,
     pub(crate) fidelity: FidelityCache,
     pub(crate) fidelity_opts: FidelityOptions,
-    /// The pinned run's force without impacts per point (N), on its
-    /// recording's times (sets the compare view's clipped force axis).
-    pub(crate) pinned_force_without_impacts_n: Vec<Vec<f64>>,
+    /// The pinned run with its force without impacts as `q` (sets the
+    /// compare view's clipped force axes), and its difference.
+    pub(crate) pinned_without_impacts: Option<PinnedRun>,
+    pub(crate) difference_without_impacts: HistoryCache<RunDifference>,
 }
 
 impl ResearchState {

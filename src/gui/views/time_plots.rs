@@ -191,7 +191,7 @@ fn draw_series(
                 .width(1.5),
         );
     }
-    impact_marks(pui, marks);
+    impact_marks(pui, marks, MarkerShape::Down);
 }
 
 /// Lowers the points of `pts` above `top` to `top`, collecting them in
@@ -205,12 +205,13 @@ pub fn clip_at(pts: &mut [[f64; 2]], top: f64, marks: &mut Vec<[f64; 2]>) {
     }
 }
 
-/// Draws the ▼ marks of clipped impacts (nothing when there are none).
-pub fn impact_marks(pui: &mut PlotUi<'_>, marks: Vec<[f64; 2]>) {
+/// Draws the marks of clipped impacts, `shape` ▼ (`Down`) at a top edge
+/// (nothing when there are none).
+pub fn impact_marks(pui: &mut PlotUi<'_>, marks: Vec<[f64; 2]>, shape: MarkerShape) {
     if !marks.is_empty() {
         pui.points(
             Points::new("impact (impulse / dt, clipped)", marks)
-                .shape(MarkerShape::Down)
+                .shape(shape)
                 .filled(true)
                 .radius(4.0)
                 .color(egui::Color32::from_gray(200)),
