@@ -113,11 +113,7 @@ pub fn show(
         let last = rows == 2 && k == 1;
         let mut plot = super::nice_y_axis(Plot::new(("tirecontact.compare", k)))
             .height(h)
-            .legend(
-                Legend::default()
-                    .position(Corner::RightTop)
-                    .follow_insertion_order(true),
-            )
+            .legend(Legend::default().position(Corner::RightTop))
             .link_axis(link, [true, false])
             .link_cursor(link, [true, false])
             .y_axis_label(y_label)
@@ -196,11 +192,7 @@ pub fn show(
         for (k, (series, y_label, scale)) in diffs.into_iter().enumerate() {
             let mut plot = super::nice_y_axis(Plot::new(("tirecontact.compare_diff", k)))
                 .height(h)
-                .legend(
-                    Legend::default()
-                        .position(Corner::RightTop)
-                        .follow_insertion_order(true),
-                )
+                .legend(Legend::default().position(Corner::RightTop))
                 .link_axis(link, [true, false])
                 .link_cursor(link, [true, false])
                 .y_axis_label(y_label)
