@@ -3,7 +3,8 @@
 use super::ResearchCommand;
 use super::compare::{pin_label, recording_from_history, recording_without_impacts};
 use super::fidelity::FidelityRef;
-use super::spectra::{HistoryKey, history_spectra};
+use super::spectra::{HistoryKey, SpectraInput};
+use super::spectra_job::{INLINE_MAX_WORK, SpectraJob, SpectraPoll};
 use super::sweep_job::{SweepState, default_threads};
 use crate::compare::PinnedRun;
 use crate::gui::app::{App, Message};
@@ -182,15 +183,26 @@ impl App {
         self.research.fidelity_ref = FidelityRef::follow(held, &self.scene);
         let key = HistoryKey::of(&self.history);
         let playing = self.time.is_playing();
+        self.poll_spectra(&key);
         match self.view {
             View::Spectra => {
                 let force = std::mem::take(&mut self.research.spectra_now);
                 let auto = self.research.spectra_opts.auto || !playing;
-                if auto || force {
-                    let (h, ramp, dt) = (&self.history, self.scene.ramp_s, self.sim.dt_s());
-                    self.research.spectra.refresh(key, playing, force, || {
-                        history_spectra(h, ramp, dt, Window::Hann)
-                    });
+                // a computation under way counts as done for staleness
+                let basis = (self.research.spectra_job.as_ref()).map(|j| j.key).or(self
+                    .research
+                    .spectra
+                    .key()
+                    .copied());
+                let stale = self
+                    .research
+                    .spectra
+                    .stale_since(basis.as_ref(), &key, playing);
+                if force || (auto && stale) {
+                    self.start_spectra(key);
+                }
+                if self.research.spectra_job.is_some() {
+                    ctx.request_repaint();
                 }
             }
             View::Compare => {
@@ -219,6 +231,45 @@ impl App {
         }
     }
 
+    /// Picks up the spectra of a finished background job (a stale one is
+    /// dropped).
+    fn poll_spectra(&mut self, now: &HistoryKey) {
+        let Some(job) = &self.research.spectra_job else {
+            return;
+        };
+        match job.poll(now) {
+            SpectraPoll::Running => {}
+            SpectraPoll::Done(r) => {
+                let key = job.key;
+                self.research.spectra_job = None;
+                self.research.spectra.set(key, *r);
+            }
+            SpectraPoll::Stale => self.research.spectra_job = None,
+        }
+    }
+
+    /// Computes the spectra of the history `key`: at once when short, else
+    /// on a background thread (replacing, and so cancelling, a running one).
+    fn start_spectra(&mut self, key: HistoryKey) {
+        self.research.spectra_job = None;
+        let input = SpectraInput::of_history(&self.history, self.scene.ramp_s, self.sim.dt_s());
+        let r = match input {
+            Ok(input) if input.work() > INLINE_MAX_WORK => {
+                match SpectraJob::spawn(key, input, Window::Hann) {
+                    Ok(job) => {
+                        self.research.spectra_job = Some(job);
+                        self.research.spectra_jobs += 1;
+                        return;
+                    }
+                    Err(e) => Err(e),
+                }
+            }
+            Ok(input) => input.compute(Window::Hann, &|| false, &|| {}),
+            Err(e) => Err(e),
+        };
+        self.research.spectra.set(key, r);
+    }
+
     /// Draws the researcher view `self.view` (views only read the app; they
     /// change their own presentation options and push commands).
     pub(crate) fn show_research_view(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
@@ -229,6 +280,7 @@ impl App {
                 &self.scene,
                 &self.modes,
                 &self.research.spectra,
+                self.research.spectra_computing(),
                 &mut self.research.spectra_opts,
                 self.time.is_playing(),
                 cmds,

@@ -122,6 +122,10 @@ pub struct ResearchState {
     /// compare view's clipped force axes), and its difference.
     pub(crate) pinned_without_impacts: Option<PinnedRun>,
     pub(crate) difference_without_impacts: HistoryCache<RunDifference>,
+    /// The spectra being computed on a background thread, if any.
+    pub(crate) spectra_job: Option<super::spectra_job::SpectraJob>,
+    /// Background spectra computations started so far.
+    pub(crate) spectra_jobs: u64,
 }
 
 impl ResearchState {
@@ -132,6 +136,14 @@ impl ResearchState {
     /// Times the spectra were computed.
     pub fn spectra_computations(&self) -> u64 {
         self.spectra.computations
+    }
+    /// Spectra computations started on a background thread so far.
+    pub fn spectra_jobs(&self) -> u64 {
+        self.spectra_jobs
+    }
+    /// Progress (0..=1) of the spectra being computed in the background.
+    pub fn spectra_computing(&self) -> Option<f64> {
+        self.spectra_job.as_ref().map(|j| j.progress())
     }
     pub fn sweep(&self) -> &SweepState {
         &self.sweep
