@@ -1,9 +1,24 @@
 //! The two layouts of a frame: the normal one (editing panel, views) and
-//! classroom mode's presenter layout.
+//! classroom mode's presenter layout, and the commands switching them.
 
 use super::*;
 
 impl App {
+    pub(super) fn show_view(&mut self, v: View) {
+        // the presenter layout has one view; another one leaves it
+        self.classroom.on = false;
+        self.view = v;
+    }
+
+    /// Classroom mode on (presenter layout, slow motion) or off.
+    pub(super) fn set_classroom(&mut self, on: bool) {
+        self.classroom.on = on;
+        if on {
+            self.view = View::Scene;
+            self.time.set_speed(Speed::Factor(classroom::SLOW_MOTION));
+        }
+    }
+
     /// Presenter layout: explanation, the scene large with phase labels, one
     /// plot of a chosen point, the mode bars on the right; no editing panel.
     pub(super) fn classroom_layout(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {

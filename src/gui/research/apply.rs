@@ -1,9 +1,10 @@
 //! The researcher tools' side of `App::apply` and of the frame loop.
 
 use super::ResearchCommand;
-use super::compare::{pin_label, recording_from_history};
+use super::compare::{pin_label, recording_from_history, recording_without_impacts};
 use super::fidelity::FidelityRef;
-use super::spectra::{HistoryKey, history_spectra};
+use super::spectra::{HistoryKey, SpectraInput};
+use super::spectra_job::{INLINE_MAX_WORK, SpectraJob, SpectraPoll};
 use super::sweep_job::{SweepState, default_threads};
 use crate::compare::PinnedRun;
 use crate::gui::app::{App, Message};
@@ -101,11 +102,19 @@ impl App {
                 let rec = recording_from_history(&self.history);
                 let label = pin_label(&self.scene, self.sim.time_s());
                 self.research.pinned = Some(PinnedRun::new(label.clone(), &self.scene, &rec));
+                self.research.pinned_without_impacts = Some(PinnedRun::new(
+                    label.clone(),
+                    &self.scene,
+                    &recording_without_impacts(&self.history),
+                ));
+                self.research.difference_without_impacts.invalidate();
                 self.research.difference.invalidate();
                 self.research_message(false, format!("pinned as reference: {label}"));
             }
             ResearchCommand::Unpin => {
                 self.research.pinned = None;
+                self.research.pinned_without_impacts = None;
+                self.research.difference_without_impacts.invalidate();
                 self.research.difference.invalidate();
                 self.research_message(false, "reference unpinned");
             }
@@ -174,15 +183,26 @@ impl App {
         self.research.fidelity_ref = FidelityRef::follow(held, &self.scene);
         let key = HistoryKey::of(&self.history);
         let playing = self.time.is_playing();
+        self.poll_spectra(&key);
         match self.view {
             View::Spectra => {
                 let force = std::mem::take(&mut self.research.spectra_now);
                 let auto = self.research.spectra_opts.auto || !playing;
-                if auto || force {
-                    let (h, ramp, dt) = (&self.history, self.scene.ramp_s, self.sim.dt_s());
-                    self.research.spectra.refresh(key, playing, force, || {
-                        history_spectra(h, ramp, dt, Window::Hann)
-                    });
+                // a computation under way counts as done for staleness
+                let basis = (self.research.spectra_job.as_ref()).map(|j| j.key).or(self
+                    .research
+                    .spectra
+                    .key()
+                    .copied());
+                let stale = self
+                    .research
+                    .spectra
+                    .stale_since(basis.as_ref(), &key, playing);
+                if force || (auto && stale) {
+                    self.start_spectra(key);
+                }
+                if self.research.spectra_job.is_some() {
+                    ctx.request_repaint();
                 }
             }
             View::Compare => {
@@ -191,6 +211,14 @@ impl App {
                     self.research.difference.refresh(key, playing, false, || {
                         pin.difference(&recording_from_history(h))
                     });
+                }
+                if let Some(pin) = &self.research.pinned_without_impacts {
+                    let h = &self.history;
+                    self.research
+                        .difference_without_impacts
+                        .refresh(key, playing, false, || {
+                            pin.difference(&recording_without_impacts(h))
+                        });
                 }
             }
             View::Fidelity => {
@@ -203,6 +231,45 @@ impl App {
         }
     }
 
+    /// Picks up the spectra of a finished background job (a stale one is
+    /// dropped).
+    fn poll_spectra(&mut self, now: &HistoryKey) {
+        let Some(job) = &self.research.spectra_job else {
+            return;
+        };
+        match job.poll(now) {
+            SpectraPoll::Running => {}
+            SpectraPoll::Done(r) => {
+                let key = job.key;
+                self.research.spectra_job = None;
+                self.research.spectra.set(key, *r);
+            }
+            SpectraPoll::Stale => self.research.spectra_job = None,
+        }
+    }
+
+    /// Computes the spectra of the history `key`: at once when short, else
+    /// on a background thread (replacing, and so cancelling, a running one).
+    fn start_spectra(&mut self, key: HistoryKey) {
+        self.research.spectra_job = None;
+        let input = SpectraInput::of_history(&self.history, self.scene.ramp_s, self.sim.dt_s());
+        let r = match input {
+            Ok(input) if input.work() > INLINE_MAX_WORK => {
+                match SpectraJob::spawn(key, input, Window::Hann) {
+                    Ok(job) => {
+                        self.research.spectra_job = Some(job);
+                        self.research.spectra_jobs += 1;
+                        return;
+                    }
+                    Err(e) => Err(e),
+                }
+            }
+            Ok(input) => input.compute(Window::Hann, &|| false, &|| {}),
+            Err(e) => Err(e),
+        };
+        self.research.spectra.set(key, r);
+    }
+
     /// Draws the researcher view `self.view` (views only read the app; they
     /// change their own presentation options and push commands).
     pub(crate) fn show_research_view(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
@@ -213,6 +280,7 @@ impl App {
                 &self.scene,
                 &self.modes,
                 &self.research.spectra,
+                self.research.spectra_computing(),
                 &mut self.research.spectra_opts,
                 self.time.is_playing(),
                 cmds,
@@ -228,7 +296,9 @@ impl App {
                 ui,
                 &self.history,
                 self.research.pinned.as_ref(),
+                self.research.pinned_without_impacts.as_ref(),
                 self.research.difference.get(),
+                self.research.difference_without_impacts.get(),
                 &mut self.research.compare_opts,
                 cmds,
             ),

@@ -21,6 +21,20 @@ pub fn recording_from_history(h: &History) -> Recording {
     r
 }
 
+/// [`recording_from_history`] with the force without impacts as `q`: what
+/// a clipped force plot fits.
+pub fn recording_without_impacts(h: &History) -> Recording {
+    let mut r = recording_from_history(h);
+    r.q_n = (0..h.num_points())
+        .map(|i| {
+            (0..h.len())
+                .map(|k| h.value(Quantity::ForceWithoutImpacts, i, k))
+                .collect()
+        })
+        .collect();
+    r
+}
+
 /// A short label of a scene for legends: its name and speed.
 pub fn pin_label(scene: &crate::Scene, t_s: f64) -> String {
     format!(

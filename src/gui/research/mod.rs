@@ -8,6 +8,7 @@ pub mod apply;
 pub mod compare;
 pub mod fidelity;
 pub mod spectra;
+pub mod spectra_job;
 pub mod state;
 pub mod sweep_job;
 

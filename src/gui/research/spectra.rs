@@ -5,7 +5,7 @@
 
 use crate::gui::history::{History, Quantity};
 use crate::spectrum::run::RunSpectra;
-use crate::spectrum::{Window, spectrum};
+use crate::spectrum::{Spectrum, Window, spectrum};
 
 /// The part of the history a spectrum was computed from.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,52 +73,103 @@ pub fn history_spectra(
     dt_s: f64,
     window: Window,
 ) -> Result<HistorySpectra, String> {
-    let spacing = h.stride() as f64 * dt_s;
-    if !(spacing > 0.0 && spacing.is_finite()) {
-        return Err(format!(
-            "sample spacing {spacing} s: expected a finite time > 0 s"
-        ));
-    }
-    let (k0, k1) = steady_range(h.times(), ramp_s, spacing);
-    let n = k1 - k0;
-    if n < crate::spectrum::MIN_SAMPLES {
-        return Err(format!(
-            "{n} sample(s) after the ramp (t ≥ {ramp_s} s): play the run further (at least {} samples are needed)",
-            crate::spectrum::MIN_SAMPLES
-        ));
-    }
-    let fs = 1.0 / spacing;
-    let p = h.num_points();
-    let signal =
-        |what: Quantity, i: usize| -> Vec<f64> { (k0..k1).map(|k| h.value(what, i, k)).collect() };
-    let mut force = Vec::with_capacity(p);
-    let mut disp = Vec::with_capacity(p);
-    let mut total = vec![0.0; n];
-    for i in 0..p {
-        let q = signal(Quantity::Force, i);
-        for (t, x) in total.iter_mut().zip(&q) {
-            *t += x;
+    SpectraInput::of_history(h, ramp_s, dt_s)?.compute(window, &|| false, &|| {})
+}
+
+/// The samples a spectrum is computed from, copied out of the history (so
+/// that the transforms can run on another thread).
+#[derive(Debug, Clone)]
+pub struct SpectraInput {
+    /// Force and displacement of each point over the steady span.
+    force_n: Vec<Vec<f64>>,
+    disp_m: Vec<Vec<f64>>,
+    span: SteadySpan,
+}
+
+impl SpectraInput {
+    /// The steady part (`t >= ramp_s`) of `h`, recorded every `h.stride()`
+    /// steps of `dt_s`; an error says why there is no spectrum yet.
+    pub fn of_history(h: &History, ramp_s: f64, dt_s: f64) -> Result<Self, String> {
+        let spacing = h.stride() as f64 * dt_s;
+        if !(spacing > 0.0 && spacing.is_finite()) {
+            return Err(format!(
+                "sample spacing {spacing} s: expected a finite time > 0 s"
+            ));
         }
-        force.push(spectrum(&q, fs, window, true).map_err(|e| e.to_string())?);
-        let u = signal(Quantity::Displacement, i);
-        disp.push(spectrum(&u, fs, window, true).map_err(|e| e.to_string())?);
+        let (k0, k1) = steady_range(h.times(), ramp_s, spacing);
+        let n = k1 - k0;
+        if n < crate::spectrum::MIN_SAMPLES {
+            return Err(format!(
+                "{n} sample(s) after the ramp (t ≥ {ramp_s} s): play the run further (at least {} samples are needed)",
+                crate::spectrum::MIN_SAMPLES
+            ));
+        }
+        let signal = |what: Quantity, i: usize| -> Vec<f64> {
+            (k0..k1).map(|k| h.value(what, i, k)).collect()
+        };
+        let p = h.num_points();
+        let t = h.times();
+        Ok(SpectraInput {
+            force_n: (0..p).map(|i| signal(Quantity::Force, i)).collect(),
+            disp_m: (0..p).map(|i| signal(Quantity::Displacement, i)).collect(),
+            span: SteadySpan {
+                t0_s: t[k0],
+                t1_s: t[k1 - 1],
+                samples: n,
+                sample_rate_hz: 1.0 / spacing,
+            },
+        })
     }
-    let total_force = spectrum(&total, fs, window, true).map_err(|e| e.to_string())?;
-    let t = h.times();
-    Ok(HistorySpectra {
-        spectra: RunSpectra {
-            force,
-            displacement: disp,
-            total_force,
-            start_s: t[k0],
-        },
-        span: SteadySpan {
-            t0_s: t[k0],
-            t1_s: t[k1 - 1],
-            samples: n,
-            sample_rate_hz: fs,
-        },
-    })
+
+    /// Spectra to compute: force and displacement per point, total force.
+    pub fn num_spectra(&self) -> usize {
+        2 * self.force_n.len() + 1
+    }
+
+    /// Samples transformed in all (the cost of [`Self::compute`]).
+    pub fn work(&self) -> usize {
+        self.num_spectra() * self.span.samples
+    }
+
+    /// The spectra; `cancelled` is asked between two spectra (an error
+    /// then), `done` is called after each.
+    pub fn compute(
+        &self,
+        window: Window,
+        cancelled: &dyn Fn() -> bool,
+        done: &dyn Fn(),
+    ) -> Result<HistorySpectra, String> {
+        let fs = self.span.sample_rate_hz;
+        let p = self.force_n.len();
+        let one = |x: &[f64]| -> Result<Spectrum, String> {
+            if cancelled() {
+                return Err("cancelled".to_string());
+            }
+            let s = spectrum(x, fs, window, true).map_err(|e| e.to_string())?;
+            done();
+            Ok(s)
+        };
+        let mut force = Vec::with_capacity(p);
+        let mut disp = Vec::with_capacity(p);
+        let mut total = vec![0.0; self.span.samples];
+        for (q, u) in self.force_n.iter().zip(&self.disp_m) {
+            for (t, x) in total.iter_mut().zip(q) {
+                *t += x;
+            }
+            force.push(one(q)?);
+            disp.push(one(u)?);
+        }
+        let total_force = one(&total)?;
+        Ok(HistorySpectra {
+            spectra: RunSpectra {
+                force,
+                displacement: disp,
+                total_force,
+                start_s: self.span.t0_s,
+            },
+            span: self.span,
+        })
+    }
 }
 
 /// What identifies the history a result was computed from.
@@ -168,7 +219,13 @@ impl<T> Default for HistoryCache<T> {
 impl<T> HistoryCache<T> {
     /// Whether a history of key `now` needs a new computation.
     pub fn stale(&self, now: &HistoryKey, playing: bool) -> bool {
-        let Some(old) = &self.key else { return true };
+        self.stale_since(self.key.as_ref(), now, playing)
+    }
+
+    /// Whether a value computed for the history `old` is stale for `now`
+    /// (by this cache's rule; `old` may be a computation under way).
+    pub fn stale_since(&self, old: Option<&HistoryKey>, now: &HistoryKey, playing: bool) -> bool {
+        let Some(old) = old else { return true };
         if old == now {
             return false;
         }
@@ -196,6 +253,18 @@ impl<T> HistoryCache<T> {
 
     pub fn get(&self) -> Option<&T> {
         self.value.as_ref()
+    }
+
+    /// The history the value was computed from.
+    pub fn key(&self) -> Option<&HistoryKey> {
+        self.key.as_ref()
+    }
+
+    /// Stores a value computed elsewhere (a background job) for `key`.
+    pub fn set(&mut self, key: HistoryKey, value: T) {
+        self.value = Some(value);
+        self.key = Some(key);
+        self.computations += 1;
     }
 
     /// Forgets the value (next refresh recomputes).

@@ -80,6 +80,9 @@ impl Default for SweepForm {
 pub struct CompareOptions {
     pub shown: Vec<bool>,
     pub difference: bool,
+    /// Fit the force plot to the force without impacts, as the time plots
+    /// do (impacts clipped and marked ▼).
+    pub clip_impacts: bool,
 }
 
 impl Default for CompareOptions {
@@ -87,6 +90,7 @@ impl Default for CompareOptions {
         CompareOptions {
             shown: Vec::new(),
             difference: true,
+            clip_impacts: true,
         }
     }
 }
@@ -114,6 +118,14 @@ pub struct ResearchState {
     pub(crate) fidelity_ref: Option<FidelityRef>,
     pub(crate) fidelity: FidelityCache,
     pub(crate) fidelity_opts: FidelityOptions,
+    /// The pinned run with its force without impacts as `q` (sets the
+    /// compare view's clipped force axes), and its difference.
+    pub(crate) pinned_without_impacts: Option<PinnedRun>,
+    pub(crate) difference_without_impacts: HistoryCache<RunDifference>,
+    /// The spectra being computed on a background thread, if any.
+    pub(crate) spectra_job: Option<super::spectra_job::SpectraJob>,
+    /// Background spectra computations started so far.
+    pub(crate) spectra_jobs: u64,
 }
 
 impl ResearchState {
@@ -124,6 +136,14 @@ impl ResearchState {
     /// Times the spectra were computed.
     pub fn spectra_computations(&self) -> u64 {
         self.spectra.computations
+    }
+    /// Spectra computations started on a background thread so far.
+    pub fn spectra_jobs(&self) -> u64 {
+        self.spectra_jobs
+    }
+    /// Progress (0..=1) of the spectra being computed in the background.
+    pub fn spectra_computing(&self) -> Option<f64> {
+        self.spectra_job.as_ref().map(|j| j.progress())
     }
     pub fn sweep(&self) -> &SweepState {
         &self.sweep

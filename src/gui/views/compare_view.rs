@@ -1,22 +1,34 @@
 //! A/B comparison: the current run's displacement and force per point with
 //! the pinned reference run overlaid (dashed, legend "ref: point i"), and
 //! the difference current − reference per quantity. The pin is kept by the
-//! app across parameter edits and restarts.
+//! app across parameter edits and restarts. As in the time plots, the force
+//! plot can clip impact spikes (fit the force without impacts, mark ▼).
 
 use super::point_color;
+use super::time_plots::{clip_at, clip_checkbox, clip_level, force_range, impact_marks, y_range};
 use crate::compare::{PinnedRun, RunDifference};
 use crate::gui::command::Command;
 use crate::gui::history::{History, Quantity, decimate_min_max};
 use crate::gui::research::ResearchCommand;
 use crate::gui::research::state::CompareOptions;
 use egui::{Id, RichText, Ui};
-use egui_plot::{Corner, Legend, Line, LineStyle, Plot};
+use egui_plot::{Corner, Legend, Line, LineStyle, MarkerShape, Plot};
 
+/// Plot id of the force plot (its bounds are read by the tests).
+pub const FORCE_PLOT_ID: &str = "tirecontact.compare.force";
+/// Plot id of the force difference plot.
+pub const FORCE_DIFF_PLOT_ID: &str = "tirecontact.compare.force_diff";
+
+/// `pinned_smooth` is the pinned run with its force without impacts as `q`,
+/// `diff_smooth` its difference: they set the clipped force axes.
+#[allow(clippy::too_many_arguments)]
 pub fn show(
     ui: &mut Ui,
     history: &History,
     pinned: Option<&PinnedRun>,
+    pinned_smooth: Option<&PinnedRun>,
     diff: Option<&RunDifference>,
+    diff_smooth: Option<&RunDifference>,
     opts: &mut CompareOptions,
     cmds: &mut Vec<Command>,
 ) {
@@ -44,6 +56,7 @@ pub fn show(
         }
         ui.separator();
         ui.checkbox(&mut opts.difference, "show difference (current − reference)");
+        clip_checkbox(ui, &mut opts.clip_impacts);
         ui.separator();
         ui.label("points:");
         for (i, s) in opts.shown.iter_mut().enumerate().take(24) {
@@ -111,11 +124,37 @@ pub fn show(
         if last {
             plot = plot.x_axis_label("time t (s)");
         }
+        let clip = opts.clip_impacts && what == Quantity::Force;
+        if what == Quantity::Force {
+            plot = plot.id(Id::unique(FORCE_PLOT_ID));
+        }
+        let shown: Vec<usize> = (0..p).filter(|&i| opts.shown[i]).collect();
         plot.show(ui, |pui| {
             let b = pui.plot_bounds();
             let (t0, t1) = (b.min()[0], b.max()[0]);
-            for i in (0..p).filter(|&i| opts.shown[i]) {
-                let pts = history.decimated(what, i, t0, t1, buckets, scale);
+            // the clip level fits the force without impacts of both runs
+            let top = if clip {
+                let current = force_range(history, &shown, t0, t1, buckets);
+                let reference = pinned_smooth.and_then(|pin| {
+                    let r = &pin.recording;
+                    series_range(&r.t_s, &r.q_n, &shown, t0, t1, buckets)
+                });
+                y_range(
+                    current
+                        .into_iter()
+                        .chain(reference)
+                        .flat_map(|(lo, hi)| [lo, hi]),
+                )
+                .map(clip_level)
+            } else {
+                None
+            };
+            let mut marks = Vec::new();
+            for &i in &shown {
+                let mut pts = history.decimated(what, i, t0, t1, buckets, scale);
+                if let Some(top) = top {
+                    clip_at(&mut pts, top, &mut marks);
+                }
                 pui.line(
                     Line::new(format!("point {i}"), pts)
                         .color(point_color(i))
@@ -128,7 +167,10 @@ pub fn show(
                         _ => r.u_m.get(i),
                     };
                     if let Some(y) = y {
-                        let pts = window(&r.t_s, y, t0, t1, buckets, scale);
+                        let mut pts = window(&r.t_s, y, t0, t1, buckets, scale);
+                        if let Some(top) = top {
+                            clip_at(&mut pts, top, &mut marks);
+                        }
                         pui.line(
                             Line::new(format!("ref: point {i}"), pts)
                                 .color(point_color(i).gamma_multiply(0.6))
@@ -138,6 +180,7 @@ pub fn show(
                     }
                 }
             }
+            impact_marks(pui, marks, MarkerShape::Down);
         });
     }
     if rows == 4 {
@@ -158,22 +201,63 @@ pub fn show(
             if k == 1 {
                 plot = plot.x_axis_label("time t (s)");
             }
+            let clip = opts.clip_impacts && k == 1;
+            if k == 1 {
+                plot = plot.id(Id::unique(FORCE_DIFF_PLOT_ID));
+            }
+            let shown: Vec<usize> = (0..p).filter(|&i| opts.shown[i]).collect();
             plot.show(ui, |pui| {
                 let b = pui.plot_bounds();
                 let (t0, t1) = (b.min()[0], b.max()[0]);
-                for (i, y) in series.iter().enumerate() {
-                    if opts.shown.get(i).copied().unwrap_or(false) {
-                        let pts = window(&d.t_s, y, t0, t1, buckets, scale);
-                        pui.line(
-                            Line::new(format!("current − ref: point {i}"), pts)
-                                .color(point_color(i))
-                                .width(1.5),
-                        );
+                // impacts of either run give spikes of both signs: clip both
+                // edges at the difference of the forces without impacts
+                let range = diff_smooth
+                    .filter(|_| clip)
+                    .and_then(|ds| series_range(&ds.t_s, &ds.dq_n, &shown, t0, t1, buckets));
+                let (mut above, mut below) = (Vec::new(), Vec::new());
+                for &i in &shown {
+                    let Some(y) = series.get(i) else { continue };
+                    let mut pts = window(&d.t_s, y, t0, t1, buckets, scale);
+                    if let Some((lo, hi)) = range {
+                        clip_at(&mut pts, clip_level((lo, hi)), &mut above);
+                        let bottom = -clip_level((-hi, -lo));
+                        for p in &mut pts {
+                            if p[1] < bottom {
+                                p[1] = bottom;
+                                below.push(*p);
+                            }
+                        }
                     }
+                    pui.line(
+                        Line::new(format!("current − ref: point {i}"), pts)
+                            .color(point_color(i))
+                            .width(1.5),
+                    );
                 }
+                impact_marks(pui, above, MarkerShape::Down);
+                impact_marks(pui, below, MarkerShape::Up);
             });
         }
     }
+}
+
+/// Lowest and highest of the series `ys[i]` of the `shown` points over
+/// `[t0, t1]` (decimated as drawn).
+fn series_range(
+    t: &[f64],
+    ys: &[Vec<f64>],
+    shown: &[usize],
+    t0: f64,
+    t1: f64,
+    buckets: usize,
+) -> Option<(f64, f64)> {
+    y_range(
+        shown
+            .iter()
+            .filter_map(|&i| ys.get(i))
+            .flat_map(|y| window(t, y, t0, t1, buckets, 1.0))
+            .map(|p| p[1]),
+    )
 }
 
 /// Min/max-decimated `(t, y · scale)` over `[t0, t1]` (one sample beyond each end).

@@ -55,6 +55,7 @@ pub fn show(
     scene: &Scene,
     modes: &[Mode],
     cache: &HistoryCache<Result<HistorySpectra, String>>,
+    computing: Option<f64>,
     opts: &mut SpectraOptions,
     playing: bool,
     cmds: &mut Vec<Command>,
@@ -92,8 +93,16 @@ pub fn show(
         ui.checkbox(&mut opts.total, "total force");
     });
     ui.label(RichText::new(excitation_text(scene)).color(EXCITATION_COLOR));
+    if let Some(f) = computing {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label(format!("computing… {:.0} %", 100.0 * f));
+        });
+    }
     let hs = match cache.get() {
         Some(Ok(hs)) => hs,
+        // a running computation replaces the reason there was none
+        _ if computing.is_some() => return,
         Some(Err(e)) => {
             ui.label(format!("No spectrum yet: {e}"));
             return;

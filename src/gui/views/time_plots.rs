@@ -183,12 +183,7 @@ fn draw_series(
             }
         }
         if let Some(top) = clip_top {
-            for p in &mut pts {
-                if p[1] > top {
-                    p[1] = top;
-                    marks.push(*p);
-                }
-            }
+            clip_at(&mut pts, top, &mut marks);
         }
         pui.line(
             Line::new(format!("point {i}"), pts)
@@ -196,10 +191,27 @@ fn draw_series(
                 .width(1.5),
         );
     }
+    impact_marks(pui, marks, MarkerShape::Down);
+}
+
+/// Lowers the points of `pts` above `top` to `top`, collecting them in
+/// `marks` (the impacts a clipped force plot marks ▼).
+pub fn clip_at(pts: &mut [[f64; 2]], top: f64, marks: &mut Vec<[f64; 2]>) {
+    for p in pts {
+        if p[1] > top {
+            p[1] = top;
+            marks.push(*p);
+        }
+    }
+}
+
+/// Draws the marks of clipped impacts, `shape` ▼ (`Down`) at a top edge
+/// (nothing when there are none).
+pub fn impact_marks(pui: &mut PlotUi<'_>, marks: Vec<[f64; 2]>, shape: MarkerShape) {
     if !marks.is_empty() {
         pui.points(
             Points::new("impact (impulse / dt, clipped)", marks)
-                .shape(MarkerShape::Down)
+                .shape(shape)
                 .filled(true)
                 .radius(4.0)
                 .color(egui::Color32::from_gray(200)),
@@ -214,8 +226,13 @@ fn clip_top(pui: &PlotUi<'_>, h: &History, shown: &[bool], a: f64, b: f64) -> Op
     let points: Vec<usize> = (0..h.num_points())
         .filter(|&i| shown.get(i).copied().unwrap_or(false))
         .collect();
-    let (lo, hi) = force_range(h, &points, a, b, buckets)?;
-    Some(hi + 0.1 * (hi - lo).max(1.0))
+    force_range(h, &points, a, b, buckets).map(clip_level)
+}
+
+/// The level at which a force plot clips impact spikes: a margin above the
+/// range `(lo, hi)` of the force without impacts (N).
+pub fn clip_level((lo, hi): (f64, f64)) -> f64 {
+    hi + 0.1 * (hi - lo).max(1.0)
 }
 
 /// Lowest and highest force without impacts of `points` over `[a, b]` (N).
@@ -226,14 +243,20 @@ pub fn force_range(
     b: f64,
     buckets: usize,
 ) -> Option<(f64, f64)> {
-    points
-        .iter()
-        .flat_map(|&i| h.decimated(Quantity::ForceWithoutImpacts, i, a, b, buckets, 1.0))
-        .map(|p| p[1])
-        .fold(None, |acc, y| match acc {
-            None => Some((y, y)),
-            Some((lo, hi)) => Some((f64::min(lo, y), f64::max(hi, y))),
-        })
+    y_range(
+        points
+            .iter()
+            .flat_map(|&i| h.decimated(Quantity::ForceWithoutImpacts, i, a, b, buckets, 1.0))
+            .map(|p| p[1]),
+    )
+}
+
+/// Lowest and highest of `ys` (`None` when empty).
+pub fn y_range(ys: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
+    ys.into_iter().fold(None, |acc, y| match acc {
+        None => Some((y, y)),
+        Some((lo, hi)) => Some((f64::min(lo, y), f64::max(hi, y))),
+    })
 }
 
 fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
@@ -264,10 +287,16 @@ fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
             opts.shown.iter_mut().for_each(|s| *s = false);
         }
         ui.separator();
-        ui.checkbox(&mut opts.clip_impacts, "clip impact spikes").on_hover_text(
-            "Rigid contact makes an impact an impulse: its step is drawn as impulse / dt, \
-             far above the contact force. On: the force axis fits the force without \
-             impacts and clipped impacts are marked ▼ at the top. Off: the full range.",
-        );
+        clip_checkbox(ui, &mut opts.clip_impacts);
     });
+}
+
+/// The "clip impact spikes" switch of a force plot.
+pub fn clip_checkbox(ui: &mut Ui, clip_impacts: &mut bool) {
+    ui.checkbox(clip_impacts, "clip impact spikes")
+        .on_hover_text(
+            "Rigid contact makes an impact an impulse: its step is drawn as impulse / dt, \
+         far above the contact force. On: the force axis fits the force without \
+         impacts and clipped impacts are marked ▼ at the top. Off: the full range.",
+        );
 }

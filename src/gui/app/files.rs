@@ -1,0 +1,246 @@
+//! The document and its files: new/open (behind the unsaved-changes guard),
+//! shipped and guided presets, save and save as (atomic, through
+//! `Scene::save`), and the PNG and CSV exports of the run with their dialogs.
+
+use super::*;
+
+impl App {
+    /// The app on the preset at `path`; on error, the default preset with
+    /// the error shown.
+    pub fn open_at_start(path: &Path) -> Self {
+        let mut app = App::with_default_preset();
+        app.open(path);
+        app
+    }
+
+    /// Whether a CSV export is still running.
+    pub fn exporting_csv(&self) -> bool {
+        self.csv_job.is_some()
+    }
+
+    /// Blocks until a running CSV export ends; returns its result.
+    pub fn wait_csv_export(&mut self) -> Option<Result<String, String>> {
+        let job = self.csv_job.take()?;
+        let r = job.wait();
+        self.message = Some(match &r {
+            Ok(t) => Message {
+                error: false,
+                text: t.clone(),
+            },
+            Err(e) => Message {
+                error: true,
+                text: format!("CSV export failed: {e}"),
+            },
+        });
+        Some(r)
+    }
+
+    /// Runs `d` now if there is nothing to lose, else asks first.
+    pub(super) fn guard(&mut self, d: Discarding) {
+        if self.is_dirty() {
+            self.confirm = Some(d);
+        } else {
+            self.discard_and(d);
+        }
+    }
+
+    /// The user confirmed the held action.
+    pub(super) fn confirm_discard(&mut self) {
+        if let Some(d) = self.confirm.take() {
+            self.discard_and(d);
+        }
+    }
+
+    fn discard_and(&mut self, d: Discarding) {
+        match d {
+            Discarding::New => {
+                self.replace(default_scene(), None, "new scene (default preset)");
+            }
+            Discarding::OpenDialog => {
+                if let Some(p) = rfd::FileDialog::new()
+                    .add_filter("RON scene", &["ron"])
+                    .pick_file()
+                {
+                    self.open(&p);
+                }
+            }
+            Discarding::OpenPath(p) => self.open(&p),
+            Discarding::Preset(k) => match SHIPPED.get(k) {
+                Some((name, file, text)) => match Scene::parse(text, file) {
+                    Ok(scene) => {
+                        self.replace(scene, None, &format!("opened shipped preset “{name}”"))
+                    }
+                    Err(e) => self.error(format!("shipped preset {file}: {e}")),
+                },
+                None => self.error(format!("no shipped preset #{k}")),
+            },
+            Discarding::Guided(k) => match GUIDED.get(k) {
+                Some((name, file, text)) => match Scene::parse(text, file) {
+                    Ok(scene) => self.replace(scene, None, &format!("guided tour: “{name}”")),
+                    Err(e) => self.error(format!("guided preset {file}: {e}")),
+                },
+                None => self.error(format!("no guided preset #{k}")),
+            },
+            Discarding::Quit => {
+                self.allow_close = true;
+                self.time.pause();
+                self.quit_requested = true;
+            }
+        }
+    }
+
+    /// Opens a preset file; a broken one leaves the current scene untouched.
+    fn open(&mut self, path: &Path) {
+        match Scene::load(path) {
+            Ok(scene) => {
+                let p = path.to_path_buf();
+                self.replace(scene, Some(p), &format!("opened {}", path.display()));
+            }
+            Err(e) => self.error(format!(
+                "Cannot open this preset; the current scene is kept.\n{e}"
+            )),
+        }
+    }
+
+    /// Replaces the document (scene, file) and restarts the run.
+    fn replace(&mut self, scene: Scene, path: Option<PathBuf>, what: &str) {
+        match Simulation::new(&scene).and_then(|sim| Ok((sim, scene.modes()?))) {
+            Ok((sim, modes)) => {
+                self.sim = sim;
+                self.modes = modes;
+                self.saved = scene.clone();
+                self.scene = scene;
+                self.path = path;
+                self.time.reset();
+                self.set_watchable_speed();
+                self.reset_run();
+                self.research_new_document();
+                self.info(what.to_string());
+            }
+            Err(e) => self.error(format!(
+                "Cannot use this scene; the current scene is kept.\n{e}"
+            )),
+        }
+    }
+
+    /// Saves to the current file, or asks for one.
+    pub(super) fn save_document(&mut self) {
+        match self.path.clone() {
+            Some(p) => self.save_to(&p),
+            None => self.save_as_dialog(),
+        }
+    }
+
+    pub(super) fn save_as_dialog(&mut self) {
+        let name = self.path.as_deref().and_then(Path::file_name).map_or_else(
+            || format!("{}.ron", file_stem(&self.scene.name)),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        if let Some(p) = rfd::FileDialog::new()
+            .add_filter("RON scene", &["ron"])
+            .set_file_name(name)
+            .save_file()
+        {
+            self.save_to(&p);
+        }
+    }
+
+    /// Saves atomically (`Scene::save`): a failed save leaves the file as
+    /// it was.
+    pub(super) fn save_to(&mut self, path: &Path) {
+        match self.scene.save(path) {
+            Ok(()) => {
+                self.path = Some(path.to_path_buf());
+                self.scene.base_dir = path.parent().map(Path::to_path_buf);
+                self.saved = self.scene.clone();
+                self.info(format!("saved {}", path.display()));
+            }
+            Err(e) => self.error(format!("Save failed (the file on disk is unchanged): {e}")),
+        }
+    }
+
+    pub(super) fn open_png_dialog(&mut self) {
+        self.png_dialog = Some(PngSettings {
+            width: 1600,
+            height: 1200,
+        });
+    }
+
+    pub(super) fn export_png(&mut self, path: &Path, width: u32, height: u32) {
+        self.png_dialog = None;
+        match super::super::export::export_png(
+            path,
+            width,
+            height,
+            &self.scene,
+            &self.modes,
+            &self.history,
+            &self.plot_opts.shown,
+        ) {
+            Ok(()) => self.info(format!("wrote {} ({width}x{height} px)", path.display())),
+            Err(e) => self.error(format!("PNG export failed: {e}")),
+        }
+    }
+
+    pub(super) fn export_csv_dialog(&mut self) {
+        if let Some(p) = rfd::FileDialog::new()
+            .add_filter("CSV", &["csv"])
+            .set_file_name(format!("{}.csv", file_stem(&self.scene.name)))
+            .save_file()
+        {
+            self.apply(Command::ExportCsv(p));
+        }
+    }
+
+    /// Starts the CSV export of the current run (re-simulated from its
+    /// start with its live edits) on a background thread.
+    pub(super) fn export_csv(&mut self, path: PathBuf) {
+        if self.csv_job.is_some() {
+            self.error("a CSV export is already running");
+        } else {
+            self.info(format!("writing {} …", path.display()));
+            self.csv_job = Some(CsvJob::spawn(
+                path,
+                self.run_start.clone(),
+                self.live_edits.clone(),
+                self.sim.steps(),
+            ));
+        }
+    }
+
+    /// Picks up the result of a finished CSV export (once a frame).
+    pub(super) fn poll_csv(&mut self) {
+        if let Some(job) = &self.csv_job
+            && let Some(r) = job.poll()
+        {
+            self.csv_job = None;
+            match r {
+                Ok(t) => self.info(t),
+                Err(e) => self.error(format!("CSV export failed: {e}")),
+            }
+        }
+    }
+}
+
+/// The embedded default preset.
+pub(super) fn default_scene() -> Scene {
+    match Scene::parse(DEFAULT_PRESET, crate::DEFAULT_PRESET_NAME) {
+        Ok(s) => s,
+        Err(e) => panic!("embedded default preset is invalid: {e}"),
+    }
+}
+
+/// A file name stem from a scene name (lower-case alphanumerics and `_`).
+fn file_stem(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() { "scene".to_string() } else { s }
+}

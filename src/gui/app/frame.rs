@@ -1,0 +1,130 @@
+//! One frame of the UI: poll the background jobs, take the solver steps,
+//! draw the bars, the layout and the dialogs, then apply the commands they
+//! pushed; and the `eframe::App` glue (close request, session save).
+
+use super::*;
+
+impl App {
+    /// The keyboard shortcuts (when no text field has the focus).
+    fn keyboard(&self, ctx: &egui::Context, cmds: &mut Vec<Command>) {
+        if ctx.egui_wants_keyboard_input() {
+            return;
+        }
+        ctx.input(|i| {
+            if i.key_pressed(egui::Key::Space) {
+                cmds.push(Command::TogglePlay);
+            }
+            if i.key_pressed(egui::Key::ArrowRight) {
+                cmds.push(Command::Step(1));
+            }
+            if i.key_pressed(egui::Key::R) && i.modifiers.is_none() {
+                cmds.push(Command::Reset);
+            }
+            for (key, view) in [
+                (egui::Key::Num1, View::TimePlots),
+                (egui::Key::Num2, View::Scene),
+                (egui::Key::Num3, View::Green),
+                (egui::Key::Num4, View::Spectra),
+                (egui::Key::Num5, View::Sweep),
+                (egui::Key::Num6, View::Compare),
+                (egui::Key::Num7, View::Fidelity),
+            ] {
+                if i.key_pressed(key) {
+                    cmds.push(Command::ShowView(view));
+                }
+            }
+        });
+    }
+
+    /// One frame of the whole UI (also driven headless by the tests).
+    pub fn show(&mut self, ui: &mut egui::Ui) {
+        let started = Instant::now();
+        let ctx = ui.ctx().clone();
+        let frame_s = ctx.input(|i| f64::from(i.unstable_dt));
+        // a minimised window neither simulates nor asks for frames: the run
+        // resumes where it was when the window is shown again
+        let hidden = ctx.input(|i| i.viewport().minimized == Some(true));
+        self.poll_csv();
+        self.poll_frames();
+        if !hidden {
+            self.advance(frame_s);
+        }
+        self.research_frame(&ctx);
+        let mut cmds = Vec::new();
+        self.keyboard(&ctx, &mut cmds);
+        let status = toolbar::ToolbarStatus {
+            playing: self.time.is_playing(),
+            speed: self.time.speed(),
+            time_s: self.sim.time_s(),
+            duration_s: self.scene.duration_s,
+            steps: self.sim.steps(),
+            achieved_factor: self.time.achieved_factor(),
+            view: self.view,
+            exporting_csv: self.csv_job.is_some(),
+            classroom: self.classroom.on,
+            mode_bars: self.classroom.bars,
+            exporting_frames: self.frames_job.is_some(),
+        };
+        self.classroom.sync_style(&ctx);
+        // impacts and releases stay up EVENT_HOLD_WALL_S of wall-clock time
+        self.phases.hold_s = match self.time.speed() {
+            Speed::Factor(f) => classroom::EVENT_HOLD_WALL_S * f,
+            Speed::Max => 0.0,
+        }
+        .max(20.0 * self.sim.dt_s());
+        egui::Panel::top("tirecontact.top").show(ui, |ui| {
+            toolbar::menu_bar(ui, &status, &mut cmds);
+            toolbar::transport(ui, &status, &mut cmds);
+        });
+        egui::Panel::bottom("tirecontact.status").show(ui, |ui| {
+            crate::gui::dialogs::status_bar(ui, self);
+        });
+        if self.classroom.on {
+            self.classroom_layout(ui, &mut cmds);
+        } else {
+            self.normal_layout(ui, &mut cmds);
+        }
+        crate::gui::dialogs::confirm_window(&ctx, self.confirm.as_ref(), &mut cmds);
+        crate::gui::dialogs::png_window(&ctx, &mut self.png_dialog, &mut cmds);
+        crate::gui::frames::dialog(&ctx, &mut self.frames_dialog, &mut cmds);
+        crate::gui::frames::progress(&ctx, self.frames_job.as_ref(), &mut cmds);
+        for c in cmds {
+            self.apply(c);
+        }
+        let title = self.title();
+        if title != self.title {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title = title;
+        }
+        self.fps.tick(
+            self.sim.time_s(),
+            self.time.is_playing(),
+            started.elapsed().as_secs_f64(),
+        );
+        if self.csv_job.is_some()
+            || self.frames_job.is_some()
+            || (!hidden && (self.time.is_playing() || self.time.pending_steps() > 0))
+        {
+            ctx.request_repaint();
+        }
+    }
+}
+
+impl eframe::App for App {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        if ctx.input(|i| i.viewport().close_requested()) && !self.allow_close && self.is_dirty() {
+            ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            self.confirm = Some(Discarding::Quit);
+        }
+        self.show(ui);
+        if self.quit_requested {
+            self.quit_requested = false;
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        }
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        self.save_session(storage);
+    }
+}

@@ -1,0 +1,67 @@
+//! The animation export (one PNG per frame of the run) as a background job:
+//! its settings dialog, start, cancel, progress polling and result.
+
+use super::*;
+
+impl App {
+    /// Whether an animation export is running.
+    pub fn exporting_frames(&self) -> bool {
+        self.frames_job.is_some()
+    }
+
+    /// Blocks until a running frames export ends; returns its result.
+    pub fn wait_frames_export(&mut self) -> Option<Result<u64, String>> {
+        let job = self.frames_job.take()?;
+        let r = job.wait();
+        self.frames_done(&r);
+        Some(r)
+    }
+
+    fn frames_done(&mut self, r: &Result<u64, String>) {
+        match r {
+            Ok(n) => self.info(format!("wrote {n} animation frames")),
+            Err(e) => self.error(format!("Animation export stopped: {e}")),
+        }
+    }
+
+    pub(super) fn open_frames_dialog(&mut self) {
+        self.frames_dialog = Some(FramesDialog::for_scene(&self.scene, self.sim.time_s()));
+    }
+
+    /// Starts the export of the current run (re-simulated from its start
+    /// with its live edits) into `dir`.
+    pub(super) fn export_frames(&mut self, dir: PathBuf, settings: FrameSettings) {
+        if self.frames_job.is_some() {
+            self.error("an animation export is already running");
+            return;
+        }
+        match FramesJob::spawn(
+            dir,
+            settings,
+            self.run_start.clone(),
+            self.live_edits.clone(),
+        ) {
+            Ok(job) => {
+                self.frames_dialog = None;
+                self.frames_job = Some(job);
+            }
+            Err(e) => self.error(format!("Animation export refused: {e}")),
+        }
+    }
+
+    pub(super) fn cancel_frames(&self) {
+        if let Some(job) = &self.frames_job {
+            job.cancel();
+        }
+    }
+
+    /// Picks up the result of a finished export (once a frame).
+    pub(super) fn poll_frames(&mut self) {
+        if let Some(job) = &self.frames_job
+            && let Some(r) = job.poll()
+        {
+            self.frames_job = None;
+            self.frames_done(&r);
+        }
+    }
+}

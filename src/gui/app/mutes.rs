@@ -1,0 +1,61 @@
+//! Mode mute and solo (classroom mode bars): a mute is a scene edit of the
+//! tyre, remembered so that un-muting every mode gives the original back.
+
+use super::*;
+use crate::gui::mutes::{muted_tyre, refusal, toggled};
+
+impl App {
+    /// Mutes (or solos) mode `k` through a scene edit, refused with the
+    /// reason when the muted model cannot be simulated.
+    pub(super) fn set_mutes(&mut self, k: usize, solo: bool) {
+        let (original, base, current) = match &self.mutes {
+            Some(m) => (m.original.clone(), m.base.clone(), m.muted.clone()),
+            None => (self.scene.tyre.clone(), self.modes.clone(), Vec::new()),
+        };
+        let muted = toggled(&current, base.len(), k, solo);
+        if muted.iter().all(|m| !m) {
+            self.apply(Command::UnmuteAll);
+            return;
+        }
+        if let Some(why) = refusal(&base, &muted, self.scene.num_points(), &self.scene.contact) {
+            self.error(format!("Mute refused: {why}"));
+            return;
+        }
+        let tyre = muted_tyre(&base, &muted);
+        let mut s = self.scene.clone();
+        s.tyre = tyre.clone();
+        self.edit(s);
+        if self.scene.tyre == tyre {
+            self.mutes = Some(Mutes {
+                original,
+                base,
+                muted,
+                tyre,
+            });
+        }
+    }
+
+    /// Gives the original tyre back (if the edit is accepted).
+    pub(super) fn unmute_all(&mut self) {
+        if let Some(m) = self.mutes.take() {
+            let mut s = self.scene.clone();
+            s.tyre = m.original.clone();
+            self.edit(s);
+            if self.scene.tyre != m.original {
+                self.mutes = Some(m);
+            }
+        }
+    }
+
+    /// An edit of the tyre other than by the mutes ends them (after every
+    /// command).
+    pub(super) fn end_mutes_on_other_edits(&mut self) {
+        if self
+            .mutes
+            .as_ref()
+            .is_some_and(|m| m.tyre != self.scene.tyre)
+        {
+            self.mutes = None;
+        }
+    }
+}

@@ -1,0 +1,141 @@
+//! The run: play, pause, reset, the solver steps of a frame within the time
+//! budget, and scene edits (road and speed live, anything else restarts).
+
+use super::*;
+
+impl App {
+    /// Drops an informational message (errors stay until dismissed).
+    pub(super) fn clear_info(&mut self) {
+        if self.message.as_ref().is_some_and(|m| !m.error) {
+            self.message = None;
+        }
+    }
+
+    pub(super) fn play(&mut self) {
+        self.clear_info();
+        if self.sim.finished() {
+            self.reset_run();
+        }
+        self.time.play();
+    }
+
+    pub(super) fn toggle_play(&mut self) {
+        if self.time.is_playing() {
+            self.time.pause();
+        } else {
+            self.play();
+        }
+    }
+
+    pub(super) fn reset_run(&mut self) {
+        self.clear_info();
+        self.sim.reset();
+        self.time.reset();
+        self.run_start = self.sim.scene().clone();
+        self.live_edits.clear();
+        self.history = History::new(self.sim.num_points(), DEFAULT_BUDGET);
+        self.history.record_initial(&self.sim);
+        self.phases = PhaseTracker::new(self.sim.num_points(), self.phases.hold_s);
+    }
+
+    /// A freshly opened scene plays slowly enough to be watched (classroom
+    /// mode keeps its slow motion).
+    pub(super) fn set_watchable_speed(&mut self) {
+        let speed = if self.classroom.on {
+            Speed::Factor(classroom::SLOW_MOTION)
+        } else {
+            Speed::watchable(self.scene.duration_s)
+        };
+        self.time.set_speed(speed);
+    }
+
+    /// Applies an edited scene: road and speed live, everything else restarts.
+    pub(super) fn edit(&mut self, new: Scene) {
+        if let Err(errors) = new.validate() {
+            let list: Vec<String> = errors.iter().map(ToString::to_string).collect();
+            self.error(format!("Edit refused: {}", list.join("; ")));
+            return;
+        }
+        let old = &self.scene;
+        let restart = new.tyre != old.tyre
+            || new.points != old.points
+            || new.dt_s != old.dt_s
+            || new.duration_s != old.duration_s
+            || new.ramp_s != old.ramp_s
+            || new.contact_scheme != old.contact_scheme
+            || new.contact != old.contact;
+        if restart {
+            match Simulation::new(&new).and_then(|sim| Ok((sim, new.modes()?))) {
+                Ok((sim, modes)) => {
+                    let playing = self.time.is_playing();
+                    self.sim = sim;
+                    self.modes = modes;
+                    self.scene = new;
+                    self.reset_run();
+                    if playing {
+                        self.time.play();
+                    }
+                }
+                Err(e) => self.error(format!("Edit refused: {e}")),
+            }
+            return;
+        }
+        if new.road != old.road
+            && let Err(e) = self.sim.set_road(&new.road)
+        {
+            self.error(format!("Road refused: {e}"));
+            return;
+        }
+        if new.speed_mps != old.speed_mps {
+            self.sim.set_speed(new.speed_mps);
+        }
+        if new.road != old.road || new.speed_mps != old.speed_mps {
+            self.live_edits.push(LiveEdit {
+                step: self.sim.steps(),
+                road: new.road.clone(),
+                speed_mps: new.speed_mps,
+            });
+        }
+        self.scene = new;
+    }
+
+    /// Takes this frame's solver steps within the time budget.
+    pub(super) fn advance(&mut self, frame_s: f64) {
+        let dt = self.sim.dt_s();
+        let want = self.time.steps_this_frame(frame_s, dt);
+        if want == 0 {
+            return;
+        }
+        let start = Instant::now();
+        let mut taken = 0;
+        while taken < want {
+            if self.sim.finished() {
+                self.time.pause();
+                self.info(format!("run complete: t = {:.4} s", self.sim.time_s()));
+                break;
+            }
+            match self.sim.step() {
+                Ok(_) => {
+                    self.history.after_step(&self.sim);
+                    self.phases.after_step(
+                        self.sim.time_s(),
+                        self.sim.in_contact(),
+                        self.sim.force_n(),
+                    );
+                    taken += 1;
+                }
+                Err(e) => {
+                    self.time.pause();
+                    self.error(format!(
+                        "Solver error, run paused: {e}\nEdit the scene or reset."
+                    ));
+                    break;
+                }
+            }
+            if start.elapsed() > STEP_BUDGET {
+                break;
+            }
+        }
+        self.time.report(taken, dt, frame_s);
+    }
+}

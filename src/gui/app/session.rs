@@ -1,0 +1,161 @@
+//! The session kept in eframe's storage between runs of the app: the scene
+//! (with its file and unsaved-changes state) and classroom mode with its
+//! chosen point, restored at the next start.
+
+use super::*;
+
+/// eframe storage key of the last session.
+pub(super) const SESSION_KEY: &str = "tirecontact.session";
+
+/// What is persisted between sessions.
+#[derive(Debug, Serialize, Deserialize)]
+pub(super) struct Session {
+    scene_ron: String,
+    path: Option<PathBuf>,
+    dirty: bool,
+    /// Classroom mode was on (absent from sessions before it was saved).
+    #[serde(default)]
+    classroom: bool,
+    /// The point classroom mode's plot and bars show.
+    #[serde(default)]
+    classroom_point: usize,
+}
+
+impl App {
+    /// The last session from eframe's storage, else the default preset.
+    pub fn restore(storage: Option<&dyn eframe::Storage>) -> Self {
+        let session = storage
+            .and_then(|s| s.get_string(SESSION_KEY))
+            .and_then(|text| ron::from_str::<Session>(&text).ok());
+        if let Some(s) = session {
+            let file = s
+                .path
+                .as_ref()
+                .map_or("(last session)".to_string(), |p| p.display().to_string());
+            if let Ok(mut scene) = Scene::parse(&s.scene_ron, &file) {
+                scene.base_dir = s
+                    .path
+                    .as_deref()
+                    .and_then(Path::parent)
+                    .map(Path::to_path_buf);
+                if let Ok(mut app) = App::new(scene, s.path.clone()) {
+                    if s.dirty {
+                        // the saved version is the file's, if it still reads
+                        app.saved = s
+                            .path
+                            .as_deref()
+                            .and_then(|p| Scene::load(p).ok())
+                            .unwrap_or_else(default_scene);
+                    }
+                    if s.classroom {
+                        app.set_classroom(true);
+                    }
+                    let last = app.scene.num_points().saturating_sub(1);
+                    app.classroom.point = s.classroom_point.min(last);
+                    app.message = Some(Message {
+                        error: false,
+                        text: "restored the last session".to_string(),
+                    });
+                    return app;
+                }
+            }
+        }
+        App::with_default_preset()
+    }
+
+    pub(super) fn session(&self) -> Session {
+        Session {
+            scene_ron: self.scene.to_ron_string(),
+            path: self.path.clone(),
+            dirty: self.is_dirty(),
+            classroom: self.classroom.on,
+            classroom_point: self.classroom.point,
+        }
+    }
+
+    /// Writes the session to eframe's storage (`eframe::App::save`).
+    pub(super) fn save_session(&self, storage: &mut dyn eframe::Storage) {
+        if let Ok(text) = ron::to_string(&self.session()) {
+            storage.set_string(SESSION_KEY, text);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use eframe::Storage as _;
+    use std::collections::HashMap;
+
+    #[derive(Default)]
+    struct MemStorage(HashMap<String, String>);
+
+    impl eframe::Storage for MemStorage {
+        fn get_string(&self, key: &str) -> Option<String> {
+            self.0.get(key).cloned()
+        }
+        fn set_string(&mut self, key: &str, value: String) {
+            self.0.insert(key.to_string(), value);
+        }
+        fn remove_string(&mut self, key: &str) {
+            self.0.remove(key);
+        }
+        fn flush(&mut self) {}
+    }
+
+    #[test]
+    fn classroom_mode_and_its_point_are_restored() {
+        let mut app = App::with_default_preset();
+        assert_eq!(app.scene.num_points(), 5);
+        app.apply(Command::SetClassroom(true));
+        app.classroom.point = 3;
+        let mut storage = MemStorage::default();
+        app.save_session(&mut storage);
+        let restored = App::restore(Some(&storage));
+        assert!(restored.classroom(), "classroom mode comes back on");
+        assert_eq!(restored.classroom.point, 3);
+        assert_eq!(restored.view, View::Scene);
+        assert_eq!(
+            restored.time.speed(),
+            Speed::Factor(classroom::SLOW_MOTION),
+            "with its slow motion"
+        );
+
+        // off stays off
+        app.apply(Command::SetClassroom(false));
+        app.save_session(&mut storage);
+        assert!(!App::restore(Some(&storage)).classroom());
+    }
+
+    #[test]
+    fn a_point_beyond_the_restored_scene_is_clamped() {
+        let mut app = App::with_default_preset();
+        app.apply(Command::SetClassroom(true));
+        app.classroom.point = 4;
+        let mut session = app.session();
+        session.classroom_point = 99;
+        let mut storage = MemStorage::default();
+        storage.set_string(SESSION_KEY, ron::to_string(&session).unwrap());
+        assert_eq!(App::restore(Some(&storage)).classroom.point, 4);
+    }
+
+    #[test]
+    fn a_session_saved_before_classroom_was_saved_still_loads() {
+        let app = App::with_default_preset();
+        // the session format of earlier versions: no classroom fields
+        let old = format!(
+            "(scene_ron:{},path:None,dirty:true)",
+            ron::to_string(&app.scene.to_ron_string()).unwrap()
+        );
+        let mut storage = MemStorage::default();
+        storage.set_string(SESSION_KEY, old.clone());
+        let restored = App::restore(Some(&storage));
+        assert_eq!(
+            restored.message().map(|m| m.text.as_str()),
+            Some("restored the last session"),
+            "{old}"
+        );
+        assert!(!restored.classroom());
+        assert_eq!(restored.classroom.point, 0);
+    }
+}

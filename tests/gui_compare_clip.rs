@@ -1,0 +1,165 @@
+//! The A/B compare view clips impact spikes like the time plots: with
+//! "clip impact spikes" on (the default) its force axis is set by the force
+//! without impacts; off, by the impulse / dt spikes.
+#![cfg(feature = "gui")]
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use egui_plot::PlotMemory;
+use std::path::Path;
+use tirecontact::Scene;
+use tirecontact::compare::PinnedRun;
+use tirecontact::gui::command::View;
+use tirecontact::gui::history::Quantity;
+use tirecontact::gui::research::compare::{recording_from_history, recording_without_impacts};
+use tirecontact::gui::views::compare_view::{FORCE_DIFF_PLOT_ID, FORCE_PLOT_ID};
+use tirecontact::gui::views::time_plots::clip_level;
+use tirecontact::gui::{App, Command};
+use tirecontact::scene::Tyre;
+
+fn harness(app: App) -> Harness<'static, App> {
+    Harness::builder()
+        .with_size([1500.0, 950.0])
+        .with_step_dt(1.0 / 60.0)
+        .build_ui_state(|ui, app: &mut App| app.show(ui), app)
+}
+
+/// Takes `n` solver steps (over as many frames as the step budget needs).
+fn advance(h: &mut Harness<'_, App>, n: u64) {
+    let target = h.state().simulation().steps() + n;
+    h.state_mut().apply(Command::Step(n));
+    for _ in 0..100_000 {
+        if h.state().simulation().steps() >= target {
+            break;
+        }
+        h.run_steps(1);
+    }
+    assert_eq!(h.state().simulation().steps(), target);
+}
+
+/// Lowest and highest y of the compare view's plot `id`, as drawn.
+fn y_axis(h: &Harness<'_, App>, id: &str) -> (f64, f64) {
+    let mem = PlotMemory::load(&h.ctx, egui::Id::unique(id)).expect("plot shown");
+    let b = mem.bounds();
+    (b.min()[1], b.max()[1])
+}
+
+fn force_axis(h: &Harness<'_, App>) -> (f64, f64) {
+    y_axis(h, FORCE_PLOT_ID)
+}
+
+fn range(ys: &[f64]) -> (f64, f64) {
+    ys.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &y| {
+            (lo.min(y), hi.max(y))
+        })
+}
+
+/// Lowest and highest sample of `what` of point 0 over the whole history.
+fn history_range(app: &App, what: Quantity) -> (f64, f64) {
+    let h = app.history();
+    (0..h.len())
+        .map(|k| h.value(what, 0, k))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
+            (lo.min(y), hi.max(y))
+        })
+}
+
+#[test]
+fn the_compare_force_axis_fits_the_force_without_impacts_when_clipping() {
+    let scene = Scene::load(Path::new("presets/single_mode.ron")).unwrap();
+    let mut h = harness(App::new(scene, None).unwrap());
+    h.run();
+    advance(&mut h, 20_000);
+    h.state_mut().apply(Command::ShowView(View::Compare));
+    h.run_steps(2);
+    h.get_by_label("Pin as reference").click();
+    h.run_steps(4);
+    assert!(h.state().research().pinned().is_some());
+
+    let (raw_lo, raw_hi) = history_range(h.state(), Quantity::Force);
+    let smooth = history_range(h.state(), Quantity::ForceWithoutImpacts);
+    let top = clip_level(smooth);
+    assert!(
+        raw_hi > 5.0 * top,
+        "the run has impact spikes: {raw_hi} N vs {top} N"
+    );
+    // clipped: the axis reaches the clip level (the ▼ marks) and no further
+    // than egui_plot's margin beyond it
+    let (lo, hi) = force_axis(&h);
+    let span = top - raw_lo.min(smooth.0);
+    assert!(hi >= top, "axis top {hi} N below the clip level {top} N");
+    assert!(
+        hi <= top + 0.1 * span,
+        "axis top {hi} N beyond the clip level {top} N"
+    );
+    assert!(
+        lo <= smooth.0,
+        "{lo} N above the lowest force {} N",
+        smooth.0
+    );
+    assert!(
+        h.query_by_label_contains("impact (impulse / dt, clipped)")
+            .is_some(),
+        "clipped impacts are marked in the legend"
+    );
+
+    // not clipped: the spikes set the axis
+    h.get_by_label("clip impact spikes").click();
+    h.run_steps(4);
+    let (_, hi) = force_axis(&h);
+    assert!(hi >= raw_hi, "axis top {hi} N below the spike {raw_hi} N");
+    assert!(
+        h.query_by_label_contains("impact (impulse / dt, clipped)")
+            .is_none()
+    );
+}
+
+/// The force difference current − reference is clipped at both edges by the
+/// difference of the forces without impacts (impacts of either run make
+/// spikes of either sign).
+#[test]
+fn the_compare_force_difference_is_clipped_at_both_edges() {
+    let scene = Scene::load(Path::new("presets/single_mode.ron")).unwrap();
+    let mut h = harness(App::new(scene.clone(), None).unwrap());
+    h.run();
+    advance(&mut h, 20_000);
+    h.state_mut().apply(Command::ShowView(View::Compare));
+    h.run_steps(2);
+    h.get_by_label("Pin as reference").click();
+    h.run_steps(2);
+    let pin = PinnedRun::new("a", &scene, &recording_from_history(h.state().history()));
+    let pin_smooth = PinnedRun::new("a", &scene, &recording_without_impacts(h.state().history()));
+    let mut edited = scene.clone();
+    if let Tyre::Modal { modes } = &mut edited.tyre {
+        modes[0].freq_hz *= 1.1;
+    }
+    h.state_mut().apply(Command::EditScene(Box::new(edited)));
+    h.run_steps(1);
+    advance(&mut h, 20_000);
+    h.run_steps(4);
+
+    let raw = range(
+        &pin.difference(&recording_from_history(h.state().history()))
+            .dq_n[0],
+    );
+    let smooth = range(
+        &pin_smooth
+            .difference(&recording_without_impacts(h.state().history()))
+            .dq_n[0],
+    );
+    let (top, bottom) = (clip_level(smooth), -clip_level((-smooth.1, -smooth.0)));
+    assert!(
+        raw.1 > 2.0 * top && raw.0 < 2.0 * bottom,
+        "impacts make spikes of both signs: {raw:?} vs {bottom}..{top} N"
+    );
+    let (lo, hi) = y_axis(&h, FORCE_DIFF_PLOT_ID);
+    let margin = 0.1 * (top - bottom);
+    assert!(hi >= top && hi <= top + margin, "{hi} vs {top} N");
+    assert!(lo <= bottom && lo >= bottom - margin, "{lo} vs {bottom} N");
+
+    h.get_by_label("clip impact spikes").click();
+    h.run_steps(4);
+    let (lo, hi) = y_axis(&h, FORCE_DIFF_PLOT_ID);
+    assert!(hi >= raw.1 && lo <= raw.0, "{lo}..{hi} vs {raw:?} N");
+}
