@@ -440,6 +440,10 @@ impl Simulation {
     pub fn num_points(&self) -> usize {
         self.p
     }
+    /// States of the convolution (rank terms of all modes).
+    pub fn num_states(&self) -> usize {
+        self.basis.num_states()
+    }
     pub fn dt_s(&self) -> f64 {
         self.dt_s
     }

@@ -217,6 +217,22 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
             scene.name,
             t_rank / t_on
         )?;
+        // low-rank residues: the default cut against every SVD term kept
+        let exact = SolverOptions {
+            rank_tolerance: tirecontact::convolution::EXACT_RANK_TOLERANCE,
+            ..all
+        };
+        let (t_exact, sim_e) = work_precision::time_stable(&sc, exact)?;
+        let (du, dq) = option_difference(&sc, exact, all)?;
+        writeln!(
+            s,
+            "| {} | residue terms below {:.0e} of the largest dropped ({} states instead of {}) | {t_exact:.4} | {t_on:.4} | {:.2}x | largest displacement difference {du:.1e} of the largest displacement; force difference (RMS over steps) {dq:.1e} of the RMS force |",
+            scene.name,
+            all.rank_tolerance,
+            sim.num_states(),
+            sim_e.num_states(),
+            t_exact / t_on
+        )?;
         let (t_fact, sim_f) = work_precision::time_stable(
             &sc,
             SolverOptions {
@@ -244,6 +260,35 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
         )?;
     }
     Ok(s)
+}
+
+/// Two runs of `scene` with options `a` and `b`, stepped together: the
+/// largest displacement difference relative to the largest displacement,
+/// and the RMS of the step-mean force difference relative to the RMS force.
+fn option_difference(
+    scene: &Scene,
+    a: SolverOptions,
+    b: SolverOptions,
+) -> Result<(f64, f64), Box<dyn std::error::Error>> {
+    let mut sa = tirecontact::Simulation::with_options(scene, a)?;
+    let mut sb = tirecontact::Simulation::with_options(scene, b)?;
+    let (mut du, mut umax, mut dq2, mut q2) = (0.0f64, 0.0f64, 0.0, 0.0);
+    for _ in 0..scene.num_steps() {
+        sa.step()?;
+        sb.step()?;
+        for i in 0..scene.num_points() {
+            let (ua, ub) = (sa.displacement_m()[i], sb.displacement_m()[i]);
+            du = du.max((ua - ub).abs());
+            umax = umax.max(ua.abs());
+            let (qa, qb) = (sa.force_n()[i], sb.force_n()[i]);
+            dq2 += (qa - qb).powi(2);
+            q2 += qa * qa;
+        }
+    }
+    Ok((
+        du / umax.max(f64::MIN_POSITIVE),
+        (dq2 / q2.max(f64::MIN_POSITIVE)).sqrt(),
+    ))
 }
 
 /// Residual flexibility, modes above f_c dropped: plain truncation and
