@@ -371,20 +371,17 @@ impl StepTable {
             self.w2[s] = m.w_gauss[1];
         }
         let c = &mut self.soa;
-        let cols = [
+        for col in [
             &mut c.pxx, &mut c.pxv, &mut c.pvx, &mut c.pvv, &mut c.w1x, &mut c.w1v, &mut c.w2x,
             &mut c.w2v,
-        ];
-        for (k, col) in cols.into_iter().enumerate() {
-            col.clear();
-            col.extend(basis.mode_of_state.iter().map(|&m| {
-                let st = &self.per_mode[m];
-                match k {
-                    0..=3 => st.phi[k],
-                    4 | 5 => st.w_gauss[0][k - 4],
-                    _ => st.w_gauss[1][k - 6],
-                }
-            }));
+        ] {
+            col.resize(ns, 0.0);
+        }
+        for (s, &m) in basis.mode_of_state.iter().enumerate() {
+            let st = &self.per_mode[m];
+            (c.pxx[s], c.pxv[s], c.pvx[s], c.pvv[s]) = (st.phi[0], st.phi[1], st.phi[2], st.phi[3]);
+            (c.w1x[s], c.w1v[s]) = (st.w_gauss[0][0], st.w_gauss[0][1]);
+            (c.w2x[s], c.w2v[s]) = (st.w_gauss[1][0], st.w_gauss[1][1]);
         }
     }
 }

@@ -489,18 +489,33 @@ impl Simulation {
     /// Road heights and rates at `t` into `re`, `rde`; at a breakpoint of a
     /// measured road, the rate after it (`after`) or before it.
     fn road_at(&mut self, t: f64, after: bool) -> Result<(), SolverError> {
+        self.sample_road(t, after, None)
+    }
+
+    /// [`Simulation::road_at`] `t`; at the end of step `step_end` (`Some`),
+    /// with the road advanced from the previous step end (one rotation per
+    /// harmonic instead of a `sin_cos`, see [`PointsRoad::sample_step`]).
+    fn sample_road(
+        &mut self,
+        t: f64,
+        after: bool,
+        step_end: Option<u64>,
+    ) -> Result<(), SolverError> {
         let (w, dw) = ramp(t, self.scene.ramp_s);
         let vel = self.scene.speed_mps;
         let rolled_m = vel * t + self.x_offset_m;
-        self.road
-            .sample_all(rolled_m, after, &mut self.zbuf, &mut self.dzbuf)
-            .map_err(|(i, e)| SolverError::RoadOutOfRange {
-                t_s: t,
-                point: i,
-                x_m: e.x_m,
-                min_m: e.min_m,
-                max_m: e.max_m,
-            })?;
+        let (z, dz) = (&mut self.zbuf, &mut self.dzbuf);
+        match step_end {
+            Some(n) => self.road.sample_step(n, rolled_m, vel * self.dt_s, z, dz),
+            None => self.road.sample_all(rolled_m, after, z, dz),
+        }
+        .map_err(|(i, e)| SolverError::RoadOutOfRange {
+            t_s: t,
+            point: i,
+            x_m: e.x_m,
+            min_m: e.min_m,
+            max_m: e.max_m,
+        })?;
         self.apply_ramp(w, dw);
         Ok(())
     }
@@ -517,38 +532,9 @@ impl Simulation {
         };
         self.state.predict_into(table, &mut self.free);
         self.free.project(&self.basis, &mut self.uh, &mut self.vh);
-        if sel == Table::Full && t == self.t_s {
-            self.road_at_step_end()
-        } else {
-            self.road_at(t + tau, false)
-        }
-    }
-
-    /// [`Simulation::road_at`] the end of the current step (`t_s + dt`),
-    /// with the road advanced from the previous step end (one rotation per
-    /// harmonic instead of a `sin_cos`, see [`PointsRoad::sample_step`]).
-    fn road_at_step_end(&mut self) -> Result<(), SolverError> {
-        let t = self.t_s + self.dt_s;
-        let (w, dw) = ramp(t, self.scene.ramp_s);
-        let vel = self.scene.speed_mps;
-        let rolled_m = vel * t + self.x_offset_m;
-        self.road
-            .sample_step(
-                self.steps + 1,
-                rolled_m,
-                vel * self.dt_s,
-                &mut self.zbuf,
-                &mut self.dzbuf,
-            )
-            .map_err(|(i, e)| SolverError::RoadOutOfRange {
-                t_s: t,
-                point: i,
-                x_m: e.x_m,
-                min_m: e.min_m,
-                max_m: e.max_m,
-            })?;
-        self.apply_ramp(w, dw);
-        Ok(())
+        // a full step from the current time ends at step `steps + 1`
+        let step_end = (sel == Table::Full && t == self.t_s).then_some(self.steps + 1);
+        self.sample_road(t + tau, false, step_end)
     }
 
     /// `re`, `rde` from the road samples in `zbuf`, `dzbuf` and the ramp
