@@ -769,25 +769,30 @@ impl Simulation {
         let mut pen = 0.0f64;
         // one test of the sum: a NaN or an infinity anywhere makes it non-finite
         let mut sum = 0.0;
-        let inv_dt = 1.0 / self.dt_s;
-        for i in 0..self.p {
-            self.q_mean[i] = self.impulse[i] * inv_dt;
-            sum += self.u[i] + self.v[i] + self.q_mean[i];
+        let (p, inv_dt) = (self.p, 1.0 / self.dt_s);
+        let (q, imp) = (&mut self.q_mean[..p], &self.impulse[..p]);
+        let (u, v, r) = (&self.u[..p], &self.v[..p], &self.r[..p]);
+        for i in 0..p {
+            q[i] = imp[i] * inv_dt;
+            sum += u[i] + v[i] + q[i];
         }
         if !sum.is_finite() {
             return Err(self.non_finite());
         }
-        self.contact.fill(false);
+        let contact = &mut self.contact[..p];
+        contact.fill(false);
         for &j in &self.active {
-            self.contact[j] = true;
+            contact[j] = true;
         }
-        for i in 0..self.p {
+        let max_force = &mut self.stats.max_force_n[..p];
+        let contact_steps = &mut self.stats.contact_steps[..p];
+        for i in 0..p {
             // a compliant contact's compression is its spring's, not a penetration
-            if !(compliant && self.contact[i]) {
-                pen = pen.max(self.r[i] - self.u[i]);
+            if !(compliant && contact[i]) {
+                pen = pen.max(r[i] - u[i]);
             }
-            self.stats.max_force_n[i] = self.stats.max_force_n[i].max(self.q_mean[i]);
-            self.stats.contact_steps[i] += self.contact[i] as u64;
+            max_force[i] = max_force[i].max(q[i]);
+            contact_steps[i] += contact[i] as u64;
         }
         let st = &mut self.stats;
         st.steps += 1;
