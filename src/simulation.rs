@@ -540,11 +540,12 @@ impl Simulation {
     /// `re`, `rde` from the road samples in `zbuf`, `dzbuf` and the ramp
     /// `w`, `dw/dt` (SPEC §4): `r = w (z - h)`, `r' = w' (z - h) + w z' V`.
     fn apply_ramp(&mut self, w: f64, dw: f64) {
-        let vel = self.scene.speed_mps;
-        for (i, pt) in self.scene.points.iter().enumerate() {
-            let (z, dz) = (self.zbuf[i], self.dzbuf[i]);
-            self.re[i] = w * (z - pt.h_m);
-            self.rde[i] = dw * (z - pt.h_m) + w * dz * vel;
+        let (vel, p) = (self.scene.speed_mps, self.p);
+        let (z, dz) = (&self.zbuf[..p], &self.dzbuf[..p]);
+        let (re, rde) = (&mut self.re[..p], &mut self.rde[..p]);
+        for (i, pt) in self.scene.points[..p].iter().enumerate() {
+            re[i] = w * (z[i] - pt.h_m);
+            rde[i] = dw * (z[i] - pt.h_m) + w * dz[i] * vel;
         }
     }
 

@@ -86,12 +86,16 @@ impl Simulation {
             }
             // impacts: first root of the Hermite cubic of the gap of a free point
             let mut impact: Option<(usize, f64)> = None;
-            for i in 0..self.p {
-                let (g0, d0) = (self.u[i] - self.r[i], self.v[i] - self.rd[i]);
-                let (g1, d1) = (self.ue[i] - self.re[i], self.ve[i] - self.rde[i]);
+            let p = self.p;
+            let (u, v, r, rd) = (&self.u[..p], &self.v[..p], &self.r[..p], &self.rd[..p]);
+            let (ue, ve, re, rde) = (&self.ue[..p], &self.ve[..p], &self.re[..p], &self.rde[..p]);
+            let released = &self.released[..p];
+            for i in 0..p {
+                let (g0, d0) = (u[i] - r[i], v[i] - rd[i]);
+                let (g1, d1) = (ue[i] - re[i], ve[i] - rde[i]);
                 // a point released in this step lands again only after it rose
                 // clear of the road (no cycling at the release instant)
-                let rise = self.released[i];
+                let rise = released[i];
                 // (active points are skipped only past the cheap rejection,
                 // which most points of most steps take)
                 if let Some(y) = first_crossing(g0, d0 * span, g1, d1 * span, self.pen_tol_m, rise)
