@@ -602,9 +602,11 @@ impl Simulation {
                 });
             }
         }
+        let (re, rde, uh, vh) = (&self.re[..p], &self.rde[..p], &self.uh[..p], &self.vh[..p]);
+        let (rx, rv) = self.rhs[..2 * n].split_at_mut(n);
         for (k, &i) in self.active.iter().enumerate() {
-            self.rhs[k] = self.re[i] - self.uh[i];
-            self.rhs[n + k] = self.rde[i] - self.vh[i];
+            rx[k] = re[i] - uh[i];
+            rv[k] = rde[i] - vh[i];
         }
         match sel {
             Table::Full if self.options.reuse_factorisation => {

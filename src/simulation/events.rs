@@ -13,18 +13,21 @@ impl Simulation {
         let mut remaining = dt;
         let (mut events, mut solves) = (0u32, 0u32);
         // the active set carries over: points in contact at the step start
+        let p = self.p;
+        let (contact, u, r) = (&self.contact[..p], &self.u[..p], &self.r[..p]);
         self.active.clear();
-        for i in 0..self.p {
-            if self.contact[i] {
+        // a point left below the road by the last step lands now
+        let mut deepest: Option<(usize, f64)> = None;
+        for i in 0..p {
+            if contact[i] {
                 self.active.push(i);
+            } else {
+                let g = u[i] - r[i];
+                if g < -self.pen_tol_m && deepest.is_none_or(|(_, d)| g < d) {
+                    deepest = Some((i, g));
+                }
             }
         }
-        // a point left below the road by the last step lands now
-        let deepest = (0..self.p)
-            .filter(|&i| !self.contact[i])
-            .map(|i| (i, self.u[i] - self.r[i]))
-            .filter(|&(_, g)| g < -self.pen_tol_m)
-            .min_by(|a, b| a.1.total_cmp(&b.1));
         if let Some((i, _)) = deepest {
             solves += self.impact(t, i)?;
             events += 1;
