@@ -413,53 +413,44 @@ impl PointsRoad {
                 (st.n, st.ds_m, st.since_anchor) = (n, ds_m, 0);
             }
         }
-        let cur = self.stepper.as_ref().map_or(&[][..], |st| &st.cur[..]);
-        let mut k = 0;
-        Self::harmonics_at(
-            h,
-            &self.phase,
-            |_| {
-                k += 1;
-                cur.get(k - 1).copied().unwrap_or((0.0, 1.0))
-            },
-            z,
-            dz,
-        );
+        let p = self.x_m.len();
+        if h.is_empty() {
+            z[..p].fill(0.0);
+            dz[..p].fill(0.0);
+        }
+        if let Some(st) = &self.stepper {
+            for (k, (c, &sc)) in h.iter().zip(&st.cur).enumerate() {
+                let phase_k = &self.phase[k * p..(k + 1) * p];
+                Self::add_harmonic(c, phase_k, sc, z, dz, k == 0);
+            }
+        }
         Ok(())
     }
 
-    /// `z_i`, `dz/dx_i` of the harmonics from `(sin, cos)` of `κ_h s`
-    /// (`at_s`, called once per harmonic in order) and the points' phases
-    /// (angle addition).
+    /// Harmonic `c`'s height and slope at the points (phases `phase_k`,
+    /// `(sin, cos)` of `κ s` in `at_s`, angle addition) set into `z`, `dz`
+    /// (`set`) or added to them.
     #[inline]
-    fn harmonics_at(
-        h: &[Harmonic],
-        phase: &[(f64, f64)],
-        mut at_s: impl FnMut(&Harmonic) -> (f64, f64),
+    fn add_harmonic(
+        c: &Harmonic,
+        phase_k: &[(f64, f64)],
+        (sn, cs): (f64, f64),
         z: &mut [f64],
         dz: &mut [f64],
+        set: bool,
     ) {
-        let p = phase.len() / h.len().max(1);
+        let p = phase_k.len();
         let (z, dz) = (&mut z[..p], &mut dz[..p]);
-        if h.is_empty() {
-            z.fill(0.0);
-            dz.fill(0.0);
-        }
-        for (k, c) in h.iter().enumerate() {
-            let (sn, cs) = at_s(c);
-            let kappa = TAU / c.wavelength_m;
-            let phase = &phase[k * p..(k + 1) * p];
-            for i in 0..p {
-                let (s0, c0) = phase[i];
-                let zi = c.amplitude_m * (s0 * cs + c0 * sn);
-                let dzi = c.amplitude_m * kappa * (c0 * cs - s0 * sn);
-                // the first harmonic sets, the others add
-                if k == 0 {
-                    (z[i], dz[i]) = (zi, dzi);
-                } else {
-                    z[i] += zi;
-                    dz[i] += dzi;
-                }
+        let (a, ak) = (c.amplitude_m, c.amplitude_m * TAU / c.wavelength_m);
+        for i in 0..p {
+            let (s0, c0) = phase_k[i];
+            let zi = a * (s0 * cs + c0 * sn);
+            let dzi = ak * (c0 * cs - s0 * sn);
+            if set {
+                (z[i], dz[i]) = (zi, dzi);
+            } else {
+                z[i] += zi;
+                dz[i] += dzi;
             }
         }
     }
@@ -511,13 +502,16 @@ impl PointsRoad {
         match &self.profile {
             RoadProfile::Harmonics(h) => {
                 // one sin_cos per harmonic
-                Self::harmonics_at(
-                    h,
-                    &self.phase,
-                    |c| (TAU / c.wavelength_m * s_m).sin_cos(),
-                    z,
-                    dz,
-                );
+                let p = self.x_m.len();
+                if h.is_empty() {
+                    z[..p].fill(0.0);
+                    dz[..p].fill(0.0);
+                }
+                for (k, c) in h.iter().enumerate() {
+                    let sc = (TAU / c.wavelength_m * s_m).sin_cos();
+                    let phase_k = &self.phase[k * p..(k + 1) * p];
+                    Self::add_harmonic(c, phase_k, sc, z, dz, k == 0);
+                }
                 Ok(())
             }
             RoadProfile::Measured { .. } | RoadProfile::Gridded { .. } => {
