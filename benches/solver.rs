@@ -19,8 +19,8 @@ fn steps(c: &mut Criterion) {
             (format!("{p}x{m}"), scene, 3000)
         })
         .collect();
-    // the paper preset: 5 points, 13 identified modes of full-rank residues
-    // (65 states); warmed up past its 0.05 s ramp
+    // the paper preset: 5 points, 13 identified modes of rank-2 residues
+    // (26 states at the default rank cut); warmed up past its 0.05 s ramp
     if let Ok(mut scene) = Scene::load(std::path::Path::new("presets/paper.ron")) {
         scene.duration_s = 10.0;
         scenes.push(("paper".into(), scene, 6000));

@@ -243,3 +243,54 @@ fn run_warns_when_the_time_step_leaves_penetration() {
     let err = String::from_utf8_lossy(&fine.stderr);
     assert!(!err.contains("warning"), "{err}");
 }
+
+/// `run --exact-rank` keeps every residue term: the paper preset's results
+/// move, by about 1e-6 of the displacements, against the default rank cut.
+#[test]
+fn exact_rank_flag_keeps_every_residue_term() {
+    let d = tmpdir("rank");
+    let displacements = |extra: &[&str], name: &str| -> Vec<f64> {
+        let out = d.join(name);
+        let o = bin()
+            .args([
+                "run",
+                "presets/paper.ron",
+                "--duration",
+                "0.1",
+                "--every",
+                "100",
+            ])
+            .args(extra)
+            .arg("-o")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = std::fs::read_to_string(&out).unwrap();
+        text.lines()
+            .skip(1)
+            .flat_map(|l| {
+                l.split(',')
+                    .skip(1)
+                    .take(5)
+                    .map(|x| x.parse::<f64>().unwrap())
+                    .collect::<Vec<_>>()
+            })
+            .collect()
+    };
+    let (cut, exact) = (
+        displacements(&[], "cut.csv"),
+        displacements(&["--exact-rank"], "exact.csv"),
+    );
+    let peak = exact.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let diff = cut
+        .iter()
+        .zip(&exact)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(peak > 1e-4, "peak displacement {peak} m");
+    assert!(
+        diff > 0.0 && diff < 1e-5 * peak,
+        "moved {diff:e} m of {peak:e} m"
+    );
+    std::fs::remove_dir_all(&d).ok();
+}
