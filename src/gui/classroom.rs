@@ -179,11 +179,20 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
         ui.selectable_value(&mut cls.show_force, false, "displacement");
     });
     let i = cls.point.min(history.num_points().saturating_sub(1));
-    let (what, label, scale) = if cls.show_force {
-        (Quantity::Force, "contact force q (N)", 1.0)
+    let (what, long, short, scale) = if cls.show_force {
+        (Quantity::Force, "contact force q (N)", "q (N)", 1.0)
     } else {
-        (Quantity::Displacement, "displacement u (mm, up)", 1e3)
+        (
+            Quantity::Displacement,
+            "displacement u (mm, up)",
+            "u (mm, up)",
+            1e3,
+        )
     };
+    // the vertical label is centred on the plot frame: in a short plot the
+    // long one ran up over the force / displacement switch above
+    let frame_h = ui.available_height() - 3.0 * ui.text_style_height(&TextStyle::Body);
+    let label = fitting_label(ui, long, short, frame_h);
     let window = 0.1;
     let t1 = history.last_time().unwrap_or(0.0).max(now_s).max(window);
     let t0 = t1 - window;
@@ -210,6 +219,20 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
 pub const MODE_BARS_PLOT_ID: &str = "tirecontact.mode_bars";
 /// Vertical axis label of the mode bars.
 pub const MODE_BARS_Y_LABEL: &str = "part of u (mm)";
+
+/// `long` if it fits along `length_px` in the body font, else `short`.
+fn fitting_label<'a>(ui: &Ui, long: &'a str, short: &'a str, length_px: f32) -> &'a str {
+    let w = ui
+        .painter()
+        .layout_no_wrap(
+            long.to_owned(),
+            TextStyle::Body.resolve(ui.style()),
+            Color32::WHITE,
+        )
+        .size()
+        .x;
+    if w + 8.0 <= length_px { long } else { short }
+}
 
 /// Per-mode contribution bars of the chosen point, with mute and solo.
 pub fn mode_bars(

@@ -173,7 +173,11 @@ pub fn show(
         .filter(|&f| f > 0.0 && f <= max_hz)
         .collect();
     let gap = ui.spacing().item_spacing.y;
-    let h = ((ui.available_height() - 2.0 * gap) / 3.0).max(120.0);
+    // three plots and the band caption line below them
+    let caption = ui.text_style_height(&egui::TextStyle::Body) + gap;
+    let h = ((ui.available_height() - 3.0 * gap - caption) / 3.0).max(120.0);
+    // the summed force: black in a light theme, white in a dark one
+    let total_color = ui.visuals().strong_text_color();
     let log = opts.log_x;
     let x_label = if log {
         "frequency f (Hz, log scale)"
@@ -195,7 +199,7 @@ pub fn show(
             .chain(
                 total
                     .filter(|_| opts.total)
-                    .map(|sp| ("q total: sum of all points".to_string(), Color32::BLACK, sp)),
+                    .map(|sp| ("q total: sum of all points".to_string(), total_color, sp)),
             )
             .map(|(name, c, sp)| (name, c, level_points(sp, max_hz, log)))
             .collect();
@@ -262,7 +266,7 @@ pub fn show(
                 .map(|(i, sp)| (format!("q{i}: point {i}"), point_color(i), sp))
                 .collect();
             if opts.total {
-                series.push(("q total".into(), Color32::BLACK, &s.total_force));
+                series.push(("q total".into(), total_color, &s.total_force));
             }
             for (name, c, sp) in series {
                 let mut pts = Vec::new();
