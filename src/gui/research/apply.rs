@@ -252,12 +252,14 @@ impl App {
         let under_way =
             (self.research.fidelity_job.as_ref()).is_some_and(|j| j.is_for(&r, &x, &self.modes));
         if wanted && !under_way {
-            match super::fidelity_job::FidelityJob::spawn((r, x, self.modes.clone())) {
+            let key = (r, x, self.modes.clone());
+            match super::fidelity_job::FidelityJob::spawn(key.clone()) {
                 Ok(job) => {
                     self.research.fidelity_job = Some(job);
                     self.research.fidelity_jobs += 1;
                 }
-                Err(e) => self.research_message(true, e),
+                // shown in the view, not retried every frame
+                Err(e) => self.research.fidelity.set(key, Err(e)),
             }
         }
         if self.research.fidelity_job.is_some() {
