@@ -53,6 +53,19 @@ fn show(h: &mut Harness<'_, App>, label: &str) {
     h.run_steps(2);
 }
 
+/// Frames until no fidelity figures are being computed (bounded).
+fn wait_fidelity(h: &mut Harness<'_, App>) {
+    for _ in 0..100_000 {
+        if h.state().research().fidelity_computing().is_none() {
+            h.run_steps(1);
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(1));
+        h.run_steps(1);
+    }
+    panic!("the fidelity figures never arrived");
+}
+
 /// Frames until the sweep is no longer running (bounded).
 fn wait_sweep(h: &mut Harness<'_, App>) {
     for _ in 0..20_000 {
@@ -211,7 +224,7 @@ fn a_pinned_run_survives_a_restart_and_differs_from_itself_by_zero() {
     advance(&mut h, 3000);
     let d = pin.difference(&recording_from_history(h.state().history()));
     assert!(d.rms_dq_n.iter().any(|&x| x > 0.0), "{:?}", d.rms_dq_n);
-    assert!(h.query_by_label_contains("reference (dashed)").is_some());
+    assert!(h.query_by_label_contains("reference (dashed): ").is_some());
     // back to the pinned scene: the same run again, difference zero
     h.state_mut().apply(Command::EditScene(Box::new(scene)));
     h.run_steps(1);
@@ -232,7 +245,18 @@ fn fidelity_figure_equals_the_library_and_grows_when_a_mode_goes() {
     let ring = ring.clone();
     let mut h = harness(App::new(ring_scene.clone(), None).unwrap());
     h.run();
-    show(&mut h, "Fidelity");
+    h.state_mut().apply(Command::ShowView(View::Fidelity));
+    h.run_steps(1);
+    // the figures are computed on a background thread: under way after the
+    // first frame of the view (a job is polled from the next frame on), not
+    // yet shown
+    assert!(h.state().research().fidelity_computing().is_some());
+    assert_eq!(h.state().research().fidelity_jobs(), 1);
+    assert!(
+        h.query_by_label_contains("computing the relative L2 error")
+            .is_some()
+    );
+    wait_fidelity(&mut h);
     let x: Vec<f64> = ring_scene.points.iter().map(|p| p.x_m).collect();
     let freqs = band_frequencies(0.0, 500.0, FIDELITY_FREQS).unwrap();
     let source = ring.modal_model(&x);
@@ -259,6 +283,7 @@ fn fidelity_figure_equals_the_library_and_grows_when_a_mode_goes() {
     // converted to an editable modal model, the ring stays the reference
     h.get_by_label("Edit as a modal model").click();
     h.run_steps(2);
+    wait_fidelity(&mut h);
     assert!(matches!(h.state().scene().tyre, Tyre::Modal { .. }));
     assert!(h.state().research().fidelity_reference().is_some());
     assert_eq!(shown(&h), e0);
@@ -269,6 +294,8 @@ fn fidelity_figure_equals_the_library_and_grows_when_a_mode_goes() {
     }
     h.state_mut().apply(Command::EditScene(Box::new(cut)));
     h.run_steps(2);
+    wait_fidelity(&mut h);
+    assert!(h.state().research().fidelity_jobs() >= 2);
     let e1 = shown(&h);
     assert_eq!(e1, expect(h.state().modes()));
     assert!(e1 > e0, "{e1} vs {e0}");

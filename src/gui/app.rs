@@ -181,7 +181,9 @@ impl App {
             .path
             .as_deref()
             .and_then(Path::file_name)
-            .map_or("unsaved".to_string(), |n| n.to_string_lossy().into_owned());
+            .map_or("built-in preset".to_string(), |n| {
+                n.to_string_lossy().into_owned()
+            });
         format!(
             "{}{} ({file}) — tirecontact",
             if self.is_dirty() { "* " } else { "" },

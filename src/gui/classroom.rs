@@ -179,11 +179,20 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
         ui.selectable_value(&mut cls.show_force, false, "displacement");
     });
     let i = cls.point.min(history.num_points().saturating_sub(1));
-    let (what, label, scale) = if cls.show_force {
-        (Quantity::Force, "contact force q (N)", 1.0)
+    let (what, long, short, scale) = if cls.show_force {
+        (Quantity::Force, "contact force q (N)", "q (N)", 1.0)
     } else {
-        (Quantity::Displacement, "displacement u (mm, up)", 1e3)
+        (
+            Quantity::Displacement,
+            "displacement u (mm, up)",
+            "u (mm, up)",
+            1e3,
+        )
     };
+    // the vertical label is centred on the plot frame: in a short plot the
+    // long one ran up over the force / displacement switch above
+    let frame_h = ui.available_height() - 3.0 * ui.text_style_height(&TextStyle::Body);
+    let label = fitting_label(ui, long, short, frame_h);
     let window = 0.1;
     let t1 = history.last_time().unwrap_or(0.0).max(now_s).max(window);
     let t0 = t1 - window;
@@ -204,6 +213,25 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
                     .width(2.5),
             );
         });
+}
+
+/// Plot id of the mode bars (its frame is read by the tests).
+pub const MODE_BARS_PLOT_ID: &str = "tirecontact.mode_bars";
+/// Vertical axis label of the mode bars.
+pub const MODE_BARS_Y_LABEL: &str = "part of u (mm)";
+
+/// `long` if it fits along `length_px` in the body font, else `short`.
+fn fitting_label<'a>(ui: &Ui, long: &'a str, short: &'a str, length_px: f32) -> &'a str {
+    let w = ui
+        .painter()
+        .layout_no_wrap(
+            long.to_owned(),
+            TextStyle::Body.resolve(ui.style()),
+            Color32::WHITE,
+        )
+        .size()
+        .x;
+    if w + 8.0 <= length_px { long } else { short }
 }
 
 /// Per-mode contribution bars of the chosen point, with mute and solo.
@@ -249,12 +277,25 @@ pub fn mode_bars(
         .collect();
     let ymax = c.iter().fold(1e-3f64, |a, v| a.max(v.abs() * 1e3)) * 1.1;
     let row = ui.spacing().interact_size.y + ui.spacing().item_spacing.y;
-    let h = (ui.available_height() - row * (n as f32 + 1.2)).max(150.0);
+    // the vertical axis label is centred on the plot frame: a frame shorter
+    // than the label let it run up over the "point i: u = …" line
+    let body = egui::TextStyle::Body.resolve(ui.style());
+    let label_w = ui
+        .painter()
+        .layout_no_wrap(MODE_BARS_Y_LABEL.to_owned(), body, Color32::WHITE)
+        .size()
+        .x;
+    // the x axis below the frame: tick labels and the axis label
+    let x_axis_h = 3.0 * ui.text_style_height(&egui::TextStyle::Body);
+    let h = (ui.available_height() - row * (n as f32 + 1.2))
+        .max(150.0)
+        .max(label_w + x_axis_h + 16.0);
     Plot::new("tirecontact.mode_bars")
+        .id(egui::Id::unique(MODE_BARS_PLOT_ID))
         .height(h)
         .legend(Legend::default().position(Corner::RightBottom))
         .x_axis_label("mode")
-        .y_axis_label("part of u (mm)")
+        .y_axis_label(MODE_BARS_Y_LABEL)
         .x_axis_formatter(move |m, _| {
             let k = m.value.round();
             if (m.value - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < labels.len() {
@@ -290,6 +331,21 @@ pub fn mode_bars(
         .show(ui, |pui| {
             pui.bar_chart(BarChart::new("now (mm)", bars).color(point_color(1)));
         });
+    // many modes in a short panel: the rows scroll under the plot
+    egui::ScrollArea::vertical()
+        .id_salt("tirecontact.mode_mutes_scroll")
+        .show(ui, |ui| mute_rows(ui, &c, modes, mutes, cmds));
+}
+
+/// One row per mode: its frequency, its part of u, Mute and Solo.
+fn mute_rows(
+    ui: &mut Ui,
+    c: &[f64],
+    modes: &[Mode],
+    mutes: Option<&Mutes>,
+    cmds: &mut Vec<Command>,
+) {
+    let muted = |k: usize| mutes.is_some_and(|m| m.muted.get(k).copied().unwrap_or(false));
     egui::Grid::new("tirecontact.mode_mutes")
         .striped(true)
         .num_columns(4)

@@ -36,14 +36,11 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
 /// File, run statistics and frame rate.
 pub fn status_bar(ui: &mut Ui, app: &App) {
     ui.horizontal(|ui| {
-        let file = app
-            .path
-            .as_ref()
-            .map_or("unsaved scene".to_string(), |p| p.display().to_string());
+        let text = document_label(app.path.as_deref(), &app.scene.name, app.is_dirty());
         if app.is_dirty() {
-            ui.label(RichText::new(format!("{file} (unsaved changes)")).color(ERROR_COLOR));
+            ui.label(RichText::new(text).color(ERROR_COLOR));
         } else {
-            ui.label(file);
+            ui.label(text);
         }
         ui.separator();
         let st = app.sim.stats();
@@ -75,6 +72,21 @@ pub fn status_bar(ui: &mut Ui, app: &App) {
                 ));
         });
     });
+}
+
+/// What the status bar says of the document: its file, or for a scene
+/// without one (the embedded default, a shipped or guided preset) its name
+/// as a built-in preset; "unsaved changes" only once it was edited.
+pub fn document_label(path: Option<&std::path::Path>, scene_name: &str, dirty: bool) -> String {
+    let doc = match path {
+        Some(p) => p.display().to_string(),
+        None => format!("{scene_name} (built-in preset)"),
+    };
+    if dirty {
+        format!("{doc} (unsaved changes)")
+    } else {
+        doc
+    }
 }
 
 /// Asks before dropping unsaved edits.
@@ -154,5 +166,32 @@ pub fn png_window(
         }
     } else if !open {
         *settings = None;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    #[test]
+    fn a_built_in_preset_is_named_and_unsaved_only_once_edited() {
+        let name = "Paper: ring tyre, five points, sine road";
+        assert_eq!(
+            document_label(None, name, false),
+            "Paper: ring tyre, five points, sine road (built-in preset)"
+        );
+        assert_eq!(
+            document_label(None, name, true),
+            "Paper: ring tyre, five points, sine road (built-in preset) (unsaved changes)"
+        );
+        assert_eq!(
+            document_label(Some(Path::new("presets/a.ron")), name, false),
+            "presets/a.ron"
+        );
+        assert_eq!(
+            document_label(Some(Path::new("presets/a.ron")), name, true),
+            "presets/a.ron (unsaved changes)"
+        );
     }
 }

@@ -221,13 +221,49 @@ impl App {
                         });
                 }
             }
-            View::Fidelity => {
-                if let Some(r) = &self.research.fidelity_ref {
-                    let x: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
-                    self.research.fidelity.get(r, &x, &self.modes);
-                }
-            }
+            View::Fidelity => self.update_fidelity(ctx),
             _ => {}
+        }
+    }
+
+    /// The fidelity figures of the modes in use, computed on a background
+    /// thread: a finished job's figures are kept if they are still those of
+    /// the scene; a job for modes edited since is replaced (and cancelled).
+    fn update_fidelity(&mut self, ctx: &egui::Context) {
+        let Some(r) = self.research.fidelity_ref.clone() else {
+            self.research.fidelity_job = None;
+            return;
+        };
+        let x: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
+        if let Some(job) = &self.research.fidelity_job
+            && let Some(result) = job.poll()
+        {
+            if job.is_for(&r, &x, &self.modes) {
+                let key = job.key.clone();
+                self.research.fidelity.set(key, result);
+            }
+            self.research.fidelity_job = None;
+        }
+        let wanted = self
+            .research
+            .fidelity
+            .current(&r, &x, &self.modes)
+            .is_none();
+        let under_way =
+            (self.research.fidelity_job.as_ref()).is_some_and(|j| j.is_for(&r, &x, &self.modes));
+        if wanted && !under_way {
+            let key = (r, x, self.modes.clone());
+            match super::fidelity_job::FidelityJob::spawn(key.clone()) {
+                Ok(job) => {
+                    self.research.fidelity_job = Some(job);
+                    self.research.fidelity_jobs += 1;
+                }
+                // shown in the view, not retried every frame
+                Err(e) => self.research.fidelity.set(key, Err(e)),
+            }
+        }
+        if self.research.fidelity_job.is_some() {
+            ctx.request_repaint();
         }
     }
 
@@ -307,7 +343,11 @@ impl App {
                 &self.scene,
                 &self.modes,
                 self.research.fidelity_ref.as_ref(),
-                self.research.fidelity.last(),
+                self.research.fidelity_ref.as_ref().and_then(|r| {
+                    let x: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
+                    self.research.fidelity.current(r, &x, &self.modes)
+                }),
+                self.research.fidelity_computing(),
                 &mut self.research.fidelity_opts,
             ),
             _ => {}

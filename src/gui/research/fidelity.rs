@@ -117,6 +117,31 @@ impl FidelityCache {
     pub fn last(&self) -> Option<&Result<FidelityFigures, String>> {
         self.value.as_ref()
     }
+
+    /// The figures if they are those of `modes` at `x_m` against `reference`.
+    pub fn current(
+        &self,
+        reference: &FidelityRef,
+        x_m: &[f64],
+        modes: &[Mode],
+    ) -> Option<&Result<FidelityFigures, String>> {
+        let same = self
+            .key
+            .as_ref()
+            .is_some_and(|(r, x, m)| r == reference && x == x_m && m == modes);
+        self.value.as_ref().filter(|_| same)
+    }
+
+    /// Keeps the figures computed elsewhere (a background job) for `key`.
+    pub fn set(
+        &mut self,
+        key: (FidelityRef, Vec<f64>, Vec<Mode>),
+        value: Result<FidelityFigures, String>,
+    ) {
+        self.key = Some(key);
+        self.value = Some(value);
+        self.computations += 1;
+    }
 }
 
 #[cfg(test)]

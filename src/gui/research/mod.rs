@@ -7,6 +7,7 @@
 pub mod apply;
 pub mod compare;
 pub mod fidelity;
+pub mod fidelity_job;
 pub mod spectra;
 pub mod spectra_job;
 pub mod state;

@@ -126,6 +126,10 @@ pub struct ResearchState {
     pub(crate) spectra_job: Option<super::spectra_job::SpectraJob>,
     /// Background spectra computations started so far.
     pub(crate) spectra_jobs: u64,
+    /// The fidelity figures being computed on a background thread, if any.
+    pub(crate) fidelity_job: Option<super::fidelity_job::FidelityJob>,
+    /// Background fidelity computations started so far.
+    pub(crate) fidelity_jobs: u64,
 }
 
 impl ResearchState {
@@ -161,5 +165,14 @@ impl ResearchState {
     /// The fidelity figures last computed for the panel.
     pub fn fidelity(&self) -> Option<&Result<super::fidelity::FidelityFigures, String>> {
         self.fidelity.last()
+    }
+    /// Progress (0..=1) of the fidelity figures being computed in the
+    /// background.
+    pub fn fidelity_computing(&self) -> Option<f64> {
+        self.fidelity_job.as_ref().map(|j| j.progress())
+    }
+    /// Fidelity computations started on a background thread so far.
+    pub fn fidelity_jobs(&self) -> u64 {
+        self.fidelity_jobs
     }
 }

@@ -18,6 +18,13 @@ use egui_plot::{Corner, Legend, Line, LineStyle, MarkerShape, Plot};
 pub const FORCE_PLOT_ID: &str = "tirecontact.compare.force";
 /// Plot id of the force difference plot.
 pub const FORCE_DIFF_PLOT_ID: &str = "tirecontact.compare.force_diff";
+/// Plot id of the displacement difference plot.
+pub const DISPLACEMENT_DIFF_PLOT_ID: &str = "tirecontact.compare.displacement_diff";
+/// Legend entries: one per run style; the colour of a curve is its point's
+/// (the coloured point check boxes above the plots are the key).
+pub const CURRENT: &str = "current run (solid)";
+pub const REFERENCE: &str = "reference (dashed)";
+pub const DIFFERENCE: &str = "current − reference";
 
 /// `pinned_smooth` is the pinned run with its force without impacts as `q`,
 /// `diff_smooth` its difference: they set the clipped force axes.
@@ -58,7 +65,7 @@ pub fn show(
         ui.checkbox(&mut opts.difference, "show difference (current − reference)");
         clip_checkbox(ui, &mut opts.clip_impacts);
         ui.separator();
-        ui.label("points:");
+        ui.label("points (curve colours):");
         for (i, s) in opts.shown.iter_mut().enumerate().take(24) {
             ui.checkbox(s, RichText::new(i.to_string()).color(point_color(i)));
         }
@@ -129,7 +136,7 @@ pub fn show(
             plot = plot.id(Id::unique(FORCE_PLOT_ID));
         }
         let shown: Vec<usize> = (0..p).filter(|&i| opts.shown[i]).collect();
-        plot.show(ui, |pui| {
+        let r = plot.show(ui, |pui| {
             let b = pui.plot_bounds();
             let (t0, t1) = (b.min()[0], b.max()[0]);
             // the clip level fits the force without impacts of both runs
@@ -155,11 +162,7 @@ pub fn show(
                 if let Some(top) = top {
                     clip_at(&mut pts, top, &mut marks);
                 }
-                pui.line(
-                    Line::new(format!("point {i}"), pts)
-                        .color(point_color(i))
-                        .width(1.5),
-                );
+                pui.line(Line::new(CURRENT, pts).color(point_color(i)).width(1.5));
                 if let Some(pin) = pinned {
                     let r = &pin.recording;
                     let y = match what {
@@ -172,7 +175,7 @@ pub fn show(
                             clip_at(&mut pts, top, &mut marks);
                         }
                         pui.line(
-                            Line::new(format!("ref: point {i}"), pts)
+                            Line::new(REFERENCE, pts)
                                 .color(point_color(i).gamma_multiply(0.6))
                                 .width(1.5)
                                 .style(LineStyle::dashed_dense()),
@@ -181,7 +184,9 @@ pub fn show(
                 }
             }
             impact_marks(pui, marks, MarkerShape::Down);
+            (t0, t1)
         });
+        repaint_if_stale(ui, &r);
     }
     if rows == 4 {
         let d = diff.cloned().unwrap_or_default();
@@ -197,16 +202,20 @@ pub fn show(
                 .link_cursor(link, [true, false])
                 .y_axis_label(y_label)
                 .y_axis_min_width(64.0)
+                .include_x(0.0)
+                .include_x(t_end)
                 .allow_scroll(false);
             if k == 1 {
                 plot = plot.x_axis_label("time t (s)");
             }
             let clip = opts.clip_impacts && k == 1;
-            if k == 1 {
-                plot = plot.id(Id::unique(FORCE_DIFF_PLOT_ID));
-            }
+            plot = plot.id(Id::unique(if k == 1 {
+                FORCE_DIFF_PLOT_ID
+            } else {
+                DISPLACEMENT_DIFF_PLOT_ID
+            }));
             let shown: Vec<usize> = (0..p).filter(|&i| opts.shown[i]).collect();
-            plot.show(ui, |pui| {
+            let r = plot.show(ui, |pui| {
                 let b = pui.plot_bounds();
                 let (t0, t1) = (b.min()[0], b.max()[0]);
                 // impacts of either run give spikes of both signs: clip both
@@ -228,17 +237,34 @@ pub fn show(
                             }
                         }
                     }
-                    pui.line(
-                        Line::new(format!("current − ref: point {i}"), pts)
-                            .color(point_color(i))
-                            .width(1.5),
-                    );
+                    pui.line(Line::new(DIFFERENCE, pts).color(point_color(i)).width(1.5));
                 }
                 impact_marks(pui, above, MarkerShape::Down);
                 impact_marks(pui, below, MarkerShape::Up);
+                (t0, t1)
             });
+            repaint_if_stale(ui, &r);
         }
     }
+}
+
+/// The curves are cut to the time window of the previous frame (all egui_plot
+/// gives inside `show`): when the window changed (the run grew, a linked plot
+/// moved, the view opened) they are stale, so draw once more at once rather
+/// than waiting for input.
+fn repaint_if_stale(ui: &Ui, r: &egui_plot::PlotResponse<(f64, f64)>) {
+    let b = r.transform.bounds();
+    let (t0, t1) = r.inner;
+    if window_changed((t0, t1), (b.min()[0], b.max()[0])) {
+        ui.ctx().request_repaint();
+    }
+}
+
+/// Whether the drawn window `now` differs from the window `used` to cut the
+/// curves (by more than 1e-9 of its span).
+pub fn window_changed(used: (f64, f64), now: (f64, f64)) -> bool {
+    let tol = 1e-9 * (now.1 - now.0).abs().max(1e-12);
+    (used.0 - now.0).abs() > tol || (used.1 - now.1).abs() > tol
 }
 
 /// Lowest and highest of the series `ys[i]` of the `shown` points over
@@ -270,4 +296,17 @@ fn window(t: &[f64], y: &[f64], t0: f64, t1: f64, buckets: usize, scale: f64) ->
         return Vec::new();
     }
     decimate_min_max(&t[lo..hi], |k| y[lo + k] * scale, buckets)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_moved_or_grown_window_is_stale() {
+        assert!(!window_changed((0.0, 0.2), (0.0, 0.2)));
+        assert!(!window_changed((0.0, 0.2), (0.0, 0.2 + 1e-12)));
+        assert!(window_changed((0.0, 0.06), (0.0, 0.2)));
+        assert!(window_changed((-0.01, 0.2), (0.0, 0.2)));
+    }
 }

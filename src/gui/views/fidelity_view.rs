@@ -36,6 +36,7 @@ pub fn show(
     modes: &[Mode],
     reference: Option<&FidelityRef>,
     figures: Option<&Result<FidelityFigures, String>>,
+    computing: Option<f64>,
     opts: &mut FidelityOptions,
 ) {
     let Some(reference) = reference else {
@@ -68,8 +69,10 @@ pub fn show(
             .weak(),
         );
     });
+    // the figures of the modes in use, or a background job computing them
+    // (the |G| curves below are cheap and drawn meanwhile)
     let figures = match figures {
-        Some(Ok(f)) => f,
+        Some(Ok(f)) => Some(f),
         Some(Err(e)) => {
             ui.label(
                 RichText::new(format!("No fidelity figure: {e}"))
@@ -78,28 +81,40 @@ pub fn show(
             return;
         }
         None => {
-            ui.label("computing …");
-            return;
+            ui.horizontal(|ui| {
+                ui.spinner();
+                ui.label(
+                    RichText::new(format!(
+                        "computing the relative L2 error of the {} modes and of each mode removed… {:.0} %",
+                        modes.len(),
+                        100.0 * computing.unwrap_or(0.0)
+                    ))
+                    .strong(),
+                );
+            });
+            None
         }
     };
-    let pair = figures
-        .fidelity
-        .per_pair
-        .get(opts.i * p + opts.j)
-        .copied()
-        .unwrap_or(f64::NAN);
-    ui.label(RichText::new(error_text(figures, p)).strong().size(16.0));
-    ui.label(format!(
-        "pair ({}, {}): {:.3} % — {} modes in the modal sum",
-        opts.i,
-        opts.j,
-        100.0 * pair,
-        modes.len()
-    ));
+    if let Some(figures) = figures {
+        let pair = figures
+            .fidelity
+            .per_pair
+            .get(opts.i * p + opts.j)
+            .copied()
+            .unwrap_or(f64::NAN);
+        ui.label(RichText::new(error_text(figures, p)).strong().size(16.0));
+        ui.label(format!(
+            "pair ({}, {}): {:.3} % — {} modes in the modal sum",
+            opts.i,
+            opts.j,
+            100.0 * pair,
+            modes.len()
+        ));
+    }
     let x: Vec<f64> = scene.points.iter().map(|q| q.x_m).collect();
     let src = reference.model(&x);
     let model = ModalModel::from_modes(modes, p);
-    let (lo, hi) = figures.band_hz;
+    let (lo, hi) = reference.band_hz;
     let log = opts.log_x;
     let f0 = if log { lo.max(hi / 1000.0) } else { lo };
     let freqs: Vec<f64> = (0..=CURVE_POINTS)
@@ -157,6 +172,9 @@ pub fn show(
         );
     });
     // what removing each mode would cost
+    let Some(figures) = figures else {
+        return;
+    };
     let bars: Vec<Bar> = modes
         .iter()
         .zip(&figures.removal_costs)

@@ -34,6 +34,52 @@ pub fn log_label(v: f64) -> String {
     }
 }
 
+/// Level steps (dB) of the level axes: 10 and 20 dB at the usual plot
+/// heights, finer when zoomed in, coarser when squeezed.
+const DB_STEPS: [f64; 9] = [1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0];
+/// Smallest distance between labelled level ticks (px); egui_plot shows a
+/// tick label from 20 px, fully from 30 px.
+const DB_LABEL_PX: f64 = 30.0;
+
+/// Grid marks of a level axis (dB): multiples of the smallest step of
+/// [`DB_STEPS`] at least [`DB_LABEL_PX`] apart (labelled), with the next finer
+/// step between them. egui_plot's default powers of ten left a 100 dB axis
+/// with the single label "0".
+pub fn db_marks(input: egui_plot::GridInput) -> Vec<egui_plot::GridMark> {
+    let (lo, hi) = input.bounds;
+    // base_step_size is the value of egui_plot's 8 px minimum grid spacing
+    let db_per_px = input.base_step_size / 8.0;
+    if !(lo.is_finite() && hi.is_finite() && db_per_px.is_finite() && db_per_px > 0.0) {
+        return Vec::new();
+    }
+    let k = DB_STEPS
+        .iter()
+        .position(|&s| s / db_per_px >= DB_LABEL_PX)
+        .unwrap_or(DB_STEPS.len() - 1);
+    let major = DB_STEPS[k];
+    let fine = if k > 0 { DB_STEPS[k - 1] } else { major };
+    let (first, last) = ((lo / fine).ceil() as i64, (hi / fine).floor() as i64);
+    if last - first > 10_000 {
+        return Vec::new();
+    }
+    (first..=last)
+        .map(|n| {
+            let value = n as f64 * fine;
+            let on_major = (value / major - (value / major).round()).abs() < 1e-9;
+            egui_plot::GridMark {
+                value,
+                step_size: if on_major { major } else { fine },
+            }
+        })
+        .collect()
+}
+
+/// A level axis (dB) with [`db_marks`] and whole-dB labels.
+fn db_y_axis(plot: Plot<'_>) -> Plot<'_> {
+    plot.y_grid_spacer(db_marks)
+        .y_axis_formatter(|m, _| format!("{:.0}", m.value))
+}
+
 /// x coordinate of a frequency on the plot (log10 when `log`).
 fn fx(f: f64, log: bool) -> f64 {
     if log { f.log10() } else { f }
@@ -127,7 +173,11 @@ pub fn show(
         .filter(|&f| f > 0.0 && f <= max_hz)
         .collect();
     let gap = ui.spacing().item_spacing.y;
-    let h = ((ui.available_height() - 2.0 * gap) / 3.0).max(120.0);
+    // three plots and the band caption line below them
+    let caption = ui.text_style_height(&egui::TextStyle::Body) + gap;
+    let h = ((ui.available_height() - 3.0 * gap - caption) / 3.0).max(120.0);
+    // the summed force: black in a light theme, white in a dark one
+    let total_color = ui.visuals().strong_text_color();
     let log = opts.log_x;
     let x_label = if log {
         "frequency f (Hz, log scale)"
@@ -149,7 +199,7 @@ pub fn show(
             .chain(
                 total
                     .filter(|_| opts.total)
-                    .map(|sp| ("q total: sum of all points".to_string(), Color32::BLACK, sp)),
+                    .map(|sp| ("q total: sum of all points".to_string(), total_color, sp)),
             )
             .map(|(name, c, sp)| (name, c, level_points(sp, max_hz, log)))
             .collect();
@@ -158,7 +208,7 @@ pub fn show(
             .flat_map(|c| c.2.iter().map(|p| p[1]))
             .fold(f64::NEG_INFINITY, f64::max);
         let floor = top - RANGE_DB;
-        let mut plot = Plot::new(id)
+        let mut plot = db_y_axis(Plot::new(id))
             .height(h)
             .legend(Legend::default().position(Corner::RightTop))
             .x_axis_label(x_label)
@@ -198,7 +248,7 @@ pub fn show(
     );
     // third-octave bands of the forces, drawn as steps over the band edges
     let hi = DEFAULT_BANDS_HZ.1.min(nyquist / 10f64.powf(0.05));
-    Plot::new("tirecontact.spectra_bands")
+    db_y_axis(Plot::new("tirecontact.spectra_bands"))
         .height(h)
         .legend(Legend::default().position(Corner::RightTop))
         .x_axis_label("third-octave band (Hz, log scale; IEC 61260 base 10)")
@@ -216,7 +266,7 @@ pub fn show(
                 .map(|(i, sp)| (format!("q{i}: point {i}"), point_color(i), sp))
                 .collect();
             if opts.total {
-                series.push(("q total".into(), Color32::BLACK, &s.total_force));
+                series.push(("q total".into(), total_color, &s.total_force));
             }
             for (name, c, sp) in series {
                 let mut pts = Vec::new();
@@ -316,6 +366,52 @@ fn draw_markers(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Labelled marks (those egui_plot labels: >= 20 px apart) of a level
+    /// axis over `bounds` drawn `px` high.
+    fn labelled(bounds: (f64, f64), px: f64) -> Vec<f64> {
+        let base_step_size = 8.0 * (bounds.1 - bounds.0) / px;
+        db_marks(egui_plot::GridInput {
+            bounds,
+            base_step_size,
+        })
+        .into_iter()
+        .filter(|m| m.step_size * px / (bounds.1 - bounds.0) > 20.0)
+        .map(|m| m.value)
+        .collect()
+    }
+
+    #[test]
+    fn level_axes_get_several_labels_at_round_decibels() {
+        // the force and displacement axes of the paper preset's spectra
+        for (bounds, px) in [((-55.0, 52.0), 180.0), ((-175.0, -55.0), 180.0)] {
+            let l = labelled(bounds, px);
+            assert!(l.len() >= 4, "{bounds:?} at {px} px: {l:?}");
+            assert!(l.iter().all(|v| v % 10.0 == 0.0), "{l:?}");
+            assert!(l.iter().all(|v| *v >= bounds.0 && *v <= bounds.1));
+        }
+        // the labelled step (>= 30 px) is 10 or 20 dB over 120 dB at plot heights 180..400 px
+        for px in [180.0, 250.0, 300.0, 400.0] {
+            let bounds = (-60.0, 60.0);
+            let marks = db_marks(egui_plot::GridInput {
+                bounds,
+                base_step_size: 8.0 * 120.0 / px,
+            });
+            let major = marks.iter().map(|m| m.step_size).fold(0.0, f64::max);
+            assert!(major == 10.0 || major == 20.0, "{px} px: {major} dB");
+            assert!(major * px / 120.0 >= DB_LABEL_PX);
+        }
+        // squeezed or zoomed in: coarser / finer, never empty
+        assert!(!labelled((-200.0, 100.0), 60.0).is_empty());
+        assert!(labelled((-3.0, 3.0), 200.0).len() >= 4);
+        assert!(
+            db_marks(egui_plot::GridInput {
+                bounds: (f64::NEG_INFINITY, 0.0),
+                base_step_size: 1.0
+            })
+            .is_empty()
+        );
+    }
 
     #[test]
     fn log_labels_at_1_2_5() {

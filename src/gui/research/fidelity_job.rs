@@ -1,0 +1,187 @@
+//! The fidelity figures computed off the UI thread (no egui here): the
+//! relative L2 error of the modes in use and the error without each mode
+//! (one error per mode, each 500 frequencies × p² receptances of the ring
+//! and of the modal sum: a ring preset's figures took the UI thread for
+//! whole frames). The job counts the errors done, stops between two when
+//! cancelled (or dropped: a newer job for edited modes replaces it) and
+//! sends its figures through a channel.
+
+use super::fidelity::{FIDELITY_FREQS, FidelityFigures, FidelityRef};
+use crate::fidelity::{band_frequencies, relative_l2_error, without_mode};
+use crate::modal::ModalModel;
+use crate::scene::Mode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::mpsc::{Receiver, TryRecvError, channel};
+
+/// What the figures depend on: the reference, the points' positions (m)
+/// and the modes.
+pub type FidelityKey = (FidelityRef, Vec<f64>, Vec<Mode>);
+
+/// The figures of [`super::fidelity::figures`], with `cancelled` asked and
+/// `done` called around each of the `modes.len() + 1` error computations.
+pub fn figures_cancellable(
+    reference: &FidelityRef,
+    x_m: &[f64],
+    modes: &[Mode],
+    cancelled: &dyn Fn() -> bool,
+    done: &dyn Fn(),
+) -> Result<FidelityFigures, String> {
+    let freqs = band_frequencies(reference.band_hz.0, reference.band_hz.1, FIDELITY_FREQS)
+        .map_err(|e| e.to_string())?;
+    let src = reference.model(x_m);
+    let p = x_m.len();
+    let stopped = || Err("the fidelity computation was cancelled".to_string());
+    if cancelled() {
+        return stopped();
+    }
+    let fidelity = relative_l2_error(&src, &ModalModel::from_modes(modes, p), &freqs)
+        .map_err(|e| e.to_string())?;
+    done();
+    let mut removal_costs = Vec::with_capacity(modes.len());
+    for k in 0..modes.len() {
+        if cancelled() {
+            return stopped();
+        }
+        let cut = without_mode(modes, k).map_err(|e| e.to_string())?;
+        let e = relative_l2_error(&src, &ModalModel::from_modes(&cut, p), &freqs)
+            .map_err(|e| e.to_string())?;
+        removal_costs.push(e.relative_l2);
+        done();
+    }
+    Ok(FidelityFigures {
+        fidelity,
+        removal_costs,
+        band_hz: reference.band_hz,
+        num_freqs: FIDELITY_FREQS,
+    })
+}
+
+/// A fidelity computation under way.
+#[derive(Debug)]
+pub struct FidelityJob {
+    /// What the job computes the figures of.
+    pub key: FidelityKey,
+    done: Arc<AtomicU64>,
+    total: u64,
+    cancel: Arc<AtomicBool>,
+    rx: Receiver<Result<FidelityFigures, String>>,
+}
+
+impl FidelityJob {
+    /// Starts the figures of `key` on a std::thread.
+    pub fn spawn(key: FidelityKey) -> Result<Self, String> {
+        let done = Arc::new(AtomicU64::new(0));
+        let cancel = Arc::new(AtomicBool::new(false));
+        let total = key.2.len() as u64 + 1;
+        let (tx, rx) = channel();
+        let (d, c) = (Arc::clone(&done), Arc::clone(&cancel));
+        let (reference, x_m, modes) = key.clone();
+        std::thread::Builder::new()
+            .name("tirecontact-fidelity".into())
+            .spawn(move || {
+                let r = figures_cancellable(
+                    &reference,
+                    &x_m,
+                    &modes,
+                    &|| c.load(Ordering::Relaxed),
+                    &|| {
+                        d.fetch_add(1, Ordering::Relaxed);
+                    },
+                );
+                // the receiver is gone when a newer job replaced this one
+                let _ = tx.send(r);
+            })
+            .map_err(|e| format!("cannot start the fidelity thread: {e}"))?;
+        Ok(FidelityJob {
+            key,
+            done,
+            total,
+            cancel,
+            rx,
+        })
+    }
+
+    /// Whether the job computes the figures of `key`.
+    pub fn is_for(&self, reference: &FidelityRef, x_m: &[f64], modes: &[Mode]) -> bool {
+        self.key.0 == *reference && self.key.1 == x_m && self.key.2 == modes
+    }
+
+    /// Fraction of the errors done (0..=1).
+    pub fn progress(&self) -> f64 {
+        (self.done.load(Ordering::Relaxed) as f64 / self.total.max(1) as f64).min(1.0)
+    }
+
+    /// The figures once the thread finished (never blocks); `None` while
+    /// it runs.
+    pub fn poll(&self) -> Option<Result<FidelityFigures, String>> {
+        match self.rx.try_recv() {
+            Err(TryRecvError::Empty) => None,
+            Ok(r) => Some(r),
+            Err(TryRecvError::Disconnected) => {
+                Some(Err("the fidelity thread stopped without a result".into()))
+            }
+        }
+    }
+}
+
+impl Drop for FidelityJob {
+    /// A replaced (or dropped) job stops between two error computations.
+    fn drop(&mut self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scene;
+    use crate::gui::research::fidelity::figures;
+
+    fn paper_key() -> FidelityKey {
+        let scene = Scene::parse(include_str!("../../../presets/paper.ron"), "paper").unwrap();
+        let r = FidelityRef::of_scene(&scene).unwrap();
+        let x: Vec<f64> = scene.points.iter().map(|p| p.x_m).collect();
+        let mut modes = r.ring.modes(&x);
+        modes.remove(0);
+        (r, x, modes)
+    }
+
+    /// The job's figures are those of the library's `removal_costs` path
+    /// computed on the calling thread.
+    #[test]
+    fn a_job_delivers_the_figures_of_the_ui_thread() {
+        let key = paper_key();
+        let job = FidelityJob::spawn(key.clone()).unwrap();
+        assert!(job.is_for(&key.0, &key.1, &key.2));
+        assert!(!job.is_for(&key.0, &key.1, &key.2[1..]));
+        let got = loop {
+            match job.poll() {
+                None => std::thread::yield_now(),
+                Some(r) => break r.unwrap(),
+            }
+        };
+        assert_eq!(job.progress(), 1.0);
+        let want = figures(&key.0, &key.1, &key.2).unwrap();
+        assert_eq!(got, want);
+        assert!(got.fidelity.relative_l2 > 0.0);
+    }
+
+    /// A cancelled computation stops with an error instead of figures.
+    #[test]
+    fn a_cancelled_computation_stops() {
+        let (r, x, modes) = paper_key();
+        let calls = AtomicU64::new(0);
+        let res = figures_cancellable(
+            &r,
+            &x,
+            &modes,
+            &|| calls.load(Ordering::Relaxed) >= 2,
+            &|| {
+                calls.fetch_add(1, Ordering::Relaxed);
+            },
+        );
+        assert!(res.unwrap_err().contains("cancelled"));
+        assert_eq!(calls.load(Ordering::Relaxed), 2);
+    }
+}
