@@ -64,7 +64,11 @@ pub fn residual_study(
         .filter(|m| m.freq_hz <= cutoff_hz)
         .cloned()
         .collect();
-    let states = |m: &[crate::scene::Mode]| ModalBasis::new(m, p).num_states();
+    // as the runs below build them (default solver options)
+    let states = |m: &[crate::scene::Mode]| {
+        ModalBasis::with_rank_tolerance(m, p, crate::simulation::DEFAULT_RANK_TOLERANCE)
+            .num_states()
+    };
     truncated.tyre = Tyre::Modal {
         modes: kept.clone(),
     };
