@@ -99,5 +99,6 @@ fn headless_default() -> cli::CliResult {
         frames_from: 0.0,
         frames_to: None,
         frame_size: (1280, 720),
+        exact_rank: false,
     })
 }
