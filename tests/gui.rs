@@ -2,6 +2,8 @@
 //! editing, refused values, broken presets, unsaved changes, export.
 #![cfg(feature = "gui")]
 
+mod common;
+use common::harness;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::path::PathBuf;
@@ -9,13 +11,6 @@ use tirecontact::Scene;
 use tirecontact::gui::command::Discarding;
 use tirecontact::gui::time_control::Speed;
 use tirecontact::gui::{App, Command};
-
-fn harness(app: App) -> Harness<'static, App> {
-    Harness::builder()
-        .with_size([1500.0, 950.0])
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(|ui, app: &mut App| app.show(ui), app)
-}
 
 fn tmp_dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("tc-gui-{name}-{}", std::process::id()));

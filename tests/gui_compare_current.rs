@@ -4,6 +4,8 @@
 //! have one entry per run style rather than one per point and run.
 #![cfg(feature = "gui")]
 
+mod common;
+use common::{advance, harness};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
@@ -15,26 +17,6 @@ use tirecontact::gui::views::compare_view::{
 };
 use tirecontact::gui::{App, Command};
 use tirecontact::scene::Tyre;
-
-fn harness(app: App) -> Harness<'static, App> {
-    Harness::builder()
-        .with_size([1500.0, 950.0])
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(|ui, app: &mut App| app.show(ui), app)
-}
-
-/// Takes `n` solver steps (over as many frames as the step budget needs).
-fn advance(h: &mut Harness<'_, App>, n: u64) {
-    let target = h.state().simulation().steps() + n;
-    h.state_mut().apply(Command::Step(n));
-    for _ in 0..100_000 {
-        if h.state().simulation().steps() >= target {
-            break;
-        }
-        h.run_steps(1);
-    }
-    assert_eq!(h.state().simulation().steps(), target);
-}
 
 /// The time axis `(t0, t1)` of the compare view's plot `id`, as drawn.
 fn x_axis(h: &Harness<'_, App>, id: &str) -> (f64, f64) {

@@ -3,6 +3,8 @@
 //! explicitly from presets/.
 #![cfg(feature = "gui")]
 
+mod common;
+use common::harness;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::path::Path;
@@ -19,13 +21,6 @@ use tirecontact::modal::ModalModel;
 use tirecontact::road::Road;
 use tirecontact::scene::Tyre;
 use tirecontact::sweep::{Sweep, linspace, run_sweep};
-
-fn harness(app: App) -> Harness<'static, App> {
-    Harness::builder()
-        .with_size([1500.0, 950.0])
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(|ui, app: &mut App| app.show(ui), app)
-}
 
 fn preset(name: &str) -> Scene {
     Scene::load(Path::new(&format!("presets/{name}.ron"))).unwrap()

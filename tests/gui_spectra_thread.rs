@@ -3,7 +3,8 @@
 //! equal to the library's on the same history.
 #![cfg(feature = "gui")]
 
-use egui_kittest::Harness;
+mod common;
+use common::{advance, harness};
 use egui_kittest::kittest::Queryable;
 use std::path::Path;
 use tirecontact::Scene;
@@ -11,26 +12,6 @@ use tirecontact::gui::command::View;
 use tirecontact::gui::research::spectra::history_spectra;
 use tirecontact::gui::{App, Command};
 use tirecontact::spectrum::Window;
-
-fn harness(app: App) -> Harness<'static, App> {
-    Harness::builder()
-        .with_size([1500.0, 950.0])
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(|ui, app: &mut App| app.show(ui), app)
-}
-
-/// Takes `n` solver steps (over as many frames as the step budget needs).
-fn advance(h: &mut Harness<'_, App>, n: u64) {
-    let target = h.state().simulation().steps() + n;
-    h.state_mut().apply(Command::Step(n));
-    for _ in 0..100_000 {
-        if h.state().simulation().steps() >= target {
-            break;
-        }
-        h.run_steps(1);
-    }
-    assert_eq!(h.state().simulation().steps(), target);
-}
 
 #[test]
 fn a_long_run_s_spectra_arrive_from_a_background_thread() {

@@ -1,0 +1,26 @@
+//! Shared kittest set-up of the GUI tests (`mod common;` in each).
+#![allow(dead_code)]
+
+use egui_kittest::Harness;
+use tirecontact::gui::{App, Command};
+
+/// The app in a 1500 × 950 window stepped at 60 frames per second.
+pub fn harness(app: App) -> Harness<'static, App> {
+    Harness::builder()
+        .with_size([1500.0, 950.0])
+        .with_step_dt(1.0 / 60.0)
+        .build_ui_state(|ui, app: &mut App| app.show(ui), app)
+}
+
+/// Takes `n` solver steps (over as many frames as the step budget needs).
+pub fn advance(h: &mut Harness<'_, App>, n: u64) {
+    let target = h.state().simulation().steps() + n;
+    h.state_mut().apply(Command::Step(n));
+    for _ in 0..100_000 {
+        if h.state().simulation().steps() >= target {
+            break;
+        }
+        h.run_steps(1);
+    }
+    assert_eq!(h.state().simulation().steps(), target);
+}
