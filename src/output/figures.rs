@@ -187,24 +187,21 @@ pub fn render_png(fig: &Figure, path: &Path, width: u32, height: u32) -> Result<
     Ok(())
 }
 
+/// The x and y ranges of all the panel's points (on log axes, of the
+/// positive ones).
+fn data_ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
+    let points = || panel.series.iter().flat_map(|s| s.points.iter());
+    (
+        range(points().map(|p| p.0), panel.log_x),
+        range(points().map(|p| p.1), panel.log_y),
+    )
+}
+
 /// The corner of the panel with the fewest data points under a legend-sized
 /// box (a quarter of the width; `entry_frac` of the plot height per entry);
 /// upper right on ties.
 fn legend_corner(panel: &Panel, entry_frac: f64) -> SeriesLabelPosition {
-    let xs = range(
-        panel
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.0)),
-        panel.log_x,
-    );
-    let ys = range(
-        panel
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.1)),
-        panel.log_y,
-    );
+    let (xs, ys) = data_ranges(panel);
     let norm = |v: f64, (lo, hi): (f64, f64), log: bool| {
         if log {
             (v.ln() - lo.ln()) / (hi.ln() - lo.ln())
@@ -247,20 +244,7 @@ fn draw_panel(
     scale: f64,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let fs = |s: f64| (s * scale).round() as u32;
-    let xs = range(
-        panel
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.0)),
-        panel.log_x,
-    );
-    let ys = range(
-        panel
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.1)),
-        panel.log_y,
-    );
+    let (xs, ys) = data_ranges(panel);
     // legend entry height over the plot's height (caption, axis area, margins off)
     let area_h = f64::from(area.dim_in_pixel().1);
     let plot_h = (area_h - f64::from(fs(45.0) + fs(27.0) + 2 * fs(10.0))).max(1.0);
