@@ -39,10 +39,8 @@
 //! therefore tends to the rigid one as `k` grows for points that stay in
 //! contact (`u = r - q / k`, an `O(1/k)` difference), not through impacts.
 
-use super::{GA, GB, Simulation, Table};
+use super::{GA, GB, SQRT3, Simulation, Table};
 use crate::error::SolverError;
-
-const SQRT3: f64 = 1.732_050_807_568_877_2;
 
 impl Simulation {
     /// One step of `dt` with compliant contact (the third branch of

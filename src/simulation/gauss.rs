@@ -1,0 +1,177 @@
+//! The Gauss-point contact solve (SPEC §4): the `2|S| × 2|S|` system of the
+//! active points over a full step (factorisation reused while the set holds)
+//! or a sub-step, and the end values of every point under the solved forces.
+
+use super::{GA, GB, SQRT3, Simulation, Table};
+use crate::error::SolverError;
+
+impl Simulation {
+    /// Solves the Gauss-point system of `active` (after `predict`) and the end
+    /// displacement/velocity of every point into `ue`, `ve`.
+    pub(super) fn solve_active(&mut self, t_end: f64, sel: Table) -> Result<(), SolverError> {
+        let n = self.active.len();
+        let p = self.p;
+        if n == 0 {
+            self.ue.copy_from_slice(&self.uh);
+            self.ve.copy_from_slice(&self.vh);
+            return Ok(());
+        }
+        if sel == Table::Sub {
+            self.fill_sub_block();
+        }
+        // The full-step operator depends only on the active set: its
+        // factorisation is reused while the set is unchanged.
+        let reuse = sel == Table::Full
+            && self.options.reuse_factorisation
+            && self.full_factored
+            && self.full_set.len() == n
+            && self.full_set.iter().zip(&self.active).all(|(a, b)| a == b);
+        if !reuse {
+            self.stats.factorisations += 1;
+            let act = &self.active;
+            let (g, gss) = (&self.full_inf, &self.gss);
+            let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
+            let entry = |r: usize, c: usize| {
+                let blk = 2 * (r >= n) as usize + (c >= n) as usize;
+                match sel {
+                    Table::Full => blocks[blk][act[r % n] * p + act[c % n]],
+                    Table::Sub => gss[blk * n * n + (r % n) * n + c % n],
+                }
+            };
+            let solver = match sel {
+                Table::Full => &mut self.full_solver,
+                Table::Sub => &mut self.solver,
+            };
+            let res = solver.factor(2 * n, entry);
+            if sel == Table::Full {
+                self.full_factored = res.is_ok();
+                self.full_set.clone_from(&self.active);
+                if res.is_ok() && self.options.reuse_factorisation {
+                    // reused while the set holds: solves become products
+                    self.full_solver.form_inverse();
+                }
+            }
+            if let Err(s) = res {
+                return Err(SolverError::SingularContactSystem {
+                    t_s: t_end,
+                    points: self.active.clone(),
+                    pivot: s.pivot,
+                });
+            }
+        }
+        let (re, rde, uh, vh) = (&self.re[..p], &self.rde[..p], &self.uh[..p], &self.vh[..p]);
+        let (rx, rv) = self.rhs[..2 * n].split_at_mut(n);
+        for (k, &i) in self.active.iter().enumerate() {
+            rx[k] = re[i] - uh[i];
+            rv[k] = rde[i] - vh[i];
+        }
+        match sel {
+            Table::Full if self.options.reuse_factorisation => {
+                self.full_solver.solve_by_inverse(&mut self.rhs[..2 * n])
+            }
+            Table::Full => self.full_solver.solve(&mut self.rhs[..2 * n]),
+            Table::Sub => self.solver.solve(&mut self.rhs[..2 * n]),
+        }
+        // only the active points' entries of q1, q2 are ever read
+        for (k, &j) in self.active.iter().enumerate() {
+            self.q1[j] = self.rhs[k];
+            self.q2[j] = self.rhs[n + k];
+        }
+        // O(P |S|) with the precomputed full influence; through the states on sub-steps
+        self.end_values_sub_or_full(sel);
+        Ok(())
+    }
+
+    /// End displacement/velocity of every point under the Gauss-point forces
+    /// `q1`, `q2` of the active points over the sub-step (after `predict`),
+    /// through the states: O(states (|S| + P)), no P x P influence.
+    pub(super) fn end_values_sub(&mut self) {
+        self.delta.x.fill(0.0);
+        self.delta.v.fill(0.0);
+        self.delta
+            .add_gauss_forces(&self.basis, &self.sub, &self.active, &self.q1, &self.q2);
+        self.delta.project(&self.basis, &mut self.du, &mut self.dv);
+        for i in 0..self.p {
+            self.ue[i] = self.uh[i] + self.du[i];
+            self.ve[i] = self.vh[i] + self.dv[i];
+        }
+        if !self.residual.is_empty() {
+            let (p, rate) = (self.p, SQRT3 / self.sub.tau_s);
+            for i in 0..p {
+                let (mut du, mut dv) = (0.0, 0.0);
+                for &j in &self.active {
+                    let c = self.residual[i * p + j];
+                    du += c * (-GB * self.q1[j] + GA * self.q2[j]);
+                    dv += c * rate * (self.q2[j] - self.q1[j]);
+                }
+                self.ue[i] += du;
+                self.ve[i] += dv;
+            }
+        }
+    }
+
+    /// End values of every point for the current forces: with the full-step
+    /// table through the precomputed P x P influence (O(P |S|)), on sub-steps
+    /// through the states.
+    pub(super) fn end_values_sub_or_full(&mut self, sel: Table) {
+        match sel {
+            Table::Sub => self.end_values_sub(),
+            Table::Full => {
+                let p = self.p;
+                let (ue, ve) = (&mut self.ue[..p], &mut self.ve[..p]);
+                ue.copy_from_slice(&self.uh[..p]);
+                ve.copy_from_slice(&self.vh[..p]);
+                for &j in &self.active {
+                    let (a, b) = (self.q1[j], self.q2[j]);
+                    let c = &self.full_inf_cols[4 * p * j..4 * p * (j + 1)];
+                    let (x1, rest) = c.split_at(p);
+                    let (x2, rest) = rest.split_at(p);
+                    let (v1, v2) = rest.split_at(p);
+                    for i in 0..p {
+                        ue[i] += x1[i] * a + x2[i] * b;
+                        ve[i] += v1[i] * a + v2[i] * b;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The `|S| x |S|` blocks of the sub-step influence of the active points
+    /// (only what the solve needs: `O(|S|² states)`).
+    pub(super) fn fill_sub_block(&mut self) {
+        let n = self.active.len();
+        let (p, ns) = (self.p, self.basis.num_states());
+        let g = &mut self.gss[..4 * n * n];
+        g.fill(0.0);
+        for s in 0..ns {
+            let (w1, w2) = (self.sub.w1[s], self.sub.w2[s]);
+            let inp = &self.basis.inp[s * p..(s + 1) * p];
+            for (a, &i) in self.active.iter().enumerate() {
+                let o = self.basis.out[i * ns + s];
+                if o == 0.0 {
+                    continue;
+                }
+                for (b, &j) in self.active.iter().enumerate() {
+                    let ab = o * inp[j];
+                    let k = a * n + b;
+                    g[k] += ab * w1[0];
+                    g[n * n + k] += ab * w2[0];
+                    g[2 * n * n + k] += ab * w1[1];
+                    g[3 * n * n + k] += ab * w2[1];
+                }
+            }
+        }
+        if !self.residual.is_empty() {
+            let rate = SQRT3 / self.sub.tau_s;
+            for (a, &i) in self.active.iter().enumerate() {
+                for (b, &j) in self.active.iter().enumerate() {
+                    let (c, k) = (self.residual[i * p + j], a * n + b);
+                    g[k] += -GB * c;
+                    g[n * n + k] += GA * c;
+                    g[2 * n * n + k] += -rate * c;
+                    g[3 * n * n + k] += rate * c;
+                }
+            }
+        }
+    }
+}
