@@ -100,7 +100,15 @@ pub struct ModalBasis {
     /// The same `b_s[j]`, stored point-major: `inp_t[j * ns + s]` (the
     /// force kernels run over contiguous states).
     pub inp_t: Vec<f64>,
+    /// Rank terms of the modes ([`ModalBasis::num_states`]); the stored
+    /// states past them are zero padding ([`ModalBasis::stored_states`]).
+    num_terms: usize,
 }
+
+/// The stored states are a multiple of this: whole 4-wide lanes in the
+/// per-step kernels, no scalar tail. The padding states have zero input
+/// and output vectors: they stay zero and add nothing to any output.
+pub const STATE_LANES: usize = 4;
 
 impl ModalBasis {
     /// Factors each mode: a `shape` gives one rank term; a `residue` matrix
@@ -168,6 +176,12 @@ impl ModalBasis {
                 }
             }
         }
+        let num_terms = terms.len();
+        // zero padding to whole lanes (on the last term's mode: any valid mode)
+        let last_mode = terms.last().map_or(0, |t| t.0);
+        while terms.len() % STATE_LANES != 0 && !params.is_empty() {
+            terms.push((last_mode, vec![0.0; p], vec![0.0; p]));
+        }
         let ns = terms.len();
         let mut out = vec![0.0; p * ns];
         let mut inp = vec![0.0; ns * p];
@@ -186,16 +200,24 @@ impl ModalBasis {
             out,
             inp,
             inp_t,
+            num_terms,
         }
     }
 
+    /// States of the convolution: the rank terms of all modes.
     pub fn num_states(&self) -> usize {
+        self.num_terms
+    }
+
+    /// Length of the stored state arrays: [`ModalBasis::num_states`] padded
+    /// with zero states to a multiple of [`STATE_LANES`].
+    pub fn stored_states(&self) -> usize {
         self.mode_of_state.len()
     }
 
     /// `Σ_k A_k = g'(0+)`: velocity jump per unit impulse (1/kg), row-major.
     pub fn velocity_jump(&self) -> Vec<f64> {
-        let (p, ns) = (self.num_points, self.num_states());
+        let (p, ns) = (self.num_points, self.stored_states());
         let mut m = vec![0.0; p * p];
         for i in 0..p {
             for j in 0..p {
@@ -244,7 +266,7 @@ impl StepTable {
 
     /// Recomputes the table for `tau_s` in place (no allocation once sized).
     pub fn fill(&mut self, basis: &ModalBasis, tau_s: f64) {
-        let ns = basis.num_states();
+        let ns = basis.stored_states();
         self.tau_s = tau_s;
         mode_steps_into(&basis.modes, tau_s, &mut self.per_mode);
         self.phi.resize(ns, [0.0; 4]);
@@ -295,7 +317,7 @@ impl Influence {
 
     /// Recomputes in place (sized once).
     pub fn fill(&mut self, basis: &ModalBasis, table: &StepTable) {
-        let (p, ns) = (basis.num_points, basis.num_states());
+        let (p, ns) = (basis.num_points, basis.stored_states());
         for m in [&mut self.gx1, &mut self.gx2, &mut self.gv1, &mut self.gv2] {
             m.clear();
             m.resize(p * p, 0.0);
@@ -329,7 +351,7 @@ pub struct ModalState {
 
 impl ModalState {
     pub fn zeros(basis: &ModalBasis) -> Self {
-        let ns = basis.num_states();
+        let ns = basis.stored_states();
         ModalState {
             x: vec![0.0; ns],
             v: vec![0.0; ns],

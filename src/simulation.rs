@@ -76,6 +76,8 @@ pub struct Simulation {
     x_offset_m: f64,
     zbuf: Vec<f64>,
     dzbuf: Vec<f64>,
+    /// Heights `h_i` of the points above the road (m, `scene.points[i].h_m`).
+    h_m: Vec<f64>,
     p: usize,
     dt_s: f64,
     pen_tol_m: f64,
@@ -314,6 +316,7 @@ impl Simulation {
             x_offset_m: 0.0,
             zbuf: vec![0.0; p],
             dzbuf: vec![0.0; p],
+            h_m: scene.points.iter().map(|pt| pt.h_m).collect(),
             scene: scene.clone(),
             p,
             dt_s: scene.dt_s,
@@ -543,11 +546,19 @@ impl Simulation {
     /// `w`, `dw/dt` (SPEC §4): `r = w (z - h)`, `r' = w' (z - h) + w z' V`.
     fn apply_ramp(&mut self, w: f64, dw: f64) {
         let (vel, p) = (self.scene.speed_mps, self.p);
-        let (z, dz) = (&self.zbuf[..p], &self.dzbuf[..p]);
+        let (z, dz, h) = (&self.zbuf[..p], &self.dzbuf[..p], &self.h_m[..p]);
         let (re, rde) = (&mut self.re[..p], &mut self.rde[..p]);
-        for (i, pt) in self.scene.points[..p].iter().enumerate() {
-            re[i] = w * (z[i] - pt.h_m);
-            rde[i] = dw * (z[i] - pt.h_m) + w * dz[i] * vel;
+        if w == 1.0 && dw == 0.0 {
+            // past the ramp (the same values: 1 x and 0 x + y are exact)
+            for i in 0..p {
+                re[i] = z[i] - h[i];
+                rde[i] = dz[i] * vel;
+            }
+            return;
+        }
+        for i in 0..p {
+            re[i] = w * (z[i] - h[i]);
+            rde[i] = dw * (z[i] - h[i]) + w * dz[i] * vel;
         }
     }
 
@@ -624,9 +635,8 @@ impl Simulation {
         let contact_steps = &mut self.stats.contact_steps[..p];
         for i in 0..p {
             // a compliant contact's compression is its spring's, not a penetration
-            if !(compliant && contact[i]) {
-                pen = pen.max(r[i] - u[i]);
-            }
+            let gap_counts = !(compliant && contact[i]);
+            pen = pen.max(if gap_counts { r[i] - u[i] } else { 0.0 });
             max_force[i] = max_force[i].max(q[i]);
             contact_steps[i] += contact[i] as u64;
         }

@@ -20,7 +20,7 @@ impl Simulation {
         if i >= self.p {
             return;
         }
-        let ns = self.basis.num_states();
+        let ns = self.basis.stored_states();
         let a = &self.basis.out[i * ns..(i + 1) * ns];
         for ((&k, &a_s), &x_s) in self.basis.mode_of_state.iter().zip(a).zip(&self.state.x) {
             if k < nm {

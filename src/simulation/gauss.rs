@@ -140,7 +140,7 @@ impl Simulation {
     /// (only what the solve needs: `O(|S|² states)`).
     pub(super) fn fill_sub_block(&mut self) {
         let n = self.active.len();
-        let (p, ns) = (self.p, self.basis.num_states());
+        let (p, ns) = (self.p, self.basis.stored_states());
         let g = &mut self.gss[..4 * n * n];
         g.fill(0.0);
         for s in 0..ns {
