@@ -1,5 +1,6 @@
 //! criterion benchmarks (`cargo bench`): one step per (mode x source), the
-//! bare state-update loop of the same size (the bound), the contact solve,
+//! bare loops of the same size (free prediction + projection; and the state
+//! update driven by given forces at every point), the contact solve,
 //! the shipped presets end to end. Ratios, not absolute times, are what the
 //! README reports.
 
@@ -53,6 +54,21 @@ fn steps(c: &mut Criterion) {
         c.bench_function(&format!("step/bare_loop/{name}"), |b| {
             b.iter(|| {
                 black_box(&mut s0).predict_into(&table, &mut s1);
+                s1.project(&basis, &mut u, &mut v);
+                black_box(u[0])
+            })
+        });
+        // the convolution the contact step wraps: the same states driven by
+        // given forces at every point (linear through the Gauss points, as
+        // the full step's), `x <- Φ x + W1 B q1 + W2 B q2`, then projected;
+        // no road, no contact solve, no event checks
+        let every: Vec<usize> = (0..p).collect();
+        let q1: Vec<f64> = (0..p).map(|j| 100.0 + j as f64).collect();
+        let q2: Vec<f64> = (0..p).map(|j| 120.0 - j as f64).collect();
+        c.bench_function(&format!("step/bare_update/{name}"), |b| {
+            b.iter(|| {
+                black_box(&mut s0).predict_into(&table, &mut s1);
+                s1.add_gauss_forces(&basis, &table, &every, black_box(&q1), &q2);
                 s1.project(&basis, &mut u, &mut v);
                 black_box(u[0])
             })
