@@ -190,6 +190,74 @@ pub fn time_stable(scene: &Scene, options: SolverOptions) -> Result<(f64, Simula
     Ok((start.elapsed().as_secs_f64(), sim))
 }
 
+/// Wall times of repeated identical runs (s).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Timing {
+    /// Every run's wall time, fastest first.
+    pub runs_s: Vec<f64>,
+}
+
+impl Timing {
+    fn of(mut runs_s: Vec<f64>) -> Self {
+        runs_s.sort_by(f64::total_cmp);
+        Timing { runs_s }
+    }
+
+    /// The median run (the upper one of an even count).
+    pub fn median_s(&self) -> f64 {
+        self.runs_s[self.runs_s.len() / 2]
+    }
+    pub fn min_s(&self) -> f64 {
+        self.runs_s[0]
+    }
+    pub fn max_s(&self) -> f64 {
+        self.runs_s[self.runs_s.len() - 1]
+    }
+}
+
+/// [`time_stable`] of the options `a` and `b` (`b` may equal `a`), each
+/// `repeats` times (at least once), alternating `a, b, a, b, …` so that a
+/// drift of the machine's speed falls on both alike. One short run on a
+/// shared machine can be off by 25 %; the median of several is steadier.
+/// Returns both timings and the last run of each.
+pub fn time_pair(
+    scene: &Scene,
+    a: SolverOptions,
+    b: SolverOptions,
+    repeats: usize,
+) -> Result<((Timing, Simulation), (Timing, Simulation)), String> {
+    let (mut ta, mut tb) = (Vec::new(), Vec::new());
+    let (mut last_a, mut last_b) = (None, None);
+    for _ in 0..repeats.max(1) {
+        let (t, sim) = time_stable(scene, a)?;
+        ta.push(t);
+        last_a = Some(sim);
+        let (t, sim) = time_stable(scene, b)?;
+        tb.push(t);
+        last_b = Some(sim);
+    }
+    match (last_a, last_b) {
+        (Some(sa), Some(sb)) => Ok(((Timing::of(ta), sa), (Timing::of(tb), sb))),
+        _ => Err("no run was timed".into()),
+    }
+}
+
+/// [`time_stable`] `repeats` times (at least once): the timing and the last run.
+pub fn time_repeated(
+    scene: &Scene,
+    options: SolverOptions,
+    repeats: usize,
+) -> Result<(Timing, Simulation), String> {
+    let (t, mut sim) = time_stable(scene, options)?;
+    let mut runs_s = vec![t];
+    for _ in 1..repeats {
+        let (t, s) = time_stable(scene, options)?;
+        runs_s.push(t);
+        sim = s;
+    }
+    Ok((Timing::of(runs_s), sim))
+}
+
 /// The study of one scene. `progress` is told each run as it starts.
 pub fn study(
     scene: &Scene,

@@ -120,6 +120,12 @@ fn file_stem(name: &str) -> String {
         .collect()
 }
 
+/// Runs of each timed scene in the speed table (the median is reported).
+const SPEED_REPEATS: usize = 9;
+
+/// Runs of each side of a before/after timing of skipped work.
+const SKIP_REPEATS: usize = 5;
+
 /// Steps per second and real-time factor of each scene and of synthetic
 /// larger ones (5 points x 20 modes, 50 points x 200 rank-1 modes).
 fn speed(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::error::Error>> {
@@ -127,23 +133,28 @@ fn speed(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::error::Er
     let mut list: Vec<Scene> = scenes.to_vec();
     list.push(many_points(5, 20));
     list.push(many_points(50, 200));
-    let mut s = String::from(
-        "## Speed (release build, one core)\n\n| scene | points | modes | dt (s) | steps | wall (s) | steps/s | real-time factor | located events per step |\n|---|---|---|---|---|---|---|---|---|\n",
+    let repeats = if quick { 3 } else { SPEED_REPEATS };
+    let mut s = format!(
+        "## Speed (release build, one core)\n\nEach scene run {repeats} times (`Simulation::new` not timed): the median run, and the slowest and fastest runs' real-time factors.\n\n| scene | points | modes | states | dt (s) | steps | wall, median (s) | steps/s | real-time factor, median | slowest – fastest | located events per step |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for mut sc in list {
         sc.duration_s = if quick { 0.02 } else { 0.2 };
-        let (wall, sim) = work_precision::time_stable(&sc, SolverOptions::default())?;
+        let (timing, sim) = work_precision::time_repeated(&sc, SolverOptions::default(), repeats)?;
         let st = sim.stats();
+        let wall = timing.median_s();
         writeln!(
             s,
-            "| {} | {} | {} | {:e} | {} | {wall:.3} | {:.0} | {:.2} | {:.4} |",
+            "| {} | {} | {} | {} | {:e} | {} | {wall:.4} | {:.3e} | {:.1} | {:.1} – {:.1} | {:.4} |",
             sc.name,
             sc.num_points(),
             sc.modes()?.len(),
+            sim.num_states(),
             sc.dt_s,
             st.steps,
             st.steps as f64 / wall,
             sim.time_s() / wall,
+            sim.time_s() / timing.max_s(),
+            sim.time_s() / timing.min_s(),
             st.events as f64 / st.steps.max(1) as f64
         )?;
     }
@@ -189,22 +200,26 @@ fn alpha_beta_overflow() -> Result<String, Box<dyn std::error::Error>> {
 
 /// Each optimisation switched off and on, timed in this one process.
 fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::error::Error>> {
-    let mut s = String::from(
-        "## Work skipped, measured before/after (same process)\n\n| scene | optimisation | before (s) | after (s) | speed-up | detail |\n|---|---|---|---|---|---|\n",
+    let repeats = if quick { 1 } else { SKIP_REPEATS };
+    let mut s = format!(
+        "## Work skipped, measured before/after (same process)\n\nBefore and after each timed {repeats} times, alternately; medians (s).\n\n| scene | optimisation | before (s) | after (s) | speed-up | detail |\n|---|---|---|---|---|---|\n",
     );
     for scene in scenes {
         let mut sc = scene.clone();
         sc.duration_s = if quick { 0.05 } else { 0.5 };
         let all = SolverOptions::default();
-        let (t_on, sim) = work_precision::time_stable(&sc, all)?;
-        let st = sim.stats().clone();
-        let (t_rank, sim_r) = work_precision::time_stable(
+        // each "before" is timed alternately with its own "after" runs
+        let ((before, sim_r), (after, sim)) = work_precision::time_pair(
             &sc,
             SolverOptions {
                 rank_reduction: false,
                 ..all
             },
+            all,
+            repeats,
         )?;
+        let (t_rank, t_on) = (before.median_s(), after.median_s());
+        let st = sim.stats().clone();
         let same = sim_r
             .displacement_m()
             .iter()
@@ -222,29 +237,33 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
             rank_tolerance: tirecontact::convolution::EXACT_RANK_TOLERANCE,
             ..all
         };
-        let (t_exact, sim_e) = work_precision::time_stable(&sc, exact)?;
+        let ((before, sim_e), (after, _)) = work_precision::time_pair(&sc, exact, all, repeats)?;
+        let (t_exact, t_cut) = (before.median_s(), after.median_s());
         let (du, dq) = option_difference(&sc, exact, all)?;
         writeln!(
             s,
-            "| {} | residue terms below {:.0e} of the largest dropped ({} states instead of {}) | {t_exact:.4} | {t_on:.4} | {:.2}x | largest displacement difference {du:.1e} of the largest displacement; force difference (RMS over steps) {dq:.1e} of the RMS force |",
+            "| {} | residue terms below {:.0e} of the largest dropped ({} states instead of {}) | {t_exact:.4} | {t_cut:.4} | {:.2}x | largest displacement difference {du:.1e} of the largest displacement; force difference (RMS over steps) {dq:.1e} of the RMS force |",
             scene.name,
             all.rank_tolerance,
             sim.num_states(),
             sim_e.num_states(),
-            t_exact / t_on
+            t_exact / t_cut
         )?;
-        let (t_fact, sim_f) = work_precision::time_stable(
+        let ((before, sim_f), (after, _)) = work_precision::time_pair(
             &sc,
             SolverOptions {
                 reuse_factorisation: false,
                 ..all
             },
+            all,
+            repeats,
         )?;
+        let (t_fact, t_reuse) = (before.median_s(), after.median_s());
         writeln!(
             s,
-            "| {} | reuse the contact factorisation while the active set is unchanged | {t_fact:.4} | {t_on:.4} | {:.2}x | {} factorisations for {} solves (else {}) |",
+            "| {} | reuse the contact factorisation while the active set is unchanged | {t_fact:.4} | {t_reuse:.4} | {:.2}x | {} factorisations for {} solves (else {}) |",
             scene.name,
-            t_fact / t_on,
+            t_fact / t_reuse,
             st.factorisations,
             st.solves,
             sim_f.stats().factorisations
