@@ -190,6 +190,9 @@ pub fn time_stable(scene: &Scene, options: SolverOptions) -> Result<(f64, Simula
     Ok((start.elapsed().as_secs_f64(), sim))
 }
 
+/// A timing and the last of its runs.
+pub type TimedRun = (Timing, Simulation);
+
 /// Wall times of repeated identical runs (s).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Timing {
@@ -225,7 +228,7 @@ pub fn time_pair(
     a: SolverOptions,
     b: SolverOptions,
     repeats: usize,
-) -> Result<((Timing, Simulation), (Timing, Simulation)), String> {
+) -> Result<(TimedRun, TimedRun), String> {
     let (mut ta, mut tb) = (Vec::new(), Vec::new());
     let (mut last_a, mut last_b) = (None, None);
     for _ in 0..repeats.max(1) {
@@ -247,7 +250,7 @@ pub fn time_repeated(
     scene: &Scene,
     options: SolverOptions,
     repeats: usize,
-) -> Result<(Timing, Simulation), String> {
+) -> Result<TimedRun, String> {
     let (t, mut sim) = time_stable(scene, options)?;
     let mut runs_s = vec![t];
     for _ in 1..repeats {
