@@ -1,6 +1,7 @@
 //! criterion benchmarks (`cargo bench`): one step per (mode x source), the
 //! bare loops of the same size (free prediction + projection; and the state
-//! update driven by given forces at every point), the contact solve,
+//! update driven by given forces at every point), the contact solve, the
+//! ring tyre's sampled responses and their LSCE identification,
 //! the shipped presets end to end. Ratios, not absolute times, are what the
 //! README reports.
 
@@ -9,6 +10,8 @@ use std::hint::black_box;
 use tirecontact::bench::scenes::many_points;
 use tirecontact::contact::DenseSolver;
 use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
+use tirecontact::lsce::{Responses, identify};
+use tirecontact::scene::Tyre;
 use tirecontact::{Scene, Simulation};
 
 fn steps(c: &mut Criterion) {
@@ -125,5 +128,38 @@ fn presets(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, steps, contact_solve, presets);
+/// The paper preset's tyre (SPEC §5-6): sampling the ring's impulse
+/// responses at the five points, and their LSCE identification (done once
+/// per scene at load, cached per ring, options and positions).
+fn ring_and_lsce(c: &mut Criterion) {
+    let Ok(scene) = Scene::load(std::path::Path::new("presets/paper.ron")) else {
+        return;
+    };
+    let Tyre::Ring {
+        ring,
+        identification: opts,
+    } = &scene.tyre
+    else {
+        return;
+    };
+    let x_m: Vec<f64> = scene.points.iter().map(|pt| pt.x_m).collect();
+    let mut g = c.benchmark_group("tyre");
+    g.sample_size(10);
+    g.bench_function("ring/sampled_responses/paper", |b| {
+        b.iter(|| black_box(ring.sampled_responses(&x_m, opts.dt_s(), opts.num_samples())))
+    });
+    let (pairs, data) = ring.sampled_responses(&x_m, opts.dt_s(), opts.num_samples());
+    let responses = Responses {
+        dt_s: opts.dt_s(),
+        num_points: x_m.len(),
+        pairs,
+        data,
+    };
+    g.bench_function("lsce/identify/paper", |b| {
+        b.iter(|| black_box(identify(&responses, opts).map(|id| id.modes.len())))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, steps, contact_solve, presets, ring_and_lsce);
 criterion_main!(benches);
