@@ -24,9 +24,11 @@
 
 use crate::modal::unit_impulse;
 use crate::scene::Mode;
+use dtft::dtft_magnitudes;
 use nalgebra::{Complex, DMatrix};
 use std::f64::consts::TAU;
 
+mod dtft;
 mod options;
 pub use options::IdentifyOptions;
 
@@ -405,20 +407,6 @@ fn stability(
         return Stability::FrequencyDamping;
     }
     Stability::Stable
-}
-
-/// DTFT `dt Σ g_k e^{-iΩ k dt}` magnitudes of each column at `freqs_hz`.
-fn dtft_magnitudes(m: &DMatrix<f64>, dt: f64, freqs_hz: &[f64]) -> DMatrix<f64> {
-    DMatrix::from_fn(freqs_hz.len(), m.ncols(), |f, c| {
-        let w = TAU * freqs_hz[f] * dt;
-        let (mut re, mut im) = (0.0, 0.0);
-        for (n, g) in m.column(c).iter().enumerate() {
-            let (s, co) = (w * n as f64).sin_cos();
-            re += g * co;
-            im -= g * s;
-        }
-        dt * re.hypot(im)
-    })
 }
 
 /// Identifies a modal model from sampled impulse responses (SPEC §6).
