@@ -43,7 +43,7 @@ fn steps(c: &mut Criterion) {
         let basis = ModalBasis::with_rank_tolerance(
             &scene.modes().unwrap(),
             p,
-            tirecontact::DEFAULT_RANK_TOLERANCE,
+            tirecontact::SolverOptions::default().rank_tolerance_for(&scene),
         );
         let table = StepTable::new(&basis, scene.dt_s);
         let (mut s0, mut s1) = (ModalState::zeros(&basis), ModalState::zeros(&basis));

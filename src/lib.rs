@@ -55,7 +55,7 @@ pub mod sweep;
 
 pub use error::{SceneError, SolverError};
 pub use scene::Scene;
-pub use simulation::{DEFAULT_RANK_TOLERANCE, Simulation, SolverOptions, StepReport};
+pub use simulation::{IDENTIFIED_RANK_TOLERANCE, Simulation, SolverOptions, StepReport};
 
 /// The preset opened when no file is given (embedded in the binary).
 pub const DEFAULT_PRESET: &str = include_str!("../presets/paper.ron");

@@ -164,22 +164,35 @@ pub struct SolverOptions {
     /// the bench's "Residual flexibility" table); the paper's step-end rule
     /// and compliant contact do not cascade.
     pub residual_above_hz: Option<f64>,
-    /// Relative singular-value cut of the rank reduction (default
-    /// [`DEFAULT_RANK_TOLERANCE`]): the SVD terms of a mode's residue below
-    /// `rank_tolerance × σ_max` are dropped. Identified residues of the ring
-    /// tyre are rank 2 (its cos/sin mode pairs) plus fit noise 1e-6 to 1e-13
-    /// of σ_max; keeping the noise costs 2.5x the states (paper preset: 65
+    /// Relative singular-value cut of the rank reduction: the SVD terms of
+    /// a mode's residue below `rank_tolerance × σ_max` are dropped. `None`
+    /// (default): [`IDENTIFIED_RANK_TOLERANCE`] for a model identified by
+    /// LSCE (a ring tyre), [`crate::convolution::EXACT_RANK_TOLERANCE`]
+    /// (every term, exact to round-off) for modes given in the scene, which
+    /// are taken as they are. Identified residues of the ring tyre are
+    /// rank 2 (its cos/sin mode pairs) plus fit noise 1e-6 to 1e-13 of
+    /// σ_max; keeping the noise costs 2.5x the states (paper preset: 65
     /// instead of 26) for a change of each residue below 1e-5 of its norm,
     /// far below the identification's own error (|G| error 1.9e-2 on the
-    /// paper preset). [`crate::convolution::EXACT_RANK_TOLERANCE`] (1e-13)
-    /// keeps every term (exact to round-off). Ignored without
-    /// `rank_reduction`.
-    pub rank_tolerance: f64,
+    /// paper preset). `Some(t)`: the cut `t` for any model. Ignored without
+    /// `rank_reduction`. See [`SolverOptions::rank_tolerance_for`].
+    pub rank_tolerance: Option<f64>,
 }
 
-/// Default of [`SolverOptions::rank_tolerance`]: residue terms below 1e-5 of
-/// the largest are dropped.
-pub const DEFAULT_RANK_TOLERANCE: f64 = 1e-5;
+/// The rank cut of identified models (see [`SolverOptions::rank_tolerance`]):
+/// residue terms below 1e-5 of the largest are identification noise.
+pub const IDENTIFIED_RANK_TOLERANCE: f64 = 1e-5;
+
+impl SolverOptions {
+    /// The relative rank cut used for `scene` (see
+    /// [`SolverOptions::rank_tolerance`]).
+    pub fn rank_tolerance_for(&self, scene: &Scene) -> f64 {
+        self.rank_tolerance.unwrap_or(match scene.tyre {
+            crate::scene::Tyre::Ring { .. } => IDENTIFIED_RANK_TOLERANCE,
+            crate::scene::Tyre::Modal { .. } => crate::convolution::EXACT_RANK_TOLERANCE,
+        })
+    }
+}
 
 impl Default for SolverOptions {
     fn default() -> Self {
@@ -187,7 +200,7 @@ impl Default for SolverOptions {
             rank_reduction: true,
             reuse_factorisation: true,
             residual_above_hz: None,
-            rank_tolerance: DEFAULT_RANK_TOLERANCE,
+            rank_tolerance: None,
         }
     }
 }
@@ -286,7 +299,7 @@ impl Simulation {
         let p = scene.num_points();
         let (modes, residual) = split_residual(scene, scene.modes()?, options.residual_above_hz)?;
         let basis = if options.rank_reduction {
-            ModalBasis::with_rank_tolerance(&modes, p, options.rank_tolerance)
+            ModalBasis::with_rank_tolerance(&modes, p, options.rank_tolerance_for(scene))
         } else {
             ModalBasis::per_source(&modes, p)
         };

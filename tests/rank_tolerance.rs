@@ -3,7 +3,7 @@
 
 use tirecontact::convolution::{EXACT_RANK_TOLERANCE, ModalBasis};
 use tirecontact::scene::Mode;
-use tirecontact::{DEFAULT_RANK_TOLERANCE, Scene, Simulation, SolverOptions};
+use tirecontact::{IDENTIFIED_RANK_TOLERANCE, Scene, Simulation, SolverOptions};
 
 /// `Σ_r σ_r e_r e_rᵀ` with orthonormal `e_r` built from a rotation (3 points).
 fn residue(sigmas: [f64; 3]) -> Vec<Vec<f64>> {
@@ -35,9 +35,10 @@ fn mode(sigmas: [f64; 3]) -> Mode {
 fn terms_below_the_cut_are_dropped_and_the_rest_kept() {
     // a genuine third term at 1e-3 stays; noise at 1e-7 goes
     let kept =
-        ModalBasis::with_rank_tolerance(&[mode([2.0, 1.0, 2e-3])], 3, DEFAULT_RANK_TOLERANCE);
+        ModalBasis::with_rank_tolerance(&[mode([2.0, 1.0, 2e-3])], 3, IDENTIFIED_RANK_TOLERANCE);
     assert_eq!(kept.num_states(), 3);
-    let cut = ModalBasis::with_rank_tolerance(&[mode([2.0, 1.0, 2e-7])], 3, DEFAULT_RANK_TOLERANCE);
+    let cut =
+        ModalBasis::with_rank_tolerance(&[mode([2.0, 1.0, 2e-7])], 3, IDENTIFIED_RANK_TOLERANCE);
     assert_eq!(cut.num_states(), 2);
     let exact = ModalBasis::new(&[mode([2.0, 1.0, 2e-7])], 3);
     assert_eq!(exact.num_states(), 3);
@@ -64,7 +65,7 @@ fn paper_preset_keeps_the_ring_pairs_and_its_results() {
     let mut scene = Scene::load(std::path::Path::new("presets/paper.ron")).unwrap();
     scene.duration_s = 0.12;
     let exact_opts = SolverOptions {
-        rank_tolerance: EXACT_RANK_TOLERANCE,
+        rank_tolerance: Some(EXACT_RANK_TOLERANCE),
         ..SolverOptions::default()
     };
     let mut cut = Simulation::new(&scene).unwrap();
@@ -98,4 +99,27 @@ fn paper_preset_keeps_the_ring_pairs_and_its_results() {
         du / umax
     );
     assert!(dq < 1e-4 * qmax, "force moved {:e} of its peak", dq / qmax);
+}
+
+#[test]
+fn modes_given_in_a_scene_keep_every_term_by_default() {
+    // a residue with a genuine small third term (1e-7 of the first), below
+    // the identified models' cut: a scene's own modes are taken as given
+    let modes = vec![mode([2.0, 1.0, 2e-7])];
+    let mut scene = tirecontact::bench::scenes::many_points(3, 1);
+    scene.tyre = tirecontact::scene::Tyre::Modal { modes };
+    let exact = Simulation::new(&scene).unwrap();
+    assert_eq!(exact.num_states(), 3);
+    // an explicit cut applies to any model
+    let cut_opts = SolverOptions {
+        rank_tolerance: Some(IDENTIFIED_RANK_TOLERANCE),
+        ..SolverOptions::default()
+    };
+    let cut = Simulation::with_options(&scene, cut_opts).unwrap();
+    assert_eq!(cut.num_states(), 2);
+    // and the automatic choice per model kind
+    let auto = SolverOptions::default();
+    assert_eq!(auto.rank_tolerance_for(&scene), EXACT_RANK_TOLERANCE);
+    let paper = Scene::load(std::path::Path::new("presets/paper.ron")).unwrap();
+    assert_eq!(auto.rank_tolerance_for(&paper), IDENTIFIED_RANK_TOLERANCE);
 }

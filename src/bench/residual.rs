@@ -64,10 +64,14 @@ pub fn residual_study(
         .filter(|m| m.freq_hz <= cutoff_hz)
         .cloned()
         .collect();
-    // as the runs below build them (default solver options)
+    // every variant at the source scene's rank cut (the truncated scene's
+    // modes are the source's, identified or given)
+    let base = SolverOptions {
+        rank_tolerance: Some(SolverOptions::default().rank_tolerance_for(scene)),
+        ..SolverOptions::default()
+    };
     let states = |m: &[crate::scene::Mode]| {
-        ModalBasis::with_rank_tolerance(m, p, crate::simulation::DEFAULT_RANK_TOLERANCE)
-            .num_states()
+        ModalBasis::with_rank_tolerance(m, p, base.rank_tolerance_for(scene)).num_states()
     };
     truncated.tyre = Tyre::Modal {
         modes: kept.clone(),
@@ -75,26 +79,14 @@ pub fn residual_study(
     let mut paper = scene.clone();
     paper.contact_scheme = crate::scene::ContactScheme::Paper;
     let variants = [
-        (
-            "full",
-            scene,
-            SolverOptions::default(),
-            modes.len(),
-            states(&modes),
-        ),
-        (
-            "truncated",
-            &truncated,
-            SolverOptions::default(),
-            kept.len(),
-            states(&kept),
-        ),
+        ("full", scene, base, modes.len(), states(&modes)),
+        ("truncated", &truncated, base, kept.len(), states(&kept)),
         (
             "truncated + residual",
             scene,
             SolverOptions {
                 residual_above_hz: Some(cutoff_hz),
-                ..SolverOptions::default()
+                ..base
             },
             kept.len(),
             states(&kept),
@@ -104,7 +96,7 @@ pub fn residual_study(
             &paper,
             SolverOptions {
                 residual_above_hz: Some(cutoff_hz),
-                ..SolverOptions::default()
+                ..base
             },
             kept.len(),
             states(&kept),

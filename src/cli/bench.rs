@@ -234,7 +234,7 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
         )?;
         // low-rank residues: the default cut against every SVD term kept
         let exact = SolverOptions {
-            rank_tolerance: tirecontact::convolution::EXACT_RANK_TOLERANCE,
+            rank_tolerance: Some(tirecontact::convolution::EXACT_RANK_TOLERANCE),
             ..all
         };
         let ((before, sim_e), (after, _)) = work_precision::time_pair(&sc, exact, all, repeats)?;
@@ -244,7 +244,7 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
             s,
             "| {} | residue terms below {:.0e} of the largest dropped ({} states instead of {}) | {t_exact:.4} | {t_cut:.4} | {:.2}x | largest displacement difference {du:.1e} of the largest displacement; force difference (RMS over steps) {dq:.1e} of the RMS force |",
             scene.name,
-            all.rank_tolerance,
+            all.rank_tolerance_for(&sc),
             sim.num_states(),
             sim_e.num_states(),
             t_exact / t_cut

@@ -68,9 +68,11 @@ pub struct RunArgs {
     /// Size of the frames, WIDTHxHEIGHT in pixels.
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]
     pub frame_size: (u32, u32),
-    /// Keep every SVD term of the residues (exact rank), instead of dropping
-    /// those below 1e-5 of the largest (identification noise; results move
-    /// by ~1e-6 of their size, 2.5x fewer states on the paper preset).
+    /// Keep every SVD term of an identified (ring tyre) model's residues
+    /// (exact rank), instead of dropping those below 1e-5 of the largest
+    /// (identification noise; results move by ~1e-6 of their size, 2.5x
+    /// fewer states on the paper preset). Modes given in the scene are
+    /// always used exactly.
     #[arg(long)]
     pub exact_rank: bool,
 }
@@ -236,11 +238,9 @@ pub fn run(args: &RunArgs) -> CliResult {
     check_plot_args(args)?;
     write_frames(&scene, args)?;
     let options = tirecontact::SolverOptions {
-        rank_tolerance: if args.exact_rank {
-            tirecontact::convolution::EXACT_RANK_TOLERANCE
-        } else {
-            tirecontact::DEFAULT_RANK_TOLERANCE
-        },
+        rank_tolerance: args
+            .exact_rank
+            .then_some(tirecontact::convolution::EXACT_RANK_TOLERANCE),
         ..tirecontact::SolverOptions::default()
     };
     let mut sim = Simulation::with_options(&scene, options)?;
