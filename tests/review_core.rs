@@ -451,3 +451,108 @@ fn zero_ramp_only_without_initial_penetration() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Deterministic uniform numbers in [0, 1) (splitmix64).
+struct Mix(u64);
+
+impl Mix {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The landing time of SPEC §4's impact location, by brute force: the cubic
+/// Hermite interpolant of the gap sampled on a fine grid; the first sample
+/// below `-tol` (after one above `+tol` when `require_rise`, unless the
+/// start is), and the zero crossing before it by bisection between the last
+/// non-negative sample and the next one. `None` when no sample goes below.
+fn brute_crossing(g0: f64, d0: f64, g1: f64, d1: f64, tol: f64, rise: bool) -> Option<f64> {
+    let g0 = g0.max(0.0);
+    let p = |y: f64| {
+        let (h00, h10) = ((1.0 + 2.0 * y) * (1.0 - y).powi(2), y * (1.0 - y).powi(2));
+        let (h01, h11) = (y * y * (3.0 - 2.0 * y), y * y * (y - 1.0));
+        g0 * h00 + d0 * h10 + g1 * h01 + d1 * h11
+    };
+    // uniform, plus logarithmic near the start (a rise and fall within
+    // 1e-5 of the interval is a real landing)
+    let n = 20_000;
+    let mut grid: Vec<f64> = (1..=n).map(|k| k as f64 / n as f64).collect();
+    grid.extend((0..=180).map(|k| 10f64.powf(-13.0 + k as f64 / 20.0)));
+    grid.sort_by(f64::total_cmp);
+    let mut risen = !rise || g0 > tol;
+    let mut last_nonneg = 0.0;
+    for y in grid {
+        let v = p(y);
+        if risen && v < -tol {
+            let (mut lo, mut hi) = (last_nonneg, y);
+            for _ in 0..80 {
+                let mid = 0.5 * (lo + hi);
+                if p(mid) >= 0.0 { lo = mid } else { hi = mid }
+            }
+            return Some(0.5 * (lo + hi));
+        }
+        risen |= v > tol;
+        if v >= 0.0 {
+            last_nonneg = y;
+        }
+    }
+    None
+}
+
+#[test]
+fn hermite_landing_time_matches_brute_force() {
+    let mut rng = Mix(4);
+    let (mut found, mut none) = (0, 0);
+    for case in 0..8_000 {
+        let mut r = |a: f64, b: f64| a + (b - a) * rng.next();
+        // starts on, above, or (round-off) just below the road
+        let g0 = match case % 4 {
+            0 => 0.0,
+            1 => -1e-13,
+            _ => r(0.0, 1.0),
+        };
+        let (d0, g1, d1) = (r(-4.0, 4.0), r(-1.0, 1.0), r(-4.0, 4.0));
+        let tol = if case % 3 == 0 { 1e-3 } else { 1e-12 };
+        let rise = case % 5 == 0;
+        let got = tirecontact::simulation::first_crossing(g0, d0, g1, d1, tol, rise);
+        let want = brute_crossing(g0, d0, g1, d1, tol, rise);
+        match (got, want) {
+            (Some(y), Some(w)) => {
+                found += 1;
+                assert!(
+                    (y - w).abs() < 1e-10,
+                    "case {case}: g0 {g0} d0 {d0} g1 {g1} d1 {d1} tol {tol} rise {rise}: landing at {y}, brute force {w}"
+                );
+            }
+            (None, None) => none += 1,
+            // a dip below -tol narrower than the grid (1/20000) can be
+            // missed by the brute force only by a hair: check the depth
+            (Some(y), None) => {
+                let h = |y: f64| {
+                    let g0 = g0.max(0.0);
+                    g0 * (1.0 + 2.0 * y) * (1.0 - y).powi(2)
+                        + d0 * y * (1.0 - y).powi(2)
+                        + g1 * y * y * (3.0 - 2.0 * y)
+                        + d1 * y * y * (y - 1.0)
+                };
+                let depth = (0..=2000)
+                    .map(|k| h(y + (1.0 - y) * k as f64 / 2000.0))
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    depth > -tol - 1e-6,
+                    "case {case}: landing at {y} found, brute force none, depth {depth}"
+                );
+            }
+            (None, Some(w)) => panic!(
+                "case {case}: g0 {g0} d0 {d0} g1 {g1} d1 {d1} tol {tol} rise {rise}: no landing found, brute force lands at {w}"
+            ),
+        }
+    }
+    println!("landing times: {found} found, {none} without landing");
+    assert!(found > 2000 && none > 800, "{found} / {none}");
+}
