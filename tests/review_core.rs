@@ -606,7 +606,7 @@ fn sampled(sc: &Scene, grid_s: f64) -> Vec<Vec<f64>> {
     let mut out = Vec::new();
     while !sim.finished() {
         sim.step().unwrap();
-        if sim.steps() % every == 0 {
+        if sim.steps().is_multiple_of(every) {
             out.push(sim.displacement_m().to_vec());
         }
     }
