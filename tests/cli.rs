@@ -294,3 +294,37 @@ fn exact_rank_flag_keeps_every_residue_term() {
     );
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn bench_quick_writes_its_tables_and_diagram() {
+    let d = tmpdir("bench");
+    let o = bin()
+        .args(["bench", "--quick", "presets/single_mode.ron", "-o"])
+        .arg(&d)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(d.join("work_precision.md")).unwrap();
+    for section in [
+        "# Work-precision study",
+        "## Speed",
+        "## Work skipped",
+        "## Residual flexibility",
+    ] {
+        assert!(md.contains(section), "no {section:?} in:\n{md}");
+    }
+    // the speed table: the preset and both synthetic scenes, medians of repeated runs
+    assert!(md.contains("run 3 times"), "{md}");
+    for scene in ["Single mode", "5 points x 20", "50 points x 200"] {
+        assert!(
+            md.lines().any(|l| l.starts_with(&format!("| {scene}"))),
+            "no speed row for {scene}"
+        );
+    }
+    let csv = std::fs::read_to_string(d.join("work_precision.csv")).unwrap();
+    assert!(csv.lines().count() > 5, "{csv}");
+    // one diagram per scene, named after it
+    let png = std::fs::read(d.join("work_precision_single_mode_on_a_sine_road.png")).unwrap();
+    assert_eq!(&png[..4], b"\x89PNG");
+    std::fs::remove_dir_all(&d).ok();
+}
