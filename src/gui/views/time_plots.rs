@@ -7,6 +7,9 @@ use crate::gui::history::{History, Quantity};
 use egui::{Id, Ui};
 use egui_plot::{Corner, Legend, Line, MarkerShape, Plot, PlotUi, Points};
 
+/// Id of the contact force plot (its `PlotMemory` holds the drawn bounds).
+pub const FORCE_PLOT_ID: &str = "tirecontact.time_plots.force";
+
 /// Points shown by default.
 const DEFAULT_SHOWN: usize = 8;
 
@@ -106,6 +109,9 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             .auto_bounds([!opts.follow, true]);
         if last {
             plot = plot.x_axis_label("time t (s)");
+        }
+        if def.what == Quantity::Force {
+            plot = plot.id(Id::unique(FORCE_PLOT_ID));
         }
         if def.what != Quantity::Contact {
             plot = super::nice_y_axis(plot);
@@ -297,6 +303,9 @@ pub fn clip_checkbox(ui: &mut Ui, clip_impacts: &mut bool) {
         .on_hover_text(
             "Rigid contact makes an impact an impulse: its step is drawn as impulse / dt, \
          far above the contact force. On: the force axis fits the force without \
-         impacts and clipped impacts are marked ▼ at the top. Off: the full range.",
+         impacts and clipped impacts are marked ▼ at the top. Off: the full range. \
+         With the paper contact scheme (no located impacts) a landing step is the \
+         impact: in a step where a point's force turns positive, each point's rise \
+         over its previous step's force counts as impulse / dt.",
         );
 }
