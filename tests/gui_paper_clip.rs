@@ -37,7 +37,11 @@ fn paper_maxima(steps: usize, from: usize) -> (Vec<f64>, Vec<f64>) {
     assert_eq!(h.stride(), 1);
     let max = |what| {
         (0..p)
-            .map(|i| (from..h.len()).map(|k| h.value(what, i, k)).fold(0.0, f64::max))
+            .map(|i| {
+                (from..h.len())
+                    .map(|k| h.value(what, i, k))
+                    .fold(0.0, f64::max)
+            })
             .collect::<Vec<f64>>()
     };
     (max(Quantity::Force), max(Quantity::ForceWithoutImpacts))

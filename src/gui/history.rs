@@ -136,7 +136,8 @@ impl History {
         self.contact_any.fill(false);
         self.count = 0;
         let scene = sim.scene();
-        self.paper_impacts = scene.contact_scheme == ContactScheme::Paper && scene.contact.is_rigid();
+        self.paper_impacts =
+            scene.contact_scheme == ContactScheme::Paper && scene.contact.is_rigid();
         self.q_prev.clear();
         self.q_prev.extend_from_slice(sim.force_n());
         self.q_prev.resize(self.p, 0.0);

@@ -98,7 +98,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             .height(h)
             .legend(
                 Legend::default()
-                    .position(Corner::RightTop)
+                    .position(legend_corner(opts.follow, t_end, opts.window_s))
                     .follow_insertion_order(true),
             )
             .link_axis(link, [true, false])
@@ -154,6 +154,18 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             };
             draw_series(pui, history, def, &shown, a, b, top);
         });
+    }
+}
+
+/// Where the time plots' legends go: while following a full window the
+/// newest samples are drawn at the right edge, so the legends move to the
+/// left (over the oldest samples of the window); before the window fills
+/// (data on the left only) and over the whole run, top right.
+pub fn legend_corner(follow: bool, t_end_s: f64, window_s: f64) -> Corner {
+    if follow && t_end_s > window_s {
+        Corner::LeftTop
+    } else {
+        Corner::RightTop
     }
 }
 
