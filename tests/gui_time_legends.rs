@@ -64,3 +64,47 @@ fn the_contact_scheme_explains_itself_on_hover() {
         "the tooltip names the schemes"
     );
 }
+
+fn small_harness(app: App) -> Harness<'static, App> {
+    Harness::builder()
+        .with_size([1280.0, 720.0])
+        .with_step_dt(1.0 / 60.0)
+        .build_ui_state(|ui, app: &mut App| app.show(ui), app)
+}
+
+/// In a 1280 × 720 window the contact plot's lanes are closer than the
+/// 20 px below which egui_plot hides y labels by default; the plot shows
+/// them from `LANE_LABEL_SPACING` on, and the legends use smaller text.
+#[test]
+fn short_plots_keep_their_lane_labels_and_smaller_legends() {
+    use egui_plot::PlotMemory;
+    use tirecontact::gui::views::time_plots::{CONTACT_PLOT_ID, LANE_LABEL_SPACING};
+    let scene = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    let mut small = small_harness(App::new(scene.clone(), None).unwrap());
+    small.run();
+    advance(&mut small, 200);
+    small.run_steps(2);
+    let mem = PlotMemory::load(&small.ctx, egui::Id::unique(CONTACT_PLOT_ID)).expect("plot shown");
+    let lane_px = mem.transform().dpos_dvalue_y().abs() as f32;
+    assert!(lane_px < 20.0, "the premise: lanes {lane_px} px apart");
+    assert!(
+        lane_px >= *LANE_LABEL_SPACING.end(),
+        "lane labels fully shown from {} px: lanes {lane_px} px apart",
+        LANE_LABEL_SPACING.end()
+    );
+    let entry_h = |h: &Harness<'_, App>| {
+        h.get_all_by_label("point 0")
+            .map(|n| n.rect().height())
+            .fold(0.0f32, f32::max)
+    };
+    let mut big = harness(App::new(scene, None).unwrap());
+    big.run();
+    advance(&mut big, 200);
+    big.run_steps(2);
+    assert!(
+        entry_h(&small) < entry_h(&big),
+        "legend entries {} px (1280 × 720) vs {} px (1500 × 950)",
+        entry_h(&small),
+        entry_h(&big)
+    );
+}

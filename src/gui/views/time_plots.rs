@@ -4,11 +4,14 @@
 
 use super::point_color;
 use crate::gui::history::{History, Quantity};
-use egui::{Id, Ui};
-use egui_plot::{Corner, Legend, Line, MarkerShape, Plot, PlotUi, Points};
+use egui::{Id, TextStyle, Ui};
+use egui_plot::{AxisHints, Corner, Legend, Line, MarkerShape, Plot, PlotUi, Points};
 
 /// Id of the contact force plot (its `PlotMemory` holds the drawn bounds).
 pub const FORCE_PLOT_ID: &str = "tirecontact.time_plots.force";
+
+/// Id of the contact state plot.
+pub const CONTACT_PLOT_ID: &str = "tirecontact.time_plots.contact";
 
 /// Points shown by default.
 const DEFAULT_SHOWN: usize = 8;
@@ -98,6 +101,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             .height(h)
             .legend(
                 Legend::default()
+                    .text_style(legend_text(h))
                     .position(legend_corner(opts.follow, t_end, opts.window_s))
                     .follow_insertion_order(true),
             )
@@ -113,6 +117,9 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         if def.what == Quantity::Force {
             plot = plot.id(Id::unique(FORCE_PLOT_ID));
         }
+        if def.what == Quantity::Contact {
+            plot = plot.id(Id::unique(CONTACT_PLOT_ID));
+        }
         if def.what != Quantity::Contact {
             plot = super::nice_y_axis(plot);
         }
@@ -122,15 +129,22 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
                 .filter(|&i| opts.shown.get(i).copied().unwrap_or(false))
                 .collect();
             let n = lanes.len();
-            plot = plot
-                .y_axis_formatter(move |m, _| {
+            // lane labels shown down to 12 px per lane (the default hides
+            // y labels closer than 20 px: short plots lost them)
+            let axis = AxisHints::new_y()
+                .label(def.y_label)
+                .min_thickness(64.0)
+                .label_spacing(LANE_LABEL_SPACING)
+                .formatter(move |m, _| {
                     let k = m.value.round();
                     if (m.value - k).abs() < 1e-9 && k >= 0.0 && (k as usize) < n {
                         format!("p{}", lanes[k as usize])
                     } else {
                         String::new()
                     }
-                })
+                });
+            plot = plot
+                .custom_y_axes(vec![axis])
                 .include_y(-0.2)
                 .include_y(n.max(1) as f64 - 0.1);
         }
@@ -154,6 +168,20 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             };
             draw_series(pui, history, def, &shown, a, b, top);
         });
+    }
+}
+
+/// Spacing (px) from which the contact plot's lane labels fade in, and at
+/// which they are opaque.
+pub const LANE_LABEL_SPACING: std::ops::RangeInclusive<f32> = 12.0..=16.0;
+
+/// Text of the time plots' legends: small in short plots (small windows),
+/// where body text made a legend of five points cover most of the plot.
+pub fn legend_text(plot_height: f32) -> TextStyle {
+    if plot_height < 160.0 {
+        TextStyle::Small
+    } else {
+        TextStyle::Body
     }
 }
 
