@@ -179,7 +179,7 @@ impl ModalBasis {
         let num_terms = terms.len();
         // zero padding to whole lanes (on the last term's mode: any valid mode)
         let last_mode = terms.last().map_or(0, |t| t.0);
-        while terms.len() % STATE_LANES != 0 && !params.is_empty() {
+        while !terms.len().is_multiple_of(STATE_LANES) && !params.is_empty() {
             terms.push((last_mode, vec![0.0; p], vec![0.0; p]));
         }
         let ns = terms.len();

@@ -53,6 +53,8 @@ impl TimePlotOptions {
 struct PlotDef {
     what: Quantity,
     y_label: &'static str,
+    /// The y label of a short plot (the long one is clipped).
+    short_label: &'static str,
     scale: f64,
 }
 
@@ -60,21 +62,25 @@ const PLOTS: [PlotDef; 4] = [
     PlotDef {
         what: Quantity::Displacement,
         y_label: "displacement u (mm, up)",
+        short_label: "u (mm, up)",
         scale: 1e3,
     },
     PlotDef {
         what: Quantity::Force,
         y_label: "contact force q (N)",
+        short_label: "q (N)",
         scale: 1.0,
     },
     PlotDef {
         what: Quantity::Gap,
         y_label: "gap u − r (mm)",
+        short_label: "gap (mm)",
         scale: 1e3,
     },
     PlotDef {
         what: Quantity::Contact,
         y_label: "in contact (per point)",
+        short_label: "contact",
         scale: 1.0,
     },
 ];
@@ -97,6 +103,11 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
     let p = history.num_points();
     for (k, def) in PLOTS.iter().enumerate() {
         let last = k == PLOTS.len() - 1;
+        let y_label = if h < SHORT_PLOT_PX {
+            def.short_label
+        } else {
+            def.y_label
+        };
         let mut plot = Plot::new(("tirecontact.time_plot", k))
             .height(h)
             .legend(
@@ -107,7 +118,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             )
             .link_axis(link, [true, false])
             .link_cursor(link, [true, false])
-            .y_axis_label(def.y_label)
+            .y_axis_label(y_label)
             .y_axis_min_width(64.0)
             .allow_scroll(false)
             .auto_bounds([!opts.follow, true]);
@@ -132,7 +143,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             // lane labels shown down to 12 px per lane (the default hides
             // y labels closer than 20 px: short plots lost them)
             let axis = AxisHints::new_y()
-                .label(def.y_label)
+                .label(y_label)
                 .min_thickness(64.0)
                 .label_spacing(LANE_LABEL_SPACING)
                 .formatter(move |m, _| {
@@ -175,10 +186,14 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
 /// which they are opaque.
 pub const LANE_LABEL_SPACING: std::ops::RangeInclusive<f32> = 12.0..=16.0;
 
+/// Height (px) under which a time plot is short: small legend text and
+/// short y labels.
+pub const SHORT_PLOT_PX: f32 = 160.0;
+
 /// Text of the time plots' legends: small in short plots (small windows),
 /// where body text made a legend of five points cover most of the plot.
 pub fn legend_text(plot_height: f32) -> TextStyle {
-    if plot_height < 160.0 {
+    if plot_height < SHORT_PLOT_PX {
         TextStyle::Small
     } else {
         TextStyle::Body
