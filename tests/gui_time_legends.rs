@@ -108,3 +108,31 @@ fn short_plots_keep_their_lane_labels_and_smaller_legends() {
         entry_h(&big)
     );
 }
+
+/// With the mode bars open in a 1280 × 720 window the time plots are about
+/// 470 px wide: 0.01 s ticks of the 0.1 s window are closer than the 60 px
+/// below which egui_plot hides x labels by default (one label was left); the
+/// time axes show them from `TIME_LABEL_SPACING` on.
+#[test]
+fn narrow_time_plots_keep_their_time_labels() {
+    use egui_plot::PlotMemory;
+    use tirecontact::gui::views::time_plots::{FORCE_PLOT_ID, TIME_LABEL_SPACING};
+    let scene = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    let mut h = small_harness(App::new(scene, None).unwrap());
+    h.run();
+    h.state_mut()
+        .apply(tirecontact::gui::Command::ShowModeBars(true));
+    advance(&mut h, 200);
+    h.run_steps(2);
+    let mem = PlotMemory::load(&h.ctx, egui::Id::unique(FORCE_PLOT_ID)).expect("plot shown");
+    let tick_px = (0.01 * mem.transform().dpos_dvalue_x()) as f32;
+    assert!(
+        tick_px < 60.0,
+        "the premise: 0.01 s ticks {tick_px} px apart"
+    );
+    assert!(
+        tick_px >= *TIME_LABEL_SPACING.end(),
+        "time labels fully shown from {} px: ticks {tick_px} px apart",
+        TIME_LABEL_SPACING.end()
+    );
+}

@@ -156,15 +156,27 @@ pub fn phase_strip(ui: &mut Ui, t_s: f64, phases: &PhaseTracker) {
 }
 
 /// Point picker shared by the plot and the bars.
+/// Text colour of point `i` in the point picker: the point's colour, or,
+/// selected, the selection's text colour (the point's colour on the
+/// selection's fill was unreadable: point 0's blue on the dark theme's blue).
+pub fn picker_color(visuals: &egui::Visuals, i: usize, selected: bool) -> Color32 {
+    if selected {
+        visuals.selection.stroke.color
+    } else {
+        point_color(i)
+    }
+}
+
 pub fn point_picker(ui: &mut Ui, cls: &mut Classroom, p: usize) {
     if p > 1 {
         ui.horizontal(|ui| {
             ui.label("point");
             for i in 0..p.min(24) {
+                let color = picker_color(ui.visuals(), i, cls.point == i);
                 ui.selectable_value(
                     &mut cls.point,
                     i,
-                    RichText::new(i.to_string()).color(point_color(i)),
+                    RichText::new(i.to_string()).color(color).strong(),
                 );
             }
         });

@@ -10,6 +10,10 @@ use egui_plot::{AxisHints, Corner, Legend, Line, MarkerShape, Plot, PlotUi, Poin
 /// Id of the contact force plot (its `PlotMemory` holds the drawn bounds).
 pub const FORCE_PLOT_ID: &str = "tirecontact.time_plots.force";
 
+/// Spacing (px) from which the time axes' labels fade in, and at which
+/// they are opaque (a label that does not fit is still left out).
+pub const TIME_LABEL_SPACING: std::ops::RangeInclusive<f32> = 36.0..=44.0;
+
 /// Id of the contact state plot.
 pub const CONTACT_PLOT_ID: &str = "tirecontact.time_plots.contact";
 
@@ -122,9 +126,13 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             .y_axis_min_width(64.0)
             .allow_scroll(false)
             .auto_bounds([!opts.follow, true]);
+        // time labels shown down to 40 px apart (the default hides x labels
+        // closer than 60 px: a narrow plot kept one label)
+        let mut x_axis = AxisHints::new_x().label_spacing(TIME_LABEL_SPACING);
         if last {
-            plot = plot.x_axis_label("time t (s)");
+            x_axis = x_axis.label("time t (s)");
         }
+        plot = plot.custom_x_axes(vec![x_axis]);
         if def.what == Quantity::Force {
             plot = plot.id(Id::unique(FORCE_PLOT_ID));
         }
