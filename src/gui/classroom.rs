@@ -6,6 +6,7 @@
 use super::command::Command;
 use super::history::{History, Quantity};
 use super::mutes::Mutes;
+use super::views::time_plots::{clip_at, clip_level, force_range, impact_marks};
 use super::views::{CONTACT_COLOR, FLIGHT_COLOR, point_color, scene_view};
 use crate::Simulation;
 use crate::phase::{ContactPhase, PhaseTracker};
@@ -209,8 +210,17 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
     let t1 = history.last_time().unwrap_or(0.0).max(now_s).max(window);
     let t0 = t1 - window;
     let buckets = (ui.available_width() as usize).clamp(100, 4000);
-    let pts = history.decimated(what, i, t0, t1, buckets, scale);
+    let mut pts = history.decimated(what, i, t0, t1, buckets, scale);
+    // impacts clipped and marked ▼ as in the time plots: rigid contact draws
+    // an impact as impulse / dt, which left the force a flat line under spikes
+    let mut marks = Vec::new();
+    if what == Quantity::Force
+        && let Some(top) = force_range(history, &[i], t0, t1, buckets).map(clip_level)
+    {
+        clip_at(&mut pts, top, &mut marks);
+    }
     super::views::nice_y_axis(Plot::new("tirecontact.classroom_plot"))
+        .id(egui::Id::unique(CLASSROOM_PLOT_ID))
         .legend(Legend::default().position(Corner::LeftTop))
         .x_axis_label("time t (s)")
         .y_axis_label(label)
@@ -224,8 +234,12 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
                     .color(point_color(i))
                     .width(2.5),
             );
+            impact_marks(pui, marks, egui_plot::MarkerShape::Down);
         });
 }
+
+/// Plot id of the classroom's point plot.
+pub const CLASSROOM_PLOT_ID: &str = "tirecontact.classroom_plot";
 
 /// Plot id of the mode bars (its frame is read by the tests).
 pub const MODE_BARS_PLOT_ID: &str = "tirecontact.mode_bars";
