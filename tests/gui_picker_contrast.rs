@@ -44,3 +44,14 @@ fn a_selected_point_reads_on_the_selection_fill() {
         }
     }
 }
+
+/// The marks of clipped impacts are seen on the plot background of both
+/// themes (WCAG contrast ≥ 3 for graphics).
+#[test]
+fn impact_marks_read_on_dark_and_light_plots() {
+    use tirecontact::gui::views::time_plots::IMPACT_MARK_COLOR;
+    for (theme, v) in [("dark", Visuals::dark()), ("light", Visuals::light())] {
+        let c = contrast(IMPACT_MARK_COLOR, v.extreme_bg_color);
+        assert!(c >= 3.0, "{theme} theme: contrast {c:.2}");
+    }
+}

@@ -221,7 +221,11 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
     }
     super::views::nice_y_axis(Plot::new("tirecontact.classroom_plot"))
         .id(egui::Id::unique(CLASSROOM_PLOT_ID))
-        .legend(Legend::default().position(Corner::LeftTop))
+        .legend(
+            Legend::default()
+                .position(Corner::LeftTop)
+                .follow_insertion_order(true),
+        )
         .x_axis_label("time t (s)")
         .y_axis_label(label)
         .allow_scroll(false)

@@ -274,6 +274,11 @@ pub fn clip_at(pts: &mut [[f64; 2]], top: f64, marks: &mut Vec<[f64; 2]>) {
     }
 }
 
+/// Colour of the marks of clipped impacts: a mid grey, seen on the dark
+/// theme's and the light (classroom) theme's plot background alike (light
+/// grey vanished on white).
+pub const IMPACT_MARK_COLOR: egui::Color32 = egui::Color32::from_gray(140);
+
 /// Draws the marks of clipped impacts, `shape` ▼ (`Down`) at a top edge
 /// (nothing when there are none).
 pub fn impact_marks(pui: &mut PlotUi<'_>, marks: Vec<[f64; 2]>, shape: MarkerShape) {
@@ -283,7 +288,7 @@ pub fn impact_marks(pui: &mut PlotUi<'_>, marks: Vec<[f64; 2]>, shape: MarkerSha
                 .shape(shape)
                 .filled(true)
                 .radius(4.0)
-                .color(egui::Color32::from_gray(200)),
+                .color(IMPACT_MARK_COLOR),
         );
     }
 }
