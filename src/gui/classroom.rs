@@ -6,6 +6,7 @@
 use super::command::Command;
 use super::history::{History, Quantity};
 use super::mutes::Mutes;
+use super::views::time_plots::{clip_at, clip_level, force_range, impact_marks};
 use super::views::{CONTACT_COLOR, FLIGHT_COLOR, point_color, scene_view};
 use crate::Simulation;
 use crate::phase::{ContactPhase, PhaseTracker};
@@ -156,15 +157,27 @@ pub fn phase_strip(ui: &mut Ui, t_s: f64, phases: &PhaseTracker) {
 }
 
 /// Point picker shared by the plot and the bars.
+/// Text colour of point `i` in the point picker: the point's colour, or,
+/// selected, the selection's text colour (the point's colour on the
+/// selection's fill was unreadable: point 0's blue on the dark theme's blue).
+pub fn picker_color(visuals: &egui::Visuals, i: usize, selected: bool) -> Color32 {
+    if selected {
+        visuals.selection.stroke.color
+    } else {
+        point_color(i)
+    }
+}
+
 pub fn point_picker(ui: &mut Ui, cls: &mut Classroom, p: usize) {
     if p > 1 {
         ui.horizontal(|ui| {
             ui.label("point");
             for i in 0..p.min(24) {
+                let color = picker_color(ui.visuals(), i, cls.point == i);
                 ui.selectable_value(
                     &mut cls.point,
                     i,
-                    RichText::new(i.to_string()).color(point_color(i)),
+                    RichText::new(i.to_string()).color(color).strong(),
                 );
             }
         });
@@ -197,9 +210,22 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
     let t1 = history.last_time().unwrap_or(0.0).max(now_s).max(window);
     let t0 = t1 - window;
     let buckets = (ui.available_width() as usize).clamp(100, 4000);
-    let pts = history.decimated(what, i, t0, t1, buckets, scale);
+    let mut pts = history.decimated(what, i, t0, t1, buckets, scale);
+    // impacts clipped and marked ▼ as in the time plots: rigid contact draws
+    // an impact as impulse / dt, which left the force a flat line under spikes
+    let mut marks = Vec::new();
+    if what == Quantity::Force
+        && let Some(top) = force_range(history, &[i], t0, t1, buckets).map(clip_level)
+    {
+        clip_at(&mut pts, top, &mut marks);
+    }
     super::views::nice_y_axis(Plot::new("tirecontact.classroom_plot"))
-        .legend(Legend::default().position(Corner::LeftTop))
+        .id(egui::Id::unique(CLASSROOM_PLOT_ID))
+        .legend(
+            Legend::default()
+                .position(Corner::LeftTop)
+                .follow_insertion_order(true),
+        )
         .x_axis_label("time t (s)")
         .y_axis_label(label)
         .allow_scroll(false)
@@ -212,8 +238,12 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
                     .color(point_color(i))
                     .width(2.5),
             );
+            impact_marks(pui, marks, egui_plot::MarkerShape::Down);
         });
 }
+
+/// Plot id of the classroom's point plot.
+pub const CLASSROOM_PLOT_ID: &str = "tirecontact.classroom_plot";
 
 /// Plot id of the mode bars (its frame is read by the tests).
 pub const MODE_BARS_PLOT_ID: &str = "tirecontact.mode_bars";

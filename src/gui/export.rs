@@ -8,8 +8,9 @@
 //! full resolution, whatever the history's decimation.
 
 use super::history::{History, Quantity};
+use super::views::time_plots::{clip_level, force_range};
 use crate::output::csv::RunWriter;
-use crate::output::figures::{Figure, Panel, Series, render_png};
+use crate::output::figures::{Figure, Panel, Series, Style, render_png};
 use crate::road::Road;
 use crate::scene::Mode;
 use crate::{Scene, Simulation};
@@ -18,6 +19,9 @@ use std::sync::mpsc::{Receiver, channel};
 
 /// Samples per series in an exported figure (min/max decimated).
 const FIGURE_BUCKETS: usize = 2000;
+
+/// Palette index of the clipped impacts' dots: black.
+const IMPACT_COLOR: usize = 6;
 
 /// A road or speed change made while the run was going.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,14 +32,34 @@ pub struct LiveEdit {
     pub speed_mps: f64,
 }
 
+/// Modes listed one by one in a subtitle (more are given as ranges).
+const SUMMARY_MODES: usize = 4;
+
+fn min_max(v: impl Iterator<Item = f64>) -> (f64, f64) {
+    v.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+        (lo.min(x), hi.max(x))
+    })
+}
+
 /// One line of scene parameters for figure subtitles.
 pub fn scene_summary(scene: &Scene, modes: &[Mode]) -> String {
     let n_modes = modes.len();
-    let modes: Vec<String> = modes
-        .iter()
-        .take(8)
-        .map(|m| format!("{:.1} Hz/{:.3}", m.freq_hz, m.damping_ratio))
-        .collect();
+    // a few modes listed, more summarised (the subtitle is one line)
+    let modes: Vec<String> = if n_modes <= SUMMARY_MODES {
+        modes
+            .iter()
+            .map(|m| format!("{:.1} Hz/{:.3}", m.freq_hz, m.damping_ratio))
+            .collect()
+    } else {
+        let (f, z) = (
+            min_max(modes.iter().map(|m| m.freq_hz)),
+            min_max(modes.iter().map(|m| m.damping_ratio)),
+        );
+        vec![format!(
+            "{:.1} … {:.1} Hz/{:.3} … {:.3}",
+            f.0, f.1, z.0, z.1
+        )]
+    };
     let road = match &scene.road {
         Road::Sine {
             amplitude_m,
@@ -57,9 +81,30 @@ pub fn scene_summary(scene: &Scene, modes: &[Mode]) -> String {
     )
 }
 
-/// The figure of the time plots over the whole recorded run.
-pub fn time_figure(scene: &Scene, modes: &[Mode], history: &History, shown: &[bool]) -> Figure {
+/// Name of the exported force panel's series of clipped impacts.
+pub const CLIPPED_IMPACTS: &str = "impacts (impulse / dt), clipped";
+
+/// The figure of the time plots over the whole recorded run. With
+/// `clip_impacts` (the time plots' "clip impact spikes"), the force panel
+/// is cut at the level the time plots use (a margin above the force without
+/// impacts of the shown points) and the clipped samples are marked with dots
+/// at that level, so the rolling force stays readable in a report.
+pub fn time_figure(
+    scene: &Scene,
+    modes: &[Mode],
+    history: &History,
+    shown: &[bool],
+    clip_impacts: bool,
+) -> Figure {
     let t1 = history.last_time().unwrap_or(0.0);
+    let shown_points: Vec<usize> = (0..history.num_points())
+        .filter(|&i| shown.get(i).copied().unwrap_or(true))
+        .collect();
+    let force_top = if clip_impacts {
+        force_range(history, &shown_points, 0.0, t1, FIGURE_BUCKETS).map(clip_level)
+    } else {
+        None
+    };
     let defs = [
         (Quantity::Displacement, "displacement", "u (mm, up)", 1e3),
         (Quantity::Force, "contact force (step mean)", "q (N)", 1.0),
@@ -73,14 +118,13 @@ pub fn time_figure(scene: &Scene, modes: &[Mode], history: &History, shown: &[bo
     ];
     let panels = defs
         .iter()
-        .map(|&(what, title, y_label, scale)| Panel {
-            title: title.to_string(),
-            x_label: "time t (s)".to_string(),
-            y_label: y_label.to_string(),
-            series: (0..history.num_points())
-                .filter(|&i| shown.get(i).copied().unwrap_or(true))
+        .map(|&(what, title, y_label, scale)| {
+            let top = force_top.filter(|_| what == Quantity::Force);
+            let mut marks = Vec::new();
+            let mut series: Vec<Series> = shown_points
+                .iter()
                 .enumerate()
-                .map(|(lane, i)| {
+                .map(|(lane, &i)| {
                     let mut pts: Vec<(f64, f64)> = history
                         .decimated(what, i, 0.0, t1, FIGURE_BUCKETS, scale)
                         .into_iter()
@@ -91,12 +135,41 @@ pub fn time_figure(scene: &Scene, modes: &[Mode], history: &History, shown: &[bo
                             p.1 = lane as f64 + 0.7 * p.1;
                         }
                     }
+                    if let Some(top) = top {
+                        for p in &mut pts {
+                            if p.1 > top {
+                                p.1 = top;
+                                marks.push(*p);
+                            }
+                        }
+                    }
                     let mut s = Series::line(format!("point {i}"), pts);
                     s.color = Some(i);
+                    if what == Quantity::Force {
+                        // one-pixel lines: wide ones overshoot the panel at
+                        // the spikes of impacts (clipped or not)
+                        s.style = Style::ThinLine;
+                    }
                     s
                 })
-                .collect(),
-            ..Panel::default()
+                .collect();
+            let mut title = title.to_string();
+            if top.is_some() && !marks.is_empty() {
+                title.push_str(" — impact spikes clipped, marked by dots");
+                series.push(Series {
+                    name: CLIPPED_IMPACTS.to_string(),
+                    points: marks,
+                    style: Style::Markers(3),
+                    color: Some(IMPACT_COLOR),
+                });
+            }
+            Panel {
+                title,
+                x_label: "time t (s)".to_string(),
+                y_label: y_label.to_string(),
+                series,
+                ..Panel::default()
+            }
         })
         .collect();
     Figure {
@@ -106,7 +179,8 @@ pub fn time_figure(scene: &Scene, modes: &[Mode], history: &History, shown: &[bo
     }
 }
 
-/// Writes the time plots as a `width × height` PNG.
+/// Writes the time plots as a `width × height` PNG (force clipped as in
+/// [`time_figure`] with `clip_impacts`).
 pub fn export_png(
     path: &Path,
     width: u32,
@@ -115,8 +189,9 @@ pub fn export_png(
     modes: &[Mode],
     history: &History,
     shown: &[bool],
+    clip_impacts: bool,
 ) -> Result<(), String> {
-    let fig = time_figure(scene, modes, history, shown);
+    let fig = time_figure(scene, modes, history, shown, clip_impacts);
     render_png(&fig, path, width, height).map_err(|e| e.to_string())
 }
 

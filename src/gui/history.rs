@@ -6,6 +6,7 @@
 //! run, and the whole run stays visible at a coarser resolution.
 
 use crate::Simulation;
+use crate::scene::ContactScheme;
 
 /// Samples kept across all series (bounds memory to a few tens of MB).
 pub const DEFAULT_BUDGET: usize = 8_000_000;
@@ -17,8 +18,11 @@ pub enum Quantity {
     Displacement,
     /// Step-mean contact force `q_i` (N).
     Force,
-    /// Step-mean contact force without the impulses of located impacts (N):
-    /// the force a plot's range should fit (an impact adds impulse / dt).
+    /// Step-mean contact force without the impulses of impacts (N): the
+    /// force a plot's range should fit (an impact adds impulse / dt). The
+    /// located scheme reports its impacts' impulses; the paper scheme
+    /// (`contact_scheme: Paper`) locates none, and there a landing step
+    /// counts as the impact (see [`paper_impact_n`]).
     ForceWithoutImpacts,
     /// Gap `u_i - r_i` (m).
     Gap,
@@ -45,6 +49,31 @@ pub struct History {
     q_impact: Vec<Vec<f32>>,
     gap: Vec<Vec<f32>>,
     contact: Vec<Vec<u8>>,
+    /// The run uses the paper's contact scheme (no located impacts): its
+    /// impacts are taken from the landing steps (see [`paper_impact_n`]).
+    paper_impacts: bool,
+    /// Step-mean contact forces of the previous step (N), for `paper_impacts`.
+    q_prev: Vec<f64>,
+}
+
+/// The impact part (N, impulse / dt) of point `i`'s step-mean force `q[i]`
+/// under the paper's contact scheme, which locates no impacts: the first
+/// step of a contact absorbs the landing point's momentum as one huge
+/// step-mean force (tens of kN against about 1 kN of rolling force), and the
+/// points already in contact feel it through the tyre in the same step.
+///
+/// Rule: a step is a *landing step* when some point's force turns positive
+/// after a step without force (`q[k] > 0`, `q_prev[k] <= 0`). In a landing
+/// step, each point's rise over its previous step's force,
+/// `max(q[i] - q_prev[i], 0)`, is the impact's impulse / dt (so the force
+/// without impacts holds its previous value, `min(q[i], q_prev[i])`); in
+/// other steps the impact part is zero.
+pub fn paper_impact_n(q: &[f64], q_prev: &[f64], i: usize) -> f64 {
+    let landing = q.iter().zip(q_prev).any(|(&a, &b)| a > 0.0 && b <= 0.0);
+    match (landing, q.get(i), q_prev.get(i)) {
+        (true, Some(&a), Some(&b)) => (a - b).max(0.0),
+        _ => 0.0,
+    }
 }
 
 impl History {
@@ -65,6 +94,8 @@ impl History {
             q_impact: vec![Vec::new(); p],
             gap: vec![Vec::new(); p],
             contact: vec![Vec::new(); p],
+            paper_impacts: false,
+            q_prev: vec![0.0; p],
         }
     }
 
@@ -104,6 +135,12 @@ impl History {
         self.q_impact_sum.fill(0.0);
         self.contact_any.fill(false);
         self.count = 0;
+        let scene = sim.scene();
+        self.paper_impacts =
+            scene.contact_scheme == ContactScheme::Paper && scene.contact.is_rigid();
+        self.q_prev.clear();
+        self.q_prev.extend_from_slice(sim.force_n());
+        self.q_prev.resize(self.p, 0.0);
         self.push(sim, 1);
     }
 
@@ -121,6 +158,15 @@ impl History {
         let dt_s = sim.dt_s();
         for (s, j) in self.q_impact_sum.iter_mut().zip(sim.impact_impulse_ns()) {
             *s += j / dt_s;
+        }
+        if self.paper_impacts {
+            let q = sim.force_n();
+            for (i, s) in self.q_impact_sum.iter_mut().enumerate() {
+                *s += paper_impact_n(q, &self.q_prev, i);
+            }
+            for (a, &b) in self.q_prev.iter_mut().zip(q) {
+                *a = b;
+            }
         }
         self.count += 1;
         if self.count >= self.stride {

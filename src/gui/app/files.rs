@@ -176,6 +176,7 @@ impl App {
             &self.modes,
             &self.history,
             &self.plot_opts.shown,
+            self.plot_opts.clip_impacts,
         ) {
             Ok(()) => self.info(format!("wrote {} ({width}x{height} px)", path.display())),
             Err(e) => self.error(format!("PNG export failed: {e}")),

@@ -57,6 +57,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
             })
             .response
             .accessible_name("contact scheme")
+            .on_hover_text(SCHEME_HELP)
             .on_disabled_hover_text("compliant contact has its own scheme (tread springs, no events): this applies to rigid contact only");
         });
         if scheme != scene.contact_scheme {
@@ -68,6 +69,13 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
     });
     ui.label(egui::RichText::new(format!("{} steps per run", scene.num_steps())).weak());
 }
+
+/// What the contact schemes do (the combo box's tooltip).
+pub const SCHEME_HELP: &str = "How rigid contact is decided within a time step. \
+Events located in the step (default): impacts and releases are found inside the step \
+(second order); an impact is an impulse. Paper (step ends only): the paper's scheme, \
+contact decided at step ends (first order); a landing shows as one step of a very \
+large force (clipped by \"clip impact spikes\"). Changing it restarts the run.";
 
 fn scheme_text(s: ContactScheme) -> &'static str {
     match s {

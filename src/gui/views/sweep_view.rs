@@ -195,10 +195,20 @@ pub fn show(
                     cmds.push(Command::Research(ResearchCommand::ExportSweepPngDialog));
                 }
             });
+            if scene.contact.is_rigid() {
+                ui.label(RichText::new(RIGID_FORCE_NOTE).weak());
+            }
             plots(ui, r);
         }
     }
 }
+
+/// What the force figures of a rigid-contact sweep hold: the step-mean
+/// force, where an impact counts as impulse / dt (its "max" is the largest
+/// impact, tens of kN, not a rolling force).
+pub const RIGID_FORCE_NOTE: &str = "Rigid contact: max and RMS are of the step-mean force, \
+in which an impact counts as its impulse / dt; the max is then the largest impact and \
+grows as dt shrinks (compare runs at one dt).";
 
 /// Named, coloured curves of one plot.
 type Curves = Vec<(String, Color32, Vec<[f64; 2]>)>;

@@ -4,8 +4,18 @@
 
 use super::point_color;
 use crate::gui::history::{History, Quantity};
-use egui::{Id, Ui};
-use egui_plot::{Corner, Legend, Line, MarkerShape, Plot, PlotUi, Points};
+use egui::{Id, TextStyle, Ui};
+use egui_plot::{AxisHints, Corner, Legend, Line, MarkerShape, Plot, PlotUi, Points};
+
+/// Id of the contact force plot (its `PlotMemory` holds the drawn bounds).
+pub const FORCE_PLOT_ID: &str = "tirecontact.time_plots.force";
+
+/// Spacing (px) from which the time axes' labels fade in, and at which
+/// they are opaque (a label that does not fit is still left out).
+pub const TIME_LABEL_SPACING: std::ops::RangeInclusive<f32> = 36.0..=44.0;
+
+/// Id of the contact state plot.
+pub const CONTACT_PLOT_ID: &str = "tirecontact.time_plots.contact";
 
 /// Points shown by default.
 const DEFAULT_SHOWN: usize = 8;
@@ -47,6 +57,8 @@ impl TimePlotOptions {
 struct PlotDef {
     what: Quantity,
     y_label: &'static str,
+    /// The y label of a short plot (the long one is clipped).
+    short_label: &'static str,
     scale: f64,
 }
 
@@ -54,21 +66,25 @@ const PLOTS: [PlotDef; 4] = [
     PlotDef {
         what: Quantity::Displacement,
         y_label: "displacement u (mm, up)",
+        short_label: "u (mm, up)",
         scale: 1e3,
     },
     PlotDef {
         what: Quantity::Force,
         y_label: "contact force q (N)",
+        short_label: "q (N)",
         scale: 1.0,
     },
     PlotDef {
         what: Quantity::Gap,
         y_label: "gap u − r (mm)",
+        short_label: "gap (mm)",
         scale: 1e3,
     },
     PlotDef {
         what: Quantity::Contact,
         y_label: "in contact (per point)",
+        short_label: "contact",
         scale: 1.0,
     },
 ];
@@ -91,21 +107,37 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
     let p = history.num_points();
     for (k, def) in PLOTS.iter().enumerate() {
         let last = k == PLOTS.len() - 1;
+        let y_label = if h < SHORT_PLOT_PX {
+            def.short_label
+        } else {
+            def.y_label
+        };
         let mut plot = Plot::new(("tirecontact.time_plot", k))
             .height(h)
             .legend(
                 Legend::default()
-                    .position(Corner::RightTop)
+                    .text_style(legend_text(h))
+                    .position(legend_corner(opts.follow, t_end, opts.window_s))
                     .follow_insertion_order(true),
             )
             .link_axis(link, [true, false])
             .link_cursor(link, [true, false])
-            .y_axis_label(def.y_label)
+            .y_axis_label(y_label)
             .y_axis_min_width(64.0)
             .allow_scroll(false)
             .auto_bounds([!opts.follow, true]);
+        // time labels shown down to 40 px apart (the default hides x labels
+        // closer than 60 px: a narrow plot kept one label)
+        let mut x_axis = AxisHints::new_x().label_spacing(TIME_LABEL_SPACING);
         if last {
-            plot = plot.x_axis_label("time t (s)");
+            x_axis = x_axis.label("time t (s)");
+        }
+        plot = plot.custom_x_axes(vec![x_axis]);
+        if def.what == Quantity::Force {
+            plot = plot.id(Id::unique(FORCE_PLOT_ID));
+        }
+        if def.what == Quantity::Contact {
+            plot = plot.id(Id::unique(CONTACT_PLOT_ID));
         }
         if def.what != Quantity::Contact {
             plot = super::nice_y_axis(plot);
@@ -116,15 +148,22 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
                 .filter(|&i| opts.shown.get(i).copied().unwrap_or(false))
                 .collect();
             let n = lanes.len();
-            plot = plot
-                .y_axis_formatter(move |m, _| {
+            // lane labels shown down to 12 px per lane (the default hides
+            // y labels closer than 20 px: short plots lost them)
+            let axis = AxisHints::new_y()
+                .label(y_label)
+                .min_thickness(64.0)
+                .label_spacing(LANE_LABEL_SPACING)
+                .formatter(move |m, _| {
                     let k = m.value.round();
                     if (m.value - k).abs() < 1e-9 && k >= 0.0 && (k as usize) < n {
                         format!("p{}", lanes[k as usize])
                     } else {
                         String::new()
                     }
-                })
+                });
+            plot = plot
+                .custom_y_axes(vec![axis])
                 .include_y(-0.2)
                 .include_y(n.max(1) as f64 - 0.1);
         }
@@ -148,6 +187,36 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             };
             draw_series(pui, history, def, &shown, a, b, top);
         });
+    }
+}
+
+/// Spacing (px) from which the contact plot's lane labels fade in, and at
+/// which they are opaque.
+pub const LANE_LABEL_SPACING: std::ops::RangeInclusive<f32> = 12.0..=16.0;
+
+/// Height (px) under which a time plot is short: small legend text and
+/// short y labels.
+pub const SHORT_PLOT_PX: f32 = 160.0;
+
+/// Text of the time plots' legends: small in short plots (small windows),
+/// where body text made a legend of five points cover most of the plot.
+pub fn legend_text(plot_height: f32) -> TextStyle {
+    if plot_height < SHORT_PLOT_PX {
+        TextStyle::Small
+    } else {
+        TextStyle::Body
+    }
+}
+
+/// Where the time plots' legends go: while following a full window the
+/// newest samples are drawn at the right edge, so the legends move to the
+/// left (over the oldest samples of the window); before the window fills
+/// (data on the left only) and over the whole run, top right.
+pub fn legend_corner(follow: bool, t_end_s: f64, window_s: f64) -> Corner {
+    if follow && t_end_s > window_s {
+        Corner::LeftTop
+    } else {
+        Corner::RightTop
     }
 }
 
@@ -205,6 +274,11 @@ pub fn clip_at(pts: &mut [[f64; 2]], top: f64, marks: &mut Vec<[f64; 2]>) {
     }
 }
 
+/// Colour of the marks of clipped impacts: a mid grey, seen on the dark
+/// theme's and the light (classroom) theme's plot background alike (light
+/// grey vanished on white).
+pub const IMPACT_MARK_COLOR: egui::Color32 = egui::Color32::from_gray(140);
+
 /// Draws the marks of clipped impacts, `shape` ▼ (`Down`) at a top edge
 /// (nothing when there are none).
 pub fn impact_marks(pui: &mut PlotUi<'_>, marks: Vec<[f64; 2]>, shape: MarkerShape) {
@@ -214,7 +288,7 @@ pub fn impact_marks(pui: &mut PlotUi<'_>, marks: Vec<[f64; 2]>, shape: MarkerSha
                 .shape(shape)
                 .filled(true)
                 .radius(4.0)
-                .color(egui::Color32::from_gray(200)),
+                .color(IMPACT_MARK_COLOR),
         );
     }
 }
@@ -297,6 +371,9 @@ pub fn clip_checkbox(ui: &mut Ui, clip_impacts: &mut bool) {
         .on_hover_text(
             "Rigid contact makes an impact an impulse: its step is drawn as impulse / dt, \
          far above the contact force. On: the force axis fits the force without \
-         impacts and clipped impacts are marked ▼ at the top. Off: the full range.",
+         impacts and clipped impacts are marked ▼ at the top. Off: the full range. \
+         With the paper contact scheme (no located impacts) a landing step is the \
+         impact: in a step where a point's force turns positive, each point's rise \
+         over its previous step's force counts as impulse / dt.",
         );
 }

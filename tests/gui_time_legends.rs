@@ -1,0 +1,138 @@
+//! The time plots' legends keep off the newest samples: while following a
+//! full window (newest samples at the right edge) they sit at the left; before
+//! the window fills (samples on the left only), at the right.
+#![cfg(feature = "gui")]
+
+mod common;
+use common::{advance, harness};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use std::path::Path;
+use tirecontact::Scene;
+use tirecontact::gui::App;
+
+/// Horizontal centres of the legend entries "point 0" of the four plots.
+fn legend_x(h: &Harness<'_, App>) -> Vec<f32> {
+    h.get_all_by_label("point 0")
+        .map(|n| n.rect().center().x)
+        .collect()
+}
+
+#[test]
+fn the_legends_keep_off_the_newest_samples() {
+    let scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    let mut h = harness(App::new(scene, None).unwrap());
+    h.run();
+    // 0.02 s of a 0.1 s window: samples on the left, legends on the right
+    advance(&mut h, 2_000);
+    h.run_steps(2);
+    let xs = legend_x(&h);
+    assert_eq!(xs.len(), 4, "one legend per plot: {xs:?}");
+    let plot_mid = 0.5 * (h.ctx.content_rect().right() + 360.0);
+    assert!(xs.iter().all(|&x| x > plot_mid), "{xs:?} vs {plot_mid}");
+    // 0.15 s: the window is full and its newest samples are at the right
+    advance(&mut h, 13_000);
+    h.run_steps(2);
+    let xs = legend_x(&h);
+    assert_eq!(xs.len(), 4, "{xs:?}");
+    assert!(xs.iter().all(|&x| x < plot_mid), "{xs:?} vs {plot_mid}");
+}
+
+/// The contact scheme's combo box says what the schemes are on hover.
+#[test]
+fn the_contact_scheme_explains_itself_on_hover() {
+    let scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    let mut h = harness(App::new(scene, None).unwrap());
+    h.run();
+    assert!(
+        h.query_by_label_contains("contact decided at step ends")
+            .is_none()
+    );
+    // the grid's label, then the combo box of the same name
+    let combo = h
+        .get_all_by_label("contact scheme")
+        .last()
+        .expect("combo box");
+    combo.hover();
+    // tooltips show after a short delay
+    for _ in 0..60 {
+        h.run_steps(1);
+    }
+    assert!(
+        h.query_by_label_contains("contact decided at step ends")
+            .is_some(),
+        "the tooltip names the schemes"
+    );
+}
+
+fn small_harness(app: App) -> Harness<'static, App> {
+    Harness::builder()
+        .with_size([1280.0, 720.0])
+        .with_step_dt(1.0 / 60.0)
+        .build_ui_state(|ui, app: &mut App| app.show(ui), app)
+}
+
+/// In a 1280 × 720 window the contact plot's lanes are closer than the
+/// 20 px below which egui_plot hides y labels by default; the plot shows
+/// them from `LANE_LABEL_SPACING` on, and the legends use smaller text.
+#[test]
+fn short_plots_keep_their_lane_labels_and_smaller_legends() {
+    use egui_plot::PlotMemory;
+    use tirecontact::gui::views::time_plots::{CONTACT_PLOT_ID, LANE_LABEL_SPACING};
+    let scene = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    let mut small = small_harness(App::new(scene.clone(), None).unwrap());
+    small.run();
+    advance(&mut small, 200);
+    small.run_steps(2);
+    let mem = PlotMemory::load(&small.ctx, egui::Id::unique(CONTACT_PLOT_ID)).expect("plot shown");
+    let lane_px = mem.transform().dpos_dvalue_y().abs() as f32;
+    assert!(lane_px < 20.0, "the premise: lanes {lane_px} px apart");
+    assert!(
+        lane_px >= *LANE_LABEL_SPACING.end(),
+        "lane labels fully shown from {} px: lanes {lane_px} px apart",
+        LANE_LABEL_SPACING.end()
+    );
+    let entry_h = |h: &Harness<'_, App>| {
+        h.get_all_by_label("point 0")
+            .map(|n| n.rect().height())
+            .fold(0.0f32, f32::max)
+    };
+    let mut big = harness(App::new(scene, None).unwrap());
+    big.run();
+    advance(&mut big, 200);
+    big.run_steps(2);
+    assert!(
+        entry_h(&small) < entry_h(&big),
+        "legend entries {} px (1280 × 720) vs {} px (1500 × 950)",
+        entry_h(&small),
+        entry_h(&big)
+    );
+}
+
+/// With the mode bars open in a 1280 × 720 window the time plots are about
+/// 470 px wide: 0.01 s ticks of the 0.1 s window are closer than the 60 px
+/// below which egui_plot hides x labels by default (one label was left); the
+/// time axes show them from `TIME_LABEL_SPACING` on.
+#[test]
+fn narrow_time_plots_keep_their_time_labels() {
+    use egui_plot::PlotMemory;
+    use tirecontact::gui::views::time_plots::{FORCE_PLOT_ID, TIME_LABEL_SPACING};
+    let scene = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    let mut h = small_harness(App::new(scene, None).unwrap());
+    h.run();
+    h.state_mut()
+        .apply(tirecontact::gui::Command::ShowModeBars(true));
+    advance(&mut h, 200);
+    h.run_steps(2);
+    let mem = PlotMemory::load(&h.ctx, egui::Id::unique(FORCE_PLOT_ID)).expect("plot shown");
+    let tick_px = (0.01 * mem.transform().dpos_dvalue_x()) as f32;
+    assert!(
+        tick_px < 60.0,
+        "the premise: 0.01 s ticks {tick_px} px apart"
+    );
+    assert!(
+        tick_px >= *TIME_LABEL_SPACING.end(),
+        "time labels fully shown from {} px: ticks {tick_px} px apart",
+        TIME_LABEL_SPACING.end()
+    );
+}
