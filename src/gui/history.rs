@@ -69,9 +69,23 @@ pub struct History {
 /// without impacts holds its previous value, `min(q[i], q_prev[i])`); in
 /// other steps the impact part is zero.
 pub fn paper_impact_n(q: &[f64], q_prev: &[f64], i: usize) -> f64 {
-    let landing = q.iter().zip(q_prev).any(|(&a, &b)| a > 0.0 && b <= 0.0);
-    match (landing, q.get(i), q_prev.get(i)) {
-        (true, Some(&a), Some(&b)) => (a - b).max(0.0),
+    if is_landing_step(q, q_prev) {
+        rise_n(q, q_prev, i)
+    } else {
+        0.0
+    }
+}
+
+/// Whether some point's force turns positive after a step without force
+/// (the landing step of [`paper_impact_n`]).
+fn is_landing_step(q: &[f64], q_prev: &[f64]) -> bool {
+    q.iter().zip(q_prev).any(|(&a, &b)| a > 0.0 && b <= 0.0)
+}
+
+/// `max(q[i] - q_prev[i], 0)` (N); 0 for a point out of range.
+fn rise_n(q: &[f64], q_prev: &[f64], i: usize) -> f64 {
+    match (q.get(i), q_prev.get(i)) {
+        (Some(&a), Some(&b)) => (a - b).max(0.0),
         _ => 0.0,
     }
 }
@@ -161,8 +175,11 @@ impl History {
         }
         if self.paper_impacts {
             let q = sim.force_n();
-            for (i, s) in self.q_impact_sum.iter_mut().enumerate() {
-                *s += paper_impact_n(q, &self.q_prev, i);
+            // (the landing test once per step, not once per point)
+            if is_landing_step(q, &self.q_prev) {
+                for (i, s) in self.q_impact_sum.iter_mut().enumerate() {
+                    *s += rise_n(q, &self.q_prev, i);
+                }
             }
             for (a, &b) in self.q_prev.iter_mut().zip(q) {
                 *a = b;
