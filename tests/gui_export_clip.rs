@@ -110,3 +110,38 @@ fn the_exported_force_panel_clips_located_impacts() {
 fn the_exported_force_panel_clips_the_paper_schemes_landings() {
     check("paper", ContactScheme::Paper, 12_000);
 }
+
+#[test]
+fn the_exported_contact_lanes_are_named_after_their_points() {
+    let scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    let mut h = harness(App::new(scene, None).unwrap());
+    h.run();
+    advance(&mut h, 200);
+    let app = h.state();
+    let hist = app.history();
+    // point 1 hidden: lanes 0, 1 are points 0 and 2
+    let shown = vec![true, false, true];
+    let fig = time_figure(app.scene(), app.modes(), hist, &shown, true);
+    let lanes = fig
+        .panels
+        .iter()
+        .find(|p| p.title.starts_with("contact state"))
+        .expect("a contact panel");
+    assert_eq!(lanes.y_names, ["p0", "p2"]);
+    // the other panels keep numeric ticks
+    assert!(
+        fig.panels
+            .iter()
+            .filter(|p| !p.title.starts_with("contact state"))
+            .all(|p| p.y_names.is_empty())
+    );
+    // one legend of the points, in the first panel (same colours in all)
+    let named = |p: &tirecontact::output::figures::Panel| {
+        p.series
+            .iter()
+            .filter(|s| s.name.starts_with("point "))
+            .count()
+    };
+    assert_eq!(named(&fig.panels[0]), 2);
+    assert!(fig.panels[1..].iter().all(|p| named(p) == 0));
+}

@@ -512,6 +512,7 @@ pub fn figure(rows: &[Row], scene: &str) -> Figure {
             .collect(),
         log_x: true,
         log_y: true,
+        y_names: Vec::new(),
     };
     Figure {
         title: format!("Work-precision: {scene}"),

@@ -118,7 +118,8 @@ pub fn time_figure(
     ];
     let panels = defs
         .iter()
-        .map(|&(what, title, y_label, scale)| {
+        .enumerate()
+        .map(|(panel_index, &(what, title, y_label, scale))| {
             let top = force_top.filter(|_| what == Quantity::Force);
             let mut marks = Vec::new();
             let mut series: Vec<Series> = shown_points
@@ -143,7 +144,15 @@ pub fn time_figure(
                             }
                         }
                     }
-                    let mut s = Series::line(format!("point {i}"), pts);
+                    // the points' colours are the same in every panel: one
+                    // legend, in the first (four legends of 5-50 entries
+                    // covered the data and overflowed short panels)
+                    let name = if panel_index == 0 {
+                        format!("point {i}")
+                    } else {
+                        String::new()
+                    };
+                    let mut s = Series::line(name, pts);
                     s.color = Some(i);
                     if what == Quantity::Force {
                         // one-pixel lines: wide ones overshoot the panel at
@@ -163,11 +172,17 @@ pub fn time_figure(
                     color: Some(IMPACT_COLOR),
                 });
             }
+            // the contact lanes named after their points
+            let y_names = match what {
+                Quantity::Contact => shown_points.iter().map(|i| format!("p{i}")).collect(),
+                _ => Vec::new(),
+            };
             Panel {
                 title,
                 x_label: "time t (s)".to_string(),
                 y_label: y_label.to_string(),
                 series,
+                y_names,
                 ..Panel::default()
             }
         })

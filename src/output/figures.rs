@@ -52,6 +52,10 @@ pub struct Panel {
     pub series: Vec<Series>,
     pub log_x: bool,
     pub log_y: bool,
+    /// Names of categorical y values `0, 1, 2, …` (e.g. one lane per
+    /// point): the y axis is labelled with these at the integers instead of
+    /// numbers. Empty: numeric ticks.
+    pub y_names: Vec<String>,
 }
 
 /// A figure: a title, an optional subtitle line (scene parameters), panels
@@ -127,6 +131,16 @@ fn range(vals: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     }
     let pad = 0.04 * (hi - lo);
     (lo - pad, hi + pad)
+}
+
+/// The label of a categorical y tick at `v`: `names[k]` where `v` is the
+/// integer `k`, nothing between (see [`Panel::y_names`]).
+pub fn name_tick_label(v: f64, names: &[String]) -> String {
+    let k = v.round();
+    if (v - k).abs() > 1e-6 || k < 0.0 {
+        return String::new();
+    }
+    names.get(k as usize).cloned().unwrap_or_default()
 }
 
 /// A compact tick label: `1e-5` on log axes, `90000`, `0.25`, `1.5e-7` otherwise.
@@ -260,11 +274,27 @@ fn draw_panel(
             let mut chart = $chart;
             let (lx, ly) = (panel.log_x, panel.log_y);
             let fx = move |v: &f64| tick_label(*v, lx);
-            let fy = move |v: &f64| tick_label(*v, ly);
+            let names = &panel.y_names;
+            let fy = move |v: &f64| {
+                if names.is_empty() {
+                    tick_label(*v, ly)
+                } else {
+                    name_tick_label(*v, names)
+                }
+            };
+            // categorical: one tick per name (plotters picks nice values,
+            // the integers among them for this count); numeric: at most one
+            // label per 2.5 label heights (ten crowded a short panel)
+            let y_ticks = if names.is_empty() {
+                ((plot_h / (2.5 * f64::from(fs(14.0)))) as usize).clamp(3, 10)
+            } else {
+                names.len() + 1
+            };
             chart
                 .configure_mesh()
                 .x_label_formatter(&fx)
                 .y_label_formatter(&fy)
+                .y_labels(y_ticks)
                 .x_desc(panel.x_label.as_str())
                 .y_desc(panel.y_label.as_str())
                 .label_style(("sans-serif", fs(14.0) as i32))
@@ -376,5 +406,16 @@ mod tests {
         assert_eq!((w, h), (640, 400));
         assert!(render_png(&fig, &path, 10, 400).is_err());
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn categorical_ticks_name_the_integers_only() {
+        let names: Vec<String> = (0..5).map(|k| format!("p{k}")).collect();
+        assert_eq!(name_tick_label(0.0, &names), "p0");
+        assert_eq!(name_tick_label(3.0000000001, &names), "p3");
+        assert_eq!(name_tick_label(4.0, &names), "p4");
+        for v in [0.5, 2.3, -1.0, 5.0, 7.0] {
+            assert_eq!(name_tick_label(v, &names), "", "at {v}");
+        }
     }
 }
