@@ -88,6 +88,7 @@ fn headless_default() -> cli::CliResult {
         every: 1,
         max_output_gb: cli::run::DEFAULT_MAX_OUTPUT_GB,
         plot: None,
+        plot_unclipped: false,
         plot_size: (1400, 900),
         spectrum: None,
         spectrum_plot: None,

@@ -328,3 +328,29 @@ fn bench_quick_writes_its_tables_and_diagram() {
     assert_eq!(&png[..4], b"\x89PNG");
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn run_plots_clipped_by_default_and_whole_on_request() {
+    let d = tmpdir("plot");
+    for (name, extra) in [
+        ("clipped.png", None),
+        ("whole.png", Some("--plot-unclipped")),
+    ] {
+        let png = d.join(name);
+        let o = bin()
+            .args(["run", "presets/three_points.ron", "--duration", "0.03"])
+            .arg("--plot")
+            .arg(&png)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(&std::fs::read(&png).unwrap()[1..4], b"PNG");
+    }
+    // the two figures differ (the spikes are cut in one)
+    assert_ne!(
+        std::fs::read(d.join("clipped.png")).unwrap(),
+        std::fs::read(d.join("whole.png")).unwrap()
+    );
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -25,9 +25,15 @@ pub struct RunArgs {
     /// Write one CSV row every N steps (forces averaged over them).
     #[arg(long, default_value_t = 1)]
     pub every: u64,
-    /// Also draw displacements and forces of every point to this PNG.
+    /// Also draw displacements and forces of every point to this PNG (impact
+    /// spikes clipped a margin above the force without impacts and marked by
+    /// dots; see --plot-unclipped).
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// Draw the impact spikes of the --plot force panel whole (impulse / dt:
+    /// tens of kN, which squash the rolling force to a line).
+    #[arg(long)]
+    pub plot_unclipped: bool,
     /// Refuse up front a run whose CSV (`-o`) would be larger than this
     /// (decimal GB; estimated as rows × columns × 17 bytes).
     #[arg(long, default_value_t = DEFAULT_MAX_OUTPUT_GB)]
@@ -320,7 +326,12 @@ pub fn run(args: &RunArgs) -> CliResult {
     }
     let wall = start.elapsed().as_secs_f64();
     if let (Some(r), Some(path)) = (rec, &args.plot) {
-        let fig = r.figure(&scene.name, &scene_summary(&scene), scene.dt_s);
+        let fig = r.figure(
+            &scene.name,
+            &scene_summary(&scene),
+            scene.dt_s,
+            !args.plot_unclipped,
+        );
         tirecontact::output::figures::render_png(&fig, path, args.plot_size.0, args.plot_size.1)?;
         eprintln!("wrote {}", path.display());
     }

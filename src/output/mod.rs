@@ -3,6 +3,7 @@
 pub mod animation;
 pub mod csv;
 pub mod figures;
+pub mod impacts;
 pub mod record;
 
 use std::io::Write;
