@@ -1,6 +1,6 @@
 //! "clip impact spikes" with the paper's contact scheme (`contact_scheme:
 //! Paper`), which locates no impacts: its landing steps are the impacts
-//! (rule of `history::paper_impact_n`), so the force plot fits the rolling
+//! (rule of `output::impacts::paper_impact_n`, unit-tested there), so the force plot fits the rolling
 //! force and marks the first-contact spikes ▼, as it does for located impacts.
 #![cfg(feature = "gui")]
 
@@ -10,7 +10,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
 use std::path::Path;
-use tirecontact::gui::history::{History, Quantity, paper_impact_n};
+use tirecontact::gui::history::{History, Quantity};
 use tirecontact::gui::views::time_plots::{FORCE_PLOT_ID, clip_level};
 use tirecontact::gui::{App, Command};
 use tirecontact::scene::ContactScheme;
@@ -45,19 +45,6 @@ fn paper_maxima(steps: usize, from: usize) -> (Vec<f64>, Vec<f64>) {
             .collect::<Vec<f64>>()
     };
     (max(Quantity::Force), max(Quantity::ForceWithoutImpacts))
-}
-
-#[test]
-fn the_paper_rule_takes_the_rise_of_a_landing_step() {
-    // no point lands: nothing is an impact, even a rising force
-    assert_eq!(paper_impact_n(&[5.0, 9.0], &[4.0, 1.0], 1), 0.0);
-    // point 0 lands: its whole force and point 1's rise are impacts
-    assert_eq!(paper_impact_n(&[300.0, 90.0], &[0.0, 40.0], 0), 300.0);
-    assert_eq!(paper_impact_n(&[300.0, 90.0], &[0.0, 40.0], 1), 50.0);
-    // a falling force of a landing step is no impact
-    assert_eq!(paper_impact_n(&[300.0, 30.0], &[0.0, 40.0], 1), 0.0);
-    // out of range: no impact, no panic
-    assert_eq!(paper_impact_n(&[300.0], &[0.0], 3), 0.0);
 }
 
 /// The paper scheme's force without impacts has the rolling force's range

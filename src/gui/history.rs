@@ -6,7 +6,8 @@
 //! run, and the whole run stays visible at a coarser resolution.
 
 use crate::Simulation;
-use crate::scene::ContactScheme;
+use crate::output::impacts::ImpactTracker;
+pub use crate::output::impacts::paper_impact_n;
 
 /// Samples kept across all series (bounds memory to a few tens of MB).
 pub const DEFAULT_BUDGET: usize = 8_000_000;
@@ -49,45 +50,9 @@ pub struct History {
     q_impact: Vec<Vec<f32>>,
     gap: Vec<Vec<f32>>,
     contact: Vec<Vec<u8>>,
-    /// The run uses the paper's contact scheme (no located impacts): its
-    /// impacts are taken from the landing steps (see [`paper_impact_n`]).
-    paper_impacts: bool,
-    /// Step-mean contact forces of the previous step (N), for `paper_impacts`.
-    q_prev: Vec<f64>,
-}
-
-/// The impact part (N, impulse / dt) of point `i`'s step-mean force `q[i]`
-/// under the paper's contact scheme, which locates no impacts: the first
-/// step of a contact absorbs the landing point's momentum as one huge
-/// step-mean force (tens of kN against about 1 kN of rolling force), and the
-/// points already in contact feel it through the tyre in the same step.
-///
-/// Rule: a step is a *landing step* when some point's force turns positive
-/// after a step without force (`q[k] > 0`, `q_prev[k] <= 0`). In a landing
-/// step, each point's rise over its previous step's force,
-/// `max(q[i] - q_prev[i], 0)`, is the impact's impulse / dt (so the force
-/// without impacts holds its previous value, `min(q[i], q_prev[i])`); in
-/// other steps the impact part is zero.
-pub fn paper_impact_n(q: &[f64], q_prev: &[f64], i: usize) -> f64 {
-    if is_landing_step(q, q_prev) {
-        rise_n(q, q_prev, i)
-    } else {
-        0.0
-    }
-}
-
-/// Whether some point's force turns positive after a step without force
-/// (the landing step of [`paper_impact_n`]).
-fn is_landing_step(q: &[f64], q_prev: &[f64]) -> bool {
-    q.iter().zip(q_prev).any(|(&a, &b)| a > 0.0 && b <= 0.0)
-}
-
-/// `max(q[i] - q_prev[i], 0)` (N); 0 for a point out of range.
-fn rise_n(q: &[f64], q_prev: &[f64], i: usize) -> f64 {
-    match (q.get(i), q_prev.get(i)) {
-        (Some(&a), Some(&b)) => (a - b).max(0.0),
-        _ => 0.0,
-    }
+    /// The impact part of each step's forces: located impulses / dt, or
+    /// the paper scheme's landing steps (see [`paper_impact_n`]).
+    impacts: ImpactTracker,
 }
 
 impl History {
@@ -108,8 +73,7 @@ impl History {
             q_impact: vec![Vec::new(); p],
             gap: vec![Vec::new(); p],
             contact: vec![Vec::new(); p],
-            paper_impacts: false,
-            q_prev: vec![0.0; p],
+            impacts: ImpactTracker::default(),
         }
     }
 
@@ -149,12 +113,7 @@ impl History {
         self.q_impact_sum.fill(0.0);
         self.contact_any.fill(false);
         self.count = 0;
-        let scene = sim.scene();
-        self.paper_impacts =
-            scene.contact_scheme == ContactScheme::Paper && scene.contact.is_rigid();
-        self.q_prev.clear();
-        self.q_prev.extend_from_slice(sim.force_n());
-        self.q_prev.resize(self.p, 0.0);
+        self.impacts = ImpactTracker::start(sim);
         self.push(sim, 1);
     }
 
@@ -169,22 +128,7 @@ impl History {
             *s += q;
             *c |= *q > 0.0;
         }
-        let dt_s = sim.dt_s();
-        for (s, j) in self.q_impact_sum.iter_mut().zip(sim.impact_impulse_ns()) {
-            *s += j / dt_s;
-        }
-        if self.paper_impacts {
-            let q = sim.force_n();
-            // (the landing test once per step, not once per point)
-            if is_landing_step(q, &self.q_prev) {
-                for (i, s) in self.q_impact_sum.iter_mut().enumerate() {
-                    *s += rise_n(q, &self.q_prev, i);
-                }
-            }
-            for (a, &b) in self.q_prev.iter_mut().zip(q) {
-                *a = b;
-            }
-        }
+        self.impacts.add_step(sim, &mut self.q_impact_sum);
         self.count += 1;
         if self.count >= self.stride {
             let n = self.count;

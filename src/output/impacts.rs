@@ -53,6 +53,14 @@ pub struct ImpactTracker {
 }
 
 impl ImpactTracker {
+    /// A tracker starting from `sim`'s current forces (the step before the
+    /// next one recorded).
+    pub fn start(sim: &crate::Simulation) -> Self {
+        ImpactTracker {
+            q_prev: sim.force_n().to_vec(),
+        }
+    }
+
     /// Adds each point's impact part of the step just taken to `sums`.
     pub fn add_step(&mut self, sim: &crate::Simulation, sums: &mut [f64]) {
         let scene = sim.scene();
