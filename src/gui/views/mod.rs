@@ -5,6 +5,7 @@
 pub mod compare_view;
 pub mod fidelity_view;
 pub mod green_view;
+pub mod legend_place;
 pub mod scene_view;
 pub mod spectra_view;
 pub mod sweep_view;
