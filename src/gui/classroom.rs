@@ -411,6 +411,10 @@ fn mute_rows(
     }
 }
 
+/// Share of the presenter panel's height the scene description may take
+/// before it scrolls (the mode bars below fit the rest).
+pub const DESCRIPTION_SHARE: f32 = 0.5;
+
 /// The explanation of the scene, large (the guided presets' "what to watch").
 pub fn explanation(ui: &mut Ui, name: &str, description: &str) {
     if description.is_empty() {
@@ -423,8 +427,15 @@ pub fn explanation(ui: &mut Ui, name: &str, description: &str) {
         .corner_radius(4.0)
         .show(ui, |ui| {
             ui.label(RichText::new(name).strong().heading());
+            // up to half the panel, in whole lines (no line cut in half); a
+            // longer text scrolls with its scroll bar always shown
+            let row_px = ui.text_style_height(&egui::TextStyle::Body);
+            let lines = (ui.available_height() * DESCRIPTION_SHARE / row_px)
+                .floor()
+                .max(2.0);
             egui::ScrollArea::vertical()
-                .max_height(ui.available_height() * 0.25)
+                .max_height(lines * row_px)
+                .scroll_bar_visibility(egui::scroll_area::ScrollBarVisibility::AlwaysVisible)
                 .show(ui, |ui| {
                     ui.label(RichText::new(description).color(ui.visuals().strong_text_color()));
                 });

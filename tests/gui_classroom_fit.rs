@@ -1,0 +1,79 @@
+//! Classroom mode at projector sizes (1600 × 1000, 1280 × 720): the scene's
+//! description is shown whole above the mode bars, and the status bar's
+//! labels stay inside the window without overlapping.
+#![cfg(feature = "gui")]
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use std::path::{Path, PathBuf};
+use tirecontact::Scene;
+use tirecontact::gui::{App, Command};
+
+fn classroom(name: &str, size: [f32; 2]) -> Harness<'static, App> {
+    // opened from its file, as `tirecontact gui presets/…` does
+    let path = PathBuf::from(format!("presets/{name}.ron"));
+    let app = App::new(Scene::load(Path::new(&path)).unwrap(), Some(path)).unwrap();
+    let mut h = Harness::builder()
+        .with_size(size)
+        .with_step_dt(1.0 / 60.0)
+        .build_ui_state(|ui, app: &mut App| app.show(ui), app);
+    h.run();
+    h.state_mut().apply(Command::SetClassroom(true));
+    h.run_steps(4);
+    h
+}
+
+const SIZES: [[f32; 2]; 2] = [[1600.0, 1000.0], [1280.0, 720.0]];
+
+#[test]
+fn the_description_is_shown_whole_above_the_mode_bars() {
+    for size in SIZES {
+        let h = classroom("guided_1a_soft_tyre", size);
+        let d = h.state().scene().description.clone();
+        let text = h.get_by_label(&d).rect();
+        let below = h.get_by_label("Mode contributions").rect();
+        eprintln!(
+            "{size:?}: description {text:?}, next heading at {}",
+            below.top()
+        );
+        assert!(
+            text.bottom() <= below.top(),
+            "{size:?}: description ends at {} px, below the mode bars' heading at {} px",
+            text.bottom(),
+            below.top()
+        );
+    }
+}
+
+#[test]
+fn the_status_bar_fits_the_window() {
+    for size in SIZES {
+        let mut h = classroom("guided_1a_soft_tyre", size);
+        // an edit: the file name gets "(unsaved changes)", the longest status
+        let mut edited = h.state().scene().clone();
+        edited.speed_mps = 20.0;
+        h.state_mut().apply(Command::EditScene(Box::new(edited)));
+        h.run_steps(4);
+        let mut rects: Vec<egui::Rect> = ["guided_1a_soft_tyre.ron", "points,", "history:", " fps"]
+            .iter()
+            .map(|l| h.get_by_label_contains(l).rect())
+            .collect();
+        eprintln!("{size:?}: status labels {rects:?}");
+        for r in &rects {
+            assert!(
+                r.left() >= 0.0 && r.right() <= size[0],
+                "{size:?}: {r:?} outside"
+            );
+            assert!(r.bottom() <= size[1], "{size:?}: {r:?} below the window");
+        }
+        rects.sort_by(|a, b| a.left().total_cmp(&b.left()));
+        for (i, a) in rects.iter().enumerate() {
+            for b in &rects[i + 1..] {
+                assert!(
+                    !a.shrink(0.5).intersects(b.shrink(0.5)),
+                    "{size:?}: {a:?} overlaps {b:?}"
+                );
+            }
+        }
+    }
+}
