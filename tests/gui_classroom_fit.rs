@@ -25,9 +25,27 @@ fn classroom(name: &str, size: [f32; 2]) -> Harness<'static, App> {
 
 const SIZES: [[f32; 2]; 2] = [[1600.0, 1000.0], [1280.0, 720.0]];
 
+/// At 1280 × 720 the description and the mode bars do not both fit: the
+/// description scrolls and the bars keep their Mute buttons in the window.
+#[test]
+fn the_mode_bars_keep_their_buttons_in_a_small_window() {
+    for size in SIZES {
+        let h = classroom("guided_1a_soft_tyre", size);
+        let status_top = h.get_by_label_contains("history:").rect().top();
+        let mutes: Vec<egui::Rect> = h.get_all_by_label("Mute").map(|n| n.rect()).collect();
+        assert_eq!(mutes.len(), 3, "{size:?}");
+        for r in mutes {
+            assert!(
+                r.bottom() <= status_top,
+                "{size:?}: Mute at {r:?}, status bar at {status_top}"
+            );
+        }
+    }
+}
+
 #[test]
 fn the_description_is_shown_whole_above_the_mode_bars() {
-    for size in SIZES {
+    for size in [SIZES[0]] {
         let h = classroom("guided_1a_soft_tyre", size);
         let d = h.state().scene().description.clone();
         let text = h.get_by_label(&d).rect();
