@@ -4,6 +4,7 @@
 
 pub mod compare_view;
 pub mod fidelity_view;
+pub mod force_labels;
 pub mod green_view;
 pub mod legend_place;
 pub mod scene_view;

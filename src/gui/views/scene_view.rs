@@ -89,6 +89,10 @@ fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
     out
 }
 
+/// Legend entry of the force arrows and their value labels.
+const FORCE_NAME: &str = "contact force (length relative to the largest now; value in N)";
+const FORCE_COLOR: Color32 = Color32::from_rgb(0, 114, 178);
+
 pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
     show_with(ui, sim, opts, |_, _| {});
 }
@@ -163,12 +167,13 @@ pub fn show_with(
         .fold(0.0, |m: f64, q| m.max(*q))
         .max(1e-12);
     let arrow_len = 0.25 * e * hmax * 2.0;
-    let (mut a_from, mut a_to) = (Vec::new(), Vec::new());
+    let (mut a_from, mut a_to, mut a_q) = (Vec::new(), Vec::new(), Vec::new());
     for (i, q) in sim.force_n().iter().enumerate() {
         if *q > 0.0 {
             let [x, y] = displaced[i];
             a_from.push([x, y - arrow_len * q / qmax]);
             a_to.push([x, y]);
+            a_q.push(*q);
         }
     }
     Plot::new("tirecontact.scene_view")
@@ -238,9 +243,10 @@ pub fn show_with(
                 .radius(7.0),
             );
             if !a_from.is_empty() {
+                super::force_labels::draw(pui, FORCE_NAME, &a_from, &a_q, FORCE_COLOR);
                 pui.arrows(
-                    Arrows::new("contact force (relative to the largest now)", a_from, a_to)
-                        .color(Color32::from_rgb(0, 114, 178))
+                    Arrows::new(FORCE_NAME, a_from, a_to)
+                        .color(FORCE_COLOR)
                         .tip_length(8.0),
                 );
             }
