@@ -3,7 +3,7 @@
 //! already placed; with many points (50 in a tyre patch) only the largest
 //! that fit are labelled, and the others stay readable as arrow lengths.
 
-use egui::{Align2, Color32, TextStyle};
+use egui::{Align2, Color32, RichText, TextStyle};
 use egui_plot::{PlotPoint, PlotUi, Text};
 
 /// Text of a force label.
@@ -40,7 +40,7 @@ pub fn pick_labels(x_px: &[f32], q_n: &[f64], width_px: f32) -> Vec<usize> {
 }
 
 /// Draws the labels of the arrows whose tails are at `tails` (plot units)
-/// with forces `q_n`, under the tails.
+/// with forces `q_n`, under the tails, in `color` (a strong text colour).
 pub fn draw(pui: &mut PlotUi<'_>, name: &str, tails: &[[f64; 2]], q_n: &[f64], color: Color32) {
     let font_px = pui
         .ctx()
@@ -55,14 +55,12 @@ pub fn draw(pui: &mut PlotUi<'_>, name: &str, tails: &[[f64; 2]], q_n: &[f64], c
         .map(|t| pui.screen_from_plot(PlotPoint::new(t[0], t[1])).x)
         .collect();
     for i in pick_labels(&x_px, q_n, width_px) {
+        // body size, strong colour: egui_plot's default small text in the
+        // arrows' blue was unreadable on the road's fill
+        let text = RichText::new(force_text(q_n[i])).size(font_px).color(color);
         pui.text(
-            Text::new(
-                name,
-                PlotPoint::new(tails[i][0], tails[i][1]),
-                force_text(q_n[i]),
-            )
-            .color(color)
-            .anchor(Align2::CENTER_TOP),
+            Text::new(name, PlotPoint::new(tails[i][0], tails[i][1]), text)
+                .anchor(Align2::CENTER_TOP),
         );
     }
 }

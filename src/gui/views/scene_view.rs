@@ -176,6 +176,7 @@ pub fn show_with(
             a_q.push(*q);
         }
     }
+    let label_color = ui.visuals().strong_text_color();
     Plot::new("tirecontact.scene_view")
         .data_aspect(1.0)
         .legend(
@@ -243,12 +244,13 @@ pub fn show_with(
                 .radius(7.0),
             );
             if !a_from.is_empty() {
-                super::force_labels::draw(pui, FORCE_NAME, &a_from, &a_q, FORCE_COLOR);
                 pui.arrows(
-                    Arrows::new(FORCE_NAME, a_from, a_to)
+                    Arrows::new(FORCE_NAME, a_from.clone(), a_to)
                         .color(FORCE_COLOR)
                         .tip_length(8.0),
                 );
+                // after the arrows: the legend entry takes the arrows' colour
+                super::force_labels::draw(pui, FORCE_NAME, &a_from, &a_q, label_color);
             }
             extra(pui, &displaced);
         });
