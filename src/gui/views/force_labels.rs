@@ -25,7 +25,7 @@ pub fn pick_labels(x_px: &[f32], q_n: &[f64], width_px: f32) -> Vec<usize> {
     order.sort_by(|&a, &b| q_n[b].total_cmp(&q_n[a]));
     let mut chosen: Vec<usize> = Vec::new();
     for i in order {
-        if !x_px[i].is_finite() || !(q_n[i] > 0.0) {
+        if !x_px[i].is_finite() || q_n[i].is_nan() || q_n[i] <= 0.0 {
             continue;
         }
         if chosen
