@@ -452,6 +452,8 @@ pub fn explanation(ui: &mut Ui, name: &str, description: &str, reserve_px: f32) 
             let room = (ui.available_height() * DESCRIPTION_SHARE)
                 .min(ui.available_height() - reserve_px - 24.0);
             let lines = (room / row_px).floor().max(2.0);
+            // a solid bar: the thin floating one was invisible on a projector
+            ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
             egui::ScrollArea::vertical()
                 .max_height(lines * row_px)
                 .scroll_bar_visibility(egui::scroll_area::ScrollBarVisibility::AlwaysVisible)
