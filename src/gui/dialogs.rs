@@ -35,11 +35,7 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
 
 /// File, run statistics and frame rate.
 pub fn status_bar(ui: &mut Ui, app: &App) {
-    // wrapped: in classroom mode's large text a narrow window gets a second
-    // line instead of labels drawn over each other or past the edge
-    ui.horizontal_wrapped(|ui| {
-        // whole labels move to the next line; none wraps inside itself
-        ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
+    ui.horizontal(|ui| {
         let text = document_label(app.path.as_deref(), &app.scene.name, app.is_dirty());
         if app.is_dirty() {
             ui.label(RichText::new(text).color(ERROR_COLOR));
@@ -68,21 +64,13 @@ pub fn status_bar(ui: &mut Ui, app: &App) {
             ui.spinner();
             ui.label("writing CSV…");
         }
-        let fps = |ui: &mut Ui| {
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
             ui.label(RichText::new(format!("{:.0} fps", app.fps())).weak())
                 .on_hover_text(format!(
                     "frames per second; solver and UI code take {:.1} ms per frame",
                     app.app_ms()
                 ));
-        };
-        // right-aligned when the row has room for it, else on the next line
-        let fps_px = 5.0 * ui.text_style_height(&egui::TextStyle::Body);
-        if ui.available_width() >= fps_px {
-            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), fps);
-        } else {
-            ui.end_row();
-            fps(ui);
-        }
+        });
     });
 }
 
