@@ -45,7 +45,8 @@ fn the_mode_bars_keep_their_buttons_in_a_small_window() {
 
 #[test]
 fn the_description_is_shown_whole_above_the_mode_bars() {
-    for size in [SIZES[0]] {
+    {
+        let size = SIZES[0];
         let h = classroom("guided_1a_soft_tyre", size);
         let d = h.state().scene().description.clone();
         let text = h.get_by_label(&d).rect();
