@@ -315,11 +315,7 @@ pub fn mode_bars(
         .layout_no_wrap(MODE_BARS_Y_LABEL.to_owned(), body, Color32::WHITE)
         .size()
         .x;
-    // the x axis below the frame: tick labels and the axis label
-    let x_axis_h = 3.0 * ui.text_style_height(&egui::TextStyle::Body);
-    let h = (ui.available_height() - row * (n as f32 + 1.2))
-        .max(150.0)
-        .max(label_w + x_axis_h + 16.0);
+    let h = (ui.available_height() - row * (n as f32 + 1.2)).max(bars_plot_min_px(ui, label_w));
     Plot::new("tirecontact.mode_bars")
         .id(egui::Id::unique(MODE_BARS_PLOT_ID))
         .height(h)
@@ -411,8 +407,35 @@ fn mute_rows(
     }
 }
 
+/// Least height (px) of the mode bars' plot: its y label (`label_w` px
+/// long, drawn vertically) beside the frame, and the x axis below it.
+fn bars_plot_min_px(ui: &Ui, label_w: f32) -> f32 {
+    // the x axis below the frame: tick labels and the axis label
+    let x_axis_h = 3.0 * ui.text_style_height(&egui::TextStyle::Body);
+    (label_w + x_axis_h + 16.0).max(150.0)
+}
+
+/// Height (px) the mode bars need below the description: their heading,
+/// point picker and sum line, the plot at its least height and one row per
+/// mode (`mode_bars` then fits the plot to the rest).
+pub fn mode_bars_min_px(ui: &Ui, num_modes: usize) -> f32 {
+    let body = egui::TextStyle::Body.resolve(ui.style());
+    let label_w = ui
+        .painter()
+        .layout_no_wrap(MODE_BARS_Y_LABEL.to_owned(), body, Color32::WHITE)
+        .size()
+        .x;
+    let row = ui.spacing().interact_size.y + ui.spacing().item_spacing.y;
+    bars_plot_min_px(ui, label_w) + row * (num_modes as f32 + 4.2)
+}
+
+/// Share of the presenter panel's height the scene description may take
+/// before it scrolls (the mode bars below fit the rest).
+pub const DESCRIPTION_SHARE: f32 = 0.5;
+
 /// The explanation of the scene, large (the guided presets' "what to watch").
-pub fn explanation(ui: &mut Ui, name: &str, description: &str) {
+/// `reserve_px`: height kept below it (for the mode bars).
+pub fn explanation(ui: &mut Ui, name: &str, description: &str, reserve_px: f32) {
     if description.is_empty() {
         return;
     }
@@ -423,8 +446,17 @@ pub fn explanation(ui: &mut Ui, name: &str, description: &str) {
         .corner_radius(4.0)
         .show(ui, |ui| {
             ui.label(RichText::new(name).strong().heading());
+            // up to half the panel, in whole lines (no line cut in half); a
+            // longer text scrolls with its scroll bar always shown
+            let row_px = ui.text_style_height(&egui::TextStyle::Body);
+            let room = (ui.available_height() * DESCRIPTION_SHARE)
+                .min(ui.available_height() - reserve_px - 24.0);
+            let lines = (room / row_px).floor().max(2.0);
+            // a solid bar: the thin floating one was invisible on a projector
+            ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
             egui::ScrollArea::vertical()
-                .max_height(ui.available_height() * 0.25)
+                .max_height(lines * row_px)
+                .scroll_bar_visibility(egui::scroll_area::ScrollBarVisibility::AlwaysVisible)
                 .show(ui, |ui| {
                     ui.label(RichText::new(description).color(ui.visuals().strong_text_color()));
                 });

@@ -26,7 +26,8 @@ impl App {
             .resizable(true)
             .default_size(0.34 * ui.available_width())
             .show(ui, |ui| {
-                classroom::explanation(ui, &self.scene.name, &self.scene.description);
+                let reserve_px = classroom::mode_bars_min_px(ui, self.modes.len());
+                classroom::explanation(ui, &self.scene.name, &self.scene.description, reserve_px);
                 ui.separator();
                 classroom::mode_bars(
                     ui,

@@ -4,15 +4,15 @@
 //! app across parameter edits and restarts. As in the time plots, the force
 //! plot can clip impact spikes (fit the force without impacts, mark ▼).
 
-use super::point_color;
 use super::time_plots::{clip_at, clip_checkbox, clip_level, force_range, impact_marks, y_range};
+use super::{legend_place, point_color};
 use crate::compare::{PinnedRun, RunDifference};
 use crate::gui::command::Command;
 use crate::gui::history::{History, Quantity, decimate_min_max};
 use crate::gui::research::ResearchCommand;
 use crate::gui::research::state::CompareOptions;
 use egui::{Id, RichText, Ui};
-use egui_plot::{Corner, Legend, Line, LineStyle, MarkerShape, Plot};
+use egui_plot::{Line, LineStyle, MarkerShape, Plot};
 
 /// Plot id of the force plot (its bounds are read by the tests).
 pub const FORCE_PLOT_ID: &str = "tirecontact.compare.force";
@@ -25,6 +25,8 @@ pub const DISPLACEMENT_DIFF_PLOT_ID: &str = "tirecontact.compare.displacement_di
 pub const CURRENT: &str = "current run (solid)";
 pub const REFERENCE: &str = "reference (dashed)";
 pub const DIFFERENCE: &str = "current − reference";
+/// Legend entry of the clipped impacts' marks (`time_plots::impact_marks`).
+const IMPACT_LABEL: &str = "impact (impulse / dt, clipped)";
 
 /// `pinned_smooth` is the pinned run with its force without impacts as `q`,
 /// `diff_smooth` its difference: they set the clipped force axes.
@@ -118,9 +120,18 @@ pub fn show(
     ];
     for (k, (what, y_label, scale)) in quantities.into_iter().enumerate() {
         let last = rows == 2 && k == 1;
+        let legend_id = Id::unique(("tirecontact.compare.legend", k));
+        let mut labels = vec![CURRENT];
+        if pinned.is_some() {
+            labels.push(REFERENCE);
+        }
+        if opts.clip_impacts && what == Quantity::Force {
+            labels.push(IMPACT_LABEL);
+        }
+        let legend_px = legend_place::legend_size(ui, &labels, h);
         let mut plot = super::nice_y_axis(Plot::new(("tirecontact.compare", k)))
             .height(h)
-            .legend(Legend::default().position(Corner::RightTop))
+            .legend(legend_place::legend(ui.ctx(), legend_id, h))
             .link_axis(link, [true, false])
             .link_cursor(link, [true, false])
             .y_axis_label(y_label)
@@ -132,6 +143,12 @@ pub fn show(
             plot = plot.x_axis_label("time t (s)");
         }
         let clip = opts.clip_impacts && what == Quantity::Force;
+        // the curves fill the whole run, so every corner covers some: room
+        // above them for the legend (not when clipping, where the axis must
+        // end at the clip level)
+        if !clip && let Some(y) = legend_place::headroom(ui.ctx(), legend_id, legend_px) {
+            plot = plot.include_y(y);
+        }
         if what == Quantity::Force {
             plot = plot.id(Id::unique(FORCE_PLOT_ID));
         }
@@ -157,11 +174,13 @@ pub fn show(
                 None
             };
             let mut marks = Vec::new();
+            let mut ink = legend_place::Ink::default();
             for &i in &shown {
                 let mut pts = history.decimated(what, i, t0, t1, buckets, scale);
                 if let Some(top) = top {
                     clip_at(&mut pts, top, &mut marks);
                 }
+                ink.add(pui, &pts);
                 pui.line(Line::new(CURRENT, pts).color(point_color(i)).width(1.5));
                 if let Some(pin) = pinned {
                     let r = &pin.recording;
@@ -174,6 +193,7 @@ pub fn show(
                         if let Some(top) = top {
                             clip_at(&mut pts, top, &mut marks);
                         }
+                        ink.add(pui, &pts);
                         pui.line(
                             Line::new(REFERENCE, pts)
                                 .color(point_color(i).gamma_multiply(0.6))
@@ -183,6 +203,7 @@ pub fn show(
                     }
                 }
             }
+            ink.place(pui, legend_id, legend_px);
             impact_marks(pui, marks, MarkerShape::Down);
             (t0, t1)
         });
@@ -195,9 +216,16 @@ pub fn show(
             (&d.dq_n, "Δq = current − ref (N)", 1.0),
         ];
         for (k, (series, y_label, scale)) in diffs.into_iter().enumerate() {
+            let legend_id = Id::unique(("tirecontact.compare_diff.legend", k));
+            let labels: &[&str] = if opts.clip_impacts && k == 1 {
+                &[DIFFERENCE, IMPACT_LABEL]
+            } else {
+                &[DIFFERENCE]
+            };
+            let legend_px = legend_place::legend_size(ui, labels, h);
             let mut plot = super::nice_y_axis(Plot::new(("tirecontact.compare_diff", k)))
                 .height(h)
-                .legend(Legend::default().position(Corner::RightTop))
+                .legend(legend_place::legend(ui.ctx(), legend_id, h))
                 .link_axis(link, [true, false])
                 .link_cursor(link, [true, false])
                 .y_axis_label(y_label)
@@ -209,6 +237,9 @@ pub fn show(
                 plot = plot.x_axis_label("time t (s)");
             }
             let clip = opts.clip_impacts && k == 1;
+            if !clip && let Some(y) = legend_place::headroom(ui.ctx(), legend_id, legend_px) {
+                plot = plot.include_y(y);
+            }
             plot = plot.id(Id::unique(if k == 1 {
                 FORCE_DIFF_PLOT_ID
             } else {
@@ -224,6 +255,7 @@ pub fn show(
                     .filter(|_| clip)
                     .and_then(|ds| series_range(&ds.t_s, &ds.dq_n, &shown, t0, t1, buckets));
                 let (mut above, mut below) = (Vec::new(), Vec::new());
+                let mut ink = legend_place::Ink::default();
                 for &i in &shown {
                     let Some(y) = series.get(i) else { continue };
                     let mut pts = window(&d.t_s, y, t0, t1, buckets, scale);
@@ -237,8 +269,10 @@ pub fn show(
                             }
                         }
                     }
+                    ink.add(pui, &pts);
                     pui.line(Line::new(DIFFERENCE, pts).color(point_color(i)).width(1.5));
                 }
+                ink.place(pui, legend_id, legend_px);
                 impact_marks(pui, above, MarkerShape::Down);
                 impact_marks(pui, below, MarkerShape::Up);
                 (t0, t1)

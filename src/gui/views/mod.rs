@@ -4,7 +4,9 @@
 
 pub mod compare_view;
 pub mod fidelity_view;
+pub mod force_labels;
 pub mod green_view;
+pub mod legend_place;
 pub mod scene_view;
 pub mod spectra_view;
 pub mod sweep_view;

@@ -89,6 +89,10 @@ fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
     out
 }
 
+/// Legend entry of the force arrows and their value labels.
+const FORCE_NAME: &str = "contact force (length relative to the largest now; value in N)";
+const FORCE_COLOR: Color32 = Color32::from_rgb(0, 114, 178);
+
 pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
     show_with(ui, sim, opts, |_, _| {});
 }
@@ -163,14 +167,16 @@ pub fn show_with(
         .fold(0.0, |m: f64, q| m.max(*q))
         .max(1e-12);
     let arrow_len = 0.25 * e * hmax * 2.0;
-    let (mut a_from, mut a_to) = (Vec::new(), Vec::new());
+    let (mut a_from, mut a_to, mut a_q) = (Vec::new(), Vec::new(), Vec::new());
     for (i, q) in sim.force_n().iter().enumerate() {
         if *q > 0.0 {
             let [x, y] = displaced[i];
             a_from.push([x, y - arrow_len * q / qmax]);
             a_to.push([x, y]);
+            a_q.push(*q);
         }
     }
+    let label_color = ui.visuals().strong_text_color();
     Plot::new("tirecontact.scene_view")
         .data_aspect(1.0)
         .legend(
@@ -239,10 +245,12 @@ pub fn show_with(
             );
             if !a_from.is_empty() {
                 pui.arrows(
-                    Arrows::new("contact force (relative to the largest now)", a_from, a_to)
-                        .color(Color32::from_rgb(0, 114, 178))
+                    Arrows::new(FORCE_NAME, a_from.clone(), a_to)
+                        .color(FORCE_COLOR)
                         .tip_length(8.0),
                 );
+                // after the arrows: the legend entry takes the arrows' colour
+                super::force_labels::draw(pui, FORCE_NAME, &a_from, &a_q, label_color);
             }
             extra(pui, &displaced);
         });

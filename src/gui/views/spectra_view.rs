@@ -4,7 +4,7 @@
 //! `n V/λ` and the modal frequencies. Computed by the app (cached by the
 //! history's length), only drawn here.
 
-use super::point_color;
+use super::{legend_place, point_color};
 use crate::Scene;
 use crate::gui::command::Command;
 use crate::gui::research::ResearchCommand;
@@ -14,7 +14,7 @@ use crate::scene::Mode;
 use crate::spectrum::run::DEFAULT_BANDS_HZ;
 use crate::spectrum::{Spectrum, band_label, markers};
 use egui::{Color32, RichText, Ui};
-use egui_plot::{Corner, Legend, Line, LineStyle, Plot, PlotPoint, Text, VLine};
+use egui_plot::{Line, LineStyle, Plot, PlotPoint, Text, VLine};
 
 /// Harmonics of the road excitation marked.
 pub const HARMONICS: u32 = 10;
@@ -208,9 +208,20 @@ pub fn show(
             .flat_map(|c| c.2.iter().map(|p| p[1]))
             .fold(f64::NEG_INFINITY, f64::max);
         let floor = top - RANGE_DB;
+        let legend_id = egui::Id::unique(id);
+        let mut labels: Vec<&str> = curves.iter().map(|c| c.0.as_str()).collect();
+        if top.is_finite() {
+            if !marks.excitation_hz.is_empty() {
+                labels.push("road n·V/λ");
+            }
+            if !modal.is_empty() {
+                labels.push("modal frequencies");
+            }
+        }
+        let legend_px = legend_place::legend_size(ui, &labels, h);
         let mut plot = db_y_axis(Plot::new(id))
             .height(h)
-            .legend(Legend::default().position(Corner::RightTop))
+            .legend(legend_place::legend(ui.ctx(), legend_id, h))
             .x_axis_label(x_label)
             .y_axis_label(y_label)
             .y_axis_min_width(64.0)
@@ -221,13 +232,26 @@ pub fn show(
                 .x_axis_formatter(|m, _| log_label(m.value));
         }
         plot.show(ui, |pui| {
+            let mut ink = legend_place::Ink::default();
             for (name, c, pts) in curves {
                 let pts: Vec<[f64; 2]> = pts.into_iter().map(|p| [p[0], p[1].max(floor)]).collect();
+                ink.add(pui, &pts);
                 pui.line(Line::new(name, pts).color(c).width(1.2));
             }
             if top.is_finite() {
                 draw_markers(pui, &marks.excitation_hz, &modal, log, top);
+                // the markers are data too: vertical lines over the plot
+                let b = pui.plot_bounds();
+                let xs = marks
+                    .excitation_hz
+                    .iter()
+                    .map(|m| m.1)
+                    .chain(modal.iter().copied());
+                for x in xs.map(|f| fx(f, log)) {
+                    ink.add(pui, &[[x, b.min()[1]], [x, b.max()[1]]]);
+                }
             }
+            ink.place(pui, legend_id, legend_px);
         });
     };
     narrow(
@@ -248,9 +272,20 @@ pub fn show(
     );
     // third-octave bands of the forces, drawn as steps over the band edges
     let hi = DEFAULT_BANDS_HZ.1.min(nyquist / 10f64.powf(0.05));
+    let bands_legend_id = egui::Id::unique("tirecontact.spectra_bands");
+    let mut band_labels: Vec<String> = (0..s.force.len())
+        .filter(|&i| opts.shown.get(i).copied().unwrap_or(false))
+        .map(|i| format!("q{i}: point {i}"))
+        .collect();
+    if opts.total {
+        band_labels.push("q total".into());
+    }
+    band_labels.push("road n·V/λ".into());
+    let band_labels: Vec<&str> = band_labels.iter().map(String::as_str).collect();
+    let bands_legend_px = legend_place::legend_size(ui, &band_labels, h);
     db_y_axis(Plot::new("tirecontact.spectra_bands"))
         .height(h)
-        .legend(Legend::default().position(Corner::RightTop))
+        .legend(legend_place::legend(ui.ctx(), bands_legend_id, h))
         .x_axis_label("third-octave band (Hz, log scale; IEC 61260 base 10)")
         .y_axis_label("band level (dB re 1 N)")
         .y_axis_min_width(64.0)
@@ -268,6 +303,7 @@ pub fn show(
             if opts.total {
                 series.push(("q total".into(), total_color, &s.total_force));
             }
+            let mut ink = legend_place::Ink::default();
             for (name, c, sp) in series {
                 let mut pts = Vec::new();
                 for b in sp.third_octave_levels(DEFAULT_BANDS_HZ.0, hi, 1.0) {
@@ -276,11 +312,14 @@ pub fn show(
                         pts.push([b.band.upper_hz.log10(), b.level_db]);
                     }
                 }
+                ink.add(pui, &pts);
                 // steps: no min/max band merging of the vertical edges
                 pui.line(Line::new(name, pts).color(c).width(1.5).allow_band(false));
             }
             for &(n, f) in marks.excitation_hz.iter().filter(|m| m.1 <= hi) {
                 if n <= 3 {
+                    let b = pui.plot_bounds();
+                    ink.add(pui, &[[f.log10(), b.min()[1]], [f.log10(), b.max()[1]]]);
                     pui.vline(
                         VLine::new("road n·V/λ", f.log10())
                             .color(EXCITATION_COLOR)
@@ -288,6 +327,7 @@ pub fn show(
                     );
                 }
             }
+            ink.place(pui, bands_legend_id, bands_legend_px);
         });
     if hi > DEFAULT_BANDS_HZ.0 {
         ui.label(

@@ -13,7 +13,7 @@ use crate::gui::research::sweep_job::{SweepRequest, SweepResult, SweepState, def
 use crate::spectrum::{band_label, third_octave_bands};
 use crate::sweep::{RunSummary, get_param, param_paths};
 use egui::{Color32, RichText, Ui};
-use egui_plot::{Corner, Legend, Line, MarkerShape, Plot, Points};
+use egui_plot::{Line, MarkerShape, Plot, Points};
 
 /// The unit of a parameter, from its path's suffix (for the axis label).
 pub fn param_unit(path: &str) -> &'static str {
@@ -283,12 +283,14 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
                 let Some((id, y_label, series)) = it.next() else {
                     return;
                 };
+                let legend_id = egui::Id::unique(id);
+                let labels: Vec<&str> = series.iter().map(|c| c.0.as_str()).collect();
+                let legend_px = super::legend_place::legend_size(ui, &labels, h);
                 super::nice_y_axis(Plot::new(id))
                     .width(w)
                     .height(h)
                     .legend(
-                        Legend::default()
-                            .position(Corner::LeftTop)
+                        super::legend_place::legend(ui.ctx(), legend_id, h)
                             .follow_insertion_order(true),
                     )
                     .x_axis_label(x_label.clone())
@@ -296,7 +298,9 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
                     .y_axis_min_width(56.0)
                     .allow_scroll(false)
                     .show(ui, |pui| {
+                        let mut ink = super::legend_place::Ink::default();
                         for (name, c, pts) in series {
+                            ink.add(pui, &pts);
                             pui.line(Line::new(name.clone(), pts.clone()).color(c).width(1.5));
                             pui.points(
                                 Points::new(name, pts)
@@ -305,6 +309,7 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
                                     .shape(MarkerShape::Circle),
                             );
                         }
+                        ink.place(pui, legend_id, legend_px);
                     });
             }
         });

@@ -1,0 +1,103 @@
+//! Values of the scene view's force arrows: each arrow gets its force in N
+//! under its tail, largest first, as long as the label does not overlap one
+//! already placed; with many points (50 in a tyre patch) only the largest
+//! that fit are labelled, and the others stay readable as arrow lengths.
+
+use egui::{Align2, Color32, RichText, TextStyle};
+use egui_plot::{PlotPoint, PlotUi, Text};
+
+/// Text of a force label.
+pub fn force_text(q_n: f64) -> String {
+    if q_n >= 100.0 {
+        format!("{q_n:.0} N")
+    } else if q_n >= 10.0 {
+        format!("{q_n:.1} N")
+    } else {
+        format!("{q_n:.2} N")
+    }
+}
+
+/// Which of the arrows at screen `x_px` with forces `q_n` get a label
+/// `width_px` wide: largest force first, each only if it keeps `width_px`
+/// from every label already chosen. Returned in order of x.
+pub fn pick_labels(x_px: &[f32], q_n: &[f64], width_px: f32) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..x_px.len().min(q_n.len())).collect();
+    order.sort_by(|&a, &b| q_n[b].total_cmp(&q_n[a]));
+    let mut chosen: Vec<usize> = Vec::new();
+    for i in order {
+        if !x_px[i].is_finite() || q_n[i].is_nan() || q_n[i] <= 0.0 {
+            continue;
+        }
+        if chosen
+            .iter()
+            .all(|&j| (x_px[i] - x_px[j]).abs() >= width_px)
+        {
+            chosen.push(i);
+        }
+    }
+    chosen.sort_by(|&a, &b| x_px[a].total_cmp(&x_px[b]));
+    chosen
+}
+
+/// Draws the labels of the arrows whose tails are at `tails` (plot units)
+/// with forces `q_n`, under the tails, in `color` (a strong text colour).
+pub fn draw(pui: &mut PlotUi<'_>, name: &str, tails: &[[f64; 2]], q_n: &[f64], color: Color32) {
+    let font_px = pui
+        .ctx()
+        .global_style()
+        .text_styles
+        .get(&TextStyle::Body)
+        .map_or(14.0, |f| f.size);
+    let chars = q_n.iter().map(|q| force_text(*q).len()).max().unwrap_or(0);
+    let width_px = chars as f32 * 0.6 * font_px + 8.0;
+    let x_px: Vec<f32> = tails
+        .iter()
+        .map(|t| pui.screen_from_plot(PlotPoint::new(t[0], t[1])).x)
+        .collect();
+    for i in pick_labels(&x_px, q_n, width_px) {
+        // body size, strong colour: egui_plot's default small text in the
+        // arrows' blue was unreadable on the road's fill
+        let text = RichText::new(force_text(q_n[i])).size(font_px).color(color);
+        pui.text(
+            Text::new(name, PlotPoint::new(tails[i][0], tails[i][1]), text)
+                .anchor(Align2::CENTER_TOP),
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spaced_arrows_all_get_labels() {
+        let x = [100.0, 200.0, 300.0, 400.0, 500.0];
+        let q = [10.0, 50.0, 20.0, 5.0, 1.0];
+        assert_eq!(pick_labels(&x, &q, 60.0), vec![0, 1, 2, 3, 4]);
+    }
+
+    #[test]
+    fn crowded_arrows_label_the_largest_without_overlap() {
+        // 50 arrows 10 px apart, labels 60 px wide
+        let x: Vec<f32> = (0..50).map(|i| 100.0 + 10.0 * i as f32).collect();
+        let q: Vec<f64> = (0..50)
+            .map(|i| 1000.0 - (i as f64 - 20.0).powi(2))
+            .collect();
+        let p = pick_labels(&x, &q, 60.0);
+        assert!(p.contains(&20), "the largest force is labelled: {p:?}");
+        for w in p.windows(2) {
+            assert!(x[w[1]] - x[w[0]] >= 60.0, "{p:?}");
+        }
+        // at most one label per 60 px of 490 px
+        assert!(p.len() <= 9 && p.len() >= 5, "{p:?}");
+        // no force: no label
+        assert!(pick_labels(&[0.0], &[0.0], 10.0).is_empty());
+    }
+
+    #[test]
+    fn force_text_has_its_unit_and_three_figures() {
+        assert_eq!(force_text(1234.4), "1234 N");
+        assert_eq!(force_text(56.78), "56.8 N");
+        assert_eq!(force_text(0.5), "0.50 N");
+    }
+}
