@@ -4,6 +4,9 @@
 
 use super::point_color;
 use crate::gui::history::{History, Quantity};
+/// The clip level of impact spikes, shared with the exported and
+/// command-line figures.
+pub use crate::output::impacts::clip_level;
 use egui::{Id, TextStyle, Ui};
 use egui_plot::{AxisHints, Corner, Legend, Line, MarkerShape, Plot, PlotUi, Points};
 
@@ -301,12 +304,6 @@ fn clip_top(pui: &PlotUi<'_>, h: &History, shown: &[bool], a: f64, b: f64) -> Op
         .filter(|&i| shown.get(i).copied().unwrap_or(false))
         .collect();
     force_range(h, &points, a, b, buckets).map(clip_level)
-}
-
-/// The level at which a force plot clips impact spikes: a margin above the
-/// range `(lo, hi)` of the force without impacts (N).
-pub fn clip_level((lo, hi): (f64, f64)) -> f64 {
-    hi + 0.1 * (hi - lo).max(1.0)
 }
 
 /// Lowest and highest force without impacts of `points` over `[a, b]` (N).
