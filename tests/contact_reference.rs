@@ -10,6 +10,10 @@
 // Numerical loops index several arrays in parallel; ranges read clearer here.
 #![allow(clippy::needless_range_loop)]
 
+#[path = "support/dense.rs"]
+mod dense;
+use dense::gauss_solve;
+
 use std::f64::consts::TAU;
 use std::time::Instant;
 
@@ -1129,31 +1133,6 @@ impl MultiReference {
 // ---------------------------------------------------------------------------
 // 3. Static preload: steady force from the static compliance
 // ---------------------------------------------------------------------------
-
-/// Own dense solve (Gaussian elimination with partial pivoting).
-fn gauss_solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
-    let n = b.len();
-    for k in 0..n {
-        let p = (k..n)
-            .max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))
-            .unwrap();
-        a.swap(k, p);
-        b.swap(k, p);
-        for i in k + 1..n {
-            let f = a[i][k] / a[k][k];
-            for j in k..n {
-                a[i][j] -= f * a[k][j];
-            }
-            b[i] -= f * b[k];
-        }
-    }
-    let mut x = vec![0.0; n];
-    for i in (0..n).rev() {
-        let s: f64 = (i + 1..n).map(|j| a[i][j] * x[j]).sum();
-        x[i] = (b[i] - s) / a[i][i];
-    }
-    x
-}
 
 /// Outcome of a static-preload run: mean step force over the last `WINDOW`
 /// steps, last displacement, steps of that window not all in contact, and the

@@ -16,6 +16,10 @@
 // Numerical loops index several arrays in parallel; ranges read clearer here.
 #![allow(clippy::needless_range_loop)]
 
+#[path = "support/dense.rs"]
+mod dense;
+use dense::gauss_solve;
+
 use std::f64::consts::TAU;
 
 use tirecontact::Simulation;
@@ -94,31 +98,6 @@ fn history(sc: &Scene) -> History {
     h
 }
 
-/// Solves `a x = b` (small, dense) by Gaussian elimination with partial pivoting.
-fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
-    let n = b.len();
-    for k in 0..n {
-        let p = (k..n)
-            .max_by(|&r, &s| a[r][k].abs().total_cmp(&a[s][k].abs()))
-            .unwrap();
-        a.swap(k, p);
-        b.swap(k, p);
-        for r in k + 1..n {
-            let f = a[r][k] / a[k][k];
-            for c in k..n {
-                a[r][c] -= f * a[k][c];
-            }
-            b[r] -= f * b[k];
-        }
-    }
-    let mut x = vec![0.0; n];
-    for r in (0..n).rev() {
-        let s: f64 = (r + 1..n).map(|c| a[r][c] * x[c]).sum();
-        x[r] = (b[r] - s) / a[r][r];
-    }
-    x
-}
-
 /// Each mode `k` with shape `φ_k` has a modal coordinate `η_k`
 /// (`u = Σ_k φ_k η_k`) obeying `η'' + 2ξω η' + ω² η = φ_k · q`. Integrated
 /// over a window `[t_a, t_b]`:
@@ -140,7 +119,7 @@ fn momentum_mismatch(sc: &Scene, modes: &[Mode], window_steps: usize) -> (f64, f
     let phi: Vec<Vec<f64>> = (0..p)
         .map(|i| modes.iter().map(|m| m.shape[i]).collect())
         .collect();
-    let eta = |u: &[f64]| solve(phi.clone(), u.to_vec());
+    let eta = |u: &[f64]| gauss_solve(phi.clone(), u.to_vec());
     let eta_u: Vec<Vec<f64>> = h.u.iter().map(|u| eta(u)).collect();
     let eta_v: Vec<Vec<f64>> = h.v.iter().map(|v| eta(v)).collect();
     let n = h.q.len();
@@ -677,7 +656,7 @@ fn static_preload_with_critical_and_overdamped_modes() {
     let h: Vec<f64> = (0..p)
         .map(|i| -(0..p).map(|j| c[i][j] * design[j]).sum::<f64>())
         .collect();
-    let expected = solve(c, h.iter().map(|x| -x).collect());
+    let expected = gauss_solve(c, h.iter().map(|x| -x).collect());
     for scheme in [ContactScheme::Located, ContactScheme::Paper] {
         let mut sc = five_point_scene(0.2, &h, 0.0, 2e-5, 0.4);
         sc.contact_scheme = scheme;
