@@ -309,12 +309,7 @@ pub fn mode_bars(
     let row = ui.spacing().interact_size.y + ui.spacing().item_spacing.y;
     // the vertical axis label is centred on the plot frame: a frame shorter
     // than the label let it run up over the "point i: u = …" line
-    let body = egui::TextStyle::Body.resolve(ui.style());
-    let label_w = ui
-        .painter()
-        .layout_no_wrap(MODE_BARS_Y_LABEL.to_owned(), body, Color32::WHITE)
-        .size()
-        .x;
+    let label_w = mode_bars_label_w(ui);
     let h = (ui.available_height() - row * (n as f32 + 1.2)).max(bars_plot_min_px(ui, label_w));
     Plot::new("tirecontact.mode_bars")
         .id(egui::Id::unique(MODE_BARS_PLOT_ID))
@@ -415,16 +410,20 @@ fn bars_plot_min_px(ui: &Ui, label_w: f32) -> f32 {
     (label_w + x_axis_h + 16.0).max(150.0)
 }
 
+/// Width (px) of the mode bars' vertical axis label in body text.
+fn mode_bars_label_w(ui: &Ui) -> f32 {
+    let body = egui::TextStyle::Body.resolve(ui.style());
+    ui.painter()
+        .layout_no_wrap(MODE_BARS_Y_LABEL.to_owned(), body, Color32::WHITE)
+        .size()
+        .x
+}
+
 /// Height (px) the mode bars need below the description: their heading,
 /// point picker and sum line, the plot at its least height and one row per
 /// mode (`mode_bars` then fits the plot to the rest).
 pub fn mode_bars_min_px(ui: &Ui, num_modes: usize) -> f32 {
-    let body = egui::TextStyle::Body.resolve(ui.style());
-    let label_w = ui
-        .painter()
-        .layout_no_wrap(MODE_BARS_Y_LABEL.to_owned(), body, Color32::WHITE)
-        .size()
-        .x;
+    let label_w = mode_bars_label_w(ui);
     let row = ui.spacing().interact_size.y + ui.spacing().item_spacing.y;
     bars_plot_min_px(ui, label_w) + row * (num_modes as f32 + 4.2)
 }
