@@ -7,6 +7,7 @@ mod contributions;
 mod events;
 mod gauss;
 mod paper;
+mod steady;
 
 use crate::contact::DenseSolver;
 use crate::convolution::{Influence, ModalBasis, ModalState, StepTable};
@@ -49,6 +50,9 @@ pub struct RunStats {
     pub max_force_n: Vec<f64>,
     /// Steps ending in contact, per point.
     pub contact_steps: Vec<u64>,
+    /// Steps taken by the steady path (same contact set, no event; see
+    /// [`SolverOptions::steady_path`]).
+    pub steady_steps: u64,
 }
 
 impl RunStats {
@@ -177,6 +181,10 @@ pub struct SolverOptions {
     /// paper preset). `Some(t)`: the cut `t` for any model. Ignored without
     /// `rank_reduction`. See [`SolverOptions::rank_tolerance_for`].
     pub rank_tolerance: Option<f64>,
+    /// Take a step that keeps the same points on the road and locates no
+    /// event without the event loop's bookkeeping (`Located` scheme, rigid
+    /// contact; see `simulation/steady.rs`). Bit-identical results.
+    pub steady_path: bool,
 }
 
 /// The rank cut of identified models (see [`SolverOptions::rank_tolerance`]):
@@ -201,6 +209,7 @@ impl Default for SolverOptions {
             reuse_factorisation: true,
             residual_above_hz: None,
             rank_tolerance: None,
+            steady_path: true,
         }
     }
 }
@@ -401,6 +410,8 @@ impl Simulation {
             x.fill(0.0);
         }
         self.contact.fill(false);
+        // the next step rebuilds its active set from `contact`
+        self.had_event = true;
         // road at t = 0 (zero while ramping; a validated scene samples in range)
         if self.road_at(0.0, true).is_err() {
             self.re.fill(0.0);
@@ -611,6 +622,8 @@ impl Simulation {
             self.impact_impulse.fill(0.0);
             self.released.fill(false);
         }
+        // (read before `had_event` is set below)
+        let steady = self.steady_ready();
         // until the step succeeds (an error mid-step may leave either set)
         self.had_event = true;
         let compliant = !self.tread_k_n_m.is_empty();
@@ -620,7 +633,16 @@ impl Simulation {
                 let s = self.paper_substep(t0, self.dt_s, Table::Full)?;
                 (0, s)
             }
-            ContactScheme::Located => self.located_step(t0)?,
+            ContactScheme::Located => match steady {
+                true => match self.steady_step(t0)? {
+                    Some(solves) => {
+                        self.stats.steady_steps += 1;
+                        (0, solves)
+                    }
+                    None => self.located_step(t0)?,
+                },
+                false => self.located_step(t0)?,
+            },
         };
         // every impact is a located event; releases set `released`
         self.had_event = events > 0 || self.released.iter().any(|&r| r);
@@ -640,17 +662,27 @@ impl Simulation {
             return Err(self.non_finite());
         }
         let contact = &mut self.contact[..p];
-        contact.fill(false);
-        for &j in &self.active {
-            contact[j] = true;
+        // The located scheme changes its active set (built from `contact` in
+        // point order at the step start) only at an event.
+        if events > 0 || compliant || self.scene.contact_scheme != ContactScheme::Located {
+            contact.fill(false);
+            for &j in &self.active {
+                contact[j] = true;
+            }
         }
         let max_force = &mut self.stats.max_force_n[..p];
         let contact_steps = &mut self.stats.contact_steps[..p];
+        // (plain comparisons: every value is finite here)
         for i in 0..p {
             // a compliant contact's compression is its spring's, not a penetration
             let gap_counts = !(compliant && contact[i]);
-            pen = pen.max(if gap_counts { r[i] - u[i] } else { 0.0 });
-            max_force[i] = max_force[i].max(q[i]);
+            let pen_i = if gap_counts { r[i] - u[i] } else { 0.0 };
+            if pen_i > pen {
+                pen = pen_i;
+            }
+            if q[i] > max_force[i] {
+                max_force[i] = q[i];
+            }
             contact_steps[i] += contact[i] as u64;
         }
         let st = &mut self.stats;

@@ -273,6 +273,33 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
             st.solves,
             sim_f.stats().factorisations
         )?;
+        let ((before, sim_s), (after, _)) = work_precision::time_pair(
+            &sc,
+            SolverOptions {
+                steady_path: false,
+                ..all
+            },
+            all,
+            repeats,
+        )?;
+        let (t_loop, t_steady) = (before.median_s(), after.median_s());
+        let identical = sim_s
+            .displacement_m()
+            .iter()
+            .chain(sim_s.force_n())
+            .zip(sim.displacement_m().iter().chain(sim.force_n()))
+            .all(|(a, b)| a.to_bits() == b.to_bits());
+        writeln!(
+            s,
+            "| {} | steps with the same contact set and no event outside the event loop | {t_loop:.4} | {t_steady:.4} | {:.2}x | {} |",
+            scene.name,
+            t_loop / t_steady,
+            if identical {
+                "bit-identical end state"
+            } else {
+                "END STATES DIFFER"
+            }
+        )?;
         let mean_active = st.contact_steps.iter().sum::<u64>() as f64 / st.steps.max(1) as f64;
         writeln!(
             s,

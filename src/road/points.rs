@@ -78,7 +78,14 @@ impl PointsRoad {
         let follows = self.stepper.as_ref().is_some_and(|st| {
             st.n + 1 == n && st.ds_m == ds_m && st.since_anchor < STEPPER_ANCHOR_EVERY
         });
+        // the same step end again (a step retried by the event loop): the
+        // same angles, so the same samples
+        let again = self
+            .stepper
+            .as_ref()
+            .is_some_and(|st| st.n == n && st.ds_m == ds_m && st.cur.len() == h.len());
         match &mut self.stepper {
+            Some(_) if again => {}
             Some(st) if follows => {
                 for (c, r) in st.cur.iter_mut().zip(&st.rot) {
                     // sin(a + b), cos(a + b)

@@ -119,18 +119,30 @@ impl Simulation {
             Table::Full => {
                 let p = self.p;
                 let (ue, ve) = (&mut self.ue[..p], &mut self.ve[..p]);
-                ue.copy_from_slice(&self.uh[..p]);
-                ve.copy_from_slice(&self.vh[..p]);
-                for &j in &self.active {
+                let (uh, vh) = (&self.uh[..p], &self.vh[..p]);
+                // the free values plus each active point's columns in turn
+                // (the first sets, so that no separate copy runs)
+                for (k, &j) in self.active.iter().enumerate() {
                     let (a, b) = (self.q1[j], self.q2[j]);
                     let c = &self.full_inf_cols[4 * p * j..4 * p * (j + 1)];
                     let (x1, rest) = c.split_at(p);
                     let (x2, rest) = rest.split_at(p);
                     let (v1, v2) = rest.split_at(p);
-                    for i in 0..p {
-                        ue[i] += x1[i] * a + x2[i] * b;
-                        ve[i] += v1[i] * a + v2[i] * b;
+                    if k == 0 {
+                        for i in 0..p {
+                            ue[i] = uh[i] + (x1[i] * a + x2[i] * b);
+                            ve[i] = vh[i] + (v1[i] * a + v2[i] * b);
+                        }
+                    } else {
+                        for i in 0..p {
+                            ue[i] += x1[i] * a + x2[i] * b;
+                            ve[i] += v1[i] * a + v2[i] * b;
+                        }
                     }
+                }
+                if self.active.is_empty() {
+                    ue.copy_from_slice(uh);
+                    ve.copy_from_slice(vh);
                 }
             }
         }

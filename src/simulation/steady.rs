@@ -1,0 +1,89 @@
+//! The steady step of the `Located` scheme (SPEC §4): most steps of a
+//! rolling tyre keep the same points on the road and locate no event. Such
+//! a step is the first trial of [`Simulation::located_step`] accepted as it
+//! is: one free prediction, one solve with the reused factorisation, the
+//! release and landing checks, the commit. This path takes it without the
+//! event loop's bookkeeping and hands any step with an event, before it has
+//! changed anything but scratch values, to the event loop, which then runs
+//! the same trial again. Both give bit-identical results (tested).
+
+use super::{GA, GB, Simulation, Table, first_crossing};
+use crate::error::SolverError;
+use crate::scene::ContactScheme;
+
+impl Simulation {
+    /// Whether the next step may take [`Simulation::steady_step`]: the
+    /// located scheme with rigid contact, the last step had no event (so the
+    /// active set is the contact set, `released` and the impact impulses are
+    /// clear), and the active set is the one whose full-step factorisation
+    /// is kept, on a road without breakpoints under it.
+    #[inline]
+    pub(super) fn steady_ready(&self) -> bool {
+        let n = self.active.len();
+        !self.had_event
+            && self.options.steady_path
+            && self.options.reuse_factorisation
+            && self.scene.contact_scheme == ContactScheme::Located
+            && self.tread_k_n_m.is_empty()
+            && (n == 0
+                || (self.full_factored
+                    && !self.road.has_kinks()
+                    && self.full_set.len() == n
+                    && self.full_set.iter().zip(&self.active).all(|(a, b)| a == b)))
+    }
+
+    /// The step from `t0` when it has no event: `Some(solves)` once
+    /// committed; `None`, with only scratch values changed, when a point
+    /// starts below the road, a force would end pulling, or a free point
+    /// lands inside the step.
+    pub(super) fn steady_step(&mut self, t0: f64) -> Result<Option<u32>, SolverError> {
+        let p = self.p;
+        let (contact, u, r) = (&self.contact[..p], &self.u[..p], &self.r[..p]);
+        // a point left below the road (a live road or speed change) lands now
+        for i in 0..p {
+            if !contact[i] && u[i] - r[i] < -self.pen_tol_m {
+                return Ok(None);
+            }
+        }
+        let dt = self.dt_s;
+        self.predict(t0, dt, Table::Full)?;
+        let n = self.active.len();
+        if n > 0 {
+            let (re, rde) = (&self.re[..p], &self.rde[..p]);
+            let (uh, vh) = (&self.uh[..p], &self.vh[..p]);
+            let (rx, rv) = self.rhs[..2 * n].split_at_mut(n);
+            for (k, &i) in self.active.iter().enumerate() {
+                rx[k] = re[i] - uh[i];
+                rv[k] = rde[i] - vh[i];
+            }
+            self.full_solver.solve_by_inverse(&mut self.rhs[..2 * n]);
+            let (q1, q2) = (&mut self.q1[..p], &mut self.q2[..p]);
+            for (k, &j) in self.active.iter().enumerate() {
+                q1[j] = self.rhs[k];
+                q2[j] = self.rhs[n + k];
+                // a force ending negative or pulling on average: a release
+                let (qs, qe) = (GA * q1[j] - GB * q2[j], -GB * q1[j] + GA * q2[j]);
+                if qe < 0.0 || qs + qe < 0.0 {
+                    return Ok(None);
+                }
+            }
+        }
+        self.end_values_sub_or_full(Table::Full);
+        // a free point landing inside the step
+        let (u, v, r, rd) = (&self.u[..p], &self.v[..p], &self.r[..p], &self.rd[..p]);
+        let (ue, ve, re, rde) = (&self.ue[..p], &self.ve[..p], &self.re[..p], &self.rde[..p]);
+        let contact = &self.contact[..p];
+        for i in 0..p {
+            if contact[i] {
+                continue;
+            }
+            let (g0, d0) = (u[i] - r[i], v[i] - rd[i]);
+            let (g1, d1) = (ue[i] - re[i], ve[i] - rde[i]);
+            if first_crossing(g0, d0 * dt, g1, d1 * dt, self.pen_tol_m, false).is_some() {
+                return Ok(None);
+            }
+        }
+        self.commit(dt, Table::Full);
+        Ok(Some((n > 0) as u32))
+    }
+}
