@@ -145,9 +145,14 @@ impl DenseSolver {
     pub fn solve_by_inverse(&mut self, b: &mut [f64]) {
         let n = self.n;
         let (inv, col) = (&self.inv[..n * n], &mut self.col[..n]);
-        col.copy_from_slice(&b[..n]);
+        let b = &mut b[..n];
+        col.copy_from_slice(b);
         for (r, row) in inv.chunks_exact(n).enumerate() {
-            b[r] = row.iter().zip(col.iter()).map(|(a, x)| a * x).sum();
+            let mut s = 0.0;
+            for (a, x) in row.iter().zip(col.iter()) {
+                s += a * x;
+            }
+            b[r] = s;
         }
     }
 

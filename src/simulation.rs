@@ -644,46 +644,50 @@ impl Simulation {
                 false => self.located_step(t0)?,
             },
         };
-        // every impact is a located event; releases set `released`
-        self.had_event = events > 0 || self.released.iter().any(|&r| r);
+        // every impact is a located event, and so is every release of the
+        // located scheme; the other schemes' releases set `released`
+        let located = !compliant && self.scene.contact_scheme == ContactScheme::Located;
+        self.had_event = events > 0 || (!located && self.released.iter().any(|&r| r));
         self.steps += 1;
         self.t_s = self.steps as f64 * self.dt_s;
-        let mut pen = 0.0f64;
-        // one test of the sum: a NaN or an infinity anywhere makes it non-finite
-        let mut sum = 0.0;
-        let (p, inv_dt) = (self.p, 1.0 / self.dt_s);
-        let (q, imp) = (&mut self.q_mean[..p], &self.impulse[..p]);
-        let (u, v, r) = (&self.u[..p], &self.v[..p], &self.r[..p]);
-        for i in 0..p {
-            q[i] = imp[i] * inv_dt;
-            sum += u[i] + v[i] + q[i];
-        }
-        if !sum.is_finite() {
-            return Err(self.non_finite());
-        }
+        let p = self.p;
         let contact = &mut self.contact[..p];
         // The located scheme changes its active set (built from `contact` in
         // point order at the step start) only at an event.
-        if events > 0 || compliant || self.scene.contact_scheme != ContactScheme::Located {
+        if events > 0 || !located {
             contact.fill(false);
             for &j in &self.active {
                 contact[j] = true;
             }
         }
+        let mut pen = 0.0f64;
+        // one test of the sum: a NaN or an infinity anywhere makes it non-finite
+        // (after the loop: the statistics of a failed step do not matter, a
+        // failed simulation is reset)
+        let mut sum = 0.0;
+        let inv_dt = 1.0 / self.dt_s;
+        let (q, imp) = (&mut self.q_mean[..p], &self.impulse[..p]);
+        let (u, v, r) = (&self.u[..p], &self.v[..p], &self.r[..p]);
         let max_force = &mut self.stats.max_force_n[..p];
         let contact_steps = &mut self.stats.contact_steps[..p];
-        // (plain comparisons: every value is finite here)
         for i in 0..p {
+            let qi = imp[i] * inv_dt;
+            q[i] = qi;
+            sum += u[i] + v[i] + qi;
             // a compliant contact's compression is its spring's, not a penetration
             let gap_counts = !(compliant && contact[i]);
             let pen_i = if gap_counts { r[i] - u[i] } else { 0.0 };
+            // (plain comparisons: a NaN fails them, and fails the sum below)
             if pen_i > pen {
                 pen = pen_i;
             }
-            if q[i] > max_force[i] {
-                max_force[i] = q[i];
+            if qi > max_force[i] {
+                max_force[i] = qi;
             }
             contact_steps[i] += contact[i] as u64;
+        }
+        if !sum.is_finite() {
+            return Err(self.non_finite());
         }
         let st = &mut self.stats;
         st.steps += 1;
