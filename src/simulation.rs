@@ -532,6 +532,21 @@ impl Simulation {
     ) -> Result<(), SolverError> {
         let (w, dw) = ramp(t, self.scene.ramp_s);
         let vel = self.scene.speed_mps;
+        // past the ramp, a sine road at consecutive step ends: fused
+        if let Some(n) = step_end
+            && w == 1.0
+            && dw == 0.0
+            && self.road.step_end_offset(
+                n,
+                vel * self.dt_s,
+                &self.h_m,
+                vel,
+                &mut self.re,
+                &mut self.rde,
+            )
+        {
+            return Ok(());
+        }
         let rolled_m = vel * t + self.x_offset_m;
         let (z, dz) = (&mut self.zbuf, &mut self.dzbuf);
         match step_end {

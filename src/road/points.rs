@@ -127,6 +127,54 @@ impl PointsRoad {
         Ok(())
     }
 
+    /// The common step end, fused: a single-harmonic road (a sine) sampled
+    /// at the end of step `n` right after step `n - 1` ([`Stepper`] rotation),
+    /// written as the road seen by the points past the ramp,
+    /// `re_i = z_i - h_i` and `rde_i = V z'_i` (SPEC §4). The same operations
+    /// as [`PointsRoad::sample_step`] followed by the offset: bit-identical.
+    /// `false` (nothing changed) where it does not apply.
+    #[inline]
+    pub fn step_end_offset(
+        &mut self,
+        n: u64,
+        ds_m: f64,
+        h_m: &[f64],
+        vel_mps: f64,
+        re: &mut [f64],
+        rde: &mut [f64],
+    ) -> bool {
+        let (RoadProfile::Harmonics(hs), Some(st)) = (&self.profile, &mut self.stepper) else {
+            return false;
+        };
+        let [c] = hs.as_slice() else {
+            return false;
+        };
+        if st.n + 1 != n
+            || st.ds_m != ds_m
+            || st.since_anchor >= STEPPER_ANCHOR_EVERY
+            || st.cur.len() != 1
+            || st.rot.len() != 1
+        {
+            return false;
+        }
+        let (cur, r) = (st.cur[0], st.rot[0]);
+        let (sn, cs) = (cur.0 * r.1 + cur.1 * r.0, cur.1 * r.1 - cur.0 * r.0);
+        st.cur[0] = (sn, cs);
+        st.n = n;
+        st.since_anchor += 1;
+        let p = self.x_m.len();
+        let (phase, h_m, re, rde) = (&self.phase[..p], &h_m[..p], &mut re[..p], &mut rde[..p]);
+        let (a, ak) = (c.amplitude_m, c.amplitude_m * TAU / c.wavelength_m);
+        for i in 0..p {
+            let (s0, c0) = phase[i];
+            let zi = a * (s0 * cs + c0 * sn);
+            let dzi = ak * (c0 * cs - s0 * sn);
+            re[i] = zi - h_m[i];
+            rde[i] = dzi * vel_mps;
+        }
+        true
+    }
+
     /// Harmonic `c`'s height and slope at the points (phases `phase_k`,
     /// `(sin, cos)` of `κ s` in `at_s`, angle addition) set into `z`, `dz`
     /// (`set`) or added to them.
