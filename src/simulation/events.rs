@@ -322,10 +322,15 @@ pub fn first_crossing(
     // A start slightly below the road (round-off, or the O(θ⁴) gap of a point
     // just thrown off) counts as on the road: falling, it lands at once;
     // rising, it lands where it comes back.
-    let g0 = g0.max(0.0);
+    // (`g0.max(0.0)` as a plain comparison: a NaN becomes 0 as with `max`)
+    let g0 = if g0 > 0.0 { g0 } else { 0.0 };
     // cheap rejection (inlined: most free points of most steps): all of the
-    // cubic is above -tol (|H10|, |H11| <= 4/27)
-    if g1 >= -tol && (d0 >= 0.0 && d1 <= 0.0 || g0.min(g1) - 0.25 * (d0.abs() + d1.abs()) >= -tol) {
+    // cubic is above -tol (|H10|, |H11| <= 4/27); past `g1 >= -tol` neither
+    // value is a NaN, so the plain minimum is `f64::min`
+    if g1 >= -tol
+        && (d0 >= 0.0 && d1 <= 0.0
+            || (if g0 < g1 { g0 } else { g1 }) - 0.25 * (d0.abs() + d1.abs()) >= -tol)
+    {
         return None;
     }
     crossing_of_cubic(g0, d0, g1, d1, tol, require_rise)

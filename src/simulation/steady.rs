@@ -68,7 +68,14 @@ impl Simulation {
                 }
             }
         }
-        self.end_values_sub_or_full(Table::Full);
+        if n > 0 {
+            self.end_values_sub_or_full(Table::Full);
+        } else {
+            // no force: the end values are the free ones, which nothing reads
+            // again before the next prediction rewrites them
+            std::mem::swap(&mut self.ue, &mut self.uh);
+            std::mem::swap(&mut self.ve, &mut self.vh);
+        }
         // a free point landing inside the step
         let (u, v, r, rd) = (&self.u[..p], &self.v[..p], &self.r[..p], &self.rd[..p]);
         let (ue, ve, re, rde) = (&self.ue[..p], &self.ve[..p], &self.re[..p], &self.rde[..p]);
