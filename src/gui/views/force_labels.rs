@@ -41,7 +41,17 @@ pub fn pick_labels(x_px: &[f32], q_n: &[f64], width_px: f32) -> Vec<usize> {
 
 /// Draws the labels of the arrows whose tails are at `tails` (plot units)
 /// with forces `q_n`, under the tails, in `color` (a strong text colour).
-pub fn draw(pui: &mut PlotUi<'_>, name: &str, tails: &[[f64; 2]], q_n: &[f64], color: Color32) {
+/// They join the arrows' legend entry `name` with the arrows' colour
+/// `legend_color` (egui_plot greys out an entry whose items differ in
+/// colour).
+pub fn draw(
+    pui: &mut PlotUi<'_>,
+    name: &str,
+    legend_color: Color32,
+    tails: &[[f64; 2]],
+    q_n: &[f64],
+    color: Color32,
+) {
     let font_px = pui
         .ctx()
         .global_style()
@@ -60,7 +70,10 @@ pub fn draw(pui: &mut PlotUi<'_>, name: &str, tails: &[[f64; 2]], q_n: &[f64], c
         let text = RichText::new(force_text(q_n[i])).size(font_px).color(color);
         pui.text(
             Text::new(name, PlotPoint::new(tails[i][0], tails[i][1]), text)
-                .anchor(Align2::CENTER_TOP),
+                .anchor(Align2::CENTER_TOP)
+                // the glyphs keep `color` (set in the text); this is the
+                // item's colour, shown by the legend
+                .color(legend_color),
         );
     }
 }

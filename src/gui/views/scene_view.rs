@@ -90,8 +90,9 @@ fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
 }
 
 /// Legend entry of the force arrows and their value labels.
-const FORCE_NAME: &str = "contact force (length relative to the largest now; value in N)";
-const FORCE_COLOR: Color32 = Color32::from_rgb(0, 114, 178);
+pub const FORCE_NAME: &str = "contact force (length relative to the largest now; value in N)";
+/// Colour of the force arrows and of their legend entry.
+pub const FORCE_COLOR: Color32 = Color32::from_rgb(0, 114, 178);
 
 pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
     show_with(ui, sim, opts, |_, _| {});
@@ -249,8 +250,8 @@ pub fn show_with(
                         .color(FORCE_COLOR)
                         .tip_length(8.0),
                 );
-                // after the arrows: the legend entry takes the arrows' colour
-                super::force_labels::draw(pui, FORCE_NAME, &a_from, &a_q, label_color);
+                // the labels share the arrows' legend entry, in their colour
+                super::force_labels::draw(pui, FORCE_NAME, FORCE_COLOR, &a_from, &a_q, label_color);
             }
             extra(pui, &displaced);
         });
