@@ -1,6 +1,7 @@
 //! The A/B compare view clips impact spikes like the time plots: with
 //! "clip impact spikes" on (the default) its force axis is set by the force
-//! without impacts; off, by the impulse / dt spikes.
+//! without impacts (plus room for the legend above the clip level); off, by
+//! the impulse / dt spikes.
 #![cfg(feature = "gui")]
 
 mod common;
@@ -24,6 +25,35 @@ fn y_axis(h: &Harness<'_, App>, id: &str) -> (f64, f64) {
     let mem = PlotMemory::load(&h.ctx, egui::Id::unique(id)).expect("plot shown");
     let b = mem.bounds();
     (b.min()[1], b.max()[1])
+}
+
+/// Pixels of plot `id` between `level` and the axis top, the plot frame's
+/// height and the height of its legend (its entries' span plus egui_plot's
+/// padding: 4 px outside, 4 px inside the frame, above and below).
+fn px_above(h: &Harness<'_, App>, id: &str, level: f64) -> (f32, f32, f32) {
+    let mem = PlotMemory::load(&h.ctx, egui::Id::unique(id)).expect("plot shown");
+    let tr = mem.transform();
+    let frame = *tr.frame();
+    let top = tr.position_from_point_y(mem.bounds().max()[1]);
+    let entries: Vec<egui::Rect> = [
+        "current run (solid)",
+        "reference (dashed)",
+        "current − reference",
+        "impact (impulse / dt, clipped)",
+    ]
+    .iter()
+    .flat_map(|l| h.get_all_by_label(l).map(|n| n.rect()).collect::<Vec<_>>())
+    .filter(|r| frame.contains(r.center()))
+    .collect();
+    assert!(!entries.is_empty(), "no legend in {id}");
+    let legend_h = entries.iter().map(|r| r.bottom()).fold(f32::MIN, f32::max)
+        - entries.iter().map(|r| r.top()).fold(f32::MAX, f32::min)
+        + 16.0;
+    (
+        tr.position_from_point_y(level) - top,
+        frame.height(),
+        legend_h,
+    )
 }
 
 fn force_axis(h: &Harness<'_, App>) -> (f64, f64) {
@@ -59,7 +89,7 @@ fn the_compare_force_axis_fits_the_force_without_impacts_when_clipping() {
     h.run_steps(4);
     assert!(h.state().research().pinned().is_some());
 
-    let (raw_lo, raw_hi) = history_range(h.state(), Quantity::Force);
+    let (_, raw_hi) = history_range(h.state(), Quantity::Force);
     let smooth = history_range(h.state(), Quantity::ForceWithoutImpacts);
     let top = clip_level(smooth);
     assert!(
@@ -67,14 +97,19 @@ fn the_compare_force_axis_fits_the_force_without_impacts_when_clipping() {
         "the run has impact spikes: {raw_hi} N vs {top} N"
     );
     // clipped: the axis reaches the clip level (the ▼ marks) and no further
-    // than egui_plot's margin beyond it
+    // than room for the legend above it plus egui_plot's margin: far below
+    // the spikes
     let (lo, hi) = force_axis(&h);
-    let span = top - raw_lo.min(smooth.0);
     assert!(hi >= top, "axis top {hi} N below the clip level {top} N");
-    assert!(
-        hi <= top + 0.1 * span,
-        "axis top {hi} N beyond the clip level {top} N"
+    let (above_px, frame_px, legend_px) = px_above(&h, FORCE_PLOT_ID, top);
+    eprintln!(
+        "clip level {top} N, axis top {hi} N, spikes {raw_hi} N: {above_px} px above the clip level for a legend {legend_px} px high in a {frame_px} px plot"
     );
+    assert!(
+        above_px <= legend_px + 6.0 + 0.1 * frame_px,
+        "axis top {hi} N, {above_px} px above the clip level {top} N (legend {legend_px} px)"
+    );
+    assert!(hi < 0.5 * raw_hi, "axis top {hi} N vs spikes {raw_hi} N");
     assert!(
         lo <= smooth.0,
         "{lo} N above the lowest force {} N",
@@ -137,7 +172,17 @@ fn the_compare_force_difference_is_clipped_at_both_edges() {
     );
     let (lo, hi) = y_axis(&h, FORCE_DIFF_PLOT_ID);
     let margin = 0.1 * (top - bottom);
-    assert!(hi >= top && hi <= top + margin, "{hi} vs {top} N");
+    // room for the legend above the upper clip level, far below the spikes
+    let (above_px, frame_px, legend_px) = px_above(&h, FORCE_DIFF_PLOT_ID, top);
+    eprintln!(
+        "difference: clip {bottom}..{top} N, axis {lo}..{hi} N, spikes {raw:?} N: {above_px} px above for a legend {legend_px} px high in a {frame_px} px plot"
+    );
+    assert!(hi >= top, "{hi} vs {top} N");
+    assert!(
+        above_px <= legend_px + 6.0 + 0.1 * frame_px,
+        "axis top {hi} N, {above_px} px above the clip level {top} N (legend {legend_px} px)"
+    );
+    assert!(hi < 0.5 * raw.1, "axis top {hi} N vs spikes {} N", raw.1);
     assert!(lo <= bottom && lo >= bottom - margin, "{lo} vs {bottom} N");
 
     h.get_by_label("clip impact spikes").click();

@@ -16,6 +16,7 @@ use tirecontact::gui::command::View;
 use tirecontact::gui::research::sweep_job::SweepState;
 use tirecontact::gui::views::legend_place::length_inside;
 use tirecontact::gui::{App, Command};
+use tirecontact::scene::Tyre;
 
 fn collect(shape: &Shape, out: &mut Vec<Vec<Pos2>>) {
     match shape {
@@ -103,8 +104,9 @@ fn compare_legends_keep_off_the_curves() {
     h.get_by_label("Pin as reference").click();
     h.run_steps(2);
     advance(&mut h, 4_000);
-    // the curves fill the whole run: the legends go above them, except on
-    // a clipped force axis (which must end at the clip level)
+    // the curves fill the whole run: the legends go above them; on a
+    // clipped force axis above the clip level (was 520 px of curve under
+    // the force legend's entries, in its emptiest corner)
     h.get_by_label("clip impact spikes").click();
     settle(&mut h);
     let labels = ["current run (solid)", "reference (dashed)"];
@@ -112,11 +114,31 @@ fn compare_legends_keep_off_the_curves() {
     assert_eq!(n, 4, "legend entries found: {n}");
     eprintln!("compare: {ink:.0} px of curve under {n} legend entries");
     assert!(ink <= 10.0, "{ink} px of curve under the legends");
-    // clipped: the emptiest corner
     h.get_by_label("clip impact spikes").click();
     settle(&mut h);
-    let (ink, n) = ink_under(&h, &labels);
+    let clipped = [
+        "current run (solid)",
+        "reference (dashed)",
+        "impact (impulse / dt, clipped)",
+    ];
+    let (ink, n) = ink_under(&h, &clipped);
+    assert_eq!(n, 5, "legend entries found: {n}");
     eprintln!("compare, clipped: {ink:.0} px of curve under {n} legend entries");
+    assert!(ink <= 10.0, "{ink} px of curve under the clipped legends");
+    // the difference plots (shown by default) get curves and legends once
+    // the run differs from the reference: clipped, after an edit
+    let mut edited = h.state().scene().clone();
+    if let Tyre::Modal { modes } = &mut edited.tyre {
+        modes[0].freq_hz *= 1.1;
+    }
+    h.state_mut().apply(Command::EditScene(Box::new(edited)));
+    h.run_steps(1);
+    advance(&mut h, 16_000);
+    settle(&mut h);
+    let (ink, n) = ink_under(&h, &[clipped.as_slice(), &["current − reference"]].concat());
+    assert!(n >= 8, "legend entries found: {n}");
+    eprintln!("compare with differences, clipped: {ink:.0} px of curve under {n} legend entries");
+    assert!(ink <= 10.0, "{ink} px of curve under the legends");
 }
 
 #[test]

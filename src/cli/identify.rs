@@ -9,6 +9,8 @@ use std::time::Instant;
 use tirecontact::identify::{RingIdentification, identify_ring};
 use tirecontact::lsce::{Identification, Responses, Stability};
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
+use tirecontact::output::paper_figures::paper_figures;
+use tirecontact::output::record::{PLOT_SAMPLES, Recording};
 use tirecontact::output::write_atomic;
 use tirecontact::scene::Tyre;
 use tirecontact::{Scene, Simulation};
@@ -27,9 +29,15 @@ pub struct IdentifyArgs {
     #[arg(long)]
     pub responses: Option<PathBuf>,
     /// Also run the identified scene and write `{stem}_fig1_displacement.png`
-    /// and `{stem}_fig2_force.png` (the paper's Fig. 1 and 2) into this folder.
+    /// and `{stem}_fig2_force.png` (the paper's Fig. 1 and 2) into this folder
+    /// (Fig. 2 clips impact spikes as `run --plot` does; see
+    /// --figures-unclipped).
     #[arg(long)]
     pub figures: Option<PathBuf>,
+    /// Draw the impact spikes of --figures' Fig. 2 whole (impulse / dt:
+    /// tens of kN, which squash the rolling force to a line).
+    #[arg(long)]
+    pub figures_unclipped: bool,
 }
 
 pub fn identify(args: &IdentifyArgs) -> CliResult {
@@ -72,7 +80,7 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
             .preset
             .file_stem()
             .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
-        run_figures(&modal, dir, &stem)?;
+        run_figures(&modal, dir, &stem, !args.figures_unclipped)?;
     }
     Ok(())
 }
@@ -238,33 +246,18 @@ fn responses_csv(r: &Responses) -> String {
     s
 }
 
-/// Runs `scene` and draws displacements (mm) and forces (N) of every point.
-fn run_figures(scene: &Scene, dir: &Path, stem: &str) -> CliResult {
+/// Runs `scene` and draws displacements (mm) and forces (N) of every point,
+/// recorded and clipped (`clip_impacts`) as `run --plot` does.
+fn run_figures(scene: &Scene, dir: &Path, stem: &str, clip_impacts: bool) -> CliResult {
     let start = Instant::now();
     let mut sim = Simulation::new(scene)?;
-    let p = scene.num_points();
     let n = scene.num_steps();
-    // forces are averaged over each plotted interval (impulses kept)
-    let every = (n / 1000).max(1);
-    let mut u: Vec<Vec<(f64, f64)>> = vec![vec![(0.0, 0.0)]; p];
-    let mut q: Vec<Vec<(f64, f64)>> = vec![vec![(0.0, 0.0)]; p];
-    let mut q_sum = vec![0.0; p];
-    for k in 1..=n {
+    let mut rec = Recording::new(scene.num_points(), n, PLOT_SAMPLES);
+    for _ in 0..n {
         sim.step()?;
-        for (s, f) in q_sum.iter_mut().zip(sim.force_n()) {
-            *s += f;
-        }
-        if k % every == 0 {
-            let t = sim.time_s();
-            for i in 0..p {
-                u[i].push((t, 1e3 * sim.displacement_m()[i]));
-                q[i].push((t, q_sum[i] / every as f64));
-            }
-            q_sum.fill(0.0);
-        }
+        rec.after_step(&sim);
     }
     let wall = start.elapsed().as_secs_f64();
-    let name = |i: usize| format!("point {i} (x = {} m)", scene.points[i].x_m);
     let sub = format!(
         "{}: V = {} m/s, road {}, dt = {:e} s ({} steps in {:.2} s wall)",
         scene.name,
@@ -274,36 +267,7 @@ fn run_figures(scene: &Scene, dir: &Path, stem: &str) -> CliResult {
         n,
         wall
     );
-    let figs = [
-        (
-            "fig1_displacement",
-            "Fig. 1: displacement of the contact points",
-            "displacement u (mm), up",
-            u,
-        ),
-        (
-            "fig2_force",
-            "Fig. 2: contact force on the contact points",
-            "contact force q (N), mean over each plotted interval",
-            q,
-        ),
-    ];
-    for (file, title, ylabel, data) in figs {
-        let fig = Figure {
-            title: title.into(),
-            subtitle: sub.clone(),
-            panels: vec![Panel {
-                title: String::new(),
-                x_label: "time (s)".into(),
-                y_label: ylabel.into(),
-                series: data
-                    .into_iter()
-                    .enumerate()
-                    .map(|(i, pts)| Series::line(name(i), pts))
-                    .collect(),
-                ..Panel::default()
-            }],
-        };
+    for (file, fig) in paper_figures(&rec, scene, &sub, clip_impacts) {
         let path = dir.join(format!("{stem}_{file}.png"));
         render_png(&fig, &path, 1200, 700)?;
         println!("wrote {}", path.display());

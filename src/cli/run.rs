@@ -262,10 +262,10 @@ pub fn run(args: &RunArgs) -> CliResult {
         }
         None => None,
     };
-    let mut rec = args
-        .plot
-        .as_ref()
-        .map(|_| tirecontact::output::record::Recording::new(scene.num_points(), n, 4000));
+    let mut rec = args.plot.as_ref().map(|_| {
+        use tirecontact::output::record::{PLOT_SAMPLES, Recording};
+        Recording::new(scene.num_points(), n, PLOT_SAMPLES)
+    });
     let want_spectrum = args.spectrum.is_some() || args.spectrum_plot.is_some();
     if want_spectrum && !(args.spectrum_max_hz.is_finite() && args.spectrum_max_hz > 0.0) {
         return Err(format!(

@@ -97,26 +97,38 @@ pub fn scene_with_phases(
     let heading = ui.text_style_height(&TextStyle::Heading);
     let body = ui.text_style_height(&TextStyle::Body);
     let normal_legend = std::mem::replace(&mut opts.legend_style, TextStyle::Small);
-    scene_view::show_with(ui, sim, opts, |pui, displaced| {
+    scene_view::show_with(ui, sim, opts, |pui, displaced, labels_floor| {
         // Labels go below the points, in the road, clear of the legend (top
         // right). One point: its phase, large. Several points: only impacts
         // and releases (the points' colours and the strip above give the
         // steady phases), in three lanes of text height below the lowest
-        // point, so that neighbours' labels never overlap.
+        // point and the force value labels, so that no labels overlap.
         let b = pui.plot_bounds();
         let per_px = pui.transform().dvalue_dpos()[1].abs();
         let several = displaced.len() > 1;
-        let lowest = displaced.iter().map(|d| d[1]).fold(f64::INFINITY, f64::min);
+        let points_lowest = displaced.iter().map(|d| d[1]).fold(f64::INFINITY, f64::min);
+        let lane_px = f64::from(body * 1.1);
+        let lanes = displaced.len().min(3) as f64;
+        let label_px = if several {
+            lane_px * (lanes + 0.3)
+        } else {
+            f64::from(heading) * 1.6
+        };
+        // below the points and the force value labels, but no lower than
+        // the lowest lane still fits in the plot (a short plot: 1280 x 720)
+        let lowest = labels_floor
+            .map_or(points_lowest, |f| f.min(points_lowest))
+            .max(b.min()[1] + per_px * label_px)
+            .min(points_lowest);
         for (i, d) in displaced.iter().enumerate() {
             let ph = phases.phase(i, t);
             let (y, size) = if several {
                 if !ph.is_event() {
                     continue;
                 }
-                let lane_px = f64::from(body * 1.1);
                 (lowest - per_px * lane_px * (0.3 + (i % 3) as f64), body)
             } else {
-                let y = d[1] - 0.1 * (b.max()[1] - b.min()[1]);
+                let y = (d[1] - 0.1 * (b.max()[1] - b.min()[1])).min(lowest);
                 (
                     y,
                     if ph.is_event() {

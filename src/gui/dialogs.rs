@@ -33,45 +33,10 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
         });
 }
 
-/// File, run statistics and frame rate.
+/// File, run statistics and frame rate, in one row fitted to the window
+/// (`status_bar::show`).
 pub fn status_bar(ui: &mut Ui, app: &App) {
-    ui.horizontal(|ui| {
-        let text = document_label(app.path.as_deref(), &app.scene.name, app.is_dirty());
-        if app.is_dirty() {
-            ui.label(RichText::new(text).color(ERROR_COLOR));
-        } else {
-            ui.label(text);
-        }
-        ui.separator();
-        let st = app.sim.stats();
-        let in_contact = app.sim.in_contact().iter().filter(|c| **c).count();
-        ui.label(format!(
-            "{} points, {} modes · {} steps · {} events · {} in contact",
-            app.scene.num_points(),
-            app.modes.len(),
-            st.steps,
-            st.events,
-            in_contact
-        ));
-        ui.separator();
-        ui.label(format!(
-            "history: {} samples, 1 per {} step(s)",
-            app.history.len(),
-            app.history.stride()
-        ));
-        if app.exporting_csv() {
-            ui.separator();
-            ui.spinner();
-            ui.label("writing CSV…");
-        }
-        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-            ui.label(RichText::new(format!("{:.0} fps", app.fps())).weak())
-                .on_hover_text(format!(
-                    "frames per second; solver and UI code take {:.1} ms per frame",
-                    app.app_ms()
-                ));
-        });
-    });
+    super::status_bar::show(ui, app);
 }
 
 /// What the status bar says of the document: its file, or for a scene

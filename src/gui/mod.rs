@@ -20,6 +20,7 @@ pub mod mutes;
 pub mod panels;
 pub mod presets;
 pub mod research;
+pub mod status_bar;
 pub mod time_control;
 pub mod views;
 

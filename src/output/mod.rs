@@ -4,6 +4,7 @@ pub mod animation;
 pub mod csv;
 pub mod figures;
 pub mod impacts;
+pub mod paper_figures;
 pub mod record;
 
 use std::io::Write;

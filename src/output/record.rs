@@ -10,6 +10,10 @@ use crate::simulation::Simulation;
 /// Name of the series of clipped impact samples in a recording's figure.
 pub const CLIPPED_IMPACTS: &str = "impacts (impulse / dt), clipped";
 
+/// Samples kept by the command line's run figures (`run --plot`,
+/// `identify --figures`).
+pub const PLOT_SAMPLES: u64 = 4000;
+
 /// Decimated time histories of a run.
 #[derive(Debug, Clone, Default)]
 pub struct Recording {
@@ -86,52 +90,80 @@ impl Recording {
         (lo <= hi).then(|| clip_level((lo, hi)))
     }
 
+    /// Displacement (mm) of every point, named `name(i)`.
+    pub fn displacement_series(&self, name: &dyn Fn(usize) -> String) -> Vec<Series> {
+        self.series(&self.u_m, 1e3, name)
+    }
+
+    /// Window-mean force (N) of every point, named `name(i)`. With
+    /// `clip_impacts` the spikes are cut at [`Self::clip_level_n`] (so the
+    /// force without impacts sets the axis), drawn in thin lines, and the
+    /// cut samples follow as one series of dots, [`CLIPPED_IMPACTS`]; the
+    /// flag returned says whether any sample was cut.
+    pub fn force_series(
+        &self,
+        clip_impacts: bool,
+        name: &dyn Fn(usize) -> String,
+    ) -> (Vec<Series>, bool) {
+        let mut forces = self.series(&self.q_n, 1.0, name);
+        let Some(top) = self.clip_level_n().filter(|_| clip_impacts) else {
+            return (forces, false);
+        };
+        let mut marks = Vec::new();
+        for s in &mut forces {
+            for p in &mut s.points {
+                if p.1 > top {
+                    p.1 = top;
+                    marks.push(*p);
+                }
+            }
+            // one-pixel lines: wide ones overshoot the panel at the cuts
+            s.style = Style::ThinLine;
+        }
+        let clipped = !marks.is_empty();
+        if clipped {
+            forces.push(Series {
+                name: CLIPPED_IMPACTS.into(),
+                points: marks,
+                style: Style::Markers(3),
+                color: Some(6),
+            });
+        }
+        (forces, clipped)
+    }
+
+    fn series(&self, data: &[Vec<f64>], scale: f64, name: &dyn Fn(usize) -> String) -> Vec<Series> {
+        data.iter()
+            .enumerate()
+            .map(|(i, d)| {
+                Series::line(
+                    name(i),
+                    self.t_s
+                        .iter()
+                        .zip(d)
+                        .map(|(&t, &x)| (t, x * scale))
+                        .collect(),
+                )
+            })
+            .collect()
+    }
+
+    /// Length of a sample's window (ms) for steps of `dt_s`.
+    pub fn window_ms(&self, dt_s: f64) -> f64 {
+        self.every as f64 * dt_s * 1e3
+    }
+
     /// The standard run figure: displacements (mm) and forces (N) per point.
     /// With `clip_impacts` the force axis fits the force without impacts
     /// and impact spikes are cut a margin above it, each cut sample marked
     /// by a dot (impulse / dt of a rigid landing is tens of kN against a
     /// rolling force of about 1 kN).
     pub fn figure(&self, title: &str, subtitle: &str, dt_s: f64, clip_impacts: bool) -> Figure {
-        let series = |data: &[Vec<f64>], scale: f64, name: &dyn Fn(usize) -> String| {
-            data.iter()
-                .enumerate()
-                .map(|(i, d)| {
-                    Series::line(
-                        name(i),
-                        self.t_s
-                            .iter()
-                            .zip(d)
-                            .map(|(&t, &x)| (t, x * scale))
-                            .collect(),
-                    )
-                })
-                .collect::<Vec<_>>()
-        };
-        let win_ms = self.every as f64 * dt_s * 1e3;
+        let win_ms = self.window_ms(dt_s);
         let mut force_title = format!("Contact force, mean over {win_ms:.3} ms windows");
-        let mut forces = series(&self.q_n, 1.0, &|i| format!("q{i}"));
-        let top = self.clip_level_n().filter(|_| clip_impacts);
-        if let Some(top) = top {
-            let mut marks = Vec::new();
-            for s in &mut forces {
-                for p in &mut s.points {
-                    if p.1 > top {
-                        p.1 = top;
-                        marks.push(*p);
-                    }
-                }
-                // one-pixel lines: wide ones overshoot the panel at the cuts
-                s.style = Style::ThinLine;
-            }
-            if !marks.is_empty() {
-                force_title.push_str(" (impact spikes clipped, marked by dots)");
-                forces.push(Series {
-                    name: CLIPPED_IMPACTS.into(),
-                    points: marks,
-                    style: Style::Markers(3),
-                    color: Some(6),
-                });
-            }
+        let (forces, clipped) = self.force_series(clip_impacts, &|i| format!("q{i}"));
+        if clipped {
+            force_title.push_str(" (impact spikes clipped, marked by dots)");
         }
         Figure {
             title: title.to_string(),
@@ -141,7 +173,7 @@ impl Recording {
                     title: "Displacement of the contact points (positive up)".into(),
                     x_label: "time t (s)".into(),
                     y_label: "displacement u (mm)".into(),
-                    series: series(&self.u_m, 1e3, &|i| format!("u{i}")),
+                    series: self.displacement_series(&|i| format!("u{i}")),
                     ..Panel::default()
                 },
                 Panel {

@@ -144,9 +144,9 @@ pub fn show(
         }
         let clip = opts.clip_impacts && what == Quantity::Force;
         // the curves fill the whole run, so every corner covers some: room
-        // above them for the legend (not when clipping, where the axis must
-        // end at the clip level)
-        if !clip && let Some(y) = legend_place::headroom(ui.ctx(), legend_id, legend_px) {
+        // above them for the legend; when clipping, above the clip level
+        // (the curves' top), so the axis still ends well below the spikes
+        if let Some(y) = legend_place::headroom(ui.ctx(), legend_id, legend_px) {
             plot = plot.include_y(y);
         }
         if what == Quantity::Force {
@@ -237,7 +237,9 @@ pub fn show(
                 plot = plot.x_axis_label("time t (s)");
             }
             let clip = opts.clip_impacts && k == 1;
-            if !clip && let Some(y) = legend_place::headroom(ui.ctx(), legend_id, legend_px) {
+            // room for the legend above the curves (clipped: above the
+            // upper clip level)
+            if let Some(y) = legend_place::headroom(ui.ctx(), legend_id, legend_px) {
                 plot = plot.include_y(y);
             }
             plot = plot.id(Id::unique(if k == 1 {

@@ -41,7 +41,18 @@ pub fn pick_labels(x_px: &[f32], q_n: &[f64], width_px: f32) -> Vec<usize> {
 
 /// Draws the labels of the arrows whose tails are at `tails` (plot units)
 /// with forces `q_n`, under the tails, in `color` (a strong text colour).
-pub fn draw(pui: &mut PlotUi<'_>, name: &str, tails: &[[f64; 2]], q_n: &[f64], color: Color32) {
+/// They join the arrows' legend entry `name` with the arrows' colour
+/// `legend_color` (egui_plot greys out an entry whose items differ in
+/// colour). Returns the lowest y (plot units) the labels reach, for other
+/// text to keep below (the classroom's phase labels).
+pub fn draw(
+    pui: &mut PlotUi<'_>,
+    name: &str,
+    legend_color: Color32,
+    tails: &[[f64; 2]],
+    q_n: &[f64],
+    color: Color32,
+) -> Option<f64> {
     let font_px = pui
         .ctx()
         .global_style()
@@ -54,16 +65,29 @@ pub fn draw(pui: &mut PlotUi<'_>, name: &str, tails: &[[f64; 2]], q_n: &[f64], c
         .iter()
         .map(|t| pui.screen_from_plot(PlotPoint::new(t[0], t[1])).x)
         .collect();
+    // a label's height in plot units (its row, with a gap)
+    let label_h = f64::from(LINE_HEIGHT * font_px + 4.0) * pui.transform().dvalue_dpos()[1].abs();
+    let mut lowest: Option<f64> = None;
     for i in pick_labels(&x_px, q_n, width_px) {
+        let bottom = tails[i][1] - label_h;
+        lowest = Some(lowest.map_or(bottom, |l| l.min(bottom)));
         // body size, strong colour: egui_plot's default small text in the
         // arrows' blue was unreadable on the road's fill
         let text = RichText::new(force_text(q_n[i])).size(font_px).color(color);
         pui.text(
             Text::new(name, PlotPoint::new(tails[i][0], tails[i][1]), text)
-                .anchor(Align2::CENTER_TOP),
+                .anchor(Align2::CENTER_TOP)
+                // the glyphs keep `color` (set in the text); this is the
+                // item's colour, shown by the legend
+                .color(legend_color),
         );
     }
+    lowest
 }
+
+/// Height of a line of text relative to its font size (Ubuntu: about 1.2;
+/// a little more, to be safe).
+const LINE_HEIGHT: f32 = 1.3;
 
 #[cfg(test)]
 mod tests {

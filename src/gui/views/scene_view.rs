@@ -90,20 +90,23 @@ fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
 }
 
 /// Legend entry of the force arrows and their value labels.
-const FORCE_NAME: &str = "contact force (length relative to the largest now; value in N)";
-const FORCE_COLOR: Color32 = Color32::from_rgb(0, 114, 178);
+pub const FORCE_NAME: &str = "contact force (length relative to the largest now; value in N)";
+/// Colour of the force arrows and of their legend entry.
+pub const FORCE_COLOR: Color32 = Color32::from_rgb(0, 114, 178);
 
 pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
-    show_with(ui, sim, opts, |_, _| {});
+    show_with(ui, sim, opts, |_, _, _| {});
 }
 
-/// [`show`], with `extra(plot, displaced)` drawing more items over the scene
-/// (`displaced[i]` = drawn position of point `i`, exaggerated plot units).
+/// [`show`], with `extra(plot, displaced, labels_floor)` drawing more items
+/// over the scene (`displaced[i]` = drawn position of point `i`,
+/// exaggerated plot units; `labels_floor` = the lowest y the force value
+/// labels reach, if any are drawn).
 pub fn show_with(
     ui: &mut Ui,
     sim: &Simulation,
     opts: &mut SceneViewOptions,
-    extra: impl FnOnce(&mut egui_plot::PlotUi<'_>, &[[f64; 2]]),
+    extra: impl FnOnce(&mut egui_plot::PlotUi<'_>, &[[f64; 2]], Option<f64>),
 ) {
     let scene = sim.scene();
     let t = sim.time_s();
@@ -243,16 +246,24 @@ pub fn show_with(
                 .filled(true)
                 .radius(7.0),
             );
+            let mut labels_floor = None;
             if !a_from.is_empty() {
                 pui.arrows(
                     Arrows::new(FORCE_NAME, a_from.clone(), a_to)
                         .color(FORCE_COLOR)
                         .tip_length(8.0),
                 );
-                // after the arrows: the legend entry takes the arrows' colour
-                super::force_labels::draw(pui, FORCE_NAME, &a_from, &a_q, label_color);
+                // the labels share the arrows' legend entry, in their colour
+                labels_floor = super::force_labels::draw(
+                    pui,
+                    FORCE_NAME,
+                    FORCE_COLOR,
+                    &a_from,
+                    &a_q,
+                    label_color,
+                );
             }
-            extra(pui, &displaced);
+            extra(pui, &displaced, labels_floor);
         });
 }
 

@@ -1,0 +1,235 @@
+//! The status bar in one row that fits the window: each label has a full
+//! and a short text; when the full texts do not fit (classroom mode's large
+//! text in a 1280 px window ran ~100 px past the edge), the history, then
+//! the run statistics, then the document label take their short text, and
+//! a document label still too long is cut with "…". A shortened label shows
+//! its full text on hover. Never wraps: a second row moved the widgets above
+//! it (and broke clicks on them).
+
+use super::app::App;
+use super::fields::ERROR_COLOR;
+use egui::{Label, RichText, TextStyle, TextWrapMode, Ui, WidgetText};
+
+/// A status bar label: its full text and its short text for narrow windows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StatusText {
+    pub full: String,
+    pub short: String,
+}
+
+/// The status bar's labels, left to right: document, run, history.
+pub fn texts(app: &App) -> [StatusText; 3] {
+    let st = app.sim.stats();
+    let in_contact = app.sim.in_contact().iter().filter(|c| **c).count();
+    let dirty = app.is_dirty();
+    [
+        StatusText {
+            full: super::dialogs::document_label(app.path.as_deref(), &app.scene.name, dirty),
+            short: short_document_label(app.path.as_deref(), &app.scene.name, dirty),
+        },
+        StatusText {
+            full: format!(
+                "{} points, {} modes · {} steps · {} events · {} in contact",
+                app.scene.num_points(),
+                app.modes.len(),
+                st.steps,
+                st.events,
+                in_contact
+            ),
+            short: format!(
+                "{} pts · {} steps · {} in contact",
+                app.scene.num_points(),
+                st.steps,
+                in_contact
+            ),
+        },
+        StatusText {
+            full: format!(
+                "history: {} samples, 1 per {} step(s)",
+                app.history.len(),
+                app.history.stride()
+            ),
+            short: format!("history: {}", app.history.len()),
+        },
+    ]
+}
+
+/// The document label for narrow windows: the file's name without its
+/// folder, "(unsaved)" for "(unsaved changes)".
+pub fn short_document_label(
+    path: Option<&std::path::Path>,
+    scene_name: &str,
+    dirty: bool,
+) -> String {
+    let doc = match path {
+        Some(p) => p.file_name().map_or_else(
+            || p.display().to_string(),
+            |f| f.to_string_lossy().into_owned(),
+        ),
+        None => format!("{scene_name} (preset)"),
+    };
+    if dirty {
+        format!("{doc} (unsaved)")
+    } else {
+        doc
+    }
+}
+
+/// How the labels are shown: `short[k]` takes label `k`'s short text;
+/// `doc_max_px`, when set, cuts the document label to that width.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fit {
+    pub short: [bool; 3],
+    pub doc_max_px: Option<f32>,
+}
+
+/// Order in which labels give up their full text (history, run, document).
+const SHORTEN_ORDER: [usize; 3] = [2, 1, 0];
+
+/// Chooses full or short texts for labels `full_px[k]` / `short_px[k]`
+/// wide (px) so that they plus `other_px` (separators, gaps, the frame
+/// rate) fit `avail_px`: labels shorten in [`SHORTEN_ORDER`] only as far as
+/// needed; if even the short texts do not fit, the document label is cut to
+/// what is left (at least `min_doc_px`).
+pub fn fit(full_px: [f32; 3], short_px: [f32; 3], other_px: f32, avail_px: f32) -> Fit {
+    let mut short = [false; 3];
+    let width = |short: &[bool; 3]| -> f32 {
+        (0..3)
+            .map(|k| if short[k] { short_px[k] } else { full_px[k] })
+            .sum::<f32>()
+            + other_px
+    };
+    for k in SHORTEN_ORDER {
+        if width(&short) <= avail_px {
+            return Fit {
+                short,
+                doc_max_px: None,
+            };
+        }
+        short[k] = true;
+    }
+    let over = width(&short) - avail_px;
+    let doc_max_px = (over > 0.0).then(|| (short_px[0] - over).max(MIN_DOC_PX));
+    Fit { short, doc_max_px }
+}
+
+/// The least width (px) the document label is cut to.
+pub const MIN_DOC_PX: f32 = 60.0;
+
+/// Width (px) of `text` in the body style on one line.
+fn text_px(ui: &Ui, text: &str) -> f32 {
+    WidgetText::from(text)
+        .into_galley(
+            ui,
+            Some(TextWrapMode::Extend),
+            f32::INFINITY,
+            TextStyle::Body,
+        )
+        .size()
+        .x
+}
+
+/// The status bar: document, run statistics, history, CSV export, frame rate.
+pub fn show(ui: &mut Ui, app: &App) {
+    let texts = texts(app);
+    let gap = ui.spacing().item_spacing.x;
+    // a separator is its spacing (6 px) wide plus a gap on each side
+    let separator_px = 6.0 + 2.0 * gap;
+    let fps_text = format!("{:.0} fps", app.fps());
+    let mut other_px = 2.0 * separator_px + text_px(ui, "0000 fps") + 2.0 * gap;
+    if app.exporting_csv() {
+        other_px += separator_px + ui.spacing().interact_size.y + gap + text_px(ui, "writing CSV…");
+    }
+    let full_px = [0, 1, 2].map(|k| text_px(ui, &texts[k].full));
+    let short_px = [0, 1, 2].map(|k| text_px(ui, &texts[k].short));
+    let f = fit(full_px, short_px, other_px, ui.available_width());
+    ui.horizontal(|ui| {
+        for (k, t) in texts.iter().enumerate() {
+            if k > 0 {
+                ui.separator();
+            }
+            let text = if f.short[k] { &t.short } else { &t.full };
+            let mut rich = RichText::new(text);
+            if k == 0 && app.is_dirty() {
+                rich = rich.color(ERROR_COLOR);
+            }
+            let label = Label::new(rich).show_tooltip_when_elided(false);
+            let r = match f.doc_max_px.filter(|_| k == 0) {
+                Some(w) => {
+                    ui.scope(|ui| {
+                        ui.set_max_width(w);
+                        ui.add(label.truncate())
+                    })
+                    .inner
+                }
+                None => ui.add(label.extend()),
+            };
+            if f.short[k] {
+                r.on_hover_text(&t.full);
+            }
+        }
+        if app.exporting_csv() {
+            ui.separator();
+            ui.spinner();
+            ui.label("writing CSV…");
+        }
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+            ui.label(RichText::new(fps_text).weak())
+                .on_hover_text(format!(
+                    "frames per second; solver and UI code take {:.1} ms per frame",
+                    app.app_ms()
+                ));
+        });
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const FULL: [f32; 3] = [400.0, 420.0, 300.0];
+    const SHORT: [f32; 3] = [250.0, 260.0, 120.0];
+
+    #[test]
+    fn full_texts_when_they_fit() {
+        let f = fit(FULL, SHORT, 100.0, 1220.0);
+        assert_eq!(f.short, [false; 3]);
+        assert_eq!(f.doc_max_px, None);
+    }
+
+    #[test]
+    fn labels_shorten_history_first_and_only_as_far_as_needed() {
+        // 1220 px wanted: 1100 px leaves the history short only
+        let f = fit(FULL, SHORT, 100.0, 1100.0);
+        assert_eq!(f.short, [false, false, true]);
+        // 1040 px wanted with a short history: the run too
+        let f = fit(FULL, SHORT, 100.0, 900.0);
+        assert_eq!(f.short, [false, true, true]);
+        assert_eq!(f.doc_max_px, None);
+        // 880 px with both: the document too
+        let f = fit(FULL, SHORT, 100.0, 750.0);
+        assert_eq!(f.short, [true, true, true]);
+        assert_eq!(f.doc_max_px, None);
+    }
+
+    #[test]
+    fn the_document_label_is_cut_to_what_is_left() {
+        // short texts take 630 + 100 px: 700 px leaves 220 px for the document
+        let f = fit(FULL, SHORT, 100.0, 700.0);
+        assert_eq!(f.short, [true; 3]);
+        assert_eq!(f.doc_max_px, Some(220.0));
+        // never below the least width
+        let f = fit(FULL, SHORT, 100.0, 100.0);
+        assert_eq!(f.doc_max_px, Some(MIN_DOC_PX));
+    }
+
+    #[test]
+    fn the_short_document_label_drops_the_folder() {
+        let p = std::path::Path::new("presets/guided_1a_soft_tyre.ron");
+        assert_eq!(
+            short_document_label(Some(p), "x", true),
+            "guided_1a_soft_tyre.ron (unsaved)"
+        );
+        assert_eq!(short_document_label(None, "Paper", false), "Paper (preset)");
+    }
+}

@@ -1,0 +1,151 @@
+//! The paper's Fig. 1 and Fig. 2 (`identify --figures`): displacement and
+//! contact force of every point against time, from a [`Recording`] as
+//! `run --plot` draws them; Fig. 2 clips impact spikes a margin above the
+//! force without impacts and marks them by dots (or draws them whole).
+
+use crate::Scene;
+use crate::output::figures::{Figure, Panel};
+use crate::output::record::Recording;
+
+/// File name parts (`{stem}_{part}.png`) and figures of Fig. 1
+/// (displacement, mm) and Fig. 2 (force, N) of `rec`, a run of `scene` with
+/// steps of `scene.dt_s`; `clip_impacts` as `run --plot`'s default.
+pub fn paper_figures(
+    rec: &Recording,
+    scene: &Scene,
+    subtitle: &str,
+    clip_impacts: bool,
+) -> [(&'static str, Figure); 2] {
+    let name = |i: usize| {
+        scene.points.get(i).map_or(format!("point {i}"), |p| {
+            format!("point {i} (x = {} m)", p.x_m)
+        })
+    };
+    let win_ms = rec.window_ms(scene.dt_s);
+    let (forces, clipped) = rec.force_series(clip_impacts, &name);
+    let mut force_title = "Fig. 2: contact force on the contact points".to_string();
+    if clipped {
+        force_title.push_str(" (impact spikes clipped, marked by dots)");
+    }
+    let panel = |y_label: String, series| Panel {
+        title: String::new(),
+        x_label: "time (s)".into(),
+        y_label,
+        series,
+        ..Panel::default()
+    };
+    [
+        (
+            "fig1_displacement",
+            Figure {
+                title: "Fig. 1: displacement of the contact points".into(),
+                subtitle: subtitle.into(),
+                panels: vec![panel(
+                    "displacement u (mm), up".into(),
+                    rec.displacement_series(&name),
+                )],
+            },
+        ),
+        (
+            "fig2_force",
+            Figure {
+                title: force_title,
+                subtitle: subtitle.into(),
+                panels: vec![panel(
+                    format!("contact force q (N), mean over {win_ms:.3} ms windows"),
+                    forces,
+                )],
+            },
+        ),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Simulation;
+    use crate::output::impacts::ImpactTracker;
+    use crate::output::record::{CLIPPED_IMPACTS, PLOT_SAMPLES};
+    use crate::scene::ContactScheme;
+
+    /// The three-point preset (impacts at every landing) recorded as
+    /// `identify --figures` does, and beside it, step by step, the range of
+    /// its force without impacts averaged over the same windows.
+    fn run(scheme: ContactScheme) -> (Scene, Recording, (f64, f64), f64) {
+        let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+        scene.duration_s = 0.06;
+        scene.contact_scheme = scheme;
+        let mut sim = Simulation::new(&scene).unwrap();
+        let n = scene.num_steps();
+        let mut rec = Recording::new(scene.num_points(), n, PLOT_SAMPLES);
+        let every = rec.every();
+        let p = scene.num_points();
+        let mut tracker = ImpactTracker::start(&sim);
+        let (mut q, mut qi) = (vec![0.0; p], vec![0.0; p]);
+        let (mut smooth, mut raw) = ((f64::INFINITY, f64::NEG_INFINITY), 0.0f64);
+        let mut count = 0;
+        while !sim.finished() {
+            sim.step().unwrap();
+            rec.after_step(&sim);
+            for (s, f) in q.iter_mut().zip(sim.force_n()) {
+                *s += f;
+            }
+            tracker.add_step(&sim, &mut qi);
+            count += 1;
+            if count == every || sim.finished() {
+                for i in 0..p {
+                    let mean = q[i] / count as f64;
+                    let v = (q[i] - qi[i]) / count as f64;
+                    smooth = (smooth.0.min(v), smooth.1.max(v));
+                    raw = raw.max(mean);
+                }
+                q.fill(0.0);
+                qi.fill(0.0);
+                count = 0;
+            }
+        }
+        (scene, rec, smooth, raw)
+    }
+
+    fn y_range(f: &Figure) -> (f64, f64) {
+        f.panels[0]
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.1))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
+                (lo.min(y), hi.max(y))
+            })
+    }
+
+    #[test]
+    fn fig2_is_scaled_by_the_force_without_impacts() {
+        for scheme in [ContactScheme::Located, ContactScheme::Paper] {
+            let (scene, rec, (lo, hi), raw) = run(scheme);
+            // the clip level: 10 % of the range (at least 0.1 N) above it
+            let top = hi + 0.1 * (hi - lo).max(1.0);
+            assert!(raw > 5.0 * top, "{scheme:?}: spikes {raw} N vs {top} N");
+            let [(_, fig1), (_, fig2)] = paper_figures(&rec, &scene, "s", true);
+            let (y0, y1) = y_range(&fig2);
+            assert!(
+                (y1 - top).abs() <= 1e-9 * top,
+                "{scheme:?}: Fig. 2 reaches {y1} N, clip level {top} N"
+            );
+            // clipping leaves the bottom to the force (never below it)
+            assert!(y0 >= lo - 1e-9 && y0 < top, "{scheme:?}: {y0} N vs {lo} N");
+            let marks = fig2.panels[0]
+                .series
+                .iter()
+                .find(|s| s.name == CLIPPED_IMPACTS)
+                .expect("clipped impacts marked");
+            assert!(marks.points.iter().all(|p| p.1 == top));
+            assert!(fig2.title.contains("clipped"), "{}", fig2.title);
+            assert!(fig1.title.starts_with("Fig. 1"));
+            // every point's series is named with its position
+            assert!(fig2.panels[0].series[0].name.starts_with("point 0 (x = "));
+            // whole on request: the spikes set the range
+            let [_, (_, whole)] = paper_figures(&rec, &scene, "s", false);
+            assert_eq!(y_range(&whole).1, raw, "{scheme:?}");
+            assert!(!whole.title.contains("clipped"));
+        }
+    }
+}
