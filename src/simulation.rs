@@ -6,7 +6,9 @@ mod compliant;
 mod contributions;
 mod events;
 mod gauss;
+mod options;
 mod paper;
+mod residual;
 mod steady;
 
 use crate::contact::DenseSolver;
@@ -16,6 +18,8 @@ use crate::road::Road;
 use crate::road::{PointsRoad, RoadProfile, ramp};
 use crate::scene::{ContactScheme, Scene};
 pub use events::first_crossing;
+pub use options::{IDENTIFIED_RANK_TOLERANCE, SolverOptions};
+use residual::{add_residual, split_residual};
 
 /// Values of a linear force at the step start and end from its Gauss-point values.
 const GA: f64 = 1.366_025_403_784_438_6;
@@ -147,140 +151,9 @@ pub struct Simulation {
     residual: Vec<f64>,
 }
 
-/// Switches for the work a scene does not need; all on by default. Turning
-/// one off gives the "before" of a benchmark; results agree to round-off.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SolverOptions {
-    /// Keep one state per rank term of each residue (rank 1 for a mode
-    /// shape) instead of one per (mode, source).
-    pub rank_reduction: bool,
-    /// Reuse the LU factorisation of the full-step contact operator while
-    /// the active set is unchanged.
-    pub reuse_factorisation: bool,
-    /// Residual flexibility (off by default; changes results): modes above
-    /// this frequency (Hz) are dropped from the convolution and replaced by
-    /// their static contribution `Σ A_k / ω_k²` (their `G(0)`), applied to
-    /// the contact forces as a quasi-static compliance. Impulses (rigid
-    /// impacts) see only the kept modes: their impact mass changes. Meant
-    /// for scenes that stay on the road: the static term answers a force
-    /// jump at once (no mass), so with the `Located` scheme a release can
-    /// drop a point below the road and cascade into located impacts (see
-    /// the bench's "Residual flexibility" table); the paper's step-end rule
-    /// and compliant contact do not cascade.
-    pub residual_above_hz: Option<f64>,
-    /// Relative singular-value cut of the rank reduction: the SVD terms of
-    /// a mode's residue below `rank_tolerance × σ_max` are dropped. `None`
-    /// (default): [`IDENTIFIED_RANK_TOLERANCE`] for a model identified by
-    /// LSCE (a ring tyre), [`crate::convolution::EXACT_RANK_TOLERANCE`]
-    /// (every term, exact to round-off) for modes given in the scene, which
-    /// are taken as they are. Identified residues of the ring tyre are
-    /// rank 2 (its cos/sin mode pairs) plus fit noise 1e-6 to 1e-13 of
-    /// σ_max; keeping the noise costs 2.5x the states (paper preset: 65
-    /// instead of 26) for a change of each residue below 1e-5 of its norm,
-    /// far below the identification's own error (|G| error 1.9e-2 on the
-    /// paper preset). `Some(t)`: the cut `t` for any model. Ignored without
-    /// `rank_reduction`. See [`SolverOptions::rank_tolerance_for`].
-    pub rank_tolerance: Option<f64>,
-    /// Take a step that keeps the same points on the road and locates no
-    /// event without the event loop's bookkeeping (`Located` scheme, rigid
-    /// contact; see `simulation/steady.rs`). Bit-identical results.
-    pub steady_path: bool,
-}
-
-/// The rank cut of identified models (see [`SolverOptions::rank_tolerance`]):
-/// residue terms below 1e-5 of the largest are identification noise.
-pub const IDENTIFIED_RANK_TOLERANCE: f64 = 1e-5;
-
-impl SolverOptions {
-    /// The relative rank cut used for `scene` (see
-    /// [`SolverOptions::rank_tolerance`]).
-    pub fn rank_tolerance_for(&self, scene: &Scene) -> f64 {
-        self.rank_tolerance.unwrap_or(match scene.tyre {
-            crate::scene::Tyre::Ring { .. } => IDENTIFIED_RANK_TOLERANCE,
-            crate::scene::Tyre::Modal { .. } => crate::convolution::EXACT_RANK_TOLERANCE,
-        })
-    }
-}
-
-impl Default for SolverOptions {
-    fn default() -> Self {
-        SolverOptions {
-            rank_reduction: true,
-            reuse_factorisation: true,
-            residual_above_hz: None,
-            rank_tolerance: None,
-            steady_path: true,
-        }
-    }
-}
-
-/// The modes kept in the convolution and the residual compliance
-/// `Σ_dropped A_k / ω_k²` (m/N, row-major P x P; empty when none is dropped).
-fn split_residual(
-    scene: &Scene,
-    modes: Vec<crate::scene::Mode>,
-    above_hz: Option<f64>,
-) -> Result<(Vec<crate::scene::Mode>, Vec<f64>), SceneError> {
-    let Some(fc) = above_hz else {
-        return Ok((modes, Vec::new()));
-    };
-    let invalid = |expected: String| SceneError::Invalid {
-        file: scene.name.clone(),
-        errors: vec![crate::error::FieldError {
-            field: "solver_options.residual_above_hz".into(),
-            value: format!("{fc}"),
-            expected,
-        }],
-    };
-    if !(fc.is_finite() && fc > 0.0) {
-        return Err(invalid("a finite frequency > 0 Hz".into()));
-    }
-    let lowest = modes
-        .iter()
-        .map(|m| m.freq_hz)
-        .fold(f64::INFINITY, f64::min);
-    if modes.iter().all(|m| m.freq_hz > fc) {
-        return Err(invalid(format!(
-            "a frequency that keeps at least one mode (the lowest is {lowest} Hz)"
-        )));
-    }
-    let p = scene.num_points();
-    let mut residual = vec![0.0; p * p];
-    let mut kept = Vec::with_capacity(modes.len());
-    for m in modes {
-        if m.freq_hz <= fc {
-            kept.push(m);
-            continue;
-        }
-        let w2 = (std::f64::consts::TAU * m.freq_hz).powi(2);
-        for (i, row) in m.residue_matrix().iter().enumerate().take(p) {
-            for (j, a) in row.iter().enumerate().take(p) {
-                residual[i * p + j] += a / w2;
-            }
-        }
-    }
-    if residual.iter().all(|&c| c == 0.0) {
-        residual.clear();
-    }
-    Ok((kept, residual))
-}
-
 /// `√3`: the slope of a linear force is `√3 (q2 - q1) / τ` from its
 /// Gauss-point values.
 const SQRT3: f64 = 1.732_050_807_568_877_2;
-
-/// Adds the residual compliance `c` (P x P) to the influence of Gauss-point
-/// forces over a step `tau_s`: the end value `-GB q1 + GA q2` on the
-/// displacement, the slope `√3 (q2 - q1) / τ` on the velocity.
-fn add_residual(g: &mut Influence, c: &[f64], tau_s: f64) {
-    let rate = SQRT3 / tau_s;
-    for (k, &ck) in c.iter().enumerate() {
-        g.gx1[k] += -GB * ck;
-        g.gx2[k] += GA * ck;
-        g.gv1[k] += -rate * ck;
-        g.gv2[k] += rate * ck;
-    }
-}
 
 /// [`Simulation::full_inf_cols`] of an influence.
 fn influence_columns(g: &Influence, p: usize) -> Vec<f64> {

@@ -37,7 +37,7 @@ struct Stepper {
     since_anchor: u32,
 }
 
-/// Steps between direct evaluations of a [`Stepper`].
+/// Steps between direct evaluations of a `Stepper`.
 pub const STEPPER_ANCHOR_EVERY: u32 = 32;
 
 impl PointsRoad {
@@ -62,7 +62,7 @@ impl PointsRoad {
 
     /// As [`PointsRoad::sample_all`] at `s_m`, the end of step `n` of
     /// consecutive steps of `ds_m` (m rolled per step): on a harmonic road
-    /// from the previous step's angles rotated by `κ ds` (see [`Stepper`]);
+    /// from the previous step's angles rotated by `κ ds` (see `Stepper`);
     /// other roads are sampled directly.
     pub fn sample_step(
         &mut self,
@@ -128,7 +128,7 @@ impl PointsRoad {
     }
 
     /// The common step end, fused: a single-harmonic road (a sine) sampled
-    /// at the end of step `n` right after step `n - 1` ([`Stepper`] rotation),
+    /// at the end of step `n` right after step `n - 1` (`Stepper` rotation),
     /// written as the road seen by the points past the ramp,
     /// `re_i = z_i - h_i` and `rde_i = V z'_i` (SPEC §4). The same operations
     /// as [`PointsRoad::sample_step`] followed by the offset: bit-identical.
