@@ -521,16 +521,17 @@ impl Simulation {
                 let s = self.paper_substep(t0, self.dt_s, Table::Full)?;
                 (0, s)
             }
-            ContactScheme::Located => match steady {
-                true => match self.steady_step(t0)? {
+            ContactScheme::Located => {
+                // a step with an event goes to the event loop
+                let taken = if steady { self.steady_step(t0)? } else { None };
+                match taken {
                     Some(solves) => {
                         self.stats.steady_steps += 1;
                         (0, solves)
                     }
                     None => self.located_step(t0)?,
-                },
-                false => self.located_step(t0)?,
-            },
+                }
+            }
         };
         // every impact is a located event, and so is every release of the
         // located scheme; the other schemes' releases set `released`

@@ -89,7 +89,7 @@ impl PointsRoad {
             Some(st) if follows => {
                 for (c, r) in st.cur.iter_mut().zip(&st.rot) {
                     // sin(a + b), cos(a + b)
-                    *c = (c.0 * r.1 + c.1 * r.0, c.1 * r.1 - c.0 * r.0);
+                    *c = rotated(*c, *r);
                 }
                 st.n = n;
                 st.since_anchor += 1;
@@ -158,17 +158,14 @@ impl PointsRoad {
             return false;
         }
         let (cur, r) = (st.cur[0], st.rot[0]);
-        let (sn, cs) = (cur.0 * r.1 + cur.1 * r.0, cur.1 * r.1 - cur.0 * r.0);
+        let (sn, cs) = rotated(cur, r);
         st.cur[0] = (sn, cs);
         st.n = n;
         st.since_anchor += 1;
         let p = self.x_m.len();
         let (phase, h_m, re, rde) = (&self.phase[..p], &h_m[..p], &mut re[..p], &mut rde[..p]);
-        let (a, ak) = (c.amplitude_m, c.amplitude_m * TAU / c.wavelength_m);
         for i in 0..p {
-            let (s0, c0) = phase[i];
-            let zi = a * (s0 * cs + c0 * sn);
-            let dzi = ak * (c0 * cs - s0 * sn);
+            let (zi, dzi) = height_slope(c, phase[i], (sn, cs));
             re[i] = zi - h_m[i];
             rde[i] = dzi * vel_mps;
         }
@@ -189,11 +186,8 @@ impl PointsRoad {
     ) {
         let p = phase_k.len();
         let (z, dz) = (&mut z[..p], &mut dz[..p]);
-        let (a, ak) = (c.amplitude_m, c.amplitude_m * TAU / c.wavelength_m);
         for i in 0..p {
-            let (s0, c0) = phase_k[i];
-            let zi = a * (s0 * cs + c0 * sn);
-            let dzi = ak * (c0 * cs - s0 * sn);
+            let (zi, dzi) = height_slope(c, phase_k[i], (sn, cs));
             if set {
                 (z[i], dz[i]) = (zi, dzi);
             } else {
@@ -273,6 +267,20 @@ impl PointsRoad {
             }
         }
     }
+}
+
+/// `(sin, cos)` of `a + b` from those of `a` (`c`) and `b` (`r`).
+#[inline]
+fn rotated(c: (f64, f64), r: (f64, f64)) -> (f64, f64) {
+    (c.0 * r.1 + c.1 * r.0, c.1 * r.1 - c.0 * r.0)
+}
+
+/// Height `a sin(θ0 + κ s)` (m) and slope `a κ cos(θ0 + κ s)` of harmonic
+/// `c` at a point of phase `(sin θ0, cos θ0)`, with `(sin κs, cos κs)`.
+#[inline]
+fn height_slope(c: &Harmonic, (s0, c0): (f64, f64), (sn, cs): (f64, f64)) -> (f64, f64) {
+    let (a, ak) = (c.amplitude_m, c.amplitude_m * TAU / c.wavelength_m);
+    (a * (s0 * cs + c0 * sn), ak * (c0 * cs - s0 * sn))
 }
 
 #[cfg(test)]
