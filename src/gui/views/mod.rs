@@ -2,6 +2,7 @@
 //! They read the scene, the simulation and the history; the only state they
 //! change is their own presentation options (window, exaggeration, ...).
 
+pub mod axis_title;
 pub mod compare_view;
 pub mod fidelity_view;
 pub mod force_labels;
