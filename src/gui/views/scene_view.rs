@@ -94,6 +94,20 @@ pub const FORCE_NAME: &str = "contact force (length relative to the largest now;
 /// Colour of the force arrows and of their legend entry.
 pub const FORCE_COLOR: Color32 = Color32::from_rgb(0, 114, 178);
 
+/// Legend entry of the displaced tyre's line.
+pub const DISPLACED_NAME: &str = "tyre (displaced)";
+
+/// Colour of the displaced tyre's line in theme `v`: light grey on the dark
+/// theme's plot background, dark grey on the light theme's (a fixed dark
+/// grey, 60, was barely seen on the dark background).
+pub fn displaced_tyre_color(v: &egui::Visuals) -> Color32 {
+    if v.dark_mode {
+        Color32::from_gray(220)
+    } else {
+        Color32::from_gray(60)
+    }
+}
+
 pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
     show_with(ui, sim, opts, |_, _, _| {});
 }
@@ -180,6 +194,7 @@ pub fn show_with(
         }
     }
     let label_color = ui.visuals().strong_text_color();
+    let tyre_color = displaced_tyre_color(ui.visuals());
     Plot::new("tirecontact.scene_view")
         .data_aspect(1.0)
         .legend(
@@ -220,8 +235,8 @@ pub fn show_with(
                     .radius(4.0),
             );
             pui.line(
-                Line::new("tyre (displaced)", displaced.clone())
-                    .color(Color32::from_rgb(60, 60, 60))
+                Line::new(DISPLACED_NAME, displaced.clone())
+                    .color(tyre_color)
                     .width(2.0),
             );
             let (on, off): (Vec<_>, Vec<_>) =

@@ -129,6 +129,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         .unwrap_or(ui.available_width() - 80.0);
     let t1_axis = t1 + legend_strip_s(t1 - t0, legend_w_px, frame_w_px);
     let link = Id::unique("tirecontact.time_axes");
+    let mut narrowest_px = f32::INFINITY;
     let p = history.num_points();
     for (k, def) in PLOTS.iter().enumerate() {
         let last = k == PLOTS.len() - 1;
@@ -234,11 +235,13 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             draw_series(pui, history, def, &shown, a, b, top, &mut ink);
             ink.place(pui, legend_id, legend_px);
         });
-        let w = r.transform.frame().width();
-        if (w - frame_w_px).abs() > 0.5 {
-            ui.ctx().data_mut(|d| d.insert_temp(frame_key, w));
-            ui.ctx().request_repaint();
-        }
+        narrowest_px = narrowest_px.min(r.transform.frame().width());
+    }
+    // the narrowest frame sets the strip of the next frame
+    if (narrowest_px - frame_w_px).abs() > 0.5 {
+        ui.ctx()
+            .data_mut(|d| d.insert_temp(frame_key, narrowest_px));
+        ui.ctx().request_repaint();
     }
 }
 
