@@ -122,14 +122,12 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             legend_width_px(ui, &names, h)
         })
         .fold(0.0, f32::max);
-    let frame_key = Id::unique("tirecontact.time_plots.frame_w");
-    let frame_w_px = ui
-        .ctx()
-        .data(|d| d.get_temp::<f32>(frame_key))
-        .unwrap_or(ui.available_width() - 80.0);
+    // the frames are the width less the y axes (at least 64 px); a wider
+    // axis narrows the strip by a few px (of its share of the frame): 8 px
+    // to spare
+    let frame_w_px = ui.available_width() - 64.0;
     let t1_axis = t1 + legend_strip_s(t1 - t0, legend_w_px, frame_w_px);
     let link = Id::unique("tirecontact.time_axes");
-    let mut narrowest_px = f32::INFINITY;
     let p = history.num_points();
     for (k, def) in PLOTS.iter().enumerate() {
         let last = k == PLOTS.len() - 1;
@@ -216,7 +214,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         let shown = opts.shown.clone();
         let follow = opts.follow;
         let clip = opts.clip_impacts && def.what == Quantity::Force;
-        let r = plot.show(ui, move |pui| {
+        plot.show(ui, move |pui| {
             let (a, b) = if follow {
                 pui.set_plot_bounds_x(t0..=t1_axis);
                 (t0, t1)
@@ -235,13 +233,6 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             draw_series(pui, history, def, &shown, a, b, top, &mut ink);
             ink.place(pui, legend_id, legend_px);
         });
-        narrowest_px = narrowest_px.min(r.transform.frame().width());
-    }
-    // the narrowest frame sets the strip of the next frame
-    if (narrowest_px - frame_w_px).abs() > 0.5 {
-        ui.ctx()
-            .data_mut(|d| d.insert_temp(frame_key, narrowest_px));
-        ui.ctx().request_repaint();
     }
 }
 
@@ -259,10 +250,10 @@ fn legend_width_px(ui: &Ui, names: &[String], plot_h_px: f32) -> f32 {
 }
 
 /// Time (s) past the end of a window `span_s` long that leaves a strip
-/// `legend_w_px` (plus 4 px) wide at the right of a plot frame `frame_w_px`
+/// `legend_w_px` (plus 12 px) wide at the right of a plot frame `frame_w_px`
 /// wide (at most three quarters of the frame).
 pub fn legend_strip_s(span_s: f64, legend_w_px: f32, frame_w_px: f32) -> f64 {
-    let strip_px = (legend_w_px + 4.0).min(0.75 * frame_w_px).max(0.0);
+    let strip_px = (legend_w_px + 12.0).min(0.75 * frame_w_px).max(0.0);
     let rest_px = (frame_w_px - strip_px).max(1.0);
     span_s * f64::from(strip_px) / f64::from(rest_px)
 }
