@@ -1,8 +1,9 @@
 //! Classroom mode at 1280 × 720: the scene plot is about 200 px high; its
 //! legend (six entries in the top right corner) covered the tyre. The
 //! legend is a row above the plot: every entry lies above the tyre's
-//! painted line and markers. And the phase labels never overlap each other
-//! (read from the painted text shapes over the paper preset's run).
+//! painted line and markers. The phase labels never overlap each other
+//! (read from the painted text shapes over the paper preset's run), and the
+//! y title fits the plot's height.
 #![cfg(feature = "gui")]
 
 mod common;
@@ -145,6 +146,29 @@ fn classroom_scene_legend_keeps_off_the_tyre_and_phase_labels_do_not_overlap() {
                 }
             }
         }
+        // the y title fits the plot's height (it ran past a short plot)
+        let frame = *egui_plot::PlotMemory::load(&h.ctx, egui::Id::unique(SCENE_PLOT_ID))
+            .expect("scene plot shown")
+            .transform()
+            .frame();
+        let (title, r) = shapes(&h)
+            .iter()
+            .find_map(|s| match s {
+                Shape::Text(t)
+                    if t.angle != 0.0
+                        && t.galley.text().starts_with("height")
+                        && t.visual_bounding_rect().right() <= frame.left() =>
+                {
+                    Some((t.galley.text().to_owned(), t.visual_bounding_rect()))
+                }
+                _ => None,
+            })
+            .expect("the scene plot's y title");
+        eprintln!("{size:?}: y title {title:?} spans {r:?}, the plot {frame:?}");
+        assert!(
+            r.top() >= frame.top() - 0.5 && r.bottom() <= frame.bottom() + 0.5,
+            "{size:?}: y title {title:?} at {r:?} past the plot {frame:?}"
+        );
         eprintln!("{size:?}: {checked_labels} pairs of phase labels checked, up to {most} at once");
         assert!(
             checked_labels > 0,

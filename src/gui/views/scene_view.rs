@@ -258,8 +258,20 @@ pub fn show_with(
                 .text_style(opts.legend_style.clone()),
         );
     }
-    plot.x_axis_label("position along the contact line x (m)")
-        .y_axis_label("height (mm, true scale)")
+    // the y title fits the plot's height (a short classroom plot: "height
+    // (mm)", the full title on hover)
+    let title_id = egui::Id::unique("tirecontact.scene_view.y_title");
+    let title = super::axis_title::fit_plot(
+        ui,
+        title_id,
+        Y_TITLE,
+        Y_TITLE_SHORT,
+        ui.available_height(),
+        true,
+    );
+    let r = plot
+        .x_axis_label("position along the contact line x (m)")
+        .y_axis_label(title.text.clone())
         .x_grid_spacer(|g| nice_marks(g.bounds, 1.0))
         .x_axis_formatter(|m, _| super::super::fields::format_number(m.value))
         .y_grid_spacer(move |g| nice_marks(g.bounds, 1e3 / e))
@@ -335,7 +347,12 @@ pub fn show_with(
             }
             extra(pui, &displaced, labels_floor);
         });
+    super::axis_title::after_plot(ui, title_id, &title, Y_TITLE, &r);
 }
+
+/// The scene plot's y title, and its short form.
+pub const Y_TITLE: &str = "height (mm, true scale)";
+pub const Y_TITLE_SHORT: &str = "height (mm)";
 
 #[cfg(test)]
 mod tests {
