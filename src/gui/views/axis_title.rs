@@ -2,8 +2,8 @@
 //! centred on the plot frame, never shortened, so in short stacked plots (the
 //! A/B compare view's four rows at 1280 × 720) a long title ran past its plot
 //! into the neighbours' titles. `fit` takes the full title in body text if it
-//! fits the frame's height, else in small text, else the short title (body,
-//! then small); a shortened title shows the full one on hover (`hover`).
+//! fits the frame's height, else the short title, else small text; a
+//! shortened title shows the full one on hover (`hover`).
 
 use egui::{Id, Pos2, Rect, RichText, Sense, TextStyle, Ui};
 
@@ -34,15 +34,16 @@ pub fn frame_height_px(ui: &Ui, plot_h_px: f32, x_title: bool) -> f32 {
     plot_h_px - row * if x_title { 2.0 } else { 1.0 }
 }
 
-/// The y title of a frame `frame_h_px` high: `full` in body text, `full` in
-/// small text, `short` in body text or `short` in small text, the first that
-/// fits (the last when none does).
+/// The y title of a frame `frame_h_px` high: `full` in body text, `short` in
+/// body text, `full` in small text or `short` in small text, the first that
+/// fits (the last when none does; small text is hard to read, so the short
+/// title in body text comes first).
 pub fn fit(ui: &Ui, full: &str, short: &str, frame_h_px: f32) -> YTitle {
     let room = frame_h_px - 2.0 * END_GAP_PX;
     let options = [
         (full, TextStyle::Body),
-        (full, TextStyle::Small),
         (short, TextStyle::Body),
+        (full, TextStyle::Small),
         (short, TextStyle::Small),
     ];
     let pick = options
