@@ -259,16 +259,11 @@ pub fn show_with(
         );
     }
     // the y title fits the plot's height (a short classroom plot: "height
-    // (mm)", the full title on hover)
+    // (mm)", the full title on hover); the plot fills the height left, so
+    // its frame's height is known before it is drawn
     let title_id = egui::Id::unique("tirecontact.scene_view.y_title");
-    let title = super::axis_title::fit_plot(
-        ui,
-        title_id,
-        Y_TITLE,
-        Y_TITLE_SHORT,
-        ui.available_height(),
-        true,
-    );
+    let frame_h_px = super::axis_title::frame_height_px(ui, ui.available_height(), true);
+    let title = super::axis_title::fit(ui, Y_TITLE, Y_TITLE_SHORT, frame_h_px);
     let r = plot
         .x_axis_label("position along the contact line x (m)")
         .y_axis_label(title.text.clone())
@@ -347,7 +342,7 @@ pub fn show_with(
             }
             extra(pui, &displaced, labels_floor);
         });
-    super::axis_title::after_plot(ui, title_id, &title, Y_TITLE, &r);
+    super::axis_title::hover(ui, title_id, &title, Y_TITLE, *r.transform.frame(), 44.0);
 }
 
 /// The scene plot's y title, and its short form.

@@ -446,3 +446,21 @@ pub fn clip_checkbox(ui: &mut Ui, clip_impacts: &mut bool) {
          over its previous step's force counts as impulse / dt.",
         );
 }
+
+#[cfg(test)]
+mod tests {
+    use super::legend_strip_s;
+
+    #[test]
+    fn the_legend_strip_takes_the_legend_width_of_the_frame() {
+        // a 0.1 s window in a 1000 px frame, legend 188 px (+ 12): the
+        // strip is 200 px, so the axis spans 0.1 s over 800 px plus 0.025 s
+        let s = legend_strip_s(0.1, 188.0, 1000.0);
+        assert!((s - 0.025).abs() < 1e-12, "{s}");
+        let px = 1000.0 * s / (0.1 + s);
+        assert!((px - 200.0).abs() < 1e-9, "{px}");
+        // a legend wider than the frame: at most three quarters of it
+        let s = legend_strip_s(0.1, 5000.0, 400.0);
+        assert!((400.0 * s / (0.1 + s) - 300.0).abs() < 1e-9);
+    }
+}
