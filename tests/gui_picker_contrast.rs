@@ -3,27 +3,11 @@
 //! the level for large or bold text) in the dark and the light theme.
 #![cfg(feature = "gui")]
 
-use egui::{Color32, Visuals};
+mod common;
+use common::contrast;
+use egui::Visuals;
 use tirecontact::gui::classroom::picker_color;
 use tirecontact::gui::views::point_color;
-
-/// WCAG relative luminance of an sRGB colour.
-fn luminance(c: Color32) -> f64 {
-    let lin = |v: u8| {
-        let v = f64::from(v) / 255.0;
-        if v <= 0.03928 {
-            v / 12.92
-        } else {
-            ((v + 0.055) / 1.055).powf(2.4)
-        }
-    };
-    0.2126 * lin(c.r()) + 0.7152 * lin(c.g()) + 0.0722 * lin(c.b())
-}
-
-fn contrast(a: Color32, b: Color32) -> f64 {
-    let (la, lb) = (luminance(a), luminance(b));
-    (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
-}
 
 #[test]
 fn a_selected_point_reads_on_the_selection_fill() {

@@ -97,55 +97,90 @@ pub fn scene_with_phases(
     let heading = ui.text_style_height(&TextStyle::Heading);
     let body = ui.text_style_height(&TextStyle::Body);
     let normal_legend = std::mem::replace(&mut opts.legend_style, TextStyle::Small);
+    // the legend in a row above the plot: in a corner it covered the tyre
+    let normal_above = std::mem::replace(&mut opts.legend_above, true);
     scene_view::show_with(ui, sim, opts, |pui, displaced, labels_floor| {
-        // Labels go below the points, in the road, clear of the legend (top
-        // right). One point: its phase, large. Several points: only impacts
-        // and releases (the points' colours and the strip above give the
-        // steady phases), in three lanes of text height below the lowest
-        // point and the force value labels, so that no labels overlap.
+        // One point: its phase, large, above it. Several points, below
+        // them in the road: only impacts and releases (the points'
+        // colours and the strip above give the steady phases), in up to
+        // three lanes of text height below the lowest point and the force
+        // value labels, so that no labels overlap.
         let b = pui.plot_bounds();
         let per_px = pui.transform().dvalue_dpos()[1].abs();
         let several = displaced.len() > 1;
         let points_lowest = displaced.iter().map(|d| d[1]).fold(f64::INFINITY, f64::min);
-        let lane_px = f64::from(body * 1.1);
-        let lanes = displaced.len().min(3) as f64;
-        let label_px = if several {
-            lane_px * (lanes + 0.3)
-        } else {
-            f64::from(heading) * 1.6
-        };
-        // below the points and the force value labels, but no lower than
-        // the lowest lane still fits in the plot (a short plot: 1280 x 720)
-        let lowest = labels_floor
-            .map_or(points_lowest, |f| f.min(points_lowest))
-            .max(b.min()[1] + per_px * label_px)
-            .min(points_lowest);
-        for (i, d) in displaced.iter().enumerate() {
-            let ph = phases.phase(i, t);
-            let (y, size) = if several {
-                if !ph.is_event() {
-                    continue;
-                }
-                (lowest - per_px * lane_px * (0.3 + (i % 3) as f64), body)
-            } else {
-                let y = (d[1] - 0.1 * (b.max()[1] - b.min()[1])).min(lowest);
-                (
-                    y,
-                    if ph.is_event() {
-                        heading * 1.25
-                    } else {
-                        heading
-                    },
-                )
-            };
-            let text = RichText::new(phase_text(i, ph))
+        let label = |i: usize, ph: ContactPhase, size: f32| {
+            RichText::new(phase_text(i, ph))
                 .size(size)
                 .strong()
-                .color(phase_color(ph));
-            pui.text(Text::new("", PlotPoint::new(d[0], y), text).anchor(egui::Align2::CENTER_TOP));
+                .color(phase_color(ph))
+        };
+        if several {
+            // lanes as high as a label, below the points and the force value
+            // labels, as many (up to three) as fit above the plot's bottom;
+            // each event label goes to the first lane where it clears the
+            // labels left of it (sorted by x); one that fits no lane is left
+            // to the strip above the plot
+            let measure = |t: &str| {
+                pui.ctx().fonts_mut(|f| {
+                    f.layout_no_wrap(t.to_owned(), FontId::proportional(body), Color32::WHITE)
+                        .size()
+                })
+            };
+            let lane_px = f64::from(measure("p0: IMPACT").y) + 2.0;
+            let top = labels_floor.map_or(points_lowest, |f| f.min(points_lowest));
+            let room = (top - b.min()[1]) / (per_px * lane_px) - 0.3;
+            let lanes = (room.floor() as usize).clamp(1, 3);
+            // one lane even when none fits: moved up as far as needed
+            let top = top.max(b.min()[1] + per_px * lane_px * 1.3);
+            let mut events: Vec<(usize, f32, f32)> = displaced
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| phases.phase(*i, t).is_event())
+                .map(|(i, d)| {
+                    let x = pui.transform().position_from_point_x(d[0]);
+                    let w = measure(&phase_text(i, phases.phase(i, t))).x;
+                    (i, x - 0.5 * w, x + 0.5 * w)
+                })
+                .collect();
+            events.sort_by(|a, b| a.1.total_cmp(&b.1));
+            let mut right = vec![f32::NEG_INFINITY; lanes];
+            for (i, left, r) in events {
+                let Some(lane) = (0..lanes).find(|&k| right[k] + 6.0 <= left) else {
+                    continue;
+                };
+                right[lane] = r;
+                let y = top - per_px * lane_px * (0.3 + lane as f64);
+                let d = displaced[i];
+                pui.text(
+                    Text::new(
+                        "",
+                        PlotPoint::new(d[0], y),
+                        label(i, phases.phase(i, t), body),
+                    )
+                    .anchor(egui::Align2::CENTER_TOP),
+                );
+            }
+        } else {
+            // one point: above it, in the sky the legend (now above the
+            // plot) left free; the force arrow and its value are below it
+            for (i, d) in displaced.iter().enumerate() {
+                let ph = phases.phase(i, t);
+                let size = if ph.is_event() {
+                    heading * 1.25
+                } else {
+                    heading
+                };
+                let y = d[1] + per_px * 10.0;
+                pui.text(
+                    Text::new("", PlotPoint::new(d[0], y), label(i, ph, size))
+                        .anchor(egui::Align2::CENTER_BOTTOM),
+                );
+            }
         }
     });
     opts.legend_style = normal_legend;
+    opts.legend_above = normal_above;
 }
 
 /// A strip of the phases of every point (also what the tests read).

@@ -24,3 +24,22 @@ pub fn advance(h: &mut Harness<'_, App>, n: u64) {
     }
     assert_eq!(h.state().simulation().steps(), target);
 }
+
+/// WCAG relative luminance of an sRGB colour.
+pub fn luminance(c: egui::Color32) -> f64 {
+    let lin = |v: u8| {
+        let v = f64::from(v) / 255.0;
+        if v <= 0.03928 {
+            v / 12.92
+        } else {
+            ((v + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    0.2126 * lin(c.r()) + 0.7152 * lin(c.g()) + 0.0722 * lin(c.b())
+}
+
+/// WCAG contrast ratio of two colours (1 to 21).
+pub fn contrast(a: egui::Color32, b: egui::Color32) -> f64 {
+    let (la, lb) = (luminance(a), luminance(b));
+    (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+}

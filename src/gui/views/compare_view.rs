@@ -5,7 +5,7 @@
 //! plot can clip impact spikes (fit the force without impacts, mark ▼).
 
 use super::time_plots::{clip_at, clip_checkbox, clip_level, force_range, impact_marks, y_range};
-use super::{legend_place, point_color};
+use super::{axis_title, legend_place, point_color};
 use crate::compare::{PinnedRun, RunDifference};
 use crate::gui::command::Command;
 use crate::gui::history::{History, Quantity, decimate_min_max};
@@ -16,6 +16,8 @@ use egui_plot::{Line, LineStyle, MarkerShape, Plot};
 
 /// Plot id of the force plot (its bounds are read by the tests).
 pub const FORCE_PLOT_ID: &str = "tirecontact.compare.force";
+/// Plot id of the displacement plot.
+pub const DISPLACEMENT_PLOT_ID: &str = "tirecontact.compare.displacement";
 /// Plot id of the force difference plot.
 pub const FORCE_DIFF_PLOT_ID: &str = "tirecontact.compare.force_diff";
 /// Plot id of the displacement difference plot.
@@ -115,10 +117,15 @@ pub fn show(
         .max(1e-9);
     let buckets = (ui.available_width() as usize).clamp(100, 3000);
     let quantities = [
-        (Quantity::Displacement, "displacement u (mm, up)", 1e3),
-        (Quantity::Force, "contact force q (N)", 1.0),
+        (
+            Quantity::Displacement,
+            "displacement u (mm, up)",
+            "u (mm, up)",
+            1e3,
+        ),
+        (Quantity::Force, "contact force q (N)", "q (N)", 1.0),
     ];
-    for (k, (what, y_label, scale)) in quantities.into_iter().enumerate() {
+    for (k, (what, y_label, y_short, scale)) in quantities.into_iter().enumerate() {
         let last = rows == 2 && k == 1;
         let legend_id = Id::unique(("tirecontact.compare.legend", k));
         let mut labels = vec![CURRENT];
@@ -129,12 +136,14 @@ pub fn show(
             labels.push(IMPACT_LABEL);
         }
         let legend_px = legend_place::legend_size(ui, &labels, h);
+        let title_id = Id::unique(("tirecontact.compare.y_title", k));
+        let title = axis_title::fit_plot(ui, title_id, y_label, y_short, h, last);
         let mut plot = super::nice_y_axis(Plot::new(("tirecontact.compare", k)))
             .height(h)
             .legend(legend_place::legend(ui.ctx(), legend_id, h))
             .link_axis(link, [true, false])
             .link_cursor(link, [true, false])
-            .y_axis_label(y_label)
+            .y_axis_label(title.text.clone())
             .y_axis_min_width(64.0)
             .include_x(0.0)
             .include_x(t_end)
@@ -149,9 +158,11 @@ pub fn show(
         if let Some(y) = legend_place::headroom(ui.ctx(), legend_id, legend_px) {
             plot = plot.include_y(y);
         }
-        if what == Quantity::Force {
-            plot = plot.id(Id::unique(FORCE_PLOT_ID));
-        }
+        plot = plot.id(Id::unique(if what == Quantity::Force {
+            FORCE_PLOT_ID
+        } else {
+            DISPLACEMENT_PLOT_ID
+        }));
         let shown: Vec<usize> = (0..p).filter(|&i| opts.shown[i]).collect();
         let r = plot.show(ui, |pui| {
             let b = pui.plot_bounds();
@@ -207,15 +218,16 @@ pub fn show(
             impact_marks(pui, marks, MarkerShape::Down);
             (t0, t1)
         });
+        axis_title::after_plot(ui, title_id, &title, y_label, &r);
         repaint_if_stale(ui, &r);
     }
     if rows == 4 {
         let d = diff.cloned().unwrap_or_default();
         let diffs = [
-            (&d.du_m, "Δu = current − ref (mm)", 1e3),
-            (&d.dq_n, "Δq = current − ref (N)", 1.0),
+            (&d.du_m, "Δu = current − ref (mm)", "Δu (mm)", 1e3),
+            (&d.dq_n, "Δq = current − ref (N)", "Δq (N)", 1.0),
         ];
-        for (k, (series, y_label, scale)) in diffs.into_iter().enumerate() {
+        for (k, (series, y_label, y_short, scale)) in diffs.into_iter().enumerate() {
             let legend_id = Id::unique(("tirecontact.compare_diff.legend", k));
             let labels: &[&str] = if opts.clip_impacts && k == 1 {
                 &[DIFFERENCE, IMPACT_LABEL]
@@ -223,12 +235,14 @@ pub fn show(
                 &[DIFFERENCE]
             };
             let legend_px = legend_place::legend_size(ui, labels, h);
+            let title_id = Id::unique(("tirecontact.compare_diff.y_title", k));
+            let title = axis_title::fit_plot(ui, title_id, y_label, y_short, h, k == 1);
             let mut plot = super::nice_y_axis(Plot::new(("tirecontact.compare_diff", k)))
                 .height(h)
                 .legend(legend_place::legend(ui.ctx(), legend_id, h))
                 .link_axis(link, [true, false])
                 .link_cursor(link, [true, false])
-                .y_axis_label(y_label)
+                .y_axis_label(title.text.clone())
                 .y_axis_min_width(64.0)
                 .include_x(0.0)
                 .include_x(t_end)
@@ -279,6 +293,7 @@ pub fn show(
                 impact_marks(pui, below, MarkerShape::Up);
                 (t0, t1)
             });
+            axis_title::after_plot(ui, title_id, &title, y_label, &r);
             repaint_if_stale(ui, &r);
         }
     }

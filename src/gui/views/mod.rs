@@ -2,11 +2,13 @@
 //! They read the scene, the simulation and the history; the only state they
 //! change is their own presentation options (window, exaggeration, ...).
 
+pub mod axis_title;
 pub mod compare_view;
 pub mod fidelity_view;
 pub mod force_labels;
 pub mod green_view;
 pub mod legend_place;
+pub mod scene_legend;
 pub mod scene_view;
 pub mod spectra_view;
 pub mod sweep_view;
@@ -55,14 +57,23 @@ pub fn decimals_for_step(step: f64) -> usize {
 /// A value axis with 1-2-5 ticks and labels every ~30 px: egui_plot's default
 /// powers of ten leave a 0–700 N axis with the single label "0".
 pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
-    plot.y_grid_spacer(|input| {
+    plot.y_grid_spacer(|input| nice_marks(input, 30.0))
+        .y_axis_formatter(|mark, _range| {
+            format!("{:.*}", decimals_for_step(mark.step_size), mark.value)
+        })
+}
+
+/// Grid marks at 1-2-5 steps whose labelled (major) step is at least
+/// `label_px` apart, with nested finer and coarser steps.
+pub fn nice_marks(input: egui_plot::GridInput, label_px: f64) -> Vec<egui_plot::GridMark> {
+    {
         let unit = input.base_step_size.abs();
         if unit.is_nan() || unit <= 0.0 || !unit.is_finite() {
             return Vec::new();
         }
-        // labelled steps >= 30 px (the grid's minimum spacing is 8 px), with
+        // labelled steps >= label_px (the grid's minimum spacing is 8 px), with
         // nested finer and coarser steps: 1 → (0.5, 5), 2 → (1, 10), 5 → (1, 10)
-        let major = nice_step(3.75 * unit);
+        let major = nice_step(label_px / 8.0 * unit);
         let mantissa = (major / 10f64.powf(major.log10().floor())).round();
         let (fine, coarse) = match mantissa as i64 {
             1 => (0.5, 5.0),
@@ -88,10 +99,7 @@ pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
             marks.push(egui_plot::GridMark { value, step_size });
         }
         marks
-    })
-    .y_axis_formatter(|mark, _range| {
-        format!("{:.*}", decimals_for_step(mark.step_size), mark.value)
-    })
+    }
 }
 
 /// Grid marks of a log10 axis: decades, and 2..9 when few decades show.

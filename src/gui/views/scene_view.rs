@@ -19,6 +19,9 @@ pub struct SceneViewOptions {
     /// Text style of the legend (classroom mode: small, so that the legend
     /// leaves the points visible).
     pub legend_style: egui::TextStyle,
+    /// The legend as a row above the plot instead of in a corner of it
+    /// (classroom mode: a short plot's corner legend covered the tyre).
+    pub legend_above: bool,
 }
 
 impl Default for SceneViewOptions {
@@ -27,6 +30,7 @@ impl Default for SceneViewOptions {
             auto: true,
             exaggeration: 20.0,
             legend_style: egui::TextStyle::Body,
+            legend_above: false,
         }
     }
 }
@@ -93,6 +97,31 @@ fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
 pub const FORCE_NAME: &str = "contact force (length relative to the largest now; value in N)";
 /// Colour of the force arrows and of their legend entry.
 pub const FORCE_COLOR: Color32 = Color32::from_rgb(0, 114, 178);
+
+/// Legend entries of the road, the undeformed tyre and the points in
+/// contact and in flight, and the road's colour.
+pub const ROAD_NAME: &str = "road (moving)";
+pub const ROAD_COLOR: Color32 = Color32::from_rgb(140, 86, 75);
+pub const UNDEFORMED_NAME: &str = "undeformed tyre";
+pub const CONTACT_NAME: &str = "in contact";
+pub const FLIGHT_NAME: &str = "in flight";
+
+/// Id of the scene plot (its `PlotMemory` holds the frame).
+pub const SCENE_PLOT_ID: &str = "tirecontact.scene_view";
+
+/// Legend entry of the displaced tyre's line.
+pub const DISPLACED_NAME: &str = "tyre (displaced)";
+
+/// Colour of the displaced tyre's line in theme `v`: light grey on the dark
+/// theme's plot background, dark grey on the light theme's (a fixed dark
+/// grey, 60, was barely seen on the dark background).
+pub fn displaced_tyre_color(v: &egui::Visuals) -> Color32 {
+    if v.dark_mode {
+        Color32::from_gray(220)
+    } else {
+        Color32::from_gray(60)
+    }
+}
 
 pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
     show_with(ui, sim, opts, |_, _, _| {});
@@ -180,16 +209,64 @@ pub fn show_with(
         }
     }
     let label_color = ui.visuals().strong_text_color();
-    Plot::new("tirecontact.scene_view")
-        .data_aspect(1.0)
-        .legend(
+    let tyre_color = displaced_tyre_color(ui.visuals());
+    let mut plot = Plot::new("tirecontact.scene_view")
+        .id(egui::Id::unique(SCENE_PLOT_ID))
+        .data_aspect(1.0);
+    if opts.legend_above {
+        use super::scene_legend::{Entry, Key, row};
+        let mut entries = vec![
+            Entry {
+                name: ROAD_NAME,
+                color: ROAD_COLOR,
+                key: Key::Line,
+            },
+            Entry {
+                name: UNDEFORMED_NAME,
+                color: Color32::GRAY,
+                key: Key::DashedLine,
+            },
+            Entry {
+                name: DISPLACED_NAME,
+                color: tyre_color,
+                key: Key::Line,
+            },
+            Entry {
+                name: CONTACT_NAME,
+                color: CONTACT_COLOR,
+                key: Key::Disc,
+            },
+            Entry {
+                name: FLIGHT_NAME,
+                color: FLIGHT_COLOR,
+                key: Key::Diamond,
+            },
+        ];
+        if !a_from.is_empty() {
+            entries.push(Entry {
+                name: FORCE_NAME,
+                color: FORCE_COLOR,
+                key: Key::Disc,
+            });
+        }
+        row(ui, &entries, &opts.legend_style);
+    } else {
+        plot = plot.legend(
             Legend::default()
                 .position(Corner::RightTop)
                 .follow_insertion_order(true)
                 .text_style(opts.legend_style.clone()),
-        )
+        );
+    }
+    // the y title fits the plot's height (a short classroom plot: "height
+    // (mm)", the full title on hover); the plot fills the height left, so
+    // its frame's height is known before it is drawn
+    let title_id = egui::Id::unique("tirecontact.scene_view.y_title");
+    let frame_h_px = super::axis_title::frame_height_px(ui, ui.available_height(), true);
+    let title = super::axis_title::fit(ui, Y_TITLE, Y_TITLE_SHORT, frame_h_px);
+    let r = plot
         .x_axis_label("position along the contact line x (m)")
-        .y_axis_label("height (mm, true scale)")
+        .y_axis_label(title.text.clone())
         .x_grid_spacer(|g| nice_marks(g.bounds, 1.0))
         .x_axis_formatter(|m, _| super::super::fields::format_number(m.value))
         .y_grid_spacer(move |g| nice_marks(g.bounds, 1e3 / e))
@@ -202,33 +279,33 @@ pub fn show_with(
         .allow_scroll(false)
         .show(ui, |pui| {
             pui.line(
-                Line::new("road (moving)", road)
-                    .color(Color32::from_rgb(140, 86, 75))
+                Line::new(ROAD_NAME, road)
+                    .color(ROAD_COLOR)
                     .width(2.0)
                     .fill(y_floor as f32)
                     .fill_alpha(0.25),
             );
             pui.line(
-                Line::new("undeformed tyre", undeformed.clone())
+                Line::new(UNDEFORMED_NAME, undeformed.clone())
                     .color(Color32::GRAY)
                     .style(LineStyle::dashed_dense()),
             );
             pui.points(
-                Points::new("undeformed tyre", undeformed)
+                Points::new(UNDEFORMED_NAME, undeformed)
                     .color(Color32::GRAY)
                     .filled(false)
                     .radius(4.0),
             );
             pui.line(
-                Line::new("tyre (displaced)", displaced.clone())
-                    .color(Color32::from_rgb(60, 60, 60))
+                Line::new(DISPLACED_NAME, displaced.clone())
+                    .color(tyre_color)
                     .width(2.0),
             );
             let (on, off): (Vec<_>, Vec<_>) =
                 displaced.iter().enumerate().partition(|(i, _)| contact[*i]);
             pui.points(
                 Points::new(
-                    "in contact",
+                    CONTACT_NAME,
                     on.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
                 )
                 .color(CONTACT_COLOR)
@@ -238,7 +315,7 @@ pub fn show_with(
             );
             pui.points(
                 Points::new(
-                    "in flight",
+                    FLIGHT_NAME,
                     off.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
                 )
                 .color(FLIGHT_COLOR)
@@ -265,7 +342,12 @@ pub fn show_with(
             }
             extra(pui, &displaced, labels_floor);
         });
+    super::axis_title::hover(ui, title_id, &title, Y_TITLE, *r.transform.frame(), 44.0);
 }
+
+/// The scene plot's y title, and its short form.
+pub const Y_TITLE: &str = "height (mm, true scale)";
+pub const Y_TITLE_SHORT: &str = "height (mm)";
 
 #[cfg(test)]
 mod tests {

@@ -2,13 +2,13 @@
 //! with linked time axes, legends, units, follow-latest window and min/max
 //! decimation (drawing cost scales with the plot width, not the run length).
 
-use super::point_color;
+use super::{legend_place, point_color};
 use crate::gui::history::{History, Quantity};
 /// The clip level of impact spikes, shared with the exported and
 /// command-line figures.
 pub use crate::output::impacts::clip_level;
 use egui::{Id, TextStyle, Ui};
-use egui_plot::{AxisHints, Corner, Legend, Line, MarkerShape, Plot, PlotUi, Points};
+use egui_plot::{AxisHints, Line, MarkerShape, Plot, PlotUi, Points};
 
 /// Id of the contact force plot (its `PlotMemory` holds the drawn bounds).
 pub const FORCE_PLOT_ID: &str = "tirecontact.time_plots.force";
@@ -16,6 +16,12 @@ pub const FORCE_PLOT_ID: &str = "tirecontact.time_plots.force";
 /// Spacing (px) from which the time axes' labels fade in, and at which
 /// they are opaque (a label that does not fit is still left out).
 pub const TIME_LABEL_SPACING: std::ops::RangeInclusive<f32> = 36.0..=44.0;
+
+/// Id of the displacement plot.
+pub const DISPLACEMENT_PLOT_ID: &str = "tirecontact.time_plots.displacement";
+
+/// Id of the gap plot.
+pub const GAP_PLOT_ID: &str = "tirecontact.time_plots.gap";
 
 /// Id of the contact state plot.
 pub const CONTACT_PLOT_ID: &str = "tirecontact.time_plots.contact";
@@ -106,6 +112,21 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
     };
     let gap = ui.spacing().item_spacing.y;
     let h = ((ui.available_height() - 3.0 * gap) / 4.0).max(80.0);
+    // the curves fill the window's width, so every corner of it would cover
+    // some: the time axis runs on past the window's end by a strip as wide
+    // as the widest legend, where the legends go (top right)
+    let legend_w_px = PLOTS
+        .iter()
+        .map(|def| {
+            let names = legend_names(history, &opts.shown, def, opts.clip_impacts);
+            legend_width_px(ui, &names, h)
+        })
+        .fold(0.0, f32::max);
+    // the frames are the width less the y axes (at least 64 px); a wider
+    // axis narrows the strip by a few px (of its share of the frame): 8 px
+    // to spare
+    let frame_w_px = ui.available_width() - 64.0;
+    let t1_axis = t1 + legend_strip_s(t1 - t0, legend_w_px, frame_w_px);
     let link = Id::unique("tirecontact.time_axes");
     let p = history.num_points();
     for (k, def) in PLOTS.iter().enumerate() {
@@ -115,14 +136,18 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         } else {
             def.y_label
         };
+        // the legend goes to the corner its curves left emptiest on the last
+        // frame (the strip past the window's end)
+        let legend_id = Id::unique(("tirecontact.time_plots.legend", k));
+        let names = legend_names(history, &opts.shown, def, opts.clip_impacts);
+        let legend_px = egui::Vec2::new(
+            legend_width_px(ui, &names, h),
+            legend_place::legend_size(ui, &names.iter().map(String::as_str).collect::<Vec<_>>(), h)
+                .y,
+        );
         let mut plot = Plot::new(("tirecontact.time_plot", k))
             .height(h)
-            .legend(
-                Legend::default()
-                    .text_style(legend_text(h))
-                    .position(legend_corner(opts.follow, t_end, opts.window_s))
-                    .follow_insertion_order(true),
-            )
+            .legend(legend_place::legend(ui.ctx(), legend_id, h).follow_insertion_order(true))
             .link_axis(link, [true, false])
             .link_cursor(link, [true, false])
             .y_axis_label(y_label)
@@ -131,16 +156,32 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             .auto_bounds([!opts.follow, true]);
         // time labels shown down to 40 px apart (the default hides x labels
         // closer than 60 px: a narrow plot kept one label)
-        let mut x_axis = AxisHints::new_x().label_spacing(TIME_LABEL_SPACING);
+        let mut x_axis = AxisHints::new_x()
+            .label_spacing(TIME_LABEL_SPACING)
+            .formatter(|mark, _| {
+                format!(
+                    "{:.*}",
+                    super::decimals_for_step(mark.step_size),
+                    mark.value
+                )
+            });
         if last {
             x_axis = x_axis.label("time t (s)");
         }
-        plot = plot.custom_x_axes(vec![x_axis]);
-        if def.what == Quantity::Force {
-            plot = plot.id(Id::unique(FORCE_PLOT_ID));
-        }
-        if def.what == Quantity::Contact {
-            plot = plot.id(Id::unique(CONTACT_PLOT_ID));
+        // 1-2-5 time steps labelled from TIME_LABEL_SPACING's end on (powers
+        // of ten left a narrow plot one label)
+        let label_px = f64::from(*TIME_LABEL_SPACING.end());
+        plot = plot
+            .custom_x_axes(vec![x_axis])
+            .x_grid_spacer(move |g| super::nice_marks(g, label_px));
+        plot = plot.id(Id::unique(match def.what {
+            Quantity::Force => FORCE_PLOT_ID,
+            Quantity::Contact => CONTACT_PLOT_ID,
+            Quantity::Gap => GAP_PLOT_ID,
+            _ => DISPLACEMENT_PLOT_ID,
+        }));
+        if !opts.follow {
+            plot = plot.include_x(t1_axis);
         }
         if def.what != Quantity::Contact {
             plot = super::nice_y_axis(plot);
@@ -175,7 +216,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         let clip = opts.clip_impacts && def.what == Quantity::Force;
         plot.show(ui, move |pui| {
             let (a, b) = if follow {
-                pui.set_plot_bounds_x(t0..=t1);
+                pui.set_plot_bounds_x(t0..=t1_axis);
                 (t0, t1)
             } else if pui.auto_bounds().x {
                 (t0, t1)
@@ -188,9 +229,33 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             } else {
                 None
             };
-            draw_series(pui, history, def, &shown, a, b, top);
+            let mut ink = legend_place::Ink::default();
+            draw_series(pui, history, def, &shown, a, b, top, &mut ink);
+            ink.place(pui, legend_id, legend_px);
         });
     }
+}
+
+/// Width (px) of a time plot's legend of `names` (egui_plot's layout: per
+/// entry a marker as wide as the text is high, a fifth of that, the text;
+/// 8 px margins inside the legend's frame, 4 px outside).
+fn legend_width_px(ui: &Ui, names: &[String], plot_h_px: f32) -> f32 {
+    let style = legend_text(plot_h_px);
+    let row_px = ui.text_style_height(&style);
+    let text_px = names
+        .iter()
+        .map(|n| super::axis_title::text_length_px(ui, n, &style))
+        .fold(0.0, f32::max);
+    text_px + 1.2 * row_px + 2.0 * 8.0 + 2.0 * 4.0
+}
+
+/// Time (s) past the end of a window `span_s` long that leaves a strip
+/// `legend_w_px` (plus 12 px) wide at the right of a plot frame `frame_w_px`
+/// wide (at most three quarters of the frame).
+pub fn legend_strip_s(span_s: f64, legend_w_px: f32, frame_w_px: f32) -> f64 {
+    let strip_px = (legend_w_px + 12.0).min(0.75 * frame_w_px).max(0.0);
+    let rest_px = (frame_w_px - strip_px).max(1.0);
+    span_s * f64::from(strip_px) / f64::from(rest_px)
 }
 
 /// Spacing (px) from which the contact plot's lane labels fade in, and at
@@ -211,16 +276,20 @@ pub fn legend_text(plot_height: f32) -> TextStyle {
     }
 }
 
-/// Where the time plots' legends go: while following a full window the
-/// newest samples are drawn at the right edge, so the legends move to the
-/// left (over the oldest samples of the window); before the window fills
-/// (data on the left only) and over the whole run, top right.
-pub fn legend_corner(follow: bool, t_end_s: f64, window_s: f64) -> Corner {
-    if follow && t_end_s > window_s {
-        Corner::LeftTop
-    } else {
-        Corner::RightTop
+/// Legend entry of the clipped impacts' marks.
+pub const IMPACT_LABEL: &str = "impact (impulse / dt, clipped)";
+
+/// The entries of a time plot's legend: one per shown point, and the
+/// clipped impacts' marks in a clipped force plot (for its size).
+fn legend_names(history: &History, shown: &[bool], def: &PlotDef, clip: bool) -> Vec<String> {
+    let mut names: Vec<String> = (0..history.num_points())
+        .filter(|&i| shown.get(i).copied().unwrap_or(false))
+        .map(|i| format!("point {i}"))
+        .collect();
+    if clip && def.what == Quantity::Force {
+        names.push(IMPACT_LABEL.to_owned());
     }
+    names
 }
 
 /// Min/max buckets of a plot: one per two pixels of width, so each line
@@ -230,6 +299,7 @@ fn buckets_for(pui: &PlotUi<'_>) -> usize {
     ((pui.response().rect.width() / 2.0) as usize).clamp(100, 2000)
 }
 
+#[allow(clippy::too_many_arguments)]
 fn draw_series(
     pui: &mut PlotUi<'_>,
     h: &History,
@@ -238,6 +308,7 @@ fn draw_series(
     a: f64,
     b: f64,
     clip_top: Option<f64>,
+    ink: &mut legend_place::Ink,
 ) {
     let mut marks = Vec::new();
     let buckets = buckets_for(pui);
@@ -257,6 +328,7 @@ fn draw_series(
         if let Some(top) = clip_top {
             clip_at(&mut pts, top, &mut marks);
         }
+        ink.add(pui, &pts);
         pui.line(
             Line::new(format!("point {i}"), pts)
                 .color(point_color(i))
@@ -287,7 +359,7 @@ pub const IMPACT_MARK_COLOR: egui::Color32 = egui::Color32::from_gray(140);
 pub fn impact_marks(pui: &mut PlotUi<'_>, marks: Vec<[f64; 2]>, shape: MarkerShape) {
     if !marks.is_empty() {
         pui.points(
-            Points::new("impact (impulse / dt, clipped)", marks)
+            Points::new(IMPACT_LABEL, marks)
                 .shape(shape)
                 .filled(true)
                 .radius(4.0)
@@ -373,4 +445,22 @@ pub fn clip_checkbox(ui: &mut Ui, clip_impacts: &mut bool) {
          impact: in a step where a point's force turns positive, each point's rise \
          over its previous step's force counts as impulse / dt.",
         );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::legend_strip_s;
+
+    #[test]
+    fn the_legend_strip_takes_the_legend_width_of_the_frame() {
+        // a 0.1 s window in a 1000 px frame, legend 188 px (+ 12): the
+        // strip is 200 px, so the axis spans 0.1 s over 800 px plus 0.025 s
+        let s = legend_strip_s(0.1, 188.0, 1000.0);
+        assert!((s - 0.025).abs() < 1e-12, "{s}");
+        let px = 1000.0 * s / (0.1 + s);
+        assert!((px - 200.0).abs() < 1e-9, "{px}");
+        // a legend wider than the frame: at most three quarters of it
+        let s = legend_strip_s(0.1, 5000.0, 400.0);
+        assert!((400.0 * s / (0.1 + s) - 300.0).abs() < 1e-9);
+    }
 }

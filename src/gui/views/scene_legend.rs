@@ -1,0 +1,89 @@
+//! The scene view's legend as a row above the plot (classroom mode): in a
+//! short scene plot (about 200 px at 1280 × 720) egui_plot's legend, six
+//! entries high in a corner, covered the tyre. Each entry is one widget
+//! (named like the item, for screen readers and the tests): its key drawn
+//! as in the plot (a line, dashed or solid; a ring, a disc or a diamond; a
+//! dot for the force arrows, as egui_plot's legend draws it) and its name.
+
+use egui::{Color32, Pos2, Role, Sense, Shape, Stroke, TextStyle, Ui, Vec2, WidgetInfo};
+
+/// How an entry's key is drawn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Key {
+    Line,
+    DashedLine,
+    Ring,
+    Disc,
+    Diamond,
+}
+
+/// One legend entry.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Entry {
+    pub name: &'static str,
+    pub color: Color32,
+    pub key: Key,
+}
+
+/// Width (px) of an entry's key.
+const KEY_W_PX: f32 = 18.0;
+
+/// The entries in a wrapped row, text in `style`.
+pub fn row(ui: &mut Ui, entries: &[Entry], style: &TextStyle) {
+    ui.horizontal_wrapped(|ui| {
+        ui.spacing_mut().item_spacing.x = 14.0;
+        for e in entries {
+            entry(ui, e, style);
+        }
+    });
+}
+
+fn entry(ui: &mut Ui, e: &Entry, style: &TextStyle) {
+    let font = style.resolve(ui.style());
+    let text_color = ui.visuals().text_color();
+    let galley = ui
+        .painter()
+        .layout_no_wrap(e.name.to_owned(), font, text_color);
+    let size = Vec2::new(KEY_W_PX + 4.0 + galley.size().x, galley.size().y);
+    let (rect, response) = ui.allocate_exact_size(size, Sense::hover());
+    response.widget_info(|| WidgetInfo::labeled(Role::Label, true, e.name));
+    let c = Pos2::new(rect.left() + 0.5 * KEY_W_PX, rect.center().y);
+    let r = 0.3 * galley.size().y;
+    let p = ui.painter();
+    match e.key {
+        Key::Line => {
+            p.line_segment(
+                [c - Vec2::new(8.0, 0.0), c + Vec2::new(8.0, 0.0)],
+                Stroke::new(2.0, e.color),
+            );
+        }
+        Key::DashedLine => {
+            for x in [-8.0, -1.0, 6.0] {
+                p.line_segment(
+                    [c + Vec2::new(x, 0.0), c + Vec2::new(x + 3.0, 0.0)],
+                    Stroke::new(1.5, e.color),
+                );
+            }
+        }
+        Key::Ring => {
+            p.circle_stroke(c, r, Stroke::new(1.5, e.color));
+        }
+        Key::Disc => {
+            p.circle_filled(c, r, e.color);
+        }
+        Key::Diamond => {
+            let pts = vec![
+                c + Vec2::new(0.0, -r * 1.2),
+                c + Vec2::new(r * 1.2, 0.0),
+                c + Vec2::new(0.0, r * 1.2),
+                c + Vec2::new(-r * 1.2, 0.0),
+            ];
+            p.add(Shape::convex_polygon(pts, e.color, Stroke::NONE));
+        }
+    }
+    p.galley(
+        Pos2::new(rect.left() + KEY_W_PX + 4.0, rect.top()),
+        galley,
+        text_color,
+    );
+}
