@@ -1,6 +1,9 @@
 //! Classroom mode, mode bars with mute/solo, random road and compliant
 //! contact controls, and animation export, driven headless with egui_kittest.
+
 #![cfg(feature = "gui")]
+
+mod common;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -25,10 +28,7 @@ fn app_on(name: &str) -> App {
 }
 
 fn harness(app: App, size: [f32; 2]) -> Harness<'static, App> {
-    Harness::builder()
-        .with_size(size)
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(|ui, app: &mut App| app.show(ui), app)
+    common::harness_sized(app, size)
 }
 
 fn body_size(h: &Harness<'_, App>) -> f32 {

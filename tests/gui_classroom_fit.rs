@@ -1,7 +1,10 @@
 //! Classroom mode at projector sizes (1600 × 1000, 1280 × 720): the scene's
 //! description is shown whole above the mode bars (1600 × 1000) or scrolls
 //! above them (1280 × 720), and the mode bars' buttons stay in the window.
+
 #![cfg(feature = "gui")]
+
+mod common;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -13,10 +16,7 @@ fn classroom(name: &str, size: [f32; 2]) -> Harness<'static, App> {
     // opened from its file, as `tirecontact gui presets/…` does
     let path = PathBuf::from(format!("presets/{name}.ron"));
     let app = App::new(Scene::load(Path::new(&path)).unwrap(), Some(path)).unwrap();
-    let mut h = Harness::builder()
-        .with_size(size)
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(|ui, app: &mut App| app.show(ui), app);
+    let mut h = common::harness_sized(app, size);
     h.run();
     h.state_mut().apply(Command::SetClassroom(true));
     h.run_steps(4);

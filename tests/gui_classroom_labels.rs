@@ -30,13 +30,7 @@ fn texts(h: &Harness<'_, App>) -> Vec<(String, Rect)> {
 
 fn check(preset: &str, size: [f32; 2], steps: u64) {
     let scene = Scene::load(Path::new(preset)).unwrap();
-    let mut h = Harness::builder()
-        .with_size(size)
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(
-            |ui, app: &mut App| app.show(ui),
-            App::new(scene, None).unwrap(),
-        );
+    let mut h = common::harness_sized(App::new(scene, None).unwrap(), size);
     h.run();
     h.state_mut().apply(Command::ShowView(View::Scene));
     h.state_mut().apply(Command::SetClassroom(true));

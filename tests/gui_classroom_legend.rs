@@ -100,13 +100,7 @@ fn classroom_scene_legend_keeps_off_the_tyre_and_phase_labels_do_not_overlap() {
     let points = scene.points.len();
     let steps = (scene.duration_s / scene.dt_s).round() as u64;
     for size in [[1280.0, 720.0], [1600.0, 1000.0]] {
-        let mut h = Harness::builder()
-            .with_size(size)
-            .with_step_dt(1.0 / 60.0)
-            .build_ui_state(
-                |ui, app: &mut App| app.show(ui),
-                App::new(scene.clone(), None).unwrap(),
-            );
+        let mut h = common::harness_sized(App::new(scene.clone(), None).unwrap(), size);
         h.run();
         h.state_mut().apply(Command::ShowView(View::Scene));
         h.state_mut().apply(Command::SetClassroom(true));

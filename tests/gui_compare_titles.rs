@@ -65,13 +65,7 @@ fn frame(h: &Harness<'_, App>, id: &str) -> Rect {
 fn compare(size: [f32; 2]) -> Harness<'static, App> {
     let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
     scene.duration_s = 0.03;
-    let mut h = Harness::builder()
-        .with_size(size)
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(
-            |ui, app: &mut App| app.show(ui),
-            App::new(scene.clone(), None).unwrap(),
-        );
+    let mut h = common::harness_sized(App::new(scene.clone(), None).unwrap(), size);
     h.run();
     advance(&mut h, 3000);
     h.state_mut().apply(Command::ShowView(View::Compare));

@@ -46,13 +46,7 @@ fn dots_in(shapes: &[Shape], r: Rect) -> Vec<Color32> {
 
 fn check(size: [f32; 2], classroom: bool) {
     let scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
-    let mut h = Harness::builder()
-        .with_size(size)
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(
-            |ui, app: &mut App| app.show(ui),
-            App::new(scene, None).unwrap(),
-        );
+    let mut h = common::harness_sized(App::new(scene, None).unwrap(), size);
     h.run();
     h.state_mut().apply(Command::ShowView(View::Scene));
     if classroom {

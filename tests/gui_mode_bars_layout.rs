@@ -1,9 +1,11 @@
 //! The mode bars' vertical axis label fits beside the plot frame (egui_plot
 //! centres it on the frame): a frame shorter than the label let it run up
 //! over the "point i: u = …" line above the plot in classroom mode.
+
 #![cfg(feature = "gui")]
 
-use egui_kittest::Harness;
+mod common;
+
 use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
 use std::path::Path;
@@ -16,10 +18,7 @@ fn check(preset: &str, size: [f32; 2]) {
         .join("presets")
         .join(preset);
     let app = App::new(Scene::load(&p).unwrap(), Some(p)).unwrap();
-    let mut h = Harness::builder()
-        .with_size(size)
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(|ui, app: &mut App| app.show(ui), app);
+    let mut h = common::harness_sized(app, size);
     h.run_steps(2);
     h.state_mut().apply(Command::SetClassroom(true));
     h.run_steps(4);

@@ -17,10 +17,7 @@ use tirecontact::gui::{App, Command};
 fn harness(size: [f32; 2], classroom: bool) -> Harness<'static, App> {
     let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/guided_1a_soft_tyre.ron");
     let app = App::new(Scene::load(&p).unwrap(), Some(p)).unwrap();
-    let mut h = Harness::builder()
-        .with_size(size)
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(|ui, app: &mut App| app.show(ui), app);
+    let mut h = common::harness_sized(app, size);
     h.run();
     if classroom {
         h.state_mut().apply(Command::SetClassroom(true));

@@ -156,13 +156,7 @@ fn the_time_plots_legends_cover_no_curve() {
     let scene = Scene::load(Path::new("presets/paper.ron")).unwrap();
     let steps = (scene.duration_s / scene.dt_s).round() as u64;
     for size in [[1600.0, 1000.0], [1280.0, 720.0]] {
-        let mut h = Harness::builder()
-            .with_size(size)
-            .with_step_dt(1.0 / 60.0)
-            .build_ui_state(
-                |ui, app: &mut App| app.show(ui),
-                App::new(scene.clone(), None).unwrap(),
-            );
+        let mut h = common::harness_sized(App::new(scene.clone(), None).unwrap(), size);
         h.run();
         // mid-run (the 0.1 s window full), then after the run
         advance(&mut h, steps / 2);

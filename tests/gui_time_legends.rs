@@ -78,10 +78,7 @@ fn the_contact_scheme_explains_itself_on_hover() {
 }
 
 fn small_harness(app: App) -> Harness<'static, App> {
-    Harness::builder()
-        .with_size([1280.0, 720.0])
-        .with_step_dt(1.0 / 60.0)
-        .build_ui_state(|ui, app: &mut App| app.show(ui), app)
+    common::harness_sized(app, [1280.0, 720.0])
 }
 
 /// In a 1280 × 720 window the contact plot's lanes are closer than the

@@ -6,8 +6,13 @@ use tirecontact::gui::{App, Command};
 
 /// The app in a 1500 × 950 window stepped at 60 frames per second.
 pub fn harness(app: App) -> Harness<'static, App> {
+    harness_sized(app, [1500.0, 950.0])
+}
+
+/// The app in a window of `size` (points) stepped at 60 frames per second.
+pub fn harness_sized(app: App, size: [f32; 2]) -> Harness<'static, App> {
     Harness::builder()
-        .with_size([1500.0, 950.0])
+        .with_size(size)
         .with_step_dt(1.0 / 60.0)
         .build_ui_state(|ui, app: &mut App| app.show(ui), app)
 }
