@@ -137,6 +137,14 @@ pub struct Simulation {
     full_solver: DenseSolver,
     full_set: Vec<usize>,
     full_factored: bool,
+    /// The points outside `full_set`, in order.
+    full_free: Vec<usize>,
+    /// Per point of `full_free`, the full-step influence of the Gauss-point
+    /// forces of `full_set` on its end displacement and velocity, packed as
+    /// two rows of `2|S|` against the solved `q1 | q2` (`4|S|` values).
+    full_free_rows: Vec<f64>,
+    /// `0..P`.
+    every: Vec<usize>,
     options: SolverOptions,
     stats: RunStats,
     /// Tread stiffness per point (N/m) of compliant contact; empty: rigid.
@@ -257,6 +265,9 @@ impl Simulation {
             full_solver: DenseSolver::new(2 * p),
             full_set: Vec::with_capacity(p),
             full_factored: false,
+            full_free: Vec::with_capacity(p),
+            full_free_rows: Vec::with_capacity(4 * p * p),
+            every: (0..p).collect(),
             options,
             stats: RunStats::default(),
             tread_k_n_m: scene.contact.stiffness_per_point(p),

@@ -38,13 +38,6 @@ impl Simulation {
     /// lands inside the step.
     pub(super) fn steady_step(&mut self, t0: f64) -> Result<Option<u32>, SolverError> {
         let p = self.p;
-        let (contact, u, r) = (&self.contact[..p], &self.u[..p], &self.r[..p]);
-        // a point left below the road (a live road or speed change) lands now
-        for i in 0..p {
-            if !contact[i] && u[i] - r[i] < -self.pen_tol_m {
-                return Ok(None);
-            }
-        }
         let dt = self.dt_s;
         self.predict(t0, dt, Table::Full)?;
         let n = self.active.len();
@@ -69,24 +62,24 @@ impl Simulation {
             }
         }
         if n > 0 {
-            self.end_values_sub_or_full(Table::Full);
+            self.end_values_solved();
         } else {
             // no force: the end values are the free ones, which nothing reads
             // again before the next prediction rewrites them
             std::mem::swap(&mut self.ue, &mut self.uh);
             std::mem::swap(&mut self.ve, &mut self.vh);
         }
-        // a free point landing inside the step
+        // a free point left below the road (a live road or speed change)
+        // lands at the step start, one that would cross it inside the step
+        // lands there: both are events
         let (u, v, r, rd) = (&self.u[..p], &self.v[..p], &self.r[..p], &self.rd[..p]);
         let (ue, ve, re, rde) = (&self.ue[..p], &self.ve[..p], &self.re[..p], &self.rde[..p]);
-        let contact = &self.contact[..p];
-        for i in 0..p {
-            if contact[i] {
-                continue;
-            }
+        let tol = self.pen_tol_m;
+        let free: &[usize] = if n > 0 { &self.full_free } else { &self.every };
+        for &i in free {
             let (g0, d0) = (u[i] - r[i], v[i] - rd[i]);
             let (g1, d1) = (ue[i] - re[i], ve[i] - rde[i]);
-            if first_crossing(g0, d0 * dt, g1, d1 * dt, self.pen_tol_m, false).is_some() {
+            if g0 < -tol || first_crossing(g0, d0 * dt, g1, d1 * dt, tol, false).is_some() {
                 return Ok(None);
             }
         }
