@@ -72,6 +72,20 @@ fn bad_preset_exits_nonzero_with_location() {
 }
 
 #[test]
+fn negative_overrides_are_named_by_validation() {
+    // clap would take "-1" for a flag; the scene's validation names the field
+    for (flag, field) in [("--dt", "dt_s = -1"), ("--duration", "duration_s = -1")] {
+        let o = bin().args(["run", flag, "-1"]).output().unwrap();
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains(field) && err.contains("> 0 s"),
+            "{flag}: {err}"
+        );
+    }
+}
+
+#[test]
 fn check_accepts_shipped_presets() {
     let o = bin()
         .args(["check", "presets/single_mode.ron"])

@@ -11,6 +11,8 @@ use tirecontact::output::figures::render_png;
 use tirecontact::{Scene, SolverOptions};
 
 #[derive(Debug, clap::Args)]
+// (a negative value reaches validation, which names the field, not clap's "unexpected argument")
+#[command(allow_negative_numbers = true)]
 pub struct BenchArgs {
     /// Output folder for work_precision.csv, work_precision.md and the diagrams.
     #[arg(short, long, default_value = "bench-out")]

@@ -16,6 +16,8 @@ use tirecontact::scene::Tyre;
 use tirecontact::{Scene, Simulation};
 
 #[derive(Debug, clap::Args)]
+// (a negative value reaches validation, which names the field, not clap's "unexpected argument")
+#[command(allow_negative_numbers = true)]
 pub struct IdentifyArgs {
     /// Scene preset (RON) with `tyre: Ring(...)`.
     pub preset: PathBuf,

@@ -10,6 +10,8 @@ use tirecontact::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder, scene_markers
 use tirecontact::{Scene, SceneError, Simulation};
 
 #[derive(Debug, clap::Args)]
+// (a negative value reaches validation, which names the field, not clap's "unexpected argument")
+#[command(allow_negative_numbers = true)]
 pub struct RunArgs {
     /// Scene preset (RON). Without it, the embedded default preset.
     pub preset: Option<PathBuf>,

@@ -9,6 +9,8 @@ use tirecontact::sweep::{Sweep, get_param, linspace, report, run_sweep, set_para
 use tirecontact::{Scene, SceneError};
 
 #[derive(Debug, clap::Args)]
+// (a negative value reaches validation, which names the field, not clap's "unexpected argument")
+#[command(allow_negative_numbers = true)]
 pub struct SweepArgs {
     /// Scene preset (RON). Without it, the embedded default preset.
     pub preset: Option<PathBuf>,
