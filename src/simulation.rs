@@ -143,8 +143,6 @@ pub struct Simulation {
     /// forces of `full_set` on its end displacement and velocity, packed as
     /// two rows of `2|S|` against the solved `q1 | q2` (`4|S|` values).
     full_free_rows: Vec<f64>,
-    /// `0..P`.
-    every: Vec<usize>,
     options: SolverOptions,
     stats: RunStats,
     /// Tread stiffness per point (N/m) of compliant contact; empty: rigid.
@@ -267,7 +265,6 @@ impl Simulation {
             full_factored: false,
             full_free: Vec::with_capacity(p),
             full_free_rows: Vec::with_capacity(4 * p * p),
-            every: (0..p).collect(),
             options,
             stats: RunStats::default(),
             tread_k_n_m: scene.contact.stiffness_per_point(p),

@@ -75,15 +75,45 @@ impl Simulation {
         let (u, v, r, rd) = (&self.u[..p], &self.v[..p], &self.r[..p], &self.rd[..p]);
         let (ue, ve, re, rde) = (&self.ue[..p], &self.ve[..p], &self.re[..p], &self.rde[..p]);
         let tol = self.pen_tol_m;
-        let free: &[usize] = if n > 0 { &self.full_free } else { &self.every };
-        for &i in free {
-            let (g0, d0) = (u[i] - r[i], v[i] - rd[i]);
-            let (g1, d1) = (ue[i] - re[i], ve[i] - rde[i]);
-            if g0 < -tol || first_crossing(g0, d0 * dt, g1, d1 * dt, tol, false).is_some() {
-                return Ok(None);
+        // (two plain loops: as a closure the check was not inlined, +10 %
+        // instructions per step)
+        if n > 0 {
+            for &i in &self.full_free {
+                if lands(
+                    u[i] - r[i],
+                    v[i] - rd[i],
+                    ue[i] - re[i],
+                    ve[i] - rde[i],
+                    dt,
+                    tol,
+                ) {
+                    return Ok(None);
+                }
+            }
+        } else {
+            // (every point free: indices the compiler sees in range)
+            for i in 0..p {
+                if lands(
+                    u[i] - r[i],
+                    v[i] - rd[i],
+                    ue[i] - re[i],
+                    ve[i] - rde[i],
+                    dt,
+                    tol,
+                ) {
+                    return Ok(None);
+                }
             }
         }
         self.commit(dt, Table::Full);
         Ok(Some((n > 0) as u32))
     }
+}
+
+/// Whether a free point with gap `g0`, gap rate `d0` at the step start and
+/// `g1`, `d1` at its end is below the road at the start or lands inside the
+/// step ([`first_crossing`] of the Hermite cubic).
+#[inline(always)]
+fn lands(g0: f64, d0: f64, g1: f64, d1: f64, dt: f64, tol: f64) -> bool {
+    g0 < -tol || first_crossing(g0, d0 * dt, g1, d1 * dt, tol, false).is_some()
 }
