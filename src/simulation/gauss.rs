@@ -125,13 +125,13 @@ impl Simulation {
         let q = &self.rhs[..m];
         let (ue, ve) = (&mut self.ue[..p], &mut self.ve[..p]);
         let (uh, vh) = (&self.uh[..p], &self.vh[..p]);
-        let rows = &self.full_free_rows[..4 * n * self.full_free.len()];
-        for (f, &i) in self.full_free.iter().enumerate() {
-            let (rx, rv) = rows[2 * m * f..2 * m * (f + 1)].split_at(m);
+        let rows = self.full_free_rows.chunks_exact(2 * m);
+        for (&i, row) in self.full_free.iter().zip(rows) {
+            let (rx, rv) = row.split_at(m);
             let (mut a, mut b) = (uh[i], vh[i]);
-            for k in 0..m {
-                a += rx[k] * q[k];
-                b += rv[k] * q[k];
+            for ((x, v), qk) in rx.iter().zip(rv).zip(q) {
+                a += x * qk;
+                b += v * qk;
             }
             ue[i] = a;
             ve[i] = b;
