@@ -20,8 +20,9 @@ pub struct SolverOptions {
     /// for scenes that stay on the road: the static term answers a force
     /// jump at once (no mass), so with the `Located` scheme a release can
     /// drop a point below the road and cascade into located impacts (see
-    /// the bench's "Residual flexibility" table); the paper's step-end rule
-    /// and compliant contact do not cascade.
+    /// the bench's "Residual flexibility" table; even a scene that stays on
+    /// the road can, from the first step of its ramp); the paper's step-end
+    /// rule and compliant contact do not cascade: use one of them with it.
     pub residual_above_hz: Option<f64>,
     /// Relative singular-value cut of the rank reduction: the SVD terms of
     /// a mode's residue below `rank_tolerance × σ_max` are dropped. `None`
