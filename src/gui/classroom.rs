@@ -41,7 +41,12 @@ pub struct Classroom {
 
 impl Classroom {
     /// Scales the text styles up when `on`, back when not (idempotent).
-    pub fn sync_style(&mut self, ctx: &egui::Context) {
+    /// Returns whether the style changed: the frame's root `Ui` took its
+    /// style before and must be given the new one (else the frame lays out
+    /// in the old text sizes, and the editing panel, shown in classroom
+    /// mode's large text on the first frame after it, kept that width).
+    pub fn sync_style(&mut self, ctx: &egui::Context) -> bool {
+        let changed = self.on != self.saved.is_some();
         match (self.on, self.saved.is_some()) {
             (true, false) => {
                 let theme = ctx.options(|o| o.theme_preference);
@@ -66,6 +71,7 @@ impl Classroom {
             }
             _ => {}
         }
+        changed
     }
 }
 
