@@ -93,6 +93,26 @@ fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
     out
 }
 
+/// Marks of the height axis (plot units: exaggerated metres; `to_mm`
+/// converts them to true mm) at 1-2-5 steps of true mm, the labelled ones
+/// at least `label_px` apart (finer unlabelled grid lines between).
+pub fn height_marks(g: egui_plot::GridInput, to_mm: f64, label_px: f64) -> Vec<GridMark> {
+    if !(to_mm.is_finite() && to_mm > 0.0) {
+        return Vec::new();
+    }
+    let mm = egui_plot::GridInput {
+        bounds: (g.bounds.0 * to_mm, g.bounds.1 * to_mm),
+        base_step_size: g.base_step_size * to_mm,
+    };
+    super::nice_marks(mm, label_px)
+        .into_iter()
+        .map(|m| GridMark {
+            value: m.value / to_mm,
+            step_size: m.step_size / to_mm,
+        })
+        .collect()
+}
+
 /// Legend entry of the force arrows and their value labels.
 pub const FORCE_NAME: &str = "contact force (length relative to the largest now; value in N)";
 /// Colour of the force arrows and of their legend entry.
@@ -264,12 +284,16 @@ pub fn show_with(
     let title_id = egui::Id::unique("tirecontact.scene_view.y_title");
     let frame_h_px = super::axis_title::frame_height_px(ui, ui.available_height(), true);
     let title = super::axis_title::fit(ui, Y_TITLE, Y_TITLE_SHORT, frame_h_px);
+    // labelled heights at least a label and a half apart: eight steps over
+    // the plot's height left a short classroom plot's labels (body text,
+    // x1.7) closer than their height, and egui_plot drew none
+    let label_px = f64::from(1.5 * ui.text_style_height(&egui::TextStyle::Body)).max(30.0);
     let r = plot
         .x_axis_label("position along the contact line x (m)")
         .y_axis_label(title.text.clone())
         .x_grid_spacer(|g| nice_marks(g.bounds, 1.0))
         .x_axis_formatter(|m, _| super::super::fields::format_number(m.value))
-        .y_grid_spacer(move |g| nice_marks(g.bounds, 1e3 / e))
+        .y_grid_spacer(move |g| height_marks(g, 1e3 / e, label_px))
         .y_axis_formatter(move |m, _| super::super::fields::format_number(m.value / e * 1e3))
         .y_axis_min_width(44.0)
         .include_x(x0)
@@ -352,6 +376,46 @@ pub const Y_TITLE_SHORT: &str = "height (mm)";
 #[cfg(test)]
 mod tests {
     use super::round_125;
+
+    #[test]
+    fn height_labels_are_a_label_and_a_half_apart_in_true_mm() {
+        use super::height_marks;
+        // a 185 px high plot over ±20 mm of exaggerated height at ×10 (true
+        // ±2 mm); labels 36 px apart at least
+        let (frame_px, label_px, e) = (185.0, 36.0, 10.0);
+        let bounds = (-0.02, 0.02);
+        let per_px = (bounds.1 - bounds.0) / frame_px;
+        let g = egui_plot::GridInput {
+            bounds,
+            base_step_size: 8.0 * per_px,
+        };
+        let marks = height_marks(g, 1e3 / e, label_px);
+        // egui_plot labels a mark when its step is as far apart as a label:
+        // the labelled step is the smallest such
+        let major = marks
+            .iter()
+            .map(|m| m.step_size)
+            .filter(|s| s / per_px >= label_px)
+            .fold(f64::INFINITY, f64::min);
+        // and it is not needlessly coarse: the next finer 1-2-5 step is closer
+        assert!(major / per_px < 2.5 * label_px, "{} px", major / per_px);
+        // in true mm a 1-2-5 step
+        let mm = major * 1e3 / e;
+        let mant = mm / 10f64.powf(mm.log10().floor());
+        assert!(
+            [1.0, 2.0, 5.0].iter().any(|m| (mant - m).abs() < 1e-9),
+            "{mm} mm"
+        );
+        let labelled: Vec<f64> = marks
+            .iter()
+            .filter(|m| m.step_size >= major)
+            .map(|m| m.value)
+            .collect();
+        assert!(labelled.len() >= 2, "{labelled:?}");
+        assert!(labelled.iter().all(|v| *v >= bounds.0 && *v <= bounds.1));
+        // finer grid lines between
+        assert!(marks.len() > labelled.len());
+    }
 
     #[test]
     fn exaggeration_rounds_to_1_2_5() {
