@@ -210,9 +210,11 @@ fn the_classroom_plot_legend_covers_no_curve() {
 #[test]
 fn the_compare_legends_cover_no_curve() {
     // a run pinned, then the same run again, checked as it grows
-    let runs: [(&str, u64, &[u64]); 2] = [
+    let runs: [(&str, u64, &[u64]); 4] = [
         ("three_points.ron", 12_000, &[1_000, 3_000]),
         ("paper.ron", 20_000, &[2_000, 4_000, 6_000, 8_000]),
+        ("single_mode.ron", 100_000, &[5_000, 20_000, 75_000]),
+        ("random_road.ron", 50_000, &[5_000, 20_000, 25_000]),
     ];
     for (preset, first, stages) in runs {
         let scene = Scene::load(&Path::new("presets").join(preset)).unwrap();
@@ -237,7 +239,7 @@ fn the_compare_legends_cover_no_curve() {
                 .collect();
             for &n in stages {
                 advance(&mut h, n);
-                h.run_steps(4);
+                h.run();
                 let t_ms = h.state().simulation().time_s() * 1e3;
                 for clip in ["clipped", "not clipped"] {
                     for (id, plot) in [
@@ -254,7 +256,7 @@ fn the_compare_legends_cover_no_curve() {
                         );
                     }
                     h.get_by_label("clip impact spikes").click();
-                    h.run_steps(4);
+                    h.run();
                 }
             }
         }

@@ -311,6 +311,7 @@ fn legend_row(ui: &mut Ui, point: usize, clipped: bool) {
         &style,
     );
     if clipped {
+        ui.add_space(8.0);
         item(
             ui,
             IMPACT_LABEL,
