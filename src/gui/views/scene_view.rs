@@ -94,23 +94,29 @@ fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
 }
 
 /// Marks of the height axis (plot units: exaggerated metres; `to_mm`
-/// converts them to true mm) at 1-2-5 steps of true mm, the labelled ones
-/// at least `label_px` apart (finer unlabelled grid lines between).
+/// converts them to true mm) at a 1-2-5 step of true mm, about eight over
+/// the plot's height as before, but never closer than `label_px` (a short
+/// plot in large text: a label and a half).
 pub fn height_marks(g: egui_plot::GridInput, to_mm: f64, label_px: f64) -> Vec<GridMark> {
-    if !(to_mm.is_finite() && to_mm > 0.0) {
+    let (a, b) = (g.bounds.0 * to_mm, g.bounds.1 * to_mm);
+    // true mm per px (the grid input's step is 8 px of plot units)
+    let mm_per_px = g.base_step_size * to_mm / 8.0;
+    if !(a.is_finite() && b.is_finite() && b > a && mm_per_px.is_finite() && mm_per_px > 0.0) {
         return Vec::new();
     }
-    let mm = egui_plot::GridInput {
-        bounds: (g.bounds.0 * to_mm, g.bounds.1 * to_mm),
-        base_step_size: g.base_step_size * to_mm,
-    };
-    super::nice_marks(mm, label_px)
-        .into_iter()
-        .map(|m| GridMark {
-            value: m.value / to_mm,
-            step_size: m.step_size / to_mm,
-        })
-        .collect()
+    // eight steps rounded to 1-2-5 (as before), or the least 1-2-5 step
+    // a label and a half apart when that is coarser
+    let step = round_125((b - a) / 8.0).max(super::nice_step(label_px * mm_per_px));
+    let mut out = Vec::new();
+    let mut k = (a / step).ceil();
+    while k * step <= b && out.len() < 100 {
+        out.push(GridMark {
+            value: k * step / to_mm,
+            step_size: step / to_mm,
+        });
+        k += 1.0;
+    }
+    out
 }
 
 /// Legend entry of the force arrows and their value labels.
@@ -390,14 +396,11 @@ mod tests {
             base_step_size: 8.0 * per_px,
         };
         let marks = height_marks(g, 1e3 / e, label_px);
-        // egui_plot labels a mark when its step is as far apart as a label:
-        // the labelled step is the smallest such
-        let major = marks
-            .iter()
-            .map(|m| m.step_size)
-            .filter(|s| s / per_px >= label_px)
-            .fold(f64::INFINITY, f64::min);
-        // and it is not needlessly coarse: the next finer 1-2-5 step is closer
+        // one step, at least a label and a half apart, and not needlessly
+        // coarse: the next finer 1-2-5 step would be closer
+        let major = marks[0].step_size;
+        assert!(marks.iter().all(|m| m.step_size == major));
+        assert!(major / per_px >= label_px, "{} px", major / per_px);
         assert!(major / per_px < 2.5 * label_px, "{} px", major / per_px);
         // in true mm a 1-2-5 step
         let mm = major * 1e3 / e;
@@ -413,8 +416,14 @@ mod tests {
             .collect();
         assert!(labelled.len() >= 2, "{labelled:?}");
         assert!(labelled.iter().all(|v| *v >= bounds.0 && *v <= bounds.1));
-        // finer grid lines between
-        assert!(marks.len() > labelled.len());
+        // a tall plot: about eight steps over its height, as before (labels
+        // 1.5 text heights apart would crowd 800 px with 27 of them)
+        let g = egui_plot::GridInput {
+            bounds,
+            base_step_size: 8.0 * (bounds.1 - bounds.0) / 800.0,
+        };
+        let marks = height_marks(g, 1e3 / e, 21.0);
+        assert!((4..=9).contains(&marks.len()), "{} marks", marks.len());
     }
 
     #[test]
