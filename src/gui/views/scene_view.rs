@@ -416,8 +416,8 @@ mod tests {
             .collect();
         assert!(labelled.len() >= 2, "{labelled:?}");
         assert!(labelled.iter().all(|v| *v >= bounds.0 && *v <= bounds.1));
-        // a tall plot: about eight steps over its height, as before (labels
-        // 1.5 text heights apart would crowd 800 px with 27 of them)
+        // a tall plot: about eight steps over its height, as before (steps
+        // only a label and a half apart would put 20 labels on 800 px)
         let g = egui_plot::GridInput {
             bounds,
             base_step_size: 8.0 * (bounds.1 - bounds.0) / 800.0,
