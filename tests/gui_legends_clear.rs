@@ -237,7 +237,19 @@ fn the_compare_legends_cover_no_curve() {
                 .iter()
                 .map(|s| s.to_string())
                 .collect();
-            for &n in stages {
+            // the same run as it grows, then a faster one (a live edit:
+            // current and reference differ) to its end
+            let mut plan: Vec<(u64, bool)> = stages.iter().map(|&n| (n, false)).collect();
+            plan.push((first, true));
+            for (n, edit) in plan {
+                if edit {
+                    let mut faster = h.state().scene().clone();
+                    faster.speed_mps *= 1.3;
+                    h.state_mut().apply(Command::EditScene(Box::new(faster)));
+                    h.state_mut().apply(Command::Reset);
+                    h.run();
+                }
+                let n = n.min(first - h.state().simulation().steps());
                 advance(&mut h, n);
                 h.run();
                 let t_ms = h.state().simulation().time_s() * 1e3;
