@@ -6,7 +6,9 @@
 use super::command::Command;
 use super::history::{History, Quantity};
 use super::mutes::Mutes;
-use super::views::time_plots::{clip_at, clip_level, force_range, impact_marks};
+use super::views::time_plots::{
+    IMPACT_LABEL, IMPACT_MARK_COLOR, clip_at, clip_level, force_range, impact_marks,
+};
 use super::views::{CONTACT_COLOR, FLIGHT_COLOR, point_color, scene_view};
 use crate::Simulation;
 use crate::phase::{ContactPhase, PhaseTracker};
@@ -41,7 +43,12 @@ pub struct Classroom {
 
 impl Classroom {
     /// Scales the text styles up when `on`, back when not (idempotent).
-    pub fn sync_style(&mut self, ctx: &egui::Context) {
+    /// Returns whether the style changed: the frame's root `Ui` took its
+    /// style before and must be given the new one (else the frame lays out
+    /// in the old text sizes, and the editing panel, shown in classroom
+    /// mode's large text on the first frame after it, kept that width).
+    pub fn sync_style(&mut self, ctx: &egui::Context) -> bool {
+        let changed = self.on != self.saved.is_some();
         match (self.on, self.saved.is_some()) {
             (true, false) => {
                 let theme = ctx.options(|o| o.theme_preference);
@@ -66,6 +73,7 @@ impl Classroom {
             }
             _ => {}
         }
+        changed
     }
 }
 
@@ -234,10 +242,6 @@ pub fn point_picker(ui: &mut Ui, cls: &mut Classroom, p: usize) {
 
 /// One plot of the chosen point: force or displacement over the last 0.1 s.
 pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f64) {
-    ui.horizontal(|ui| {
-        ui.selectable_value(&mut cls.show_force, true, "contact force");
-        ui.selectable_value(&mut cls.show_force, false, "displacement");
-    });
     let i = cls.point.min(history.num_points().saturating_sub(1));
     let (what, long, short, scale) = if cls.show_force {
         (Quantity::Force, "contact force q (N)", "q (N)", 1.0)
@@ -249,10 +253,6 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
             1e3,
         )
     };
-    // the vertical label is centred on the plot frame: in a short plot the
-    // long one ran up over the force / displacement switch above
-    let frame_h = ui.available_height() - 3.0 * ui.text_style_height(&TextStyle::Body);
-    let label = fitting_label(ui, long, short, frame_h);
     let window = 0.1;
     let t1 = history.last_time().unwrap_or(0.0).max(now_s).max(window);
     let t0 = t1 - window;
@@ -266,13 +266,18 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
     {
         clip_at(&mut pts, top, &mut marks);
     }
+    ui.horizontal_wrapped(|ui| {
+        ui.selectable_value(&mut cls.show_force, true, "contact force");
+        ui.selectable_value(&mut cls.show_force, false, "displacement");
+        ui.separator();
+        legend_row(ui, i, !marks.is_empty());
+    });
+    // the vertical label is centred on the plot frame: in a short plot the
+    // long one ran up over the force / displacement switch above
+    let frame_h = ui.available_height() - 3.0 * ui.text_style_height(&TextStyle::Body);
+    let label = fitting_label(ui, long, short, frame_h);
     super::views::nice_y_axis(Plot::new("tirecontact.classroom_plot"))
         .id(egui::Id::unique(CLASSROOM_PLOT_ID))
-        .legend(
-            Legend::default()
-                .position(Corner::LeftTop)
-                .follow_insertion_order(true),
-        )
         .x_axis_label("time t (s)")
         .y_axis_label(label)
         .allow_scroll(false)
@@ -287,6 +292,34 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
             );
             impact_marks(pui, marks, egui_plot::MarkerShape::Down);
         });
+}
+
+/// The legend of the point plot, in the row of its force / displacement
+/// switch above it: the plot's curve fills the window's width, so in any
+/// corner the legend covered some of it (fixed top left it covered the
+/// curve's start; in a strip past the window's end, as in the time plots, it
+/// took 343 of the 717 px of the frame at 1280 × 720 with the clipped
+/// impacts' entry in classroom text).
+fn legend_row(ui: &mut Ui, point: usize, clipped: bool) {
+    use super::views::scene_legend::{Key, item};
+    let style = TextStyle::Body;
+    item(
+        ui,
+        &format!("point {point}"),
+        point_color(point),
+        Key::Line,
+        &style,
+    );
+    if clipped {
+        ui.add_space(8.0);
+        item(
+            ui,
+            IMPACT_LABEL,
+            IMPACT_MARK_COLOR,
+            Key::TriangleDown,
+            &style,
+        );
+    }
 }
 
 /// Plot id of the classroom's point plot.

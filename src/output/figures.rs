@@ -160,6 +160,29 @@ pub fn tick_label(v: f64, log: bool) -> String {
 
 /// Renders `fig` as a PNG of `width × height` px at `path`.
 pub fn render_png(fig: &Figure, path: &Path, width: u32, height: u32) -> Result<(), FigureError> {
+    render_png_layout(fig, path, width, height).map(|_| ())
+}
+
+/// Where a panel was drawn, in the PNG's pixels (x right, y down).
+#[derive(Debug, Clone, Default)]
+pub struct PanelLayout {
+    /// The plotting area (inside the axes): left, top, right, bottom.
+    pub plot_px: [i32; 4],
+    /// The legend's box when it is drawn outside the plotting area, at its
+    /// right (no corner of the plot was free of data); `None` when it is in
+    /// a corner of the plot (plotters' layout) or there is none.
+    pub legend_px: Option<[i32; 4]>,
+    /// Every series' points as drawn (finite ones), in pixels.
+    pub curves_px: Vec<Vec<(i32, i32)>>,
+}
+
+/// [`render_png`], returning where each panel was drawn.
+pub fn render_png_layout(
+    fig: &Figure,
+    path: &Path,
+    width: u32,
+    height: u32,
+) -> Result<Vec<PanelLayout>, FigureError> {
     if !(200..=8000).contains(&width) || !(200..=8000).contains(&height) {
         return Err(FigureError::Size { width, height });
     }
@@ -194,11 +217,12 @@ pub fn render_png(fig: &Figure, path: &Path, width: u32, height: u32) -> Result<
     let body = root.margin(top as u32, 0, 0, 0);
     let n = fig.panels.len().max(1);
     let areas = body.split_evenly((n, 1));
+    let mut layouts = Vec::with_capacity(fig.panels.len());
     for (panel, area) in fig.panels.iter().zip(areas.iter()) {
-        draw_panel(panel, area, scale).map_err(|e| err(&e))?;
+        layouts.push(draw_panel(panel, area, scale).map_err(|e| err(&e))?);
     }
     root.present().map_err(|e| err(&e))?;
-    Ok(())
+    Ok(layouts)
 }
 
 /// The x and y ranges of all the panel's points (on log axes, of the
@@ -212,9 +236,9 @@ fn data_ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
 }
 
 /// The corner of the panel with the fewest data points under a legend-sized
-/// box (a quarter of the width; `entry_frac` of the plot height per entry);
-/// upper right on ties.
-fn legend_corner(panel: &Panel, entry_frac: f64) -> SeriesLabelPosition {
+/// box (a quarter of the width; `entry_frac` of the plot height per entry),
+/// upper right on ties, and how many points are under it.
+fn legend_corner(panel: &Panel, entry_frac: f64) -> (SeriesLabelPosition, usize) {
     let (xs, ys) = data_ranges(panel);
     let norm = |v: f64, (lo, hi): (f64, f64), log: bool| {
         if log {
@@ -246,24 +270,123 @@ fn legend_corner(panel: &Panel, entry_frac: f64) -> SeriesLabelPosition {
         }
     }
     let best = (0..4).min_by_key(|&k| (counts[k], k)).unwrap_or(0);
-    corners
+    let corner = corners
         .into_iter()
         .nth(best)
-        .map_or(SeriesLabelPosition::UpperRight, |c| c.0)
+        .map_or(SeriesLabelPosition::UpperRight, |c| c.0);
+    (corner, counts[best])
+}
+
+/// A legend entry drawn by [`draw_legend`]: name, colour, style, stroke (px).
+type LegendEntry = (String, RGBColor, Style, u32);
+
+/// Size (px) of the legend box of `entries` in `font_px` text: a row of
+/// 1.6 text heights per entry, a 20 px key, 8 px gaps and padding.
+fn legend_size(
+    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    entries: &[LegendEntry],
+    font_px: u32,
+) -> (i32, i32) {
+    let font = ("sans-serif", font_px as i32).into_font().color(&BLACK);
+    let text_w = entries
+        .iter()
+        .map(|e| {
+            area.estimate_text_size(&e.0, &font)
+                .map_or(e.0.chars().count() as u32 * font_px, |s| s.0)
+        })
+        .max()
+        .unwrap_or(0);
+    let row = (1.6 * f64::from(font_px)).round() as i32;
+    (
+        text_w as i32 + 20 + 3 * 8,
+        row * entries.len() as i32 + 2 * 6,
+    )
+}
+
+/// Draws the legend box of `entries` with its top left at `(x, y)` of `area`.
+fn draw_legend(
+    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    entries: &[LegendEntry],
+    (x, y): (i32, i32),
+    (w, h): (i32, i32),
+    font_px: u32,
+) -> Result<(), Box<dyn std::error::Error>> {
+    area.draw(&Rectangle::new([(x, y), (x + w, y + h)], WHITE.filled()))?;
+    area.draw(&Rectangle::new(
+        [(x, y), (x + w, y + h)],
+        RGBColor(180, 180, 180).stroke_width(1),
+    ))?;
+    let font = ("sans-serif", font_px as i32).into_font().color(&BLACK);
+    let row = (1.6 * f64::from(font_px)).round() as i32;
+    for (k, (name, c, style, stroke)) in entries.iter().enumerate() {
+        let top = y + 6 + row * k as i32;
+        let mid = top + row / 2;
+        let key_x = x + 8;
+        match *style {
+            Style::Line | Style::ThinLine | Style::LineMarkers(_) => {
+                area.draw(&PathElement::new(
+                    vec![(key_x, mid), (key_x + 20, mid)],
+                    c.stroke_width(*stroke),
+                ))?;
+            }
+            Style::Markers(r) => {
+                area.draw(&Circle::new((key_x + 10, mid), r, c.filled()))?;
+            }
+            Style::HollowMarkers(r) => {
+                area.draw(&Circle::new((key_x + 10, mid), r, c.stroke_width(1)))?;
+            }
+        }
+        let text_h = font_px as i32;
+        area.draw(&Text::new(
+            name.clone(),
+            (key_x + 28, mid - text_h / 2),
+            font.clone(),
+        ))?;
+    }
+    Ok(())
 }
 
 fn draw_panel(
     panel: &Panel,
     area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
     scale: f64,
-) -> Result<(), Box<dyn std::error::Error>> {
+) -> Result<PanelLayout, Box<dyn std::error::Error>> {
     let fs = |s: f64| (s * scale).round() as u32;
     let (xs, ys) = data_ranges(panel);
     // legend entry height over the plot's height (caption, axis area, margins off)
     let area_h = f64::from(area.dim_in_pixel().1);
     let plot_h = (area_h - f64::from(fs(45.0) + fs(27.0) + 2 * fs(10.0))).max(1.0);
     let entry_frac = 1.6 * f64::from(fs(14.0)) / plot_h;
-    let mut builder = ChartBuilder::on(area);
+    let stroke_of = |s: &Series| {
+        if s.style == Style::ThinLine {
+            1
+        } else {
+            (scale * 1.6).max(1.0) as u32
+        }
+    };
+    let entries: Vec<LegendEntry> = panel
+        .series
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| !s.name.is_empty())
+        .map(|(k, s)| {
+            let c = PALETTE[s.color.unwrap_or(k) % PALETTE.len()];
+            (s.name.clone(), c, s.style, stroke_of(s))
+        })
+        .collect();
+    // in the corner with the least data; when every corner has some (Fig. 2:
+    // the force's spikes fill the whole plot), in a column right of the plot
+    let (corner, under) = legend_corner(panel, entry_frac);
+    let outside = !entries.is_empty() && under > 0;
+    let legend_wh = legend_size(area, &entries, fs(14.0));
+    let (chart_area, legend_area) = if outside {
+        let w = area.dim_in_pixel().0 as i32;
+        area.split_horizontally((w - legend_wh.0 - fs(10.0) as i32).max(w / 2))
+    } else {
+        area.split_horizontally(area.dim_in_pixel().0)
+    };
+    let mut layout = PanelLayout::default();
+    let mut builder = ChartBuilder::on(&chart_area);
     builder
         .caption(&panel.title, ("sans-serif", fs(18.0) as i32))
         .margin(fs(10.0))
@@ -301,6 +424,8 @@ fn draw_panel(
                 .axis_desc_style(("sans-serif", fs(16.0) as i32))
                 .light_line_style(RGBColor(235, 235, 235))
                 .draw()?;
+            let (px, py) = chart.plotting_area().get_pixel_range();
+            layout.plot_px = [px.start, py.start, px.end, py.end];
             for (k, s) in panel.series.iter().enumerate() {
                 let c = PALETTE[s.color.unwrap_or(k) % PALETTE.len()];
                 let pts = s
@@ -308,12 +433,10 @@ fn draw_panel(
                     .iter()
                     .copied()
                     .filter(|p| p.0.is_finite() && p.1.is_finite());
-                let stroke = (scale * 1.6).max(1.0) as u32;
-                let stroke = if s.style == Style::ThinLine {
-                    1
-                } else {
-                    stroke
-                };
+                layout
+                    .curves_px
+                    .push(pts.clone().map(|p| chart.backend_coord(&p)).collect());
+                let stroke = stroke_of(s);
                 match s.style {
                     Style::Line | Style::ThinLine => {
                         let anno =
@@ -350,13 +473,20 @@ fn draw_panel(
                     }
                 }
             }
-            if panel.series.iter().any(|s| !s.name.is_empty()) {
+            if outside {
+                // level with the plot's top, in the column's absolute pixels
+                let (lx, ly) = legend_area.get_base_pixel();
+                let (x, y) = (fs(5.0) as i32, py.start - ly);
+                draw_legend(&legend_area, &entries, (x, y), legend_wh, fs(14.0))?;
+                layout.legend_px =
+                    Some([lx + x, ly + y, lx + x + legend_wh.0, ly + y + legend_wh.1]);
+            } else if !entries.is_empty() {
                 chart
                     .configure_series_labels()
                     .background_style(WHITE.mix(0.85))
                     .border_style(RGBColor(180, 180, 180))
                     .label_font(("sans-serif", fs(14.0) as i32))
-                    .position(legend_corner(panel, entry_frac))
+                    .position(corner)
                     .draw()?;
             }
         }};
@@ -369,7 +499,7 @@ fn draw_panel(
             finish!(builder.build_cartesian_2d((xs.0..xs.1).log_scale(), (ys.0..ys.1).log_scale())?)
         }
     }
-    Ok(())
+    Ok(layout)
 }
 
 #[cfg(test)]
@@ -405,6 +535,37 @@ mod tests {
         let h = u32::from_be_bytes(bytes[20..24].try_into().unwrap());
         assert_eq!((w, h), (640, 400));
         assert!(render_png(&fig, &path, 10, 400).is_err());
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn a_legend_with_a_free_corner_stays_in_it() {
+        // a curve along the bottom: the top right corner is free, so the
+        // legend is drawn there (inside the plot), not beside it
+        let dir = std::env::temp_dir().join(format!("tc-fig-corner-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let panel = |points: Vec<(f64, f64)>| Figure {
+            title: "t".into(),
+            subtitle: String::new(),
+            panels: vec![Panel {
+                x_label: "time (s)".into(),
+                y_label: "u (mm)".into(),
+                series: vec![Series::line("u0", points)],
+                ..Panel::default()
+            }],
+        };
+        let low: Vec<(f64, f64)> = (0..200)
+            .map(|k| (k as f64, if k == 100 { 10.0 } else { 0.0 }))
+            .collect();
+        let l = render_png_layout(&panel(low), &dir.join("a.png"), 800, 500).unwrap();
+        assert!(l[0].legend_px.is_none(), "{:?}", l[0].legend_px);
+        // a curve over the whole height everywhere: beside the plot
+        let dense: Vec<(f64, f64)> = (0..400)
+            .map(|k| (k as f64, if k % 2 == 0 { 0.0 } else { 10.0 }))
+            .collect();
+        let l = render_png_layout(&panel(dense), &dir.join("b.png"), 800, 500).unwrap();
+        let legend = l[0].legend_px.expect("beside the plot");
+        assert!(legend[0] > l[0].plot_px[2], "{legend:?} {:?}", l[0].plot_px);
         std::fs::remove_dir_all(&dir).ok();
     }
 

@@ -107,6 +107,74 @@ mod tests {
         (scene, rec, smooth, raw)
     }
 
+    /// Length (px) of the polylines `curves` inside the box `[l, t, r, b]`,
+    /// from samples every 0.5 px along each segment.
+    fn px_inside(curves: &[Vec<(i32, i32)>], [l, t, r, b]: [i32; 4]) -> f64 {
+        let mut len = 0.0;
+        for c in curves {
+            for w in c.windows(2) {
+                let (a, z) = (w[0], w[1]);
+                let (dx, dy) = (f64::from(z.0 - a.0), f64::from(z.1 - a.1));
+                let d = dx.hypot(dy);
+                let n = (2.0 * d).ceil().max(1.0) as usize;
+                for k in 0..=n {
+                    let f = k as f64 / n as f64;
+                    let (x, y) = (f64::from(a.0) + f * dx, f64::from(a.1) + f * dy);
+                    if x >= f64::from(l)
+                        && x <= f64::from(r)
+                        && y >= f64::from(t)
+                        && y <= f64::from(b)
+                    {
+                        len += d / (n + 1) as f64;
+                    }
+                }
+            }
+        }
+        len
+    }
+
+    #[test]
+    fn fig2_legend_is_beside_the_plot_where_no_curve_is() {
+        use crate::output::figures::render_png_layout;
+        let (scene, rec, _, _) = run(ContactScheme::Located);
+        let dir = std::env::temp_dir().join(format!("tc-paper-figs-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let [_, (_, fig2)] = paper_figures(&rec, &scene, "s", true);
+        let (w, h) = (1200, 700);
+        let layout = render_png_layout(&fig2, &dir.join("fig2.png"), w, h).unwrap();
+        let l = &layout[0];
+        let [pl, pt, pr, pb] = l.plot_px;
+        // the force fills the plot: every corner has curves
+        let corner_w = (pr - pl) / 4;
+        for (x0, y0) in [
+            (pl, pt),
+            (pr - corner_w, pt),
+            (pl, pb - 60),
+            (pr - corner_w, pb - 60),
+        ] {
+            let ink = px_inside(&l.curves_px, [x0, y0, x0 + corner_w, y0 + 60]);
+            assert!(ink > 0.0, "corner at ({x0}, {y0}) free of curves");
+        }
+        let legend = l.legend_px.expect("legend beside the plot");
+        let [ll, lt, lr, lb] = legend;
+        eprintln!("plot {:?}, legend {legend:?}", l.plot_px);
+        // right of the plot, level with its top, inside the figure
+        assert!(ll > pr, "legend {legend:?} over the plot {:?}", l.plot_px);
+        assert!(lr <= w as i32 && lt >= pt - 1 && lb <= pb, "{legend:?}");
+        // the curves drawn (every series, in pixels) stay out of it
+        let total = px_inside(&l.curves_px, l.plot_px);
+        assert!(total > f64::from(pr - pl), "curves drawn: {total} px");
+        assert_eq!(px_inside(&l.curves_px, legend), 0.0);
+        // one entry row per series
+        assert!(
+            lb - lt >= fig2.panels[0].series.len() as i32 * 14,
+            "{legend:?}"
+        );
+        // the plot keeps most of the width
+        assert!(f64::from(pr - pl) > 0.7 * f64::from(w), "{:?}", l.plot_px);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
     fn y_range(f: &Figure) -> (f64, f64) {
         f.panels[0]
             .series

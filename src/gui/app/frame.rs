@@ -65,7 +65,9 @@ impl App {
             mode_bars: self.classroom.bars,
             exporting_frames: self.frames_job.is_some(),
         };
-        self.classroom.sync_style(&ctx);
+        if self.classroom.sync_style(&ctx) {
+            ui.set_style(ctx.global_style());
+        }
         // impacts and releases stay up EVENT_HOLD_WALL_S of wall-clock time
         self.phases.hold_s = match self.time.speed() {
             Speed::Factor(f) => classroom::EVENT_HOLD_WALL_S * f,

@@ -15,6 +15,8 @@ pub enum Key {
     Ring,
     Disc,
     Diamond,
+    /// ▼, as the marks of clipped impacts.
+    TriangleDown,
 }
 
 /// One legend entry.
@@ -39,37 +41,42 @@ pub fn row(ui: &mut Ui, entries: &[Entry], style: &TextStyle) {
 }
 
 fn entry(ui: &mut Ui, e: &Entry, style: &TextStyle) {
+    item(ui, e.name, e.color, e.key, style);
+}
+
+/// One legend entry named `name` (any text), its key `key` in `color`.
+pub fn item(ui: &mut Ui, name: &str, color: Color32, key: Key, style: &TextStyle) {
     let font = style.resolve(ui.style());
     let text_color = ui.visuals().text_color();
     let galley = ui
         .painter()
-        .layout_no_wrap(e.name.to_owned(), font, text_color);
+        .layout_no_wrap(name.to_owned(), font, text_color);
     let size = Vec2::new(KEY_W_PX + 4.0 + galley.size().x, galley.size().y);
     let (rect, response) = ui.allocate_exact_size(size, Sense::hover());
-    response.widget_info(|| WidgetInfo::labeled(Role::Label, true, e.name));
+    response.widget_info(|| WidgetInfo::labeled(Role::Label, true, name));
     let c = Pos2::new(rect.left() + 0.5 * KEY_W_PX, rect.center().y);
     let r = 0.3 * galley.size().y;
     let p = ui.painter();
-    match e.key {
+    match key {
         Key::Line => {
             p.line_segment(
                 [c - Vec2::new(8.0, 0.0), c + Vec2::new(8.0, 0.0)],
-                Stroke::new(2.0, e.color),
+                Stroke::new(2.0, color),
             );
         }
         Key::DashedLine => {
             for x in [-8.0, -1.0, 6.0] {
                 p.line_segment(
                     [c + Vec2::new(x, 0.0), c + Vec2::new(x + 3.0, 0.0)],
-                    Stroke::new(1.5, e.color),
+                    Stroke::new(1.5, color),
                 );
             }
         }
         Key::Ring => {
-            p.circle_stroke(c, r, Stroke::new(1.5, e.color));
+            p.circle_stroke(c, r, Stroke::new(1.5, color));
         }
         Key::Disc => {
-            p.circle_filled(c, r, e.color);
+            p.circle_filled(c, r, color);
         }
         Key::Diamond => {
             let pts = vec![
@@ -78,7 +85,15 @@ fn entry(ui: &mut Ui, e: &Entry, style: &TextStyle) {
                 c + Vec2::new(0.0, r * 1.2),
                 c + Vec2::new(-r * 1.2, 0.0),
             ];
-            p.add(Shape::convex_polygon(pts, e.color, Stroke::NONE));
+            p.add(Shape::convex_polygon(pts, color, Stroke::NONE));
+        }
+        Key::TriangleDown => {
+            let pts = vec![
+                c + Vec2::new(-r * 1.2, -r),
+                c + Vec2::new(r * 1.2, -r),
+                c + Vec2::new(0.0, r),
+            ];
+            p.add(Shape::convex_polygon(pts, color, Stroke::NONE));
         }
     }
     p.galley(

@@ -93,6 +93,32 @@ fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
     out
 }
 
+/// Marks of the height axis (plot units: exaggerated metres; `to_mm`
+/// converts them to true mm) at a 1-2-5 step of true mm, about eight over
+/// the plot's height as before, but never closer than `label_px` (a short
+/// plot in large text: a label and a half).
+pub fn height_marks(g: egui_plot::GridInput, to_mm: f64, label_px: f64) -> Vec<GridMark> {
+    let (a, b) = (g.bounds.0 * to_mm, g.bounds.1 * to_mm);
+    // true mm per px (the grid input's step is 8 px of plot units)
+    let mm_per_px = g.base_step_size * to_mm / 8.0;
+    if !(a.is_finite() && b.is_finite() && b > a && mm_per_px.is_finite() && mm_per_px > 0.0) {
+        return Vec::new();
+    }
+    // eight steps rounded to 1-2-5 (as before), or the least 1-2-5 step
+    // a label and a half apart when that is coarser
+    let step = round_125((b - a) / 8.0).max(super::nice_step(label_px * mm_per_px));
+    let mut out = Vec::new();
+    let mut k = (a / step).ceil();
+    while k * step <= b && out.len() < 100 {
+        out.push(GridMark {
+            value: k * step / to_mm,
+            step_size: step / to_mm,
+        });
+        k += 1.0;
+    }
+    out
+}
+
 /// Legend entry of the force arrows and their value labels.
 pub const FORCE_NAME: &str = "contact force (length relative to the largest now; value in N)";
 /// Colour of the force arrows and of their legend entry.
@@ -264,12 +290,16 @@ pub fn show_with(
     let title_id = egui::Id::unique("tirecontact.scene_view.y_title");
     let frame_h_px = super::axis_title::frame_height_px(ui, ui.available_height(), true);
     let title = super::axis_title::fit(ui, Y_TITLE, Y_TITLE_SHORT, frame_h_px);
+    // labelled heights at least a label and a half apart: eight steps over
+    // the plot's height left a short classroom plot's labels (body text,
+    // x1.7) closer than their height, and egui_plot drew none
+    let label_px = f64::from(1.5 * ui.text_style_height(&egui::TextStyle::Body)).max(30.0);
     let r = plot
         .x_axis_label("position along the contact line x (m)")
         .y_axis_label(title.text.clone())
         .x_grid_spacer(|g| nice_marks(g.bounds, 1.0))
         .x_axis_formatter(|m, _| super::super::fields::format_number(m.value))
-        .y_grid_spacer(move |g| nice_marks(g.bounds, 1e3 / e))
+        .y_grid_spacer(move |g| height_marks(g, 1e3 / e, label_px))
         .y_axis_formatter(move |m, _| super::super::fields::format_number(m.value / e * 1e3))
         .y_axis_min_width(44.0)
         .include_x(x0)
@@ -352,6 +382,49 @@ pub const Y_TITLE_SHORT: &str = "height (mm)";
 #[cfg(test)]
 mod tests {
     use super::round_125;
+
+    #[test]
+    fn height_labels_are_a_label_and_a_half_apart_in_true_mm() {
+        use super::height_marks;
+        // a 185 px high plot over ±20 mm of exaggerated height at ×10 (true
+        // ±2 mm); labels 36 px apart at least
+        let (frame_px, label_px, e) = (185.0, 36.0, 10.0);
+        let bounds = (-0.02, 0.02);
+        let per_px = (bounds.1 - bounds.0) / frame_px;
+        let g = egui_plot::GridInput {
+            bounds,
+            base_step_size: 8.0 * per_px,
+        };
+        let marks = height_marks(g, 1e3 / e, label_px);
+        // one step, at least a label and a half apart, and not needlessly
+        // coarse: the next finer 1-2-5 step would be closer
+        let major = marks[0].step_size;
+        assert!(marks.iter().all(|m| m.step_size == major));
+        assert!(major / per_px >= label_px, "{} px", major / per_px);
+        assert!(major / per_px < 2.5 * label_px, "{} px", major / per_px);
+        // in true mm a 1-2-5 step
+        let mm = major * 1e3 / e;
+        let mant = mm / 10f64.powf(mm.log10().floor());
+        assert!(
+            [1.0, 2.0, 5.0].iter().any(|m| (mant - m).abs() < 1e-9),
+            "{mm} mm"
+        );
+        let labelled: Vec<f64> = marks
+            .iter()
+            .filter(|m| m.step_size >= major)
+            .map(|m| m.value)
+            .collect();
+        assert!(labelled.len() >= 2, "{labelled:?}");
+        assert!(labelled.iter().all(|v| *v >= bounds.0 && *v <= bounds.1));
+        // a tall plot: about eight steps over its height, as before (steps
+        // only a label and a half apart would put 20 labels on 800 px)
+        let g = egui_plot::GridInput {
+            bounds,
+            base_step_size: 8.0 * (bounds.1 - bounds.0) / 800.0,
+        };
+        let marks = height_marks(g, 1e3 / e, 21.0);
+        assert!((4..=9).contains(&marks.len()), "{} marks", marks.len());
+    }
 
     #[test]
     fn exaggeration_rounds_to_1_2_5() {
