@@ -78,7 +78,7 @@ pub(super) fn add_residual(g: &mut Influence, c: &[f64], tau_s: f64) {
 pub(super) fn compliant_on(c: &[f64], p: usize, set: &[usize]) -> bool {
     let n = set.len();
     let scale = set.iter().map(|&i| c[i * p + i]).fold(0.0, f64::max);
-    if !(scale > 0.0 && scale.is_finite()) {
+    if scale.is_nan() || scale <= 0.0 || scale.is_infinite() {
         return false;
     }
     // lower triangle, row-major n x n
@@ -90,8 +90,7 @@ pub(super) fn compliant_on(c: &[f64], p: usize, set: &[usize]) -> bool {
                 s -= l[a * n + k] * l[b * n + k];
             }
             if a == b {
-                // (a NaN fails the comparison)
-                if !(s > 1e-9 * scale) {
+                if s.is_nan() || s <= 1e-9 * scale {
                     return false;
                 }
                 l[a * n + a] = s.sqrt();
