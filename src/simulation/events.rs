@@ -256,7 +256,7 @@ impl Simulation {
         // Only where `C` is singular on the points on the road (fewer
         // dropped modes than such points) is a rigid impact left.
         if !self.residual.is_empty()
-            && super::residual::compliant_on(&self.residual, p, &self.active)
+            && super::residual::compliant_on(&self.residual, p, &self.active, &mut self.gss)
         {
             return Ok(0);
         }
