@@ -244,6 +244,22 @@ impl Simulation {
             self.active.push(i);
         }
         let p = self.p;
+        // With residual flexibility every point on the road meets it through
+        // the dropped modes' static compliance `C`, which has no mass: an
+        // inelastic landing takes no impulse. The velocity mismatch becomes
+        // the force rate of the next sub-step (`v = v_kept + C q'`), whose
+        // solve puts the points on the road in position and velocity at its
+        // end. A kept-mode impulse instead treats the points as rigid: it
+        // throws neighbours off whose force was holding them on the road
+        // through `C q`; that deflection vanishes at once, they are below the
+        // road again and land, and so on to the event limit in every step.
+        // Only where `C` is singular on the points on the road (fewer
+        // dropped modes than such points) is a rigid impact left.
+        if !self.residual.is_empty()
+            && super::residual::compliant_on(&self.residual, p, &self.active, &mut self.gss)
+        {
+            return Ok(0);
+        }
         let mut solves = 0;
         while !self.active.is_empty() {
             let n = self.active.len();

@@ -15,14 +15,14 @@ pub struct SolverOptions {
     /// Residual flexibility (off by default; changes results): modes above
     /// this frequency (Hz) are dropped from the convolution and replaced by
     /// their static contribution `Σ A_k / ω_k²` (their `G(0)`), applied to
-    /// the contact forces as a quasi-static compliance. Impulses (rigid
-    /// impacts) see only the kept modes: their impact mass changes. Meant
-    /// for scenes that stay on the road: the static term answers a force
-    /// jump at once (no mass), so with the `Located` scheme a release can
-    /// drop a point below the road and cascade into located impacts (see
-    /// the bench's "Residual flexibility" table; even a scene that stays on
-    /// the road can, from the first step of its ramp); the paper's step-end
-    /// rule and compliant contact do not cascade: use one of them with it.
+    /// the contact forces as a quasi-static compliance `C`. The static term
+    /// has no mass, so a landing on it takes no impulse (its velocity
+    /// mismatch becomes a force rate `Δv / C`); a rigid impact on the kept
+    /// modes is left only where `C` is singular on the points on the road.
+    /// The model is then softer than the full one at landings: meant for
+    /// scenes that stay on the road (see the bench's "Residual flexibility"
+    /// table; with impacts both contact schemes agree with each other but
+    /// not with the full model).
     pub residual_above_hz: Option<f64>,
     /// Relative singular-value cut of the rank reduction: the SVD terms of
     /// a mode's residue below `rank_tolerance × σ_max` are dropped. `None`

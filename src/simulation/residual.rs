@@ -69,3 +69,65 @@ pub(super) fn add_residual(g: &mut Influence, c: &[f64], tau_s: f64) {
         g.gv2[k] += rate * ck;
     }
 }
+
+/// Whether the residual compliance `c` (P x P, row-major) restricted to the
+/// points `set` is positive definite: a Cholesky factorisation whose every
+/// pivot is above `1e-9` of the largest diagonal entry. Then each point of
+/// `set` meets the road through a massless static compliance in every
+/// direction, and a landing needs no impulse (see `Simulation::impact`).
+/// `scratch` (at least `|set|²` values) holds the factor: no allocation.
+pub(super) fn compliant_on(c: &[f64], p: usize, set: &[usize], scratch: &mut [f64]) -> bool {
+    let n = set.len();
+    let scale = set.iter().map(|&i| c[i * p + i]).fold(0.0, f64::max);
+    if scale.is_nan() || scale <= 0.0 || scale.is_infinite() {
+        return false;
+    }
+    // lower triangle, row-major n x n
+    let l = &mut scratch[..n * n];
+    for a in 0..n {
+        for b in 0..=a {
+            let mut s = c[set[a] * p + set[b]];
+            for k in 0..b {
+                s -= l[a * n + k] * l[b * n + k];
+            }
+            if a == b {
+                if s.is_nan() || s <= 1e-9 * scale {
+                    return false;
+                }
+                l[a * n + a] = s.sqrt();
+            } else {
+                l[a * n + b] = s / l[b * n + b];
+            }
+        }
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::compliant_on;
+
+    #[test]
+    fn compliance_is_definite_only_with_every_direction_compliant() {
+        // 3 x 3: a positive definite block on {0, 2}, rank 1 on {0, 1}
+        let c = [
+            2.0, 2.0, 1.0, //
+            2.0, 2.0, 0.5, //
+            1.0, 0.5, 3.0,
+        ];
+        assert!(compliant_on(&c, 3, &[0], &mut [0.0; 9]));
+        assert!(compliant_on(&c, 3, &[0, 2], &mut [0.0; 9]));
+        assert!(compliant_on(&c, 3, &[2, 1], &mut [0.0; 9]));
+        // det of {0, 1} is 0: a rigid direction
+        assert!(!compliant_on(&c, 3, &[0, 1], &mut [0.0; 9]));
+        assert!(!compliant_on(&c, 3, &[0, 1, 2], &mut [0.0; 9]));
+        // no compliance at all, or a NaN
+        assert!(!compliant_on(&[0.0; 9], 3, &[1], &mut [0.0; 9]));
+        let mut nan = c;
+        nan[4] = f64::NAN;
+        assert!(!compliant_on(&nan, 3, &[1], &mut [0.0; 9]));
+        // indefinite
+        let ind = [1.0, 2.0, 2.0, 1.0];
+        assert!(!compliant_on(&ind, 2, &[0, 1], &mut [0.0; 9]));
+    }
+}
