@@ -7,7 +7,7 @@
 #![cfg(feature = "gui")]
 
 mod common;
-use common::advance;
+use common::{advance, walk};
 use egui::epaint::{CircleShape, ColorMode, PathShape};
 use egui::{Rect, Shape};
 use egui_kittest::Harness;
@@ -21,13 +21,6 @@ use tirecontact::gui::views::scene_view::{
 };
 use tirecontact::gui::views::{CONTACT_COLOR, FLIGHT_COLOR};
 use tirecontact::gui::{App, Command};
-
-fn walk<'a>(s: &'a Shape, out: &mut Vec<&'a Shape>) {
-    match s {
-        Shape::Vec(v) => v.iter().for_each(|s| walk(s, out)),
-        s => out.push(s),
-    }
-}
 
 fn shapes(h: &Harness<'_, App>) -> Vec<Shape> {
     let mut v = Vec::new();

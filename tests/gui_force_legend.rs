@@ -5,7 +5,7 @@
 #![cfg(feature = "gui")]
 
 mod common;
-use common::advance;
+use common::{advance, walk};
 use egui::epaint::{CircleShape, Shape};
 use egui::{Color32, Rect};
 use egui_kittest::Harness;
@@ -16,13 +16,6 @@ use tirecontact::gui::command::View;
 use tirecontact::gui::views::force_labels::force_text;
 use tirecontact::gui::views::scene_view::{FORCE_COLOR, FORCE_NAME};
 use tirecontact::gui::{App, Command};
-
-fn walk<'a>(s: &'a Shape, out: &mut Vec<&'a Shape>) {
-    match s {
-        Shape::Vec(v) => v.iter().for_each(|s| walk(s, out)),
-        s => out.push(s),
-    }
-}
 
 fn shapes(h: &Harness<'_, App>) -> Vec<Shape> {
     let out = h.output();

@@ -7,8 +7,7 @@
 #![cfg(feature = "gui")]
 
 mod common;
-use common::advance;
-use egui::epaint::{ColorMode, PathShape, Shape};
+use common::{advance, curves, ink};
 use egui::{Color32, Pos2, Rect};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -23,73 +22,6 @@ use tirecontact::gui::views::compare_view::{
 use tirecontact::gui::views::point_color;
 use tirecontact::gui::views::time_plots::IMPACT_LABEL;
 use tirecontact::gui::{App, Command};
-
-fn walk<'a>(s: &'a Shape, out: &mut Vec<&'a Shape>) {
-    match s {
-        Shape::Vec(v) => v.iter().for_each(|s| walk(s, out)),
-        s => out.push(s),
-    }
-}
-
-/// The painted polylines stroked in one of `colors` (a min/max band: its
-/// samples' vertical extents and the line through them).
-fn curves(h: &Harness<'_, App>, colors: &[Color32]) -> Vec<Vec<Pos2>> {
-    let mut shapes = Vec::new();
-    for c in &h.output().shapes {
-        walk(&c.shape, &mut shapes);
-    }
-    shapes
-        .into_iter()
-        .filter_map(|s| match s {
-            Shape::Path(PathShape {
-                points,
-                stroke,
-                closed: false,
-                ..
-            }) if points.len() >= 2
-                && matches!(stroke.color, ColorMode::Solid(c) if colors.contains(&c)) =>
-            {
-                Some(vec![points.clone()])
-            }
-            Shape::LineSegment { points, stroke } if colors.contains(&stroke.color) => {
-                Some(vec![points.to_vec()])
-            }
-            Shape::Band(b) if colors.contains(&b.fill) => {
-                let mut v: Vec<Vec<Pos2>> = b
-                    .points
-                    .iter()
-                    .map(|p| vec![Pos2::new(p.x, p.y.min), Pos2::new(p.x, p.y.max)])
-                    .collect();
-                v.push(
-                    b.points
-                        .iter()
-                        .map(|p| Pos2::new(p.x, p.y.center()))
-                        .collect(),
-                );
-                Some(v)
-            }
-            _ => None,
-        })
-        .flatten()
-        .collect()
-}
-
-/// Length (px) of `curves` inside `r`, from 0.25 px samples.
-fn ink(r: Rect, curves: &[Vec<Pos2>]) -> f32 {
-    let mut len = 0.0;
-    for c in curves {
-        for w in c.windows(2) {
-            let d = w[0].distance(w[1]);
-            let n = (d / 0.25).ceil().max(1.0) as usize;
-            for k in 0..n {
-                if r.contains(w[0].lerp(w[1], (k as f32 + 0.5) / n as f32)) {
-                    len += d / n as f32;
-                }
-            }
-        }
-    }
-    len
-}
 
 fn frame_of(h: &Harness<'_, App>, id: &str) -> Rect {
     *PlotMemory::load(&h.ctx, egui::Id::unique(id))
@@ -132,7 +64,7 @@ fn check(
     let frame = frame_of(h, id);
     let (legend, found) =
         legend_box(h, near.unwrap_or(frame), names).unwrap_or_else(|| panic!("{what}: no legend"));
-    let in_frame: Vec<Vec<Pos2>> = curves(h, colors)
+    let in_frame: Vec<Vec<Pos2>> = curves(h, colors, 2)
         .into_iter()
         .filter(|c| c.iter().all(|p| frame.expand(2.0).contains(*p)))
         .collect();

@@ -6,7 +6,7 @@
 #![cfg(feature = "gui")]
 
 mod common;
-use common::contrast;
+use common::{contrast, walk};
 use egui::epaint::{ColorMode, PathShape, Shape};
 use egui::{Color32, Theme, Visuals};
 use egui_kittest::Harness;
@@ -15,13 +15,6 @@ use tirecontact::Scene;
 use tirecontact::gui::command::View;
 use tirecontact::gui::views::scene_view::displaced_tyre_color;
 use tirecontact::gui::{App, Command};
-
-fn walk<'a>(s: &'a Shape, out: &mut Vec<&'a Shape>) {
-    match s {
-        Shape::Vec(v) => v.iter().for_each(|s| walk(s, out)),
-        s => out.push(s),
-    }
-}
 
 /// Colours of the painted open polylines 2 px wide with one vertex per point
 /// (the displaced tyre's line; the road has hundreds, the undeformed

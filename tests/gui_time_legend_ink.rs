@@ -6,8 +6,7 @@
 #![cfg(feature = "gui")]
 
 mod common;
-use common::advance;
-use egui::epaint::{ColorMode, PathShape, Shape};
+use common::{advance, curves, ink};
 use egui::{Pos2, Rect};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -27,73 +26,6 @@ const PLOTS: [&str; 4] = [
     CONTACT_PLOT_ID,
 ];
 
-fn walk<'a>(s: &'a Shape, out: &mut Vec<&'a Shape>) {
-    match s {
-        Shape::Vec(v) => v.iter().for_each(|s| walk(s, out)),
-        s => out.push(s),
-    }
-}
-
-/// The painted polylines of the points' curves (stroked in a point's colour;
-/// a band is its samples' vertical extents and the line through them).
-fn curves(h: &Harness<'_, App>, points: usize) -> Vec<Vec<Pos2>> {
-    let colors: Vec<_> = (0..points).map(point_color).collect();
-    let mut shapes = Vec::new();
-    for c in &h.output().shapes {
-        walk(&c.shape, &mut shapes);
-    }
-    shapes
-        .into_iter()
-        .filter_map(|s| match s {
-            Shape::Path(PathShape { points, stroke, .. })
-                if points.len() > 2
-                    && matches!(stroke.color, ColorMode::Solid(c) if colors.contains(&c)) =>
-            {
-                Some(vec![points.clone()])
-            }
-            Shape::LineSegment { points, stroke } if colors.contains(&stroke.color) => {
-                Some(vec![points.to_vec()])
-            }
-            // min/max bands (egui_plot draws a line with several samples per
-            // pixel column as one): each sample's vertical extent and the
-            // line through their centres
-            Shape::Band(b) if colors.contains(&b.fill) => {
-                let mut v: Vec<Vec<Pos2>> = b
-                    .points
-                    .iter()
-                    .map(|p| vec![Pos2::new(p.x, p.y.min), Pos2::new(p.x, p.y.max)])
-                    .collect();
-                v.push(
-                    b.points
-                        .iter()
-                        .map(|p| Pos2::new(p.x, p.y.center()))
-                        .collect(),
-                );
-                Some(v)
-            }
-            _ => None,
-        })
-        .flatten()
-        .collect()
-}
-
-/// Length (px) of `curves` inside `r`, from 0.25 px samples.
-fn ink(r: Rect, curves: &[Vec<Pos2>]) -> f32 {
-    let mut len = 0.0;
-    for c in curves {
-        for w in c.windows(2) {
-            let d = w[0].distance(w[1]);
-            let n = (d / 0.25).ceil().max(1.0) as usize;
-            for k in 0..n {
-                if r.contains(w[0].lerp(w[1], (k as f32 + 0.5) / n as f32)) {
-                    len += d / n as f32;
-                }
-            }
-        }
-    }
-    len
-}
-
 /// The legend box of the plot framed by `frame`: its entries (widgets with
 /// the points' names, and the clipped impacts') in egui_plot's frame (8 px
 /// margins left and right, 4 px above and below).
@@ -110,7 +42,8 @@ fn legend_box(h: &Harness<'_, App>, frame: Rect, points: usize) -> Option<Rect> 
 
 fn check(h: &Harness<'_, App>, size: [f32; 2], when: &str) {
     let points = h.state().simulation().num_points();
-    let curves = curves(h, points);
+    let colors: Vec<_> = (0..points).map(point_color).collect();
+    let curves = curves(h, &colors, 3);
     assert!(
         curves.len() >= 4 * points,
         "{size:?} {when}: {} curves drawn",

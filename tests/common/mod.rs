@@ -48,3 +48,79 @@ pub fn contrast(a: egui::Color32, b: egui::Color32) -> f64 {
     let (la, lb) = (luminance(a), luminance(b));
     (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
 }
+
+/// Every leaf shape of a painted shape (nested `Shape::Vec`s opened).
+pub fn walk<'a>(s: &'a egui::Shape, out: &mut Vec<&'a egui::Shape>) {
+    match s {
+        egui::Shape::Vec(v) => v.iter().for_each(|s| walk(s, out)),
+        s => out.push(s),
+    }
+}
+
+/// The painted open polylines of at least `min_points` points and the line
+/// segments stroked in one of `colors`; a min/max band (egui_plot draws a
+/// line with several samples per pixel column as one) gives each sample's
+/// vertical extent and the line through their centres.
+pub fn curves(
+    h: &Harness<'_, App>,
+    colors: &[egui::Color32],
+    min_points: usize,
+) -> Vec<Vec<egui::Pos2>> {
+    use egui::Pos2;
+    use egui::epaint::{ColorMode, PathShape, Shape};
+    let mut shapes = Vec::new();
+    for c in &h.output().shapes {
+        walk(&c.shape, &mut shapes);
+    }
+    shapes
+        .into_iter()
+        .filter_map(|s| match s {
+            Shape::Path(PathShape {
+                points,
+                stroke,
+                closed: false,
+                ..
+            }) if points.len() >= min_points
+                && matches!(stroke.color, ColorMode::Solid(c) if colors.contains(&c)) =>
+            {
+                Some(vec![points.clone()])
+            }
+            Shape::LineSegment { points, stroke } if colors.contains(&stroke.color) => {
+                Some(vec![points.to_vec()])
+            }
+            Shape::Band(b) if colors.contains(&b.fill) => {
+                let mut v: Vec<Vec<Pos2>> = b
+                    .points
+                    .iter()
+                    .map(|p| vec![Pos2::new(p.x, p.y.min), Pos2::new(p.x, p.y.max)])
+                    .collect();
+                v.push(
+                    b.points
+                        .iter()
+                        .map(|p| Pos2::new(p.x, p.y.center()))
+                        .collect(),
+                );
+                Some(v)
+            }
+            _ => None,
+        })
+        .flatten()
+        .collect()
+}
+
+/// Length (px) of `curves` inside `r`, from 0.25 px samples.
+pub fn ink(r: egui::Rect, curves: &[Vec<egui::Pos2>]) -> f32 {
+    let mut len = 0.0;
+    for c in curves {
+        for w in c.windows(2) {
+            let d = w[0].distance(w[1]);
+            let n = (d / 0.25).ceil().max(1.0) as usize;
+            for k in 0..n {
+                if r.contains(w[0].lerp(w[1], (k as f32 + 0.5) / n as f32)) {
+                    len += d / n as f32;
+                }
+            }
+        }
+    }
+    len
+}
