@@ -5,28 +5,12 @@
 #![cfg(feature = "gui")]
 
 mod common;
-use common::advance;
-use egui::{Rect, Shape};
-use egui_kittest::Harness;
+use common::{advance, texts};
+use egui::Rect;
 use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::command::View;
 use tirecontact::gui::{App, Command};
-
-fn texts(h: &Harness<'_, App>) -> Vec<(String, Rect)> {
-    fn walk(s: &Shape, out: &mut Vec<(String, Rect)>) {
-        match s {
-            Shape::Vec(v) => v.iter().for_each(|s| walk(s, out)),
-            Shape::Text(t) => out.push((t.galley.text().to_owned(), t.visual_bounding_rect())),
-            _ => {}
-        }
-    }
-    let mut out = Vec::new();
-    for c in &h.output().shapes {
-        walk(&c.shape, &mut out);
-    }
-    out
-}
 
 fn check(preset: &str, size: [f32; 2], steps: u64) {
     let scene = Scene::load(Path::new(preset)).unwrap();

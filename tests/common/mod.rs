@@ -124,3 +124,18 @@ pub fn ink(r: egui::Rect, curves: &[Vec<egui::Pos2>]) -> f32 {
     }
     len
 }
+
+/// Every painted text with its visual bounding box.
+pub fn texts(h: &Harness<'_, App>) -> Vec<(String, egui::Rect)> {
+    let mut shapes = Vec::new();
+    for c in &h.output().shapes {
+        walk(&c.shape, &mut shapes);
+    }
+    shapes
+        .into_iter()
+        .filter_map(|s| match s {
+            egui::Shape::Text(t) => Some((t.galley.text().to_owned(), t.visual_bounding_rect())),
+            _ => None,
+        })
+        .collect()
+}
