@@ -7,7 +7,7 @@
 #![cfg(feature = "gui")]
 
 mod common;
-use common::{advance, walk};
+use common::{advance, shapes};
 use egui::epaint::{CircleShape, ColorMode, PathShape};
 use egui::{Rect, Shape};
 use egui_kittest::Harness;
@@ -21,14 +21,6 @@ use tirecontact::gui::views::scene_view::{
 };
 use tirecontact::gui::views::{CONTACT_COLOR, FLIGHT_COLOR};
 use tirecontact::gui::{App, Command};
-
-fn shapes(h: &Harness<'_, App>) -> Vec<Shape> {
-    let mut v = Vec::new();
-    for c in &h.output().shapes {
-        walk(&c.shape, &mut v);
-    }
-    v.into_iter().cloned().collect()
-}
 
 /// Bounds of the tyre as painted: its displaced line (one vertex per point,
 /// 2 px, the theme's tyre colour) and the points' markers (7 px radius).

@@ -5,10 +5,9 @@
 #![cfg(feature = "gui")]
 
 mod common;
-use common::{advance, walk};
+use common::{advance, shapes};
 use egui::epaint::{CircleShape, Shape};
 use egui::{Color32, Rect};
-use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::path::Path;
 use tirecontact::Scene;
@@ -16,15 +15,6 @@ use tirecontact::gui::command::View;
 use tirecontact::gui::views::force_labels::force_text;
 use tirecontact::gui::views::scene_view::{FORCE_COLOR, FORCE_NAME};
 use tirecontact::gui::{App, Command};
-
-fn shapes(h: &Harness<'_, App>) -> Vec<Shape> {
-    let out = h.output();
-    let mut v = Vec::new();
-    for c in &out.shapes {
-        walk(&c.shape, &mut v);
-    }
-    v.into_iter().cloned().collect()
-}
 
 /// Fills of the filled circles inside `r` (the legend entry's dot).
 fn dots_in(shapes: &[Shape], r: Rect) -> Vec<Color32> {

@@ -6,7 +6,7 @@
 #![cfg(feature = "gui")]
 
 mod common;
-use common::{contrast, walk};
+use common::{contrast, shapes};
 use egui::epaint::{ColorMode, PathShape, Shape};
 use egui::{Color32, Theme, Visuals};
 use egui_kittest::Harness;
@@ -20,11 +20,7 @@ use tirecontact::gui::{App, Command};
 /// (the displaced tyre's line; the road has hundreds, the undeformed
 /// tyre's line is dashed into segments).
 fn tyre_line_colors(h: &Harness<'_, App>, points: usize) -> Vec<Color32> {
-    let mut shapes = Vec::new();
-    for c in &h.output().shapes {
-        walk(&c.shape, &mut shapes);
-    }
-    shapes
+    shapes(h)
         .into_iter()
         .filter_map(|s| match s {
             Shape::Path(PathShape {

@@ -57,6 +57,15 @@ pub fn walk<'a>(s: &'a egui::Shape, out: &mut Vec<&'a egui::Shape>) {
     }
 }
 
+/// Every leaf shape the last frame painted (owned copies).
+pub fn shapes(h: &Harness<'_, App>) -> Vec<egui::Shape> {
+    let mut v = Vec::new();
+    for c in &h.output().shapes {
+        walk(&c.shape, &mut v);
+    }
+    v.into_iter().cloned().collect()
+}
+
 /// The painted open polylines of at least `min_points` points and the line
 /// segments stroked in one of `colors`; a min/max band (egui_plot draws a
 /// line with several samples per pixel column as one) gives each sample's
@@ -68,11 +77,7 @@ pub fn curves(
 ) -> Vec<Vec<egui::Pos2>> {
     use egui::Pos2;
     use egui::epaint::{ColorMode, PathShape, Shape};
-    let mut shapes = Vec::new();
-    for c in &h.output().shapes {
-        walk(&c.shape, &mut shapes);
-    }
-    shapes
+    shapes(h)
         .into_iter()
         .filter_map(|s| match s {
             Shape::Path(PathShape {
@@ -127,11 +132,7 @@ pub fn ink(r: egui::Rect, curves: &[Vec<egui::Pos2>]) -> f32 {
 
 /// Every painted text with its visual bounding box.
 pub fn texts(h: &Harness<'_, App>) -> Vec<(String, egui::Rect)> {
-    let mut shapes = Vec::new();
-    for c in &h.output().shapes {
-        walk(&c.shape, &mut shapes);
-    }
-    shapes
+    shapes(h)
         .into_iter()
         .filter_map(|s| match s {
             egui::Shape::Text(t) => Some((t.galley.text().to_owned(), t.visual_bounding_rect())),
