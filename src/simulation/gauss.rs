@@ -125,16 +125,20 @@ impl Simulation {
         let q = &self.rhs[..m];
         let (ue, ve) = (&mut self.ue[..p], &mut self.ve[..p]);
         let (uh, vh) = (&self.uh[..p], &self.vh[..p]);
-        let rows = self.full_free_rows.chunks_exact(2 * m);
-        for (&i, row) in self.full_free.iter().zip(rows) {
-            let (rx, rv) = row.split_at(m);
-            let (mut a, mut b) = (uh[i], vh[i]);
-            for ((x, v), qk) in rx.iter().zip(rv).zip(q) {
-                a += x * qk;
-                b += v * qk;
+        let (free, rows) = (&self.full_free[..], &self.full_free_rows[..]);
+        // (fixed lengths for up to five points on the road: unrolled sums)
+        match m {
+            2 => free_ends::<2>(free, rows, q, uh, vh, ue, ve),
+            4 => free_ends::<4>(free, rows, q, uh, vh, ue, ve),
+            6 => free_ends::<6>(free, rows, q, uh, vh, ue, ve),
+            8 => free_ends::<8>(free, rows, q, uh, vh, ue, ve),
+            10 => free_ends::<10>(free, rows, q, uh, vh, ue, ve),
+            _ => {
+                for (&i, row) in free.iter().zip(rows.chunks_exact(2 * m)) {
+                    let (rx, rv) = row.split_at(m);
+                    (ue[i], ve[i]) = free_end(uh[i], vh[i], rx, rv, q);
+                }
             }
-            ue[i] = a;
-            ve[i] = b;
         }
         for &j in &self.full_set {
             ue[j] = self.re[j];
@@ -246,6 +250,40 @@ impl Simulation {
             }
         }
     }
+}
+
+/// The free points' end values of [`Simulation::end_values_solved`] with
+/// `M = 2|S|` known at compile time (rows of `2M`: displacement, velocity).
+#[inline(always)]
+fn free_ends<const M: usize>(
+    free: &[usize],
+    rows: &[f64],
+    q: &[f64],
+    uh: &[f64],
+    vh: &[f64],
+    ue: &mut [f64],
+    ve: &mut [f64],
+) {
+    let Ok(q) = <&[f64; M]>::try_from(q) else {
+        return;
+    };
+    for (&i, row) in free.iter().zip(rows.chunks_exact(2 * M)) {
+        let (rx, rv) = row.split_at(M);
+        if let (Ok(rx), Ok(rv)) = (<&[f64; M]>::try_from(rx), <&[f64; M]>::try_from(rv)) {
+            (ue[i], ve[i]) = free_end(uh[i], vh[i], rx, rv, q);
+        }
+    }
+}
+
+/// `(u + rx · q, v + rv · q)`, each sum from the free value in order.
+#[inline(always)]
+fn free_end(u: f64, v: f64, rx: &[f64], rv: &[f64], q: &[f64]) -> (f64, f64) {
+    let (mut a, mut b) = (u, v);
+    for ((x, w), qk) in rx.iter().zip(rv).zip(q) {
+        a += x * qk;
+        b += w * qk;
+    }
+    (a, b)
 }
 
 #[cfg(test)]
