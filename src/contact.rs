@@ -143,16 +143,33 @@ impl DenseSolver {
     /// `b ← A⁻¹ b` with the inverse formed by [`DenseSolver::form_inverse`]
     /// after the last factorisation.
     pub fn solve_by_inverse(&mut self, b: &mut [f64]) {
-        let n = self.n;
-        let (inv, col) = (&self.inv[..n * n], &mut self.col[..n]);
-        let b = &mut b[..n];
-        col.copy_from_slice(b);
-        for (r, row) in inv.chunks_exact(n).enumerate() {
-            let mut s = 0.0;
-            for (a, x) in row.iter().zip(col.iter()) {
-                s += a * x;
+        // (fixed sizes for up to five points on the road: unrolled products)
+        match self.n {
+            2 => self.solve_by_inverse_n::<2>(b),
+            4 => self.solve_by_inverse_n::<4>(b),
+            6 => self.solve_by_inverse_n::<6>(b),
+            8 => self.solve_by_inverse_n::<8>(b),
+            10 => self.solve_by_inverse_n::<10>(b),
+            n => {
+                let (inv, col) = (&self.inv[..n * n], &mut self.col[..n]);
+                let b = &mut b[..n];
+                col.copy_from_slice(b);
+                for (r, row) in inv.chunks_exact(n).enumerate() {
+                    b[r] = dot_in_order(row, col);
+                }
             }
-            b[r] = s;
+        }
+    }
+
+    /// [`DenseSolver::solve_by_inverse`] with `n = N` known at compile time.
+    #[inline(always)]
+    fn solve_by_inverse_n<const N: usize>(&mut self, b: &mut [f64]) {
+        let Ok(b) = <&mut [f64; N]>::try_from(&mut b[..N]) else {
+            return;
+        };
+        let x = *b;
+        for (br, row) in b.iter_mut().zip(self.inv[..N * N].chunks_exact(N)) {
+            *br = dot_in_order(row, &x);
         }
     }
 
@@ -184,6 +201,16 @@ impl DenseSolver {
             b[c] *= self.col_scale[c];
         }
     }
+}
+
+/// `Σ a_k x_k` summed from 0 in index order.
+#[inline(always)]
+fn dot_in_order(a: &[f64], x: &[f64]) -> f64 {
+    let mut s = 0.0;
+    for (a, x) in a.iter().zip(x) {
+        s += a * x;
+    }
+    s
 }
 
 #[cfg(test)]

@@ -164,10 +164,25 @@ impl PointsRoad {
         st.since_anchor += 1;
         let p = self.x_m.len();
         let (phase, h_m, re, rde) = (&self.phase[..p], &h_m[..p], &mut re[..p], &mut rde[..p]);
-        for i in 0..p {
+        let at = |i: usize| {
             let (zi, dzi) = height_slope(c, phase[i], (sn, cs));
-            re[i] = zi - h_m[i];
-            rde[i] = dzi * vel_mps;
+            (zi - h_m[i], dzi * vel_mps)
+        };
+        // (up to eight points: unrolled loops)
+        match p {
+            1 => fill::<1>(re, rde, at),
+            2 => fill::<2>(re, rde, at),
+            3 => fill::<3>(re, rde, at),
+            4 => fill::<4>(re, rde, at),
+            5 => fill::<5>(re, rde, at),
+            6 => fill::<6>(re, rde, at),
+            7 => fill::<7>(re, rde, at),
+            8 => fill::<8>(re, rde, at),
+            _ => {
+                for i in 0..p {
+                    (re[i], rde[i]) = at(i);
+                }
+            }
         }
         true
     }
@@ -265,6 +280,19 @@ impl PointsRoad {
                 }
                 Ok(())
             }
+        }
+    }
+}
+
+/// `(re_i, rde_i) = at(i)` for the `N` points (`N` the slices' length).
+#[inline(always)]
+fn fill<const N: usize>(re: &mut [f64], rde: &mut [f64], at: impl Fn(usize) -> (f64, f64)) {
+    if let (Ok(re), Ok(rde)) = (
+        <&mut [f64; N]>::try_from(re),
+        <&mut [f64; N]>::try_from(rde),
+    ) {
+        for i in 0..N {
+            (re[i], rde[i]) = at(i);
         }
     }
 }
