@@ -115,19 +115,29 @@ pub fn png_window(
                     }
                 }
             });
-            go = ui.button("Choose file and export…").clicked();
+            ui.label("file");
+            if let Some(n) = super::file_prompt::path_row(
+                ui,
+                &mut s.path,
+                "PNG file path",
+                ("PNG image", "png"),
+                true,
+            ) {
+                s.note = Some(n);
+            }
+            if let Some(n) = &s.note {
+                ui.label(RichText::new(n.as_str()).color(ERROR_COLOR));
+            }
+            go = ui.button(RichText::new("Export PNG").strong()).clicked();
         });
     if go {
-        if let Some(path) = rfd::FileDialog::new()
-            .add_filter("PNG image", &["png"])
-            .set_file_name("tirecontact_plots.png")
-            .save_file()
-        {
-            cmds.push(Command::ExportPng {
+        match super::file_prompt::typed_path(&s.path, "png") {
+            Ok(path) => cmds.push(Command::ExportPng {
                 path,
                 width: s.width,
                 height: s.height,
-            });
+            }),
+            Err(e) => s.note = Some(e),
         }
     } else if !open {
         *settings = None;

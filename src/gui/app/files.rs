@@ -132,17 +132,28 @@ impl App {
     }
 
     pub(super) fn save_as_dialog(&mut self) {
-        let name = self.path.as_deref().and_then(Path::file_name).map_or_else(
-            || format!("{}.ron", file_stem(&self.scene.name)),
-            |n| n.to_string_lossy().into_owned(),
-        );
-        if let Some(p) = rfd::FileDialog::new()
-            .add_filter("RON scene", &["ron"])
-            .set_file_name(name)
-            .save_file()
-        {
-            self.save_to(&p);
-        }
+        self.open_file_prompt(FileAction::SaveAs);
+    }
+
+    /// Shows the file prompt for `action`, filled with a sensible path: the
+    /// current file, or a name from the scene's.
+    pub(super) fn open_file_prompt(&mut self, action: FileAction) {
+        let stem = file_stem(&self.scene.name);
+        let path = match action {
+            FileAction::Open => self
+                .path
+                .as_deref()
+                .and_then(Path::parent)
+                .map_or_else(String::new, |d| {
+                    format!("{}{}", d.display(), std::path::MAIN_SEPARATOR)
+                }),
+            FileAction::SaveAs => self
+                .path
+                .as_deref()
+                .map_or_else(|| format!("{stem}.ron"), |p| p.display().to_string()),
+            FileAction::ExportCsv => format!("{stem}.csv"),
+        };
+        self.file_prompt = Some(FilePrompt::new(action, path));
     }
 
     /// Saves atomically (`Scene::save`): a failed save leaves the file as
@@ -163,6 +174,8 @@ impl App {
         self.png_dialog = Some(PngSettings {
             width: 1600,
             height: 1200,
+            path: format!("{}_plots.png", file_stem(&self.scene.name)),
+            note: None,
         });
     }
 
@@ -184,13 +197,7 @@ impl App {
     }
 
     pub(super) fn export_csv_dialog(&mut self) {
-        if let Some(p) = rfd::FileDialog::new()
-            .add_filter("CSV", &["csv"])
-            .set_file_name(format!("{}.csv", file_stem(&self.scene.name)))
-            .save_file()
-        {
-            self.apply(Command::ExportCsv(p));
-        }
+        self.open_file_prompt(FileAction::ExportCsv);
     }
 
     /// Starts the CSV export of the current run (re-simulated from its

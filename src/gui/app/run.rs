@@ -42,6 +42,10 @@ impl App {
     /// mode keeps its slow motion).
     pub(super) fn set_watchable_speed(&mut self) {
         let speed = if self.classroom.on {
+            // leaving classroom mode gives the new scene's watchable speed
+            if let Some((_, before)) = &mut self.classroom.before {
+                *before = Speed::watchable(self.scene.duration_s);
+            }
             Speed::Factor(classroom::SLOW_MOTION)
         } else {
             Speed::watchable(self.scene.duration_s)
@@ -111,7 +115,10 @@ impl App {
         while taken < want {
             if self.sim.finished() {
                 self.time.pause();
-                self.info(format!("run complete: t = {:.4} s", self.sim.time_s()));
+                self.info(format!(
+                    "run complete: t = {:.4} s. Play (Space) runs it again from t = 0.",
+                    self.sim.time_s()
+                ));
                 break;
             }
             match self.sim.step() {
