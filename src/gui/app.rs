@@ -91,6 +91,8 @@ pub struct App {
     pub(super) research: super::research::ResearchState,
     /// The open, save or export file prompt, when shown.
     pub(super) file_prompt: Option<super::file_prompt::FilePrompt>,
+    /// The banner text of the last field refusal (a good edit clears it).
+    field_refusal: Option<String>,
 }
 
 impl App {
@@ -132,6 +134,7 @@ impl App {
             frames_job: None,
             research: Default::default(),
             file_prompt: None,
+            field_refusal: None,
         })
     }
 
@@ -268,6 +271,8 @@ impl App {
             Command::CancelFrames => self.cancel_frames(),
             // researcher tools (research/apply.rs)
             Command::Research(c) => self.apply_research(c),
+            // a field's refusal (app/run.rs)
+            Command::FieldRefused { field: _, text } => self.field_refused(text),
         }
         self.end_mutes_on_other_edits();
     }

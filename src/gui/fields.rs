@@ -138,6 +138,7 @@ impl<'a> NumField<'a> {
                     ui.label(self.unit);
                 }
                 if resp.lost_focus() && st.text.trim() != format_number(self.value * self.scale) {
+                    st.error = None;
                     match parse_number(&st.text) {
                         Err(e) => st.error = Some(e),
                         Ok(x) => {
@@ -173,12 +174,32 @@ impl<'a> NumField<'a> {
                             }
                         }
                     }
+                    // the whole reason goes to the message banner, which has
+                    // the room for it; the field keeps a short mark
+                    if let Some(e) = &st.error {
+                        cmd = Some(Command::FieldRefused {
+                            field: self.name.to_string(),
+                            text: format!(
+                                "{}: {e}; the scene keeps {}{}.",
+                                self.name,
+                                format_number(self.value * self.scale),
+                                if self.unit.is_empty() {
+                                    String::new()
+                                } else {
+                                    format!(" {}", self.unit)
+                                }
+                            ),
+                        });
+                    }
                 }
             });
             if let Some(e) = &st.error {
                 ui.set_max_width(row.response.rect.width());
-                ui.add(egui::Label::new(RichText::new(e.as_str()).color(ERROR_COLOR)).wrap())
-                    .on_hover_text("the scene keeps its previous value");
+                ui.add(
+                    egui::Label::new(RichText::new("not applied").small().color(ERROR_COLOR))
+                        .wrap(),
+                )
+                .on_hover_text(format!("{e}\nthe scene keeps its previous value"));
             }
         });
         ui.data_mut(|d| d.insert_temp(id, st));

@@ -53,12 +53,24 @@ impl App {
         self.time.set_speed(speed);
     }
 
+    /// Shows a field's refusal in the banner, until a good edit.
+    pub(super) fn field_refused(&mut self, text: String) {
+        self.error(text.clone());
+        self.field_refusal = Some(text);
+    }
+
     /// Applies an edited scene: road and speed live, everything else restarts.
     pub(super) fn edit(&mut self, new: Scene) {
         if let Err(errors) = new.validate() {
             let list: Vec<String> = errors.iter().map(ToString::to_string).collect();
             self.error(format!("Edit refused: {}", list.join("; ")));
             return;
+        }
+        // a good edit retires the banner of an earlier refused value
+        if let Some(t) = self.field_refusal.take()
+            && self.message.as_ref().is_some_and(|m| m.text == t)
+        {
+            self.message = None;
         }
         let old = &self.scene;
         let restart = new.tyre != old.tyre
