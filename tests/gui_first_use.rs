@@ -226,6 +226,12 @@ fn a_refused_mode_value_names_what_was_typed_and_what_is_expected_in_place() {
             );
         }
         assert!(h.query_all_by_label("not applied").count() >= 1);
+        // the long reason wraps in the banner: Dismiss stays in the window
+        let dismiss = h.get_by_label("Dismiss").rect();
+        assert!(
+            dismiss.right() <= SMALL[0] - 4.0,
+            "{field} = {typed}: Dismiss at {dismiss:?} is off the window"
+        );
         // nothing is lost: the scene keeps its values, the run its state
         assert_eq!(h.state().scene(), &scene, "{field} = {typed}");
         assert!(!h.state().is_dirty());

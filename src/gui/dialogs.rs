@@ -23,7 +23,19 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
         .corner_radius(4.0)
         .show(ui, |ui| {
             ui.horizontal(|ui| {
-                ui.label(RichText::new(&m.text).color(color));
+                // wrapped to the room left of Dismiss: unwrapped, a long
+                // message (a refused field's reason) widened the central
+                // panel past the window, cutting off Dismiss and the plots
+                let dismiss_px = 80.0;
+                let w = (ui.available_width() - dismiss_px).max(100.0);
+                ui.allocate_ui_with_layout(
+                    egui::vec2(w, 0.0),
+                    egui::Layout::top_down(egui::Align::Min),
+                    |ui| {
+                        ui.set_max_width(w);
+                        ui.add(egui::Label::new(RichText::new(&m.text).color(color)).wrap());
+                    },
+                );
                 ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
                     if ui.small_button("Dismiss").clicked() {
                         cmds.push(Command::DismissMessage);
