@@ -260,6 +260,26 @@ fn a_refused_mode_value_names_what_was_typed_and_what_is_expected_in_place() {
     assert_eq!(h.state().message(), None, "the refusal stayed up");
 }
 
+#[test]
+fn a_refused_text_does_not_outlive_its_document() {
+    // single_mode's and three_points' first modes are both 5 % damped
+    let mut h = harness_sized(app_on("single_mode.ron"), SMALL);
+    h.run();
+    type_into(&mut h, DAMP, "-0.1");
+    assert_eq!(h.query_all_by_label("not applied").count(), 1);
+    let path = format!("{}/presets/three_points.ron", env!("CARGO_MANIFEST_DIR"));
+    h.state_mut().apply(Command::OpenPath(path.into()));
+    h.run();
+    h.run();
+    assert_eq!(h.state().modes()[0].damping_ratio, 0.05);
+    assert_eq!(h.query_all_by_label("not applied").count(), 0);
+    assert_eq!(
+        h.get_by_label(DAMP).value().as_deref(),
+        Some("0.05"),
+        "the old document's refused text is still in the field"
+    );
+}
+
 fn tmp_dir(name: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("tc-first-use-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();

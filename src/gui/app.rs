@@ -93,6 +93,8 @@ pub struct App {
     pub(super) file_prompt: Option<super::file_prompt::FilePrompt>,
     /// The banner text of the last field refusal (a good edit clears it).
     field_refusal: Option<String>,
+    /// A new document came in: the next frame forgets the fields' texts.
+    forget_fields: bool,
 }
 
 impl App {
@@ -135,6 +137,7 @@ impl App {
             research: Default::default(),
             file_prompt: None,
             field_refusal: None,
+            forget_fields: false,
         })
     }
 

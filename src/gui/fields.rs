@@ -138,7 +138,6 @@ impl<'a> NumField<'a> {
                     ui.label(self.unit);
                 }
                 if resp.lost_focus() && st.text.trim() != format_number(self.value * self.scale) {
-                    st.error = None;
                     match parse_number(&st.text) {
                         Err(e) => st.error = Some(e),
                         Ok(x) => {
@@ -205,6 +204,12 @@ impl<'a> NumField<'a> {
         ui.data_mut(|d| d.insert_temp(id, st));
         cmd
     }
+}
+
+/// Forgets every field's typed text and refusal (a new document: a text
+/// refused in the old one must not stay up over an equal value of the new).
+pub fn forget_all(ctx: &egui::Context) {
+    ctx.data_mut(|d| d.remove_by_type::<FieldState>());
 }
 
 fn same(a: f64, b: f64) -> bool {

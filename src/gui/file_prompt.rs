@@ -150,16 +150,15 @@ pub fn window(ctx: &egui::Context, prompt: &mut Option<FilePrompt>, cmds: &mut V
         .open(&mut open)
         .collapsible(false)
         .resizable(false)
+        // over the views, clear of the menu it came from
+        .pivot(egui::Align2::CENTER_TOP)
+        .default_pos(ctx.content_rect().center_top() + egui::vec2(0.0, 120.0))
         .show(ctx, |ui| {
             let save = p.action != FileAction::Open;
             if let Some(n) = path_row(ui, &mut p.path, "file path", p.action.filter(), save) {
                 p.note = Some(n);
             }
-            ui.label(
-                RichText::new(format!("A relative path is in {}.", cwd_text()))
-                    .small()
-                    .weak(),
-            );
+            ui.label(RichText::new(format!("A relative path is in {}.", cwd_text())).weak());
             if let Some(n) = &p.note {
                 ui.label(RichText::new(n.as_str()).color(super::fields::ERROR_COLOR));
             }

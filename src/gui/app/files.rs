@@ -115,6 +115,8 @@ impl App {
                 self.set_watchable_speed();
                 self.reset_run();
                 self.research_new_document();
+                self.forget_fields = true;
+                self.field_refusal = None;
                 self.info(what.to_string());
             }
             Err(e) => self.error(format!(

@@ -105,6 +105,10 @@ impl App {
         for c in cmds {
             self.apply(c);
         }
+        if std::mem::take(&mut self.forget_fields) {
+            crate::gui::fields::forget_all(&ctx);
+            ctx.request_repaint();
+        }
         let title = self.title();
         if title != self.title {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
