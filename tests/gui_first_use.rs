@@ -374,6 +374,17 @@ fn save_as_open_and_csv_work_by_typing_the_path() {
 }
 
 #[test]
+fn file_names_offered_read_like_the_scene_name() {
+    let mut h = harness_sized(App::with_default_preset(), SMALL);
+    h.run();
+    h.state_mut().apply(Command::SaveAsDialog);
+    h.run();
+    let p = h.state().file_prompt().expect("a save prompt").path.clone();
+    // "Paper: ring tyre, five points, sine road"
+    assert_eq!(p, "paper_ring_tyre_five_points_sine_road.ron");
+}
+
+#[test]
 fn the_png_export_takes_a_typed_path() {
     let dir = tmp_dir("png");
     let png = dir.join("plots.png");

@@ -240,17 +240,22 @@ pub(super) fn default_scene() -> Scene {
     }
 }
 
-/// A file name stem from a scene name (lower-case alphanumerics and `_`).
+/// A file name stem from a scene name: lower-case alphanumerics, each run
+/// of anything else one `_` ("Paper: ring tyre" gives `paper_ring_tyre`,
+/// not `paper__ring_tyre`).
 fn file_stem(name: &str) -> String {
-    let s: String = name
-        .chars()
-        .map(|c| {
-            if c.is_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if s.is_empty() { "scene".to_string() } else { s }
+    let mut s = String::new();
+    for c in name.chars() {
+        if c.is_alphanumeric() {
+            s.push(c.to_ascii_lowercase());
+        } else if !s.is_empty() && !s.ends_with('_') {
+            s.push('_');
+        }
+    }
+    let s = s.trim_end_matches('_');
+    if s.is_empty() {
+        "scene".to_string()
+    } else {
+        s.to_string()
+    }
 }
