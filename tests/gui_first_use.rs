@@ -374,6 +374,34 @@ fn save_as_open_and_csv_work_by_typing_the_path() {
 }
 
 #[test]
+fn the_pinned_run_exports_to_a_typed_path() {
+    use tirecontact::gui::research::ResearchCommand;
+    let dir = tmp_dir("pinned");
+    let csv = dir.join("reference.csv");
+    let mut h = harness_sized(app_on("single_mode.ron"), SMALL);
+    h.run();
+    h.state_mut().apply(Command::Step(200));
+    h.run();
+    h.state_mut()
+        .apply(Command::Research(ResearchCommand::PinReference));
+    h.state_mut()
+        .apply(Command::Research(ResearchCommand::ExportPinnedCsvDialog));
+    h.run();
+    let prompt = h.state().file_prompt().expect("an export prompt").clone();
+    assert_eq!(prompt.path, "reference.csv");
+    h.get_by_label("file path")
+        .set_text_value_accesskit(&csv.display().to_string());
+    h.run();
+    h.get_by_label("Export CSV").click();
+    h.run();
+    assert!(h.state().file_prompt().is_none());
+    let m = h.state().message().expect("a message").clone();
+    assert!(!m.error, "{}", m.text);
+    let text = std::fs::read_to_string(&csv).unwrap();
+    assert!(text.lines().count() > 100, "{} lines", text.lines().count());
+}
+
+#[test]
 fn file_names_offered_read_like_the_scene_name() {
     let mut h = harness_sized(App::with_default_preset(), SMALL);
     h.run();

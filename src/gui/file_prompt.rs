@@ -8,6 +8,7 @@
 //! fills it when a dialog is available, and says so when none appeared.
 
 use super::command::Command;
+use super::research::ResearchCommand;
 use egui::{RichText, Ui};
 use std::path::{Path, PathBuf};
 
@@ -20,6 +21,11 @@ pub enum FileAction {
     SaveAs,
     /// Export the run as CSV.
     ExportCsv,
+    /// The researcher tools' exports: the sweep as CSV or PNG, the pinned
+    /// reference run as CSV.
+    SweepCsv,
+    SweepPng,
+    PinnedCsv,
 }
 
 impl FileAction {
@@ -28,20 +34,25 @@ impl FileAction {
             FileAction::Open => "Open a scene",
             FileAction::SaveAs => "Save the scene as",
             FileAction::ExportCsv => "Export the run as CSV",
+            FileAction::SweepCsv => "Export the sweep as CSV",
+            FileAction::SweepPng => "Export the sweep as PNG",
+            FileAction::PinnedCsv => "Export the pinned run as CSV",
         }
     }
     fn button(self) -> &'static str {
         match self {
             FileAction::Open => "Open",
             FileAction::SaveAs => "Save",
-            FileAction::ExportCsv => "Export CSV",
+            FileAction::ExportCsv | FileAction::SweepCsv | FileAction::PinnedCsv => "Export CSV",
+            FileAction::SweepPng => "Export PNG",
         }
     }
     /// File-type name and extension of the dialog's filter.
     fn filter(self) -> (&'static str, &'static str) {
         match self {
             FileAction::Open | FileAction::SaveAs => ("RON scene", "ron"),
-            FileAction::ExportCsv => ("CSV", "csv"),
+            FileAction::ExportCsv | FileAction::SweepCsv | FileAction::PinnedCsv => ("CSV", "csv"),
+            FileAction::SweepPng => ("PNG image", "png"),
         }
     }
     fn command(self, path: PathBuf) -> Command {
@@ -49,6 +60,9 @@ impl FileAction {
             FileAction::Open => Command::OpenPath(path),
             FileAction::SaveAs => Command::SavePath(path),
             FileAction::ExportCsv => Command::ExportCsv(path),
+            FileAction::SweepCsv => Command::Research(ResearchCommand::ExportSweepCsv(path)),
+            FileAction::SweepPng => Command::Research(ResearchCommand::ExportSweepPng(path)),
+            FileAction::PinnedCsv => Command::Research(ResearchCommand::ExportPinnedCsv(path)),
         }
     }
 }

@@ -154,6 +154,9 @@ impl App {
                 .as_deref()
                 .map_or_else(|| format!("{stem}.ron"), |p| p.display().to_string()),
             FileAction::ExportCsv => format!("{stem}.csv"),
+            FileAction::SweepCsv => "sweep.csv".to_string(),
+            FileAction::SweepPng => "sweep.png".to_string(),
+            FileAction::PinnedCsv => "reference.csv".to_string(),
         };
         self.file_prompt = Some(FilePrompt::new(action, path));
     }
