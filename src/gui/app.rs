@@ -7,6 +7,7 @@
 use super::classroom::{self, Classroom};
 use super::command::{Command, Discarding, View};
 use super::export::{CsvJob, LiveEdit};
+use super::file_prompt::{FileAction, FilePrompt};
 use super::frame_rate::FrameRate;
 use super::frames::{FramesDialog, FramesJob};
 use super::guided::GUIDED;
@@ -45,10 +46,14 @@ pub struct Message {
 }
 
 /// Settings of the PNG export dialog.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct PngSettings {
     pub width: u32,
     pub height: u32,
+    /// The file, as typed or chosen.
+    pub path: String,
+    /// Why the last export attempt did not start (no file chosen, bad path).
+    pub note: Option<String>,
 }
 
 pub struct App {
@@ -84,6 +89,12 @@ pub struct App {
     frames_job: Option<FramesJob>,
     /// Researcher tools: spectra, sweep, pinned run, fidelity (issue #8).
     pub(super) research: super::research::ResearchState,
+    /// The open, save or export file prompt, when shown.
+    pub(super) file_prompt: Option<super::file_prompt::FilePrompt>,
+    /// The banner text of the last field refusal (a good edit clears it).
+    field_refusal: Option<String>,
+    /// A new document came in: the next frame forgets the fields' texts.
+    forget_fields: bool,
 }
 
 impl App {
@@ -124,6 +135,9 @@ impl App {
             frames_dialog: None,
             frames_job: None,
             research: Default::default(),
+            file_prompt: None,
+            field_refusal: None,
+            forget_fields: false,
         })
     }
 
@@ -174,6 +188,14 @@ impl App {
     pub fn pending_confirmation(&self) -> Option<&Discarding> {
         self.confirm.as_ref()
     }
+    /// The main view shown.
+    pub fn view(&self) -> View {
+        self.view
+    }
+    /// The file prompt (open, save as, CSV export), when shown.
+    pub fn file_prompt(&self) -> Option<&FilePrompt> {
+        self.file_prompt.as_ref()
+    }
 
     /// Window title: scene name, file, and `*` when there are unsaved changes.
     pub fn title(&self) -> String {
@@ -218,7 +240,8 @@ impl App {
             Command::EditScene(scene) => self.edit(*scene),
             // the document and its files (app/files.rs)
             Command::New => self.guard(Discarding::New),
-            Command::OpenDialog => self.guard(Discarding::OpenDialog),
+            // the file first, then the unsaved-changes guard (OpenPath)
+            Command::OpenDialog => self.open_file_prompt(FileAction::Open),
             Command::OpenPath(p) => self.guard(Discarding::OpenPath(p)),
             Command::OpenPreset(k) => self.guard(Discarding::Preset(k)),
             Command::OpenGuided(k) => self.guard(Discarding::Guided(k)),
@@ -251,6 +274,8 @@ impl App {
             Command::CancelFrames => self.cancel_frames(),
             // researcher tools (research/apply.rs)
             Command::Research(c) => self.apply_research(c),
+            // a field's refusal (app/run.rs)
+            Command::FieldRefused { field: _, text } => self.field_refused(text),
         }
         self.end_mutes_on_other_edits();
     }

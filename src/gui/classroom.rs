@@ -39,6 +39,9 @@ pub struct Classroom {
     pub show_force: bool,
     /// Mode bars shown in the normal layout too.
     pub bars: bool,
+    /// The view and speed before classroom mode changed them, given back
+    /// when it ends (each only if classroom mode's is still in place).
+    pub before: Option<(crate::gui::command::View, crate::gui::time_control::Speed)>,
 }
 
 impl Classroom {

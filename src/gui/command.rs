@@ -116,4 +116,10 @@ pub enum Command {
     CancelFrames,
     /// A researcher-tool request (spectra, sweep, A/B pin, exports).
     Research(super::research::ResearchCommand),
+    /// A field refused a typed value: `text` (field, value, what is
+    /// expected) goes to the message banner until a good edit.
+    FieldRefused {
+        field: String,
+        text: String,
+    },
 }

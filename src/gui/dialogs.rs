@@ -23,7 +23,19 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
         .corner_radius(4.0)
         .show(ui, |ui| {
             ui.horizontal(|ui| {
-                ui.label(RichText::new(&m.text).color(color));
+                // wrapped to the room left of Dismiss: unwrapped, a long
+                // message (a refused field's reason) widened the central
+                // panel past the window, cutting off Dismiss and the plots
+                let dismiss_px = 80.0;
+                let w = (ui.available_width() - dismiss_px).max(100.0);
+                ui.allocate_ui_with_layout(
+                    egui::vec2(w, 0.0),
+                    egui::Layout::top_down(egui::Align::Min),
+                    |ui| {
+                        ui.set_max_width(w);
+                        ui.add(egui::Label::new(RichText::new(&m.text).color(color)).wrap());
+                    },
+                );
                 ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
                     if ui.small_button("Dismiss").clicked() {
                         cmds.push(Command::DismissMessage);
@@ -115,19 +127,29 @@ pub fn png_window(
                     }
                 }
             });
-            go = ui.button("Choose file and export…").clicked();
+            ui.label("file");
+            if let Some(n) = super::file_prompt::path_row(
+                ui,
+                &mut s.path,
+                "PNG file path",
+                ("PNG image", "png"),
+                true,
+            ) {
+                s.note = Some(n);
+            }
+            if let Some(n) = &s.note {
+                ui.label(RichText::new(n.as_str()).color(ERROR_COLOR));
+            }
+            go = ui.button(RichText::new("Export PNG").strong()).clicked();
         });
     if go {
-        if let Some(path) = rfd::FileDialog::new()
-            .add_filter("PNG image", &["png"])
-            .set_file_name("tirecontact_plots.png")
-            .save_file()
-        {
-            cmds.push(Command::ExportPng {
+        match super::file_prompt::typed_path(&s.path, "png") {
+            Ok(path) => cmds.push(Command::ExportPng {
                 path,
                 width: s.width,
                 height: s.height,
-            });
+            }),
+            Err(e) => s.note = Some(e),
         }
     } else if !open {
         *settings = None;

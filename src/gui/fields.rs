@@ -119,56 +119,97 @@ impl<'a> NumField<'a> {
             };
         }
         let mut cmd = None;
-        ui.horizontal(|ui| {
-            let mut edit = egui::TextEdit::singleline(&mut st.text)
-                .id(id)
-                .desired_width(self.width);
-            if st.error.is_some() {
-                edit = edit.text_color(ERROR_COLOR);
-            }
-            let resp = ui
-                .add(edit)
-                .accessible_name(self.name)
-                .on_hover_text(format!("{} ({})", self.name, self.apply.tooltip()));
-            if !self.unit.is_empty() {
-                ui.label(self.unit);
-            }
-            if resp.lost_focus() && st.text.trim() != format_number(self.value * self.scale) {
-                match parse_number(&st.text) {
-                    Err(e) => st.error = Some(e),
-                    Ok(x) => {
-                        let v = x / self.scale;
-                        let scene = with(v);
-                        match scene.validate() {
-                            Ok(()) => {
-                                st.error = None;
-                                st.shown = v;
-                                cmd = Some(Command::EditScene(Box::new(scene)));
-                            }
-                            Err(errors) => {
-                                let mine: Vec<_> =
-                                    errors.iter().filter(|e| e.field == self.field).collect();
-                                let shown: Vec<String> = if mine.is_empty() {
-                                    errors.iter().map(ToString::to_string).collect()
-                                } else {
-                                    mine.iter()
-                                        .map(|e| format!("expected {}", e.expected))
-                                        .collect()
-                                };
-                                st.error = Some(format!("refused: {}", shown.join("; ")));
+        // the reason goes under the field, wrapped to its column: beside it,
+        // it widened the editing panel by its whole length and moved every
+        // field right of it (and the plots) under the user's pointer
+        ui.vertical(|ui| {
+            let row = ui.horizontal(|ui| {
+                let mut edit = egui::TextEdit::singleline(&mut st.text)
+                    .id(id)
+                    .desired_width(self.width);
+                if st.error.is_some() {
+                    edit = edit.text_color(ERROR_COLOR);
+                }
+                let resp = ui
+                    .add(edit)
+                    .accessible_name(self.name)
+                    .on_hover_text(format!("{} ({})", self.name, self.apply.tooltip()));
+                if !self.unit.is_empty() {
+                    ui.label(self.unit);
+                }
+                if resp.lost_focus() && st.text.trim() != format_number(self.value * self.scale) {
+                    match parse_number(&st.text) {
+                        Err(e) => st.error = Some(e),
+                        Ok(x) => {
+                            let v = x / self.scale;
+                            let scene = with(v);
+                            match scene.validate() {
+                                Ok(()) => {
+                                    st.error = None;
+                                    st.shown = v;
+                                    cmd = Some(Command::EditScene(Box::new(scene)));
+                                }
+                                Err(errors) => {
+                                    let mine: Vec<_> =
+                                        errors.iter().filter(|e| e.field == self.field).collect();
+                                    let shown: Vec<String> = if mine.is_empty() {
+                                        errors.iter().map(ToString::to_string).collect()
+                                    } else {
+                                        mine.iter()
+                                            .map(|e| format!("expected {}", e.expected))
+                                            .collect()
+                                    };
+                                    let unit = if self.unit.is_empty() {
+                                        String::new()
+                                    } else {
+                                        format!(" {}", self.unit)
+                                    };
+                                    st.error = Some(format!(
+                                        "refused: {} (got {}{unit})",
+                                        shown.join("; "),
+                                        st.text.trim()
+                                    ));
+                                }
                             }
                         }
                     }
+                    // the whole reason goes to the message banner, which has
+                    // the room for it; the field keeps a short mark
+                    if let Some(e) = &st.error {
+                        cmd = Some(Command::FieldRefused {
+                            field: self.name.to_string(),
+                            text: format!(
+                                "{}: {e}; the scene keeps {}{}.",
+                                self.name,
+                                format_number(self.value * self.scale),
+                                if self.unit.is_empty() {
+                                    String::new()
+                                } else {
+                                    format!(" {}", self.unit)
+                                }
+                            ),
+                        });
+                    }
                 }
-            }
+            });
             if let Some(e) = &st.error {
-                ui.label(RichText::new(e.as_str()).color(ERROR_COLOR))
-                    .on_hover_text("the scene keeps its previous value");
+                ui.set_max_width(row.response.rect.width());
+                ui.add(
+                    egui::Label::new(RichText::new("not applied").small().color(ERROR_COLOR))
+                        .wrap(),
+                )
+                .on_hover_text(format!("{e}\nthe scene keeps its previous value"));
             }
         });
         ui.data_mut(|d| d.insert_temp(id, st));
         cmd
     }
+}
+
+/// Forgets every field's typed text and refusal (a new document: a text
+/// refused in the old one must not stay up over an equal value of the new).
+pub fn forget_all(ctx: &egui::Context) {
+    ctx.data_mut(|d| d.remove_by_type::<FieldState>());
 }
 
 fn same(a: f64, b: f64) -> bool {
@@ -184,7 +225,9 @@ pub fn parse_number(text: &str) -> Result<f64, String> {
     match t.parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
         Ok(_) => Err(format!("refused: {t}; expected a finite number")),
-        Err(_) => Err(format!("refused: '{t}' is not a number")),
+        Err(_) => Err(format!(
+            "refused: '{t}' is not a number; expected one such as 1.5 or 2e-3"
+        )),
     }
 }
 

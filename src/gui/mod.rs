@@ -12,6 +12,7 @@ pub mod command;
 pub mod dialogs;
 pub mod export;
 pub mod fields;
+pub mod file_prompt;
 pub mod frame_rate;
 pub mod frames;
 pub mod guided;

@@ -115,6 +115,8 @@ impl App {
                 self.set_watchable_speed();
                 self.reset_run();
                 self.research_new_document();
+                self.forget_fields = true;
+                self.field_refusal = None;
                 self.info(what.to_string());
             }
             Err(e) => self.error(format!(
@@ -132,17 +134,31 @@ impl App {
     }
 
     pub(super) fn save_as_dialog(&mut self) {
-        let name = self.path.as_deref().and_then(Path::file_name).map_or_else(
-            || format!("{}.ron", file_stem(&self.scene.name)),
-            |n| n.to_string_lossy().into_owned(),
-        );
-        if let Some(p) = rfd::FileDialog::new()
-            .add_filter("RON scene", &["ron"])
-            .set_file_name(name)
-            .save_file()
-        {
-            self.save_to(&p);
-        }
+        self.open_file_prompt(FileAction::SaveAs);
+    }
+
+    /// Shows the file prompt for `action`, filled with a sensible path: the
+    /// current file, or a name from the scene's.
+    pub(super) fn open_file_prompt(&mut self, action: FileAction) {
+        let stem = file_stem(&self.scene.name);
+        let path = match action {
+            FileAction::Open => self
+                .path
+                .as_deref()
+                .and_then(Path::parent)
+                .map_or_else(String::new, |d| {
+                    format!("{}{}", d.display(), std::path::MAIN_SEPARATOR)
+                }),
+            FileAction::SaveAs => self
+                .path
+                .as_deref()
+                .map_or_else(|| format!("{stem}.ron"), |p| p.display().to_string()),
+            FileAction::ExportCsv => format!("{stem}.csv"),
+            FileAction::SweepCsv => "sweep.csv".to_string(),
+            FileAction::SweepPng => "sweep.png".to_string(),
+            FileAction::PinnedCsv => "reference.csv".to_string(),
+        };
+        self.file_prompt = Some(FilePrompt::new(action, path));
     }
 
     /// Saves atomically (`Scene::save`): a failed save leaves the file as
@@ -163,6 +179,8 @@ impl App {
         self.png_dialog = Some(PngSettings {
             width: 1600,
             height: 1200,
+            path: format!("{}_plots.png", file_stem(&self.scene.name)),
+            note: None,
         });
     }
 
@@ -184,13 +202,7 @@ impl App {
     }
 
     pub(super) fn export_csv_dialog(&mut self) {
-        if let Some(p) = rfd::FileDialog::new()
-            .add_filter("CSV", &["csv"])
-            .set_file_name(format!("{}.csv", file_stem(&self.scene.name)))
-            .save_file()
-        {
-            self.apply(Command::ExportCsv(p));
-        }
+        self.open_file_prompt(FileAction::ExportCsv);
     }
 
     /// Starts the CSV export of the current run (re-simulated from its
@@ -231,17 +243,22 @@ pub(super) fn default_scene() -> Scene {
     }
 }
 
-/// A file name stem from a scene name (lower-case alphanumerics and `_`).
+/// A file name stem from a scene name: lower-case alphanumerics, each run
+/// of anything else one `_` ("Paper: ring tyre" gives `paper_ring_tyre`,
+/// not `paper__ring_tyre`).
 fn file_stem(name: &str) -> String {
-    let s: String = name
-        .chars()
-        .map(|c| {
-            if c.is_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if s.is_empty() { "scene".to_string() } else { s }
+    let mut s = String::new();
+    for c in name.chars() {
+        if c.is_alphanumeric() {
+            s.push(c.to_ascii_lowercase());
+        } else if !s.is_empty() && !s.ends_with('_') {
+            s.push('_');
+        }
+    }
+    let s = s.trim_end_matches('_');
+    if s.is_empty() {
+        "scene".to_string()
+    } else {
+        s.to_string()
+    }
 }

@@ -20,6 +20,17 @@ impl App {
             if i.key_pressed(egui::Key::R) && i.modifiers.is_none() {
                 cmds.push(Command::Reset);
             }
+            // the File menu's shortcuts (shown there)
+            if i.modifiers.command && i.key_pressed(egui::Key::S) {
+                cmds.push(if i.modifiers.shift {
+                    Command::SaveAsDialog
+                } else {
+                    Command::Save
+                });
+            }
+            if i.modifiers.command && i.key_pressed(egui::Key::O) {
+                cmds.push(Command::OpenDialog);
+            }
             for (key, view) in [
                 (egui::Key::Num1, View::TimePlots),
                 (egui::Key::Num2, View::Scene),
@@ -88,10 +99,15 @@ impl App {
         }
         crate::gui::dialogs::confirm_window(&ctx, self.confirm.as_ref(), &mut cmds);
         crate::gui::dialogs::png_window(&ctx, &mut self.png_dialog, &mut cmds);
+        crate::gui::file_prompt::window(&ctx, &mut self.file_prompt, &mut cmds);
         crate::gui::frames::dialog(&ctx, &mut self.frames_dialog, &mut cmds);
         crate::gui::frames::progress(&ctx, self.frames_job.as_ref(), &mut cmds);
         for c in cmds {
             self.apply(c);
+        }
+        if std::mem::take(&mut self.forget_fields) {
+            crate::gui::fields::forget_all(&ctx);
+            ctx.request_repaint();
         }
         let title = self.title();
         if title != self.title {

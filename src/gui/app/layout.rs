@@ -6,16 +6,30 @@ use super::*;
 impl App {
     pub(super) fn show_view(&mut self, v: View) {
         // the presenter layout has one view; another one leaves it
-        self.classroom.on = false;
+        self.set_classroom(false);
         self.view = v;
     }
 
-    /// Classroom mode on (presenter layout, slow motion) or off.
+    /// Classroom mode on (presenter layout, slow motion) or off; off gives
+    /// back the view and the speed it replaced, unless the user changed
+    /// them meanwhile.
     pub(super) fn set_classroom(&mut self, on: bool) {
+        let slow = Speed::Factor(classroom::SLOW_MOTION);
+        if on && !self.classroom.on {
+            self.classroom.before = Some((self.view, self.time.speed()));
+        }
+        if !on && let Some((view, speed)) = self.classroom.before.take() {
+            if self.view == View::Scene {
+                self.view = view;
+            }
+            if self.time.speed() == slow {
+                self.time.set_speed(speed);
+            }
+        }
         self.classroom.on = on;
         if on {
             self.view = View::Scene;
-            self.time.set_speed(Speed::Factor(classroom::SLOW_MOTION));
+            self.time.set_speed(slow);
         }
     }
 

@@ -42,11 +42,21 @@ impl App {
     /// mode keeps its slow motion).
     pub(super) fn set_watchable_speed(&mut self) {
         let speed = if self.classroom.on {
+            // leaving classroom mode gives the new scene's watchable speed
+            if let Some((_, before)) = &mut self.classroom.before {
+                *before = Speed::watchable(self.scene.duration_s);
+            }
             Speed::Factor(classroom::SLOW_MOTION)
         } else {
             Speed::watchable(self.scene.duration_s)
         };
         self.time.set_speed(speed);
+    }
+
+    /// Shows a field's refusal in the banner, until a good edit.
+    pub(super) fn field_refused(&mut self, text: String) {
+        self.error(text.clone());
+        self.field_refusal = Some(text);
     }
 
     /// Applies an edited scene: road and speed live, everything else restarts.
@@ -55,6 +65,12 @@ impl App {
             let list: Vec<String> = errors.iter().map(ToString::to_string).collect();
             self.error(format!("Edit refused: {}", list.join("; ")));
             return;
+        }
+        // a good edit retires the banner of an earlier refused value
+        if let Some(t) = self.field_refusal.take()
+            && self.message.as_ref().is_some_and(|m| m.text == t)
+        {
+            self.message = None;
         }
         let old = &self.scene;
         let restart = new.tyre != old.tyre
@@ -111,7 +127,10 @@ impl App {
         while taken < want {
             if self.sim.finished() {
                 self.time.pause();
-                self.info(format!("run complete: t = {:.4} s", self.sim.time_s()));
+                self.info(format!(
+                    "run complete: t = {:.4} s. Play (Space) runs it again from t = 0.",
+                    self.sim.time_s()
+                ));
                 break;
             }
             match self.sim.step() {

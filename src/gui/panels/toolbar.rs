@@ -32,7 +32,10 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             {
                 cmds.push(Command::New);
             }
-            if ui.button("Open…").clicked() {
+            if ui
+                .add(egui::Button::new("Open…").shortcut_text("Ctrl+O"))
+                .clicked()
+            {
                 cmds.push(Command::OpenDialog);
             }
             ui.menu_button("Open shipped preset", |ui| {
@@ -43,10 +46,16 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
                 }
             });
             ui.separator();
-            if ui.button("Save").clicked() {
+            if ui
+                .add(egui::Button::new("Save").shortcut_text("Ctrl+S"))
+                .clicked()
+            {
                 cmds.push(Command::Save);
             }
-            if ui.button("Save As…").clicked() {
+            if ui
+                .add(egui::Button::new("Save As…").shortcut_text("Ctrl+Shift+S"))
+                .clicked()
+            {
                 cmds.push(Command::SaveAsDialog);
             }
             ui.separator();
@@ -182,6 +191,10 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         let mut speed = st.speed;
         egui::ComboBox::from_id_salt("tirecontact.speed")
             .selected_text(speed_text(speed))
+            // every choice in view (egui's default 200 px hid the last one,
+            // "as fast as possible", below a scroll); scrolls only in a
+            // window too short for the list
+            .height(speed_list_height(ui))
             .show_ui(ui, |ui| {
                 for s in Speed::CHOICES {
                     ui.selectable_value(&mut speed, s, speed_text(s));
@@ -208,6 +221,17 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         };
         ui.label(RichText::new(rt).weak());
     });
+}
+
+/// Height of the speed list: all its choices, at most most of the window.
+fn speed_list_height(ui: &Ui) -> f32 {
+    let row = ui
+        .text_style_height(&egui::TextStyle::Button)
+        .max(ui.spacing().interact_size.y)
+        + ui.spacing().item_spacing.y
+        + 2.0 * ui.spacing().button_padding.y;
+    let all = row * Speed::CHOICES.len() as f32;
+    all.min((ui.ctx().content_rect().height() - 80.0).max(100.0))
 }
 
 fn speed_text(s: Speed) -> String {

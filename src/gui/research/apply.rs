@@ -9,6 +9,7 @@ use super::sweep_job::{SweepState, default_threads};
 use crate::compare::PinnedRun;
 use crate::gui::app::{App, Message};
 use crate::gui::command::{Command, View};
+use crate::gui::file_prompt::{FileAction, FilePrompt};
 use crate::spectrum::Window;
 use std::path::Path;
 
@@ -50,9 +51,7 @@ impl App {
                 }
             }
             ResearchCommand::ExportSweepCsvDialog => {
-                if let Some(p) = save_dialog("CSV", "csv", "sweep.csv") {
-                    self.apply_research(ResearchCommand::ExportSweepCsv(p));
-                }
+                self.file_prompt = Some(FilePrompt::new(FileAction::SweepCsv, "sweep.csv"));
             }
             ResearchCommand::ExportSweepCsv(path) => {
                 let r = match self.research.sweep.result() {
@@ -72,9 +71,7 @@ impl App {
                 self.report_export(&path, "sweep CSV", r);
             }
             ResearchCommand::ExportSweepPngDialog => {
-                if let Some(p) = save_dialog("PNG image", "png", "sweep.png") {
-                    self.apply_research(ResearchCommand::ExportSweepPng(p));
-                }
+                self.file_prompt = Some(FilePrompt::new(FileAction::SweepPng, "sweep.png"));
             }
             ResearchCommand::ExportSweepPng(path) => {
                 let r = match self.research.sweep.result() {
@@ -119,9 +116,9 @@ impl App {
                 self.research_message(false, "reference unpinned");
             }
             ResearchCommand::ExportPinnedCsvDialog => {
-                if let Some(p) = save_dialog("CSV", "csv", "reference.csv") {
-                    self.apply_research(ResearchCommand::ExportPinnedCsv(p));
-                }
+                // a typed path, or the desktop's dialog through "Choose…"
+                // (the dialog alone did nothing where there is none)
+                self.file_prompt = Some(FilePrompt::new(FileAction::PinnedCsv, "reference.csv"));
             }
             ResearchCommand::ExportPinnedCsv(path) => {
                 let r = match &self.research.pinned {
@@ -353,13 +350,6 @@ impl App {
             _ => {}
         }
     }
-}
-
-fn save_dialog(what: &str, ext: &str, name: &str) -> Option<std::path::PathBuf> {
-    rfd::FileDialog::new()
-        .add_filter(what, &[ext])
-        .set_file_name(name)
-        .save_file()
 }
 
 fn write_file(path: &Path, bytes: &[u8]) -> Result<(), String> {

@@ -1,0 +1,200 @@
+//! The file name of an open, save or export: typed in a field, or picked
+//! with the desktop's file dialog ("Choose…").
+//!
+//! The native dialog alone (rfd) returns "no file" both when the user
+//! cancels and when the desktop has no file chooser (no xdg portal, no
+//! zenity: a bare X server, a remote session). Then Open, Save and the
+//! exports silently did nothing. The typed field always works; "Choose…"
+//! fills it when a dialog is available, and says so when none appeared.
+
+use super::command::Command;
+use super::research::ResearchCommand;
+use egui::{RichText, Ui};
+use std::path::{Path, PathBuf};
+
+/// What the chosen file is for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileAction {
+    /// Open a scene (through the unsaved-changes guard).
+    Open,
+    /// Save the scene to a new file.
+    SaveAs,
+    /// Export the run as CSV.
+    ExportCsv,
+    /// The researcher tools' exports: the sweep as CSV or PNG, the pinned
+    /// reference run as CSV.
+    SweepCsv,
+    SweepPng,
+    PinnedCsv,
+}
+
+impl FileAction {
+    fn title(self) -> &'static str {
+        match self {
+            FileAction::Open => "Open a scene",
+            FileAction::SaveAs => "Save the scene as",
+            FileAction::ExportCsv => "Export the run as CSV",
+            FileAction::SweepCsv => "Export the sweep as CSV",
+            FileAction::SweepPng => "Export the sweep as PNG",
+            FileAction::PinnedCsv => "Export the pinned run as CSV",
+        }
+    }
+    fn button(self) -> &'static str {
+        match self {
+            FileAction::Open => "Open",
+            FileAction::SaveAs => "Save",
+            FileAction::ExportCsv | FileAction::SweepCsv | FileAction::PinnedCsv => "Export CSV",
+            FileAction::SweepPng => "Export PNG",
+        }
+    }
+    /// File-type name and extension of the dialog's filter.
+    fn filter(self) -> (&'static str, &'static str) {
+        match self {
+            FileAction::Open | FileAction::SaveAs => ("RON scene", "ron"),
+            FileAction::ExportCsv | FileAction::SweepCsv | FileAction::PinnedCsv => ("CSV", "csv"),
+            FileAction::SweepPng => ("PNG image", "png"),
+        }
+    }
+    fn command(self, path: PathBuf) -> Command {
+        match self {
+            FileAction::Open => Command::OpenPath(path),
+            FileAction::SaveAs => Command::SavePath(path),
+            FileAction::ExportCsv => Command::ExportCsv(path),
+            FileAction::SweepCsv => Command::Research(ResearchCommand::ExportSweepCsv(path)),
+            FileAction::SweepPng => Command::Research(ResearchCommand::ExportSweepPng(path)),
+            FileAction::PinnedCsv => Command::Research(ResearchCommand::ExportPinnedCsv(path)),
+        }
+    }
+}
+
+/// An open file prompt: its purpose, the path as typed, and a note (the
+/// dialog did not appear, the path is empty).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilePrompt {
+    pub action: FileAction,
+    pub path: String,
+    pub note: Option<String>,
+}
+
+impl FilePrompt {
+    pub fn new(action: FileAction, path: impl Into<String>) -> Self {
+        FilePrompt {
+            action,
+            path: path.into(),
+            note: None,
+        }
+    }
+}
+
+/// The working directory relative paths are resolved against (for the hint).
+fn cwd_text() -> String {
+    std::env::current_dir().map_or_else(
+        |_| "the working directory".to_string(),
+        |d| d.display().to_string(),
+    )
+}
+
+/// The path field and its "Choose…" button (the desktop's dialog, which
+/// fills the field). Returns the note to show when no dialog gave a file.
+pub fn path_row(
+    ui: &mut Ui,
+    path: &mut String,
+    accessible: &str,
+    filter: (&str, &str),
+    save: bool,
+) -> Option<String> {
+    let mut note = None;
+    ui.horizontal(|ui| {
+        ui.add(egui::TextEdit::singleline(path).desired_width(320.0))
+            .accessible_name(accessible)
+            .on_hover_text(format!("a path; a relative one is in {}", cwd_text()));
+        if ui
+            .button("Choose…")
+            .on_hover_text("the desktop's file dialog, if it has one")
+            .clicked()
+        {
+            let current = Path::new(path.trim());
+            let mut d = rfd::FileDialog::new().add_filter(filter.0, &[filter.1]);
+            if let Some(dir) = current.parent().filter(|d| d.is_dir()) {
+                d = d.set_directory(dir);
+            }
+            if let Some(name) = current.file_name() {
+                d = d.set_file_name(name.to_string_lossy());
+            }
+            let picked = if save { d.save_file() } else { d.pick_file() };
+            match picked {
+                Some(p) => *path = p.display().to_string(),
+                None => {
+                    note = Some(
+                        "No file was chosen. If no dialog appeared, this desktop has none: \
+                         type the path in the field."
+                            .to_string(),
+                    )
+                }
+            }
+        }
+    });
+    note
+}
+
+/// The path typed in `text`, or the reason it cannot be used.
+pub fn typed_path(text: &str, ext: &str) -> Result<PathBuf, String> {
+    let t = text.trim();
+    if t.is_empty() {
+        return Err(format!("Type a file path first (e.g. scene.{ext})."));
+    }
+    let p = PathBuf::from(t);
+    if p.is_dir() {
+        return Err(format!(
+            "{t} is a folder; add a file name (e.g. {}).",
+            p.join(format!("scene.{ext}")).display()
+        ));
+    }
+    Ok(p)
+}
+
+/// The prompt window; pushes the action's command and closes when the user
+/// confirms a usable path.
+pub fn window(ctx: &egui::Context, prompt: &mut Option<FilePrompt>, cmds: &mut Vec<Command>) {
+    let Some(p) = prompt else { return };
+    let mut open = true;
+    let mut done = false;
+    egui::Window::new(p.action.title())
+        .id(egui::Id::unique("tirecontact.file_prompt"))
+        .open(&mut open)
+        .collapsible(false)
+        .resizable(false)
+        // over the views, clear of the menu it came from
+        .pivot(egui::Align2::CENTER_TOP)
+        .default_pos(ctx.content_rect().center_top() + egui::vec2(0.0, 120.0))
+        .show(ctx, |ui| {
+            let save = p.action != FileAction::Open;
+            if let Some(n) = path_row(ui, &mut p.path, "file path", p.action.filter(), save) {
+                p.note = Some(n);
+            }
+            ui.label(RichText::new(format!("A relative path is in {}.", cwd_text())).weak());
+            if let Some(n) = &p.note {
+                ui.label(RichText::new(n.as_str()).color(super::fields::ERROR_COLOR));
+            }
+            ui.horizontal(|ui| {
+                if ui
+                    .button(RichText::new(p.action.button()).strong())
+                    .clicked()
+                {
+                    match typed_path(&p.path, p.action.filter().1) {
+                        Ok(path) => {
+                            cmds.push(p.action.command(path));
+                            done = true;
+                        }
+                        Err(e) => p.note = Some(e),
+                    }
+                }
+                if ui.button("Cancel").clicked() {
+                    done = true;
+                }
+            });
+        });
+    if done || !open {
+        *prompt = None;
+    }
+}
