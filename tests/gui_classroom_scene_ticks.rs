@@ -72,7 +72,7 @@ fn check(preset: &str, size: [f32; 2]) {
     );
     // the title, with its unit, beside the labels
     assert!(
-        all.iter().any(|(t, r)| t.starts_with("height (mm")
+        all.iter().any(|(t, r)| t.contains("height (mm)")
             && r.right() <= frame.left()
             && r.center().y > frame.top()
             && r.center().y < frame.bottom()),

@@ -29,11 +29,11 @@ pub fn texts(app: &App) -> [StatusText; 3] {
         },
         StatusText {
             full: format!(
-                "{} points, {} modes · {} steps · {} events · {} in contact",
-                app.scene.num_points(),
-                app.modes.len(),
-                st.steps,
-                st.events,
+                "{} · {} · {} · {} · {} in contact",
+                count(app.scene.num_points(), "point"),
+                count(app.modes.len(), "mode"),
+                count(st.steps as usize, "step"),
+                count(st.events as usize, "event"),
                 in_contact
             ),
             short: format!(
@@ -44,14 +44,30 @@ pub fn texts(app: &App) -> [StatusText; 3] {
             ),
         },
         StatusText {
-            full: format!(
-                "history: {} samples, 1 per {} step(s)",
-                app.history.len(),
-                app.history.stride()
-            ),
-            short: format!("history: {}", app.history.len()),
+            full: history_text(app.history.len(), app.history.stride()),
+            short: format!("history: {}", count(app.history.len(), "sample")),
         },
     ]
+}
+
+/// `n` and the noun, plural unless `n` is 1 ("1 point", "5 points").
+pub fn count(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
+/// The history label: how many samples are kept and how often one is taken
+/// ("history: 20 001 samples, every step" / "…, 1 per 4 steps").
+pub fn history_text(samples: usize, stride: u64) -> String {
+    let every = if stride == 1 {
+        "every step".to_string()
+    } else {
+        format!("1 per {stride} steps")
+    };
+    format!("history: {}, {every}", count(samples, "sample"))
 }
 
 /// The document label for narrow windows: the file's name without its
@@ -189,6 +205,18 @@ mod tests {
 
     const FULL: [f32; 3] = [400.0, 420.0, 300.0];
     const SHORT: [f32; 3] = [250.0, 260.0, 120.0];
+
+    #[test]
+    fn counts_and_history_read_as_english() {
+        assert_eq!(count(1, "point"), "1 point");
+        assert_eq!(count(0, "event"), "0 events");
+        assert_eq!(count(5, "mode"), "5 modes");
+        assert_eq!(history_text(1, 1), "history: 1 sample, every step");
+        assert_eq!(
+            history_text(20001, 4),
+            "history: 20001 samples, 1 per 4 steps"
+        );
+    }
 
     #[test]
     fn full_texts_when_they_fit() {

@@ -376,7 +376,7 @@ pub fn show_with(
 }
 
 /// The scene plot's y title, and its short form.
-pub const Y_TITLE: &str = "height (mm, true scale)";
+pub const Y_TITLE: &str = "true height (mm)";
 pub const Y_TITLE_SHORT: &str = "height (mm)";
 
 #[cfg(test)]
