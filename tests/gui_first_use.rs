@@ -316,11 +316,25 @@ fn save_as_open_and_csv_work_by_typing_the_path() {
             .is_some_and(|n| n.contains("Type a file path")),
         "{note:?}"
     );
-    // a typed path saves
+    // Escape cancels the prompt, and nothing is saved
+    h.key_press(egui::Key::Escape);
+    h.run();
+    h.run();
+    assert!(
+        h.state().file_prompt().is_none(),
+        "Escape left the prompt open"
+    );
+    assert!(h.state().is_dirty());
+    assert!(!file.exists());
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    h.run();
+    h.run();
+    assert!(h.state().file_prompt().is_some());
+    // a typed path saves, confirmed with Enter
     h.get_by_label("file path")
         .set_text_value_accesskit(&file.display().to_string());
     h.run();
-    h.get_by_label("Save").click();
+    h.key_press(egui::Key::Enter);
     h.run();
     h.run();
     assert!(h.state().file_prompt().is_none());

@@ -159,6 +159,13 @@ pub fn window(ctx: &egui::Context, prompt: &mut Option<FilePrompt>, cmds: &mut V
     let Some(p) = prompt else { return };
     let mut open = true;
     let mut done = false;
+    // Enter confirms the typed path, Escape cancels (as the buttons)
+    let (enter, escape) = ctx.input(|i| {
+        (
+            i.key_pressed(egui::Key::Enter),
+            i.key_pressed(egui::Key::Escape),
+        )
+    });
     egui::Window::new(p.action.title())
         .id(egui::Id::unique("tirecontact.file_prompt"))
         .open(&mut open)
@@ -179,7 +186,9 @@ pub fn window(ctx: &egui::Context, prompt: &mut Option<FilePrompt>, cmds: &mut V
             ui.horizontal(|ui| {
                 if ui
                     .button(RichText::new(p.action.button()).strong())
+                    .on_hover_text("Enter")
                     .clicked()
+                    || enter
                 {
                     match typed_path(&p.path, p.action.filter().1) {
                         Ok(path) => {
@@ -189,7 +198,7 @@ pub fn window(ctx: &egui::Context, prompt: &mut Option<FilePrompt>, cmds: &mut V
                         Err(e) => p.note = Some(e),
                     }
                 }
-                if ui.button("Cancel").clicked() {
+                if ui.button("Cancel").on_hover_text("Escape").clicked() || escape {
                     done = true;
                 }
             });
