@@ -457,3 +457,73 @@ fn image_size(p: &std::path::Path) -> (u32, u32) {
     let be = |i: usize| u32::from_be_bytes([b[i], b[i + 1], b[i + 2], b[i + 3]]);
     (be(16), be(20))
 }
+
+/// "Save first" in the unsaved-changes question saves, then does what the
+/// user asked for (it used to save and drop the request).
+#[test]
+fn save_first_saves_then_does_the_held_action() {
+    let dir = tmp_dir("save-first");
+    let file = dir.join("kept.ron");
+    // copies to open (a save must never reach the shipped presets)
+    let (three, one) = (dir.join("three.ron"), dir.join("one.ron"));
+    for (from, to) in [("three_points.ron", &three), ("single_mode.ron", &one)] {
+        std::fs::copy(format!("{}/presets/{from}", env!("CARGO_MANIFEST_DIR")), to).unwrap();
+    }
+    let mut h = harness_sized(app_on("single_mode.ron"), SMALL);
+    h.run();
+    let edited = |h: &mut Harness<'_, App>, d: f64| {
+        let mut s = h.state().scene().clone();
+        s.duration_s = d;
+        h.state_mut().apply(Command::EditScene(Box::new(s)));
+        h.run();
+        assert!(h.state().is_dirty());
+    };
+    // a scene without a file: the prompt asks for one, the preset opens after
+    edited(&mut h, 0.5);
+    h.state_mut().apply(Command::OpenPath(three.clone()));
+    h.run();
+    h.get_by_label("Save first").click();
+    h.run();
+    h.run();
+    assert!(h.state().file_prompt().is_some(), "no file prompt");
+    h.get_by_label("file path")
+        .set_text_value_accesskit(&file.display().to_string());
+    h.run();
+    h.get_by_label("Save").click();
+    h.run();
+    h.run();
+    assert_eq!(Scene::load(&file).unwrap().duration_s, 0.5);
+    assert_eq!(h.state().scene().num_points(), 3, "the preset did not open");
+    assert!(!h.state().is_dirty());
+
+    // a cancelled prompt keeps the scene and its edits (a scene without a
+    // file: the built-in default)
+    h.state_mut().apply(Command::New);
+    h.run();
+    edited(&mut h, 0.25);
+    h.state_mut().apply(Command::OpenPath(one.clone()));
+    h.run();
+    h.get_by_label("Save first").click();
+    h.run();
+    h.run();
+    h.get_by_label("Cancel").click();
+    h.run();
+    h.run();
+    assert_eq!(h.state().scene().duration_s, 0.25);
+    assert!(h.state().is_dirty());
+    let default = Scene::parse(tirecontact::DEFAULT_PRESET, "default").unwrap();
+    assert_eq!(h.state().scene().name, default.name, "the held action ran");
+
+    // a scene with its file: saved there at once, then the preset opens
+    h.state_mut().apply(Command::SavePath(file.clone()));
+    h.run();
+    edited(&mut h, 0.125);
+    h.state_mut().apply(Command::OpenPath(one.clone()));
+    h.run();
+    h.get_by_label("Save first").click();
+    h.run();
+    h.run();
+    assert_eq!(Scene::load(&file).unwrap().duration_s, 0.125);
+    assert_eq!(h.state().scene().num_points(), 1, "the preset did not open");
+    std::fs::remove_dir_all(dir).ok();
+}

@@ -276,6 +276,12 @@ impl App {
             Command::Research(c) => self.apply_research(c),
             // a field's refusal (app/run.rs)
             Command::FieldRefused { field: _, text } => self.field_refused(text),
+            Command::SaveFirst => self.save_first(),
+            Command::ContinueAfterSave(d) => {
+                if !self.is_dirty() {
+                    self.discard_and(d);
+                }
+            }
         }
         self.end_mutes_on_other_edits();
     }

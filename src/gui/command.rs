@@ -122,4 +122,10 @@ pub enum Command {
         field: String,
         text: String,
     },
+    /// "Save first" in the unsaved-changes question: save (asking for a
+    /// file if the scene has none), then do the held action.
+    SaveFirst,
+    /// After a save from the file prompt: do the held action if the scene
+    /// is now saved (a failed save keeps it, and the user's edits).
+    ContinueAfterSave(Discarding),
 }

@@ -86,8 +86,7 @@ pub fn confirm_window(ctx: &egui::Context, pending: Option<&Discarding>, cmds: &
                 cmds.push(Command::ConfirmDiscard);
             }
             if ui.button("Save first").clicked() {
-                cmds.push(Command::CancelDiscard);
-                cmds.push(Command::Save);
+                cmds.push(Command::SaveFirst);
             }
             if ui.button("Cancel").clicked() {
                 cmds.push(Command::CancelDiscard);

@@ -74,6 +74,8 @@ pub struct FilePrompt {
     pub action: FileAction,
     pub path: String,
     pub note: Option<String>,
+    /// The action held by the unsaved-changes question, done after the save.
+    pub then: Option<super::command::Discarding>,
 }
 
 impl FilePrompt {
@@ -82,6 +84,7 @@ impl FilePrompt {
             action,
             path: path.into(),
             note: None,
+            then: None,
         }
     }
 }
@@ -193,6 +196,9 @@ pub fn window(ctx: &egui::Context, prompt: &mut Option<FilePrompt>, cmds: &mut V
                     match typed_path(&p.path, p.action.filter().1) {
                         Ok(path) => {
                             cmds.push(p.action.command(path));
+                            if let Some(d) = p.then.take() {
+                                cmds.push(Command::ContinueAfterSave(d));
+                            }
                             done = true;
                         }
                         Err(e) => p.note = Some(e),

@@ -51,7 +51,30 @@ impl App {
         }
     }
 
-    fn discard_and(&mut self, d: Discarding) {
+    /// "Save first": saves, then does the held action once the scene is
+    /// saved; without a file, the file prompt asks for one and carries the
+    /// action (done after its save, dropped if the prompt is cancelled).
+    pub(super) fn save_first(&mut self) {
+        let Some(d) = self.confirm.take() else {
+            return self.save_document();
+        };
+        match self.path.clone() {
+            Some(p) => {
+                self.save_to(&p);
+                if !self.is_dirty() {
+                    self.discard_and(d);
+                }
+            }
+            None => {
+                self.open_file_prompt(FileAction::SaveAs);
+                if let Some(prompt) = &mut self.file_prompt {
+                    prompt.then = Some(d);
+                }
+            }
+        }
+    }
+
+    pub(super) fn discard_and(&mut self, d: Discarding) {
         match d {
             Discarding::New => {
                 self.replace(default_scene(), None, "new scene (default preset)");
