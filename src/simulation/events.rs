@@ -12,7 +12,6 @@ impl Simulation {
     /// whole step (`free`, road at the step end; the free end values in
     /// `uh`, `vh`, or swapped into `ue`, `ve` when no point was on the road)
     /// is this loop's first prediction, which is then not repeated.
-    #[inline(never)]
     pub(super) fn located_step(
         &mut self,
         t_start: f64,

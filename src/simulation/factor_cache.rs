@@ -4,7 +4,10 @@
 //! active sets come back on every road period. The factorisation of each
 //! set that was left is kept in a small cache of buffers sized once (no
 //! allocation per step), and taken back instead of factorising again:
-//! the same LU, inverse and packed rows, bit for bit.
+//! the same LU, inverse and packed rows, bit for bit. Like the current
+//! factorisation, the kept ones stay valid across `reset` (the set and `dt`
+//! are all they depend on; `dt`, the modes and the options are fixed for a
+//! simulation's life).
 
 use crate::contact::DenseSolver;
 

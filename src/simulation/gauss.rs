@@ -300,6 +300,35 @@ mod tests {
     use super::Table;
     use crate::{Scene, Simulation};
 
+    /// Full-step factorisations taken back from the cache of active sets
+    /// (SPEC §4) give the run of factorising every new set again, bit for
+    /// bit, with fewer factorisations.
+    #[test]
+    fn kept_factorisations_change_no_bit() {
+        let text = include_str!("../../presets/three_points.ron");
+        let scene = Scene::parse(text, "three").unwrap();
+        let mut a = Simulation::new(&scene).unwrap();
+        let mut b = Simulation::new(&scene).unwrap();
+        b.factor_cache = super::super::factor_cache::FactorCache::new(b.p, false);
+        assert!(a.factor_cache.is_enabled() && !b.factor_cache.is_enabled());
+        let bits = |x: &[f64]| x.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for step in 0..15_000 {
+            let (ra, rb) = (a.step().unwrap(), b.step().unwrap());
+            assert_eq!(ra, rb, "report at step {step}");
+            for (x, y) in [(&a.u, &b.u), (&a.v, &b.v), (&a.q_mean, &b.q_mean)] {
+                assert_eq!(bits(x), bits(y), "outputs at step {step}");
+            }
+        }
+        let (sa, sb) = (a.stats(), b.stats());
+        assert!(sa.events > 100, "only {} events", sa.events);
+        assert!(
+            sa.factorisations < sb.factorisations,
+            "{} factorisations with the cache, {} without",
+            sa.factorisations,
+            sb.factorisations
+        );
+    }
+
     /// After a full-step solve the active points end exactly on the road
     /// (what the solve imposes) and every free point's end values from the
     /// packed rows equal those summed from the P x P influence columns.
