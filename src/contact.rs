@@ -52,37 +52,55 @@ impl DenseSolver {
         n: usize,
         entry: impl Fn(usize, usize) -> f64,
     ) -> Result<(), Singular> {
+        self.factor_filled(n, |a| {
+            for (r, row) in a.chunks_exact_mut(n).enumerate() {
+                for (c, x) in row.iter_mut().enumerate() {
+                    *x = entry(r, c);
+                }
+            }
+        })
+    }
+
+    /// Factorises the `n × n` matrix that `fill` writes row-major into the
+    /// slice it is given (every entry), as [`DenseSolver::factor`] does
+    /// with the same values.
+    pub fn factor_filled(
+        &mut self,
+        n: usize,
+        fill: impl FnOnce(&mut [f64]),
+    ) -> Result<(), Singular> {
         assert!(n <= self.cap, "contact system larger than its buffers");
         self.n = n;
         let a = &mut self.a[..n * n];
-        for r in 0..n {
-            for c in 0..n {
-                a[r * n + c] = entry(r, c);
-            }
-        }
+        fill(a);
         // Row, then column equilibration to unit max-norm.
-        for r in 0..n {
-            let m = (0..n).map(|c| a[r * n + c].abs()).fold(0.0, f64::max);
+        let row_scale = &mut self.row_scale[..n];
+        for (row, rs) in a.chunks_exact_mut(n).zip(row_scale.iter_mut()) {
+            let m = row.iter().map(|x| x.abs()).fold(0.0, f64::max);
             let s = if m > 0.0 && m.is_finite() {
                 1.0 / m
             } else {
                 1.0
             };
-            self.row_scale[r] = s;
-            for c in 0..n {
-                a[r * n + c] *= s;
+            *rs = s;
+            for x in row.iter_mut() {
+                *x *= s;
             }
         }
         for c in 0..n {
-            let m = (0..n).map(|r| a[r * n + c].abs()).fold(0.0, f64::max);
+            let m = a[c..]
+                .iter()
+                .step_by(n)
+                .map(|x| x.abs())
+                .fold(0.0, f64::max);
             let s = if m > 0.0 && m.is_finite() {
                 1.0 / m
             } else {
                 1.0
             };
             self.col_scale[c] = s;
-            for r in 0..n {
-                a[r * n + c] *= s;
+            for x in a[c..].iter_mut().step_by(n) {
+                *x *= s;
             }
         }
         let mut min_pivot = f64::INFINITY;
@@ -106,13 +124,15 @@ impl DenseSolver {
                     a.swap(k * n + c, p * n + c);
                 }
             }
-            let piv = a[k * n + k];
-            for r in k + 1..n {
-                let f = a[r * n + k] / piv;
-                a[r * n + k] = f;
+            let (top, below) = a.split_at_mut((k + 1) * n);
+            let pivot_row = &top[k * n + k..];
+            let piv = pivot_row[0];
+            for row in below.chunks_exact_mut(n) {
+                let f = row[k] / piv;
+                row[k] = f;
                 if f != 0.0 {
-                    for c in k + 1..n {
-                        a[r * n + c] -= f * a[k * n + c];
+                    for (x, y) in row[k + 1..].iter_mut().zip(&pivot_row[1..]) {
+                        *x -= f * y;
                     }
                 }
             }

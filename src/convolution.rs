@@ -264,34 +264,49 @@ impl StepTable {
         t
     }
 
-    /// Recomputes the table for `tau_s` in place (no allocation once sized).
+    /// Recomputes the table for `tau_s` in place (no allocation once sized;
+    /// event steps fill the sub-step table twice per event, SPEC §4).
     pub fn fill(&mut self, basis: &ModalBasis, tau_s: f64) {
         let ns = basis.stored_states();
         self.tau_s = tau_s;
         mode_steps_into(&basis.modes, tau_s, &mut self.per_mode);
-        self.phi.resize(ns, [0.0; 4]);
-        self.w_const.resize(ns, [0.0; 2]);
-        self.w1.resize(ns, [0.0; 2]);
-        self.w2.resize(ns, [0.0; 2]);
-        for (s, &k) in basis.mode_of_state.iter().enumerate() {
-            let m = &self.per_mode[k];
-            self.phi[s] = m.phi;
-            self.w_const[s] = m.w_const;
-            self.w1[s] = m.w_gauss[0];
-            self.w2[s] = m.w_gauss[1];
-        }
         let c = &mut self.soa;
-        for col in [
-            &mut c.pxx, &mut c.pxv, &mut c.pvx, &mut c.pvv, &mut c.w1x, &mut c.w1v, &mut c.w2x,
-            &mut c.w2v,
-        ] {
-            col.resize(ns, 0.0);
+        if self.phi.len() != ns || c.pxx.len() != ns {
+            self.phi.resize(ns, [0.0; 4]);
+            self.w_const.resize(ns, [0.0; 2]);
+            self.w1.resize(ns, [0.0; 2]);
+            self.w2.resize(ns, [0.0; 2]);
+            for col in [
+                &mut c.pxx, &mut c.pxv, &mut c.pvx, &mut c.pvv, &mut c.w1x, &mut c.w1v, &mut c.w2x,
+                &mut c.w2v,
+            ] {
+                col.resize(ns, 0.0);
+            }
         }
-        for (s, &m) in basis.mode_of_state.iter().enumerate() {
-            let st = &self.per_mode[m];
-            (c.pxx[s], c.pxv[s], c.pvx[s], c.pvv[s]) = (st.phi[0], st.phi[1], st.phi[2], st.phi[3]);
-            (c.w1x[s], c.w1v[s]) = (st.w_gauss[0][0], st.w_gauss[0][1]);
-            (c.w2x[s], c.w2v[s]) = (st.w_gauss[1][0], st.w_gauss[1][1]);
+        // (slices of length `ns`: one bounds check per state, for the mode)
+        let (phi, w_const) = (&mut self.phi[..ns], &mut self.w_const[..ns]);
+        let (w1, w2) = (&mut self.w1[..ns], &mut self.w2[..ns]);
+        let (pxx, pxv, pvx, pvv) = (
+            &mut c.pxx[..ns],
+            &mut c.pxv[..ns],
+            &mut c.pvx[..ns],
+            &mut c.pvv[..ns],
+        );
+        let (w1x, w1v, w2x, w2v) = (
+            &mut c.w1x[..ns],
+            &mut c.w1v[..ns],
+            &mut c.w2x[..ns],
+            &mut c.w2v[..ns],
+        );
+        for (s, &k) in basis.mode_of_state[..ns].iter().enumerate() {
+            let m = &self.per_mode[k];
+            phi[s] = m.phi;
+            w_const[s] = m.w_const;
+            w1[s] = m.w_gauss[0];
+            w2[s] = m.w_gauss[1];
+            (pxx[s], pxv[s], pvx[s], pvv[s]) = (m.phi[0], m.phi[1], m.phi[2], m.phi[3]);
+            (w1x[s], w1v[s]) = (m.w_gauss[0][0], m.w_gauss[0][1]);
+            (w2x[s], w2v[s]) = (m.w_gauss[1][0], m.w_gauss[1][1]);
         }
     }
 }

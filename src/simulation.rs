@@ -5,6 +5,7 @@
 mod compliant;
 mod contributions;
 mod events;
+mod factor_cache;
 mod gauss;
 mod options;
 mod paper;
@@ -155,6 +156,8 @@ pub struct Simulation {
     /// Residual compliance of the dropped modes (m/N, P x P row-major);
     /// empty: all modes in the convolution.
     residual: Vec<f64>,
+    /// Full-step factorisations of active sets left earlier (SPEC §4).
+    factor_cache: factor_cache::FactorCache,
 }
 
 /// `√3`: the slope of a linear force is `√3 (q2 - q1) / τ` from its
@@ -268,6 +271,10 @@ impl Simulation {
             options,
             stats: RunStats::default(),
             tread_k_n_m: scene.contact.stiffness_per_point(p),
+            factor_cache: factor_cache::FactorCache::new(
+                p,
+                options.reuse_factorisation && scene.contact.stiffness_per_point(p).is_empty(),
+            ),
             residual,
             had_event: true,
             num_steps: scene.num_steps(),
@@ -537,7 +544,7 @@ impl Simulation {
                         self.stats.steady_steps += 1;
                         (0, solves)
                     }
-                    None => self.located_step(t0)?,
+                    None => self.located_step(t0, steady)?,
                 }
             }
         };

@@ -7,7 +7,16 @@ use crate::error::SolverError;
 
 impl Simulation {
     /// A step with events located inside it (SPEC §4, "Events inside the step").
-    pub(super) fn located_step(&mut self, t_start: f64) -> Result<(u32, u32), SolverError> {
+    /// `after_steady`: [`Simulation::steady_step`] was tried first from the
+    /// same state and handed the step over; its free prediction over the
+    /// whole step (`free`, road at the step end; the free end values in
+    /// `uh`, `vh`, or swapped into `ue`, `ve` when no point was on the road)
+    /// is this loop's first prediction, which is then not repeated.
+    pub(super) fn located_step(
+        &mut self,
+        t_start: f64,
+        after_steady: bool,
+    ) -> Result<(u32, u32), SolverError> {
         let dt = self.dt_s;
         let mut t = t_start;
         let mut remaining = dt;
@@ -27,6 +36,17 @@ impl Simulation {
                     deepest = Some((i, g));
                 }
             }
+        }
+        // the steady attempt's prediction holds while nothing changed the
+        // state: no landing at the step start (the first sub-step is then the
+        // whole step: the steady path runs only on roads without breakpoints
+        // under active points, and a step without them has none to stop at)
+        let mut predicted = after_steady && deepest.is_none();
+        if predicted && self.active.is_empty() {
+            // (the steady attempt without active points swapped the free end
+            // values into `ue`, `ve`)
+            std::mem::swap(&mut self.ue, &mut self.uh);
+            std::mem::swap(&mut self.ve, &mut self.vh);
         }
         if let Some((i, _)) = deepest {
             solves += self.impact(t, i)?;
@@ -59,7 +79,12 @@ impl Simulation {
                 }
                 sel = Table::Sub;
             }
-            self.predict(t, span, sel)?;
+            if predicted && sel == Table::Full && t == t_start {
+                predicted = false;
+            } else {
+                predicted = false;
+                self.predict(t, span, sel)?;
+            }
             self.solve_active(t + span, sel)?;
             solves += !self.active.is_empty() as u32;
             // releases: the linear force ends negative (release where it crosses

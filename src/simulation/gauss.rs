@@ -21,28 +21,45 @@ impl Simulation {
         }
         // The full-step operator depends only on the active set: its
         // factorisation is reused while the set is unchanged.
-        let reuse = sel == Table::Full
+        let mut reuse = sel == Table::Full
             && self.options.reuse_factorisation
             && self.full_factored
             && self.full_set.len() == n
             && self.full_set.iter().zip(&self.active).all(|(a, b)| a == b);
+        if !reuse && sel == Table::Full && self.factor_cache.is_enabled() {
+            reuse = self.swap_cached_factorisation();
+        }
         if !reuse {
             self.stats.factorisations += 1;
             let act = &self.active;
-            let (g, gss) = (&self.full_inf, &self.gss);
-            let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
-            let entry = |r: usize, c: usize| {
-                let blk = 2 * (r >= n) as usize + (c >= n) as usize;
-                match sel {
-                    Table::Full => blocks[blk][act[r % n] * p + act[c % n]],
-                    Table::Sub => gss[blk * n * n + (r % n) * n + c % n],
+            let res = match sel {
+                Table::Full => {
+                    let g = &self.full_inf;
+                    let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
+                    let entry = |r: usize, c: usize| {
+                        let blk = 2 * (r >= n) as usize + (c >= n) as usize;
+                        blocks[blk][act[r % n] * p + act[c % n]]
+                    };
+                    self.full_solver.factor(2 * n, entry)
+                }
+                // the interleaved blocks into the 2|S| x 2|S| matrix
+                Table::Sub => {
+                    let gss = &self.gss[..4 * n * n];
+                    self.solver.factor_filled(2 * n, |m| {
+                        let (top, bottom) = m.split_at_mut(2 * n * n);
+                        let rows = top
+                            .chunks_exact_mut(2 * n)
+                            .zip(bottom.chunks_exact_mut(2 * n));
+                        for ((mx, mv), g) in rows.zip(gss.chunks_exact(4 * n)) {
+                            let (mx1, mx2) = mx.split_at_mut(n);
+                            let (mv1, mv2) = mv.split_at_mut(n);
+                            for (b, e) in g.chunks_exact(4).enumerate() {
+                                (mx1[b], mx2[b], mv1[b], mv2[b]) = (e[0], e[1], e[2], e[3]);
+                            }
+                        }
+                    })
                 }
             };
-            let solver = match sel {
-                Table::Full => &mut self.full_solver,
-                Table::Sub => &mut self.solver,
-            };
-            let res = solver.factor(2 * n, entry);
             if sel == Table::Full {
                 self.full_factored = res.is_ok();
                 self.full_set.clone_from(&self.active);
@@ -85,6 +102,33 @@ impl Simulation {
             Table::Sub => self.end_values_sub(),
         }
         Ok(())
+    }
+
+    /// Before a full-step factorisation of a new active set (SPEC §4): the
+    /// kept factorisation of `active`, if any, becomes the current one
+    /// (`true`: nothing to factorise); the current one, if valid, is kept in
+    /// its place or in the least recently used entry. Swaps of buffers
+    /// sized once: no allocation, and the same values as a new
+    /// factorisation, bit for bit (it depends only on the set and `dt`).
+    fn swap_cached_factorisation(&mut self) -> bool {
+        let found = self.factor_cache.find(&self.active);
+        let k = match found {
+            Some(k) => k,
+            // nothing to keep: factorise into the current buffers
+            None if !self.full_factored => return false,
+            None => self.factor_cache.victim(),
+        };
+        let tick = self.factor_cache.tick();
+        let e = &mut self.factor_cache.entries[k];
+        std::mem::swap(&mut e.solver, &mut self.full_solver);
+        std::mem::swap(&mut e.set, &mut self.full_set);
+        std::mem::swap(&mut e.free, &mut self.full_free);
+        std::mem::swap(&mut e.free_rows, &mut self.full_free_rows);
+        // the entry now holds the previous current factorisation
+        e.used = if self.full_factored { tick } else { 0 };
+        // taken back: valid, inverse formed; else the factorisation follows
+        self.full_factored = found.is_some();
+        found.is_some()
     }
 
     /// [`Simulation::full_free`] and [`Simulation::full_free_rows`] of
@@ -213,7 +257,10 @@ impl Simulation {
     }
 
     /// The `|S| x |S|` blocks of the sub-step influence of the active points
-    /// (only what the solve needs: `O(|S|² states)`).
+    /// (only what the solve needs: `O(|S|² states)`), interleaved: entry
+    /// `(a, b)` of the blocks `gx1`, `gx2`, `gv1`, `gv2` at `4 (a |S| + b)`
+    /// and the next three (one 4-wide update per state and pair; each entry
+    /// sums the same products in the same order as four separate blocks).
     pub(super) fn fill_sub_block(&mut self) {
         let n = self.active.len();
         let (p, ns) = (self.p, self.basis.stored_states());
@@ -221,19 +268,19 @@ impl Simulation {
         g.fill(0.0);
         for s in 0..ns {
             let (w1, w2) = (self.sub.w1[s], self.sub.w2[s]);
+            let w = [w1[0], w2[0], w1[1], w2[1]];
             let inp = &self.basis.inp[s * p..(s + 1) * p];
             for (a, &i) in self.active.iter().enumerate() {
                 let o = self.basis.out[i * ns + s];
                 if o == 0.0 {
                     continue;
                 }
-                for (b, &j) in self.active.iter().enumerate() {
+                let row = &mut g[4 * a * n..4 * (a + 1) * n];
+                for (gk, &j) in row.chunks_exact_mut(4).zip(&self.active) {
                     let ab = o * inp[j];
-                    let k = a * n + b;
-                    g[k] += ab * w1[0];
-                    g[n * n + k] += ab * w2[0];
-                    g[2 * n * n + k] += ab * w1[1];
-                    g[3 * n * n + k] += ab * w2[1];
+                    for (x, wq) in gk.iter_mut().zip(w) {
+                        *x += ab * wq;
+                    }
                 }
             }
         }
@@ -241,11 +288,11 @@ impl Simulation {
             let rate = SQRT3 / self.sub.tau_s;
             for (a, &i) in self.active.iter().enumerate() {
                 for (b, &j) in self.active.iter().enumerate() {
-                    let (c, k) = (self.residual[i * p + j], a * n + b);
+                    let (c, k) = (self.residual[i * p + j], 4 * (a * n + b));
                     g[k] += -GB * c;
-                    g[n * n + k] += GA * c;
-                    g[2 * n * n + k] += -rate * c;
-                    g[3 * n * n + k] += rate * c;
+                    g[k + 1] += GA * c;
+                    g[k + 2] += -rate * c;
+                    g[k + 3] += rate * c;
                 }
             }
         }
@@ -290,6 +337,35 @@ fn free_end(u: f64, v: f64, rx: &[f64], rv: &[f64], q: &[f64]) -> (f64, f64) {
 mod tests {
     use super::Table;
     use crate::{Scene, Simulation};
+
+    /// Full-step factorisations taken back from the cache of active sets
+    /// (SPEC §4) give the run of factorising every new set again, bit for
+    /// bit, with fewer factorisations.
+    #[test]
+    fn kept_factorisations_change_no_bit() {
+        let text = include_str!("../../presets/three_points.ron");
+        let scene = Scene::parse(text, "three").unwrap();
+        let mut a = Simulation::new(&scene).unwrap();
+        let mut b = Simulation::new(&scene).unwrap();
+        b.factor_cache = super::super::factor_cache::FactorCache::new(b.p, false);
+        assert!(a.factor_cache.is_enabled() && !b.factor_cache.is_enabled());
+        let bits = |x: &[f64]| x.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for step in 0..15_000 {
+            let (ra, rb) = (a.step().unwrap(), b.step().unwrap());
+            assert_eq!(ra, rb, "report at step {step}");
+            for (x, y) in [(&a.u, &b.u), (&a.v, &b.v), (&a.q_mean, &b.q_mean)] {
+                assert_eq!(bits(x), bits(y), "outputs at step {step}");
+            }
+        }
+        let (sa, sb) = (a.stats(), b.stats());
+        assert!(sa.events > 100, "only {} events", sa.events);
+        assert!(
+            sa.factorisations < sb.factorisations,
+            "{} factorisations with the cache, {} without",
+            sa.factorisations,
+            sb.factorisations
+        );
+    }
 
     /// After a full-step solve the active points end exactly on the road
     /// (what the solve imposes) and every free point's end values from the
