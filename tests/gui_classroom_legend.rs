@@ -135,7 +135,7 @@ fn classroom_scene_legend_keeps_off_the_tyre_and_phase_labels_do_not_overlap() {
             .find_map(|s| match s {
                 Shape::Text(t)
                     if t.angle != 0.0
-                        && t.galley.text().starts_with("height")
+                        && t.galley.text().contains("height (mm)")
                         && t.visual_bounding_rect().right() <= frame.left() =>
                 {
                     Some((t.galley.text().to_owned(), t.visual_bounding_rect()))

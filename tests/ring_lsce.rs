@@ -614,7 +614,7 @@ fn identify_cli_writes_a_runnable_modal_scene_diagram_and_responses() {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stdout).contains("mode(s) identified"));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("modes identified"));
     let scene = Scene::load(&modal).unwrap();
     assert!(matches!(scene.tyre, Tyre::Modal { .. }));
     assert!(&std::fs::read(&png).unwrap()[1..4] == b"PNG");

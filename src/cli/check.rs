@@ -9,11 +9,11 @@ pub fn check(path: &Path) -> CliResult {
     // also reads a measured road file and factors the modes
     let sim = Simulation::new(&scene)?;
     println!(
-        "{}: ok — \"{}\": {} point(s), {} mode(s), road {}, {:.3} m/s, dt {:e} s, {} steps; CSV of `run -o` about {} (--every 1)",
+        "{}: ok — \"{}\": {}, {}, road {}, {:.3} m/s, dt {:e} s, {} steps; CSV of `run -o` about {} (--every 1)",
         path.display(),
         scene.name,
-        scene.num_points(),
-        scene.modes()?.len(),
+        tirecontact::output::count(scene.num_points(), "point"),
+        tirecontact::output::count(scene.modes()?.len(), "mode"),
         scene.road.kind(),
         scene.speed_mps,
         scene.dt_s,

@@ -92,9 +92,9 @@ fn summary(scene: &Scene, id: &RingIdentification) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{}: {} mode(s) identified at model order {} in {:.3} s; fit error: time {:.3e} (kept modes), {:.3e} (all poles), |G| (sampled) {:.3e}, |G| vs full ring {:.3e}",
+        "{}: {} identified at model order {} in {:.3} s; fit error: time {:.3e} (kept modes), {:.3e} (all poles), |G| (sampled) {:.3e}, |G| vs full ring {:.3e}",
         scene.name,
-        ident.modes.len(),
+        tirecontact::output::count(ident.modes.len(), "mode"),
         ident.model_order,
         id.elapsed_s,
         ident.report.time_error,
@@ -207,9 +207,9 @@ fn diagram_figure(scene: &Scene, id: &Identification) -> Figure {
     Figure {
         title: format!("{}: LSCE identification", scene.name),
         subtitle: format!(
-            "{} point(s); {} mode(s) at order {}; time error {:.2e}, |G| error {:.2e}",
-            scene.num_points(),
-            id.modes.len(),
+            "{}; {} at order {}; time error {:.2e}, |G| error {:.2e}",
+            tirecontact::output::count(scene.num_points(), "point"),
+            tirecontact::output::count(id.modes.len(), "mode"),
             id.model_order,
             id.report.time_error,
             id.report.magnitude_error
@@ -261,19 +261,23 @@ fn run_figures(scene: &Scene, dir: &Path, stem: &str, clip_impacts: bool) -> Cli
     }
     let wall = start.elapsed().as_secs_f64();
     let sub = format!(
-        "{}: V = {} m/s, road {}, dt = {:e} s ({} steps in {:.2} s wall)",
+        "{}: V = {} m/s, road {}, dt = {:e} s ({} steps in {:.1} ms wall)",
         scene.name,
         scene.speed_mps,
         scene.road.kind(),
         scene.dt_s,
         n,
-        wall
+        wall * 1e3
     );
     for (file, fig) in paper_figures(&rec, scene, &sub, clip_impacts) {
         let path = dir.join(format!("{stem}_{file}.png"));
         render_png(&fig, &path, 1200, 700)?;
         println!("wrote {}", path.display());
     }
-    println!("run: {n} steps of {:e} s in {wall:.2} s wall", scene.dt_s);
+    println!(
+        "run: {n} steps of {:e} s in {:.1} ms wall",
+        scene.dt_s,
+        wall * 1e3
+    );
     Ok(())
 }

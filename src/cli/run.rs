@@ -217,9 +217,9 @@ pub fn scene_summary(scene: &Scene) -> String {
         r => format!("{} road", r.kind()),
     };
     format!(
-        "{} point(s), {} mode(s), {road}, V = {:.1} m/s ({:.0} km/h), dt = {:e} s, scheme {:?}",
-        scene.num_points(),
-        scene.modes().map_or(0, |m| m.len()),
+        "{}, {}, {road}, V = {:.1} m/s ({:.0} km/h), dt = {:e} s, scheme {:?}",
+        tirecontact::output::count(scene.num_points(), "point"),
+        tirecontact::output::count(scene.modes().map_or(0, |m| m.len()), "mode"),
         scene.speed_mps,
         scene.speed_mps * 3.6,
         scene.dt_s,

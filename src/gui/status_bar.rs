@@ -50,14 +50,7 @@ pub fn texts(app: &App) -> [StatusText; 3] {
     ]
 }
 
-/// `n` and the noun, plural unless `n` is 1 ("1 point", "5 points").
-pub fn count(n: usize, noun: &str) -> String {
-    if n == 1 {
-        format!("1 {noun}")
-    } else {
-        format!("{n} {noun}s")
-    }
-}
+pub use crate::output::count;
 
 /// The history label: how many samples are kept and how often one is taken
 /// ("history: 20 001 samples, every step" / "…, 1 per 4 steps").
@@ -208,9 +201,6 @@ mod tests {
 
     #[test]
     fn counts_and_history_read_as_english() {
-        assert_eq!(count(1, "point"), "1 point");
-        assert_eq!(count(0, "event"), "0 events");
-        assert_eq!(count(5, "mode"), "5 modes");
         assert_eq!(history_text(1, 1), "history: 1 sample, every step");
         assert_eq!(
             history_text(20001, 4),

@@ -217,9 +217,23 @@ pub fn render_png_layout(
     let body = root.margin(top as u32, 0, 0, 0);
     let n = fig.panels.len().max(1);
     let areas = body.split_evenly((n, 1));
+    // When a panel's legend must go in a column right of its plot (no
+    // corner free of data), every panel gets a column of the same width and
+    // puts its legend there: the panels' plots keep one width and their x
+    // axes line up (the exported time plots are read against each other).
+    let legends: Vec<PanelLegend> = fig
+        .panels
+        .iter()
+        .zip(areas.iter())
+        .map(|(panel, area)| panel_legend(panel, area, scale))
+        .collect();
+    let column_w = legends
+        .iter()
+        .any(|l| !l.entries.is_empty() && l.under > 0)
+        .then(|| legends.iter().map(|l| l.size.0).max().unwrap_or(0));
     let mut layouts = Vec::with_capacity(fig.panels.len());
-    for (panel, area) in fig.panels.iter().zip(areas.iter()) {
-        layouts.push(draw_panel(panel, area, scale).map_err(|e| err(&e))?);
+    for ((panel, area), legend) in fig.panels.iter().zip(areas.iter()).zip(&legends) {
+        layouts.push(draw_panel(panel, area, scale, legend, column_w).map_err(|e| err(&e))?);
     }
     root.present().map_err(|e| err(&e))?;
     Ok(layouts)
@@ -346,24 +360,35 @@ fn draw_legend(
     Ok(())
 }
 
-fn draw_panel(
+/// A panel's legend: its entries, the corner of the plot with the least
+/// data under a legend-sized box and how many points are under it, and the
+/// legend box's size (px).
+struct PanelLegend {
+    entries: Vec<LegendEntry>,
+    corner: SeriesLabelPosition,
+    under: usize,
+    size: (i32, i32),
+}
+
+/// The line width (px) of series `s` at `scale`.
+fn stroke_of(s: &Series, scale: f64) -> u32 {
+    if s.style == Style::ThinLine {
+        1
+    } else {
+        (scale * 1.6).max(1.0) as u32
+    }
+}
+
+fn panel_legend(
     panel: &Panel,
     area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
     scale: f64,
-) -> Result<PanelLayout, Box<dyn std::error::Error>> {
+) -> PanelLegend {
     let fs = |s: f64| (s * scale).round() as u32;
-    let (xs, ys) = data_ranges(panel);
     // legend entry height over the plot's height (caption, axis area, margins off)
     let area_h = f64::from(area.dim_in_pixel().1);
     let plot_h = (area_h - f64::from(fs(45.0) + fs(27.0) + 2 * fs(10.0))).max(1.0);
     let entry_frac = 1.6 * f64::from(fs(14.0)) / plot_h;
-    let stroke_of = |s: &Series| {
-        if s.style == Style::ThinLine {
-            1
-        } else {
-            (scale * 1.6).max(1.0) as u32
-        }
-    };
     let entries: Vec<LegendEntry> = panel
         .series
         .iter()
@@ -371,19 +396,42 @@ fn draw_panel(
         .filter(|(_, s)| !s.name.is_empty())
         .map(|(k, s)| {
             let c = PALETTE[s.color.unwrap_or(k) % PALETTE.len()];
-            (s.name.clone(), c, s.style, stroke_of(s))
+            (s.name.clone(), c, s.style, stroke_of(s, scale))
         })
         .collect();
-    // in the corner with the least data; when every corner has some (Fig. 2:
-    // the force's spikes fill the whole plot), in a column right of the plot
     let (corner, under) = legend_corner(panel, entry_frac);
-    let outside = !entries.is_empty() && under > 0;
-    let legend_wh = legend_size(area, &entries, fs(14.0));
-    let (chart_area, legend_area) = if outside {
-        let w = area.dim_in_pixel().0 as i32;
-        area.split_horizontally((w - legend_wh.0 - fs(10.0) as i32).max(w / 2))
-    } else {
-        area.split_horizontally(area.dim_in_pixel().0)
+    let size = legend_size(area, &entries, fs(14.0));
+    PanelLegend {
+        entries,
+        corner,
+        under,
+        size,
+    }
+}
+
+/// Draws `panel` in `area`; its legend in the corner with the least data,
+/// or, with `column_w` (the figure's legend column, px), in a column of
+/// that width right of the plot (when every corner of some panel has data:
+/// Fig. 2, whose force spikes fill the whole plot).
+fn draw_panel(
+    panel: &Panel,
+    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    scale: f64,
+    legend: &PanelLegend,
+    column_w: Option<i32>,
+) -> Result<PanelLayout, Box<dyn std::error::Error>> {
+    let fs = |s: f64| (s * scale).round() as u32;
+    let (xs, ys) = data_ranges(panel);
+    let area_h = f64::from(area.dim_in_pixel().1);
+    let plot_h = (area_h - f64::from(fs(45.0) + fs(27.0) + 2 * fs(10.0))).max(1.0);
+    let (entries, corner, legend_wh) = (&legend.entries, &legend.corner, legend.size);
+    let outside = column_w.is_some() && !entries.is_empty();
+    let (chart_area, legend_area) = match column_w {
+        Some(cw) => {
+            let w = area.dim_in_pixel().0 as i32;
+            area.split_horizontally((w - cw - fs(10.0) as i32).max(w / 2))
+        }
+        None => area.split_horizontally(area.dim_in_pixel().0),
     };
     let mut layout = PanelLayout::default();
     let mut builder = ChartBuilder::on(&chart_area);
@@ -436,7 +484,7 @@ fn draw_panel(
                 layout
                     .curves_px
                     .push(pts.clone().map(|p| chart.backend_coord(&p)).collect());
-                let stroke = stroke_of(s);
+                let stroke = stroke_of(s, scale);
                 match s.style {
                     Style::Line | Style::ThinLine => {
                         let anno =
@@ -477,7 +525,7 @@ fn draw_panel(
                 // level with the plot's top, in the column's absolute pixels
                 let (lx, ly) = legend_area.get_base_pixel();
                 let (x, y) = (fs(5.0) as i32, py.start - ly);
-                draw_legend(&legend_area, &entries, (x, y), legend_wh, fs(14.0))?;
+                draw_legend(&legend_area, entries, (x, y), legend_wh, fs(14.0))?;
                 layout.legend_px =
                     Some([lx + x, ly + y, lx + x + legend_wh.0, ly + y + legend_wh.1]);
             } else if !entries.is_empty() {
@@ -486,7 +534,7 @@ fn draw_panel(
                     .background_style(WHITE.mix(0.85))
                     .border_style(RGBColor(180, 180, 180))
                     .label_font(("sans-serif", fs(14.0) as i32))
-                    .position(corner)
+                    .position(corner.clone())
                     .draw()?;
             }
         }};
@@ -566,6 +614,44 @@ mod tests {
         let l = render_png_layout(&panel(dense), &dir.join("b.png"), 800, 500).unwrap();
         let legend = l[0].legend_px.expect("beside the plot");
         assert!(legend[0] > l[0].plot_px[2], "{legend:?} {:?}", l[0].plot_px);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn stacked_panels_keep_one_plot_width_when_a_legend_goes_beside() {
+        // one panel with data in every corner (its legend beside the plot),
+        // one with a free corner: both plots end at the same x, and both
+        // legends are in the column (the panels' time axes line up)
+        let dir = std::env::temp_dir().join(format!("tc-fig-align-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let dense: Vec<(f64, f64)> = (0..400)
+            .map(|k| (k as f64, if k % 2 == 0 { 0.0 } else { 10.0 }))
+            .collect();
+        let low: Vec<(f64, f64)> = (0..400)
+            .map(|k| (k as f64, if k == 100 { 10.0 } else { 0.0 }))
+            .collect();
+        let panel = |name: &str, points: Vec<(f64, f64)>| Panel {
+            x_label: "time (s)".into(),
+            y_label: "u (mm)".into(),
+            series: vec![Series::line(name, points)],
+            ..Panel::default()
+        };
+        let fig = Figure {
+            title: "t".into(),
+            subtitle: String::new(),
+            panels: vec![
+                panel("free corner", low.clone()),
+                panel("every corner taken, a longer name", dense),
+                panel("u0", low),
+            ],
+        };
+        let l = render_png_layout(&fig, &dir.join("a.png"), 900, 900).unwrap();
+        for p in &l {
+            assert_eq!(p.plot_px[0], l[0].plot_px[0], "{:?}", p.plot_px);
+            assert_eq!(p.plot_px[2], l[0].plot_px[2], "{:?}", p.plot_px);
+            let legend = p.legend_px.expect("in the column");
+            assert!(legend[0] > p.plot_px[2], "{legend:?} {:?}", p.plot_px);
+        }
         std::fs::remove_dir_all(&dir).ok();
     }
 

@@ -11,6 +11,15 @@ use std::io::Write;
 use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+/// `n` and the noun, plural unless `n` is 1 ("1 point", "5 points").
+pub fn count(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
 /// Writes `bytes` to `path` atomically: a temporary file in the same folder,
 /// flushed and synced, then renamed over `path`. On any failure the old file
 /// is untouched and the temporary removed.
@@ -103,5 +112,15 @@ impl Drop for AtomicFile {
         if self.w.take().is_some() {
             let _ = std::fs::remove_file(&self.tmp);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn counts_read_as_english() {
+        assert_eq!(super::count(1, "point"), "1 point");
+        assert_eq!(super::count(0, "mode"), "0 modes");
+        assert_eq!(super::count(13, "mode"), "13 modes");
     }
 }
