@@ -34,6 +34,18 @@ fn short_default(duration_s: f64) -> App {
     app
 }
 
+/// The default preset cut to 0.01 s at 1280 x 720, played (Play clicked)
+/// to its end.
+fn finished_run() -> Harness<'static, App> {
+    let mut h = harness_sized(short_default(0.01), SMALL);
+    h.run();
+    h.state_mut().apply(Command::SetSpeed(Speed::Max));
+    h.get_by_label("Play").click();
+    h.run();
+    play_to_the_end(&mut h);
+    h
+}
+
 /// Frames until the run pauses by itself (it finished).
 fn play_to_the_end(h: &mut Harness<'_, App>) {
     for _ in 0..10_000 {
@@ -48,12 +60,7 @@ fn play_to_the_end(h: &mut Harness<'_, App>) {
 
 #[test]
 fn a_finished_run_restarts_on_reset_then_play_clicked_at_1280x720() {
-    let mut h = harness_sized(short_default(0.01), SMALL);
-    h.run();
-    h.state_mut().apply(Command::SetSpeed(Speed::Max));
-    h.get_by_label("Play").click();
-    h.run();
-    play_to_the_end(&mut h);
+    let mut h = finished_run();
     let end_s = h.state().simulation().time_s();
     assert!((end_s - 0.01).abs() < 1e-9, "{end_s}");
     // the message says how to go on
@@ -83,12 +90,7 @@ fn a_finished_run_restarts_on_reset_then_play_clicked_at_1280x720() {
 
 #[test]
 fn play_alone_on_a_finished_run_starts_it_again_from_zero() {
-    let mut h = harness_sized(short_default(0.01), SMALL);
-    h.run();
-    h.state_mut().apply(Command::SetSpeed(Speed::Max));
-    h.get_by_label("Play").click();
-    h.run();
-    play_to_the_end(&mut h);
+    let mut h = finished_run();
     h.state_mut().apply(Command::SetSpeed(Speed::Factor(0.05)));
     h.run();
     h.get_by_label("Play").click();
