@@ -45,7 +45,6 @@ impl View {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Discarding {
     New,
-    OpenDialog,
     OpenPath(PathBuf),
     Preset(usize),
     Quit,

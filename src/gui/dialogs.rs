@@ -71,7 +71,7 @@ pub fn confirm_window(ctx: &egui::Context, pending: Option<&Discarding>, cmds: &
     let Some(d) = pending else { return };
     let what = match d {
         Discarding::New => "start a new scene",
-        Discarding::OpenDialog | Discarding::OpenPath(_) => "open another preset",
+        Discarding::OpenPath(_) => "open another preset",
         Discarding::Preset(_) => "open a shipped preset",
         Discarding::Guided(_) => "open a guided-tour preset",
         Discarding::Quit => "quit",

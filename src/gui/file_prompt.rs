@@ -8,6 +8,7 @@
 //! fills it when a dialog is available, and says so when none appeared.
 
 use super::command::Command;
+use super::native_dialog::{Kind, Request, choose_button};
 use super::research::ResearchCommand;
 use egui::{RichText, Ui};
 use std::path::{Path, PathBuf};
@@ -111,30 +112,31 @@ pub fn path_row(
         ui.add(egui::TextEdit::singleline(path).desired_width(320.0))
             .accessible_name(accessible)
             .on_hover_text(format!("a path; a relative one is in {}", cwd_text()));
-        if ui
-            .button("Choose…")
-            .on_hover_text("the desktop's file dialog, if it has one")
-            .clicked()
-        {
+        let id = egui::Id::unique(("tirecontact.choose", accessible));
+        let request = || {
             let current = Path::new(path.trim());
-            let mut d = rfd::FileDialog::new().add_filter(filter.0, &[filter.1]);
-            if let Some(dir) = current.parent().filter(|d| d.is_dir()) {
-                d = d.set_directory(dir);
+            Request {
+                kind: if save { Kind::Save } else { Kind::Open },
+                filter: Some((filter.0.to_string(), filter.1.to_string())),
+                directory: current
+                    .parent()
+                    .filter(|d| d.is_dir())
+                    .map(Path::to_path_buf),
+                file_name: current
+                    .file_name()
+                    .map(|n| n.to_string_lossy().into_owned()),
             }
-            if let Some(name) = current.file_name() {
-                d = d.set_file_name(name.to_string_lossy());
+        };
+        match choose_button(ui, id, request) {
+            Some(Some(p)) => *path = p.display().to_string(),
+            Some(None) => {
+                note = Some(
+                    "No file was chosen. If no dialog appeared, this desktop has none: \
+                     type the path in the field."
+                        .to_string(),
+                )
             }
-            let picked = if save { d.save_file() } else { d.pick_file() };
-            match picked {
-                Some(p) => *path = p.display().to_string(),
-                None => {
-                    note = Some(
-                        "No file was chosen. If no dialog appeared, this desktop has none: \
-                         type the path in the field."
-                            .to_string(),
-                    )
-                }
-            }
+            None => {}
         }
     });
     note

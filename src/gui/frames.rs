@@ -178,8 +178,14 @@ pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<C
                     ui.horizontal(|ui| {
                         ui.add(egui::TextEdit::singleline(&mut d.dir).desired_width(220.0))
                             .accessible_name("frames folder");
-                        if ui.button("Choose…").clicked()
-                            && let Some(p) = rfd::FileDialog::new().pick_folder()
+                        let request = || super::native_dialog::Request {
+                            kind: super::native_dialog::Kind::Folder,
+                            filter: None,
+                            directory: None,
+                            file_name: None,
+                        };
+                        let id = egui::Id::unique("tirecontact.choose.frames_folder");
+                        if let Some(Some(p)) = super::native_dialog::choose_button(ui, id, request)
                         {
                             d.dir = p.display().to_string();
                         }

@@ -18,6 +18,7 @@ pub mod frames;
 pub mod guided;
 pub mod history;
 pub mod mutes;
+pub mod native_dialog;
 pub mod panels;
 pub mod presets;
 pub mod research;

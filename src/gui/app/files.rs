@@ -79,14 +79,6 @@ impl App {
             Discarding::New => {
                 self.replace(default_scene(), None, "new scene (default preset)");
             }
-            Discarding::OpenDialog => {
-                if let Some(p) = rfd::FileDialog::new()
-                    .add_filter("RON scene", &["ron"])
-                    .pick_file()
-                {
-                    self.open(&p);
-                }
-            }
             Discarding::OpenPath(p) => self.open(&p),
             Discarding::Preset(k) => match SHIPPED.get(k) {
                 Some((name, file, text)) => match Scene::parse(text, file) {
