@@ -282,6 +282,45 @@ fn a_refused_text_does_not_outlive_its_document() {
     );
 }
 
+/// A refusal's reason stays in the banner when the run ends meanwhile (its
+/// field is still marked "not applied"; "run complete" used to replace it).
+#[test]
+fn a_refusal_stays_up_when_the_run_completes() {
+    let mut app = app_on("single_mode.ron");
+    let mut s = app.scene().clone();
+    s.duration_s = 0.01;
+    app.apply(Command::EditScene(Box::new(s)));
+    let mut h = harness_sized(app, SMALL);
+    h.run();
+    type_into(&mut h, DAMP, "-0.1");
+    let refusal = h.state().message().expect("a refusal").clone();
+    assert!(
+        refusal.error && refusal.text.contains("got -0.1"),
+        "{}",
+        refusal.text
+    );
+    h.state_mut().apply(Command::SetSpeed(Speed::Max));
+    h.state_mut().apply(Command::Play);
+    play_to_the_end(&mut h);
+    assert!(h.state().simulation().finished());
+    assert_eq!(
+        h.state().message(),
+        Some(&refusal),
+        "the reason was replaced"
+    );
+    // the kept value typed back: the mark and the reason go, nothing changes
+    type_into(&mut h, DAMP, "0.05");
+    assert_eq!(h.query_all_by_label("not applied").count(), 0);
+    assert_eq!(h.state().message(), None, "the refusal stayed up");
+    assert_eq!(h.state().modes()[0].damping_ratio, 0.05);
+    // without a refusal, the end of the run is said
+    type_into(&mut h, DAMP, "0.06");
+    h.state_mut().apply(Command::Play);
+    play_to_the_end(&mut h);
+    let m = h.state().message().expect("a run-complete message");
+    assert!(m.text.contains("run complete"), "{}", m.text);
+}
+
 fn tmp_dir(name: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("tc-first-use-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();

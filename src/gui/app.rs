@@ -276,6 +276,7 @@ impl App {
             Command::Research(c) => self.apply_research(c),
             // a field's refusal (app/run.rs)
             Command::FieldRefused { field: _, text } => self.field_refused(text),
+            Command::FieldRestored { field } => self.field_restored(&field),
             Command::SaveFirst => self.save_first(),
             Command::ContinueAfterSave(d) => {
                 if !self.is_dirty() {

@@ -121,6 +121,11 @@ pub enum Command {
         field: String,
         text: String,
     },
+    /// A field refused earlier shows the scene's value again: its refusal
+    /// leaves the message banner.
+    FieldRestored {
+        field: String,
+    },
     /// "Save first" in the unsaved-changes question: save (asking for a
     /// file if the scene has none), then do the held action.
     SaveFirst,

@@ -137,7 +137,15 @@ impl<'a> NumField<'a> {
                 if !self.unit.is_empty() {
                     ui.label(self.unit);
                 }
-                if resp.lost_focus() && st.text.trim() != format_number(self.value * self.scale) {
+                let unchanged = st.text.trim() == format_number(self.value * self.scale);
+                if resp.lost_focus() && unchanged && st.error.take().is_some() {
+                    // the kept value typed back after a refusal: nothing to
+                    // apply, and nothing refused any more
+                    cmd = Some(Command::FieldRestored {
+                        field: self.name.to_string(),
+                    });
+                }
+                if resp.lost_focus() && !unchanged {
                     match parse_number(&st.text) {
                         Err(e) => st.error = Some(e),
                         Ok(x) => {

@@ -59,6 +59,19 @@ impl App {
         self.field_refusal = Some(text);
     }
 
+    /// Field `name` shows the scene's value again: its refusal, if it is the
+    /// one shown, leaves the banner.
+    pub(super) fn field_restored(&mut self, name: &str) {
+        if let Some(t) = &self.field_refusal
+            && t.starts_with(&format!("{name}:"))
+        {
+            if self.message.as_ref().is_some_and(|m| m.text == *t) {
+                self.message = None;
+            }
+            self.field_refusal = None;
+        }
+    }
+
     /// Applies an edited scene: road and speed live, everything else restarts.
     pub(super) fn edit(&mut self, new: Scene) {
         if let Err(errors) = new.validate() {
@@ -127,10 +140,18 @@ impl App {
         while taken < want {
             if self.sim.finished() {
                 self.time.pause();
-                self.info(format!(
-                    "run complete: t = {:.4} s. Play (Space) runs it again from t = 0.",
-                    self.sim.time_s()
-                ));
+                // (a refused field's reason stays: its field is still marked
+                // "not applied", and the reason is what the user must read)
+                let refusal_shown = self
+                    .field_refusal
+                    .as_ref()
+                    .is_some_and(|t| self.message.as_ref().is_some_and(|m| m.text == *t));
+                if !refusal_shown {
+                    self.info(format!(
+                        "run complete: t = {:.4} s. Play (Space) runs it again from t = 0.",
+                        self.sim.time_s()
+                    ));
+                }
                 break;
             }
             match self.sim.step() {
