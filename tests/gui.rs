@@ -3,8 +3,7 @@
 #![cfg(feature = "gui")]
 
 mod common;
-use common::harness;
-use egui_kittest::Harness;
+use common::{harness, type_into};
 use egui_kittest::kittest::Queryable;
 use std::path::PathBuf;
 use tirecontact::Scene;
@@ -34,16 +33,6 @@ fn default_scene() -> Scene {
 
 fn freq0(app: &App) -> f64 {
     app.modes()[0].freq_hz
-}
-
-/// Replaces the text of the field named `name` and commits it with Enter.
-fn type_into(h: &mut Harness<'_, App>, name: &str, text: &str) {
-    h.get_by_label(name).focus();
-    h.run();
-    h.get_by_label(name).set_text_value_accesskit(text);
-    h.run();
-    h.key_press(egui::Key::Enter);
-    h.run();
 }
 
 #[test]

@@ -248,12 +248,7 @@ fn the_compliant_switch_edits_the_contact_and_restarts() {
     // 5 kN/mm = 5e6 N/m
     let name = "contact.stiffness_n_m[0]";
     for (text, expect) in [("-1", 2e6), ("5", 5e6)] {
-        h.get_by_label(name).focus();
-        h.run();
-        h.get_by_label(name).set_text_value_accesskit(text);
-        h.run();
-        h.key_press(egui::Key::Enter);
-        h.run();
+        common::type_into(&mut h, name, text);
         let Contact::Compliant { stiffness_n_m } = h.state().scene().contact.clone() else {
             panic!()
         };

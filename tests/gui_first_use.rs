@@ -8,7 +8,7 @@
 #![cfg(feature = "gui")]
 
 mod common;
-use common::{harness_sized, texts};
+use common::{harness_sized, texts, type_into};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use tirecontact::Scene;
@@ -177,17 +177,6 @@ fn classroom_mode_and_back_gives_the_view_and_speed_it_replaced() {
     h.state_mut().apply(Command::SetClassroom(false));
     h.run();
     assert_eq!(h.state().time_control().speed(), Speed::Factor(0.1));
-}
-
-/// Replaces the text of the field named `name` and commits it with Enter.
-fn type_into(h: &mut Harness<'_, App>, name: &str, text: &str) {
-    h.get_by_label(name).focus();
-    h.run();
-    h.get_by_label(name).set_text_value_accesskit(text);
-    h.run();
-    h.key_press(egui::Key::Enter);
-    h.run();
-    h.run();
 }
 
 const FREQ: &str = "tyre.modes[0].freq_hz";

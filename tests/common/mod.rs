@@ -17,6 +17,19 @@ pub fn harness_sized(app: App, size: [f32; 2]) -> Harness<'static, App> {
         .build_ui_state(|ui, app: &mut App| app.show(ui), app)
 }
 
+/// Replaces the text of the field named `name` and commits it with Enter
+/// (the frames the field needs to take the focus, the text and the key).
+pub fn type_into(h: &mut Harness<'_, App>, name: &str, text: &str) {
+    use egui_kittest::kittest::Queryable;
+    h.get_by_label(name).focus();
+    h.run();
+    h.get_by_label(name).set_text_value_accesskit(text);
+    h.run();
+    h.key_press(egui::Key::Enter);
+    h.run();
+    h.run();
+}
+
 /// Takes `n` solver steps (over as many frames as the step budget needs).
 pub fn advance(h: &mut Harness<'_, App>, n: u64) {
     let target = h.state().simulation().steps() + n;
