@@ -53,12 +53,35 @@ pub fn mode_steps_into(modes: &[(f64, f64)], tau_s: f64, out: &mut Vec<ModeStep>
             out.push(st.finish(se, tau_s));
         }
     }
-    out.extend(
-        chunks
-            .remainder()
-            .iter()
-            .map(|&(w, xi)| mode_step(w, xi, tau_s)),
-    );
+    let rest = chunks.remainder();
+    if !rest.is_empty() && wide_lanes() {
+        // the last one to three modes in four lanes too, the spare lanes
+        // repeating the last mode (lanes are independent: the same bits)
+        let setups: [Setup; 4] = std::array::from_fn(|k| {
+            let (w, xi) = rest[k.min(rest.len() - 1)];
+            Setup::new(w, xi, tau_s)
+        });
+        let series = taylor_series4(&setups);
+        for (st, se) in setups.iter().zip(series).take(rest.len()) {
+            out.push(st.finish(se, tau_s));
+        }
+    } else {
+        out.extend(rest.iter().map(|&(w, xi)| mode_step(w, xi, tau_s)));
+    }
+}
+
+/// Whether [`taylor_series4`] runs in AVX lanes (four modes for the price
+/// of about one).
+#[inline]
+fn wide_lanes() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
 }
 
 /// A mode's step split into `s` doublings of a sub-step `δ` with `λ δ <= 0.5`.
