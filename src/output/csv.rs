@@ -72,6 +72,8 @@ pub struct RunWriter<W: Write> {
     block_rows: usize,
     /// One text buffer per formatting thread, reused block after block.
     text: Vec<String>,
+    /// Rows below which a block part is not worth a thread of its own.
+    min_rows_per_thread: usize,
 }
 
 impl<W: Write> RunWriter<W> {
@@ -102,6 +104,7 @@ impl<W: Write> RunWriter<W> {
             rows: Vec::with_capacity(block_rows * width),
             block_rows,
             text: vec![String::new(); threads.max(1)],
+            min_rows_per_thread: MIN_ROWS_PER_THREAD,
         })
     }
 
@@ -148,12 +151,17 @@ impl<W: Write> RunWriter<W> {
     fn write_block(&mut self) -> std::io::Result<()> {
         let (p, width) = (self.p, 1 + 5 * self.p);
         let nrows = self.rows.len() / width;
+        if nrows == 0 {
+            return Ok(());
+        }
         let parts = self
             .text
             .len()
-            .min(nrows.div_ceil(MIN_ROWS_PER_THREAD))
+            .min(nrows.div_ceil(self.min_rows_per_thread))
             .max(1);
         let per = nrows.div_ceil(parts);
+        // (as many parts as chunks of `per` rows, which can be fewer)
+        let parts = nrows.div_ceil(per);
         let chunks = self.rows.chunks(per * width);
         let texts = &mut self.text[..parts];
         if parts == 1 {
@@ -247,10 +255,16 @@ mod tests {
         out
     }
 
-    fn written(scene: &Scene, steps: u64, every: u64, threads: usize, block: usize) -> String {
+    fn written(
+        scene: &Scene,
+        steps: u64,
+        every: u64,
+        (threads, block, min_rows): (usize, usize, usize),
+    ) -> String {
         let mut sim = Simulation::new(scene).unwrap();
         let mut w =
             RunWriter::with_layout(Vec::new(), sim.num_points(), every, threads, block).unwrap();
+        w.min_rows_per_thread = min_rows;
         w.write_initial(&sim).unwrap();
         for _ in 0..steps {
             sim.step().unwrap();
@@ -261,8 +275,9 @@ mod tests {
 
     /// Blocks and threads change nothing: every layout writes the bytes of
     /// the plain row-by-row formatting, including the partial last block,
-    /// a block split unevenly between threads, and the mean forces of rows
-    /// that gather several steps (the run ends inside a gathered row).
+    /// a block split unevenly between threads or into fewer parts than
+    /// threads, and the mean forces of rows that gather several steps (the
+    /// run ends inside a gathered row).
     #[test]
     fn blocks_and_threads_write_the_plain_rows() {
         let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
@@ -276,8 +291,26 @@ mod tests {
                 want.contains(",1,") && want.contains(",0"),
                 "contact flags of both kinds"
             );
-            for (threads, block_rows) in [(1, 100_000), (1, 1), (2, 2000), (3, 1000), (8, 5000)] {
-                let got = written(&scene, steps, every, threads, block_rows * width);
+            // (threads, rows per block, fewest rows per thread): one block;
+            // a row per block; even and uneven splits; 8 threads on blocks
+            // of 16 rows, 8 parts of 2, then a last block of 10 (every 1)
+            // or 14 rows (every 7), which splits into 5 parts of 2, or 7 of 2
+            let layouts = [
+                (1, 100_000, 256),
+                (1, 1, 256),
+                (2, 2000, 256),
+                (3, 1000, 256),
+                (8, 5000, 256),
+                (4, 9, 1),
+                (8, 16, 1),
+            ];
+            for (threads, block_rows, min_rows) in layouts {
+                let got = written(
+                    &scene,
+                    steps,
+                    every,
+                    (threads, block_rows * width, min_rows),
+                );
                 assert!(
                     got == want,
                     "every {every}, {threads} threads, {block_rows} rows per block: rows differ"
