@@ -20,8 +20,8 @@ pub fn header(p: usize) -> Vec<String> {
     h
 }
 
-/// Bytes of one value in a row, at most: `-1.234567890e-100` and its
-/// comma (most values are `-1.234567890e-3,`, 16 bytes).
+/// Bytes of one value in a row: `-1.234567890e-10` and its comma, the
+/// longest with a one- or two-digit exponent (most are 16 bytes or fewer).
 pub const BYTES_PER_VALUE: u64 = 17;
 
 /// Estimated size (bytes) of the CSV of a run of `steps` steps of `p` points
