@@ -88,6 +88,16 @@ fn check(size: [f32; 2], steps: u64) -> usize {
             labelled += 1;
         }
     }
+    // an impact is written first when there is one (at the run's end the
+    // lanes went to releases, from left to right, and p3's impact to none)
+    if events.iter().any(|e| e.ends_with("IMPACT")) {
+        assert!(
+            in_plot
+                .iter()
+                .any(|(t, _)| t.ends_with("IMPACT") && events.contains(t)),
+            "{size:?} t = {t} s: no impact written of {events:?}"
+        );
+    }
     // and the labels keep clear of each other and of the force values
     let labels: Vec<&&(String, egui::Rect)> = in_plot
         .iter()

@@ -185,7 +185,12 @@ pub fn scene_with_phases(
                     (i, x - 0.5 * w, x + 0.5 * w)
                 })
                 .collect();
-            events.sort_by(|a, b| a.1.total_cmp(&b.1));
+            // impacts take the lanes first (the headline event), then
+            // releases, each kind from left to right
+            events.sort_by(|a, b| {
+                let release = |i: usize| phases.phase(i, t) != ContactPhase::Impact;
+                release(a.0).cmp(&release(b.0)).then(a.1.total_cmp(&b.1))
+            });
             // every point with an event ringed in the labels' colour: the
             // points of a five-point tyre lie closer than a label is wide,
             // and labels that fit no lane are left to the strip above
@@ -199,12 +204,18 @@ pub fn scene_with_phases(
                         .radius(EVENT_RING_PX),
                 );
             }
-            let mut right = vec![f32::NEG_INFINITY; lanes.len()];
+            // the labels' extents (px) in each lane, 6 px apart at least
+            let mut taken: Vec<Vec<(f32, f32)>> = vec![Vec::new(); lanes.len()];
             for (i, left, r) in events {
-                let Some(lane) = (0..lanes.len()).find(|&k| right[k] + 6.0 <= left) else {
+                let free = |k: &usize| {
+                    taken[*k]
+                        .iter()
+                        .all(|&(l0, r0)| r0 + 6.0 <= left || r + 6.0 <= l0)
+                };
+                let Some(lane) = (0..lanes.len()).find(free) else {
                     continue;
                 };
-                right[lane] = r;
+                taken[lane].push((left, r));
                 let (y, anchor) = lanes[lane];
                 let d = displaced[i];
                 pui.text(
@@ -323,9 +334,35 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
     // long one ran up over the force / displacement switch above
     let frame_h = ui.available_height() - 3.0 * ui.text_style_height(&TextStyle::Body);
     let label = fitting_label(ui, long, short, frame_h);
+    // a time label centred closer to the frame's edge than half its width
+    // was cut by it: "0.1" left of 0.17 s at the right edge, a wrong time
+    let half_label_px = 0.5
+        * ui.painter()
+            .layout_no_wrap(
+                "0.000".to_owned(),
+                TextStyle::Body.resolve(ui.style()),
+                Color32::WHITE,
+            )
+            .size()
+            .x;
+    // the frame: the width less the y axis (its labels and title, about
+    // three body rows); a few px either way only moves the cut-off
+    let frame_w = (ui.available_width() - 3.0 * ui.text_style_height(&TextStyle::Body)).max(1.0);
     super::views::nice_y_axis(Plot::new("tirecontact.classroom_plot"))
         .id(egui::Id::unique(CLASSROOM_PLOT_ID))
         .x_axis_label("time t (s)")
+        .x_axis_formatter(move |m, range| {
+            let span = range.end() - range.start();
+            let px = |v: f64| (v / span) as f32 * frame_w;
+            let from_edge = px(m.value - range.start()).min(px(range.end() - m.value));
+            if span > 0.0 && from_edge < half_label_px + 2.0 {
+                String::new()
+            } else {
+                // egui_plot's own format
+                let n = (-m.step_size.log10().round()).max(0.0) as usize;
+                egui::emath::format_with_decimals_in_range(m.value, n..=n)
+            }
+        })
         .y_axis_label(label)
         .allow_scroll(false)
         .allow_drag(false)
