@@ -109,6 +109,16 @@ fn check(size: [f32; 2], steps: u64) -> usize {
                 !ra.intersects(rb),
                 "{size:?} t = {t} s: {a:?} at {ra:?} over {b:?} at {rb:?}"
             );
+            // two phase labels side by side keep a text height apart (6 px
+            // apart, "p0: RELEASE p3: IMPACT" read as one label)
+            let side_by_side = ra.top() < rb.bottom() && rb.top() < ra.bottom();
+            if side_by_side && events.contains(a) && events.contains(b) {
+                let apart = (rb.left() - ra.right()).max(ra.left() - rb.right());
+                assert!(
+                    apart >= 0.8 * ra.height(),
+                    "{size:?} t = {t} s: {a:?} and {b:?} only {apart:.1} px apart"
+                );
+            }
         }
     }
     labelled
@@ -116,7 +126,7 @@ fn check(size: [f32; 2], steps: u64) -> usize {
 
 #[test]
 fn every_event_in_the_strip_is_written_in_the_scene() {
-    for size in [[1280.0, 720.0], [1600.0, 1000.0]] {
+    for size in [[1280.0, 720.0], [1500.0, 950.0], [1600.0, 1000.0]] {
         // the run's end: five events at once; and a moment of the run
         // (five events, of which one was written in the scene)
         let n = check(size, 20_000);

@@ -204,13 +204,15 @@ pub fn scene_with_phases(
                         .radius(EVENT_RING_PX),
                 );
             }
-            // the labels' extents (px) in each lane, 6 px apart at least
+            // the labels' extents (px) in each lane, a text height apart at
+            // least: 6 px apart, "p0: RELEASE p3: IMPACT" read as one label
+            let gap = body;
             let mut taken: Vec<Vec<(f32, f32)>> = vec![Vec::new(); lanes.len()];
             for (i, left, r) in events {
                 let free = |k: &usize| {
                     taken[*k]
                         .iter()
-                        .all(|&(l0, r0)| r0 + 6.0 <= left || r + 6.0 <= l0)
+                        .all(|&(l0, r0)| r0 + gap <= left || r + gap <= l0)
                 };
                 let Some(lane) = (0..lanes.len()).find(free) else {
                     continue;
