@@ -80,3 +80,24 @@ fn mode_fields_show_their_whole_value() {
         }
     }
 }
+
+/// A ring tyre's identified modes say where their residues are, and "Edit as
+/// a modal model" puts them in the modes table.
+#[test]
+fn the_ring_modes_say_where_their_residues_are() {
+    use tirecontact::gui::panels::modes_table::RING_RESIDUES_NOTE;
+    // tall enough for the whole panel, the identified modes open
+    let mut h = harness_sized(App::with_default_preset(), [1280.0, 1600.0]);
+    h.run_steps(3);
+    let n = h.state().modes().len();
+    h.get_by_label(&format!("{n} identified modes")).click();
+    h.run_steps(3);
+    assert!(h.query_by_label(RING_RESIDUES_NOTE).is_some());
+    h.get_by_label("Edit as a modal model").click();
+    h.run_steps(3);
+    let p = h.state().scene().num_points();
+    assert!(
+        h.query_by_label(&format!("mode 0: residue matrix A (1/kg), {p}x{p}"))
+            .is_some()
+    );
+}
