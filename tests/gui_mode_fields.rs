@@ -101,3 +101,31 @@ fn the_ring_modes_say_where_their_residues_are() {
             .is_some()
     );
 }
+
+/// The Green functions view names the modes with their damping to three
+/// significant digits ("ξ=0.000" read as undamped for 0.0004) and one mode
+/// as one mode ("1 modes").
+#[test]
+fn the_green_view_lists_light_damping_as_such() {
+    use tirecontact::gui::Command;
+    use tirecontact::gui::command::View;
+    let modes = vec![Mode {
+        freq_hz: 100.0,
+        damping_ratio: 0.0004,
+        residue: vec![vec![0.1]],
+        shape: Vec::new(),
+    }];
+    let mut h = harness_sized(App::new(scene(modes), None).unwrap(), [1280.0, 720.0]);
+    h.run();
+    h.state_mut().apply(Command::ShowView(View::Green));
+    h.run_steps(3);
+    assert!(
+        h.query_by_label("1 mode: 100.0 Hz ξ=0.000400").is_some(),
+        "labels: {:?}",
+        texts(&h)
+            .into_iter()
+            .map(|(t, _)| t)
+            .filter(|t| t.contains('ξ'))
+            .collect::<Vec<_>>()
+    );
+}
