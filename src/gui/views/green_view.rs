@@ -159,6 +159,16 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
         });
 }
 
+/// `x` to three significant digits: with three decimals a light damping
+/// ratio (0.0004) read "ξ=0.000", as if undamped.
+fn three_digits(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let decimals = (2.0 - x.abs().log10().floor()).max(0.0) as usize;
+    format!("{x:.decimals$}")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -182,14 +192,4 @@ mod tests {
         assert_eq!(pow10_label(2.0), "100");
         assert_eq!(pow10_label(2.3), "");
     }
-}
-
-/// `x` to three significant digits: with three decimals a light damping
-/// ratio (0.0004) read "ξ=0.000", as if undamped.
-fn three_digits(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x}");
-    }
-    let decimals = (2.0 - x.abs().log10().floor()).max(0.0) as usize;
-    format!("{x:.decimals$}")
 }
