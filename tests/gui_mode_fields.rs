@@ -129,3 +129,37 @@ fn the_green_view_lists_light_damping_as_such() {
             .collect::<Vec<_>>()
     );
 }
+
+/// "Edit as a modal model" says what it did and where the modes are; a mute,
+/// which also turns the ring into modes, does not.
+#[test]
+fn the_conversion_to_a_modal_model_says_what_it_did() {
+    use tirecontact::gui::Command;
+    let mut h = harness_sized(App::with_default_preset(), [1280.0, 1600.0]);
+    h.run_steps(3);
+    let n = h.state().modes().len();
+    h.state_mut().apply(Command::ToggleMute(1));
+    h.run_steps(2);
+    let said = |h: &egui_kittest::Harness<'_, App>| {
+        h.state()
+            .message()
+            .is_some_and(|m| !m.error && m.text.contains("replaced by its"))
+    };
+    assert!(!said(&h), "a mute: {:?}", h.state().message());
+    h.state_mut().apply(Command::UnmuteAll);
+    h.run_steps(2);
+    h.get_by_label("Edit as a modal model").click();
+    h.run_steps(3);
+    assert!(
+        matches!(h.state().scene().tyre, Tyre::Modal { .. }),
+        "not converted"
+    );
+    let m = h.state().message().expect("a message after the conversion");
+    assert!(
+        !m.error
+            && m.text
+                .contains(&format!("replaced by its {n} identified modes")),
+        "{m:?}"
+    );
+    assert!(h.query_by_label_contains("replaced by its").is_some());
+}
