@@ -26,6 +26,11 @@ pub const SLOW_MOTION: f64 = 0.05;
 pub const EVENT_HOLD_WALL_S: f64 = 0.6;
 /// Colour of impact / release labels.
 pub const EVENT_COLOR: Color32 = Color32::from_rgb(204, 0, 102);
+/// Radius (px) of the ring around a point at an impact or release (the
+/// points' markers are 7 px).
+pub const EVENT_RING_PX: f32 = 11.0;
+/// Plot item name of the rings (no legend entry: the labels say it).
+const EVENT_RING_NAME: &str = "";
 
 /// Classroom presentation state (the phases are tracked by the app).
 #[derive(Debug, Clone, Default)]
@@ -112,10 +117,11 @@ pub fn scene_with_phases(
     let normal_above = std::mem::replace(&mut opts.legend_above, true);
     scene_view::show_with(ui, sim, opts, |pui, displaced, labels_floor| {
         // One point: its phase, large, above it. Several points, below
-        // them in the road: only impacts and releases (the points'
-        // colours and the strip above give the steady phases), in up to
-        // three lanes of text height below the lowest point and the force
-        // value labels, so that no labels overlap.
+        // them in the road and above them in the sky: only impacts and
+        // releases (the points' colours and the strip above give the steady
+        // phases), in up to three lanes of text height below the lowest
+        // point and the force value labels and up to two above the highest
+        // point, so that no labels overlap.
         let b = pui.plot_bounds();
         let per_px = pui.transform().dvalue_dpos()[1].abs();
         let several = displaced.len() > 1;
@@ -141,9 +147,34 @@ pub fn scene_with_phases(
             let lane_px = f64::from(measure("p0: IMPACT").y) + 2.0;
             let top = labels_floor.map_or(points_lowest, |f| f.min(points_lowest));
             let room = (top - b.min()[1]) / (per_px * lane_px) - 0.3;
-            let lanes = (room.floor() as usize).clamp(1, 3);
+            let below = (room.floor() as usize).clamp(1, 3);
             // one lane even when none fits: moved up as far as needed
             let top = top.max(b.min()[1] + per_px * lane_px * 1.3);
+            // lanes: (y of the label's top, anchor); below the points first,
+            // then in the sky above them (a short plot at 1280 x 720 had
+            // room for one lane below, and four of five events at the end
+            // of the paper preset's run were shown only in the strip)
+            let mut lanes: Vec<(f64, egui::Align2)> = (0..below)
+                .map(|k| {
+                    (
+                        top - per_px * lane_px * (0.3 + k as f64),
+                        egui::Align2::CENTER_TOP,
+                    )
+                })
+                .collect();
+            let points_highest = displaced
+                .iter()
+                .map(|d| d[1])
+                .fold(f64::NEG_INFINITY, f64::max);
+            // clear of the markers (7 px radius)
+            let sky = points_highest + per_px * 12.0;
+            let sky_room = (b.max()[1] - sky) / (per_px * lane_px) - 0.1;
+            for k in 0..(sky_room.max(0.0).floor() as usize).min(2) {
+                lanes.push((
+                    sky + per_px * lane_px * k as f64,
+                    egui::Align2::CENTER_BOTTOM,
+                ));
+            }
             let mut events: Vec<(usize, f32, f32)> = displaced
                 .iter()
                 .enumerate()
@@ -154,14 +185,40 @@ pub fn scene_with_phases(
                     (i, x - 0.5 * w, x + 0.5 * w)
                 })
                 .collect();
-            events.sort_by(|a, b| a.1.total_cmp(&b.1));
-            let mut right = vec![f32::NEG_INFINITY; lanes];
+            // impacts take the lanes first (the headline event), then
+            // releases, each kind from left to right
+            events.sort_by(|a, b| {
+                let release = |i: usize| phases.phase(i, t) != ContactPhase::Impact;
+                release(a.0).cmp(&release(b.0)).then(a.1.total_cmp(&b.1))
+            });
+            // every point with an event ringed in the labels' colour: the
+            // points of a five-point tyre lie closer than a label is wide,
+            // and labels that fit no lane are left to the strip above
+            let ringed: Vec<[f64; 2]> = events.iter().map(|e| displaced[e.0]).collect();
+            if !ringed.is_empty() {
+                pui.points(
+                    egui_plot::Points::new(EVENT_RING_NAME, ringed)
+                        .color(EVENT_COLOR)
+                        .shape(egui_plot::MarkerShape::Circle)
+                        .filled(false)
+                        .radius(EVENT_RING_PX),
+                );
+            }
+            // the labels' extents (px) in each lane, a text height apart at
+            // least: 6 px apart, "p0: RELEASE p3: IMPACT" read as one label
+            let gap = body;
+            let mut taken: Vec<Vec<(f32, f32)>> = vec![Vec::new(); lanes.len()];
             for (i, left, r) in events {
-                let Some(lane) = (0..lanes).find(|&k| right[k] + 6.0 <= left) else {
+                let free = |k: &usize| {
+                    taken[*k]
+                        .iter()
+                        .all(|&(l0, r0)| r0 + gap <= left || r + gap <= l0)
+                };
+                let Some(lane) = (0..lanes.len()).find(free) else {
                     continue;
                 };
-                right[lane] = r;
-                let y = top - per_px * lane_px * (0.3 + lane as f64);
+                taken[lane].push((left, r));
+                let (y, anchor) = lanes[lane];
                 let d = displaced[i];
                 pui.text(
                     Text::new(
@@ -169,7 +226,7 @@ pub fn scene_with_phases(
                         PlotPoint::new(d[0], y),
                         label(i, phases.phase(i, t), body),
                     )
-                    .anchor(egui::Align2::CENTER_TOP),
+                    .anchor(anchor),
                 );
             }
         } else {
@@ -279,9 +336,35 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
     // long one ran up over the force / displacement switch above
     let frame_h = ui.available_height() - 3.0 * ui.text_style_height(&TextStyle::Body);
     let label = fitting_label(ui, long, short, frame_h);
+    // a time label centred closer to the frame's edge than half its width
+    // was cut by it: "0.1" left of 0.17 s at the right edge, a wrong time
+    let half_label_px = 0.5
+        * ui.painter()
+            .layout_no_wrap(
+                "0.000".to_owned(),
+                TextStyle::Body.resolve(ui.style()),
+                Color32::WHITE,
+            )
+            .size()
+            .x;
+    // the frame: the width less the y axis (its labels and title, about
+    // three body rows); a few px either way only moves the cut-off
+    let frame_w = (ui.available_width() - 3.0 * ui.text_style_height(&TextStyle::Body)).max(1.0);
     super::views::nice_y_axis(Plot::new("tirecontact.classroom_plot"))
         .id(egui::Id::unique(CLASSROOM_PLOT_ID))
         .x_axis_label("time t (s)")
+        .x_axis_formatter(move |m, range| {
+            let span = range.end() - range.start();
+            let px = |v: f64| (v / span) as f32 * frame_w;
+            let from_edge = px(m.value - range.start()).min(px(range.end() - m.value));
+            if span > 0.0 && from_edge < half_label_px + 2.0 {
+                String::new()
+            } else {
+                // egui_plot's own format
+                let n = (-m.step_size.log10().round()).max(0.0) as usize;
+                egui::emath::format_with_decimals_in_range(m.value, n..=n)
+            }
+        })
         .y_axis_label(label)
         .allow_scroll(false)
         .allow_drag(false)

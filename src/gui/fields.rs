@@ -124,9 +124,15 @@ impl<'a> NumField<'a> {
         // field right of it (and the plots) under the user's pointer
         ui.vertical(|ui| {
             let row = ui.horizontal(|ui| {
+                // as wide as its text: narrower, it showed the start of a
+                // long value (0.0497 for 0.0497672), a wrong number
+                let width = self.width.max(fit_width(ui, &st.text));
                 let mut edit = egui::TextEdit::singleline(&mut st.text)
                     .id(id)
-                    .desired_width(self.width);
+                    .desired_width(width)
+                    // a grid cell offers the width of its column's last frame
+                    // (at first 40 px), which `desired_width` does not exceed
+                    .min_size(egui::vec2(width, 0.0));
                 if st.error.is_some() {
                     edit = edit.text_color(ERROR_COLOR);
                 }
@@ -212,6 +218,22 @@ impl<'a> NumField<'a> {
         ui.data_mut(|d| d.insert_temp(id, st));
         cmd
     }
+}
+
+/// Width (px) a single-line field needs to show `text` whole: the text in
+/// the body font and the field's margins (8 px each side) with a pixel to
+/// spare, at most 320 px.
+fn fit_width(ui: &Ui, text: &str) -> f32 {
+    let w = ui
+        .painter()
+        .layout_no_wrap(
+            text.to_owned(),
+            egui::TextStyle::Body.resolve(ui.style()),
+            Color32::WHITE,
+        )
+        .size()
+        .x;
+    (w + 18.0).min(320.0)
 }
 
 /// Forgets every field's typed text and refusal (a new document: a text

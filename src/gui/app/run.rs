@@ -96,6 +96,12 @@ impl App {
         if restart {
             match Simulation::new(&new).and_then(|sim| Ok((sim, new.modes()?))) {
                 Ok((sim, modes)) => {
+                    // "Edit as a modal model" changed the panel in place and
+                    // said nothing: what happened, and where the modes went
+                    // (a mute also turns a ring into modes, some of them
+                    // zeroed: not the identified ones)
+                    let converted = matches!(old.tyre, crate::scene::Tyre::Ring { .. })
+                        && matches!(&new.tyre, crate::scene::Tyre::Modal { modes } if *modes == self.modes);
                     let playing = self.time.is_playing();
                     self.sim = sim;
                     self.modes = modes;
@@ -103,6 +109,9 @@ impl App {
                     self.reset_run();
                     if playing {
                         self.time.play();
+                    }
+                    if converted {
+                        self.info(modal_model_note(self.modes.len()));
                     }
                 }
                 Err(e) => self.error(format!("Edit refused: {e}")),
@@ -178,4 +187,11 @@ impl App {
         }
         self.time.report(taken, dt, frame_s);
     }
+}
+
+/// The banner after a ring tyre became a modal model of `n` modes.
+pub fn modal_model_note(n: usize) -> String {
+    format!(
+        "The ring is replaced by its {n} identified modes: tune, add or remove them in the Modes table (each edit restarts the run); the Fidelity view keeps the ring as its reference. Save to keep the modal model."
+    )
 }

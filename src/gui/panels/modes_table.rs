@@ -9,6 +9,9 @@ use crate::ring::RingParams;
 use crate::scene::{Mode, Tyre};
 use egui::{Grid, Ui};
 
+/// Under the ring's identified modes: where their residues are.
+pub const RING_RESIDUES_NOTE: &str = "their residue matrices A (1/kg): in the modes table after \"Edit as a modal model\", or in the file `tirecontact identify PRESET -o FILE` writes";
+
 /// Largest number of points whose residue matrix is edited inline.
 const MAX_INLINE_MATRIX: usize = 8;
 
@@ -232,5 +235,7 @@ fn ring_summary(
                         ui.end_row();
                     }
                 });
+            // a researcher looked here for the residues in vain
+            ui.label(RING_RESIDUES_NOTE);
         });
 }

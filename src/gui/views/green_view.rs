@@ -77,7 +77,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
         let freqs: Vec<String> = modes
             .iter()
             .take(6)
-            .map(|m| format!("{:.1} Hz ξ={:.3}", m.freq_hz, m.damping_ratio))
+            .map(|m| format!("{:.1} Hz ξ={}", m.freq_hz, three_digits(m.damping_ratio)))
             .collect();
         let more = modes.len().saturating_sub(6);
         let more = if more > 0 {
@@ -85,7 +85,9 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
         } else {
             String::new()
         };
-        ui.label(format!("{} modes: {}{more}", modes.len(), freqs.join(", ")));
+        let n = modes.len();
+        let noun = if n == 1 { "mode" } else { "modes" };
+        ui.label(format!("{n} {noun}: {}{more}", freqs.join(", ")));
     });
     let i = opts.receiver;
     let sources: Vec<usize> = if opts.all_sources {
@@ -155,6 +157,16 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
                 }
             }
         });
+}
+
+/// `x` to three significant digits: with three decimals a light damping
+/// ratio (0.0004) read "ξ=0.000", as if undamped.
+fn three_digits(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let decimals = (2.0 - x.abs().log10().floor()).max(0.0) as usize;
+    format!("{x:.decimals$}")
 }
 
 #[cfg(test)]
