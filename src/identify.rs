@@ -113,6 +113,19 @@ type CacheEntry = (String, Arc<Vec<Mode>>);
 static CACHE: Mutex<Vec<CacheEntry>> = Mutex::new(Vec::new());
 const CACHE_LEN: usize = 8;
 
+/// The cache key of a ring, its identification options and the points.
+fn cache_key(ring: &RingParams, x_m: &[f64], opts: &IdentifyOptions) -> String {
+    format!("{ring:?}|{opts:?}|{x_m:?}")
+}
+
+/// Whether [`ring_modes_cached`] would answer from its cache (no
+/// identification to run).
+pub fn ring_modes_are_cached(ring: &RingParams, x_m: &[f64], opts: &IdentifyOptions) -> bool {
+    let key = cache_key(ring, x_m, opts);
+    let cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+    cache.iter().any(|(k, _)| *k == key)
+}
+
 /// The identified modes of a ring at the points `x_m`, from the cache when
 /// the ring, the options and the positions are unchanged (keyed on their
 /// exact values; the 8 most recent are kept).
@@ -121,7 +134,7 @@ pub fn ring_modes_cached(
     x_m: &[f64],
     opts: &IdentifyOptions,
 ) -> Result<Arc<Vec<Mode>>, LsceError> {
-    let key = format!("{ring:?}|{opts:?}|{x_m:?}");
+    let key = cache_key(ring, x_m, opts);
     {
         let cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((_, modes)) = cache.iter().find(|(k, _)| *k == key) {

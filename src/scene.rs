@@ -268,6 +268,22 @@ impl Scene {
         }
     }
 
+    /// Whether [`Scene::modes`] answers at once: given modes, or a ring
+    /// already identified at these points (else it runs the identification,
+    /// a tenth of a second or more).
+    pub fn modes_are_ready(&self) -> bool {
+        match &self.tyre {
+            Tyre::Modal { .. } => true,
+            Tyre::Ring {
+                ring,
+                identification,
+            } => {
+                let x: Vec<f64> = self.points.iter().map(|p| p.x_m).collect();
+                crate::identify::ring_modes_are_cached(ring, &x, identification)
+            }
+        }
+    }
+
     /// `T_ramp = 0` is allowed only where no point starts below the road
     /// (`z(x_i) - h_i <= 0` for all `i`, SPEC §4).
     pub fn ramp_error(&self, road: &crate::road::RoadProfile) -> Option<FieldError> {

@@ -95,6 +95,8 @@ pub struct App {
     field_refusal: Option<String>,
     /// A new document came in: the next frame forgets the fields' texts.
     forget_fields: bool,
+    /// An edit or a new document waiting for its ring's identification.
+    identify_job: Option<super::identify_job::IdentifyJob>,
 }
 
 impl App {
@@ -138,6 +140,7 @@ impl App {
             file_prompt: None,
             field_refusal: None,
             forget_fields: false,
+            identify_job: None,
         })
     }
 

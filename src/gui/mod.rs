@@ -17,6 +17,7 @@ pub mod frame_rate;
 pub mod frames;
 pub mod guided;
 pub mod history;
+pub mod identify_job;
 pub mod mutes;
 pub mod native_dialog;
 pub mod panels;

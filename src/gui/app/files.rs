@@ -118,7 +118,18 @@ impl App {
     }
 
     /// Replaces the document (scene, file) and restarts the run.
-    fn replace(&mut self, scene: Scene, path: Option<PathBuf>, what: &str) {
+    pub(super) fn replace(&mut self, scene: Scene, path: Option<PathBuf>, what: &str) {
+        // the latest edit or document wins over one still waiting
+        self.identify_job = None;
+        if !scene.modes_are_ready() {
+            // the ring is identified off the UI thread; the document waits
+            self.wait_for_modes(crate::gui::identify_job::Then::Replace {
+                scene,
+                path,
+                what: what.to_string(),
+            });
+            return;
+        }
         match Simulation::new(&scene).and_then(|sim| Ok((sim, scene.modes()?))) {
             Ok((sim, modes)) => {
                 self.sim = sim;

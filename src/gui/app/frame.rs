@@ -57,6 +57,7 @@ impl App {
         let hidden = ctx.input(|i| i.viewport().minimized == Some(true));
         self.poll_csv();
         self.poll_frames();
+        self.poll_identification();
         if !hidden {
             self.advance(frame_s);
         }
@@ -121,6 +122,7 @@ impl App {
         );
         if self.csv_job.is_some()
             || self.frames_job.is_some()
+            || self.identify_job.is_some()
             || (!hidden && (self.time.is_playing() || self.time.pending_steps() > 0))
         {
             ctx.request_repaint();

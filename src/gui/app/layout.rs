@@ -67,11 +67,16 @@ impl App {
 
     pub(super) fn normal_layout(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
         let cmds_left = &mut *cmds;
+        // while an edit waits for its ring's identification the fields show
+        // the running scene: no further edit until the waiting one applies
+        let editable = self.identify_job.is_none();
         egui::Panel::left("tirecontact.edit")
             .resizable(true)
             .default_size(380.0)
             .show(ui, |ui| {
-                panels::side_panel(ui, &self.scene, &self.modes, cmds_left)
+                ui.add_enabled_ui(editable, |ui| {
+                    panels::side_panel(ui, &self.scene, &self.modes, cmds_left)
+                });
             });
         if self.classroom.bars {
             egui::Panel::right("tirecontact.mode_bars")

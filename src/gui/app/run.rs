@@ -2,6 +2,7 @@
 //! budget, and scene edits (road and speed live, anything else restarts).
 
 use super::*;
+use crate::gui::identify_job::{IdentifyJob, Then, waiting_note};
 
 impl App {
     /// Drops an informational message (errors stay until dismissed).
@@ -72,8 +73,62 @@ impl App {
         }
     }
 
+    /// Starts identifying the ring of the scene `then` waits for (a later
+    /// edit or document replaces an earlier one still waiting).
+    pub(super) fn wait_for_modes(&mut self, then: Then) {
+        let scene = match &then {
+            Then::Edit(s) | Then::Replace { scene: s, .. } => s,
+        };
+        let job = IdentifyJob::spawn(scene, then.clone());
+        self.info(waiting_note(&then));
+        self.identify_job = Some(job);
+    }
+
+    /// Applies what waited for a finished identification.
+    pub(super) fn poll_identification(&mut self) {
+        let Some(result) = self.identify_job.as_ref().and_then(IdentifyJob::poll) else {
+            return;
+        };
+        if let Some(job) = self.identify_job.take() {
+            self.identified(result, job.then);
+        }
+    }
+
+    /// Whether an edit or a new document waits for its ring's identification.
+    pub fn identifying(&self) -> bool {
+        self.identify_job.is_some()
+    }
+
+    /// Blocks until a waiting identification ends, then applies what waited
+    /// (tests; the UI polls instead).
+    pub fn wait_identification(&mut self) {
+        if let Some(job) = self.identify_job.take() {
+            let result = job.wait();
+            self.identified(result, job.then);
+        }
+    }
+
+    fn identified(&mut self, result: Result<(), String>, then: Then) {
+        // the waiting note goes; what is applied says what it says
+        if let Some(m) = &self.message
+            && m.text == waiting_note(&then)
+        {
+            self.message = None;
+        }
+        match (result, then) {
+            (Ok(()), Then::Edit(scene)) => self.edit(scene),
+            (Ok(()), Then::Replace { scene, path, what }) => self.replace(scene, path, &what),
+            (Err(e), Then::Edit(_)) => self.error(format!("Edit refused: {e}")),
+            (Err(e), Then::Replace { .. }) => self.error(format!(
+                "Cannot use this scene; the current scene is kept.\n{e}"
+            )),
+        }
+    }
+
     /// Applies an edited scene: road and speed live, everything else restarts.
     pub(super) fn edit(&mut self, new: Scene) {
+        // the latest edit or document wins over one still waiting
+        self.identify_job = None;
         if let Err(errors) = new.validate() {
             let list: Vec<String> = errors.iter().map(ToString::to_string).collect();
             self.error(format!("Edit refused: {}", list.join("; ")));
@@ -94,6 +149,11 @@ impl App {
             || new.contact_scheme != old.contact_scheme
             || new.contact != old.contact;
         if restart {
+            if !new.modes_are_ready() {
+                // the ring is identified off the UI thread; the edit waits
+                self.wait_for_modes(Then::Edit(new));
+                return;
+            }
             match Simulation::new(&new).and_then(|sim| Ok((sim, new.modes()?))) {
                 Ok((sim, modes)) => {
                     // "Edit as a modal model" changed the panel in place and
