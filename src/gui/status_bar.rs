@@ -144,7 +144,14 @@ pub fn show(ui: &mut Ui, app: &App) {
     let gap = ui.spacing().item_spacing.x;
     // a separator is its spacing (6 px) wide plus a gap on each side
     let separator_px = 6.0 + 2.0 * gap;
-    let fps_text = format!("{:.0} fps", app.fps());
+    // measured over a second of play; paused, frames come only on input,
+    // and the last rate measured would be stale
+    let playing = app.time_control().is_playing();
+    let fps_text = if playing && app.fps() > 0.0 {
+        format!("{:.0} fps", app.fps())
+    } else {
+        "– fps".to_string()
+    };
     let mut other_px = 2.0 * separator_px + text_px(ui, "0000 fps") + 2.0 * gap;
     if app.exporting_csv() {
         other_px += separator_px + ui.spacing().interact_size.y + gap + text_px(ui, "writing CSV…");
@@ -184,10 +191,16 @@ pub fn show(ui: &mut Ui, app: &App) {
         }
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
             ui.label(RichText::new(fps_text).weak())
-                .on_hover_text(format!(
-                    "frames per second; solver and UI code take {:.1} ms per frame",
-                    app.app_ms()
-                ));
+                .on_hover_text(if playing {
+                    format!(
+                        "frames per second; solver and UI code take {:.1} ms per frame",
+                        app.app_ms()
+                    )
+                } else {
+                    "frames per second, measured while playing (paused, the window \
+                     is drawn only when something changes)"
+                        .to_string()
+                });
         });
     });
 }
