@@ -58,9 +58,32 @@ pub fn decimals_for_step(step: f64) -> usize {
 /// powers of ten leave a 0–700 N axis with the single label "0".
 pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
     plot.y_grid_spacer(|input| nice_marks(input, 30.0))
-        .y_axis_formatter(|mark, _range| {
-            format!("{:.*}", decimals_for_step(mark.step_size), mark.value)
+        .y_axis_formatter(|mark, range| {
+            let widest = range.start().abs().max(range.end().abs());
+            axis_number(mark.value, mark.step_size, widest)
         })
+}
+
+/// A tick label: the decimals a multiple of `step` needs, and on an axis
+/// reaching five digits (`widest`: its largest magnitude) whole numbers in
+/// groups of three (`1 000 000`, not `1000000`; `5 000` beside `10 000`).
+pub fn axis_number(value: f64, step: f64, widest: f64) -> String {
+    let text = format!("{:.*}", decimals_for_step(step), value);
+    let (sign, digits) = match text.strip_prefix('-') {
+        Some(d) => ("-", d),
+        None => ("", text.as_str()),
+    };
+    if widest < 1e4 || digits.len() < 4 || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return text;
+    }
+    let mut grouped = String::from(sign);
+    for (k, c) in digits.chars().enumerate() {
+        if k > 0 && (digits.len() - k) % 3 == 0 {
+            grouped.push(' ');
+        }
+        grouped.push(c);
+    }
+    grouped
 }
 
 /// Grid marks at 1-2-5 steps whose labelled (major) step is at least
@@ -131,6 +154,23 @@ pub fn log_marks(input: egui_plot::GridInput) -> Vec<egui_plot::GridMark> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn large_tick_labels_are_grouped_by_thousands() {
+        // (value, step, the axis's largest magnitude, label)
+        for (v, step, widest, want) in [
+            (1e6, 2e5, 1.2e6, "1 000 000"),
+            (-25_000.0, 5_000.0, 3e4, "-25 000"),
+            (5_000.0, 5_000.0, 1.5e4, "5 000"),
+            (9_500.0, 500.0, 9_900.0, "9500"),
+            (950.0, 50.0, 2e4, "950"),
+            (-0.05, 0.05, 0.1, "-0.05"),
+            (123_456.0, 1.0, 2e5, "123 456"),
+            (0.0, 1e5, 1e6, "0"),
+        ] {
+            assert_eq!(axis_number(v, step, widest), want, "{v}");
+        }
+    }
 
     #[test]
     fn nice_steps_are_1_2_5_decades_at_least_the_request() {

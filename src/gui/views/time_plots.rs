@@ -41,6 +41,13 @@ pub struct TimePlotOptions {
     /// impact's step-mean force impulse / dt would otherwise set the range);
     /// clipped impacts are marked at the top edge.
     pub clip_impacts: bool,
+    /// Width (px) of the widest y axis of the stacked plots at the last
+    /// frame: every plot's axis is made as wide, so that their time axes
+    /// line up whatever their tick labels (`1 000 000` N beside `3` mm).
+    pub axis_px: f32,
+    /// The run's time at the last frame (a smaller one: a new run, whose
+    /// axes start from the narrowest again).
+    pub axis_t_s: f64,
 }
 
 impl Default for TimePlotOptions {
@@ -50,6 +57,8 @@ impl Default for TimePlotOptions {
             window_s: 0.1,
             shown: Vec::new(),
             clip_impacts: true,
+            axis_px: 0.0,
+            axis_t_s: 0.0,
         }
     }
 }
@@ -129,6 +138,12 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
     let t1_axis = t1 + legend_strip_s(t1 - t0, legend_w_px, frame_w_px);
     let link = Id::unique("tirecontact.time_axes");
     let p = history.num_points();
+    if t_end < opts.axis_t_s {
+        opts.axis_px = 0.0;
+    }
+    opts.axis_t_s = t_end;
+    let axis_px = opts.axis_px.max(64.0);
+    let mut widest_axis_px = 0.0f32;
     for (k, def) in PLOTS.iter().enumerate() {
         let last = k == PLOTS.len() - 1;
         let y_label = if h < SHORT_PLOT_PX {
@@ -151,7 +166,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             .link_axis(link, [true, false])
             .link_cursor(link, [true, false])
             .y_axis_label(y_label)
-            .y_axis_min_width(64.0)
+            .y_axis_min_width(axis_px)
             .allow_scroll(false)
             .auto_bounds([!opts.follow, true]);
         // time labels shown down to 40 px apart (the default hides x labels
@@ -196,7 +211,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             // y labels closer than 20 px: short plots lost them)
             let axis = AxisHints::new_y()
                 .label(y_label)
-                .min_thickness(64.0)
+                .min_thickness(axis_px)
                 .label_spacing(LANE_LABEL_SPACING)
                 .formatter(move |m, _| {
                     let k = m.value.round();
@@ -214,7 +229,8 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         let shown = opts.shown.clone();
         let follow = opts.follow;
         let clip = opts.clip_impacts && def.what == Quantity::Force;
-        plot.show(ui, move |pui| {
+        let left_px = ui.available_rect_before_wrap().left();
+        let shown_plot = plot.show(ui, move |pui| {
             let (a, b) = if follow {
                 pui.set_plot_bounds_x(t0..=t1_axis);
                 (t0, t1)
@@ -233,6 +249,12 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             draw_series(pui, history, def, &shown, a, b, top, &mut ink);
             ink.place(pui, legend_id, legend_px);
         });
+        widest_axis_px = widest_axis_px.max(shown_plot.transform.frame().left() - left_px);
+    }
+    // a wider axis than the others: all as wide from the next frame on
+    if widest_axis_px > opts.axis_px + 0.5 {
+        opts.axis_px = widest_axis_px;
+        ui.ctx().request_repaint();
     }
 }
 
