@@ -916,7 +916,7 @@ fn bad_command_line_values_are_refused() {
         ),
         (
             &["--duration", "100", "-o", "no/such/folder/x.csv"][..],
-            "no/such/folder/x.csv: No such file or directory",
+            "-o no/such/folder/x.csv: no folder no/such/folder",
         ),
     ] {
         let t = std::time::Instant::now();

@@ -3,6 +3,7 @@
 pub mod bench;
 pub mod check;
 pub mod identify;
+pub mod paths;
 pub mod run;
 pub mod sweep;
 

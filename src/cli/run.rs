@@ -167,8 +167,19 @@ pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> 
     Ok(())
 }
 
-/// A figure that could not be drawn after the run is refused before it.
+/// A figure that could not be drawn after the run, or an output file whose
+/// folder does not exist, is refused before it.
 fn check_plot_args(args: &RunArgs) -> Result<(), String> {
+    use super::paths::check_output_file;
+    if let Some(path) = &args.output {
+        check_output_file("-o", path, "CSV")?;
+    }
+    if let Some(path) = &args.spectrum {
+        check_output_file("--spectrum", path, "CSV")?;
+    }
+    if let Some(path) = &args.spectrum_plot {
+        check_output_file("--spectrum-plot", path, "PNG")?;
+    }
     let Some(path) = &args.plot else {
         return Ok(());
     };
@@ -178,18 +189,7 @@ fn check_plot_args(args: &RunArgs) -> Result<(), String> {
             "--plot-size {w}x{h}: expected 200..=8000 px per side"
         ));
     }
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(std::path::Path::new("."));
-    if !dir.is_dir() {
-        return Err(format!(
-            "--plot {}: no folder {}: expected a PNG path in an existing folder",
-            path.display(),
-            dir.display()
-        ));
-    }
-    Ok(())
+    check_output_file("--plot", path, "PNG")
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {

@@ -1,0 +1,254 @@
+//! A first-time user's mistakes with output paths and short runs: refused
+//! before any work (nothing printed on stdout, no file written), naming the
+//! option, the path and what to do; output folders of `identify --figures`
+//! are created like those of `run --frames` and `bench -o`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_tirecontact"))
+}
+
+fn tmpdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("tc-cli-out-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Every file under `dir`, recursively.
+fn files_under(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            out.extend(files_under(&p));
+        } else {
+            out.push(p);
+        }
+    }
+    out
+}
+
+/// Exit code 1, no panic, nothing on stdout (no run, no identification
+/// printed), and every one of `words` in the message.
+fn refused(o: &Output, words: &[&str], what: &str) {
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{what}: {err}");
+    assert!(!err.contains("panicked"), "{what}: {err}");
+    assert!(
+        o.stdout.is_empty(),
+        "{what}: ran before refusing: {}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    for w in words {
+        assert!(err.contains(w), "{what}: `{w}` missing in: {err}");
+    }
+}
+
+#[test]
+fn outputs_in_missing_folders_are_refused_before_any_work() {
+    let d = tmpdir("missing");
+    let missing = d.join("no_such_folder");
+    let m = |f: &str| missing.join(f).display().to_string();
+    let folder = missing.display().to_string();
+    let run = |extra: &[&str]| {
+        bin()
+            .args(["run", "presets/single_mode.ron", "--duration", "0.2"])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    for (opt, file, kind) in [
+        ("-o", "out.csv", "CSV"),
+        ("--spectrum", "s.csv", "CSV"),
+        ("--spectrum-plot", "s.png", "PNG"),
+        ("--plot", "fig.png", "PNG"),
+    ] {
+        let o = run(&[opt, &m(file)]);
+        let head = format!("{opt} {}", m(file));
+        let expected = format!("expected a {kind} path in an existing folder");
+        refused(
+            &o,
+            &[&head, &format!("no folder {folder}"), &expected, "mkdir -p"],
+            &format!("run {opt}"),
+        );
+    }
+    // the spectrum CSV and a plot beside it: the later one's folder is
+    // missing, the earlier one is not written either
+    let ok_csv = d.join("s.csv");
+    let o = run(&[
+        "--spectrum",
+        &ok_csv.display().to_string(),
+        "--spectrum-plot",
+        &m("s.png"),
+    ]);
+    refused(&o, &["--spectrum-plot"], "run --spectrum + --spectrum-plot");
+    for (opt, file, kind) in [("-o", "sweep.csv", "CSV"), ("--plot", "sweep.png", "PNG")] {
+        let o = bin()
+            .args([
+                "sweep",
+                "presets/single_mode.ron",
+                "--param",
+                "speed_mps",
+                "--from",
+                "10",
+                "--to",
+                "20",
+                "--steps",
+                "2",
+                "--duration",
+                "0.2",
+                opt,
+                &m(file),
+            ])
+            .output()
+            .unwrap();
+        let expected = format!("expected a {kind} path in an existing folder");
+        refused(
+            &o,
+            &[&format!("{opt} {}", m(file)), &expected],
+            &format!("sweep {opt}"),
+        );
+    }
+    // identify: the diagram written, then -o failing, used to leave one of
+    // two outputs behind
+    let diagram = d.join("d.png");
+    for (opt, file, kind) in [
+        ("-o", "modal.ron", "RON"),
+        ("--diagram", "d.png", "PNG"),
+        ("--responses", "irf.csv", "CSV"),
+    ] {
+        let mut cmd = bin();
+        cmd.args(["identify", "presets/paper.ron", opt, &m(file)]);
+        if opt != "--diagram" {
+            cmd.arg("--diagram").arg(&diagram);
+        }
+        let o = cmd.output().unwrap();
+        let expected = format!("expected a {kind} path in an existing folder");
+        refused(
+            &o,
+            &[&format!("{opt} {}", m(file)), &expected],
+            &format!("identify {opt}"),
+        );
+    }
+    assert!(!missing.exists(), "a refused output created its folder");
+    assert_eq!(files_under(&d), Vec::<PathBuf>::new(), "files left behind");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn a_folder_given_for_an_output_file_is_refused() {
+    let d = tmpdir("isdir");
+    let o = bin()
+        .args(["run", "presets/single_mode.ron", "--duration", "0.2", "-o"])
+        .arg(&d)
+        .output()
+        .unwrap();
+    refused(
+        &o,
+        &[&format!("-o {}: is a folder", d.display()), "out.csv"],
+        "run -o DIR",
+    );
+    // a file where identify --figures wants a folder
+    let f = d.join("file");
+    std::fs::write(&f, "x").unwrap();
+    let o = bin()
+        .args(["identify", "presets/paper.ron", "--figures"])
+        .arg(&f)
+        .output()
+        .unwrap();
+    refused(
+        &o,
+        &[&format!("--figures {}: is a file", f.display())],
+        "identify --figures FILE",
+    );
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn identify_figures_creates_its_folder() {
+    let d = tmpdir("figs");
+    let dir = d.join("new/figures");
+    let o = bin()
+        .args(["identify", "presets/paper.ron", "--figures"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in ["paper_fig1_displacement.png", "paper_fig2_force.png"] {
+        assert_eq!(&std::fs::read(dir.join(f)).unwrap()[1..4], b"PNG", "{f}");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn a_spectrum_of_a_run_without_steady_part_is_refused_before_the_run() {
+    let d = tmpdir("short");
+    let s = d.join("s.csv");
+    // single_mode.ron: ramp_s = 0.05 s; the steady part is empty
+    let o = bin()
+        .args([
+            "run",
+            "presets/single_mode.ron",
+            "--duration",
+            "0.05",
+            "--spectrum",
+        ])
+        .arg(&s)
+        .output()
+        .unwrap();
+    refused(
+        &o,
+        &[
+            "spectrum of 0 samples: expected at least 8 samples of the steady part",
+            "lengthen duration_s (--duration)",
+        ],
+        "run --spectrum, duration = ramp_s",
+    );
+    assert!(!s.exists());
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn preset_errors_count_in_english_and_a_missing_road_file_says_where_it_was_looked_for() {
+    let d = tmpdir("preset");
+    let base = std::fs::read_to_string("presets/single_mode.ron").unwrap();
+    let bad = d.join("negdamp.ron");
+    std::fs::write(
+        &bad,
+        base.replace("damping_ratio: 0.05", "damping_ratio: -0.1"),
+    )
+    .unwrap();
+    let o = bin().arg("check").arg(&bad).output().unwrap();
+    refused(
+        &o,
+        &[
+            &format!("{}: 1 invalid value\n", bad.display()),
+            "tyre.modes[0].damping_ratio = -0.1: expected",
+        ],
+        "negative damping",
+    );
+    let road = d.join("road.ron");
+    std::fs::write(
+        &road,
+        base.replace(
+            "road: Sine(amplitude_m: 0.002, wavelength_m: 0.5)",
+            "road: Measured(file: \"nosuch.csv\")",
+        ),
+    )
+    .unwrap();
+    let o = bin().arg("check").arg(&road).output().unwrap();
+    refused(
+        &o,
+        &[
+            &format!(
+                "road.file = {}: cannot open",
+                d.join("nosuch.csv").display()
+            ),
+            "relative path is taken from the preset's folder",
+        ],
+        "missing road file",
+    );
+    std::fs::remove_dir_all(&d).ok();
+}
