@@ -252,3 +252,95 @@ fn preset_errors_count_in_english_and_a_missing_road_file_says_where_it_was_look
     );
     std::fs::remove_dir_all(&d).ok();
 }
+
+#[test]
+fn check_names_each_number_it_prints() {
+    // presets/single_mode.ron: V = 20 m/s, dt_s = 1e-5, duration_s = 1.0
+    let o = bin()
+        .args(["check", "presets/single_mode.ron"])
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    let out = String::from_utf8_lossy(&o.stdout);
+    for want in [
+        "1 point, 1 mode",
+        "speed V = 20 m/s (72 km/h)",
+        "dt = 1e-5 s",
+        "duration 1 s (100000 steps)",
+    ] {
+        assert!(out.contains(want), "`{want}` missing in: {out}");
+    }
+}
+
+#[test]
+fn non_numeric_values_say_what_number_was_expected() {
+    let sweep = |extra: &[&str]| {
+        let mut a = vec![
+            "sweep",
+            "presets/single_mode.ron",
+            "--param",
+            "speed_mps",
+            "--from",
+            "10",
+            "--to",
+            "20",
+        ];
+        a.extend_from_slice(extra);
+        a.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    let run = |extra: &[&str]| {
+        let mut a = vec!["run", "presets/single_mode.ron"];
+        a.extend_from_slice(extra);
+        a.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    for (args, want) in [
+        (
+            run(&["--every", "ten"]),
+            "'ten' for '--every <EVERY>': expected a whole number >= 1",
+        ),
+        (
+            run(&["--every", "-3"]),
+            "'-3' for '--every <EVERY>': expected a whole number >= 1",
+        ),
+        (
+            run(&["--dt", "abc"]),
+            "'abc' for '--dt <DT>': expected a time in seconds",
+        ),
+        (
+            run(&["--duration", "1s"]),
+            "'1s' for '--duration <DURATION>': expected a time in seconds",
+        ),
+        (
+            sweep(&["--steps", "many"]),
+            "'many' for '--steps <STEPS>': expected a whole number >= 1",
+        ),
+        (
+            sweep(&["--threads", "two"]),
+            "'two' for '--threads <THREADS>': expected a whole number >= 1",
+        ),
+        (
+            vec![
+                "sweep",
+                "--param",
+                "speed_mps",
+                "--from",
+                "fast",
+                "--to",
+                "20",
+            ]
+            .into_iter()
+            .map(String::from)
+            .collect(),
+            "'fast' for '--from <FROM>': expected a number in the unit of --param",
+        ),
+    ] {
+        let o = bin().args(&args).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(o.stdout.is_empty(), "{args:?} ran");
+        assert!(
+            err.contains(want) && !err.contains("panicked"),
+            "{args:?}: {err}"
+        );
+    }
+}

@@ -19,13 +19,13 @@ pub struct RunArgs {
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Override the time step (s).
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::parse_seconds)]
     pub dt: Option<f64>,
     /// Override the duration (s).
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::parse_seconds)]
     pub duration: Option<f64>,
     /// Write one CSV row every N steps (forces averaged over them).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = super::values::parse_count)]
     pub every: u64,
     /// Also draw displacements and forces of every point to this PNG (impact
     /// spikes clipped a margin above the force without impacts and marked by

@@ -21,13 +21,13 @@ pub struct SweepArgs {
     pub param: String,
     /// First value, in the unit the parameter's name carries (m/s for
     /// `speed_mps`, Hz for `freq_hz`, m for `h_m`).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = super::values::parse_value)]
     pub from: f64,
     /// Last value (may be below --from: the values then decrease).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = super::values::parse_value)]
     pub to: f64,
     /// Number of values, evenly spaced, both ends included.
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, value_parser = super::values::parse_count_usize)]
     pub steps: usize,
     /// Write the table (one row per value) to this CSV.
     #[arg(short, long)]
@@ -36,13 +36,13 @@ pub struct SweepArgs {
     #[arg(long)]
     pub plot: Option<PathBuf>,
     /// Worker threads; default all cores.
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::parse_count_usize)]
     pub threads: Option<usize>,
     /// Override the time step (s) of every run.
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::parse_seconds)]
     pub dt: Option<f64>,
     /// Override the duration (s) of every run.
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::parse_seconds)]
     pub duration: Option<f64>,
 }
 
