@@ -344,3 +344,26 @@ fn non_numeric_values_say_what_number_was_expected() {
         );
     }
 }
+
+#[test]
+fn bench_outside_the_repository_says_what_it_studies() {
+    let d = tmpdir("bench");
+    let o = bin()
+        .current_dir(&d)
+        .args(["bench", "--quick", "-o", "out"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("0 of the shipped presets")
+            && err.contains("embedded default preset (the paper's) only"),
+        "{err}"
+    );
+    // one underscore between words
+    assert!(
+        d.join("out/work_precision_paper_ring_tyre_five_points_sine_road.png")
+            .exists()
+    );
+    std::fs::remove_dir_all(&d).ok();
+}
