@@ -40,7 +40,8 @@ pub struct RunArgs {
     /// (decimal GB; estimated as rows × columns × 17 bytes).
     #[arg(long, default_value_t = DEFAULT_MAX_OUTPUT_GB)]
     pub max_output_gb: f64,
-    /// Size of the PNG, WIDTHxHEIGHT in pixels.
+    /// Size of the --plot PNG, WIDTHxHEIGHT in pixels (also of the
+    /// --spectrum-plot PNG, which is at least 1200 px high).
     #[arg(long, default_value = "1400x900", value_parser = parse_size)]
     pub plot_size: (u32, u32),
     /// Write force and displacement spectra of the steady part (from

@@ -708,7 +708,7 @@ mod tests {
         let long = "Total contact force, third-octave bands 315 Hz - 2 kHz, every other band (Hann, mean removed)";
         let max_w = width(long, 22) * 3 / 4;
         let px = fit_font_px(long, max_w, 22, 11);
-        assert!(px < 22 && px >= 11, "{px}");
+        assert!((11..22).contains(&px), "{px}");
         assert!(width(long, px) <= max_w, "{} > {max_w}", width(long, px));
         assert!(
             width(long, px + 1) > max_w,
