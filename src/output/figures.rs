@@ -144,13 +144,14 @@ pub fn name_tick_label(v: f64, names: &[String]) -> String {
 }
 
 /// A compact tick label: `90000`, `0.25`, `1.5e-7`; on log axes plain from
-/// 0.01 to 10000 (`10`, `100`, `1000` Hz read at a glance), `1e-5` beyond.
+/// 1 to 10000 (`10`, `100`, `1000` Hz read at a glance), `1e-5` below and
+/// beyond (an error axis keeps one style: `1e-3`, `1e-2`, not `1e-3`, `0.01`).
 pub fn tick_label(v: f64, log: bool) -> String {
     if v == 0.0 {
         return "0".into();
     }
     let a = v.abs();
-    let plain = if log { 1e-2..1e5 } else { 1e-3..1e6 };
+    let plain = if log { 1.0..1e5 } else { 1e-3..1e6 };
     if !plain.contains(&a) {
         let s = format!("{v:.1e}");
         return s.replace(".0e", "e");
@@ -685,7 +686,9 @@ mod tests {
             (10.0, true, "10"),
             (100.0, true, "100"),
             (1000.0, true, "1000"),
-            (0.01, true, "0.01"),
+            (1.0, true, "1"),
+            (0.01, true, "1e-2"),
+            (0.5, true, "5e-1"),
             (1e5, true, "1e5"),
             (1e-5, true, "1e-5"),
             (0.25, false, "0.25"),
