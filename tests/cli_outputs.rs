@@ -367,3 +367,41 @@ fn bench_outside_the_repository_says_what_it_studies() {
     );
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// Ctrl-C or `kill` during `run -o` leaves neither the output nor its
+/// hidden temporary (it was left behind, up to the whole output's size).
+#[cfg(unix)]
+#[test]
+fn an_interrupted_run_leaves_no_temporary_file() {
+    use std::os::unix::process::ExitStatusExt;
+    let d = tmpdir("interrupt");
+    for sig in ["-INT", "-TERM"] {
+        let mut child = bin()
+            .args(["run", "presets/single_mode.ron", "--duration", "100", "-o"])
+            .arg(d.join("big.csv"))
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        // wait until rows are being written into the temporary
+        let written = || {
+            files_under(&d)
+                .iter()
+                .any(|p| std::fs::metadata(p).is_ok_and(|m| m.len() > 0))
+        };
+        while !written() {
+            assert!(child.try_wait().unwrap().is_none(), "ended before writing");
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        let ok = Command::new("kill")
+            .arg(sig)
+            .arg(child.id().to_string())
+            .status()
+            .unwrap();
+        assert!(ok.success());
+        let status = child.wait().unwrap();
+        assert!(status.signal().is_some(), "{sig}: {status:?}");
+        assert_eq!(files_under(&d), Vec::<PathBuf>::new(), "{sig}: left behind");
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
