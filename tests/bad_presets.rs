@@ -920,7 +920,7 @@ fn bad_command_line_values_are_refused() {
             "duration_s = inf: expected a finite duration > 0 s",
         ),
         (
-            &["--every", "0"][..],
+            &["--every", "0", "-o", "no/such/folder/x.csv"][..],
             "--every = 0: expected a number of steps >= 1",
         ),
         (

@@ -295,11 +295,11 @@ fn non_numeric_values_say_what_number_was_expected() {
     };
     for (args, want) in [
         (
-            run(&["--every", "ten"]),
+            run(&["--every", "ten", "-o", "x.csv"]),
             "'ten' for '--every <EVERY>': expected a whole number >= 1",
         ),
         (
-            run(&["--every", "-3"]),
+            run(&["--every", "-3", "-o", "x.csv"]),
             "'-3' for '--every <EVERY>': expected a whole number >= 1",
         ),
         (
@@ -404,4 +404,36 @@ fn an_interrupted_run_leaves_no_temporary_file() {
         assert_eq!(files_under(&d), Vec::<PathBuf>::new(), "{sig}: left behind");
     }
     std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn options_of_an_output_not_asked_for_are_refused() {
+    // each would have been ignored without a word
+    for (args, needed) in [
+        (&["run", "--every", "10"][..], "--output <OUTPUT>"),
+        (&["run", "--plot-unclipped"][..], "--plot <PLOT>"),
+        (
+            &["run", "--spectrum-from", "0.2"][..],
+            "<--spectrum <SPECTRUM>|--spectrum-plot <SPECTRUM_PLOT>>",
+        ),
+        (&["run", "--spectrum-max-hz", "1000"][..], "--spectrum"),
+        (&["run", "--fps", "10"][..], "--frames <FRAMES>"),
+        (&["run", "--slow-motion", "5"][..], "--frames <FRAMES>"),
+        (&["run", "--frames-from", "0.1"][..], "--frames <FRAMES>"),
+        (&["run", "--frames-to", "0.2"][..], "--frames <FRAMES>"),
+        (&["run", "--frame-size", "640x480"][..], "--frames <FRAMES>"),
+        (
+            &["identify", "presets/paper.ron", "--figures-unclipped"][..],
+            "--figures <FIGURES>",
+        ),
+    ] {
+        let o = bin().args(args).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(o.stdout.is_empty(), "{args:?} ran");
+        assert!(
+            err.contains("required arguments were not provided") && err.contains(needed),
+            "{args:?}: {err}"
+        );
+    }
 }

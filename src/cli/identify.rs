@@ -38,7 +38,7 @@ pub struct IdentifyArgs {
     pub figures: Option<PathBuf>,
     /// Draw the impact spikes of --figures' Fig. 2 whole (impulse / dt:
     /// tens of kN, which squash the rolling force to a line).
-    #[arg(long)]
+    #[arg(long, requires = "figures")]
     pub figures_unclipped: bool,
 }
 

@@ -12,6 +12,8 @@ use tirecontact::{Scene, SceneError, Simulation};
 #[derive(Debug, clap::Args)]
 // (a negative value reaches validation, which names the field, not clap's "unexpected argument")
 #[command(allow_negative_numbers = true)]
+// options of an output given without it are refused, not silently ignored
+#[command(group(clap::ArgGroup::new("spectra").args(["spectrum", "spectrum_plot"]).multiple(true)))]
 pub struct RunArgs {
     /// Scene preset (RON). Without it, the embedded default preset.
     pub preset: Option<PathBuf>,
@@ -25,7 +27,7 @@ pub struct RunArgs {
     #[arg(long, value_parser = super::values::parse_seconds)]
     pub duration: Option<f64>,
     /// Write one CSV row every N steps (forces averaged over them).
-    #[arg(long, default_value_t = 1, value_parser = super::values::parse_count)]
+    #[arg(long, default_value_t = 1, value_parser = super::values::parse_count, requires = "output")]
     pub every: u64,
     /// Also draw displacements and forces of every point to this PNG (impact
     /// spikes clipped a margin above the force without impacts and marked by
@@ -34,7 +36,7 @@ pub struct RunArgs {
     pub plot: Option<PathBuf>,
     /// Draw the impact spikes of the --plot force panel whole (impulse / dt:
     /// tens of kN, which squash the rolling force to a line).
-    #[arg(long)]
+    #[arg(long, requires = "plot")]
     pub plot_unclipped: bool,
     /// Refuse up front a run whose CSV (`-o`) would be larger than this
     /// (decimal GB; estimated as rows × columns × 17 bytes).
@@ -54,28 +56,28 @@ pub struct RunArgs {
     #[arg(long)]
     pub spectrum_plot: Option<PathBuf>,
     /// Start of the analysed steady part (s); default the ramp time `ramp_s`.
-    #[arg(long)]
+    #[arg(long, requires = "spectra")]
     pub spectrum_from: Option<f64>,
     /// Highest frequency of the spectrum CSV and figure (Hz).
-    #[arg(long, default_value_t = 5000.0)]
+    #[arg(long, default_value_t = 5000.0, requires = "spectra")]
     pub spectrum_max_hz: f64,
     /// Write animation frames of the scene (frame_00000.png, …) into this folder.
     #[arg(long)]
     pub frames: Option<PathBuf>,
     /// Frames per second of the animation (Hz).
-    #[arg(long, default_value_t = 25.0)]
+    #[arg(long, default_value_t = 25.0, requires = "frames")]
     pub fps: f64,
     /// Video seconds per simulated second (20 = 0.05x real time).
-    #[arg(long, default_value_t = 20.0)]
+    #[arg(long, default_value_t = 20.0, requires = "frames")]
     pub slow_motion: f64,
     /// First animated time (s).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, requires = "frames")]
     pub frames_from: f64,
     /// End of the animated interval (s); default the scene's duration.
-    #[arg(long)]
+    #[arg(long, requires = "frames")]
     pub frames_to: Option<f64>,
     /// Size of the frames, WIDTHxHEIGHT in pixels.
-    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    #[arg(long, default_value = "1280x720", value_parser = parse_size, requires = "frames")]
     pub frame_size: (u32, u32),
     /// Keep every SVD term of an identified (ring tyre) model's residues
     /// (exact rank), instead of dropping those below 1e-5 of the largest
