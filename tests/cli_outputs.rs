@@ -437,3 +437,30 @@ fn options_of_an_output_not_asked_for_are_refused() {
         );
     }
 }
+
+#[test]
+fn a_missing_comma_says_where_to_look() {
+    let d = tmpdir("comma");
+    let p = d.join("comma.ron");
+    // the comma after `speed_mps: 20.0` (line 11) is missing: RON points at line 12
+    std::fs::write(
+        &p,
+        std::fs::read_to_string("presets/single_mode.ron")
+            .unwrap()
+            .replace("speed_mps: 20.0,", "speed_mps: 20.0"),
+    )
+    .unwrap();
+    let o = bin().arg("check").arg(&p).output().unwrap();
+    refused(
+        &o,
+        &[
+            &format!(
+                "{}:12:5: Expected comma: a `,` is missing after the previous value",
+                p.display()
+            ),
+            "ramp_s: 0.05",
+        ],
+        "missing comma",
+    );
+    std::fs::remove_dir_all(&d).ok();
+}
