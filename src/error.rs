@@ -49,15 +49,27 @@ pub enum SceneError {
         source: std::io::Error,
     },
     /// A measured road profile (`road.file`) is unusable.
-    #[error("road.file = {path}: {message}")]
+    #[error("road.file = {path}: {message}{}", road_file_hint(.message))]
     RoadFile { path: PathBuf, message: String },
     /// The modal model of a ring tyre could not be identified (SPEC §6).
     #[error("scene \"{scene}\": tyre identification failed: {message}")]
     Identification { scene: String, message: String },
 }
 
+/// What to do about a road file that cannot be opened: the path rule.
+fn road_file_hint(message: &str) -> &'static str {
+    if message.starts_with("cannot open") {
+        " (a relative path is taken from the preset's folder: expected an existing CSV of `x_m, z_m` rows there, or an absolute path)"
+    } else {
+        ""
+    }
+}
+
 fn format_invalid(file: &str, errors: &[FieldError]) -> String {
-    let mut s = format!("{file}: {} invalid value(s)", errors.len());
+    let mut s = format!(
+        "{file}: {}",
+        crate::output::count(errors.len(), "invalid value")
+    );
     for e in errors {
         s.push_str("\n  ");
         s.push_str(&e.to_string());

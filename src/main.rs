@@ -46,6 +46,19 @@ enum Command {
 
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
+    if matches!(
+        cli.command,
+        Some(
+            Command::Run(_)
+                | Command::Sweep(_)
+                | Command::Identify(_)
+                | Command::Bench(_)
+                | Command::Check { .. }
+        )
+    ) {
+        // an interrupted run leaves no half-written temporary behind
+        tirecontact::output::interrupt::remove_temporaries_on_signal();
+    }
     let result = match cli.command {
         Some(Command::Run(args)) => cli::run::run(&args),
         Some(Command::Check { preset }) => cli::check::check(&preset),

@@ -172,7 +172,12 @@ impl Scene {
                 file: file.to_string(),
                 line,
                 col,
-                message: format!("{}{}", e.code, source_excerpt(text, line, col)),
+                message: format!(
+                    "{}{}{}",
+                    e.code,
+                    syntax_hint(&e.code),
+                    source_excerpt(text, line, col)
+                ),
             }
         })
     }
@@ -450,6 +455,17 @@ fn skip_blanks(text: &str, line: usize, col: usize) -> (usize, usize) {
         chars.next();
     }
     (line, col)
+}
+
+/// What to do about a RON error whose fix is not where it points: a missing
+/// comma is reported at the next value, usually on the next line.
+fn syntax_hint(code: &ron::Error) -> &'static str {
+    match code {
+        ron::Error::ExpectedComma => {
+            ": a `,` is missing after the previous value (often at the end of the line above)"
+        }
+        _ => "",
+    }
 }
 
 /// The source line `line` (1-based) with a caret under column `col` (1-based,

@@ -72,7 +72,9 @@ impl Window {
 /// Errors of spectrum estimation.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SpectrumError {
-    #[error("spectrum of {samples} sample(s): expected at least {min} samples of the steady part")]
+    #[error(
+        "spectrum of {samples} samples: expected at least {min} samples of the steady part (the steps from ramp_s, or --spectrum-from, to duration_s): lengthen duration_s (--duration) or start the analysis earlier"
+    )]
     TooShort { samples: usize, min: usize },
     #[error(
         "spectrum of {samples} steady samples: at most {max} are held (shorten duration_s, raise dt_s or start the analysis later)"

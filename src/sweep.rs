@@ -212,19 +212,28 @@ pub fn get_param(scene: &Scene, path: &str) -> Result<f64, SweepError> {
 }
 
 fn unknown(scene: &Scene, path: &str) -> SweepError {
-    let mut valid = param_paths(scene);
-    // collapse long indexed lists for the message
-    let mut shown: Vec<String> = Vec::new();
-    for p in valid.drain(..) {
+    // an indexed list collapsed to its first and last path, with this
+    // scene's indices (`points[0].h_m … points[2].h_m`: the range is seen)
+    let mut groups: Vec<(String, String, String)> = Vec::new();
+    for p in param_paths(scene) {
         let w = wildcard(&p);
-        if w != p && shown.iter().any(|s| wildcard(s) == w) {
-            continue;
+        match groups.iter_mut().find(|g| g.0 == w) {
+            Some(g) => g.2 = p,
+            None => groups.push((w, p.clone(), p)),
         }
-        shown.push(if w != p {
-            w.replacen("[*]", "[i]", 1)
-        } else {
-            p
-        });
+    }
+    let mut shown: Vec<String> = groups
+        .into_iter()
+        .map(|(_, first, last)| {
+            if first == last {
+                first
+            } else {
+                format!("{first} … {last}")
+            }
+        })
+        .collect();
+    if shown.iter().any(|s| s.contains('[')) {
+        shown.push("or [*] for an index (every point, mode…: `points[*].h_m`)".into());
     }
     SweepError::UnknownParam {
         path: path.to_string(),

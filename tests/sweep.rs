@@ -48,9 +48,17 @@ fn parameter_paths_get_and_set() {
     let msg = e.to_string();
     assert!(matches!(e, SweepError::UnknownParam { .. }));
     assert!(
-        msg.contains("speed_kmh") && msg.contains("speed_mps") && msg.contains("points[i].h_m"),
+        msg.contains("speed_kmh") && msg.contains("speed_mps"),
         "{msg}"
     );
+    // this scene's indices: 3 points, 3 modes (a wildcard is offered too)
+    for want in [
+        "points[0].h_m … points[2].h_m",
+        "tyre.modes[0].freq_hz … tyre.modes[2].freq_hz",
+        "[*]",
+    ] {
+        assert!(msg.contains(want), "`{want}` missing in: {msg}");
+    }
     let e = set_param(&mut s, "dt_s", -1.0).unwrap_err().to_string();
     assert!(
         e.contains("dt_s") && e.contains("-1") && e.contains("> 0"),

@@ -17,28 +17,55 @@ pub struct BenchArgs {
     /// Output folder for work_precision.csv, work_precision.md and the diagrams.
     #[arg(short, long, default_value = "bench-out")]
     pub output: PathBuf,
-    /// A small study (seconds instead of minutes).
+    /// A small study (under a second instead of about 10 s).
     #[arg(long)]
     pub quick: bool,
-    /// Scenes to study (default: the shipped single-mode, three-point and paper presets).
+    /// Scenes to study (default: the shipped single-mode, three-point and
+    /// paper presets, found from the repository's folder).
     pub presets: Vec<PathBuf>,
 }
 
+/// The scenes studied without preset arguments, relative to the working
+/// folder.
+const DEFAULT_PRESETS: [&str; 3] = [
+    "presets/single_mode.ron",
+    "presets/three_points.ron",
+    "presets/paper.ron",
+];
+
 fn default_presets() -> Vec<PathBuf> {
-    [
-        "presets/single_mode.ron",
-        "presets/three_points.ron",
-        "presets/paper.ron",
-    ]
-    .iter()
-    .map(PathBuf::from)
-    .filter(|p| p.exists())
-    .collect()
+    DEFAULT_PRESETS
+        .iter()
+        .map(PathBuf::from)
+        .filter(|p| p.exists())
+        .collect()
 }
 
 pub fn bench(args: &BenchArgs) -> CliResult {
     let presets = if args.presets.is_empty() {
-        default_presets()
+        let found = default_presets();
+        if found.len() < DEFAULT_PRESETS.len() {
+            // run outside the repository: say what is studied instead
+            eprintln!(
+                "bench: {} of the shipped presets ({}) found from {}: {}; pass preset files, or run from the repository's folder",
+                found.len(),
+                DEFAULT_PRESETS.join(", "),
+                std::env::current_dir().map_or("here".into(), |d| d.display().to_string()),
+                if found.is_empty() {
+                    "studying the embedded default preset (the paper's) only".to_string()
+                } else {
+                    format!(
+                        "studying {}",
+                        found
+                            .iter()
+                            .map(|p| p.display().to_string())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )
+                }
+            );
+        }
+        found
     } else {
         args.presets.clone()
     };
@@ -110,16 +137,19 @@ fn write(path: &Path, text: &str) -> CliResult {
     Ok(())
 }
 
+/// A file-name stem of a scene name: lower-case letters and digits, one `_`
+/// for each run of anything else (`paper_ring_tyre_five_points_sine_road`,
+/// was `paper__ring_tyre__…`).
 fn file_stem(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect()
+    let mut stem = String::new();
+    for c in name.chars() {
+        if c.is_ascii_alphanumeric() {
+            stem.push(c.to_ascii_lowercase());
+        } else if !stem.is_empty() && !stem.ends_with('_') {
+            stem.push('_');
+        }
+    }
+    stem.trim_end_matches('_').to_string()
 }
 
 /// Runs of each timed scene in the speed table (the median is reported).
@@ -373,4 +403,20 @@ fn residual_flexibility(
     );
     s.push_str(&residual::to_markdown(&rows));
     Ok(s)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn file_stems_have_single_underscores() {
+        assert_eq!(
+            super::file_stem("Paper: ring tyre, five points, sine road"),
+            "paper_ring_tyre_five_points_sine_road"
+        );
+        assert_eq!(
+            super::file_stem("Single mode on a sine road"),
+            "single_mode_on_a_sine_road"
+        );
+        assert_eq!(super::file_stem("  (x) 5 x 20!  "), "x_5_x_20");
+    }
 }

@@ -9,14 +9,16 @@ pub fn check(path: &Path) -> CliResult {
     // also reads a measured road file and factors the modes
     let sim = Simulation::new(&scene)?;
     println!(
-        "{}: ok — \"{}\": {}, {}, road {}, {:.3} m/s, dt {:e} s, {} steps; CSV of `run -o` about {} (--every 1)",
+        "{}: ok — \"{}\": {}, {}, road {}, speed V = {} m/s ({:.0} km/h), dt = {:e} s, duration {} s ({} steps); CSV of `run -o` about {} (--every 1)",
         path.display(),
         scene.name,
         tirecontact::output::count(scene.num_points(), "point"),
         tirecontact::output::count(scene.modes()?.len(), "mode"),
         scene.road.kind(),
         scene.speed_mps,
+        scene.speed_mps * 3.6,
         scene.dt_s,
+        scene.duration_s,
         scene.num_steps(),
         tirecontact::output::csv::human_bytes(tirecontact::output::csv::estimated_bytes(
             scene.num_steps(),

@@ -31,19 +31,34 @@ pub struct IdentifyArgs {
     #[arg(long)]
     pub responses: Option<PathBuf>,
     /// Also run the identified scene and write `{stem}_fig1_displacement.png`
-    /// and `{stem}_fig2_force.png` (the paper's Fig. 1 and 2) into this folder
+    /// and `{stem}_fig2_force.png` (the paper's Fig. 1 and 2) into this folder (created when missing)
     /// (Fig. 2 clips impact spikes as `run --plot` does; see
     /// --figures-unclipped).
     #[arg(long)]
     pub figures: Option<PathBuf>,
     /// Draw the impact spikes of --figures' Fig. 2 whole (impulse / dt:
     /// tens of kN, which squash the rolling force to a line).
-    #[arg(long)]
+    #[arg(long, requires = "figures")]
     pub figures_unclipped: bool,
 }
 
 pub fn identify(args: &IdentifyArgs) -> CliResult {
     let scene = load_scene(Some(&args.preset))?;
+    // every output's folder, before the identification and any file written
+    use super::paths::{check_output_file, ensure_output_dir};
+    if let Some(path) = &args.output {
+        check_output_file("-o", path, "RON")?;
+    }
+    if let Some(path) = &args.diagram {
+        check_output_file("--diagram", path, "PNG")?;
+    }
+    if let Some(path) = &args.responses {
+        check_output_file("--responses", path, "CSV")?;
+    }
+    if let Some(dir) = &args.figures {
+        // a folder, like `run --frames` and `bench -o`: created when missing
+        ensure_output_dir("--figures", dir)?;
+    }
     let Tyre::Ring {
         ring,
         identification,

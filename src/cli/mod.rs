@@ -3,8 +3,10 @@
 pub mod bench;
 pub mod check;
 pub mod identify;
+pub mod paths;
 pub mod run;
 pub mod sweep;
+pub mod values;
 
 use std::path::{Path, PathBuf};
 use tirecontact::{DEFAULT_PRESET, DEFAULT_PRESET_NAME, Scene, SceneError};

@@ -12,6 +12,8 @@ use tirecontact::{Scene, SceneError, Simulation};
 #[derive(Debug, clap::Args)]
 // (a negative value reaches validation, which names the field, not clap's "unexpected argument")
 #[command(allow_negative_numbers = true)]
+// options of an output given without it are refused, not silently ignored
+#[command(group(clap::ArgGroup::new("spectra").args(["spectrum", "spectrum_plot"]).multiple(true)))]
 pub struct RunArgs {
     /// Scene preset (RON). Without it, the embedded default preset.
     pub preset: Option<PathBuf>,
@@ -19,13 +21,13 @@ pub struct RunArgs {
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Override the time step (s).
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::parse_seconds)]
     pub dt: Option<f64>,
     /// Override the duration (s).
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::parse_seconds)]
     pub duration: Option<f64>,
     /// Write one CSV row every N steps (forces averaged over them).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = super::values::parse_count, requires = "output")]
     pub every: u64,
     /// Also draw displacements and forces of every point to this PNG (impact
     /// spikes clipped a margin above the force without impacts and marked by
@@ -34,13 +36,14 @@ pub struct RunArgs {
     pub plot: Option<PathBuf>,
     /// Draw the impact spikes of the --plot force panel whole (impulse / dt:
     /// tens of kN, which squash the rolling force to a line).
-    #[arg(long)]
+    #[arg(long, requires = "plot")]
     pub plot_unclipped: bool,
     /// Refuse up front a run whose CSV (`-o`) would be larger than this
     /// (decimal GB; estimated as rows × columns × 17 bytes).
     #[arg(long, default_value_t = DEFAULT_MAX_OUTPUT_GB)]
     pub max_output_gb: f64,
-    /// Size of the PNG, WIDTHxHEIGHT in pixels.
+    /// Size of the --plot PNG, WIDTHxHEIGHT in pixels (also of the
+    /// --spectrum-plot PNG, which is at least 1200 px high).
     #[arg(long, default_value = "1400x900", value_parser = parse_size)]
     pub plot_size: (u32, u32),
     /// Write force and displacement spectra of the steady part (from
@@ -53,28 +56,28 @@ pub struct RunArgs {
     #[arg(long)]
     pub spectrum_plot: Option<PathBuf>,
     /// Start of the analysed steady part (s); default the ramp time `ramp_s`.
-    #[arg(long)]
+    #[arg(long, requires = "spectra")]
     pub spectrum_from: Option<f64>,
     /// Highest frequency of the spectrum CSV and figure (Hz).
-    #[arg(long, default_value_t = 5000.0)]
+    #[arg(long, default_value_t = 5000.0, requires = "spectra")]
     pub spectrum_max_hz: f64,
     /// Write animation frames of the scene (frame_00000.png, …) into this folder.
     #[arg(long)]
     pub frames: Option<PathBuf>,
     /// Frames per second of the animation (Hz).
-    #[arg(long, default_value_t = 25.0)]
+    #[arg(long, default_value_t = 25.0, requires = "frames")]
     pub fps: f64,
     /// Video seconds per simulated second (20 = 0.05x real time).
-    #[arg(long, default_value_t = 20.0)]
+    #[arg(long, default_value_t = 20.0, requires = "frames")]
     pub slow_motion: f64,
     /// First animated time (s).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, requires = "frames")]
     pub frames_from: f64,
     /// End of the animated interval (s); default the scene's duration.
-    #[arg(long)]
+    #[arg(long, requires = "frames")]
     pub frames_to: Option<f64>,
     /// Size of the frames, WIDTHxHEIGHT in pixels.
-    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    #[arg(long, default_value = "1280x720", value_parser = parse_size, requires = "frames")]
     pub frame_size: (u32, u32),
     /// Keep every SVD term of an identified (ring tyre) model's residues
     /// (exact rank), instead of dropping those below 1e-5 of the largest
@@ -167,8 +170,19 @@ pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> 
     Ok(())
 }
 
-/// A figure that could not be drawn after the run is refused before it.
+/// A figure that could not be drawn after the run, or an output file whose
+/// folder does not exist, is refused before it.
 fn check_plot_args(args: &RunArgs) -> Result<(), String> {
+    use super::paths::check_output_file;
+    if let Some(path) = &args.output {
+        check_output_file("-o", path, "CSV")?;
+    }
+    if let Some(path) = &args.spectrum {
+        check_output_file("--spectrum", path, "CSV")?;
+    }
+    if let Some(path) = &args.spectrum_plot {
+        check_output_file("--spectrum-plot", path, "PNG")?;
+    }
     let Some(path) = &args.plot else {
         return Ok(());
     };
@@ -178,18 +192,7 @@ fn check_plot_args(args: &RunArgs) -> Result<(), String> {
             "--plot-size {w}x{h}: expected 200..=8000 px per side"
         ));
     }
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(std::path::Path::new("."));
-    if !dir.is_dir() {
-        return Err(format!(
-            "--plot {}: no folder {}: expected a PNG path in an existing folder",
-            path.display(),
-            dir.display()
-        ));
-    }
-    Ok(())
+    check_output_file("--plot", path, "PNG")
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {

@@ -19,14 +19,15 @@ pub struct SweepArgs {
     /// `tyre.modes[0].freq_hz`, `tyre.ring.inflation_pa`.
     #[arg(long)]
     pub param: String,
-    /// First value.
-    #[arg(long, allow_negative_numbers = true)]
+    /// First value, in the unit the parameter's name carries (m/s for
+    /// `speed_mps`, Hz for `freq_hz`, m for `h_m`).
+    #[arg(long, allow_negative_numbers = true, value_parser = super::values::parse_value)]
     pub from: f64,
-    /// Last value.
-    #[arg(long, allow_negative_numbers = true)]
+    /// Last value (may be below --from: the values then decrease).
+    #[arg(long, allow_negative_numbers = true, value_parser = super::values::parse_value)]
     pub to: f64,
     /// Number of values, evenly spaced, both ends included.
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, value_parser = super::values::parse_count_usize)]
     pub steps: usize,
     /// Write the table (one row per value) to this CSV.
     #[arg(short, long)]
@@ -35,13 +36,13 @@ pub struct SweepArgs {
     #[arg(long)]
     pub plot: Option<PathBuf>,
     /// Worker threads; default all cores.
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::parse_count_usize)]
     pub threads: Option<usize>,
     /// Override the time step (s) of every run.
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::parse_seconds)]
     pub dt: Option<f64>,
     /// Override the duration (s) of every run.
-    #[arg(long)]
+    #[arg(long, value_parser = super::values::parse_seconds)]
     pub duration: Option<f64>,
 }
 
@@ -51,6 +52,13 @@ fn base_scene(args: &SweepArgs) -> Result<Scene, SceneError> {
 
 pub fn sweep(args: &SweepArgs) -> CliResult {
     let scene = base_scene(args)?;
+    // output folders before any run (a missing one failed after all of them)
+    if let Some(path) = &args.output {
+        super::paths::check_output_file("-o", path, "CSV")?;
+    }
+    if let Some(path) = &args.plot {
+        super::paths::check_output_file("--plot", path, "PNG")?;
+    }
     // check the path (and the range ends) before any run
     get_param(&scene, &args.param)?;
     for v in [args.from, args.to] {
@@ -72,9 +80,10 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     bar.set_message(format!(
-        "{} runs of {} on {threads} thread(s)",
-        sweep.values.len(),
-        args.param
+        "{} of {} on {}",
+        tirecontact::output::count(sweep.values.len(), "run"),
+        args.param,
+        tirecontact::output::count(threads, "thread")
     ));
     let start = Instant::now();
     let cancel = AtomicBool::new(false);
@@ -117,12 +126,13 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
         eprintln!("run failed: {f}");
     }
     println!(
-        "{}: {} runs of {} from {} to {} on {threads} thread(s) in {wall:.3} s wall ({} failed)",
+        "{}: {} of {} from {} to {} on {} in {wall:.3} s wall ({} failed)",
         scene.name,
-        points.len(),
+        tirecontact::output::count(points.len(), "run"),
         args.param,
         args.from,
         args.to,
+        tirecontact::output::count(threads, "thread"),
         failed.len()
     );
     if failed.len() == points.len() {

@@ -143,19 +143,40 @@ pub fn name_tick_label(v: f64, names: &[String]) -> String {
     names.get(k as usize).cloned().unwrap_or_default()
 }
 
-/// A compact tick label: `1e-5` on log axes, `90000`, `0.25`, `1.5e-7` otherwise.
+/// A compact tick label: `90000`, `0.25`, `1.5e-7`; on log axes plain from
+/// 1 to 10000 (`10`, `100`, `1000` Hz read at a glance), `1e-5` below and
+/// beyond (an error axis keeps one style: `1e-3`, `1e-2`, not `1e-3`, `0.01`).
 pub fn tick_label(v: f64, log: bool) -> String {
     if v == 0.0 {
         return "0".into();
     }
     let a = v.abs();
-    if log || !(1e-3..1e6).contains(&a) {
+    let plain = if log { 1.0..1e5 } else { 1e-3..1e6 };
+    if !plain.contains(&a) {
         let s = format!("{v:.1e}");
         return s.replace(".0e", "e");
     }
     let s = format!("{v:.6}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     s.to_string()
+}
+
+/// The largest font size from `px` down to `min_px` at which `text` is at
+/// most `max_w` pixels wide (`min_px` when none is).
+pub fn fit_font_px(text: &str, max_w: i32, px: u32, min_px: u32) -> u32 {
+    register_fonts();
+    let mut size = px;
+    while size > min_px {
+        let w = ("sans-serif", size as i32)
+            .into_font()
+            .box_size(text)
+            .map_or(text.chars().count() as u32 * size / 2, |b| b.0);
+        if w as i64 <= i64::from(max_w) {
+            break;
+        }
+        size -= 1;
+    }
+    size
 }
 
 /// Renders `fig` as a PNG of `width × height` px at `path`.
@@ -435,8 +456,12 @@ fn draw_panel(
     };
     let mut layout = PanelLayout::default();
     let mut builder = ChartBuilder::on(&chart_area);
+    // the caption is centred over the chart area: kept clear of the y-axis
+    // title's column on both sides (a long one ran into the rotated y title)
+    let caption_w = chart_area.dim_in_pixel().0 as i32 - 2 * (fs(85.0) + fs(10.0)) as i32;
+    let caption_px = fit_font_px(&panel.title, caption_w, fs(18.0), fs(11.0));
     builder
-        .caption(&panel.title, ("sans-serif", fs(18.0) as i32))
+        .caption(&panel.title, ("sans-serif", caption_px as i32))
         .margin(fs(10.0))
         .x_label_area_size(fs(45.0))
         .y_label_area_size(fs(85.0));
@@ -653,6 +678,47 @@ mod tests {
             assert!(legend[0] > p.plot_px[2], "{legend:?} {:?}", p.plot_px);
         }
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn tick_labels_are_plain_in_the_everyday_range() {
+        for (v, log, want) in [
+            (10.0, true, "10"),
+            (100.0, true, "100"),
+            (1000.0, true, "1000"),
+            (1.0, true, "1"),
+            (0.01, true, "1e-2"),
+            (0.5, true, "5e-1"),
+            (1e5, true, "1e5"),
+            (1e-5, true, "1e-5"),
+            (0.25, false, "0.25"),
+            (90000.0, false, "90000"),
+            (1.5e-7, false, "1.5e-7"),
+            (0.0, false, "0"),
+        ] {
+            assert_eq!(tick_label(v, log), want, "{v} log {log}");
+        }
+    }
+
+    #[test]
+    fn long_captions_shrink_to_their_width() {
+        let width = |t: &str, px: u32| {
+            register_fonts();
+            ("sans-serif", px as i32).into_font().box_size(t).unwrap().0 as i32
+        };
+        let short = "Displacement spectrum";
+        assert_eq!(fit_font_px(short, 600, 22, 11), 22);
+        let long = "Total contact force, third-octave bands 315 Hz - 2 kHz, every other band (Hann, mean removed)";
+        let max_w = width(long, 22) * 3 / 4;
+        let px = fit_font_px(long, max_w, 22, 11);
+        assert!((11..22).contains(&px), "{px}");
+        assert!(width(long, px) <= max_w, "{} > {max_w}", width(long, px));
+        assert!(
+            width(long, px + 1) > max_w,
+            "not the largest size that fits"
+        );
+        // too long for any size: the smallest
+        assert_eq!(fit_font_px(long, 10, 22, 11), 11);
     }
 
     #[test]

@@ -4,6 +4,7 @@ pub mod animation;
 pub mod csv;
 pub mod figures;
 pub mod impacts;
+pub mod interrupt;
 pub mod paper_figures;
 pub mod record;
 
@@ -48,6 +49,9 @@ pub struct AtomicFile {
     path: std::path::PathBuf,
     tmp: std::path::PathBuf,
     w: Option<std::io::BufWriter<std::fs::File>>,
+    /// Its entry in the table of temporaries removed on a signal
+    /// ([`interrupt`]).
+    slot: Option<usize>,
 }
 
 impl AtomicFile {
@@ -67,10 +71,12 @@ impl AtomicFile {
             .write(true)
             .create_new(true)
             .open(&tmp)?;
+        let slot = interrupt::register(&tmp);
         Ok(AtomicFile {
             path: path.to_path_buf(),
             tmp,
             w: Some(std::io::BufWriter::new(f)),
+            slot,
         })
     }
 
@@ -88,6 +94,7 @@ impl AtomicFile {
         if result.is_err() {
             let _ = std::fs::remove_file(&self.tmp);
         }
+        interrupt::forget(self.slot.take());
         result
     }
 }
@@ -112,6 +119,7 @@ impl Drop for AtomicFile {
         if self.w.take().is_some() {
             let _ = std::fs::remove_file(&self.tmp);
         }
+        interrupt::forget(self.slot.take());
     }
 }
 

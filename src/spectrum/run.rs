@@ -7,7 +7,9 @@
 //! average, which lowers levels by `-20 log10(sinc(f dt))`, 0.04 dB at 5 kHz
 //! for `dt = 1e-5 s`.
 
-use super::{BandLevel, Markers, Spectrum, SpectrumError, Window, band_label, markers, spectrum};
+use super::{
+    BandLevel, MIN_SAMPLES, Markers, Spectrum, SpectrumError, Window, band_label, markers, spectrum,
+};
 use crate::Scene;
 use crate::output::figures::{Figure, Panel, Series, Style};
 use crate::simulation::Simulation;
@@ -40,6 +42,15 @@ impl SteadyRecorder {
     pub fn new(scene: &Scene, start_s: Option<f64>) -> Result<Self, SpectrumError> {
         let start = start_s.unwrap_or(scene.ramp_s).max(0.0);
         let steady = ((scene.duration_s - start) / scene.dt_s).max(0.0) as u64;
+        // refused before the run, not after it (one sample of slack for
+        // the rounding of the steady part's first step; the spectrum checks
+        // the exact count)
+        if steady + 1 < MIN_SAMPLES as u64 {
+            return Err(SpectrumError::TooShort {
+                samples: steady as usize,
+                min: MIN_SAMPLES,
+            });
+        }
         if steady > MAX_SAMPLES {
             return Err(SpectrumError::TooLong {
                 samples: steady,
@@ -368,7 +379,21 @@ fn floor_levels(panel: &mut Panel, range_db: f64) {
 
 /// Vertical lines at the excitation (dashed look: grey) and modal
 /// frequencies, spanning the panel's level range; one legend entry each.
+/// They are drawn first, under the spectra: the response peaks sit on the
+/// excitation lines, which hid them when drawn over (the spectra keep the
+/// colours they had).
 fn add_markers(panel: &mut Panel, marks: &Markers, min_hz: f64, max_hz: f64) {
+    for (k, s) in panel.series.iter_mut().enumerate() {
+        s.color.get_or_insert(k);
+    }
+    let n_data = panel.series.len();
+    push_markers(panel, marks, min_hz, max_hz);
+    let n_markers = panel.series.len() - n_data;
+    panel.series.rotate_right(n_markers);
+}
+
+/// The marker lines of [`add_markers`], appended to `panel`'s series.
+fn push_markers(panel: &mut Panel, marks: &Markers, min_hz: f64, max_hz: f64) {
     let (lo, hi) = panel
         .series
         .iter()
@@ -414,4 +439,33 @@ fn add_markers(panel: &mut Panel, marks: &Markers, min_hz: f64, max_hz: f64) {
 /// Markers of a scene for its spectra up to `max_hz` (10 road harmonics).
 pub fn scene_markers(scene: &Scene, max_hz: f64) -> Markers {
     markers(scene, max_hz, 10)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn markers_go_under_the_spectra_which_keep_their_colours() {
+        let mut panel = Panel {
+            series: vec![
+                Series::line("q0", vec![(10.0, -20.0), (100.0, 40.0)]),
+                Series::line("q1", vec![(10.0, -30.0), (100.0, 30.0)]),
+            ],
+            ..Panel::default()
+        };
+        let marks = Markers {
+            excitation_hz: vec![(1, 50.0), (2, 100.0)],
+            modal_hz: vec![80.0],
+        };
+        add_markers(&mut panel, &marks, 1.0, 1000.0);
+        let names: Vec<&str> = panel.series.iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(names.len(), 5, "{names:?}");
+        // three marker lines first (drawn first: under), then the spectra
+        assert!(names[0].starts_with("road"), "{names:?}");
+        assert_eq!(names[2], "modal frequencies");
+        assert_eq!(&names[3..], ["q0", "q1"]);
+        assert_eq!(panel.series[3].color, Some(0));
+        assert_eq!(panel.series[4].color, Some(1));
+    }
 }

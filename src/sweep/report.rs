@@ -64,6 +64,54 @@ pub fn write_csv<W: Write>(
     Ok(())
 }
 
+/// The x-axis title of a swept parameter: its path and the unit its name
+/// carries, `speed_mps (m/s)`, `tyre.modes[0].freq_hz (Hz)`; the path alone
+/// when the name carries no known unit.
+pub fn param_axis_label(param: &str) -> String {
+    // the field's name without a trailing index (`[2]`, `[*]`, `.0`)
+    let mut name = param;
+    loop {
+        if let Some(head) = name.strip_suffix(']').and_then(|n| n.rsplit_once('[')) {
+            name = head.0;
+        } else if let Some((head, tail)) = name.rsplit_once('.')
+            && !tail.is_empty()
+            && tail.bytes().all(|b| b.is_ascii_digit())
+        {
+            name = head;
+        } else {
+            break;
+        }
+    }
+    let field = name.rsplit('.').next().unwrap_or(name);
+    // names whose suffix alone is ambiguous first, then by suffix
+    let unit = match field {
+        "bending_stiffness_n_m2" => Some("N·m²"),
+        "residue" => Some("1/kg"),
+        "shape" => Some("1/√kg"),
+        _ => [
+            ("_n_m2", "N/m²"),
+            ("_kg_m", "kg/m"),
+            ("_n_m", "N/m"),
+            ("_mps", "m/s"),
+            ("_cpm", "cycles/m"),
+            ("_rad", "rad"),
+            ("_ratio", "-"),
+            ("_hz", "Hz"),
+            ("_pa", "Pa"),
+            ("_m", "m"),
+            ("_s", "s"),
+            ("_n", "N"),
+        ]
+        .iter()
+        .find(|(suffix, _)| field.ends_with(suffix))
+        .map(|(_, unit)| *unit),
+    };
+    match unit {
+        Some(u) => format!("{param} ({u})"),
+        None => param.to_string(),
+    }
+}
+
 /// The sweep figure: max force, force RMS, contact fraction per point and
 /// the rolling-noise bands (315, 500, 800, 1250, 2000 Hz) of the total
 /// force, against the parameter.
@@ -109,21 +157,21 @@ pub fn figure(
         panels: vec![
             Panel {
                 title: "Largest step-mean contact force (steady part)".into(),
-                x_label: param.to_string(),
+                x_label: param_axis_label(param),
                 y_label: "max force (N)".into(),
                 series: per_point(&|r| &r.max_force_n, "q"),
                 ..Panel::default()
             },
             Panel {
                 title: "RMS contact force (steady part, static load included)".into(),
-                x_label: param.to_string(),
+                x_label: param_axis_label(param),
                 y_label: "force RMS (N)".into(),
                 series: per_point(&|r| &r.force_rms_n, "q"),
                 ..Panel::default()
             },
             Panel {
                 title: "Fraction of steps in contact (steady part)".into(),
-                x_label: param.to_string(),
+                x_label: param_axis_label(param),
                 y_label: "contact fraction (-)".into(),
                 series: per_point(&|r| &r.contact_fraction, "point "),
                 ..Panel::default()
@@ -132,11 +180,68 @@ pub fn figure(
                 title:
                     "Total contact force, third-octave bands 315 Hz - 2 kHz, every other band (Hann, mean removed)"
                         .into(),
-                x_label: param.to_string(),
+                x_label: param_axis_label(param),
                 y_label: "band level (dB re 1 N)".into(),
                 series: bands,
                 ..Panel::default()
             },
         ],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::param_axis_label;
+
+    #[test]
+    fn swept_parameters_are_labelled_with_their_units() {
+        for (param, want) in [
+            ("speed_mps", "speed_mps (m/s)"),
+            ("ramp_s", "ramp_s (s)"),
+            ("points[*].h_m", "points[*].h_m (m)"),
+            (
+                "road.components[1].phase_rad",
+                "road.components[1].phase_rad (rad)",
+            ),
+            (
+                "road.max_wavenumber_cpm",
+                "road.max_wavenumber_cpm (cycles/m)",
+            ),
+            ("tyre.modes[0].freq_hz", "tyre.modes[0].freq_hz (Hz)"),
+            (
+                "tyre.modes[0].damping_ratio",
+                "tyre.modes[0].damping_ratio (-)",
+            ),
+            (
+                "tyre.modes[2].residue[0][1]",
+                "tyre.modes[2].residue[0][1] (1/kg)",
+            ),
+            ("tyre.modes[2].shape[1]", "tyre.modes[2].shape[1] (1/√kg)"),
+            ("contact.stiffness_n_m[3]", "contact.stiffness_n_m[3] (N/m)"),
+            ("tyre.ring.inflation_pa", "tyre.ring.inflation_pa (Pa)"),
+            (
+                "tyre.ring.radial_stiffness_n_m2",
+                "tyre.ring.radial_stiffness_n_m2 (N/m²)",
+            ),
+            (
+                "tyre.ring.bending_stiffness_n_m2",
+                "tyre.ring.bending_stiffness_n_m2 (N·m²)",
+            ),
+            (
+                "tyre.ring.extensional_stiffness_n",
+                "tyre.ring.extensional_stiffness_n (N)",
+            ),
+            (
+                "tyre.ring.mass_per_length_kg_m",
+                "tyre.ring.mass_per_length_kg_m (kg/m)",
+            ),
+            (
+                "tyre.identification.band_hz.1",
+                "tyre.identification.band_hz.1 (Hz)",
+            ),
+            ("road.seed", "road.seed"),
+        ] {
+            assert_eq!(param_axis_label(param), want);
+        }
     }
 }
