@@ -511,6 +511,20 @@ mod tests {
         }
     }
 
+    /// Every number of a mode step, as bits.
+    fn bits(m: &ModeStep) -> Vec<u64> {
+        [
+            m.phi.to_vec(),
+            m.w_const.to_vec(),
+            m.w_gauss.concat(),
+            m.h.to_vec(),
+        ]
+        .concat()
+        .iter()
+        .map(|x| x.to_bits())
+        .collect()
+    }
+
     /// As below over many modes and steps (403 modes, the last three in
     /// padded lanes; log-spread frequencies 1 Hz to 100 kHz, damping ratios
     /// of every regime, steps 1e-7 to 1e-2 s): the
@@ -531,18 +545,6 @@ mod tests {
             mode_steps_into(&modes, tau, &mut batch);
             for (b, &(w, xi)) in batch.iter().zip(&modes) {
                 let one = mode_step(w, xi, tau);
-                let bits = |m: &ModeStep| {
-                    [
-                        m.phi.to_vec(),
-                        m.w_const.to_vec(),
-                        m.w_gauss.concat(),
-                        m.h.to_vec(),
-                    ]
-                    .concat()
-                    .iter()
-                    .map(|x| x.to_bits())
-                    .collect::<Vec<_>>()
-                };
                 assert_eq!(bits(b), bits(&one), "omega {w}, xi {xi}, tau {tau}");
             }
         }
@@ -562,18 +564,6 @@ mod tests {
             assert_eq!(batch.len(), modes.len());
             for (b, &(w, xi)) in batch.iter().zip(&modes) {
                 let one = mode_step(w, xi, tau);
-                let bits = |m: &ModeStep| {
-                    [
-                        m.phi.to_vec(),
-                        m.w_const.to_vec(),
-                        m.w_gauss.concat(),
-                        m.h.to_vec(),
-                    ]
-                    .concat()
-                    .iter()
-                    .map(|x| x.to_bits())
-                    .collect::<Vec<_>>()
-                };
                 assert_eq!(bits(b), bits(&one), "omega {w}, xi {xi}, tau {tau}");
             }
         }

@@ -3,6 +3,7 @@
 //! for the identification on a thread of its own while frames go on and the
 //! current run keeps stepping, then applies with the modes of the new
 //! positions (as `Scene::modes` identifies them).
+#![cfg(feature = "gui")]
 
 mod common;
 

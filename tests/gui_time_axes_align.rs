@@ -2,6 +2,7 @@
 //! a force axis labelled `1 000 000` N beside displacement in mm used to
 //! push the force plot's frame right, so its time axis no longer lined up
 //! with the others'.
+#![cfg(feature = "gui")]
 
 mod common;
 

@@ -210,14 +210,7 @@ fn taylor_series4_avx(setups: &[Setup; 4]) -> [Series; 4] {
                 unsafe { _mm256_storeu_pd(a.as_mut_ptr(), v) };
                 a
             };
-            let (h, hd, i0, m1, mv) = (out(h), out(hd), out(i0), out(m1), out(mv));
-            return std::array::from_fn(|l| Series {
-                h: h[l],
-                hd: hd[l],
-                i0: i0[l],
-                m1: m1[l],
-                mv: mv[l],
-            });
+            return lanes_to_series([out(h), out(hd), out(i0), out(m1), out(mv)]);
         }
     }
 }
@@ -264,15 +257,21 @@ fn taylor_series_body<const L: usize>(setups: [&Setup; L]) -> [Series; L] {
             any |= live[l] != 0.0;
         }
         if !any {
-            return std::array::from_fn(|l| Series {
-                h: h[l],
-                hd: hd[l],
-                i0: i0[l],
-                m1: m1[l],
-                mv: mv[l],
-            });
+            return lanes_to_series([h, hd, i0, m1, mv]);
         }
     }
+}
+
+/// Per-lane sums `[h, h', ∫h, ∫σh, ∫σh']` as one [`Series`] per lane.
+#[inline(always)]
+fn lanes_to_series<const L: usize>([h, hd, i0, m1, mv]: [[f64; L]; 5]) -> [Series; L] {
+    std::array::from_fn(|l| Series {
+        h: h[l],
+        hd: hd[l],
+        i0: i0[l],
+        m1: m1[l],
+        mv: mv[l],
+    })
 }
 
 impl Setup {
