@@ -163,3 +163,56 @@ fn the_conversion_to_a_modal_model_says_what_it_did() {
     );
     assert!(h.query_by_label_contains("replaced by its").is_some());
 }
+
+/// A residue matrix names its points: column indices j above the fields,
+/// row indices i on their left (nine bare fields of a 3 x 3 matrix said
+/// nothing of which pair each was).
+#[test]
+fn a_residue_matrix_names_its_rows_and_columns() {
+    // the three-point preset's modes as residue matrices A = φ φᵀ
+    let mut s = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+    if let Tyre::Modal { modes } = &mut s.tyre {
+        for m in modes.iter_mut() {
+            let phi = std::mem::take(&mut m.shape);
+            m.residue = phi
+                .iter()
+                .map(|a| phi.iter().map(|b| a * b).collect())
+                .collect();
+        }
+    }
+    s.validate().unwrap();
+    let mut h = harness_sized(App::new(s, None).unwrap(), [1500.0, 1000.0]);
+    h.run_steps(2);
+    h.get_by_label("mode 0: residue matrix A (1/kg), 3x3")
+        .click();
+    h.run_steps(3);
+    let painted = texts(&h);
+    assert!(
+        painted.iter().any(|(t, _)| t == "i \\ j"),
+        "the corner label"
+    );
+    for k in 0..3 {
+        let col = h
+            .get_by_label(&format!("tyre.modes[0].residue[0][{k}]"))
+            .rect();
+        let row = h
+            .get_by_label(&format!("tyre.modes[0].residue[{k}][0]"))
+            .rect();
+        let label = k.to_string();
+        // column k's index above its first field, row k's on its left
+        assert!(
+            painted.iter().any(|(t, r)| *t == label
+                && r.bottom() <= col.top() + 0.5
+                && r.center().x >= col.left()
+                && r.center().x <= col.right()),
+            "no column index {k} above its field {col:?}"
+        );
+        assert!(
+            painted.iter().any(|(t, r)| *t == label
+                && r.right() <= row.left() + 0.5
+                && r.center().y >= row.top()
+                && r.center().y <= row.bottom()),
+            "no row index {k} left of its field {row:?}"
+        );
+    }
+}

@@ -7,7 +7,7 @@ use crate::gui::command::Command;
 use crate::gui::fields::{Apply, NumField, section};
 use crate::ring::RingParams;
 use crate::scene::{Mode, Tyre};
-use egui::{Grid, Ui};
+use egui::{Grid, RichText, Ui};
 
 /// Under the ring's identified modes: where their residues are.
 pub const RING_RESIDUES_NOTE: &str = "their residue matrices A (1/kg): in the modes table after \"Edit as a modal model\", or in the file `tirecontact identify PRESET -o FILE` writes";
@@ -140,7 +140,14 @@ fn residue_grid(ui: &mut Ui, scene: &Scene, k: usize, m: &Mode, cmds: &mut Vec<C
     }
     ui.label("row i = receiving point, column j = loaded point");
     Grid::new(("tirecontact.residue", k)).show(ui, |ui| {
+        // the points' indices: columns j above, rows i on the left
+        ui.label(RichText::new("i \\ j").weak());
+        for j in 0..p {
+            ui.label(RichText::new(j.to_string()).weak());
+        }
+        ui.end_row();
         for (i, row) in m.residue.iter().enumerate() {
+            ui.label(RichText::new(i.to_string()).weak());
             for (j, &a) in row.iter().enumerate() {
                 let name = format!("tyre.modes[{k}].residue[{i}][{j}]");
                 push_edit(
