@@ -1,0 +1,156 @@
+//! Unit tests of the headless figures (layout, legends, ticks).
+
+use super::*;
+
+#[test]
+fn renders_a_png_of_the_requested_size() {
+    let dir = std::env::temp_dir().join(format!("tc-fig-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("f.png");
+    let fig = Figure {
+        title: "test".into(),
+        subtitle: "a = 1".into(),
+        panels: vec![Panel {
+            title: "sine".into(),
+            x_label: "time (s)".into(),
+            y_label: "u (mm)".into(),
+            series: vec![Series::line(
+                "u0",
+                (0..100)
+                    .map(|k| (k as f64, (k as f64 * 0.1).sin()))
+                    .collect(),
+            )],
+            ..Panel::default()
+        }],
+    };
+    render_png(&fig, &path, 640, 400).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+    // IHDR width and height
+    let w = u32::from_be_bytes(bytes[16..20].try_into().unwrap());
+    let h = u32::from_be_bytes(bytes[20..24].try_into().unwrap());
+    assert_eq!((w, h), (640, 400));
+    assert!(render_png(&fig, &path, 10, 400).is_err());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_legend_with_a_free_corner_stays_in_it() {
+    // a curve along the bottom: the top right corner is free, so the
+    // legend is drawn there (inside the plot), not beside it
+    let dir = std::env::temp_dir().join(format!("tc-fig-corner-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let panel = |points: Vec<(f64, f64)>| Figure {
+        title: "t".into(),
+        subtitle: String::new(),
+        panels: vec![Panel {
+            x_label: "time (s)".into(),
+            y_label: "u (mm)".into(),
+            series: vec![Series::line("u0", points)],
+            ..Panel::default()
+        }],
+    };
+    let low: Vec<(f64, f64)> = (0..200)
+        .map(|k| (k as f64, if k == 100 { 10.0 } else { 0.0 }))
+        .collect();
+    let l = render_png_layout(&panel(low), &dir.join("a.png"), 800, 500).unwrap();
+    assert!(l[0].legend_px.is_none(), "{:?}", l[0].legend_px);
+    // a curve over the whole height everywhere: beside the plot
+    let dense: Vec<(f64, f64)> = (0..400)
+        .map(|k| (k as f64, if k % 2 == 0 { 0.0 } else { 10.0 }))
+        .collect();
+    let l = render_png_layout(&panel(dense), &dir.join("b.png"), 800, 500).unwrap();
+    let legend = l[0].legend_px.expect("beside the plot");
+    assert!(legend[0] > l[0].plot_px[2], "{legend:?} {:?}", l[0].plot_px);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn stacked_panels_keep_one_plot_width_when_a_legend_goes_beside() {
+    // one panel with data in every corner (its legend beside the plot),
+    // one with a free corner: both plots end at the same x, and both
+    // legends are in the column (the panels' time axes line up)
+    let dir = std::env::temp_dir().join(format!("tc-fig-align-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let dense: Vec<(f64, f64)> = (0..400)
+        .map(|k| (k as f64, if k % 2 == 0 { 0.0 } else { 10.0 }))
+        .collect();
+    let low: Vec<(f64, f64)> = (0..400)
+        .map(|k| (k as f64, if k == 100 { 10.0 } else { 0.0 }))
+        .collect();
+    let panel = |name: &str, points: Vec<(f64, f64)>| Panel {
+        x_label: "time (s)".into(),
+        y_label: "u (mm)".into(),
+        series: vec![Series::line(name, points)],
+        ..Panel::default()
+    };
+    let fig = Figure {
+        title: "t".into(),
+        subtitle: String::new(),
+        panels: vec![
+            panel("free corner", low.clone()),
+            panel("every corner taken, a longer name", dense),
+            panel("u0", low),
+        ],
+    };
+    let l = render_png_layout(&fig, &dir.join("a.png"), 900, 900).unwrap();
+    for p in &l {
+        assert_eq!(p.plot_px[0], l[0].plot_px[0], "{:?}", p.plot_px);
+        assert_eq!(p.plot_px[2], l[0].plot_px[2], "{:?}", p.plot_px);
+        let legend = p.legend_px.expect("in the column");
+        assert!(legend[0] > p.plot_px[2], "{legend:?} {:?}", p.plot_px);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn tick_labels_are_plain_in_the_everyday_range() {
+    for (v, log, want) in [
+        (10.0, true, "10"),
+        (100.0, true, "100"),
+        (1000.0, true, "1000"),
+        (1.0, true, "1"),
+        (0.01, true, "1e-2"),
+        (0.5, true, "5e-1"),
+        (1e5, true, "1e5"),
+        (1e-5, true, "1e-5"),
+        (0.25, false, "0.25"),
+        (90000.0, false, "90000"),
+        (1.5e-7, false, "1.5e-7"),
+        (0.0, false, "0"),
+    ] {
+        assert_eq!(tick_label(v, log), want, "{v} log {log}");
+    }
+}
+
+#[test]
+fn long_captions_shrink_to_their_width() {
+    let width = |t: &str, px: u32| {
+        register_fonts();
+        ("sans-serif", px as i32).into_font().box_size(t).unwrap().0 as i32
+    };
+    let short = "Displacement spectrum";
+    assert_eq!(fit_font_px(short, 600, 22, 11), 22);
+    let long = "Total contact force, third-octave bands 315 Hz - 2 kHz, every other band (Hann, mean removed)";
+    let max_w = width(long, 22) * 3 / 4;
+    let px = fit_font_px(long, max_w, 22, 11);
+    assert!((11..22).contains(&px), "{px}");
+    assert!(width(long, px) <= max_w, "{} > {max_w}", width(long, px));
+    assert!(
+        width(long, px + 1) > max_w,
+        "not the largest size that fits"
+    );
+    // too long for any size: the smallest
+    assert_eq!(fit_font_px(long, 10, 22, 11), 11);
+}
+
+#[test]
+fn categorical_ticks_name_the_integers_only() {
+    let names: Vec<String> = (0..5).map(|k| format!("p{k}")).collect();
+    assert_eq!(name_tick_label(0.0, &names), "p0");
+    assert_eq!(name_tick_label(3.0000000001, &names), "p3");
+    assert_eq!(name_tick_label(4.0, &names), "p4");
+    for v in [0.5, 2.3, -1.0, 5.0, 7.0] {
+        assert_eq!(name_tick_label(v, &names), "", "at {v}");
+    }
+}
