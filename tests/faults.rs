@@ -217,7 +217,6 @@ fn oversized_output_is_refused_up_front() {
     let dir = tmpdir("huge");
     let path = dir.join("huge.ron");
     std::fs::write(&path, &text).unwrap();
-    let t = std::time::Instant::now();
     let o = bin().arg("check").arg(&path).output().unwrap();
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -245,8 +244,13 @@ fn oversized_output_is_refused_up_front() {
         assert!(err.contains(want), "lacks `{want}`: {err}");
     }
     assert!(!csv.exists(), "nothing written");
-    // refused before the run: both commands together take well under the run
-    assert!(t.elapsed().as_secs_f64() < 20.0, "{:?}", t.elapsed());
+    // refused before the run, which would take hours (a refusal after it
+    // would hold this test past CI's limit): no run summary on stdout
+    assert!(
+        o.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
