@@ -52,13 +52,6 @@ impl IdentifyJob {
             }
         }
     }
-
-    /// Blocks until the thread has finished (tests, and the app's exit).
-    pub fn wait(&self) -> Result<(), String> {
-        self.rx
-            .recv()
-            .unwrap_or_else(|_| Err("the identification thread stopped unexpectedly".into()))
-    }
 }
 
 /// The banner while a ring is identified.

@@ -99,15 +99,6 @@ impl App {
         self.identify_job.is_some()
     }
 
-    /// Blocks until a waiting identification ends, then applies what waited
-    /// (tests; the UI polls instead).
-    pub fn wait_identification(&mut self) {
-        if let Some(job) = self.identify_job.take() {
-            let result = job.wait();
-            self.identified(result, job.then);
-        }
-    }
-
     fn identified(&mut self, result: Result<(), String>, then: Then) {
         // the waiting note goes; what is applied says what it says
         if let Some(m) = &self.message
