@@ -105,8 +105,8 @@ pub struct Simulation {
     du: Vec<f64>,
     dv: Vec<f64>,
     jump: Vec<f64>,
-    state: ModalState,
-    free: ModalState,
+    state: Box<ModalState>,
+    free: Box<ModalState>,
     t_s: f64,
     steps: u64,
     // outputs at the current time
@@ -235,8 +235,8 @@ impl Simulation {
             full_inf_cols: influence_columns(&full_inf, p),
             full_inf,
             jump,
-            free: state.clone(),
-            state,
+            free: Box::new(state.clone()),
+            state: Box::new(state),
             basis,
             road,
             t_s: 0.0,
@@ -457,6 +457,7 @@ impl Simulation {
     }
 
     /// Free prediction over `tau` from `t`: `free`, `uh`, `vh`, road at `t + tau`.
+    #[inline(always)]
     fn predict(&mut self, t: f64, tau: f64, sel: Table) -> Result<(), SolverError> {
         let table = match sel {
             Table::Full => &self.full,
@@ -490,6 +491,7 @@ impl Simulation {
     }
 
     /// Accepts the solved sub-step of length `tau`: state, impulses, outputs.
+    #[inline(always)]
     fn commit(&mut self, tau: f64, sel: Table) {
         // `free` is rewritten by the next prediction before it is read again
         std::mem::swap(&mut self.state, &mut self.free);

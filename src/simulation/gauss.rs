@@ -265,23 +265,27 @@ impl Simulation {
         let n = self.active.len();
         let (p, ns) = (self.p, self.basis.stored_states());
         let g = &mut self.gss[..4 * n * n];
-        g.fill(0.0);
-        for s in 0..ns {
-            let (w1, w2) = (self.sub.w1[s], self.sub.w2[s]);
-            let w = [w1[0], w2[0], w1[1], w2[1]];
-            let inp = &self.basis.inp[s * p..(s + 1) * p];
-            for (a, &i) in self.active.iter().enumerate() {
-                let o = self.basis.out[i * ns + s];
-                if o == 0.0 {
-                    continue;
-                }
-                let row = &mut g[4 * a * n..4 * (a + 1) * n];
-                for (gk, &j) in row.chunks_exact_mut(4).zip(&self.active) {
-                    let ab = o * inp[j];
-                    for (x, wq) in gk.iter_mut().zip(w) {
+        let (w1, w2) = (&self.sub.w1[..ns], &self.sub.w2[..ns]);
+        let inp = &self.basis.inp[..ns * p];
+        // per pair, the four entries summed over the states in order in
+        // registers (the same sums, in the same order, as state by state)
+        for (a, &i) in self.active.iter().enumerate() {
+            let out = &self.basis.out[i * ns..(i + 1) * ns];
+            let row = &mut g[4 * a * n..4 * (a + 1) * n];
+            for (gk, &j) in row.chunks_exact_mut(4).zip(&self.active) {
+                let mut acc = [0.0f64; 4];
+                for s in 0..ns {
+                    let o = out[s];
+                    if o == 0.0 {
+                        continue;
+                    }
+                    let ab = o * inp[s * p + j];
+                    let w = [w1[s][0], w2[s][0], w1[s][1], w2[s][1]];
+                    for (x, wq) in acc.iter_mut().zip(w) {
                         *x += ab * wq;
                     }
                 }
+                gk.copy_from_slice(&acc);
             }
         }
         if !self.residual.is_empty() {
