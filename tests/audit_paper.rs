@@ -83,3 +83,81 @@ fn identified_preset_against_the_rings_own_modes() {
         }
     }
 }
+
+/// Displacement every `grid` steps and the mean force over windows of
+/// `window` steps (impulse / window), of `sc` at its own `dt_s`.
+fn sampled(sc: &Scene, every: usize, window: usize) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
+    let mut sim = Simulation::new(sc).expect("valid scene");
+    let p = sc.points.len();
+    let (mut u, mut q) = (Vec::new(), Vec::new());
+    let mut acc = vec![0.0; p];
+    for k in 1..=sc.num_steps() as usize {
+        sim.step().expect("step");
+        for (a, f) in acc.iter_mut().zip(sim.force_n()) {
+            *a += f;
+        }
+        if k % every == 0 {
+            u.push(sim.displacement_m().to_vec());
+        }
+        if k % window == 0 {
+            q.push(acc.iter().map(|a| a / window as f64).collect());
+            acc.fill(0.0);
+        }
+    }
+    (u, q)
+}
+
+/// SPEC §4's measured figures on "five points of a ring tyre with frequent
+/// impacts": the paper's rule 3e-3 in displacement and 20 % in the force
+/// averaged over 10 ms; located events ~5e-7 in displacement at dt = 1e-5
+/// and force within 1e-4, converging at order ~2. Checked here on the
+/// shipped preset (84 located events in 0.1 s, impacts up to 0.31 N·s)
+/// against the located scheme at dt/16. Measured: located 2.0e-10
+/// (displacement) and 1.2e-9 (1 ms force) at dt = 1e-5, 3.7e-11 and 1.9e-10
+/// at 5e-6 (order 2.5); paper's rule 1.9e-4 and 1.1e-3 (10 ms force).
+#[test]
+fn preset_errors_against_a_fine_reference_match_spec_figures() {
+    use tirecontact::scene::ContactScheme;
+    let mut base = Scene::from_ron_str(DEFAULT_PRESET, DEFAULT_PRESET_NAME).unwrap();
+    base.duration_s = 0.1;
+    // the identified modes once, as a modal scene (same model for every run)
+    base.tyre = Tyre::Modal {
+        modes: base.modes().unwrap(),
+    };
+    let dt0 = 1e-5;
+    let grid_s = 1e-4;
+    let run = |dt: f64, scheme: ContactScheme, window_s: f64| {
+        let mut s = base.clone();
+        s.dt_s = dt;
+        s.contact_scheme = scheme;
+        let every = (grid_s / dt).round() as usize;
+        let window = (window_s / dt).round() as usize;
+        sampled(&s, every, window)
+    };
+    let from_u = (base.ramp_s / grid_s) as usize;
+    let reference_1ms = run(dt0 / 16.0, ContactScheme::Located, 1e-3);
+    let reference_10ms = run(dt0 / 16.0, ContactScheme::Located, 1e-2);
+    let mut errs = Vec::new();
+    for m in [1.0, 2.0, 4.0] {
+        let (u, q) = run(dt0 / m, ContactScheme::Located, 1e-3);
+        let eu = rel_rms(&u, &reference_1ms.0, from_u);
+        let eq = rel_rms(&q, &reference_1ms.1, (base.ramp_s / 1e-3) as usize);
+        println!("Located dt {:.2e}: displacement {eu:.2e}, force (1 ms) {eq:.2e}", dt0 / m);
+        errs.push((eu, eq));
+    }
+    let (u, q) = run(dt0, ContactScheme::Paper, 1e-2);
+    let pu = rel_rms(&u, &reference_10ms.0, from_u);
+    let pq = rel_rms(&q, &reference_10ms.1, (base.ramp_s / 1e-2) as usize);
+    println!("Paper dt 1e-5: displacement {pu:.2e}, force (10 ms) {pq:.2e}");
+    let order = (errs[0].0 / errs[1].0).log2();
+    println!("Located displacement order between 1e-5 and 5e-6: {order:.2}");
+    // SPEC's figures as upper bounds for the located scheme at dt = 1e-5
+    assert!(errs[0].0 < 5e-7, "located displacement {:e}", errs[0].0);
+    assert!(errs[0].1 < 1e-4, "located force {:e}", errs[0].1);
+    assert!(order > 1.5, "located order {order}");
+    // the paper's rule: first order, far behind (measured 1.9e-4 / 1.1e-3,
+    // below SPEC's 3e-3 / 20 % for its harsher five-point case)
+    assert!(pu > 100.0 * errs[0].0 && pu < 3e-3, "paper displacement {pu:e}");
+    assert!(pq < 0.2, "paper force {pq:e}");
+}
+
