@@ -459,3 +459,85 @@ fn paper_scheme_matches_a_replica_of_spec_steps_one_to_five() {
     assert!(du < 1e-12 * umax, "displacement {du:e} m of {umax:e} m");
     assert!(dq < 1e-10 * qmax, "force {dq:e} N of {qmax:e} N");
 }
+
+/// Energy balance of an inelastic impact (SPEC §4: restitution 0). One
+/// undamped mode (`u'' + ω²u = A q`) preloaded by a ramp fast enough to
+/// throw the point off the road; it flies with the constant energy
+/// `E = (v² + ω²u²)/(2A)` and lands on the now flat road `r = -h`: the
+/// landing impulse must take exactly the normal velocity,
+/// `A J = sqrt(2AE - ω²h²)` (the kinetic energy `A J²/2` is lost), after
+/// which the point rests on the road at `u = -h` with the static force
+/// `ω²(-h)/A`.
+#[test]
+fn inelastic_landing_takes_the_whole_normal_velocity() {
+    let (f, a_res, h, ramp): (f64, f64, f64, f64) = (50.0, 1.0, -1.0e-3, 2e-3);
+    let omega = TAU * f;
+    let dt = 1e-5;
+    let sc = scene(
+        vec![Mode {
+            freq_hz: f,
+            damping_ratio: 0.0,
+            residue: vec![vec![a_res]],
+            shape: vec![],
+        }],
+        &[(0.0, h)],
+        0.0,
+        1.0,
+        0.0,
+        ramp,
+        dt,
+        0.05,
+        ContactScheme::Located,
+    );
+    let mut sim = Simulation::new(&sc).expect("valid scene");
+    let mut flight_energy: Vec<f64> = Vec::new();
+    let (mut landed_at, mut left_at) = (None, None);
+    let mut impulse = 0.0;
+    let mut was = false;
+    for _ in 0..sc.num_steps() {
+        sim.step().expect("step");
+        let (u, v) = (sim.displacement_m()[0], sim.velocity_mps()[0]);
+        let on = sim.in_contact()[0];
+        impulse += sim.impact_impulse_ns()[0];
+        if was && !on && left_at.is_none() {
+            left_at = Some(sim.time_s());
+        }
+        if !on && sim.time_s() > ramp {
+            flight_energy.push((v * v + omega * omega * u * u) / (2.0 * a_res));
+        }
+        if on && !was && left_at.is_some() {
+            landed_at = Some(sim.time_s());
+        }
+        if landed_at.is_some() {
+            assert!(on, "left the flat road again at {} s", sim.time_s());
+            assert!((u + h).abs() < 1e-15 && v.abs() < 1e-12, "u {u}, v {v}");
+            let q_static = omega * omega * (-h) / a_res;
+            if sim.time_s() > landed_at.unwrap() + 1.5 * dt {
+                assert!(
+                    (sim.force_n()[0] - q_static).abs() < 1e-9 * q_static,
+                    "resting force {} vs {q_static} N",
+                    sim.force_n()[0]
+                );
+            }
+        }
+        was = on;
+    }
+    let (left, landed) = (left_at.expect("thrown off"), landed_at.expect("landed"));
+    let e = flight_energy[0];
+    let drift = flight_energy
+        .iter()
+        .map(|x| (x - e).abs() / e)
+        .fold(0.0, f64::max);
+    let j_expected = (2.0 * a_res * e - omega * omega * h * h).sqrt() / a_res;
+    println!(
+        "left the road at {left:.5} s, landed at {landed:.5} s; flight energy {e:.6e} J (drift {drift:.1e}); landing impulse {impulse:.9e} N·s, expected sqrt(2AE - ω²h²)/A = {j_expected:.9e} N·s (rel {:.1e}); kinetic energy lost {:.4e} J",
+        (impulse - j_expected).abs() / j_expected,
+        a_res * impulse * impulse / 2.0
+    );
+    assert!(drift < 1e-12, "undamped flight energy drifts by {drift:e}");
+    assert!(impulse > 0.0, "the road pushes up at a landing");
+    assert!(
+        (impulse - j_expected).abs() < 1e-11 * j_expected,
+        "landing impulse {impulse} vs {j_expected} N·s"
+    );
+}
