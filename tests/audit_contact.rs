@@ -8,9 +8,9 @@ mod audit_support;
 
 use audit_support::{gauss_weights, propagator, solve};
 use std::f64::consts::TAU;
+use tirecontact::Simulation;
 use tirecontact::road::Road;
 use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
-use tirecontact::Simulation;
 
 fn shape_mode(freq_hz: f64, damping_ratio: f64, shape: &[f64]) -> Mode {
     Mode {
@@ -180,7 +180,10 @@ fn conventions_road_ramp_and_step_mean_force_on_the_road() {
     );
     assert!(worst_u < 1e-15, "u vs SPEC road: {worst_u:e} m");
     assert!(worst_v < 1e-12, "v vs SPEC road rate: {worst_v:e} m/s");
-    assert!(worst_q < 1e-9 * qmax, "step-mean force: {worst_q:e} N of {qmax} N");
+    assert!(
+        worst_q < 1e-9 * qmax,
+        "step-mean force: {worst_q:e} N of {qmax} N"
+    );
 }
 
 /// A point held above the road (`h > a`) never touches it: no force, no motion.
@@ -454,7 +457,10 @@ fn paper_scheme_matches_a_replica_of_spec_steps_one_to_five() {
         du,
         dq
     );
-    assert!(landings >= 4 && take_offs >= 4, "the case must leave and land");
+    assert!(
+        landings >= 4 && take_offs >= 4,
+        "the case must leave and land"
+    );
     assert_eq!(mismatched_flags, 0);
     assert!(du < 1e-12 * umax, "displacement {du:e} m of {umax:e} m");
     assert!(dq < 1e-10 * qmax, "force {dq:e} N of {qmax:e} N");
@@ -508,11 +514,11 @@ fn inelastic_landing_takes_the_whole_normal_velocity() {
         if on && !was && left_at.is_some() {
             landed_at = Some(sim.time_s());
         }
-        if landed_at.is_some() {
+        if let Some(t_land) = landed_at {
             assert!(on, "left the flat road again at {} s", sim.time_s());
             assert!((u + h).abs() < 1e-15 && v.abs() < 1e-12, "u {u}, v {v}");
             let q_static = omega * omega * (-h) / a_res;
-            if sim.time_s() > landed_at.unwrap() + 1.5 * dt {
+            if sim.time_s() > t_land + 1.5 * dt {
                 assert!(
                     (sim.force_n()[0] - q_static).abs() < 1e-9 * q_static,
                     "resting force {} vs {q_static} N",

@@ -79,7 +79,9 @@ fn step_weights_match_pole_form_closed_forms_in_every_regime() {
             }
         }
     }
-    println!("worst weight error {worst:.2e} of its scale at (xi, omega tau, entry) = {worst_at:?}");
+    println!(
+        "worst weight error {worst:.2e} of its scale at (xi, omega tau, entry) = {worst_at:?}"
+    );
 }
 
 /// SPEC §3's claim "exact for the assumed force shape": the recursion over

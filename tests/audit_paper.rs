@@ -69,12 +69,17 @@ fn identified_preset_against_the_rings_own_modes() {
         truth.tyre = Tyre::Modal { modes: kept };
         let (u_own, q_own) = history(&truth);
         let (eu, eq) = (rel_rms(&u_id, &u_own, from), rel_rms(&q_id, &q_own, from));
-        println!("ring modes below {band} Hz ({n}): after the ramp, relative RMS difference of the identified run: displacement {eu:.3e}, force {eq:.3e}");
+        println!(
+            "ring modes below {band} Hz ({n}): after the ramp, relative RMS difference of the identified run: displacement {eu:.3e}, force {eq:.3e}"
+        );
         if band == 500.0 {
             // the identification band of the preset: LSCE reproduces the
             // ring's in-band modes (measured 5.8e-5 and 3.3e-4)
             assert_eq!(n, identified.len());
-            assert!(eu < 5e-4 && eq < 3e-3, "in-band: displacement {eu:e}, force {eq:e}");
+            assert!(
+                eu < 5e-4 && eq < 3e-3,
+                "in-band: displacement {eu:e}, force {eq:e}"
+            );
         } else {
             // the modes above the band change the rigid-contact forces at
             // O(1) (g'(0+) = Σ A_k grows with every order): the preset's
@@ -142,7 +147,10 @@ fn preset_errors_against_a_fine_reference_match_spec_figures() {
         let (u, q) = run(dt0 / m, ContactScheme::Located, 1e-3);
         let eu = rel_rms(&u, &reference_1ms.0, from_u);
         let eq = rel_rms(&q, &reference_1ms.1, (base.ramp_s / 1e-3) as usize);
-        println!("Located dt {:.2e}: displacement {eu:.2e}, force (1 ms) {eq:.2e}", dt0 / m);
+        println!(
+            "Located dt {:.2e}: displacement {eu:.2e}, force (1 ms) {eq:.2e}",
+            dt0 / m
+        );
         errs.push((eu, eq));
     }
     let (u, q) = run(dt0, ContactScheme::Paper, 1e-2);
@@ -157,7 +165,9 @@ fn preset_errors_against_a_fine_reference_match_spec_figures() {
     assert!(order > 1.5, "located order {order}");
     // the paper's rule: first order, far behind (measured 1.9e-4 / 1.1e-3,
     // below SPEC's 3e-3 / 20 % for its harsher five-point case)
-    assert!(pu > 100.0 * errs[0].0 && pu < 3e-3, "paper displacement {pu:e}");
+    assert!(
+        pu > 100.0 * errs[0].0 && pu < 3e-3,
+        "paper displacement {pu:e}"
+    );
     assert!(pq < 0.2, "paper force {pq:e}");
 }
-

@@ -43,7 +43,10 @@ fn beam_receptance(r: &RingParams, theta: f64, omega: f64) -> f64 {
     let p = t * rr * rr / ei;
     let q = s * rr.powi(4) / ei;
     let disc = (p * p - 4.0 * q).sqrt();
-    assert!(disc.is_finite(), "complex roots: not covered by this closed form");
+    assert!(
+        disc.is_finite(),
+        "complex roots: not covered by this closed form"
+    );
     // n⁴ + p n² + q = (n² + α)(n² + β), α = (p - disc)/2, β = (p + disc)/2
     let beta = 0.5 * (p + disc);
     let alpha = q / beta;
@@ -55,8 +58,8 @@ fn beam_receptance(r: &RingParams, theta: f64, omega: f64) -> f64 {
 fn beam_tail(r: &RingParams, omega: f64) -> f64 {
     let rr = r.radius_m;
     let n = r.max_order as f64;
-    let kmin = r.bending_stiffness_n_m2 * n.powi(4) / rr.powi(4)
-        - r.mass_per_length_kg_m * omega * omega;
+    let kmin =
+        r.bending_stiffness_n_m2 * n.powi(4) / rr.powi(4) - r.mass_per_length_kg_m * omega * omega;
     assert!(kmin > 0.0);
     // Σ_{n>N} 2 / (EI n⁴/R⁴ - mΩ²) <= 2 (R⁴/EI) / (3 N³) · (EI N⁴/R⁴)/kmin
     let sum = 2.0 * rr.powi(4) / (r.bending_stiffness_n_m2 * 3.0 * n.powi(3))
@@ -121,7 +124,10 @@ fn radial_only_undamped_receptance_matches_lattice_sum_between_resonances() {
                 let th = (XS[i] - XS[j]) / r.radius_m;
                 let exact = beam_receptance(&r, th, omega);
                 let got = model.frequency_response(i, j, f);
-                assert!(got.im.abs() < 1e-300 + 1e-15 * got.re.abs(), "undamped: real");
+                assert!(
+                    got.im.abs() < 1e-300 + 1e-15 * got.re.abs(),
+                    "undamped: real"
+                );
                 let e = (got.re - exact).abs();
                 assert!(
                     e <= tail + 1e-10 * exact.abs(),
@@ -220,8 +226,11 @@ fn coupled_ring_with_locked_tangential_motion_is_the_tensioned_beam() {
 /// audit report; the closed forms are asserted.
 #[test]
 fn preset_ring_frequencies_against_spec_list() {
-    let scene = tirecontact::Scene::from_ron_str(tirecontact::DEFAULT_PRESET, tirecontact::DEFAULT_PRESET_NAME)
-        .expect("default preset parses");
+    let scene = tirecontact::Scene::from_ron_str(
+        tirecontact::DEFAULT_PRESET,
+        tirecontact::DEFAULT_PRESET_NAME,
+    )
+    .expect("default preset parses");
     let tirecontact::scene::Tyre::Ring { ring, .. } = &scene.tyre else {
         panic!("the paper preset uses the ring tyre (SPEC §7)");
     };
@@ -249,6 +258,12 @@ fn preset_ring_frequencies_against_spec_list() {
         .map(|m| m.freq_hz())
         .collect();
     assert_eq!(radial_n0.len(), 1);
-    assert!((radial_n0[0] - n0).abs() < 1e-9 * n0, "{radial_n0:?} vs {n0}");
-    println!("order 0 radial (breathing) mode of the preset: {n0:.1} Hz (radial-only: {:.1} Hz)", spec[0]);
+    assert!(
+        (radial_n0[0] - n0).abs() < 1e-9 * n0,
+        "{radial_n0:?} vs {n0}"
+    );
+    println!(
+        "order 0 radial (breathing) mode of the preset: {n0:.1} Hz (radial-only: {:.1} Hz)",
+        spec[0]
+    );
 }
