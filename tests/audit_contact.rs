@@ -376,23 +376,48 @@ impl PaperReplica {
 /// matrix) rolling over a sine road with take-offs and landings.
 #[test]
 fn paper_scheme_matches_a_replica_of_spec_steps_one_to_five() {
-    let modes = vec![
-        shape_mode(120.0, 0.05, &[1.0, 0.6]),
-        shape_mode(260.0, 0.08, &[0.7, -0.9]),
-        Mode {
-            freq_hz: 75.0,
-            damping_ratio: 0.03,
-            residue: vec![vec![0.3, 0.1], vec![0.1, 0.25]],
-            shape: vec![],
-        },
-    ];
+    paper_replica_case(
+        vec![
+            shape_mode(120.0, 0.05, &[1.0, 0.6]),
+            shape_mode(260.0, 0.08, &[0.7, -0.9]),
+            Mode {
+                freq_hz: 75.0,
+                damping_ratio: 0.03,
+                residue: vec![vec![0.3, 0.1], vec![0.1, 0.25]],
+                shape: vec![],
+            },
+        ],
+        -1.0e-3,
+    );
+}
+
+/// As above with a critically damped and an overdamped mode (SPEC §2: every
+/// `ξ >= 0`) beside an undamped one.
+#[test]
+fn paper_scheme_matches_the_replica_with_critical_and_overdamped_modes() {
+    paper_replica_case(
+        vec![
+            shape_mode(90.0, 0.0, &[1.0, 0.5]),
+            shape_mode(200.0, 1.0, &[0.8, -0.7]),
+            Mode {
+                freq_hz: 140.0,
+                damping_ratio: 2.5,
+                residue: vec![vec![0.4, -0.1], vec![-0.1, 0.35]],
+                shape: vec![],
+            },
+        ],
+        -0.8e-3,
+    );
+}
+
+fn paper_replica_case(modes: Vec<Mode>, h_m: f64) {
     let road = SpecRoad {
         a: 1.5e-3,
         lambda: 0.2,
         v: 15.0,
         ramp: 0.01,
     };
-    let pts = vec![(0.0, -1.0e-3), (0.04, -1.0e-3)];
+    let pts = vec![(0.0, h_m), (0.04, h_m)];
     let dt = 5e-5;
     let sc = scene(
         modes.clone(),
@@ -430,7 +455,7 @@ fn paper_scheme_matches_a_replica_of_spec_steps_one_to_five() {
         road,
         dt,
         // as the solver's penetration tolerance (1e-12 of the scene's length scale)
-        pen_tol: 1e-12 * road.a.max(1e-3),
+        pen_tol: 1e-12 * road.a.max(h_m.abs()),
         t: 0.0,
     };
     let mut sim = Simulation::new(&sc).expect("valid scene");
