@@ -9,6 +9,9 @@ use crate::road::Road;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
+mod edits;
+pub use edits::{described_with_edits, edits_since};
+
 /// How contact is decided inside a time step (SPEC §4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub enum ContactScheme {

@@ -188,6 +188,11 @@ impl App {
     pub fn is_dirty(&self) -> bool {
         self.scene != self.saved
     }
+    /// What changed since the scene was opened or saved, in words with
+    /// units (the description was written before it).
+    pub fn edits(&self) -> Vec<String> {
+        crate::scene::edits_since(&self.saved, &self.scene)
+    }
     pub fn pending_confirmation(&self) -> Option<&Discarding> {
         self.confirm.as_ref()
     }

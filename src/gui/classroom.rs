@@ -600,8 +600,11 @@ pub const DESCRIPTION_SHARE: f32 = 0.5;
 
 /// The explanation of the scene, large (the guided presets' "what to watch").
 /// `reserve_px`: height kept below it (for the mode bars).
-pub fn explanation(ui: &mut Ui, name: &str, description: &str, reserve_px: f32) {
-    if description.is_empty() {
+/// `edits`: what changed since the scene was opened or saved, said under
+/// the description (which was written before them).
+pub fn explanation(ui: &mut Ui, name: &str, description: &str, edits: &[String], reserve_px: f32) {
+    let note = super::panels::edits_note(edits);
+    if description.is_empty() && note.is_none() {
         return;
     }
     egui::Frame::new()
@@ -624,6 +627,9 @@ pub fn explanation(ui: &mut Ui, name: &str, description: &str, reserve_px: f32) 
                 .scroll_bar_visibility(egui::scroll_area::ScrollBarVisibility::AlwaysVisible)
                 .show(ui, |ui| {
                     ui.label(RichText::new(description).color(ui.visuals().strong_text_color()));
+                    if let Some(note) = &note {
+                        ui.label(RichText::new(note).italics());
+                    }
                 });
         });
 }

@@ -189,9 +189,19 @@ impl App {
 
     /// Saves atomically (`Scene::save`): a failed save leaves the file as
     /// it was.
+    /// The description gets a closing line listing the edits since the scene
+    /// was opened or last saved (the text above it described the scene
+    /// before them).
     pub(super) fn save_to(&mut self, path: &Path) {
-        match self.scene.save(path) {
+        let mut out = self.scene.clone();
+        out.description = crate::scene::described_with_edits(
+            &self.scene.description,
+            &self.saved.name,
+            &self.edits(),
+        );
+        match out.save(path) {
             Ok(()) => {
+                self.scene.description = out.description;
                 self.path = Some(path.to_path_buf());
                 self.scene.base_dir = path.parent().map(Path::to_path_buf);
                 self.saved = self.scene.clone();

@@ -41,7 +41,14 @@ impl App {
             .default_size(0.34 * ui.available_width())
             .show(ui, |ui| {
                 let reserve_px = classroom::mode_bars_min_px(ui, self.modes.len());
-                classroom::explanation(ui, &self.scene.name, &self.scene.description, reserve_px);
+                let edits = self.edits();
+                classroom::explanation(
+                    ui,
+                    &self.scene.name,
+                    &self.scene.description,
+                    &edits,
+                    reserve_px,
+                );
                 ui.separator();
                 classroom::mode_bars(
                     ui,
@@ -70,12 +77,13 @@ impl App {
         // while an edit waits for its ring's identification the fields show
         // the running scene: no further edit until the waiting one applies
         let editable = self.identify_job.is_none();
+        let edits = self.edits();
         egui::Panel::left("tirecontact.edit")
             .resizable(true)
             .default_size(380.0)
             .show(ui, |ui| {
                 ui.add_enabled_ui(editable, |ui| {
-                    panels::side_panel(ui, &self.scene, &self.modes, cmds_left)
+                    panels::side_panel(ui, &self.scene, &edits, &self.modes, cmds_left)
                 });
             });
         if self.classroom.bars {

@@ -22,18 +22,40 @@ pub(crate) fn modes_mut(scene: &mut Scene) -> Option<&mut Vec<Mode>> {
     }
 }
 
+/// The line under a scene's description when the scene was edited since it
+/// was opened or saved: the edits, and that a save adds them to the text.
+pub fn edits_note(edits: &[String]) -> Option<String> {
+    (!edits.is_empty()).then(|| {
+        format!(
+            "Changed since opened or saved: {}. The description was written before \
+             these changes; saving adds them to it.",
+            edits.join("; ")
+        )
+    })
+}
+
 pub(crate) fn push_edit(cmds: &mut Vec<Command>, c: Option<Command>) {
     if let Some(c) = c {
         cmds.push(c);
     }
 }
 
-/// The whole editing side panel.
-pub fn side_panel(ui: &mut egui::Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>) {
+/// The whole editing side panel. `edits`: what changed since the scene was
+/// opened or saved (its description does not say).
+pub fn side_panel(
+    ui: &mut egui::Ui,
+    scene: &Scene,
+    edits: &[String],
+    modes: &[Mode],
+    cmds: &mut Vec<Command>,
+) {
     egui::ScrollArea::vertical().show(ui, |ui| {
         ui.heading(&scene.name);
         if !scene.description.is_empty() {
             ui.label(egui::RichText::new(&scene.description).weak());
+        }
+        if let Some(note) = edits_note(edits) {
+            ui.label(egui::RichText::new(note).italics());
         }
         ui.horizontal(|ui| {
             ui.label("Tags:");

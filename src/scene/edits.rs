@@ -1,0 +1,272 @@
+//! What changed between two versions of a scene, in words with units: the
+//! visualiser shows it under a description written for the scene as it was
+//! opened or saved, and adds it to the description on save, so that a saved
+//! preset's text does not describe a scene it no longer is.
+
+use super::{Contact, Scene, Tyre};
+use crate::road::Road;
+
+/// `x` to four significant digits, in the shortest form (`10`, `0.025`).
+fn num(x: f64) -> String {
+    let r: f64 = format!("{x:.3e}").parse().unwrap_or(x);
+    format!("{r}")
+}
+
+/// "what a -> b unit" when `a != b`.
+fn change(out: &mut Vec<String>, what: &str, a: f64, b: f64, scale: f64, unit: &str) {
+    if a != b {
+        out.push(format!(
+            "{what} {} -> {} {unit}",
+            num(a * scale),
+            num(b * scale)
+        ));
+    }
+}
+
+fn road_kind(r: &Road) -> &'static str {
+    match r {
+        Road::Sine { .. } => "sine",
+        Road::Harmonics { .. } => "harmonics",
+        Road::Measured { .. } => "measured profile",
+        Road::Random { .. } => "random",
+    }
+}
+
+fn tyre_kind(t: &Tyre) -> &'static str {
+    match t {
+        Tyre::Modal { .. } => "modal model",
+        Tyre::Ring { .. } => "ring",
+    }
+}
+
+fn contact_kind(c: &Contact) -> &'static str {
+    match c {
+        Contact::Rigid => "rigid",
+        Contact::Compliant { .. } => "compliant",
+    }
+}
+
+/// The changes from `before` to `after` a reader of `before`'s description
+/// would need to know, one phrase each with units ("speed 10 -> 20 m/s");
+/// empty when none. The name and the description themselves are not listed.
+pub fn edits_since(before: &Scene, after: &Scene) -> Vec<String> {
+    let mut out = Vec::new();
+    match (&before.tyre, &after.tyre) {
+        (Tyre::Modal { modes: a }, Tyre::Modal { modes: b }) if a != b => {
+            if a.len() != b.len() {
+                out.push(format!("{} -> {} modes", a.len(), b.len()));
+            } else {
+                out.push("mode frequencies, damping or residues".to_string());
+            }
+        }
+        (
+            Tyre::Ring {
+                ring: ra,
+                identification: ia,
+            },
+            Tyre::Ring {
+                ring: rb,
+                identification: ib,
+            },
+        ) => {
+            if ra != rb {
+                out.push("ring parameters".to_string());
+            }
+            if ia != ib {
+                out.push("identification options".to_string());
+            }
+        }
+        (a, b) if std::mem::discriminant(a) != std::mem::discriminant(b) => {
+            out.push(format!("tyre {} -> {}", tyre_kind(a), tyre_kind(b)));
+        }
+        _ => {}
+    }
+    let (pa, pb) = (&before.points, &after.points);
+    if pa.len() != pb.len() {
+        out.push(format!("{} -> {} contact points", pa.len(), pb.len()));
+    } else if pa != pb {
+        out.push("contact point positions or heights".to_string());
+    }
+    match (&before.road, &after.road) {
+        (
+            Road::Sine {
+                amplitude_m: a0,
+                wavelength_m: l0,
+            },
+            Road::Sine {
+                amplitude_m: a1,
+                wavelength_m: l1,
+            },
+        ) => {
+            change(&mut out, "road amplitude", *a0, *a1, 1e3, "mm");
+            change(&mut out, "road wavelength", *l0, *l1, 1.0, "m");
+        }
+        (a, b) if std::mem::discriminant(a) != std::mem::discriminant(b) => {
+            out.push(format!("road {} -> {}", road_kind(a), road_kind(b)));
+        }
+        (a, b) if a != b => out.push(format!("{} road parameters", road_kind(b))),
+        _ => {}
+    }
+    change(
+        &mut out,
+        "speed",
+        before.speed_mps,
+        after.speed_mps,
+        1.0,
+        "m/s",
+    );
+    change(&mut out, "ramp", before.ramp_s, after.ramp_s, 1.0, "s");
+    change(&mut out, "time step", before.dt_s, after.dt_s, 1e6, "µs");
+    change(
+        &mut out,
+        "duration",
+        before.duration_s,
+        after.duration_s,
+        1.0,
+        "s",
+    );
+    if before.contact_scheme != after.contact_scheme {
+        out.push(format!(
+            "contact scheme {:?} -> {:?}",
+            before.contact_scheme, after.contact_scheme
+        ));
+    }
+    if before.contact != after.contact {
+        let (a, b) = (contact_kind(&before.contact), contact_kind(&after.contact));
+        if a == b {
+            out.push(format!("{b} contact parameters"));
+        } else {
+            out.push(format!("contact {a} -> {b}"));
+        }
+    }
+    out
+}
+
+/// `description` with a closing paragraph listing `edits` ("Edited from
+/// "Paper": speed 10 -> 20 m/s; …."); unchanged when there are none.
+pub fn described_with_edits(description: &str, from_name: &str, edits: &[String]) -> String {
+    if edits.is_empty() {
+        return description.to_string();
+    }
+    let note = format!("Edited from \"{from_name}\": {}.", edits.join("; "));
+    if description.trim().is_empty() {
+        note
+    } else {
+        format!("{}\n\n{note}", description.trim_end())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{ContactScheme, Mode, Point};
+
+    fn scene() -> Scene {
+        Scene::parse(
+            include_str!("../../presets/three_points.ron"),
+            "three_points",
+        )
+        .expect("shipped preset")
+    }
+
+    #[test]
+    fn an_unchanged_scene_has_no_edits() {
+        let s = scene();
+        assert!(edits_since(&s, &s.clone()).is_empty());
+        // the name and the description are the user's, not edits to report
+        let mut t = s.clone();
+        t.name = "renamed".into();
+        t.description = "other".into();
+        assert!(edits_since(&s, &t).is_empty());
+    }
+
+    #[test]
+    fn numbers_are_given_with_units_from_and_to() {
+        let s = scene();
+        let mut t = s.clone();
+        t.speed_mps = 2.0 * s.speed_mps;
+        t.dt_s = 2e-5;
+        t.duration_s = s.duration_s + 0.5;
+        let e = edits_since(&s, &t);
+        let speed = format!("speed {} -> {} m/s", num(s.speed_mps), num(t.speed_mps));
+        assert!(e.contains(&speed), "{e:?}");
+        assert!(
+            e.iter()
+                .any(|x| x.starts_with("time step") && x.ends_with("-> 20 µs")),
+            "{e:?}"
+        );
+        assert!(
+            e.iter()
+                .any(|x| x.starts_with("duration") && x.ends_with(" s")),
+            "{e:?}"
+        );
+        assert_eq!(e.len(), 3, "{e:?}");
+    }
+
+    #[test]
+    fn road_edits_name_the_quantity_or_the_kind() {
+        let mut s = scene();
+        s.road = Road::Sine {
+            amplitude_m: 1e-3,
+            wavelength_m: 0.1,
+        };
+        let mut t = s.clone();
+        t.road = Road::Sine {
+            amplitude_m: 2.5e-3,
+            wavelength_m: 0.1,
+        };
+        assert_eq!(edits_since(&s, &t), ["road amplitude 1 -> 2.5 mm"]);
+        t.road = Road::Harmonics { components: vec![] };
+        assert_eq!(edits_since(&s, &t), ["road sine -> harmonics"]);
+    }
+
+    #[test]
+    fn tyre_points_and_contact_edits_are_listed() {
+        let s = scene();
+        let mut t = s.clone();
+        if let Tyre::Modal { modes } = &mut t.tyre {
+            modes.push(Mode {
+                freq_hz: 300.0,
+                damping_ratio: 0.05,
+                residue: vec![],
+                shape: vec![0.0; s.points.len()],
+            });
+        }
+        t.points.push(Point { x_m: 1.0, h_m: 0.0 });
+        t.contact_scheme = ContactScheme::Paper;
+        let e = edits_since(&s, &t);
+        let n = s.points.len();
+        assert!(
+            e.iter().any(|x| x.ends_with("modes") && x.contains("->")),
+            "{e:?}"
+        );
+        assert!(
+            e.contains(&format!("{n} -> {} contact points", n + 1)),
+            "{e:?}"
+        );
+        assert!(
+            e.contains(&"contact scheme Located -> Paper".to_string()),
+            "{e:?}"
+        );
+    }
+
+    #[test]
+    fn the_note_closes_the_description() {
+        let e = vec![
+            "speed 10 -> 20 m/s".to_string(),
+            "ramp 0 -> 0.1 s".to_string(),
+        ];
+        assert_eq!(
+            described_with_edits("Five points.\n", "Paper", &e),
+            "Five points.\n\nEdited from \"Paper\": speed 10 -> 20 m/s; ramp 0 -> 0.1 s."
+        );
+        assert_eq!(
+            described_with_edits("Five points.", "Paper", &[]),
+            "Five points."
+        );
+        assert_eq!(
+            described_with_edits("", "P", &e[..1]),
+            "Edited from \"P\": speed 10 -> 20 m/s."
+        );
+    }
+}
