@@ -100,17 +100,15 @@ pub const PALETTE: [RGBColor; 10] = [
 pub(crate) fn register_fonts() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
+        // Ubuntu Light with its glyphs starting at x = 0 (plotters drops
+        // side bearings: "1 0" for "10", see font.rs); once per process
+        let font: &'static [u8] = font::with_origin_points(epaint_default_fonts::UBUNTU_LIGHT)
+            .map_or(epaint_default_fonts::UBUNTU_LIGHT, |f| {
+                Box::leak(f.into_boxed_slice())
+            });
         // The embedded font is valid; a failure would only lose text.
-        let _ = plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            epaint_default_fonts::UBUNTU_LIGHT,
-        );
-        let _ = plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Bold,
-            epaint_default_fonts::UBUNTU_LIGHT,
-        );
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, font);
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Bold, font);
     });
 }
 
@@ -643,6 +641,8 @@ fn draw_panel(
     }
     Ok(layout)
 }
+
+mod font;
 
 #[cfg(test)]
 mod tests;

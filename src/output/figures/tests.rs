@@ -270,3 +270,42 @@ fn a_one_point_series_is_keyed_by_its_dot_a_line_by_a_line_with_a_dot() {
         );
     }
 }
+
+#[test]
+fn the_figure_font_is_rewritten_and_its_glyphs_keep_their_side_bearings() {
+    // plotters drew every glyph's ink from the pen (no left side bearing):
+    // "H" touched its cell's left edge with twice its bearing on the right,
+    // and a tabular "1" left a gap after it ("1 0"). Symmetric glyphs are
+    // now centred in their advance, within 2 px at 60 px.
+    assert!(font::with_origin_points(epaint_default_fonts::UBUNTU_LIGHT).is_some());
+    register_fonts();
+    let (w, h) = (400u32, 120u32);
+    for text in ["H", "O", "0", "o", "8"] {
+        let mut rgb = vec![255u8; (w * h * 3) as usize];
+        let x0 = 100;
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+            root.draw(&Text::new(
+                text.to_string(),
+                (x0, 20),
+                ("sans-serif", 60).into_font().color(&BLACK),
+            ))
+            .unwrap();
+            root.present().unwrap();
+        }
+        let inked: Vec<i32> = rgb
+            .chunks_exact(3)
+            .enumerate()
+            .filter(|(_, p)| p[0] < 128)
+            .map(|(i, _)| (i as u32 % w) as i32)
+            .collect();
+        let (left, right) = (*inked.iter().min().unwrap(), *inked.iter().max().unwrap());
+        let advance = ("sans-serif", 60).into_font().box_size(text).unwrap().0 as i32;
+        let (l_gap, r_gap) = (left - x0, x0 + advance - 1 - right);
+        assert!(
+            l_gap >= 2 && (l_gap - r_gap).abs() <= 2,
+            "{text:?}: ink {left}..={right} in the cell {x0}..{}: bearings {l_gap} and {r_gap} px",
+            x0 + advance
+        );
+    }
+}
