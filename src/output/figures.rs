@@ -424,6 +424,15 @@ fn key_style(s: &Series) -> Style {
     }
 }
 
+/// The width (px) of a line's legend key: at least [`KEY_STROKE_PX`]
+/// (the colour of a one-pixel key, 20 px long, was hard to tell).
+fn key_stroke(stroke: u32) -> u32 {
+    stroke.max(KEY_STROKE_PX)
+}
+
+/// The least width (px) of a line's legend key.
+const KEY_STROKE_PX: u32 = 3;
+
 /// The legend key of `style` in colour `c`, 20 px wide, its left end at
 /// `(x, y)`: a line, a line with a dot in its middle, or a marker.
 fn key_element<'a, DB: DrawingBackend + 'a>(
@@ -432,7 +441,7 @@ fn key_element<'a, DB: DrawingBackend + 'a>(
     stroke: u32,
     (x, y): (i32, i32),
 ) -> DynElement<'a, DB, (i32, i32)> {
-    let line = move || PathElement::new(vec![(0, 0), (20, 0)], c.stroke_width(stroke));
+    let line = move || PathElement::new(vec![(0, 0), (20, 0)], c.stroke_width(key_stroke(stroke)));
     match style {
         Style::Line | Style::ThinLine => (EmptyElement::at((x, y)) + line()).into_dyn(),
         Style::LineMarkers(r) => {
@@ -591,8 +600,9 @@ fn draw_panel(
                 if !s.name.is_empty() {
                     // as key_element draws them in a legend column
                     let anno = anno.label(s.name.clone());
-                    let line =
-                        move || PathElement::new(vec![(0, 0), (20, 0)], c.stroke_width(stroke));
+                    let line = move || {
+                        PathElement::new(vec![(0, 0), (20, 0)], c.stroke_width(key_stroke(stroke)))
+                    };
                     match key_style(s) {
                         Style::Line | Style::ThinLine => {
                             anno.legend(move |at| EmptyElement::at(at) + line());

@@ -309,3 +309,31 @@ fn the_figure_font_is_rewritten_and_its_glyphs_keep_their_side_bearings() {
         );
     }
 }
+
+#[test]
+fn a_thin_line_is_keyed_by_a_line_wide_enough_to_show_its_colour() {
+    // spectra and run --plot draw one-pixel lines; their keys were one
+    // pixel too (20 x 1 px: blue and sky blue could not be told apart)
+    let mut s = Series::line(
+        "thin",
+        (0..50).map(|k| (k as f64, (k % 7) as f64)).collect(),
+    );
+    s.style = Style::ThinLine;
+    s.color = Some(5);
+    let fig = Figure {
+        title: "t".into(),
+        subtitle: String::new(),
+        panels: vec![Panel {
+            x_label: "frequency (Hz)".into(),
+            y_label: "level (dB)".into(),
+            series: vec![s],
+            ..Panel::default()
+        }],
+    };
+    let (w, h) = (800, 500);
+    let (rgb, l) = render_rgb_layout(&fig, w, h).unwrap();
+    let key = key_pixels(&rgb, w, PALETTE[5], &l[0].curves_px[0], 2.0);
+    assert!(!key.is_empty(), "no key");
+    let (kw, kh) = extent(&key);
+    assert!(kw >= 19 && kh >= 3, "the key is {kw}x{kh} px");
+}
