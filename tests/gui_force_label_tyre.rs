@@ -3,7 +3,8 @@
 //! paper preset's run, in classroom mode at 1280 × 720, the label lay over
 //! the line. Read from the painted shapes (the line's grey segments and
 //! hollow circles, the labels' text), at 1280 × 720 and 1600 × 1000, in
-//! classroom mode and not.
+//! classroom mode and not; in classroom mode the phase labels ("p1:
+//! IMPACT") stay clear of the moved force values.
 #![cfg(feature = "gui")]
 
 mod common;
@@ -34,8 +35,21 @@ fn overlaps(h: &egui_kittest::Harness<'_, App>) -> (Vec<String>, usize) {
         .collect();
     assert!(!dashes.is_empty(), "no undeformed tyre line found");
     assert_eq!(rings.len(), 5, "the five points' markers");
+    // the classroom's phase labels drawn in the plot ("p3: IMPACT"; the
+    // strip above the plot lists them all on one line)
+    let phases: Vec<(String, Rect)> = texts(h)
+        .into_iter()
+        .filter(|(t, _)| t.starts_with('p') && t.matches(": ").count() == 1 && !t.contains("  "))
+        .collect();
     let mut bad = Vec::new();
     for (t, r) in &forces {
+        // (boxes touching by a pixel: their glyphs do not)
+        for (p, pr) in phases
+            .iter()
+            .filter(|(_, pr)| pr.shrink(1.0).intersects(r.shrink(1.0)))
+        {
+            bad.push(format!("{t:?} at {r:?} under {p:?} at {pr:?}"));
+        }
         let r = r.shrink(1.0);
         let over = ink(r, &dashes);
         if over > 0.0 {
