@@ -200,8 +200,10 @@ pub fn param_paths(scene: &Scene) -> Vec<String> {
     numeric_fields(&mut s).into_iter().map(|(p, _)| p).collect()
 }
 
-/// The value of the parameter at `path` (the first match of a wildcard).
+/// The value of the parameter at `path` (the first match of a wildcard;
+/// spaces around the path are ignored).
 pub fn get_param(scene: &Scene, path: &str) -> Result<f64, SweepError> {
+    let path = path.trim();
     let mut s = scene.clone();
     let fields = numeric_fields(&mut s);
     fields
@@ -243,7 +245,9 @@ fn unknown(scene: &Scene, path: &str) -> SweepError {
 
 /// Sets the parameter at `path` (every match of a wildcard) to `value` and
 /// validates the scene; an invalid result names the field and what it expects.
+/// Spaces around the path are ignored.
 pub fn set_param(scene: &mut Scene, path: &str, value: f64) -> Result<(), SweepError> {
+    let path = path.trim();
     let before = scene.clone();
     let mut hits = 0;
     for (p, v) in numeric_fields(scene) {

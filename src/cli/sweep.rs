@@ -52,6 +52,8 @@ fn base_scene(args: &SweepArgs) -> Result<Scene, SceneError> {
 
 pub fn sweep(args: &SweepArgs) -> CliResult {
     let scene = base_scene(args)?;
+    // `--param " speed_mps "` (a quoted path with spaces) names speed_mps
+    let param = args.param.trim();
     // output folders before any run (a missing one failed after all of them)
     if let Some(path) = &args.output {
         super::paths::check_output_file("-o", path, "CSV")?;
@@ -60,9 +62,9 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
         super::paths::check_output_file("--plot", path, "PNG")?;
     }
     // check the path (and the range ends) before any run
-    get_param(&scene, &args.param)?;
+    get_param(&scene, param)?;
     for v in [args.from, args.to] {
-        set_param(&mut scene.clone(), &args.param, v)?;
+        set_param(&mut scene.clone(), param, v)?;
     }
     let threads = match args.threads {
         Some(0) => return Err("--threads = 0: expected at least 1 thread".into()),
@@ -70,7 +72,7 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
     let sweep = Sweep {
-        param: args.param.clone(),
+        param: param.to_string(),
         values: linspace(args.from, args.to, args.steps)?,
         threads,
     };
@@ -82,7 +84,7 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
     bar.set_message(format!(
         "{} of {} on {}",
         tirecontact::output::count(sweep.values.len(), "run"),
-        args.param,
+        param,
         tirecontact::output::count(threads, "thread")
     ));
     let start = Instant::now();
@@ -97,16 +99,16 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
     let p = scene.num_points();
     if let Some(path) = &args.output {
         let mut buf = Vec::new();
-        report::write_csv(&mut buf, &args.param, &points, p)?;
+        report::write_csv(&mut buf, param, &points, p)?;
         tirecontact::output::write_atomic(path, &buf)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         eprintln!("wrote {}", path.display());
     }
     if let Some(path) = &args.plot {
         let fig = report::figure(
-            &format!("{}: sweep of {}", scene.name, args.param),
+            &format!("{}: sweep of {param}", scene.name),
             &format!("base scene: {}", super::run::scene_summary(&scene)),
-            &args.param,
+            param,
             &points,
             p,
         );
@@ -119,7 +121,7 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
             pt.result
                 .as_ref()
                 .err()
-                .map(|e| format!("{} = {}: {e}", args.param, pt.value))
+                .map(|e| format!("{param} = {}: {e}", pt.value))
         })
         .collect();
     for f in &failed {
@@ -129,7 +131,7 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
         "{}: {} of {} from {} to {} on {} in {wall:.3} s wall ({} failed)",
         scene.name,
         tirecontact::output::count(points.len(), "run"),
-        args.param,
+        param,
         args.from,
         args.to,
         tirecontact::output::count(threads, "thread"),

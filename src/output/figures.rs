@@ -76,16 +76,23 @@ pub enum FigureError {
     Size { width: u32, height: u32 },
 }
 
-/// A colour-blind-friendly palette (Okabe-Ito, then a few more).
+/// The series colours, point `k` in colour `k`: Okabe-Ito's blue,
+/// vermillion, bluish green, reddish purple and sky blue, then olive, black
+/// (also the clipped-impact marks), wine, grey and brown. Okabe-Ito's
+/// orange is left out: next to its vermillion, points 1 and 4 of a
+/// five-point scene read as one orange. Any two of the first eight differ
+/// by at least 20 in CIEDE2000, two of one hue by at least 20 in lightness
+/// (`tests/palette.rs`). The visualiser's first eight are these with grey
+/// for black (`gui::views::PALETTE`).
 pub const PALETTE: [RGBColor; 10] = [
     RGBColor(0, 114, 178),
     RGBColor(213, 94, 0),
     RGBColor(0, 158, 115),
     RGBColor(204, 121, 167),
-    RGBColor(230, 159, 0),
     RGBColor(86, 180, 233),
+    RGBColor(188, 189, 34),
     RGBColor(0, 0, 0),
-    RGBColor(240, 228, 66),
+    RGBColor(136, 34, 85),
     RGBColor(128, 128, 128),
     RGBColor(140, 86, 75),
 ];
@@ -93,17 +100,15 @@ pub const PALETTE: [RGBColor; 10] = [
 pub(crate) fn register_fonts() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
+        // Ubuntu Light with its glyphs starting at x = 0 (plotters drops
+        // side bearings: "1 0" for "10", see font.rs); once per process
+        let font: &'static [u8] = font::with_origin_points(epaint_default_fonts::UBUNTU_LIGHT)
+            .map_or(epaint_default_fonts::UBUNTU_LIGHT, |f| {
+                Box::leak(f.into_boxed_slice())
+            });
         // The embedded font is valid; a failure would only lose text.
-        let _ = plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            epaint_default_fonts::UBUNTU_LIGHT,
-        );
-        let _ = plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Bold,
-            epaint_default_fonts::UBUNTU_LIGHT,
-        );
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, font);
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Bold, font);
     });
 }
 
@@ -204,16 +209,55 @@ pub fn render_png_layout(
     width: u32,
     height: u32,
 ) -> Result<Vec<PanelLayout>, FigureError> {
-    if !(200..=8000).contains(&width) || !(200..=8000).contains(&height) {
-        return Err(FigureError::Size { width, height });
-    }
-    register_fonts();
+    check_size(width, height)?;
     let err = |e: &dyn std::fmt::Display| FigureError::Draw {
         path: path.display().to_string(),
         message: e.to_string(),
     };
     let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let layouts = render_on(fig, &root, width, height).map_err(|e| err(&e))?;
+    root.present().map_err(|e| err(&e))?;
+    Ok(layouts)
+}
+
+/// [`render_png_layout`] into memory: the RGB pixels (3 bytes each, rows
+/// top to bottom) and where each panel was drawn.
+pub fn render_rgb_layout(
+    fig: &Figure,
+    width: u32,
+    height: u32,
+) -> Result<(Vec<u8>, Vec<PanelLayout>), FigureError> {
+    check_size(width, height)?;
+    let err = |e: &dyn std::fmt::Display| FigureError::Draw {
+        path: "(memory)".into(),
+        message: e.to_string(),
+    };
+    let mut rgb = vec![0u8; width as usize * height as usize * 3];
+    let layouts = {
+        let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
+        let layouts = render_on(fig, &root, width, height).map_err(|e| err(&e))?;
+        root.present().map_err(|e| err(&e))?;
+        layouts
+    };
+    Ok((rgb, layouts))
+}
+
+fn check_size(width: u32, height: u32) -> Result<(), FigureError> {
+    if !(200..=8000).contains(&width) || !(200..=8000).contains(&height) {
+        return Err(FigureError::Size { width, height });
+    }
+    Ok(())
+}
+
+/// Draws `fig` on `root` (`width × height` px).
+fn render_on(
+    fig: &Figure,
+    root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    width: u32,
+    height: u32,
+) -> Result<Vec<PanelLayout>, Box<dyn std::error::Error>> {
+    register_fonts();
+    root.fill(&WHITE)?;
     let scale = (height.min(width) as f64 / 800.0).clamp(0.6, 3.0);
     let fs = |s: f64| (s * scale).round() as i32;
     let mut top = fs(10.0);
@@ -221,8 +265,7 @@ pub fn render_png_layout(
         fig.title.clone(),
         (fs(12.0), top),
         ("sans-serif", fs(24.0)).into_font().color(&BLACK),
-    ))
-    .map_err(|e| err(&e))?;
+    ))?;
     top += fs(30.0);
     if !fig.subtitle.is_empty() {
         root.draw(&Text::new(
@@ -231,8 +274,7 @@ pub fn render_png_layout(
             ("sans-serif", fs(15.0))
                 .into_font()
                 .color(&RGBColor(70, 70, 70)),
-        ))
-        .map_err(|e| err(&e))?;
+        ))?;
         top += fs(22.0);
     }
     let body = root.margin(top as u32, 0, 0, 0);
@@ -254,9 +296,8 @@ pub fn render_png_layout(
         .then(|| legends.iter().map(|l| l.size.0).max().unwrap_or(0));
     let mut layouts = Vec::with_capacity(fig.panels.len());
     for ((panel, area), legend) in fig.panels.iter().zip(areas.iter()).zip(&legends) {
-        layouts.push(draw_panel(panel, area, scale, legend, column_w).map_err(|e| err(&e))?);
+        layouts.push(draw_panel(panel, area, scale, legend, column_w)?);
     }
-    root.present().map_err(|e| err(&e))?;
     Ok(layouts)
 }
 
@@ -357,20 +398,7 @@ fn draw_legend(
         let top = y + 6 + row * k as i32;
         let mid = top + row / 2;
         let key_x = x + 8;
-        match *style {
-            Style::Line | Style::ThinLine | Style::LineMarkers(_) => {
-                area.draw(&PathElement::new(
-                    vec![(key_x, mid), (key_x + 20, mid)],
-                    c.stroke_width(*stroke),
-                ))?;
-            }
-            Style::Markers(r) => {
-                area.draw(&Circle::new((key_x + 10, mid), r, c.filled()))?;
-            }
-            Style::HollowMarkers(r) => {
-                area.draw(&Circle::new((key_x + 10, mid), r, c.stroke_width(1)))?;
-            }
-        }
+        area.draw(&key_element(*style, *c, *stroke, (key_x, mid)))?;
         let text_h = font_px as i32;
         area.draw(&Text::new(
             name.clone(),
@@ -379,6 +407,49 @@ fn draw_legend(
         ))?;
     }
     Ok(())
+}
+
+/// How `s` is keyed in its legend: as drawn, except that a line with
+/// markers through a single point (no line drawn, one dot) is keyed by its
+/// marker alone.
+fn key_style(s: &Series) -> Style {
+    let finite = s
+        .points
+        .iter()
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .count();
+    match s.style {
+        Style::LineMarkers(r) if finite == 1 => Style::Markers(r),
+        style => style,
+    }
+}
+
+/// The width (px) of a line's legend key: at least [`KEY_STROKE_PX`]
+/// (the colour of a one-pixel key, 20 px long, was hard to tell).
+fn key_stroke(stroke: u32) -> u32 {
+    stroke.max(KEY_STROKE_PX)
+}
+
+/// The least width (px) of a line's legend key.
+const KEY_STROKE_PX: u32 = 3;
+
+/// The legend key of `style` in colour `c`, 20 px wide, its left end at
+/// `(x, y)`: a line, a line with a dot in its middle, or a marker.
+fn key_element<'a, DB: DrawingBackend + 'a>(
+    style: Style,
+    c: RGBColor,
+    stroke: u32,
+    (x, y): (i32, i32),
+) -> DynElement<'a, DB, (i32, i32)> {
+    let line = move || PathElement::new(vec![(0, 0), (20, 0)], c.stroke_width(key_stroke(stroke)));
+    match style {
+        Style::Line | Style::ThinLine => (EmptyElement::at((x, y)) + line()).into_dyn(),
+        Style::LineMarkers(r) => {
+            (EmptyElement::at((x, y)) + line() + Circle::new((10, 0), r, c.filled())).into_dyn()
+        }
+        Style::Markers(r) => Circle::new((x + 10, y), r, c.filled()).into_dyn(),
+        Style::HollowMarkers(r) => Circle::new((x + 10, y), r, c.stroke_width(1)).into_dyn(),
+    }
 }
 
 /// A panel's legend: its entries, the corner of the plot with the least
@@ -417,7 +488,7 @@ fn panel_legend(
         .filter(|(_, s)| !s.name.is_empty())
         .map(|(k, s)| {
             let c = PALETTE[s.color.unwrap_or(k) % PALETTE.len()];
-            (s.name.clone(), c, s.style, stroke_of(s, scale))
+            (s.name.clone(), c, key_style(s), stroke_of(s, scale))
         })
         .collect();
     let (corner, under) = legend_corner(panel, entry_frac);
@@ -510,38 +581,44 @@ fn draw_panel(
                     .curves_px
                     .push(pts.clone().map(|p| chart.backend_coord(&p)).collect());
                 let stroke = stroke_of(s, scale);
-                match s.style {
+                let anno = match s.style {
                     Style::Line | Style::ThinLine => {
-                        let anno =
-                            chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?;
-                        if !s.name.is_empty() {
-                            anno.label(s.name.clone()).legend(move |(x, y)| {
-                                PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(stroke))
-                            });
-                        }
+                        chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
                     }
                     Style::LineMarkers(r) => {
                         let pts: Vec<(f64, f64)> = pts.collect();
                         chart.draw_series(pts.iter().map(|&p| Circle::new(p, r, c.filled())))?;
-                        let anno =
-                            chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?;
-                        if !s.name.is_empty() {
-                            anno.label(s.name.clone()).legend(move |(x, y)| {
-                                PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(stroke))
+                        chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
+                    }
+                    Style::Markers(r) => {
+                        chart.draw_series(pts.map(move |p| Circle::new(p, r, c.filled())))?
+                    }
+                    Style::HollowMarkers(r) => {
+                        chart.draw_series(pts.map(move |p| Circle::new(p, r, c.stroke_width(1))))?
+                    }
+                };
+                if !s.name.is_empty() {
+                    // as key_element draws them in a legend column
+                    let anno = anno.label(s.name.clone());
+                    let line = move || {
+                        PathElement::new(vec![(0, 0), (20, 0)], c.stroke_width(key_stroke(stroke)))
+                    };
+                    match key_style(s) {
+                        Style::Line | Style::ThinLine => {
+                            anno.legend(move |at| EmptyElement::at(at) + line());
+                        }
+                        Style::LineMarkers(r) => {
+                            anno.legend(move |at| {
+                                EmptyElement::at(at) + line() + Circle::new((10, 0), r, c.filled())
                             });
                         }
-                    }
-                    Style::Markers(r) | Style::HollowMarkers(r) => {
-                        let filled = matches!(s.style, Style::Markers(_));
-                        let style = if filled {
-                            c.filled()
-                        } else {
-                            c.stroke_width(1)
-                        };
-                        let anno = chart.draw_series(pts.map(move |p| Circle::new(p, r, style)))?;
-                        if !s.name.is_empty() {
-                            anno.label(s.name.clone())
-                                .legend(move |(x, y)| Circle::new((x + 10, y), r, style));
+                        Style::Markers(r) => {
+                            anno.legend(move |(x, y)| Circle::new((x + 10, y), r, c.filled()));
+                        }
+                        Style::HollowMarkers(r) => {
+                            anno.legend(move |(x, y)| {
+                                Circle::new((x + 10, y), r, c.stroke_width(1))
+                            });
                         }
                     }
                 }
@@ -574,6 +651,8 @@ fn draw_panel(
     }
     Ok(layout)
 }
+
+mod font;
 
 #[cfg(test)]
 mod tests;

@@ -23,8 +23,8 @@ fn band_db(p: &SweepPoint, nominal_hz: f64) -> f64 {
         .map_or(f64::NAN, |b| b.level_db)
 }
 
-/// Writes one row per value: `<param>`, `max_force_n_q{i}`..,
-/// `force_rms_n_q{i}`.., `contact_fraction_q{i}`..,
+/// Writes one row per value: `<param>`, `q{i}_max_N`.., `q{i}_rms_N`..,
+/// `contact{i}_fraction`.. (named as `run -o`'s `q{i}_N` and `contact{i}`),
 /// `band_{f}hz_db_re_1N`.. (total force), `error` (empty when the run
 /// succeeded; its other columns are then NaN).
 pub fn write_csv<W: Write>(
@@ -36,9 +36,9 @@ pub fn write_csv<W: Write>(
     let mut w = csv::Writer::from_writer(out);
     let bands = table_bands();
     let mut header = vec![param.to_string()];
-    for name in ["max_force_n", "force_rms_n", "contact_fraction"] {
-        header.extend((0..num_points).map(|i| format!("{name}_q{i}")));
-    }
+    header.extend((0..num_points).map(|i| format!("q{i}_max_N")));
+    header.extend((0..num_points).map(|i| format!("q{i}_rms_N")));
+    header.extend((0..num_points).map(|i| format!("contact{i}_fraction")));
     header.extend(
         bands
             .iter()

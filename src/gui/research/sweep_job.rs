@@ -30,7 +30,7 @@ impl SweepRequest {
             sweep::set_param(&mut base.clone(), &self.param, v)?;
         }
         Ok(Sweep {
-            param: self.param.clone(),
+            param: self.param.trim().to_string(),
             values,
             threads: threads.max(1),
         })

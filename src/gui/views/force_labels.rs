@@ -39,8 +39,32 @@ pub fn pick_labels(x_px: &[f32], q_n: &[f64], width_px: f32) -> Vec<usize> {
     chosen
 }
 
+/// The lowest and highest y of the polyline `line` (points in order of x)
+/// between `x0` and `x1`: its vertices there and its values at both ends;
+/// `None` where it does not reach.
+pub fn y_span(line: &[[f64; 2]], x0: f64, x1: f64) -> Option<(f64, f64)> {
+    let mut ys: Vec<f64> = line
+        .iter()
+        .filter(|p| (x0..=x1).contains(&p[0]))
+        .map(|p| p[1])
+        .collect();
+    for x in [x0, x1] {
+        for w in line.windows(2) {
+            let ([xa, ya], [xb, yb]) = (w[0], w[1]);
+            if xa < x && x < xb {
+                ys.push(ya + (yb - ya) * (x - xa) / (xb - xa));
+            }
+        }
+    }
+    let lo = ys.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = ys.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (lo <= hi).then_some((lo, hi))
+}
+
 /// Draws the labels of the arrows whose tails are at `tails` (plot units)
-/// with forces `q_n`, under the tails, in `color` (a strong text colour).
+/// with forces `q_n`, under the tails, in `color` (a strong text colour);
+/// a label that would lie over the line `keep_off` (the undeformed tyre,
+/// dashed, with markers of `keep_off_px` radius) goes under it instead.
 /// They join the arrows' legend entry `name` with the arrows' colour
 /// `legend_color` (egui_plot greys out an entry whose items differ in
 /// colour). Returns the lowest y (plot units) the labels reach, for other
@@ -52,6 +76,8 @@ pub fn draw(
     tails: &[[f64; 2]],
     q_n: &[f64],
     color: Color32,
+    keep_off: &[[f64; 2]],
+    keep_off_px: f32,
 ) -> Option<f64> {
     let font_px = pui
         .ctx()
@@ -66,16 +92,29 @@ pub fn draw(
         .map(|t| pui.screen_from_plot(PlotPoint::new(t[0], t[1])).x)
         .collect();
     // a label's height in plot units (its row, with a gap)
-    let label_h = f64::from(LINE_HEIGHT * font_px + 4.0) * pui.transform().dvalue_dpos()[1].abs();
+    let [dx_dpx, dy_dpx] = pui.transform().dvalue_dpos().map(f64::abs);
+    let label_h = f64::from(LINE_HEIGHT * font_px + 4.0) * dy_dpx;
+    let (half_w, pad) = (
+        0.5 * f64::from(width_px) * dx_dpx,
+        f64::from(keep_off_px + 2.0) * dy_dpx,
+    );
     let mut lowest: Option<f64> = None;
     for i in pick_labels(&x_px, q_n, width_px) {
-        let bottom = tails[i][1] - label_h;
+        let [x, mut top] = tails[i];
+        // over the line (or its markers) within the label's width: under it
+        if let Some((lo, hi)) = y_span(keep_off, x - half_w, x + half_w)
+            && top - label_h < hi + pad
+            && top > lo - pad
+        {
+            top = lo - pad;
+        }
+        let bottom = top - label_h;
         lowest = Some(lowest.map_or(bottom, |l| l.min(bottom)));
         // body size, strong colour: egui_plot's default small text in the
         // arrows' blue was unreadable on the road's fill
         let text = RichText::new(force_text(q_n[i])).size(font_px).color(color);
         pui.text(
-            Text::new(name, PlotPoint::new(tails[i][0], tails[i][1]), text)
+            Text::new(name, PlotPoint::new(x, top), text)
                 .anchor(Align2::CENTER_TOP)
                 // the glyphs keep `color` (set in the text); this is the
                 // item's colour, shown by the legend
@@ -116,6 +155,18 @@ mod tests {
         assert!(p.len() <= 9 && p.len() >= 5, "{p:?}");
         // no force: no label
         assert!(pick_labels(&[0.0], &[0.0], 10.0).is_empty());
+    }
+
+    #[test]
+    fn y_span_reads_the_line_over_an_x_range() {
+        let line = [[0.0, 0.0], [1.0, 2.0], [2.0, -1.0]];
+        // a vertex inside, the ends interpolated
+        assert_eq!(y_span(&line, 0.5, 1.5), Some((0.5, 2.0)));
+        // between two vertices: the two interpolated values
+        assert_eq!(y_span(&line, 0.25, 0.75), Some((0.5, 1.5)));
+        // beyond the line
+        assert_eq!(y_span(&line, 3.0, 4.0), None);
+        assert_eq!(y_span(&[], 0.0, 1.0), None);
     }
 
     #[test]

@@ -16,16 +16,17 @@ pub mod time_plots;
 
 use egui::Color32;
 
-/// Okabe-Ito colour-blind-friendly palette (same order as the PNG figures).
+/// The point colours: the PNG figures' (`output::figures::PALETTE`), with
+/// grey for their black (black would vanish on the dark theme's plots).
 pub const PALETTE: [Color32; 10] = [
     Color32::from_rgb(0, 114, 178),
     Color32::from_rgb(213, 94, 0),
     Color32::from_rgb(0, 158, 115),
     Color32::from_rgb(204, 121, 167),
-    Color32::from_rgb(230, 159, 0),
     Color32::from_rgb(86, 180, 233),
+    Color32::from_rgb(188, 189, 34),
     Color32::from_rgb(120, 120, 120),
-    Color32::from_rgb(240, 228, 66),
+    Color32::from_rgb(136, 34, 85),
     Color32::from_rgb(140, 86, 75),
     Color32::from_rgb(60, 60, 160),
 ];

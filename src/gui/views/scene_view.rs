@@ -129,6 +129,8 @@ pub const FORCE_COLOR: Color32 = Color32::from_rgb(0, 114, 178);
 pub const ROAD_NAME: &str = "road (moving)";
 pub const ROAD_COLOR: Color32 = Color32::from_rgb(140, 86, 75);
 pub const UNDEFORMED_NAME: &str = "undeformed tyre";
+/// Radius (px) of the undeformed tyre's hollow markers at the points.
+const UNDEFORMED_MARKER_PX: f32 = 4.0;
 pub const CONTACT_NAME: &str = "in contact";
 pub const FLIGHT_NAME: &str = "in flight";
 
@@ -321,10 +323,10 @@ pub fn show_with(
                     .style(LineStyle::dashed_dense()),
             );
             pui.points(
-                Points::new(UNDEFORMED_NAME, undeformed)
+                Points::new(UNDEFORMED_NAME, undeformed.clone())
                     .color(Color32::GRAY)
                     .filled(false)
-                    .radius(4.0),
+                    .radius(UNDEFORMED_MARKER_PX),
             );
             pui.line(
                 Line::new(DISPLACED_NAME, displaced.clone())
@@ -368,6 +370,8 @@ pub fn show_with(
                     &a_from,
                     &a_q,
                     label_color,
+                    &undeformed,
+                    UNDEFORMED_MARKER_PX,
                 );
             }
             extra(pui, &displaced, labels_floor);

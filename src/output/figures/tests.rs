@@ -154,3 +154,186 @@ fn categorical_ticks_name_the_integers_only() {
         assert_eq!(name_tick_label(v, &names), "", "at {v}");
     }
 }
+
+/// The pixels of exactly colour `c` in `rgb` (`w` px wide), as (x, y),
+/// farther than `clear` px from every segment of `curve` (the series as
+/// drawn in the plot): what is left is its legend key.
+fn key_pixels(
+    rgb: &[u8],
+    w: u32,
+    c: RGBColor,
+    curve: &[(i32, i32)],
+    clear: f64,
+) -> Vec<(i32, i32)> {
+    let near = |x: i32, y: i32| {
+        let p = (f64::from(x), f64::from(y));
+        let segs: Vec<((i32, i32), (i32, i32))> = if curve.len() == 1 {
+            vec![(curve[0], curve[0])]
+        } else {
+            curve.windows(2).map(|s| (s[0], s[1])).collect()
+        };
+        segs.iter().any(|&(a, b)| {
+            let (ax, ay, bx, by) = (
+                f64::from(a.0),
+                f64::from(a.1),
+                f64::from(b.0),
+                f64::from(b.1),
+            );
+            let (dx, dy) = (bx - ax, by - ay);
+            let len2 = dx * dx + dy * dy;
+            let t = if len2 == 0.0 {
+                0.0
+            } else {
+                (((p.0 - ax) * dx + (p.1 - ay) * dy) / len2).clamp(0.0, 1.0)
+            };
+            (p.0 - ax - t * dx).hypot(p.1 - ay - t * dy) <= clear
+        })
+    };
+    rgb.chunks_exact(3)
+        .enumerate()
+        .filter(|(_, px)| px[0] == c.0 && px[1] == c.1 && px[2] == c.2)
+        .map(|(i, _)| ((i as u32 % w) as i32, (i as u32 / w) as i32))
+        .filter(|&(x, y)| !near(x, y))
+        .collect()
+}
+
+/// Width and height (px) of the box around `pts`.
+fn extent(pts: &[(i32, i32)]) -> (i32, i32) {
+    let (xs, ys): (Vec<i32>, Vec<i32>) = pts.iter().copied().unzip();
+    let span = |v: &[i32]| v.iter().max().unwrap() - v.iter().min().unwrap() + 1;
+    (span(&xs), span(&ys))
+}
+
+#[test]
+fn a_one_point_series_is_keyed_by_its_dot_a_line_by_a_line_with_a_dot() {
+    // the work-precision diagram: a method with a single run is one dot;
+    // a line key beside it named a line nobody could find
+    let r = 4;
+    let series = |name: &str, points: Vec<(f64, f64)>, color: usize| Series {
+        name: name.into(),
+        points,
+        style: Style::LineMarkers(r),
+        color: Some(color),
+    };
+    for crowded in [false, true] {
+        let mut s = vec![
+            series(
+                "five runs",
+                (1..=5).map(|k| (k as f64, k as f64)).collect(),
+                0,
+            ),
+            series("one run", vec![(3.0, 1.5)], 1),
+        ];
+        if crowded {
+            // data in every corner: the legend goes in a column beside
+            s.push(Series::line(
+                "",
+                (0..300)
+                    .map(|k| {
+                        (
+                            1.0 + k as f64 * 4.0 / 299.0,
+                            if k % 2 == 0 { 1.0 } else { 5.0 },
+                        )
+                    })
+                    .collect(),
+            ));
+            s[2].style = Style::ThinLine;
+            s[2].color = Some(2);
+        }
+        let fig = Figure {
+            title: "t".into(),
+            subtitle: String::new(),
+            panels: vec![Panel {
+                x_label: "run time (s)".into(),
+                y_label: "error (-)".into(),
+                series: s,
+                ..Panel::default()
+            }],
+        };
+        let (w, h) = (800, 500);
+        let (rgb, l) = render_rgb_layout(&fig, w, h).unwrap();
+        assert_eq!(l[0].legend_px.is_some(), crowded);
+        let clear = f64::from(r) + 4.0;
+        let dot = key_pixels(&rgb, w, PALETTE[1], &l[0].curves_px[1], clear);
+        assert!(!dot.is_empty(), "crowded {crowded}: no key for the dot");
+        let (dw, dh) = extent(&dot);
+        assert!(
+            dw <= 2 * r as i32 + 3 && dh >= 2 * r as i32 - 1,
+            "crowded {crowded}: the one-point key is {dw}x{dh} px, not a dot of radius {r}"
+        );
+        let line = key_pixels(&rgb, w, PALETTE[0], &l[0].curves_px[0], clear);
+        assert!(!line.is_empty(), "crowded {crowded}: no key for the line");
+        let (lw, lh) = extent(&line);
+        assert!(
+            lw >= 19 && lh >= 2 * r as i32 - 1,
+            "crowded {crowded}: the line's key is {lw}x{lh} px, not a line with a dot"
+        );
+    }
+}
+
+#[test]
+fn the_figure_font_is_rewritten_and_its_glyphs_keep_their_side_bearings() {
+    // plotters drew every glyph's ink from the pen (no left side bearing):
+    // "H" touched its cell's left edge with twice its bearing on the right,
+    // and a tabular "1" left a gap after it ("1 0"). Symmetric glyphs are
+    // now centred in their advance, within 2 px at 60 px.
+    assert!(font::with_origin_points(epaint_default_fonts::UBUNTU_LIGHT).is_some());
+    register_fonts();
+    let (w, h) = (400u32, 120u32);
+    for text in ["H", "O", "0", "o", "8"] {
+        let mut rgb = vec![255u8; (w * h * 3) as usize];
+        let x0 = 100;
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+            root.draw(&Text::new(
+                text.to_string(),
+                (x0, 20),
+                ("sans-serif", 60).into_font().color(&BLACK),
+            ))
+            .unwrap();
+            root.present().unwrap();
+        }
+        let inked: Vec<i32> = rgb
+            .chunks_exact(3)
+            .enumerate()
+            .filter(|(_, p)| p[0] < 128)
+            .map(|(i, _)| (i as u32 % w) as i32)
+            .collect();
+        let (left, right) = (*inked.iter().min().unwrap(), *inked.iter().max().unwrap());
+        let advance = ("sans-serif", 60).into_font().box_size(text).unwrap().0 as i32;
+        let (l_gap, r_gap) = (left - x0, x0 + advance - 1 - right);
+        assert!(
+            l_gap >= 2 && (l_gap - r_gap).abs() <= 2,
+            "{text:?}: ink {left}..={right} in the cell {x0}..{}: bearings {l_gap} and {r_gap} px",
+            x0 + advance
+        );
+    }
+}
+
+#[test]
+fn a_thin_line_is_keyed_by_a_line_wide_enough_to_show_its_colour() {
+    // spectra and run --plot draw one-pixel lines; their keys were one
+    // pixel too (20 x 1 px: blue and sky blue could not be told apart)
+    let mut s = Series::line(
+        "thin",
+        (0..50).map(|k| (k as f64, (k % 7) as f64)).collect(),
+    );
+    s.style = Style::ThinLine;
+    s.color = Some(5);
+    let fig = Figure {
+        title: "t".into(),
+        subtitle: String::new(),
+        panels: vec![Panel {
+            x_label: "frequency (Hz)".into(),
+            y_label: "level (dB)".into(),
+            series: vec![s],
+            ..Panel::default()
+        }],
+    };
+    let (w, h) = (800, 500);
+    let (rgb, l) = render_rgb_layout(&fig, w, h).unwrap();
+    let key = key_pixels(&rgb, w, PALETTE[5], &l[0].curves_px[0], 2.0);
+    assert!(!key.is_empty(), "no key");
+    let (kw, kh) = extent(&key);
+    assert!(kw >= 19 && kh >= 3, "the key is {kw}x{kh} px");
+}
