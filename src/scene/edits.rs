@@ -3,7 +3,7 @@
 //! opened or saved, and adds it to the description on save, so that a saved
 //! preset's text does not describe a scene it no longer is.
 
-use super::{Contact, Scene, Tyre};
+use super::{Contact, Mode, Scene, Tyre};
 use crate::road::Road;
 
 /// `x` to four significant digits, in the shortest form (`10`, `0.025`).
@@ -15,11 +15,8 @@ fn num(x: f64) -> String {
 /// "what a -> b unit" when `a != b`.
 fn change(out: &mut Vec<String>, what: &str, a: f64, b: f64, scale: f64, unit: &str) {
     if a != b {
-        out.push(format!(
-            "{what} {} -> {} {unit}",
-            num(a * scale),
-            num(b * scale)
-        ));
+        let line = format!("{what} {} -> {} {unit}", num(a * scale), num(b * scale));
+        out.push(line.trim_end().to_string());
     }
 }
 
@@ -46,6 +43,42 @@ fn contact_kind(c: &Contact) -> &'static str {
     }
 }
 
+/// Most modes whose edits are listed one by one; more are counted.
+const MODES_LISTED: usize = 3;
+
+/// The edits of modes `a` to `b` (as many of each): per mode, its
+/// frequency and damping from and to, and whether its residues changed.
+fn mode_edits(out: &mut Vec<String>, a: &[Mode], b: &[Mode]) {
+    let changed: Vec<usize> = (0..a.len()).filter(|&k| a[k] != b[k]).collect();
+    if changed.len() > MODES_LISTED {
+        out.push(format!("{} of {} modes", changed.len(), a.len()));
+        return;
+    }
+    for k in changed {
+        let (x, y) = (&a[k], &b[k]);
+        let what = format!("mode {k}");
+        change(
+            out,
+            &format!("{what} frequency"),
+            x.freq_hz,
+            y.freq_hz,
+            1.0,
+            "Hz",
+        );
+        change(
+            out,
+            &format!("{what} damping ratio"),
+            x.damping_ratio,
+            y.damping_ratio,
+            1.0,
+            "",
+        );
+        if x.residue != y.residue || x.shape != y.shape {
+            out.push(format!("{what} residues"));
+        }
+    }
+}
+
 /// The changes from `before` to `after` a reader of `before`'s description
 /// would need to know, one phrase each with units ("speed 10 -> 20 m/s");
 /// empty when none. The name and the description themselves are not listed.
@@ -56,7 +89,7 @@ pub fn edits_since(before: &Scene, after: &Scene) -> Vec<String> {
             if a.len() != b.len() {
                 out.push(format!("{} -> {} modes", a.len(), b.len()));
             } else {
-                out.push("mode frequencies, damping or residues".to_string());
+                mode_edits(&mut out, a, b);
             }
         }
         (
@@ -248,6 +281,39 @@ mod tests {
             e.contains(&"contact scheme Located -> Paper".to_string()),
             "{e:?}"
         );
+    }
+
+    #[test]
+    fn a_detuned_mode_is_named_with_its_values() {
+        let s = scene();
+        let mut t = s.clone();
+        let Tyre::Modal { modes } = &mut t.tyre else {
+            panic!("three_points is a modal scene");
+        };
+        let (f0, z0) = (modes[1].freq_hz, modes[1].damping_ratio);
+        modes[1].freq_hz = 2.0 * f0;
+        modes[1].damping_ratio = 0.0;
+        let e = edits_since(&s, &t);
+        assert_eq!(
+            e,
+            [
+                format!("mode 1 frequency {} -> {} Hz", num(f0), num(2.0 * f0)),
+                format!("mode 1 damping ratio {} -> 0", num(z0)),
+            ]
+        );
+        // many modes: counted
+        let Tyre::Modal { modes } = &mut t.tyre else {
+            unreachable!()
+        };
+        let n = modes.len();
+        for m in modes.iter_mut() {
+            m.freq_hz *= 1.01;
+        }
+        if n > MODES_LISTED {
+            assert_eq!(edits_since(&s, &t), [format!("{n} of {n} modes")]);
+        } else {
+            assert_eq!(edits_since(&s, &t).len(), n + 1);
+        }
     }
 
     #[test]

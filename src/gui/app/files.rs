@@ -188,7 +188,8 @@ impl App {
     }
 
     /// Saves atomically (`Scene::save`): a failed save leaves the file as
-    /// it was.
+    /// it was (and the scene as it was).
+    ///
     /// The description gets a closing line listing the edits since the scene
     /// was opened or last saved (the text above it described the scene
     /// before them).
