@@ -65,3 +65,65 @@ fn an_edit_is_said_under_the_description_and_saved_into_it() {
     assert_eq!(Scene::load(&path).unwrap().description, saved.description);
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn name_and_description_are_edited_in_place_without_a_restart() {
+    let mut h = harness(three_points());
+    h.run();
+    h.state_mut().apply(Command::Play);
+    common::advance(&mut h, 50);
+    let steps = h.state().simulation().steps();
+    assert!(steps >= 50);
+    // the section opens on a click on its header
+    use egui_kittest::kittest::Queryable;
+    h.get_by_label("Name and description").click();
+    h.run();
+    type_into(&mut h, "scene.name", "  Fast three points  ");
+    assert_eq!(h.state().scene().name, "Fast three points");
+    assert!(h.state().title().contains("Fast three points"));
+    assert!(
+        h.state().simulation().steps() >= steps,
+        "renaming restarted the run"
+    );
+    // an empty name is refused, the old one kept, and the banner says so
+    type_into(&mut h, "scene.name", "   ");
+    assert_eq!(h.state().scene().name, "Fast three points");
+    let msg = h
+        .state()
+        .message()
+        .map(|m| m.text.clone())
+        .unwrap_or_default();
+    assert!(
+        msg.contains("scene.name") && msg.contains("empty"),
+        "{msg:?}"
+    );
+
+    // a speed edit, then a description written for it: the text is the
+    // user's, so no note under it and nothing added on save
+    let v0 = h.state().scene().speed_mps;
+    type_into(&mut h, "speed_mps", &format!("{}", 2.0 * v0));
+    assert!(shows(&h, "Changed since opened or saved"));
+    h.get_by_label("scene.description").focus();
+    h.run();
+    h.get_by_label("scene.description")
+        .set_text_value_accesskit("Three points at twice the speed.");
+    h.run();
+    // focus leaves the multi-line field on a click elsewhere
+    h.get_by_label("scene.name").focus();
+    h.run();
+    h.run();
+    assert_eq!(
+        h.state().scene().description,
+        "Three points at twice the speed."
+    );
+    assert!(!shows(&h, "Changed since opened or saved"));
+    let dir = std::env::temp_dir().join(format!("tc_about_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("fast.ron");
+    h.state_mut().apply(Command::SavePath(path.clone()));
+    h.run();
+    let saved = Scene::load(&path).unwrap();
+    assert_eq!(saved.name, "Fast three points");
+    assert_eq!(saved.description, "Three points at twice the speed.");
+    std::fs::remove_dir_all(dir).ok();
+}

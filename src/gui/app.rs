@@ -189,8 +189,12 @@ impl App {
         self.scene != self.saved
     }
     /// What changed since the scene was opened or saved, in words with
-    /// units (the description was written before it).
+    /// units (the description was written before it); none once the user
+    /// edited the description itself (the text is then theirs).
     pub fn edits(&self) -> Vec<String> {
+        if self.scene.description != self.saved.description {
+            return Vec::new();
+        }
         crate::scene::edits_since(&self.saved, &self.scene)
     }
     pub fn pending_confirmation(&self) -> Option<&Discarding> {

@@ -1,6 +1,7 @@
 //! Editing panels. They read the scene and push `Command`s; they never touch
 //! the simulation.
 
+pub mod about_panel;
 pub mod contact_panel;
 pub mod modes_table;
 pub mod points_panel;
@@ -57,6 +58,7 @@ pub fn side_panel(
         if let Some(note) = edits_note(edits) {
             ui.label(egui::RichText::new(note).italics());
         }
+        about_panel::show(ui, scene, cmds);
         ui.horizontal(|ui| {
             ui.label("Tags:");
             super::fields::tag(ui, super::fields::Apply::Live);
