@@ -279,7 +279,7 @@ pub fn picker_color(visuals: &egui::Visuals, i: usize, selected: bool) -> Color3
     if selected {
         visuals.selection.stroke.color
     } else {
-        point_color(i)
+        super::views::point_label_color(visuals, i)
     }
 }
 

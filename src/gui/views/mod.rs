@@ -36,6 +36,55 @@ pub fn point_color(i: usize) -> Color32 {
     PALETTE[i % PALETTE.len()]
 }
 
+/// WCAG relative luminance of an sRGB colour.
+fn luminance(c: Color32) -> f64 {
+    let lin = |x: u8| {
+        let v = f64::from(x) / 255.0;
+        if v <= 0.04045 {
+            v / 12.92
+        } else {
+            ((v + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    0.2126 * lin(c.r()) + 0.7152 * lin(c.g()) + 0.0722 * lin(c.b())
+}
+
+/// WCAG contrast ratio of two colours (1 to 21).
+pub fn contrast_ratio(a: Color32, b: Color32) -> f64 {
+    let (la, lb) = (luminance(a), luminance(b));
+    (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+}
+
+/// Smallest WCAG contrast of a point's label on its background (the level
+/// for large or bold text and for graphics).
+pub const LABEL_CONTRAST: f64 = 3.0;
+
+/// Point `i`'s colour for a label on `bg`: the point's colour where it
+/// reads (contrast >= [`LABEL_CONTRAST`]), else mixed toward `text` (the
+/// theme's strong text colour) just enough, so the hue still keys the
+/// point. Sky blue on the light theme's panel was 2.3:1.
+pub fn point_text_color(i: usize, bg: Color32, text: Color32) -> Color32 {
+    let c = point_color(i);
+    for k in 0..=20 {
+        let f = k as f32 / 20.0;
+        let mix = |a: u8, b: u8| (f32::from(a) + (f32::from(b) - f32::from(a)) * f).round() as u8;
+        let m = Color32::from_rgb(
+            mix(c.r(), text.r()),
+            mix(c.g(), text.g()),
+            mix(c.b(), text.b()),
+        );
+        if contrast_ratio(m, bg) >= LABEL_CONTRAST {
+            return m;
+        }
+    }
+    text
+}
+
+/// [`point_text_color`] on the panel of the theme `v`.
+pub fn point_label_color(v: &egui::Visuals, i: usize) -> Color32 {
+    point_text_color(i, v.panel_fill, v.strong_text_color())
+}
+
 /// Colour of a point in contact / in flight in the scene view.
 pub const CONTACT_COLOR: Color32 = Color32::from_rgb(0, 158, 115);
 pub const FLIGHT_COLOR: Color32 = Color32::from_rgb(213, 94, 0);

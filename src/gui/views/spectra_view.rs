@@ -134,7 +134,10 @@ pub fn show(
         ui.separator();
         ui.label("points:");
         for (i, s) in opts.shown.iter_mut().enumerate().take(24) {
-            ui.checkbox(s, RichText::new(i.to_string()).color(point_color(i)));
+            ui.checkbox(
+                s,
+                RichText::new(i.to_string()).color(super::point_label_color(ui.visuals(), i)),
+            );
         }
         ui.checkbox(&mut opts.total, "total force");
     });

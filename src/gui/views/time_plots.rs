@@ -440,7 +440,7 @@ fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
         ui.label("points:");
         let n = opts.shown.len();
         for (i, s) in opts.shown.iter_mut().enumerate().take(24) {
-            ui.checkbox(s, egui::RichText::new(i.to_string()).color(point_color(i)));
+            ui.checkbox(s, egui::RichText::new(i.to_string()).color(super::point_label_color(ui.visuals(), i)));
         }
         if n > 24 {
             ui.label(format!("(+{} more)", n - 24));
