@@ -19,8 +19,9 @@
 //! the Nyquist frequency (so out-of-band modes keep their share of the
 //! responses); the model keeps the in-band ones whose share of the responses
 //! is at least `min_contribution`. The model order is the given
-//! one or, automatically, the smallest whose in-band model's time-domain fit
-//! error is within `order_tolerance` of the best over all orders.
+//! one or, automatically, chosen with the diagram: among the orders whose
+//! in-band model's time-domain fit error is within `order_tolerance` of the
+//! best, the smallest whose kept poles persist (`choose_order`).
 
 use crate::modal::unit_impulse;
 use crate::scene::Mode;
@@ -409,6 +410,48 @@ fn stability(
     Stability::Stable
 }
 
+/// The automatic model order (SPEC §6: chosen with the stabilisation
+/// diagram): among the orders whose in-band fit error is near the best
+/// (within `order_tolerance`, plus [`EXACT_FIT`]), the smallest whose kept
+/// poles (`kept_at[k]`: indices into `diagram[k].poles`) all persist, each
+/// stable against the order below or found stable at the order above; if
+/// no near-best order has only persistent poles, the smallest near-best
+/// order. `None` without any in-band pole.
+fn choose_order(
+    diagram: &[DiagramOrder],
+    kept_at: &[Vec<usize>],
+    opts: &IdentifyOptions,
+) -> Option<usize> {
+    let best = diagram
+        .iter()
+        .filter(|d| !d.poles.is_empty())
+        .map(|d| d.band_time_error)
+        .fold(f64::INFINITY, f64::min);
+    let near_best = |d: &DiagramOrder| {
+        !d.poles.is_empty() && d.band_time_error <= (1.0 + opts.order_tolerance) * best + EXACT_FIT
+    };
+    let persists = |k: usize| {
+        let d = &diagram[k];
+        kept_at.get(k).is_some_and(|kept| {
+            kept.iter().all(|&c| {
+                let pl = &d.poles[c];
+                pl.stability == Stability::Stable
+                    || diagram.get(k + 1).is_some_and(|up| {
+                        up.poles.iter().any(|q| {
+                            q.stability == Stability::Stable
+                                && (q.freq_hz - pl.freq_hz).abs()
+                                    <= opts.stable_freq_tol * pl.freq_hz
+                        })
+                    })
+            })
+        })
+    };
+    (0..diagram.len())
+        .find(|&k| near_best(&diagram[k]) && persists(k))
+        .or_else(|| (0..diagram.len()).find(|&k| near_best(&diagram[k])))
+        .map(|k| diagram[k].order)
+}
+
 /// Identifies a modal model from sampled impulse responses (SPEC §6).
 pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification, LsceError> {
     let errors = opts.validate("options");
@@ -432,6 +475,8 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
         _ => (1..=m_max).collect(),
     };
     let mut diagram = Vec::with_capacity(orders.len());
+    let mut kept_at: Vec<Vec<usize>> = Vec::with_capacity(orders.len());
+    let data_norm = data.norm();
     let mut prev: Option<(Vec<Pole>, Vec<Vec<f64>>)> = None;
     for &m in &orders {
         let poles = poles_of_order(&rmat, 2 * m, dt, opts)?;
@@ -457,12 +502,23 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
         let in_band: Vec<usize> = (0..fit.poles.len())
             .filter(|&c| fit.poles[c].in_band(opts))
             .collect();
-        let band_fit = basis(
+        let band_basis = basis(
             &in_band.iter().map(|&c| fit.poles[c]).collect::<Vec<_>>(),
             dt,
             len,
             false,
-        ) * fit.residues.select_rows(in_band.iter());
+        );
+        // the in-band poles the model would keep at this order (a share of
+        // the responses, as below): indices into `dpoles`
+        kept_at.push(
+            (0..in_band.len())
+                .filter(|&k| {
+                    let share = band_basis.column(k).norm() * fit.residues.row(in_band[k]).norm();
+                    share >= opts.min_contribution * data_norm
+                })
+                .collect::<Vec<usize>>(),
+        );
+        let band_fit = band_basis * fit.residues.select_rows(in_band.iter());
         diagram.push(DiagramOrder {
             order: m,
             poles: dpoles,
@@ -473,20 +529,7 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
     }
     let chosen = match opts.model_order {
         Some(m) => m,
-        None => {
-            let best = diagram
-                .iter()
-                .filter(|d| !d.poles.is_empty())
-                .map(|d| d.band_time_error)
-                .fold(f64::INFINITY, f64::min);
-            diagram
-                .iter()
-                .find(|d| {
-                    !d.poles.is_empty()
-                        && d.band_time_error <= (1.0 + opts.order_tolerance) * best + EXACT_FIT
-                })
-                .map_or(m_max, |d| d.order)
-        }
+        None => choose_order(&diagram, &kept_at, opts).unwrap_or(m_max),
     };
     let all = poles_of_order(&rmat, 2 * chosen, dt, opts)?;
     let no_modes = LsceError::NoModes {
@@ -504,7 +547,6 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
     // in band, and with a share of the responses (a spurious pole fitted to
     // round-off has none)
     let b_all = basis(&fit_all.poles, dt, len, false);
-    let data_norm = data.norm();
     let kept: Vec<usize> = (0..n_all)
         .filter(|&c| {
             let share = b_all.column(c).norm() * fit_all.residues.row(c).norm();
@@ -607,4 +649,74 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
             per_response,
         },
     })
+}
+
+#[cfg(test)]
+mod order_tests {
+    use super::*;
+
+    fn pole(freq_hz: f64, stability: Stability) -> DiagramPole {
+        DiagramPole {
+            freq_hz,
+            damping_ratio: 0.05,
+            stability,
+        }
+    }
+
+    fn order(order: usize, poles: Vec<DiagramPole>, band_time_error: f64) -> DiagramOrder {
+        DiagramOrder {
+            order,
+            poles,
+            time_error: band_time_error,
+            band_time_error,
+        }
+    }
+
+    /// The smallest near-best order keeps a pole that appears there only
+    /// (new at order 3, gone at order 4: a fit to noise); the order chosen
+    /// is the next near-best one whose kept poles persist. Without the
+    /// persistence rule it would be 3.
+    #[test]
+    fn a_near_best_order_with_a_passing_pole_is_skipped() {
+        use Stability::*;
+        let d = vec![
+            order(1, vec![pole(100.0, New)], 0.5),
+            order(2, vec![pole(100.0, Stable), pole(200.0, New)], 0.2),
+            order(
+                3,
+                vec![pole(100.0, Stable), pole(200.0, Stable), pole(333.0, New)],
+                0.010,
+            ),
+            order(
+                4,
+                vec![pole(100.0, Stable), pole(200.0, Stable), pole(410.0, New)],
+                0.0101,
+            ),
+            order(
+                5,
+                vec![
+                    pole(100.0, Stable),
+                    pole(200.0, Stable),
+                    pole(410.0, Stable),
+                ],
+                0.0102,
+            ),
+        ];
+        let all: Vec<Vec<usize>> = d.iter().map(|o| (0..o.poles.len()).collect()).collect();
+        let opts = IdentifyOptions::default();
+        // order 4's new pole persists, stable, at order 5: order 4
+        assert_eq!(choose_order(&d, &all, &opts), Some(4));
+        // the passing pole carries no share (not kept): order 3
+        let mut kept = all.clone();
+        kept[2] = vec![0, 1];
+        assert_eq!(choose_order(&d, &kept, &opts), Some(3));
+        // nothing near the best persists: the smallest near-best order
+        let mut d2 = d.clone();
+        d2[4].poles[2].stability = New;
+        d2[3].poles[2].stability = New;
+        assert_eq!(choose_order(&d2[..4], &all[..4], &opts), Some(3));
+        // no in-band pole at all
+        let empty = vec![order(1, vec![], 0.1)];
+        assert_eq!(choose_order(&empty, &[vec![]], &opts), None);
+    }
 }

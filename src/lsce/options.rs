@@ -33,9 +33,11 @@ pub struct IdentifyOptions {
     pub stable_damping_tol: f64,
     /// Stabilisation: smallest MAC of the residue vectors (-). Default 0.95.
     pub stable_mac_min: f64,
-    /// Automatic order: the smallest order whose in-band model's fit error
-    /// is at most `(1 + order_tolerance)` times the best, plus
-    /// [`super::EXACT_FIT`] (-). Default 0.05.
+    /// Automatic order: the orders whose in-band model's fit error is at
+    /// most `(1 + order_tolerance)` times the best, plus
+    /// [`super::EXACT_FIT`], are near-best; the smallest of them whose kept
+    /// poles persist in the stabilisation diagram is chosen (-). Default
+    /// 0.05.
     pub order_tolerance: f64,
     /// Smallest share of a kept mode in the responses,
     /// `||h_k|| ||A_k|| / ||g||` over all responses (-), in [0, 1). Default
