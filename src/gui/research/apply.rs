@@ -156,12 +156,12 @@ impl App {
                 SweepState::Finished(r) => (
                     false,
                     format!(
-                        "sweep of {} done: {} runs ({} failed) on {} threads in {:.1} s",
+                        "sweep of {} done: {} runs ({} failed) on {} threads in {}",
                         r.request.param,
                         r.points.len(),
                         r.failed(),
                         r.threads,
-                        r.wall_s
+                        crate::gui::views::wall_time_text(r.wall_s)
                     ),
                 ),
                 SweepState::Cancelled => (

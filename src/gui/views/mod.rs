@@ -36,6 +36,18 @@ pub fn point_color(i: usize) -> Color32 {
     PALETTE[i % PALETTE.len()]
 }
 
+/// A wall-clock time in readable units: "35 ms" below a second (a fast
+/// sweep read "0.0 s"), "2.4 s" above.
+pub fn wall_time_text(s: f64) -> String {
+    if s < 0.0995 {
+        format!("{:.1} ms", s * 1e3)
+    } else if s < 0.9995 {
+        format!("{:.0} ms", s * 1e3)
+    } else {
+        format!("{s:.1} s")
+    }
+}
+
 /// WCAG relative luminance of an sRGB colour.
 fn luminance(c: Color32) -> f64 {
     let lin = |x: u8| {
@@ -204,6 +216,15 @@ pub fn log_marks(input: egui_plot::GridInput) -> Vec<egui_plot::GridMark> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn wall_times_below_a_second_are_in_milliseconds() {
+        assert_eq!(wall_time_text(0.0351), "35.1 ms");
+        assert_eq!(wall_time_text(0.004), "4.0 ms");
+        assert_eq!(wall_time_text(0.35), "350 ms");
+        assert_eq!(wall_time_text(0.9999), "1.0 s");
+        assert_eq!(wall_time_text(2.44), "2.4 s");
+    }
 
     #[test]
     fn large_tick_labels_are_grouped_by_thousands() {

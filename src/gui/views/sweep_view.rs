@@ -177,7 +177,7 @@ pub fn show(
         SweepState::Finished(r) => {
             ui.horizontal_wrapped(|ui| {
                 ui.label(format!(
-                    "{} runs of {} from {} to {} {} ({} failed) on {} threads in {:.1} s (scene “{}”)",
+                    "{} runs of {} from {} to {} {} ({} failed) on {} threads in {} (scene “{}”)",
                     r.points.len(),
                     r.request.param,
                     r.request.from,
@@ -185,13 +185,21 @@ pub fn show(
                     param_unit(&r.request.param),
                     r.failed(),
                     r.threads,
-                    r.wall_s,
+                    super::wall_time_text(r.wall_s),
                     r.scene_name
                 ));
-                if ui.button("Export CSV…").on_hover_text("same table as `tirecontact sweep -o`").clicked() {
+                if ui
+                    .button("Export CSV…")
+                    .on_hover_text("same table as `tirecontact sweep -o`")
+                    .clicked()
+                {
                     cmds.push(Command::Research(ResearchCommand::ExportSweepCsvDialog));
                 }
-                if ui.button("Export PNG…").on_hover_text("same figure as `tirecontact sweep --plot`").clicked() {
+                if ui
+                    .button("Export PNG…")
+                    .on_hover_text("same figure as `tirecontact sweep --plot`")
+                    .clicked()
+                {
                     cmds.push(Command::Research(ResearchCommand::ExportSweepPngDialog));
                 }
             });
