@@ -270,13 +270,14 @@ pub fn show_with(
                 key: Key::Diamond,
             },
         ];
-        if !a_from.is_empty() {
-            entries.push(Entry {
-                name: FORCE_NAME,
-                color: FORCE_COLOR,
-                key: Key::Disc,
-            });
-        }
+        // the force's entry even while no point pushes: the row (and so the
+        // plot's height and, at aspect 1, its x range) stays the same as
+        // points land and leave (it wrapped to a second line and back)
+        entries.push(Entry {
+            name: FORCE_NAME,
+            color: FORCE_COLOR,
+            key: Key::Disc,
+        });
         row(ui, &entries, &opts.legend_style);
     } else {
         plot = plot.legend(
