@@ -455,11 +455,7 @@ pub fn mode_bars(
         .iter()
         .enumerate()
         .map(|(k, v)| {
-            let color = if muted(k) {
-                Color32::GRAY
-            } else {
-                point_color(k + 1)
-            };
+            let color = mode_bar_color(ui.visuals(), muted(k));
             Bar::new(k as f64, v * 1e3)
                 .width(0.7)
                 .fill(color)
@@ -471,6 +467,7 @@ pub fn mode_bars(
         .enumerate()
         .map(|(k, m)| format!("{k}: {:.0} Hz", m.freq_hz))
         .collect();
+    let bar_key = mode_bar_color(ui.visuals(), false);
     let ymax = c.iter().fold(1e-3f64, |a, v| a.max(v.abs() * 1e3)) * 1.1;
     let row = ui.spacing().interact_size.y + ui.spacing().item_spacing.y;
     // the vertical axis label is centred on the plot frame: a frame shorter
@@ -516,12 +513,23 @@ pub fn mode_bars(
         .allow_drag(false)
         .allow_zoom(false)
         .show(ui, |pui| {
-            pui.bar_chart(BarChart::new("now (mm)", bars).color(point_color(1)));
+            pui.bar_chart(BarChart::new("now (mm)", bars).color(bar_key));
         });
     // many modes in a short panel: the rows scroll under the plot
     egui::ScrollArea::vertical()
         .id_salt("tirecontact.mode_mutes_scroll")
         .show(ui, |ui| mute_rows(ui, &c, modes, mutes, cmds));
+}
+
+/// Fill of a mode's bar: the theme's strong text colour, grey when muted.
+/// Not a point's colour: beside the coloured point picker, mode k in point
+/// k+1's colour read as that point's bar.
+pub fn mode_bar_color(visuals: &egui::Visuals, muted: bool) -> Color32 {
+    if muted {
+        Color32::GRAY
+    } else {
+        visuals.strong_text_color()
+    }
 }
 
 /// One row per mode: its frequency, its part of u, Mute and Solo.
