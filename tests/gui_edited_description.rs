@@ -127,3 +127,26 @@ fn name_and_description_are_edited_in_place_without_a_restart() {
     assert_eq!(saved.description, "Three points at twice the speed.");
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn an_open_description_field_is_not_repeated_above_it() {
+    let mut h = harness(three_points());
+    h.run();
+    let description = h.state().scene().description.clone();
+    let count = |h: &egui_kittest::Harness<'_, App>| {
+        texts(h)
+            .iter()
+            .filter(|(t, _)| t.as_str() == description.as_str())
+            .count()
+    };
+    assert_eq!(count(&h), 1, "the description under the scene's name");
+    use egui_kittest::kittest::Queryable;
+    h.get_by_label("Name and description").click();
+    h.run();
+    h.run();
+    assert_eq!(count(&h), 1, "shown in its field and again above it");
+    h.get_by_label("Name and description").click();
+    h.run();
+    h.run();
+    assert_eq!(count(&h), 1, "closed again: the description above");
+}

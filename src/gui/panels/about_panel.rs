@@ -44,9 +44,21 @@ fn text_field(ui: &mut Ui, name: &str, current: &str, multiline: bool) -> Option
     out
 }
 
+/// Memory key of whether the section was open at the last frame.
+fn open_key() -> Id {
+    Id::new("tirecontact.about.open")
+}
+
+/// Whether the "Name and description" section was open at the last frame:
+/// its field then shows the description, which the panel does not repeat
+/// above it.
+pub fn is_open(ui: &Ui) -> bool {
+    ui.data(|d| d.get_temp(open_key())).unwrap_or(false)
+}
+
 /// The "Name and description" section (collapsed at first).
 pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
-    egui::CollapsingHeader::new("Name and description")
+    let r = egui::CollapsingHeader::new("Name and description")
         .id_salt("tirecontact.about")
         .show(ui, |ui| {
             ui.label("name (window title, status bar, figures)");
@@ -79,4 +91,6 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                     .weak(),
             );
         });
+    let open = r.openness > 0.0;
+    ui.data_mut(|d| d.insert_temp(open_key(), open));
 }

@@ -52,7 +52,7 @@ pub fn side_panel(
 ) {
     egui::ScrollArea::vertical().show(ui, |ui| {
         ui.heading(&scene.name);
-        if !scene.description.is_empty() {
+        if !scene.description.is_empty() && !about_panel::is_open(ui) {
             ui.label(egui::RichText::new(&scene.description).weak());
         }
         if let Some(note) = edits_note(edits) {
