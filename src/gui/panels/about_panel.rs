@@ -46,7 +46,7 @@ fn text_field(ui: &mut Ui, name: &str, current: &str, multiline: bool) -> Option
 
 /// Memory key of whether the section was open at the last frame.
 fn open_key() -> Id {
-    Id::new("tirecontact.about.open")
+    Id::unique("tirecontact.about.open")
 }
 
 /// Whether the "Name and description" section was open at the last frame:
