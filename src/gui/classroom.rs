@@ -102,6 +102,10 @@ pub fn phase_text(i: usize, p: ContactPhase) -> String {
     }
 }
 
+/// The least gap (px) between a phase label in the plot and the force
+/// value labels' floor.
+const LABEL_GAP_PX: f64 = 2.0;
+
 /// The scene view with each point's phase written above it.
 pub fn scene_with_phases(
     ui: &mut Ui,
@@ -154,6 +158,13 @@ pub fn scene_with_phases(
             // then in the sky above them (a short plot at 1280 x 720 had
             // room for one lane below, and four of five events at the end
             // of the paper preset's run were shown only in the strip)
+            // a lane moved up into the force value labels is not used: its
+            // labels' tops at least LABEL_GAP_PX under their floor (the
+            // labels' boxes came within 0.6 px, overlapped by 3.5 px early
+            // in the paper preset's run at 1280 x 720); its events go to the
+            // sky lanes or the strip
+            let clear_of_forces =
+                |y: f64| labels_floor.is_none_or(|f| y <= f - per_px * LABEL_GAP_PX);
             let mut lanes: Vec<(f64, egui::Align2)> = (0..below)
                 .map(|k| {
                     (
@@ -161,6 +172,7 @@ pub fn scene_with_phases(
                         egui::Align2::CENTER_TOP,
                     )
                 })
+                .filter(|(y, _)| clear_of_forces(*y))
                 .collect();
             let points_highest = displaced
                 .iter()
