@@ -10,6 +10,15 @@ mod colour_distance;
 use colour_distance::{ciede2000, contrast, lch};
 
 fn check(name: &str, colours: &[[u8; 3]], backgrounds: &[[u8; 3]], min_contrast: f64) {
+    // points 0 and 4, blue and sky blue, read as one colour in the README's
+    // small images at 22 (Okabe-Ito's blue, 0 114 178); now 31
+    let d04 = ciede2000(colours[0], colours[4]);
+    assert!(
+        d04 >= 30.0,
+        "{name}: colours 0 {:?} and 4 {:?}: CIEDE2000 {d04:.1} < 30",
+        colours[0],
+        colours[4]
+    );
     for (i, &a) in colours.iter().enumerate() {
         for bg in backgrounds {
             let c = contrast(a, *bg);

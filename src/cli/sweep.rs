@@ -112,7 +112,8 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
             &points,
             p,
         );
-        tirecontact::output::figures::render_png(&fig, path, 1400, 1400)?;
+        let (w, h) = report::FIGURE_PX;
+        tirecontact::output::figures::render_png(&fig, path, w, h)?;
         eprintln!("wrote {}", path.display());
     }
     let failed: Vec<String> = points

@@ -6,6 +6,7 @@
 use super::command::Command;
 use super::history::{History, Quantity};
 use super::mutes::Mutes;
+use super::views::force_labels::{self, force_text};
 use super::views::time_plots::{
     IMPACT_LABEL, IMPACT_MARK_COLOR, clip_at, clip_level, force_range, impact_marks,
 };
@@ -102,6 +103,10 @@ pub fn phase_text(i: usize, p: ContactPhase) -> String {
     }
 }
 
+/// The least gap (px) between a phase label in the plot and the force
+/// value labels' floor.
+const LABEL_GAP_PX: f64 = 2.0;
+
 /// The scene view with each point's phase written above it.
 pub fn scene_with_phases(
     ui: &mut Ui,
@@ -162,6 +167,58 @@ pub fn scene_with_phases(
                     )
                 })
                 .collect();
+            // a lane moved up into the force value labels (the boxes' ink
+            // came within 0.6 px, and overlapped by 3.5 px early in the paper
+            // preset's run at 1280 x 720) first goes down to just under the
+            // labels' text, if the plot has room for it there: the two texts'
+            // line boxes then meet, their ink the lines' leading apart (7 px
+            // under "592 N"). The value labels' floor is a line height and
+            // 4 px under their tops, a little more than their text. A lane
+            // still in them takes only labels LABEL_GAP_PX clear of them
+            // sideways; the value labels are centred under every point with
+            // a force (the force view labels those that fit; all are kept
+            // clear of).
+            let force_px = pui
+                .ctx()
+                .global_style()
+                .text_styles
+                .get(&TextStyle::Body)
+                .map_or(14.0, |f| f.size);
+            let force_text_h = pui.ctx().fonts_mut(|f| {
+                f.layout_no_wrap(
+                    "0 N".to_owned(),
+                    FontId::proportional(force_px),
+                    Color32::WHITE,
+                )
+                .size()
+                .y
+            });
+            let text_floor = labels_floor.map(|f| {
+                f + per_px * f64::from(force_labels::LINE_HEIGHT * force_px + 4.0 - force_text_h)
+            });
+            let label_h = per_px * (lane_px - 2.0);
+            if let Some(tf) = text_floor {
+                for lane in &mut lanes {
+                    if tf < lane.0 && tf - label_h >= b.min()[1] {
+                        lane.0 = tf;
+                    }
+                }
+            }
+            let near_forces: Vec<bool> = lanes
+                .iter()
+                .map(|(y, _)| text_floor.is_some_and(|f| *y > f))
+                .collect();
+            let force_spans: Vec<(f32, f32)> = sim
+                .force_n()
+                .iter()
+                .zip(displaced)
+                .filter(|(q, _)| **q > 0.0)
+                .map(|(q, d)| {
+                    let x = pui.transform().position_from_point_x(d[0]);
+                    let w = measure(&force_text(*q)).x;
+                    (x - 0.5 * w, x + 0.5 * w)
+                })
+                .collect();
             let points_highest = displaced
                 .iter()
                 .map(|d| d[1])
@@ -208,11 +265,16 @@ pub fn scene_with_phases(
             // least: 6 px apart, "p0: RELEASE p3: IMPACT" read as one label
             let gap = body;
             let mut taken: Vec<Vec<(f32, f32)>> = vec![Vec::new(); lanes.len()];
+            let gap_px = LABEL_GAP_PX as f32;
             for (i, left, r) in events {
                 let free = |k: &usize| {
                     taken[*k]
                         .iter()
                         .all(|&(l0, r0)| r0 + gap <= left || r + gap <= l0)
+                        && (!near_forces.get(*k).copied().unwrap_or(false)
+                            || force_spans
+                                .iter()
+                                .all(|&(l0, r0)| r0 + gap_px <= left || r + gap_px <= l0))
                 };
                 let Some(lane) = (0..lanes.len()).find(free) else {
                     continue;

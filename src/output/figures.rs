@@ -76,16 +76,19 @@ pub enum FigureError {
     Size { width: u32, height: u32 },
 }
 
-/// The series colours, point `k` in colour `k`: Okabe-Ito's blue,
-/// vermillion, bluish green, reddish purple and sky blue, then olive, black
-/// (also the clipped-impact marks), wine, grey and brown. Okabe-Ito's
-/// orange is left out: next to its vermillion, points 1 and 4 of a
-/// five-point scene read as one orange. Any two of the first eight differ
-/// by at least 20 in CIEDE2000, two of one hue by at least 20 in lightness
-/// (`tests/palette.rs`). The visualiser's first eight are these with grey
-/// for black (`gui::views::PALETTE`).
+/// The series colours, point `k` in colour `k`: Okabe-Ito's blue (made
+/// darker), vermillion, bluish green, reddish purple and sky blue, then
+/// olive, black (also the clipped-impact marks), wine, grey and brown.
+/// Okabe-Ito's orange is left out: next to its vermillion, points 1 and 4
+/// of a five-point scene read as one orange. Its blue (0, 114, 178) and sky
+/// blue were 22 apart in CIEDE2000 (24 in L*), one colour in a small
+/// README image; (0, 95, 155) is 31 (L* 39 and 70). Any two of the first
+/// eight differ by at least 20 in CIEDE2000, two of one hue by at least 20
+/// in lightness, points 0 and 4 by at least 30 (`tests/palette.rs`). The
+/// visualiser's first eight are these with grey for black
+/// (`gui::views::PALETTE`).
 pub const PALETTE: [RGBColor; 10] = [
-    RGBColor(0, 114, 178),
+    RGBColor(0, 95, 155),
     RGBColor(213, 94, 0),
     RGBColor(0, 158, 115),
     RGBColor(204, 121, 167),
@@ -184,6 +187,52 @@ pub fn fit_font_px(text: &str, max_w: i32, px: u32, min_px: u32) -> u32 {
     size
 }
 
+/// The factor of a figure's text sizes (px) at `width × height` px: the
+/// width over 760 (a figure placed at half width in an A4 report is read at
+/// its width: the tick labels of `identify --figures`' 1200 × 700 figures
+/// were 12 px, their digits 8 px), and at most the height over 430 (a wide
+/// strip keeps room for its plot).
+pub fn text_scale(width: u32, height: u32) -> f64 {
+    (f64::from(width) / 760.0)
+        .min(f64::from(height) / 430.0)
+        .clamp(0.6, 3.0)
+}
+
+/// The font size (px) of the tick labels of a figure of `width × height`
+/// px: 14 × [`text_scale`], 22 px at 1200 px width (digits 14 px tall).
+pub fn tick_label_px(width: u32, height: u32) -> u32 {
+    (14.0 * text_scale(width, height)).round() as u32
+}
+
+/// How many numeric labels to ask plotters for on a linear axis of
+/// `range` drawn `length_px` long: the most (up to 12) whose nice values
+/// (plotters' own) are at least `min_gap_px` apart, or, when those are
+/// fewer than three, two thirds of that apart. A short panel asked for
+/// three got two (`0`, `5000`; one, `500000`, on a range of 0-900000).
+pub fn linear_label_count(range: (f64, f64), length_px: f64, min_gap_px: f64) -> usize {
+    use plotters::coord::ranged1d::{KeyPointHint, Ranged};
+    let span = range.1 - range.0;
+    if !(span.is_finite() && span > 0.0 && length_px > 0.0) {
+        return 3;
+    }
+    let axis = plotters::coord::types::RangedCoordf64::from(range.0..range.1);
+    let values = |n: usize| axis.key_points(n.max_num_points());
+    let most = |gap: f64| {
+        (2..=12).rev().find(|&n| {
+            values(n)
+                .windows(2)
+                .all(|w| (w[1] - w[0]).abs() / span * length_px >= gap)
+        })
+    };
+    let n = most(min_gap_px).unwrap_or(2);
+    if values(n).len() >= 3 {
+        return n;
+    }
+    most(min_gap_px / 1.5)
+        .filter(|&m| values(m).len() >= 3)
+        .unwrap_or(n)
+}
+
 /// Renders `fig` as a PNG of `width × height` px at `path`.
 pub fn render_png(fig: &Figure, path: &Path, width: u32, height: u32) -> Result<(), FigureError> {
     render_png_layout(fig, path, width, height).map(|_| ())
@@ -258,20 +307,25 @@ fn render_on(
 ) -> Result<Vec<PanelLayout>, Box<dyn std::error::Error>> {
     register_fonts();
     root.fill(&WHITE)?;
-    let scale = (height.min(width) as f64 / 800.0).clamp(0.6, 3.0);
+    let scale = text_scale(width, height);
     let fs = |s: f64| (s * scale).round() as i32;
     let mut top = fs(10.0);
+    // title and subtitle within the width (with text scaled by the width,
+    // Fig. 2's title came within 25 px of the right edge)
+    let line_w = width as i32 - 2 * fs(12.0);
+    let title_px = fit_font_px(&fig.title, line_w, fs(24.0) as u32, fs(14.0) as u32);
     root.draw(&Text::new(
         fig.title.clone(),
         (fs(12.0), top),
-        ("sans-serif", fs(24.0)).into_font().color(&BLACK),
+        ("sans-serif", title_px as i32).into_font().color(&BLACK),
     ))?;
     top += fs(30.0);
     if !fig.subtitle.is_empty() {
+        let sub_px = fit_font_px(&fig.subtitle, line_w, fs(15.0) as u32, fs(11.0) as u32);
         root.draw(&Text::new(
             fig.subtitle.clone(),
             (fs(12.0), top),
-            ("sans-serif", fs(15.0))
+            ("sans-serif", sub_px as i32)
                 .into_font()
                 .color(&RGBColor(70, 70, 70)),
         ))?;
@@ -294,9 +348,19 @@ fn render_on(
         .iter()
         .any(|l| !l.entries.is_empty() && l.under > 0)
         .then(|| legends.iter().map(|l| l.size.0).max().unwrap_or(0));
+    // one y label area for all the panels, as wide as the widest needs
+    // (85 px x scale left Fig. 2's "900" with 60 px to spare): their x axes
+    // line up
+    let y_area = fig
+        .panels
+        .iter()
+        .zip(areas.iter())
+        .map(|(panel, area)| y_area_px(panel, plot_h_of(panel, area, scale), scale))
+        .max()
+        .unwrap_or(0);
     let mut layouts = Vec::with_capacity(fig.panels.len());
     for ((panel, area), legend) in fig.panels.iter().zip(areas.iter()).zip(&legends) {
-        layouts.push(draw_panel(panel, area, scale, legend, column_w)?);
+        layouts.push(draw_panel(panel, area, scale, legend, column_w, y_area)?);
     }
     Ok(layouts)
 }
@@ -471,6 +535,16 @@ fn stroke_of(s: &Series, scale: f64) -> u32 {
     }
 }
 
+/// The height (px) of a panel's caption line at `scale` (none without a
+/// title).
+fn caption_h(panel: &Panel, scale: f64) -> u32 {
+    if panel.title.is_empty() {
+        0
+    } else {
+        (27.0 * scale).round() as u32
+    }
+}
+
 fn panel_legend(
     panel: &Panel,
     area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
@@ -479,7 +553,7 @@ fn panel_legend(
     let fs = |s: f64| (s * scale).round() as u32;
     // legend entry height over the plot's height (caption, axis area, margins off)
     let area_h = f64::from(area.dim_in_pixel().1);
-    let plot_h = (area_h - f64::from(fs(45.0) + fs(27.0) + 2 * fs(10.0))).max(1.0);
+    let plot_h = (area_h - f64::from(fs(45.0) + caption_h(panel, scale) + 2 * fs(10.0))).max(1.0);
     let entry_frac = 1.6 * f64::from(fs(14.0)) / plot_h;
     let entries: Vec<LegendEntry> = panel
         .series
@@ -501,6 +575,78 @@ fn panel_legend(
     }
 }
 
+/// The height (px) of `panel`'s plot in `area` at `scale` (estimated:
+/// the caption, the x axis' label area and the margins off).
+fn plot_h_of(
+    panel: &Panel,
+    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    scale: f64,
+) -> f64 {
+    let fs = |s: f64| (s * scale).round() as u32;
+    let area_h = f64::from(area.dim_in_pixel().1);
+    (area_h - f64::from(fs(45.0) + caption_h(panel, scale) + 2 * fs(10.0))).max(1.0)
+}
+
+/// How many y labels to ask plotters for in a plot `plot_h` px high:
+/// categorical, one per name (plotters picks nice values, the integers
+/// among them for this count); linear, as many as are 1.8 label heights
+/// apart (ten crowded a short panel, three left it with two); log, at most
+/// one per 2.5 label heights.
+fn y_label_count(panel: &Panel, plot_h: f64, scale: f64) -> usize {
+    let label_px = (14.0 * scale).round();
+    if !panel.y_names.is_empty() {
+        panel.y_names.len() + 1
+    } else if panel.log_y {
+        ((plot_h / (2.5 * label_px)) as usize).clamp(3, 10)
+    } else {
+        linear_label_count(data_ranges(panel).1, plot_h, 1.8 * label_px)
+    }
+}
+
+/// The font size (px) of `panel`'s axis titles: its rotated y title no
+/// longer than the plot is high (in a short panel it ran past the plot
+/// towards its neighbour's).
+fn axis_title_px(panel: &Panel, plot_h: f64, scale: f64) -> u32 {
+    let fs = |s: f64| (s * scale).round() as u32;
+    fit_font_px(&panel.y_label, plot_h as i32, fs(16.0), fs(12.0))
+}
+
+/// The width (px) of the area left of `panel`'s plot: its widest y tick
+/// label, the tick marks, the rotated y title and gaps; at most the 85 px
+/// (× scale) of a log axis, whose labels are not computed here.
+fn y_area_px(panel: &Panel, plot_h: f64, scale: f64) -> u32 {
+    use plotters::coord::ranged1d::{KeyPointHint, Ranged};
+    let fs = |s: f64| (s * scale).round() as u32;
+    if panel.log_y {
+        return fs(85.0);
+    }
+    let labels: Vec<String> = if panel.y_names.is_empty() {
+        let ys = data_ranges(panel).1;
+        plotters::coord::types::RangedCoordf64::from(ys.0..ys.1)
+            .key_points(y_label_count(panel, plot_h, scale).max_num_points())
+            .iter()
+            .map(|v| tick_label(*v, false))
+            .collect()
+    } else {
+        panel.y_names.clone()
+    };
+    let font = ("sans-serif", fs(14.0) as i32).into_font();
+    let widest = labels
+        .iter()
+        .map(|t| {
+            font.box_size(t)
+                .map_or(t.chars().count() as u32 * fs(14.0), |b| b.0)
+        })
+        .max()
+        .unwrap_or(0);
+    let title = if panel.y_label.is_empty() {
+        0
+    } else {
+        (1.5 * f64::from(axis_title_px(panel, plot_h, scale))).round() as u32
+    };
+    (widest + 5 + fs(8.0) + title + fs(8.0)).min(fs(85.0))
+}
+
 /// Draws `panel` in `area`; its legend in the corner with the least data,
 /// or, with `column_w` (the figure's legend column, px), in a column of
 /// that width right of the plot (when every corner of some panel has data:
@@ -511,11 +657,11 @@ fn draw_panel(
     scale: f64,
     legend: &PanelLegend,
     column_w: Option<i32>,
+    y_area: u32,
 ) -> Result<PanelLayout, Box<dyn std::error::Error>> {
     let fs = |s: f64| (s * scale).round() as u32;
     let (xs, ys) = data_ranges(panel);
-    let area_h = f64::from(area.dim_in_pixel().1);
-    let plot_h = (area_h - f64::from(fs(45.0) + fs(27.0) + 2 * fs(10.0))).max(1.0);
+    let plot_h = plot_h_of(panel, area, scale);
     let (entries, corner, legend_wh) = (&legend.entries, &legend.corner, legend.size);
     let outside = column_w.is_some() && !entries.is_empty();
     let (chart_area, legend_area) = match column_w {
@@ -531,11 +677,14 @@ fn draw_panel(
     // title's column on both sides (a long one ran into the rotated y title)
     let caption_w = chart_area.dim_in_pixel().0 as i32 - 2 * (fs(85.0) + fs(10.0)) as i32;
     let caption_px = fit_font_px(&panel.title, caption_w, fs(18.0), fs(11.0));
+    if !panel.title.is_empty() {
+        // none for no title: Fig. 1 and 2 kept an empty line over the plot
+        builder.caption(&panel.title, ("sans-serif", caption_px as i32));
+    }
     builder
-        .caption(&panel.title, ("sans-serif", caption_px as i32))
         .margin(fs(10.0))
         .x_label_area_size(fs(45.0))
-        .y_label_area_size(fs(85.0));
+        .y_label_area_size(y_area);
     macro_rules! finish {
         ($chart:expr) => {{
             let mut chart = $chart;
@@ -549,14 +698,8 @@ fn draw_panel(
                     name_tick_label(*v, names)
                 }
             };
-            // categorical: one tick per name (plotters picks nice values,
-            // the integers among them for this count); numeric: at most one
-            // label per 2.5 label heights (ten crowded a short panel)
-            let y_ticks = if names.is_empty() {
-                ((plot_h / (2.5 * f64::from(fs(14.0)))) as usize).clamp(3, 10)
-            } else {
-                names.len() + 1
-            };
+            let y_ticks = y_label_count(panel, plot_h, scale);
+            let y_desc_px = axis_title_px(panel, plot_h, scale);
             chart
                 .configure_mesh()
                 .x_label_formatter(&fx)
@@ -565,7 +708,7 @@ fn draw_panel(
                 .x_desc(panel.x_label.as_str())
                 .y_desc(panel.y_label.as_str())
                 .label_style(("sans-serif", fs(14.0) as i32))
-                .axis_desc_style(("sans-serif", fs(16.0) as i32))
+                .axis_desc_style(("sans-serif", y_desc_px as i32))
                 .light_line_style(RGBColor(235, 235, 235))
                 .draw()?;
             let (px, py) = chart.plotting_area().get_pixel_range();

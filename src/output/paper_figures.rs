@@ -170,8 +170,9 @@ mod tests {
             lb - lt >= fig2.panels[0].series.len() as i32 * 14,
             "{legend:?}"
         );
-        // the plot keeps most of the width
-        assert!(f64::from(pr - pl) > 0.7 * f64::from(w), "{:?}", l.plot_px);
+        // the plot keeps most of the width (0.7 before the text grew with
+        // the width: the legend column is 330 px of 1200 at 22 px)
+        assert!(f64::from(pr - pl) > 0.6 * f64::from(w), "{:?}", l.plot_px);
         std::fs::remove_dir_all(&dir).ok();
     }
 

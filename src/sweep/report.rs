@@ -112,6 +112,11 @@ pub fn param_axis_label(param: &str) -> String {
     }
 }
 
+/// The size (px) of `sweep --plot`'s figure: four stacked panels, each
+/// plot about 260 px high (at 1400 × 1400, 160 px: two y tick labels, the
+/// y titles longer than their plots).
+pub const FIGURE_PX: (u32, u32) = (1400, 1800);
+
 /// The sweep figure: max force, force RMS, contact fraction per point and
 /// the rolling-noise bands (315, 500, 800, 1250, 2000 Hz) of the total
 /// force, against the parameter.
@@ -181,7 +186,7 @@ pub fn figure(
                     "Total contact force, third-octave bands 315 Hz - 2 kHz, every other band (Hann, mean removed)"
                         .into(),
                 x_label: param_axis_label(param),
-                y_label: "band level (dB re 1 N)".into(),
+                y_label: "level (dB re 1 N)".into(),
                 series: bands,
                 ..Panel::default()
             },
@@ -242,6 +247,110 @@ mod tests {
             ("road.seed", "road.seed"),
         ] {
             assert_eq!(param_axis_label(param), want);
+        }
+    }
+}
+
+#[cfg(test)]
+mod figure_tests {
+    use super::{FIGURE_PX, figure};
+    use crate::output::figures::{render_rgb_layout, tick_label_px};
+    use crate::spectrum::{BandLevel, third_octave_bands};
+    use crate::sweep::{RunSummary, SweepPoint};
+
+    /// Fifteen speeds of a three-point scene shaped as the three-point
+    /// preset's sweep (forces up to 900 kN, a band dipping to -70 dB).
+    fn points() -> Vec<SweepPoint> {
+        (0..15)
+            .map(|k| {
+                let v = 8.0 + 2.0 * k as f64;
+                let bump = |i: usize| (std::f64::consts::PI * (k as f64 + i as f64) / 16.0).sin();
+                SweepPoint {
+                    value: v,
+                    result: Ok(RunSummary {
+                        max_force_n: (0..3).map(|i| 9e5 * bump(i)).collect(),
+                        force_rms_n: (0..3).map(|i| 4e4 * bump(i)).collect(),
+                        contact_fraction: (0..3).map(|i| 0.8 * bump(i)).collect(),
+                        bands: third_octave_bands(20.0, 5000.0)
+                            .into_iter()
+                            .map(|band| BandLevel {
+                                band,
+                                mean_square: 1.0,
+                                level_db: if k == 8 { -70.0 } else { 60.0 + bump(0) },
+                                resolved: true,
+                            })
+                            .collect(),
+                        steps: 1000,
+                    }),
+                }
+            })
+            .collect()
+    }
+
+    /// Rows of `rgb` (`w` px wide) in `y0..y1` with dark ink in `x0..x1`.
+    fn ink_rows(rgb: &[u8], w: u32, (x0, x1): (i32, i32), (y0, y1): (i32, i32)) -> Vec<i32> {
+        (y0..y1)
+            .filter(|&y| {
+                (x0..x1).any(|x| {
+                    let i = (y as usize * w as usize + x as usize) * 3;
+                    rgb[i..i + 3].iter().all(|&c| c < 128)
+                })
+            })
+            .collect()
+    }
+
+    /// (first, last) of the runs of sorted `v` split at gaps over `gap`.
+    fn runs(v: &[i32], gap: i32) -> Vec<(i32, i32)> {
+        let mut out: Vec<(i32, i32)> = Vec::new();
+        for &x in v {
+            match out.last_mut() {
+                Some(r) if x - r.1 <= gap + 1 => r.1 = x,
+                _ => out.push((x, x)),
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn every_panel_reads_three_y_labels_and_its_y_title_once() {
+        // at 1400 x 1400 the panels' plots were 160 px high: two y tick
+        // labels (one, 500000, on the force panel), and the rotated y
+        // titles ran past their plots towards their neighbours'
+        let fig = figure("t", "s", "speed_mps", &points(), 3);
+        let (w, h) = FIGURE_PX;
+        let (rgb, l) = render_rgb_layout(&fig, w, h).unwrap();
+        let px = tick_label_px(w, h) as i32;
+        let left = l[0].plot_px[0];
+        // the y titles: ink in the left third of the label area, below the
+        // figure's title and subtitle
+        let titles = runs(
+            &ink_rows(&rgb, w, (0, left / 3), (l[0].plot_px[1] - px, h as i32)),
+            px,
+        );
+        assert_eq!(titles.len(), 4, "y titles {titles:?}");
+        for (k, (p, t)) in l.iter().zip(&titles).enumerate() {
+            let [_, top, _, bottom] = p.plot_px;
+            assert!(
+                bottom - top >= 220,
+                "panel {k}: plot {} px high",
+                bottom - top
+            );
+            assert!(
+                t.0 >= top - px / 2 && t.1 <= bottom + px / 2,
+                "panel {k}: y title on rows {t:?}, plot {top}..{bottom}"
+            );
+            let labels = runs(
+                &ink_rows(&rgb, w, (left - 4 * px, left - 7), (top - px, bottom + px)),
+                px / 3,
+            );
+            assert!(labels.len() >= 3, "panel {k}: y tick labels {labels:?}");
+            for r in &labels {
+                assert!(r.1 - r.0 < px, "panel {k}: labels run together {labels:?}");
+            }
+        }
+        if std::env::var_os("TC_DUMP_FIG").is_some() {
+            let path = std::path::Path::new("/tmp/p12/sweep_like.png");
+            crate::output::figures::render_png(&fig, path, w, h).unwrap();
         }
     }
 }

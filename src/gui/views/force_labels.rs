@@ -126,7 +126,7 @@ pub fn draw(
 
 /// Height of a line of text relative to its font size (Ubuntu: about 1.2;
 /// a little more, to be safe).
-const LINE_HEIGHT: f32 = 1.3;
+pub const LINE_HEIGHT: f32 = 1.3;
 
 #[cfg(test)]
 mod tests {

@@ -19,7 +19,7 @@ use egui::Color32;
 /// The point colours: the PNG figures' (`output::figures::PALETTE`), with
 /// grey for their black (black would vanish on the dark theme's plots).
 pub const PALETTE: [Color32; 10] = [
-    Color32::from_rgb(0, 114, 178),
+    Color32::from_rgb(0, 95, 155),
     Color32::from_rgb(213, 94, 0),
     Color32::from_rgb(0, 158, 115),
     Color32::from_rgb(204, 121, 167),

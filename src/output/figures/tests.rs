@@ -337,3 +337,178 @@ fn a_thin_line_is_keyed_by_a_line_wide_enough_to_show_its_colour() {
     let (kw, kh) = extent(&key);
     assert!(kw >= 19 && kh >= 3, "the key is {kw}x{kh} px");
 }
+
+/// Rows `y0..y1`, columns `x0..x1` of `rgb` (`w` px wide) holding dark ink
+/// (every channel below 128): (columns with ink, rows with ink).
+fn ink(rgb: &[u8], w: u32, (x0, x1): (i32, i32), (y0, y1): (i32, i32)) -> (Vec<i32>, Vec<i32>) {
+    let dark = |x: i32, y: i32| {
+        let i = (y as usize * w as usize + x as usize) * 3;
+        rgb[i..i + 3].iter().all(|&c| c < 128)
+    };
+    let cols = (x0..x1).filter(|&x| (y0..y1).any(|y| dark(x, y))).collect();
+    let rows = (y0..y1).filter(|&y| (x0..x1).any(|x| dark(x, y))).collect();
+    (cols, rows)
+}
+
+/// Runs of consecutive values of sorted `v` split at gaps wider than
+/// `gap`: (first, last) of each.
+fn runs(v: &[i32], gap: i32) -> Vec<(i32, i32)> {
+    let mut out: Vec<(i32, i32)> = Vec::new();
+    for &x in v {
+        match out.last_mut() {
+            Some(r) if x - r.1 <= gap + 1 => r.1 = x,
+            _ => out.push((x, x)),
+        }
+    }
+    out
+}
+
+#[test]
+fn tick_labels_grow_with_the_figure_width_to_be_read_at_half_a_page() {
+    // identify --figures' 1200 x 700 figures had 12 px tick labels (8 px
+    // digits): placed at half width in an A4 report, unreadable. The text
+    // now scales with the width (at most with the height over 450 px).
+    for (w, h) in [
+        (1200, 700),
+        (1200, 900),
+        (1400, 900),
+        (1400, 1800),
+        (1600, 1000),
+    ] {
+        let px = tick_label_px(w, h);
+        assert!(
+            f64::from(px) >= 22.0 * f64::from(w) / 1200.0 - 0.5,
+            "{w}x{h}: tick labels {px} px"
+        );
+    }
+    assert_eq!(tick_label_px(1200, 700), 22);
+    assert!(
+        tick_label_px(3000, 400) <= 13,
+        "a wide strip keeps its plot"
+    );
+    // the digits at 1200 px width: at least 14 px of ink high
+    register_fonts();
+    let px = tick_label_px(1200, 700) as i32;
+    let (w, h) = (400u32, 100u32);
+    let mut rgb = vec![255u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+        let font = ("sans-serif", px).into_font().color(&BLACK);
+        root.draw(&Text::new("0123456789", (10, 20), font)).unwrap();
+        root.present().unwrap();
+    }
+    let (_, rows) = ink(&rgb, w, (0, w as i32), (0, h as i32));
+    let tall = rows.last().unwrap() - rows[0] + 1;
+    assert!(tall >= 14, "digits at {px} px: {tall} px of ink high");
+}
+
+/// Fig. 1's shape: one panel, five curves, 0-0.2 s against 0-4.4 mm.
+fn paper_like_figure() -> Figure {
+    let series = (0..5)
+        .map(|i| {
+            Series::line(
+                format!("point {i} (x = {} m)", 0.025 * i as f64 - 0.05),
+                (0..=400)
+                    .map(|k| {
+                        let t = k as f64 * 0.0005;
+                        (
+                            t,
+                            (t * 100.0).min(4.0) + 0.3 * ((t * 600.0) + i as f64).sin(),
+                        )
+                    })
+                    .collect(),
+            )
+        })
+        .collect();
+    Figure {
+        title: "Fig. 1: displacement of the contact points".into(),
+        subtitle: "Paper: ring tyre, five points, sine road (identified): V = 10 m/s".into(),
+        panels: vec![Panel {
+            x_label: "time (s)".into(),
+            y_label: "displacement u (mm), up".into(),
+            series,
+            ..Panel::default()
+        }],
+    }
+}
+
+#[test]
+fn the_larger_tick_labels_of_a_paper_figure_keep_apart() {
+    let (w, h) = (1200, 700);
+    let (rgb, l) = render_rgb_layout(&paper_like_figure(), w, h).unwrap();
+    let [left, top, right, bottom] = l[0].plot_px;
+    let px = tick_label_px(w, h) as i32;
+    // the x tick labels: below the tick marks (5 px), one text height
+    let (_, rows) = ink(
+        &rgb,
+        w,
+        (left - px, right + px),
+        (bottom + 7, bottom + 7 + 2 * px),
+    );
+    let rows = runs(&rows, 2);
+    let tall = rows[0].1 - rows[0].0 + 1;
+    assert!(tall >= 14, "x tick labels {tall} px high ({rows:?})");
+    // labels ("0.02") are runs of ink columns, at least a third of a text
+    // height apart (glyphs within a label are closer)
+    let (cols, _) = ink(&rgb, w, (left - px, right + px), (rows[0].0, rows[0].1 + 1));
+    let labels = runs(&cols, px / 3);
+    assert!(
+        labels.len() >= 8,
+        "{} x tick labels: {labels:?}",
+        labels.len()
+    );
+    // the y tick labels: left of the tick marks, rows of ink a third of a
+    // text height apart at least
+    let (_, rows) = ink(
+        &rgb,
+        w,
+        (left - 3 * px, left - 7),
+        (top - px, bottom + px / 2),
+    );
+    let labels = runs(&rows, px / 3);
+    assert!(
+        labels.len() >= 5,
+        "{} y tick labels: {labels:?}",
+        labels.len()
+    );
+    for r in &labels {
+        assert!(r.1 - r.0 < px, "y tick labels run together: {labels:?}");
+    }
+    if std::env::var_os("TC_DUMP_FIG").is_some() {
+        render_png(
+            &paper_like_figure(),
+            Path::new("/tmp/p12/paper_like.png"),
+            w,
+            h,
+        )
+        .unwrap();
+    }
+}
+
+#[test]
+fn a_short_panel_gets_three_numeric_labels_at_least() {
+    // plotters asked for three nice values on 0-6000 gave two (0, 5000);
+    // on -40000-940000 one (500000). Three at least now, 1.8 label heights
+    // apart where that leaves three, else 1.2 (never overlapping).
+    use plotters::coord::ranged1d::{KeyPointHint, Ranged};
+    let label = 24.0;
+    for (range, len, want_gap) in [
+        ((-240.0, 6240.0), 160.0, 1.8),
+        ((-40000.0, 940000.0), 160.0, 1.2),
+        ((-40000.0, 940000.0), 260.0, 1.8),
+        ((0.0, 1.0), 250.0, 1.8),
+        ((-72.0, 72.0), 260.0, 1.8),
+    ] {
+        let n = linear_label_count(range, len, 1.8 * label);
+        let axis = plotters::coord::types::RangedCoordf64::from(range.0..range.1);
+        let v = axis.key_points(n.max_num_points());
+        assert!(v.len() >= 3, "{range:?} over {len} px: {v:?}");
+        for p in v.windows(2) {
+            let gap = (p[1] - p[0]) / (range.1 - range.0) * len;
+            assert!(
+                gap >= want_gap * label - 1e-9,
+                "{range:?} over {len} px: labels {gap} px apart ({v:?})"
+            );
+        }
+    }
+}
