@@ -81,8 +81,9 @@ pub fn scene_summary(scene: &Scene, modes: &[Mode]) -> String {
     )
 }
 
-/// Name of the exported force panel's series of clipped impacts.
-pub const CLIPPED_IMPACTS: &str = "impacts (impulse / dt), clipped";
+/// Name of the exported force panel's series of clipped impacts (the
+/// same as the CLI's figures).
+pub use crate::output::record::CLIPPED_IMPACTS;
 
 /// The figure of the time plots over the whole recorded run. With
 /// `clip_impacts` (the time plots' "clip impact spikes"), the force panel
@@ -162,9 +163,9 @@ pub fn time_figure(
                     s
                 })
                 .collect();
-            let mut title = title.to_string();
+            // (clipped impacts are said by their legend entry)
+            let title = title.to_string();
             if top.is_some() && !marks.is_empty() {
-                title.push_str(" — impact spikes clipped, marked by dots");
                 series.push(Series {
                     name: CLIPPED_IMPACTS.to_string(),
                     points: marks,

@@ -160,11 +160,10 @@ impl Recording {
     /// rolling force of about 1 kN).
     pub fn figure(&self, title: &str, subtitle: &str, dt_s: f64, clip_impacts: bool) -> Figure {
         let win_ms = self.window_ms(dt_s);
-        let mut force_title = format!("Contact force, mean over {win_ms:.3} ms windows");
-        let (forces, clipped) = self.force_series(clip_impacts, &|i| format!("q{i}"));
-        if clipped {
-            force_title.push_str(" (impact spikes clipped, marked by dots)");
-        }
+        // (clipped impacts are said by their legend entry, CLIPPED_IMPACTS:
+        // said in the title too, it shrank to fit below the tick labels' size)
+        let force_title = format!("Contact force, mean over {win_ms:.3} ms windows");
+        let (forces, _clipped) = self.force_series(clip_impacts, &|i| format!("q{i}"));
         Figure {
             title: title.to_string(),
             subtitle: subtitle.to_string(),
@@ -230,7 +229,8 @@ mod tests {
             let marks = forces.iter().find(|s| s.name == CLIPPED_IMPACTS).unwrap();
             assert!(!marks.points.is_empty());
             assert!(marks.points.iter().all(|p| p.1 == top));
-            assert!(clipped.panels[1].title.contains("clipped"));
+            // said once, by the legend entry, not again in the caption
+            assert!(!clipped.panels[1].title.contains("clipped"));
             // unclipped: the spikes are drawn whole
             let full = rec.figure("t", "s", dt, false);
             assert_eq!(highest(&full.panels[1].series, "q"), raw);
