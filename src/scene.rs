@@ -162,6 +162,11 @@ pub const MAX_SCENE_BYTES: u64 = 64 << 20;
 /// numbers (operators and their factorisations), 0.5 GB at 2000 points.
 pub const MAX_POINTS: usize = 2000;
 
+/// Largest number of sampled response values (pairs of points times
+/// samples) a ring tyre's identification may need: 5e7 values, 400 MB; the
+/// paper preset needs 1.5e4, 300 points at its 1000 samples 4.5e7.
+pub const MAX_RING_RESPONSE_VALUES: f64 = 5e7;
+
 fn ron_options() -> ron::Options {
     ron::Options::default()
 }
@@ -368,8 +373,29 @@ impl Scene {
                 identification,
             } => {
                 v.errors.extend(ring.validate("tyre.ring"));
-                v.errors
-                    .extend(identification.validate("tyre.identification"));
+                let id_errors = identification.validate("tyre.identification");
+                if id_errors.is_empty() {
+                    // identification samples the responses of every pair of points
+                    let n = identification.num_samples();
+                    let values = (p * (p + 1) / 2) as f64 * n as f64;
+                    if values > MAX_RING_RESPONSE_VALUES {
+                        let most = (0..=p)
+                            .rev()
+                            .find(|&q| {
+                                (q * (q + 1) / 2) as f64 * n as f64 <= MAX_RING_RESPONSE_VALUES
+                            })
+                            .unwrap_or(0);
+                        v.push(
+                            "points",
+                            format!("{p} points"),
+                            &format!(
+                                "at most {most} points with tyre: Ring at {n} samples per response (identification samples P(P+1)/2 responses: {values:.3e} values, at most {MAX_RING_RESPONSE_VALUES:e}, {} MB); use fewer points or a shorter tyre.identification.duration_s",
+                                MAX_RING_RESPONSE_VALUES as u64 * 8 / 1_000_000
+                            ),
+                        );
+                    }
+                }
+                v.errors.extend(id_errors);
             }
         }
         validate_road(&mut v, &self.road);
