@@ -32,3 +32,22 @@ fn ring_tyre_with_a_thousand_points_is_refused_up_front() {
     s.points.truncate(50);
     assert!(s.validate().is_ok(), "{:?}", s.validate());
 }
+
+/// `max_model_order: 18446744073709551615` (usize::MAX) panicked the
+/// validator ("attempt to multiply with overflow" in lsce/options.rs, debug
+/// builds; release builds wrapped and asked for 4 samples). It is an error
+/// naming the field, and the duration check stays sensible.
+#[test]
+fn huge_max_model_order_is_an_error_not_an_overflow() {
+    let text = DEFAULT_PRESET.replace(
+        "max_model_order: 40",
+        "max_model_order: 18446744073709551615",
+    );
+    assert_ne!(text, DEFAULT_PRESET);
+    let err = Scene::parse(&text, "huge.ron").unwrap_err().to_string();
+    assert!(
+        err.contains("tyre.identification.max_model_order = 18446744073709551615"),
+        "{err}"
+    );
+    assert!(!err.contains("tyre.identification.duration_s"), "{err}");
+}
