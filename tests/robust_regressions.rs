@@ -51,3 +51,28 @@ fn huge_max_model_order_is_an_error_not_an_overflow() {
     );
     assert!(!err.contains("tyre.identification.duration_s"), "{err}");
 }
+
+/// A preset with a byte that is not UTF-8 (a Latin-1 `é` typed in an old
+/// editor) gave "stream did not contain valid UTF-8", with no line or
+/// column. It is a syntax error at the byte's line and column.
+#[test]
+fn invalid_utf8_in_a_preset_names_line_and_column() {
+    let dir = std::env::temp_dir().join(format!("tc-robust-utf8-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("latin1.ron");
+    let mut bytes = b"Scene(\n    name: \"caf".to_vec();
+    bytes.push(0xE9); // Latin-1 e-acute, not UTF-8
+    bytes.extend_from_slice(b"\",\n)\n");
+    std::fs::write(&path, &bytes).unwrap();
+    let err = Scene::load(&path).unwrap_err();
+    match &err {
+        tirecontact::SceneError::Syntax {
+            line, col, message, ..
+        } => {
+            assert_eq!((*line, *col), (2, 15), "{err}");
+            assert!(message.contains("UTF-8"), "{err}");
+        }
+        other => panic!("expected a syntax error with line and column, got: {other}"),
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
