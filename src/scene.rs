@@ -208,19 +208,21 @@ impl Scene {
             source,
         };
         // bounded read: a runaway file or a device (`/dev/zero`) is refused
-        let mut text = String::new();
-        std::io::Read::read_to_string(
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(
             &mut std::io::Read::take(std::fs::File::open(path).map_err(io)?, MAX_SCENE_BYTES + 1),
-            &mut text,
+            &mut bytes,
         )
         .map_err(io)?;
-        if text.len() as u64 > MAX_SCENE_BYTES {
+        if bytes.len() as u64 > MAX_SCENE_BYTES {
             return Err(io(std::io::Error::other(format!(
                 "more than {MAX_SCENE_BYTES} bytes: expected a scene file of at most {} MiB",
                 MAX_SCENE_BYTES >> 20
             ))));
         }
-        let mut scene = Self::parse(&text, &path.display().to_string())?;
+        let file = path.display().to_string();
+        let text = String::from_utf8(bytes).map_err(|e| not_utf8(&file, e))?;
+        let mut scene = Self::parse(&text, &file)?;
         scene.base_dir = path.parent().map(Path::to_path_buf);
         Ok(scene)
     }
@@ -484,6 +486,28 @@ fn skip_blanks(text: &str, line: usize, col: usize) -> (usize, usize) {
         chars.next();
     }
     (line, col)
+}
+
+/// A file that is not UTF-8 text: a syntax error at the first invalid byte
+/// (1-based line and column, in characters, as RON counts them).
+fn not_utf8(file: &str, e: std::string::FromUtf8Error) -> SceneError {
+    let at = e.utf8_error().valid_up_to();
+    let bytes = e.as_bytes();
+    let before = String::from_utf8_lossy(&bytes[..at]);
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    let text = String::from_utf8_lossy(bytes);
+    SceneError::Syntax {
+        file: file.to_string(),
+        line,
+        col,
+        message: format!(
+            "byte 0x{:02X} is not UTF-8: expected a UTF-8 text file (re-save the preset as UTF-8){}",
+            // a FromUtf8Error always has an invalid byte at valid_up_to
+            bytes[at],
+            source_excerpt(&text, line, col)
+        ),
+    }
 }
 
 /// What to do about a RON error whose fix is not where it points: a missing
