@@ -208,9 +208,26 @@ impl Scene {
             source,
         };
         // bounded read: a runaway file or a device (`/dev/zero`) is refused
+        if path.is_dir() {
+            return Err(io(std::io::Error::other(
+                "is a folder: expected a scene preset file (RON), e.g. presets/paper.ron",
+            )));
+        }
+        let file = std::fs::File::open(path).map_err(|e| {
+            io(if e.kind() == std::io::ErrorKind::NotFound {
+                std::io::Error::new(
+                    e.kind(),
+                    format!(
+                        "{e}: expected an existing scene preset file (RON), e.g. presets/paper.ron"
+                    ),
+                )
+            } else {
+                e
+            })
+        })?;
         let mut bytes = Vec::new();
         std::io::Read::read_to_end(
-            &mut std::io::Read::take(std::fs::File::open(path).map_err(io)?, MAX_SCENE_BYTES + 1),
+            &mut std::io::Read::take(file, MAX_SCENE_BYTES + 1),
             &mut bytes,
         )
         .map_err(io)?;

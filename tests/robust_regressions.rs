@@ -76,3 +76,82 @@ fn invalid_utf8_in_a_preset_names_line_and_column() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+fn bin() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_tirecontact"))
+}
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("tc-robust-reg-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// A folder given as the preset gave "Is a directory (os error 21)", a
+/// missing one "No such file or directory (os error 2)": neither said what
+/// was expected.
+#[test]
+fn a_folder_or_missing_file_as_preset_says_a_preset_file_is_expected() {
+    let d = tmp("preset-dir");
+    let e = Scene::load(&d).unwrap_err().to_string();
+    assert!(
+        e.contains("is a folder") && e.contains("expected a scene preset"),
+        "{e}"
+    );
+    let e = Scene::load(&d.join("none.ron")).unwrap_err().to_string();
+    assert!(
+        e.contains("none.ron") && e.contains("expected an existing scene preset"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&d).ok();
+}
+
+/// `bench -o FILE` (an existing file as the output folder) gave "File
+/// exists (os error 17)", without the option or what was expected.
+#[test]
+fn bench_output_that_is_a_file_names_the_option() {
+    let d = tmp("bench-file");
+    let f = d.join("a_file");
+    std::fs::write(&f, "x").unwrap();
+    let o = bin()
+        .args(["bench", "--quick", "-o"])
+        .arg(&f)
+        .arg("presets/single_mode.ron")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("-o ") && err.contains("is a file") && err.contains("expected a folder"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&d).ok();
+}
+
+/// `run -o DIR/new/` (a path ending in `/`, a folder that does not exist)
+/// passed the up-front check, ran, then failed with "Not a directory (os
+/// error 20)". It is refused before the run, naming the option.
+#[test]
+fn output_path_ending_in_a_slash_is_refused_up_front() {
+    let d = tmp("slash");
+    let out = format!("{}/", d.join("new").display());
+    let o = bin()
+        .args([
+            "run",
+            "presets/single_mode.ron",
+            "--duration",
+            "0.001",
+            "-o",
+            &out,
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("-o ") && err.contains("expected a CSV file name"),
+        "{err}"
+    );
+    assert!(!d.join("new").exists());
+    std::fs::remove_dir_all(&d).ok();
+}
