@@ -2,7 +2,7 @@
 //! validation. Every validation error names the field, the value and what was
 //! expected; syntax errors give file, line and column.
 
-use crate::error::{FieldError, SceneError};
+use crate::error::{FieldError, SceneError, fmt_num};
 use crate::lsce::IdentifyOptions;
 use crate::ring::RingParams;
 use crate::road::Road;
@@ -459,7 +459,7 @@ impl Scene {
                 v.push(
                     "dt_s",
                     self.dt_s,
-                    &format!("a time step <= duration_s = {} s", self.duration_s),
+                    &format!("a time step <= duration_s = {} s", fmt_num(self.duration_s)),
                 );
             } else if self.duration_s / self.dt_s > MAX_STEPS {
                 v.push(
@@ -467,7 +467,7 @@ impl Scene {
                     self.duration_s,
                     &format!(
                         "at most {MAX_STEPS:e} steps of dt_s = {} s ({:.3e} requested)",
-                        self.dt_s,
+                        fmt_num(self.dt_s),
                         self.duration_s / self.dt_s
                     ),
                 );
@@ -673,16 +673,39 @@ fn validate_road(v: &mut Validator, road: &Road) {
     }
 }
 
+/// A value as shown in a [`FieldError`]: numbers through [`fmt_num`].
+trait ValueText {
+    fn text(&self) -> String;
+}
+
+impl ValueText for f64 {
+    fn text(&self) -> String {
+        fmt_num(*self)
+    }
+}
+
+impl ValueText for &str {
+    fn text(&self) -> String {
+        self.to_string()
+    }
+}
+
+impl ValueText for String {
+    fn text(&self) -> String {
+        self.clone()
+    }
+}
+
 #[derive(Default)]
 struct Validator {
     errors: Vec<FieldError>,
 }
 
 impl Validator {
-    fn push(&mut self, field: &str, value: impl std::fmt::Display, expected: &str) {
+    fn push(&mut self, field: &str, value: impl ValueText, expected: &str) {
         self.errors.push(FieldError {
             field: field.to_string(),
-            value: value.to_string(),
+            value: value.text(),
             expected: expected.to_string(),
         });
     }

@@ -155,3 +155,100 @@ fn output_path_ending_in_a_slash_is_refused_up_front() {
     assert!(!d.join("new").exists());
     std::fs::remove_dir_all(&d).ok();
 }
+
+fn run_err(args: &[&str]) -> String {
+    let o = bin().arg("run").args(args).output().unwrap();
+    assert!(!o.status.success(), "{args:?} succeeded");
+    assert_ne!(o.status.code(), Some(101));
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// `--dt -inf`, `--duration -1e-300`, `--max-output-gb -1e-300` were
+/// "unexpected argument '-i' found" (clap took the value for a flag);
+/// `--fps abc` said "invalid float literal"; `--frames-to 1` was refused as
+/// "t1_s = 1", a name the command line does not have.
+#[test]
+fn run_option_values_are_named_as_typed() {
+    let e = run_err(&["presets/single_mode.ron", "--dt", "-inf"]);
+    assert!(e.contains("dt_s = -inf"), "{e}");
+    let e = run_err(&["presets/single_mode.ron", "--duration", "-1e-300"]);
+    assert!(e.contains("duration_s = -1e-300"), "{e}");
+    let d = tmp("frames-opts");
+    let frames = d.join("frames");
+    let f = frames.to_str().unwrap();
+    let e = run_err(&[
+        "presets/single_mode.ron",
+        "--duration",
+        "0.01",
+        "--frames",
+        f,
+        "--fps",
+        "abc",
+    ]);
+    assert!(
+        e.contains("--fps") && e.contains("expected a frame rate in Hz"),
+        "{e}"
+    );
+    let e = run_err(&[
+        "presets/single_mode.ron",
+        "--duration",
+        "0.01",
+        "--frames",
+        f,
+        "--frames-to",
+        "1",
+    ]);
+    assert!(e.contains("--frames-to = 1: expected"), "{e}");
+    let e = run_err(&[
+        "presets/single_mode.ron",
+        "--duration",
+        "0.01",
+        "--frames",
+        f,
+        "--frame-size",
+        "-1x5",
+    ]);
+    assert!(
+        e.contains("--frame-size") && e.contains("WIDTHxHEIGHT"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&d).ok();
+}
+
+/// Hostile numbers were shown with every digit: `duration_s = 1e300` as 301
+/// characters, `5e-324` as 324 zeros, in the value and in what was
+/// expected. They are shown in exponent form, the way they can be typed.
+#[test]
+fn huge_and_tiny_values_are_shown_short() {
+    let mut s = Scene::parse(
+        include_str!("../presets/single_mode.ron"),
+        "single_mode.ron",
+    )
+    .unwrap();
+    s.duration_s = 5e-324;
+    s.speed_mps = 1e300;
+    s.points[0].h_m = -1e300;
+    let shown: Vec<String> = s
+        .validate()
+        .unwrap_err()
+        .iter()
+        .map(|e| e.to_string())
+        .collect();
+    let all = shown.join("\n");
+    assert!(all.contains("speed_mps = 1e300"), "{all}");
+    assert!(all.contains("points[0].h_m = -1e300"), "{all}");
+    assert!(all.contains("duration_s = 5e-324"), "{all}");
+    assert!(shown.iter().all(|e| e.len() < 200), "{all}");
+    s.duration_s = 1.0;
+    s.speed_mps = 10.0;
+    s.points[0].h_m = -0.001;
+    s.dt_s = 2.5e-310;
+    let all: String = s
+        .validate()
+        .unwrap_err()
+        .iter()
+        .map(|e| e.to_string())
+        .collect();
+    assert!(all.contains("dt_s = 2.5e-310"), "{all}");
+    assert!(all.len() < 300, "{all}");
+}
