@@ -337,7 +337,7 @@ fn launch(cmd: usize, opt: usize, v: usize, out: usize, preset: usize, dir: &Pat
             a.push(s("bench"));
             a.push(s("--quick"));
             a.push(s("-o"));
-            if opt % 2 == 0 {
+            if opt.is_multiple_of(2) {
                 // an existing file as the output folder, a valid preset
                 a.push(
                     out_path(dir, OutPath::ExistingFileAsDir, "d")

@@ -252,3 +252,35 @@ fn huge_and_tiny_values_are_shown_short() {
     assert!(all.contains("dt_s = 2.5e-310"), "{all}");
     assert!(all.len() < 300, "{all}");
 }
+
+/// Left for the owner of src/sweep.rs and src/cli/sweep.rs (another helper's
+/// files this session): `sweep --steps 18446744073709551615` panics with
+/// "capacity overflow" (exit 101) and `--steps 100000000000` aborts on an
+/// 800 GB allocation (exit 134), both in `linspace` before any check. Run
+/// with `cargo test --test robust_regressions -- --ignored`.
+#[test]
+#[ignore = "panics in src/sweep.rs linspace: not this branch's files"]
+fn sweep_with_a_huge_step_count_is_refused() {
+    for steps in ["18446744073709551615", "100000000000"] {
+        let o = bin()
+            .args(["sweep", "presets/single_mode.ron", "--param", "speed_mps"])
+            .args([
+                "--from",
+                "1",
+                "--to",
+                "2",
+                "--steps",
+                steps,
+                "--duration",
+                "0.06",
+            ])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "--steps {steps}: {err}");
+        assert!(
+            err.contains("--steps") && !err.contains("panicked"),
+            "{err}"
+        );
+    }
+}
