@@ -284,3 +284,21 @@ fn sweep_with_a_huge_step_count_is_refused() {
         );
     }
 }
+
+/// A ring of radius 1e-9 m (valid: > 0) has every mode far above the
+/// sampling's Nyquist frequency; identification said only "LSCE: every
+/// response is zero". It says why and which fields to change.
+#[test]
+fn ring_without_modes_below_nyquist_says_why() {
+    let text = DEFAULT_PRESET.replace("radius_m: 0.31", "radius_m: 1e-9");
+    assert_ne!(text, DEFAULT_PRESET);
+    let s = Scene::parse(&text, "tiny.ron").unwrap();
+    let e = tirecontact::Simulation::new(&s)
+        .err()
+        .expect("an error")
+        .to_string();
+    assert!(
+        e.contains("Nyquist") && e.contains("sample_rate_hz") && e.contains("radius_m"),
+        "{e}"
+    );
+}
