@@ -302,3 +302,29 @@ fn ring_without_modes_below_nyquist_says_why() {
         "{e}"
     );
 }
+
+/// `--max-output-gb 1e-300` printed the budget with 300 zeros and advised
+/// `--every 1050599…` (a 300-digit count, beyond any run): the budget is
+/// shown short, and a budget below the smallest output says to raise it.
+#[test]
+fn a_budget_below_one_row_says_to_raise_it() {
+    let d = tmp("budget");
+    let csv = d.join("b.csv");
+    let e = run_err(&[
+        "presets/single_mode.ron",
+        "--duration",
+        "0.001",
+        "--max-output-gb",
+        "1e-300",
+        "-o",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(e.contains("--max-output-gb 1e-300"), "{e}");
+    assert!(
+        e.contains("raise --max-output-gb") && !e.contains("--every 10505"),
+        "{e}"
+    );
+    assert!(e.len() < 600, "{e}");
+    assert!(!csv.exists());
+    std::fs::remove_dir_all(&d).ok();
+}

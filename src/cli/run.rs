@@ -165,7 +165,8 @@ pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> 
     let budget_gb = args.max_output_gb;
     if !(budget_gb.is_finite() && budget_gb > 0.0) {
         return Err(format!(
-            "--max-output-gb = {budget_gb}: expected a finite size > 0 GB"
+            "--max-output-gb = {}: expected a finite size > 0 GB",
+            tirecontact::error::fmt_num(budget_gb)
         ));
     }
     let Some(path) = &args.output else {
@@ -177,8 +178,19 @@ pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> 
     if est > budget {
         let rows = n.div_ceil(args.every.max(1));
         let fit = (args.every as f64 * est / budget).ceil();
+        // the smallest output (one row every n steps) may already be over it
+        let how = if csv_out::estimated_bytes(n, n, p) > budget {
+            format!(
+                "a larger budget: the smallest output (--every {n}) is {}: raise --max-output-gb",
+                csv_out::human_bytes(csv_out::estimated_bytes(n, n, p))
+            )
+        } else {
+            format!(
+                "a smaller output: write one row every N steps with --every {fit:.0} or more, shorten it with --duration, or raise --max-output-gb"
+            )
+        };
         return Err(format!(
-            "-o {}: the CSV would be about {} ({rows} rows × {} columns × ~{} bytes: {n} steps of {:e} s, --every {}), over the output budget of {} (--max-output-gb {budget_gb}): expected a smaller output: write one row every N steps with --every {fit:.0} or more, shorten it with --duration, or raise --max-output-gb",
+            "-o {}: the CSV would be about {} ({rows} rows × {} columns × ~{} bytes: {n} steps of {:e} s, --every {}), over the output budget of {} (--max-output-gb {}): expected {how}",
             path.display(),
             csv_out::human_bytes(est),
             1 + 5 * p,
@@ -186,6 +198,7 @@ pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> 
             scene.dt_s,
             args.every,
             csv_out::human_bytes(budget),
+            tirecontact::error::fmt_num(budget_gb),
         ));
     }
     Ok(())
