@@ -5,8 +5,8 @@
 //! syntax error carries a line and column inside the text.
 //!
 //! Cases per property: `PROPTEST_CASES`, else 300 (hostile numbers, hostile
-//! structure) and 400 (byte corruptions): about 30 s in a debug build, most
-//! of it identifying the mutated ring tyres (0.3 s each).
+//! structure) and 400 (byte corruptions): 6-9 s in a debug build, most of
+//! it identifying the mutated ring tyres (0.3 s each, cached per ring).
 
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
