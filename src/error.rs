@@ -24,6 +24,18 @@ impl std::fmt::Display for FieldError {
     }
 }
 
+/// A number as shown in error messages: as Rust prints it between 1e-4 and
+/// 1e6, in exponent form outside (`1e300`, `5e-324`, not hundreds of
+/// digits); both forms read back exactly.
+pub fn fmt_num(x: f64) -> String {
+    let a = x.abs();
+    if x.is_finite() && a != 0.0 && !(1e-4..1e6).contains(&a) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
 /// Errors while reading or validating a scene.
 #[derive(Debug, Error)]
 pub enum SceneError {

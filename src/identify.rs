@@ -48,6 +48,20 @@ pub fn identify_ring(
     if x_m.is_empty() {
         return Err(LsceError::Input("no contact points".into()));
     }
+    // the sampled responses hold only the modes below Nyquist: without any,
+    // LSCE would see zeros ("every response is zero") and not say why
+    let nyquist_hz = 0.5 * opts.sample_rate_hz;
+    let lowest_hz = ring
+        .all_modes()
+        .iter()
+        .filter(|m| m.omega_rad_s > 0.0)
+        .map(|m| m.freq_hz())
+        .fold(f64::INFINITY, f64::min);
+    if !lowest_hz.is_finite() || lowest_hz >= nyquist_hz {
+        return Err(LsceError::Input(format!(
+            "no mode of the ring below the Nyquist frequency {nyquist_hz} Hz (identification.sample_rate_hz / 2; lowest mode {lowest_hz:.3e} Hz): expected a ring with modes in identification.band_hz (check ring.radius_m, the stiffnesses and mass_per_length_kg_m) or a higher sample_rate_hz"
+        )));
+    }
     let dt = opts.dt_s();
     let (pairs, data) = ring.sampled_responses(x_m, dt, opts.num_samples());
     let responses = Responses {

@@ -114,7 +114,7 @@ impl Road {
         let push = |e: &mut Vec<FieldError>, field: &str, value: f64, expected: String| {
             e.push(FieldError {
                 field: format!("{at}.{field}"),
-                value: value.to_string(),
+                value: crate::error::fmt_num(value),
                 expected,
             })
         };

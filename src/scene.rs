@@ -2,7 +2,7 @@
 //! validation. Every validation error names the field, the value and what was
 //! expected; syntax errors give file, line and column.
 
-use crate::error::{FieldError, SceneError};
+use crate::error::{FieldError, SceneError, fmt_num};
 use crate::lsce::IdentifyOptions;
 use crate::ring::RingParams;
 use crate::road::Road;
@@ -162,6 +162,11 @@ pub const MAX_SCENE_BYTES: u64 = 64 << 20;
 /// numbers (operators and their factorisations), 0.5 GB at 2000 points.
 pub const MAX_POINTS: usize = 2000;
 
+/// Largest number of sampled response values (pairs of points times
+/// samples) a ring tyre's identification may need: 5e7 values, 400 MB; the
+/// paper preset needs 1.5e4, 300 points at its 1000 samples 4.5e7.
+pub const MAX_RING_RESPONSE_VALUES: f64 = 5e7;
+
 fn ron_options() -> ron::Options {
     ron::Options::default()
 }
@@ -203,19 +208,38 @@ impl Scene {
             source,
         };
         // bounded read: a runaway file or a device (`/dev/zero`) is refused
-        let mut text = String::new();
-        std::io::Read::read_to_string(
-            &mut std::io::Read::take(std::fs::File::open(path).map_err(io)?, MAX_SCENE_BYTES + 1),
-            &mut text,
+        if path.is_dir() {
+            return Err(io(std::io::Error::other(
+                "is a folder: expected a scene preset file (RON), e.g. presets/paper.ron",
+            )));
+        }
+        let file = std::fs::File::open(path).map_err(|e| {
+            io(if e.kind() == std::io::ErrorKind::NotFound {
+                std::io::Error::new(
+                    e.kind(),
+                    format!(
+                        "{e}: expected an existing scene preset file (RON), e.g. presets/paper.ron"
+                    ),
+                )
+            } else {
+                e
+            })
+        })?;
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(
+            &mut std::io::Read::take(file, MAX_SCENE_BYTES + 1),
+            &mut bytes,
         )
         .map_err(io)?;
-        if text.len() as u64 > MAX_SCENE_BYTES {
+        if bytes.len() as u64 > MAX_SCENE_BYTES {
             return Err(io(std::io::Error::other(format!(
                 "more than {MAX_SCENE_BYTES} bytes: expected a scene file of at most {} MiB",
                 MAX_SCENE_BYTES >> 20
             ))));
         }
-        let mut scene = Self::parse(&text, &path.display().to_string())?;
+        let file = path.display().to_string();
+        let text = String::from_utf8(bytes).map_err(|e| not_utf8(&file, e))?;
+        let mut scene = Self::parse(&text, &file)?;
         scene.base_dir = path.parent().map(Path::to_path_buf);
         Ok(scene)
     }
@@ -368,8 +392,29 @@ impl Scene {
                 identification,
             } => {
                 v.errors.extend(ring.validate("tyre.ring"));
-                v.errors
-                    .extend(identification.validate("tyre.identification"));
+                let id_errors = identification.validate("tyre.identification");
+                if id_errors.is_empty() {
+                    // identification samples the responses of every pair of points
+                    let n = identification.num_samples();
+                    let values = (p * (p + 1) / 2) as f64 * n as f64;
+                    if values > MAX_RING_RESPONSE_VALUES {
+                        let most = (0..=p)
+                            .rev()
+                            .find(|&q| {
+                                (q * (q + 1) / 2) as f64 * n as f64 <= MAX_RING_RESPONSE_VALUES
+                            })
+                            .unwrap_or(0);
+                        v.push(
+                            "points",
+                            format!("{p} points"),
+                            &format!(
+                                "at most {most} points with tyre: Ring at {n} samples per response (identification samples P(P+1)/2 responses: {values:.3e} values, at most {MAX_RING_RESPONSE_VALUES:e}, {} MB); use fewer points or a shorter tyre.identification.duration_s",
+                                MAX_RING_RESPONSE_VALUES as u64 * 8 / 1_000_000
+                            ),
+                        );
+                    }
+                }
+                v.errors.extend(id_errors);
             }
         }
         validate_road(&mut v, &self.road);
@@ -414,7 +459,7 @@ impl Scene {
                 v.push(
                     "dt_s",
                     self.dt_s,
-                    &format!("a time step <= duration_s = {} s", self.duration_s),
+                    &format!("a time step <= duration_s = {} s", fmt_num(self.duration_s)),
                 );
             } else if self.duration_s / self.dt_s > MAX_STEPS {
                 v.push(
@@ -422,7 +467,7 @@ impl Scene {
                     self.duration_s,
                     &format!(
                         "at most {MAX_STEPS:e} steps of dt_s = {} s ({:.3e} requested)",
-                        self.dt_s,
+                        fmt_num(self.dt_s),
                         self.duration_s / self.dt_s
                     ),
                 );
@@ -458,6 +503,28 @@ fn skip_blanks(text: &str, line: usize, col: usize) -> (usize, usize) {
         chars.next();
     }
     (line, col)
+}
+
+/// A file that is not UTF-8 text: a syntax error at the first invalid byte
+/// (1-based line and column, in characters, as RON counts them).
+fn not_utf8(file: &str, e: std::string::FromUtf8Error) -> SceneError {
+    let at = e.utf8_error().valid_up_to();
+    let bytes = e.as_bytes();
+    let before = String::from_utf8_lossy(&bytes[..at]);
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    let text = String::from_utf8_lossy(bytes);
+    SceneError::Syntax {
+        file: file.to_string(),
+        line,
+        col,
+        message: format!(
+            "byte 0x{:02X} is not UTF-8: expected a UTF-8 text file (re-save the preset as UTF-8){}",
+            // a FromUtf8Error always has an invalid byte at valid_up_to
+            bytes[at],
+            source_excerpt(&text, line, col)
+        ),
+    }
 }
 
 /// What to do about a RON error whose fix is not where it points: a missing
@@ -606,16 +673,39 @@ fn validate_road(v: &mut Validator, road: &Road) {
     }
 }
 
+/// A value as shown in a [`FieldError`]: numbers through [`fmt_num`].
+trait ValueText {
+    fn text(&self) -> String;
+}
+
+impl ValueText for f64 {
+    fn text(&self) -> String {
+        fmt_num(*self)
+    }
+}
+
+impl ValueText for &str {
+    fn text(&self) -> String {
+        self.to_string()
+    }
+}
+
+impl ValueText for String {
+    fn text(&self) -> String {
+        self.clone()
+    }
+}
+
 #[derive(Default)]
 struct Validator {
     errors: Vec<FieldError>,
 }
 
 impl Validator {
-    fn push(&mut self, field: &str, value: impl std::fmt::Display, expected: &str) {
+    fn push(&mut self, field: &str, value: impl ValueText, expected: &str) {
         self.errors.push(FieldError {
             field: field.to_string(),
-            value: value.to_string(),
+            value: value.text(),
             expected: expected.to_string(),
         });
     }

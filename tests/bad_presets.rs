@@ -333,7 +333,7 @@ fn cases() -> Vec<Case> {
             "frequency too high",
             &[("freq_hz: 200.0", "freq_hz: 1e7")],
             "tyre.modes[1].freq_hz",
-            "10000000",
+            "1e7",
             "a frequency <= 1e6 Hz",
         ),
         field(

@@ -77,7 +77,7 @@ pub fn bench(args: &BenchArgs) -> CliResult {
             .map(|p| load_scene(Some(p)))
             .collect::<Result<_, _>>()?
     };
-    std::fs::create_dir_all(&args.output).map_err(|e| format!("{}: {e}", args.output.display()))?;
+    super::paths::ensure_output_dir("-o", &args.output)?;
     let cfg = if args.quick {
         Config::quick()
     } else {

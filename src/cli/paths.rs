@@ -21,10 +21,20 @@ pub fn check_output_file(option: &str, path: &Path, what: &str) -> Result<(), St
             dir.display()
         ));
     }
-    if path.is_dir() {
+    // `new/` names a folder even when it does not exist (yet)
+    let slash = path
+        .as_os_str()
+        .to_string_lossy()
+        .ends_with(std::path::MAIN_SEPARATOR);
+    if path.is_dir() || slash {
         return Err(format!(
-            "{option} {}: is a folder: expected a {what} file name, e.g. {}",
+            "{option} {}: {}: expected a {what} file name, e.g. {}",
             path.display(),
+            if path.is_dir() {
+                "is a folder"
+            } else {
+                "ends with a folder separator"
+            },
             path.join(format!("out.{}", what.to_lowercase())).display()
         ));
     }

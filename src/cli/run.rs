@@ -21,13 +21,13 @@ pub struct RunArgs {
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Override the time step (s).
-    #[arg(long, value_parser = super::values::parse_seconds)]
+    #[arg(long, allow_hyphen_values = true, value_parser = super::values::parse_seconds)]
     pub dt: Option<f64>,
     /// Override the duration (s).
-    #[arg(long, value_parser = super::values::parse_seconds)]
+    #[arg(long, allow_hyphen_values = true, value_parser = super::values::parse_seconds)]
     pub duration: Option<f64>,
     /// Write one CSV row every N steps (forces averaged over them).
-    #[arg(long, default_value_t = 1, value_parser = super::values::parse_count, requires = "output")]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = super::values::parse_count, requires = "output")]
     pub every: u64,
     /// Also draw displacements and forces of every point to this PNG (impact
     /// spikes clipped a margin above the force without impacts and marked by
@@ -40,11 +40,11 @@ pub struct RunArgs {
     pub plot_unclipped: bool,
     /// Refuse up front a run whose CSV (`-o`) would be larger than this
     /// (decimal GB; estimated as rows × columns × 17 bytes).
-    #[arg(long, default_value_t = DEFAULT_MAX_OUTPUT_GB)]
+    #[arg(long, default_value_t = DEFAULT_MAX_OUTPUT_GB, allow_hyphen_values = true, value_parser = super::values::parse_gb)]
     pub max_output_gb: f64,
     /// Size of the --plot PNG, WIDTHxHEIGHT in pixels (also of the
     /// --spectrum-plot PNG, which is at least 1200 px high).
-    #[arg(long, default_value = "1400x900", value_parser = parse_size)]
+    #[arg(long, default_value = "1400x900", allow_hyphen_values = true, value_parser = parse_size)]
     pub plot_size: (u32, u32),
     /// Write force and displacement spectra of the steady part (from
     /// `ramp_s`, Hann window, dB re 1 N / 1 m) to this CSV, and their
@@ -56,28 +56,28 @@ pub struct RunArgs {
     #[arg(long)]
     pub spectrum_plot: Option<PathBuf>,
     /// Start of the analysed steady part (s); default the ramp time `ramp_s`.
-    #[arg(long, requires = "spectra")]
+    #[arg(long, requires = "spectra", allow_hyphen_values = true, value_parser = super::values::parse_seconds)]
     pub spectrum_from: Option<f64>,
     /// Highest frequency of the spectrum CSV and figure (Hz).
-    #[arg(long, default_value_t = 5000.0, requires = "spectra")]
+    #[arg(long, default_value_t = 5000.0, requires = "spectra", allow_hyphen_values = true, value_parser = super::values::parse_hz)]
     pub spectrum_max_hz: f64,
     /// Write animation frames of the scene (frame_00000.png, …) into this folder.
     #[arg(long)]
     pub frames: Option<PathBuf>,
     /// Frames per second of the animation (Hz).
-    #[arg(long, default_value_t = 25.0, requires = "frames")]
+    #[arg(long, default_value_t = 25.0, requires = "frames", allow_hyphen_values = true, value_parser = super::values::parse_frame_rate)]
     pub fps: f64,
     /// Video seconds per simulated second (20 = 0.05x real time).
-    #[arg(long, default_value_t = 20.0, requires = "frames")]
+    #[arg(long, default_value_t = 20.0, requires = "frames", allow_hyphen_values = true, value_parser = super::values::parse_factor)]
     pub slow_motion: f64,
     /// First animated time (s).
-    #[arg(long, default_value_t = 0.0, requires = "frames")]
+    #[arg(long, default_value_t = 0.0, requires = "frames", allow_hyphen_values = true, value_parser = super::values::parse_seconds)]
     pub frames_from: f64,
     /// End of the animated interval (s); default the scene's duration.
-    #[arg(long, requires = "frames")]
+    #[arg(long, requires = "frames", allow_hyphen_values = true, value_parser = super::values::parse_seconds)]
     pub frames_to: Option<f64>,
     /// Size of the frames, WIDTHxHEIGHT in pixels.
-    #[arg(long, default_value = "1280x720", value_parser = parse_size, requires = "frames")]
+    #[arg(long, default_value = "1280x720", allow_hyphen_values = true, value_parser = parse_size, requires = "frames")]
     pub frame_size: (u32, u32),
     /// Keep every SVD term of an identified (ring tyre) model's residues
     /// (exact rank), instead of dropping those below 1e-5 of the largest
@@ -105,7 +105,7 @@ fn write_frames(scene: &Scene, args: &RunArgs) -> CliResult {
     };
     settings
         .check(scene.duration_s)
-        .map_err(|e| format!("--frames: {e}"))?;
+        .map_err(|e| frames_error(&e))?;
     let n = export_frames(
         Simulation::new(scene)?,
         |_, _| Ok(()),
@@ -123,6 +123,27 @@ fn write_frames(scene: &Scene, args: &RunArgs) -> CliResult {
         dir.display()
     );
     Ok(())
+}
+
+/// A refusal of the frame settings, its field named as the option typed
+/// (`fps = 0` -> `--fps = 0`).
+fn frames_error(e: &str) -> String {
+    const OPTIONS: [(&str, &str); 6] = [
+        ("fps", "--fps"),
+        ("slow_motion", "--slow-motion"),
+        ("t0_s", "--frames-from"),
+        ("t1_s", "--frames-to"),
+        ("width", "--frame-size width"),
+        ("height", "--frame-size height"),
+    ];
+    for (field, option) in OPTIONS {
+        if let Some(rest) = e.strip_prefix(field)
+            && rest.starts_with(" = ")
+        {
+            return format!("--frames: {option}{rest}");
+        }
+    }
+    format!("--frames: {e}")
 }
 
 /// `spectrum.csv` -> `spectrum_bands.csv` beside it.
@@ -144,7 +165,8 @@ pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> 
     let budget_gb = args.max_output_gb;
     if !(budget_gb.is_finite() && budget_gb > 0.0) {
         return Err(format!(
-            "--max-output-gb = {budget_gb}: expected a finite size > 0 GB"
+            "--max-output-gb = {}: expected a finite size > 0 GB",
+            tirecontact::error::fmt_num(budget_gb)
         ));
     }
     let Some(path) = &args.output else {
@@ -156,8 +178,19 @@ pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> 
     if est > budget {
         let rows = n.div_ceil(args.every.max(1));
         let fit = (args.every as f64 * est / budget).ceil();
+        // the smallest output (one row every n steps) may already be over it
+        let how = if csv_out::estimated_bytes(n, n, p) > budget {
+            format!(
+                "a larger budget: the smallest output (--every {n}) is {}: raise --max-output-gb",
+                csv_out::human_bytes(csv_out::estimated_bytes(n, n, p))
+            )
+        } else {
+            format!(
+                "a smaller output: write one row every N steps with --every {fit:.0} or more, shorten it with --duration, or raise --max-output-gb"
+            )
+        };
         return Err(format!(
-            "-o {}: the CSV would be about {} ({rows} rows × {} columns × ~{} bytes: {n} steps of {:e} s, --every {}), over the output budget of {} (--max-output-gb {budget_gb}): expected a smaller output: write one row every N steps with --every {fit:.0} or more, shorten it with --duration, or raise --max-output-gb",
+            "-o {}: the CSV would be about {} ({rows} rows × {} columns × ~{} bytes: {n} steps of {:e} s, --every {}), over the output budget of {} (--max-output-gb {}): expected {how}",
             path.display(),
             csv_out::human_bytes(est),
             1 + 5 * p,
@@ -165,6 +198,7 @@ pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> 
             scene.dt_s,
             args.every,
             csv_out::human_bytes(budget),
+            tirecontact::error::fmt_num(budget_gb),
         ));
     }
     Ok(())

@@ -29,6 +29,34 @@ pub fn parse_value(s: &str) -> Result<f64, String> {
     })
 }
 
+/// A size in decimal GB (`--max-output-gb`); its range is checked by the command.
+pub fn parse_gb(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse()
+        .map_err(|_| "expected a size in GB, e.g. 20 or 0.5".to_string())
+}
+
+/// A frequency in Hz (`--spectrum-max-hz`); its range is checked by the command.
+pub fn parse_hz(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse()
+        .map_err(|_| "expected a frequency in Hz, e.g. 5000".to_string())
+}
+
+/// A frame rate in Hz (`--fps`); its range is checked by the command.
+pub fn parse_frame_rate(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse()
+        .map_err(|_| "expected a frame rate in Hz, e.g. 25".to_string())
+}
+
+/// A dimensionless factor (`--slow-motion`); its range is checked by the command.
+pub fn parse_factor(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse()
+        .map_err(|_| "expected a number, e.g. 20 or 0.5".to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -119,7 +119,9 @@ impl IdentifyOptions {
             );
         }
         let n = self.num_samples();
-        let need = 4 * self.max_model_order + 8;
+        // (an out-of-range max_model_order is reported above: the bound
+        // uses the nearest allowed order, which cannot overflow)
+        let need = 4 * self.max_model_order.clamp(1, 200) + 8;
         if !(self.duration_s.is_finite() && self.duration_s > 0.0) || n < need || n > 2_000_000 {
             push(
                 "duration_s",
