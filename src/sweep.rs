@@ -276,6 +276,9 @@ pub fn set_param(scene: &mut Scene, path: &str, value: f64) -> Result<(), SweepE
     })
 }
 
+/// The most values a sweep runs (each is a whole run of the scene).
+pub const MAX_SWEEP_VALUES: usize = 100_000;
+
 /// `steps` values from `from` to `to`, evenly spaced (both ends included).
 pub fn linspace(from: f64, to: f64, steps: usize) -> Result<Vec<f64>, SweepError> {
     if !(from.is_finite() && to.is_finite()) {
@@ -285,6 +288,9 @@ pub fn linspace(from: f64, to: f64, steps: usize) -> Result<Vec<f64>, SweepError
     }
     match steps {
         0 => Err(SweepError::Input("steps = 0: expected at least 1".into())),
+        n if n > MAX_SWEEP_VALUES => Err(SweepError::Input(format!(
+            "steps = {n}: expected at most {MAX_SWEEP_VALUES} values (each value is one run of the scene)"
+        ))),
         1 => Ok(vec![from]),
         n => Ok((0..n)
             .map(|k| from + (to - from) * k as f64 / (n - 1) as f64)
@@ -373,6 +379,13 @@ pub fn sweep_scenes(base: &Scene, sweep: &Sweep) -> Result<Vec<Scene>, SweepErro
         .map(|&v| {
             let mut s = base.clone();
             set_param(&mut s, &sweep.param, v)?;
+            // a steady part too short (or too long) for the summary's
+            // spectrum: said before any run, not after every one
+            SteadyRecorder::steady_samples(&s, None).map_err(|e| SweepError::Run {
+                param: sweep.param.clone(),
+                value: v,
+                message: e.to_string(),
+            })?;
             Ok(s)
         })
         .collect()

@@ -259,7 +259,6 @@ fn huge_and_tiny_values_are_shown_short() {
 /// 800 GB allocation (exit 134), both in `linspace` before any check. Run
 /// with `cargo test --test robust_regressions -- --ignored`.
 #[test]
-#[ignore = "panics in src/sweep.rs linspace: not this branch's files"]
 fn sweep_with_a_huge_step_count_is_refused() {
     for steps in ["18446744073709551615", "100000000000"] {
         let o = bin()
@@ -327,4 +326,62 @@ fn a_budget_below_one_row_says_to_raise_it() {
     assert!(e.len() < 600, "{e}");
     assert!(!csv.exists());
     std::fs::remove_dir_all(&d).ok();
+}
+
+/// A sweep whose runs end before their ramp does (no steady part to
+/// summarise) ran every value and then failed each with "spectrum of 0
+/// samples", after writing a table of failures. It is refused before any
+/// run, naming the value and what to do, and writes nothing.
+#[test]
+fn sweep_shorter_than_its_ramp_is_refused_before_any_run() {
+    let dir = tmp("sweep-short");
+    let csv = dir.join("s.csv");
+    let o = bin()
+        .args(["sweep", "presets/single_mode.ron", "--param", "speed_mps"])
+        .args([
+            "--from",
+            "5",
+            "--to",
+            "10",
+            "--steps",
+            "3",
+            "--duration",
+            "0.001",
+        ])
+        .arg("-o")
+        .arg(&csv)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("speed_mps = 5") && err.contains("lengthen duration_s"),
+        "{err}"
+    );
+    assert!(!csv.exists(), "a failed sweep wrote {}", csv.display());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `sweep --dt -inf` was clap's "unexpected argument '-i' found"; the
+/// value reaches the parser or the scene's validation, which name the
+/// option or the field it sets.
+#[test]
+fn sweep_numeric_options_take_values_starting_with_a_minus() {
+    for (opt, v, named) in [
+        ("--dt", "-inf", "dt_s = -inf"),
+        ("--duration", "-1e-300", "duration_s = -1e-300"),
+        ("--threads", "-1", "--threads"),
+    ] {
+        let o = bin()
+            .args(["sweep", "presets/single_mode.ron", "--param", "speed_mps"])
+            .args(["--from", "5", "--to", "10", opt, v])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_ne!(o.status.code(), Some(0), "{opt} {v}");
+        assert!(
+            err.contains(named) && !err.contains("unexpected argument"),
+            "{opt} {v}: {err}"
+        );
+    }
 }

@@ -5,7 +5,9 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
-use tirecontact::sweep::{Sweep, get_param, linspace, report, run_sweep, set_param};
+use tirecontact::sweep::{
+    MAX_SWEEP_VALUES, Sweep, get_param, linspace, report, run_sweep, set_param,
+};
 use tirecontact::{Scene, SceneError};
 
 #[derive(Debug, clap::Args)]
@@ -21,13 +23,13 @@ pub struct SweepArgs {
     pub param: String,
     /// First value, in the unit the parameter's name carries (m/s for
     /// `speed_mps`, Hz for `freq_hz`, m for `h_m`).
-    #[arg(long, allow_negative_numbers = true, value_parser = super::values::parse_value)]
+    #[arg(long, allow_hyphen_values = true, value_parser = super::values::parse_value)]
     pub from: f64,
     /// Last value (may be below --from: the values then decrease).
-    #[arg(long, allow_negative_numbers = true, value_parser = super::values::parse_value)]
+    #[arg(long, allow_hyphen_values = true, value_parser = super::values::parse_value)]
     pub to: f64,
     /// Number of values, evenly spaced, both ends included.
-    #[arg(long, default_value_t = 10, value_parser = super::values::parse_count_usize)]
+    #[arg(long, default_value_t = 10, allow_hyphen_values = true, value_parser = super::values::parse_count_usize)]
     pub steps: usize,
     /// Write the table (one row per value) to this CSV.
     #[arg(short, long)]
@@ -36,13 +38,13 @@ pub struct SweepArgs {
     #[arg(long)]
     pub plot: Option<PathBuf>,
     /// Worker threads; default all cores.
-    #[arg(long, value_parser = super::values::parse_count_usize)]
+    #[arg(long, allow_hyphen_values = true, value_parser = super::values::parse_count_usize)]
     pub threads: Option<usize>,
     /// Override the time step (s) of every run.
-    #[arg(long, value_parser = super::values::parse_seconds)]
+    #[arg(long, allow_hyphen_values = true, value_parser = super::values::parse_seconds)]
     pub dt: Option<f64>,
     /// Override the duration (s) of every run.
-    #[arg(long, value_parser = super::values::parse_seconds)]
+    #[arg(long, allow_hyphen_values = true, value_parser = super::values::parse_seconds)]
     pub duration: Option<f64>,
 }
 
@@ -71,6 +73,13 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
+    if args.steps > MAX_SWEEP_VALUES {
+        return Err(format!(
+            "--steps = {}: expected 1 to {MAX_SWEEP_VALUES} values (each value is one run of the scene)",
+            args.steps
+        )
+        .into());
+    }
     let sweep = Sweep {
         param: param.to_string(),
         values: linspace(args.from, args.to, args.steps)?,

@@ -37,14 +37,14 @@ pub struct SteadyRecorder {
 }
 
 impl SteadyRecorder {
-    /// A recorder of the steady part of `scene` from `start_s` (default: the
-    /// ramp time `ramp_s`). Errors when the part is too long to hold.
-    pub fn new(scene: &Scene, start_s: Option<f64>) -> Result<Self, SpectrumError> {
+    /// The number of steady samples of `scene` from `start_s` (default: the
+    /// ramp time `ramp_s`) to its end, checked before any run: too few for a
+    /// spectrum, or too many to hold, is an error (one sample of slack for
+    /// the rounding of the steady part's first step; the spectrum checks
+    /// the exact count).
+    pub fn steady_samples(scene: &Scene, start_s: Option<f64>) -> Result<u64, SpectrumError> {
         let start = start_s.unwrap_or(scene.ramp_s).max(0.0);
         let steady = ((scene.duration_s - start) / scene.dt_s).max(0.0) as u64;
-        // refused before the run, not after it (one sample of slack for
-        // the rounding of the steady part's first step; the spectrum checks
-        // the exact count)
         if steady + 1 < MIN_SAMPLES as u64 {
             return Err(SpectrumError::TooShort {
                 samples: steady as usize,
@@ -57,6 +57,14 @@ impl SteadyRecorder {
                 max: MAX_SAMPLES,
             });
         }
+        Ok(steady)
+    }
+
+    /// A recorder of the steady part of `scene` from `start_s` (default: the
+    /// ramp time `ramp_s`). Errors when the part is too long to hold.
+    pub fn new(scene: &Scene, start_s: Option<f64>) -> Result<Self, SpectrumError> {
+        let start = start_s.unwrap_or(scene.ramp_s).max(0.0);
+        let steady = Self::steady_samples(scene, start_s)?;
         let p = scene.num_points();
         let cap = steady as usize + 1;
         Ok(SteadyRecorder {
