@@ -529,10 +529,27 @@ fn check(scene: &Scene, names: &[String], what: &str) -> Result<(), TestCaseErro
     Ok(())
 }
 
-fn temp_dir(tag: &str) -> PathBuf {
+/// A scratch folder of this process, removed when dropped (the cases ran
+/// in a folder left behind in /tmp after every test run).
+struct TempDir(PathBuf);
+
+impl std::ops::Deref for TempDir {
+    type Target = PathBuf;
+    fn deref(&self) -> &PathBuf {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn temp_dir(tag: &str) -> TempDir {
     let d = std::env::temp_dir().join(format!("tc-robust-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
-    d
+    TempDir(d)
 }
 
 proptest! {
