@@ -11,6 +11,7 @@ pub mod classroom;
 pub mod command;
 pub mod dialogs;
 pub mod export;
+pub mod field_help;
 pub mod fields;
 pub mod file_prompt;
 pub mod frame_rate;
