@@ -111,9 +111,12 @@ impl App {
                 let p = path.to_path_buf();
                 self.replace(scene, Some(p), &format!("opened {}", path.display()));
             }
-            Err(e) => self.error(format!(
-                "Cannot open this preset; the current scene is kept.\n{e}"
-            )),
+            Err(e) => {
+                let head = self.pause_for_error(
+                    "Cannot open this preset; the current scene is kept.".to_string(),
+                );
+                self.error(format!("{head}\n{e}"))
+            }
         }
     }
 
