@@ -108,3 +108,103 @@ fn a_refusal_while_paused_leaves_the_run_paused() {
     assert!(!h.state().time_control().is_playing());
     assert!(banner(&h).starts_with("speed_kmh:"), "{}", banner(&h));
 }
+
+/// The text of every label (a label's text is its accesskit value) and
+/// every other node's name.
+fn all_texts(h: &Harness<'_, App>) -> Vec<String> {
+    use egui_kittest::kittest::NodeT;
+    h.query_all_by_label_contains("")
+        .filter_map(|n| {
+            let n = n.accesskit_node();
+            n.value().or(n.label())
+        })
+        .collect()
+}
+
+#[test]
+fn the_help_menu_lists_the_keys_and_they_do_what_it_says() {
+    use tirecontact::gui::command::View;
+    use tirecontact::gui::panels::help_menu::{FIRST_STEPS, SHORTCUTS};
+    let mut h = harness_sized(App::with_default_preset(), SMALL);
+    h.run();
+    h.get_by_label("Help").click();
+    h.run();
+    let shown = all_texts(&h);
+    for (key, what) in SHORTCUTS {
+        assert!(
+            shown.iter().any(|t| t == key),
+            "{key} not listed: {shown:?}"
+        );
+        assert!(shown.iter().any(|t| t == what), "{what} not listed");
+    }
+    for line in FIRST_STEPS {
+        assert!(shown.iter().any(|t| t.ends_with(line)), "{line} not shown");
+    }
+    // the menu fits the 1280 x 720 window
+    let r = h.get_by_label("Reopen the default scene").rect();
+    assert!(r.max.y <= 720.0 && r.max.x <= 1280.0, "{r:?}");
+    h.key_press(egui::Key::Escape);
+    h.run();
+    // what the list says of Space, 2 and R
+    h.key_press(egui::Key::Space);
+    h.run_steps(2);
+    assert!(h.state().time_control().is_playing(), "Space did not play");
+    h.key_press(egui::Key::Space);
+    h.run_steps(2);
+    assert!(
+        !h.state().time_control().is_playing(),
+        "Space did not pause"
+    );
+    assert!(h.state().simulation().steps() > 0);
+    h.key_press(egui::Key::Num2);
+    h.run();
+    assert_eq!(h.state().view(), View::Scene);
+    h.key_press(egui::Key::R);
+    h.run();
+    assert_eq!(h.state().simulation().steps(), 0, "R did not reset");
+}
+
+#[test]
+fn reopen_the_default_scene_from_the_help_menu_after_an_edit() {
+    let mut h = harness_sized(App::with_default_preset(), SMALL);
+    h.run();
+    let default = h.state().scene().clone();
+    type_into(&mut h, "speed_kmh", "72");
+    assert_ne!(h.state().scene(), &default);
+    h.get_by_label("Help").click();
+    h.run();
+    h.get_by_label("Reopen the default scene").click();
+    h.run();
+    // unsaved edits: asked first
+    assert!(h.state().pending_confirmation().is_some());
+    h.get_by_label("Discard changes").click();
+    h.run();
+    assert_eq!(h.state().scene(), &default);
+    assert!(!h.state().is_dirty());
+}
+
+/// Every control of the transport row and the road type list says on hover
+/// what it does (the walk found "Space" as Play's whole tooltip, and none on
+/// the N steps field or the road type list).
+#[test]
+fn the_transport_controls_and_the_road_type_explain_themselves() {
+    for (control, says) in [
+        ("Play", "play the run"),
+        ("Step", "one solver step"),
+        ("Step N", "solver steps"),
+        ("N steps", "1 to 10 000 000"),
+        ("Reset", "back to t = 0"),
+        ("speed", "0.001x"),
+        ("road type", "ISO 8608"),
+    ] {
+        let mut h = harness_sized(App::with_default_preset(), SMALL);
+        h.run();
+        h.get_all_by_label(control).last().unwrap().hover();
+        h.run_steps(40);
+        let shown = all_texts(&h);
+        assert!(
+            shown.iter().any(|t| t.contains(says)),
+            "{control}: no tooltip saying {says:?}"
+        );
+    }
+}

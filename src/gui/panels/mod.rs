@@ -3,6 +3,7 @@
 
 pub mod about_panel;
 pub mod contact_panel;
+pub mod help_menu;
 pub mod modes_table;
 pub mod points_panel;
 pub mod random_road;
