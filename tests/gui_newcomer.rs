@@ -208,3 +208,41 @@ fn the_transport_controls_and_the_road_type_explain_themselves() {
         );
     }
 }
+
+/// Exporting the plots before anything ran wrote an empty figure whose
+/// time axis ran from -1 to 1 s; it now says what to do, in the dialog.
+#[test]
+fn an_empty_run_is_not_exported_as_an_empty_figure() {
+    let dir = std::env::temp_dir().join(format!("tirecontact_newcomer_png_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("plots.png");
+    let mut h = harness_sized(App::with_default_preset(), SMALL);
+    h.run();
+    h.state_mut().apply(Command::ExportPngDialog);
+    h.run();
+    h.state_mut().apply(Command::ExportPng {
+        path: path.clone(),
+        width: 800,
+        height: 600,
+    });
+    h.run();
+    assert!(!path.exists(), "an empty figure was written");
+    let shown = all_texts(&h);
+    assert!(
+        shown
+            .iter()
+            .any(|t| t.starts_with("Nothing to export yet") && t.contains("Press Play")),
+        "{shown:?}"
+    );
+    // after some steps the same export writes the file
+    h.state_mut().apply(Command::Step(200));
+    h.run();
+    h.state_mut().apply(Command::ExportPng {
+        path: path.clone(),
+        width: 800,
+        height: 600,
+    });
+    h.run();
+    assert!(path.exists(), "{:?}", h.state().message());
+    std::fs::remove_dir_all(dir).ok();
+}
