@@ -246,3 +246,59 @@ fn an_empty_run_is_not_exported_as_an_empty_figure() {
     assert!(path.exists(), "{:?}", h.state().message());
     std::fs::remove_dir_all(dir).ok();
 }
+
+/// The caret under a quoted source line points at the error's column: the
+/// banner draws the excerpt in monospace (in the body font the caret sat
+/// under the blanks before the field).
+#[test]
+fn the_caret_of_a_syntax_error_points_at_its_column() {
+    let mut h = harness_sized(App::with_default_preset(), SMALL);
+    h.run();
+    let f = TempFile::new(
+        "caret.ron",
+        "Scene(\n    name: \"x\"\n    description: \"y\",\n)\n",
+    );
+    h.state_mut().apply(Command::OpenPath(f.0.clone()));
+    h.run();
+    let mut found = false;
+    for s in common::shapes(&h) {
+        let egui::Shape::Text(t) = s else { continue };
+        if !t.galley.text().contains("Cannot open this preset") {
+            continue;
+        }
+        // the row quoting line 3 and the caret row below it
+        let rows: Vec<(f32, Vec<(char, f32)>)> = t
+            .galley
+            .rows
+            .iter()
+            .map(|r| {
+                (
+                    r.pos.y,
+                    r.row
+                        .glyphs
+                        .iter()
+                        .map(|g| (g.chr, r.pos.x + g.pos.x))
+                        .collect(),
+                )
+            })
+            .collect();
+        let text_of = |g: &[(char, f32)]| g.iter().map(|c| c.0).collect::<String>();
+        let quoted = rows
+            .iter()
+            .position(|(_, g)| text_of(g).trim_start().starts_with("3 |"))
+            .expect("no quoted line");
+        let d_x = rows[quoted].1.iter().find(|c| c.0 == 'd').unwrap().1;
+        let caret_x = rows[quoted + 1]
+            .1
+            .iter()
+            .find(|c| c.0 == '^')
+            .expect("no caret below")
+            .1;
+        assert!(
+            (caret_x - d_x).abs() < 1.0,
+            "caret at x = {caret_x}, column 5 ('d') at x = {d_x}"
+        );
+        found = true;
+    }
+    assert!(found, "no banner");
+}

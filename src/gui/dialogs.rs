@@ -33,7 +33,9 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
                     egui::Layout::top_down(egui::Align::Min),
                     |ui| {
                         ui.set_max_width(w);
-                        ui.add(egui::Label::new(RichText::new(&m.text).color(color)).wrap());
+                        // a quoted source line and its caret in monospace
+                        let job = super::banner_text::layout(ui, &m.text, color);
+                        ui.add(egui::Label::new(job).wrap());
                     },
                 );
                 ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {

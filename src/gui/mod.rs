@@ -7,6 +7,7 @@
 //! that changes state; views only read.
 
 pub mod app;
+pub mod banner_text;
 pub mod classroom;
 pub mod command;
 pub mod dialogs;
