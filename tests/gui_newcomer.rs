@@ -302,3 +302,33 @@ fn the_caret_of_a_syntax_error_points_at_its_column() {
     }
     assert!(found, "no banner");
 }
+
+/// At 1280 × 720 the scene view's header keeps each label whole on a row:
+/// "ramping in" was cut after "ramping", its value on the next row.
+#[test]
+fn the_scene_header_keeps_its_labels_whole_at_1280_by_720() {
+    use tirecontact::gui::command::View;
+    let mut h = harness_sized(App::with_default_preset(), SMALL);
+    h.state_mut().apply(Command::ShowView(View::Scene));
+    h.run();
+    let t = common::texts(&h);
+    let ramp = t
+        .iter()
+        .find(|(s, _)| s.contains("ramping in"))
+        .expect("no ramp label at t = 0");
+    let rows = common::shapes(&h)
+        .into_iter()
+        .find_map(|s| match s {
+            egui::Shape::Text(t) if t.galley.text() == ramp.0 => Some(t.galley.rows.len()),
+            _ => None,
+        })
+        .unwrap();
+    assert_eq!(rows, 1, "{:?} wrapped", ramp.0);
+    assert!(ramp.1.max.x <= SMALL[0], "{ramp:?} past the window");
+    let header = t
+        .iter()
+        .find(|(s, _)| s.contains("points in contact"))
+        .unwrap();
+    assert!(header.1.max.x <= SMALL[0], "{header:?} past the window");
+    assert!(ramp.0.contains(" %"), "{}", ramp.0);
+}

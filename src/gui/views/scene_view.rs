@@ -198,14 +198,25 @@ pub fn show_with(
         );
         ui.separator();
         let n_contact = contact.iter().filter(|c| **c).count();
-        ui.label(format!(
+        // each label whole on a row (wrapped, "ramping" ended a row and
+        // "in: w = 0.00" began the next at 1280 x 720)
+        let whole = |text: RichText| egui::Label::new(text).wrap_mode(egui::TextWrapMode::Extend);
+        ui.add(whole(RichText::new(format!(
             "t = {t:.5} s   V = {:.1} km/h   road moves to the left under the tyre   {} of {} points in contact",
             scene.speed_mps * 3.6,
             n_contact,
             contact.len()
-        ));
+        ))));
         if w < 1.0 {
-            ui.label(RichText::new(format!("ramping in: w = {w:.2}")).color(Color32::from_rgb(230, 159, 0)));
+            ui.add(whole(
+                RichText::new(format!("road and preload ramping in: {:.0} %", 100.0 * w))
+                    .color(Color32::from_rgb(230, 159, 0)),
+            ))
+            .on_hover_text(format!(
+                "the road and the preload are eased in over the first {} s (ramp), so that the \
+                 run starts at rest without a shock",
+                super::super::fields::format_number(scene.ramp_s)
+            ));
         }
     });
     // road seen in the tyre's frame: w z(x + V t) + (1 - w) h(x)
