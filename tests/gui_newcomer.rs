@@ -332,3 +332,27 @@ fn the_scene_header_keeps_its_labels_whole_at_1280_by_720() {
     assert!(header.1.max.x <= SMALL[0], "{header:?} past the window");
     assert!(ramp.0.contains(" %"), "{}", ramp.0);
 }
+
+/// Quitting (or opening another scene) with unsaved edits asks first and
+/// says which edits would be lost.
+#[test]
+fn the_unsaved_changes_question_names_the_changes() {
+    let mut h = harness_sized(App::with_default_preset(), SMALL);
+    h.run();
+    type_into(&mut h, "speed_kmh", "72");
+    type_into(&mut h, "road.amplitude_m", "2");
+    h.state_mut().apply(Command::Quit);
+    h.run();
+    assert!(h.state().pending_confirmation().is_some());
+    let shown = all_texts(&h);
+    let line = shown
+        .iter()
+        .find(|t| t.starts_with("Changed: "))
+        .unwrap_or_else(|| panic!("no list of changes: {shown:?}"));
+    assert!(line.contains("speed 10 -> 20 m/s"), "{line}");
+    assert!(line.contains("amplitude 1 -> 2 mm"), "{line}");
+    h.get_by_label("Cancel").click();
+    h.run();
+    assert!(h.state().pending_confirmation().is_none());
+    assert!(h.state().is_dirty(), "the edits were kept");
+}

@@ -68,8 +68,13 @@ pub fn document_label(path: Option<&std::path::Path>, scene_name: &str, dirty: b
     }
 }
 
-/// Asks before dropping unsaved edits.
-pub fn confirm_window(ctx: &egui::Context, pending: Option<&Discarding>, cmds: &mut Vec<Command>) {
+/// Asks before dropping unsaved edits, naming them (`edits`, with units).
+pub fn confirm_window(
+    ctx: &egui::Context,
+    pending: Option<&Discarding>,
+    edits: &[String],
+    cmds: &mut Vec<Command>,
+) {
     let Some(d) = pending else { return };
     let what = match d {
         Discarding::New => "start a new scene",
@@ -83,6 +88,13 @@ pub fn confirm_window(ctx: &egui::Context, pending: Option<&Discarding>, cmds: &
         ui.label(format!(
             "The scene has unsaved changes. Discard them and {what}?"
         ));
+        if !edits.is_empty() {
+            ui.set_max_width(520.0);
+            ui.add(
+                egui::Label::new(RichText::new(format!("Changed: {}.", edits.join("; "))).weak())
+                    .wrap(),
+            );
+        }
         ui.horizontal(|ui| {
             if ui.button("Discard changes").clicked() {
                 cmds.push(Command::ConfirmDiscard);
