@@ -118,6 +118,7 @@ pub fn png_window(
     let Some(s) = settings else { return };
     let mut open = true;
     let mut go = false;
+    let mut cancel = false;
     egui::Window::new("Export plots as PNG")
         .open(&mut open)
         .collapsible(false)
@@ -150,11 +151,29 @@ pub fn png_window(
             ) {
                 s.note = Some(n);
             }
+            // as the other file prompts: where a relative path goes, and a
+            // Cancel beside the action (the title bar's × was the only way out)
+            ui.label(
+                RichText::new(format!(
+                    "A relative path is in {}.",
+                    super::file_prompt::cwd_text()
+                ))
+                .weak(),
+            );
             if let Some(n) = &s.note {
                 ui.label(RichText::new(n.as_str()).color(ERROR_COLOR));
             }
-            go = ui.button(RichText::new("Export PNG").strong()).clicked();
+            ui.horizontal(|ui| {
+                go = ui.button(RichText::new("Export PNG").strong()).clicked();
+                if ui.button("Cancel").clicked() {
+                    cancel = true;
+                }
+            });
         });
+    if cancel {
+        *settings = None;
+        return;
+    }
     if go {
         match super::file_prompt::typed_path(&s.path, "png") {
             Ok(path) => cmds.push(Command::ExportPng {
