@@ -331,6 +331,21 @@ fn the_scene_header_keeps_its_labels_whole_at_1280_by_720() {
         .unwrap();
     assert!(header.1.max.x <= SMALL[0], "{header:?} past the window");
     assert!(ramp.0.contains(" %"), "{}", ramp.0);
+    // past the ramp the label says so in the same place: the header keeps
+    // its rows (and the plot its top) when the ramp ends
+    let ramp_steps = (h.state().scene().ramp_s / h.state().scene().dt_s).ceil() as u64;
+    common::advance(&mut h, ramp_steps + 10);
+    h.run();
+    let after = common::texts(&h)
+        .into_iter()
+        .find(|(t, _)| t == "road and preload in full")
+        .expect("no label past the ramp");
+    assert!(
+        (after.1.center().y - ramp.1.center().y).abs() < 0.5,
+        "moved from {:?} to {:?}",
+        ramp.1,
+        after.1
+    );
 }
 
 /// Quitting (or opening another scene) with unsaved edits asks first and
@@ -355,4 +370,55 @@ fn the_unsaved_changes_question_names_the_changes() {
     h.run();
     assert!(h.state().pending_confirmation().is_none());
     assert!(h.state().is_dirty(), "the edits were kept");
+}
+
+/// The PNG export dialog says where a relative path goes and has a Cancel
+/// button, as the open and save prompts do.
+#[test]
+fn the_png_dialog_says_where_a_relative_path_goes_and_cancels() {
+    let mut h = harness_sized(App::with_default_preset(), SMALL);
+    h.run();
+    h.state_mut().apply(Command::ExportPngDialog);
+    h.run();
+    let cwd = std::env::current_dir().unwrap().display().to_string();
+    let shown = all_texts(&h);
+    assert!(
+        shown
+            .iter()
+            .any(|t| t == &format!("A relative path is in {cwd}.")),
+        "{shown:?}"
+    );
+    h.get_by_label("Cancel").click();
+    h.run();
+    assert!(h.query_by_label("Export PNG").is_none(), "still open");
+}
+
+/// The fields stay where they are when edits are made: the note of the
+/// edits above them grew at the first edit and moved every field down by
+/// two lines, under the pointer.
+#[test]
+fn edits_do_not_move_the_fields_under_the_pointer() {
+    let mut h = harness_sized(App::with_default_preset(), SMALL);
+    h.run();
+    let at = |h: &Harness<'_, App>| {
+        (
+            h.get_by_label("road.wavelength_m").rect(),
+            h.get_by_label("ramp_s").rect(),
+        )
+    };
+    let before = at(&h);
+    assert!(
+        all_texts(&h)
+            .iter()
+            .any(|t| t == tirecontact::gui::panels::edits_box::NO_EDITS),
+        "no placeholder"
+    );
+    type_into(&mut h, "speed_kmh", "72");
+    assert!(!h.state().edits().is_empty());
+    assert_eq!(at(&h), before, "moved by the first edit");
+    type_into(&mut h, "road.amplitude_m", "2");
+    type_into(&mut h, "ramp_s", "0.06");
+    type_into(&mut h, "duration_s", "0.3");
+    assert_eq!(h.state().edits().len(), 4, "{:?}", h.state().edits());
+    assert_eq!(at(&h), before, "moved by more edits");
 }

@@ -207,16 +207,34 @@ pub fn show_with(
             n_contact,
             contact.len()
         ))));
-        if w < 1.0 {
-            ui.add(whole(
-                RichText::new(format!("road and preload ramping in: {:.0} %", 100.0 * w))
-                    .color(Color32::from_rgb(230, 159, 0)),
-            ))
-            .on_hover_text(format!(
-                "the road and the preload are eased in over the first {} s (ramp), so that the \
-                 run starts at rest without a shock",
-                super::super::fields::format_number(scene.ramp_s)
-            ));
+        // shown all along a ramped run, in the room of its widest text: the
+        // header keeps its rows and the plot its place when the ramp ends
+        if scene.ramp_s > 0.0 {
+            let (text, color) = if w < 1.0 {
+                (
+                    format!("road and preload ramping in: {:.0} %", 100.0 * w),
+                    Color32::from_rgb(230, 159, 0),
+                )
+            } else {
+                (
+                    "road and preload in full".to_string(),
+                    ui.visuals().weak_text_color(),
+                )
+            };
+            let widest = ui
+                .painter()
+                .layout_no_wrap(
+                    "road and preload ramping in: 100 %".to_string(),
+                    egui::TextStyle::Body.resolve(ui.style()),
+                    color,
+                )
+                .size();
+            ui.add_sized(widest, whole(RichText::new(text).color(color)))
+                .on_hover_text(format!(
+                    "the road and the preload are eased in over the first {} s (ramp), so \
+                     that the run starts at rest without a shock",
+                    super::super::fields::format_number(scene.ramp_s)
+                ));
         }
     });
     // road seen in the tyre's frame: w z(x + V t) + (1 - w) h(x)
