@@ -208,8 +208,10 @@ pub fn show_with(
             contact.len()
         ))));
         // shown all along a ramped run, in the room of its widest text: the
-        // header keeps its rows and the plot its place when the ramp ends
-        if scene.ramp_s > 0.0 {
+        // header keeps its rows and the plot its place when the ramp ends;
+        // not in classroom mode (legend above the plot), whose large header
+        // it would lengthen by a row and whose phase strip says what happens
+        if scene.ramp_s > 0.0 && !opts.legend_above {
             let (text, color) = if w < 1.0 {
                 (
                     format!("road and preload ramping in: {:.0} %", 100.0 * w),
