@@ -201,16 +201,27 @@ pub fn show_with(
         // each label whole on a row (wrapped, "ramping" ended a row and
         // "in: w = 0.00" began the next at 1280 x 720)
         let whole = |text: RichText| egui::Label::new(text).wrap_mode(egui::TextWrapMode::Extend);
-        ui.add(whole(RichText::new(format!(
+        let info = format!(
             "t = {t:.5} s   V = {:.1} km/h   road moves to the left under the tyre   {} of {} points in contact",
             scene.speed_mps * 3.6,
             n_contact,
             contact.len()
-        ))));
+        );
+        if opts.legend_above {
+            ui.label(info);
+        } else {
+            ui.add(whole(RichText::new(info)));
+        }
+        // classroom mode (legend above the plot): as it was, its layout
+        // and label placement are held by the gui_classroom_* tests
+        if opts.legend_above && w < 1.0 {
+            ui.label(
+                RichText::new(format!("ramping in: w = {w:.2}"))
+                    .color(Color32::from_rgb(230, 159, 0)),
+            );
+        }
         // shown all along a ramped run, in the room of its widest text: the
-        // header keeps its rows and the plot its place when the ramp ends;
-        // not in classroom mode (legend above the plot), whose large header
-        // it would lengthen by a row and whose phase strip says what happens
+        // header keeps its rows and the plot its place when the ramp ends
         if scene.ramp_s > 0.0 && !opts.legend_above {
             let (text, color) = if w < 1.0 {
                 (
