@@ -422,3 +422,35 @@ fn edits_do_not_move_the_fields_under_the_pointer() {
     assert_eq!(h.state().edits().len(), 4, "{:?}", h.state().edits());
     assert_eq!(at(&h), before, "moved by more edits");
 }
+
+/// Every time plot's legend reads point 0 first, wherever it sits: egui_plot
+/// stacks a bottom corner's legend upwards, and the force plot's legend
+/// read "point 4 … point 0" whenever its curves sent it to a bottom corner.
+#[test]
+fn a_legend_in_a_bottom_corner_still_reads_point_0_first() {
+    let mut h = harness_sized(App::with_default_preset(), SMALL);
+    h.run();
+    common::advance(&mut h, 500);
+    h.run();
+    let k = 1usize; // the force plot
+    let key =
+        egui::Id::unique(("tirecontact.time_plots.legend", k)).with("tirecontact.legend_corner");
+    h.ctx
+        .data_mut(|d| d.insert_temp(key, egui_plot::Corner::RightBottom));
+    h.run_steps(1);
+    let ys = |name: &str| {
+        let mut v: Vec<f32> = common::texts(&h)
+            .into_iter()
+            .filter(|(t, _)| t == name)
+            .map(|(_, r)| r.center().y)
+            .collect();
+        v.sort_by(f32::total_cmp);
+        v
+    };
+    let (first, last) = (ys("point 0"), ys("point 4"));
+    assert_eq!(first.len(), 4, "{first:?}");
+    assert_eq!(last.len(), 4, "{last:?}");
+    for (plot, (a, b)) in first.iter().zip(&last).enumerate() {
+        assert!(a < b, "plot {plot}: point 0 at y = {a}, point 4 at y = {b}");
+    }
+}
