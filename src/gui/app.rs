@@ -34,6 +34,7 @@ mod run;
 mod session;
 
 use files::default_scene;
+pub use run::PAUSED_NOTE;
 
 /// Wall time per frame the solver may use (keeps the UI above 30 fps).
 pub const STEP_BUDGET: Duration = Duration::from_millis(12);

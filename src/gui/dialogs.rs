@@ -33,7 +33,9 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
                     egui::Layout::top_down(egui::Align::Min),
                     |ui| {
                         ui.set_max_width(w);
-                        ui.add(egui::Label::new(RichText::new(&m.text).color(color)).wrap());
+                        // a quoted source line and its caret in monospace
+                        let job = super::banner_text::layout(ui, &m.text, color);
+                        ui.add(egui::Label::new(job).wrap());
                     },
                 );
                 ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
@@ -66,8 +68,13 @@ pub fn document_label(path: Option<&std::path::Path>, scene_name: &str, dirty: b
     }
 }
 
-/// Asks before dropping unsaved edits.
-pub fn confirm_window(ctx: &egui::Context, pending: Option<&Discarding>, cmds: &mut Vec<Command>) {
+/// Asks before dropping unsaved edits, naming them (`edits`, with units).
+pub fn confirm_window(
+    ctx: &egui::Context,
+    pending: Option<&Discarding>,
+    edits: &[String],
+    cmds: &mut Vec<Command>,
+) {
     let Some(d) = pending else { return };
     let what = match d {
         Discarding::New => "start a new scene",
@@ -81,6 +88,13 @@ pub fn confirm_window(ctx: &egui::Context, pending: Option<&Discarding>, cmds: &
         ui.label(format!(
             "The scene has unsaved changes. Discard them and {what}?"
         ));
+        if !edits.is_empty() {
+            ui.set_max_width(520.0);
+            ui.add(
+                egui::Label::new(RichText::new(format!("Changed: {}.", edits.join("; "))).weak())
+                    .wrap(),
+            );
+        }
         ui.horizontal(|ui| {
             if ui.button("Discard changes").clicked() {
                 cmds.push(Command::ConfirmDiscard);
@@ -104,6 +118,7 @@ pub fn png_window(
     let Some(s) = settings else { return };
     let mut open = true;
     let mut go = false;
+    let mut cancel = false;
     egui::Window::new("Export plots as PNG")
         .open(&mut open)
         .collapsible(false)
@@ -136,11 +151,29 @@ pub fn png_window(
             ) {
                 s.note = Some(n);
             }
+            // as the other file prompts: where a relative path goes, and a
+            // Cancel beside the action (the title bar's × was the only way out)
+            ui.label(
+                RichText::new(format!(
+                    "A relative path is in {}.",
+                    super::file_prompt::cwd_text()
+                ))
+                .weak(),
+            );
             if let Some(n) = &s.note {
                 ui.label(RichText::new(n.as_str()).color(ERROR_COLOR));
             }
-            go = ui.button(RichText::new("Export PNG").strong()).clicked();
+            ui.horizontal(|ui| {
+                go = ui.button(RichText::new("Export PNG").strong()).clicked();
+                if ui.button("Cancel").clicked() {
+                    cancel = true;
+                }
+            });
         });
+    if cancel {
+        *settings = None;
+        return;
+    }
     if go {
         match super::file_prompt::typed_path(&s.path, "png") {
             Ok(path) => cmds.push(Command::ExportPng {

@@ -103,6 +103,21 @@ impl<'a> NumField<'a> {
         self
     }
 
+    /// What the field means, its unit, the values it accepts and how an
+    /// edit reaches the run (`field_help`); a field unknown there names its
+    /// preset field and unit.
+    pub fn tooltip(&self) -> String {
+        match super::field_help::help(self.name) {
+            Some(h) => h.tooltip(self.name, self.scale, self.unit, self.apply.tooltip()),
+            None => format!(
+                "{} in {} ({})",
+                self.name,
+                if self.unit.is_empty() { "-" } else { self.unit },
+                self.apply.tooltip()
+            ),
+        }
+    }
+
     /// Shows the field; `with` builds the edited scene from a new SI value.
     pub fn show(self, ui: &mut Ui, with: impl FnOnce(f64) -> Scene) -> Option<Command> {
         let id = Id::unique(("tirecontact.field", self.name));
@@ -139,7 +154,7 @@ impl<'a> NumField<'a> {
                 let resp = ui
                     .add(edit)
                     .accessible_name(self.name)
-                    .on_hover_text(format!("{} ({})", self.name, self.apply.tooltip()));
+                    .on_hover_text(self.tooltip());
                 if !self.unit.is_empty() {
                     ui.label(self.unit);
                 }

@@ -91,7 +91,7 @@ impl FilePrompt {
 }
 
 /// The working directory relative paths are resolved against (for the hint).
-fn cwd_text() -> String {
+pub(crate) fn cwd_text() -> String {
     std::env::current_dir().map_or_else(
         |_| "the working directory".to_string(),
         |d| d.display().to_string(),

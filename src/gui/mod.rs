@@ -7,10 +7,12 @@
 //! that changes state; views only read.
 
 pub mod app;
+pub mod banner_text;
 pub mod classroom;
 pub mod command;
 pub mod dialogs;
 pub mod export;
+pub mod field_help;
 pub mod fields;
 pub mod file_prompt;
 pub mod frame_rate;

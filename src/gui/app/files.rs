@@ -111,9 +111,12 @@ impl App {
                 let p = path.to_path_buf();
                 self.replace(scene, Some(p), &format!("opened {}", path.display()));
             }
-            Err(e) => self.error(format!(
-                "Cannot open this preset; the current scene is kept.\n{e}"
-            )),
+            Err(e) => {
+                let head = self.pause_for_error(
+                    "Cannot open this preset; the current scene is kept.".to_string(),
+                );
+                self.error(format!("{head}\n{e}"))
+            }
         }
     }
 
@@ -222,6 +225,25 @@ impl App {
     }
 
     pub(super) fn export_png(&mut self, path: &Path, width: u32, height: u32) {
+        // an empty figure (time axis -1 to 1 s, no curve) is not a plot: say
+        // what to do instead, in the dialog if it is open
+        let nothing = if self.history.len() < 2 {
+            Some(
+                "Nothing to export yet: the run has no steps (t = 0). Press Play (Space) or Step, then export.",
+            )
+        } else if !self.plot_opts.shown.iter().any(|&s| s) {
+            Some("No point is shown: tick at least one point above the time plots, then export.")
+        } else {
+            None
+        };
+        if let Some(n) = nothing {
+            let n = format!("{n} ({} not written)", path.display());
+            match &mut self.png_dialog {
+                Some(d) => d.note = Some(n),
+                None => self.error(n),
+            }
+            return;
+        }
         self.png_dialog = None;
         match super::super::export::export_png(
             path,

@@ -98,7 +98,12 @@ impl App {
         } else {
             self.normal_layout(ui, &mut cmds);
         }
-        crate::gui::dialogs::confirm_window(&ctx, self.confirm.as_ref(), &mut cmds);
+        let unsaved = if self.confirm.is_some() {
+            crate::scene::edits_since(&self.saved, &self.scene)
+        } else {
+            Vec::new()
+        };
+        crate::gui::dialogs::confirm_window(&ctx, self.confirm.as_ref(), &unsaved, &mut cmds);
         crate::gui::dialogs::png_window(&ctx, &mut self.png_dialog, &mut cmds);
         crate::gui::file_prompt::window(&ctx, &mut self.file_prompt, &mut cmds);
         crate::gui::frames::dialog(&ctx, &mut self.frames_dialog, &mut cmds);

@@ -4,6 +4,9 @@
 use super::*;
 use crate::gui::identify_job::{IdentifyJob, Then, waiting_note};
 
+/// Said after an error that paused the run.
+pub const PAUSED_NOTE: &str = "The run is paused: press Play (Space) to go on.";
+
 impl App {
     /// Drops an informational message (errors stay until dismissed).
     pub(super) fn clear_info(&mut self) {
@@ -54,10 +57,29 @@ impl App {
         self.time.set_speed(speed);
     }
 
-    /// Shows a field's refusal in the banner, until a good edit.
+    /// Shows a field's refusal in the banner, until a good edit; a playing
+    /// run pauses, so that the message is read before the run goes on.
     pub(super) fn field_refused(&mut self, text: String) {
+        let noted = format!("{text} {PAUSED_NOTE}");
+        // the same refusal again in the frame that paused (egui may lay a
+        // frame out twice) keeps saying why the run paused
+        let text = if self.field_refusal.as_deref() == Some(noted.as_str()) {
+            noted
+        } else {
+            self.pause_for_error(text)
+        };
         self.error(text.clone());
         self.field_refusal = Some(text);
+    }
+
+    /// Pauses a playing run on a refused input, and says so after `text`.
+    pub(super) fn pause_for_error(&mut self, text: String) -> String {
+        if self.time.is_playing() {
+            self.time.pause();
+            format!("{text} {PAUSED_NOTE}")
+        } else {
+            text
+        }
     }
 
     /// Field `name` shows the scene's value again: its refusal, if it is the

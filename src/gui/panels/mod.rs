@@ -3,6 +3,8 @@
 
 pub mod about_panel;
 pub mod contact_panel;
+pub mod edits_box;
+pub mod help_menu;
 pub mod modes_table;
 pub mod points_panel;
 pub mod random_road;
@@ -55,9 +57,8 @@ pub fn side_panel(
         if !scene.description.is_empty() && !about_panel::is_open(ui) {
             ui.label(egui::RichText::new(&scene.description).weak());
         }
-        if let Some(note) = edits_note(edits) {
-            ui.label(egui::RichText::new(note).italics());
-        }
+        // a box of a fixed height: the fields below stay where they are
+        edits_box::show(ui, edits);
         about_panel::show(ui, scene, cmds);
         ui.horizontal(|ui| {
             ui.label("Tags:");

@@ -61,6 +61,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>)
                     let remove =
                         ui.add_enabled(modes.len() > 1, egui::Button::new("Remove").small());
                     if remove
+                        .on_hover_text("remove this mode from the tyre (restarts the run)")
                         .on_disabled_hover_text("a scene needs at least one mode")
                         .clicked()
                     {

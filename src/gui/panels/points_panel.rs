@@ -42,6 +42,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                 );
                 let remove = ui.add_enabled(p > 1, egui::Button::new("Remove").small());
                 if remove
+                    .on_hover_text("remove this contact point (restarts the run)")
                     .on_disabled_hover_text("a scene needs at least one point")
                     .clicked()
                 {

@@ -159,7 +159,8 @@ fn road_type(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                 );
             })
             .response
-            .accessible_name("road type");
+            .accessible_name("road type")
+            .on_hover_text(ROAD_TYPE_HELP);
     });
 }
 
@@ -241,3 +242,8 @@ fn with_speed(scene: &Scene, v: f64) -> Scene {
     s.speed_mps = v;
     s
 }
+
+/// What the road types are (the road type list's tooltip).
+pub const ROAD_TYPE_HELP: &str = "The road profile under the tyre (applied live): sine, one \
+    wave of an amplitude and a wavelength; harmonics, a sum of sines; random, an ISO 8608 road \
+    of a class A (smooth) to H (very rough); measured, a profile file (set in the preset file).";

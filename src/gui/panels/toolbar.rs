@@ -88,7 +88,14 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             {
                 cmds.push(Command::ExportFramesDialog);
             }
-            if ui.button("Plots as PNG…").clicked() {
+            if ui
+                .button("Plots as PNG…")
+                .on_hover_text(
+                    "the time plots (displacement, force, gap, contact) of the run so far, as one \
+                     figure with title, units and legends",
+                )
+                .clicked()
+            {
                 cmds.push(Command::ExportPngDialog);
             }
             let csv = ui.add_enabled(!st.exporting_csv, egui::Button::new("Run as CSV…"));
@@ -142,6 +149,8 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         {
             cmds.push(Command::ShowModeBars(!st.mode_bars));
         }
+        ui.separator();
+        super::help_menu::show(ui, cmds);
     });
 }
 
@@ -151,7 +160,11 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         let play = if st.playing { "Pause" } else { "Play" };
         if ui
             .button(RichText::new(play).strong())
-            .on_hover_text("Space")
+            .on_hover_text(if st.playing {
+                "pause the run (Space)"
+            } else {
+                "play the run from the current time (Space); a finished run starts again at t = 0"
+            })
             .clicked()
         {
             cmds.push(Command::TogglePlay);
@@ -167,7 +180,7 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         let mut n: u64 = ui.data(|d| d.get_temp(id)).unwrap_or(100);
         if ui
             .button("Step N")
-            .on_hover_text("N solver steps")
+            .on_hover_text("the number of solver steps in the field on the right, then pause")
             .clicked()
         {
             cmds.push(Command::Step(n));
@@ -177,11 +190,12 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
                 .range(1..=10_000_000)
                 .speed(10.0),
         )
-        .accessible_name("N steps");
+        .accessible_name("N steps")
+        .on_hover_text("how many solver steps Step N takes: 1 to 10 000 000 (drag or type)");
         ui.data_mut(|d| d.insert_temp(id, n));
         if ui
             .button("Reset")
-            .on_hover_text("back to t = 0 (R)")
+            .on_hover_text("back to t = 0, paused; the edits are kept (R)")
             .clicked()
         {
             cmds.push(Command::Reset);
@@ -202,7 +216,9 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             })
             .response
             .accessible_name("speed")
-            .on_hover_text("simulated time per wall-clock time");
+            .on_hover_text(
+                "simulated time per wall-clock time: 0.001x (slow motion) to as fast as possible",
+            );
         if speed != st.speed {
             cmds.push(Command::SetSpeed(speed));
         }

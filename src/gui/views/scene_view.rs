@@ -198,14 +198,56 @@ pub fn show_with(
         );
         ui.separator();
         let n_contact = contact.iter().filter(|c| **c).count();
-        ui.label(format!(
+        // each label whole on a row (wrapped, "ramping" ended a row and
+        // "in: w = 0.00" began the next at 1280 x 720)
+        let whole = |text: RichText| egui::Label::new(text).wrap_mode(egui::TextWrapMode::Extend);
+        let info = format!(
             "t = {t:.5} s   V = {:.1} km/h   road moves to the left under the tyre   {} of {} points in contact",
             scene.speed_mps * 3.6,
             n_contact,
             contact.len()
-        ));
-        if w < 1.0 {
-            ui.label(RichText::new(format!("ramping in: w = {w:.2}")).color(Color32::from_rgb(230, 159, 0)));
+        );
+        if opts.legend_above {
+            ui.label(info);
+        } else {
+            ui.add(whole(RichText::new(info)));
+        }
+        // classroom mode (legend above the plot): as it was, its layout
+        // and label placement are held by the gui_classroom_* tests
+        if opts.legend_above && w < 1.0 {
+            ui.label(
+                RichText::new(format!("ramping in: w = {w:.2}"))
+                    .color(Color32::from_rgb(230, 159, 0)),
+            );
+        }
+        // shown all along a ramped run, in the room of its widest text: the
+        // header keeps its rows and the plot its place when the ramp ends
+        if scene.ramp_s > 0.0 && !opts.legend_above {
+            let (text, color) = if w < 1.0 {
+                (
+                    format!("road and preload ramping in: {:.0} %", 100.0 * w),
+                    Color32::from_rgb(230, 159, 0),
+                )
+            } else {
+                (
+                    "road and preload in full".to_string(),
+                    ui.visuals().weak_text_color(),
+                )
+            };
+            let widest = ui
+                .painter()
+                .layout_no_wrap(
+                    "road and preload ramping in: 100 %".to_string(),
+                    egui::TextStyle::Body.resolve(ui.style()),
+                    color,
+                )
+                .size();
+            ui.add_sized(widest, whole(RichText::new(text).color(color)))
+                .on_hover_text(format!(
+                    "the road and the preload are eased in over the first {} s (ramp), so \
+                     that the run starts at rest without a shock",
+                    super::super::fields::format_number(scene.ramp_s)
+                ));
         }
     });
     // road seen in the tyre's frame: w z(x + V t) + (1 - w) h(x)

@@ -230,6 +230,13 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         let follow = opts.follow;
         let clip = opts.clip_impacts && def.what == Quantity::Force;
         let left_px = ui.available_rect_before_wrap().left();
+        // egui_plot stacks a bottom corner's legend upwards: the entries go
+        // in reversed there, so that every legend reads point 0 first (the
+        // force plot's flipped as its legend moved between corners)
+        let upwards = matches!(
+            legend_place::corner(ui.ctx(), legend_id),
+            egui_plot::Corner::LeftBottom | egui_plot::Corner::RightBottom
+        );
         let shown_plot = plot.show(ui, move |pui| {
             let (a, b) = if follow {
                 pui.set_plot_bounds_x(t0..=t1_axis);
@@ -246,7 +253,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
                 None
             };
             let mut ink = legend_place::Ink::default();
-            draw_series(pui, history, def, &shown, a, b, top, &mut ink);
+            draw_series(pui, history, def, &shown, (a, b), top, upwards, &mut ink);
             ink.place(pui, legend_id, legend_px);
         });
         widest_axis_px = widest_axis_px.max(shown_plot.transform.frame().left() - left_px);
@@ -327,12 +334,13 @@ fn draw_series(
     h: &History,
     def: &PlotDef,
     shown: &[bool],
-    a: f64,
-    b: f64,
+    (a, b): (f64, f64),
     clip_top: Option<f64>,
+    upwards: bool,
     ink: &mut legend_place::Ink,
 ) {
     let mut marks = Vec::new();
+    let mut lines = Vec::new();
     let buckets = buckets_for(pui);
     let shown_points = shown
         .iter()
@@ -351,13 +359,23 @@ fn draw_series(
             clip_at(&mut pts, top, &mut marks);
         }
         ink.add(pui, &pts);
-        pui.line(
+        lines.push(
             Line::new(format!("point {i}"), pts)
                 .color(point_color(i))
                 .width(1.5),
         );
     }
-    impact_marks(pui, marks, MarkerShape::Down);
+    if upwards {
+        impact_marks(pui, marks, MarkerShape::Down);
+        for l in lines.into_iter().rev() {
+            pui.line(l);
+        }
+    } else {
+        for l in lines {
+            pui.line(l);
+        }
+        impact_marks(pui, marks, MarkerShape::Down);
+    }
 }
 
 /// Lowers the points of `pts` above `top` to `top`, collecting them in
