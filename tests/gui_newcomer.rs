@@ -79,6 +79,21 @@ fn a_refused_value_pauses_the_run_and_says_how_to_go_on() {
     assert!(!text.contains(PAUSED_NOTE), "{text}");
 }
 
+/// A second refusal before the first is mended still says why the run is
+/// paused (it replaced the first refusal's banner without the note, and the
+/// run stood still unexplained).
+#[test]
+fn a_second_refusal_still_says_the_run_is_paused() {
+    let mut h = playing();
+    type_playing(&mut h, "road.amplitude_m", "abc");
+    assert!(banner(&h).ends_with(PAUSED_NOTE), "{}", banner(&h));
+    type_into(&mut h, "road.wavelength_m", "0");
+    let text = banner(&h);
+    assert!(text.starts_with("road.wavelength_m:"), "{text}");
+    assert!(text.ends_with(PAUSED_NOTE), "{text}");
+    assert!(!h.state().time_control().is_playing(), "still paused");
+}
+
 #[test]
 fn a_broken_preset_pauses_the_run_and_keeps_the_scene() {
     let mut h = playing();

@@ -61,9 +61,16 @@ impl App {
     /// run pauses, so that the message is read before the run goes on.
     pub(super) fn field_refused(&mut self, text: String) {
         let noted = format!("{text} {PAUSED_NOTE}");
-        // the same refusal again in the frame that paused (egui may lay a
-        // frame out twice) keeps saying why the run paused
-        let text = if self.field_refusal.as_deref() == Some(noted.as_str()) {
+        // while a refusal that paused the run is still shown (not yet
+        // mended, the run not played again), the next refusal keeps saying
+        // why the run is paused: the same one again in the frame that paused
+        // (egui may lay a frame out twice), or another field's
+        let paused_by_refusal = !self.time.is_playing()
+            && self
+                .field_refusal
+                .as_deref()
+                .is_some_and(|t| t.ends_with(PAUSED_NOTE));
+        let text = if paused_by_refusal {
             noted
         } else {
             self.pause_for_error(text)
