@@ -798,4 +798,4 @@ fn draw_panel(
 mod font;
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -254,6 +254,7 @@ mod tests {
 #[cfg(test)]
 mod figure_tests {
     use super::{FIGURE_PX, figure};
+    use crate::output::figures::tests::{ink, runs};
     use crate::output::figures::{render_rgb_layout, tick_label_px};
     use crate::spectrum::{BandLevel, third_octave_bands};
     use crate::sweep::{RunSummary, SweepPoint};
@@ -288,27 +289,8 @@ mod figure_tests {
     }
 
     /// Rows of `rgb` (`w` px wide) in `y0..y1` with dark ink in `x0..x1`.
-    fn ink_rows(rgb: &[u8], w: u32, (x0, x1): (i32, i32), (y0, y1): (i32, i32)) -> Vec<i32> {
-        (y0..y1)
-            .filter(|&y| {
-                (x0..x1).any(|x| {
-                    let i = (y as usize * w as usize + x as usize) * 3;
-                    rgb[i..i + 3].iter().all(|&c| c < 128)
-                })
-            })
-            .collect()
-    }
-
-    /// (first, last) of the runs of sorted `v` split at gaps over `gap`.
-    fn runs(v: &[i32], gap: i32) -> Vec<(i32, i32)> {
-        let mut out: Vec<(i32, i32)> = Vec::new();
-        for &x in v {
-            match out.last_mut() {
-                Some(r) if x - r.1 <= gap + 1 => r.1 = x,
-                _ => out.push((x, x)),
-            }
-        }
-        out
+    fn ink_rows(rgb: &[u8], w: u32, x: (i32, i32), y: (i32, i32)) -> Vec<i32> {
+        ink(rgb, w, x, y).1
     }
 
     #[test]

@@ -340,7 +340,12 @@ fn a_thin_line_is_keyed_by_a_line_wide_enough_to_show_its_colour() {
 
 /// Rows `y0..y1`, columns `x0..x1` of `rgb` (`w` px wide) holding dark ink
 /// (every channel below 128): (columns with ink, rows with ink).
-fn ink(rgb: &[u8], w: u32, (x0, x1): (i32, i32), (y0, y1): (i32, i32)) -> (Vec<i32>, Vec<i32>) {
+pub(crate) fn ink(
+    rgb: &[u8],
+    w: u32,
+    (x0, x1): (i32, i32),
+    (y0, y1): (i32, i32),
+) -> (Vec<i32>, Vec<i32>) {
     let dark = |x: i32, y: i32| {
         let i = (y as usize * w as usize + x as usize) * 3;
         rgb[i..i + 3].iter().all(|&c| c < 128)
@@ -352,7 +357,7 @@ fn ink(rgb: &[u8], w: u32, (x0, x1): (i32, i32), (y0, y1): (i32, i32)) -> (Vec<i
 
 /// Runs of consecutive values of sorted `v` split at gaps wider than
 /// `gap`: (first, last) of each.
-fn runs(v: &[i32], gap: i32) -> Vec<(i32, i32)> {
+pub(crate) fn runs(v: &[i32], gap: i32) -> Vec<(i32, i32)> {
     let mut out: Vec<(i32, i32)> = Vec::new();
     for &x in v {
         match out.last_mut() {
