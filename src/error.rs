@@ -48,10 +48,13 @@ pub enum SceneError {
         message: String,
     },
     /// The scene parses but some values are out of range.
-    #[error("{}", format_invalid(.file, .errors))]
+    #[error("{}", format_invalid(.file, .errors, .at))]
     Invalid {
         file: String,
         errors: Vec<FieldError>,
+        /// Where each error's field is written in the preset's text (line,
+        /// column, 1-based), when the scene came from a text; may be empty.
+        at: Vec<Option<(usize, usize)>>,
     },
     /// A file could not be read or written.
     #[error("{path}: {source}")]
@@ -77,13 +80,17 @@ fn road_file_hint(message: &str) -> &'static str {
     }
 }
 
-fn format_invalid(file: &str, errors: &[FieldError]) -> String {
+fn format_invalid(file: &str, errors: &[FieldError], at: &[Option<(usize, usize)>]) -> String {
     let mut s = format!(
         "{file}: {}",
         crate::output::count(errors.len(), "invalid value")
     );
-    for e in errors {
+    for (k, e) in errors.iter().enumerate() {
         s.push_str("\n  ");
+        // where the preset writes the field, as a syntax error is placed
+        if let Some(Some((line, col))) = at.get(k) {
+            s.push_str(&format!("{file}:{line}:{col}: "));
+        }
         s.push_str(&e.to_string());
     }
     s

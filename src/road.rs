@@ -230,6 +230,7 @@ impl RoadProfile {
                     return Err(SceneError::Invalid {
                         file: "road".into(),
                         errors,
+                        at: Vec::new(),
                     });
                 }
                 let (z_m, dz) = random::generate(

@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 mod edits;
+pub mod locate;
 pub use edits::{described_with_edits, edits_since};
 
 /// How contact is decided inside a time step (SPEC §4).
@@ -195,6 +196,10 @@ impl Scene {
         let scene = Self::from_ron_str(text, file)?;
         scene.validate().map_err(|errors| SceneError::Invalid {
             file: file.to_string(),
+            at: errors
+                .iter()
+                .map(|e| locate::locate(text, &e.field))
+                .collect(),
             errors,
         })?;
         Ok(scene)

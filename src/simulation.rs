@@ -186,6 +186,7 @@ impl Simulation {
         scene.validate().map_err(|errors| SceneError::Invalid {
             file: scene.name.clone(),
             errors,
+            at: Vec::new(),
         })?;
         let p = scene.num_points();
         let (modes, residual) = split_residual(scene, scene.modes()?, options.residual_above_hz)?;
@@ -199,6 +200,7 @@ impl Simulation {
             return Err(SceneError::Invalid {
                 file: scene.name.clone(),
                 errors: vec![e],
+                at: Vec::new(),
             });
         }
         let full = StepTable::new(&basis, scene.dt_s);

@@ -385,3 +385,35 @@ fn sweep_numeric_options_take_values_starting_with_a_minus() {
         );
     }
 }
+
+/// A value refused by validation is placed like a syntax error, at the
+/// file, line and column where the preset writes it (it was named by its
+/// path only: in a long preset the user had to find it).
+#[test]
+fn a_refused_preset_value_is_reported_at_its_line_and_column() {
+    let text = std::fs::read_to_string("presets/single_mode.ron").unwrap();
+    let (line0, l) = text
+        .lines()
+        .enumerate()
+        .find(|(_, l)| l.contains("damping_ratio: 0.05"))
+        .unwrap();
+    let col = l.find("damping_ratio").unwrap() + 1;
+    let bad = text.replace("damping_ratio: 0.05", "damping_ratio: -0.05");
+    let err = Scene::parse(&bad, "single_mode.ron")
+        .unwrap_err()
+        .to_string();
+    let want = format!(
+        "single_mode.ron:{}:{col}: tyre.modes[0].damping_ratio = -0.05",
+        line0 + 1
+    );
+    assert!(err.contains(&want), "{err}\nwanted: {want}");
+    // a scene built in code has no text: the path alone, as before
+    let mut s = Scene::parse(&text, "x").unwrap();
+    s.tyre = bad_tyre(&bad);
+    let shown = format!("{:?}", s.validate().unwrap_err());
+    assert!(shown.contains("tyre.modes[0].damping_ratio"), "{shown}");
+}
+
+fn bad_tyre(text: &str) -> tirecontact::scene::Tyre {
+    tirecontact::Scene::from_ron_str(text, "t").unwrap().tyre
+}

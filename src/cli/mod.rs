@@ -38,9 +38,11 @@ pub fn load_with_overrides(
         scene.duration_s = d;
     }
     let file = path.map_or("(embedded preset)".to_string(), |p| p.display().to_string());
-    scene
-        .validate()
-        .map_err(|errors| SceneError::Invalid { file, errors })?;
+    scene.validate().map_err(|errors| SceneError::Invalid {
+        file,
+        errors,
+        at: Vec::new(),
+    })?;
     Ok(scene)
 }
 

@@ -23,6 +23,7 @@ pub(super) fn split_residual(
             value: format!("{fc}"),
             expected,
         }],
+        at: Vec::new(),
     };
     if !(fc.is_finite() && fc > 0.0) {
         return Err(invalid("a finite frequency > 0 Hz".into()));
