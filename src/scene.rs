@@ -196,10 +196,7 @@ impl Scene {
         let scene = Self::from_ron_str(text, file)?;
         scene.validate().map_err(|errors| SceneError::Invalid {
             file: file.to_string(),
-            at: errors
-                .iter()
-                .map(|e| locate::locate(text, &e.field))
-                .collect(),
+            at: locate::locate_all(text, errors.iter().map(|e| e.field.as_str())),
             errors,
         })?;
         Ok(scene)

@@ -143,7 +143,19 @@ fn paths(text: &str) -> Vec<(String, usize, usize)> {
 /// written (a value left to its default is reported at its parent). `None`
 /// when nothing of the path is in the text.
 pub fn locate(text: &str, path: &str) -> Option<(usize, usize)> {
+    find(&paths(text), path)
+}
+
+/// [`locate`] of every path of `fields`, the text scanned once.
+pub fn locate_all<'a>(
+    text: &str,
+    fields: impl IntoIterator<Item = &'a str>,
+) -> Vec<Option<(usize, usize)>> {
     let all = paths(text);
+    fields.into_iter().map(|f| find(&all, f)).collect()
+}
+
+fn find(all: &[(String, usize, usize)], path: &str) -> Option<(usize, usize)> {
     let mut p = path.trim().to_string();
     loop {
         if let Some(&(_, line, col)) = all.iter().find(|(q, _, _)| *q == p) {
