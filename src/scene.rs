@@ -1,6 +1,7 @@
 //! Scenes: what is simulated, as written in RON preset files, and their
 //! validation. Every validation error names the field, the value and what was
-//! expected; syntax errors give file, line and column.
+//! expected; syntax errors give file, line and column, and so do validation
+//! errors of a preset's text (where it writes the field, `locate`).
 
 use crate::error::{FieldError, SceneError, fmt_num};
 use crate::lsce::IdentifyOptions;
