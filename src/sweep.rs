@@ -155,8 +155,8 @@ fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
     f
 }
 
-/// `points[3].h_m` -> `points[*].h_m`.
-fn wildcard(path: &str) -> String {
+/// `points[3].h_m` -> `points[*].h_m` (every index, nested ones too).
+pub fn wildcard(path: &str) -> String {
     let mut out = String::with_capacity(path.len());
     let mut in_index = false;
     for c in path.chars() {

@@ -83,34 +83,12 @@ impl FieldHelp {
     }
 }
 
-/// `name` with every index in brackets removed: `tyre.modes[3].shape[1]`
-/// gives `tyre.modes[].shape[]`.
-fn generic(name: &str) -> String {
-    let mut out = String::with_capacity(name.len());
-    let mut in_index = false;
-    for c in name.chars() {
-        match c {
-            '[' => {
-                in_index = true;
-                out.push('[');
-            }
-            ']' => {
-                in_index = false;
-                out.push(']');
-            }
-            _ if in_index => {}
-            c => out.push(c),
-        }
-    }
-    out
-}
-
 /// The help of the numeric field named `name` (a scene path such as
 /// `tyre.modes[3].damping_ratio`, or `speed_kmh`); `None` for a name not
 /// known here.
 pub fn help(name: &str) -> Option<FieldHelp> {
     let speed = "rolling speed of the tyre over the road (0: the road stands still)";
-    Some(match generic(name).as_str() {
+    Some(match crate::sweep::wildcard(name).as_str() {
         "road.amplitude_m" => FieldHelp::new(
             "height of the sine road's crests above its mean line (half the crest-to-trough height)",
         )
@@ -137,44 +115,44 @@ pub fn help(name: &str) -> Option<FieldHelp> {
         "duration_s" => FieldHelp::new("simulated time of one run, from t = 0")
             .min(0.0, false)
             .also("at most 1e10 time steps"),
-        "tyre.modes[].freq_hz" => FieldHelp::new("natural frequency of this mode of the tyre")
+        "tyre.modes[*].freq_hz" => FieldHelp::new("natural frequency of this mode of the tyre")
             .min(0.0, false)
             .max(1e6),
-        "tyre.modes[].damping_ratio" => FieldHelp::new(
+        "tyre.modes[*].damping_ratio" => FieldHelp::new(
             "damping ratio ξ of this mode: 0 undamped, about 0.05 for a tyre, 1 critical, \
              more than 1 overdamped",
         )
         .min(0.0, true)
         .max(1e4)
         .unit("none (a ratio)"),
-        "tyre.modes[].shape[]" => FieldHelp::new(
+        "tyre.modes[*].shape[*]" => FieldHelp::new(
             "this mode's shape at this contact point (mass-normalised): the residue between \
              points i and j is shape[i] × shape[j]",
         ),
-        "tyre.modes[].residue[][]" => FieldHelp::new(
+        "tyre.modes[*].residue[*][*]" => FieldHelp::new(
             "residue A[i][j] of this mode: how much a force at point j moves point i through it",
         )
         .unit("1/kg"),
-        "points[].x_m" => FieldHelp::new(
+        "points[*].x_m" => FieldHelp::new(
             "position of this contact point along the contact line (0: under the wheel centre)",
         )
         .also("each point at a position of its own"),
-        "points[].h_m" => FieldHelp::new(
+        "points[*].h_m" => FieldHelp::new(
             "height of the undeformed tyre at this point above the road's mean line; below 0 \
              the tyre is pressed into the road (preload)",
         )
         .min(-1.0, true)
         .max(1.0),
-        "road.components[].amplitude_m" => {
+        "road.components[*].amplitude_m" => {
             FieldHelp::new("amplitude of this harmonic of the road (its crest height)")
         }
-        "road.components[].wavelength_m" => {
+        "road.components[*].wavelength_m" => {
             FieldHelp::new("wavelength of this harmonic of the road").min(0.0, false)
         }
-        "road.components[].phase_rad" => {
+        "road.components[*].phase_rad" => {
             FieldHelp::new("phase of this harmonic of the road at x = 0")
         }
-        "contact.stiffness_n_m[]" => FieldHelp::new(
+        "contact.stiffness_n_m[*]" => FieldHelp::new(
             "tread stiffness: the spring between the contact point and the road (compliant \
              contact)",
         )
@@ -205,8 +183,8 @@ mod tests {
     #[test]
     fn indices_do_not_matter() {
         assert_eq!(
-            generic("tyre.modes[12].residue[0][3]"),
-            "tyre.modes[].residue[][]"
+            crate::sweep::wildcard("tyre.modes[12].residue[0][3]"),
+            "tyre.modes[*].residue[*][*]"
         );
         assert_eq!(help("tyre.modes[7].freq_hz"), help("tyre.modes[0].freq_hz"));
         assert!(help("no.such_field").is_none());
