@@ -44,7 +44,8 @@ fn steps(c: &mut Criterion) {
             &scene.modes().unwrap(),
             p,
             tirecontact::SolverOptions::default().rank_tolerance_for(&scene),
-        );
+        )
+        .unwrap();
         let table = StepTable::new(&basis, scene.dt_s);
         let (mut s0, mut s1) = (ModalState::zeros(&basis), ModalState::zeros(&basis));
         s0.x.iter_mut()
@@ -80,30 +81,42 @@ fn steps(c: &mut Criterion) {
 }
 
 fn contact_solve(c: &mut Criterion) {
-    // the 2|S| Gauss-point system of 5 active points, badly scaled rows as at dt = 1e-5
-    let n = 10;
-    let a: Vec<f64> = (0..n * n)
-        .map(|k| {
-            let (r, col) = (k / n, k % n);
-            let scale = if r < 5 { 1e-5 } else { 1.0 };
-            scale
-                * (if r == col {
-                    4.0
-                } else {
-                    1.0 / (1.0 + (r as f64 - col as f64).abs())
-                })
-        })
-        .collect();
-    let mut solver = DenseSolver::new(n);
-    let mut rhs = vec![1.0; n];
-    c.bench_function("contact/factor_and_solve/10x10", |b| {
-        b.iter(|| {
-            solver.factor(n, |r, col| a[r * n + col]).unwrap();
-            rhs.fill(1.0);
-            solver.solve(&mut rhs);
-            black_box(rhs[0])
-        })
-    });
+    use faer::linalg::solvers::Solve;
+    // the 2|S| Gauss-point system of |S| active points, badly scaled rows as
+    // at dt = 1e-5; the hand-written scaled LU against faer's partial-pivot
+    // LU of the same matrix (both factor and solve every iteration)
+    for n in [10usize, 40, 100] {
+        let a: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let (r, col) = (k / n, k % n);
+                let scale = if r < n / 2 { 1e-5 } else { 1.0 };
+                scale
+                    * (if r == col {
+                        4.0
+                    } else {
+                        1.0 / (1.0 + (r as f64 - col as f64).abs())
+                    })
+            })
+            .collect();
+        let mut solver = DenseSolver::new(n);
+        let mut rhs = vec![1.0; n];
+        c.bench_function(&format!("contact/factor_and_solve/{n}x{n}"), |b| {
+            b.iter(|| {
+                solver.factor(n, |r, col| a[r * n + col]).unwrap();
+                rhs.fill(1.0);
+                solver.solve(&mut rhs);
+                black_box(rhs[0])
+            })
+        });
+        let ones = faer::Mat::<f64>::from_fn(n, 1, |_, _| 1.0);
+        c.bench_function(&format!("contact/faer_lu_factor_and_solve/{n}x{n}"), |b| {
+            b.iter(|| {
+                let m = faer::Mat::from_fn(n, n, |r, col| a[r * n + col]);
+                let x = m.partial_piv_lu().solve(&ones);
+                black_box(x[(0, 0)])
+            })
+        });
+    }
 }
 
 fn presets(c: &mut Criterion) {

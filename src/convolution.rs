@@ -32,9 +32,9 @@ mod kernels;
 mod mode_step;
 pub mod paper_alpha_beta;
 
+use crate::linalg::{self, LinalgError};
 use crate::scene::Mode;
 pub use mode_step::{ModeStep, mode_step, mode_steps_into};
-use nalgebra::DMatrix;
 use std::f64::consts::TAU;
 
 /// Dot product with four independent accumulators (lets the compiler use
@@ -81,9 +81,25 @@ pub fn dot2(a: &[f64], x: &[f64], v: &[f64]) -> (f64, f64) {
     (ru, rv)
 }
 
-/// Relative singular-value cut below which a residue's SVD term is
+/// Relative cut (of `|λ|` or `σ`) below which a residue's rank term is
 /// round-off ([`ModalBasis::new`]).
 pub const EXACT_RANK_TOLERANCE: f64 = 1e-13;
+
+/// A mode's residue matrix could not be factored into rank terms that
+/// rebuild it: nothing is run on a model that is not the one given.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BasisError {
+    #[error(
+        "mode {mode} ({freq_hz} Hz): its residue matrix could not be factored into rank terms: {source}; nothing was run (a residue with huge or tiny entries, or NaN? check tyre.modes[{mode}].residue)"
+    )]
+    Residue {
+        /// Index of the mode in the list given.
+        mode: usize,
+        freq_hz: f64,
+        #[source]
+        source: LinalgError,
+    },
+}
 
 /// The modes factored into rank terms: `A_k = Σ_r a_kr b_krᵀ`.
 #[derive(Debug, Clone)]
@@ -112,70 +128,72 @@ pub const STATE_LANES: usize = 4;
 
 impl ModalBasis {
     /// Factors each mode: a `shape` gives one rank term; a `residue` matrix
-    /// gives its SVD terms above `1e-13 σ_max` (rank 1 for `φφᵀ`, 2 for the
-    /// ring's degenerate pairs, at most `P`): exact to round-off.
-    pub fn new(modes: &[Mode], num_points: usize) -> Self {
-        Self::build(modes, num_points, Some(EXACT_RANK_TOLERANCE))
+    /// its rank terms ([`linalg::rank_terms`]: eigendecomposition when
+    /// symmetric, SVD otherwise) above `1e-13` of the largest (rank 1 for
+    /// `φφᵀ`, 2 for the ring's degenerate pairs, at most `P`), checked to
+    /// rebuild the residue to a relative 1e-12 (Frobenius).
+    pub fn new(modes: &[Mode], num_points: usize) -> Result<Self, BasisError> {
+        Self::reduced(modes, num_points, EXACT_RANK_TOLERANCE)
     }
 
-    /// As [`ModalBasis::new`], keeping the SVD terms of each residue above
-    /// `rel_tol σ_max` (clamped to at least [`EXACT_RANK_TOLERANCE`]): a
-    /// truncated SVD, whose error on each residue is at most the largest
-    /// dropped singular value (2-norm). See `SolverOptions::rank_tolerance`.
-    pub fn with_rank_tolerance(modes: &[Mode], num_points: usize, rel_tol: f64) -> Self {
-        Self::build(modes, num_points, Some(rel_tol.max(EXACT_RANK_TOLERANCE)))
+    /// As [`ModalBasis::new`], keeping the rank terms of each residue above
+    /// `rel_tol` of the largest (clamped to at least
+    /// [`EXACT_RANK_TOLERANCE`]): a truncated decomposition, whose error on
+    /// each residue is at most the largest dropped `|λ|` or `σ` (2-norm).
+    /// See `SolverOptions::rank_tolerance`.
+    pub fn with_rank_tolerance(
+        modes: &[Mode],
+        num_points: usize,
+        rel_tol: f64,
+    ) -> Result<Self, BasisError> {
+        Self::reduced(modes, num_points, rel_tol.max(EXACT_RANK_TOLERANCE))
     }
 
     /// One state per (mode, source) as SPEC §3 states it, without rank
-    /// reduction: the "before" of the rank-1 optimisation, for benchmarks.
+    /// reduction: the "before" of the rank-1 optimisation, for benchmarks,
+    /// and a representation of the same model that decomposes nothing.
     pub fn per_source(modes: &[Mode], num_points: usize) -> Self {
-        Self::build(modes, num_points, None)
+        let p = num_points;
+        let mut terms = Vec::with_capacity(modes.len() * p);
+        for (k, m) in modes.iter().enumerate() {
+            let a = m.residue_matrix();
+            for j in 0..p {
+                let mut e = vec![0.0; p];
+                e[j] = 1.0;
+                terms.push((k, (0..p).map(|i| a[i][j]).collect(), e));
+            }
+        }
+        Self::assemble(modes, p, terms)
     }
 
-    /// `reduce`: the relative singular-value cut of the rank reduction;
-    /// `None`: one state per (mode, source).
-    fn build(modes: &[Mode], num_points: usize, reduce: Option<f64>) -> Self {
+    /// The rank terms of every mode above `rel_tol` of its largest.
+    fn reduced(modes: &[Mode], num_points: usize, rel_tol: f64) -> Result<Self, BasisError> {
         let p = num_points;
         let mut terms: Vec<(usize, Vec<f64>, Vec<f64>)> = Vec::new();
-        let mut params = Vec::with_capacity(modes.len());
         for (k, m) in modes.iter().enumerate() {
-            params.push((TAU * m.freq_hz, m.damping_ratio));
-            let Some(rel_tol) = reduce else {
-                let a = m.residue_matrix();
-                for j in 0..p {
-                    let mut e = vec![0.0; p];
-                    e[j] = 1.0;
-                    terms.push((k, (0..p).map(|i| a[i][j]).collect(), e));
-                }
-                continue;
-            };
             if !m.shape.is_empty() {
                 terms.push((k, m.shape.clone(), m.shape.clone()));
                 continue;
             }
-            let a = DMatrix::from_fn(p, p, |i, j| m.residue[i][j]);
-            let svd = a.svd(true, true);
-            let (Some(u), Some(vt)) = (svd.u, svd.v_t) else {
-                // SVD without vectors cannot happen when asked for; fall back to columns.
-                for j in 0..p {
-                    let mut e = vec![0.0; p];
-                    e[j] = 1.0;
-                    terms.push((k, (0..p).map(|i| m.residue[i][j]).collect(), e));
-                }
-                continue;
-            };
-            let smax = svd.singular_values.max();
-            for r in 0..svd.singular_values.len() {
-                let sr = svd.singular_values[r];
-                if sr > rel_tol * smax && sr > 0.0 {
-                    terms.push((
-                        k,
-                        (0..p).map(|i| u[(i, r)] * sr).collect(),
-                        (0..p).map(|j| vt[(r, j)]).collect(),
-                    ));
-                }
-            }
+            let a = faer::Mat::from_fn(p, p, |i, j| m.residue[i][j]);
+            let split =
+                linalg::rank_terms(a.as_ref(), rel_tol).map_err(|source| BasisError::Residue {
+                    mode: k,
+                    freq_hz: m.freq_hz,
+                    source,
+                })?;
+            terms.extend(split.terms.into_iter().map(|(a, b)| (k, a, b)));
         }
+        Ok(Self::assemble(modes, p, terms))
+    }
+
+    /// Stores the terms `(mode, a, b)`, padded with zero states to whole
+    /// lanes.
+    fn assemble(modes: &[Mode], p: usize, mut terms: Vec<(usize, Vec<f64>, Vec<f64>)>) -> Self {
+        let params: Vec<(f64, f64)> = modes
+            .iter()
+            .map(|m| (TAU * m.freq_hz, m.damping_ratio))
+            .collect();
         let num_terms = terms.len();
         // zero padding to whole lanes (on the last term's mode: any valid mode)
         let last_mode = terms.last().map_or(0, |t| t.0);

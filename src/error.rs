@@ -66,6 +66,14 @@ pub enum SceneError {
     /// A measured road profile (`road.file`) is unusable.
     #[error("road.file = {path}: {message}{}", road_file_hint(.message))]
     RoadFile { path: PathBuf, message: String },
+    /// A mode's residue could not be factored into rank terms that rebuild
+    /// it (checked at set-up).
+    #[error("scene \"{scene}\": {source}")]
+    Basis {
+        scene: String,
+        #[source]
+        source: crate::convolution::BasisError,
+    },
     /// The modal model of a ring tyre could not be identified (SPEC §6).
     #[error("scene \"{scene}\": tyre identification failed: {message}")]
     Identification { scene: String, message: String },

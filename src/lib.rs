@@ -23,6 +23,7 @@
 //! | [`contact`] | scaled dense solves for the Gauss-point and impulse systems | §4 |
 //! | [`simulation`] | the time stepper: active set, complementarity, events inside the step | §4 |
 //! | [`ring`] | ring tyre on an elastic foundation: orders, modes, radial Green functions | §5 |
+//! | [`linalg`] | checked dense decompositions (faer): rank terms, least squares, eigenvalues | §3, §6 |
 //! | [`lsce`] | LSCE identification, stabilisation diagram, fit report | §6 |
 //! | [`identify`] | ring -> sampled responses -> LSCE, cached per scene | §5-6 |
 //! | [`scene`] | RON scenes and their validation | — |
@@ -42,6 +43,7 @@ pub mod fidelity;
 #[cfg(feature = "gui")]
 pub mod gui;
 pub mod identify;
+pub mod linalg;
 pub mod lsce;
 pub mod modal;
 pub mod output;

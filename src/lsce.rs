@@ -6,7 +6,7 @@
 //! by least squares. One QR factor of the Hankel matrix with `2 M_max + 1`
 //! columns serves every order (the first `p + 1` columns of `R` are the order
 //! `p` system). The roots `z` of `z^p + Σ a_l z^l` (eigenvalues of the
-//! companion matrix, nalgebra's Schur form) give the poles `s = ln(z) / dt`;
+//! companion matrix, [`crate::linalg::eigenvalues`]) give the poles `s = ln(z) / dt`;
 //! the physical ones are conjugate pairs with `Re(s) < 0` (`ξ > 0`, SPEC §6's
 //! sign check) inside the band. Residues are fitted by least squares on the
 //! responses with the real modal form of SPEC §2, `g = Σ A_k h_k`; a second fit
@@ -23,10 +23,11 @@
 //! in-band model's time-domain fit error is within `order_tolerance` of the
 //! best, the smallest whose kept poles persist (`choose_order`).
 
+use crate::linalg::{self, LinalgError};
 use crate::modal::unit_impulse;
 use crate::scene::Mode;
 use dtft::dtft_magnitudes;
-use nalgebra::{Complex, DMatrix};
+use faer::{Mat, MatRef, c64};
 use std::f64::consts::TAU;
 
 mod dtft;
@@ -61,8 +62,8 @@ pub enum LsceError {
         hi_hz: f64,
         order: usize,
     },
-    #[error("LSCE: {0} did not converge")]
-    Numerical(&'static str),
+    #[error("LSCE: {0}")]
+    Numerical(#[from] LinalgError),
     #[error(
         "LSCE: the identified modes miss the source: |G| error {magnitude_error:.3} over {lo_hz}..{hi_hz} Hz (expected below {limit}); the source's lowest mode is at {lowest_source_hz:.1} Hz: move the band (identification.band_hz) to cover the source's modes"
     )]
@@ -133,6 +134,23 @@ pub struct FitReport {
     /// Relative L2 error of `|G(ω)|` over the band, all responses (-).
     pub magnitude_error: f64,
     pub per_response: Vec<ResponseFit>,
+    /// Relative residuals `‖A x − b‖ / ‖b‖` of the least-squares solves
+    /// behind the model (-).
+    pub least_squares: LeastSquaresResiduals,
+}
+
+/// Relative residuals `‖A x − b‖_F / ‖b‖_F` of the least-squares solves of
+/// an identification at the chosen order (-). The prediction's is the
+/// misfit of the linear prediction on the Hankel data; the residues' the
+/// misfit of the real modal form on the responses with every physical pole.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LeastSquaresResiduals {
+    /// Linear prediction `g(k + p) + Σ a_l g(k + l) = 0` (-).
+    pub prediction: f64,
+    /// Residues of the real modal form, every physical pole (-).
+    pub residues: f64,
+    /// Residues of the complex form (sin and cos parts) (-).
+    pub complex_residues: f64,
 }
 
 /// Result of an identification.
@@ -209,21 +227,17 @@ fn check_input(r: &Responses) -> Result<usize, LsceError> {
     Ok(len)
 }
 
-fn svd_solve(a: &DMatrix<f64>, b: &DMatrix<f64>, rcond: f64) -> Result<DMatrix<f64>, LsceError> {
-    let svd = a
-        .clone()
-        .try_svd(true, true, f64::EPSILON, 100_000)
-        .ok_or(LsceError::Numerical("SVD"))?;
-    let smax = svd.singular_values.max();
-    svd.solve(b, smax * rcond)
-        .map_err(|_| LsceError::Numerical("SVD solve"))
+/// Least squares by the checked SVD of [`linalg::lstsq`]: the solution and
+/// its relative residual.
+fn lstsq(a: MatRef<'_, f64>, b: MatRef<'_, f64>, rcond: f64) -> Result<(Mat<f64>, f64), LsceError> {
+    Ok(linalg::lstsq(a, b, rcond)?)
 }
 
 /// The triangular factor `R` of the stacked Hankel matrix with `cols` columns
 /// (rows `[g(k), ..., g(k + cols - 1)]`, responses scaled to unit peak).
-fn hankel_r(r: &Responses, len: usize, cols: usize) -> Result<DMatrix<f64>, LsceError> {
+fn hankel_r(r: &Responses, len: usize, cols: usize) -> Result<Mat<f64>, LsceError> {
     let rows = len - cols + 1;
-    let mut acc = DMatrix::<f64>::zeros(0, cols);
+    let mut acc = Mat::<f64>::zeros(0, cols);
     // a few responses at a time keeps the stacked block small
     for chunk in r.data.chunks(4) {
         let blocks: Vec<&Vec<f64>> = chunk
@@ -234,8 +248,12 @@ fn hankel_r(r: &Responses, len: usize, cols: usize) -> Result<DMatrix<f64>, Lsce
             continue;
         }
         let n = acc.nrows() + rows * blocks.len();
-        let mut m = DMatrix::<f64>::zeros(n, cols);
-        m.view_mut((0, 0), (acc.nrows(), cols)).copy_from(&acc);
+        let mut m = Mat::<f64>::zeros(n, cols);
+        for i in 0..acc.nrows() {
+            for c in 0..cols {
+                m[(i, c)] = acc[(i, c)];
+            }
+        }
         let mut row = acc.nrows();
         for d in blocks {
             let peak = d.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
@@ -246,8 +264,7 @@ fn hankel_r(r: &Responses, len: usize, cols: usize) -> Result<DMatrix<f64>, Lsce
                 row += 1;
             }
         }
-        let r = m.qr().r();
-        acc = r;
+        acc = linalg::qr_r(m.as_ref());
     }
     if acc.nrows() == 0 {
         return Err(LsceError::Input("every response is zero".into()));
@@ -258,30 +275,40 @@ fn hankel_r(r: &Responses, len: usize, cols: usize) -> Result<DMatrix<f64>, Lsce
 /// Roots of the order-`p` prediction polynomial -> the physical poles
 /// (`0 < ξ < max_damping_ratio`) up to the Nyquist frequency.
 fn poles_of_order(
-    rmat: &DMatrix<f64>,
+    rmat: &Mat<f64>,
     p: usize,
     dt: f64,
     opts: &IdentifyOptions,
-) -> Result<Vec<Pole>, LsceError> {
+) -> Result<(Vec<Pole>, f64), LsceError> {
     let k = p.min(rmat.nrows());
-    let a_mat = rmat.view((0, 0), (k, p)).clone_owned();
-    let b = -rmat.view((0, p), (k, 1)).clone_owned();
-    let a = svd_solve(&a_mat, &b, 1e-13)?;
-    let mut comp = DMatrix::<f64>::zeros(p, p);
+    let a_mat = Mat::from_fn(k, p, |i, j| rmat[(i, j)]);
+    let b = Mat::from_fn(k, 1, |i, _| -rmat[(i, p)]);
+    let (a, _) = lstsq(a_mat.as_ref(), b.as_ref(), 1e-13)?;
+    // the residual over the whole stacked system: `R` keeps the part of `b`
+    // outside the span of `A` in its rows below `k` (none when `k = p`)
+    let whole = |i: usize| {
+        let fit: f64 = (0..p.min(rmat.ncols()))
+            .map(|j| rmat[(i, j)] * a[(j, 0)])
+            .sum();
+        fit + rmat[(i, p)]
+    };
+    let rows = rmat.nrows().min(p + 1);
+    let num: f64 = (0..rows).map(|i| whole(i).powi(2)).sum::<f64>().sqrt();
+    let den: f64 = (0..rows).map(|i| rmat[(i, p)].powi(2)).sum::<f64>().sqrt();
+    let residual = if den > 0.0 { num / den } else { 0.0 };
+    let mut comp = Mat::<f64>::zeros(p, p);
     for i in 0..p - 1 {
         comp[(i, i + 1)] = 1.0;
     }
     for l in 0..p {
         comp[(p - 1, l)] = -a[(l, 0)];
     }
-    let schur = nalgebra::linalg::Schur::try_new(comp, f64::EPSILON, 100_000)
-        .ok_or(LsceError::Numerical("companion eigenvalues"))?;
-    let roots = schur.complex_eigenvalues();
+    let roots = linalg::eigenvalues(comp.as_ref())?;
     let mut poles: Vec<Pole> = roots
         .iter()
         .filter(|z| z.im > 0.0 && z.norm() > 0.0)
-        .map(|z: &Complex<f64>| {
-            let s = Complex::new(z.norm().ln(), z.im.atan2(z.re)) / dt;
+        .map(|z: &c64| {
+            let s = c64::new(z.norm().ln(), z.im.atan2(z.re)) / dt;
             let omega = s.norm();
             Pole {
                 omega,
@@ -291,14 +318,14 @@ fn poles_of_order(
         .filter(|pl| pl.xi > 0.0 && pl.xi < opts.max_damping_ratio)
         .collect();
     poles.sort_by(|x, y| x.omega.total_cmp(&y.omega));
-    Ok(poles)
+    Ok((poles, residual))
 }
 
 /// Sampled `h_k` (and, with `with_cos`, `e^{-ξωt} cos(ω_d t)`) per pole.
-fn basis(poles: &[Pole], dt: f64, len: usize, with_cos: bool) -> DMatrix<f64> {
+fn basis(poles: &[Pole], dt: f64, len: usize, with_cos: bool) -> Mat<f64> {
     let k = poles.len();
     let cols = if with_cos { 2 * k } else { k };
-    DMatrix::from_fn(len, cols, |n, c| {
+    Mat::from_fn(len, cols, |n, c| {
         let t = n as f64 * dt;
         let pl = poles[c % k];
         if c < k {
@@ -310,17 +337,17 @@ fn basis(poles: &[Pole], dt: f64, len: usize, with_cos: bool) -> DMatrix<f64> {
     })
 }
 
-fn data_matrix(r: &Responses, len: usize) -> DMatrix<f64> {
-    DMatrix::from_fn(len, r.data.len(), |n, c| r.data[c][n])
+fn data_matrix(r: &Responses, len: usize) -> Mat<f64> {
+    Mat::from_fn(len, r.data.len(), |n, c| r.data[c][n])
 }
 
 /// Relative L2 error `||fit - data|| / ||data||` per column and overall.
-fn time_errors(fit: &DMatrix<f64>, data: &DMatrix<f64>) -> (Vec<f64>, f64) {
+fn time_errors(fit: &Mat<f64>, data: &Mat<f64>) -> (Vec<f64>, f64) {
     let (mut num, mut den) = (0.0, 0.0);
     let per = (0..data.ncols())
         .map(|c| {
-            let e = (fit.column(c) - data.column(c)).norm_squared();
-            let d = data.column(c).norm_squared();
+            let e = (fit.col(c) - data.col(c)).squared_norm_l2();
+            let d = data.col(c).squared_norm_l2();
             num += e;
             den += d;
             if d > 0.0 { (e / d).sqrt() } else { e.sqrt() }
@@ -343,38 +370,61 @@ fn mac(a: &[f64], b: &[f64]) -> f64 {
 struct OrderFit {
     poles: Vec<Pole>,
     /// Residue per pole and response (K × responses).
-    residues: DMatrix<f64>,
+    residues: Mat<f64>,
     time_error: f64,
+    /// Relative residual of the residues' least squares (-).
+    residual: f64,
+}
+
+/// Row `r` of `m`, as a vector.
+fn row(m: &Mat<f64>, r: usize) -> Vec<f64> {
+    (0..m.ncols()).map(|c| m[(r, c)]).collect()
+}
+
+/// `‖row r of m‖₂`.
+fn row_norm(m: &Mat<f64>, r: usize) -> f64 {
+    m.row(r).norm_l2()
+}
+
+/// The rows `rows` of `m`, in that order.
+fn select_rows(m: &Mat<f64>, rows: &[usize]) -> Mat<f64> {
+    Mat::from_fn(rows.len(), m.ncols(), |r, c| m[(rows[r], c)])
 }
 
 /// Residues by least squares through the normal equations (cheap, used for
 /// the diagram) or the SVD of the basis (`accurate`).
 fn fit_order(
     poles: Vec<Pole>,
-    data: &DMatrix<f64>,
+    data: &Mat<f64>,
     dt: f64,
     accurate: bool,
 ) -> Result<OrderFit, LsceError> {
     let len = data.nrows();
     if poles.is_empty() {
-        let zero = DMatrix::zeros(len, data.ncols());
+        let zero = Mat::zeros(len, data.ncols());
         return Ok(OrderFit {
             poles,
-            residues: DMatrix::zeros(0, data.ncols()),
+            residues: Mat::zeros(0, data.ncols()),
             time_error: time_errors(&zero, data).1,
+            residual: 1.0,
         });
     }
     let b = basis(&poles, dt, len, false);
     let residues = if accurate {
-        svd_solve(&b, data, 1e-14)?
+        lstsq(b.as_ref(), data.as_ref(), 1e-14)?.0
     } else {
         let gram = b.transpose() * &b;
-        svd_solve(&gram, &(b.transpose() * data), 1e-15)?
+        let rhs = b.transpose() * data;
+        lstsq(gram.as_ref(), rhs.as_ref(), 1e-15)?.0
     };
     let fit = &b * &residues;
+    let time_error = time_errors(&fit, data).1;
     Ok(OrderFit {
         poles,
-        time_error: time_errors(&fit, data).1,
+        // the residual of `b x = data` (the normal equations' own is not
+        // the misfit)
+        residual: time_error,
+        time_error,
         residues,
     })
 }
@@ -436,19 +486,19 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
     };
     let mut diagram = Vec::with_capacity(orders.len());
     let mut kept_at: Vec<Vec<usize>> = Vec::with_capacity(orders.len());
-    let data_norm = data.norm();
+    let data_norm = data.norm_l2();
     let mut prev: Option<(Vec<Pole>, Vec<Vec<f64>>)> = None;
     for &m in &orders {
-        let poles = poles_of_order(&rmat, 2 * m, dt, opts)?;
+        let (poles, _) = poles_of_order(&rmat, 2 * m, dt, opts)?;
         // residues with every physical pole, so that the out-of-band ones
         // take their own share of the responses; the diagram shows the band
         let fit = fit_order(poles, &data, dt, false)?;
         let (band_poles, res): (Vec<Pole>, Vec<Vec<f64>>) = fit
             .poles
             .iter()
-            .zip(fit.residues.row_iter())
-            .filter(|(pl, _)| pl.in_band(opts))
-            .map(|(pl, row)| (*pl, row.iter().copied().collect()))
+            .enumerate()
+            .filter(|(_, pl)| pl.in_band(opts))
+            .map(|(c, pl)| (*pl, row(&fit.residues, c)))
             .unzip();
         let dpoles: Vec<DiagramPole> = band_poles
             .iter()
@@ -473,12 +523,12 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
         kept_at.push(
             (0..in_band.len())
                 .filter(|&k| {
-                    let share = band_basis.column(k).norm() * fit.residues.row(in_band[k]).norm();
+                    let share = band_basis.col(k).norm_l2() * row_norm(&fit.residues, in_band[k]);
                     share >= opts.min_contribution * data_norm
                 })
                 .collect::<Vec<usize>>(),
         );
-        let band_fit = band_basis * fit.residues.select_rows(in_band.iter());
+        let band_fit = &band_basis * select_rows(&fit.residues, &in_band);
         diagram.push(DiagramOrder {
             order: m,
             poles: dpoles,
@@ -491,7 +541,7 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
         Some(m) => m,
         None => choose_order(&diagram, &kept_at, opts).unwrap_or(m_max),
     };
-    let all = poles_of_order(&rmat, 2 * chosen, dt, opts)?;
+    let (all, prediction_residual) = poles_of_order(&rmat, 2 * chosen, dt, opts)?;
     let no_modes = LsceError::NoModes {
         lo_hz: opts.band_hz.0,
         hi_hz: opts.band_hz.1,
@@ -502,14 +552,15 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
     }
     let n_all = all.len();
     // complex-residue fit (sin and cos parts): the discarded part
-    let full = svd_solve(&basis(&all, dt, len, true), &data, 1e-14)?;
+    let (full, complex_residual) =
+        lstsq(basis(&all, dt, len, true).as_ref(), data.as_ref(), 1e-14)?;
     let fit_all = fit_order(all, &data, dt, true)?;
     // in band, and with a share of the responses (a spurious pole fitted to
     // round-off has none)
     let b_all = basis(&fit_all.poles, dt, len, false);
     let kept: Vec<usize> = (0..n_all)
         .filter(|&c| {
-            let share = b_all.column(c).norm() * fit_all.residues.row(c).norm();
+            let share = b_all.col(c).norm_l2() * row_norm(&fit_all.residues, c);
             fit_all.poles[c].in_band(opts) && share >= opts.min_contribution * data_norm
         })
         .collect();
@@ -521,8 +572,8 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
         .map(|&c| {
             let pl = fit_all.poles[c];
             let wd = pl.omega * ((1.0 - pl.xi) * (1.0 + pl.xi)).sqrt();
-            let sin_part = full.row(c).norm() / wd;
-            let cos_part = full.row(n_all + c).norm();
+            let sin_part = row_norm(&full, c) / wd;
+            let cos_part = row_norm(&full, n_all + c);
             if sin_part > 0.0 {
                 cos_part / sin_part
             } else {
@@ -532,8 +583,9 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
         .collect();
     let fit = OrderFit {
         poles: kept.iter().map(|&c| fit_all.poles[c]).collect(),
-        residues: fit_all.residues.select_rows(kept.iter()),
+        residues: select_rows(&fit_all.residues, &kept),
         time_error: fit_all.time_error,
+        residual: fit_all.residual,
     };
     let time_error_all_poles = fit.time_error;
     let k = kept.len();
@@ -559,7 +611,7 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
             }
         })
         .collect();
-    let fitted = basis(&fit.poles, dt, len, false) * &fit.residues;
+    let fitted = &basis(&fit.poles, dt, len, false) * &fit.residues;
     let (per_time, time_error) = time_errors(&fitted, &data);
     let nf = 200;
     let (lo, hi) = opts.band_hz;
@@ -607,6 +659,11 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
             time_error_all_poles,
             magnitude_error,
             per_response,
+            least_squares: LeastSquaresResiduals {
+                prediction: prediction_residual,
+                residues: fit.residual,
+                complex_residues: complex_residual,
+            },
         },
     })
 }

@@ -191,7 +191,12 @@ impl Simulation {
         let p = scene.num_points();
         let (modes, residual) = split_residual(scene, scene.modes()?, options.residual_above_hz)?;
         let basis = if options.rank_reduction {
-            ModalBasis::with_rank_tolerance(&modes, p, options.rank_tolerance_for(scene))
+            ModalBasis::with_rank_tolerance(&modes, p, options.rank_tolerance_for(scene)).map_err(
+                |source| SceneError::Basis {
+                    scene: scene.name.clone(),
+                    source,
+                },
+            )?
         } else {
             ModalBasis::per_source(&modes, p)
         };

@@ -101,7 +101,7 @@ fn recursion_reproduces_superposed_exact_pieces() {
         residue: vec![vec![2.5]],
         shape: vec![],
     }];
-    let basis = ModalBasis::new(&modes, 1);
+    let basis = ModalBasis::new(&modes, 1).unwrap();
     let table = StepTable::new(&basis, dt);
     let mut state = ModalState::zeros(&basis);
     // force values at step ends (N)

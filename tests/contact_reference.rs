@@ -1297,7 +1297,7 @@ fn bounded_recursion_stable_alpha_beta_overflows() {
         residue: vec![vec![1.0]],
         shape: vec![],
     }];
-    let basis = ModalBasis::new(&modes, 1);
+    let basis = ModalBasis::new(&modes, 1).unwrap();
     let table = StepTable::new(&basis, dt);
     let mut s0 = ModalState::zeros(&basis);
     let mut s1 = ModalState::zeros(&basis);
@@ -1415,7 +1415,7 @@ fn fast_convolution_matches_direct_quadrature() {
             .map(|(m, a)| a[i][j] * my_h(TAU * m.freq_hz, m.damping_ratio, t).0)
             .sum()
     };
-    let basis = ModalBasis::new(&modes, 2);
+    let basis = ModalBasis::new(&modes, 2).unwrap();
     let (dt, n) = (5e-5, 300usize);
     let table = StepTable::new(&basis, dt);
     let (g1, g2) = gauss_fractions();
@@ -1505,7 +1505,7 @@ fn smooth_force_orders_of_the_force_shapes() {
         residue: vec![vec![1.0]],
         shape: vec![],
     }];
-    let basis = ModalBasis::new(&modes, 1);
+    let basis = ModalBasis::new(&modes, 1).unwrap();
     // q = 0.2 + sin(2π 150 t) + 0.5 cos(2π 370 t + 0.3), exact response in closed form
     let (b1, b2) = (TAU * 150.0, TAU * 370.0);
     let q = |t: f64| 0.2 + (b1 * t).sin() + 0.5 * (b2 * t + 0.3).cos();
@@ -1641,7 +1641,7 @@ fn impulse_and_step_responses_every_regime() {
             residue: vec![vec![1.0]],
             shape: vec![],
         }];
-        let basis = ModalBasis::new(&modes, 1);
+        let basis = ModalBasis::new(&modes, 1).unwrap();
         let dt = 0.02 / omega;
         let table = StepTable::new(&basis, dt);
         let mut imp = ModalState::zeros(&basis);
@@ -1712,7 +1712,7 @@ fn harmonic_responses_every_regime() {
             );
         }
         // time domain: cos(Ωt) from rest through the recursion (Gauss-point force shape)
-        let basis = ModalBasis::new(&modes, 1);
+        let basis = ModalBasis::new(&modes, 1).unwrap();
         let dt = 0.01 / omega;
         let table = StepTable::new(&basis, dt);
         let (g1, g2) = gauss_fractions();

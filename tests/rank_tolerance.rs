@@ -35,12 +35,14 @@ fn mode(sigmas: [f64; 3]) -> Mode {
 fn terms_below_the_cut_are_dropped_and_the_rest_kept() {
     // a genuine third term at 1e-3 stays; noise at 1e-7 goes
     let kept =
-        ModalBasis::with_rank_tolerance(&[mode([2.0, 1.0, 2e-3])], 3, IDENTIFIED_RANK_TOLERANCE);
+        ModalBasis::with_rank_tolerance(&[mode([2.0, 1.0, 2e-3])], 3, IDENTIFIED_RANK_TOLERANCE)
+            .unwrap();
     assert_eq!(kept.num_states(), 3);
     let cut =
-        ModalBasis::with_rank_tolerance(&[mode([2.0, 1.0, 2e-7])], 3, IDENTIFIED_RANK_TOLERANCE);
+        ModalBasis::with_rank_tolerance(&[mode([2.0, 1.0, 2e-7])], 3, IDENTIFIED_RANK_TOLERANCE)
+            .unwrap();
     assert_eq!(cut.num_states(), 2);
-    let exact = ModalBasis::new(&[mode([2.0, 1.0, 2e-7])], 3);
+    let exact = ModalBasis::new(&[mode([2.0, 1.0, 2e-7])], 3).unwrap();
     assert_eq!(exact.num_states(), 3);
     // the truncated residue (its velocity jump Σ A) differs from the exact
     // one by the dropped singular value at most (2-norm <= Frobenius)
@@ -56,7 +58,7 @@ fn terms_below_the_cut_are_dropped_and_the_rest_kept() {
         "dropped part {diff:e}"
     );
     // a tolerance below round-off is clamped to the exact cut
-    let clamped = ModalBasis::with_rank_tolerance(&[mode([2.0, 1.0, 2e-7])], 3, 0.0);
+    let clamped = ModalBasis::with_rank_tolerance(&[mode([2.0, 1.0, 2e-7])], 3, 0.0).unwrap();
     assert_eq!(clamped.num_states(), 3);
 }
 

@@ -226,3 +226,93 @@ fn bad_input_is_an_error_not_a_panic() {
     assert!(e.to_string().contains("sample 10"), "{e}");
     assert!(third_octave_bands(-1.0, 10.0).is_empty());
 }
+
+/// The one-sided spectrum by the definition: an O(N²) DFT with the window
+/// written out here (periodic Hann `sin²(πn/N)`), independent of the FFT.
+fn naive(x: &[f64], fs: f64, hann: bool) -> (Vec<f64>, Vec<f64>) {
+    let n = x.len();
+    let w: Vec<f64> = (0..n)
+        .map(|k| {
+            if hann {
+                (std::f64::consts::PI * k as f64 / n as f64).sin().powi(2)
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let (s1, s2) = (w.iter().sum::<f64>(), w.iter().map(|v| v * v).sum::<f64>());
+    let (mut psd, mut amp) = (Vec::new(), Vec::new());
+    for k in 0..=n / 2 {
+        let (mut re, mut im) = (0.0, 0.0);
+        for (m, (&xm, &wm)) in x.iter().zip(&w).enumerate() {
+            let ang = TAU * (k * m % n) as f64 / n as f64;
+            re += xm * wm * ang.cos();
+            im -= xm * wm * ang.sin();
+        }
+        let one_sided = if k == 0 || 2 * k == n { 1.0 } else { 2.0 };
+        psd.push(one_sided * (re * re + im * im) / (fs * s2));
+        amp.push(one_sided * re.hypot(im) / s1);
+    }
+    (psd, amp)
+}
+
+#[test]
+fn short_and_awkward_lengths_match_the_direct_dft() {
+    // radix-2, mixed radix, primes (Rader / Bluestein inside the FFT), odd
+    // and even: the FFT's spectrum against the definition, both windows
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+    for n in [8usize, 9, 12, 15, 16, 17, 97, 210, 1009] {
+        let x: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..1.0) + 0.3).collect();
+        for window in [Window::Rectangular, Window::Hann] {
+            let s = spectrum(&x, 1000.0, window, false).unwrap();
+            let (psd, amp) = naive(&x, 1000.0, matches!(window, Window::Hann));
+            assert_eq!(s.psd.len(), n / 2 + 1, "N = {n}");
+            let pmax = psd.iter().cloned().fold(0.0, f64::max);
+            let amax = amp.iter().cloned().fold(0.0, f64::max);
+            for k in 0..psd.len() {
+                assert!(
+                    (s.psd[k] - psd[k]).abs() <= 1e-12 * pmax
+                        && (s.amplitude[k] - amp[k]).abs() <= 1e-12 * amax,
+                    "N = {n}, {window:?}, bin {k}: psd {} vs {}, amplitude {} vs {}",
+                    s.psd[k],
+                    psd[k],
+                    s.amplitude[k],
+                    amp[k]
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn dc_nyquist_and_odd_length_top_bin_read_their_amplitudes() {
+    // x = B + A (-1)^n, even N, no window: amplitude B at DC, A at Nyquist,
+    // levels with no √2 (not sinusoids)
+    let (b, a, n) = (0.7, 0.25, 64);
+    let x: Vec<f64> = (0..n)
+        .map(|k| b + if k % 2 == 0 { a } else { -a })
+        .collect();
+    let s = spectrum(&x, 512.0, Window::Rectangular, false).unwrap();
+    assert!((s.amplitude[0] - b).abs() < 1e-14, "{}", s.amplitude[0]);
+    assert!(
+        (s.amplitude[n / 2] - a).abs() < 1e-14,
+        "{}",
+        s.amplitude[n / 2]
+    );
+    let db = s.levels_db(1.0);
+    assert!((db[0] - 20.0 * b.log10()).abs() < 1e-12);
+    assert!((db[n / 2] - 20.0 * a.log10()).abs() < 1e-12);
+    // odd N: the top bin (N-1)/2 is a sinusoid (one-sided factor 2)
+    for n in [4099usize, 99] {
+        for k in [(n - 1) / 2, n / 3] {
+            let fs = n as f64;
+            let x = tone(n, fs, k as f64, 1.3, 0.4, 0.0);
+            let s = spectrum(&x, fs, Window::Rectangular, false).unwrap();
+            assert!(
+                (s.amplitude[k] - 1.3).abs() < 1e-11,
+                "N = {n}, bin {k}: {}",
+                s.amplitude[k]
+            );
+        }
+    }
+}

@@ -103,7 +103,7 @@ fn undamped_free_vibration_keeps_its_energy() {
         shape: vec![],
     };
     let omega = TAU * 500.0;
-    let basis = ModalBasis::new(&[mode], 1);
+    let basis = ModalBasis::new(&[mode], 1).unwrap();
     let table = StepTable::new(&basis, 8e-5); // ω·dt = 0.25
     let (mut s, mut tmp) = (ModalState::zeros(&basis), ModalState::zeros(&basis));
     s.add_impulses(&basis, &[0], &[1.0]);

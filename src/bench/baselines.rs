@@ -12,6 +12,7 @@
 use crate::modal::ModalModel;
 use crate::road::{RoadProfile, ramp};
 use crate::scene::Scene;
+use faer::linalg::solvers::Solve;
 
 /// Which convolution the baseline uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -196,7 +197,7 @@ fn paper_active_set(
             break;
         }
         solves += 1;
-        let a = nalgebra::DMatrix::from_fn(2 * n, 2 * n, |r, c| {
+        let a = faer::Mat::from_fn(2 * n, 2 * n, |r, c| {
             let (i, j) = (active[r % n], active[c % n]);
             let k = match (r < n, c < n) {
                 (true, true) => 0,
@@ -206,7 +207,7 @@ fn paper_active_set(
             };
             inf[i * p + j][k]
         });
-        let b = nalgebra::DVector::from_fn(2 * n, |r, _| {
+        let b = faer::Mat::from_fn(2 * n, 1, |r, _| {
             let i = active[r % n];
             if r < n {
                 road[i].0 - uh[i]
@@ -217,15 +218,19 @@ fn paper_active_set(
         // equilibrate rows so that g ~ dt and g' ~ 1 rows weigh alike
         let scale: Vec<f64> = (0..2 * n)
             .map(|r| {
-                1.0 / a
-                    .row(r)
-                    .iter()
-                    .fold(f64::MIN_POSITIVE, |m, x| m.max(x.abs()))
+                1.0 / (0..2 * n)
+                    .map(|c| a[(r, c)].abs())
+                    .fold(f64::MIN_POSITIVE, f64::max)
             })
             .collect();
-        let a = nalgebra::DMatrix::from_fn(2 * n, 2 * n, |r, c| a[(r, c)] * scale[r]);
-        let b = nalgebra::DVector::from_fn(2 * n, |r, _| b[r] * scale[r]);
-        let Some(x) = a.lu().solve(&b) else { break };
+        let a = faer::Mat::from_fn(2 * n, 2 * n, |r, c| a[(r, c)] * scale[r]);
+        let b = faer::Mat::from_fn(2 * n, 1, |r, _| b[(r, 0)] * scale[r]);
+        let x = a.partial_piv_lu().solve(&b);
+        // a singular system gives non-finite values: stop as on a failed solve
+        if (0..2 * n).any(|r| !x[(r, 0)].is_finite()) {
+            break;
+        }
+        let x: Vec<f64> = (0..2 * n).map(|r| x[(r, 0)]).collect();
         for (k, &j) in active.iter().enumerate() {
             q1[j] = x[k];
             q2[j] = x[n + k];

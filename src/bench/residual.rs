@@ -71,16 +71,19 @@ pub fn residual_study(
         ..SolverOptions::default()
     };
     let states = |m: &[crate::scene::Mode]| {
-        ModalBasis::with_rank_tolerance(m, p, base.rank_tolerance_for(scene)).num_states()
+        ModalBasis::with_rank_tolerance(m, p, base.rank_tolerance_for(scene))
+            .map(|b| b.num_states())
+            .map_err(|e| e.to_string())
     };
+    let (states_all, states_kept) = (states(&modes)?, states(&kept)?);
     truncated.tyre = Tyre::Modal {
         modes: kept.clone(),
     };
     let mut paper = scene.clone();
     paper.contact_scheme = crate::scene::ContactScheme::Paper;
     let variants = [
-        ("full", scene, base, modes.len(), states(&modes)),
-        ("truncated", &truncated, base, kept.len(), states(&kept)),
+        ("full", scene, base, modes.len(), states_all),
+        ("truncated", &truncated, base, kept.len(), states_kept),
         (
             "truncated + residual",
             scene,
@@ -89,7 +92,7 @@ pub fn residual_study(
                 ..base
             },
             kept.len(),
-            states(&kept),
+            states_kept,
         ),
         (
             "truncated + residual, paper contact rule",
@@ -99,7 +102,7 @@ pub fn residual_study(
                 ..base
             },
             kept.len(),
-            states(&kept),
+            states_kept,
         ),
     ];
     let mut rows = Vec::new();

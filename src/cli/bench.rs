@@ -207,7 +207,8 @@ fn alpha_beta_overflow() -> Result<String, Box<dyn std::error::Error>> {
         residue: vec![vec![1.0]],
         shape: vec![],
     };
-    let basis = ModalBasis::new(&[mode], 1);
+    // a 1 x 1 residue: one state per source is its only rank term
+    let basis = ModalBasis::per_source(&[mode], 1);
     let table = StepTable::new(&basis, dt);
     let (mut st, mut tmp) = (ModalState::zeros(&basis), ModalState::zeros(&basis));
     let n = 40_000; // 0.4 s

@@ -117,6 +117,12 @@ fn summary(scene: &Scene, id: &RingIdentification) -> String {
         ident.report.magnitude_error,
         id.ring_magnitude_error
     );
+    let ls = ident.report.least_squares;
+    let _ = writeln!(
+        s,
+        "  least-squares residuals (relative): linear prediction {:.3e}, real residues {:.3e}, complex residues {:.3e}",
+        ls.prediction, ls.residues, ls.complex_residues
+    );
     for (k, m) in ident.modes.iter().enumerate() {
         let _ = writeln!(
             s,

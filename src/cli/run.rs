@@ -79,7 +79,7 @@ pub struct RunArgs {
     /// Size of the frames, WIDTHxHEIGHT in pixels.
     #[arg(long, default_value = "1280x720", allow_hyphen_values = true, value_parser = parse_size, requires = "frames")]
     pub frame_size: (u32, u32),
-    /// Keep every SVD term of an identified (ring tyre) model's residues
+    /// Keep every rank term of an identified (ring tyre) model's residues
     /// (exact rank), instead of dropping those below 1e-5 of the largest
     /// (identification noise; results move by ~1e-6 of their size, 2.5x
     /// fewer states on the paper preset). Modes given in the scene are

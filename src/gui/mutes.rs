@@ -3,8 +3,8 @@
 //! un-muting every mode gives the original tyre back exactly.
 
 use crate::convolution::ModalBasis;
+use crate::linalg;
 use crate::scene::{Contact, Mode, Tyre};
-use nalgebra::DMatrix;
 
 /// Which modes are muted, and the tyre to give back when none is.
 #[derive(Debug, Clone, PartialEq)]
@@ -74,10 +74,18 @@ pub fn refusal(base: &[Mode], muted: &[bool], p: usize, contact: &Contact) -> Op
         .collect();
     // Σ A_k of the playing modes: symmetric positive semi-definite, so
     // full rank means every active set's contact system is regular
-    let j = ModalBasis::new(&modes, p).velocity_jump();
-    let m = DMatrix::from_row_slice(p, p, &j);
-    let scale = m.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-    let rank = m.rank(1e-10 * scale.max(f64::MIN_POSITIVE));
+    let j = match ModalBasis::new(&modes, p) {
+        Ok(basis) => basis.velocity_jump(),
+        Err(e) => return Some(e.to_string()),
+    };
+    let scale = j.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let rank = match linalg::rank(
+        linalg::from_row_major(p, &j).as_ref(),
+        1e-10 * scale.max(f64::MIN_POSITIVE),
+    ) {
+        Ok(rank) => rank,
+        Err(e) => return Some(format!("the playing modes' contact system: {e}")),
+    };
     (rank < p).then(|| {
         format!(
             "the {playing} playing mode(s) move the {p} points in only {rank} independent way(s): rigid contact on every point would be a singular system; mute fewer modes, or switch to compliant contact"

@@ -8,7 +8,7 @@
 //! `sin_cos` every [`ANCHOR_EVERY`] samples (the rotations' round-off stays
 //! near 1e-15), then each response is a dot product with them.
 
-use nalgebra::DMatrix;
+use faer::Mat;
 use std::f64::consts::TAU;
 
 /// Samples between direct evaluations of the phasor.
@@ -16,9 +16,9 @@ const ANCHOR_EVERY: usize = 64;
 
 /// `|dt Σ_n g_n e^{-iΩ n dt}|` of each column of `m` (samples `g_n` down the
 /// column) at each of `freqs_hz`: row `f`, column `c`.
-pub(super) fn dtft_magnitudes(m: &DMatrix<f64>, dt: f64, freqs_hz: &[f64]) -> DMatrix<f64> {
+pub(super) fn dtft_magnitudes(m: &Mat<f64>, dt: f64, freqs_hz: &[f64]) -> Mat<f64> {
     let len = m.nrows();
-    let mut out = DMatrix::zeros(freqs_hz.len(), m.ncols());
+    let mut out = Mat::zeros(freqs_hz.len(), m.ncols());
     let (mut cos, mut sin) = (vec![0.0; len], vec![0.0; len]);
     for (f, &freq) in freqs_hz.iter().enumerate() {
         let w = TAU * freq * dt;
@@ -35,7 +35,7 @@ pub(super) fn dtft_magnitudes(m: &DMatrix<f64>, dt: f64, freqs_hz: &[f64]) -> DM
             }
         }
         for c in 0..m.ncols() {
-            let g = m.column(c);
+            let g = m.col(c);
             let (mut re, mut im) = (0.0, 0.0);
             for n in 0..len {
                 re += g[n] * cos[n];
@@ -52,11 +52,11 @@ mod tests {
     use super::*;
 
     /// The definition, one `sin_cos` per term (the control).
-    fn direct(m: &DMatrix<f64>, dt: f64, freqs_hz: &[f64]) -> DMatrix<f64> {
-        DMatrix::from_fn(freqs_hz.len(), m.ncols(), |f, c| {
+    fn direct(m: &Mat<f64>, dt: f64, freqs_hz: &[f64]) -> Mat<f64> {
+        Mat::from_fn(freqs_hz.len(), m.ncols(), |f, c| {
             let w = TAU * freqs_hz[f] * dt;
             let (mut re, mut im) = (0.0, 0.0);
-            for (n, g) in m.column(c).iter().enumerate() {
+            for (n, g) in m.col(c).iter().enumerate() {
                 let (s, co) = (w * n as f64).sin_cos();
                 re += g * co;
                 im -= g * s;
@@ -70,7 +70,7 @@ mod tests {
         // decaying oscillations (as impulse responses are) of mixed sign and
         // scale, 3000 samples, frequencies up to near Nyquist
         let (len, dt) = (3000, 1.0 / 4096.0);
-        let m = DMatrix::from_fn(len, 4, |n, c| {
+        let m = Mat::from_fn(len, 4, |n, c| {
             let t = n as f64 * dt;
             let (f, a) = (60.0 + 90.0 * c as f64, 10f64.powi(c as i32 - 2));
             a * (-8.0 * t).exp() * (TAU * f * t + 0.3 * c as f64).sin()

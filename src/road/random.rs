@@ -297,4 +297,60 @@ mod tests {
         );
         assert!((a.0 - b.0).abs() < 1e-12 && (a.1 - b.1).abs() < 1e-9);
     }
+
+    #[test]
+    fn grid_values_and_slopes_are_the_cosine_sum() {
+        // z(x) = Σ a_j cos(2π n_j x + φ_j) and its derivative, summed
+        // directly at a few grid points, against the FFT's grid
+        let (class, seed, length_m, lo, hi) = (RoadClass::D, 17, 40.0, 0.05, 3.0);
+        let (z, dz) = generate(class, seed, length_m, lo, hi);
+        let n = z.len();
+        let range = harmonic_range(length_m, lo, hi);
+        let phi = phases(seed, range.clone());
+        let dn = 1.0 / length_m;
+        let terms: Vec<(f64, f64, f64)> = range
+            .zip(phi)
+            .map(|(j, ph)| {
+                let nj = j as f64 * dn;
+                ((2.0 * class.gd_m3(nj) * dn).sqrt(), TAU * nj, ph)
+            })
+            .collect();
+        let scale = terms.iter().map(|t| t.0).sum::<f64>();
+        let slope_scale = terms.iter().map(|t| t.0 * t.1).sum::<f64>();
+        for m in [0, 1, 7, n / 3, n / 2 + 5, n - 1] {
+            let x = m as f64 * length_m / n as f64;
+            let zd: f64 = terms.iter().map(|(a, k, ph)| a * (k * x + ph).cos()).sum();
+            let sd: f64 = terms
+                .iter()
+                .map(|(a, k, ph)| -a * k * (k * x + ph).sin())
+                .sum();
+            assert!((z[m] - zd).abs() < 1e-12 * scale, "z at m = {m}");
+            assert!((dz[m] - sd).abs() < 1e-12 * slope_scale, "dz at m = {m}");
+        }
+    }
+
+    #[test]
+    fn phases_are_uniform_on_the_circle() {
+        // 1e5 phases: all in [0, 2π), the mean of e^{iφ} and of e^{2iφ} near
+        // 0 (|mean| ~ 1/√N for uniform phases), each quarter about a quarter
+        let phi = phases(2026, 1..=100_000);
+        assert!(phi.iter().all(|p| (0.0..TAU).contains(p)));
+        let n = phi.len() as f64;
+        for h in [1.0, 2.0] {
+            let (c, s) = phi.iter().fold((0.0, 0.0), |(c, s), p| {
+                (c + (h * p).cos(), s + (h * p).sin())
+            });
+            let mean = (c * c + s * s).sqrt() / n;
+            assert!(mean < 4.0 / n.sqrt(), "harmonic {h}: |mean| {mean}");
+        }
+        for q in 0..4 {
+            let lo = q as f64 * TAU / 4.0;
+            let share = phi
+                .iter()
+                .filter(|p| (lo..lo + TAU / 4.0).contains(*p))
+                .count() as f64
+                / n;
+            assert!((share - 0.25).abs() < 0.01, "quarter {q}: {share}");
+        }
+    }
 }

@@ -24,8 +24,8 @@ pub struct SolverOptions {
     /// table; with impacts both contact schemes agree with each other but
     /// not with the full model).
     pub residual_above_hz: Option<f64>,
-    /// Relative singular-value cut of the rank reduction: the SVD terms of
-    /// a mode's residue below `rank_tolerance × σ_max` are dropped. `None`
+    /// Relative cut of the rank reduction: the rank terms (eigen or SVD) of
+    /// a mode's residue below `rank_tolerance` of the largest are dropped. `None`
     /// (default): [`IDENTIFIED_RANK_TOLERANCE`] for a model identified by
     /// LSCE (a ring tyre), [`crate::convolution::EXACT_RANK_TOLERANCE`]
     /// (every term, exact to round-off) for modes given in the scene, which
