@@ -142,7 +142,7 @@ fn presets(c: &mut Criterion) {
     g.finish();
 }
 
-/// The paper preset's tyre (SPEC §5-6): sampling the ring's impulse
+/// The paper preset's tyre (method §5-6): sampling the ring's impulse
 /// responses at the five points, and their LSCE identification (done once
 /// per scene at load, cached per ring, options and positions).
 fn ring_and_lsce(c: &mut Criterion) {

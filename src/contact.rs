@@ -1,4 +1,4 @@
-//! Dense solves of the contact problem (SPEC §4): the `2|S| × 2|S|`
+//! Dense solves of the contact problem (method §4): the `2|S| × 2|S|`
 //! Gauss-point system and the `|S| × |S|` impulse system, with row and column
 //! equilibration (rows of `g ~ dt` and `g' ~ 1` differ by orders of magnitude)
 //! and LU with partial pivoting. All buffers are sized once; no allocation

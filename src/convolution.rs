@@ -1,4 +1,4 @@
-//! Fast recursive convolution in the stable, bounded form (SPEC §3).
+//! Fast recursive convolution in the stable, bounded form (method §3).
 //!
 //! Per mode `k` and rank term `r` of its residue (`A_k = Σ_r a_kr b_krᵀ`; one
 //! term per mode for a mode shape, `rank A_k` terms for a residue matrix), the
@@ -8,7 +8,7 @@
 //! x_kr(t) = ∫_0^t h_k(t-τ) β_kr(τ) dτ,  v_kr(t) = ∫_0^t h_k'(t-τ) β_kr(τ) dτ,  β_kr = b_krᵀ q
 //! ```
 //!
-//! i.e. the real coordinates of SPEC §3's rotated complex state `z`
+//! i.e. the real coordinates of method §3's rotated complex state `z`
 //! (`x = Im z / ω_d`, `v = Im(λ z) / ω_d`). Unlike `z` they stay well defined
 //! through critical damping and for two real poles, so one code path serves
 //! every `ξ >= 0`. The state is advanced exactly:
@@ -25,15 +25,16 @@
 //! and per sub-step only at event steps; the state is bounded for any `ω dt`.
 //!
 //! The paper's overflowing α/β form is kept in [`paper_alpha_beta`] and a
-//! naive O(N²) quadrature of SPEC eq. 3 in [`direct`], as baseline and control.
+//! naive O(N²) quadrature of method eq. 3 in [`direct`], as baseline and control.
 
 pub mod direct;
 mod kernels;
 mod mode_step;
 pub mod paper_alpha_beta;
 
-use crate::linalg::{self, LinalgError};
-use crate::scene::Mode;
+use crate::error::BasisError;
+use crate::linalg;
+use crate::modal::Mode;
 pub use mode_step::{ModeStep, mode_step, mode_steps_into};
 use std::f64::consts::TAU;
 
@@ -85,22 +86,6 @@ pub fn dot2(a: &[f64], x: &[f64], v: &[f64]) -> (f64, f64) {
 /// round-off ([`ModalBasis::new`]).
 pub const EXACT_RANK_TOLERANCE: f64 = 1e-13;
 
-/// A mode's residue matrix could not be factored into rank terms that
-/// rebuild it: nothing is run on a model that is not the one given.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum BasisError {
-    #[error(
-        "mode {mode} ({freq_hz} Hz): its residue matrix could not be factored into rank terms: {source}; nothing was run (a residue with huge or tiny entries, or NaN? check tyre.modes[{mode}].residue)"
-    )]
-    Residue {
-        /// Index of the mode in the list given.
-        mode: usize,
-        freq_hz: f64,
-        #[source]
-        source: LinalgError,
-    },
-}
-
 /// The modes factored into rank terms: `A_k = Σ_r a_kr b_krᵀ`.
 #[derive(Debug, Clone)]
 pub struct ModalBasis {
@@ -149,7 +134,7 @@ impl ModalBasis {
         Self::reduced(modes, num_points, rel_tol.max(EXACT_RANK_TOLERANCE))
     }
 
-    /// One state per (mode, source) as SPEC §3 states it, without rank
+    /// One state per (mode, source) as method §3 states it, without rank
     /// reduction: the "before" of the rank-1 optimisation, for benchmarks,
     /// and a representation of the same model that decomposes nothing.
     pub fn per_source(modes: &[Mode], num_points: usize) -> Self {
@@ -283,7 +268,7 @@ impl StepTable {
     }
 
     /// Recomputes the table for `tau_s` in place (no allocation once sized;
-    /// event steps fill the sub-step table twice per event, SPEC §4).
+    /// event steps fill the sub-step table twice per event, method §4).
     pub fn fill(&mut self, basis: &ModalBasis, tau_s: f64) {
         let ns = basis.stored_states();
         self.tau_s = tau_s;

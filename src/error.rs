@@ -36,6 +36,41 @@ pub fn fmt_num(x: f64) -> String {
     }
 }
 
+/// `n` and the noun, plural unless `n` is 1 ("1 point", "5 points").
+pub fn count(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
+#[cfg(test)]
+mod count_tests {
+    #[test]
+    fn counts_read_as_english() {
+        assert_eq!(super::count(1, "point"), "1 point");
+        assert_eq!(super::count(0, "mode"), "0 modes");
+        assert_eq!(super::count(13, "mode"), "13 modes");
+    }
+}
+
+/// A mode's residue matrix could not be factored into rank terms that
+/// rebuild it: nothing is run on a model that is not the one given.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BasisError {
+    #[error(
+        "mode {mode} ({freq_hz} Hz): its residue matrix could not be factored into rank terms: {source}; nothing was run (a residue with huge or tiny entries, or NaN? check tyre.modes[{mode}].residue)"
+    )]
+    Residue {
+        /// Index of the mode in the list given.
+        mode: usize,
+        freq_hz: f64,
+        #[source]
+        source: crate::linalg::LinalgError,
+    },
+}
+
 /// Errors while reading or validating a scene.
 #[derive(Debug, Error)]
 pub enum SceneError {
@@ -72,9 +107,9 @@ pub enum SceneError {
     Basis {
         scene: String,
         #[source]
-        source: crate::convolution::BasisError,
+        source: BasisError,
     },
-    /// The modal model of a ring tyre could not be identified (SPEC §6).
+    /// The modal model of a ring tyre could not be identified (method §6).
     #[error("scene \"{scene}\": tyre identification failed: {message}")]
     Identification { scene: String, message: String },
 }
@@ -89,10 +124,7 @@ fn road_file_hint(message: &str) -> &'static str {
 }
 
 fn format_invalid(file: &str, errors: &[FieldError], at: &[Option<(usize, usize)>]) -> String {
-    let mut s = format!(
-        "{file}: {}",
-        crate::output::count(errors.len(), "invalid value")
-    );
+    let mut s = format!("{file}: {}", count(errors.len(), "invalid value"));
     for (k, e) in errors.iter().enumerate() {
         s.push_str("\n  ");
         // where the preset writes the field, as a syntax error is placed

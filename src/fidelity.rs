@@ -12,8 +12,8 @@
 //! or `G(ω)` sampled on a grid ([`SampledGreen`]). Helpers build the edited
 //! models a researcher compares: a mode removed, a mode detuned.
 
+use crate::modal::Mode;
 use crate::modal::{Complex, ModalModel};
-use crate::scene::Mode;
 
 /// A `P × P` receptance matrix `G_ij(f)` (m/N) known at any frequency.
 pub trait GreenMatrix {

@@ -1,12 +1,12 @@
 //! Ring tyre -> modal model: sample the ring's radial impulse responses at
-//! the contact points (SPEC §5) and identify them by LSCE (SPEC §6), with a
+//! the contact points (method §5) and identify them by LSCE (method §6), with a
 //! process-wide cache so that a scene is identified once per distinct ring,
 //! options and point positions.
 
 use crate::lsce::{Identification, IdentifyOptions, LsceError, Responses, identify};
 use crate::modal::ModalModel;
+use crate::modal::Mode;
 use crate::ring::RingParams;
-use crate::scene::Mode;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 

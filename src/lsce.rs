@@ -1,4 +1,4 @@
-//! LSCE identification (least-squares complex exponential, SPEC §6).
+//! LSCE identification (least-squares complex exponential, method §6).
 //!
 //! From impulse responses `g_r(k dt)` sampled at `dt`, the linear prediction
 //! `g_r(k + p) + Σ_{l<p} a_l g_r(k + l) = 0` of order `p = 2M` (`M` pole
@@ -7,9 +7,9 @@
 //! columns serves every order (the first `p + 1` columns of `R` are the order
 //! `p` system). The roots `z` of `z^p + Σ a_l z^l` (eigenvalues of the
 //! companion matrix, [`crate::linalg::eigenvalues`]) give the poles `s = ln(z) / dt`;
-//! the physical ones are conjugate pairs with `Re(s) < 0` (`ξ > 0`, SPEC §6's
+//! the physical ones are conjugate pairs with `Re(s) < 0` (`ξ > 0`, method §6's
 //! sign check) inside the band. Residues are fitted by least squares on the
-//! responses with the real modal form of SPEC §2, `g = Σ A_k h_k`; a second fit
+//! responses with the real modal form of method §2, `g = Σ A_k h_k`; a second fit
 //! with the companion `e^{-ξωt} cos(ω_d t)` terms measures the part of the
 //! complex residues that the real form discards (reported per mode).
 //!
@@ -24,8 +24,8 @@
 //! best, the smallest whose kept poles persist (`choose_order`).
 
 use crate::linalg::{self, LinalgError};
+use crate::modal::Mode;
 use crate::modal::unit_impulse;
-use crate::scene::Mode;
 use dtft::dtft_magnitudes;
 use faer::{Mat, MatRef, c64};
 use std::f64::consts::TAU;
@@ -122,7 +122,7 @@ pub struct ResponseFit {
     pub magnitude_error: f64,
 }
 
-/// Fit report (SPEC §6).
+/// Fit report (method §6).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitReport {
     /// Relative L2 error in time over all responses of the kept (in-band)
@@ -462,7 +462,7 @@ fn stability(
     Stability::Stable
 }
 
-/// Identifies a modal model from sampled impulse responses (SPEC §6).
+/// Identifies a modal model from sampled impulse responses (method §6).
 pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification, LsceError> {
     let errors = opts.validate("options");
     if let Some(e) = errors.first() {

@@ -21,7 +21,7 @@ struct Cli {
 enum Command {
     /// Run a scene headless and write its time histories as CSV.
     Run(cli::run::RunArgs),
-    /// Identify the modal model of a ring-tyre scene by LSCE (SPEC §5-6).
+    /// Identify the modal model of a ring-tyre scene by LSCE (method §5-6).
     Identify(cli::identify::IdentifyArgs),
     /// Run a scene over a range of one parameter; summary and band levels per value.
     Sweep(cli::sweep::SweepArgs),
@@ -57,7 +57,7 @@ fn main() -> std::process::ExitCode {
         )
     ) {
         // an interrupted run leaves no half-written temporary behind
-        tirecontact::output::interrupt::remove_temporaries_on_signal();
+        tirecontact::fsio::interrupt::remove_temporaries_on_signal();
     }
     let result = match cli.command {
         Some(Command::Run(args)) => cli::run::run(&args),

@@ -1,4 +1,4 @@
-//! The modal model of the tyre's Green functions (SPEC §2):
+//! The modal model of the tyre's Green functions (method §2):
 //!
 //! ```text
 //! g_ij(t) = Σ_k A_k[i][j] h_k(t),   h_k'' + 2 ξ_k ω_k h_k' + ω_k² h_k = δ(t)
@@ -10,8 +10,40 @@
 //! `κ = ω √((ξ-1)(ξ+1))` (both limits give `t e^{-ωt}`, so `h` is continuous
 //! in `ξ` to round-off).
 
-use crate::scene::Mode;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
+
+/// One mode of the modal model (method §2). Give either `residue` (P×P, row i =
+/// receiving point, column j = loaded point, in 1/kg) or `shape` (P values,
+/// `A = φ φᵀ`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Mode {
+    /// Natural frequency `f_k` (Hz), > 0.
+    pub freq_hz: f64,
+    /// Damping ratio `ξ_k` (-), >= 0 (0 undamped, 1 critical, > 1 overdamped).
+    pub damping_ratio: f64,
+    /// Residue matrix `A_k` (1/kg), P×P. Empty when `shape` is given.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub residue: Vec<Vec<f64>>,
+    /// Mode shape `φ_k` (1/√kg), P values; `A_k = φ_k φ_kᵀ`. Empty when `residue` is given.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub shape: Vec<f64>,
+}
+
+impl Mode {
+    /// The residue matrix `A_k` (P×P), from `residue` or from `shape`.
+    pub fn residue_matrix(&self) -> Vec<Vec<f64>> {
+        if !self.residue.is_empty() {
+            self.residue.clone()
+        } else {
+            self.shape
+                .iter()
+                .map(|a| self.shape.iter().map(|b| a * b).collect())
+                .collect()
+        }
+    }
+}
 
 /// One mode, ready for evaluation.
 #[derive(Debug, Clone, PartialEq)]
@@ -59,7 +91,7 @@ impl ModalMode {
         self.damping_ratio * self.omega_rad_s
     }
 
-    /// `(h(t), h'(t))` of the unit-mass oscillator (SPEC §2), for every `ξ >= 0`.
+    /// `(h(t), h'(t))` of the unit-mass oscillator (method §2), for every `ξ >= 0`.
     pub fn impulse_response(&self, t_s: f64) -> (f64, f64) {
         unit_impulse(self.omega_rad_s, self.damping_ratio, t_s)
     }
@@ -120,7 +152,7 @@ impl ModalModel {
         }
     }
 
-    /// `g_ij(t)` (m/(N·s)) and `g'_ij(t)` (m/(N·s²)), SPEC §2.
+    /// `g_ij(t)` (m/(N·s)) and `g'_ij(t)` (m/(N·s²)), method §2.
     pub fn green(&self, i: usize, j: usize, t_s: f64) -> (f64, f64) {
         let p = self.num_points;
         self.modes.iter().fold((0.0, 0.0), |(g, gd), m| {

@@ -1,4 +1,4 @@
-//! The ring tyre model (SPEC §5): a circular ring on an elastic foundation.
+//! The ring tyre model (method §5): a circular ring on an elastic foundation.
 //!
 //! The tread is an Euler-Bernoulli curved beam (bending stiffness `EI`,
 //! membrane stiffness `EA`, mass `m` per unit length of circumference, radius
@@ -19,27 +19,27 @@
 //!
 //! and the mass `m I`: each order gives a 2×2 symmetric eigenproblem, two
 //! modes, each a degenerate cos/sin pair for `n >= 1`. With the radial motion
-//! alone (`motion: RadialOnly`, the membrane term left out) this is SPEC §5's
+//! alone (`motion: RadialOnly`, the membrane term left out) this is method §5's
 //! tensioned beam,
 //! `ω_n² = (EI (n/R)⁴ + T (n/R)² + k_r) / m`; with no foundation, no tension
 //! and `EA -> ∞` it is the free inextensional ring of NAFEMS VM09.
 //!
 //! Radial Green function between contact points `i`, `j` (a point at road
 //! position `x` sits at `θ = x / R` from the bottom; the radial direction
-//! there is taken as the vertical, SPEC §1 signs: outward radial at the bottom
+//! there is taken as the vertical, method §1 signs: outward radial at the bottom
 //! is down, so `u = -w` and `q = -F_r`, and the receptance keeps its sign):
 //!
 //! ```text
 //! g_ij(t) = Σ_n Σ_branch c_n W² cos(n (θ_i - θ_j)) h_{n,branch}(t) / (2π R m),  c_0 = 1, c_n = 2
 //! ```
 //!
-//! i.e. the modal model of SPEC §2 with the rank-2 residue
+//! i.e. the modal model of method §2 with the rank-2 residue
 //! `A = c_n W² [cos nθ_i cos nθ_j + sin nθ_i sin nθ_j] / (2π R m)` per order
 //! and branch ([`RingParams::modes`]).
 
 use crate::error::FieldError;
+use crate::modal::Mode;
 use crate::modal::{ModalModel, unit_impulse};
-use crate::scene::Mode;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
 
@@ -50,11 +50,11 @@ pub enum RingMotion {
     #[default]
     RadialTangential,
     /// Radial only (`v = 0`): the tensioned beam on an elastic foundation
-    /// closed on itself (SPEC §5's closed form; `EA` plays no part).
+    /// closed on itself (method §5's closed form; `EA` plays no part).
     RadialOnly,
 }
 
-/// Parameters of the ring tyre (SPEC §5). Defaults: the SPEC's passenger tyre.
+/// Parameters of the ring tyre (method §5). Defaults: the reference passenger tyre.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RingParams {
@@ -165,7 +165,7 @@ impl RingParams {
             tangential,
         };
         if self.motion == RingMotion::RadialOnly {
-            // v = 0 and no membrane term: the tensioned beam of SPEC §5,
+            // v = 0 and no membrane term: the tensioned beam of method §5,
             // ω² = (EI (n/R)⁴ + T (n/R)² + k_r) / m, whatever EA is
             let ea = self.extensional_stiffness_n / (self.radius_m * self.radius_m);
             return vec![mk((k[0][0] - ea) / m, 1.0, 0.0)];
@@ -216,7 +216,7 @@ impl RingParams {
 
     /// The ring's own modal model at contact points `x_m` (m along the
     /// contact line, angle `x/R`): one [`Mode`] per order and branch, with the
-    /// radial residue matrix (1/kg, rank 2 for `n >= 1`), SPEC §2 and §5.
+    /// radial residue matrix (1/kg, rank 2 for `n >= 1`), method §2 and §5.
     /// Modes of zero frequency (a free ring's rigid motions) are left out.
     pub fn modes(&self, x_m: &[f64]) -> Vec<Mode> {
         self.all_modes()
@@ -374,7 +374,7 @@ impl RingParams {
 }
 
 /// Free inextensional ring, in-plane flexural frequency of order `n >= 2`
-/// (Hz), SPEC §5: `n (n² - 1) / (2π R²) sqrt(EI / (m (n² + 1)))`.
+/// (Hz), method §5: `n (n² - 1) / (2π R²) sqrt(EI / (m (n² + 1)))`.
 pub fn free_ring_inextensional_hz(n: usize, radius_m: f64, ei_n_m2: f64, m_kg_m: f64) -> f64 {
     let nf = n as f64;
     nf * (nf * nf - 1.0) / (2.0 * PI * radius_m * radius_m)

@@ -1,4 +1,4 @@
-//! Road profiles `z(x)` and the smooth ramp of preload and road (SPEC §4).
+//! Road profiles `z(x)` and the smooth ramp of preload and road (method §4).
 //!
 //! Road seen by point `i` at time `t` (the tyre rolls at speed `V`):
 //!
@@ -33,7 +33,7 @@ pub struct Harmonic {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum Road {
-    /// `z(x) = a sin(2π x / λ)` (SPEC §4).
+    /// `z(x) = a sin(2π x / λ)` (method §4).
     Sine {
         /// Amplitude `a` (m), >= 0.
         amplitude_m: f64,
@@ -428,7 +428,7 @@ pub fn read_profile_csv_limited(
 }
 
 /// The ramp `w(t) = 3 s^2 - 2 s^3`, `s = clamp(t / T, 0, 1)`, and `dw/dt`
-/// (SPEC §4). `T = 0` gives `w = 1`.
+/// (method §4). `T = 0` gives `w = 1`.
 #[inline]
 pub fn ramp(t_s: f64, ramp_s: f64) -> (f64, f64) {
     if ramp_s <= 0.0 || t_s >= ramp_s {

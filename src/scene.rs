@@ -14,7 +14,7 @@ mod edits;
 pub mod locate;
 pub use edits::{described_with_edits, edits_since};
 
-/// How contact is decided inside a time step (SPEC §4).
+/// How contact is decided inside a time step (method §4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub enum ContactScheme {
     /// Impacts and releases located inside the step (second order). Default.
@@ -27,7 +27,7 @@ pub enum ContactScheme {
 /// Contact law between a tyre point and the road (issue 9).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub enum Contact {
-    /// The paper's rigid kinematic contact (SPEC §4): while in contact the
+    /// The paper's rigid kinematic contact (method §4): while in contact the
     /// point follows the road in position and velocity. Default.
     #[default]
     Rigid,
@@ -59,47 +59,17 @@ impl Contact {
 /// Largest tread stiffness accepted (N/m).
 pub const MAX_TREAD_STIFFNESS_N_M: f64 = 1e16;
 
-/// One mode of the modal model (SPEC §2). Give either `residue` (P×P, row i =
-/// receiving point, column j = loaded point, in 1/kg) or `shape` (P values,
-/// `A = φ φᵀ`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Mode {
-    /// Natural frequency `f_k` (Hz), > 0.
-    pub freq_hz: f64,
-    /// Damping ratio `ξ_k` (-), >= 0 (0 undamped, 1 critical, > 1 overdamped).
-    pub damping_ratio: f64,
-    /// Residue matrix `A_k` (1/kg), P×P. Empty when `shape` is given.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub residue: Vec<Vec<f64>>,
-    /// Mode shape `φ_k` (1/√kg), P values; `A_k = φ_k φ_kᵀ`. Empty when `residue` is given.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub shape: Vec<f64>,
-}
-
-impl Mode {
-    /// The residue matrix `A_k` (P×P), from `residue` or from `shape`.
-    pub fn residue_matrix(&self) -> Vec<Vec<f64>> {
-        if !self.residue.is_empty() {
-            self.residue.clone()
-        } else {
-            self.shape
-                .iter()
-                .map(|a| self.shape.iter().map(|b| a * b).collect())
-                .collect()
-        }
-    }
-}
+pub use crate::modal::Mode;
 
 /// Source of the tyre's Green functions.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum Tyre {
-    /// A modal model given mode by mode (SPEC §2).
+    /// A modal model given mode by mode (method §2).
     Modal { modes: Vec<Mode> },
-    /// The ring tyre (SPEC §5), its radial Green functions at the contact
-    /// points identified by LSCE (SPEC §6) into a modal model. Both fields
-    /// default (the SPEC's passenger tyre, the default options).
+    /// The ring tyre (method §5), its radial Green functions at the contact
+    /// points identified by LSCE (method §6) into a modal model. Both fields
+    /// default (the reference passenger tyre, the default options).
     Ring {
         #[serde(default)]
         ring: RingParams,
@@ -263,7 +233,7 @@ impl Scene {
     /// it to disk, then renames it over `path`. A failed write leaves the old
     /// file intact.
     pub fn save(&self, path: &Path) -> Result<(), SceneError> {
-        crate::output::write_atomic(path, self.to_ron_string().as_bytes()).map_err(|source| {
+        crate::fsio::write_atomic(path, self.to_ron_string().as_bytes()).map_err(|source| {
             SceneError::Io {
                 path: path.to_path_buf(),
                 source,
@@ -283,7 +253,7 @@ impl Scene {
 
     /// The modes of the modal model: those given (`Tyre::Modal`), or those
     /// identified from the ring tyre at the points' positions (`Tyre::Ring`,
-    /// SPEC §5-6), computed once per distinct ring, options and positions
+    /// method §5-6), computed once per distinct ring, options and positions
     /// (cached, [`crate::identify::ring_modes_cached`]).
     pub fn modes(&self) -> Result<Vec<Mode>, SceneError> {
         match &self.tyre {
@@ -320,7 +290,7 @@ impl Scene {
     }
 
     /// `T_ramp = 0` is allowed only where no point starts below the road
-    /// (`z(x_i) - h_i <= 0` for all `i`, SPEC §4).
+    /// (`z(x_i) - h_i <= 0` for all `i`, method §4).
     pub fn ramp_error(&self, road: &crate::road::RoadProfile) -> Option<FieldError> {
         if self.ramp_s != 0.0 {
             return None;
@@ -331,7 +301,7 @@ impl Scene {
                 field: "ramp_s".into(),
                 value: "0".into(),
                 expected: format!(
-                    "a ramp time > 0 s: point {i} starts {:.3e} m below the road (SPEC §4)",
+                    "a ramp time > 0 s: point {i} starts {:.3e} m below the road (docs/method.md §4)",
                     z - pt.h_m
                 ),
             })

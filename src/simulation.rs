@@ -1,4 +1,4 @@
-//! The time stepper (SPEC §4): free prediction, the coupled Gauss-point solve
+//! The time stepper (method §4): free prediction, the coupled Gauss-point solve
 //! of the active points, the monotone complementarity rule, and (default
 //! `Located` scheme) impacts and releases located inside the step.
 
@@ -156,7 +156,7 @@ pub struct Simulation {
     /// Residual compliance of the dropped modes (m/N, P x P row-major);
     /// empty: all modes in the convolution.
     residual: Vec<f64>,
-    /// Full-step factorisations of active sets left earlier (SPEC §4).
+    /// Full-step factorisations of active sets left earlier (method §4).
     factor_cache: factor_cache::FactorCache,
 }
 
@@ -478,7 +478,7 @@ impl Simulation {
     }
 
     /// `re`, `rde` from the road samples in `zbuf`, `dzbuf` and the ramp
-    /// `w`, `dw/dt` (SPEC §4): `r = w (z - h)`, `r' = w' (z - h) + w z' V`.
+    /// `w`, `dw/dt` (method §4): `r = w (z - h)`, `r' = w' (z - h) + w z' V`.
     fn apply_ramp(&mut self, w: f64, dw: f64) {
         let (vel, p) = (self.scene.speed_mps, self.p);
         let (z, dz, h) = (&self.zbuf[..p], &self.dzbuf[..p], &self.h_m[..p]);

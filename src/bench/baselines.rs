@@ -1,10 +1,10 @@
-//! Baselines for the work-precision study: the paper's contact scheme (SPEC
+//! Baselines for the work-precision study: the paper's contact scheme (method
 //! §4 steps 1-5, Gauss quadrature `c_m = dt/2`, paper eqs. 25-29) on top of
 //! two convolution kernels a user would otherwise write:
 //!
 //! * [`Kernel::AlphaBeta`]: the paper's α/β accumulators (eqs. 4-6, 9),
 //!   which lose `ξωt / ln 10` digits and overflow once `ξωt > 709.78`;
-//! * [`Kernel::Direct`]: direct quadrature of SPEC eq. 3 over the whole
+//! * [`Kernel::Direct`]: direct quadrature of method eq. 3 over the whole
 //!   force history, O(N²).
 //!
 //! Both share the in-step influence `(dt/2) g(dt - s_m)` of the Gauss forces.

@@ -1,5 +1,5 @@
 //! Measurements: the work-precision study behind `tirecontact bench`, and the
-//! baselines it compares against (SPEC §3 α/β form, direct convolution).
+//! baselines it compares against (method §3 α/β form, direct convolution).
 
 pub mod baselines;
 pub mod residual;

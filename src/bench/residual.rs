@@ -70,7 +70,7 @@ pub fn residual_study(
         rank_tolerance: Some(SolverOptions::default().rank_tolerance_for(scene)),
         ..SolverOptions::default()
     };
-    let states = |m: &[crate::scene::Mode]| {
+    let states = |m: &[crate::modal::Mode]| {
         ModalBasis::with_rank_tolerance(m, p, base.rank_tolerance_for(scene))
             .map(|b| b.num_states())
             .map_err(|e| e.to_string())

@@ -132,7 +132,7 @@ pub fn bench(args: &BenchArgs) -> CliResult {
 }
 
 fn write(path: &Path, text: &str) -> CliResult {
-    tirecontact::output::write_atomic(path, text.as_bytes())
+    tirecontact::fsio::write_atomic(path, text.as_bytes())
         .map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(())
 }
@@ -193,7 +193,7 @@ fn speed(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::error::Er
     Ok(s)
 }
 
-/// The α/β form against the stable form on a 4 kHz, ξ = 0.1 mode (SPEC §3):
+/// The α/β form against the stable form on a 4 kHz, ξ = 0.1 mode (method §3):
 /// where the α/β form overflows, and the stable form's state there.
 fn alpha_beta_overflow() -> Result<String, Box<dyn std::error::Error>> {
     use tirecontact::convolution::paper_alpha_beta::AlphaBeta;

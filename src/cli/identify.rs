@@ -1,17 +1,17 @@
 //! `tirecontact identify PRESET [-o modal.ron] [--diagram stab.png]
 //! [--responses irf.csv] [--figures DIR]`: identifies the modal model of a
-//! ring-tyre scene by LSCE (SPEC §5-6) and writes what was asked.
+//! ring-tyre scene by LSCE (method §5-6) and writes what was asked.
 
 use super::{CliResult, load_scene};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+use tirecontact::fsio::write_atomic;
 use tirecontact::identify::{RingIdentification, identify_ring};
 use tirecontact::lsce::{Identification, Responses, Stability};
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
 use tirecontact::output::paper_figures::paper_figures;
 use tirecontact::output::record::{PLOT_SAMPLES, Recording};
-use tirecontact::output::write_atomic;
 use tirecontact::scene::Tyre;
 use tirecontact::{Scene, Simulation};
 

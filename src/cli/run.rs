@@ -293,7 +293,7 @@ pub fn run(args: &RunArgs) -> CliResult {
     let mut writer = match &args.output {
         Some(path) => {
             // written beside `path` and renamed at the end: a failed run keeps the old file
-            let f = tirecontact::output::AtomicFile::create(path)
+            let f = tirecontact::fsio::AtomicFile::create(path)
                 .map_err(|e| format!("{}: {e}", path.display()))?;
             let mut w = RunWriter::new(f, scene.num_points(), args.every)?;
             w.write_initial(&sim)?;
@@ -414,12 +414,12 @@ fn write_spectra(args: &RunArgs, scene: &Scene, rec: &SteadyRecorder) -> CliResu
     if let Some(path) = &args.spectrum {
         let mut buf = Vec::new();
         spectra.write_csv(&mut buf, args.spectrum_max_hz)?;
-        tirecontact::output::write_atomic(path, &buf)
+        tirecontact::fsio::write_atomic(path, &buf)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         let bands = bands_path(path);
         let mut buf = Vec::new();
         spectra.write_bands_csv(&mut buf, DEFAULT_BANDS_HZ.0, DEFAULT_BANDS_HZ.1)?;
-        tirecontact::output::write_atomic(&bands, &buf)
+        tirecontact::fsio::write_atomic(&bands, &buf)
             .map_err(|e| format!("{}: {e}", bands.display()))?;
         eprintln!("wrote {} and {}", path.display(), bands.display());
     }

@@ -1,4 +1,4 @@
-//! The naive control: direct quadrature of SPEC eq. 3,
+//! The naive control: direct quadrature of method eq. 3,
 //! `u(t_n) = Σ_m ∫_{t_m}^{t_m+1} g(t_n - τ) q(τ) dτ`, O(N²). What a user would
 //! otherwise write; used by tests and benchmarks to check the fast form.
 

@@ -1,9 +1,9 @@
-//! The exact step of one mode (SPEC §3): propagator `Φ(τ)` and the weights
+//! The exact step of one mode (method §3): propagator `Φ(τ)` and the weights
 //! of constant and linear (Gauss-point) forces, by a Taylor series on
 //! `τ/2^s` and `s` exact doublings; four modes at a time for step tables.
 
 /// `(1 + √3)/2` and `(√3 - 1)/2`: values at the step ends of the Lagrange
-/// basis through the Gauss points `t1,2 = (1 ∓ 1/√3) τ/2` (SPEC eq. 27).
+/// basis through the Gauss points `t1,2 = (1 ∓ 1/√3) τ/2` (method eq. 27).
 const GA: f64 = 1.366_025_403_784_438_6;
 const GB: f64 = 0.366_025_403_784_438_6;
 

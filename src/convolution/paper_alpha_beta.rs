@@ -2,7 +2,7 @@
 //! **baseline only**: it accumulates
 //! `α(t) = ∫_0^t e^{ξωτ} cos(ω_d τ) q dτ`, `β(t) = ∫_0^t e^{ξωτ} sin(ω_d τ) q dτ`
 //! and multiplies by `e^{-ξωt}`, which overflows in float64 once
-//! `ξωt > 709.78` (SPEC §3). The solver never uses it.
+//! `ξωt > 709.78` (method §3). The solver never uses it.
 
 /// One underdamped mode, single source, force constant over each step.
 #[derive(Debug, Clone)]

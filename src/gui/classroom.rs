@@ -12,8 +12,8 @@ use super::views::time_plots::{
 };
 use super::views::{CONTACT_COLOR, FLIGHT_COLOR, point_color, scene_view};
 use crate::Simulation;
+use crate::modal::Mode;
 use crate::phase::{ContactPhase, PhaseTracker};
-use crate::scene::Mode;
 use egui::{Color32, FontId, RichText, TextStyle, Ui};
 use egui_plot::{Bar, BarChart, Corner, Legend, Line, Plot, PlotPoint, Text};
 use std::collections::BTreeMap;

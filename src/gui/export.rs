@@ -9,10 +9,10 @@
 
 use super::history::{History, Quantity};
 use super::views::time_plots::{clip_level, force_range};
+use crate::modal::Mode;
 use crate::output::csv::RunWriter;
 use crate::output::figures::{Figure, Panel, Series, Style, render_png};
 use crate::road::Road;
-use crate::scene::Mode;
 use crate::{Scene, Simulation};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{Receiver, channel};
@@ -235,7 +235,7 @@ pub fn write_csv(
         }
         w.finish().map_err(|e| e.to_string())?;
     }
-    crate::output::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    crate::fsio::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(format!(
         "wrote {} ({} steps, t = 0 … {:.5} s)",
         path.display(),

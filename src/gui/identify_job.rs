@@ -1,4 +1,4 @@
-//! A ring tyre's identification (SPEC §5-6) off the UI thread. A scene
+//! A ring tyre's identification (method §5-6) off the UI thread. A scene
 //! whose ring has not been identified at its points yet (a new ring, moved
 //! or added points, other identification options) takes a tenth of a second
 //! or more to build, longer in a debug build: the edit or the opened file
@@ -61,7 +61,7 @@ pub fn waiting_note(then: &Then) -> String {
         Then::Replace { .. } => "for the new scene",
     };
     format!(
-        "Identifying the ring tyre's modes at the points {what} (LSCE, SPEC §6): \
+        "Identifying the ring tyre's modes at the points {what} (LSCE, docs/method.md §6): \
          the current run goes on until they are ready."
     )
 }

@@ -1,5 +1,5 @@
 //! DTFT magnitudes of sampled responses at a few frequencies (the fit
-//! report's `|G(f)|` errors, SPEC §6).
+//! report's `|G(f)|` errors, method §6).
 //!
 //! `dt Σ_n g_n e^{-iΩ n dt}` needs the phasor `e^{-iΩ n dt}` of every sample:
 //! one `sin_cos` per (frequency, sample, response) was half of an

@@ -1,10 +1,10 @@
-//! Identification options of LSCE (SPEC §6), as written in a scene's
+//! Identification options of LSCE (method §6), as written in a scene's
 //! `tyre: Ring(identification: (...))`.
 
 use crate::error::FieldError;
 use serde::{Deserialize, Serialize};
 
-/// Identification options (SPEC §6): sampling of the responses, band, model
+/// Identification options (method §6): sampling of the responses, band, model
 /// order and stabilisation criteria.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]

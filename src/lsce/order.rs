@@ -1,9 +1,9 @@
-//! The automatic model order of LSCE (SPEC §6: "chosen with a
+//! The automatic model order of LSCE (method §6: "chosen with a
 //! stabilisation diagram").
 
 use super::{DiagramOrder, EXACT_FIT, IdentifyOptions, Stability};
 
-/// The automatic model order (SPEC §6: chosen with the stabilisation
+/// The automatic model order (method §6: chosen with the stabilisation
 /// diagram): among the orders whose in-band fit error is near the best
 /// (within `order_tolerance`, plus [`EXACT_FIT`]), the smallest whose kept
 /// poles (`kept_at[k]`: indices into `diagram[k].poles`) all persist, each

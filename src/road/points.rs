@@ -1,4 +1,4 @@
-//! The road under a fixed set of contact points (SPEC §4): all points
+//! The road under a fixed set of contact points (method §4): all points
 //! sampled together, harmonic roads by angle addition from per-point phases
 //! and, at consecutive step ends, from the previous step's angles.
 
@@ -130,7 +130,7 @@ impl PointsRoad {
     /// The common step end, fused: a single-harmonic road (a sine) sampled
     /// at the end of step `n` right after step `n - 1` (`Stepper` rotation),
     /// written as the road seen by the points past the ramp,
-    /// `re_i = z_i - h_i` and `rde_i = V z'_i` (SPEC §4). The same operations
+    /// `re_i = z_i - h_i` and `rde_i = V z'_i` (method §4). The same operations
     /// as [`PointsRoad::sample_step`] followed by the offset: bit-identical.
     /// `false` (nothing changed) where it does not apply.
     #[inline]

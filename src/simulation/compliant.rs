@@ -1,10 +1,10 @@
 //! Compliant contact (issue 9): a tread spring of stiffness `k_i` (N/m) in
 //! series with the tyre at each point, beside the paper's rigid kinematic
-//! contact (SPEC §4), which stays the default.
+//! contact (method §4), which stays the default.
 //!
 //! The force is the spring's compression, `q_i = k_i max(0, r_i - u_i)`.
 //! Over a step the force is linear, given by its values `q1`, `q2` at the
-//! Gauss points with the exact weights (SPEC §3-4), so that the end values
+//! Gauss points with the exact weights (method §3-4), so that the end values
 //! are `u_e = u_h + Gx1 q1 + Gx2 q2`, `v_e = v_h + Gv1 q1 + Gv2 q2`. A point
 //! in the active set `S` satisfies the spring law in value and rate at the
 //! step end:
@@ -14,11 +14,11 @@
 //! v_e,i + q'_i  / k_i = dr_i/dt(t + dt),  q'  = √3 (q2 - q1) / dt        (slope)
 //! ```
 //!
-//! i.e. the rigid Gauss-point system of SPEC §4 plus a diagonal compliance
+//! i.e. the rigid Gauss-point system of method §4 plus a diagonal compliance
 //! term, which vanishes as `k → ∞`: the scheme tends to the rigid one
 //! algebraically, whatever `k dt² / m` (no stability limit from the spring).
 //! The active set solves the complementarity problem at the step end,
-//! `q_e >= 0`, `r_e - u_e <= 0` where `q = 0`, by the monotone rule of SPEC
+//! `q_e >= 0`, `r_e - u_e <= 0` where `q = 0`, by the monotone rule of method
 //! §4: candidates are the points the free prediction leaves compressed
 //! (`r_e - u_h > 0`); a point whose step-mean force `(q1 + q2)/2` and end
 //! force `q_e` are both negative is released (the most negative mean first)

@@ -1,4 +1,4 @@
-//! Events inside the step (SPEC §4, "where we go beyond the paper"): the
+//! Events inside the step (method §4, "where we go beyond the paper"): the
 //! `Located` scheme's step, inelastic multi-point impacts, and the Hermite
 //! location of landings.
 
@@ -6,7 +6,7 @@ use super::{GA, GB, Simulation, Table};
 use crate::error::SolverError;
 
 impl Simulation {
-    /// A step with events located inside it (SPEC §4, "Events inside the step").
+    /// A step with events located inside it (method §4, "Events inside the step").
     /// `after_steady`: [`Simulation::steady_step`] was tried first from the
     /// same state and handed the step over; its free prediction over the
     /// whole step (`free`, road at the step end; the free end values in

@@ -1,4 +1,4 @@
-//! Full-step factorisations kept by active set (SPEC §4, "Events inside the
+//! Full-step factorisations kept by active set (method §4, "Events inside the
 //! step"): the full-step Gauss-point operator of a rigid contact depends
 //! only on the active set (in its order) and `dt`, and a rolling tyre's
 //! active sets come back on every road period. The factorisation of each

@@ -1,4 +1,4 @@
-//! The Gauss-point contact solve (SPEC §4): the `2|S| × 2|S|` system of the
+//! The Gauss-point contact solve (method §4): the `2|S| × 2|S|` system of the
 //! active points over a full step (factorisation reused while the set holds)
 //! or a sub-step, and the end values of every point under the solved forces.
 
@@ -104,7 +104,7 @@ impl Simulation {
         Ok(())
     }
 
-    /// Before a full-step factorisation of a new active set (SPEC §4): the
+    /// Before a full-step factorisation of a new active set (method §4): the
     /// kept factorisation of `active`, if any, becomes the current one
     /// (`true`: nothing to factorise); the current one, if valid, is kept in
     /// its place or in the least recently used entry. Swaps of buffers
@@ -153,7 +153,7 @@ impl Simulation {
     }
 
     /// End values of every point right after a full-step solve of
-    /// `full_set`, whose forces `q1 | q2` are in `rhs` (SPEC §4): the active
+    /// `full_set`, whose forces `q1 | q2` are in `rhs` (method §4): the active
     /// points end on the road, which is what the solve imposed (exactly, not
     /// to the solve's round-off); each free point is its free value plus its
     /// packed influence row times the forces (O((P - |S|) |S|)).
@@ -343,7 +343,7 @@ mod tests {
     use crate::{Scene, Simulation};
 
     /// Full-step factorisations taken back from the cache of active sets
-    /// (SPEC §4) give the run of factorising every new set again, bit for
+    /// (method §4) give the run of factorising every new set again, bit for
     /// bit, with fewer factorisations.
     #[test]
     fn kept_factorisations_change_no_bit() {

@@ -1,11 +1,11 @@
-//! The paper's contact rule (SPEC §4 steps 1-5): active set from the free
+//! The paper's contact rule (method §4 steps 1-5): active set from the free
 //! prediction, monotone releases, at most `2P` solves.
 
 use super::{Simulation, Table};
 use crate::error::SolverError;
 
 impl Simulation {
-    /// The paper's step (SPEC §4 steps 1-5) over `[t, t + tau]`: candidates from
+    /// The paper's step (method §4 steps 1-5) over `[t, t + tau]`: candidates from
     /// the free prediction, release of the most negative mean force, points
     /// pushed below the road by a neighbour added, a released point never
     /// re-added, at most `2P` solves.

@@ -10,9 +10,9 @@ use crate::scene::Scene;
 /// `Σ_dropped A_k / ω_k²` (m/N, row-major P x P; empty when none is dropped).
 pub(super) fn split_residual(
     scene: &Scene,
-    modes: Vec<crate::scene::Mode>,
+    modes: Vec<crate::modal::Mode>,
     above_hz: Option<f64>,
-) -> Result<(Vec<crate::scene::Mode>, Vec<f64>), SceneError> {
+) -> Result<(Vec<crate::modal::Mode>, Vec<f64>), SceneError> {
     let Some(fc) = above_hz else {
         return Ok((modes, Vec::new()));
     };

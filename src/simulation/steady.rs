@@ -1,4 +1,4 @@
-//! The steady step of the `Located` scheme (SPEC §4): most steps of a
+//! The steady step of the `Located` scheme (method §4): most steps of a
 //! rolling tyre keep the same points on the road and locate no event. Such
 //! a step is the first trial of [`Simulation::located_step`] accepted as it
 //! is: one free prediction, one solve with the reused factorisation, the

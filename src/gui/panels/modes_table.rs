@@ -187,7 +187,7 @@ fn ring_summary(
     modes: &[Mode],
     cmds: &mut Vec<Command>,
 ) {
-    section(ui, "Tyre: ring model (SPEC §5)", Apply::Restart);
+    section(ui, "Tyre: ring model (docs/method.md §5)", Apply::Restart);
     Grid::new("tirecontact.ring").num_columns(2).show(ui, |ui| {
         let rows = [
             ("radius", ring.radius_m, "m"),

@@ -9,7 +9,7 @@
 use super::fidelity::{FIDELITY_FREQS, FidelityFigures, FidelityRef};
 use crate::fidelity::{band_frequencies, relative_l2_error, without_mode};
 use crate::modal::ModalModel;
-use crate::scene::Mode;
+use crate::modal::Mode;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, TryRecvError, channel};

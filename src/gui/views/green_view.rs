@@ -5,7 +5,7 @@
 use super::point_color;
 use crate::Scene;
 use crate::modal::ModalModel;
-use crate::scene::Mode;
+use crate::modal::Mode;
 use egui::{Color32, Ui};
 use egui_plot::{Corner, Legend, Line, LineStyle, Plot, VLine};
 

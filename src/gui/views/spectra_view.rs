@@ -10,7 +10,7 @@ use crate::gui::command::Command;
 use crate::gui::research::ResearchCommand;
 use crate::gui::research::spectra::{HistoryCache, HistorySpectra};
 use crate::gui::research::state::SpectraOptions;
-use crate::scene::Mode;
+use crate::modal::Mode;
 use crate::spectrum::run::DEFAULT_BANDS_HZ;
 use crate::spectrum::{Spectrum, band_label, markers};
 use egui::{Color32, RichText, Ui};
