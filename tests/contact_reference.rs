@@ -1,10 +1,11 @@
 //! Independent reference checks of the contact solver and the fast convolution
-//! (issue 3, "Tests that can fail"; SPEC §1-4).
+//! (SPEC §1-4).
 //!
 //! Every expected value here comes from the physics, written in this file:
 //! closed-form oscillator responses, an event-driven one-point contact
 //! solution with analytic free flight and root-found impacts and releases,
-//! static compliance solves, and self-convergence. Nothing is recorded from
+//! static compliance solves, an RK4 solution of the modal equations with
+//! tread springs, and self-convergence. Nothing is recorded from
 //! the solver. Run with `--nocapture` to see the tables.
 
 // Numerical loops index several arrays in parallel; ranges read clearer here.
