@@ -24,7 +24,7 @@ pub enum ContactScheme {
     Paper,
 }
 
-/// Contact law between a tyre point and the road (issue 9).
+/// Contact law between a tyre point and the road.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub enum Contact {
     /// The paper's rigid kinematic contact (method §4): while in contact the
@@ -32,8 +32,9 @@ pub enum Contact {
     #[default]
     Rigid,
     /// A tread spring in series with the tyre at each point: force
-    /// `q = k max(0, r - u)` (see `simulation/compliant.rs`). Overrides
-    /// `contact_scheme`.
+    /// `q = k max(0, r - u)`, its landings and releases located inside the
+    /// step (method §4, "Events inside the step"; see
+    /// `simulation/compliant.rs`). Overrides `contact_scheme`.
     Compliant {
         /// Tread stiffness `k` (N/m), > 0: one value for every point, or one
         /// per point.

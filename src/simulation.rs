@@ -1,6 +1,7 @@
 //! The time stepper (method §4): free prediction, the coupled Gauss-point solve
 //! of the active points, the monotone complementarity rule, and (default
-//! `Located` scheme) impacts and releases located inside the step.
+//! `Located` scheme, and compliant contact) impacts or landings and releases
+//! located inside the step.
 
 mod compliant;
 mod contributions;
@@ -540,7 +541,12 @@ impl Simulation {
         self.had_event = true;
         let compliant = !self.tread_k_n_m.is_empty();
         let (events, solves) = match self.scene.contact_scheme {
-            _ if compliant => (0, self.compliant_step(t0)?),
+            // tread springs: a step with a landing or a release goes to the
+            // event loop, which locates them as for rigid contact
+            _ if compliant => match self.compliant_steady_step(t0)? {
+                Some(solves) => (0, solves),
+                None => self.located_step(t0, false)?,
+            },
             ContactScheme::Paper => {
                 let s = self.paper_substep(t0, self.dt_s, Table::Full)?;
                 (0, s)

@@ -1,13 +1,14 @@
 //! Property tests: arbitrary bytes and mutated presets never panic the
 //! parser or validator; arbitrary structured scenes either validate and run
 //! a short bounded run with finite, non-negative outputs, or fail with field
-//! errors; arbitrary road files never panic the reader or a run over them.
+//! errors; arbitrary road files never panic the reader or a run over them;
+//! no step-mean contact force pulls, rigid or compliant.
 //! (A longer fuzzing campaign runs the same properties with more cases:
 //! `PROPTEST_CASES=100000 cargo test --release --test fuzz_scenes`.)
 
 use proptest::prelude::*;
 use tirecontact::road::{Road, read_profile_csv};
-use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
+use tirecontact::scene::{Contact, ContactScheme, Mode, Point, Scene, Tyre};
 use tirecontact::{SceneError, Simulation};
 
 fn presets() -> Vec<String> {
@@ -176,6 +177,91 @@ proptest! {
                         Err(_) => break,
                     }
                 }
+            }
+        }
+    }
+}
+
+/// Cases of [`step_mean_forces_never_pull`]: 64, or `PROPTEST_CASES`.
+fn contact_cases() -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(64)
+}
+
+/// Runs `scene` to its end: the most negative step-mean force and the
+/// largest magnitude of one, of any point in any step (N; NaN for a
+/// non-finite force), or the typed error that stopped the run (too few
+/// modes for the points on the road, say).
+fn force_range(scene: &Scene) -> Result<(f64, f64), String> {
+    let mut sim = Simulation::new(scene).map_err(|e| e.to_string())?;
+    let (mut lowest, mut largest) = (0.0f64, 0.0f64);
+    while !sim.finished() {
+        sim.step().map_err(|e| e.to_string())?;
+        for &q in sim.force_n() {
+            if !q.is_finite() {
+                return Ok((f64::NAN, f64::NAN));
+            }
+            lowest = lowest.min(q);
+            largest = largest.max(q.abs());
+        }
+    }
+    Ok((lowest, largest))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: contact_cases(), ..ProptestConfig::default() })]
+
+    /// The road only pushes (SPEC §1, `q_i >= 0`): no step-mean force is
+    /// negative beyond round-off (1e-9 of the run's largest force), at any
+    /// point of any step, for compliant contact (tread springs: the spring
+    /// law holds only over the part of a step in contact, its landing and
+    /// release located inside the step) and for rigid contact under both
+    /// schemes, on scenes where points land, bounce off and land again.
+    #[test]
+    fn step_mean_forces_never_pull(
+        p in 1usize..=5,
+        modes in proptest::collection::vec((20.0f64..1000.0, 0.0f64..0.3, proptest::collection::vec(-1.0f64..1.0, 5)), 1..=6),
+        h in proptest::collection::vec(-0.002f64..0.0002, 5),
+        stiffness_exp in proptest::collection::vec(5.0f64..9.0, 5),
+        amp in 1e-4f64..0.003,
+        wl in 0.05f64..1.0,
+        speed in 1.0f64..40.0,
+        ramp in 0.001f64..0.01,
+        dt_exp in -5.5f64..-4.0,
+    ) {
+        let mut scene = Scene {
+            name: "pull".into(),
+            description: String::new(),
+            tyre: Tyre::Modal { modes: modes.iter().map(|(f, xi, shape)| Mode {
+                freq_hz: *f, damping_ratio: *xi, residue: vec![], shape: shape[..p].to_vec(),
+            }).collect() },
+            points: (0..p).map(|i| Point { x_m: 0.03 * i as f64, h_m: h[i] }).collect(),
+            road: Road::Sine { amplitude_m: amp, wavelength_m: wl },
+            speed_mps: speed,
+            ramp_s: ramp,
+            dt_s: 10f64.powf(dt_exp),
+            duration_s: 0.02,
+            contact_scheme: ContactScheme::Located,
+            contact: Contact::Compliant { stiffness_n_m: stiffness_exp[..p].iter().map(|e| 10f64.powf(*e)).collect() },
+            base_dir: None,
+        };
+        let compliant = scene.clone();
+        scene.contact = Contact::Rigid;
+        let located = scene.clone();
+        scene.contact_scheme = ContactScheme::Paper;
+        for (what, s) in [("compliant", &compliant), ("rigid, located", &located), ("rigid, paper", &scene)] {
+            // a typed error (too few modes to hold the points on the road
+            // rigidly) ends a rigid run; the springs' compliance leaves none
+            let range = force_range(s);
+            prop_assert!(range.is_ok() || what != "compliant", "{what}: {range:?}");
+            if let Ok((lowest, largest)) = range {
+                prop_assert!(lowest.is_finite(), "{what}: non-finite force");
+                prop_assert!(
+                    lowest >= -1e-9 * largest,
+                    "{what}: step-mean force {lowest:.6e} N, largest {largest:.6e} N"
+                );
             }
         }
     }

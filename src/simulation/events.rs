@@ -1,6 +1,8 @@
 //! Events inside the step (method §4, "where we go beyond the paper"): the
 //! `Located` scheme's step, inelastic multi-point impacts, and the Hermite
-//! location of landings.
+//! location of landings. Compliant contact (`compliant.rs`) takes the same
+//! step: its landings and releases are located alike, a landing adds the
+//! point to the springs in compression with no impulse.
 
 use super::{GA, GB, Simulation, Table};
 use crate::error::SolverError;
@@ -12,6 +14,14 @@ impl Simulation {
     /// whole step (`free`, road at the step end; the free end values in
     /// `uh`, `vh`, or swapped into `ue`, `ve` when no point was on the road)
     /// is this loop's first prediction, which is then not repeated.
+    ///
+    /// With tread springs (compliant contact) the step is the same but for
+    /// what an event does: a landing adds the point to the active set (a
+    /// massless spring takes no impulse; its force starts from zero), a
+    /// free point left compressed at the step start joins it there, the
+    /// Gauss-point solves are the compliant ones, and a cascade of events
+    /// ends with the compliant step-end rule. Breakpoints of a measured
+    /// road do not split its steps (no impulse at a kink of the road).
     pub(super) fn located_step(
         &mut self,
         t_start: f64,
@@ -21,19 +31,26 @@ impl Simulation {
         let mut t = t_start;
         let mut remaining = dt;
         let (mut events, mut solves) = (0u32, 0u32);
+        let compliant = !self.tread_k_n_m.is_empty();
         // the active set carries over: points in contact at the step start
         let p = self.p;
         let (contact, u, r) = (&self.contact[..p], &self.u[..p], &self.r[..p]);
         self.active.clear();
-        // a point left below the road by the last step lands now
+        // a point left below the road by the last step lands now (a spring
+        // left compressed is in contact from now)
         let mut deepest: Option<(usize, f64)> = None;
         for i in 0..p {
             if contact[i] {
                 self.active.push(i);
             } else {
                 let g = u[i] - r[i];
-                if g < -self.pen_tol_m && deepest.is_none_or(|(_, d)| g < d) {
-                    deepest = Some((i, g));
+                if g < -self.pen_tol_m {
+                    if compliant {
+                        self.active.push(i);
+                        events += 1;
+                    } else if deepest.is_none_or(|(_, d)| g < d) {
+                        deepest = Some((i, g));
+                    }
                 }
             }
         }
@@ -55,22 +72,31 @@ impl Simulation {
         let mut sel;
         while remaining > 1e-12 * dt {
             if events > self.max_events {
-                // Zeno-like cascade: finish the step with the paper's rule.
+                // Zeno-like cascade: finish the step with the paper's rule
+                // (or the compliant step-end rule).
                 self.prepare_sub(remaining);
-                solves += self.paper_substep(t, remaining, Table::Sub)?;
+                solves += if compliant {
+                    self.compliant_substep(t, remaining, Table::Sub)?
+                } else {
+                    self.paper_substep(t, remaining, Table::Sub)?
+                };
                 break;
             }
             // An active point on a breakpoint where the road turns upward
             // is hit by it: an inelastic impulse (a downward turn releases
             // it in the trial below).
-            if let Some(i) = self.kinked_up(t)? {
+            if !compliant && let Some(i) = self.kinked_up(t)? {
                 solves += self.impact(t, i)?;
                 events += 1;
             }
             // The sub-step ends at the step end or where an active point meets
             // a kink of the road (a measured profile's breakpoint: the road
             // velocity jumps there, which no smooth force can follow).
-            let span = self.kink_limit(t, remaining);
+            let span = if compliant {
+                remaining
+            } else {
+                self.kink_limit(t, remaining)
+            };
             if span == dt {
                 sel = Table::Full;
             } else {
@@ -85,7 +111,7 @@ impl Simulation {
                 predicted = false;
                 self.predict(t, span, sel)?;
             }
-            self.solve_active(t + span, sel)?;
+            self.solve_contact(t + span, sel)?;
             solves += !self.active.is_empty() as u32;
             // releases: the linear force ends negative (release where it crosses
             // zero) or is negative on average from the start (release now)
@@ -94,7 +120,17 @@ impl Simulation {
                 let (q1, q2) = (self.q1[j], self.q2[j]);
                 let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
                 if qe < 0.0 || qs + qe < 0.0 {
-                    let th = if qs > 0.0 { span * qs / (qs - qe) } else { 0.0 };
+                    // (a tread spring the sub-step does not resolve: released
+                    // only if it pulls on average, and at once)
+                    let unresolved = compliant && self.spring_unresolved(j, span);
+                    if unresolved && qs + qe >= 0.0 {
+                        continue;
+                    }
+                    let th = if qs > 0.0 && !unresolved {
+                        span * qs / (qs - qe)
+                    } else {
+                        0.0
+                    };
                     let better = match release {
                         None => true,
                         Some((_, t2, e2)) => th < t2 || (th == t2 && qe < e2),
@@ -119,6 +155,11 @@ impl Simulation {
             let (ue, ve, re, rde) = (&self.ue[..p], &self.ve[..p], &self.re[..p], &self.rde[..p]);
             let released = &self.released[..p];
             for i in 0..p {
+                // (a compressed spring is not on the road: its gap is far
+                // from the cheap rejection, so active points are skipped first)
+                if compliant && self.active.contains(&i) {
+                    continue;
+                }
                 let (g0, d0) = (u[i] - r[i], v[i] - rd[i]);
                 let (g1, d1) = (ue[i] - re[i], ve[i] - rde[i]);
                 // a point released in this step lands again only after it rose
@@ -185,7 +226,7 @@ impl Simulation {
                 self.predict(t, th, sel)?;
                 let mut restricted = th_imp > th_rel;
                 if !restricted {
-                    self.solve_active(t + th, sel)?;
+                    self.solve_contact(t + th, sel)?;
                     solves += !self.active.is_empty() as u32;
                     // a re-solve that would pull somewhere keeps the trial's forces
                     restricted = self.active.iter().any(|&j| {
@@ -206,13 +247,30 @@ impl Simulation {
             events += 1;
             if th_imp <= th_rel {
                 let (i, _) = impact.unwrap_or((0, 0.0));
-                solves += self.impact(t, i)?;
+                if !compliant {
+                    solves += self.impact(t, i)?;
+                } else if !self.active.contains(&i) {
+                    // a spring lands with zero force: no impulse
+                    self.active.push(i);
+                }
             } else if let Some((k, _, _)) = release {
                 let j = self.active.remove(k);
                 self.released[j] = true;
             }
         }
         Ok((events, solves))
+    }
+
+    /// The Gauss-point solve of `active` over `sel` for the contact law:
+    /// rigid ([`Simulation::solve_active`]) or tread springs
+    /// ([`Simulation::solve_compliant`]).
+    #[inline]
+    fn solve_contact(&mut self, t_end: f64, sel: Table) -> Result<(), SolverError> {
+        if self.tread_k_n_m.is_empty() {
+            self.solve_active(t_end, sel)
+        } else {
+            self.solve_compliant(t_end, sel)
+        }
     }
 
     /// At a breakpoint of a measured road under an active point: the road

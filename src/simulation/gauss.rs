@@ -257,7 +257,8 @@ impl Simulation {
     }
 
     /// The `|S| x |S|` blocks of the sub-step influence of the active points
-    /// (only what the solve needs: `O(|S|² states)`), interleaved: entry
+    /// (only what the solve needs: `O(|S|² states)`), with the residual and
+    /// tread compliances where there are any, interleaved: entry
     /// `(a, b)` of the blocks `gx1`, `gx2`, `gv1`, `gv2` at `4 (a |S| + b)`
     /// and the next three (one 4-wide update per state and pair; each entry
     /// sums the same products in the same order as four separate blocks).
@@ -298,6 +299,18 @@ impl Simulation {
                     g[k + 2] += -rate * c;
                     g[k + 3] += rate * c;
                 }
+            }
+        }
+        // tread springs: their compliance `1 / k` on the diagonal, in the
+        // end value and the slope (`compliant.rs`)
+        if !self.tread_k_n_m.is_empty() {
+            let rate = SQRT3 / self.sub.tau_s;
+            for (a, &i) in self.active.iter().enumerate() {
+                let (kt, k) = (self.tread_k_n_m[i], 4 * (a * n + a));
+                g[k] += -GB / kt;
+                g[k + 1] += GA / kt;
+                g[k + 2] += -rate / kt;
+                g[k + 3] += rate / kt;
             }
         }
     }

@@ -58,7 +58,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
             .response
             .accessible_name("contact scheme")
             .on_hover_text(SCHEME_HELP)
-            .on_disabled_hover_text("compliant contact has its own scheme (tread springs, no events): this applies to rigid contact only");
+            .on_disabled_hover_text("compliant contact has its own scheme (tread springs, landings and releases always located): this applies to rigid contact only");
         });
         if scheme != scene.contact_scheme {
             let mut s = scene.clone();
