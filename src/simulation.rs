@@ -543,10 +543,20 @@ impl Simulation {
         let (events, solves) = match self.scene.contact_scheme {
             // tread springs: a step with a landing or a release goes to the
             // event loop, which locates them as for rigid contact
-            _ if compliant => match self.compliant_steady_step(t0)? {
-                Some(solves) => (0, solves),
-                None => self.located_step(t0, false)?,
-            },
+            _ if compliant => {
+                let taken = if self.options.steady_path {
+                    self.compliant_steady_step(t0)?
+                } else {
+                    None
+                };
+                match taken {
+                    Some(solves) => {
+                        self.stats.steady_steps += 1;
+                        (0, solves)
+                    }
+                    None => self.located_step(t0, false)?,
+                }
+            }
             ContactScheme::Paper => {
                 let s = self.paper_substep(t0, self.dt_s, Table::Full)?;
                 (0, s)

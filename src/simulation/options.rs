@@ -38,8 +38,9 @@ pub struct SolverOptions {
     /// `rank_reduction`. See [`SolverOptions::rank_tolerance_for`].
     pub rank_tolerance: Option<f64>,
     /// Take a step that keeps the same points on the road and locates no
-    /// event without the event loop's bookkeeping (`Located` scheme, rigid
-    /// contact; see `simulation/steady.rs`). Bit-identical results.
+    /// event without the event loop's bookkeeping (`Located` scheme with
+    /// rigid contact, see `simulation/steady.rs`; compliant contact, see
+    /// `simulation/compliant.rs`). Bit-identical results.
     pub steady_path: bool,
 }
 
