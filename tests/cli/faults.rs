@@ -3,22 +3,14 @@
 //! budget is refused before anything runs, and a failed or interrupted save
 //! leaves the old file intact with no temporary left behind.
 
+use crate::support::{bin, temp_dir};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use tirecontact::output::csv::{estimated_bytes, human_bytes};
 use tirecontact::output::{write_atomic, write_atomic_with};
 use tirecontact::{Scene, Simulation, SolverError};
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tirecontact"))
-}
 
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("tc-faults-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
@@ -78,7 +70,8 @@ fn singular_contact_system_is_a_typed_error_with_time_and_points() {
     assert!(sim.step().is_err());
     assert!(sim.displacement_m().iter().all(|u| u.is_finite()));
 
-    let dir = tmpdir("singular");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let p = dir.join("singular.ron");
     std::fs::write(&p, ONE_MODE_THREE_POINTS).unwrap();
     // `check` validates (the scene is well-formed); `run` meets the fault
@@ -104,7 +97,6 @@ fn singular_contact_system_is_a_typed_error_with_time_and_points() {
         err.contains("singular contact system at t = 1.000000e-4 s for points [0, 1, 2]"),
         "{err}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A measured road of ±1e308 (finite, so it passes the file checks) makes
@@ -112,7 +104,8 @@ fn singular_contact_system_is_a_typed_error_with_time_and_points() {
 /// point, and exit code 1 from `run`.
 #[test]
 fn non_finite_values_in_the_solver_are_a_typed_error() {
-    let dir = tmpdir("nonfinite");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let rows: String = (-100..400)
         .map(|i| {
             format!(
@@ -149,14 +142,14 @@ fn non_finite_values_in_the_solver_are_a_typed_error() {
         err.contains("non-finite ") && err.contains(" at t = ") && err.contains(", point "),
         "{err}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A measured road shorter than the run: `RoadOutOfRange` names x, t, the
 /// point, the extent and the ways out.
 #[test]
 fn road_sampled_past_its_end_is_a_typed_error() {
-    let dir = tmpdir("range");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     std::fs::write(dir.join("short.csv"), "x_m,z_m\n-0.1,0\n0.1,0\n").unwrap();
     let text = ONE_MODE_THREE_POINTS
         .replace(
@@ -184,7 +177,6 @@ fn road_sampled_past_its_end_is_a_typed_error() {
         err.contains("point 2) outside its extent [-0.1, 0.1] m") && err.contains("looped: true"),
         "{err}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A generated scene of 1e9 steps × 100 points: `check` accepts it at once
@@ -214,7 +206,8 @@ fn oversized_output_is_refused_up_front() {
     assert!(estimated_bytes(scene.num_steps(), 426, p) <= 20e9);
     assert!(estimated_bytes(scene.num_steps(), 425, p) > 20e9);
 
-    let dir = tmpdir("huge");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let path = dir.join("huge.ron");
     std::fs::write(&path, &text).unwrap();
     let o = bin().arg("check").arg(&path).output().unwrap();
@@ -251,14 +244,14 @@ fn oversized_output_is_refused_up_front() {
         "{}",
         String::from_utf8_lossy(&o.stdout)
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// The budget applies to `-o` only (a run without it streams and keeps no
 /// history) and follows `--max-output-gb`.
 #[test]
 fn output_budget_follows_the_flag_and_only_applies_to_files() {
-    let dir = tmpdir("budget");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let csv = dir.join("out.csv");
     let base = ["run", "presets/single_mode.ron", "--duration", "0.001"];
     // 100 steps of 1 point: (100 + 3) rows × 6 columns × 17 bytes = 10506 bytes
@@ -291,7 +284,6 @@ fn output_budget_follows_the_flag_and_only_applies_to_files() {
         .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(csv.exists());
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 fn names_in(dir: &Path) -> Vec<String> {
@@ -308,7 +300,8 @@ fn names_in(dir: &Path) -> Vec<String> {
 /// temporary beside it; a write that succeeds replaces it whole.
 #[test]
 fn interrupted_atomic_write_keeps_the_old_file() {
-    let dir = tmpdir("atomic");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let path = dir.join("scene.ron");
     let old = b"old contents\n".repeat(100);
     std::fs::write(&path, &old).unwrap();
@@ -330,7 +323,6 @@ fn interrupted_atomic_write_keeps_the_old_file() {
     write_atomic(&path, &new).unwrap();
     assert_eq!(std::fs::read(&path).unwrap(), new);
     assert_eq!(names_in(&dir), ["scene.ron"]);
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// `Scene::save` where the temporary cannot be created (its name, longer
@@ -339,7 +331,8 @@ fn interrupted_atomic_write_keeps_the_old_file() {
 /// contents intact, nothing left behind.
 #[test]
 fn failed_scene_save_keeps_the_old_file() {
-    let dir = tmpdir("save");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let scene = Scene::parse(tirecontact::DEFAULT_PRESET, "default").unwrap();
     // 250 characters: a valid name; its temporary `.NAME.tmp-PID-N` is not
     let long = dir.join(format!("{}.ron", "s".repeat(246)));
@@ -364,5 +357,4 @@ fn failed_scene_save_keeps_the_old_file() {
     scene.save(&ok).unwrap();
     assert_eq!(Scene::load(&ok).unwrap().points, scene.points);
     assert_eq!(names_in(&dir).len(), 3, "{:?}", names_in(&dir));
-    std::fs::remove_dir_all(&dir).ok();
 }

@@ -2,11 +2,9 @@
 //! requested size (read from the PNG header, no image decoder needed), not
 //! blank; bad settings are refused naming the option.
 
+use crate::support::{bin, temp_dir};
 use std::process::Command;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tirecontact"))
-}
 
 /// Width and height from a PNG's IHDR chunk.
 fn png_size(bytes: &[u8]) -> (u32, u32) {
@@ -18,8 +16,8 @@ fn png_size(bytes: &[u8]) -> (u32, u32) {
 
 #[test]
 fn frames_count_size_and_content() {
-    let dir = std::env::temp_dir().join(format!("tc-cli-frames-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let tmp = temp_dir();
+    let dir = tmp.path().join("frames");
     let o = bin()
         .args([
             "run",
@@ -57,11 +55,10 @@ fn frames_count_size_and_content() {
     }
     // a blank 480x270 PNG compresses to well under 2 kB; a drawn frame does not
     assert!(sizes.iter().all(|s| *s > 8000), "{sizes:?}");
-    std::fs::remove_dir_all(&dir).ok();
 
     let o = bin()
         .args(["run", "presets/three_points.ron", "--fps", "0", "--frames"])
-        .arg(std::env::temp_dir().join("tc-never"))
+        .arg(tmp.path().join("never"))
         .output()
         .unwrap();
     assert!(!o.status.success());

@@ -7,6 +7,7 @@
 //! Launches: `PROPTEST_CASES`, else 200 (3.5 s in a debug build with the
 //! GUI feature; most are refused before any work).
 
+use crate::support::temp_dir;
 use proptest::prelude::*;
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -379,13 +380,6 @@ fn temporaries(dir: &Path) -> Vec<PathBuf> {
     found
 }
 
-fn fresh_dir(n: u64) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("tc-robust-cli-{}-{n}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 proptest! {
     #![proptest_config(ProptestConfig {
         cases: cases(),
@@ -401,12 +395,12 @@ proptest! {
         v in 0usize..1000,
         out in 0usize..7,
         preset in 0usize..8,
-        n in any::<u64>(),
     ) {
-        let dir = fresh_dir(n);
-        let l = launch(cmd, opt, v, out, preset, &dir);
+        let scratch = temp_dir();
+        let dir = scratch.path();
+        let l = launch(cmd, opt, v, out, preset, dir);
         let existed: Vec<bool> = l.outputs.iter().map(|p| p.exists()).collect();
-        let o = Command::new(env!("CARGO_BIN_EXE_tirecontact"))
+        let o = bin()
             .args(&l.args)
             .output()
             .unwrap();
@@ -424,8 +418,7 @@ proptest! {
                 prop_assert!(e || !p.is_file(), "a failed launch left {}: {shown}", p.display());
             }
         }
-        let tmp = temporaries(&dir);
+        let tmp = temporaries(dir);
         prop_assert!(tmp.is_empty(), "temporaries left: {tmp:?}: {shown}");
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -2,16 +2,17 @@
 //! impact spikes clipped by default, whole with `--figures-unclipped` (the
 //! figures' contents are checked in `output::paper_figures`' unit test).
 
-use std::process::Command;
+use crate::support::{bin, temp_dir};
 
 #[test]
 fn identify_figures_clip_by_default_and_draw_whole_on_request() {
-    let d = std::env::temp_dir().join(format!("tc-identify-figs-{}", std::process::id()));
+    let tmp = temp_dir();
+    let d = tmp.path();
     let mut fig2 = Vec::new();
     for (sub, extra) in [("clipped", None), ("whole", Some("--figures-unclipped"))] {
         let dir = d.join(sub);
         std::fs::create_dir_all(&dir).unwrap();
-        let o = Command::new(env!("CARGO_BIN_EXE_tirecontact"))
+        let o = bin()
             .args(["identify", "presets/paper.ron", "--figures"])
             .arg(&dir)
             .args(extra)
@@ -27,5 +28,4 @@ fn identify_figures_clip_by_default_and_draw_whole_on_request() {
     }
     // the spikes are cut in one
     assert_ne!(fig2[0], fig2[1]);
-    std::fs::remove_dir_all(&d).ok();
 }

@@ -3,18 +3,11 @@
 //! option, the path and what to do; output folders of `identify --figures`
 //! are created like those of `run --frames` and `bench -o`.
 
+use crate::support::{bin, temp_dir};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tirecontact"))
-}
 
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("tc-cli-out-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// Every file under `dir`, recursively.
 fn files_under(dir: &Path) -> Vec<PathBuf> {
@@ -48,7 +41,8 @@ fn refused(o: &Output, words: &[&str], what: &str) {
 
 #[test]
 fn outputs_in_missing_folders_are_refused_before_any_work() {
-    let d = tmpdir("missing");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let missing = d.join("no_such_folder");
     let m = |f: &str| missing.join(f).display().to_string();
     let folder = missing.display().to_string();
@@ -134,12 +128,12 @@ fn outputs_in_missing_folders_are_refused_before_any_work() {
     }
     assert!(!missing.exists(), "a refused output created its folder");
     assert_eq!(files_under(&d), Vec::<PathBuf>::new(), "files left behind");
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
 fn a_folder_given_for_an_output_file_is_refused() {
-    let d = tmpdir("isdir");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let o = bin()
         .args(["run", "presets/single_mode.ron", "--duration", "0.2", "-o"])
         .arg(&d)
@@ -163,12 +157,12 @@ fn a_folder_given_for_an_output_file_is_refused() {
         &[&format!("--figures {}: is a file", f.display())],
         "identify --figures FILE",
     );
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
 fn identify_figures_creates_its_folder() {
-    let d = tmpdir("figs");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let dir = d.join("new/figures");
     let o = bin()
         .args(["identify", "presets/paper.ron", "--figures"])
@@ -179,12 +173,12 @@ fn identify_figures_creates_its_folder() {
     for f in ["paper_fig1_displacement.png", "paper_fig2_force.png"] {
         assert_eq!(&std::fs::read(dir.join(f)).unwrap()[1..4], b"PNG", "{f}");
     }
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
 fn a_spectrum_of_a_run_without_steady_part_is_refused_before_the_run() {
-    let d = tmpdir("short");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let s = d.join("s.csv");
     // single_mode.ron: ramp_s = 0.05 s; the steady part is empty
     let o = bin()
@@ -207,12 +201,12 @@ fn a_spectrum_of_a_run_without_steady_part_is_refused_before_the_run() {
         "run --spectrum, duration = ramp_s",
     );
     assert!(!s.exists());
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
 fn preset_errors_count_in_english_and_a_missing_road_file_says_where_it_was_looked_for() {
-    let d = tmpdir("preset");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let base = std::fs::read_to_string("presets/single_mode.ron").unwrap();
     let bad = d.join("negdamp.ron");
     std::fs::write(
@@ -250,7 +244,6 @@ fn preset_errors_count_in_english_and_a_missing_road_file_says_where_it_was_look
         ],
         "missing road file",
     );
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
@@ -347,7 +340,8 @@ fn non_numeric_values_say_what_number_was_expected() {
 
 #[test]
 fn bench_outside_the_repository_says_what_it_studies() {
-    let d = tmpdir("bench");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let o = bin()
         .current_dir(&d)
         .args(["bench", "--quick", "-o", "out"])
@@ -365,7 +359,6 @@ fn bench_outside_the_repository_says_what_it_studies() {
         d.join("out/work_precision_paper_ring_tyre_five_points_sine_road.png")
             .exists()
     );
-    std::fs::remove_dir_all(&d).ok();
 }
 
 /// Ctrl-C or `kill` during `run -o` leaves neither the output nor its
@@ -374,7 +367,8 @@ fn bench_outside_the_repository_says_what_it_studies() {
 #[test]
 fn an_interrupted_run_leaves_no_temporary_file() {
     use std::os::unix::process::ExitStatusExt;
-    let d = tmpdir("interrupt");
+    let tmp = temp_dir();
+    let d = tmp.path();
     for sig in ["-INT", "-TERM"] {
         let mut child = bin()
             .args(["run", "presets/single_mode.ron", "--duration", "100", "-o"])
@@ -403,7 +397,6 @@ fn an_interrupted_run_leaves_no_temporary_file() {
         assert!(status.signal().is_some(), "{sig}: {status:?}");
         assert_eq!(files_under(&d), Vec::<PathBuf>::new(), "{sig}: left behind");
     }
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
@@ -440,7 +433,8 @@ fn options_of_an_output_not_asked_for_are_refused() {
 
 #[test]
 fn a_missing_comma_says_where_to_look() {
-    let d = tmpdir("comma");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let p = d.join("comma.ron");
     // the comma after `speed_mps: 20.0` (line 11) is missing: RON points at line 12
     std::fs::write(
@@ -462,5 +456,4 @@ fn a_missing_comma_says_where_to_look() {
         ],
         "missing comma",
     );
-    std::fs::remove_dir_all(&d).ok();
 }

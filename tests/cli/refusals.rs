@@ -1,6 +1,7 @@
 //! Inputs found by the robust_* property tests to panic, hang or give an
 //! unclear error, kept as plain tests (each fixed in its own commit).
 
+use crate::support::{bin, temp_dir};
 use tirecontact::scene::{Point, Scene};
 use tirecontact::{DEFAULT_PRESET, DEFAULT_PRESET_NAME};
 
@@ -57,8 +58,8 @@ fn huge_max_model_order_is_an_error_not_an_overflow() {
 /// column. It is a syntax error at the byte's line and column.
 #[test]
 fn invalid_utf8_in_a_preset_names_line_and_column() {
-    let dir = std::env::temp_dir().join(format!("tc-robust-utf8-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let path = dir.join("latin1.ron");
     let mut bytes = b"Scene(\n    name: \"caf".to_vec();
     bytes.push(0xE9); // Latin-1 e-acute, not UTF-8
@@ -74,25 +75,17 @@ fn invalid_utf8_in_a_preset_names_line_and_column() {
         }
         other => panic!("expected a syntax error with line and column, got: {other}"),
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
-fn bin() -> std::process::Command {
-    std::process::Command::new(env!("CARGO_BIN_EXE_tirecontact"))
-}
 
-fn tmp(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("tc-robust-reg-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// A folder given as the preset gave "Is a directory (os error 21)", a
 /// missing one "No such file or directory (os error 2)": neither said what
 /// was expected.
 #[test]
 fn a_folder_or_missing_file_as_preset_says_a_preset_file_is_expected() {
-    let d = tmp("preset-dir");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let e = Scene::load(&d).unwrap_err().to_string();
     assert!(
         e.contains("is a folder") && e.contains("expected a scene preset"),
@@ -103,14 +96,14 @@ fn a_folder_or_missing_file_as_preset_says_a_preset_file_is_expected() {
         e.contains("none.ron") && e.contains("expected an existing scene preset"),
         "{e}"
     );
-    std::fs::remove_dir_all(&d).ok();
 }
 
 /// `bench -o FILE` (an existing file as the output folder) gave "File
 /// exists (os error 17)", without the option or what was expected.
 #[test]
 fn bench_output_that_is_a_file_names_the_option() {
-    let d = tmp("bench-file");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let f = d.join("a_file");
     std::fs::write(&f, "x").unwrap();
     let o = bin()
@@ -125,7 +118,6 @@ fn bench_output_that_is_a_file_names_the_option() {
         err.contains("-o ") && err.contains("is a file") && err.contains("expected a folder"),
         "{err}"
     );
-    std::fs::remove_dir_all(&d).ok();
 }
 
 /// `run -o DIR/new/` (a path ending in `/`, a folder that does not exist)
@@ -133,7 +125,8 @@ fn bench_output_that_is_a_file_names_the_option() {
 /// error 20)". It is refused before the run, naming the option.
 #[test]
 fn output_path_ending_in_a_slash_is_refused_up_front() {
-    let d = tmp("slash");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let out = format!("{}/", d.join("new").display());
     let o = bin()
         .args([
@@ -153,7 +146,6 @@ fn output_path_ending_in_a_slash_is_refused_up_front() {
         "{err}"
     );
     assert!(!d.join("new").exists());
-    std::fs::remove_dir_all(&d).ok();
 }
 
 fn run_err(args: &[&str]) -> String {
@@ -173,7 +165,8 @@ fn run_option_values_are_named_as_typed() {
     assert!(e.contains("dt_s = -inf"), "{e}");
     let e = run_err(&["presets/single_mode.ron", "--duration", "-1e-300"]);
     assert!(e.contains("duration_s = -1e-300"), "{e}");
-    let d = tmp("frames-opts");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let frames = d.join("frames");
     let f = frames.to_str().unwrap();
     let e = run_err(&[
@@ -212,7 +205,6 @@ fn run_option_values_are_named_as_typed() {
         e.contains("--frame-size") && e.contains("WIDTHxHEIGHT"),
         "{e}"
     );
-    std::fs::remove_dir_all(&d).ok();
 }
 
 /// Hostile numbers were shown with every digit: `duration_s = 1e300` as 301
@@ -307,7 +299,8 @@ fn ring_without_modes_below_nyquist_says_why() {
 /// shown short, and a budget below the smallest output says to raise it.
 #[test]
 fn a_budget_below_one_row_says_to_raise_it() {
-    let d = tmp("budget");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let csv = d.join("b.csv");
     let e = run_err(&[
         "presets/single_mode.ron",
@@ -325,7 +318,6 @@ fn a_budget_below_one_row_says_to_raise_it() {
     );
     assert!(e.len() < 600, "{e}");
     assert!(!csv.exists());
-    std::fs::remove_dir_all(&d).ok();
 }
 
 /// A sweep whose runs end before their ramp does (no steady part to
@@ -334,7 +326,8 @@ fn a_budget_below_one_row_says_to_raise_it() {
 /// run, naming the value and what to do, and writes nothing.
 #[test]
 fn sweep_shorter_than_its_ramp_is_refused_before_any_run() {
-    let dir = tmp("sweep-short");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let csv = dir.join("s.csv");
     let o = bin()
         .args(["sweep", "presets/single_mode.ron", "--param", "speed_mps"])
@@ -359,7 +352,6 @@ fn sweep_shorter_than_its_ramp_is_refused_before_any_run() {
         "{err}"
     );
     assert!(!csv.exists(), "a failed sweep wrote {}", csv.display());
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// `sweep --dt -inf` was clap's "unexpected argument '-i' found"; the

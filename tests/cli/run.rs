@@ -1,21 +1,15 @@
 //! The command line: `run` writes the documented CSV and a one-line summary;
 //! errors exit non-zero with a message naming the problem.
 
+use crate::support::{bin, temp_dir};
 use std::process::Command;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tirecontact"))
-}
 
-fn tmpdir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("tc-cli-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 #[test]
 fn run_writes_csv_and_summary() {
-    let d = tmpdir("run");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let out = d.join("out.csv");
     let o = bin()
         .args([
@@ -51,12 +45,12 @@ fn run_writes_csv_and_summary() {
         .collect();
     assert_eq!(rows.len(), 21);
     assert!((rows[20][0] - 0.002).abs() < 1e-12);
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
 fn bad_preset_exits_nonzero_with_location() {
-    let d = tmpdir("bad");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let p = d.join("bad.ron");
     std::fs::write(&p, "Scene(\n  name: \"x\",\n  tyre: Modal(modes: [)\n)").unwrap();
     for cmd in ["check", "run"] {
@@ -68,7 +62,6 @@ fn bad_preset_exits_nonzero_with_location() {
     let o = bin().args(["check", "no/such/file.ron"]).output().unwrap();
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("no/such/file.ron"));
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
@@ -97,7 +90,8 @@ fn check_accepts_shipped_presets() {
 
 #[test]
 fn run_spectrum_and_sweep_write_their_tables() {
-    let d = tmpdir("spectrum");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let spec = d.join("spectrum.csv");
     let o = bin()
         .args([
@@ -161,14 +155,14 @@ fn run_spectrum_and_sweep_write_their_tables() {
         err.contains("speed_kmh") && err.contains("speed_mps"),
         "{err}"
     );
-    std::fs::remove_dir_all(&d).ok();
 }
 
 /// A run that fails half-way (a measured road shorter than the run) exits
 /// non-zero and leaves an existing output file as it was, with no temporary.
 #[test]
 fn a_failed_run_keeps_the_old_output_file() {
-    let d = tmpdir("failed-run");
+    let tmp = temp_dir();
+    let d = tmp.path();
     std::fs::write(
         d.join("road.csv"),
         "x_m,z_m\n0.0,0.0\n0.05,0.001\n0.1,0.0\n",
@@ -222,7 +216,6 @@ fn a_failed_run_keeps_the_old_output_file() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(std::fs::read_to_string(&out).unwrap().starts_with("t_s,"));
-    std::fs::remove_dir_all(d).ok();
 }
 
 /// A time step too coarse for the scene leaves penetration at step ends:
@@ -262,7 +255,8 @@ fn run_warns_when_the_time_step_leaves_penetration() {
 /// move, by about 1e-6 of the displacements, against the default rank cut.
 #[test]
 fn exact_rank_flag_keeps_every_residue_term() {
-    let d = tmpdir("rank");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let displacements = |extra: &[&str], name: &str| -> Vec<f64> {
         let out = d.join(name);
         let o = bin()
@@ -306,12 +300,12 @@ fn exact_rank_flag_keeps_every_residue_term() {
         diff > 0.0 && diff < 1e-5 * peak,
         "moved {diff:e} m of {peak:e} m"
     );
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
 fn bench_quick_writes_its_tables_and_diagram() {
-    let d = tmpdir("bench");
+    let tmp = temp_dir();
+    let d = tmp.path();
     let o = bin()
         .args(["bench", "--quick", "presets/single_mode.ron", "-o"])
         .arg(&d)
@@ -340,12 +334,12 @@ fn bench_quick_writes_its_tables_and_diagram() {
     // one diagram per scene, named after it
     let png = std::fs::read(d.join("work_precision_single_mode_on_a_sine_road.png")).unwrap();
     assert_eq!(&png[..4], b"\x89PNG");
-    std::fs::remove_dir_all(&d).ok();
 }
 
 #[test]
 fn run_plots_clipped_by_default_and_whole_on_request() {
-    let d = tmpdir("plot");
+    let tmp = temp_dir();
+    let d = tmp.path();
     for (name, extra) in [
         ("clipped.png", None),
         ("whole.png", Some("--plot-unclipped")),
@@ -366,5 +360,4 @@ fn run_plots_clipped_by_default_and_whole_on_request() {
         std::fs::read(d.join("clipped.png")).unwrap(),
         std::fs::read(d.join("whole.png")).unwrap()
     );
-    std::fs::remove_dir_all(&d).ok();
 }

@@ -3,11 +3,9 @@
 //! names the same quantities (`q{i}_N` → `q{i}_max_N`, `q{i}_rms_N`;
 //! `contact{i}` → `contact{i}_fraction`), not `max_force_n_q{i}`.
 
+use crate::support::{bin, temp_dir};
 use std::process::Command;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tirecontact"))
-}
 
 fn header(path: &std::path::Path) -> Vec<String> {
     let text = std::fs::read_to_string(path).unwrap();
@@ -17,8 +15,8 @@ fn header(path: &std::path::Path) -> Vec<String> {
 
 #[test]
 fn a_padded_param_is_trimmed_and_columns_follow_the_run_csv() {
-    let dir = std::env::temp_dir().join(format!("tc-sweep-names-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let (table, run_csv) = (dir.join("sweep.csv"), dir.join("run.csv"));
     let o = bin()
         .args([
@@ -81,5 +79,4 @@ fn a_padded_param_is_trimmed_and_columns_follow_the_run_csv() {
     }
     assert_eq!(want.len(), 9, "three points, three statistics: {run:?}");
     assert_eq!(&sweep[1..10], &want[..], "sweep {sweep:?}\nrun {run:?}");
-    std::fs::remove_dir_all(&dir).ok();
 }

@@ -1,6 +1,7 @@
 //! The visualiser driven headless with egui_kittest (no GPU): time control,
 //! editing, refused values, broken presets, unsaved changes, export.
 
+use crate::support::temp_dir;
 use crate::harness::{harness, type_into};
 use egui_kittest::kittest::Queryable;
 use std::path::PathBuf;
@@ -9,11 +10,6 @@ use tirecontact::gui::command::Discarding;
 use tirecontact::gui::time_control::Speed;
 use tirecontact::gui::{App, Command};
 
-fn tmp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("tc-gui-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// The single-mode preset (a modal tyre whose modes the tests edit).
 fn single_mode_app() -> App {
@@ -157,7 +153,8 @@ fn a_bad_value_is_refused_at_the_field_with_the_reason() {
 
 #[test]
 fn a_broken_preset_shows_its_error_and_keeps_the_scene() {
-    let dir = tmp_dir("broken");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let syntax = dir.join("syntax.ron");
     std::fs::write(
         &syntax,
@@ -182,12 +179,12 @@ fn a_broken_preset_shows_its_error_and_keeps_the_scene() {
     h.run();
     assert_eq!(h.state().scene(), &before);
     assert!(h.state().message().unwrap().text.contains("dt_s = -1e-5"));
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]
 fn unsaved_changes_are_confirmed_before_they_are_dropped() {
-    let dir = tmp_dir("dirty");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let mut h = harness(single_mode_app());
     h.run();
     type_into(&mut h, "tyre.modes[0].freq_hz", "150");
@@ -226,12 +223,12 @@ fn unsaved_changes_are_confirmed_before_they_are_dropped() {
     h.run();
     assert!(h.state().pending_confirmation().is_none());
     assert_eq!(freq0(h.state()), 130.0);
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]
 fn export_writes_a_png_of_the_requested_size_that_is_not_blank() {
-    let dir = tmp_dir("png");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let mut h = harness(App::with_default_preset());
     h.run();
     h.state_mut().apply(Command::Step(3000));
@@ -267,12 +264,12 @@ fn export_writes_a_png_of_the_requested_size_that_is_not_blank() {
         height: 10,
     });
     assert!(h.state().message().unwrap().error);
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]
 fn csv_export_matches_the_run_including_live_edits() {
-    let dir = tmp_dir("csv");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let mut h = harness(single_mode_app());
     h.run();
     h.state_mut().apply(Command::Step(200));
@@ -294,13 +291,13 @@ fn csv_export_matches_the_run_including_live_edits() {
         (last_u - u_now).abs() <= 1e-9 * u_now.abs().max(1e-12),
         "{last_u} vs {u_now}"
     );
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]
 fn a_solver_error_pauses_the_run_and_shows_the_message() {
     // a measured road 0.1 m long, not looped, at 10 m/s: out of range after 10 ms
-    let dir = tmp_dir("solver-error");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let road = dir.join("road.csv");
     std::fs::write(&road, "x_m,z_m\n0.0,0.0\n0.05,0.001\n0.1,0.0\n").unwrap();
     let text = format!(
@@ -333,7 +330,6 @@ fn a_solver_error_pauses_the_run_and_shows_the_message() {
     let t = h.state().simulation().time_s();
     assert!((0.009..0.0101).contains(&t), "{t}");
     assert!(h.query_by_label_contains("Solver error").is_some());
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]

@@ -6,6 +6,7 @@
 //! without moving the fields beside it, and the file prompts work without a
 //! desktop file dialog.
 
+use crate::support::temp_dir;
 use crate::harness::{harness_sized, texts, type_into};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -308,15 +309,11 @@ fn a_refusal_stays_up_when_the_run_completes() {
     assert!(m.text.contains("run complete"), "{}", m.text);
 }
 
-fn tmp_dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("tc-first-use-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 #[test]
 fn save_as_open_and_csv_work_by_typing_the_path() {
-    let dir = tmp_dir("files");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let file = dir.join("edited.ron");
     let mut h = harness_sized(app_on("single_mode.ron"), SMALL);
     h.run();
@@ -418,7 +415,8 @@ fn save_as_open_and_csv_work_by_typing_the_path() {
 #[test]
 fn the_pinned_run_exports_to_a_typed_path() {
     use tirecontact::gui::research::ResearchCommand;
-    let dir = tmp_dir("pinned");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let csv = dir.join("reference.csv");
     let mut h = harness_sized(app_on("single_mode.ron"), SMALL);
     h.run();
@@ -456,7 +454,8 @@ fn file_names_offered_read_like_the_scene_name() {
 
 #[test]
 fn the_png_export_takes_a_typed_path() {
-    let dir = tmp_dir("png");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let png = dir.join("plots.png");
     let mut h = harness_sized(App::with_default_preset(), SMALL);
     h.run();
@@ -490,7 +489,8 @@ fn image_size(p: &std::path::Path) -> (u32, u32) {
 /// user asked for (it used to save and drop the request).
 #[test]
 fn save_first_saves_then_does_the_held_action() {
-    let dir = tmp_dir("save-first");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let file = dir.join("kept.ron");
     // copies to open (a save must never reach the shipped presets)
     let (three, one) = (dir.join("three.ron"), dir.join("one.ron"));
@@ -553,5 +553,4 @@ fn save_first_saves_then_does_the_held_action() {
     h.run();
     assert_eq!(Scene::load(&file).unwrap().duration_s, 0.125);
     assert_eq!(h.state().scene().num_points(), 1, "the preset did not open");
-    std::fs::remove_dir_all(dir).ok();
 }

@@ -3,6 +3,7 @@
 //! (with units), and a save adds it to the description, so that the saved
 //! file's text does not describe a scene it no longer is.
 
+use crate::support::temp_dir;
 use crate::harness::{harness, texts, type_into};
 use tirecontact::Scene;
 use tirecontact::gui::{App, Command};
@@ -37,8 +38,8 @@ fn an_edit_is_said_under_the_description_and_saved_into_it() {
     h.state_mut().apply(Command::SetClassroom(false));
     h.run();
 
-    let dir = std::env::temp_dir().join(format!("tc_edited_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let path = dir.join("faster.ron");
     let before = h.state().scene().description.clone();
     h.state_mut().apply(Command::SavePath(path.clone()));
@@ -61,7 +62,6 @@ fn an_edit_is_said_under_the_description_and_saved_into_it() {
     h.state_mut().apply(Command::SavePath(path.clone()));
     h.run();
     assert_eq!(Scene::load(&path).unwrap().description, saved.description);
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]
@@ -115,15 +115,14 @@ fn name_and_description_are_edited_in_place_without_a_restart() {
         "Three points at twice the speed."
     );
     assert!(!shows(&h, "Changed since opened or saved"));
-    let dir = std::env::temp_dir().join(format!("tc_about_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let path = dir.join("fast.ron");
     h.state_mut().apply(Command::SavePath(path.clone()));
     h.run();
     let saved = Scene::load(&path).unwrap();
     assert_eq!(saved.name, "Fast three points");
     assert_eq!(saved.description, "Three points at twice the speed.");
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]

@@ -3,6 +3,7 @@
 //! an empty run is not exported as an empty figure, and a syntax error's
 //! caret points at its column.
 
+use crate::support::temp_dir;
 use crate::harness::{harness_sized, type_into};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -39,21 +40,15 @@ fn banner(h: &Harness<'_, App>) -> String {
         .unwrap_or_default()
 }
 
-/// A temporary file holding `text` (removed on drop).
-struct TempFile(std::path::PathBuf);
+/// A file `name` holding `text`, in a temporary folder of its own (both
+/// removed on drop).
+struct TempFile(std::path::PathBuf, #[allow(dead_code)] tempfile::TempDir);
 impl TempFile {
     fn new(name: &str, text: &str) -> Self {
-        let p = std::env::temp_dir().join(format!(
-            "tirecontact_newcomer_{}_{name}",
-            std::process::id()
-        ));
+        let dir = temp_dir();
+        let p = dir.path().join(name);
         std::fs::write(&p, text).unwrap();
-        TempFile(p)
-    }
-}
-impl Drop for TempFile {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
+        TempFile(p, dir)
     }
 }
 
@@ -226,8 +221,8 @@ fn the_transport_controls_and_the_road_type_explain_themselves() {
 /// time axis ran from -1 to 1 s; it now says what to do, in the dialog.
 #[test]
 fn an_empty_run_is_not_exported_as_an_empty_figure() {
-    let dir = std::env::temp_dir().join(format!("tirecontact_newcomer_png_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let path = dir.join("plots.png");
     let mut h = harness_sized(App::with_default_preset(), SMALL);
     h.run();
@@ -257,7 +252,6 @@ fn an_empty_run_is_not_exported_as_an_empty_figure() {
     });
     h.run();
     assert!(path.exists(), "{:?}", h.state().message());
-    std::fs::remove_dir_all(dir).ok();
 }
 
 /// The caret under a quoted source line points at the error's column: the

@@ -4,6 +4,7 @@
 //! current run keeps stepping, then applies with the modes of the new
 //! positions (as `Scene::modes` identifies them).
 
+use crate::support::temp_dir;
 use crate::harness::harness_sized;
 use std::path::Path;
 use tirecontact::Scene;
@@ -143,8 +144,8 @@ fn a_ring_preset_opened_is_identified_off_the_ui_thread() {
     let text = std::fs::read_to_string("presets/paper.ron").unwrap();
     let changed = text.replace("damping_ratio: 0.05,", "damping_ratio: 0.061,");
     assert_ne!(changed, text);
-    let dir = std::env::temp_dir().join(format!("tc-identify-open-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let path = dir.join("damped.ron");
     std::fs::write(&path, &changed).unwrap();
     let want = Scene::load(&path).unwrap();
@@ -171,5 +172,4 @@ fn a_ring_preset_opened_is_identified_off_the_ui_thread() {
         .map(|m| m.text.clone())
         .unwrap_or_default();
     assert!(m.starts_with("opened"), "{m}");
-    std::fs::remove_dir_all(&dir).ok();
 }

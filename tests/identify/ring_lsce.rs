@@ -1,6 +1,7 @@
 //! Ring tyre model (SPEC §5), LSCE identification (SPEC §6) and the paper's
 //! preset (SPEC §7), checked against closed forms and independent routes.
 
+use crate::support::{bin, temp_dir};
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 use tirecontact::identify::{identify_ring, ring_modes_cached};
@@ -638,11 +639,10 @@ fn identification_failure_is_an_error_naming_the_scene() {
 
 #[test]
 fn identify_cli_writes_a_runnable_modal_scene_diagram_and_responses() {
-    let dir = std::env::temp_dir().join(format!("tc-identify-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let (modal, png, csv) = (dir.join("m.ron"), dir.join("s.png"), dir.join("g.csv"));
-    let bin = env!("CARGO_BIN_EXE_tirecontact");
-    let o = std::process::Command::new(bin)
+    let o = bin()
         .args(["identify", "presets/paper.ron", "-o"])
         .arg(&modal)
         .arg("--diagram")
@@ -661,7 +661,7 @@ fn identify_cli_writes_a_runnable_modal_scene_diagram_and_responses() {
     assert_eq!(header.len(), 1 + 25);
     assert_eq!((header[0], header[1], header[25]), ("t_s", "g0_0", "g4_4"));
     assert_eq!(text.lines().count(), 1 + 1000);
-    let o = std::process::Command::new(bin)
+    let o = bin()
         .arg("run")
         .arg(&modal)
         .args(["--duration", "0.005"])
@@ -669,13 +669,12 @@ fn identify_cli_writes_a_runnable_modal_scene_diagram_and_responses() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // a modal scene has nothing to identify
-    let o = std::process::Command::new(bin)
+    let o = bin()
         .arg("identify")
         .arg(&modal)
         .output()
         .unwrap();
     assert!(!o.status.success());
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A ring whose modes all lie above the identification band: the band holds

@@ -10,6 +10,7 @@
 //! The valid base scene runs cleanly through both (first test), so every
 //! failure below is caused by the case's edit alone.
 
+use crate::support::{bin, temp_dir};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use tirecontact::error::FieldError;
@@ -634,16 +635,7 @@ fn cases() -> Vec<Case> {
     v
 }
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tirecontact"))
-}
 
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("tc-bad-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// Writes the case into `dir` and returns the preset path.
 fn write_case(dir: &Path, text: &str, files: &[(&str, Vec<u8>)]) -> PathBuf {
@@ -770,7 +762,8 @@ fn check_case(case: &Case, dir: &Path) -> Vec<String> {
 
 #[test]
 fn base_scene_is_valid_through_library_and_cli() {
-    let dir = tmpdir("base");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     for (text, files) in [
         (BASE.to_string(), vec![]),
         (
@@ -798,7 +791,6 @@ fn base_scene_is_valid_through_library_and_cli() {
         .unwrap()
         .validate()
         .unwrap();
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
@@ -807,12 +799,11 @@ fn every_bad_preset_names_the_problem() {
     assert!(cases.len() >= 30, "{} cases", cases.len());
     let mut failures = Vec::new();
     for (k, case) in cases.iter().enumerate() {
-        let dir = tmpdir(&format!("case{k}"));
-        let bad = check_case(case, &dir);
+        let dir = temp_dir();
+        let bad = check_case(case, dir.path());
         if !bad.is_empty() {
             failures.push(format!("[{k}] {}:\n  {}", case.name, bad.join("\n  ")));
         }
-        std::fs::remove_dir_all(&dir).ok();
     }
     assert!(
         failures.is_empty(),
@@ -827,7 +818,8 @@ fn every_bad_preset_names_the_problem() {
 /// a sparse file of `MAX_PROFILE_BYTES + 1` bytes costs no disk and no time.
 #[test]
 fn huge_road_file_is_refused_before_reading() {
-    let dir = tmpdir("huge");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let path = write_case(&dir, &edit(&[(SINE, MEASURED)]), &[]);
     let f = std::fs::File::create(dir.join("road.csv")).unwrap();
     f.set_len(MAX_PROFILE_BYTES + 1).unwrap();
@@ -844,13 +836,13 @@ fn huge_road_file_is_refused_before_reading() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(err.contains(&want) && !err.contains("panicked"), "{err}");
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// The row limit, on a small file through the same reader with lower limits.
 #[test]
 fn road_row_limit_is_enforced() {
-    let dir = tmpdir("rows");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let p = dir.join("r.csv");
     let rows: String = (0..11).map(|i| format!("{i},0\n")).collect();
     std::fs::write(&p, format!("x_m,z_m\n{rows}")).unwrap();
@@ -874,7 +866,6 @@ fn road_row_limit_is_enforced() {
         e.contains(&format!("{len} bytes: expected at most {}", len - 1)),
         "{e}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Command-line overrides are validated like the preset, before anything
@@ -883,7 +874,8 @@ fn road_row_limit_is_enforced() {
 /// replaces a wall-clock bound, which a loaded machine could break).
 #[test]
 fn bad_command_line_values_are_refused() {
-    let dir = tmpdir("cli-values");
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let preset = dir.join("missing_road.ron");
     std::fs::write(
         &preset,
@@ -954,7 +946,6 @@ fn bad_command_line_values_are_refused() {
             "{args:?}: {err}"
         );
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Endless inputs (a device, a file growing while read) are read only up to

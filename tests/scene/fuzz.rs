@@ -5,6 +5,7 @@
 //! (A longer fuzzing campaign runs the same properties with more cases:
 //! `PROPTEST_CASES=100000 cargo test --release --test scene fuzz::`.)
 
+use crate::support::temp_dir;
 use proptest::prelude::*;
 use tirecontact::road::{Road, read_profile_csv};
 use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
@@ -74,8 +75,8 @@ proptest! {
         looped in any::<bool>(),
         speed in 0.0f64..100.0,
     ) {
-        let dir = std::env::temp_dir().join(format!("tc-fuzz-road-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let tmp = temp_dir();
+        let dir = tmp.path();
         let path = dir.join("r.csv");
         std::fs::write(&path, &bytes).unwrap();
         match read_profile_csv(&path) {

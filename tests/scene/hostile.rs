@@ -8,6 +8,7 @@
 //! structure) and 400 (byte corruptions): 6-9 s in a debug build, most of
 //! it identifying the mutated ring tyres (0.3 s each, cached per ring).
 
+use crate::support::temp_dir;
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use tirecontact::road::{Harmonic, Road};
@@ -529,29 +530,6 @@ fn check(scene: &Scene, names: &[String], what: &str) -> Result<(), TestCaseErro
     Ok(())
 }
 
-/// A scratch folder of this process, removed when dropped (the cases ran
-/// in a folder left behind in /tmp after every test run).
-struct TempDir(PathBuf);
-
-impl std::ops::Deref for TempDir {
-    type Target = PathBuf;
-    fn deref(&self) -> &PathBuf {
-        &self.0
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn temp_dir(tag: &str) -> TempDir {
-    let d = std::env::temp_dir().join(format!("tc-robust-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    TempDir(d)
-}
-
 proptest! {
     #![proptest_config(ProptestConfig { cases: cases(300), ..ProptestConfig::default() })]
 
@@ -575,10 +553,10 @@ proptest! {
     /// Lists of the wrong length, duplicated points, broken road files.
     #[test]
     fn hostile_structure(which in 0usize..13, kind in 0usize..12, k in 0usize..1000) {
-        let dir = temp_dir("structure");
+        let dir = temp_dir();
         let mut all = parsed_presets();
         let mut scene = all.swap_remove(which % all.len());
-        let names = mutate_structure(&mut scene, kind, k, &dir);
+        let names = mutate_structure(&mut scene, kind, k, dir.path());
         let what = format!("preset {which}, structure mutation {kind}/{k}");
         check(&scene, &names, &what)?;
     }
@@ -620,8 +598,8 @@ proptest! {
         let all = presets();
         let (name, text) = &all[which % all.len()];
         let bytes = corrupt(text.as_bytes(), &ops);
-        let dir = temp_dir("bytes");
-        let file = dir.join("corrupt.ron");
+        let dir = temp_dir();
+        let file = dir.path().join("corrupt.ron");
         std::fs::write(&file, &bytes).unwrap();
         let loaded = Scene::load(&file);
         let lossy = String::from_utf8_lossy(&bytes);

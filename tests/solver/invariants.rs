@@ -13,6 +13,7 @@
 //! - `T_ramp = 0` accepted exactly where no point starts below the road,
 //!   refused otherwise naming `ramp_s`, for sine, harmonic and measured roads.
 
+use crate::support::temp_dir;
 // Numerical loops index several arrays in parallel; ranges read clearer here.
 use crate::dense::gauss_solve;
 
@@ -413,8 +414,8 @@ fn zero_ramp_only_without_initial_penetration() {
     assert!(landed, "the road rises into the point: it must land");
 
     // a measured road is checked when the simulation reads it
-    let dir = std::env::temp_dir().join(format!("tirecontact_review4_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = temp_dir();
+    let dir = tmp.path();
     std::fs::write(dir.join("bump.csv"), "x_m,z_m\n-1,0\n0,0.001\n1,0\n").unwrap();
     let measured = Road::Measured {
         file: "bump.csv".into(),
@@ -437,7 +438,6 @@ fn zero_ramp_only_without_initial_penetration() {
         Simulation::new(&sc).is_ok(),
         "touching the measured road is allowed"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Deterministic uniform numbers in [0, 1) (splitmix64).

@@ -4,6 +4,7 @@
 //! event loop alone (the control), on scenes that land, release, ramp,
 //! change speed and road live, and reset.
 
+use crate::support::temp_dir;
 use tirecontact::bench::scenes::many_points;
 use tirecontact::road::Road;
 use tirecontact::scene::ContactScheme;
@@ -161,8 +162,8 @@ fn other_schemes_and_measured_roads_never_take_it_wrongly() {
     };
     assert_eq!(compare(&compliant, Live::Nothing).steady_steps, 0);
     // a measured road: breakpoints under points in contact end sub-steps
-    let dir = std::env::temp_dir().join(format!("tc-steady-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let rows: String = (0..=400)
         .map(|k| {
             let x = -1.0 + 0.01 * k as f64;

@@ -4,6 +4,7 @@
 //! tyre can follow. No NaN, no overflow, bounded energy, complementarity held:
 //! every case prints its worst violation.
 
+use crate::support::temp_dir;
 use std::f64::consts::TAU;
 use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
 use tirecontact::road::Road;
@@ -132,6 +133,7 @@ fn three(road: Road, h: f64, speed: f64) -> Scene {
 
 #[test]
 fn grazing_short_and_falling_roads() {
+    let tmp = temp_dir();
     let cases = [
         // crests just touch the undeformed tyre: grazing contact
         (
@@ -160,8 +162,7 @@ fn grazing_short_and_falling_roads() {
         // a road dropping away faster than the tyre can follow: a 5 mm step
         // down over 1 mm, met at 20 m/s (the road falls at 100 m/s)
         ("falling road", {
-            let dir = std::env::temp_dir().join(format!("tc-stress-{}", std::process::id()));
-            std::fs::create_dir_all(&dir).unwrap();
+            let dir = tmp.path();
             std::fs::write(
                 dir.join("cliff.csv"),
                 "x_m,z_m\n-1,0\n0.2,0\n0.201,-0.005\n10,-0.005\n",
@@ -175,7 +176,7 @@ fn grazing_short_and_falling_roads() {
                 -0.0015,
                 20.0,
             );
-            s.base_dir = Some(dir);
+            s.base_dir = Some(dir.to_path_buf());
             s
         }),
     ];
@@ -200,8 +201,8 @@ fn grazing_short_and_falling_roads() {
 fn measured_road_kinks_converge() {
     // a 5 mm step down over 1 mm: the road velocity jumps at two breakpoints;
     // located sub-steps end at breakpoints, so the error keeps second order
-    let dir = std::env::temp_dir().join(format!("tc-kink-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = temp_dir();
+    let dir = tmp.path();
     std::fs::write(
         dir.join("cliff.csv"),
         "x_m,z_m\n-1,0\n0.2,0\n0.201,-0.005\n10,-0.005\n",

@@ -1,6 +1,7 @@
 //! Classroom mode, mode bars with mute/solo, random road and compliant
 //! contact controls, and animation export, driven headless with egui_kittest.
 
+use crate::support::temp_dir;
 mod clip;
 mod events;
 mod fit;
@@ -277,8 +278,8 @@ fn the_compliant_switch_edits_the_contact_and_restarts() {
 
 #[test]
 fn animation_export_writes_n_frames_of_the_right_size() {
-    let dir = std::env::temp_dir().join(format!("tc-gui-frames-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let tmp = temp_dir();
+    let dir = tmp.path().join("frames");
     let mut h = harness(app_on("three_points.ron"), [1280.0, 720.0]);
     h.run();
     let settings = FrameSettings {
@@ -324,7 +325,6 @@ fn animation_export_writes_n_frames_of_the_right_size() {
     });
     let m = h.state().message().unwrap();
     assert!(m.error && m.text.contains("fps = -1"), "{m:?}");
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]

@@ -2,6 +2,7 @@
 //! egui_kittest: spectra, sweep, A/B compare, fidelity. Presets are loaded
 //! explicitly from presets/.
 
+use crate::support::temp_dir;
 mod fidelity_fit;
 mod legends;
 mod spectra_thread;
@@ -147,8 +148,8 @@ fn a_sweep_from_the_gui_equals_the_library_sweep() {
     assert_eq!(r.points, lib);
     assert!(h.query_by_label_contains("8 runs of speed_mps").is_some());
     // exports: the CSV is the CLI's table
-    let dir = std::env::temp_dir().join(format!("tc-gui-research-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = temp_dir();
+    let dir = tmp.path();
     let csv = dir.join("sweep.csv");
     h.state_mut()
         .apply(Command::Research(ResearchCommand::ExportSweepCsv(
@@ -163,7 +164,6 @@ fn a_sweep_from_the_gui_equals_the_library_sweep() {
             png.clone(),
         )));
     assert!(std::fs::metadata(&png).unwrap().len() > 10_000);
-    std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]

@@ -3,6 +3,7 @@
 //! the force without impacts) with the clipped samples as dots; off, the
 //! impulse / dt spikes set its range. Both contact schemes.
 
+use crate::support::temp_dir;
 use crate::harness::{advance, harness};
 use std::path::Path;
 use tirecontact::Scene;
@@ -86,10 +87,8 @@ fn check(preset: &str, scheme: ContactScheme, steps: u64) {
     );
 
     // the app's export writes the figure (clip on by default)
-    let path = std::env::temp_dir().join(format!(
-        "tirecontact_export_clip_{preset}_{}.png",
-        std::process::id()
-    ));
+    let tmp = temp_dir();
+    let path = tmp.path().join(format!("export_clip_{preset}.png"));
     h.state_mut().apply(Command::ExportPng {
         path: path.clone(),
         width: 800,
@@ -97,7 +96,6 @@ fn check(preset: &str, scheme: ContactScheme, steps: u64) {
     });
     let bytes = std::fs::read(&path).expect("PNG written");
     assert_eq!(&bytes[1..4], b"PNG");
-    let _ = std::fs::remove_file(&path);
 }
 
 #[test]
