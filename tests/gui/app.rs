@@ -6,8 +6,8 @@ use crate::harness::{harness, type_into};
 use egui_kittest::kittest::Queryable;
 use std::path::PathBuf;
 use tirecontact::Scene;
-use tirecontact::gui::command::Discarding;
-use tirecontact::gui::time_control::Speed;
+use tirecontact::gui::Discarding;
+use tirecontact::gui::Speed;
 use tirecontact::gui::{App, Command};
 
 

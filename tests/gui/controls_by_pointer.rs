@@ -11,8 +11,8 @@ use crate::harness::{harness_sized, texts, type_into};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
-use tirecontact::gui::time_control::Speed;
+use tirecontact::gui::View;
+use tirecontact::gui::Speed;
 use tirecontact::gui::{App, Command};
 
 const SMALL: [f32; 2] = [1280.0, 720.0];
@@ -414,7 +414,7 @@ fn save_as_open_and_csv_work_by_typing_the_path() {
 
 #[test]
 fn the_pinned_run_exports_to_a_typed_path() {
-    use tirecontact::gui::research::ResearchCommand;
+    use tirecontact::gui::ResearchCommand;
     let tmp = temp_dir();
     let dir = tmp.path();
     let csv = dir.join("reference.csv");

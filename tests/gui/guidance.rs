@@ -8,7 +8,7 @@ use crate::harness::{harness_sized, type_into};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use tirecontact::gui::app::PAUSED_NOTE;
-use tirecontact::gui::time_control::Speed;
+use tirecontact::gui::Speed;
 use tirecontact::gui::{App, Command};
 
 const SMALL: [f32; 2] = [1280.0, 720.0];
@@ -131,7 +131,7 @@ fn all_texts(h: &Harness<'_, App>) -> Vec<String> {
 
 #[test]
 fn the_help_menu_lists_the_keys_and_they_do_what_it_says() {
-    use tirecontact::gui::command::View;
+    use tirecontact::gui::View;
     use tirecontact::gui::panels::help_menu::{FIRST_STEPS, SHORTCUTS};
     let mut h = harness_sized(App::with_default_preset(), SMALL);
     h.run();
@@ -314,7 +314,7 @@ fn the_caret_of_a_syntax_error_points_at_its_column() {
 /// "ramping in" was cut after "ramping", its value on the next row.
 #[test]
 fn the_scene_header_keeps_its_labels_whole_at_1280_by_720() {
-    use tirecontact::gui::command::View;
+    use tirecontact::gui::View;
     let mut h = harness_sized(App::with_default_preset(), SMALL);
     h.state_mut().apply(Command::ShowView(View::Scene));
     h.run();

@@ -13,7 +13,7 @@ use egui_plot::PlotMemory;
 use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::classroom::CLASSROOM_PLOT_ID;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::views::compare_view::{
     CURRENT, DISPLACEMENT_PLOT_ID, FORCE_PLOT_ID, REFERENCE,
 };

@@ -106,7 +106,7 @@ fn the_ring_modes_say_where_their_residues_are() {
 #[test]
 fn the_green_view_lists_light_damping_as_such() {
     use tirecontact::gui::Command;
-    use tirecontact::gui::command::View;
+    use tirecontact::gui::View;
     let modes = vec![Mode {
         freq_hz: 100.0,
         damping_ratio: 0.0004,

@@ -9,7 +9,7 @@ use egui_plot::PlotMemory;
 use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::classroom::CLASSROOM_PLOT_ID;
-use tirecontact::gui::history::Quantity;
+use tirecontact::gui::Quantity;
 use tirecontact::gui::views::time_plots::clip_level;
 use tirecontact::gui::{App, Command};
 

@@ -7,7 +7,7 @@ use crate::harness::{advance, texts};
 use egui::Rect;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::{App, Command};
 
 fn check(preset: &str, size: [f32; 2], steps: u64) {

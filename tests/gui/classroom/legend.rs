@@ -12,7 +12,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::views::scene_view::{
     CONTACT_NAME, DISPLACED_NAME, FLIGHT_NAME, ROAD_NAME, SCENE_PLOT_ID, UNDEFORMED_NAME,
     displaced_tyre_color,

@@ -75,7 +75,7 @@ fn classroom_toggle_scales_fonts_and_switches_to_the_presenter_layout() {
     // slow motion
     assert_eq!(
         h.state().time_control().speed(),
-        tirecontact::gui::time_control::Speed::Factor(0.05)
+        tirecontact::gui::Speed::Factor(0.05)
     );
 
     h.get_by_label("Classroom").click();

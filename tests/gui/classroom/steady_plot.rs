@@ -7,7 +7,7 @@
 use crate::harness::texts;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::views::scene_view::{FORCE_NAME, Y_TITLE, Y_TITLE_SHORT};
 use tirecontact::gui::{App, Command};
 

@@ -6,7 +6,7 @@ use crate::harness::{advance, texts};
 use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::classroom::CLASSROOM_PLOT_ID;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::{App, Command};
 
 #[test]

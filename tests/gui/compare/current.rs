@@ -9,7 +9,7 @@ use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::views::compare_view::{
     CURRENT, DIFFERENCE, DISPLACEMENT_DIFF_PLOT_ID, FORCE_DIFF_PLOT_ID, FORCE_PLOT_ID, REFERENCE,
 };

@@ -11,7 +11,7 @@ use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::views::compare_view::{
     DISPLACEMENT_DIFF_PLOT_ID, DISPLACEMENT_PLOT_ID, FORCE_DIFF_PLOT_ID, FORCE_PLOT_ID,
 };

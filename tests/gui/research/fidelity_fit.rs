@@ -8,7 +8,7 @@
 use egui_kittest::Harness;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::{App, Command};
 use tirecontact::scene::Tyre;
 

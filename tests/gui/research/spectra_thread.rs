@@ -6,7 +6,7 @@ use crate::harness::{advance, harness};
 use egui_kittest::kittest::Queryable;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::research::spectra::history_spectra;
 use tirecontact::gui::{App, Command};
 use tirecontact::spectrum::Window;

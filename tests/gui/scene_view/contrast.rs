@@ -10,7 +10,7 @@ use egui::{Color32, Theme, Visuals};
 use egui_kittest::Harness;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::views::scene_view::displaced_tyre_color;
 use tirecontact::gui::{App, Command};
 

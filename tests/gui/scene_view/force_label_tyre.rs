@@ -10,7 +10,7 @@ use crate::harness::{advance, curves, ink, shapes, texts};
 use egui::{Color32, Rect};
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::{App, Command};
 
 /// Force labels drawn over the undeformed tyre's line or markers in this

@@ -5,7 +5,7 @@
 use crate::harness::{advance, harness};
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::views::force_labels::force_text;
 use tirecontact::gui::{App, Command};
 

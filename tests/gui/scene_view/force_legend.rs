@@ -9,7 +9,7 @@ use egui::{Color32, Rect};
 use egui_kittest::kittest::Queryable;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::command::View;
+use tirecontact::gui::View;
 use tirecontact::gui::views::force_labels::force_text;
 use tirecontact::gui::views::scene_view::{FORCE_COLOR, FORCE_NAME};
 use tirecontact::gui::{App, Command};

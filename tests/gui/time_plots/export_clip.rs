@@ -8,7 +8,7 @@ use crate::harness::{advance, harness};
 use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::export::{CLIPPED_IMPACTS, time_figure};
-use tirecontact::gui::history::{History, Quantity};
+use tirecontact::gui::{History, Quantity};
 use tirecontact::gui::views::time_plots::clip_level;
 use tirecontact::gui::{App, Command};
 use tirecontact::output::figures::{Figure, Series};

@@ -8,7 +8,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
 use std::path::Path;
-use tirecontact::gui::history::{History, Quantity};
+use tirecontact::gui::{History, Quantity};
 use tirecontact::gui::views::time_plots::{FORCE_PLOT_ID, clip_level};
 use tirecontact::gui::{App, Command};
 use tirecontact::scene::ContactScheme;
