@@ -3,7 +3,6 @@
 //! blank; bad settings are refused naming the option.
 
 use crate::support::{bin, temp_dir};
-use std::process::Command;
 
 
 /// Width and height from a PNG's IHDR chunk.

@@ -2,7 +2,6 @@
 //! errors exit non-zero with a message naming the problem.
 
 use crate::support::{bin, temp_dir};
-use std::process::Command;
 
 
 

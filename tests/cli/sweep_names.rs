@@ -4,7 +4,6 @@
 //! `contact{i}` → `contact{i}_fraction`), not `max_force_n_q{i}`.
 
 use crate::support::{bin, temp_dir};
-use std::process::Command;
 
 
 fn header(path: &std::path::Path) -> Vec<String> {

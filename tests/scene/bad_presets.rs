@@ -12,7 +12,6 @@
 
 use crate::support::{bin, temp_dir};
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use tirecontact::error::FieldError;
 use tirecontact::road::{MAX_PROFILE_BYTES, read_profile_csv_limited};
 use tirecontact::{Scene, SceneError, Simulation};
