@@ -11,7 +11,6 @@ use crate::support::temp_dir;
 use proptest::prelude::*;
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 fn cases() -> u32 {
     std::env::var("PROPTEST_CASES")
