@@ -7,17 +7,11 @@
 //! Launches: `PROPTEST_CASES`, else 200 (3.5 s in a debug build with the
 //! GUI feature; most are refused before any work).
 
-use crate::support::temp_dir;
+use crate::support::{bin, proptest_cases, temp_dir};
 use proptest::prelude::*;
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
-fn cases() -> u32 {
-    std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(200)
-}
 
 /// Number-like strings a user (or a script with an unset variable) may type.
 const NUMBERS: [&str; 30] = [
@@ -381,7 +375,7 @@ fn temporaries(dir: &Path) -> Vec<PathBuf> {
 
 proptest! {
     #![proptest_config(ProptestConfig {
-        cases: cases(),
+        cases: proptest_cases(200),
         // a failing launch shrinks over a few more launches only
         max_shrink_iters: 64,
         ..ProptestConfig::default()

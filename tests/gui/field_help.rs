@@ -4,6 +4,7 @@
 //! and the accepted range it states is the one the scene's validation
 //! applies.
 
+use crate::support::preset;
 use egui::accesskit::Role;
 use egui_kittest::kittest::{NodeT, Queryable};
 use std::path::Path;
@@ -13,17 +14,9 @@ use tirecontact::gui::field_help::help;
 use tirecontact::road::{Harmonic, Road};
 use tirecontact::scene::Contact;
 
-fn preset(file: &str) -> Scene {
-    Scene::load(Path::new(&format!(
-        "{}/presets/{file}",
-        env!("CARGO_MANIFEST_DIR")
-    )))
-    .unwrap()
-}
-
 /// Three points (mode shapes) on a two-harmonic road with compliant contact.
 fn harmonics_compliant() -> Scene {
-    let mut s = preset("three_points.ron");
+    let mut s = preset("three_points");
     s.road = Road::Harmonics {
         components: vec![
             Harmonic {
@@ -89,9 +82,9 @@ fn tooltips(scene: Scene) -> Vec<(String, Option<String>)> {
 fn every_numeric_field_says_what_it_is_its_unit_and_its_range_on_hover() {
     let mut seen = Vec::new();
     for scene in [
-        preset("single_mode.ron"),
+        preset("single_mode"),
         harmonics_compliant(),
-        preset("random_road.ron"),
+        preset("random_road"),
     ] {
         for (name, tip) in tooltips(scene) {
             let tip = tip.unwrap_or_else(|| panic!("{name}: no tooltip with its range"));
@@ -205,7 +198,7 @@ fn the_stated_ranges_are_the_validated_ones() {
         let h = help(name).unwrap();
         // a scene whose other fields leave room at the bounds: no point
         // below the road (ramp 0 allowed), a long duration (dt up to 0.1 s)
-        let mut base = preset("single_mode.ron");
+        let mut base = preset("single_mode");
         base.points[0].h_m = 0.1;
         base.duration_s = 10.0;
         base.validate().unwrap();

@@ -42,23 +42,23 @@ pub fn advance(h: &mut Harness<'_, App>, n: u64) {
     assert_eq!(h.state().simulation().steps(), target);
 }
 
-/// WCAG relative luminance of an sRGB colour.
-pub fn luminance(c: egui::Color32) -> f64 {
-    let lin = |v: u8| {
-        let v = f64::from(v) / 255.0;
-        if v <= 0.03928 {
-            v / 12.92
-        } else {
-            ((v + 0.055) / 1.055).powf(2.4)
+/// Frames until no fidelity figures are being computed (bounded).
+pub fn wait_fidelity(h: &mut Harness<'_, App>) {
+    for _ in 0..100_000 {
+        if h.state().research().fidelity_computing().is_none() {
+            h.run_steps(1);
+            return;
         }
-    };
-    0.2126 * lin(c.r()) + 0.7152 * lin(c.g()) + 0.0722 * lin(c.b())
+        std::thread::sleep(std::time::Duration::from_millis(1));
+        h.run_steps(1);
+    }
+    panic!("the fidelity figures never arrived");
 }
 
-/// WCAG contrast ratio of two colours (1 to 21).
+/// WCAG contrast ratio of two egui colours (1 to 21).
 pub fn contrast(a: egui::Color32, b: egui::Color32) -> f64 {
-    let (la, lb) = (luminance(a), luminance(b));
-    (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+    let rgb = |c: egui::Color32| [c.r(), c.g(), c.b()];
+    crate::support::colour::contrast(rgb(a), rgb(b))
 }
 
 /// Every leaf shape of a painted shape (nested `Shape::Vec`s opened).

@@ -12,6 +12,7 @@
 //! per unit impulse `Σ A_k` grows with the number of orders), so the
 //! preset's forces are those of its 0-500 Hz model, not of the ring.
 
+use crate::support::rel_rms;
 use tirecontact::modal::ModalModel;
 use tirecontact::scene::Tyre;
 use tirecontact::{DEFAULT_PRESET, DEFAULT_PRESET_NAME, Scene, Simulation};
@@ -27,17 +28,6 @@ fn history(sc: &Scene) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
     (u, q)
 }
 
-/// Relative RMS difference over rows `from..`.
-fn rel_rms(a: &[Vec<f64>], b: &[Vec<f64>], from: usize) -> f64 {
-    let (mut num, mut den) = (0.0, 0.0);
-    for (x, y) in a[from..].iter().zip(&b[from..]) {
-        for (p, q) in x.iter().zip(y) {
-            num += (p - q) * (p - q);
-            den += q * q;
-        }
-    }
-    (num / den).sqrt()
-}
 
 #[test]
 fn identified_preset_against_the_rings_own_modes() {
@@ -68,7 +58,7 @@ fn identified_preset_against_the_rings_own_modes() {
         let n = kept.len();
         truth.tyre = Tyre::Modal { modes: kept };
         let (u_own, q_own) = history(&truth);
-        let (eu, eq) = (rel_rms(&u_id, &u_own, from), rel_rms(&q_id, &q_own, from));
+        let (eu, eq) = (rel_rms(&u_id[from..], &u_own[from..]), rel_rms(&q_id[from..], &q_own[from..]));
         println!(
             "ring modes below {band} Hz ({n}): after the ramp, relative RMS difference of the identified run: displacement {eu:.3e}, force {eq:.3e}"
         );
@@ -145,8 +135,9 @@ fn preset_errors_against_a_fine_reference_match_spec_figures() {
     let mut errs = Vec::new();
     for m in [1.0, 2.0, 4.0] {
         let (u, q) = run(dt0 / m, ContactScheme::Located, 1e-3);
-        let eu = rel_rms(&u, &reference_1ms.0, from_u);
-        let eq = rel_rms(&q, &reference_1ms.1, (base.ramp_s / 1e-3) as usize);
+        let eu = rel_rms(&u[from_u..], &reference_1ms.0[from_u..]);
+        let from_q = (base.ramp_s / 1e-3) as usize;
+        let eq = rel_rms(&q[from_q..], &reference_1ms.1[from_q..]);
         println!(
             "Located dt {:.2e}: displacement {eu:.2e}, force (1 ms) {eq:.2e}",
             dt0 / m
@@ -154,8 +145,9 @@ fn preset_errors_against_a_fine_reference_match_spec_figures() {
         errs.push((eu, eq));
     }
     let (u, q) = run(dt0, ContactScheme::Paper, 1e-2);
-    let pu = rel_rms(&u, &reference_10ms.0, from_u);
-    let pq = rel_rms(&q, &reference_10ms.1, (base.ramp_s / 1e-2) as usize);
+    let pu = rel_rms(&u[from_u..], &reference_10ms.0[from_u..]);
+    let from_q = (base.ramp_s / 1e-2) as usize;
+    let pq = rel_rms(&q[from_q..], &reference_10ms.1[from_q..]);
     println!("Paper dt 1e-5: displacement {pu:.2e}, force (10 ms) {pq:.2e}");
     let order = (errs[0].0 / errs[1].0).log2();
     println!("Located displacement order between 1e-5 and 5e-6: {order:.2}");

@@ -239,7 +239,7 @@ fn synthetic(modes: &[Mode], p: usize, fs: f64, dur: f64) -> Responses {
     }
 }
 
-fn shape_mode(f: f64, xi: f64, shape: &[f64]) -> Mode {
+fn rank_one_mode(f: f64, xi: f64, shape: &[f64]) -> Mode {
     Mode {
         freq_hz: f,
         damping_ratio: xi,
@@ -265,18 +265,18 @@ fn residue_error(a: &Mode, b: &Mode) -> f64 {
 }
 
 fn known_modes() -> Vec<Mode> {
-    let mut rank2 = shape_mode(140.0, 0.03, &[0.5, -0.2, 0.3]);
-    let extra = shape_mode(140.0, 0.03, &[0.1, 0.4, -0.3]);
+    let mut rank2 = rank_one_mode(140.0, 0.03, &[0.5, -0.2, 0.3]);
+    let extra = rank_one_mode(140.0, 0.03, &[0.1, 0.4, -0.3]);
     for i in 0..3 {
         for j in 0..3 {
             rank2.residue[i][j] += extra.residue[i][j];
         }
     }
     vec![
-        shape_mode(30.0, 0.05, &[0.3, 0.3, 0.25]),
-        shape_mode(75.0, 0.02, &[0.4, 0.0, -0.4]),
+        rank_one_mode(30.0, 0.05, &[0.3, 0.3, 0.25]),
+        rank_one_mode(75.0, 0.02, &[0.4, 0.0, -0.4]),
         rank2,
-        shape_mode(260.0, 0.08, &[0.2, -0.35, 0.2]),
+        rank_one_mode(260.0, 0.08, &[0.2, -0.35, 0.2]),
     ]
 }
 
@@ -352,8 +352,8 @@ fn lsce_recovers_a_known_model_exactly() {
 #[test]
 fn lsce_separates_closely_spaced_modes() {
     let truth = vec![
-        shape_mode(100.0, 0.01, &[0.5, 0.2]),
-        shape_mode(101.0, 0.01, &[0.3, -0.6]),
+        rank_one_mode(100.0, 0.01, &[0.5, 0.2]),
+        rank_one_mode(101.0, 0.01, &[0.3, -0.6]),
     ];
     let r = synthetic(&truth, 2, 1000.0, 1.0);
     let opts = IdentifyOptions {
@@ -379,17 +379,17 @@ fn lsce_recovers_all_equal_residues_and_repeated_frequencies_on_odd_points() {
         let alt: Vec<f64> = (0..p)
             .map(|i| if i % 2 == 0 { 0.2 } else { -0.15 })
             .collect();
-        let mut repeated = shape_mode(150.0, 0.03, &ramp);
-        let second = shape_mode(150.0, 0.03, &alt);
+        let mut repeated = rank_one_mode(150.0, 0.03, &ramp);
+        let second = rank_one_mode(150.0, 0.03, &alt);
         for i in 0..p {
             for j in 0..p {
                 repeated.residue[i][j] += second.residue[i][j];
             }
         }
         let truth = vec![
-            shape_mode(40.0, 0.05, &vec![0.3727; p]),
+            rank_one_mode(40.0, 0.05, &vec![0.3727; p]),
             repeated,
-            shape_mode(230.0, 0.04, &vec![0.25; p]),
+            rank_one_mode(230.0, 0.04, &vec![0.25; p]),
         ];
         let r = synthetic(&truth, p, 2000.0, 0.5);
         let opts = IdentifyOptions {

@@ -5,7 +5,7 @@
 //! (A longer fuzzing campaign runs the same properties with more cases:
 //! `PROPTEST_CASES=100000 cargo test --release --test scene fuzz::`.)
 
-use crate::support::temp_dir;
+use crate::support::{proptest_cases, temp_dir};
 use proptest::prelude::*;
 use tirecontact::road::{Road, read_profile_csv};
 use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
@@ -20,14 +20,6 @@ fn presets() -> Vec<String> {
     v
 }
 
-/// 400 cases per property, or `PROPTEST_CASES` (an explicit `cases` in the
-/// config would otherwise override the variable).
-fn cases() -> u32 {
-    std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(400)
-}
 
 /// Builds the simulation and runs at most 50 steps; errors are fine, panics are not.
 fn short_run(scene: &Scene) {
@@ -43,7 +35,7 @@ fn short_run(scene: &Scene) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(), ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: proptest_cases(400), ..ProptestConfig::default() })]
 
     #[test]
     fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..400)) {

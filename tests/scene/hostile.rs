@@ -8,7 +8,7 @@
 //! structure) and 400 (byte corruptions): 6-9 s in a debug build, most of
 //! it identifying the mutated ring tyres (0.3 s each, cached per ring).
 
-use crate::support::temp_dir;
+use crate::support::{proptest_cases, temp_dir};
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
 use tirecontact::road::{Harmonic, Road};
@@ -44,12 +44,6 @@ fn parsed_presets() -> Vec<Scene> {
         .collect()
 }
 
-fn cases(default: u32) -> u32 {
-    std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default)
-}
 
 /// Values a hand-written or generated preset may hold (all writable in RON).
 /// The last ones are the edges of the accepted ranges (dt_s <= 0.1 s,
@@ -531,7 +525,7 @@ fn check(scene: &Scene, names: &[String], what: &str) -> Result<(), TestCaseErro
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(300), ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: proptest_cases(300), ..ProptestConfig::default() })]
 
     /// One or two numeric fields set to hostile values.
     #[test]
@@ -588,7 +582,7 @@ fn corrupt(text: &[u8], ops: &[(u8, usize, u8)]) -> Vec<u8> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(400), ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: proptest_cases(400), ..ProptestConfig::default() })]
 
     /// Corrupted preset text: parsing returns a scene, or an error with a line
     /// and column inside the text (syntax) or naming fields (values); loading

@@ -8,7 +8,9 @@
 //! the solver. Run with `--nocapture` to see the tables.
 
 // Numerical loops index several arrays in parallel; ranges read clearer here.
-use crate::dense::gauss_solve;
+use crate::dense::solve;
+use crate::support::models::{SplitMix, modal_scene, sine};
+use crate::support::rel_rms;
 
 use std::f64::consts::TAU;
 use std::time::Instant;
@@ -91,19 +93,6 @@ fn my_harmonic(omega: f64, xi: f64, big: f64, t: f64) -> f64 {
     steady + y0 * (hd + 2.0 * xi * omega * h) + yd0 * h
 }
 
-/// Seeded splitmix64 in [-1, 1).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-    }
-}
-
 fn order(e_coarse: f64, e_fine: f64, ratio: f64) -> f64 {
     (e_coarse / e_fine).ln() / ratio.ln()
 }
@@ -112,36 +101,6 @@ fn order(e_coarse: f64, e_fine: f64, ratio: f64) -> f64 {
 // Scenes and runs
 // ---------------------------------------------------------------------------
 
-#[allow(clippy::too_many_arguments)]
-fn scene(
-    modes: Vec<Mode>,
-    points: Vec<Point>,
-    amplitude_m: f64,
-    wavelength_m: f64,
-    speed_mps: f64,
-    ramp_s: f64,
-    dt_s: f64,
-    duration_s: f64,
-    scheme: ContactScheme,
-) -> Scene {
-    Scene {
-        name: "reference test".into(),
-        description: String::new(),
-        tyre: Tyre::Modal { modes },
-        points,
-        road: Road::Sine {
-            amplitude_m,
-            wavelength_m,
-        },
-        speed_mps,
-        ramp_s,
-        dt_s,
-        duration_s,
-        contact_scheme: scheme,
-        contact: Default::default(),
-        base_dir: None,
-    }
-}
 
 /// Time history of a run: per step end `u` (point-major rows), step-mean
 /// force, contact flags, located events.
@@ -477,22 +436,12 @@ fn one_point_sine_road_against_event_driven_reference() {
     for scheme in [ContactScheme::Located, ContactScheme::Paper] {
         let mut errs = Vec::new();
         for &dt in &dts {
-            let sc = scene(
-                vec![Mode {
+            let sc = modal_scene(vec![Mode {
                     freq_hz: f,
                     damping_ratio: xi,
                     residue: vec![vec![res]],
                     shape: vec![],
-                }],
-                vec![Point { x_m: 0.0, h_m: h }],
-                a,
-                lambda,
-                speed,
-                ramp,
-                dt,
-                duration,
-                scheme,
-            );
+                }], vec![Point { x_m: 0.0, h_m: h }], sine(a, lambda), speed, ramp, dt, duration, scheme);
             let r = run(&sc);
             errs.push(one_point_errors(&r, &refsol, window, &mut ref_u));
         }
@@ -573,9 +522,7 @@ fn three_point_modes() -> Vec<Mode> {
 }
 
 fn three_point_scene(dt: f64, duration: f64, scheme: ContactScheme) -> Scene {
-    scene(
-        three_point_modes(),
-        vec![
+    modal_scene(three_point_modes(), vec![
             Point {
                 x_m: -0.05,
                 h_m: -0.001,
@@ -588,15 +535,7 @@ fn three_point_scene(dt: f64, duration: f64, scheme: ContactScheme) -> Scene {
                 x_m: 0.05,
                 h_m: -0.001,
             },
-        ],
-        0.002,
-        0.5,
-        20.0,
-        0.05,
-        dt,
-        duration,
-        scheme,
-    )
+        ], sine(0.002, 0.5), 20.0, 0.05, dt, duration, scheme)
 }
 
 /// Steps where a point in contact leaves the road while another lands.
@@ -635,17 +574,6 @@ fn rms_diff(coarse: &Run, fine: &Run) -> f64 {
 /// RK4 sub-steps per 5 µs of the multi-point reference (h = 0.625 µs).
 const REF_SUB: usize = 8;
 
-/// Relative RMS difference of two displacement histories.
-fn rel_rms(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
-    let (mut num, mut den) = (0.0, 0.0);
-    for (x, y) in a.iter().zip(b) {
-        for (p, q) in x.iter().zip(y) {
-            num += (p - q) * (p - q);
-            den += q * q;
-        }
-    }
-    (num / den).sqrt()
-}
 
 /// Relative RMS displacement error of a run against reference displacements
 /// sampled every `grid` seconds.
@@ -883,7 +811,7 @@ impl MultiReference {
             return q;
         }
         let b = self.free_rel_acc(t, x, xd);
-        let sol = gauss_solve(self.sub(set), set.iter().map(|&i| -b[i]).collect());
+        let sol = solve(self.sub(set), set.iter().map(|&i| -b[i]).collect()).expect("non-singular");
         for (k, &i) in set.iter().enumerate() {
             q[i] = sol[k];
         }
@@ -937,18 +865,12 @@ impl MultiReference {
         }
         let (u, v) = self.uv(x, xd);
         let js = self.sub(set);
-        let du = gauss_solve(
-            js.clone(),
-            set.iter()
+        let du = solve(js.clone(), set.iter()
                 .map(|&i| self.roads[i].eval(t).0 - u[i])
-                .collect(),
-        );
-        let dv = gauss_solve(
-            js,
-            set.iter()
+                .collect()).expect("non-singular");
+        let dv = solve(js, set.iter()
                 .map(|&i| self.roads[i].eval(t).1 - v[i])
-                .collect(),
-        );
+                .collect()).expect("non-singular");
         for k in 0..self.phi.len() {
             for (m, &i) in set.iter().enumerate() {
                 x[k] += self.phi[k][i] * du[m];
@@ -989,7 +911,7 @@ impl MultiReference {
             let z_s = if set.is_empty() {
                 vec![]
             } else {
-                gauss_solve(self.sub(&set), set.iter().map(|&i| -b[i]).collect())
+                solve(self.sub(&set), set.iter().map(|&i| -b[i]).collect()).expect("non-singular")
             };
             let mut z = vec![0.0; self.p];
             for (k, &i) in set.iter().enumerate() {
@@ -1145,7 +1067,7 @@ const WINDOW: usize = 500;
 
 fn static_run(modes: Vec<Mode>, points: Vec<Point>, scheme: ContactScheme) -> StaticOutcome {
     let dt = 2e-5;
-    let sc = scene(modes, points, 0.0, 0.5, 20.0, 0.05, dt, 0.6, scheme);
+    let sc = modal_scene(modes, points, sine(0.0, 0.5), 20.0, 0.05, dt, 0.6, scheme);
     let r = run(&sc);
     let n = r.q.len();
     let p = sc.points.len();
@@ -1250,7 +1172,7 @@ fn static_preload_matches_static_compliance() {
             h_m: hs[i],
         })
         .collect();
-    let expected = gauss_solve(cmat.clone(), hs.iter().map(|h| -h).collect());
+    let expected = solve(cmat.clone(), hs.iter().map(|h| -h).collect()).expect("non-singular");
     for i in 0..3 {
         let r: f64 = (0..3).map(|j| cmat[i][j] * expected[j]).sum::<f64>() + hs[i];
         assert!(r.abs() < 1e-15, "own solve residual {r}");
@@ -1300,8 +1222,8 @@ fn bounded_recursion_stable_alpha_beta_overflows() {
     let (mut u, mut v) = ([0.0], [0.0]);
     // bounded force: a 1 kHz harmonic plus seeded noise, |q| <= 1.5
     let big = TAU * 1000.0;
-    let mut rng = Rng(7);
-    let force = |k: usize, rng: &mut Rng| (big * (k as f64 + 0.5) * dt).sin() + 0.5 * rng.next();
+    let mut rng = SplitMix(7);
+    let force = |k: usize, rng: &mut SplitMix| (big * (k as f64 + 0.5) * dt).sin() + 0.5 * rng.signed();
     let wd = omega * (1.0 - xi * xi).sqrt();
     let bound = 1.5 / (xi * omega * wd); // ∫|h| <= 1/(ξω ω_d)
     let start = Instant::now();
@@ -1310,7 +1232,7 @@ fn bounded_recursion_stable_alpha_beta_overflows() {
     let overflow_t = ab.overflow_time_s();
     let mut ab_bad_at = None;
     let mut ab_err_early = 0.0f64;
-    let mut rng_ab = Rng(7);
+    let mut rng_ab = SplitMix(7);
     for k in 0..steps {
         let q = [force(k, &mut rng)];
         s0.predict_into(&table, &mut s1);
@@ -1415,11 +1337,11 @@ fn fast_convolution_matches_direct_quadrature() {
     let (dt, n) = (5e-5, 300usize);
     let table = StepTable::new(&basis, dt);
     let (g1, g2) = gauss_fractions();
-    let mut rng = Rng(2011);
+    let mut rng = SplitMix(2011);
     // per step, per point: constant value, and Gauss-point values of a linear force
-    let qc: Vec<[f64; 2]> = (0..n).map(|_| [rng.next(), rng.next()]).collect();
+    let qc: Vec<[f64; 2]> = (0..n).map(|_| [rng.signed(), rng.signed()]).collect();
     let ql: Vec<[[f64; 2]; 2]> = (0..n)
-        .map(|_| [[rng.next(), rng.next()], [rng.next(), rng.next()]])
+        .map(|_| [[rng.signed(), rng.signed()], [rng.signed(), rng.signed()]])
         .collect();
     let start = Instant::now();
     let mut worst = [0.0f64; 2];
@@ -1807,17 +1729,7 @@ fn one_point_two_modes_against_event_driven_reference() {
         let e: Vec<f64> = dts
             .iter()
             .map(|&dt| {
-                let sc = scene(
-                    modes.clone(),
-                    vec![Point { x_m: 0.0, h_m: h }],
-                    0.002,
-                    0.5,
-                    20.0,
-                    0.05,
-                    dt,
-                    duration,
-                    scheme,
-                );
+                let sc = modal_scene(modes.clone(), vec![Point { x_m: 0.0, h_m: h }], sine(0.002, 0.5), 20.0, 0.05, dt, duration, scheme);
                 rms_err_vs_ref(&run(&sc), &reference, grid)
             })
             .collect();

@@ -1,27 +1,38 @@
-//! A dense solve for reference computations in the tests (`#[path]`-included).
+//! A dense solve for the reference computations of the solver tests: the
+//! tests' own, independent of the crate's decompositions.
 
-/// Solves `a x = b` (small, dense) by Gaussian elimination with partial
-/// pivoting: the tests' own solver, independent of `contact::DenseSolver`.
-pub fn gauss_solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
+/// Dense solve with row equilibration and partial pivoting; `None` if singular.
+pub fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
     let n = b.len();
-    for k in 0..n {
-        let p = (k..n)
-            .max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))
-            .unwrap();
-        a.swap(k, p);
-        b.swap(k, p);
-        for i in k + 1..n {
-            let f = a[i][k] / a[k][k];
-            for j in k..n {
-                a[i][j] -= f * a[k][j];
+    for i in 0..n {
+        let s = a[i].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if s == 0.0 {
+            return None;
+        }
+        for x in a[i].iter_mut() {
+            *x /= s;
+        }
+        b[i] /= s;
+    }
+    for c in 0..n {
+        let p = (c..n).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
+        if a[p][c] == 0.0 {
+            return None;
+        }
+        a.swap(c, p);
+        b.swap(c, p);
+        for r in c + 1..n {
+            let f = a[r][c] / a[c][c];
+            for k in c..n {
+                a[r][k] -= f * a[c][k];
             }
-            b[i] -= f * b[k];
+            b[r] -= f * b[c];
         }
     }
     let mut x = vec![0.0; n];
-    for i in (0..n).rev() {
-        let s: f64 = (i + 1..n).map(|j| a[i][j] * x[j]).sum();
-        x[i] = (b[i] - s) / a[i][i];
+    for r in (0..n).rev() {
+        let s: f64 = (r + 1..n).map(|k| a[r][k] * x[k]).sum();
+        x[r] = (b[r] - s) / a[r][r];
     }
-    x
+    Some(x)
 }

@@ -15,7 +15,8 @@
 
 use crate::support::temp_dir;
 // Numerical loops index several arrays in parallel; ranges read clearer here.
-use crate::dense::gauss_solve;
+use crate::dense::solve;
+use crate::support::models::{SplitMix, modal_scene, shape_mode};
 
 use std::f64::consts::TAU;
 
@@ -24,41 +25,7 @@ use tirecontact::error::SceneError;
 use tirecontact::road::{Harmonic, Road};
 use tirecontact::scene::{Contact, ContactScheme, Mode, Point, Scene, Tyre};
 
-fn shape_mode(freq_hz: f64, damping_ratio: f64, shape: &[f64]) -> Mode {
-    Mode {
-        freq_hz,
-        damping_ratio,
-        residue: vec![],
-        shape: shape.to_vec(),
-    }
-}
 
-#[allow(clippy::too_many_arguments)]
-fn scene(
-    modes: Vec<Mode>,
-    points: Vec<Point>,
-    road: Road,
-    speed_mps: f64,
-    ramp_s: f64,
-    dt_s: f64,
-    duration_s: f64,
-    scheme: ContactScheme,
-) -> Scene {
-    Scene {
-        name: "review test".into(),
-        description: String::new(),
-        tyre: Tyre::Modal { modes },
-        points,
-        road,
-        speed_mps,
-        ramp_s,
-        dt_s,
-        duration_s,
-        contact_scheme: scheme,
-        contact: Default::default(),
-        base_dir: None,
-    }
-}
 
 fn sine(amplitude_m: f64, wavelength_m: f64) -> Road {
     Road::Sine {
@@ -116,7 +83,7 @@ fn momentum_mismatch(sc: &Scene, modes: &[Mode], window_steps: usize) -> (f64, f
     let phi: Vec<Vec<f64>> = (0..p)
         .map(|i| modes.iter().map(|m| m.shape[i]).collect())
         .collect();
-    let eta = |u: &[f64]| gauss_solve(phi.clone(), u.to_vec());
+    let eta = |u: &[f64]| solve(phi.clone(), u.to_vec()).expect("non-singular");
     let eta_u: Vec<Vec<f64>> = h.u.iter().map(|u| eta(u)).collect();
     let eta_v: Vec<Vec<f64>> = h.v.iter().map(|v| eta(v)).collect();
     let n = h.q.len();
@@ -154,16 +121,7 @@ fn three_point_case(scheme: ContactScheme) -> (Scene, Vec<Mode>) {
         .iter()
         .map(|&x_m| Point { x_m, h_m: -0.0015 })
         .collect();
-    let sc = scene(
-        modes.clone(),
-        points,
-        sine(0.0005, 0.12),
-        12.0,
-        0.03,
-        1e-5,
-        0.15,
-        scheme,
-    );
+    let sc = modal_scene(modes.clone(), points, sine(0.0005, 0.12), 12.0, 0.03, 1e-5, 0.15, scheme);
     (sc, modes)
 }
 
@@ -225,41 +183,23 @@ fn decoupled_points_run_as_separate_one_point_runs() {
         // its force shape) discretisation of the same motion, O(dt^3) apart
         (ContactScheme::Located, 1e-5),
     ] {
-        let both = scene(
-            vec![
+        let both = modal_scene(vec![
                 shape_mode(m0.0, m0.1, &[m0.2, 0.0]),
                 shape_mode(m1.0, m1.1, &[0.0, m1.2]),
-            ],
-            pts.to_vec(),
-            road.clone(),
-            20.0,
-            0.05,
-            1e-5,
-            0.3,
-            scheme,
-        );
+            ], pts.to_vec(), road.clone(), 20.0, 0.05, 1e-5, 0.3, scheme);
         let hb = history(&both);
         for (i, m) in [m0, m1].iter().enumerate() {
-            let alone = scene(
-                vec![shape_mode(m.0, m.1, &[m.2])],
-                vec![Point {
+            let alone = modal_scene(vec![shape_mode(m.0, m.1, &[m.2])], vec![Point {
                     x_m: 0.0,
                     h_m: pts[i].h_m,
-                }],
-                // the same road under the point: shifted by its position
+                }], // the same road under the point: shifted by its position
                 Road::Harmonics {
                     components: vec![Harmonic {
                         amplitude_m: 0.002,
                         wavelength_m: 0.5,
                         phase_rad: TAU * pts[i].x_m / 0.5,
                     }],
-                },
-                20.0,
-                0.05,
-                1e-5,
-                0.3,
-                scheme,
-            );
+                }, 20.0, 0.05, 1e-5, 0.3, scheme);
             let ha = history(&alone);
             let umax = ha.u.iter().map(|u| u[0].abs()).fold(0.0, f64::max);
             let du = (0..ha.u.len())
@@ -361,16 +301,7 @@ fn field_errors(sc: &Scene) -> Vec<String> {
 fn zero_ramp_only_without_initial_penetration() {
     let (a, lambda) = (0.002, 0.5);
     let one = |x_m: f64, h_m: f64, road: Road| {
-        scene(
-            vec![shape_mode(100.0, 0.05, &[0.3])],
-            vec![Point { x_m, h_m }],
-            road,
-            20.0,
-            0.0,
-            1e-5,
-            0.05,
-            ContactScheme::Located,
-        )
+        modal_scene(vec![shape_mode(100.0, 0.05, &[0.3])], vec![Point { x_m, h_m }], road, 20.0, 0.0, 1e-5, 0.05, ContactScheme::Located)
     };
     // z(λ/4) = a: touching the crest (z - h = 0) is allowed, any lower is not
     let crest = lambda / 4.0;
@@ -440,20 +371,6 @@ fn zero_ramp_only_without_initial_penetration() {
     );
 }
 
-/// Deterministic uniform numbers in [0, 1) (splitmix64).
-struct Mix(u64);
-
-impl Mix {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// The landing time of SPEC §4's impact location, by brute force: the cubic
 /// Hermite interpolant of the gap sampled on a fine grid; the first sample
 /// below `-tol` (after one above `+tol` when `require_rise`, unless the
@@ -494,10 +411,10 @@ fn brute_crossing(g0: f64, d0: f64, g1: f64, d1: f64, tol: f64, rise: bool) -> O
 
 #[test]
 fn hermite_landing_time_matches_brute_force() {
-    let mut rng = Mix(4);
+    let mut rng = SplitMix(4);
     let (mut found, mut none) = (0, 0);
     for case in 0..8_000 {
-        let mut r = |a: f64, b: f64| a + (b - a) * rng.next();
+        let mut r = |a: f64, b: f64| a + (b - a) * rng.unit();
         // starts on, above, or (round-off) just below the road
         let g0 = match case % 4 {
             0 => 0.0,
@@ -568,22 +485,13 @@ fn five_point_modes(xi: f64) -> Vec<Mode> {
 }
 
 fn five_point_scene(xi: f64, h_m: &[f64], amp_m: f64, dt_s: f64, duration_s: f64) -> Scene {
-    scene(
-        five_point_modes(xi),
-        h_m.iter()
+    modal_scene(five_point_modes(xi), h_m.iter()
             .enumerate()
             .map(|(i, &h_m)| Point {
                 x_m: 0.03 * i as f64,
                 h_m,
             })
-            .collect(),
-        sine(amp_m, 0.1),
-        25.0,
-        0.02,
-        dt_s,
-        duration_s,
-        ContactScheme::Located,
-    )
+            .collect(), sine(amp_m, 0.1), 25.0, 0.02, dt_s, duration_s, ContactScheme::Located)
 }
 
 /// `u` of all points every `grid_s`.
@@ -652,7 +560,7 @@ fn static_preload_with_critical_and_overdamped_modes() {
     let h: Vec<f64> = (0..p)
         .map(|i| -(0..p).map(|j| c[i][j] * design[j]).sum::<f64>())
         .collect();
-    let expected = gauss_solve(c, h.iter().map(|x| -x).collect());
+    let expected = solve(c, h.iter().map(|x| -x).collect()).expect("non-singular");
     for scheme in [ContactScheme::Located, ContactScheme::Paper] {
         let mut sc = five_point_scene(0.2, &h, 0.0, 2e-5, 0.4);
         sc.contact_scheme = scheme;

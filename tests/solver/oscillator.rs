@@ -1,5 +1,6 @@
-//! Shared pieces of the audit tests (session 9): the unit oscillator of
-//! SPEC §2 in pole form, written from SPEC.md alone (not the crate's code).
+//! The unit oscillator of SPEC §2 in closed form, from its poles, written
+//! from SPEC.md alone (not the crate's code): the reference of the exact-step
+//! and plain-scheme checks.
 
 /// Minimal complex arithmetic.
 #[derive(Clone, Copy, Debug)]
@@ -106,40 +107,4 @@ pub fn gauss_weights(omega: f64, xi: f64, tau: f64) -> [[f64; 2]; 2] {
         linear_response(ints, tau, s2 / d, -1.0 / d),
         linear_response(ints, tau, -s1 / d, 1.0 / d),
     ]
-}
-
-/// Dense solve with row equilibration and partial pivoting; `None` if singular.
-pub fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
-    let n = b.len();
-    for i in 0..n {
-        let s = a[i].iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        if s == 0.0 {
-            return None;
-        }
-        for x in a[i].iter_mut() {
-            *x /= s;
-        }
-        b[i] /= s;
-    }
-    for c in 0..n {
-        let p = (c..n).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
-        if a[p][c] == 0.0 {
-            return None;
-        }
-        a.swap(c, p);
-        b.swap(c, p);
-        for r in c + 1..n {
-            let f = a[r][c] / a[c][c];
-            for k in c..n {
-                a[r][k] -= f * a[c][k];
-            }
-            b[r] -= f * b[c];
-        }
-    }
-    let mut x = vec![0.0; n];
-    for r in (0..n).rev() {
-        let s: f64 = (r + 1..n).map(|k| a[r][k] * x[k]).sum();
-        x[r] = (b[r] - s) / a[r][r];
-    }
-    Some(x)
 }

@@ -5,24 +5,13 @@
 //! converted to a modal model and a mode removed too. Read from the painted
 //! text shapes.
 
+use crate::harness::wait_fidelity;
 use egui_kittest::Harness;
 use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::View;
 use tirecontact::gui::{App, Command};
 use tirecontact::scene::Tyre;
-
-fn wait_fidelity(h: &mut Harness<'_, App>) {
-    for _ in 0..100_000 {
-        if h.state().research().fidelity_computing().is_none() {
-            h.run_steps(1);
-            return;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(1));
-        h.run_steps(1);
-    }
-    panic!("the fidelity figures never arrived");
-}
 
 fn inside(h: &Harness<'_, App>, w: f32, what: &str) {
     let all = crate::harness::texts(h);

@@ -8,7 +8,8 @@ mod legends;
 mod spectra_thread;
 mod sweep_note;
 
-use crate::harness::harness;
+use crate::harness::{advance, harness, wait_fidelity};
+use crate::support::preset;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::path::Path;
@@ -26,43 +27,12 @@ use tirecontact::road::Road;
 use tirecontact::scene::Tyre;
 use tirecontact::sweep::{Sweep, linspace, run_sweep};
 
-fn preset(name: &str) -> Scene {
-    Scene::load(Path::new(&format!("presets/{name}.ron"))).unwrap()
-}
-
-/// Takes `n` solver steps (over as many frames as the step budget needs).
-fn advance(h: &mut Harness<'_, App>, n: u64) {
-    let target = h.state().simulation().steps() + n;
-    h.state_mut().apply(Command::Step(n));
-    for _ in 0..100_000 {
-        if h.state().simulation().steps() >= target {
-            break;
-        }
-        h.run_steps(1);
-    }
-    h.run_steps(1);
-    assert_eq!(h.state().simulation().steps(), target);
-}
-
 /// Opens a researcher view through the "Research" menu of the top bar.
 fn show(h: &mut Harness<'_, App>, label: &str) {
     h.get_by_label_contains("Research").click();
     h.run_steps(2);
     h.get_by_label(label).click();
     h.run_steps(2);
-}
-
-/// Frames until no fidelity figures are being computed (bounded).
-fn wait_fidelity(h: &mut Harness<'_, App>) {
-    for _ in 0..100_000 {
-        if h.state().research().fidelity_computing().is_none() {
-            h.run_steps(1);
-            return;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(1));
-        h.run_steps(1);
-    }
-    panic!("the fidelity figures never arrived");
 }
 
 /// Frames until the sweep is no longer running (bounded).
@@ -88,6 +58,7 @@ fn spectra_view_marks_the_road_excitation_of_the_scene() {
     let mut h = harness(App::new(scene.clone(), None).unwrap());
     h.run();
     advance(&mut h, 12_000);
+    h.run_steps(1);
     show(&mut h, "Spectra");
     assert_eq!(h.state().research().spectra_computations(), 1);
     let text = format!("V/λ = {f0:.2} Hz");
@@ -193,6 +164,7 @@ fn cancel_stops_a_sweep_and_leaves_the_app_usable() {
     );
     // still usable
     advance(&mut h, 100);
+    h.run_steps(1);
     assert_eq!(h.state().simulation().steps(), 100);
 }
 
@@ -202,6 +174,7 @@ fn a_pinned_run_survives_a_restart_and_differs_from_itself_by_zero() {
     let mut h = harness(App::new(scene.clone(), None).unwrap());
     h.run();
     advance(&mut h, 3000);
+    h.run_steps(1);
     show(&mut h, "A/B compare");
     h.get_by_label("Pin as reference").click();
     h.run_steps(2);
@@ -220,6 +193,7 @@ fn a_pinned_run_survives_a_restart_and_differs_from_itself_by_zero() {
     assert_eq!(h.state().simulation().steps(), 0);
     assert_eq!(h.state().research().pinned().unwrap().scene, scene);
     advance(&mut h, 3000);
+    h.run_steps(1);
     let d = pin.difference(&recording_from_history(h.state().history()));
     assert!(d.rms_dq_n.iter().any(|&x| x > 0.0), "{:?}", d.rms_dq_n);
     assert!(h.query_by_label_contains("reference (dashed): ").is_some());
@@ -227,6 +201,7 @@ fn a_pinned_run_survives_a_restart_and_differs_from_itself_by_zero() {
     h.state_mut().apply(Command::EditScene(Box::new(scene)));
     h.run_steps(1);
     advance(&mut h, 3000);
+    h.run_steps(1);
     let d = pin.difference(&recording_from_history(h.state().history()));
     assert!(d.rms_dq_n.iter().chain(&d.rms_du_m).all(|&x| x == 0.0));
     h.get_by_label("Unpin").click();
