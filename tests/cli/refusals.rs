@@ -1,5 +1,6 @@
-//! Inputs found by the robust_* property tests to panic, hang or give an
-//! unclear error, kept as plain tests (each fixed in its own commit).
+//! Inputs that panicked, hung or gave an unclear error (found by the property
+//! tests of cli/hostile_args.rs and scene/hostile.rs), kept as plain tests:
+//! each is now refused with a message naming the option or field.
 
 use crate::support::{bin, temp_dir};
 use tirecontact::scene::{Point, Scene};
@@ -245,11 +246,10 @@ fn huge_and_tiny_values_are_shown_short() {
     assert!(all.len() < 300, "{all}");
 }
 
-/// Left for the owner of src/sweep.rs and src/cli/sweep.rs (another helper's
-/// files this session): `sweep --steps 18446744073709551615` panics with
-/// "capacity overflow" (exit 101) and `--steps 100000000000` aborts on an
-/// 800 GB allocation (exit 134), both in `linspace` before any check. Run
-/// with `cargo test --test robust_regressions -- --ignored`.
+/// `sweep --steps 18446744073709551615` panicked with "capacity overflow"
+/// (exit 101) and `--steps 100000000000` aborted on an 800 GB allocation
+/// (exit 134), both in `linspace` before any check: both are refused
+/// naming `--steps`.
 #[test]
 fn sweep_with_a_huge_step_count_is_refused() {
     for steps in ["18446744073709551615", "100000000000"] {

@@ -1,6 +1,6 @@
 //! Every numeric field of the editing panel says on hover what it is, its
-//! unit and the values it accepts (a newcomer's walk found tooltips that
-//! only named the preset field: "ramp_s (changing this restarts the run)"),
+//! unit and the values it accepts (tooltips used to name only the preset
+//! field: "ramp_s (changing this restarts the run)"),
 //! and the accepted range it states is the one the scene's validation
 //! applies.
 

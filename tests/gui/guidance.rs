@@ -1,4 +1,4 @@
-//! A first-time user's five minutes at 1280 × 720 (session 10): mistakes
+//! What the app tells a first-time user at 1280 × 720: mistakes
 //! pause the run and say what to do, the keys are listed in a Help menu,
 //! an empty run is not exported as an empty figure, and a syntax error's
 //! caret points at its column.

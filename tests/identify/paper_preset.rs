@@ -1,4 +1,4 @@
-//! Audit (session 9) of SPEC §7 (the paper's application as shipped in
+//! SPEC §7 (the paper's application as shipped in
 //! `presets/paper.ron`): what the LSCE identification (SPEC §5-6: "usually
 //! with fewer modes than the source") changes in the contact results,
 //! measured against the same run on the ring's own modal model (all orders

@@ -1,5 +1,4 @@
-//! Audit (session 9) of SPEC §5 (ring tyre) and §7 (the paper's preset):
-//! the ring's Green functions against closed forms that do not go through
+//! SPEC §5 (ring tyre) and §7 (the paper's preset): the ring's Green functions against closed forms that do not go through
 //! a modal sum.
 //!
 //! * Radial-only tensioned beam closed on itself: with `n⁴ + p n² + q =
@@ -222,8 +221,8 @@ fn coupled_ring_with_locked_tangential_motion_is_the_tensioned_beam() {
 /// the coupled ring "shifts these somewhat". The preset's (paper.ron) ring
 /// uses the coupled model with an assumed EA = 5e6 N: its breathing order
 /// n = 0 is then a membrane mode at `sqrt((EA/R² + k_r)/m)` (closed form:
-/// order 0 is uncoupled), far above the 0-500 Hz band. Printed for the
-/// audit report; the closed forms are asserted.
+/// order 0 is uncoupled), far above the 0-500 Hz band. The frequencies are
+/// printed beside SPEC's list; the closed forms are asserted.
 #[test]
 fn preset_ring_frequencies_against_spec_list() {
     let scene = tirecontact::Scene::from_ron_str(

@@ -5,7 +5,7 @@ use crate::allocations_in;
 
 #[test]
 fn steps_do_not_allocate() {
-    // "Compliant": the tread spring of issue 9 (overrides the scheme)
+    // "Compliant": the tread spring (overrides the scheme)
     for scheme in ["Located", "Paper", "Compliant"] {
         let text = std::fs::read_to_string("presets/three_points.ron")
             .unwrap()

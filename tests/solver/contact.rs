@@ -1,5 +1,5 @@
 //! Independent reference checks of the contact solver and the fast convolution
-//! (issue 3, "Tests that can fail"; SPEC §1-4).
+//! (SPEC §1-4).
 //!
 //! Every expected value here comes from the physics, written in this file:
 //! closed-form oscillator responses, an event-driven one-point contact

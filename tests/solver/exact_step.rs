@@ -1,4 +1,4 @@
-//! Audit (session 9) of SPEC §2-§3: the exact step of one mode — the
+//! SPEC §2-§3: the exact step of one mode — the
 //! propagator `Φ(τ)` and the weights of a force constant over the step,
 //! linear through the step ends and linear through the two Gauss points —
 //! against closed forms written here from the pole form of SPEC §2

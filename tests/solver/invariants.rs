@@ -1,6 +1,5 @@
-//! Review of the numerical core against SPEC §1-4 (session 4): checks that
-//! the other reference tests (tests/contact_reference.rs, tests/stress.rs,
-//! the #[cfg(test)] modules) do not make.
+//! Invariants of the numerical core (SPEC §1-4) that the other reference
+//! checks (contact.rs, stress.rs, the #[cfg(test)] modules) do not test:
 //!
 //! - the reported step-mean forces (impacts included) are the impulses the
 //!   modal equations of motion need, on three coupled points (rigid contact,

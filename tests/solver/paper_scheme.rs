@@ -1,4 +1,4 @@
-//! Audit (session 9) of SPEC §1 and §4: sign conventions, road sampling and
+//! SPEC §1 and §4: sign conventions, road sampling and
 //! ramp as the solver sees them, the output force as a step mean, and the
 //! paper's plain scheme (SPEC §4 steps 1-5) against an implementation of
 //! those steps written here from SPEC.md alone (own closed-form modal

@@ -1,4 +1,4 @@
-//! Stress tests of numerical stability (issue 6): extreme damping ratios,
+//! Stress tests of numerical stability: extreme damping ratios,
 //! time steps from 1e-7 s to 1e-2 s (ω·dt up to 250), grazing contact, roads
 //! shorter than the point spacing, a road that drops away faster than the
 //! tyre can follow. No NaN, no overflow, bounded energy, complementarity held:

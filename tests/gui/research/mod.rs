@@ -1,4 +1,4 @@
-//! The researcher tools of the visualiser (issue #8) driven headless with
+//! The researcher tools of the visualiser driven headless with
 //! egui_kittest: spectra, sweep, A/B compare, fidelity. Presets are loaded
 //! explicitly from presets/.
 
