@@ -4,7 +4,7 @@
 //! leaves the old file intact with no temporary left behind.
 
 use crate::support::{bin, temp_dir};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Output;
 use tirecontact::output::csv::{estimated_bytes, human_bytes};
 use tirecontact::output::{write_atomic, write_atomic_with};

@@ -4,7 +4,6 @@
 use crate::support::temp_dir;
 use crate::harness::{harness, type_into};
 use egui_kittest::kittest::Queryable;
-use std::path::PathBuf;
 use tirecontact::Scene;
 use tirecontact::gui::Discarding;
 use tirecontact::gui::Speed;

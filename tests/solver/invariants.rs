@@ -353,7 +353,7 @@ fn zero_ramp_only_without_initial_penetration() {
     };
     let mut sc = one(0.0, 0.0005, measured);
     sc.speed_mps = 1.0;
-    sc.base_dir = Some(dir.clone());
+    sc.base_dir = Some(dir.to_path_buf());
     match Simulation::new(&sc) {
         Err(SceneError::Invalid { errors, .. }) => {
             assert_eq!(errors.len(), 1, "{errors:?}");

@@ -176,7 +176,7 @@ fn other_schemes_and_measured_roads_never_take_it_wrongly() {
         file: "bumps.csv".into(),
         looped: false,
     };
-    measured.base_dir = Some(dir);
+    measured.base_dir = Some(dir.to_path_buf());
     let st = compare(&measured, Live::Nothing);
     eprintln!("measured: {} of {} steps steady", st.steady_steps, st.steps);
 }

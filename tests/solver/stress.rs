@@ -216,7 +216,7 @@ fn measured_road_kinks_converge() {
         -0.0015,
         20.0,
     );
-    base.base_dir = Some(dir);
+    base.base_dir = Some(dir.to_path_buf());
     base.duration_s = 0.03;
     let run = |dt: f64, scheme: ContactScheme| {
         let mut s = base.clone();
