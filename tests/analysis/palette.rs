@@ -47,7 +47,7 @@ fn check(name: &str, colours: &[[u8; 3]], backgrounds: &[[u8; 3]], min_contrast:
 #[test]
 fn the_colour_distance_is_ciede2000() {
     // Sharma, Wu & Dalal (2005), Table 1: pairs 1, 7, 17, 25
-    use colour_distance::{ciede2000_lab, lab};
+    use crate::support::colour::{ciede2000_lab, lab};
     for (a, b, want) in [
         ([50.0, 2.6772, -79.7751], [50.0, 0.0, -82.7485], 2.0425),
         ([50.0, 0.0, 0.0], [50.0, -1.0, 2.0], 2.3669),
