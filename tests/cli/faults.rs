@@ -10,8 +10,6 @@ use tirecontact::output::csv::{estimated_bytes, human_bytes};
 use tirecontact::output::{write_atomic, write_atomic_with};
 use tirecontact::{Scene, Simulation, SolverError};
 
-
-
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }

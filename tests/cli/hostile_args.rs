@@ -12,7 +12,6 @@ use proptest::prelude::*;
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
-
 /// Number-like strings a user (or a script with an unset variable) may type.
 const NUMBERS: [&str; 30] = [
     "0",

@@ -7,8 +7,6 @@ use crate::support::{bin, temp_dir};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-
-
 /// Every file under `dir`, recursively.
 fn files_under(dir: &Path) -> Vec<PathBuf> {
     let mut out = Vec::new();

@@ -78,8 +78,6 @@ fn invalid_utf8_in_a_preset_names_line_and_column() {
     }
 }
 
-
-
 /// A folder given as the preset gave "Is a directory (os error 21)", a
 /// missing one "No such file or directory (os error 2)": neither said what
 /// was expected.

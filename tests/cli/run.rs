@@ -3,8 +3,6 @@
 
 use crate::support::{bin, temp_dir};
 
-
-
 #[test]
 fn run_writes_csv_and_summary() {
     let tmp = temp_dir();

@@ -5,7 +5,6 @@
 
 use crate::support::{bin, temp_dir};
 
-
 fn header(path: &std::path::Path) -> Vec<String> {
     let text = std::fs::read_to_string(path).unwrap();
     let first = text.lines().next().unwrap_or_default();

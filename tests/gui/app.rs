@@ -1,14 +1,13 @@
 //! The visualiser driven headless with egui_kittest (no GPU): time control,
 //! editing, refused values, broken presets, unsaved changes, export.
 
-use crate::support::temp_dir;
 use crate::harness::{harness, type_into};
+use crate::support::temp_dir;
 use egui_kittest::kittest::Queryable;
 use tirecontact::Scene;
 use tirecontact::gui::Discarding;
 use tirecontact::gui::Speed;
 use tirecontact::gui::{App, Command};
-
 
 /// The single-mode preset (a modal tyre whose modes the tests edit).
 fn single_mode_app() -> App {

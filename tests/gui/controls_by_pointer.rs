@@ -6,13 +6,13 @@
 //! without moving the fields beside it, and the file prompts work without a
 //! desktop file dialog.
 
-use crate::support::temp_dir;
 use crate::harness::{harness_sized, texts, type_into};
+use crate::support::temp_dir;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use tirecontact::Scene;
-use tirecontact::gui::View;
 use tirecontact::gui::Speed;
+use tirecontact::gui::View;
 use tirecontact::gui::{App, Command};
 
 const SMALL: [f32; 2] = [1280.0, 720.0];
@@ -308,7 +308,6 @@ fn a_refusal_stays_up_when_the_run_completes() {
     let m = h.state().message().expect("a run-complete message");
     assert!(m.text.contains("run complete"), "{}", m.text);
 }
-
 
 #[test]
 fn save_as_open_and_csv_work_by_typing_the_path() {

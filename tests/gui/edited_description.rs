@@ -3,8 +3,8 @@
 //! (with units), and a save adds it to the description, so that the saved
 //! file's text does not describe a scene it no longer is.
 
-use crate::support::temp_dir;
 use crate::harness::{harness, texts, type_into};
+use crate::support::temp_dir;
 use tirecontact::Scene;
 use tirecontact::gui::{App, Command};
 

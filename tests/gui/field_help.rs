@@ -7,7 +7,6 @@
 use crate::support::preset;
 use egui::accesskit::Role;
 use egui_kittest::kittest::{NodeT, Queryable};
-use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::App;
 use tirecontact::gui::field_help::help;

@@ -3,12 +3,12 @@
 //! an empty run is not exported as an empty figure, and a syntax error's
 //! caret points at its column.
 
-use crate::support::temp_dir;
 use crate::harness::{harness_sized, type_into};
+use crate::support::temp_dir;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use tirecontact::gui::app::PAUSED_NOTE;
 use tirecontact::gui::Speed;
+use tirecontact::gui::app::PAUSED_NOTE;
 use tirecontact::gui::{App, Command};
 
 const SMALL: [f32; 2] = [1280.0, 720.0];

@@ -4,8 +4,8 @@
 //! current run keeps stepping, then applies with the modes of the new
 //! positions (as `Scene::modes` identifies them).
 
-use crate::support::temp_dir;
 use crate::harness::harness_sized;
+use crate::support::temp_dir;
 use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::{App, Command};

@@ -12,8 +12,8 @@ use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::classroom::CLASSROOM_PLOT_ID;
 use tirecontact::gui::View;
+use tirecontact::gui::classroom::CLASSROOM_PLOT_ID;
 use tirecontact::gui::views::compare_view::{
     CURRENT, DISPLACEMENT_PLOT_ID, FORCE_PLOT_ID, REFERENCE,
 };

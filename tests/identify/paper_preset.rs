@@ -28,7 +28,6 @@ fn history(sc: &Scene) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
     (u, q)
 }
 
-
 #[test]
 fn identified_preset_against_the_rings_own_modes() {
     let mut scene = Scene::from_ron_str(DEFAULT_PRESET, DEFAULT_PRESET_NAME).unwrap();
@@ -58,7 +57,10 @@ fn identified_preset_against_the_rings_own_modes() {
         let n = kept.len();
         truth.tyre = Tyre::Modal { modes: kept };
         let (u_own, q_own) = history(&truth);
-        let (eu, eq) = (rel_rms(&u_id[from..], &u_own[from..]), rel_rms(&q_id[from..], &q_own[from..]));
+        let (eu, eq) = (
+            rel_rms(&u_id[from..], &u_own[from..]),
+            rel_rms(&q_id[from..], &q_own[from..]),
+        );
         println!(
             "ring modes below {band} Hz ({n}): after the ramp, relative RMS difference of the identified run: displacement {eu:.3e}, force {eq:.3e}"
         );

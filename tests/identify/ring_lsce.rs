@@ -669,11 +669,7 @@ fn identify_cli_writes_a_runnable_modal_scene_diagram_and_responses() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // a modal scene has nothing to identify
-    let o = bin()
-        .arg("identify")
-        .arg(&modal)
-        .output()
-        .unwrap();
+    let o = bin().arg("identify").arg(&modal).output().unwrap();
     assert!(!o.status.success());
 }
 

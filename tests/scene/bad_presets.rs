@@ -634,8 +634,6 @@ fn cases() -> Vec<Case> {
     v
 }
 
-
-
 /// Writes the case into `dir` and returns the preset path.
 fn write_case(dir: &Path, text: &str, files: &[(&str, Vec<u8>)]) -> PathBuf {
     for (name, bytes) in files {

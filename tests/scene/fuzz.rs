@@ -20,7 +20,6 @@ fn presets() -> Vec<String> {
     v
 }
 
-
 /// Builds the simulation and runs at most 50 steps; errors are fine, panics are not.
 fn short_run(scene: &Scene) {
     let mut s = scene.clone();

@@ -44,7 +44,6 @@ fn parsed_presets() -> Vec<Scene> {
         .collect()
 }
 
-
 /// Values a hand-written or generated preset may hold (all writable in RON).
 /// The last ones are the edges of the accepted ranges (dt_s <= 0.1 s,
 /// speed <= 1000 m/s, |h| <= 1 m, freq <= 1e6 Hz, damping <= 1e4, tread

@@ -16,8 +16,7 @@ use std::f64::consts::TAU;
 use std::time::Instant;
 
 use tirecontact::Simulation;
-use tirecontact::road::Road;
-use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
+use tirecontact::scene::{ContactScheme, Mode, Point, Scene};
 
 // ---------------------------------------------------------------------------
 // Own closed forms of the unit oscillator h'' + 2ξω h' + ω² h = δ(t)
@@ -100,7 +99,6 @@ fn order(e_coarse: f64, e_fine: f64, ratio: f64) -> f64 {
 // ---------------------------------------------------------------------------
 // Scenes and runs
 // ---------------------------------------------------------------------------
-
 
 /// Time history of a run: per step end `u` (point-major rows), step-mean
 /// force, contact flags, located events.
@@ -436,12 +434,21 @@ fn one_point_sine_road_against_event_driven_reference() {
     for scheme in [ContactScheme::Located, ContactScheme::Paper] {
         let mut errs = Vec::new();
         for &dt in &dts {
-            let sc = modal_scene(vec![Mode {
+            let sc = modal_scene(
+                vec![Mode {
                     freq_hz: f,
                     damping_ratio: xi,
                     residue: vec![vec![res]],
                     shape: vec![],
-                }], vec![Point { x_m: 0.0, h_m: h }], sine(a, lambda), speed, ramp, dt, duration, scheme);
+                }],
+                vec![Point { x_m: 0.0, h_m: h }],
+                sine(a, lambda),
+                speed,
+                ramp,
+                dt,
+                duration,
+                scheme,
+            );
             let r = run(&sc);
             errs.push(one_point_errors(&r, &refsol, window, &mut ref_u));
         }
@@ -522,7 +529,9 @@ fn three_point_modes() -> Vec<Mode> {
 }
 
 fn three_point_scene(dt: f64, duration: f64, scheme: ContactScheme) -> Scene {
-    modal_scene(three_point_modes(), vec![
+    modal_scene(
+        three_point_modes(),
+        vec![
             Point {
                 x_m: -0.05,
                 h_m: -0.001,
@@ -535,7 +544,14 @@ fn three_point_scene(dt: f64, duration: f64, scheme: ContactScheme) -> Scene {
                 x_m: 0.05,
                 h_m: -0.001,
             },
-        ], sine(0.002, 0.5), 20.0, 0.05, dt, duration, scheme)
+        ],
+        sine(0.002, 0.5),
+        20.0,
+        0.05,
+        dt,
+        duration,
+        scheme,
+    )
 }
 
 /// Steps where a point in contact leaves the road while another lands.
@@ -573,7 +589,6 @@ fn rms_diff(coarse: &Run, fine: &Run) -> f64 {
 
 /// RK4 sub-steps per 5 µs of the multi-point reference (h = 0.625 µs).
 const REF_SUB: usize = 8;
-
 
 /// Relative RMS displacement error of a run against reference displacements
 /// sampled every `grid` seconds.
@@ -865,12 +880,20 @@ impl MultiReference {
         }
         let (u, v) = self.uv(x, xd);
         let js = self.sub(set);
-        let du = solve(js.clone(), set.iter()
+        let du = solve(
+            js.clone(),
+            set.iter()
                 .map(|&i| self.roads[i].eval(t).0 - u[i])
-                .collect()).expect("non-singular");
-        let dv = solve(js, set.iter()
+                .collect(),
+        )
+        .expect("non-singular");
+        let dv = solve(
+            js,
+            set.iter()
                 .map(|&i| self.roads[i].eval(t).1 - v[i])
-                .collect()).expect("non-singular");
+                .collect(),
+        )
+        .expect("non-singular");
         for k in 0..self.phi.len() {
             for (m, &i) in set.iter().enumerate() {
                 x[k] += self.phi[k][i] * du[m];
@@ -1223,7 +1246,8 @@ fn bounded_recursion_stable_alpha_beta_overflows() {
     // bounded force: a 1 kHz harmonic plus seeded noise, |q| <= 1.5
     let big = TAU * 1000.0;
     let mut rng = SplitMix(7);
-    let force = |k: usize, rng: &mut SplitMix| (big * (k as f64 + 0.5) * dt).sin() + 0.5 * rng.signed();
+    let force =
+        |k: usize, rng: &mut SplitMix| (big * (k as f64 + 0.5) * dt).sin() + 0.5 * rng.signed();
     let wd = omega * (1.0 - xi * xi).sqrt();
     let bound = 1.5 / (xi * omega * wd); // ∫|h| <= 1/(ξω ω_d)
     let start = Instant::now();
@@ -1729,7 +1753,16 @@ fn one_point_two_modes_against_event_driven_reference() {
         let e: Vec<f64> = dts
             .iter()
             .map(|&dt| {
-                let sc = modal_scene(modes.clone(), vec![Point { x_m: 0.0, h_m: h }], sine(0.002, 0.5), 20.0, 0.05, dt, duration, scheme);
+                let sc = modal_scene(
+                    modes.clone(),
+                    vec![Point { x_m: 0.0, h_m: h }],
+                    sine(0.002, 0.5),
+                    20.0,
+                    0.05,
+                    dt,
+                    duration,
+                    scheme,
+                );
                 rms_err_vs_ref(&run(&sc), &reference, grid)
             })
             .collect();

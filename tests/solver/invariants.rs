@@ -22,9 +22,7 @@ use std::f64::consts::TAU;
 use tirecontact::Simulation;
 use tirecontact::error::SceneError;
 use tirecontact::road::{Harmonic, Road};
-use tirecontact::scene::{Contact, ContactScheme, Mode, Point, Scene, Tyre};
-
-
+use tirecontact::scene::{Contact, ContactScheme, Mode, Point, Scene};
 
 fn sine(amplitude_m: f64, wavelength_m: f64) -> Road {
     Road::Sine {
@@ -120,7 +118,16 @@ fn three_point_case(scheme: ContactScheme) -> (Scene, Vec<Mode>) {
         .iter()
         .map(|&x_m| Point { x_m, h_m: -0.0015 })
         .collect();
-    let sc = modal_scene(modes.clone(), points, sine(0.0005, 0.12), 12.0, 0.03, 1e-5, 0.15, scheme);
+    let sc = modal_scene(
+        modes.clone(),
+        points,
+        sine(0.0005, 0.12),
+        12.0,
+        0.03,
+        1e-5,
+        0.15,
+        scheme,
+    );
     (sc, modes)
 }
 
@@ -182,13 +189,24 @@ fn decoupled_points_run_as_separate_one_point_runs() {
         // its force shape) discretisation of the same motion, O(dt^3) apart
         (ContactScheme::Located, 1e-5),
     ] {
-        let both = modal_scene(vec![
+        let both = modal_scene(
+            vec![
                 shape_mode(m0.0, m0.1, &[m0.2, 0.0]),
                 shape_mode(m1.0, m1.1, &[0.0, m1.2]),
-            ], pts.to_vec(), road.clone(), 20.0, 0.05, 1e-5, 0.3, scheme);
+            ],
+            pts.to_vec(),
+            road.clone(),
+            20.0,
+            0.05,
+            1e-5,
+            0.3,
+            scheme,
+        );
         let hb = history(&both);
         for (i, m) in [m0, m1].iter().enumerate() {
-            let alone = modal_scene(vec![shape_mode(m.0, m.1, &[m.2])], vec![Point {
+            let alone = modal_scene(
+                vec![shape_mode(m.0, m.1, &[m.2])],
+                vec![Point {
                     x_m: 0.0,
                     h_m: pts[i].h_m,
                 }], // the same road under the point: shifted by its position
@@ -198,7 +216,13 @@ fn decoupled_points_run_as_separate_one_point_runs() {
                         wavelength_m: 0.5,
                         phase_rad: TAU * pts[i].x_m / 0.5,
                     }],
-                }, 20.0, 0.05, 1e-5, 0.3, scheme);
+                },
+                20.0,
+                0.05,
+                1e-5,
+                0.3,
+                scheme,
+            );
             let ha = history(&alone);
             let umax = ha.u.iter().map(|u| u[0].abs()).fold(0.0, f64::max);
             let du = (0..ha.u.len())
@@ -300,7 +324,16 @@ fn field_errors(sc: &Scene) -> Vec<String> {
 fn zero_ramp_only_without_initial_penetration() {
     let (a, lambda) = (0.002, 0.5);
     let one = |x_m: f64, h_m: f64, road: Road| {
-        modal_scene(vec![shape_mode(100.0, 0.05, &[0.3])], vec![Point { x_m, h_m }], road, 20.0, 0.0, 1e-5, 0.05, ContactScheme::Located)
+        modal_scene(
+            vec![shape_mode(100.0, 0.05, &[0.3])],
+            vec![Point { x_m, h_m }],
+            road,
+            20.0,
+            0.0,
+            1e-5,
+            0.05,
+            ContactScheme::Located,
+        )
     };
     // z(λ/4) = a: touching the crest (z - h = 0) is allowed, any lower is not
     let crest = lambda / 4.0;
@@ -484,13 +517,22 @@ fn five_point_modes(xi: f64) -> Vec<Mode> {
 }
 
 fn five_point_scene(xi: f64, h_m: &[f64], amp_m: f64, dt_s: f64, duration_s: f64) -> Scene {
-    modal_scene(five_point_modes(xi), h_m.iter()
+    modal_scene(
+        five_point_modes(xi),
+        h_m.iter()
             .enumerate()
             .map(|(i, &h_m)| Point {
                 x_m: 0.03 * i as f64,
                 h_m,
             })
-            .collect(), sine(amp_m, 0.1), 25.0, 0.02, dt_s, duration_s, ContactScheme::Located)
+            .collect(),
+        sine(amp_m, 0.1),
+        25.0,
+        0.02,
+        dt_s,
+        duration_s,
+        ContactScheme::Located,
+    )
 }
 
 /// `u` of all points every `grid_s`.

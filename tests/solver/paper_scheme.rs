@@ -4,15 +4,12 @@
 //! those steps written here from SPEC.md alone (own closed-form modal
 //! recursion per (mode, source), own dense solve), compared to round-off.
 
-use crate::support::models::{modal_scene, points, shape_mode, sine};
 use crate::dense::solve;
 use crate::oscillator::{gauss_weights, propagator};
+use crate::support::models::{modal_scene, points, shape_mode, sine};
 use std::f64::consts::TAU;
 use tirecontact::Simulation;
-use tirecontact::road::Road;
-use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
-
-
+use tirecontact::scene::{ContactScheme, Mode};
 
 /// SPEC §4, written out: `r_i(t) = w(t) (a sin(2π (x_i + V t)/λ) - h_i)`,
 /// `w = 3s² - 2s³`, and `dr_i/dt`, `d²r_i/dt²`.
@@ -70,7 +67,16 @@ fn conventions_road_ramp_and_step_mean_force_on_the_road() {
     };
     let pts = [(0.0, -2.0e-3), (0.075, -1.5e-3)]; // a quarter wavelength apart
     let dt = 2e-5;
-    let sc = modal_scene(modes, points(&pts), sine(road.a, road.lambda), road.v, road.ramp, dt, 0.06, ContactScheme::Located);
+    let sc = modal_scene(
+        modes,
+        points(&pts),
+        sine(road.a, road.lambda),
+        road.v,
+        road.ramp,
+        dt,
+        0.06,
+        ContactScheme::Located,
+    );
     let mut sim = Simulation::new(&sc).expect("valid scene");
     // 8-point Gauss-Legendre on [0, 1]
     let gl: [(f64, f64); 8] = {
@@ -138,7 +144,16 @@ fn conventions_road_ramp_and_step_mean_force_on_the_road() {
 /// A point held above the road (`h > a`) never touches it: no force, no motion.
 #[test]
 fn point_above_the_road_stays_free() {
-    let sc = modal_scene(vec![shape_mode(100.0, 0.05, &[1.0])], points(&[(0.0, 2.0e-3)]), sine(1.0e-3, 0.2), 10.0, 0.0, 1e-4, 0.05, ContactScheme::Located);
+    let sc = modal_scene(
+        vec![shape_mode(100.0, 0.05, &[1.0])],
+        points(&[(0.0, 2.0e-3)]),
+        sine(1.0e-3, 0.2),
+        10.0,
+        0.0,
+        1e-4,
+        0.05,
+        ContactScheme::Located,
+    );
     let mut sim = Simulation::new(&sc).expect("T_ramp = 0 allowed: no point below the road");
     for _ in 0..sc.num_steps() {
         sim.step().expect("step");
@@ -358,7 +373,16 @@ fn paper_replica_case(modes: Vec<Mode>, h_m: f64) {
     };
     let pts = vec![(0.0, h_m), (0.04, h_m)];
     let dt = 5e-5;
-    let sc = modal_scene(modes.clone(), points(&pts), sine(road.a, road.lambda), road.v, road.ramp, dt, 0.08, ContactScheme::Paper);
+    let sc = modal_scene(
+        modes.clone(),
+        points(&pts),
+        sine(road.a, road.lambda),
+        road.v,
+        road.ramp,
+        dt,
+        0.08,
+        ContactScheme::Paper,
+    );
     let p = pts.len();
     let rmodes: Vec<RMode> = modes
         .iter()
@@ -433,12 +457,21 @@ fn inelastic_landing_takes_the_whole_normal_velocity() {
     let (f, a_res, h, ramp): (f64, f64, f64, f64) = (50.0, 1.0, -1.0e-3, 2e-3);
     let omega = TAU * f;
     let dt = 1e-5;
-    let sc = modal_scene(vec![Mode {
+    let sc = modal_scene(
+        vec![Mode {
             freq_hz: f,
             damping_ratio: 0.0,
             residue: vec![vec![a_res]],
             shape: vec![],
-        }], points(&[(0.0, h)]), sine(0.0, 1.0), 0.0, ramp, dt, 0.05, ContactScheme::Located);
+        }],
+        points(&[(0.0, h)]),
+        sine(0.0, 1.0),
+        0.0,
+        ramp,
+        dt,
+        0.05,
+        ContactScheme::Located,
+    );
     let mut sim = Simulation::new(&sc).expect("valid scene");
     let mut flight_energy: Vec<f64> = Vec::new();
     let (mut landed_at, mut left_at) = (None, None);

@@ -8,8 +8,8 @@ use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::classroom::CLASSROOM_PLOT_ID;
 use tirecontact::gui::Quantity;
+use tirecontact::gui::classroom::CLASSROOM_PLOT_ID;
 use tirecontact::gui::views::time_plots::clip_level;
 use tirecontact::gui::{App, Command};
 

@@ -8,8 +8,8 @@
 use crate::harness::{advance, shapes, texts};
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::classroom::{EVENT_COLOR, EVENT_RING_PX, phase_text};
 use tirecontact::gui::View;
+use tirecontact::gui::classroom::{EVENT_COLOR, EVENT_RING_PX, phase_text};
 use tirecontact::gui::{App, Command};
 
 fn check(size: [f32; 2], steps: u64) -> usize {

@@ -5,8 +5,8 @@
 use crate::harness::{advance, texts};
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::classroom::CLASSROOM_PLOT_ID;
 use tirecontact::gui::View;
+use tirecontact::gui::classroom::CLASSROOM_PLOT_ID;
 use tirecontact::gui::{App, Command};
 
 #[test]

@@ -6,8 +6,8 @@ use crate::harness::harness;
 use egui_kittest::kittest::Queryable;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::View;
 use tirecontact::gui::SweepState;
+use tirecontact::gui::View;
 use tirecontact::gui::views::sweep_view::RIGID_FORCE_NOTE;
 use tirecontact::gui::{App, Command};
 

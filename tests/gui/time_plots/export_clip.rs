@@ -3,14 +3,14 @@
 //! the force without impacts) with the clipped samples as dots; off, the
 //! impulse / dt spikes set its range. Both contact schemes.
 
-use crate::support::temp_dir;
 use crate::harness::{advance, harness};
+use crate::support::temp_dir;
 use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::export::{CLIPPED_IMPACTS, time_figure};
-use tirecontact::gui::{History, Quantity};
 use tirecontact::gui::views::time_plots::clip_level;
 use tirecontact::gui::{App, Command};
+use tirecontact::gui::{History, Quantity};
 use tirecontact::output::figures::{Figure, Series};
 use tirecontact::scene::ContactScheme;
 

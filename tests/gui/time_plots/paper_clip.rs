@@ -8,9 +8,9 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
 use std::path::Path;
-use tirecontact::gui::{History, Quantity};
 use tirecontact::gui::views::time_plots::{FORCE_PLOT_ID, clip_level};
 use tirecontact::gui::{App, Command};
+use tirecontact::gui::{History, Quantity};
 use tirecontact::scene::ContactScheme;
 use tirecontact::{Scene, Simulation};
 
