@@ -1,19 +1,10 @@
 //! A dense solve for the reference computations of the solver tests: the
 //! tests' own, independent of the crate's decompositions.
 
-/// Dense solve with row equilibration and partial pivoting; `None` if singular.
+/// Solves `a x = b` (small, dense) by Gaussian elimination with partial
+/// pivoting; `None` if a pivot is zero.
 pub fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
     let n = b.len();
-    for i in 0..n {
-        let s = a[i].iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        if s == 0.0 {
-            return None;
-        }
-        for x in a[i].iter_mut() {
-            *x /= s;
-        }
-        b[i] /= s;
-    }
     for c in 0..n {
         let p = (c..n).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
         if a[p][c] == 0.0 {
@@ -35,4 +26,21 @@ pub fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
         x[r] = (b[r] - s) / a[r][r];
     }
     Some(x)
+}
+
+/// [`solve`] after scaling each row of `a` and `b` by the row's largest
+/// `|a_ij|` (row equilibration: rows of very different magnitude, as in a
+/// contact system of mixed units); `None` if a row is zero.
+pub fn solve_equilibrated(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
+    for (row, bi) in a.iter_mut().zip(b.iter_mut()) {
+        let s = row.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if s == 0.0 {
+            return None;
+        }
+        for x in row.iter_mut() {
+            *x /= s;
+        }
+        *bi /= s;
+    }
+    solve(a, b)
 }

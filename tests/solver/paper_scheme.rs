@@ -4,7 +4,7 @@
 //! those steps written here from SPEC.md alone (own closed-form modal
 //! recursion per (mode, source), own dense solve), compared to round-off.
 
-use crate::dense::solve;
+use crate::dense::solve_equilibrated;
 use crate::oscillator::{gauss_weights, propagator};
 use crate::support::models::{modal_scene, points, shape_mode, sine};
 use std::f64::consts::TAU;
@@ -268,7 +268,7 @@ impl PaperReplica {
                     b[ri] = r[i] - uh[i];
                     b[n + ri] = rd[i] - vh[i];
                 }
-                let x = solve(a, b).expect("non-singular contact system");
+                let x = solve_equilibrated(a, b).expect("non-singular contact system");
                 for (c, &j) in active.iter().enumerate() {
                     q1[j] = x[c];
                     q2[j] = x[n + c];
