@@ -31,6 +31,14 @@ pub mod views;
 
 pub use app::App;
 pub use command::Command;
+// The types of `Command`'s variants and of what `App` reports, at the root
+// with `App` and `Command`: a caller (the GUI tests) drives and reads the app
+// through these without knowing the module layout.
+pub use command::{Discarding, View};
+pub use history::{History, Quantity};
+pub use research::ResearchCommand;
+pub use research::sweep_job::SweepState;
+pub use time_control::Speed;
 
 /// Opens the visualiser window on the last session, else the embedded
 /// default preset.

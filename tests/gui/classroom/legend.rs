@@ -1,0 +1,155 @@
+//! Classroom mode at 1280 × 720: the scene plot is about 200 px high; its
+//! legend (six entries in the top right corner) covered the tyre. The
+//! legend is a row above the plot: every entry lies above the tyre's
+//! painted line and markers. The phase labels never overlap each other
+//! (read from the painted text shapes over the paper preset's run), and the
+//! y title fits the plot's height.
+
+use crate::harness::{advance, shapes};
+use egui::epaint::{CircleShape, ColorMode, PathShape};
+use egui::{Rect, Shape};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use std::path::Path;
+use tirecontact::Scene;
+use tirecontact::gui::View;
+use tirecontact::gui::views::scene_view::{
+    CONTACT_NAME, DISPLACED_NAME, FLIGHT_NAME, ROAD_NAME, SCENE_PLOT_ID, UNDEFORMED_NAME,
+    displaced_tyre_color,
+};
+use tirecontact::gui::views::{CONTACT_COLOR, FLIGHT_COLOR};
+use tirecontact::gui::{App, Command};
+
+/// Bounds of the tyre as painted: its displaced line (one vertex per point,
+/// 2 px, the theme's tyre colour) and the points' markers (7 px radius).
+fn tyre_bounds(h: &Harness<'_, App>, points: usize) -> Rect {
+    let tyre = displaced_tyre_color(&h.ctx.global_style().visuals);
+    let frame = *egui_plot::PlotMemory::load(&h.ctx, egui::Id::unique(SCENE_PLOT_ID))
+        .expect("scene plot shown")
+        .transform()
+        .frame();
+    let mut r = Rect::NOTHING;
+    for s in shapes(h)
+        .into_iter()
+        .filter(|s| frame.contains_rect(s.visual_bounding_rect()))
+    {
+        match &s {
+            Shape::Path(PathShape {
+                points: p,
+                closed: false,
+                stroke,
+                ..
+            }) if p.len() == points && stroke.color == ColorMode::Solid(tyre) => {
+                p.iter().for_each(|q| r.extend_with(*q));
+            }
+            Shape::Circle(CircleShape {
+                center,
+                radius,
+                fill,
+                ..
+            }) if *radius >= 6.0 && (*fill == CONTACT_COLOR || *fill == FLIGHT_COLOR) => {
+                r.extend_with(*center);
+            }
+            Shape::Path(PathShape {
+                points: p,
+                fill,
+                closed: true,
+                ..
+            }) if *fill == FLIGHT_COLOR && p.len() == 4 => {
+                p.iter().for_each(|q| r.extend_with(*q));
+            }
+            _ => {}
+        }
+    }
+    r
+}
+
+/// Phase labels drawn in the plot ("p3: IMPACT"; the strip above the plot
+/// lists them all on one line).
+fn phase_labels(h: &Harness<'_, App>) -> Vec<(String, Rect)> {
+    shapes(h)
+        .iter()
+        .filter_map(|s| match s {
+            Shape::Text(t) => Some((t.galley.text().to_owned(), t.visual_bounding_rect())),
+            _ => None,
+        })
+        .filter(|(t, _)| t.starts_with('p') && t.matches(": ").count() == 1 && !t.contains("  "))
+        .collect()
+}
+
+#[test]
+fn classroom_scene_legend_keeps_off_the_tyre_and_phase_labels_do_not_overlap() {
+    let scene = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    let points = scene.points.len();
+    let steps = (scene.duration_s / scene.dt_s).round() as u64;
+    for size in [[1280.0, 720.0], [1600.0, 1000.0]] {
+        let mut h = crate::harness::harness_sized(App::new(scene.clone(), None).unwrap(), size);
+        h.run();
+        h.state_mut().apply(Command::ShowView(View::Scene));
+        h.state_mut().apply(Command::SetClassroom(true));
+        h.run_steps(2);
+        let mut checked_labels = 0;
+        let mut most = 0;
+        let chunk = 250;
+        for _ in 0..steps / chunk {
+            advance(&mut h, chunk);
+            h.run_steps(1);
+            let tyre = tyre_bounds(&h, points);
+            assert!(tyre.is_positive(), "{size:?}: no tyre painted");
+            for name in [
+                ROAD_NAME,
+                UNDEFORMED_NAME,
+                DISPLACED_NAME,
+                CONTACT_NAME,
+                FLIGHT_NAME,
+            ] {
+                let e = h.get_by_label(name).rect();
+                assert!(
+                    e.bottom() <= tyre.top() - 7.0,
+                    "{size:?} t = {} s: legend entry {name:?} at {e:?} over the tyre at {tyre:?}",
+                    h.state().simulation().time_s()
+                );
+            }
+            let labels = phase_labels(&h);
+            most = most.max(labels.len());
+            for (i, (a, ra)) in labels.iter().enumerate() {
+                for (b, rb) in &labels[i + 1..] {
+                    assert!(
+                        !ra.intersects(*rb),
+                        "{size:?} t = {} s: {a:?} at {ra:?} overlaps {b:?} at {rb:?}",
+                        h.state().simulation().time_s()
+                    );
+                    checked_labels += 1;
+                }
+            }
+        }
+        // the y title fits the plot's height (it ran past a short plot)
+        let frame = *egui_plot::PlotMemory::load(&h.ctx, egui::Id::unique(SCENE_PLOT_ID))
+            .expect("scene plot shown")
+            .transform()
+            .frame();
+        let (title, r) = shapes(&h)
+            .iter()
+            .find_map(|s| match s {
+                Shape::Text(t)
+                    if t.angle != 0.0
+                        && t.galley.text().contains("height (mm)")
+                        && t.visual_bounding_rect().right() <= frame.left() =>
+                {
+                    Some((t.galley.text().to_owned(), t.visual_bounding_rect()))
+                }
+                _ => None,
+            })
+            .expect("the scene plot's y title");
+        eprintln!("{size:?}: y title {title:?} spans {r:?}, the plot {frame:?}");
+        assert!(
+            r.top() >= frame.top() - 0.5 && r.bottom() <= frame.bottom() + 0.5,
+            "{size:?}: y title {title:?} at {r:?} past the plot {frame:?}"
+        );
+        eprintln!("{size:?}: {checked_labels} pairs of phase labels checked, up to {most} at once");
+        assert!(
+            checked_labels > 0,
+            "{size:?}: never two phase labels at once"
+        );
+    }
+}

@@ -1,0 +1,175 @@
+//! An edit that needs the ring tyre identified again (a contact point
+//! moved) or a ring preset opened does not stop the window: the edit waits
+//! for the identification on a thread of its own while frames go on and the
+//! current run keeps stepping, then applies with the modes of the new
+//! positions (as `Scene::modes` identifies them).
+
+use crate::harness::harness_sized;
+use crate::support::temp_dir;
+use std::path::Path;
+use tirecontact::Scene;
+use tirecontact::gui::{App, Command};
+
+/// Frames (at most `limit`) until no identification waits; how many.
+fn frames_until_identified(h: &mut egui_kittest::Harness<'_, App>, limit: usize) -> usize {
+    let mut frames = 0;
+    while h.state().identifying() && frames < limit {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.step();
+        frames += 1;
+    }
+    frames
+}
+
+#[test]
+fn a_moved_point_of_a_ring_tyre_is_identified_off_the_ui_thread() {
+    let scene = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    let mut h = harness_sized(App::new(scene.clone(), None).unwrap(), [1280.0, 720.0]);
+    h.state_mut().apply(Command::Play);
+    h.run_steps(3);
+    let steps_before = h.state().simulation().steps();
+    assert!(steps_before > 0, "the run plays");
+
+    // point 0 moved by 5 mm: positions never identified before
+    let mut edited = scene.clone();
+    edited.points[0].x_m += 0.005;
+    assert!(!edited.modes_are_ready(), "a new identification is needed");
+    h.state_mut()
+        .apply(Command::EditScene(Box::new(edited.clone())));
+    // the command returned with the edit waiting, the old scene running
+    assert!(
+        h.state().identifying(),
+        "the edit waits for its identification"
+    );
+    assert_eq!(h.state().scene().points, scene.points);
+    let waiting = h
+        .state()
+        .message()
+        .map(|m| m.text.clone())
+        .unwrap_or_default();
+    assert!(
+        waiting.contains("Identifying the ring tyre's modes"),
+        "{waiting}"
+    );
+    // meanwhile the fields take no edit (one would be built on the old
+    // points and drop the waiting one)
+    h.step();
+    if h.state().identifying() {
+        use egui_kittest::kittest::{NodeT, Queryable};
+        assert!(
+            h.get_by_label("road.amplitude_m")
+                .accesskit_node()
+                .is_disabled()
+        );
+    }
+
+    let frames = frames_until_identified(&mut h, 20_000);
+    assert!(
+        !h.state().identifying(),
+        "identified within {frames} frames"
+    );
+    // applied: the new points, the run restarted, modes of the new positions
+    assert_eq!(h.state().scene().points, edited.points);
+    assert_eq!(h.state().modes(), edited.modes().unwrap().as_slice());
+    assert_ne!(h.state().modes(), scene.modes().unwrap().as_slice());
+    let shown = h
+        .state()
+        .message()
+        .map(|m| m.text.clone())
+        .unwrap_or_default();
+    assert!(
+        !shown.contains("Identifying"),
+        "the waiting note is gone: {shown}"
+    );
+    // and it keeps playing from the restart, the fields editable again
+    h.run_steps(3);
+    assert!(h.state().time_control().is_playing());
+    use egui_kittest::kittest::{NodeT, Queryable};
+    assert!(
+        !h.get_by_label("road.amplitude_m")
+            .accesskit_node()
+            .is_disabled()
+    );
+}
+
+#[test]
+fn the_current_run_goes_on_while_a_ring_is_identified() {
+    let scene = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    let mut h = harness_sized(App::new(scene.clone(), None).unwrap(), [1280.0, 720.0]);
+    h.state_mut().apply(Command::Play);
+    h.run_steps(2);
+    let mut edited = scene.clone();
+    edited.points[4].x_m -= 0.0035;
+    h.state_mut().apply(Command::EditScene(Box::new(edited)));
+    let t0 = h.state().simulation().time_s();
+    // a few frames while the thread works: the old run advances
+    h.step();
+    h.step();
+    if h.state().identifying() {
+        assert!(
+            h.state().simulation().time_s() > t0,
+            "the run stood still while the ring was identified"
+        );
+    }
+    frames_until_identified(&mut h, 20_000);
+    assert!(!h.state().identifying());
+}
+
+#[test]
+fn an_identification_that_fails_refuses_the_edit_and_keeps_the_scene() {
+    let scene = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    let mut h = harness_sized(App::new(scene.clone(), None).unwrap(), [1280.0, 720.0]);
+    // a band below the ring's lowest mode (47 Hz): LSCE finds no mode there
+    let mut edited = scene.clone();
+    if let tirecontact::scene::Tyre::Ring { identification, .. } = &mut edited.tyre {
+        identification.band_hz = (0.0, 20.0);
+    }
+    h.state_mut().apply(Command::EditScene(Box::new(edited)));
+    assert!(
+        h.state().identifying(),
+        "valid options: identified on the thread"
+    );
+    frames_until_identified(&mut h, 20_000);
+    assert_eq!(h.state().scene(), &scene, "the scene is kept");
+    let m = h.state().message().expect("a message");
+    assert!(
+        m.error && m.text.contains("no physical pole pair"),
+        "{}",
+        m.text
+    );
+}
+
+#[test]
+fn a_ring_preset_opened_is_identified_off_the_ui_thread() {
+    let text = std::fs::read_to_string("presets/paper.ron").unwrap();
+    let changed = text.replace("damping_ratio: 0.05,", "damping_ratio: 0.061,");
+    assert_ne!(changed, text);
+    let tmp = temp_dir();
+    let dir = tmp.path();
+    let path = dir.join("damped.ron");
+    std::fs::write(&path, &changed).unwrap();
+    let want = Scene::load(&path).unwrap();
+    assert!(!want.modes_are_ready());
+
+    let mut h = harness_sized(App::with_default_preset(), [1280.0, 720.0]);
+    h.state_mut().apply(Command::OpenPath(path.clone()));
+    assert!(
+        h.state().identifying(),
+        "the file waits for its identification"
+    );
+    assert_ne!(
+        h.state().scene(),
+        &want,
+        "the current scene stays meanwhile"
+    );
+    frames_until_identified(&mut h, 20_000);
+    assert_eq!(h.state().scene(), &want);
+    assert_eq!(h.state().modes(), want.modes().unwrap().as_slice());
+    assert!(!h.state().is_dirty(), "opened, not edited");
+    let m = h
+        .state()
+        .message()
+        .map(|m| m.text.clone())
+        .unwrap_or_default();
+    assert!(m.starts_with("opened"), "{m}");
+}

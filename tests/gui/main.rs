@@ -1,0 +1,27 @@
+//! The visualiser, driven headless with egui_kittest (no window and no GPU:
+//! the tests read egui's painted shapes and its accessibility tree).
+//! Every module is one subject of the app; `harness` holds the shared
+//! kittest set-up and the readers of painted shapes.
+#![cfg(feature = "gui")]
+
+#[allow(dead_code)] // each test binary uses a part of the shared helpers
+#[path = "../support/mod.rs"]
+mod support;
+
+mod harness;
+
+mod app;
+mod classroom;
+mod compare;
+mod controls_by_pointer;
+mod edited_description;
+mod field_help;
+mod guidance;
+mod identify_thread;
+mod legends_clear;
+mod mode_fields;
+mod native_dialog;
+mod research;
+mod scene_view;
+mod status;
+mod time_plots;

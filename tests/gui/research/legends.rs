@@ -1,0 +1,169 @@
+//! The legends of the spectra, sweep and compare views keep off the curves:
+//! measured in pixels as the length of the drawn curves (the plot lines as
+//! egui shapes) under the legend entries, against the same length under a
+//! legend-sized box in each corner.
+
+use crate::harness::{advance, harness};
+use egui::epaint::{PathShape, Shape};
+use egui::{Pos2, Rect};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use std::path::Path;
+use tirecontact::Scene;
+use tirecontact::gui::SweepState;
+use tirecontact::gui::View;
+use tirecontact::gui::views::legend_place::length_inside;
+use tirecontact::gui::{App, Command};
+use tirecontact::scene::Tyre;
+
+fn collect(shape: &Shape, out: &mut Vec<Vec<Pos2>>) {
+    match shape {
+        Shape::Vec(v) => v.iter().for_each(|s| collect(s, out)),
+        // curves; not the 3-point impact markers
+        Shape::Path(PathShape { points, closed, .. }) if points.len() > 3 && !closed => {
+            out.push(points.clone())
+        }
+        // dense curves: egui_plot draws them as min/max bands
+        Shape::Band(b) => {
+            out.push(b.points.iter().map(|p| Pos2::new(p.x, p.y.min)).collect());
+            out.push(b.points.iter().map(|p| Pos2::new(p.x, p.y.max)).collect());
+            for p in &b.points {
+                out.push(vec![Pos2::new(p.x, p.y.min), Pos2::new(p.x, p.y.max)]);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The polylines drawn on the last frame (the plots' curves).
+fn curves(h: &Harness<'_, App>) -> Vec<Vec<Pos2>> {
+    let mut out = Vec::new();
+    for c in &h.output().shapes {
+        collect(&c.shape, &mut out);
+    }
+    out
+}
+
+/// Rectangles of the legend entries named `labels`.
+fn entries(h: &Harness<'_, App>, labels: &[&str]) -> Vec<Rect> {
+    labels
+        .iter()
+        .flat_map(|l| h.get_all_by_label(l).map(|n| n.rect()).collect::<Vec<_>>())
+        .collect()
+}
+
+/// Curve length (px) under the legend entries.
+fn ink_under(h: &Harness<'_, App>, labels: &[&str]) -> (f32, usize) {
+    let c = curves(h);
+    let e = entries(h, labels);
+    let per: Vec<f32> = e.iter().map(|r| length_inside(*r, &c)).collect();
+    eprintln!("ink per entry (px): {per:?}");
+    (per.iter().sum(), e.len())
+}
+
+fn settle(h: &mut Harness<'_, App>) {
+    // the corner is chosen from the curves of the frame before
+    h.run_steps(4);
+}
+
+#[test]
+fn spectra_legends_keep_off_the_curves() {
+    let scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    let mut h = harness(App::new(scene, None).unwrap());
+    h.run();
+    advance(&mut h, 12_000);
+    h.state_mut().apply(Command::ShowView(View::Spectra));
+    settle(&mut h);
+    let labels = [
+        "q0: point 0",
+        "q1: point 1",
+        "q2: point 2",
+        "u0: point 0",
+        "u1: point 1",
+        "u2: point 2",
+        "q total: sum of all points",
+        "road n·V/λ",
+        "modal frequencies",
+    ];
+    let (ink, n) = ink_under(&h, &labels);
+    assert!(n >= 7, "legend entries found: {n}");
+    eprintln!("spectra: {ink:.0} px of curve under {n} legend entries");
+    assert!(ink <= 10.0, "{ink} px of curve under the legends");
+}
+
+#[test]
+fn compare_legends_keep_off_the_curves() {
+    let scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    let mut h = harness(App::new(scene, None).unwrap());
+    h.run();
+    advance(&mut h, 12_000);
+    h.state_mut().apply(Command::ShowView(View::Compare));
+    h.run_steps(2);
+    h.get_by_label("Pin as reference").click();
+    h.run_steps(2);
+    advance(&mut h, 4_000);
+    // the curves fill the whole run: the legends go above them; on a
+    // clipped force axis above the clip level (was 520 px of curve under
+    // the force legend's entries, in its emptiest corner)
+    h.get_by_label("clip impact spikes").click();
+    settle(&mut h);
+    let labels = ["current run (solid)", "reference (dashed)"];
+    let (ink, n) = ink_under(&h, &labels);
+    assert_eq!(n, 4, "legend entries found: {n}");
+    eprintln!("compare: {ink:.0} px of curve under {n} legend entries");
+    assert!(ink <= 10.0, "{ink} px of curve under the legends");
+    h.get_by_label("clip impact spikes").click();
+    settle(&mut h);
+    let clipped = [
+        "current run (solid)",
+        "reference (dashed)",
+        "impact (impulse / dt, clipped)",
+    ];
+    let (ink, n) = ink_under(&h, &clipped);
+    assert_eq!(n, 5, "legend entries found: {n}");
+    eprintln!("compare, clipped: {ink:.0} px of curve under {n} legend entries");
+    assert!(ink <= 10.0, "{ink} px of curve under the clipped legends");
+    // the difference plots (shown by default) get curves and legends once
+    // the run differs from the reference: clipped, after an edit
+    let mut edited = h.state().scene().clone();
+    if let Tyre::Modal { modes } = &mut edited.tyre {
+        modes[0].freq_hz *= 1.1;
+    }
+    h.state_mut().apply(Command::EditScene(Box::new(edited)));
+    h.run_steps(1);
+    advance(&mut h, 16_000);
+    settle(&mut h);
+    let (ink, n) = ink_under(&h, &[clipped.as_slice(), &["current − reference"]].concat());
+    assert!(n >= 8, "legend entries found: {n}");
+    eprintln!("compare with differences, clipped: {ink:.0} px of curve under {n} legend entries");
+    assert!(ink <= 10.0, "{ink} px of curve under the legends");
+}
+
+#[test]
+fn sweep_legends_keep_off_the_curves() {
+    let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    scene.duration_s = 0.05;
+    let mut h = harness(App::new(scene, None).unwrap());
+    h.run();
+    h.state_mut().apply(Command::ShowView(View::Sweep));
+    h.run_steps(2);
+    h.get_by_label("Run sweep").click();
+    h.run_steps(2);
+    for _ in 0..20_000 {
+        if !h.state().research().sweep().is_running() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.run_steps(1);
+    }
+    assert!(matches!(
+        h.state().research().sweep(),
+        SweepState::Finished(_)
+    ));
+    settle(&mut h);
+    let labels = ["point 0", "point 1", "point 2"];
+    let (ink, n) = ink_under(&h, &labels);
+    assert!(n >= 9, "legend entries found: {n}");
+    eprintln!("sweep: {ink:.0} px of curve under {n} legend entries");
+    assert!(ink <= 10.0, "{ink} px of curve under the legends");
+}

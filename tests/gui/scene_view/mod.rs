@@ -1,0 +1,7 @@
+//! The scene view: the force arrows' value labels and legend entry, and the
+//! displaced tyre line's contrast in both themes.
+
+mod contrast;
+mod force_label_tyre;
+mod force_labels;
+mod force_legend;

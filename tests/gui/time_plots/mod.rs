@@ -1,0 +1,8 @@
+//! The stacked time plots and their PNG export: shared time axis, legends
+//! off the curves, and the clipping of impact spikes (both contact schemes).
+
+mod axes_align;
+mod export_clip;
+mod legend_ink;
+mod legends;
+mod paper_clip;

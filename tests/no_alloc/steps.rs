@@ -1,0 +1,51 @@
+//! Zero heap allocations per step once a simulation is built, for both
+//! contact schemes and through located impacts and releases.
+
+use crate::allocations_in;
+
+#[test]
+fn steps_do_not_allocate() {
+    // "Compliant": tread springs (override the scheme; landings and
+    // releases located in the step as the "Located" scheme's are)
+    for scheme in ["Located", "Paper", "Compliant"] {
+        let text = std::fs::read_to_string("presets/three_points.ron")
+            .unwrap()
+            .replace(
+                "contact_scheme: Located",
+                &if scheme == "Compliant" {
+                    "contact: Compliant(stiffness_n_m: [3e6])".to_string()
+                } else {
+                    format!("contact_scheme: {scheme}")
+                },
+            );
+        let scene = tirecontact::Scene::parse(&text, "three_points").unwrap();
+        let mut sim = tirecontact::Simulation::new(&scene).unwrap();
+        // warm up: the first event sizes the scratch tables
+        for _ in 0..5000 {
+            sim.step().unwrap();
+        }
+        let events_before = sim.stats().events;
+        let allocs = allocations_in(|| {
+            for _ in 0..20000 {
+                sim.step().unwrap();
+            }
+        });
+        let events = sim.stats().events - events_before;
+        assert_eq!(
+            allocs, 0,
+            "{scheme}: {allocs} allocations in 20000 steps ({events} events)"
+        );
+        if scheme == "Located" {
+            assert!(
+                events > 50,
+                "the window must contain located events: {events}"
+            );
+        }
+        if scheme == "Compliant" {
+            assert!(
+                events > 20,
+                "the window must contain located landings and releases: {events}"
+            );
+        }
+    }
+}

@@ -1,0 +1,23 @@
+//! The contact solver and the fast modal convolution (method §1-4), checked
+//! against closed forms, independent implementations written in these
+//! files, self-convergence and invariants; its options (steady path, rank
+//! cut, residual flexibility) against their controls; stress and large
+//! scenes.
+
+#[allow(dead_code)] // each test binary uses a part of the shared helpers
+#[path = "../support/mod.rs"]
+mod support;
+
+mod dense;
+mod oscillator;
+
+mod contact;
+mod exact_step;
+mod invariants;
+mod many_points;
+mod paper_scheme;
+mod rank_tolerance;
+mod residual_flexibility;
+mod residues;
+mod steady_path;
+mod stress;
