@@ -239,12 +239,15 @@ fn preset_ring_frequencies_against_spec_list() {
         motion: RingMotion::RadialOnly,
         ..ring.clone()
     };
-    println!("n  SPEC radial-only  crate radial-only  coupled (lower / upper branch) Hz");
+    println!("n  reference radial-only  crate radial-only  coupled (lower / upper branch) Hz");
     for (n, f_spec) in spec.iter().enumerate() {
         let ro = radial_only.order_frequencies_hz(n)[0];
         let co = ring.order_frequencies_hz(n);
         println!("{n}  {f_spec:>6.1}  {ro:>8.2}  {co:>8.2?}");
-        assert!((ro - f_spec).abs() < 0.15, "n = {n}: {ro} vs SPEC {f_spec}");
+        assert!(
+            (ro - f_spec).abs() < 0.15,
+            "n = {n}: {ro} vs reference {f_spec}"
+        );
     }
     let n0 = ((ring.extensional_stiffness_n / ring.radius_m.powi(2) + ring.radial_stiffness_n_m2)
         / ring.mass_per_length_kg_m)

@@ -1,5 +1,5 @@
 //! The unit oscillator of method §2 in closed form, from its poles, written
-//! from SPEC.md alone (not the crate's code): the reference of the exact-step
+//! from docs/method.md alone (not the crate's code): the reference of the exact-step
 //! and plain-scheme checks.
 
 /// Minimal complex arithmetic.

@@ -1,7 +1,7 @@
 //! method §1 and §4: sign conventions, road sampling and
 //! ramp as the solver sees them, the output force as a step mean, and the
 //! paper's plain scheme (method §4 steps 1-5) against an implementation of
-//! those steps written here from SPEC.md alone (own closed-form modal
+//! those steps written here from docs/method.md alone (own closed-form modal
 //! recursion per (mode, source), own dense solve), compared to round-off.
 
 use crate::dense::solve_equilibrated;
@@ -133,8 +133,8 @@ fn conventions_road_ramp_and_step_mean_force_on_the_road() {
     println!(
         "on the road: max |u - r| {worst_u:.2e} m, max |v - r'| {worst_v:.2e} m/s, max |q - q_ref| {worst_q:.2e} N of {qmax:.1} N"
     );
-    assert!(worst_u < 1e-15, "u vs SPEC road: {worst_u:e} m");
-    assert!(worst_v < 1e-12, "v vs SPEC road rate: {worst_v:e} m/s");
+    assert!(worst_u < 1e-15, "u vs the road r(t): {worst_u:e} m");
+    assert!(worst_v < 1e-12, "v vs the road rate: {worst_v:e} m/s");
     assert!(
         worst_q < 1e-9 * qmax,
         "step-mean force: {worst_q:e} N of {qmax} N"
@@ -171,7 +171,7 @@ struct RMode {
     a: Vec<f64>,
 }
 
-/// The paper's plain scheme, method §4 steps 1-5, from the SPEC text:
+/// The paper's plain scheme, method §4 steps 1-5, from the method's text:
 /// per (mode, source) state `(x, v)` advanced exactly (closed-form `Φ` and
 /// Gauss-point weights of the linear force), candidates from the free
 /// prediction, the coupled `2|S|` system, monotone release of the most
