@@ -1,4 +1,4 @@
-//! Contact phases per point for on-screen labels (issue 9, classroom mode):
+//! Contact phases per point for on-screen labels (classroom mode):
 //! free flight, impact, in contact, release.
 //!
 //! The phase of a step comes from the contact flag at its start and end and

@@ -1,4 +1,4 @@
-//! Classroom mode (issue 9): large fonts, a presenter layout (the scene large
+//! Classroom mode: large fonts, a presenter layout (the scene large
 //! with the contact phase of every point written over it, one time plot of a
 //! chosen point below, the mode contribution bars beside), slow motion, and
 //! the guided preset's explanation shown prominently.

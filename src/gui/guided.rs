@@ -1,4 +1,4 @@
-//! The guided tour (issue 9, classroom mode): pairs of shipped presets that
+//! The guided tour (classroom mode): pairs of shipped presets that
 //! differ in one thing (tyre stiffness, damping, speed, road wavelength),
 //! each with a description of what to watch, shown large in classroom mode.
 

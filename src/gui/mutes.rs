@@ -1,4 +1,4 @@
-//! Solo and mute of modes (issue 9, classroom mode bars): a muted mode's
+//! Solo and mute of modes (classroom mode bars): a muted mode's
 //! residue (or shape) is scaled by 0 in the scene, which restarts the run;
 //! un-muting every mode gives the original tyre back exactly.
 

@@ -1,4 +1,4 @@
-//! Animation frames of the scene view for slides (issue 9): numbered PNGs
+//! Animation frames of the scene view for slides: numbered PNGs
 //! `frame_00000.png`, … of the road moving under the contact line and the
 //! displaced points coloured by contact state, with the contact phase of each
 //! point written above it. Drawn headlessly with plotters (no GPU, no egui),

@@ -1,4 +1,4 @@
-//! Per-mode contributions to a point's displacement (issue 9, classroom
+//! Per-mode contributions to a point's displacement (classroom
 //! "mode bars"): `u_i = Σ_k u_ik`, `u_ik = Σ_{s of mode k} a_s[i] x_s`.
 //! The displacement has no static or road part: the tyre starts at rest and
 //! `u` is the modal response to the contact forces alone.

@@ -1,4 +1,4 @@
-//! Contact law (issue 9): the paper's rigid kinematic contact, or a tread
+//! Contact law: the paper's rigid kinematic contact, or a tread
 //! spring in series with the tyre at each point (one stiffness for every
 //! point, or one per point). Changing it restarts the run.
 
