@@ -17,7 +17,8 @@ use std::f64::consts::TAU;
 use std::time::Instant;
 
 use tirecontact::Simulation;
-use tirecontact::scene::{ContactScheme, Mode, Point, Scene};
+use tirecontact::road::Road;
+use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
 
 // ---------------------------------------------------------------------------
 // Own closed forms of the unit oscillator h'' + 2ξω h' + ω² h = δ(t)
