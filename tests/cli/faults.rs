@@ -316,11 +316,11 @@ fn interrupted_atomic_write_keeps_the_old_file() {
         let e = r.unwrap_err();
         assert!(e.to_string().contains("interrupted after"), "{e}");
         assert_eq!(std::fs::read(&path).unwrap(), old, "after {n} bytes");
-        assert_eq!(names_in(&dir), ["scene.ron"], "after {n} bytes");
+        assert_eq!(names_in(dir), ["scene.ron"], "after {n} bytes");
     }
     write_atomic(&path, &new).unwrap();
     assert_eq!(std::fs::read(&path).unwrap(), new);
-    assert_eq!(names_in(&dir), ["scene.ron"]);
+    assert_eq!(names_in(dir), ["scene.ron"]);
 }
 
 /// `Scene::save` where the temporary cannot be created (its name, longer
@@ -338,7 +338,7 @@ fn failed_scene_save_keeps_the_old_file() {
     let e = scene.save(&long).unwrap_err().to_string();
     assert!(e.contains(&"s".repeat(246)), "{e}");
     assert_eq!(std::fs::read_to_string(&long).unwrap(), "old");
-    assert_eq!(names_in(&dir).len(), 1);
+    assert_eq!(names_in(dir).len(), 1);
 
     let folder = dir.join("folder.ron");
     std::fs::create_dir(&folder).unwrap();
@@ -348,11 +348,11 @@ fn failed_scene_save_keeps_the_old_file() {
         std::fs::read_to_string(folder.join("inside")).unwrap(),
         "kept"
     );
-    assert_eq!(names_in(&dir).len(), 2, "{:?}", names_in(&dir));
+    assert_eq!(names_in(dir).len(), 2, "{:?}", names_in(dir));
 
     // and a save that works round-trips
     let ok = dir.join("ok.ron");
     scene.save(&ok).unwrap();
     assert_eq!(Scene::load(&ok).unwrap().points, scene.points);
-    assert_eq!(names_in(&dir).len(), 3, "{:?}", names_in(&dir));
+    assert_eq!(names_in(dir).len(), 3, "{:?}", names_in(dir));
 }

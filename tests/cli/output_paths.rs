@@ -125,7 +125,7 @@ fn outputs_in_missing_folders_are_refused_before_any_work() {
         );
     }
     assert!(!missing.exists(), "a refused output created its folder");
-    assert_eq!(files_under(&d), Vec::<PathBuf>::new(), "files left behind");
+    assert_eq!(files_under(d), Vec::<PathBuf>::new(), "files left behind");
 }
 
 #[test]
@@ -134,7 +134,7 @@ fn a_folder_given_for_an_output_file_is_refused() {
     let d = tmp.path();
     let o = bin()
         .args(["run", "presets/single_mode.ron", "--duration", "0.2", "-o"])
-        .arg(&d)
+        .arg(d)
         .output()
         .unwrap();
     refused(
@@ -341,7 +341,7 @@ fn bench_outside_the_repository_says_what_it_studies() {
     let tmp = temp_dir();
     let d = tmp.path();
     let o = bin()
-        .current_dir(&d)
+        .current_dir(d)
         .args(["bench", "--quick", "-o", "out"])
         .output()
         .unwrap();
@@ -377,7 +377,7 @@ fn an_interrupted_run_leaves_no_temporary_file() {
             .unwrap();
         // wait until rows are being written into the temporary
         let written = || {
-            files_under(&d)
+            files_under(d)
                 .iter()
                 .any(|p| std::fs::metadata(p).is_ok_and(|m| m.len() > 0))
         };

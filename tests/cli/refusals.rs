@@ -85,7 +85,7 @@ fn invalid_utf8_in_a_preset_names_line_and_column() {
 fn a_folder_or_missing_file_as_preset_says_a_preset_file_is_expected() {
     let tmp = temp_dir();
     let d = tmp.path();
-    let e = Scene::load(&d).unwrap_err().to_string();
+    let e = Scene::load(d).unwrap_err().to_string();
     assert!(
         e.contains("is a folder") && e.contains("expected a scene preset"),
         "{e}"

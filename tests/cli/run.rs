@@ -193,7 +193,7 @@ fn a_failed_run_keeps_the_old_output_file() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("outside its extent"), "{err}");
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "old results\n");
-    let left: Vec<_> = std::fs::read_dir(&d)
+    let left: Vec<_> = std::fs::read_dir(d)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .filter(|n| n.contains(".tmp-"))
@@ -305,7 +305,7 @@ fn bench_quick_writes_its_tables_and_diagram() {
     let d = tmp.path();
     let o = bin()
         .args(["bench", "--quick", "presets/single_mode.ron", "-o"])
-        .arg(&d)
+        .arg(d)
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

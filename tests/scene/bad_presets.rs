@@ -768,7 +768,7 @@ fn base_scene_is_valid_through_library_and_cli() {
             vec![("road.csv", GOOD_ROAD.as_bytes().to_vec())],
         ),
     ] {
-        let path = write_case(&dir, &text, &files);
+        let path = write_case(dir, &text, &files);
         load(&path).unwrap();
         for cmd in ["check", "run"] {
             let o = bin().arg(cmd).arg(&path).output().unwrap();
@@ -817,7 +817,7 @@ fn every_bad_preset_names_the_problem() {
 fn huge_road_file_is_refused_before_reading() {
     let tmp = temp_dir();
     let dir = tmp.path();
-    let path = write_case(&dir, &edit(&[(SINE, MEASURED)]), &[]);
+    let path = write_case(dir, &edit(&[(SINE, MEASURED)]), &[]);
     let f = std::fs::File::create(dir.join("road.csv")).unwrap();
     f.set_len(MAX_PROFILE_BYTES + 1).unwrap();
     drop(f);
