@@ -386,7 +386,7 @@ fn residual_flexibility(
     let mut list: Vec<Scene> = scenes.to_vec();
     list.push(tirecontact::bench::scenes::many_points(5, 20));
     // smooth: 25 Hz excitation below every mode, 400 N preload on a 0.1 mm
-    // road, slow ramp; never leaves the road (tests/residual_flexibility.rs)
+    // road, slow ramp; never leaves the road (tests/solver/residual_flexibility.rs)
     let smooth =
         tirecontact::bench::scenes::preloaded_three_points(0.05, 400.0, 1e-4, 5.0, 0.1, 1e-5, 0.2);
     let duration_s = if quick { 0.05 } else { 0.2 };

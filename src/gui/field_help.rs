@@ -2,7 +2,7 @@
 //! scene accepts, for its tooltip: someone who has never seen the app learns
 //! on hover what "ramp" is, in which unit it is typed and what may be typed,
 //! before typing something that is refused. The bounds are the ones
-//! `Scene::validate` checks (tests/gui_field_help.rs holds them to it).
+//! `Scene::validate` checks (tests/gui/field_help.rs holds them to it).
 
 /// The meaning of a field and the values it accepts (SI).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -84,7 +84,7 @@ pub enum FigureError {
 /// blue were 22 apart in CIEDE2000 (24 in L*), one colour in a small
 /// README image; (0, 95, 155) is 31 (L* 39 and 70). Any two of the first
 /// eight differ by at least 20 in CIEDE2000, two of one hue by at least 20
-/// in lightness, points 0 and 4 by at least 30 (`tests/palette.rs`). The
+/// in lightness, points 0 and 4 by at least 30 (`tests/analysis/palette.rs`). The
 /// visualiser's first eight are these with grey for black
 /// (`gui::views::PALETTE`).
 pub const PALETTE: [RGBColor; 10] = [

@@ -39,7 +39,7 @@
 //! The error is second order in `dt` and comes from inside the contacts:
 //! the linear force through the end conditions follows the contact's own
 //! oscillation (frequency `sqrt(ω² + k ΣA)`) to `O(dt²)`; the located events
-//! are not what limits it (`tests/contact_reference.rs` measures the orders
+//! are not what limits it (`tests/solver/contact.rs` measures the orders
 //! against an RK4 solution of the modal equations).
 //!
 //! The spring is undamped and massless: a landing point whose impact is
