@@ -88,7 +88,7 @@ pub struct App {
     pub(super) mutes: Option<Mutes>,
     frames_dialog: Option<FramesDialog>,
     frames_job: Option<FramesJob>,
-    /// Researcher tools: spectra, sweep, pinned run, fidelity (issue #8).
+    /// Researcher tools: spectra, sweep, pinned run, fidelity.
     pub(super) research: super::research::ResearchState,
     /// The open, save or export file prompt, when shown.
     pub(super) file_prompt: Option<super::file_prompt::FilePrompt>,

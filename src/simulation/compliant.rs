@@ -169,17 +169,7 @@ impl Simulation {
                 None => break,
             }
         }
-        if self.active.iter().any(|&j| self.q1[j] + self.q2[j] < 0.0) {
-            let (q1, q2) = (&mut self.q1, &mut self.q2);
-            self.active.retain(|&j| {
-                let keep = q1[j] + q2[j] >= 0.0;
-                if !keep {
-                    (q1[j], q2[j]) = (0.0, 0.0);
-                }
-                keep
-            });
-            self.end_values_sub_or_full(sel);
-        }
+        self.let_go_pulling(sel);
         self.commit(tau, sel);
         Ok(solves)
     }

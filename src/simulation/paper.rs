@@ -55,6 +55,15 @@ impl Simulation {
         }
         // At the solve bound, a point still pulling is let go (its force
         // zeroed): the forces stay non-negative, any penetration is reported.
+        self.let_go_pulling(sel);
+        self.commit(tau, sel);
+        Ok(solves)
+    }
+
+    /// At the solve bound, a point still pulling on average is let go (its
+    /// force zeroed) and the end values are solved again: the forces stay
+    /// non-negative, any penetration is reported.
+    pub(super) fn let_go_pulling(&mut self, sel: Table) {
         if self.active.iter().any(|&j| self.q1[j] + self.q2[j] < 0.0) {
             let (q1, q2) = (&mut self.q1, &mut self.q2);
             self.active.retain(|&j| {
@@ -66,7 +75,5 @@ impl Simulation {
             });
             self.end_values_sub_or_full(sel);
         }
-        self.commit(tau, sel);
-        Ok(solves)
     }
 }

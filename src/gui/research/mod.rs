@@ -1,4 +1,4 @@
-//! Researcher tools of the visualiser (issue #8): spectra of the current
+//! Researcher tools of the visualiser: spectra of the current
 //! run, parameter sweeps on a background thread, A/B comparison with a
 //! pinned run, and the fidelity of the modal model against the ring's
 //! Green functions. The logic lives in egui-free submodules; `state` holds
