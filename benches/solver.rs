@@ -32,7 +32,8 @@ fn steps(c: &mut Criterion) {
     for (name, scene, warm_up) in scenes {
         let p = scene.num_points();
         // the full step, warmed up past the ramp (contact, events)
-        let mut sim = Simulation::new(&scene).unwrap();
+        let model = tirecontact::PreparedModel::of(&scene).unwrap();
+        let mut sim = Simulation::new(&model, tirecontact::SolverOptions::default()).unwrap();
         for _ in 0..warm_up {
             sim.step().unwrap();
         }
@@ -41,7 +42,7 @@ fn steps(c: &mut Criterion) {
         });
         // the bound: predict + project of the same states, nothing else
         let basis = ModalBasis::with_rank_tolerance(
-            &scene.modes().unwrap(),
+            model.modes(),
             p,
             tirecontact::SolverOptions::default().rank_tolerance_for(&scene),
         )
@@ -131,7 +132,7 @@ fn presets(c: &mut Criterion) {
         scene.duration_s = 0.1;
         g.bench_function(format!("{name}/0.1s"), |b| {
             b.iter(|| {
-                let mut sim = Simulation::new(&scene).unwrap();
+                let mut sim = Simulation::from_scene(&scene).unwrap();
                 while !sim.finished() {
                     sim.step().unwrap();
                 }

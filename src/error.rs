@@ -136,6 +136,20 @@ fn format_invalid(file: &str, errors: &[FieldError], at: &[Option<(usize, usize)
     s
 }
 
+/// Why a run driven by [`crate::drive::run`] stopped early.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// A step could not be solved.
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+    /// What the run's observer writes failed (a CSV file, a frame).
+    #[error("writing the run's output: {0}")]
+    Output(#[from] std::io::Error),
+    /// The run's cancel flag was set.
+    #[error("cancelled after {steps} steps")]
+    Cancelled { steps: u64 },
+}
+
 /// Errors of the time stepper. A step that fails leaves the simulation at the
 /// start of that step.
 #[derive(Debug, Clone, Error, PartialEq)]

@@ -1,12 +1,15 @@
 //! Ring tyre -> modal model: sample the ring's radial impulse responses at
-//! the contact points (method §5) and identify them by LSCE (method §6), with a
-//! process-wide cache so that a scene is identified once per distinct ring,
-//! options and point positions.
+//! the contact points (method §5) and identify them by LSCE (method §6); and
+//! scene -> [`PreparedModel`], what a simulation is built from, with the
+//! identifications kept in a [`ModeCache`] the caller owns.
 
+use crate::error::SceneError;
 use crate::lsce::{Identification, IdentifyOptions, LsceError, Responses, identify};
 use crate::modal::ModalModel;
 use crate::modal::Mode;
 use crate::ring::RingParams;
+use crate::road::RoadProfile;
+use crate::scene::{Scene, Tyre};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
@@ -124,7 +127,19 @@ pub fn magnitude_error(
 }
 
 type CacheEntry = (String, Arc<Vec<Mode>>);
-static CACHE: Mutex<Vec<CacheEntry>> = Mutex::new(Vec::new());
+
+/// Identified ring modes kept by whoever runs several scenes of one tyre
+/// (the visualiser, a sweep), keyed on the exact ring, identification options
+/// and point positions; the 8 most recent are kept. A value the caller owns
+/// and passes where modes are needed: nothing is cached behind its back.
+/// Shared between threads by reference (the identification itself runs
+/// outside the lock).
+#[derive(Debug, Default)]
+pub struct ModeCache {
+    entries: Mutex<Vec<CacheEntry>>,
+}
+
+/// How many identifications a [`ModeCache`] keeps.
 const CACHE_LEN: usize = 8;
 
 /// The cache key of a ring, its identification options and the points.
@@ -132,34 +147,156 @@ fn cache_key(ring: &RingParams, x_m: &[f64], opts: &IdentifyOptions) -> String {
     format!("{ring:?}|{opts:?}|{x_m:?}")
 }
 
-/// Whether [`ring_modes_cached`] would answer from its cache (no
-/// identification to run).
-pub fn ring_modes_are_cached(ring: &RingParams, x_m: &[f64], opts: &IdentifyOptions) -> bool {
-    let key = cache_key(ring, x_m, opts);
-    let cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-    cache.iter().any(|(k, _)| *k == key)
+/// The points' positions along the tyre (m).
+fn positions(scene: &Scene) -> Vec<f64> {
+    scene.points.iter().map(|p| p.x_m).collect()
 }
 
-/// The identified modes of a ring at the points `x_m`, from the cache when
-/// the ring, the options and the positions are unchanged (keyed on their
-/// exact values; the 8 most recent are kept).
-pub fn ring_modes_cached(
-    ring: &RingParams,
-    x_m: &[f64],
-    opts: &IdentifyOptions,
-) -> Result<Arc<Vec<Mode>>, LsceError> {
-    let key = cache_key(ring, x_m, opts);
-    {
-        let cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((_, modes)) = cache.iter().find(|(k, _)| *k == key) {
-            return Ok(Arc::clone(modes));
+impl ModeCache {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn lookup(&self, key: &str) -> Option<Arc<Vec<Mode>>> {
+        let entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
+        entries
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, m)| Arc::clone(m))
+    }
+
+    fn store(&self, key: String, modes: Arc<Vec<Mode>>) {
+        let mut entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
+        if entries.iter().any(|(k, _)| *k == key) {
+            return;
+        }
+        if entries.len() >= CACHE_LEN {
+            entries.remove(0);
+        }
+        entries.push((key, modes));
+    }
+
+    /// The identified modes of a ring at the points `x_m`: from the cache
+    /// when this ring, these options and positions were identified before,
+    /// else identified now ([`identify_ring`]) and kept.
+    pub fn ring_modes(
+        &self,
+        ring: &RingParams,
+        x_m: &[f64],
+        opts: &IdentifyOptions,
+    ) -> Result<Arc<Vec<Mode>>, LsceError> {
+        let key = cache_key(ring, x_m, opts);
+        if let Some(modes) = self.lookup(&key) {
+            return Ok(modes);
+        }
+        let modes = Arc::new(identify_ring(ring, x_m, opts)?.identification.modes);
+        self.store(key, Arc::clone(&modes));
+        Ok(modes)
+    }
+
+    /// The modes of a scene's tyre: those written in the preset
+    /// (`Tyre::Modal`), or the ring identified at the points' positions
+    /// (`Tyre::Ring`, method §5-6) through [`ModeCache::ring_modes`].
+    pub fn modes(&self, scene: &Scene) -> Result<Arc<Vec<Mode>>, SceneError> {
+        match &scene.tyre {
+            Tyre::Modal { modes } => Ok(Arc::new(modes.clone())),
+            Tyre::Ring {
+                ring,
+                identification,
+            } => self
+                .ring_modes(ring, &positions(scene), identification)
+                .map_err(|e| SceneError::Identification {
+                    scene: scene.name.clone(),
+                    message: e.to_string(),
+                }),
         }
     }
-    let modes = Arc::new(identify_ring(ring, x_m, opts)?.identification.modes);
-    let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-    if cache.len() >= CACHE_LEN {
-        cache.remove(0);
+
+    /// Whether [`ModeCache::modes`] answers at once: modes written in the
+    /// preset, or a ring already identified at these points (else it runs
+    /// the identification, a tenth of a second or more).
+    pub fn has_modes(&self, scene: &Scene) -> bool {
+        match &scene.tyre {
+            Tyre::Modal { .. } => true,
+            Tyre::Ring {
+                ring,
+                identification,
+            } => self
+                .lookup(&cache_key(ring, &positions(scene), identification))
+                .is_some(),
+        }
     }
-    cache.push((key, Arc::clone(&modes)));
-    Ok(modes)
+
+    /// Keeps the modes of a model prepared elsewhere (a background job
+    /// with its own cache), so that the scene is not identified again.
+    pub fn remember(&self, model: &PreparedModel) {
+        if let Tyre::Ring {
+            ring,
+            identification,
+        } = &model.scene.tyre
+        {
+            let key = cache_key(ring, &positions(&model.scene), identification);
+            self.store(key, Arc::clone(&model.modes));
+        }
+    }
+}
+
+/// A scene made ready to simulate: validated, its tyre's modes known
+/// (identified if it is a ring) and its road profile loaded (a measured
+/// road read from its file). Everything that may take time, read a file or
+/// fail on the user's input happens here, once; a
+/// [`crate::Simulation`] is then built from it without I/O or
+/// identification.
+#[derive(Debug, Clone)]
+pub struct PreparedModel {
+    scene: Scene,
+    modes: Arc<Vec<Mode>>,
+    road: RoadProfile,
+}
+
+impl PreparedModel {
+    /// Validates `scene`, takes its modes from `cache` (identifying a ring
+    /// not seen before), reads a measured road file and checks the ramp
+    /// against the road (`T_ramp = 0` needs every point above it, method §4).
+    pub fn new(scene: &Scene, cache: &ModeCache) -> Result<Self, SceneError> {
+        scene.validate().map_err(|errors| SceneError::Invalid {
+            file: scene.name.clone(),
+            errors,
+            at: Vec::new(),
+        })?;
+        let modes = cache.modes(scene)?;
+        let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
+        if let Some(e) = scene.ramp_error(&road) {
+            return Err(SceneError::Invalid {
+                file: scene.name.clone(),
+                errors: vec![e],
+                at: Vec::new(),
+            });
+        }
+        Ok(Self {
+            scene: scene.clone(),
+            modes,
+            road,
+        })
+    }
+
+    /// [`PreparedModel::new`] with a cache of its own: for one scene run
+    /// once. Several runs of one ring tyre share a [`ModeCache`] instead.
+    pub fn of(scene: &Scene) -> Result<Self, SceneError> {
+        Self::new(scene, &ModeCache::new())
+    }
+
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The tyre's modes (given or identified).
+    pub fn modes(&self) -> &[Mode] {
+        &self.modes
+    }
+
+    /// The road profile, loaded.
+    pub fn road(&self) -> &RoadProfile {
+        &self.road
+    }
 }

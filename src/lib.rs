@@ -22,10 +22,11 @@
 //! | [`road`] | road profiles and the preload/road ramp | §4 |
 //! | [`contact`] | scaled dense solves for the Gauss-point and impulse systems | §4 |
 //! | [`simulation`] | the time stepper: active set, complementarity, events inside the step | §4 |
+//! | [`drive`] | the run driver and the `Probe` observer every output implements | — |
 //! | [`ring`] | ring tyre on an elastic foundation: orders, modes, radial Green functions | §5 |
 //! | [`linalg`] | checked dense decompositions (faer): rank terms, least squares, eigenvalues | §3, §6 |
 //! | [`lsce`] | LSCE identification, stabilisation diagram, fit report | §6 |
-//! | [`identify`] | ring -> sampled responses -> LSCE, cached per scene | §5-6 |
+//! | [`identify`] | ring -> sampled responses -> LSCE; `ModeCache`, `PreparedModel` (what a simulation is built from) | §5-6 |
 //! | [`scene`] | RON scenes and their validation | — |
 //! | [`fsio`] | atomic file writes, temporaries removed on Ctrl-C | — |
 //! | [`output`] | CSV writer, headless PNG figures | — |
@@ -39,6 +40,7 @@ pub mod bench;
 pub mod compare;
 pub mod contact;
 pub mod convolution;
+pub mod drive;
 pub mod error;
 pub mod fidelity;
 pub mod fsio;
@@ -57,7 +59,8 @@ pub mod simulation;
 pub mod spectrum;
 pub mod sweep;
 
-pub use error::{SceneError, SolverError};
+pub use error::{RunError, SceneError, SolverError};
+pub use identify::{ModeCache, PreparedModel};
 pub use scene::Scene;
 pub use simulation::{IDENTIFIED_RANK_TOLERANCE, Simulation, SolverOptions, StepReport};
 
@@ -86,9 +89,10 @@ mod layers {
         ("road", 1),
         ("convolution", 1),
         ("fidelity", 1),
-        ("identify", 2),
-        ("scene", 3),
+        ("scene", 2),
+        ("identify", 3),
         ("simulation", 4),
+        ("drive", 4),
         ("output", 5),
         ("compare", 6),
         ("spectrum", 6),
@@ -101,8 +105,11 @@ mod layers {
     /// The crate root's re-exports, by the module that defines them.
     const ROOT: &[(&str, &str)] = &[
         ("Scene", "scene"),
+        ("ModeCache", "identify"),
+        ("PreparedModel", "identify"),
         ("SceneError", "error"),
         ("SolverError", "error"),
+        ("RunError", "error"),
         ("Simulation", "simulation"),
         ("SolverOptions", "simulation"),
         ("StepReport", "simulation"),

@@ -182,7 +182,7 @@ mod tests {
     #[test]
     fn impacts_match_rising_edges_of_the_contact_flag() {
         let scene = Scene::parse(include_str!("../presets/three_points.ron"), "three").unwrap();
-        let mut sim = Simulation::new(&scene).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
         let mut tr = PhaseTracker::new(3, 0.0);
         let mut prev = [false; 3];
         let mut rising = [0u64; 3];

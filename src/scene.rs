@@ -252,44 +252,6 @@ impl Scene {
         (self.duration_s / self.dt_s).round().max(1.0) as u64
     }
 
-    /// The modes of the modal model: those given (`Tyre::Modal`), or those
-    /// identified from the ring tyre at the points' positions (`Tyre::Ring`,
-    /// method §5-6), computed once per distinct ring, options and positions
-    /// (cached, [`crate::identify::ring_modes_cached`]).
-    pub fn modes(&self) -> Result<Vec<Mode>, SceneError> {
-        match &self.tyre {
-            Tyre::Modal { modes } => Ok(modes.clone()),
-            Tyre::Ring {
-                ring,
-                identification,
-            } => {
-                let x: Vec<f64> = self.points.iter().map(|p| p.x_m).collect();
-                crate::identify::ring_modes_cached(ring, &x, identification)
-                    .map(|m| m.as_ref().clone())
-                    .map_err(|e| SceneError::Identification {
-                        scene: self.name.clone(),
-                        message: e.to_string(),
-                    })
-            }
-        }
-    }
-
-    /// Whether [`Scene::modes`] answers at once: given modes, or a ring
-    /// already identified at these points (else it runs the identification,
-    /// a tenth of a second or more).
-    pub fn modes_are_ready(&self) -> bool {
-        match &self.tyre {
-            Tyre::Modal { .. } => true,
-            Tyre::Ring {
-                ring,
-                identification,
-            } => {
-                let x: Vec<f64> = self.points.iter().map(|p| p.x_m).collect();
-                crate::identify::ring_modes_are_cached(ring, &x, identification)
-            }
-        }
-    }
-
     /// `T_ramp = 0` is allowed only where no point starts below the road
     /// (`z(x_i) - h_i <= 0` for all `i`, method §4).
     pub fn ramp_error(&self, road: &crate::road::RoadProfile) -> Option<FieldError> {

@@ -16,6 +16,7 @@ mod steady;
 use crate::contact::DenseSolver;
 use crate::convolution::{Influence, ModalBasis, ModalState, StepTable};
 use crate::error::{SceneError, SolverError};
+use crate::identify::PreparedModel;
 use crate::road::Road;
 use crate::road::{PointsRoad, RoadProfile, ramp};
 use crate::scene::{ContactScheme, Scene};
@@ -177,20 +178,15 @@ fn influence_columns(g: &Influence, p: usize) -> Vec<f64> {
 }
 
 impl Simulation {
-    /// Builds the simulation of a validated scene; reads a measured road file.
-    pub fn new(scene: &Scene) -> Result<Self, SceneError> {
-        Self::with_options(scene, SolverOptions::default())
-    }
-
-    /// As [`Simulation::new`], with explicit [`SolverOptions`].
-    pub fn with_options(scene: &Scene, options: SolverOptions) -> Result<Self, SceneError> {
-        scene.validate().map_err(|errors| SceneError::Invalid {
-            file: scene.name.clone(),
-            errors,
-            at: Vec::new(),
-        })?;
+    /// Builds the simulation of a prepared scene (validated, modes known,
+    /// road loaded: [`PreparedModel`]); no I/O and no identification here.
+    /// Fails only if a mode's residue cannot be split into rank terms
+    /// (method §3) or the residual compliance does not apply.
+    pub fn new(model: &PreparedModel, options: SolverOptions) -> Result<Self, SceneError> {
+        let scene = model.scene();
         let p = scene.num_points();
-        let (modes, residual) = split_residual(scene, scene.modes()?, options.residual_above_hz)?;
+        let (modes, residual) =
+            split_residual(scene, model.modes().to_vec(), options.residual_above_hz)?;
         let basis = if options.rank_reduction {
             ModalBasis::with_rank_tolerance(&modes, p, options.rank_tolerance_for(scene)).map_err(
                 |source| SceneError::Basis {
@@ -201,14 +197,7 @@ impl Simulation {
         } else {
             ModalBasis::per_source(&modes, p)
         };
-        let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
-        if let Some(e) = scene.ramp_error(&road) {
-            return Err(SceneError::Invalid {
-                file: scene.name.clone(),
-                errors: vec![e],
-                at: Vec::new(),
-            });
-        }
+        let road = model.road().clone();
         let full = StepTable::new(&basis, scene.dt_s);
         let mut full_inf = Influence::new(&basis, &full);
         if !residual.is_empty() {
@@ -322,10 +311,23 @@ impl Simulation {
         };
     }
 
-    /// Replaces the road profile live (no restart).
-    pub fn set_road(&mut self, road: &Road) -> Result<(), SceneError> {
+    /// Prepares a scene with a cache of its own and builds its simulation
+    /// with default options: for a scene run once. Runs of one ring tyre
+    /// share a [`crate::identify::ModeCache`] and call [`Simulation::new`].
+    pub fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
+        Self::new(&PreparedModel::of(scene)?, SolverOptions::default())
+    }
+
+    /// As [`Simulation::from_scene`], with explicit [`SolverOptions`].
+    pub fn from_scene_with(scene: &Scene, options: SolverOptions) -> Result<Self, SceneError> {
+        Self::new(&PreparedModel::of(scene)?, options)
+    }
+
+    /// Replaces the road live (no restart) by `road`, whose profile
+    /// `profile` the caller has loaded ([`RoadProfile::new`]).
+    pub fn set_road(&mut self, road: &Road, profile: RoadProfile) {
         let xs: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
-        self.road = PointsRoad::new(RoadProfile::new(road, self.scene.base_dir.as_deref())?, &xs);
+        self.road = PointsRoad::new(profile, &xs);
         self.scene.road = road.clone();
         let scale = self
             .scene
@@ -335,7 +337,6 @@ impl Simulation {
             .fold(self.road.profile.scale_m(), f64::max)
             .max(1e-6);
         self.pen_tol_m = 1e-12 * scale;
-        Ok(())
     }
 
     /// Changes the rolling speed live (m/s, no restart).

@@ -351,7 +351,12 @@ pub struct Markers {
 /// Markers of a scene up to `max_hz`: road excitation frequencies of a sine
 /// or multi-harmonic road (none for a measured or random profile) with harmonics up to
 /// `max_harmonic`, and the modal frequencies.
-pub fn markers(scene: &crate::Scene, max_hz: f64, max_harmonic: u32) -> Markers {
+pub fn markers(
+    scene: &crate::Scene,
+    modes: &[crate::modal::Mode],
+    max_hz: f64,
+    max_harmonic: u32,
+) -> Markers {
     use crate::road::Road;
     let wavelengths: Vec<f64> = match &scene.road {
         Road::Sine { wavelength_m, .. } => vec![*wavelength_m],
@@ -373,15 +378,11 @@ pub fn markers(scene: &crate::Scene, max_hz: f64, max_harmonic: u32) -> Markers 
             excitation.push((n, f));
         }
     }
-    let modal_hz = scene
-        .modes()
-        .map(|m| {
-            m.iter()
-                .map(|m| m.freq_hz)
-                .filter(|&f| f <= max_hz)
-                .collect()
-        })
-        .unwrap_or_default();
+    let modal_hz = modes
+        .iter()
+        .map(|m| m.freq_hz)
+        .filter(|&f| f <= max_hz)
+        .collect();
     Markers {
         excitation_hz: excitation,
         modal_hz,

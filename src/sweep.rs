@@ -8,9 +8,12 @@
 //! Every run is independent and deterministic, so a sweep point equals the
 //! single run of the scene with that value, whatever the thread count.
 
+use crate::drive::Watch;
+use crate::error::RunError;
+use crate::identify::{ModeCache, PreparedModel};
 use crate::road::Road;
 use crate::scene::{Contact, Scene, Tyre};
-use crate::simulation::Simulation;
+use crate::simulation::{Simulation, SolverOptions};
 use crate::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder};
 use crate::spectrum::{BandLevel, Window};
 pub mod report;
@@ -314,30 +317,33 @@ pub struct RunSummary {
     pub steps: u64,
 }
 
-/// Runs `scene` to its end and summarises its steady part (`t >= ramp_s`).
-/// `on_steps` is called with the number of steps done since its last call
-/// (every 1024 steps and at the end); `cancel` stops the run early.
+/// Runs a prepared scene to its end and summarises its steady part
+/// (`t >= ramp_s`). `on_steps` is called with the number of steps done since
+/// its last call (every 1024 steps and at the end); `cancel` stops the run
+/// early.
 pub fn run_summary(
-    scene: &Scene,
+    model: &PreparedModel,
     on_steps: &dyn Fn(u64),
     cancel: &AtomicBool,
 ) -> Result<RunSummary, String> {
-    let mut sim = Simulation::new(scene).map_err(|e| e.to_string())?;
+    let scene = model.scene();
+    let mut sim = Simulation::new(model, SolverOptions::default()).map_err(|e| e.to_string())?;
     let mut rec = SteadyRecorder::new(scene, None).map_err(|e| e.to_string())?;
     let n = scene.num_steps();
     let mut reported = 0;
-    for k in 0..n {
-        sim.step().map_err(|e| e.to_string())?;
-        rec.after_step(&sim);
-        if k % 1024 == 1023 {
-            if cancel.load(Ordering::Relaxed) {
-                return Err("cancelled".into());
-            }
-            on_steps(k + 1 - reported);
-            reported = k + 1;
-        }
-    }
-    on_steps(n - reported);
+    let mut progress = |done: u64, _: &Simulation| {
+        on_steps(done - reported);
+        reported = done;
+    };
+    crate::drive::run_to_end(
+        &mut sim,
+        &mut rec,
+        Watch::cancel(cancel).with_progress(&mut progress),
+    )
+    .map_err(|e| match e {
+        RunError::Cancelled { .. } => "cancelled".to_string(),
+        e => e.to_string(),
+    })?;
     let fs = 1.0 / scene.dt_s;
     let hi = DEFAULT_BANDS_HZ.1.min(0.5 * fs / 10f64.powf(0.05));
     let bands = crate::spectrum::spectrum(&rec.total_force_n(), fs, Window::Hann, true)
@@ -393,18 +399,20 @@ pub fn sweep_scenes(base: &Scene, sweep: &Sweep) -> Result<Vec<Scene>, SweepErro
 
 /// Runs the sweep on `sweep.threads` threads (values taken in order by the
 /// next free thread). `progress(done_steps, total_steps)` is called from the
-/// workers; `cancel` stops every run. Failed runs keep their message.
+/// workers; `cancel` stops every run. Failed runs keep their message. A ring
+/// tyre's modes come from `cache` (and are kept there).
 pub fn run_sweep(
     base: &Scene,
     sweep: &Sweep,
+    cache: &ModeCache,
     progress: &(dyn Fn(u64, u64) + Sync),
     cancel: &AtomicBool,
 ) -> Result<Vec<SweepPoint>, SweepError> {
     let scenes = sweep_scenes(base, sweep)?;
-    // identify a ring tyre once up front (cached) rather than in every thread
-    // at once; a swept ring parameter is identified per value in the threads
-    scenes[0]
-        .modes()
+    // identify a ring tyre once up front rather than in every thread at
+    // once; a swept ring parameter is identified per value in the threads
+    cache
+        .modes(&scenes[0])
         .map_err(|e| SweepError::Input(e.to_string()))?;
     let total: u64 = scenes.iter().map(Scene::num_steps).sum();
     let done = std::sync::atomic::AtomicU64::new(0);
@@ -424,7 +432,9 @@ pub fn run_sweep(
                         let now = done.fetch_add(d, Ordering::Relaxed) + d;
                         progress(now, total);
                     };
-                    let r = run_summary(&scenes[k], &on_steps, cancel);
+                    let r = PreparedModel::new(&scenes[k], cache)
+                        .map_err(|e| e.to_string())
+                        .and_then(|model| run_summary(&model, &on_steps, cancel));
                     results.lock().unwrap_or_else(|e| e.into_inner())[k] = Some(r);
                 }
             });

@@ -9,6 +9,7 @@
 //!
 //! Both share the in-step influence `(dt/2) g(dt - s_m)` of the Gauss forces.
 
+use crate::identify::ModeCache;
 use crate::modal::ModalModel;
 use crate::road::{RoadProfile, ramp};
 use crate::scene::Scene;
@@ -33,12 +34,29 @@ pub struct BaselineRun {
     pub overflow_t_s: Option<f64>,
 }
 
+/// A run of the stable solver recorded every step (the reference and the
+/// compared runs of the bench).
+impl crate::drive::Probe for BaselineRun {
+    fn after_step(&mut self, sim: &crate::Simulation) -> std::io::Result<()> {
+        self.t_s.push(sim.time_s());
+        self.u_m.push(sim.displacement_m().to_vec());
+        self.q_n.push(sim.force_n().to_vec());
+        Ok(())
+    }
+}
+
 /// Runs `scene` for `n_steps` with the paper's contact scheme on `kernel`.
 /// Errors if the scene's road cannot be built or a mode is not underdamped
 /// (the α/β form needs `ξ < 1`).
-pub fn run_baseline(scene: &Scene, kernel: Kernel, n_steps: usize) -> Result<BaselineRun, String> {
+pub fn run_baseline(
+    scene: &Scene,
+    kernel: Kernel,
+    n_steps: usize,
+    cache: &ModeCache,
+) -> Result<BaselineRun, String> {
     let p = scene.num_points();
-    let model = ModalModel::from_modes(&scene.modes().map_err(|e| e.to_string())?, p);
+    let modes = cache.modes(scene).map_err(|e| e.to_string())?;
+    let model = ModalModel::from_modes(&modes, p);
     if kernel == Kernel::AlphaBeta && model.modes.iter().any(|m| m.damping_ratio >= 1.0) {
         return Err("the α/β form needs every damping ratio < 1".into());
     }

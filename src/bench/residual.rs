@@ -3,8 +3,10 @@
 //! their static compliance (`SolverOptions::residual_above_hz`), against the
 //! full model at the same time step: error against run time.
 
+use crate::bench::baselines::BaselineRun;
 use crate::bench::work_precision::{Sampled, rms_rel, sample};
 use crate::convolution::ModalBasis;
+use crate::identify::{ModeCache, PreparedModel};
 use crate::scene::{Scene, Tyre};
 use crate::simulation::{Simulation, SolverOptions};
 use std::time::Instant;
@@ -38,8 +40,8 @@ pub struct ResidualRow {
 
 /// The default cut-off of a scene: the median mode frequency (the upper
 /// half of the modes is dropped); `None` with fewer than two modes.
-pub fn default_cutoff_hz(scene: &Scene) -> Option<f64> {
-    let mut f: Vec<f64> = scene.modes().ok()?.iter().map(|m| m.freq_hz).collect();
+pub fn default_cutoff_hz(model: &PreparedModel) -> Option<f64> {
+    let mut f: Vec<f64> = model.modes().iter().map(|m| m.freq_hz).collect();
     if f.len() < 2 {
         return None;
     }
@@ -50,12 +52,13 @@ pub fn default_cutoff_hz(scene: &Scene) -> Option<f64> {
 /// Runs the three variants of `scene` (its own dt, `duration_s`) and
 /// compares each with the full model; force errors over `window_s` means.
 pub fn residual_study(
-    scene: &Scene,
+    model: &PreparedModel,
     cutoff_hz: f64,
     duration_s: f64,
     window_s: f64,
 ) -> Result<Vec<ResidualRow>, String> {
-    let modes = scene.modes().map_err(|e| e.to_string())?;
+    let scene = model.scene();
+    let modes = model.modes();
     let p = scene.num_points();
     let dt = scene.dt_s;
     let mut truncated = scene.clone();
@@ -75,7 +78,7 @@ pub fn residual_study(
             .map(|b| b.num_states())
             .map_err(|e| e.to_string())
     };
-    let (states_all, states_kept) = (states(&modes)?, states(&kept)?);
+    let (states_all, states_kept) = (states(modes)?, states(&kept)?);
     truncated.tyre = Tyre::Modal {
         modes: kept.clone(),
     };
@@ -105,6 +108,9 @@ pub fn residual_study(
             states_kept,
         ),
     ];
+    // the variants share the source's modes: none is identified again
+    let cache = ModeCache::new();
+    cache.remember(model);
     let mut rows = Vec::new();
     let mut reference = None;
     for (variant, sc, options, modes_kept, states) in variants {
@@ -122,7 +128,7 @@ pub fn residual_study(
             events: 0,
             note: String::new(),
         };
-        let (t_s, u_m, q_n, wall, events) = match run(sc, duration_s, options) {
+        let (t_s, u_m, q_n, wall, events) = match run(sc, duration_s, options, &cache) {
             Ok(r) => r,
             Err(e) if reference.is_some() => {
                 row.note = e;
@@ -157,25 +163,28 @@ pub fn residual_study(
 /// time (s, the steps only) and its located events.
 type History = (Vec<f64>, Vec<Vec<f64>>, Vec<Vec<f64>>, f64, u64);
 
-fn run(scene: &Scene, duration_s: f64, options: SolverOptions) -> Result<History, String> {
+fn run(
+    scene: &Scene,
+    duration_s: f64,
+    options: SolverOptions,
+    cache: &ModeCache,
+) -> Result<History, String> {
     let mut s = scene.clone();
     s.duration_s = duration_s;
     let n = s.num_steps() as usize;
-    let mut sim = Simulation::with_options(&s, options).map_err(|e| e.to_string())?;
-    let (mut t, mut u, mut q) = (
-        Vec::with_capacity(n),
-        Vec::with_capacity(n),
-        Vec::with_capacity(n),
-    );
+    let model = PreparedModel::new(&s, cache).map_err(|e| e.to_string())?;
+    let mut sim = Simulation::new(&model, options).map_err(|e| e.to_string())?;
+    let mut run = BaselineRun {
+        t_s: Vec::with_capacity(n),
+        u_m: Vec::with_capacity(n),
+        q_n: Vec::with_capacity(n),
+        overflow_t_s: None,
+    };
     let start = Instant::now();
-    for _ in 0..n {
-        sim.step().map_err(|e| e.to_string())?;
-        t.push(sim.time_s());
-        u.push(sim.displacement_m().to_vec());
-        q.push(sim.force_n().to_vec());
-    }
+    crate::drive::run_to_end(&mut sim, &mut run, crate::drive::Watch::none())
+        .map_err(|e| e.to_string())?;
     let wall = start.elapsed().as_secs_f64();
-    Ok((t, u, q, wall, sim.stats().events))
+    Ok((run.t_s, run.u_m, run.q_n, wall, sim.stats().events))
 }
 
 /// Markdown table of the rows.

@@ -7,6 +7,8 @@
 //! window means compare).
 
 use crate::bench::baselines::{BaselineRun, Kernel, run_baseline};
+use crate::drive::Watch;
+use crate::identify::{ModeCache, PreparedModel};
 use crate::output::figures::{Figure, Panel, Series, Style};
 use crate::scene::{ContactScheme, Scene};
 use crate::simulation::{Simulation, SolverOptions};
@@ -157,13 +159,15 @@ pub fn run_stable(
     dt: f64,
     duration: f64,
     options: SolverOptions,
+    cache: &ModeCache,
 ) -> Result<(BaselineRun, f64), String> {
     let mut s = scene.clone();
     s.dt_s = dt;
     s.duration_s = duration;
     s.contact_scheme = scheme;
     let n = s.num_steps() as usize;
-    let mut sim = Simulation::with_options(&s, options).map_err(|e| e.to_string())?;
+    let model = PreparedModel::new(&s, cache).map_err(|e| e.to_string())?;
+    let mut sim = Simulation::new(&model, options).map_err(|e| e.to_string())?;
     let mut run = BaselineRun {
         t_s: Vec::with_capacity(n),
         u_m: Vec::with_capacity(n),
@@ -171,22 +175,18 @@ pub fn run_stable(
         overflow_t_s: None,
     };
     let start = Instant::now();
-    for _ in 0..n {
-        sim.step().map_err(|e| e.to_string())?;
-        run.t_s.push(sim.time_s());
-        run.u_m.push(sim.displacement_m().to_vec());
-        run.q_n.push(sim.force_n().to_vec());
-    }
+    crate::drive::run_to_end(&mut sim, &mut run, Watch::none()).map_err(|e| e.to_string())?;
     Ok((run, start.elapsed().as_secs_f64()))
 }
 
 /// Times a bare run (no recording) of the stable solver, in seconds.
-pub fn time_stable(scene: &Scene, options: SolverOptions) -> Result<(f64, Simulation), String> {
-    let mut sim = Simulation::with_options(scene, options).map_err(|e| e.to_string())?;
+pub fn time_stable(
+    model: &PreparedModel,
+    options: SolverOptions,
+) -> Result<(f64, Simulation), String> {
+    let mut sim = Simulation::new(model, options).map_err(|e| e.to_string())?;
     let start = Instant::now();
-    for _ in 0..scene.num_steps() {
-        sim.step().map_err(|e| e.to_string())?;
-    }
+    crate::drive::run_to_end(&mut sim, &mut (), Watch::none()).map_err(|e| e.to_string())?;
     Ok((start.elapsed().as_secs_f64(), sim))
 }
 
@@ -224,7 +224,7 @@ impl Timing {
 /// shared machine can be off by 25 %; the median of several is steadier.
 /// Returns both timings and the last run of each.
 pub fn time_pair(
-    scene: &Scene,
+    scene: &PreparedModel,
     a: SolverOptions,
     b: SolverOptions,
     repeats: usize,
@@ -247,7 +247,7 @@ pub fn time_pair(
 
 /// [`time_stable`] `repeats` times (at least once): the timing and the last run.
 pub fn time_repeated(
-    scene: &Scene,
+    scene: &PreparedModel,
     options: SolverOptions,
     repeats: usize,
 ) -> Result<TimedRun, String> {
@@ -269,6 +269,8 @@ pub fn study(
 ) -> Result<Vec<Row>, String> {
     let grid = cfg.dts[0];
     let dt_ref = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min) / 4.0;
+    // the tyre is identified once for every time step of the study
+    let cache = ModeCache::new();
     progress(&format!(
         "{}: reference, located at dt = {dt_ref:e} s",
         scene.name
@@ -279,6 +281,7 @@ pub fn study(
         dt_ref,
         cfg.duration_s,
         SolverOptions::default(),
+        &cache,
     )?;
     let ref_s = sample(
         &reference.t_s,
@@ -314,7 +317,14 @@ pub fn study(
                     } else {
                         ContactScheme::Paper
                     };
-                    run_stable(scene, scheme, dt, duration, SolverOptions::default())?
+                    run_stable(
+                        scene,
+                        scheme,
+                        dt,
+                        duration,
+                        SolverOptions::default(),
+                        &cache,
+                    )?
                 }
                 Method::AlphaBeta | Method::Direct => {
                     let kernel = if method == Method::AlphaBeta {
@@ -325,7 +335,7 @@ pub fn study(
                     let mut s = scene.clone();
                     s.dt_s = dt;
                     let start = Instant::now();
-                    let run = match run_baseline(&s, kernel, steps) {
+                    let run = match run_baseline(&s, kernel, steps, &cache) {
                         Ok(r) => r,
                         Err(e) => {
                             progress(&format!("  skipped: {e}"));

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 use tirecontact::bench::work_precision::{self, Config};
 use tirecontact::output::figures::render_png;
-use tirecontact::{Scene, SolverOptions};
+use tirecontact::{PreparedModel, Scene, SolverOptions};
 
 #[derive(Debug, clap::Args)]
 // (a negative value reaches validation, which names the field, not clap's "unexpected argument")
@@ -171,7 +171,9 @@ fn speed(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::error::Er
     );
     for mut sc in list {
         sc.duration_s = if quick { 0.02 } else { 0.2 };
-        let (timing, sim) = work_precision::time_repeated(&sc, SolverOptions::default(), repeats)?;
+        let model = PreparedModel::of(&sc)?;
+        let (timing, sim) =
+            work_precision::time_repeated(&model, SolverOptions::default(), repeats)?;
         let st = sim.stats();
         let wall = timing.median_s();
         writeln!(
@@ -179,7 +181,7 @@ fn speed(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::error::Er
             "| {} | {} | {} | {} | {:e} | {} | {wall:.4} | {:.3e} | {:.1} | {:.1} – {:.1} | {:.4} |",
             sc.name,
             sc.num_points(),
-            sc.modes()?.len(),
+            model.modes().len(),
             sim.num_states(),
             sc.dt_s,
             st.steps,
@@ -240,10 +242,11 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
     for scene in scenes {
         let mut sc = scene.clone();
         sc.duration_s = if quick { 0.05 } else { 0.5 };
+        let model = PreparedModel::of(&sc)?;
         let all = SolverOptions::default();
         // each "before" is timed alternately with its own "after" runs
         let ((before, sim_r), (after, sim)) = work_precision::time_pair(
-            &sc,
+            &model,
             SolverOptions {
                 rank_reduction: false,
                 ..all
@@ -274,7 +277,7 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
                 ..all
             };
             let ((before, sim_e), (after, _)) =
-                work_precision::time_pair(&sc, exact, all, repeats)?;
+                work_precision::time_pair(&model, exact, all, repeats)?;
             let (t_exact, t_cut) = (before.median_s(), after.median_s());
             let (du, dq) = option_difference(&sc, exact, all)?;
             writeln!(
@@ -288,7 +291,7 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
             )?;
         }
         let ((before, sim_f), (after, _)) = work_precision::time_pair(
-            &sc,
+            &model,
             SolverOptions {
                 reuse_factorisation: false,
                 ..all
@@ -307,7 +310,7 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
             sim_f.stats().factorisations
         )?;
         let ((before, sim_s), (after, _)) = work_precision::time_pair(
-            &sc,
+            &model,
             SolverOptions {
                 steady_path: false,
                 ..all
@@ -354,8 +357,8 @@ fn option_difference(
     a: SolverOptions,
     b: SolverOptions,
 ) -> Result<(f64, f64), Box<dyn std::error::Error>> {
-    let mut sa = tirecontact::Simulation::with_options(scene, a)?;
-    let mut sb = tirecontact::Simulation::with_options(scene, b)?;
+    let mut sa = tirecontact::Simulation::from_scene_with(scene, a)?;
+    let mut sb = tirecontact::Simulation::from_scene_with(scene, b)?;
     let (mut du, mut umax, mut dq2, mut q2) = (0.0f64, 0.0f64, 0.0, 0.0);
     for _ in 0..scene.num_steps() {
         sa.step()?;
@@ -392,11 +395,13 @@ fn residual_flexibility(
     let duration_s = if quick { 0.05 } else { 0.2 };
     let mut rows = Vec::new();
     for sc in &list {
-        if let Some(fc) = residual::default_cutoff_hz(sc) {
-            rows.extend(residual::residual_study(sc, fc, duration_s, 1e-3)?);
+        let model = PreparedModel::of(sc)?;
+        if let Some(fc) = residual::default_cutoff_hz(&model) {
+            rows.extend(residual::residual_study(&model, fc, duration_s, 1e-3)?);
         }
     }
     // the smooth scene at the cut-off of its test (4 of 12 modes kept), its full run
+    let smooth = PreparedModel::of(&smooth)?;
     rows.extend(residual::residual_study(&smooth, 150.0, 0.2, 1e-3)?);
     rows.extend(residual::residual_study(&smooth, 231.0, 0.2, 1e-3)?);
     let mut s = String::from(

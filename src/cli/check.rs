@@ -2,18 +2,19 @@
 
 use super::{CliResult, load_scene};
 use std::path::Path;
-use tirecontact::Simulation;
+use tirecontact::{PreparedModel, Simulation, SolverOptions};
 
 pub fn check(path: &Path) -> CliResult {
     let scene = load_scene(Some(path))?;
-    // also reads a measured road file and factors the modes
-    let sim = Simulation::new(&scene)?;
+    // also identifies a ring, reads a measured road file and factors the modes
+    let model = PreparedModel::of(&scene)?;
+    let sim = Simulation::new(&model, SolverOptions::default())?;
     println!(
         "{}: ok — \"{}\": {}, {}, road {}, speed V = {} m/s ({:.0} km/h), dt = {:e} s, duration {} s ({} steps); CSV of `run -o` about {} (--every 1)",
         path.display(),
         scene.name,
         tirecontact::output::count(scene.num_points(), "point"),
-        tirecontact::output::count(scene.modes()?.len(), "mode"),
+        tirecontact::output::count(model.modes().len(), "mode"),
         scene.road.kind(),
         scene.speed_mps,
         scene.speed_mps * 3.6,

@@ -273,13 +273,10 @@ fn responses_csv(r: &Responses) -> String {
 /// recorded and clipped (`clip_impacts`) as `run --plot` does.
 fn run_figures(scene: &Scene, dir: &Path, stem: &str, clip_impacts: bool) -> CliResult {
     let start = Instant::now();
-    let mut sim = Simulation::new(scene)?;
+    let mut sim = Simulation::from_scene(scene)?;
     let n = scene.num_steps();
     let mut rec = Recording::new(scene.num_points(), n, PLOT_SAMPLES);
-    for _ in 0..n {
-        sim.step()?;
-        rec.after_step(&sim);
-    }
+    tirecontact::drive::run_to_end(&mut sim, &mut rec, tirecontact::drive::Watch::none())?;
     let wall = start.elapsed().as_secs_f64();
     let sub = format!(
         "{}: V = {} m/s, road {}, dt = {:e} s ({} steps in {:.1} ms wall)",

@@ -4,10 +4,11 @@ use super::CliResult;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
+use tirecontact::drive::Watch;
 use tirecontact::output::csv::{self as csv_out, RunWriter};
 use tirecontact::spectrum::Window;
 use tirecontact::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder, scene_markers};
-use tirecontact::{Scene, SceneError, Simulation};
+use tirecontact::{PreparedModel, Scene, SceneError, Simulation};
 
 #[derive(Debug, clap::Args)]
 // (a negative value reaches validation, which names the field, not clap's "unexpected argument")
@@ -89,7 +90,8 @@ pub struct RunArgs {
 }
 
 /// `--frames DIR`: the animation frames, before the run proper.
-fn write_frames(scene: &Scene, args: &RunArgs) -> CliResult {
+fn write_frames(model: &PreparedModel, args: &RunArgs) -> CliResult {
+    let scene = model.scene();
     use std::sync::atomic::{AtomicBool, AtomicU64};
     use tirecontact::output::animation::{FrameSettings, export_frames};
     let Some(dir) = &args.frames else {
@@ -107,8 +109,7 @@ fn write_frames(scene: &Scene, args: &RunArgs) -> CliResult {
         .check(scene.duration_s)
         .map_err(|e| frames_error(&e))?;
     let n = export_frames(
-        Simulation::new(scene)?,
-        |_, _| Ok(()),
+        Simulation::new(model, tirecontact::SolverOptions::default())?,
         dir,
         &settings,
         &AtomicU64::new(0),
@@ -238,8 +239,9 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     ))
 }
 
-/// One line of scene parameters for figure subtitles.
-pub fn scene_summary(scene: &Scene) -> String {
+/// One line of scene parameters for figure subtitles; `num_modes`: the
+/// tyre's modes, given or identified.
+pub fn scene_summary(scene: &Scene, num_modes: usize) -> String {
     let road = match &scene.road {
         tirecontact::road::Road::Sine {
             amplitude_m,
@@ -256,7 +258,7 @@ pub fn scene_summary(scene: &Scene) -> String {
     format!(
         "{}, {}, {road}, V = {:.1} m/s ({:.0} km/h), dt = {:e} s, scheme {:?}",
         tirecontact::output::count(scene.num_points(), "point"),
-        tirecontact::output::count(scene.modes().map_or(0, |m| m.len()), "mode"),
+        tirecontact::output::count(num_modes, "mode"),
         scene.speed_mps,
         scene.speed_mps * 3.6,
         scene.dt_s,
@@ -281,23 +283,23 @@ pub fn run(args: &RunArgs) -> CliResult {
     // before anything is built, computed or written
     check_output_budget(&scene, args)?;
     check_plot_args(args)?;
-    write_frames(&scene, args)?;
+    // identification, road file: once, for the frames and the run
+    let model = PreparedModel::of(&scene)?;
+    write_frames(&model, args)?;
     let options = tirecontact::SolverOptions {
         rank_tolerance: args
             .exact_rank
             .then_some(tirecontact::convolution::EXACT_RANK_TOLERANCE),
         ..tirecontact::SolverOptions::default()
     };
-    let mut sim = Simulation::with_options(&scene, options)?;
+    let mut sim = Simulation::new(&model, options)?;
     let n = scene.num_steps();
     let mut writer = match &args.output {
         Some(path) => {
             // written beside `path` and renamed at the end: a failed run keeps the old file
             let f = tirecontact::fsio::AtomicFile::create(path)
                 .map_err(|e| format!("{}: {e}", path.display()))?;
-            let mut w = RunWriter::new(f, scene.num_points(), args.every)?;
-            w.write_initial(&sim)?;
-            Some(w)
+            Some(RunWriter::new(f, scene.num_points(), args.every)?)
         }
         None => None,
     };
@@ -335,30 +337,22 @@ pub fn run(args: &RunArgs) -> CliResult {
     );
     let mut shown = false;
     let mut last_tick = Instant::now();
-    for k in 0..n {
-        sim.step()?;
-        if let Some(w) = writer.as_mut() {
-            w.after_step(&sim)?;
+    let mut progress = |k: u64, sim: &Simulation| {
+        if !shown && start.elapsed() > Duration::from_millis(800) && (k as f64) < 0.7 * n as f64 {
+            shown = true;
+            bar.reset_elapsed();
         }
-        if let Some(r) = rec.as_mut() {
-            r.after_step(&sim);
+        if shown && last_tick.elapsed() > Duration::from_millis(100) {
+            bar.set_position(k);
+            bar.set_message(format!("t = {:.4} s", sim.time_s()));
+            last_tick = Instant::now();
         }
-        if let Some(r) = steady.as_mut() {
-            r.after_step(&sim);
-        }
-        if k % 1024 == 0 {
-            let el = start.elapsed();
-            if !shown && el > Duration::from_millis(800) && (k as f64) < 0.7 * n as f64 {
-                shown = true;
-                bar.reset_elapsed();
-            }
-            if shown && last_tick.elapsed() > Duration::from_millis(100) {
-                bar.set_position(k);
-                bar.set_message(format!("t = {:.4} s", sim.time_s()));
-                last_tick = Instant::now();
-            }
-        }
-    }
+    };
+    tirecontact::drive::run_to_end(
+        &mut sim,
+        &mut (writer.as_mut(), rec.as_mut(), steady.as_mut()),
+        Watch::none().with_progress(&mut progress),
+    )?;
     bar.finish_and_clear();
     if let Some(w) = writer {
         w.finish()?.commit()?;
@@ -367,7 +361,7 @@ pub fn run(args: &RunArgs) -> CliResult {
     if let (Some(r), Some(path)) = (rec, &args.plot) {
         let fig = r.figure(
             &scene.name,
-            &scene_summary(&scene),
+            &scene_summary(&scene, model.modes().len()),
             scene.dt_s,
             !args.plot_unclipped,
         );
@@ -375,7 +369,7 @@ pub fn run(args: &RunArgs) -> CliResult {
         eprintln!("wrote {}", path.display());
     }
     if let Some(r) = steady {
-        write_spectra(args, &scene, &r)?;
+        write_spectra(args, &model, &r)?;
     }
     let st = sim.stats();
     if st.worst_penetration_m > PENETRATION_WARNING_M {
@@ -408,7 +402,8 @@ pub fn run(args: &RunArgs) -> CliResult {
 }
 
 /// Writes the spectrum CSV, its band table and the spectrum figure.
-fn write_spectra(args: &RunArgs, scene: &Scene, rec: &SteadyRecorder) -> CliResult {
+fn write_spectra(args: &RunArgs, model: &PreparedModel, rec: &SteadyRecorder) -> CliResult {
+    let scene = model.scene();
     let spectra = rec.spectra(Window::Hann)?;
     eprintln!("spectra: {}", spectra.describe());
     if let Some(path) = &args.spectrum {
@@ -424,10 +419,10 @@ fn write_spectra(args: &RunArgs, scene: &Scene, rec: &SteadyRecorder) -> CliResu
         eprintln!("wrote {} and {}", path.display(), bands.display());
     }
     if let Some(path) = &args.spectrum_plot {
-        let marks = scene_markers(scene, args.spectrum_max_hz);
+        let marks = scene_markers(model, args.spectrum_max_hz);
         let fig = spectra.figure(
             &format!("{}: spectra", scene.name),
-            &scene_summary(scene),
+            &scene_summary(scene, model.modes().len()),
             &marks,
             args.spectrum_max_hz,
         );

@@ -102,7 +102,8 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
         bar.set_length(total);
         bar.set_position(done);
     };
-    let points = run_sweep(&scene, &sweep, &progress, &cancel)?;
+    let cache = tirecontact::ModeCache::new();
+    let points = run_sweep(&scene, &sweep, &cache, &progress, &cancel)?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
     let p = scene.num_points();
@@ -116,7 +117,10 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
     if let Some(path) = &args.plot {
         let fig = report::figure(
             &format!("{}: sweep of {param}", scene.name),
-            &format!("base scene: {}", super::run::scene_summary(&scene)),
+            &format!(
+                "base scene: {}",
+                super::run::scene_summary(&scene, cache.modes(&scene)?.len())
+            ),
             param,
             &points,
             p,

@@ -17,12 +17,14 @@ use super::panels::{self, toolbar};
 use super::presets::SHIPPED;
 use super::time_control::{Speed, TimeControl};
 use super::views::{green_view, scene_view, time_plots};
+use crate::identify::{ModeCache, PreparedModel};
 use crate::modal::Mode;
 use crate::output::animation::FrameSettings;
 use crate::phase::PhaseTracker;
-use crate::{DEFAULT_PRESET, Scene, Simulation};
+use crate::{DEFAULT_PRESET, Scene, SceneError, Simulation, SolverOptions};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 mod files;
@@ -98,15 +100,28 @@ pub struct App {
     forget_fields: bool,
     /// An edit or a new document waiting for its ring's identification.
     identify_job: Option<super::identify_job::IdentifyJob>,
+    /// The rings identified so far (shared with the identification job).
+    pub(crate) mode_cache: Arc<ModeCache>,
+}
+
+/// The simulation of `scene` and its modes, the ring's identification
+/// taken from (or kept in) `cache`.
+pub(super) fn build(
+    scene: &Scene,
+    cache: &ModeCache,
+) -> Result<(Simulation, Vec<Mode>), SceneError> {
+    let model = PreparedModel::new(scene, cache)?;
+    let sim = Simulation::new(&model, SolverOptions::default())?;
+    Ok((sim, model.modes().to_vec()))
 }
 
 impl App {
     /// An app on `scene` (already validated), loaded from `path` if any.
     pub fn new(scene: Scene, path: Option<PathBuf>) -> Result<Self, String> {
-        let sim = Simulation::new(&scene).map_err(|e| e.to_string())?;
+        let mode_cache = Arc::new(ModeCache::new());
+        let (sim, modes) = build(&scene, &mode_cache).map_err(|e| e.to_string())?;
         let mut history = History::new(scene.num_points(), DEFAULT_BUDGET);
         history.record_initial(&sim);
-        let modes = scene.modes().map_err(|e| e.to_string())?;
         let phases = PhaseTracker::new(scene.num_points(), 0.0);
         let mut time = TimeControl::default();
         time.set_speed(Speed::watchable(scene.duration_s));
@@ -142,6 +157,7 @@ impl App {
             field_refusal: None,
             forget_fields: false,
             identify_job: None,
+            mode_cache,
         })
     }
 

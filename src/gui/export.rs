@@ -9,13 +9,18 @@
 
 use super::history::{History, Quantity};
 use super::views::time_plots::{clip_level, force_range};
+use crate::drive::{self, Probe, Watch};
+use crate::error::RunError;
+use crate::gui::jobs::{Job, Progress};
+use crate::identify::{ModeCache, PreparedModel};
 use crate::modal::Mode;
 use crate::output::csv::RunWriter;
 use crate::output::figures::{Figure, Panel, Series, Style, render_png};
-use crate::road::Road;
-use crate::{Scene, Simulation};
+use crate::road::{Road, RoadProfile};
+use crate::{Scene, Simulation, SolverOptions};
 use std::path::{Path, PathBuf};
-use std::sync::mpsc::{Receiver, channel};
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 
 /// Samples per series in an exported figure (min/max decimated).
 const FIGURE_BUCKETS: usize = 2000;
@@ -29,7 +34,54 @@ pub struct LiveEdit {
     /// Solver steps taken before the change.
     pub step: u64,
     pub road: Road,
+    /// `road`'s profile, loaded when the edit was made.
+    pub profile: RoadProfile,
     pub speed_mps: f64,
+}
+
+impl LiveEdit {
+    /// Replays the edit on `sim`.
+    pub fn apply(&self, sim: &mut Simulation) {
+        sim.set_road(&self.road, self.profile.clone());
+        sim.set_speed(self.speed_mps);
+    }
+}
+
+/// Counts a job's progress in solver steps.
+struct StepCounter<'a>(&'a Progress);
+
+impl Probe for StepCounter<'_> {
+    fn after_step(&mut self, _sim: &Simulation) -> std::io::Result<()> {
+        self.0.add(1);
+        Ok(())
+    }
+}
+
+/// Runs `sim` on to `steps` steps, replaying each live edit (in step order)
+/// before the step it was made at, and telling `probe` (its start too if
+/// `sim` has not stepped). Stops early where the scene ends or the probe is
+/// satisfied; `cancel` stops it with [`RunError::Cancelled`].
+pub fn replay(
+    sim: &mut Simulation,
+    edits: &[LiveEdit],
+    steps: u64,
+    probe: &mut impl Probe,
+    cancel: Option<&AtomicBool>,
+) -> Result<(), RunError> {
+    let watch = || cancel.map_or_else(Watch::none, Watch::cancel);
+    if sim.steps() == 0 {
+        probe.start(sim)?;
+    }
+    for e in edits.iter().filter(|e| e.step < steps) {
+        drive::run(sim, e.step.saturating_sub(sim.steps()), probe, watch())?;
+        if sim.steps() < e.step {
+            // the run stopped before this edit
+            return Ok(());
+        }
+        e.apply(sim);
+    }
+    drive::run(sim, steps.saturating_sub(sim.steps()), probe, watch())?;
+    Ok(())
 }
 
 /// Modes listed one by one in a subtitle (more are given as ranges).
@@ -211,28 +263,29 @@ pub fn export_png(
     render_png(&fig, path, width, height).map_err(|e| e.to_string())
 }
 
-/// Re-runs `start` for `steps` steps, replaying `edits`, into `path` (CSV).
+/// Re-runs `start` for `steps` steps, replaying `edits`, into `path` (CSV);
+/// counts the steps in `progress` and stops if it is cancelled.
 pub fn write_csv(
     path: &Path,
-    start: &Scene,
+    start: &PreparedModel,
     edits: &[LiveEdit],
     steps: u64,
+    progress: Option<&Progress>,
 ) -> Result<String, String> {
-    let mut sim = Simulation::new(start).map_err(|e| e.to_string())?;
+    let mut sim = Simulation::new(start, SolverOptions::default()).map_err(|e| e.to_string())?;
+    let start = start.scene();
     let mut bytes = Vec::new();
     {
         let mut w = RunWriter::new(&mut bytes, start.num_points(), 1).map_err(|e| e.to_string())?;
-        w.write_initial(&sim).map_err(|e| e.to_string())?;
-        let mut next = 0;
-        for k in 0..steps {
-            while next < edits.len() && edits[next].step <= k {
-                sim.set_road(&edits[next].road).map_err(|e| e.to_string())?;
-                sim.set_speed(edits[next].speed_mps);
-                next += 1;
-            }
-            sim.step().map_err(|e| e.to_string())?;
-            w.after_step(&sim).map_err(|e| e.to_string())?;
-        }
+        let mut counted = (&mut w, progress.map(StepCounter));
+        replay(
+            &mut sim,
+            edits,
+            steps,
+            &mut counted,
+            progress.map(Progress::cancel_flag),
+        )
+        .map_err(|e| e.to_string())?;
         w.finish().map_err(|e| e.to_string())?;
     }
     crate::fsio::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -247,35 +300,39 @@ pub fn write_csv(
 /// A CSV export running on its own thread.
 pub struct CsvJob {
     pub path: PathBuf,
-    rx: Receiver<Result<String, String>>,
+    job: Job<Result<String, String>>,
 }
 
 impl CsvJob {
-    pub fn spawn(path: PathBuf, start: Scene, edits: Vec<LiveEdit>, steps: u64) -> Self {
-        let (tx, rx) = channel();
+    /// Re-runs `start` (its modes from `cache`) on a new thread.
+    pub fn spawn(
+        path: PathBuf,
+        start: Scene,
+        cache: Arc<ModeCache>,
+        edits: Vec<LiveEdit>,
+        steps: u64,
+    ) -> Result<Self, String> {
         let p = path.clone();
-        std::thread::spawn(move || {
-            // the receiver may be gone if the app closed; nothing to do then
-            let _ = tx.send(write_csv(&p, &start, &edits, steps));
-        });
-        CsvJob { path, rx }
+        let job = Job::spawn("CSV export", steps, move |progress| {
+            PreparedModel::new(&start, &cache)
+                .map_err(|e| e.to_string())
+                .and_then(|model| write_csv(&p, &model, &edits, steps, Some(progress)))
+        })?;
+        Ok(CsvJob { path, job })
+    }
+
+    /// Fraction of the steps re-run (0..=1).
+    pub fn fraction(&self) -> f64 {
+        self.job.fraction()
     }
 
     /// The result, once the thread has finished.
     pub fn poll(&self) -> Option<Result<String, String>> {
-        match self.rx.try_recv() {
-            Ok(r) => Some(r),
-            Err(std::sync::mpsc::TryRecvError::Empty) => None,
-            Err(std::sync::mpsc::TryRecvError::Disconnected) => {
-                Some(Err("the CSV export thread stopped unexpectedly".to_string()))
-            }
-        }
+        self.job.poll().map(Result::flatten)
     }
 
     /// Blocks until the export ends (tests).
     pub fn wait(self) -> Result<String, String> {
-        self.rx
-            .recv()
-            .unwrap_or_else(|_| Err("the CSV export thread stopped unexpectedly".to_string()))
+        self.job.wait().and_then(|r| r)
     }
 }

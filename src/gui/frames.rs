@@ -3,15 +3,14 @@
 //! run is replayed from t = 0 with its live edits, as for the CSV export.
 
 use super::command::Command;
-use super::export::LiveEdit;
+use super::export::{LiveEdit, replay};
 use crate::Scene;
-use crate::Simulation;
-use crate::output::animation::{FrameSettings, export_frames};
+use crate::gui::jobs::Job;
+use crate::identify::{ModeCache, PreparedModel};
+use crate::output::animation::{FrameSettings, FrameWriter, frames_error};
+use crate::{Simulation, SolverOptions};
 use egui::{Context, RichText};
 use std::path::PathBuf;
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::mpsc::{Receiver, TryRecvError, channel};
 
 /// The dialog's editable settings.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,9 +45,7 @@ impl FramesDialog {
 pub struct FramesJob {
     pub dir: PathBuf,
     pub total: u64,
-    progress: Arc<AtomicU64>,
-    cancel: Arc<AtomicBool>,
-    rx: Receiver<Result<u64, String>>,
+    job: Job<Result<u64, String>>,
 }
 
 impl FramesJob {
@@ -56,62 +53,48 @@ impl FramesJob {
         dir: PathBuf,
         settings: FrameSettings,
         start: Scene,
+        cache: &ModeCache,
         edits: Vec<LiveEdit>,
     ) -> Result<Self, String> {
         settings.check(start.duration_s)?;
-        let sim = Simulation::new(&start).map_err(|e| e.to_string())?;
-        let (tx, rx) = channel();
-        let progress = Arc::new(AtomicU64::new(0));
-        let cancel = Arc::new(AtomicBool::new(false));
-        let (p, c, d) = (progress.clone(), cancel.clone(), dir.clone());
-        std::thread::spawn(move || {
-            let mut next = 0;
-            let replay = |sim: &mut Simulation, k: u64| -> Result<(), String> {
-                while next < edits.len() && edits[next].step <= k {
-                    sim.set_road(&edits[next].road).map_err(|e| e.to_string())?;
-                    sim.set_speed(edits[next].speed_mps);
-                    next += 1;
-                }
-                Ok(())
-            };
-            // the receiver may be gone if the app closed; nothing to do then
-            let _ = tx.send(export_frames(sim, replay, &d, &settings, &p, &c));
-        });
-        Ok(FramesJob {
-            dir,
-            total: settings.frame_count(),
-            progress,
-            cancel,
-            rx,
-        })
+        let model = PreparedModel::new(&start, cache).map_err(|e| e.to_string())?;
+        let mut sim =
+            Simulation::new(&model, SolverOptions::default()).map_err(|e| e.to_string())?;
+        let d = dir.clone();
+        let total = settings.frame_count();
+        let job = Job::spawn("frames export", total, move |progress| {
+            let mut frames = FrameWriter::new(
+                &sim,
+                &d,
+                &settings,
+                progress.done_counter(),
+                progress.cancel_flag(),
+            )?;
+            let end = sim.scene().num_steps();
+            replay(&mut sim, &edits, end, &mut frames, None).map_err(frames_error)?;
+            frames.finish(&sim).map_err(|e| frames_error(e.into()))
+        })?;
+        Ok(FramesJob { dir, total, job })
     }
 
     /// Frames written so far.
     pub fn done(&self) -> u64 {
-        self.progress.load(Ordering::Relaxed)
+        self.job.done()
     }
 
-    /// Asks the thread to stop after the current frame.
+    /// Asks the thread to stop before the next frame.
     pub fn cancel(&self) {
-        self.cancel.store(true, Ordering::Relaxed);
+        self.job.cancel();
     }
 
     /// The result, once the thread has finished.
     pub fn poll(&self) -> Option<Result<u64, String>> {
-        match self.rx.try_recv() {
-            Ok(r) => Some(r),
-            Err(TryRecvError::Empty) => None,
-            Err(TryRecvError::Disconnected) => Some(Err(
-                "the frames export thread stopped unexpectedly".to_string(),
-            )),
-        }
+        self.job.poll().map(Result::flatten)
     }
 
     /// Blocks until the export ends (tests).
     pub fn wait(self) -> Result<u64, String> {
-        self.rx
-            .recv()
-            .unwrap_or_else(|_| Err("the frames export thread stopped unexpectedly".to_string()))
+        self.job.wait().and_then(|r| r)
     }
 }
 

@@ -260,6 +260,17 @@ pub fn decimate_min_max(t: &[f64], y: impl Fn(usize) -> f64, buckets: usize) -> 
     out
 }
 
+impl crate::drive::Probe for History {
+    fn start(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        self.record_initial(sim);
+        Ok(())
+    }
+    fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        History::after_step(self, sim);
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -292,7 +303,7 @@ mod tests {
     fn history_stays_bounded_and_doubles_stride() {
         let scene =
             Scene::parse(include_str!("../../presets/single_mode.ron"), "single_mode").unwrap();
-        let mut sim = Simulation::new(&scene).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
         let mut h = History::new(1, 4 * 1024 + 1);
         assert_eq!(h.capacity(), 1024);
         h.record_initial(&sim);
@@ -314,7 +325,7 @@ mod tests {
     fn force_without_impacts_removes_exactly_the_impact_impulses() {
         let scene =
             Scene::parse(include_str!("../../presets/single_mode.ron"), "single_mode").unwrap();
-        let mut sim = Simulation::new(&scene).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
         let mut h = History::new(1, 1 << 20);
         h.record_initial(&sim);
         let (mut impacts, mut max_q, mut max_smooth) = (0, 0.0f64, 0.0f64);

@@ -4,11 +4,13 @@
 //! or more to build, longer in a debug build: the edit or the opened file
 //! waits for it here while the window keeps drawing and the run goes on,
 //! then is applied as if nothing had been waited for (the identified modes
-//! are then in the cache, [`crate::identify::ring_modes_cached`]).
+//! are then in the app's [`ModeCache`], which the job shares).
 
 use crate::Scene;
+use crate::gui::jobs::Job;
+use crate::identify::ModeCache;
 use std::path::PathBuf;
-use std::sync::mpsc::{Receiver, TryRecvError, channel};
+use std::sync::Arc;
 
 /// What waits for the identification.
 #[derive(Debug, Clone)]
@@ -25,32 +27,26 @@ pub enum Then {
 
 /// An identification running on its own thread, and what waits for it.
 pub struct IdentifyJob {
-    rx: Receiver<Result<(), String>>,
+    job: Job<Result<(), String>>,
     pub then: Then,
 }
 
 impl IdentifyJob {
-    /// Identifies `scene`'s ring on a new thread.
-    pub fn spawn(scene: &Scene, then: Then) -> Self {
-        let (tx, rx) = channel();
+    /// Identifies `scene`'s ring on a new thread into `cache` (kept there
+    /// even if a later edit replaces this job).
+    pub fn spawn(scene: &Scene, then: Then, cache: Arc<ModeCache>) -> Result<Self, String> {
         let scene = scene.clone();
-        std::thread::spawn(move || {
-            // the receiver is gone if a later edit replaced this one or the
-            // app closed: the modes are cached all the same
-            let _ = tx.send(scene.modes().map(|_| ()).map_err(|e| e.to_string()));
-        });
-        IdentifyJob { rx, then }
+        let job = Job::spawn("identification", 1, move |progress| {
+            let r = cache.modes(&scene).map(|_| ()).map_err(|e| e.to_string());
+            progress.add(1);
+            r
+        })?;
+        Ok(IdentifyJob { job, then })
     }
 
     /// The result, once the thread has finished.
     pub fn poll(&self) -> Option<Result<(), String>> {
-        match self.rx.try_recv() {
-            Ok(r) => Some(r),
-            Err(TryRecvError::Empty) => None,
-            Err(TryRecvError::Disconnected) => {
-                Some(Err("the identification thread stopped unexpectedly".into()))
-            }
-        }
+        self.job.poll().map(Result::flatten)
     }
 }
 

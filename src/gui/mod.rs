@@ -20,6 +20,7 @@ pub mod frames;
 pub mod guided;
 pub mod history;
 pub mod identify_job;
+pub mod jobs;
 pub mod mutes;
 pub mod native_dialog;
 pub mod panels;

@@ -114,7 +114,7 @@ mod tests {
     #[test]
     fn muted_modes_have_zero_residue_and_the_rest_is_unchanged() {
         let s = three();
-        let base = s.modes().unwrap();
+        let base = crate::ModeCache::new().modes(&s).unwrap();
         let Tyre::Modal { modes } = muted_tyre(&base, &[false, true, false]) else {
             panic!()
         };
@@ -133,7 +133,7 @@ mod tests {
     #[test]
     fn rigid_contact_refuses_fewer_independent_modes_than_points() {
         let s = three();
-        let base = s.modes().unwrap();
+        let base = crate::ModeCache::new().modes(&s).unwrap();
         assert!(refusal(&base, &[false; 3], 3, &s.contact).is_none());
         let r = refusal(&base, &[false, true, false], 3, &s.contact).unwrap();
         assert!(r.contains("only 2 independent"), "{r}");

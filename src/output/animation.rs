@@ -10,6 +10,8 @@
 
 use super::figures::register_fonts;
 use crate::Simulation;
+use crate::drive::{Probe, Watch, run_to_end};
+use crate::error::RunError;
 use crate::phase::{ContactPhase, PhaseTracker};
 use crate::road::ramp;
 use plotters::prelude::*;
@@ -329,46 +331,118 @@ fn draw_frame(
     Ok(())
 }
 
+/// Draws the frames of `settings` into a folder as a run passes their
+/// times (a [`Probe`]): frame `k` shows the first state at or past
+/// `t_k - dt/2`. `progress` counts frames written; setting `cancel` stops
+/// the export before the next frame. Satisfied once the last frame is
+/// drawn, so a run driven with it stops there.
+pub struct FrameWriter<'a> {
+    dir: PathBuf,
+    settings: FrameSettings,
+    ext: Extents,
+    phases: PhaseTracker,
+    dt_s: f64,
+    next: u64,
+    count: u64,
+    progress: &'a AtomicU64,
+    cancel: &'a AtomicBool,
+}
+
+impl<'a> FrameWriter<'a> {
+    /// Checks `settings` against `sim`'s scene and creates `dir`.
+    pub fn new(
+        sim: &Simulation,
+        dir: &Path,
+        settings: &FrameSettings,
+        progress: &'a AtomicU64,
+        cancel: &'a AtomicBool,
+    ) -> Result<Self, String> {
+        settings.check(sim.scene().duration_s)?;
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let dt_s = sim.dt_s();
+        Ok(FrameWriter {
+            dir: dir.to_path_buf(),
+            settings: *settings,
+            ext: extents(sim),
+            phases: PhaseTracker::new(sim.num_points(), settings.frame_dt_s().max(dt_s)),
+            dt_s,
+            next: 0,
+            count: settings.frame_count(),
+            progress,
+            cancel,
+        })
+    }
+
+    /// Draws every frame due at `sim`'s time; `all`: every frame left (the
+    /// run ended before their times).
+    fn draw_due(&mut self, sim: &Simulation, all: bool) -> std::io::Result<()> {
+        while self.next < self.count
+            && (all || sim.time_s() >= self.settings.frame_time_s(self.next) - 0.5 * self.dt_s)
+        {
+            if self.cancel.load(Ordering::Relaxed) {
+                return Err(std::io::Error::new(
+                    std::io::ErrorKind::Interrupted,
+                    format!("cancelled after {} of {} frames", self.next, self.count),
+                ));
+            }
+            draw_frame(
+                sim,
+                &self.phases,
+                &self.ext,
+                &frame_path(&self.dir, self.next),
+                self.settings.width,
+                self.settings.height,
+            )
+            .map_err(std::io::Error::other)?;
+            self.next += 1;
+            self.progress.store(self.next, Ordering::Relaxed);
+        }
+        Ok(())
+    }
+
+    /// Draws the frames left after the run (none if it reached them all):
+    /// returns the number of frames written.
+    pub fn finish(mut self, sim: &Simulation) -> std::io::Result<u64> {
+        self.draw_due(sim, true)?;
+        Ok(self.next)
+    }
+}
+
+impl Probe for FrameWriter<'_> {
+    fn start(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        self.draw_due(sim, false)
+    }
+    fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        self.phases
+            .after_step(sim.time_s(), sim.in_contact(), sim.force_n());
+        self.draw_due(sim, false)
+    }
+    fn satisfied(&self) -> bool {
+        self.next >= self.count
+    }
+}
+
+/// The message of a frames export that stopped: its own words for a
+/// cancel, the cause otherwise.
+pub fn frames_error(e: RunError) -> String {
+    match e {
+        RunError::Output(e) => e.to_string(),
+        e => e.to_string(),
+    }
+}
+
 /// Runs `sim` (fresh, at t = 0) and writes the frames of `settings` into
-/// `dir`. `before_step(sim, k)` runs before solver step `k` (replays live
-/// edits). `progress` counts frames written; setting `cancel` stops the
-/// export after the current frame. Returns the number of frames written.
+/// `dir` ([`FrameWriter`]). Returns the number of frames written.
 pub fn export_frames(
     mut sim: Simulation,
-    mut before_step: impl FnMut(&mut Simulation, u64) -> Result<(), String>,
     dir: &Path,
     settings: &FrameSettings,
     progress: &AtomicU64,
     cancel: &AtomicBool,
 ) -> Result<u64, String> {
-    settings.check(sim.scene().duration_s)?;
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let ext = extents(&sim);
-    let n = settings.frame_count();
-    let dt = sim.dt_s();
-    let mut phases = PhaseTracker::new(sim.num_points(), settings.frame_dt_s().max(dt));
-    for k in 0..n {
-        if cancel.load(Ordering::Relaxed) {
-            return Err(format!("cancelled after {k} of {n} frames"));
-        }
-        let t = settings.frame_time_s(k);
-        while sim.time_s() < t - 0.5 * dt && !sim.finished() {
-            let step = sim.steps();
-            before_step(&mut sim, step)?;
-            sim.step().map_err(|e| e.to_string())?;
-            phases.after_step(sim.time_s(), sim.in_contact(), sim.force_n());
-        }
-        draw_frame(
-            &sim,
-            &phases,
-            &ext,
-            &frame_path(dir, k),
-            settings.width,
-            settings.height,
-        )?;
-        progress.store(k + 1, Ordering::Relaxed);
-    }
-    Ok(n)
+    let mut frames = FrameWriter::new(&sim, dir, settings, progress, cancel)?;
+    run_to_end(&mut sim, &mut frames, Watch::none()).map_err(frames_error)?;
+    frames.finish(&sim).map_err(|e| frames_error(e.into()))
 }
 
 #[cfg(test)]
@@ -396,7 +470,7 @@ mod tests {
             "three_points",
         )
         .unwrap();
-        let mut sim = Simulation::new(&scene).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
         let at_start = road_in_tyre_frame(&sim, -0.1, 0.1, 8);
         assert_eq!(at_start.len(), 9);
         for [x, y] in &at_start {
@@ -451,11 +525,11 @@ mod tests {
     #[test]
     fn cancel_stops_before_writing() {
         let scene = Scene::parse(include_str!("../../presets/single_mode.ron"), "s").unwrap();
-        let sim = Simulation::new(&scene).unwrap();
+        let sim = Simulation::from_scene(&scene).unwrap();
         let dir = std::env::temp_dir().join(format!("tc-anim-cancel-{}", std::process::id()));
         let cancel = AtomicBool::new(true);
         let progress = AtomicU64::new(0);
-        let r = export_frames(sim, |_, _| Ok(()), &dir, &settings(), &progress, &cancel);
+        let r = export_frames(sim, &dir, &settings(), &progress, &cancel);
         assert!(r.unwrap_err().contains("cancelled after 0 of 5"));
         assert!(!frame_path(&dir, 0).exists());
         let _ = std::fs::remove_dir_all(&dir);

@@ -219,6 +219,15 @@ fn format_rows(rows: &[f64], p: usize, text: &mut String) {
     }
 }
 
+impl<W: Write> crate::drive::Probe for RunWriter<W> {
+    fn start(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        self.write_initial(sim)
+    }
+    fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        RunWriter::after_step(self, sim)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -228,7 +237,7 @@ mod tests {
     /// releases, every point in and out of contact), formatted the plain way:
     /// each value on its own, rows averaged over `every` steps here.
     fn plain(scene: &Scene, steps: u64, every: u64) -> String {
-        let mut sim = Simulation::new(scene).unwrap();
+        let mut sim = Simulation::from_scene(scene).unwrap();
         let p = sim.num_points();
         let mut out = header(p).join(",") + "\n";
         let row = |sim: &Simulation, q: &[f64]| {
@@ -262,7 +271,7 @@ mod tests {
         every: u64,
         (threads, block, min_rows): (usize, usize, usize),
     ) -> String {
-        let mut sim = Simulation::new(scene).unwrap();
+        let mut sim = Simulation::from_scene(scene).unwrap();
         let mut w =
             RunWriter::with_layout(Vec::new(), sim.num_points(), every, threads, block).unwrap();
         w.min_rows_per_thread = min_rows;

@@ -73,7 +73,7 @@ mod tests {
         let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
         scene.duration_s = 0.06;
         scene.contact_scheme = scheme;
-        let mut sim = Simulation::new(&scene).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
         let n = scene.num_steps();
         let mut rec = Recording::new(scene.num_points(), n, PLOT_SAMPLES);
         let every = rec.every();

@@ -187,6 +187,13 @@ impl Recording {
     }
 }
 
+impl crate::drive::Probe for Recording {
+    fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        Recording::after_step(self, sim);
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -198,7 +205,7 @@ mod tests {
         let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
         scene.duration_s = 0.06;
         scene.contact_scheme = scheme;
-        let mut sim = Simulation::new(&scene).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
         let mut rec = Recording::new(scene.num_points(), scene.num_steps(), 3000);
         while !sim.finished() {
             sim.step().unwrap();

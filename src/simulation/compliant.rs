@@ -271,7 +271,7 @@ mod tests {
 
     /// Runs to the end; returns (t, u, r) per step after `from_s`, and the last force.
     fn run(scene: &Scene, from_s: f64) -> (Vec<(f64, f64, f64)>, f64) {
-        let mut sim = Simulation::new(scene).unwrap();
+        let mut sim = Simulation::from_scene(scene).unwrap();
         let mut out = Vec::new();
         while !sim.finished() {
             sim.step().unwrap();
@@ -385,9 +385,9 @@ mod step_end_rule {
                 &format!("contact: Compliant(stiffness_n_m: [{k:e}])"),
             );
             let scene = Scene::parse(&text, "three_points").unwrap();
-            let mut a = Simulation::new(&scene).unwrap();
+            let mut a = Simulation::from_scene(&scene).unwrap();
             // the step-end rule, from `a`'s state at every step start
-            let mut b = Simulation::new(&scene).unwrap();
+            let mut b = Simulation::from_scene(&scene).unwrap();
             let bits = |x: &[f64]| x.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             let (mut same, mut with_events) = (0, 0);
             for step in 0..20_000 {
@@ -430,7 +430,7 @@ mod step_end_rule {
             "contact: Compliant(stiffness_n_m: [5e7])",
         );
         let scene = Scene::parse(&text, "three_points").unwrap();
-        let mut sim = Simulation::new(&scene).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
         sim.max_events = 0;
         let (mut lowest, mut largest) = (0.0f64, 0.0f64);
         for _ in 0..20_000 {
@@ -473,7 +473,7 @@ mod robustness {
     fn coupled_impacts_stay_bounded_for_any_stiffness() {
         let mut rigid = three_points("Rigid, contact_scheme: Paper").unwrap();
         rigid.duration_s = 0.15;
-        let mut sim = Simulation::new(&rigid).unwrap();
+        let mut sim = Simulation::from_scene(&rigid).unwrap();
         while !sim.finished() {
             sim.step().unwrap();
         }
@@ -481,7 +481,7 @@ mod robustness {
         for k in [1e5, 1e7, 1e9, 1e12, 1e15] {
             let mut scene = three_points(&format!("Compliant(stiffness_n_m: [{k:e}])")).unwrap();
             scene.duration_s = 0.15;
-            let mut sim = Simulation::new(&scene).unwrap();
+            let mut sim = Simulation::from_scene(&scene).unwrap();
             let mut umax = 0.0f64;
             while !sim.finished() {
                 sim.step().unwrap();

@@ -36,9 +36,9 @@ mod tests {
 
     fn check_sum(text: &str, steps: usize) {
         let scene = Scene::parse(text, "test").unwrap();
-        let mut sim = Simulation::new(&scene).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
         let nm = sim.num_modes();
-        assert_eq!(nm, scene.modes().unwrap().len());
+        assert_eq!(nm, crate::ModeCache::new().modes(&scene).unwrap().len());
         let mut c = vec![0.0; nm];
         let mut worst = 0.0f64;
         let mut largest = 0.0f64;
@@ -75,7 +75,7 @@ mod tests {
                 "contact: Compliant(stiffness_n_m: [2e6]),",
             );
         let scene = Scene::parse(&text, "muted").unwrap();
-        let mut sim = Simulation::new(&scene).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
         let mut c = vec![0.0; 3];
         let mut other = 0.0f64;
         for _ in 0..3000 {
@@ -94,7 +94,7 @@ mod tests {
         // one point, one mode, residue 0.1: the basis term is a = 0.1 (shape
         // of a 1x1 residue by SVD: a b = 0.1), so u = contribution exactly
         let scene = Scene::parse(include_str!("../../presets/single_mode.ron"), "single").unwrap();
-        let sim = Simulation::new(&scene).unwrap();
+        let sim = Simulation::from_scene(&scene).unwrap();
         let mut c = [7.0, 7.0];
         sim.mode_displacement_m(0, &mut c);
         assert_eq!(c, [0.0, 7.0]);

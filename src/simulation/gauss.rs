@@ -362,8 +362,8 @@ mod tests {
     fn kept_factorisations_change_no_bit() {
         let text = include_str!("../../presets/three_points.ron");
         let scene = Scene::parse(text, "three").unwrap();
-        let mut a = Simulation::new(&scene).unwrap();
-        let mut b = Simulation::new(&scene).unwrap();
+        let mut a = Simulation::from_scene(&scene).unwrap();
+        let mut b = Simulation::from_scene(&scene).unwrap();
         b.factor_cache = super::super::factor_cache::FactorCache::new(b.p, false);
         assert!(a.factor_cache.is_enabled() && !b.factor_cache.is_enabled());
         let bits = |x: &[f64]| x.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
@@ -391,7 +391,7 @@ mod tests {
     fn solved_end_values_match_the_influence_columns() {
         let text = include_str!("../../presets/three_points.ron");
         let scene = Scene::parse(text, "three").unwrap();
-        let mut sim = Simulation::new(&scene).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
         let (mut mixed, mut worst) = (0, 0.0f64);
         for _ in 0..20_000 {
             sim.step().unwrap();

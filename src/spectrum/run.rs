@@ -144,6 +144,13 @@ impl SteadyRecorder {
     }
 }
 
+impl crate::drive::Probe for SteadyRecorder {
+    fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        SteadyRecorder::after_step(self, sim);
+        Ok(())
+    }
+}
+
 /// RMS of a signal (its unit).
 pub fn rms(x: &[f64]) -> f64 {
     if x.is_empty() {
@@ -444,9 +451,10 @@ fn push_markers(panel: &mut Panel, marks: &Markers, min_hz: f64, max_hz: f64) {
     }
 }
 
-/// Markers of a scene for its spectra up to `max_hz` (10 road harmonics).
-pub fn scene_markers(scene: &Scene, max_hz: f64) -> Markers {
-    markers(scene, max_hz, 10)
+/// Markers of a prepared scene for its spectra up to `max_hz` (10 road
+/// harmonics).
+pub fn scene_markers(model: &crate::identify::PreparedModel, max_hz: f64) -> Markers {
+    markers(model.scene(), model.modes(), max_hz, 10)
 }
 
 #[cfg(test)]

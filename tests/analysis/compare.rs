@@ -6,7 +6,7 @@ use tirecontact::output::record::Recording;
 use tirecontact::{Scene, Simulation};
 
 fn record(scene: &Scene) -> Recording {
-    let mut sim = Simulation::new(scene).unwrap();
+    let mut sim = Simulation::from_scene(scene).unwrap();
     let mut rec = Recording::new(scene.num_points(), scene.num_steps(), 500);
     while !sim.finished() {
         sim.step().unwrap();

@@ -80,7 +80,7 @@ struct Manual {
 /// The run of `scene`, summarised over the steps starting at or after `ramp_s`.
 fn manual_run(scene: &Scene) -> Manual {
     let p = scene.num_points();
-    let mut sim = Simulation::new(scene).unwrap();
+    let mut sim = Simulation::from_scene(scene).unwrap();
     let (mut max, mut sq, mut contact) = (vec![0.0f64; p], vec![0.0; p], vec![0u64; p]);
     let mut total = Vec::new();
     for k in 0..scene.num_steps() {
@@ -120,6 +120,7 @@ fn a_sweep_point_equals_the_single_run() {
                 values: values.clone(),
                 threads,
             },
+            &tirecontact::ModeCache::new(),
             &|_, _| {},
             &cancel,
         )
@@ -180,6 +181,7 @@ fn an_invalid_value_stops_the_sweep_before_running() {
             values: vec![0.1, 0.0],
             threads: 2,
         },
+        &tirecontact::ModeCache::new(),
         &|_, _| {},
         &cancel,
     )

@@ -42,7 +42,7 @@ const ONE_MODE_THREE_POINTS: &str = r#"Scene(
 #[test]
 fn singular_contact_system_is_a_typed_error_with_time_and_points() {
     let scene = Scene::parse(ONE_MODE_THREE_POINTS, "singular.ron").unwrap();
-    let mut sim = Simulation::new(&scene).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
     let mut fault = None;
     for _ in 0..500 {
         let t_before = sim.time_s();
@@ -124,7 +124,7 @@ fn non_finite_values_in_the_solver_are_a_typed_error() {
     let p = dir.join("huge.ron");
     std::fs::write(&p, &text).unwrap();
     let scene = Scene::load(&p).unwrap();
-    let mut sim = Simulation::new(&scene).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
     let e = (0..500)
         .find_map(|_| sim.step().err())
         .expect("overflowing forces must be reported");
@@ -157,7 +157,7 @@ fn road_sampled_past_its_end_is_a_typed_error() {
         .replace("contact_scheme: Paper", "contact_scheme: Located");
     let p = dir.join("short.ron");
     std::fs::write(&p, &text).unwrap();
-    let mut sim = Simulation::new(&Scene::load(&p).unwrap()).unwrap();
+    let mut sim = Simulation::from_scene(&Scene::load(&p).unwrap()).unwrap();
     let e = (0..500).find_map(|_| sim.step().err()).unwrap();
     match &e {
         // point 2 starts at 0.05 m and leaves [-0.1, 0.1] m after 5 ms at 10 m/s

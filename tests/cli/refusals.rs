@@ -282,7 +282,7 @@ fn ring_without_modes_below_nyquist_says_why() {
     let text = DEFAULT_PRESET.replace("radius_m: 0.31", "radius_m: 1e-9");
     assert_ne!(text, DEFAULT_PRESET);
     let s = Scene::parse(&text, "tiny.ron").unwrap();
-    let e = tirecontact::Simulation::new(&s)
+    let e = tirecontact::Simulation::from_scene(&s)
         .err()
         .expect("an error")
         .to_string();

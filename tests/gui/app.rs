@@ -1,7 +1,7 @@
 //! The visualiser driven headless with egui_kittest (no GPU): time control,
 //! editing, refused values, broken presets, unsaved changes, export.
 
-use crate::harness::{harness, type_into};
+use crate::harness::{harness, settle, type_into};
 use crate::support::temp_dir;
 use egui_kittest::kittest::Queryable;
 use tirecontact::Scene;
@@ -100,7 +100,10 @@ fn editing_a_field_changes_the_scene_and_restarts() {
     type_into(&mut h, "tyre.modes[0].freq_hz", "120");
     assert_eq!(freq0(h.state()), 120.0);
     assert_eq!(
-        h.state().simulation().scene().modes().unwrap()[0].freq_hz,
+        tirecontact::ModeCache::new()
+            .modes(h.state().simulation().scene())
+            .unwrap()[0]
+            .freq_hz,
         120.0
     );
     // a mode change restarts the run
@@ -198,7 +201,7 @@ fn unsaved_changes_are_confirmed_before_they_are_dropped() {
     h.state_mut().apply(Command::New);
     h.run();
     h.get_by_label("Discard changes").click();
-    h.run();
+    settle(&mut h);
     assert_eq!(h.state().scene(), &default_scene());
     assert!(!h.state().is_dirty());
     // back to a modal scene to edit its first mode
@@ -214,7 +217,10 @@ fn unsaved_changes_are_confirmed_before_they_are_dropped() {
     h.run();
     assert!(!h.state().is_dirty());
     assert_eq!(
-        Scene::load(&path).unwrap().modes().unwrap()[0].freq_hz,
+        tirecontact::ModeCache::new()
+            .modes(&Scene::load(&path).unwrap())
+            .unwrap()[0]
+            .freq_hz,
         130.0
     );
     h.state_mut().apply(Command::OpenPath(path));

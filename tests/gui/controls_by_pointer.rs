@@ -6,7 +6,7 @@
 //! without moving the fields beside it, and the file prompts work without a
 //! desktop file dialog.
 
-use crate::harness::{harness_sized, texts, type_into};
+use crate::harness::{harness_sized, settle, texts, type_into};
 use crate::support::temp_dir;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -379,7 +379,7 @@ fn save_as_open_and_csv_work_by_typing_the_path() {
 
     // File > Open… (Ctrl+O) with a typed path opens it
     h.state_mut().apply(Command::New);
-    h.run();
+    settle(&mut h);
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::O);
     h.run();
     h.run();
@@ -526,7 +526,7 @@ fn save_first_saves_then_does_the_held_action() {
     // a cancelled prompt keeps the scene and its edits (a scene without a
     // file: the built-in default)
     h.state_mut().apply(Command::New);
-    h.run();
+    settle(&mut h);
     edited(&mut h, 0.25);
     h.state_mut().apply(Command::OpenPath(one.clone()));
     h.run();

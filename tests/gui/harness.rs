@@ -42,6 +42,23 @@ pub fn advance(h: &mut Harness<'_, App>, n: u64) {
     assert_eq!(h.state().simulation().steps(), target);
 }
 
+/// Frames until no ring tyre is being identified (a new document or an edit
+/// waiting for its modes), then until the UI settles. Each app identifies
+/// a ring it has not seen before on a background thread.
+pub fn settle(h: &mut Harness<'_, App>) {
+    // a click or key waiting is handled in the next frame
+    h.run_steps(1);
+    for _ in 0..100_000 {
+        if !h.state().identifying() {
+            h.run();
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(1));
+        h.run_steps(1);
+    }
+    panic!("the identification never finished");
+}
+
 /// Frames until no fidelity figures are being computed (bounded).
 pub fn wait_fidelity(h: &mut Harness<'_, App>) {
     for _ in 0..100_000 {

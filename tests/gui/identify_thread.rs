@@ -7,8 +7,8 @@
 use crate::harness::harness_sized;
 use crate::support::temp_dir;
 use std::path::Path;
-use tirecontact::Scene;
 use tirecontact::gui::{App, Command};
+use tirecontact::{ModeCache, Scene};
 
 /// Frames (at most `limit`) until no identification waits; how many.
 fn frames_until_identified(h: &mut egui_kittest::Harness<'_, App>, limit: usize) -> usize {
@@ -33,7 +33,10 @@ fn a_moved_point_of_a_ring_tyre_is_identified_off_the_ui_thread() {
     // point 0 moved by 5 mm: positions never identified before
     let mut edited = scene.clone();
     edited.points[0].x_m += 0.005;
-    assert!(!edited.modes_are_ready(), "a new identification is needed");
+    assert!(
+        !h.state().has_modes_for(&edited),
+        "a new identification is needed"
+    );
     h.state_mut()
         .apply(Command::EditScene(Box::new(edited.clone())));
     // the command returned with the edit waiting, the old scene running
@@ -70,8 +73,9 @@ fn a_moved_point_of_a_ring_tyre_is_identified_off_the_ui_thread() {
     );
     // applied: the new points, the run restarted, modes of the new positions
     assert_eq!(h.state().scene().points, edited.points);
-    assert_eq!(h.state().modes(), edited.modes().unwrap().as_slice());
-    assert_ne!(h.state().modes(), scene.modes().unwrap().as_slice());
+    let fresh = |s: &Scene| ModeCache::new().modes(s).unwrap();
+    assert_eq!(h.state().modes(), fresh(&edited).as_slice());
+    assert_ne!(h.state().modes(), fresh(&scene).as_slice());
     let shown = h
         .state()
         .message()
@@ -149,9 +153,9 @@ fn a_ring_preset_opened_is_identified_off_the_ui_thread() {
     let path = dir.join("damped.ron");
     std::fs::write(&path, &changed).unwrap();
     let want = Scene::load(&path).unwrap();
-    assert!(!want.modes_are_ready());
 
     let mut h = harness_sized(App::with_default_preset(), [1280.0, 720.0]);
+    assert!(!h.state().has_modes_for(&want));
     h.state_mut().apply(Command::OpenPath(path.clone()));
     assert!(
         h.state().identifying(),
@@ -164,7 +168,10 @@ fn a_ring_preset_opened_is_identified_off_the_ui_thread() {
     );
     frames_until_identified(&mut h, 20_000);
     assert_eq!(h.state().scene(), &want);
-    assert_eq!(h.state().modes(), want.modes().unwrap().as_slice());
+    assert_eq!(
+        h.state().modes(),
+        ModeCache::new().modes(&want).unwrap().as_slice()
+    );
     assert!(!h.state().is_dirty(), "opened, not edited");
     let m = h
         .state()

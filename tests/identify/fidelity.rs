@@ -14,10 +14,11 @@ use tirecontact::modal::ModalModel;
 use tirecontact::ring::RingParams;
 
 fn three_point_modes() -> Vec<tirecontact::scene::Mode> {
-    Scene::load(Path::new("presets/three_points.ron"))
+    let scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    tirecontact::ModeCache::new()
+        .modes(&scene)
         .unwrap()
-        .modes()
-        .unwrap()
+        .to_vec()
 }
 
 /// `1 / (ω² - Ω² + 2iξωΩ)` written out here.

@@ -18,7 +18,7 @@ use tirecontact::scene::Tyre;
 use tirecontact::{DEFAULT_PRESET, DEFAULT_PRESET_NAME, Scene, Simulation};
 
 fn history(sc: &Scene) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
-    let mut sim = Simulation::new(sc).expect("valid scene");
+    let mut sim = Simulation::from_scene(sc).expect("valid scene");
     let (mut u, mut q) = (Vec::new(), Vec::new());
     for _ in 0..sc.num_steps() {
         sim.step().expect("step");
@@ -36,7 +36,7 @@ fn identified_preset_against_the_rings_own_modes() {
         panic!("method §7: the ring tyre");
     };
     let xs: Vec<f64> = scene.points.iter().map(|p| p.x_m).collect();
-    let identified = scene.modes().unwrap();
+    let identified = tirecontact::ModeCache::new().modes(&scene).unwrap();
     let own = ring.modes(&xs);
     let p = xs.len();
     let c_id = ModalModel::from_modes(&identified, p).static_compliance();
@@ -84,7 +84,7 @@ fn identified_preset_against_the_rings_own_modes() {
 /// Displacement every `grid` steps and the mean force over windows of
 /// `window` steps (impulse / window), of `sc` at its own `dt_s`.
 fn sampled(sc: &Scene, every: usize, window: usize) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
-    let mut sim = Simulation::new(sc).expect("valid scene");
+    let mut sim = Simulation::from_scene(sc).expect("valid scene");
     let p = sc.points.len();
     let (mut u, mut q) = (Vec::new(), Vec::new());
     let mut acc = vec![0.0; p];
@@ -119,7 +119,7 @@ fn preset_errors_against_a_fine_reference_match_spec_figures() {
     base.duration_s = 0.1;
     // the identified modes once, as a modal scene (same model for every run)
     base.tyre = Tyre::Modal {
-        modes: base.modes().unwrap(),
+        modes: tirecontact::ModeCache::new().modes(&base).unwrap().to_vec(),
     };
     let dt0 = 1e-5;
     let grid_s = 1e-4;

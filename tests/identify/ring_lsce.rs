@@ -4,11 +4,12 @@
 use crate::support::{bin, temp_dir};
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
-use tirecontact::identify::{identify_ring, ring_modes_cached};
+use tirecontact::identify::identify_ring;
 use tirecontact::lsce::{IdentifyOptions, Responses, identify};
 use tirecontact::modal::ModalModel;
 use tirecontact::ring::{RingMotion, RingParams, free_ring_inextensional_hz};
 use tirecontact::scene::{Mode, Tyre};
+use tirecontact::{ModeCache, PreparedModel};
 use tirecontact::{Scene, Simulation};
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -569,17 +570,54 @@ fn identification_is_cached_per_ring_options_and_positions() {
     };
     let opts = IdentifyOptions::default();
     let xs = [0.0, 0.03];
-    let a = ring_modes_cached(&ring, &xs, &opts).unwrap();
-    let b = ring_modes_cached(&ring, &xs, &opts).unwrap();
+    let cache = ModeCache::new();
+    let a = cache.ring_modes(&ring, &xs, &opts).unwrap();
+    let b = cache.ring_modes(&ring, &xs, &opts).unwrap();
     assert!(Arc::ptr_eq(&a, &b));
-    let c = ring_modes_cached(&ring, &[0.0, 0.031], &opts).unwrap();
+    let c = cache.ring_modes(&ring, &[0.0, 0.031], &opts).unwrap();
     assert!(!Arc::ptr_eq(&a, &c));
     let stiffer = RingParams {
         radial_stiffness_n_m2: 4e5,
         ..ring.clone()
     };
-    let d = ring_modes_cached(&stiffer, &xs, &opts).unwrap();
+    let d = cache.ring_modes(&stiffer, &xs, &opts).unwrap();
     assert!(!Arc::ptr_eq(&a, &d) && d[0].freq_hz > a[0].freq_hz);
+    // no state behind the caller's back: another cache identifies anew,
+    // to the same modes (the identification is deterministic)
+    let other = ModeCache::new();
+    let e = other.ring_modes(&ring, &xs, &opts).unwrap();
+    assert!(!Arc::ptr_eq(&a, &e));
+    assert_eq!(*a, *e);
+}
+
+#[test]
+fn a_prepared_model_answers_from_its_cache_and_carries_the_scene() {
+    let mut scene = Scene::load(std::path::Path::new("presets/paper.ron")).unwrap();
+    let cache = ModeCache::new();
+    assert!(!cache.has_modes(&scene));
+    let model = PreparedModel::new(&scene, &cache).unwrap();
+    assert!(cache.has_modes(&scene));
+    assert_eq!(model.scene(), &scene);
+    assert!(model.modes().len() >= 8);
+    // a change of speed or duration keeps the tyre: no new identification
+    scene.speed_mps += 1.0;
+    scene.duration_s = 0.01;
+    assert!(cache.has_modes(&scene));
+    // a moved point is a new identification
+    scene.points[0].x_m += 0.001;
+    assert!(!cache.has_modes(&scene));
+    // modes prepared with one cache can be handed to another
+    let other = ModeCache::new();
+    other.remember(&model);
+    assert!(other.has_modes(model.scene()));
+    // a modal scene needs none
+    let three = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+    assert!(ModeCache::new().has_modes(&three));
+    // an invalid scene is refused before any identification
+    let mut bad = three.clone();
+    bad.dt_s = -1.0;
+    let e = PreparedModel::of(&bad).unwrap_err().to_string();
+    assert!(e.contains("dt_s"), "{e}");
 }
 
 #[test]
@@ -588,9 +626,9 @@ fn paper_preset_runs_end_to_end() {
     assert!(matches!(scene.tyre, Tyre::Ring { .. }));
     assert_eq!(scene.num_points(), 5);
     scene.duration_s = 0.08;
-    let modes = scene.modes().unwrap();
+    let modes = ModeCache::new().modes(&scene).unwrap().to_vec();
     assert!(modes.len() >= 8, "{}", modes.len());
-    let mut sim = Simulation::new(&scene).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
     let mut changes = 0;
     let mut ever = [false; 5];
     let mut prev = sim.in_contact().to_vec();
@@ -616,7 +654,7 @@ fn paper_preset_runs_end_to_end() {
         modes: modes.clone(),
     };
     let back = Scene::parse(&modal.to_ron_string(), "modal.ron").unwrap();
-    assert_eq!(back.modes().unwrap().len(), modes.len());
+    assert_eq!(ModeCache::new().modes(&back).unwrap().len(), modes.len());
 }
 
 #[test]
@@ -627,7 +665,7 @@ fn identification_failure_is_an_error_naming_the_scene() {
         .replace("max_order: 40", "max_order: 2")
         .replace("band_hz: (0.0, 500.0)", "band_hz: (1500.0, 1900.0)");
     let scene = Scene::parse(&text, "high_band.ron").unwrap();
-    let err = match Simulation::new(&scene) {
+    let err = match Simulation::from_scene(&scene) {
         Err(e) => e.to_string(),
         Ok(_) => panic!("identified modes in an empty band"),
     };

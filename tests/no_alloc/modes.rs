@@ -7,7 +7,7 @@ use crate::allocations_in;
 fn mode_contributions_do_not_allocate() {
     let text = std::fs::read_to_string("presets/three_points.ron").unwrap();
     let scene = tirecontact::Scene::parse(&text, "three_points").unwrap();
-    let mut sim = tirecontact::Simulation::new(&scene).unwrap();
+    let mut sim = tirecontact::Simulation::from_scene(&scene).unwrap();
     let mut c = vec![0.0; sim.num_modes()];
     for _ in 0..2000 {
         sim.step().unwrap();

@@ -19,7 +19,7 @@ fn steps_do_not_allocate() {
                 },
             );
         let scene = tirecontact::Scene::parse(&text, "three_points").unwrap();
-        let mut sim = tirecontact::Simulation::new(&scene).unwrap();
+        let mut sim = tirecontact::Simulation::from_scene(&scene).unwrap();
         // warm up: the first event sizes the scratch tables
         for _ in 0..5000 {
             sim.step().unwrap();

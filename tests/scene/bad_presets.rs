@@ -649,7 +649,7 @@ fn write_case(dir: &Path, text: &str, files: &[(&str, Vec<u8>)]) -> PathBuf {
 /// What `check` does: load, validate, read the road, build the solver.
 fn load(path: &Path) -> Result<(), SceneError> {
     let scene = Scene::load(path)?;
-    Simulation::new(&scene).map(drop)
+    Simulation::from_scene(&scene).map(drop)
 }
 
 /// 1-based line and column (in characters, as RON counts) of byte `at`.

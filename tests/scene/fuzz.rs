@@ -25,7 +25,7 @@ fn presets() -> Vec<String> {
 fn short_run(scene: &Scene) {
     let mut s = scene.clone();
     s.duration_s = 50.0 * s.dt_s;
-    if let Ok(mut sim) = Simulation::new(&s) {
+    if let Ok(mut sim) = Simulation::from_scene(&s) {
         for _ in 0..50 {
             if sim.step().is_err() {
                 break;
@@ -144,7 +144,7 @@ proptest! {
         };
         let f_max = modes.iter().map(|m| m.0).fold(0.0, f64::max);
         let resolved = speed * scene.dt_s * 20.0 <= wl && f_max * scene.dt_s * 20.0 <= 1.0;
-        match Simulation::new(&scene) {
+        match Simulation::from_scene(&scene) {
             Err(SceneError::Invalid { errors, .. }) => {
                 prop_assert!(errors.iter().all(|e| !e.field.is_empty() && !e.expected.is_empty()));
             }
@@ -187,7 +187,7 @@ fn contact_cases() -> u32 {
 /// non-finite force), or the typed error that stopped the run (too few
 /// modes for the points on the road, say).
 fn force_range(scene: &Scene) -> Result<(f64, f64), String> {
-    let mut sim = Simulation::new(scene).map_err(|e| e.to_string())?;
+    let mut sim = Simulation::from_scene(scene).map_err(|e| e.to_string())?;
     let (mut lowest, mut largest) = (0.0f64, 0.0f64);
     while !sim.finished() {
         sim.step().map_err(|e| e.to_string())?;

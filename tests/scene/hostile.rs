@@ -468,7 +468,7 @@ fn coupled(path: &str) -> Vec<String> {
 
 /// Runs a valid scene for at most 200 steps; any error is fine, a panic is not.
 fn run_200(scene: &Scene) -> Result<(), String> {
-    let mut sim = Simulation::new(scene).map_err(|e| {
+    let mut sim = Simulation::from_scene(scene).map_err(|e| {
         let m = e.to_string();
         assert!(!m.trim().is_empty(), "empty error from Simulation::new");
         m

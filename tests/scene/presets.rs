@@ -22,7 +22,8 @@ fn every_shipped_preset_loads_and_steps() {
         let scene = Scene::load(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
         let mut short = scene.clone();
         short.duration_s = 200.0 * short.dt_s;
-        let mut sim = Simulation::new(&short).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        let mut sim =
+            Simulation::from_scene(&short).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
         for _ in 0..200 {
             sim.step()
                 .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
@@ -122,7 +123,7 @@ fn contact_fraction(name: &str) -> Vec<f64> {
         .join("presets")
         .join(name);
     let scene = Scene::load(&p).unwrap();
-    let mut sim = Simulation::new(&scene).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
     while !sim.finished() {
         sim.step().unwrap();
     }

@@ -114,7 +114,7 @@ struct Run {
 }
 
 fn run(sc: &Scene) -> Run {
-    let mut sim = Simulation::new(sc).expect("valid scene");
+    let mut sim = Simulation::from_scene(sc).expect("valid scene");
     let n = sc.num_steps() as usize;
     let p = sc.points.len();
     let mut out = Run {

@@ -41,7 +41,7 @@ struct History {
 }
 
 fn history(sc: &Scene) -> History {
-    let mut sim = Simulation::new(sc).expect("valid scene");
+    let mut sim = Simulation::from_scene(sc).expect("valid scene");
     let p = sc.points.len();
     let mut h = History {
         u: vec![vec![0.0; p]],
@@ -260,7 +260,7 @@ fn paper_scheme_keeps_its_complementarity_bounds() {
     let (mut sc, _) = three_point_case(ContactScheme::Paper);
     sc.duration_s = 0.3;
     let p = sc.points.len();
-    let mut sim = Simulation::new(&sc).unwrap();
+    let mut sim = Simulation::from_scene(&sc).unwrap();
     let mut worst_pen = 0.0f64;
     let mut contact_steps = 0u64;
     let mut releases_to_flight = 0u64;
@@ -366,7 +366,7 @@ fn zero_ramp_only_without_initial_penetration() {
     // an allowed zero ramp runs from rest with a gap >= 0 and forces >= 0
     // (at the trough the road rises into the point at once)
     let sc = one(trough, -a, sine(a, lambda));
-    let mut sim = Simulation::new(&sc).unwrap();
+    let mut sim = Simulation::from_scene(&sc).unwrap();
     assert!(sim.gap_m(0) >= 0.0);
     let mut landed = false;
     while !sim.finished() {
@@ -387,7 +387,7 @@ fn zero_ramp_only_without_initial_penetration() {
     let mut sc = one(0.0, 0.0005, measured);
     sc.speed_mps = 1.0;
     sc.base_dir = Some(dir.to_path_buf());
-    match Simulation::new(&sc) {
+    match Simulation::from_scene(&sc) {
         Err(SceneError::Invalid { errors, .. }) => {
             assert_eq!(errors.len(), 1, "{errors:?}");
             assert_eq!(errors[0].field, "ramp_s");
@@ -398,7 +398,7 @@ fn zero_ramp_only_without_initial_penetration() {
     }
     sc.points[0].h_m = 0.001;
     assert!(
-        Simulation::new(&sc).is_ok(),
+        Simulation::from_scene(&sc).is_ok(),
         "touching the measured road is allowed"
     );
 }
@@ -539,7 +539,7 @@ fn five_point_scene(xi: f64, h_m: &[f64], amp_m: f64, dt_s: f64, duration_s: f64
 fn sampled(sc: &Scene, grid_s: f64) -> Vec<Vec<f64>> {
     let every = (grid_s / sc.dt_s).round() as u64;
     assert!((every as f64 * sc.dt_s - grid_s).abs() < 1e-9 * grid_s);
-    let mut sim = Simulation::new(sc).unwrap();
+    let mut sim = Simulation::from_scene(sc).unwrap();
     let mut out = Vec::new();
     while !sim.finished() {
         sim.step().unwrap();
@@ -605,7 +605,7 @@ fn static_preload_with_critical_and_overdamped_modes() {
     for scheme in [ContactScheme::Located, ContactScheme::Paper] {
         let mut sc = five_point_scene(0.2, &h, 0.0, 2e-5, 0.4);
         sc.contact_scheme = scheme;
-        let mut sim = Simulation::new(&sc).unwrap();
+        let mut sim = Simulation::from_scene(&sc).unwrap();
         while !sim.finished() {
             sim.step().unwrap();
         }

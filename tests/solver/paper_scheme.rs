@@ -77,7 +77,7 @@ fn conventions_road_ramp_and_step_mean_force_on_the_road() {
         0.06,
         ContactScheme::Located,
     );
-    let mut sim = Simulation::new(&sc).expect("valid scene");
+    let mut sim = Simulation::from_scene(&sc).expect("valid scene");
     // 8-point Gauss-Legendre on [0, 1]
     let gl: [(f64, f64); 8] = {
         let x = [
@@ -154,7 +154,7 @@ fn point_above_the_road_stays_free() {
         0.05,
         ContactScheme::Located,
     );
-    let mut sim = Simulation::new(&sc).expect("T_ramp = 0 allowed: no point below the road");
+    let mut sim = Simulation::from_scene(&sc).expect("T_ramp = 0 allowed: no point below the road");
     for _ in 0..sc.num_steps() {
         sim.step().expect("step");
         assert_eq!(sim.displacement_m()[0], 0.0);
@@ -411,7 +411,7 @@ fn paper_replica_case(modes: Vec<Mode>, h_m: f64) {
         pen_tol: 1e-12 * road.a.max(h_m.abs()),
         t: 0.0,
     };
-    let mut sim = Simulation::new(&sc).expect("valid scene");
+    let mut sim = Simulation::from_scene(&sc).expect("valid scene");
     let (mut du, mut dq, mut umax, mut qmax) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let (mut landings, mut take_offs, mut mismatched_flags) = (0, 0, 0);
     let mut last = vec![false; p];
@@ -472,7 +472,7 @@ fn inelastic_landing_takes_the_whole_normal_velocity() {
         0.05,
         ContactScheme::Located,
     );
-    let mut sim = Simulation::new(&sc).expect("valid scene");
+    let mut sim = Simulation::from_scene(&sc).expect("valid scene");
     let mut flight_energy: Vec<f64> = Vec::new();
     let (mut landed_at, mut left_at) = (None, None);
     let mut impulse = 0.0;

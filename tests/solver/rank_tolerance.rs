@@ -70,10 +70,10 @@ fn paper_preset_keeps_the_ring_pairs_and_its_results() {
         rank_tolerance: Some(EXACT_RANK_TOLERANCE),
         ..SolverOptions::default()
     };
-    let mut cut = Simulation::new(&scene).unwrap();
-    let mut exact = Simulation::with_options(&scene, exact_opts).unwrap();
+    let mut cut = Simulation::from_scene(&scene).unwrap();
+    let mut exact = Simulation::from_scene_with(&scene, exact_opts).unwrap();
     // the ring's modes come in cos/sin pairs: rank 2 each (13 modes)
-    let modes = scene.modes().unwrap().len();
+    let modes = tirecontact::ModeCache::new().modes(&scene).unwrap().len();
     assert_eq!(cut.num_states(), 2 * modes);
     assert!(exact.num_states() > cut.num_states());
     let (mut du, mut umax, mut dq, mut qmax) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
@@ -110,14 +110,14 @@ fn modes_given_in_a_scene_keep_every_term_by_default() {
     let modes = vec![mode([2.0, 1.0, 2e-7])];
     let mut scene = tirecontact::bench::scenes::many_points(3, 1);
     scene.tyre = tirecontact::scene::Tyre::Modal { modes };
-    let exact = Simulation::new(&scene).unwrap();
+    let exact = Simulation::from_scene(&scene).unwrap();
     assert_eq!(exact.num_states(), 3);
     // an explicit cut applies to any model
     let cut_opts = SolverOptions {
         rank_tolerance: Some(IDENTIFIED_RANK_TOLERANCE),
         ..SolverOptions::default()
     };
-    let cut = Simulation::with_options(&scene, cut_opts).unwrap();
+    let cut = Simulation::from_scene_with(&scene, cut_opts).unwrap();
     assert_eq!(cut.num_states(), 2);
     // and the automatic choice per model kind
     let auto = SolverOptions::default();

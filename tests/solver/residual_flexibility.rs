@@ -13,7 +13,7 @@ fn options(fc: Option<f64>) -> SolverOptions {
 }
 
 fn settled_forces(s: &Scene, fc: Option<f64>) -> Vec<f64> {
-    let mut sim = Simulation::with_options(s, options(fc)).unwrap();
+    let mut sim = Simulation::from_scene_with(s, options(fc)).unwrap();
     while !sim.finished() {
         sim.step().unwrap();
     }
@@ -72,7 +72,7 @@ fn residual_flexibility_beats_plain_truncation_on_a_smooth_scene() {
     let (ramp_s, from_s) = (0.1, 0.12);
     let s = scene(0.05, 400.0, 0.1e-3, 5.0, ramp_s, 1e-5, 0.2);
     let run = |s: &Scene, fc: Option<f64>| {
-        let mut sim = Simulation::with_options(s, options(fc)).unwrap();
+        let mut sim = Simulation::from_scene_with(s, options(fc)).unwrap();
         let mut q = Vec::new();
         let mut events_at_start = 0;
         while !sim.finished() {
@@ -122,7 +122,7 @@ fn bad_cutoff_names_the_option_value_and_expectation() {
         (-5.0, "> 0"),
         (1.0, "at least one mode"),
     ] {
-        let msg = match Simulation::with_options(&s, options(Some(fc))) {
+        let msg = match Simulation::from_scene_with(&s, options(Some(fc))) {
             Ok(_) => panic!("{fc} accepted"),
             Err(e) => e.to_string(),
         };
@@ -143,7 +143,7 @@ fn window_forces(
     window: usize,
     max_events: u64,
 ) -> Option<(Vec<f64>, u64, u64)> {
-    let mut sim = Simulation::with_options(s, options(fc)).unwrap();
+    let mut sim = Simulation::from_scene_with(s, options(fc)).unwrap();
     let p = s.num_points();
     let (mut means, mut acc, mut n) = (Vec::new(), vec![0.0; p], 0);
     let mut flags = sim.in_contact().to_vec();

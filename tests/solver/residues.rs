@@ -371,7 +371,7 @@ fn contact_run(form: Form, h_m: f64, amplitude_m: f64) -> (Vec<f64>, f64) {
         rank_reduction: !matches!(form, Form::PerSource),
         ..SolverOptions::default()
     };
-    let mut sim = Simulation::with_options(&scene, options).unwrap();
+    let mut sim = Simulation::from_scene_with(&scene, options).unwrap();
     let (mut u, mut contact_steps, mut steps) = (Vec::new(), 0usize, 0usize);
     while !sim.finished() {
         sim.step().unwrap();

@@ -7,7 +7,7 @@
 
 use crate::support::temp_dir;
 use tirecontact::bench::scenes::many_points;
-use tirecontact::road::Road;
+use tirecontact::road::{Road, RoadProfile};
 use tirecontact::scene::ContactScheme;
 use tirecontact::{Scene, Simulation, SolverOptions};
 
@@ -47,8 +47,8 @@ fn compare(scene: &Scene, live: Live) -> tirecontact::simulation::RunStats {
         steady_path: false,
         ..on
     };
-    let mut a = Simulation::with_options(scene, on).unwrap();
-    let mut b = Simulation::with_options(scene, off).unwrap();
+    let mut a = Simulation::from_scene_with(scene, on).unwrap();
+    let mut b = Simulation::from_scene_with(scene, off).unwrap();
     let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
     for step in 0..scene.num_steps() {
         match live {
@@ -61,8 +61,9 @@ fn compare(scene: &Scene, live: Live) -> tirecontact::simulation::RunStats {
                     amplitude_m: 0.002,
                     wavelength_m,
                 };
-                a.set_road(&road).unwrap();
-                b.set_road(&road).unwrap();
+                let profile = RoadProfile::new(&road, None).unwrap();
+                a.set_road(&road, profile.clone());
+                b.set_road(&road, profile);
             }
             Live::Reset(at) if at == step => {
                 a.reset();

@@ -43,7 +43,7 @@ fn one_point(freq_hz: f64, xi: f64, dt_s: f64, steps: usize) -> Scene {
 
 /// Runs to the end; returns (worst pulling force relative to the largest, worst penetration m, max |u| m).
 fn stress(scene: &Scene) -> Result<(f64, f64, f64), SolverError> {
-    let mut sim = Simulation::new(scene).unwrap();
+    let mut sim = Simulation::from_scene(scene).unwrap();
     let (mut min_q, mut max_q, mut max_u) = (0.0f64, 0.0f64, 0.0f64);
     while !sim.finished() {
         sim.step()?;
@@ -222,7 +222,7 @@ fn measured_road_kinks_converge() {
         let mut s = base.clone();
         s.dt_s = dt;
         s.contact_scheme = scheme;
-        let mut sim = Simulation::new(&s).unwrap();
+        let mut sim = Simulation::from_scene(&s).unwrap();
         let every = (4e-5 / dt).round() as u64;
         let mut out = Vec::new();
         while !sim.finished() {

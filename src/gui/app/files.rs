@@ -124,7 +124,7 @@ impl App {
     pub(super) fn replace(&mut self, scene: Scene, path: Option<PathBuf>, what: &str) {
         // the latest edit or document wins over one still waiting
         self.identify_job = None;
-        if !scene.modes_are_ready() {
+        if !self.mode_cache.has_modes(&scene) {
             // the ring is identified off the UI thread; the document waits
             self.wait_for_modes(crate::gui::identify_job::Then::Replace {
                 scene,
@@ -133,7 +133,7 @@ impl App {
             });
             return;
         }
-        match Simulation::new(&scene).and_then(|sim| Ok((sim, scene.modes()?))) {
+        match super::build(&scene, &self.mode_cache) {
             Ok((sim, modes)) => {
                 self.sim = sim;
                 self.modes = modes;
@@ -270,13 +270,19 @@ impl App {
         if self.csv_job.is_some() {
             self.error("a CSV export is already running");
         } else {
-            self.info(format!("writing {} …", path.display()));
-            self.csv_job = Some(CsvJob::spawn(
-                path,
+            match CsvJob::spawn(
+                path.clone(),
                 self.run_start.clone(),
+                Arc::clone(&self.mode_cache),
                 self.live_edits.clone(),
                 self.sim.steps(),
-            ));
+            ) {
+                Ok(job) => {
+                    self.info(format!("writing {} …", path.display()));
+                    self.csv_job = Some(job);
+                }
+                Err(e) => self.error(format!("CSV export refused: {e}")),
+            }
         }
     }
 

@@ -39,6 +39,7 @@ impl App {
             dir,
             settings,
             self.run_start.clone(),
+            &self.mode_cache,
             self.live_edits.clone(),
         ) {
             Ok(job) => {

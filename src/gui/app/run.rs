@@ -2,7 +2,9 @@
 //! budget, and scene edits (road and speed live, anything else restarts).
 
 use super::*;
+use crate::drive::Watch;
 use crate::gui::identify_job::{IdentifyJob, Then, waiting_note};
+use crate::road::RoadProfile;
 
 /// Said after an error that paused the run.
 pub const PAUSED_NOTE: &str = "The run is paused: press Play (Space) to go on.";
@@ -108,9 +110,13 @@ impl App {
         let scene = match &then {
             Then::Edit(s) | Then::Replace { scene: s, .. } => s,
         };
-        let job = IdentifyJob::spawn(scene, then.clone());
-        self.info(waiting_note(&then));
-        self.identify_job = Some(job);
+        match IdentifyJob::spawn(scene, then.clone(), Arc::clone(&self.mode_cache)) {
+            Ok(job) => {
+                self.info(waiting_note(&then));
+                self.identify_job = Some(job);
+            }
+            Err(e) => self.error(format!("Cannot identify the ring tyre: {e}")),
+        }
     }
 
     /// Applies what waited for a finished identification.
@@ -126,6 +132,12 @@ impl App {
     /// Whether an edit or a new document waits for its ring's identification.
     pub fn identifying(&self) -> bool {
         self.identify_job.is_some()
+    }
+
+    /// Whether `scene`'s modes are known without an identification (given
+    /// in the scene, or its ring identified at these points before).
+    pub fn has_modes_for(&self, scene: &Scene) -> bool {
+        self.mode_cache.has_modes(scene)
     }
 
     fn identified(&mut self, result: Result<(), String>, then: Then) {
@@ -169,12 +181,12 @@ impl App {
             || new.contact_scheme != old.contact_scheme
             || new.contact != old.contact;
         if restart {
-            if !new.modes_are_ready() {
+            if !self.mode_cache.has_modes(&new) {
                 // the ring is identified off the UI thread; the edit waits
                 self.wait_for_modes(Then::Edit(new));
                 return;
             }
-            match Simulation::new(&new).and_then(|sim| Ok((sim, new.modes()?))) {
+            match super::build(&new, &self.mode_cache) {
                 Ok((sim, modes)) => {
                     // "Edit as a modal model" changed the panel in place and
                     // said nothing: what happened, and where the modes went
@@ -198,11 +210,14 @@ impl App {
             }
             return;
         }
-        if new.road != old.road
-            && let Err(e) = self.sim.set_road(&new.road)
-        {
-            self.error(format!("Road refused: {e}"));
-            return;
+        if new.road != old.road {
+            match RoadProfile::new(&new.road, self.sim.scene().base_dir.as_deref()) {
+                Ok(profile) => self.sim.set_road(&new.road, profile),
+                Err(e) => {
+                    self.error(format!("Road refused: {e}"));
+                    return;
+                }
+            }
         }
         if new.speed_mps != old.speed_mps {
             self.sim.set_speed(new.speed_mps);
@@ -211,6 +226,7 @@ impl App {
             self.live_edits.push(LiveEdit {
                 step: self.sim.steps(),
                 road: new.road.clone(),
+                profile: self.sim.road_profile().clone(),
                 speed_mps: new.speed_mps,
             });
         }
@@ -224,48 +240,47 @@ impl App {
         if want == 0 {
             return;
         }
-        let start = Instant::now();
-        let mut taken = 0;
-        while taken < want {
-            if self.sim.finished() {
+        let before = self.sim.steps();
+        let r = if self.sim.finished() {
+            Ok(0)
+        } else {
+            crate::drive::run(
+                &mut self.sim,
+                want,
+                &mut (&mut self.history, &mut self.phases),
+                Watch::until(Instant::now() + STEP_BUDGET),
+            )
+        };
+        let taken = self.sim.steps() - before;
+        match r {
+            // the end reached with steps still wanted: the run is complete
+            Ok(_) if taken < want && self.sim.finished() => self.run_complete(),
+            Ok(_) => {}
+            Err(e) => {
                 self.time.pause();
-                // (a refused field's reason stays: its field is still marked
-                // "not applied", and the reason is what the user must read)
-                let refusal_shown = self
-                    .field_refusal
-                    .as_ref()
-                    .is_some_and(|t| self.message.as_ref().is_some_and(|m| m.text == *t));
-                if !refusal_shown {
-                    self.info(format!(
-                        "run complete: t = {:.4} s. Play (Space) runs it again from t = 0.",
-                        self.sim.time_s()
-                    ));
-                }
-                break;
-            }
-            match self.sim.step() {
-                Ok(_) => {
-                    self.history.after_step(&self.sim);
-                    self.phases.after_step(
-                        self.sim.time_s(),
-                        self.sim.in_contact(),
-                        self.sim.force_n(),
-                    );
-                    taken += 1;
-                }
-                Err(e) => {
-                    self.time.pause();
-                    self.error(format!(
-                        "Solver error, run paused: {e}\nEdit the scene or reset."
-                    ));
-                    break;
-                }
-            }
-            if start.elapsed() > STEP_BUDGET {
-                break;
+                self.error(format!(
+                    "Solver error, run paused: {e}\nEdit the scene or reset."
+                ));
             }
         }
         self.time.report(taken, dt, frame_s);
+    }
+
+    /// Pauses at the end of the run and says so.
+    fn run_complete(&mut self) {
+        self.time.pause();
+        // (a refused field's reason stays: its field is still marked
+        // "not applied", and the reason is what the user must read)
+        let refusal_shown = self
+            .field_refusal
+            .as_ref()
+            .is_some_and(|t| self.message.as_ref().is_some_and(|m| m.text == *t));
+        if !refusal_shown {
+            self.info(format!(
+                "run complete: t = {:.4} s. Play (Space) runs it again from t = 0.",
+                self.sim.time_s()
+            ));
+        }
     }
 }
 

@@ -35,11 +35,12 @@ impl App {
                     "sweep of {} from {} to {} in {} steps started",
                     req.param, req.from, req.to, req.steps
                 );
-                match self
-                    .research
-                    .sweep
-                    .start(&self.scene, req, default_threads())
-                {
+                match self.research.sweep.start(
+                    &self.scene,
+                    req,
+                    default_threads(),
+                    std::sync::Arc::clone(&self.mode_cache),
+                ) {
                     Ok(()) => self.research_message(false, text),
                     Err(e) => self.research_message(true, format!("Sweep refused: {e}")),
                 }

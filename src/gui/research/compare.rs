@@ -58,7 +58,7 @@ mod tests {
         )
         .unwrap();
         let run = |s: &Scene| {
-            let mut sim = Simulation::new(s).unwrap();
+            let mut sim = Simulation::from_scene(s).unwrap();
             let mut h = History::new(s.num_points(), 1 << 20);
             h.record_initial(&sim);
             for _ in 0..3000 {

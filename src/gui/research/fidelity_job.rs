@@ -8,11 +8,9 @@
 
 use super::fidelity::{FIDELITY_FREQS, FidelityFigures, FidelityRef};
 use crate::fidelity::{band_frequencies, relative_l2_error, without_mode};
+use crate::gui::jobs::Job;
 use crate::modal::ModalModel;
 use crate::modal::Mode;
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::mpsc::{Receiver, TryRecvError, channel};
 
 /// What the figures depend on: the reference, the points' positions (m)
 /// and the modes.
@@ -62,44 +60,18 @@ pub fn figures_cancellable(
 pub struct FidelityJob {
     /// What the job computes the figures of.
     pub key: FidelityKey,
-    done: Arc<AtomicU64>,
-    total: u64,
-    cancel: Arc<AtomicBool>,
-    rx: Receiver<Result<FidelityFigures, String>>,
+    job: Job<Result<FidelityFigures, String>>,
 }
 
 impl FidelityJob {
     /// Starts the figures of `key` on a std::thread.
     pub fn spawn(key: FidelityKey) -> Result<Self, String> {
-        let done = Arc::new(AtomicU64::new(0));
-        let cancel = Arc::new(AtomicBool::new(false));
         let total = key.2.len() as u64 + 1;
-        let (tx, rx) = channel();
-        let (d, c) = (Arc::clone(&done), Arc::clone(&cancel));
         let (reference, x_m, modes) = key.clone();
-        std::thread::Builder::new()
-            .name("tirecontact-fidelity".into())
-            .spawn(move || {
-                let r = figures_cancellable(
-                    &reference,
-                    &x_m,
-                    &modes,
-                    &|| c.load(Ordering::Relaxed),
-                    &|| {
-                        d.fetch_add(1, Ordering::Relaxed);
-                    },
-                );
-                // the receiver is gone when a newer job replaced this one
-                let _ = tx.send(r);
-            })
-            .map_err(|e| format!("cannot start the fidelity thread: {e}"))?;
-        Ok(FidelityJob {
-            key,
-            done,
-            total,
-            cancel,
-            rx,
-        })
+        let job = Job::spawn("fidelity", total, move |p| {
+            figures_cancellable(&reference, &x_m, &modes, &|| p.cancelled(), &|| p.add(1))
+        })?;
+        Ok(FidelityJob { key, job })
     }
 
     /// Whether the job computes the figures of `key`.
@@ -109,26 +81,14 @@ impl FidelityJob {
 
     /// Fraction of the errors done (0..=1).
     pub fn progress(&self) -> f64 {
-        (self.done.load(Ordering::Relaxed) as f64 / self.total.max(1) as f64).min(1.0)
+        self.job.fraction()
     }
 
     /// The figures once the thread finished (never blocks); `None` while
-    /// it runs.
+    /// it runs. A replaced (or dropped) job stops between two error
+    /// computations.
     pub fn poll(&self) -> Option<Result<FidelityFigures, String>> {
-        match self.rx.try_recv() {
-            Err(TryRecvError::Empty) => None,
-            Ok(r) => Some(r),
-            Err(TryRecvError::Disconnected) => {
-                Some(Err("the fidelity thread stopped without a result".into()))
-            }
-        }
-    }
-}
-
-impl Drop for FidelityJob {
-    /// A replaced (or dropped) job stops between two error computations.
-    fn drop(&mut self) {
-        self.cancel.store(true, Ordering::Relaxed);
+        self.job.poll().map(Result::flatten)
     }
 }
 
@@ -137,6 +97,7 @@ mod tests {
     use super::*;
     use crate::Scene;
     use crate::gui::research::fidelity::figures;
+    use std::sync::atomic::{AtomicU64, Ordering};
 
     fn paper_key() -> FidelityKey {
         let scene = Scene::parse(include_str!("../../../presets/paper.ron"), "paper").unwrap();

@@ -340,7 +340,7 @@ mod tests {
         )
         .unwrap();
         scene.duration_s = 0.3;
-        let mut sim = Simulation::new(&scene).unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
         let mut h = History::new(1, 1 << 22);
         h.record_initial(&sim);
         while !sim.finished() {
@@ -352,7 +352,7 @@ mod tests {
         assert!(hs.span.t0_s >= scene.ramp_s);
         assert_eq!(s.num_samples, hs.span.samples);
         assert!((s.df_hz - hs.span.df_hz()).abs() < 1e-12);
-        let marks = crate::spectrum::markers(&scene, 0.5 / scene.dt_s, 1);
+        let marks = crate::spectrum::markers(&scene, &[], 0.5 / scene.dt_s, 1);
         if let Some(&(_, f0)) = marks.excitation_hz.first() {
             let tone = s.tone(f0, 3.0 * s.df_hz).unwrap();
             assert!(

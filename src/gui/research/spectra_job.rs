@@ -6,10 +6,8 @@
 //! that was restarted meanwhile is dropped.
 
 use super::spectra::{HistoryKey, HistorySpectra, SpectraInput};
+use crate::gui::jobs::Job;
 use crate::spectrum::Window;
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::mpsc::{Receiver, TryRecvError, channel};
 
 /// Below this many samples to transform (in all spectra) the spectra are
 /// computed at once on the UI thread (a few ms at most): no "computing…"
@@ -21,10 +19,7 @@ pub const INLINE_MAX_WORK: usize = 100_000;
 pub struct SpectraJob {
     /// The history the job computes the spectra of.
     pub key: HistoryKey,
-    done: Arc<AtomicU64>,
-    total: u64,
-    cancel: Arc<AtomicBool>,
-    rx: Receiver<Result<HistorySpectra, String>>,
+    job: Job<Result<HistorySpectra, String>>,
 }
 
 /// What a poll of a job found.
@@ -40,53 +35,27 @@ pub enum SpectraPoll {
 impl SpectraJob {
     /// Starts the transforms of `input` (samples of the history `key`).
     pub fn spawn(key: HistoryKey, input: SpectraInput, window: Window) -> Result<Self, String> {
-        let done = Arc::new(AtomicU64::new(0));
-        let cancel = Arc::new(AtomicBool::new(false));
         let total = input.num_spectra() as u64;
-        let (tx, rx) = channel();
-        let (d, c) = (Arc::clone(&done), Arc::clone(&cancel));
-        std::thread::Builder::new()
-            .name("tirecontact-spectra".into())
-            .spawn(move || {
-                let r = input.compute(window, &|| c.load(Ordering::Relaxed), &|| {
-                    d.fetch_add(1, Ordering::Relaxed);
-                });
-                // the receiver is gone when a newer job replaced this one
-                let _ = tx.send(r);
-            })
-            .map_err(|e| format!("cannot start the spectra thread: {e}"))?;
-        Ok(SpectraJob {
-            key,
-            done,
-            total,
-            cancel,
-            rx,
-        })
+        let job = Job::spawn("spectra", total, move |p| {
+            input.compute(window, &|| p.cancelled(), &|| p.add(1))
+        })?;
+        Ok(SpectraJob { key, job })
     }
 
     /// Fraction of the spectra done (0..=1).
     pub fn progress(&self) -> f64 {
-        (self.done.load(Ordering::Relaxed) as f64 / self.total.max(1) as f64).min(1.0)
+        self.job.fraction()
     }
 
     /// The result once the thread finished (never blocks); `now` is the
     /// history at this frame.
     pub fn poll(&self, now: &HistoryKey) -> SpectraPoll {
-        match self.rx.try_recv() {
-            Err(TryRecvError::Empty) => SpectraPoll::Running,
-            _ if restarted(&self.key, now) => SpectraPoll::Stale,
-            Ok(r) => SpectraPoll::Done(Box::new(r)),
-            Err(TryRecvError::Disconnected) => SpectraPoll::Done(Box::new(Err(
-                "the spectra thread stopped without a result".into(),
-            ))),
+        // a replaced (or dropped) job stops between two spectra
+        match self.job.poll() {
+            None => SpectraPoll::Running,
+            Some(_) if restarted(&self.key, now) => SpectraPoll::Stale,
+            Some(r) => SpectraPoll::Done(Box::new(r.flatten())),
         }
-    }
-}
-
-impl Drop for SpectraJob {
-    /// A replaced (or dropped) job stops between two spectra.
-    fn drop(&mut self) {
-        self.cancel.store(true, Ordering::Relaxed);
     }
 }
 
@@ -109,7 +78,7 @@ mod tests {
             "three_points",
         )
         .unwrap();
-        let mut sim = crate::Simulation::new(&scene).unwrap();
+        let mut sim = crate::Simulation::from_scene(&scene).unwrap();
         let mut h = History::new(scene.num_points(), 1 << 20);
         h.record_initial(&sim);
         for _ in 0..steps {

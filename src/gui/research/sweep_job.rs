@@ -4,10 +4,10 @@
 //! cancel flag stops the runs.
 
 use crate::Scene;
+use crate::gui::jobs::Job;
+use crate::identify::ModeCache;
 use crate::sweep::{self, Sweep, SweepError, SweepPoint};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::mpsc::{Receiver, TryRecvError, channel};
 
 /// What the user asked to sweep.
 #[derive(Debug, Clone, PartialEq)]
@@ -71,10 +71,7 @@ pub struct SweepJob {
     pub request: SweepRequest,
     pub threads: usize,
     pub runs: usize,
-    done_steps: Arc<AtomicU64>,
-    total_steps: Arc<AtomicU64>,
-    cancel: Arc<AtomicBool>,
-    rx: Receiver<Result<Vec<SweepPoint>, SweepError>>,
+    job: Job<Result<Vec<SweepPoint>, SweepError>>,
     started: std::time::Instant,
     scene_name: String,
     num_points: usize,
@@ -89,81 +86,63 @@ impl SweepJob {
     /// Checks `request` against `base` and starts it on a background thread
     /// (which runs `threads` workers). Errors name the field, value and
     /// what was expected.
-    pub fn start(base: &Scene, request: SweepRequest, threads: usize) -> Result<Self, String> {
+    /// A ring tyre's modes come from (and are kept in) `cache`.
+    pub fn start(
+        base: &Scene,
+        request: SweepRequest,
+        threads: usize,
+        cache: Arc<ModeCache>,
+    ) -> Result<Self, String> {
         let sw = request.to_sweep(base, threads).map_err(|e| e.to_string())?;
-        let done_steps = Arc::new(AtomicU64::new(0));
-        let total_steps = Arc::new(AtomicU64::new(0));
-        let cancel = Arc::new(AtomicBool::new(false));
-        let (tx, rx) = channel();
-        let (d, t, c) = (
-            Arc::clone(&done_steps),
-            Arc::clone(&total_steps),
-            Arc::clone(&cancel),
-        );
         let scene = base.clone();
         let runs = sw.values.len();
         let threads = sw.threads;
-        std::thread::Builder::new()
-            .name("tirecontact-sweep".into())
-            .spawn(move || {
-                let progress = |done: u64, total: u64| {
-                    t.store(total, Ordering::Relaxed);
-                    d.store(done, Ordering::Relaxed);
-                };
-                let r = sweep::run_sweep(&scene, &sw, &progress, &c);
-                // the receiver may be gone (app closed): nothing to report to
-                let _ = tx.send(r);
-            })
-            .map_err(|e| format!("cannot start the sweep thread: {e}"))?;
+        // the total (solver steps of every run) is known once the scenes are
+        let job = Job::spawn("sweep", 0, move |p| {
+            let progress = |done: u64, total: u64| {
+                p.set_total(total);
+                p.set(done);
+            };
+            sweep::run_sweep(&scene, &sw, &cache, &progress, p.cancel_flag())
+        })?;
         Ok(SweepJob {
             scene_name: base.name.clone(),
             num_points: base.num_points(),
             request,
             threads,
             runs,
-            done_steps,
-            total_steps,
-            cancel,
-            rx,
+            job,
             started: std::time::Instant::now(),
         })
     }
 
     /// Fraction of the solver steps done (0..=1).
     pub fn progress(&self) -> f64 {
-        let total = self.total_steps.load(Ordering::Relaxed);
-        if total == 0 {
-            0.0
-        } else {
-            (self.done_steps.load(Ordering::Relaxed) as f64 / total as f64).min(1.0)
-        }
+        self.job.fraction()
     }
 
     /// Asks the runs to stop; `poll` then reports `Cancelled`.
     pub fn cancel(&self) {
-        self.cancel.store(true, Ordering::Relaxed);
+        self.job.cancel();
     }
 
     pub fn cancel_requested(&self) -> bool {
-        self.cancel.load(Ordering::Relaxed)
+        self.job.cancel_requested()
     }
 
     /// The outcome once the thread finished, else `None` (never blocks).
     pub fn poll(&self) -> Option<SweepEnd> {
-        match self.rx.try_recv() {
-            Ok(r) => Some(self.end(r)),
-            Err(TryRecvError::Empty) => None,
-            Err(TryRecvError::Disconnected) => Some(SweepEnd::Failed(
-                "the sweep thread stopped without a result".into(),
-            )),
-        }
+        self.job.poll().map(|r| match r {
+            Ok(r) => self.end(r),
+            Err(e) => SweepEnd::Failed(e),
+        })
     }
 
     /// Blocks until the thread finished (tests, shutdown).
     pub fn wait(self) -> SweepEnd {
-        match self.rx.recv() {
+        match self.job.wait() {
             Ok(r) => self.end(r),
-            Err(_) => SweepEnd::Failed("the sweep thread stopped without a result".into()),
+            Err(e) => SweepEnd::Failed(e),
         }
     }
 
@@ -180,13 +159,6 @@ impl SweepJob {
             Err(SweepError::Cancelled) => SweepEnd::Cancelled,
             Err(e) => SweepEnd::Failed(e.to_string()),
         }
-    }
-}
-
-impl Drop for SweepJob {
-    /// A job dropped while running (app closed, state replaced) stops its runs.
-    fn drop(&mut self) {
-        self.cancel.store(true, Ordering::Relaxed);
     }
 }
 
@@ -213,11 +185,12 @@ impl SweepState {
         base: &Scene,
         request: SweepRequest,
         threads: usize,
+        cache: Arc<ModeCache>,
     ) -> Result<(), String> {
         if self.is_running() {
             return Err("a sweep is already running: cancel it first".into());
         }
-        *self = SweepState::Running(SweepJob::start(base, request, threads)?);
+        *self = SweepState::Running(SweepJob::start(base, request, threads, cache)?);
         Ok(())
     }
 
@@ -253,6 +226,7 @@ impl SweepState {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::atomic::AtomicBool;
 
     fn scene() -> Scene {
         let mut s = Scene::parse(
@@ -277,11 +251,27 @@ mod tests {
     fn bad_requests_are_refused_before_anything_runs() {
         let s = scene();
         let mut st = SweepState::Idle;
-        let e = st.start(&s, req("speed", 1.0, 2.0, 3), 2).unwrap_err();
+        let e = st
+            .start(&s, req("speed", 1.0, 2.0, 3), 2, Arc::new(ModeCache::new()))
+            .unwrap_err();
         assert!(e.contains("unknown parameter `speed`"), "{e}");
-        let e = st.start(&s, req("speed_mps", 1.0, 2.0, 0), 2).unwrap_err();
+        let e = st
+            .start(
+                &s,
+                req("speed_mps", 1.0, 2.0, 0),
+                2,
+                Arc::new(ModeCache::new()),
+            )
+            .unwrap_err();
         assert!(e.contains("steps = 0"), "{e}");
-        let e = st.start(&s, req("dt_s", -1.0, 1e-5, 2), 2).unwrap_err();
+        let e = st
+            .start(
+                &s,
+                req("dt_s", -1.0, 1e-5, 2),
+                2,
+                Arc::new(ModeCache::new()),
+            )
+            .unwrap_err();
         assert!(e.contains("dt_s"), "{e}");
         assert!(matches!(st, SweepState::Idle));
     }
@@ -291,8 +281,13 @@ mod tests {
         let s = scene();
         let r = req("speed_mps", 10.0, 20.0, 3);
         let mut st = SweepState::Idle;
-        st.start(&s, r.clone(), 2).unwrap();
-        assert!(st.start(&s, r.clone(), 2).is_err(), "second start refused");
+        st.start(&s, r.clone(), 2, Arc::new(ModeCache::new()))
+            .unwrap();
+        assert!(
+            st.start(&s, r.clone(), 2, Arc::new(ModeCache::new()))
+                .is_err(),
+            "second start refused"
+        );
         let SweepState::Running(job) = std::mem::take(&mut st) else {
             panic!("not running")
         };
@@ -302,6 +297,7 @@ mod tests {
         let lib = sweep::run_sweep(
             &s,
             &r.to_sweep(&s, 1).unwrap(),
+            &ModeCache::new(),
             &|_, _| {},
             &AtomicBool::new(false),
         )
@@ -314,10 +310,17 @@ mod tests {
     fn dropping_a_running_job_cancels_its_runs() {
         let mut s = scene();
         s.duration_s = 5.0;
-        let job = SweepJob::start(&s, req("speed_mps", 10.0, 20.0, 8), 2).unwrap();
-        let flag = Arc::clone(&job.cancel);
+        let job = SweepJob::start(
+            &s,
+            req("speed_mps", 10.0, 20.0, 8),
+            2,
+            Arc::new(ModeCache::new()),
+        )
+        .unwrap();
+        let seen = job.job.handle();
+        assert!(!seen.cancelled());
         drop(job);
-        assert!(flag.load(Ordering::Relaxed));
+        assert!(seen.cancelled());
     }
 
     #[test]
@@ -325,7 +328,13 @@ mod tests {
         let mut s = scene();
         s.duration_s = 5.0;
         let mut st = SweepState::Idle;
-        st.start(&s, req("speed_mps", 10.0, 20.0, 8), 2).unwrap();
+        st.start(
+            &s,
+            req("speed_mps", 10.0, 20.0, 8),
+            2,
+            Arc::new(ModeCache::new()),
+        )
+        .unwrap();
         st.cancel();
         let SweepState::Running(job) = std::mem::take(&mut st) else {
             panic!("not running")

@@ -180,7 +180,7 @@ mod tests {
             "single_mode",
         )
         .unwrap();
-        let model = ModalModel::from_modes(&scene.modes().unwrap(), 1);
+        let model = ModalModel::from_modes(&crate::ModeCache::new().modes(&scene).unwrap(), 1);
         let (a, b) = freq_range(&model);
         assert!(a < 100.0 && b > 100.0);
         // 100 Hz, 5 %: decay 1/(0.05*628) = 32 ms; 4 decays = 0.127 s; 15 periods = 0.15 s

@@ -87,7 +87,7 @@ fn fx(f: f64, log: bool) -> f64 {
 
 /// The excitation summary shown above the plots (also what tests read).
 pub fn excitation_text(scene: &Scene) -> String {
-    let m = markers(scene, f64::INFINITY, 1);
+    let m = markers(scene, &[], f64::INFINITY, 1);
     match m.excitation_hz.first() {
         Some((_, f)) => format!(
             "road excitation V/λ = {f:.2} Hz (harmonics n·V/λ to n = {HARMONICS} marked red)"
@@ -169,7 +169,7 @@ pub fn show(
     let s = &hs.spectra;
     let nyquist = 0.5 * hs.span.sample_rate_hz;
     let max_hz = opts.max_hz.min(nyquist);
-    let marks = markers(scene, max_hz, HARMONICS);
+    let marks = markers(scene, modes, max_hz, HARMONICS);
     let modal: Vec<f64> = modes
         .iter()
         .map(|m| m.freq_hz)

@@ -110,6 +110,7 @@ fn a_sweep_from_the_gui_equals_the_library_sweep() {
             values: linspace(8.0, 36.0, 8).unwrap(),
             threads: 1,
         },
+        &tirecontact::ModeCache::new(),
         &|_, _| {},
         &AtomicBool::new(false),
     )

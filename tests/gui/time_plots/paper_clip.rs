@@ -24,7 +24,7 @@ fn paper_scene(scheme: ContactScheme) -> Scene {
 /// of the paper scheme's history, raw and without impacts (N).
 fn paper_maxima(steps: usize, from: usize) -> (Vec<f64>, Vec<f64>) {
     let scene = paper_scene(ContactScheme::Paper);
-    let mut sim = Simulation::new(&scene).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
     let p = sim.num_points();
     let mut h = History::new(p, 1 << 24);
     h.record_initial(&sim);
@@ -53,7 +53,7 @@ fn paper_force_without_impacts_matches_the_located_schemes() {
     let (steps, from) = (12_000, 6_000);
     let (raw, smooth) = paper_maxima(steps, from);
     let scene = paper_scene(ContactScheme::Located);
-    let mut sim = Simulation::new(&scene).unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
     let p = sim.num_points();
     let mut located = vec![0.0f64; p];
     for k in 1..=steps {

@@ -1,0 +1,6 @@
+//! Work off the UI thread: the one background-job shape ([`Job`]) that the
+//! identification, the exports and the researcher tools share.
+
+mod job;
+
+pub use job::{Job, Progress};
