@@ -5,18 +5,19 @@
 //! researcher tools' in `research::apply`).
 
 use super::classroom::{self, Classroom};
-use super::command::{Command, Discarding, View};
-use super::export::{CsvJob, LiveEdit};
-use super::file_prompt::{FileAction, FilePrompt};
-use super::frame_rate::FrameRate;
-use super::frames::{FramesDialog, FramesJob};
-use super::guided::GUIDED;
-use super::history::{DEFAULT_BUDGET, History};
-use super::mutes::Mutes;
 use super::panels::{self, toolbar};
-use super::presets::SHIPPED;
-use super::time_control::{Speed, TimeControl};
 use super::views::{green_view, scene_view, time_plots};
+use crate::gui::chrome::file_prompt::{FileAction, FilePrompt};
+use crate::gui::chrome::frames_dialog::FramesDialog;
+use crate::gui::classroom::guided::GUIDED;
+use crate::gui::jobs::export::{CsvJob, LiveEdit};
+use crate::gui::jobs::frames::FramesJob;
+use crate::gui::model::command::{Command, Discarding, View};
+use crate::gui::model::frame_rate::FrameRate;
+use crate::gui::model::history::{DEFAULT_BUDGET, History};
+use crate::gui::model::mute_set::Mutes;
+use crate::gui::model::presets::SHIPPED;
+use crate::gui::model::time_control::{Speed, TimeControl};
 use crate::identify::{ModeCache, PreparedModel};
 use crate::modal::Mode;
 use crate::output::animation::FrameSettings;
@@ -27,11 +28,11 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+mod animation_export;
 mod files;
-mod frame;
-mod frames;
+mod frame_loop;
 mod layout;
-mod mutes;
+mod mode_mutes;
 mod run;
 mod session;
 
@@ -93,13 +94,13 @@ pub struct App {
     /// Researcher tools: spectra, sweep, pinned run, fidelity.
     pub(super) research: super::research::ResearchState,
     /// The open, save or export file prompt, when shown.
-    pub(super) file_prompt: Option<super::file_prompt::FilePrompt>,
+    pub(super) file_prompt: Option<crate::gui::chrome::file_prompt::FilePrompt>,
     /// The banner text of the last field refusal (a good edit clears it).
     field_refusal: Option<String>,
     /// A new document came in: the next frame forgets the fields' texts.
     forget_fields: bool,
     /// An edit or a new document waiting for its ring's identification.
-    identify_job: Option<super::identify_job::IdentifyJob>,
+    identify_job: Option<crate::gui::jobs::identify::IdentifyJob>,
     /// The rings identified so far (shared with the identification job).
     pub(crate) mode_cache: Arc<ModeCache>,
 }
@@ -293,11 +294,11 @@ impl App {
             Command::ShowView(v) => self.show_view(v),
             Command::SetClassroom(on) => self.set_classroom(on),
             Command::ShowModeBars(on) => self.classroom.bars = on,
-            // mode mute and solo (app/mutes.rs)
+            // mode mute and solo (app/mode_mutes.rs)
             Command::ToggleMute(k) => self.set_mutes(k, false),
             Command::SoloMode(k) => self.set_mutes(k, true),
             Command::UnmuteAll => self.unmute_all(),
-            // animation export (app/frames.rs)
+            // animation export (app/animation_export.rs)
             Command::ExportFramesDialog => self.open_frames_dialog(),
             Command::ExportFrames { dir, settings } => self.export_frames(dir, settings),
             Command::CancelFrames => self.cancel_frames(),

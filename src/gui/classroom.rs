@@ -3,15 +3,17 @@
 //! chosen point below, the mode contribution bars beside), slow motion, and
 //! the guided preset's explanation shown prominently.
 
-use super::command::Command;
-use super::history::{History, Quantity};
-use super::mutes::Mutes;
+pub mod guided;
+
 use super::views::force_labels::{self, force_text};
 use super::views::time_plots::{
     IMPACT_LABEL, IMPACT_MARK_COLOR, clip_at, clip_level, force_range, impact_marks,
 };
 use super::views::{CONTACT_COLOR, FLIGHT_COLOR, point_color, scene_view};
 use crate::Simulation;
+use crate::gui::model::command::Command;
+use crate::gui::model::history::{History, Quantity};
+use crate::gui::model::mute_set::Mutes;
 use crate::modal::Mode;
 use crate::phase::{ContactPhase, PhaseTracker};
 use egui::{Color32, FontId, RichText, TextStyle, Ui};
@@ -47,7 +49,10 @@ pub struct Classroom {
     pub bars: bool,
     /// The view and speed before classroom mode changed them, given back
     /// when it ends (each only if classroom mode's is still in place).
-    pub before: Option<(crate::gui::command::View, crate::gui::time_control::Speed)>,
+    pub before: Option<(
+        crate::gui::model::command::View,
+        crate::gui::model::time_control::Speed,
+    )>,
 }
 
 impl Classroom {
@@ -570,7 +575,7 @@ pub fn mode_bars(
             }
             out
         })
-        .y_axis_formatter(|m, _| crate::gui::fields::format_number(m.value))
+        .y_axis_formatter(|m, _| crate::gui::widgets::number::format_number(m.value))
         .allow_scroll(false)
         .allow_drag(false)
         .allow_zoom(false)

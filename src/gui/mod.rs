@@ -7,39 +7,25 @@
 //! that changes state; views only read.
 
 pub mod app;
-pub mod banner_text;
+pub mod chrome;
 pub mod classroom;
-pub mod command;
-pub mod dialogs;
-pub mod export;
-pub mod field_help;
-pub mod fields;
-pub mod file_prompt;
-pub mod frame_rate;
-pub mod frames;
-pub mod guided;
-pub mod history;
-pub mod identify_job;
 pub mod jobs;
-pub mod mutes;
-pub mod native_dialog;
+pub mod model;
 pub mod panels;
-pub mod presets;
 pub mod research;
-pub mod status_bar;
-pub mod time_control;
 pub mod views;
+pub mod widgets;
 
 pub use app::App;
-pub use command::Command;
+pub use model::command::Command;
 // The types of `Command`'s variants and of what `App` reports, at the root
 // with `App` and `Command`: a caller (the GUI tests) drives and reads the app
 // through these without knowing the module layout.
-pub use command::{Discarding, View};
-pub use history::{History, Quantity};
+pub use model::command::{Discarding, View};
+pub use model::history::{History, Quantity};
+pub use model::time_control::Speed;
 pub use research::ResearchCommand;
 pub use research::sweep_job::SweepState;
-pub use time_control::Speed;
 
 /// Opens the visualiser window on the last session, else the embedded
 /// default preset.

@@ -357,7 +357,7 @@ fn views_switch_and_render() {
 fn every_shipped_preset_opens() {
     let mut h = harness(App::with_default_preset());
     h.run();
-    for (k, (_, file, text)) in tirecontact::gui::presets::SHIPPED.iter().enumerate() {
+    for (k, (_, file, text)) in tirecontact::gui::model::presets::SHIPPED.iter().enumerate() {
         let expected = Scene::parse(text, file).unwrap();
         h.state_mut().apply(Command::OpenPreset(k));
         h.run();

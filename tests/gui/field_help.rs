@@ -9,7 +9,7 @@ use egui::accesskit::Role;
 use egui_kittest::kittest::{NodeT, Queryable};
 use tirecontact::Scene;
 use tirecontact::gui::App;
-use tirecontact::gui::field_help::help;
+use tirecontact::gui::widgets::field_help::help;
 use tirecontact::road::{Harmonic, Road};
 use tirecontact::scene::Contact;
 

@@ -6,7 +6,7 @@ use crate::harness::{harness_sized, texts};
 use egui_kittest::kittest::Queryable;
 use tirecontact::Scene;
 use tirecontact::gui::App;
-use tirecontact::gui::fields::format_number;
+use tirecontact::gui::widgets::number::format_number;
 use tirecontact::scene::{Mode, Tyre};
 
 /// Identified-looking modes (many digits) on the single-mode preset's point.

@@ -8,7 +8,7 @@ use egui_kittest::kittest::Queryable;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
-use tirecontact::gui::native_dialog::{self, Kind, Request};
+use tirecontact::gui::chrome::native_dialog::{self, Kind, Request};
 use tirecontact::gui::{App, Command};
 
 static ANSWER_NOW: AtomicBool = AtomicBool::new(false);

@@ -126,7 +126,7 @@ impl App {
         self.identify_job = None;
         if !self.mode_cache.has_modes(&scene) {
             // the ring is identified off the UI thread; the document waits
-            self.wait_for_modes(crate::gui::identify_job::Then::Replace {
+            self.wait_for_modes(crate::gui::jobs::identify::Then::Replace {
                 scene,
                 path,
                 what: what.to_string(),
@@ -245,7 +245,7 @@ impl App {
             return;
         }
         self.png_dialog = None;
-        match super::super::export::export_png(
+        match crate::gui::jobs::export::export_png(
             path,
             width,
             height,

@@ -60,7 +60,7 @@ impl App {
                 );
             });
         egui::CentralPanel::default().show(ui, |ui| {
-            crate::gui::dialogs::banner(ui, self.message.as_ref(), cmds);
+            crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
             classroom::phase_strip(ui, self.sim.time_s(), &self.phases);
             let h = (ui.available_height() * 0.64).max(150.0);
             let w = ui.available_width();
@@ -102,7 +102,7 @@ impl App {
                 });
         }
         egui::CentralPanel::default().show(ui, |ui| {
-            crate::gui::dialogs::banner(ui, self.message.as_ref(), cmds);
+            crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
             match self.view {
                 View::TimePlots => {
                     time_plots::show(ui, &self.history, &mut self.plot_opts, self.sim.time_s());

@@ -3,7 +3,7 @@
 
 use super::*;
 use crate::drive::Watch;
-use crate::gui::identify_job::{IdentifyJob, Then, waiting_note};
+use crate::gui::jobs::identify::{IdentifyJob, Then, waiting_note};
 use crate::road::RoadProfile;
 
 /// Said after an error that paused the run.

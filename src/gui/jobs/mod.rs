@@ -1,6 +1,9 @@
 //! Work off the UI thread: the one background-job shape ([`Job`]) that the
 //! identification, the exports and the researcher tools share.
 
+pub mod export;
+pub mod frames;
+pub mod identify;
 mod job;
 
 pub use job::{Job, Progress};

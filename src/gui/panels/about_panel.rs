@@ -3,7 +3,7 @@
 //! is the window title's and the status bar's). Neither restarts the run.
 
 use crate::Scene;
-use crate::gui::command::Command;
+use crate::gui::model::command::Command;
 use egui::{Id, Ui};
 
 /// What a text field showed and holds while it is edited (egui memory).

@@ -2,7 +2,7 @@
 //! shortcuts (listed nowhere else but in tooltips) and the way back to the
 //! start after experimenting.
 
-use crate::gui::command::Command;
+use crate::gui::model::command::Command;
 use egui::{RichText, Ui};
 
 /// The keyboard shortcuts: key, what it does. They act when no text field

@@ -12,8 +12,8 @@ pub mod road_panel;
 pub mod run_panel;
 pub mod toolbar;
 
-use super::command::Command;
 use crate::Scene;
+use crate::gui::model::command::Command;
 use crate::scene::{Mode, Tyre};
 
 /// The given modes of a scene, mutably (for building edited copies); a ring
@@ -62,9 +62,9 @@ pub fn side_panel(
         about_panel::show(ui, scene, cmds);
         ui.horizontal(|ui| {
             ui.label("Tags:");
-            super::fields::tag(ui, super::fields::Apply::Live);
+            crate::gui::widgets::fields::tag(ui, crate::gui::widgets::fields::Apply::Live);
             ui.label("applied to the running simulation;");
-            super::fields::tag(ui, super::fields::Apply::Restart);
+            crate::gui::widgets::fields::tag(ui, crate::gui::widgets::fields::Apply::Restart);
             ui.label("restarts the run.");
         });
         ui.separator();

@@ -3,8 +3,8 @@
 
 use super::{modes_mut, push_edit};
 use crate::Scene;
-use crate::gui::command::Command;
-use crate::gui::fields::{Apply, NumField, section};
+use crate::gui::model::command::Command;
+use crate::gui::widgets::fields::{Apply, NumField, section};
 use crate::ring::RingParams;
 use crate::scene::{Mode, Tyre};
 use egui::{Grid, RichText, Ui};
@@ -205,7 +205,10 @@ fn ring_summary(
         ];
         for (name, v, unit) in rows {
             ui.label(name);
-            ui.label(format!("{} {unit}", crate::gui::fields::format_number(v)));
+            ui.label(format!(
+                "{} {unit}",
+                crate::gui::widgets::number::format_number(v)
+            ));
             ui.end_row();
         }
     });

@@ -4,8 +4,8 @@
 
 use super::{modes_mut, push_edit};
 use crate::Scene;
-use crate::gui::command::Command;
-use crate::gui::fields::{Apply, NumField, section};
+use crate::gui::model::command::Command;
+use crate::gui::widgets::fields::{Apply, NumField, section};
 use crate::scene::Point;
 use egui::{Grid, Ui};
 

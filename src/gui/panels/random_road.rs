@@ -4,8 +4,8 @@
 
 use super::push_edit;
 use crate::Scene;
-use crate::gui::command::Command;
-use crate::gui::fields::{Apply, NumField};
+use crate::gui::model::command::Command;
+use crate::gui::widgets::fields::{Apply, NumField};
 use crate::road::{Road, RoadClass};
 use egui::{Grid, Ui};
 

@@ -3,8 +3,8 @@
 
 use super::push_edit;
 use crate::Scene;
-use crate::gui::command::Command;
-use crate::gui::fields::{Apply, NumField, section};
+use crate::gui::model::command::Command;
+use crate::gui::widgets::fields::{Apply, NumField, section};
 use crate::road::{Harmonic, Road};
 use egui::{Grid, Ui};
 

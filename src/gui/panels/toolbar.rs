@@ -1,9 +1,9 @@
 //! Menu bar (File, Presets, Export, View) and the transport controls:
 //! play/pause, step, N steps, reset, speed, current time and real-time factor.
 
-use crate::gui::command::{Command, View};
-use crate::gui::presets::SHIPPED;
-use crate::gui::time_control::Speed;
+use crate::gui::model::command::{Command, View};
+use crate::gui::model::presets::SHIPPED;
+use crate::gui::model::time_control::Speed;
 use egui::{Id, RichText, Ui};
 
 /// What the toolbar shows (read-only snapshot of the app).
@@ -71,7 +71,7 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             }
         });
         ui.menu_button("Guided tour", |ui| {
-            for (k, (name, file, _)) in crate::gui::guided::GUIDED.iter().enumerate() {
+            for (k, (name, file, _)) in crate::gui::classroom::guided::GUIDED.iter().enumerate() {
                 if ui.button(*name).on_hover_text(*file).clicked() {
                     cmds.push(Command::OpenGuided(k));
                 }

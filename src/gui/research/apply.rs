@@ -8,8 +8,8 @@ use super::spectra_job::{INLINE_MAX_WORK, SpectraJob, SpectraPoll};
 use super::sweep_job::{SweepState, default_threads};
 use crate::compare::PinnedRun;
 use crate::gui::app::{App, Message};
-use crate::gui::command::{Command, View};
-use crate::gui::file_prompt::{FileAction, FilePrompt};
+use crate::gui::chrome::file_prompt::{FileAction, FilePrompt};
+use crate::gui::model::command::{Command, View};
 use crate::spectrum::Window;
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! `Recording` built from the History, so that `crate::compare::PinnedRun`
 //! pins it and differences it.
 
-use crate::gui::history::{History, Quantity};
+use crate::gui::model::history::{History, Quantity};
 use crate::output::record::Recording;
 
 /// The history's samples as a recording: `u`, window-mean `q`, and the road

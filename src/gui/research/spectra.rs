@@ -3,7 +3,7 @@
 //! ramp, their Hann-windowed spectra (`crate::spectrum`), and a cache keyed
 //! by the history's length so they are recomputed only when the run moved.
 
-use crate::gui::history::{History, Quantity};
+use crate::gui::model::history::{History, Quantity};
 use crate::spectrum::run::RunSpectra;
 use crate::spectrum::{Spectrum, Window, spectrum};
 

@@ -69,7 +69,7 @@ pub fn restarted(then: &HistoryKey, now: &HistoryKey) -> bool {
 mod tests {
     use super::*;
     use crate::Scene;
-    use crate::gui::history::History;
+    use crate::gui::model::history::History;
     use crate::gui::research::spectra::history_spectra;
 
     fn run(steps: usize) -> History {

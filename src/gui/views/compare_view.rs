@@ -7,8 +7,8 @@
 use super::time_plots::{clip_at, clip_checkbox, clip_level, force_range, impact_marks, y_range};
 use super::{axis_title, legend_place, point_color};
 use crate::compare::{PinnedRun, RunDifference};
-use crate::gui::command::Command;
-use crate::gui::history::{History, Quantity, decimate_min_max};
+use crate::gui::model::command::Command;
+use crate::gui::model::history::{History, Quantity, decimate_min_max};
 use crate::gui::research::ResearchCommand;
 use crate::gui::research::state::CompareOptions;
 use egui::{Id, RichText, Ui};

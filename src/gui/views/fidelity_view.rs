@@ -82,7 +82,7 @@ pub fn show(
         Some(Err(e)) => {
             ui.label(
                 RichText::new(format!("No fidelity figure: {e}"))
-                    .color(crate::gui::fields::ERROR_COLOR),
+                    .color(crate::gui::widgets::fields::ERROR_COLOR),
             );
             return;
         }

@@ -54,7 +54,7 @@ fn pow10_label(v: f64) -> String {
     if (v - v.round()).abs() > 1e-6 {
         return String::new();
     }
-    super::super::fields::format_number(x)
+    crate::gui::widgets::number::format_number(x)
 }
 
 pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions) {

@@ -1,12 +1,25 @@
 //! Legends of the research plots (spectra, sweep, compare) placed off the
 //! data: each frame the plot's curves (in screen pixels) choose the corner
 //! whose legend-sized box they cross least, and the next frame puts the
-//! legend there. Short plots use the time plots' small legend text
-//! (`time_plots::legend_text`).
+//! legend there. Short plots use a small legend text
+//! ([`legend_text`]).
 
-use super::time_plots::legend_text;
-use egui::{Context, Id, Pos2, Rect, Ui, Vec2};
+use egui::{Context, Id, Pos2, Rect, TextStyle, Ui, Vec2};
 use egui_plot::{Corner, Legend, PlotPoint, PlotUi};
+
+/// Height (px) under which a time plot is short: small legend text and
+/// short y labels.
+pub const SHORT_PLOT_PX: f32 = 160.0;
+
+/// Text of the time plots' legends: small in short plots (small windows),
+/// where body text made a legend of five points cover most of the plot.
+pub fn legend_text(plot_height: f32) -> TextStyle {
+    if plot_height < SHORT_PLOT_PX {
+        TextStyle::Small
+    } else {
+        TextStyle::Body
+    }
+}
 
 /// Corners in order of preference when several are equally empty.
 const PREFERENCE: [Corner; 4] = [

@@ -184,7 +184,7 @@ pub fn show_with(
     let e = opts.exaggeration;
     ui.horizontal_wrapped(|ui| {
         ui.label(
-            RichText::new(format!("vertical exaggeration ×{}", super::super::fields::format_number(e)))
+            RichText::new(format!("vertical exaggeration ×{}", crate::gui::widgets::number::format_number(e)))
                 .strong(),
         )
         .on_hover_text("heights are drawn this many times larger than lengths; the height axis shows true mm");
@@ -246,7 +246,7 @@ pub fn show_with(
                 .on_hover_text(format!(
                     "the road and the preload are eased in over the first {} s (ramp), so \
                      that the run starts at rest without a shock",
-                    super::super::fields::format_number(scene.ramp_s)
+                    crate::gui::widgets::number::format_number(scene.ramp_s)
                 ));
         }
     });
@@ -343,9 +343,9 @@ pub fn show_with(
         .x_axis_label("position along the contact line x (m)")
         .y_axis_label(title.text.clone())
         .x_grid_spacer(|g| nice_marks(g.bounds, 1.0))
-        .x_axis_formatter(|m, _| super::super::fields::format_number(m.value))
+        .x_axis_formatter(|m, _| crate::gui::widgets::number::format_number(m.value))
         .y_grid_spacer(move |g| height_marks(g, 1e3 / e, label_px))
-        .y_axis_formatter(move |m, _| super::super::fields::format_number(m.value / e * 1e3))
+        .y_axis_formatter(move |m, _| crate::gui::widgets::number::format_number(m.value / e * 1e3))
         .y_axis_min_width(44.0)
         .include_x(x0)
         .include_x(x1)

@@ -6,7 +6,7 @@
 
 use super::{legend_place, point_color};
 use crate::Scene;
-use crate::gui::command::Command;
+use crate::gui::model::command::Command;
 use crate::gui::research::ResearchCommand;
 use crate::gui::research::spectra::{HistoryCache, HistorySpectra};
 use crate::gui::research::state::SpectraOptions;
@@ -28,7 +28,7 @@ pub fn log_label(v: f64) -> String {
     let x = 10f64.powf(v);
     let m = x / 10f64.powf(v.floor());
     if [1.0, 2.0, 5.0].iter().any(|k| (m - k).abs() < 1e-6) {
-        crate::gui::fields::format_number(x)
+        crate::gui::widgets::number::format_number(x)
     } else {
         String::new()
     }

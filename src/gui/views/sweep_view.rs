@@ -6,7 +6,7 @@
 
 use super::point_color;
 use crate::Scene;
-use crate::gui::command::Command;
+use crate::gui::model::command::Command;
 use crate::gui::research::ResearchCommand;
 use crate::gui::research::state::SweepForm;
 use crate::gui::research::sweep_job::{SweepRequest, SweepResult, SweepState, default_threads};
@@ -91,7 +91,7 @@ pub fn show(
             ui.label(
                 RichText::new(format!(
                     "(now {} {unit})",
-                    crate::gui::fields::format_number(v)
+                    crate::gui::widgets::number::format_number(v)
                 ))
                 .weak(),
             );
@@ -171,7 +171,7 @@ pub fn show(
         SweepState::Failed(e) => {
             ui.label(
                 RichText::new(format!("The sweep failed: {e}"))
-                    .color(crate::gui::fields::ERROR_COLOR),
+                    .color(crate::gui::widgets::fields::ERROR_COLOR),
             );
         }
         SweepState::Finished(r) => {

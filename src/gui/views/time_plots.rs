@@ -2,12 +2,13 @@
 //! with linked time axes, legends, units, follow-latest window and min/max
 //! decimation (drawing cost scales with the plot width, not the run length).
 
-use super::{legend_place, point_color};
-use crate::gui::history::{History, Quantity};
+use super::legend_place::{self, SHORT_PLOT_PX, legend_text};
+use super::point_color;
+use crate::gui::model::history::{History, Quantity};
 /// The clip level of impact spikes, shared with the exported and
 /// command-line figures.
 pub use crate::output::impacts::clip_level;
-use egui::{Id, TextStyle, Ui};
+use egui::{Id, Ui};
 use egui_plot::{AxisHints, Line, MarkerShape, Plot, PlotUi, Points};
 
 /// Id of the contact force plot (its `PlotMemory` holds the drawn bounds).
@@ -290,20 +291,6 @@ pub fn legend_strip_s(span_s: f64, legend_w_px: f32, frame_w_px: f32) -> f64 {
 /// Spacing (px) from which the contact plot's lane labels fade in, and at
 /// which they are opaque.
 pub const LANE_LABEL_SPACING: std::ops::RangeInclusive<f32> = 12.0..=16.0;
-
-/// Height (px) under which a time plot is short: small legend text and
-/// short y labels.
-pub const SHORT_PLOT_PX: f32 = 160.0;
-
-/// Text of the time plots' legends: small in short plots (small windows),
-/// where body text made a legend of five points cover most of the plot.
-pub fn legend_text(plot_height: f32) -> TextStyle {
-    if plot_height < SHORT_PLOT_PX {
-        TextStyle::Small
-    } else {
-        TextStyle::Body
-    }
-}
 
 /// Legend entry of the clipped impacts' marks.
 pub const IMPACT_LABEL: &str = "impact (impulse / dt, clipped)";

@@ -80,7 +80,7 @@ fn the_classroom_status_bar_fits_a_1280_px_window_in_one_row() {
     assert!(has("guided_1a_soft_tyre.ron"), "{labels:?}");
     assert!(has("unsaved"), "{labels:?}");
     // the full history text is kept for the hover
-    let full = tirecontact::gui::status_bar::history_text(
+    let full = tirecontact::gui::chrome::status_bar::history_text(
         h.state().history().len(),
         h.state().history().stride(),
     );
@@ -90,7 +90,7 @@ fn the_classroom_status_bar_fits_a_1280_px_window_in_one_row() {
 #[test]
 fn a_shortened_label_shows_its_full_text_on_hover() {
     let mut h = harness([1280.0, 720.0], true);
-    let full = tirecontact::gui::status_bar::history_text(
+    let full = tirecontact::gui::chrome::status_bar::history_text(
         h.state().history().len(),
         h.state().history().stride(),
     );
@@ -119,7 +119,7 @@ fn wide_windows_show_the_full_texts() {
         let size = [1500.0, 950.0];
         let h = harness(size, false);
         let labels = check_one_row_inside(&h, size[0]);
-        let full = tirecontact::gui::status_bar::history_text(
+        let full = tirecontact::gui::chrome::status_bar::history_text(
             h.state().history().len(),
             h.state().history().stride(),
         );

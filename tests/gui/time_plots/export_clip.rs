@@ -7,7 +7,7 @@ use crate::harness::{advance, harness};
 use crate::support::temp_dir;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::export::{CLIPPED_IMPACTS, time_figure};
+use tirecontact::gui::jobs::export::{CLIPPED_IMPACTS, time_figure};
 use tirecontact::gui::views::time_plots::clip_level;
 use tirecontact::gui::{App, Command};
 use tirecontact::gui::{History, Quantity};

@@ -1,14 +1,11 @@
-//! Animation export from the GUI: a settings dialog, and the export running on
-//! its own thread (`output::animation`) with a progress bar and Cancel. The
-//! run is replayed from t = 0 with its live edits, as for the CSV export.
+//! Animation export from the GUI: the settings dialog, and the progress
+//! window with Cancel of the export job ([`FramesJob`]). The run is
+//! replayed from t = 0 with its live edits, as for the CSV export.
 
-use super::command::Command;
-use super::export::{LiveEdit, replay};
 use crate::Scene;
-use crate::gui::jobs::Job;
-use crate::identify::{ModeCache, PreparedModel};
-use crate::output::animation::{FrameSettings, FrameWriter, frames_error};
-use crate::{Simulation, SolverOptions};
+use crate::gui::jobs::frames::FramesJob;
+use crate::gui::model::command::Command;
+use crate::output::animation::FrameSettings;
 use egui::{Context, RichText};
 use std::path::PathBuf;
 
@@ -38,63 +35,6 @@ impl FramesDialog {
             },
             dir: "frames".to_string(),
         }
-    }
-}
-
-/// A frames export running on its own thread.
-pub struct FramesJob {
-    pub dir: PathBuf,
-    pub total: u64,
-    job: Job<Result<u64, String>>,
-}
-
-impl FramesJob {
-    pub fn spawn(
-        dir: PathBuf,
-        settings: FrameSettings,
-        start: Scene,
-        cache: &ModeCache,
-        edits: Vec<LiveEdit>,
-    ) -> Result<Self, String> {
-        settings.check(start.duration_s)?;
-        let model = PreparedModel::new(&start, cache).map_err(|e| e.to_string())?;
-        let mut sim =
-            Simulation::new(&model, SolverOptions::default()).map_err(|e| e.to_string())?;
-        let d = dir.clone();
-        let total = settings.frame_count();
-        let job = Job::spawn("frames export", total, move |progress| {
-            let mut frames = FrameWriter::new(
-                &sim,
-                &d,
-                &settings,
-                progress.done_counter(),
-                progress.cancel_flag(),
-            )?;
-            let end = sim.scene().num_steps();
-            replay(&mut sim, &edits, end, &mut frames, None).map_err(frames_error)?;
-            frames.finish(&sim).map_err(|e| frames_error(e.into()))
-        })?;
-        Ok(FramesJob { dir, total, job })
-    }
-
-    /// Frames written so far.
-    pub fn done(&self) -> u64 {
-        self.job.done()
-    }
-
-    /// Asks the thread to stop before the next frame.
-    pub fn cancel(&self) {
-        self.job.cancel();
-    }
-
-    /// The result, once the thread has finished.
-    pub fn poll(&self) -> Option<Result<u64, String>> {
-        self.job.poll().map(Result::flatten)
-    }
-
-    /// Blocks until the export ends (tests).
-    pub fn wait(self) -> Result<u64, String> {
-        self.job.wait().and_then(|r| r)
     }
 }
 
@@ -161,14 +101,15 @@ pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<C
                     ui.horizontal(|ui| {
                         ui.add(egui::TextEdit::singleline(&mut d.dir).desired_width(220.0))
                             .accessible_name("frames folder");
-                        let request = || super::native_dialog::Request {
-                            kind: super::native_dialog::Kind::Folder,
+                        let request = || crate::gui::chrome::native_dialog::Request {
+                            kind: crate::gui::chrome::native_dialog::Kind::Folder,
                             filter: None,
                             directory: None,
                             file_name: None,
                         };
                         let id = egui::Id::unique("tirecontact.choose.frames_folder");
-                        if let Some(Some(p)) = super::native_dialog::choose_button(ui, id, request)
+                        if let Some(Some(p)) =
+                            crate::gui::chrome::native_dialog::choose_button(ui, id, request)
                         {
                             d.dir = p.display().to_string();
                         }

@@ -1,9 +1,9 @@
-//! Message banner, status bar, unsaved-changes confirmation and the PNG export
+//! Message banner, unsaved-changes confirmation and the PNG export
 //! settings. They push `Command`s; the PNG settings are dialog-local state.
 
-use super::app::{App, Message, PngSettings};
-use super::command::{Command, Discarding};
-use super::fields::ERROR_COLOR;
+use crate::gui::app::{Message, PngSettings};
+use crate::gui::model::command::{Command, Discarding};
+use crate::gui::widgets::fields::ERROR_COLOR;
 use egui::{Color32, RichText, Ui};
 
 /// The message banner above the views (errors in red, with a dismiss button).
@@ -34,7 +34,7 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
                     |ui| {
                         ui.set_max_width(w);
                         // a quoted source line and its caret in monospace
-                        let job = super::banner_text::layout(ui, &m.text, color);
+                        let job = crate::gui::chrome::banner_text::layout(ui, &m.text, color);
                         ui.add(egui::Label::new(job).wrap());
                     },
                 );
@@ -45,27 +45,6 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
                 });
             });
         });
-}
-
-/// File, run statistics and frame rate, in one row fitted to the window
-/// (`status_bar::show`).
-pub fn status_bar(ui: &mut Ui, app: &App) {
-    super::status_bar::show(ui, app);
-}
-
-/// What the status bar says of the document: its file, or for a scene
-/// without one (the embedded default, a shipped or guided preset) its name
-/// as a built-in preset; "unsaved changes" only once it was edited.
-pub fn document_label(path: Option<&std::path::Path>, scene_name: &str, dirty: bool) -> String {
-    let doc = match path {
-        Some(p) => p.display().to_string(),
-        None => format!("{scene_name} (built-in preset)"),
-    };
-    if dirty {
-        format!("{doc} (unsaved changes)")
-    } else {
-        doc
-    }
 }
 
 /// Asks before dropping unsaved edits, naming them (`edits`, with units).
@@ -142,7 +121,7 @@ pub fn png_window(
                 }
             });
             ui.label("file");
-            if let Some(n) = super::file_prompt::path_row(
+            if let Some(n) = crate::gui::chrome::file_prompt::path_row(
                 ui,
                 &mut s.path,
                 "PNG file path",
@@ -156,7 +135,7 @@ pub fn png_window(
             ui.label(
                 RichText::new(format!(
                     "A relative path is in {}.",
-                    super::file_prompt::cwd_text()
+                    crate::gui::chrome::file_prompt::cwd_text()
                 ))
                 .weak(),
             );
@@ -175,7 +154,7 @@ pub fn png_window(
         return;
     }
     if go {
-        match super::file_prompt::typed_path(&s.path, "png") {
+        match crate::gui::chrome::file_prompt::typed_path(&s.path, "png") {
             Ok(path) => cmds.push(Command::ExportPng {
                 path,
                 width: s.width,
@@ -185,32 +164,5 @@ pub fn png_window(
         }
     } else if !open {
         *settings = None;
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use std::path::Path;
-
-    #[test]
-    fn a_built_in_preset_is_named_and_unsaved_only_once_edited() {
-        let name = "Paper: ring tyre, five points, sine road";
-        assert_eq!(
-            document_label(None, name, false),
-            "Paper: ring tyre, five points, sine road (built-in preset)"
-        );
-        assert_eq!(
-            document_label(None, name, true),
-            "Paper: ring tyre, five points, sine road (built-in preset) (unsaved changes)"
-        );
-        assert_eq!(
-            document_label(Some(Path::new("presets/a.ron")), name, false),
-            "presets/a.ron"
-        );
-        assert_eq!(
-            document_label(Some(Path::new("presets/a.ron")), name, true),
-            "presets/a.ron (unsaved changes)"
-        );
     }
 }

@@ -91,7 +91,7 @@ impl App {
             toolbar::transport(ui, &status, &mut cmds);
         });
         egui::Panel::bottom("tirecontact.status").show(ui, |ui| {
-            crate::gui::dialogs::status_bar(ui, self);
+            crate::gui::chrome::status_bar::show(ui, self);
         });
         if self.classroom.on {
             self.classroom_layout(ui, &mut cmds);
@@ -103,16 +103,21 @@ impl App {
         } else {
             Vec::new()
         };
-        crate::gui::dialogs::confirm_window(&ctx, self.confirm.as_ref(), &unsaved, &mut cmds);
-        crate::gui::dialogs::png_window(&ctx, &mut self.png_dialog, &mut cmds);
-        crate::gui::file_prompt::window(&ctx, &mut self.file_prompt, &mut cmds);
-        crate::gui::frames::dialog(&ctx, &mut self.frames_dialog, &mut cmds);
-        crate::gui::frames::progress(&ctx, self.frames_job.as_ref(), &mut cmds);
+        crate::gui::chrome::dialogs::confirm_window(
+            &ctx,
+            self.confirm.as_ref(),
+            &unsaved,
+            &mut cmds,
+        );
+        crate::gui::chrome::dialogs::png_window(&ctx, &mut self.png_dialog, &mut cmds);
+        crate::gui::chrome::file_prompt::window(&ctx, &mut self.file_prompt, &mut cmds);
+        crate::gui::chrome::frames_dialog::dialog(&ctx, &mut self.frames_dialog, &mut cmds);
+        crate::gui::chrome::frames_dialog::progress(&ctx, self.frames_job.as_ref(), &mut cmds);
         for c in cmds {
             self.apply(c);
         }
         if std::mem::take(&mut self.forget_fields) {
-            crate::gui::fields::forget_all(&ctx);
+            crate::gui::widgets::fields::forget_all(&ctx);
             ctx.request_repaint();
         }
         let title = self.title();

@@ -99,7 +99,7 @@ mod tests {
     use crate::Scene;
 
     fn three() -> Scene {
-        Scene::parse(include_str!("../../presets/three_points.ron"), "three").unwrap()
+        Scene::parse(include_str!("../../../presets/three_points.ron"), "three").unwrap()
     }
 
     #[test]

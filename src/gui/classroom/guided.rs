@@ -7,42 +7,42 @@ pub const GUIDED: &[(&str, &str, &str)] = &[
     (
         "1a Soft tyre",
         "guided_1a_soft_tyre.ron",
-        include_str!("../../presets/guided_1a_soft_tyre.ron"),
+        include_str!("../../../presets/guided_1a_soft_tyre.ron"),
     ),
     (
         "1b Stiff tyre",
         "guided_1b_stiff_tyre.ron",
-        include_str!("../../presets/guided_1b_stiff_tyre.ron"),
+        include_str!("../../../presets/guided_1b_stiff_tyre.ron"),
     ),
     (
         "2a Low damping",
         "guided_2a_low_damping.ron",
-        include_str!("../../presets/guided_2a_low_damping.ron"),
+        include_str!("../../../presets/guided_2a_low_damping.ron"),
     ),
     (
         "2b High damping",
         "guided_2b_high_damping.ron",
-        include_str!("../../presets/guided_2b_high_damping.ron"),
+        include_str!("../../../presets/guided_2b_high_damping.ron"),
     ),
     (
         "3a Slow rolling",
         "guided_3a_slow.ron",
-        include_str!("../../presets/guided_3a_slow.ron"),
+        include_str!("../../../presets/guided_3a_slow.ron"),
     ),
     (
         "3b Fast rolling",
         "guided_3b_fast.ron",
-        include_str!("../../presets/guided_3b_fast.ron"),
+        include_str!("../../../presets/guided_3b_fast.ron"),
     ),
     (
         "4a Long road wavelength",
         "guided_4a_long_wavelength.ron",
-        include_str!("../../presets/guided_4a_long_wavelength.ron"),
+        include_str!("../../../presets/guided_4a_long_wavelength.ron"),
     ),
     (
         "4b Short road wavelength",
         "guided_4b_short_wavelength.ron",
-        include_str!("../../presets/guided_4b_short_wavelength.ron"),
+        include_str!("../../../presets/guided_4b_short_wavelength.ron"),
     ),
 ];
 

@@ -15,7 +15,7 @@ use std::sync::Arc;
 /// What waits for the identification.
 #[derive(Debug, Clone)]
 pub enum Then {
-    /// An edit of the current scene ([`crate::gui::command::Command::EditScene`]).
+    /// An edit of the current scene ([`crate::gui::model::command::Command::EditScene`]).
     Edit(Scene),
     /// A new document: an opened file, a preset, a new scene.
     Replace {

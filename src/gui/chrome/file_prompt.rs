@@ -7,9 +7,9 @@
 //! exports silently did nothing. The typed field always works; "Choose…"
 //! fills it when a dialog is available, and says so when none appeared.
 
-use super::command::Command;
-use super::native_dialog::{Kind, Request, choose_button};
-use super::research::ResearchCommand;
+use crate::gui::chrome::native_dialog::{Kind, Request, choose_button};
+use crate::gui::model::command::Command;
+use crate::gui::research::ResearchCommand;
 use egui::{RichText, Ui};
 use std::path::{Path, PathBuf};
 
@@ -76,7 +76,7 @@ pub struct FilePrompt {
     pub path: String,
     pub note: Option<String>,
     /// The action held by the unsaved-changes question, done after the save.
-    pub then: Option<super::command::Discarding>,
+    pub then: Option<crate::gui::model::command::Discarding>,
 }
 
 impl FilePrompt {
@@ -186,7 +186,7 @@ pub fn window(ctx: &egui::Context, prompt: &mut Option<FilePrompt>, cmds: &mut V
             }
             ui.label(RichText::new(format!("A relative path is in {}.", cwd_text())).weak());
             if let Some(n) = &p.note {
-                ui.label(RichText::new(n.as_str()).color(super::fields::ERROR_COLOR));
+                ui.label(RichText::new(n.as_str()).color(crate::gui::widgets::fields::ERROR_COLOR));
             }
             ui.horizontal(|ui| {
                 if ui

@@ -7,11 +7,11 @@
 //! where they were made: the file holds exactly the run that was shown, at
 //! full resolution, whatever the history's decimation.
 
-use super::history::{History, Quantity};
-use super::views::time_plots::{clip_level, force_range};
 use crate::drive::{self, Probe, Watch};
 use crate::error::RunError;
 use crate::gui::jobs::{Job, Progress};
+use crate::gui::model::history::{History, Quantity};
+use crate::gui::views::time_plots::{clip_level, force_range};
 use crate::identify::{ModeCache, PreparedModel};
 use crate::modal::Mode;
 use crate::output::csv::RunWriter;

@@ -6,8 +6,8 @@
 //! its full text on hover. Never wraps: a second row moved the widgets above
 //! it (and broke clicks on them).
 
-use super::app::App;
-use super::fields::ERROR_COLOR;
+use crate::gui::app::App;
+use crate::gui::widgets::fields::ERROR_COLOR;
 use egui::{Label, RichText, TextStyle, TextWrapMode, Ui, WidgetText};
 
 /// A status bar label: its full text and its short text for narrow windows.
@@ -24,7 +24,7 @@ pub fn texts(app: &App) -> [StatusText; 3] {
     let dirty = app.is_dirty();
     [
         StatusText {
-            full: super::dialogs::document_label(app.path.as_deref(), &app.scene.name, dirty),
+            full: document_label(app.path.as_deref(), &app.scene.name, dirty),
             short: short_document_label(app.path.as_deref(), &app.scene.name, dirty),
         },
         StatusText {
@@ -205,6 +205,21 @@ pub fn show(ui: &mut Ui, app: &App) {
     });
 }
 
+/// What the status bar says of the document: its file, or for a scene
+/// without one (the embedded default, a shipped or guided preset) its name
+/// as a built-in preset; "unsaved changes" only once it was edited.
+pub fn document_label(path: Option<&std::path::Path>, scene_name: &str, dirty: bool) -> String {
+    let doc = match path {
+        Some(p) => p.display().to_string(),
+        None => format!("{scene_name} (built-in preset)"),
+    };
+    if dirty {
+        format!("{doc} (unsaved changes)")
+    } else {
+        doc
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -262,5 +277,26 @@ mod tests {
             "guided_1a_soft_tyre.ron (unsaved)"
         );
         assert_eq!(short_document_label(None, "Paper", false), "Paper (preset)");
+    }
+
+    #[test]
+    fn a_built_in_preset_is_named_and_unsaved_only_once_edited() {
+        let name = "Paper: ring tyre, five points, sine road";
+        assert_eq!(
+            document_label(None, name, false),
+            "Paper: ring tyre, five points, sine road (built-in preset)"
+        );
+        assert_eq!(
+            document_label(None, name, true),
+            "Paper: ring tyre, five points, sine road (built-in preset) (unsaved changes)"
+        );
+        assert_eq!(
+            document_label(Some(std::path::Path::new("presets/a.ron")), name, false),
+            "presets/a.ron"
+        );
+        assert_eq!(
+            document_label(Some(std::path::Path::new("presets/a.ron")), name, true),
+            "presets/a.ron (unsaved changes)"
+        );
     }
 }

@@ -301,8 +301,11 @@ mod tests {
 
     #[test]
     fn history_stays_bounded_and_doubles_stride() {
-        let scene =
-            Scene::parse(include_str!("../../presets/single_mode.ron"), "single_mode").unwrap();
+        let scene = Scene::parse(
+            include_str!("../../../presets/single_mode.ron"),
+            "single_mode",
+        )
+        .unwrap();
         let mut sim = Simulation::from_scene(&scene).unwrap();
         let mut h = History::new(1, 4 * 1024 + 1);
         assert_eq!(h.capacity(), 1024);
@@ -323,8 +326,11 @@ mod tests {
     /// preset impacts dominate the force's range and the rest does not.
     #[test]
     fn force_without_impacts_removes_exactly_the_impact_impulses() {
-        let scene =
-            Scene::parse(include_str!("../../presets/single_mode.ron"), "single_mode").unwrap();
+        let scene = Scene::parse(
+            include_str!("../../../presets/single_mode.ron"),
+            "single_mode",
+        )
+        .unwrap();
         let mut sim = Simulation::from_scene(&scene).unwrap();
         let mut h = History::new(1, 1 << 20);
         h.record_initial(&sim);

@@ -1,8 +1,8 @@
 //! Everything a user can ask for. Panels and the keyboard push commands;
 //! `App::apply` is the one place they change the app's state.
 
-use super::time_control::Speed;
 use crate::Scene;
+use crate::gui::model::time_control::Speed;
 use std::path::PathBuf;
 
 /// A main view of the central area.
@@ -114,7 +114,7 @@ pub enum Command {
     },
     CancelFrames,
     /// A researcher-tool request (spectra, sweep, A/B pin, exports).
-    Research(super::research::ResearchCommand),
+    Research(crate::gui::research::ResearchCommand),
     /// A field refused a typed value: `text` (field, value, what is
     /// expected) goes to the message banner until a good edit.
     FieldRefused {

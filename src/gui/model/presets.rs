@@ -5,16 +5,16 @@ pub const SHIPPED: &[(&str, &str, &str)] = &[
     (
         "Single mode on a sine road",
         "single_mode.ron",
-        include_str!("../../presets/single_mode.ron"),
+        include_str!("../../../presets/single_mode.ron"),
     ),
     (
         "Three points",
         "three_points.ron",
-        include_str!("../../presets/three_points.ron"),
+        include_str!("../../../presets/three_points.ron"),
     ),
     (
         "Paper: ring tyre, five points",
         "paper.ron",
-        include_str!("../../presets/paper.ron"),
+        include_str!("../../../presets/paper.ron"),
     ),
 ];

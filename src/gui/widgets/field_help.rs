@@ -55,7 +55,7 @@ impl FieldHelp {
         } else {
             format!(" {unit}")
         };
-        let f = |x: f64| super::fields::format_number(x * scale);
+        let f = |x: f64| crate::gui::widgets::number::format_number(x * scale);
         let mut s = match (self.min_si, self.max_si) {
             (Some((lo, true)), Some(hi)) => format!("{} to {}{u}", f(lo), f(hi)),
             (Some((lo, false)), Some(hi)) => format!("> {} up to {}{u}", f(lo), f(hi)),

@@ -2,7 +2,7 @@
 //! tyre, remembered so that un-muting every mode gives the original back.
 
 use super::*;
-use crate::gui::mutes::{muted_tyre, refusal, toggled};
+use crate::gui::model::mute_set::{muted_tyre, refusal, toggled};
 
 impl App {
     /// Mutes (or solos) mode `k` through a scene edit, refused with the

@@ -1,0 +1,67 @@
+//! The animation export's background job: the run replayed from t = 0
+//! with its live edits, one PNG per frame (`output::animation`), with
+//! progress and Cancel.
+
+use crate::gui::jobs::Job;
+use crate::gui::jobs::export::{LiveEdit, replay};
+use crate::identify::{ModeCache, PreparedModel};
+use crate::output::animation::{FrameSettings, FrameWriter, frames_error};
+use crate::{Scene, Simulation, SolverOptions};
+use std::path::PathBuf;
+
+/// A frames export running on its own thread.
+pub struct FramesJob {
+    pub dir: PathBuf,
+    pub total: u64,
+    job: Job<Result<u64, String>>,
+}
+
+impl FramesJob {
+    pub fn spawn(
+        dir: PathBuf,
+        settings: FrameSettings,
+        start: Scene,
+        cache: &ModeCache,
+        edits: Vec<LiveEdit>,
+    ) -> Result<Self, String> {
+        settings.check(start.duration_s)?;
+        let model = PreparedModel::new(&start, cache).map_err(|e| e.to_string())?;
+        let mut sim =
+            Simulation::new(&model, SolverOptions::default()).map_err(|e| e.to_string())?;
+        let d = dir.clone();
+        let total = settings.frame_count();
+        let job = Job::spawn("frames export", total, move |progress| {
+            let mut frames = FrameWriter::new(
+                &sim,
+                &d,
+                &settings,
+                progress.done_counter(),
+                progress.cancel_flag(),
+            )?;
+            let end = sim.scene().num_steps();
+            replay(&mut sim, &edits, end, &mut frames, None).map_err(frames_error)?;
+            frames.finish(&sim).map_err(|e| frames_error(e.into()))
+        })?;
+        Ok(FramesJob { dir, total, job })
+    }
+
+    /// Frames written so far.
+    pub fn done(&self) -> u64 {
+        self.job.done()
+    }
+
+    /// Asks the thread to stop before the next frame.
+    pub fn cancel(&self) {
+        self.job.cancel();
+    }
+
+    /// The result, once the thread has finished.
+    pub fn poll(&self) -> Option<Result<u64, String>> {
+        self.job.poll().map(Result::flatten)
+    }
+
+    /// Blocks until the export ends (tests).
+    pub fn wait(self) -> Result<u64, String> {
+        self.job.wait().and_then(|r| r)
+    }
+}
