@@ -47,6 +47,40 @@ pub fn show(
     if opts.shown.len() != p {
         opts.shown = (0..p).map(|i| i < 8).collect();
     }
+    controls(ui, pinned.is_some(), opts, cmds);
+    summary(ui, pinned, diff);
+    let rows = if opts.difference && pinned.is_some() {
+        4
+    } else {
+        2
+    };
+    let gap = ui.spacing().item_spacing.y;
+    let t_end = history
+        .last_time()
+        .unwrap_or(0.0)
+        .max(
+            pinned
+                .and_then(|p| p.recording.t_s.last().copied())
+                .unwrap_or(0.0),
+        )
+        .max(1e-9);
+    let grid = Grid {
+        h: ((ui.available_height() - (rows - 1) as f32 * gap) / rows as f32).max(90.0),
+        link: Id::unique("tirecontact.compare_axes"),
+        t_end,
+        buckets: (ui.available_width() as usize).clamp(100, 3000),
+        rows,
+        shown: (0..p).filter(|&i| opts.shown[i]).collect(),
+        clip_impacts: opts.clip_impacts,
+    };
+    run_plots(ui, &grid, history, pinned, pinned_smooth);
+    if rows == 4 {
+        difference_plots(ui, &grid, &diff.cloned().unwrap_or_default(), diff_smooth);
+    }
+}
+
+/// The buttons, the difference and clip switches and the point choice.
+fn controls(ui: &mut Ui, pinned: bool, opts: &mut CompareOptions, cmds: &mut Vec<Command>) {
     ui.horizontal_wrapped(|ui| {
         if ui
             .button(RichText::new("Pin as reference").strong())
@@ -55,11 +89,11 @@ pub fn show(
         {
             cmds.push(Command::Research(ResearchCommand::PinReference));
         }
-        if ui.add_enabled(pinned.is_some(), egui::Button::new("Unpin")).clicked() {
+        if ui.add_enabled(pinned, egui::Button::new("Unpin")).clicked() {
             cmds.push(Command::Research(ResearchCommand::Unpin));
         }
         if ui
-            .add_enabled(pinned.is_some(), egui::Button::new("Export reference CSV…"))
+            .add_enabled(pinned, egui::Button::new("Export reference CSV…"))
             .on_hover_text("t_s, u{i}_m, q{i}_N of the pinned run")
             .clicked()
         {
@@ -74,6 +108,10 @@ pub fn show(
             ui.checkbox(s, RichText::new(i.to_string()).color(super::point_label_color(ui.visuals(), i)));
         }
     });
+}
+
+/// What is pinned, and the RMS difference per point.
+fn summary(ui: &mut Ui, pinned: Option<&PinnedRun>, diff: Option<&RunDifference>) {
     match pinned {
         Some(pin) => {
             ui.label(RichText::new(format!("reference (dashed): {}", pin.label)).strong());
@@ -98,24 +136,58 @@ pub fn show(
             ui.label("No reference pinned: play a run, press “Pin as reference”, then change parameters; the pinned run is drawn dashed over the new one.");
         }
     }
-    let rows = if opts.difference && pinned.is_some() {
-        4
-    } else {
-        2
-    };
-    let gap = ui.spacing().item_spacing.y;
-    let h = ((ui.available_height() - (rows - 1) as f32 * gap) / rows as f32).max(90.0);
-    let link = Id::unique("tirecontact.compare_axes");
-    let t_end = history
-        .last_time()
-        .unwrap_or(0.0)
-        .max(
-            pinned
-                .and_then(|p| p.recording.t_s.last().copied())
-                .unwrap_or(0.0),
-        )
-        .max(1e-9);
-    let buckets = (ui.available_width() as usize).clamp(100, 3000);
+}
+
+/// What the plots of the view share: their height, the linked time axis,
+/// the decimation, the rows and the points shown.
+struct Grid {
+    h: f32,
+    link: Id,
+    t_end: f64,
+    buckets: usize,
+    rows: usize,
+    shown: Vec<usize>,
+    clip_impacts: bool,
+}
+
+impl Grid {
+    /// A plot of the grid: linked time axis from 0 to the end, its legend
+    /// placed off the curves, its y title (`last`: the time axis below).
+    fn plot(
+        &self,
+        ui: &Ui,
+        id: (&str, usize),
+        legend_id: Id,
+        title: &RichText,
+        last: bool,
+    ) -> Plot<'static> {
+        let mut plot = super::nice_y_axis(Plot::new(id))
+            .height(self.h)
+            .legend(legend_place::legend(ui.ctx(), legend_id, self.h))
+            .link_axis(self.link, [true, false])
+            .link_cursor(self.link, [true, false])
+            .y_axis_label(title.clone())
+            .y_axis_min_width(64.0)
+            .include_x(0.0)
+            .include_x(self.t_end)
+            .allow_scroll(false);
+        if last {
+            plot = plot.x_axis_label("time t (s)");
+        }
+        plot
+    }
+}
+
+/// Displacement and force of the current run, the reference dashed over it.
+fn run_plots(
+    ui: &mut Ui,
+    grid: &Grid,
+    history: &History,
+    pinned: Option<&PinnedRun>,
+    pinned_smooth: Option<&PinnedRun>,
+) {
+    let (h, buckets) = (grid.h, grid.buckets);
+    let shown = grid.shown.as_slice();
     let quantities = [
         (
             Quantity::Displacement,
@@ -126,32 +198,20 @@ pub fn show(
         (Quantity::Force, "contact force q (N)", "q (N)", 1.0),
     ];
     for (k, (what, y_label, y_short, scale)) in quantities.into_iter().enumerate() {
-        let last = rows == 2 && k == 1;
+        let last = grid.rows == 2 && k == 1;
         let legend_id = Id::unique(("tirecontact.compare.legend", k));
         let mut labels = vec![CURRENT];
         if pinned.is_some() {
             labels.push(REFERENCE);
         }
-        if opts.clip_impacts && what == Quantity::Force {
+        if grid.clip_impacts && what == Quantity::Force {
             labels.push(IMPACT_LABEL);
         }
         let legend_px = legend_place::legend_size(ui, &labels, h);
         let title_id = Id::unique(("tirecontact.compare.y_title", k));
         let title = axis_title::fit_plot(ui, title_id, y_label, y_short, h, last);
-        let mut plot = super::nice_y_axis(Plot::new(("tirecontact.compare", k)))
-            .height(h)
-            .legend(legend_place::legend(ui.ctx(), legend_id, h))
-            .link_axis(link, [true, false])
-            .link_cursor(link, [true, false])
-            .y_axis_label(title.text.clone())
-            .y_axis_min_width(64.0)
-            .include_x(0.0)
-            .include_x(t_end)
-            .allow_scroll(false);
-        if last {
-            plot = plot.x_axis_label("time t (s)");
-        }
-        let clip = opts.clip_impacts && what == Quantity::Force;
+        let mut plot = grid.plot(ui, ("tirecontact.compare", k), legend_id, &title.text, last);
+        let clip = grid.clip_impacts && what == Quantity::Force;
         // the curves fill the whole run, so every corner covers some: room
         // above them for the legend; when clipping, above the clip level
         // (the curves' top), so the axis still ends well below the spikes
@@ -163,16 +223,15 @@ pub fn show(
         } else {
             DISPLACEMENT_PLOT_ID
         }));
-        let shown: Vec<usize> = (0..p).filter(|&i| opts.shown[i]).collect();
         let r = plot.show(ui, |pui| {
             let b = pui.plot_bounds();
             let (t0, t1) = (b.min()[0], b.max()[0]);
             // the clip level fits the force without impacts of both runs
             let top = if clip {
-                let current = force_range(history, &shown, t0, t1, buckets);
+                let current = force_range(history, shown, t0, t1, buckets);
                 let reference = pinned_smooth.and_then(|pin| {
                     let r = &pin.recording;
-                    series_range(&r.t_s, &r.q_n, &shown, t0, t1, buckets)
+                    series_range(&r.t_s, &r.q_n, shown, t0, t1, buckets)
                 });
                 y_range(
                     current
@@ -186,7 +245,7 @@ pub fn show(
             };
             let mut marks = Vec::new();
             let mut ink = legend_place::Ink::default();
-            for &i in &shown {
+            for &i in shown {
                 let mut pts = history.decimated(what, i, t0, t1, buckets, scale);
                 if let Some(top) = top {
                     clip_at(&mut pts, top, &mut marks);
@@ -221,81 +280,83 @@ pub fn show(
         axis_title::after_plot(ui, title_id, &title, y_label, &r);
         repaint_if_stale(ui, &r);
     }
-    if rows == 4 {
-        let d = diff.cloned().unwrap_or_default();
-        let diffs = [
-            (&d.du_m, "Δu = current − ref (mm)", "Δu (mm)", 1e3),
-            (&d.dq_n, "Δq = current − ref (N)", "Δq (N)", 1.0),
-        ];
-        for (k, (series, y_label, y_short, scale)) in diffs.into_iter().enumerate() {
-            let legend_id = Id::unique(("tirecontact.compare_diff.legend", k));
-            let labels: &[&str] = if opts.clip_impacts && k == 1 {
-                &[DIFFERENCE, IMPACT_LABEL]
-            } else {
-                &[DIFFERENCE]
-            };
-            let legend_px = legend_place::legend_size(ui, labels, h);
-            let title_id = Id::unique(("tirecontact.compare_diff.y_title", k));
-            let title = axis_title::fit_plot(ui, title_id, y_label, y_short, h, k == 1);
-            let mut plot = super::nice_y_axis(Plot::new(("tirecontact.compare_diff", k)))
-                .height(h)
-                .legend(legend_place::legend(ui.ctx(), legend_id, h))
-                .link_axis(link, [true, false])
-                .link_cursor(link, [true, false])
-                .y_axis_label(title.text.clone())
-                .y_axis_min_width(64.0)
-                .include_x(0.0)
-                .include_x(t_end)
-                .allow_scroll(false);
-            if k == 1 {
-                plot = plot.x_axis_label("time t (s)");
-            }
-            let clip = opts.clip_impacts && k == 1;
-            // room for the legend above the curves (clipped: above the
-            // upper clip level)
-            if let Some(y) = legend_place::headroom(ui.ctx(), legend_id, legend_px) {
-                plot = plot.include_y(y);
-            }
-            plot = plot.id(Id::unique(if k == 1 {
-                FORCE_DIFF_PLOT_ID
-            } else {
-                DISPLACEMENT_DIFF_PLOT_ID
-            }));
-            let shown: Vec<usize> = (0..p).filter(|&i| opts.shown[i]).collect();
-            let r = plot.show(ui, |pui| {
-                let b = pui.plot_bounds();
-                let (t0, t1) = (b.min()[0], b.max()[0]);
-                // impacts of either run give spikes of both signs: clip both
-                // edges at the difference of the forces without impacts
-                let range = diff_smooth
-                    .filter(|_| clip)
-                    .and_then(|ds| series_range(&ds.t_s, &ds.dq_n, &shown, t0, t1, buckets));
-                let (mut above, mut below) = (Vec::new(), Vec::new());
-                let mut ink = legend_place::Ink::default();
-                for &i in &shown {
-                    let Some(y) = series.get(i) else { continue };
-                    let mut pts = window(&d.t_s, y, t0, t1, buckets, scale);
-                    if let Some((lo, hi)) = range {
-                        clip_at(&mut pts, clip_level((lo, hi)), &mut above);
-                        let bottom = -clip_level((-hi, -lo));
-                        for p in &mut pts {
-                            if p[1] < bottom {
-                                p[1] = bottom;
-                                below.push(*p);
-                            }
+}
+
+/// The differences current − reference, both edges clipped when impacts
+/// are.
+fn difference_plots(
+    ui: &mut Ui,
+    grid: &Grid,
+    d: &RunDifference,
+    diff_smooth: Option<&RunDifference>,
+) {
+    let (h, buckets) = (grid.h, grid.buckets);
+    let shown = grid.shown.as_slice();
+    let diffs = [
+        (&d.du_m, "Δu = current − ref (mm)", "Δu (mm)", 1e3),
+        (&d.dq_n, "Δq = current − ref (N)", "Δq (N)", 1.0),
+    ];
+    for (k, (series, y_label, y_short, scale)) in diffs.into_iter().enumerate() {
+        let legend_id = Id::unique(("tirecontact.compare_diff.legend", k));
+        let labels: &[&str] = if grid.clip_impacts && k == 1 {
+            &[DIFFERENCE, IMPACT_LABEL]
+        } else {
+            &[DIFFERENCE]
+        };
+        let legend_px = legend_place::legend_size(ui, labels, h);
+        let title_id = Id::unique(("tirecontact.compare_diff.y_title", k));
+        let title = axis_title::fit_plot(ui, title_id, y_label, y_short, h, k == 1);
+        let mut plot = grid.plot(
+            ui,
+            ("tirecontact.compare_diff", k),
+            legend_id,
+            &title.text,
+            k == 1,
+        );
+        let clip = grid.clip_impacts && k == 1;
+        // room for the legend above the curves (clipped: above the
+        // upper clip level)
+        if let Some(y) = legend_place::headroom(ui.ctx(), legend_id, legend_px) {
+            plot = plot.include_y(y);
+        }
+        plot = plot.id(Id::unique(if k == 1 {
+            FORCE_DIFF_PLOT_ID
+        } else {
+            DISPLACEMENT_DIFF_PLOT_ID
+        }));
+        let r = plot.show(ui, |pui| {
+            let b = pui.plot_bounds();
+            let (t0, t1) = (b.min()[0], b.max()[0]);
+            // impacts of either run give spikes of both signs: clip both
+            // edges at the difference of the forces without impacts
+            let range = diff_smooth
+                .filter(|_| clip)
+                .and_then(|ds| series_range(&ds.t_s, &ds.dq_n, shown, t0, t1, buckets));
+            let (mut above, mut below) = (Vec::new(), Vec::new());
+            let mut ink = legend_place::Ink::default();
+            for &i in shown {
+                let Some(y) = series.get(i) else { continue };
+                let mut pts = window(&d.t_s, y, t0, t1, buckets, scale);
+                if let Some((lo, hi)) = range {
+                    clip_at(&mut pts, clip_level((lo, hi)), &mut above);
+                    let bottom = -clip_level((-hi, -lo));
+                    for p in &mut pts {
+                        if p[1] < bottom {
+                            p[1] = bottom;
+                            below.push(*p);
                         }
                     }
-                    ink.add(pui, &pts);
-                    pui.line(Line::new(DIFFERENCE, pts).color(point_color(i)).width(1.5));
                 }
-                ink.place(pui, legend_id, legend_px);
-                impact_marks(pui, above, MarkerShape::Down);
-                impact_marks(pui, below, MarkerShape::Up);
-                (t0, t1)
-            });
-            axis_title::after_plot(ui, title_id, &title, y_label, &r);
-            repaint_if_stale(ui, &r);
-        }
+                ink.add(pui, &pts);
+                pui.line(Line::new(DIFFERENCE, pts).color(point_color(i)).width(1.5));
+            }
+            ink.place(pui, legend_id, legend_px);
+            impact_marks(pui, above, MarkerShape::Down);
+            impact_marks(pui, below, MarkerShape::Up);
+            (t0, t1)
+        });
+        axis_title::after_plot(ui, title_id, &title, y_label, &r);
+        repaint_if_stale(ui, &r);
     }
 }
 
