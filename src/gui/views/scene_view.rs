@@ -166,11 +166,8 @@ pub fn show_with(
     extra: impl FnOnce(&mut egui_plot::PlotUi<'_>, &[[f64; 2]], Option<f64>),
 ) {
     let scene = sim.scene();
-    let t = sim.time_s();
-    let (w, _) = ramp(t, scene.ramp_s);
     let (x0, x1) = x_extent(sim);
     let u = sim.displacement_m();
-    let contact = sim.in_contact();
     let hmax = scene
         .points
         .iter()
@@ -181,6 +178,56 @@ pub fn show_with(
     if opts.auto {
         opts.exaggeration = round_125(0.12 * (x1 - x0) / hmax);
     }
+    let e = opts.exaggeration;
+    header(ui, sim, opts);
+    let geo = Geometry::of(sim, (x0, x1), e, hmax);
+    let label_color = ui.visuals().strong_text_color();
+    let tyre_color = displaced_tyre_color(ui.visuals());
+    let plot = with_legend(
+        ui,
+        Plot::new("tirecontact.scene_view")
+            .id(egui::Id::unique(SCENE_PLOT_ID))
+            .data_aspect(1.0),
+        opts,
+        tyre_color,
+    );
+    // the y title fits the plot's height (a short classroom plot: "height
+    // (mm)", the full title on hover); the plot fills the height left, so
+    // its frame's height is known before it is drawn
+    let title_id = egui::Id::unique("tirecontact.scene_view.y_title");
+    let frame_h_px = super::axis_title::frame_height_px(ui, ui.available_height(), true);
+    let title = super::axis_title::fit(ui, Y_TITLE, Y_TITLE_SHORT, frame_h_px);
+    // labelled heights at least a label and a half apart: eight steps over
+    // the plot's height left a short classroom plot's labels (body text,
+    // x1.7) closer than their height, and egui_plot drew none
+    let label_px = f64::from(1.5 * ui.text_style_height(&egui::TextStyle::Body)).max(30.0);
+    let r = plot
+        .x_axis_label("position along the contact line x (m)")
+        .y_axis_label(title.text.clone())
+        .x_grid_spacer(|g| nice_marks(g.bounds, 1.0))
+        .x_axis_formatter(|m, _| crate::gui::widgets::number::format_number(m.value))
+        .y_grid_spacer(move |g| height_marks(g, 1e3 / e, label_px))
+        .y_axis_formatter(move |m, _| crate::gui::widgets::number::format_number(m.value / e * 1e3))
+        .y_axis_min_width(44.0)
+        .include_x(x0)
+        .include_x(x1)
+        .include_y(geo.y_floor)
+        .include_y(-geo.y_floor)
+        .allow_scroll(false)
+        .show(ui, |pui| {
+            let labels_floor = geo.draw(pui, sim.in_contact(), tyre_color, label_color);
+            extra(pui, &geo.displaced, labels_floor);
+        });
+    super::axis_title::hover(ui, title_id, &title, Y_TITLE, *r.transform.frame(), 44.0);
+}
+
+/// Above the plot: the exaggeration (auto or set), time, speed, points in
+/// contact, and the ramp's progress.
+fn header(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
+    let scene = sim.scene();
+    let t = sim.time_s();
+    let (w, _) = ramp(t, scene.ramp_s);
+    let contact = sim.in_contact();
     let e = opts.exaggeration;
     ui.horizontal_wrapped(|ui| {
         ui.label(
@@ -250,39 +297,15 @@ pub fn show_with(
                 ));
         }
     });
-    // road seen in the tyre's frame: w z(x + V t) + (1 - w) h(x)
-    let pts = &scene.points;
-    let road: Vec<[f64; 2]> = crate::output::animation::road_in_tyre_frame(sim, x0, x1, 400)
-        .into_iter()
-        .map(|[x, y]| [x, e * y])
-        .collect();
-    let undeformed: Vec<[f64; 2]> = pts.iter().map(|p| [p.x_m, e * p.h_m]).collect();
-    let displaced: Vec<[f64; 2]> = pts
-        .iter()
-        .zip(u)
-        .map(|(p, u)| [p.x_m, e * (p.h_m + u)])
-        .collect();
-    let y_floor = -e * hmax * 2.5;
-    let qmax = sim
-        .force_n()
-        .iter()
-        .fold(0.0, |m: f64, q| m.max(*q))
-        .max(1e-12);
-    let arrow_len = 0.25 * e * hmax * 2.0;
-    let (mut a_from, mut a_to, mut a_q) = (Vec::new(), Vec::new(), Vec::new());
-    for (i, q) in sim.force_n().iter().enumerate() {
-        if *q > 0.0 {
-            let [x, y] = displaced[i];
-            a_from.push([x, y - arrow_len * q / qmax]);
-            a_to.push([x, y]);
-            a_q.push(*q);
-        }
-    }
-    let label_color = ui.visuals().strong_text_color();
-    let tyre_color = displaced_tyre_color(ui.visuals());
-    let mut plot = Plot::new("tirecontact.scene_view")
-        .id(egui::Id::unique(SCENE_PLOT_ID))
-        .data_aspect(1.0);
+}
+
+/// The legend: a row of keys above the plot (classroom mode), or inside it.
+fn with_legend<'a>(
+    ui: &mut Ui,
+    mut plot: Plot<'a>,
+    opts: &SceneViewOptions,
+    tyre_color: Color32,
+) -> Plot<'a> {
     if opts.legend_above {
         use super::scene_legend::{Entry, Key, row};
         let mut entries = vec![
@@ -329,97 +352,146 @@ pub fn show_with(
                 .text_style(opts.legend_style.clone()),
         );
     }
-    // the y title fits the plot's height (a short classroom plot: "height
-    // (mm)", the full title on hover); the plot fills the height left, so
-    // its frame's height is known before it is drawn
-    let title_id = egui::Id::unique("tirecontact.scene_view.y_title");
-    let frame_h_px = super::axis_title::frame_height_px(ui, ui.available_height(), true);
-    let title = super::axis_title::fit(ui, Y_TITLE, Y_TITLE_SHORT, frame_h_px);
-    // labelled heights at least a label and a half apart: eight steps over
-    // the plot's height left a short classroom plot's labels (body text,
-    // x1.7) closer than their height, and egui_plot drew none
-    let label_px = f64::from(1.5 * ui.text_style_height(&egui::TextStyle::Body)).max(30.0);
-    let r = plot
-        .x_axis_label("position along the contact line x (m)")
-        .y_axis_label(title.text.clone())
-        .x_grid_spacer(|g| nice_marks(g.bounds, 1.0))
-        .x_axis_formatter(|m, _| crate::gui::widgets::number::format_number(m.value))
-        .y_grid_spacer(move |g| height_marks(g, 1e3 / e, label_px))
-        .y_axis_formatter(move |m, _| crate::gui::widgets::number::format_number(m.value / e * 1e3))
-        .y_axis_min_width(44.0)
-        .include_x(x0)
-        .include_x(x1)
-        .include_y(y_floor)
-        .include_y(-y_floor)
-        .allow_scroll(false)
-        .show(ui, |pui| {
-            pui.line(
-                Line::new(ROAD_NAME, road)
-                    .color(ROAD_COLOR)
-                    .width(2.0)
-                    .fill(y_floor as f32)
-                    .fill_alpha(0.25),
-            );
-            pui.line(
-                Line::new(UNDEFORMED_NAME, undeformed.clone())
-                    .color(Color32::GRAY)
-                    .style(LineStyle::dashed_dense()),
-            );
-            pui.points(
-                Points::new(UNDEFORMED_NAME, undeformed.clone())
-                    .color(Color32::GRAY)
-                    .filled(false)
-                    .radius(UNDEFORMED_MARKER_PX),
-            );
-            pui.line(
-                Line::new(DISPLACED_NAME, displaced.clone())
-                    .color(tyre_color)
-                    .width(2.0),
-            );
-            let (on, off): (Vec<_>, Vec<_>) =
-                displaced.iter().enumerate().partition(|(i, _)| contact[*i]);
-            pui.points(
-                Points::new(
-                    CONTACT_NAME,
-                    on.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
-                )
-                .color(CONTACT_COLOR)
-                .shape(MarkerShape::Circle)
-                .filled(true)
-                .radius(7.0),
-            );
-            pui.points(
-                Points::new(
-                    FLIGHT_NAME,
-                    off.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
-                )
-                .color(FLIGHT_COLOR)
-                .shape(MarkerShape::Diamond)
-                .filled(true)
-                .radius(7.0),
-            );
-            let mut labels_floor = None;
-            if !a_from.is_empty() {
-                pui.arrows(
-                    Arrows::new(FORCE_NAME, a_from.clone(), a_to)
-                        .color(FORCE_COLOR)
-                        .tip_length(8.0),
-                );
-                // the labels share the arrows' legend entry, in their colour
-                labels_floor = super::force_labels::draw(
-                    pui,
-                    FORCE_NAME,
-                    FORCE_COLOR,
-                    &a_from,
-                    &a_q,
-                    label_color,
-                    &undeformed,
-                    UNDEFORMED_MARKER_PX,
-                );
+    plot
+}
+
+/// What the scene plot draws, in plot units (heights exaggerated).
+struct Geometry {
+    road: Vec<[f64; 2]>,
+    undeformed: Vec<[f64; 2]>,
+    displaced: Vec<[f64; 2]>,
+    /// Force arrows of the points that push: tails, tips and forces (N).
+    a_from: Vec<[f64; 2]>,
+    a_to: Vec<[f64; 2]>,
+    a_q: Vec<f64>,
+    y_floor: f64,
+}
+
+impl Geometry {
+    fn of(sim: &Simulation, (x0, x1): (f64, f64), e: f64, hmax: f64) -> Self {
+        let pts = &sim.scene().points;
+        // road seen in the tyre's frame: w z(x + V t) + (1 - w) h(x)
+        let road: Vec<[f64; 2]> = crate::output::animation::road_in_tyre_frame(sim, x0, x1, 400)
+            .into_iter()
+            .map(|[x, y]| [x, e * y])
+            .collect();
+        let undeformed: Vec<[f64; 2]> = pts.iter().map(|p| [p.x_m, e * p.h_m]).collect();
+        let displaced: Vec<[f64; 2]> = pts
+            .iter()
+            .zip(sim.displacement_m())
+            .map(|(p, u)| [p.x_m, e * (p.h_m + u)])
+            .collect();
+        let qmax = sim
+            .force_n()
+            .iter()
+            .fold(0.0, |m: f64, q| m.max(*q))
+            .max(1e-12);
+        let arrow_len = 0.25 * e * hmax * 2.0;
+        let (mut a_from, mut a_to, mut a_q) = (Vec::new(), Vec::new(), Vec::new());
+        for (i, q) in sim.force_n().iter().enumerate() {
+            if *q > 0.0 {
+                let [x, y] = displaced[i];
+                a_from.push([x, y - arrow_len * q / qmax]);
+                a_to.push([x, y]);
+                a_q.push(*q);
             }
-            extra(pui, &displaced, labels_floor);
-        });
-    super::axis_title::hover(ui, title_id, &title, Y_TITLE, *r.transform.frame(), 44.0);
+        }
+        Geometry {
+            road,
+            undeformed,
+            displaced,
+            a_from,
+            a_to,
+            a_q,
+            y_floor: -e * hmax * 2.5,
+        }
+    }
+
+    /// Road, undeformed and displaced tyre, contact states and force
+    /// arrows with their values; returns the lowest y of the value labels.
+    fn draw(
+        &self,
+        pui: &mut egui_plot::PlotUi<'_>,
+        contact: &[bool],
+        tyre_color: Color32,
+        label_color: Color32,
+    ) -> Option<f64> {
+        let Geometry {
+            road,
+            undeformed,
+            displaced,
+            a_from,
+            a_to,
+            a_q,
+            y_floor,
+        } = self;
+        let (road, a_to, y_floor) = (road.clone(), a_to.clone(), *y_floor);
+        pui.line(
+            Line::new(ROAD_NAME, road)
+                .color(ROAD_COLOR)
+                .width(2.0)
+                .fill(y_floor as f32)
+                .fill_alpha(0.25),
+        );
+        pui.line(
+            Line::new(UNDEFORMED_NAME, undeformed.clone())
+                .color(Color32::GRAY)
+                .style(LineStyle::dashed_dense()),
+        );
+        pui.points(
+            Points::new(UNDEFORMED_NAME, undeformed.clone())
+                .color(Color32::GRAY)
+                .filled(false)
+                .radius(UNDEFORMED_MARKER_PX),
+        );
+        pui.line(
+            Line::new(DISPLACED_NAME, displaced.clone())
+                .color(tyre_color)
+                .width(2.0),
+        );
+        let (on, off): (Vec<_>, Vec<_>) =
+            displaced.iter().enumerate().partition(|(i, _)| contact[*i]);
+        pui.points(
+            Points::new(
+                CONTACT_NAME,
+                on.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
+            )
+            .color(CONTACT_COLOR)
+            .shape(MarkerShape::Circle)
+            .filled(true)
+            .radius(7.0),
+        );
+        pui.points(
+            Points::new(
+                FLIGHT_NAME,
+                off.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
+            )
+            .color(FLIGHT_COLOR)
+            .shape(MarkerShape::Diamond)
+            .filled(true)
+            .radius(7.0),
+        );
+        let mut labels_floor = None;
+        if !a_from.is_empty() {
+            pui.arrows(
+                Arrows::new(FORCE_NAME, a_from.clone(), a_to)
+                    .color(FORCE_COLOR)
+                    .tip_length(8.0),
+            );
+            // the labels share the arrows' legend entry, in their colour
+            labels_floor = super::force_labels::draw(
+                pui,
+                FORCE_NAME,
+                FORCE_COLOR,
+                a_from,
+                a_q,
+                label_color,
+                undeformed,
+                UNDEFORMED_MARKER_PX,
+            );
+        }
+        labels_floor
+    }
 }
 
 /// The scene plot's y title, and its short form.

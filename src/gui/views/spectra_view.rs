@@ -96,6 +96,7 @@ pub fn excitation_text(scene: &Scene) -> String {
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 pub fn show(
     ui: &mut Ui,
     scene: &Scene,
@@ -110,6 +111,76 @@ pub fn show(
     if opts.shown.len() != p {
         opts.shown = (0..p).map(|i| i < 8).collect();
     }
+    controls(ui, opts, cmds);
+    ui.label(RichText::new(excitation_text(scene)).color(EXCITATION_COLOR));
+    if let Some(f) = computing {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label(format!("computing… {:.0} %", 100.0 * f));
+        });
+    }
+    let hs = match cache.get() {
+        Some(Ok(hs)) => hs,
+        // a running computation replaces the reason there was none
+        _ if computing.is_some() => return,
+        Some(Err(e)) => {
+            ui.label(format!("No spectrum yet: {e}"));
+            return;
+        }
+        None => {
+            ui.label(if playing {
+                "No spectrum yet: computing when the run has advanced."
+            } else {
+                "No spectrum yet: play the run past the ramp, then press Recompute."
+            });
+            return;
+        }
+    };
+    ui.label(RichText::new(format!("Window: {}", hs.caption())).strong());
+    let s = &hs.spectra;
+    let nyquist = 0.5 * hs.span.sample_rate_hz;
+    let max_hz = opts.max_hz.min(nyquist);
+    let gap = ui.spacing().item_spacing.y;
+    // three plots and the band caption line below them
+    let caption = ui.text_style_height(&egui::TextStyle::Body) + gap;
+    let pl = Plots {
+        h: ((ui.available_height() - 3.0 * gap - caption) / 3.0).max(120.0),
+        max_hz,
+        log: opts.log_x,
+        marks: markers(scene, modes, max_hz, HARMONICS),
+        modal: modes
+            .iter()
+            .map(|m| m.freq_hz)
+            .filter(|&f| f > 0.0 && f <= max_hz)
+            .collect(),
+        // the summed force: black in a light theme, white in a dark one
+        total_color: ui.visuals().strong_text_color(),
+        shown: opts.shown.clone(),
+        total: opts.total,
+    };
+    narrow(
+        ui,
+        &pl,
+        "tirecontact.spectra_q",
+        "force level (dB re 1 N)",
+        &s.force,
+        Some(&s.total_force),
+        "q",
+    );
+    narrow(
+        ui,
+        &pl,
+        "tirecontact.spectra_u",
+        "displacement level (dB re 1 m)",
+        &s.displacement,
+        None,
+        "u",
+    );
+    bands(ui, &pl, s, nyquist);
+}
+
+/// Recompute, automatic updates, the axis and the curves shown.
+fn controls(ui: &mut Ui, opts: &mut SpectraOptions, cmds: &mut Vec<Command>) {
     ui.horizontal_wrapped(|ui| {
         if ui
             .button("Recompute")
@@ -141,154 +212,124 @@ pub fn show(
         }
         ui.checkbox(&mut opts.total, "total force");
     });
-    ui.label(RichText::new(excitation_text(scene)).color(EXCITATION_COLOR));
-    if let Some(f) = computing {
-        ui.horizontal(|ui| {
-            ui.spinner();
-            ui.label(format!("computing… {:.0} %", 100.0 * f));
-        });
+}
+
+/// What the three spectra plots share.
+struct Plots {
+    h: f32,
+    max_hz: f64,
+    log: bool,
+    marks: crate::spectrum::Markers,
+    modal: Vec<f64>,
+    total_color: Color32,
+    shown: Vec<bool>,
+    total: bool,
+}
+
+impl Plots {
+    fn x_label(&self) -> &'static str {
+        if self.log {
+            "frequency f (Hz, log scale)"
+        } else {
+            "frequency f (Hz)"
+        }
     }
-    let hs = match cache.get() {
-        Some(Ok(hs)) => hs,
-        // a running computation replaces the reason there was none
-        _ if computing.is_some() => return,
-        Some(Err(e)) => {
-            ui.label(format!("No spectrum yet: {e}"));
-            return;
-        }
-        None => {
-            ui.label(if playing {
-                "No spectrum yet: computing when the run has advanced."
-            } else {
-                "No spectrum yet: play the run past the ramp, then press Recompute."
-            });
-            return;
-        }
-    };
-    ui.label(RichText::new(format!("Window: {}", hs.caption())).strong());
-    let s = &hs.spectra;
-    let nyquist = 0.5 * hs.span.sample_rate_hz;
-    let max_hz = opts.max_hz.min(nyquist);
-    let marks = markers(scene, modes, max_hz, HARMONICS);
-    let modal: Vec<f64> = modes
+}
+
+/// A narrow-band level plot of `specs` (and of their `total`), the road's
+/// excitation and the modal frequencies marked.
+fn narrow(
+    ui: &mut Ui,
+    pl: &Plots,
+    id: &str,
+    y_label: &str,
+    specs: &[Spectrum],
+    total: Option<&Spectrum>,
+    unit: &str,
+) {
+    // the top level and the floor of the drawn curves
+    let curves: Vec<(String, Color32, Vec<[f64; 2]>)> = specs
         .iter()
-        .map(|m| m.freq_hz)
-        .filter(|&f| f > 0.0 && f <= max_hz)
+        .enumerate()
+        .filter(|(i, _)| pl.shown.get(*i).copied().unwrap_or(false))
+        .map(|(i, sp)| (format!("{unit}{i}: point {i}"), point_color(i), sp))
+        .chain(
+            total
+                .filter(|_| pl.total)
+                .map(|sp| ("q total: sum of all points".to_string(), pl.total_color, sp)),
+        )
+        .map(|(name, c, sp)| (name, c, level_points(sp, pl.max_hz, pl.log)))
         .collect();
-    let gap = ui.spacing().item_spacing.y;
-    // three plots and the band caption line below them
-    let caption = ui.text_style_height(&egui::TextStyle::Body) + gap;
-    let h = ((ui.available_height() - 3.0 * gap - caption) / 3.0).max(120.0);
-    // the summed force: black in a light theme, white in a dark one
-    let total_color = ui.visuals().strong_text_color();
-    let log = opts.log_x;
-    let x_label = if log {
-        "frequency f (Hz, log scale)"
-    } else {
-        "frequency f (Hz)"
-    };
-    let narrow = |ui: &mut Ui,
-                  id: &str,
-                  y_label: &str,
-                  specs: &[Spectrum],
-                  total: Option<&Spectrum>,
-                  unit: &str| {
-        // the top level and the floor of the drawn curves
-        let curves: Vec<(String, Color32, Vec<[f64; 2]>)> = specs
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| opts.shown.get(*i).copied().unwrap_or(false))
-            .map(|(i, sp)| (format!("{unit}{i}: point {i}"), point_color(i), sp))
-            .chain(
-                total
-                    .filter(|_| opts.total)
-                    .map(|sp| ("q total: sum of all points".to_string(), total_color, sp)),
-            )
-            .map(|(name, c, sp)| (name, c, level_points(sp, max_hz, log)))
-            .collect();
-        let top = curves
-            .iter()
-            .flat_map(|c| c.2.iter().map(|p| p[1]))
-            .fold(f64::NEG_INFINITY, f64::max);
-        let floor = top - RANGE_DB;
-        let legend_id = egui::Id::unique(id);
-        let mut labels: Vec<&str> = curves.iter().map(|c| c.0.as_str()).collect();
+    let top = curves
+        .iter()
+        .flat_map(|c| c.2.iter().map(|p| p[1]))
+        .fold(f64::NEG_INFINITY, f64::max);
+    let floor = top - RANGE_DB;
+    let legend_id = egui::Id::unique(id);
+    let mut labels: Vec<&str> = curves.iter().map(|c| c.0.as_str()).collect();
+    if top.is_finite() {
+        if !pl.marks.excitation_hz.is_empty() {
+            labels.push("road n·V/λ");
+        }
+        if !pl.modal.is_empty() {
+            labels.push("modal frequencies");
+        }
+    }
+    let legend_px = legend_place::legend_size(ui, &labels, pl.h);
+    let mut plot = db_y_axis(Plot::new(id))
+        .height(pl.h)
+        .legend(legend_place::legend(ui.ctx(), legend_id, pl.h))
+        .x_axis_label(pl.x_label())
+        .y_axis_label(y_label)
+        .y_axis_min_width(64.0)
+        .allow_scroll(false);
+    if pl.log {
+        plot = plot
+            .x_grid_spacer(super::log_marks)
+            .x_axis_formatter(|m, _| log_label(m.value));
+    }
+    plot.show(ui, |pui| {
+        let mut ink = legend_place::Ink::default();
+        for (name, c, pts) in curves {
+            let pts: Vec<[f64; 2]> = pts.into_iter().map(|p| [p[0], p[1].max(floor)]).collect();
+            ink.add(pui, &pts);
+            pui.line(Line::new(name, pts).color(c).width(1.2));
+        }
         if top.is_finite() {
-            if !marks.excitation_hz.is_empty() {
-                labels.push("road n·V/λ");
-            }
-            if !modal.is_empty() {
-                labels.push("modal frequencies");
+            draw_markers(pui, &pl.marks.excitation_hz, &pl.modal, pl.log, top);
+            // the markers are data too: vertical lines over the plot
+            let b = pui.plot_bounds();
+            let xs = pl
+                .marks
+                .excitation_hz
+                .iter()
+                .map(|m| m.1)
+                .chain(pl.modal.iter().copied());
+            for x in xs.map(|f| fx(f, pl.log)) {
+                ink.add(pui, &[[x, b.min()[1]], [x, b.max()[1]]]);
             }
         }
-        let legend_px = legend_place::legend_size(ui, &labels, h);
-        let mut plot = db_y_axis(Plot::new(id))
-            .height(h)
-            .legend(legend_place::legend(ui.ctx(), legend_id, h))
-            .x_axis_label(x_label)
-            .y_axis_label(y_label)
-            .y_axis_min_width(64.0)
-            .allow_scroll(false);
-        if log {
-            plot = plot
-                .x_grid_spacer(super::log_marks)
-                .x_axis_formatter(|m, _| log_label(m.value));
-        }
-        plot.show(ui, |pui| {
-            let mut ink = legend_place::Ink::default();
-            for (name, c, pts) in curves {
-                let pts: Vec<[f64; 2]> = pts.into_iter().map(|p| [p[0], p[1].max(floor)]).collect();
-                ink.add(pui, &pts);
-                pui.line(Line::new(name, pts).color(c).width(1.2));
-            }
-            if top.is_finite() {
-                draw_markers(pui, &marks.excitation_hz, &modal, log, top);
-                // the markers are data too: vertical lines over the plot
-                let b = pui.plot_bounds();
-                let xs = marks
-                    .excitation_hz
-                    .iter()
-                    .map(|m| m.1)
-                    .chain(modal.iter().copied());
-                for x in xs.map(|f| fx(f, log)) {
-                    ink.add(pui, &[[x, b.min()[1]], [x, b.max()[1]]]);
-                }
-            }
-            ink.place(pui, legend_id, legend_px);
-        });
-    };
-    narrow(
-        ui,
-        "tirecontact.spectra_q",
-        "force level (dB re 1 N)",
-        &s.force,
-        Some(&s.total_force),
-        "q",
-    );
-    narrow(
-        ui,
-        "tirecontact.spectra_u",
-        "displacement level (dB re 1 m)",
-        &s.displacement,
-        None,
-        "u",
-    );
-    // third-octave bands of the forces, drawn as steps over the band edges
+        ink.place(pui, legend_id, legend_px);
+    });
+}
+
+/// Third-octave bands of the forces, drawn as steps over the band edges.
+fn bands(ui: &mut Ui, pl: &Plots, s: &crate::spectrum::run::RunSpectra, nyquist: f64) {
     let hi = DEFAULT_BANDS_HZ.1.min(nyquist / 10f64.powf(0.05));
     let bands_legend_id = egui::Id::unique("tirecontact.spectra_bands");
     let mut band_labels: Vec<String> = (0..s.force.len())
-        .filter(|&i| opts.shown.get(i).copied().unwrap_or(false))
+        .filter(|&i| pl.shown.get(i).copied().unwrap_or(false))
         .map(|i| format!("q{i}: point {i}"))
         .collect();
-    if opts.total {
+    if pl.total {
         band_labels.push("q total".into());
     }
     band_labels.push("road n·V/λ".into());
     let band_labels: Vec<&str> = band_labels.iter().map(String::as_str).collect();
-    let bands_legend_px = legend_place::legend_size(ui, &band_labels, h);
+    let bands_legend_px = legend_place::legend_size(ui, &band_labels, pl.h);
     db_y_axis(Plot::new("tirecontact.spectra_bands"))
-        .height(h)
-        .legend(legend_place::legend(ui.ctx(), bands_legend_id, h))
+        .height(pl.h)
+        .legend(legend_place::legend(ui.ctx(), bands_legend_id, pl.h))
         .x_axis_label("third-octave band (Hz, log scale; IEC 61260 base 10)")
         .y_axis_label("band level (dB re 1 N)")
         .y_axis_min_width(64.0)
@@ -300,11 +341,11 @@ pub fn show(
                 .force
                 .iter()
                 .enumerate()
-                .filter(|(i, _)| opts.shown.get(*i).copied().unwrap_or(false))
+                .filter(|(i, _)| pl.shown.get(*i).copied().unwrap_or(false))
                 .map(|(i, sp)| (format!("q{i}: point {i}"), point_color(i), sp))
                 .collect();
-            if opts.total {
-                series.push(("q total".into(), total_color, &s.total_force));
+            if pl.total {
+                series.push(("q total".into(), pl.total_color, &s.total_force));
             }
             let mut ink = legend_place::Ink::default();
             for (name, c, sp) in series {
@@ -319,7 +360,7 @@ pub fn show(
                 // steps: no min/max band merging of the vertical edges
                 pui.line(Line::new(name, pts).color(c).width(1.5).allow_band(false));
             }
-            for &(n, f) in marks.excitation_hz.iter().filter(|m| m.1 <= hi) {
+            for &(n, f) in pl.marks.excitation_hz.iter().filter(|m| m.1 <= hi) {
                 if n <= 3 {
                     let b = pui.plot_bounds();
                     ink.add(pui, &[[f.log10(), b.min()[1]], [f.log10(), b.max()[1]]]);
