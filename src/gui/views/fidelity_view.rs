@@ -53,6 +53,22 @@ pub fn show(
     let p = scene.num_points();
     opts.i = opts.i.min(p.saturating_sub(1));
     opts.j = opts.j.min(p.saturating_sub(1));
+    controls(ui, scene, reference, opts);
+    let Ok(figures) = status(ui, modes, figures, computing, opts, p) else {
+        return;
+    };
+    let gap = ui.spacing().item_spacing.y;
+    let h = ui.available_height() - gap;
+    green_plot(ui, scene, modes, reference, opts, (0.62 * h).max(150.0));
+    // what removing each mode would cost
+    if let Some(figures) = figures {
+        removal_costs(ui, modes, figures, (0.38 * h - gap).max(100.0));
+    }
+}
+
+/// The pair of points, the frequency axis, and what the reference is.
+fn controls(ui: &mut Ui, scene: &Scene, reference: &FidelityRef, opts: &mut FidelityOptions) {
+    let p = scene.num_points();
     let converted = matches!(scene.tyre, Tyre::Modal { .. });
     ui.horizontal_wrapped(|ui| {
         ui.label("receiving point i");
@@ -75,6 +91,18 @@ pub fn show(
             .weak(),
         );
     });
+}
+
+/// The error figures, or the progress of their computation; `Err` when
+/// they failed (said in the view: nothing else to draw).
+fn status<'a>(
+    ui: &mut Ui,
+    modes: &[Mode],
+    figures: Option<&'a Result<FidelityFigures, String>>,
+    computing: Option<f64>,
+    opts: &FidelityOptions,
+    p: usize,
+) -> Result<Option<&'a FidelityFigures>, ()> {
     // the figures of the modes in use, or a background job computing them
     // (the |G| curves below are cheap and drawn meanwhile)
     let figures = match figures {
@@ -84,7 +112,7 @@ pub fn show(
                 RichText::new(format!("No fidelity figure: {e}"))
                     .color(crate::gui::widgets::fields::ERROR_COLOR),
             );
-            return;
+            return Err(());
         }
         None => {
             ui.horizontal(|ui| {
@@ -118,6 +146,19 @@ pub fn show(
             modes.len()
         ));
     }
+    Ok(figures)
+}
+
+/// `|G_ij(f)|` of the reference and of the modal sum, dB.
+fn green_plot(
+    ui: &mut Ui,
+    scene: &Scene,
+    modes: &[Mode],
+    reference: &FidelityRef,
+    opts: &FidelityOptions,
+    height: f32,
+) {
+    let p = scene.num_points();
     let x: Vec<f64> = scene.points.iter().map(|q| q.x_m).collect();
     let src = reference.model(&x);
     let model = ModalModel::from_modes(modes, p);
@@ -144,10 +185,8 @@ pub fn show(
             })
             .collect()
     };
-    let gap = ui.spacing().item_spacing.y;
-    let h = ui.available_height() - gap;
     let mut plot = Plot::new("tirecontact.fidelity_g")
-        .height((0.62 * h).max(150.0))
+        .height(height)
         .legend(Legend::default().position(Corner::RightTop))
         .x_axis_label(if log {
             "frequency f (Hz, log scale)"
@@ -178,10 +217,10 @@ pub fn show(
             .style(LineStyle::dashed_dense()),
         );
     });
-    // what removing each mode would cost
-    let Some(figures) = figures else {
-        return;
-    };
+}
+
+/// The error with each mode removed, against the error now.
+fn removal_costs(ui: &mut Ui, modes: &[Mode], figures: &FidelityFigures, height: f32) {
     let bars: Vec<Bar> = modes
         .iter()
         .zip(&figures.removal_costs)
@@ -194,7 +233,7 @@ pub fn show(
         })
         .collect();
     super::nice_y_axis(Plot::new("tirecontact.fidelity_costs"))
-        .height((0.38 * h - gap).max(100.0))
+        .height(height)
         .legend(Legend::default().position(Corner::RightTop))
         .x_axis_label("mode k (removed)")
         .y_axis_label("error without mode k (%)")

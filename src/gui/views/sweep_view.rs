@@ -58,11 +58,23 @@ pub fn show(
     form: &mut SweepForm,
     cmds: &mut Vec<Command>,
 ) {
-    let running = state.is_running();
     let paths = param_paths(scene);
     if get_param(scene, &form.param).is_err() {
         form.param = paths.first().cloned().unwrap_or_default();
     }
+    request_form(ui, scene, &paths, state.is_running(), form, cmds);
+    outcome(ui, scene, state, cmds);
+}
+
+/// The parameter, its range and steps, Run and Cancel.
+fn request_form(
+    ui: &mut Ui,
+    scene: &Scene,
+    paths: &[String],
+    running: bool,
+    form: &mut SweepForm,
+    cmds: &mut Vec<Command>,
+) {
     ui.horizontal_wrapped(|ui| {
         ui.label("parameter");
         let before = form.param.clone();
@@ -70,7 +82,7 @@ pub fn show(
             .selected_text(&form.param)
             .height(400.0)
             .show_ui(ui, |ui| {
-                for p in &paths {
+                for p in paths {
                     ui.selectable_value(&mut form.param, p.clone(), p);
                 }
             })
@@ -142,6 +154,10 @@ pub fn show(
             cmds.push(Command::Research(ResearchCommand::CancelSweep));
         }
     });
+}
+
+/// The sweep's progress, or how it ended, with its exports and plots.
+fn outcome(ui: &mut Ui, scene: &Scene, state: &SweepState, cmds: &mut Vec<Command>) {
     match state {
         SweepState::Idle => {
             ui.label("No sweep yet: choose a parameter and a range, then Run sweep. Each run summarises its steady part (t ≥ ramp_s).");

@@ -138,7 +138,6 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
     let frame_w_px = ui.available_width() - 64.0;
     let t1_axis = t1 + legend_strip_s(t1 - t0, legend_w_px, frame_w_px);
     let link = Id::unique("tirecontact.time_axes");
-    let p = history.num_points();
     if t_end < opts.axis_t_s {
         opts.axis_px = 0.0;
     }
@@ -161,72 +160,21 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             legend_place::legend_size(ui, &names.iter().map(String::as_str).collect::<Vec<_>>(), h)
                 .y,
         );
-        let mut plot = Plot::new(("tirecontact.time_plot", k))
-            .height(h)
-            .legend(legend_place::legend(ui.ctx(), legend_id, h).follow_insertion_order(true))
-            .link_axis(link, [true, false])
-            .link_cursor(link, [true, false])
-            .y_axis_label(y_label)
-            .y_axis_min_width(axis_px)
-            .allow_scroll(false)
-            .auto_bounds([!opts.follow, true]);
-        // time labels shown down to 40 px apart (the default hides x labels
-        // closer than 60 px: a narrow plot kept one label)
-        let mut x_axis = AxisHints::new_x()
-            .label_spacing(TIME_LABEL_SPACING)
-            .formatter(|mark, _| {
-                format!(
-                    "{:.*}",
-                    super::decimals_for_step(mark.step_size),
-                    mark.value
-                )
-            });
-        if last {
-            x_axis = x_axis.label("time t (s)");
-        }
-        // 1-2-5 time steps labelled from TIME_LABEL_SPACING's end on (powers
-        // of ten left a narrow plot one label)
-        let label_px = f64::from(*TIME_LABEL_SPACING.end());
-        plot = plot
-            .custom_x_axes(vec![x_axis])
-            .x_grid_spacer(move |g| super::nice_marks(g, label_px));
-        plot = plot.id(Id::unique(match def.what {
-            Quantity::Force => FORCE_PLOT_ID,
-            Quantity::Contact => CONTACT_PLOT_ID,
-            Quantity::Gap => GAP_PLOT_ID,
-            _ => DISPLACEMENT_PLOT_ID,
-        }));
-        if !opts.follow {
-            plot = plot.include_x(t1_axis);
-        }
-        if def.what != Quantity::Contact {
-            plot = super::nice_y_axis(plot);
-        }
-        if def.what == Quantity::Contact {
-            // one lane per shown point, labelled with the point's index
-            let lanes: Vec<usize> = (0..p)
-                .filter(|&i| opts.shown.get(i).copied().unwrap_or(false))
-                .collect();
-            let n = lanes.len();
-            // lane labels shown down to 12 px per lane (the default hides
-            // y labels closer than 20 px: short plots lost them)
-            let axis = AxisHints::new_y()
-                .label(y_label)
-                .min_thickness(axis_px)
-                .label_spacing(LANE_LABEL_SPACING)
-                .formatter(move |m, _| {
-                    let k = m.value.round();
-                    if (m.value - k).abs() < 1e-9 && k >= 0.0 && (k as usize) < n {
-                        format!("p{}", lanes[k as usize])
-                    } else {
-                        String::new()
-                    }
-                });
-            plot = plot
-                .custom_y_axes(vec![axis])
-                .include_y(-0.2)
-                .include_y(n.max(1) as f64 - 0.1);
-        }
+        let plot = time_plot(
+            ui,
+            def,
+            k,
+            last,
+            &Axes {
+                h,
+                link,
+                t1_axis,
+                axis_px,
+            },
+            legend_id,
+            y_label,
+            opts,
+        );
         let shown = opts.shown.clone();
         let follow = opts.follow;
         let clip = opts.clip_impacts && def.what == Quantity::Force;
@@ -264,6 +212,97 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
         opts.axis_px = widest_axis_px;
         ui.ctx().request_repaint();
     }
+}
+
+/// What the four time plots share: their height, the linked time axis
+/// (ending past the window by the legends' strip) and the y axes' width.
+struct Axes {
+    h: f32,
+    link: Id,
+    t1_axis: f64,
+    axis_px: f32,
+}
+
+/// The plot of `def` (the `k`-th, `last` with the time axis title): its
+/// legend, linked time axis with 1-2-5 labels, y axis (lanes per point for
+/// the contact plot) and id.
+fn time_plot<'a>(
+    ui: &Ui,
+    def: &PlotDef,
+    k: usize,
+    last: bool,
+    axes: &Axes,
+    legend_id: Id,
+    y_label: &'a str,
+    opts: &TimePlotOptions,
+) -> Plot<'a> {
+    let mut plot = Plot::new(("tirecontact.time_plot", k))
+        .height(axes.h)
+        .legend(legend_place::legend(ui.ctx(), legend_id, axes.h).follow_insertion_order(true))
+        .link_axis(axes.link, [true, false])
+        .link_cursor(axes.link, [true, false])
+        .y_axis_label(y_label)
+        .y_axis_min_width(axes.axis_px)
+        .allow_scroll(false)
+        .auto_bounds([!opts.follow, true]);
+    // time labels shown down to 40 px apart (the default hides x labels
+    // closer than 60 px: a narrow plot kept one label)
+    let mut x_axis = AxisHints::new_x()
+        .label_spacing(TIME_LABEL_SPACING)
+        .formatter(|mark, _| {
+            format!(
+                "{:.*}",
+                super::decimals_for_step(mark.step_size),
+                mark.value
+            )
+        });
+    if last {
+        x_axis = x_axis.label("time t (s)");
+    }
+    // 1-2-5 time steps labelled from TIME_LABEL_SPACING's end on (powers
+    // of ten left a narrow plot one label)
+    let label_px = f64::from(*TIME_LABEL_SPACING.end());
+    plot = plot
+        .custom_x_axes(vec![x_axis])
+        .x_grid_spacer(move |g| super::nice_marks(g, label_px));
+    plot = plot.id(Id::unique(match def.what {
+        Quantity::Force => FORCE_PLOT_ID,
+        Quantity::Contact => CONTACT_PLOT_ID,
+        Quantity::Gap => GAP_PLOT_ID,
+        _ => DISPLACEMENT_PLOT_ID,
+    }));
+    if !opts.follow {
+        plot = plot.include_x(axes.t1_axis);
+    }
+    if def.what != Quantity::Contact {
+        plot = super::nice_y_axis(plot);
+    }
+    if def.what == Quantity::Contact {
+        // one lane per shown point, labelled with the point's index
+        let lanes: Vec<usize> = (0..opts.shown.len())
+            .filter(|&i| opts.shown.get(i).copied().unwrap_or(false))
+            .collect();
+        let n = lanes.len();
+        // lane labels shown down to 12 px per lane (the default hides
+        // y labels closer than 20 px: short plots lost them)
+        let axis = AxisHints::new_y()
+            .label(y_label)
+            .min_thickness(axes.axis_px)
+            .label_spacing(LANE_LABEL_SPACING)
+            .formatter(move |m, _| {
+                let k = m.value.round();
+                if (m.value - k).abs() < 1e-9 && k >= 0.0 && (k as usize) < n {
+                    format!("p{}", lanes[k as usize])
+                } else {
+                    String::new()
+                }
+            });
+        plot = plot
+            .custom_y_axes(vec![axis])
+            .include_y(-0.2)
+            .include_y(n.max(1) as f64 - 0.1);
+    }
+    plot
 }
 
 /// Width (px) of a time plot's legend of `names` (egui_plot's layout: per
