@@ -61,10 +61,8 @@ pub struct PngSettings {
 }
 
 pub struct App {
-    pub(super) scene: Scene,
-    /// The scene as last loaded or saved (for the unsaved-changes marker).
-    saved: Scene,
-    pub(super) path: Option<PathBuf>,
+    /// What the session keeps: the scene, its file, the last saved version.
+    pub(super) doc: Document,
     pub(super) sim: Simulation,
     /// The modal model of the scene: given, or identified from the ring tyre.
     pub(super) modes: Vec<Mode>,
@@ -77,20 +75,16 @@ pub struct App {
     pub(super) message: Option<Message>,
     pub(super) confirm: Option<Discarding>,
     pub(super) png_dialog: Option<PngSettings>,
-    csv_job: Option<CsvJob>,
     allow_close: bool,
     quit_requested: bool,
     pub(super) plot_opts: time_plots::TimePlotOptions,
     pub(super) scene_opts: scene_view::SceneViewOptions,
     pub(super) green_opts: green_view::GreenOptions,
-    title: String,
-    fps: FrameRate,
     pub(super) classroom: Classroom,
     /// Contact phase of every point (classroom labels).
     pub(super) phases: PhaseTracker,
     pub(super) mutes: Option<Mutes>,
     frames_dialog: Option<FramesDialog>,
-    frames_job: Option<FramesJob>,
     /// Researcher tools: spectra, sweep, pinned run, fidelity.
     pub(super) research: super::research::ResearchState,
     /// The open, save or export file prompt, when shown.
@@ -99,10 +93,30 @@ pub struct App {
     field_refusal: Option<String>,
     /// A new document came in: the next frame forgets the fields' texts.
     forget_fields: bool,
+    /// Work under way and caches: never persisted.
+    pub(crate) handles: Handles,
+}
+
+/// The document: what a session keeps between runs of the app (with
+/// classroom mode) and what Save writes.
+pub(super) struct Document {
+    pub(super) scene: Scene,
+    /// The scene as last loaded or saved (for the unsaved-changes marker).
+    pub(super) saved: Scene,
+    pub(super) path: Option<PathBuf>,
+}
+
+/// What the app holds while it runs and never persists: background jobs,
+/// the identified rings, the window title and the frame rate.
+pub(crate) struct Handles {
+    pub(super) csv_job: Option<CsvJob>,
+    pub(super) frames_job: Option<FramesJob>,
     /// An edit or a new document waiting for its ring's identification.
-    identify_job: Option<crate::gui::jobs::identify::IdentifyJob>,
+    pub(super) identify_job: Option<crate::gui::jobs::identify::IdentifyJob>,
     /// The rings identified so far (shared with the identification job).
     pub(crate) mode_cache: Arc<ModeCache>,
+    pub(super) title: String,
+    pub(super) fps: FrameRate,
 }
 
 /// The simulation of `scene` and its modes, the ring's identification
@@ -128,10 +142,12 @@ impl App {
         time.set_speed(Speed::watchable(scene.duration_s));
         Ok(App {
             modes,
-            saved: scene.clone(),
             run_start: scene.clone(),
-            scene,
-            path,
+            doc: Document {
+                saved: scene.clone(),
+                scene,
+                path,
+            },
             sim,
             live_edits: Vec::new(),
             history,
@@ -140,25 +156,27 @@ impl App {
             message: None,
             confirm: None,
             png_dialog: None,
-            csv_job: None,
             allow_close: false,
             quit_requested: false,
             plot_opts: Default::default(),
             scene_opts: Default::default(),
             green_opts: Default::default(),
-            title: String::new(),
-            fps: FrameRate::new(),
             classroom: Classroom::default(),
             phases,
             mutes: None,
             frames_dialog: None,
-            frames_job: None,
             research: Default::default(),
             file_prompt: None,
             field_refusal: None,
             forget_fields: false,
-            identify_job: None,
-            mode_cache,
+            handles: Handles {
+                csv_job: None,
+                frames_job: None,
+                identify_job: None,
+                mode_cache,
+                title: String::new(),
+                fps: FrameRate::new(),
+            },
         })
     }
 
@@ -173,7 +191,7 @@ impl App {
     }
 
     pub fn scene(&self) -> &Scene {
-        &self.scene
+        &self.doc.scene
     }
     /// The modal model in use (given, or identified from the ring tyre).
     pub fn modes(&self) -> &[Mode] {
@@ -204,16 +222,16 @@ impl App {
         self.message.as_ref()
     }
     pub fn is_dirty(&self) -> bool {
-        self.scene != self.saved
+        self.doc.scene != self.doc.saved
     }
     /// What changed since the scene was opened or saved, in words with
     /// units (the description was written before it); none once the user
     /// edited the description itself (the text is then theirs).
     pub fn edits(&self) -> Vec<String> {
-        if self.scene.description != self.saved.description {
+        if self.doc.scene.description != self.doc.saved.description {
             return Vec::new();
         }
-        crate::scene::edits_since(&self.saved, &self.scene)
+        crate::scene::edits_since(&self.doc.saved, &self.doc.scene)
     }
     pub fn pending_confirmation(&self) -> Option<&Discarding> {
         self.confirm.as_ref()
@@ -230,6 +248,7 @@ impl App {
     /// Window title: scene name, file, and `*` when there are unsaved changes.
     pub fn title(&self) -> String {
         let file = self
+            .doc
             .path
             .as_deref()
             .and_then(Path::file_name)
@@ -239,7 +258,7 @@ impl App {
         format!(
             "{}{} ({file}) — tirecontact",
             if self.is_dirty() { "* " } else { "" },
-            self.scene.name
+            self.doc.scene.name
         )
     }
 
@@ -266,6 +285,8 @@ impl App {
             Command::TogglePlay => self.toggle_play(),
             Command::Step(n) => self.time.step(n),
             Command::Reset => self.reset_run(),
+            Command::Advance { frame_s } => self.advance(frame_s),
+            Command::IdentificationEnded(r) => self.identification_ended(r),
             Command::SetSpeed(s) => self.time.set_speed(s),
             Command::EditScene(scene) => self.edit(*scene),
             // the document and its files (app/files.rs)
@@ -289,6 +310,7 @@ impl App {
             } => self.export_png(&path, width, height),
             Command::ExportCsvDialog => self.export_csv_dialog(),
             Command::ExportCsv(path) => self.export_csv(path),
+            Command::CsvExportEnded(r) => self.csv_export_ended(r),
             // views and layouts (app/layout.rs)
             Command::DismissMessage => self.message = None,
             Command::ShowView(v) => self.show_view(v),
@@ -302,6 +324,7 @@ impl App {
             Command::ExportFramesDialog => self.open_frames_dialog(),
             Command::ExportFrames { dir, settings } => self.export_frames(dir, settings),
             Command::CancelFrames => self.cancel_frames(),
+            Command::FramesExportEnded(r) => self.frames_export_ended(r),
             // researcher tools (research/apply.rs)
             Command::Research(c) => self.apply_research(c),
             // a field's refusal (app/run.rs)
@@ -319,11 +342,11 @@ impl App {
 
     /// Measured frames per second (0 until a second has passed).
     pub fn fps(&self) -> f64 {
-        self.fps.fps
+        self.handles.fps.fps
     }
 
     /// Mean time per frame spent in solver steps and UI code (ms).
     pub fn app_ms(&self) -> f64 {
-        self.fps.app_ms
+        self.handles.fps.app_ms
     }
 }

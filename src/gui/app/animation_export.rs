@@ -6,12 +6,12 @@ use super::*;
 impl App {
     /// Whether an animation export is running.
     pub fn exporting_frames(&self) -> bool {
-        self.frames_job.is_some()
+        self.handles.frames_job.is_some()
     }
 
     /// Blocks until a running frames export ends; returns its result.
     pub fn wait_frames_export(&mut self) -> Option<Result<u64, String>> {
-        let job = self.frames_job.take()?;
+        let job = self.handles.frames_job.take()?;
         let r = job.wait();
         self.frames_done(&r);
         Some(r)
@@ -25,13 +25,13 @@ impl App {
     }
 
     pub(super) fn open_frames_dialog(&mut self) {
-        self.frames_dialog = Some(FramesDialog::for_scene(&self.scene, self.sim.time_s()));
+        self.frames_dialog = Some(FramesDialog::for_scene(&self.doc.scene, self.sim.time_s()));
     }
 
     /// Starts the export of the current run (re-simulated from its start
     /// with its live edits) into `dir`.
     pub(super) fn export_frames(&mut self, dir: PathBuf, settings: FrameSettings) {
-        if self.frames_job.is_some() {
+        if self.handles.frames_job.is_some() {
             self.error("an animation export is already running");
             return;
         }
@@ -39,30 +39,32 @@ impl App {
             dir,
             settings,
             self.run_start.clone(),
-            &self.mode_cache,
+            &self.handles.mode_cache,
             self.live_edits.clone(),
         ) {
             Ok(job) => {
                 self.frames_dialog = None;
-                self.frames_job = Some(job);
+                self.handles.frames_job = Some(job);
             }
             Err(e) => self.error(format!("Animation export refused: {e}")),
         }
     }
 
     pub(super) fn cancel_frames(&self) {
-        if let Some(job) = &self.frames_job {
+        if let Some(job) = &self.handles.frames_job {
             job.cancel();
         }
     }
 
     /// Picks up the result of a finished export (once a frame).
-    pub(super) fn poll_frames(&mut self) {
-        if let Some(job) = &self.frames_job
-            && let Some(r) = job.poll()
-        {
-            self.frames_job = None;
-            self.frames_done(&r);
-        }
+    /// The frames export's end, once its job finished (never blocks).
+    pub(super) fn poll_frames(&self) -> Option<Command> {
+        let r = self.handles.frames_job.as_ref()?.poll()?;
+        Some(Command::FramesExportEnded(r))
+    }
+
+    pub(super) fn frames_export_ended(&mut self, r: Result<u64, String>) {
+        self.handles.frames_job = None;
+        self.frames_done(&r);
     }
 }

@@ -15,12 +15,12 @@ impl App {
 
     /// Whether a CSV export is still running.
     pub fn exporting_csv(&self) -> bool {
-        self.csv_job.is_some()
+        self.handles.csv_job.is_some()
     }
 
     /// Blocks until a running CSV export ends; returns its result.
     pub fn wait_csv_export(&mut self) -> Option<Result<String, String>> {
-        let job = self.csv_job.take()?;
+        let job = self.handles.csv_job.take()?;
         let r = job.wait();
         self.message = Some(match &r {
             Ok(t) => Message {
@@ -58,7 +58,7 @@ impl App {
         let Some(d) = self.confirm.take() else {
             return self.save_document();
         };
-        match self.path.clone() {
+        match self.doc.path.clone() {
             Some(p) => {
                 self.save_to(&p);
                 if !self.is_dirty() {
@@ -123,8 +123,8 @@ impl App {
     /// Replaces the document (scene, file) and restarts the run.
     pub(super) fn replace(&mut self, scene: Scene, path: Option<PathBuf>, what: &str) {
         // the latest edit or document wins over one still waiting
-        self.identify_job = None;
-        if !self.mode_cache.has_modes(&scene) {
+        self.handles.identify_job = None;
+        if !self.handles.mode_cache.has_modes(&scene) {
             // the ring is identified off the UI thread; the document waits
             self.wait_for_modes(crate::gui::jobs::identify::Then::Replace {
                 scene,
@@ -133,13 +133,13 @@ impl App {
             });
             return;
         }
-        match super::build(&scene, &self.mode_cache) {
+        match super::build(&scene, &self.handles.mode_cache) {
             Ok((sim, modes)) => {
                 self.sim = sim;
                 self.modes = modes;
-                self.saved = scene.clone();
-                self.scene = scene;
-                self.path = path;
+                self.doc.saved = scene.clone();
+                self.doc.scene = scene;
+                self.doc.path = path;
                 self.time.reset();
                 self.set_watchable_speed();
                 self.reset_run();
@@ -156,7 +156,7 @@ impl App {
 
     /// Saves to the current file, or asks for one.
     pub(super) fn save_document(&mut self) {
-        match self.path.clone() {
+        match self.doc.path.clone() {
             Some(p) => self.save_to(&p),
             None => self.save_as_dialog(),
         }
@@ -169,9 +169,10 @@ impl App {
     /// Shows the file prompt for `action`, filled with a sensible path: the
     /// current file, or a name from the scene's.
     pub(super) fn open_file_prompt(&mut self, action: FileAction) {
-        let stem = file_stem(&self.scene.name);
+        let stem = file_stem(&self.doc.scene.name);
         let path = match action {
             FileAction::Open => self
+                .doc
                 .path
                 .as_deref()
                 .and_then(Path::parent)
@@ -179,6 +180,7 @@ impl App {
                     format!("{}{}", d.display(), std::path::MAIN_SEPARATOR)
                 }),
             FileAction::SaveAs => self
+                .doc
                 .path
                 .as_deref()
                 .map_or_else(|| format!("{stem}.ron"), |p| p.display().to_string()),
@@ -197,18 +199,18 @@ impl App {
     /// was opened or last saved (the text above it described the scene
     /// before them).
     pub(super) fn save_to(&mut self, path: &Path) {
-        let mut out = self.scene.clone();
+        let mut out = self.doc.scene.clone();
         out.description = crate::scene::described_with_edits(
-            &self.scene.description,
-            &self.saved.name,
+            &self.doc.scene.description,
+            &self.doc.saved.name,
             &self.edits(),
         );
         match out.save(path) {
             Ok(()) => {
-                self.scene.description = out.description;
-                self.path = Some(path.to_path_buf());
-                self.scene.base_dir = path.parent().map(Path::to_path_buf);
-                self.saved = self.scene.clone();
+                self.doc.scene.description = out.description;
+                self.doc.path = Some(path.to_path_buf());
+                self.doc.scene.base_dir = path.parent().map(Path::to_path_buf);
+                self.doc.saved = self.doc.scene.clone();
                 self.info(format!("saved {}", path.display()));
             }
             Err(e) => self.error(format!("Save failed (the file on disk is unchanged): {e}")),
@@ -219,7 +221,7 @@ impl App {
         self.png_dialog = Some(PngSettings {
             width: 1600,
             height: 1200,
-            path: format!("{}_plots.png", file_stem(&self.scene.name)),
+            path: format!("{}_plots.png", file_stem(&self.doc.scene.name)),
             note: None,
         });
     }
@@ -249,7 +251,7 @@ impl App {
             path,
             width,
             height,
-            &self.scene,
+            &self.doc.scene,
             &self.modes,
             &self.history,
             &self.plot_opts.shown,
@@ -267,19 +269,19 @@ impl App {
     /// Starts the CSV export of the current run (re-simulated from its
     /// start with its live edits) on a background thread.
     pub(super) fn export_csv(&mut self, path: PathBuf) {
-        if self.csv_job.is_some() {
+        if self.handles.csv_job.is_some() {
             self.error("a CSV export is already running");
         } else {
             match CsvJob::spawn(
                 path.clone(),
                 self.run_start.clone(),
-                Arc::clone(&self.mode_cache),
+                Arc::clone(&self.handles.mode_cache),
                 self.live_edits.clone(),
                 self.sim.steps(),
             ) {
                 Ok(job) => {
                     self.info(format!("writing {} …", path.display()));
-                    self.csv_job = Some(job);
+                    self.handles.csv_job = Some(job);
                 }
                 Err(e) => self.error(format!("CSV export refused: {e}")),
             }
@@ -287,15 +289,17 @@ impl App {
     }
 
     /// Picks up the result of a finished CSV export (once a frame).
-    pub(super) fn poll_csv(&mut self) {
-        if let Some(job) = &self.csv_job
-            && let Some(r) = job.poll()
-        {
-            self.csv_job = None;
-            match r {
-                Ok(t) => self.info(t),
-                Err(e) => self.error(format!("CSV export failed: {e}")),
-            }
+    /// The CSV export's end, once its job finished (never blocks).
+    pub(super) fn poll_csv(&self) -> Option<Command> {
+        let r = self.handles.csv_job.as_ref()?.poll()?;
+        Some(Command::CsvExportEnded(r))
+    }
+
+    pub(super) fn csv_export_ended(&mut self, r: Result<String, String>) {
+        self.handles.csv_job = None;
+        match r {
+            Ok(t) => self.info(t),
+            Err(e) => self.error(format!("CSV export failed: {e}")),
         }
     }
 }

@@ -55,11 +55,21 @@ impl App {
         // a minimised window neither simulates nor asks for frames: the run
         // resumes where it was when the window is shown again
         let hidden = ctx.input(|i| i.viewport().minimized == Some(true));
-        self.poll_csv();
-        self.poll_frames();
-        self.poll_identification();
+        // the background jobs' ends and the frame's solver steps are
+        // commands like the user's, applied first
+        let ended: Vec<Command> = [
+            self.poll_csv(),
+            self.poll_frames(),
+            self.poll_identification(),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        for cmd in ended {
+            self.apply(cmd);
+        }
         if !hidden {
-            self.advance(frame_s);
+            self.apply(Command::Advance { frame_s });
         }
         self.research_frame(&ctx);
         let mut cmds = Vec::new();
@@ -68,14 +78,14 @@ impl App {
             playing: self.time.is_playing(),
             speed: self.time.speed(),
             time_s: self.sim.time_s(),
-            duration_s: self.scene.duration_s,
+            duration_s: self.doc.scene.duration_s,
             steps: self.sim.steps(),
             achieved_factor: self.time.achieved_factor(),
             view: self.view,
-            exporting_csv: self.csv_job.is_some(),
+            exporting_csv: self.handles.csv_job.is_some(),
             classroom: self.classroom.on,
             mode_bars: self.classroom.bars,
-            exporting_frames: self.frames_job.is_some(),
+            exporting_frames: self.handles.frames_job.is_some(),
         };
         if self.classroom.sync_style(&ctx) {
             ui.set_style(ctx.global_style());
@@ -99,7 +109,7 @@ impl App {
             self.normal_layout(ui, &mut cmds);
         }
         let unsaved = if self.confirm.is_some() {
-            crate::scene::edits_since(&self.saved, &self.scene)
+            crate::scene::edits_since(&self.doc.saved, &self.doc.scene)
         } else {
             Vec::new()
         };
@@ -112,7 +122,11 @@ impl App {
         crate::gui::chrome::dialogs::png_window(&ctx, &mut self.png_dialog, &mut cmds);
         crate::gui::chrome::file_prompt::window(&ctx, &mut self.file_prompt, &mut cmds);
         crate::gui::chrome::frames_dialog::dialog(&ctx, &mut self.frames_dialog, &mut cmds);
-        crate::gui::chrome::frames_dialog::progress(&ctx, self.frames_job.as_ref(), &mut cmds);
+        crate::gui::chrome::frames_dialog::progress(
+            &ctx,
+            self.handles.frames_job.as_ref(),
+            &mut cmds,
+        );
         for c in cmds {
             self.apply(c);
         }
@@ -121,18 +135,18 @@ impl App {
             ctx.request_repaint();
         }
         let title = self.title();
-        if title != self.title {
+        if title != self.handles.title {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
-            self.title = title;
+            self.handles.title = title;
         }
-        self.fps.tick(
+        self.handles.fps.tick(
             self.sim.time_s(),
             self.time.is_playing(),
             started.elapsed().as_secs_f64(),
         );
-        if self.csv_job.is_some()
-            || self.frames_job.is_some()
-            || self.identify_job.is_some()
+        if self.handles.csv_job.is_some()
+            || self.handles.frames_job.is_some()
+            || self.handles.identify_job.is_some()
             || (!hidden && (self.time.is_playing() || self.time.pending_steps() > 0))
         {
             ctx.request_repaint();

@@ -44,8 +44,8 @@ impl App {
                 let edits = self.edits();
                 classroom::explanation(
                     ui,
-                    &self.scene.name,
-                    &self.scene.description,
+                    &self.doc.scene.name,
+                    &self.doc.scene.description,
                     &edits,
                     reserve_px,
                 );
@@ -76,14 +76,14 @@ impl App {
         let cmds_left = &mut *cmds;
         // while an edit waits for its ring's identification the fields show
         // the running scene: no further edit until the waiting one applies
-        let editable = self.identify_job.is_none();
+        let editable = self.handles.identify_job.is_none();
         let edits = self.edits();
         egui::Panel::left("tirecontact.edit")
             .resizable(true)
             .default_size(380.0)
             .show(ui, |ui| {
                 ui.add_enabled_ui(editable, |ui| {
-                    panels::side_panel(ui, &self.scene, &edits, &self.modes, cmds_left)
+                    panels::side_panel(ui, &self.doc.scene, &edits, &self.modes, cmds_left)
                 });
             });
         if self.classroom.bars {
@@ -109,7 +109,7 @@ impl App {
                 }
                 View::Scene => scene_view::show(ui, &self.sim, &mut self.scene_opts),
                 View::Green => {
-                    green_view::show(ui, &self.scene, &self.modes, &mut self.green_opts);
+                    green_view::show(ui, &self.doc.scene, &self.modes, &mut self.green_opts);
                 }
                 View::Spectra | View::Sweep | View::Compare | View::Fidelity => {
                     self.show_research_view(ui, cmds);

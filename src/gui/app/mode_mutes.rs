@@ -10,22 +10,27 @@ impl App {
     pub(super) fn set_mutes(&mut self, k: usize, solo: bool) {
         let (original, base, current) = match &self.mutes {
             Some(m) => (m.original.clone(), m.base.clone(), m.muted.clone()),
-            None => (self.scene.tyre.clone(), self.modes.clone(), Vec::new()),
+            None => (self.doc.scene.tyre.clone(), self.modes.clone(), Vec::new()),
         };
         let muted = toggled(&current, base.len(), k, solo);
         if muted.iter().all(|m| !m) {
             self.apply(Command::UnmuteAll);
             return;
         }
-        if let Some(why) = refusal(&base, &muted, self.scene.num_points(), &self.scene.contact) {
+        if let Some(why) = refusal(
+            &base,
+            &muted,
+            self.doc.scene.num_points(),
+            &self.doc.scene.contact,
+        ) {
             self.error(format!("Mute refused: {why}"));
             return;
         }
         let tyre = muted_tyre(&base, &muted);
-        let mut s = self.scene.clone();
+        let mut s = self.doc.scene.clone();
         s.tyre = tyre.clone();
         self.edit(s);
-        if self.scene.tyre == tyre {
+        if self.doc.scene.tyre == tyre {
             self.mutes = Some(Mutes {
                 original,
                 base,
@@ -38,10 +43,10 @@ impl App {
     /// Gives the original tyre back (if the edit is accepted).
     pub(super) fn unmute_all(&mut self) {
         if let Some(m) = self.mutes.take() {
-            let mut s = self.scene.clone();
+            let mut s = self.doc.scene.clone();
             s.tyre = m.original.clone();
             self.edit(s);
-            if self.scene.tyre != m.original {
+            if self.doc.scene.tyre != m.original {
                 self.mutes = Some(m);
             }
         }
@@ -53,7 +58,7 @@ impl App {
         if self
             .mutes
             .as_ref()
-            .is_some_and(|m| m.tyre != self.scene.tyre)
+            .is_some_and(|m| m.tyre != self.doc.scene.tyre)
         {
             self.mutes = None;
         }

@@ -50,11 +50,11 @@ impl App {
         let speed = if self.classroom.on {
             // leaving classroom mode gives the new scene's watchable speed
             if let Some((_, before)) = &mut self.classroom.before {
-                *before = Speed::watchable(self.scene.duration_s);
+                *before = Speed::watchable(self.doc.scene.duration_s);
             }
             Speed::Factor(classroom::SLOW_MOTION)
         } else {
-            Speed::watchable(self.scene.duration_s)
+            Speed::watchable(self.doc.scene.duration_s)
         };
         self.time.set_speed(speed);
     }
@@ -110,34 +110,37 @@ impl App {
         let scene = match &then {
             Then::Edit(s) | Then::Replace { scene: s, .. } => s,
         };
-        match IdentifyJob::spawn(scene, then.clone(), Arc::clone(&self.mode_cache)) {
+        match IdentifyJob::spawn(scene, then.clone(), Arc::clone(&self.handles.mode_cache)) {
             Ok(job) => {
                 self.info(waiting_note(&then));
-                self.identify_job = Some(job);
+                self.handles.identify_job = Some(job);
             }
             Err(e) => self.error(format!("Cannot identify the ring tyre: {e}")),
         }
     }
 
     /// Applies what waited for a finished identification.
-    pub(super) fn poll_identification(&mut self) {
-        let Some(result) = self.identify_job.as_ref().and_then(IdentifyJob::poll) else {
-            return;
-        };
-        if let Some(job) = self.identify_job.take() {
+    pub(super) fn poll_identification(&self) -> Option<Command> {
+        let r = self.handles.identify_job.as_ref()?.poll()?;
+        Some(Command::IdentificationEnded(r))
+    }
+
+    /// Applies (or refuses) what waited for the identification that ended.
+    pub(super) fn identification_ended(&mut self, result: Result<(), String>) {
+        if let Some(job) = self.handles.identify_job.take() {
             self.identified(result, job.then);
         }
     }
 
     /// Whether an edit or a new document waits for its ring's identification.
     pub fn identifying(&self) -> bool {
-        self.identify_job.is_some()
+        self.handles.identify_job.is_some()
     }
 
     /// Whether `scene`'s modes are known without an identification (given
     /// in the scene, or its ring identified at these points before).
     pub fn has_modes_for(&self, scene: &Scene) -> bool {
-        self.mode_cache.has_modes(scene)
+        self.handles.mode_cache.has_modes(scene)
     }
 
     fn identified(&mut self, result: Result<(), String>, then: Then) {
@@ -160,7 +163,7 @@ impl App {
     /// Applies an edited scene: road and speed live, everything else restarts.
     pub(super) fn edit(&mut self, new: Scene) {
         // the latest edit or document wins over one still waiting
-        self.identify_job = None;
+        self.handles.identify_job = None;
         if let Err(errors) = new.validate() {
             let list: Vec<String> = errors.iter().map(ToString::to_string).collect();
             self.error(format!("Edit refused: {}", list.join("; ")));
@@ -172,7 +175,7 @@ impl App {
         {
             self.message = None;
         }
-        let old = &self.scene;
+        let old = &self.doc.scene;
         let restart = new.tyre != old.tyre
             || new.points != old.points
             || new.dt_s != old.dt_s
@@ -181,12 +184,12 @@ impl App {
             || new.contact_scheme != old.contact_scheme
             || new.contact != old.contact;
         if restart {
-            if !self.mode_cache.has_modes(&new) {
+            if !self.handles.mode_cache.has_modes(&new) {
                 // the ring is identified off the UI thread; the edit waits
                 self.wait_for_modes(Then::Edit(new));
                 return;
             }
-            match super::build(&new, &self.mode_cache) {
+            match super::build(&new, &self.handles.mode_cache) {
                 Ok((sim, modes)) => {
                     // "Edit as a modal model" changed the panel in place and
                     // said nothing: what happened, and where the modes went
@@ -197,7 +200,7 @@ impl App {
                     let playing = self.time.is_playing();
                     self.sim = sim;
                     self.modes = modes;
-                    self.scene = new;
+                    self.doc.scene = new;
                     self.reset_run();
                     if playing {
                         self.time.play();
@@ -230,7 +233,7 @@ impl App {
                 speed_mps: new.speed_mps,
             });
         }
-        self.scene = new;
+        self.doc.scene = new;
     }
 
     /// Takes this frame's solver steps within the time budget.

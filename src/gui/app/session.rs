@@ -41,7 +41,7 @@ impl App {
                 if let Ok(mut app) = App::new(scene, s.path.clone()) {
                     if s.dirty {
                         // the saved version is the file's, if it still reads
-                        app.saved = s
+                        app.doc.saved = s
                             .path
                             .as_deref()
                             .and_then(|p| Scene::load(p).ok())
@@ -50,7 +50,7 @@ impl App {
                     if s.classroom {
                         app.set_classroom(true);
                     }
-                    let last = app.scene.num_points().saturating_sub(1);
+                    let last = app.doc.scene.num_points().saturating_sub(1);
                     app.classroom.point = s.classroom_point.min(last);
                     app.message = Some(Message {
                         error: false,
@@ -65,8 +65,8 @@ impl App {
 
     pub(super) fn session(&self) -> Session {
         Session {
-            scene_ron: self.scene.to_ron_string(),
-            path: self.path.clone(),
+            scene_ron: self.doc.scene.to_ron_string(),
+            path: self.doc.path.clone(),
             dirty: self.is_dirty(),
             classroom: self.classroom.on,
             classroom_point: self.classroom.point,
@@ -106,7 +106,7 @@ mod tests {
     #[test]
     fn classroom_mode_and_its_point_are_restored() {
         let mut app = App::with_default_preset();
-        assert_eq!(app.scene.num_points(), 5);
+        assert_eq!(app.doc.scene.num_points(), 5);
         app.apply(Command::SetClassroom(true));
         app.classroom.point = 3;
         let mut storage = MemStorage::default();
@@ -145,7 +145,7 @@ mod tests {
         // the session format of earlier versions: no classroom fields
         let old = format!(
             "(scene_ron:{},path:None,dirty:true)",
-            ron::to_string(&app.scene.to_ron_string()).unwrap()
+            ron::to_string(&app.doc.scene.to_ron_string()).unwrap()
         );
         let mut storage = MemStorage::default();
         storage.set_string(SESSION_KEY, old.clone());

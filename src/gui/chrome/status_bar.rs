@@ -24,13 +24,13 @@ pub fn texts(app: &App) -> [StatusText; 3] {
     let dirty = app.is_dirty();
     [
         StatusText {
-            full: document_label(app.path.as_deref(), &app.scene.name, dirty),
-            short: short_document_label(app.path.as_deref(), &app.scene.name, dirty),
+            full: document_label(app.doc.path.as_deref(), &app.doc.scene.name, dirty),
+            short: short_document_label(app.doc.path.as_deref(), &app.doc.scene.name, dirty),
         },
         StatusText {
             full: format!(
                 "{} · {} · {} · {} · {} in contact",
-                count(app.scene.num_points(), "point"),
+                count(app.doc.scene.num_points(), "point"),
                 count(app.modes.len(), "mode"),
                 count(st.steps as usize, "step"),
                 count(st.events as usize, "event"),
@@ -38,7 +38,7 @@ pub fn texts(app: &App) -> [StatusText; 3] {
             ),
             short: format!(
                 "{} pts · {} steps · {} in contact",
-                app.scene.num_points(),
+                app.doc.scene.num_points(),
                 st.steps,
                 in_contact
             ),

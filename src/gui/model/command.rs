@@ -132,4 +132,16 @@ pub enum Command {
     /// After a save from the file prompt: do the held action if the scene
     /// is now saved (a failed save keeps it, and the user's edits).
     ContinueAfterSave(Discarding),
+    /// The frame's share of the run: take the solver steps the time
+    /// control asks for in `frame_s` of wall time (the frame loop pushes it).
+    Advance {
+        frame_s: f64,
+    },
+    /// The CSV export job ended: its message, or why it failed.
+    CsvExportEnded(Result<String, String>),
+    /// The frames export job ended: the frames written, or why it stopped.
+    FramesExportEnded(Result<u64, String>),
+    /// The ring's identification ended: what waited for it is applied (or
+    /// refused with the reason).
+    IdentificationEnded(Result<(), String>),
 }

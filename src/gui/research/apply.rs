@@ -36,10 +36,10 @@ impl App {
                     req.param, req.from, req.to, req.steps
                 );
                 match self.research.sweep.start(
-                    &self.scene,
+                    &self.doc.scene,
                     req,
                     default_threads(),
-                    std::sync::Arc::clone(&self.mode_cache),
+                    std::sync::Arc::clone(&self.handles.mode_cache),
                 ) {
                     Ok(()) => self.research_message(false, text),
                     Err(e) => self.research_message(true, format!("Sweep refused: {e}")),
@@ -98,11 +98,11 @@ impl App {
             }
             ResearchCommand::PinReference => {
                 let rec = recording_from_history(&self.history);
-                let label = pin_label(&self.scene, self.sim.time_s());
-                self.research.pinned = Some(PinnedRun::new(label.clone(), &self.scene, &rec));
+                let label = pin_label(&self.doc.scene, self.sim.time_s());
+                self.research.pinned = Some(PinnedRun::new(label.clone(), &self.doc.scene, &rec));
                 self.research.pinned_without_impacts = Some(PinnedRun::new(
                     label.clone(),
-                    &self.scene,
+                    &self.doc.scene,
                     &recording_without_impacts(&self.history),
                 ));
                 self.research.difference_without_impacts.invalidate();
@@ -146,7 +146,7 @@ impl App {
     /// A new document (opened or new scene): a held ring reference belongs
     /// to the old one.
     pub(crate) fn research_new_document(&mut self) {
-        self.research.fidelity_ref = FidelityRef::of_scene(&self.scene);
+        self.research.fidelity_ref = FidelityRef::of_scene(&self.doc.scene);
     }
 
     /// Per frame: poll the sweep, follow the scene's ring reference, and
@@ -178,7 +178,7 @@ impl App {
             ctx.request_repaint();
         }
         let held = self.research.fidelity_ref.take();
-        self.research.fidelity_ref = FidelityRef::follow(held, &self.scene);
+        self.research.fidelity_ref = FidelityRef::follow(held, &self.doc.scene);
         let key = HistoryKey::of(&self.history);
         let playing = self.time.is_playing();
         self.poll_spectra(&key);
@@ -232,7 +232,7 @@ impl App {
             self.research.fidelity_job = None;
             return;
         };
-        let x: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
+        let x: Vec<f64> = self.doc.scene.points.iter().map(|p| p.x_m).collect();
         if let Some(job) = &self.research.fidelity_job
             && let Some(result) = job.poll()
         {
@@ -286,7 +286,7 @@ impl App {
     /// on a background thread (replacing, and so cancelling, a running one).
     fn start_spectra(&mut self, key: HistoryKey) {
         self.research.spectra_job = None;
-        let input = SpectraInput::of_history(&self.history, self.scene.ramp_s, self.sim.dt_s());
+        let input = SpectraInput::of_history(&self.history, self.doc.scene.ramp_s, self.sim.dt_s());
         let r = match input {
             Ok(input) if input.work() > INLINE_MAX_WORK => {
                 match SpectraJob::spawn(key, input, Window::Hann) {
@@ -311,7 +311,7 @@ impl App {
         match self.view {
             View::Spectra => spectra_view::show(
                 ui,
-                &self.scene,
+                &self.doc.scene,
                 &self.modes,
                 &self.research.spectra,
                 self.research.spectra_computing(),
@@ -321,7 +321,7 @@ impl App {
             ),
             View::Sweep => sweep_view::show(
                 ui,
-                &self.scene,
+                &self.doc.scene,
                 &self.research.sweep,
                 &mut self.research.sweep_form,
                 cmds,
@@ -338,11 +338,11 @@ impl App {
             ),
             View::Fidelity => fidelity_view::show(
                 ui,
-                &self.scene,
+                &self.doc.scene,
                 &self.modes,
                 self.research.fidelity_ref.as_ref(),
                 self.research.fidelity_ref.as_ref().and_then(|r| {
-                    let x: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
+                    let x: Vec<f64> = self.doc.scene.points.iter().map(|p| p.x_m).collect();
                     self.research.fidelity.current(r, &x, &self.modes)
                 }),
                 self.research.fidelity_computing(),
