@@ -38,6 +38,8 @@ fn class_name(c: RoadClass) -> &'static str {
         .map_or("?", |(_, n)| n)
 }
 
+/// The random road's fields: class, seed, length and wavenumber band, each
+/// refusing bad values. Long but flat: one field after another.
 pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
     let Road::Random {
         class,

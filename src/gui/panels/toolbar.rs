@@ -21,7 +21,8 @@ pub struct ToolbarStatus {
     pub exporting_frames: bool,
 }
 
-/// The menu bar.
+/// The menu bar. Long but flat: the File, Presets, View and Help menus one
+/// after another, each item as it appears.
 pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
     egui::MenuBar::new().ui(ui, |ui| {
         ui.menu_button("File", |ui| {

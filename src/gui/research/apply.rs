@@ -26,7 +26,8 @@ impl App {
         });
     }
 
-    /// Runs one researcher-tool command (called from `App::apply`).
+    /// Runs one researcher-tool command (called from `App::apply`). Long
+    /// but flat: one short arm per command.
     pub(crate) fn apply_research(&mut self, cmd: ResearchCommand) {
         match cmd {
             ResearchCommand::RecomputeSpectra => self.research.spectra_now = true,

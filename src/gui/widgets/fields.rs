@@ -120,6 +120,9 @@ impl<'a> NumField<'a> {
     }
 
     /// Shows the field; `with` builds the edited scene from a new SI value.
+    /// One body on purpose: the text kept while typing, the parse, the
+    /// refusal and the restore share the field's state read at the top and
+    /// stored at the end.
     pub fn show(self, ui: &mut Ui, with: impl FnOnce(f64) -> Scene) -> Option<Command> {
         let id = Id::unique(("tirecontact.field", self.name));
         let mut st: FieldState = ui.data(|d| d.get_temp(id)).unwrap_or_else(|| FieldState {
