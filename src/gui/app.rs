@@ -58,6 +58,8 @@ pub struct PngSettings {
     pub path: String,
     /// Why the last export attempt did not start (no file chosen, bad path).
     pub note: Option<String>,
+    /// The path field takes the keyboard at the next frame.
+    pub focus: bool,
 }
 
 pub struct App {

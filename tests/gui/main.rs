@@ -18,6 +18,7 @@ mod edited_description;
 mod field_help;
 mod guidance;
 mod identify_thread;
+mod keyboard_prompts;
 mod legends_clear;
 mod mode_fields;
 mod native_dialog;

@@ -223,6 +223,7 @@ impl App {
             height: 1200,
             path: format!("{}_plots.png", file_stem(&self.doc.scene.name)),
             note: None,
+            focus: true,
         });
     }
 

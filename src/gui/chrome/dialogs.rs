@@ -96,8 +96,7 @@ pub fn png_window(
 ) {
     let Some(s) = settings else { return };
     let mut open = true;
-    let mut go = false;
-    let mut cancel = false;
+    let (mut go, mut cancel) = crate::gui::chrome::file_prompt::confirm_keys(ctx);
     egui::Window::new("Export plots as PNG")
         .open(&mut open)
         .collapsible(false)
@@ -127,6 +126,7 @@ pub fn png_window(
                 "PNG file path",
                 ("PNG image", "png"),
                 true,
+                &mut s.focus,
             ) {
                 s.note = Some(n);
             }
@@ -143,10 +143,11 @@ pub fn png_window(
                 ui.label(RichText::new(n.as_str()).color(ERROR_COLOR));
             }
             ui.horizontal(|ui| {
-                go = ui.button(RichText::new("Export PNG").strong()).clicked();
-                if ui.button("Cancel").clicked() {
-                    cancel = true;
-                }
+                go |= ui
+                    .button(RichText::new("Export PNG").strong())
+                    .on_hover_text("Enter")
+                    .clicked();
+                cancel |= ui.button("Cancel").on_hover_text("Escape").clicked();
             });
         });
     if cancel {

@@ -77,6 +77,10 @@ pub struct FilePrompt {
     pub note: Option<String>,
     /// The action held by the unsaved-changes question, done after the save.
     pub then: Option<crate::gui::model::command::Discarding>,
+    /// The path field takes the keyboard at the next frame (set when the
+    /// prompt opens: what is typed then goes to the path, not to the
+    /// shortcuts).
+    pub focus: bool,
 }
 
 impl FilePrompt {
@@ -86,6 +90,7 @@ impl FilePrompt {
             path: path.into(),
             note: None,
             then: None,
+            focus: true,
         }
     }
 }
@@ -99,19 +104,25 @@ pub(crate) fn cwd_text() -> String {
 }
 
 /// The path field and its "Choose…" button (the desktop's dialog, which
-/// fills the field). Returns the note to show when no dialog gave a file.
+/// fills the field). `focus`: the field takes the keyboard now (once: it is
+/// cleared). Returns the note to show when no dialog gave a file.
 pub fn path_row(
     ui: &mut Ui,
     path: &mut String,
     accessible: &str,
     filter: (&str, &str),
     save: bool,
+    focus: &mut bool,
 ) -> Option<String> {
     let mut note = None;
     ui.horizontal(|ui| {
-        ui.add(egui::TextEdit::singleline(path).desired_width(320.0))
+        let field = ui
+            .add(egui::TextEdit::singleline(path).desired_width(320.0))
             .accessible_name(accessible)
             .on_hover_text(format!("a path; a relative one is in {}", cwd_text()));
+        if std::mem::take(focus) {
+            field.request_focus();
+        }
         let id = egui::Id::unique(("tirecontact.choose", accessible));
         let request = || {
             let current = Path::new(path.trim());
@@ -158,19 +169,24 @@ pub fn typed_path(text: &str, ext: &str) -> Result<PathBuf, String> {
     Ok(p)
 }
 
+/// Enter confirms and Escape cancels a prompt (as its buttons), whether or
+/// not its path field has the keyboard.
+pub fn confirm_keys(ctx: &egui::Context) -> (bool, bool) {
+    ctx.input(|i| {
+        (
+            i.key_pressed(egui::Key::Enter),
+            i.key_pressed(egui::Key::Escape),
+        )
+    })
+}
+
 /// The prompt window; pushes the action's command and closes when the user
 /// confirms a usable path.
 pub fn window(ctx: &egui::Context, prompt: &mut Option<FilePrompt>, cmds: &mut Vec<Command>) {
     let Some(p) = prompt else { return };
     let mut open = true;
     let mut done = false;
-    // Enter confirms the typed path, Escape cancels (as the buttons)
-    let (enter, escape) = ctx.input(|i| {
-        (
-            i.key_pressed(egui::Key::Enter),
-            i.key_pressed(egui::Key::Escape),
-        )
-    });
+    let (enter, escape) = confirm_keys(ctx);
     egui::Window::new(p.action.title())
         .id(egui::Id::unique("tirecontact.file_prompt"))
         .open(&mut open)
@@ -181,7 +197,14 @@ pub fn window(ctx: &egui::Context, prompt: &mut Option<FilePrompt>, cmds: &mut V
         .default_pos(ctx.content_rect().center_top() + egui::vec2(0.0, 120.0))
         .show(ctx, |ui| {
             let save = p.action != FileAction::Open;
-            if let Some(n) = path_row(ui, &mut p.path, "file path", p.action.filter(), save) {
+            if let Some(n) = path_row(
+                ui,
+                &mut p.path,
+                "file path",
+                p.action.filter(),
+                save,
+                &mut p.focus,
+            ) {
                 p.note = Some(n);
             }
             ui.label(RichText::new(format!("A relative path is in {}.", cwd_text())).weak());
