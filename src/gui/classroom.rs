@@ -508,7 +508,8 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
             pui.line(
                 Line::new(format!("point {i}"), pts)
                     .color(point_color(i))
-                    .width(2.5),
+                    .width(2.5)
+                    .allow_band(false),
             );
             impact_marks(pui, marks, egui_plot::MarkerShape::Down);
         });

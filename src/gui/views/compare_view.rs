@@ -251,7 +251,12 @@ fn run_plots(
                     clip_at(&mut pts, top, &mut marks);
                 }
                 ink.add(pui, &pts);
-                pui.line(Line::new(CURRENT, pts).color(point_color(i)).width(1.5));
+                pui.line(
+                    Line::new(CURRENT, pts)
+                        .color(point_color(i))
+                        .width(1.5)
+                        .allow_band(false),
+                );
                 if let Some(pin) = pinned {
                     let r = &pin.recording;
                     let y = match what {
@@ -348,7 +353,12 @@ fn difference_plots(
                     }
                 }
                 ink.add(pui, &pts);
-                pui.line(Line::new(DIFFERENCE, pts).color(point_color(i)).width(1.5));
+                pui.line(
+                    Line::new(DIFFERENCE, pts)
+                        .color(point_color(i))
+                        .width(1.5)
+                        .allow_band(false),
+                );
             }
             ink.place(pui, legend_id, legend_px);
             impact_marks(pui, above, MarkerShape::Down);

@@ -118,7 +118,8 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
                         pts,
                     )
                     .color(point_color(j))
-                    .width(1.5),
+                    .width(1.5)
+                    .allow_band(false),
                 );
             }
         });
@@ -144,7 +145,8 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
                 pui.line(
                     Line::new(format!("|G_{i}{j}|"), pts)
                         .color(point_color(j))
-                        .width(1.5),
+                        .width(1.5)
+                        .allow_band(false),
                 );
             }
             for m in modes {

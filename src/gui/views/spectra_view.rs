@@ -293,7 +293,7 @@ fn narrow(
         for (name, c, pts) in curves {
             let pts: Vec<[f64; 2]> = pts.into_iter().map(|p| [p[0], p[1].max(floor)]).collect();
             ink.add(pui, &pts);
-            pui.line(Line::new(name, pts).color(c).width(1.2));
+            pui.line(Line::new(name, pts).color(c).width(1.2).allow_band(false));
         }
         if top.is_finite() {
             draw_markers(pui, &pl.marks.excitation_hz, &pl.modal, pl.log, top);

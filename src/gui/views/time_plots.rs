@@ -388,7 +388,8 @@ fn draw_series(
         lines.push(
             Line::new(format!("point {i}"), pts)
                 .color(point_color(i))
-                .width(1.5),
+                .width(1.5)
+                .allow_band(false),
         );
     }
     if upwards {

@@ -6,3 +6,4 @@ mod export_clip;
 mod legend_ink;
 mod legends;
 mod paper_clip;
+mod solid_curves;
