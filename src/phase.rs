@@ -56,10 +56,15 @@ pub fn classify(was_contact: bool, is_contact: bool, had_force: bool) -> Contact
     }
 }
 
+/// Share of the phase an event starts (contact after an impact, flight
+/// after a release) for which the event stays shown at most: the steady
+/// phase is then seen for the rest, however fast events follow each other.
+pub const EVENT_SHARE: f64 = 0.5;
+
 /// Phases of every point over a run, with events held on screen.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PhaseTracker {
-    /// How long an impact or release stays shown (simulated s).
+    /// How long an impact or release stays shown at most (simulated s).
     pub hold_s: f64,
     contact: Vec<bool>,
     steady: Vec<ContactPhase>,
@@ -67,6 +72,12 @@ pub struct PhaseTracker {
     event: Vec<Option<(ContactPhase, f64)>>,
     impacts: Vec<u64>,
     releases: Vec<u64>,
+    /// Time of each point's last impact and last release (s).
+    last_impact_s: Vec<Option<f64>>,
+    last_release_s: Vec<Option<f64>>,
+    /// Length of each point's last whole contact and last whole flight (s).
+    contact_s: Vec<Option<f64>>,
+    flight_s: Vec<Option<f64>>,
 }
 
 impl PhaseTracker {
@@ -79,6 +90,10 @@ impl PhaseTracker {
             event: vec![None; p],
             impacts: vec![0; p],
             releases: vec![0; p],
+            last_impact_s: vec![None; p],
+            last_release_s: vec![None; p],
+            contact_s: vec![None; p],
+            flight_s: vec![None; p],
         }
     }
 
@@ -101,10 +116,14 @@ impl PhaseTracker {
                 ContactPhase::Impact => {
                     self.impacts[i] += 1;
                     self.event[i] = Some((phase, t_s));
+                    self.flight_s[i] = self.last_release_s[i].map(|r| t_s - r);
+                    self.last_impact_s[i] = Some(t_s);
                 }
                 ContactPhase::Release => {
                     self.releases[i] += 1;
                     self.event[i] = Some((phase, t_s));
+                    self.contact_s[i] = self.last_impact_s[i].map(|a| t_s - a);
+                    self.last_release_s[i] = Some(t_s);
                 }
                 _ => {}
             }
@@ -118,11 +137,22 @@ impl PhaseTracker {
         }
     }
 
+    /// How long the event `e` of point `i` stays shown (s): `hold_s`, and at
+    /// most [`EVENT_SHARE`] of the last whole phase of the kind it starts.
+    pub fn held_s(&self, i: usize, e: ContactPhase) -> f64 {
+        let follows = match e {
+            ContactPhase::Impact => self.contact_s.get(i).copied().flatten(),
+            ContactPhase::Release => self.flight_s.get(i).copied().flatten(),
+            _ => None,
+        };
+        follows.map_or(self.hold_s, |d| self.hold_s.min(EVENT_SHARE * d))
+    }
+
     /// The phase of point `i` to show at time `t_s`: a held event, else the
     /// steady phase.
     pub fn phase(&self, i: usize, t_s: f64) -> ContactPhase {
         match self.event.get(i).copied().flatten() {
-            Some((e, at)) if t_s - at <= self.hold_s => e,
+            Some((e, at)) if t_s - at <= self.held_s(i, e) => e,
             _ => self
                 .steady
                 .get(i)
@@ -174,6 +204,56 @@ mod tests {
         assert_eq!((t.impacts(0), t.releases(0)), (1, 1));
         // out-of-range point: free flight, no panic
         assert_eq!(t.phase(9, 0.0), ContactPhase::FreeFlight);
+    }
+
+    /// Played at the classroom's slow motion, the paper preset's points
+    /// land and leave every few milliseconds: the four phases must each be
+    /// shown a visible share of the run, not only IMPACT and RELEASE.
+    #[test]
+    fn every_phase_is_shown_for_a_share_of_a_fast_bouncing_run() {
+        for (preset, text) in [
+            ("paper", include_str!("../presets/paper.ron")),
+            ("three_points", include_str!("../presets/three_points.ron")),
+        ] {
+            let mut scene = Scene::parse(text, preset).unwrap();
+            scene.duration_s = scene.duration_s.min(0.15);
+            let p = scene.num_points();
+            // 0.6 s of wall time at 0.05x and at 0.01x
+            for hold_s in [0.6 * 0.05, 0.6 * 0.01] {
+                let mut sim = Simulation::from_scene(&scene).unwrap();
+                let mut tr = PhaseTracker::new(p, hold_s);
+                let mut shown = [0u64; 4];
+                let mut total = 0u64;
+                while !sim.finished() {
+                    sim.step().unwrap();
+                    tr.after_step(sim.time_s(), sim.in_contact(), sim.force_n());
+                    if sim.time_s() < scene.ramp_s {
+                        continue;
+                    }
+                    for i in 0..p {
+                        let k = match tr.phase(i, sim.time_s()) {
+                            ContactPhase::FreeFlight => 0,
+                            ContactPhase::Impact => 1,
+                            ContactPhase::InContact => 2,
+                            ContactPhase::Release => 3,
+                        };
+                        shown[k] += 1;
+                        total += 1;
+                    }
+                }
+                let share: Vec<f64> = shown.iter().map(|&n| n as f64 / total as f64).collect();
+                for (k, name) in ["free flight", "impact", "in contact", "release"]
+                    .iter()
+                    .enumerate()
+                {
+                    assert!(
+                        share[k] >= 0.05,
+                        "{preset}, hold {hold_s} s: {name} shown {:.3} of the run ({share:?})",
+                        share[k]
+                    );
+                }
+            }
+        }
     }
 
     /// Over a run, impacts and releases alternate per point, and counting

@@ -26,8 +26,9 @@ use std::collections::BTreeMap;
 pub const FONT_SCALE: f32 = 1.7;
 /// Playback speed set when classroom mode starts (simulated s per wall s).
 pub const SLOW_MOTION: f64 = 0.05;
-/// How long an impact or release label stays up (wall-clock s at the
-/// current playback speed).
+/// How long an impact or release label stays up at most (wall-clock s at
+/// the current playback speed; also at most `phase::EVENT_SHARE` of the
+/// contact or flight it starts).
 pub const EVENT_HOLD_WALL_S: f64 = 0.6;
 /// Colour of impact / release labels.
 pub const EVENT_COLOR: Color32 = Color32::from_rgb(204, 0, 102);
