@@ -1,8 +1,10 @@
-//! The ground floor of file output: atomic writes (a temporary beside the
-//! target, synced, renamed over it) whose temporaries are removed when the
-//! command line is interrupted ([`interrupt`]).
+//! The ground floor of file input and output: atomic writes (a temporary
+//! beside the target, synced, renamed over it) whose temporaries are removed
+//! when the command line is interrupted ([`interrupt`]), and bounded reads
+//! of regular files only ([`read`]).
 
 pub mod interrupt;
+pub mod read;
 
 use std::io::Write;
 use std::path::Path;

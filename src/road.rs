@@ -329,6 +329,10 @@ pub const MAX_PROFILE_ROWS: usize = 20_000_000;
 /// instead of being read.
 pub const MAX_PROFILE_BYTES: u64 = 64 * MAX_PROFILE_ROWS as u64;
 
+/// Longest line of a road profile file (bytes): a row is two numbers, a
+/// comment a sentence.
+pub const MAX_LINE_BYTES: usize = 4096;
+
 /// Reads a `x_m, z_m` CSV: optional header, strictly increasing finite `x`,
 /// at most [`MAX_PROFILE_ROWS`] rows and [`MAX_PROFILE_BYTES`] bytes.
 pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>), SceneError> {
@@ -346,15 +350,17 @@ pub fn read_profile_csv_limited(
         path: path.to_path_buf(),
         message,
     };
-    let file = std::fs::File::open(path).map_err(|e| err(format!("cannot open: {e}")))?;
+    // a regular file only: a named pipe would block, a device never end
+    let file = crate::fsio::read::open_regular(path).map_err(|e| {
+        err(if e.kind() == std::io::ErrorKind::InvalidInput {
+            format!("{e}: expected a CSV file of `x_m, z_m` rows")
+        } else {
+            format!("cannot open: {e}")
+        })
+    })?;
     let meta = file
         .metadata()
         .map_err(|e| err(format!("cannot read: {e}")))?;
-    if meta.is_dir() {
-        return Err(err(
-            "is a folder: expected a CSV file of `x_m, z_m` rows".into()
-        ));
-    }
     if meta.len() > max_bytes {
         return Err(err(format!(
             "{} bytes: expected at most {max_bytes} bytes ({max_rows} rows; resample the profile)",
@@ -366,8 +372,13 @@ pub fn read_profile_csv_limited(
         .trim(csv::Trim::All)
         .comment(Some(b'#'))
         .flexible(true)
-        // a file growing while read, or a device, is cut one byte past the limit
-        .from_reader(std::io::Read::take(file, max_bytes.saturating_add(1)));
+        // a file growing while read is cut one byte past the limit, and a
+        // line longer than any row (a file without line ends) is refused
+        // before it is buffered
+        .from_reader(crate::fsio::read::LineCap::new(
+            std::io::Read::take(file, max_bytes.saturating_add(1)),
+            MAX_LINE_BYTES,
+        ));
     let (mut xs, mut zs) = (Vec::new(), Vec::new());
     let mut rec = csv::StringRecord::new();
     for row in 0usize.. {
@@ -377,7 +388,12 @@ pub fn read_profile_csv_limited(
                 "more than {max_bytes} bytes: expected at most {max_bytes} bytes ({max_rows} rows; resample the profile)"
             )));
         }
-        if !more.map_err(|e| err(format!("record {}: {e}", row + 1)))? {
+        if !more.map_err(|e| match e.kind() {
+            csv::ErrorKind::Io(io) if io.kind() == std::io::ErrorKind::InvalidData => err(format!(
+                "{io}: expected `x_m, z_m` rows of at most {MAX_LINE_BYTES} bytes"
+            )),
+            _ => err(format!("record {}: {e}", row + 1)),
+        })? {
             break;
         }
         // the file's own line number (comment lines are skipped by the reader)

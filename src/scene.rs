@@ -181,23 +181,20 @@ impl Scene {
             path: path.to_path_buf(),
             source,
         };
-        // bounded read: a runaway file or a device (`/dev/zero`) is refused
-        if path.is_dir() {
-            return Err(io(std::io::Error::other(
-                "is a folder: expected a scene preset file (RON), e.g. presets/paper.ron",
-            )));
-        }
-        let file = std::fs::File::open(path).map_err(|e| {
-            io(if e.kind() == std::io::ErrorKind::NotFound {
-                std::io::Error::new(
-                    e.kind(),
-                    format!(
-                        "{e}: expected an existing scene preset file (RON), e.g. presets/paper.ron"
-                    ),
-                )
-            } else {
-                e
-            })
+        // a regular file only (a named pipe would block, a device never
+        // end), and a bounded read: a runaway file is refused
+        let file = crate::fsio::read::open_regular(path).map_err(|e| {
+            io(std::io::Error::new(
+                e.kind(),
+                format!(
+                    "{e}: expected {} scene preset file (RON), e.g. presets/paper.ron",
+                    if e.kind() == std::io::ErrorKind::NotFound {
+                        "an existing"
+                    } else {
+                        "a"
+                    }
+                ),
+            ))
         })?;
         let mut bytes = Vec::new();
         std::io::Read::read_to_end(

@@ -945,29 +945,69 @@ fn bad_command_line_values_are_refused() {
     }
 }
 
-/// Endless inputs (a device, a file growing while read) are read only up to
-/// the limit: a preset of `/dev/zero` is refused after 64 MiB, a road file
-/// one byte past its byte limit.
+/// Files that are not regular files, or have no line ends, are refused at
+/// once with the file named, never read without bound or waited on: a
+/// device (`/dev/zero` grew `check` to 7.5 GB in 20 s), a named pipe (the
+/// open blocked forever), a folder, and a road file of one 100 MB line;
+/// as presets and as road files.
 #[test]
-fn endless_inputs_are_read_up_to_the_limit() {
+fn hostile_files_are_refused_at_once() {
+    let tmp = temp_dir();
+    let dir = tmp.path();
+    let fifo = dir.join("pipe");
+    let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+    // SAFETY: a valid NUL-terminated path; mkfifo only creates the node
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+    let long = dir.join("long.csv");
+    std::fs::write(&long, vec![b'7'; 100 << 20]).unwrap();
+    let base = include_str!("../../presets/three_points.ron");
+    let with_road = |name: &str, file: &Path| {
+        let text = base.replace(
+            "road: Sine(amplitude_m: 0.0005, wavelength_m: 0.12)",
+            &format!("road: Measured(file: {:?})", file.display().to_string()),
+        );
+        assert_ne!(text, base);
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    };
     let zero = Path::new("/dev/zero");
-    if !zero.exists() {
-        return;
-    }
-    let o = bin().arg("check").arg(zero).output().unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(1), "{err}");
-    assert!(
-        err.contains(
-            "/dev/zero: more than 67108864 bytes: expected a scene file of at most 64 MiB"
+    let cases: Vec<(PathBuf, &str)> = vec![
+        (zero.to_path_buf(), "is not a regular file"),
+        (fifo.clone(), "is not a regular file"),
+        (dir.to_path_buf(), "is a folder"),
+        (with_road("zero.ron", zero), "is not a regular file"),
+        (with_road("fifo.ron", &fifo), "is not a regular file"),
+        (with_road("dir.ron", dir), "is a folder"),
+        (
+            with_road("long.ron", &long),
+            "line 1 is longer than 4096 bytes",
         ),
-        "{err}"
-    );
-    let e = read_profile_csv_limited(zero, 10, 1000)
-        .unwrap_err()
-        .to_string();
-    assert!(
-        e.contains("road.file = /dev/zero: more than 1000 bytes: expected at most 1000 bytes"),
-        "{e}"
-    );
+    ];
+    for (preset, want) in cases {
+        let start = std::time::Instant::now();
+        let mut child = bin()
+            .arg("check")
+            .arg(&preset)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        // a hang is a failure, not a stuck test run
+        while child.try_wait().unwrap().is_none() {
+            if start.elapsed() > std::time::Duration::from_secs(60) {
+                child.kill().unwrap();
+                panic!("check {} did not end in 60 s", preset.display());
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let o = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{}: {err}", preset.display());
+        assert!(
+            err.contains(want) && !err.contains("panicked"),
+            "{}: {err}",
+            preset.display()
+        );
+    }
 }
