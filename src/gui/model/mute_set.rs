@@ -87,8 +87,12 @@ pub fn refusal(base: &[Mode], muted: &[bool], p: usize, contact: &Contact) -> Op
         Err(e) => return Some(format!("the playing modes' contact system: {e}")),
     };
     (rank < p).then(|| {
+        let modes = crate::error::count(playing, "playing mode");
         format!(
-            "the {playing} playing mode(s) move the {p} points in only {rank} independent way(s): rigid contact on every point would be a singular system; mute fewer modes, or switch to compliant contact"
+            "Not applied: {modes} cannot hold all {p} points on the road at once (they move \
+             them in only {} of the {p} independent ways rigid contact needs): keep more \
+             modes playing.",
+            rank
         )
     })
 }
@@ -136,7 +140,13 @@ mod tests {
         let base = crate::ModeCache::new().modes(&s).unwrap();
         assert!(refusal(&base, &[false; 3], 3, &s.contact).is_none());
         let r = refusal(&base, &[false, true, false], 3, &s.contact).unwrap();
-        assert!(r.contains("only 2 independent"), "{r}");
+        assert!(
+            r.contains("2 playing modes cannot hold all 3 points on the road")
+                && r.contains("only 2 of the 3 independent ways")
+                && r.contains("keep more modes playing")
+                && !r.contains("mode(s)"),
+            "{r}"
+        );
         let soft = Contact::Compliant {
             stiffness_n_m: vec![2e6],
         };

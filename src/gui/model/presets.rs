@@ -17,4 +17,9 @@ pub const SHIPPED: &[(&str, &str, &str)] = &[
         "paper.ron",
         include_str!("../../../presets/paper.ron"),
     ),
+    (
+        "Three points on a random road (ISO 8608 class C)",
+        "random_road.ron",
+        include_str!("../../../presets/random_road.ron"),
+    ),
 ];
