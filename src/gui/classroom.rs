@@ -392,10 +392,15 @@ pub fn phase_strip(ui: &mut Ui, t_s: f64, phases: &PhaseTracker) {
         ui.label(RichText::new("contact phase:").strong());
         for i in 0..phases.num_points().min(24) {
             let ph = phases.phase(i, t_s);
-            ui.label(
-                RichText::new(phase_text(i, ph))
-                    .strong()
-                    .color(phase_color(ph)),
+            // each label whole: a label broken over two rows covered its
+            // neighbours
+            ui.add(
+                egui::Label::new(
+                    RichText::new(phase_text(i, ph))
+                        .strong()
+                        .color(phase_color(ph)),
+                )
+                .wrap_mode(egui::TextWrapMode::Extend),
             )
             .on_hover_text(format!(
                 "{} impacts, {} releases so far",
