@@ -3,13 +3,11 @@
 //! their static compliance (`SolverOptions::residual_above_hz`), against the
 //! full model at the same time step: error against run time.
 
-use crate::bench::baselines::BaselineRun;
 use crate::bench::work_precision::{Sampled, rms_rel, sample};
 use crate::convolution::ModalBasis;
 use crate::identify::{ModeCache, PreparedModel};
 use crate::scene::{Scene, Tyre};
-use crate::simulation::{Simulation, SolverOptions};
-use std::time::Instant;
+use crate::simulation::SolverOptions;
 
 /// One variant of a scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -169,22 +167,15 @@ fn run(
     options: SolverOptions,
     cache: &ModeCache,
 ) -> Result<History, String> {
-    let mut s = scene.clone();
-    s.duration_s = duration_s;
-    let n = s.num_steps() as usize;
-    let model = PreparedModel::new(&s, cache).map_err(|e| e.to_string())?;
-    let mut sim = Simulation::new(&model, options).map_err(|e| e.to_string())?;
-    let mut run = BaselineRun {
-        t_s: Vec::with_capacity(n),
-        u_m: Vec::with_capacity(n),
-        q_n: Vec::with_capacity(n),
-        overflow_t_s: None,
-    };
-    let start = Instant::now();
-    crate::drive::run_to_end(&mut sim, &mut run, crate::drive::Watch::none())
-        .map_err(|e| e.to_string())?;
-    let wall = start.elapsed().as_secs_f64();
-    Ok((run.t_s, run.u_m, run.q_n, wall, sim.stats().events))
+    let (run, wall, events) = crate::bench::work_precision::run_stable(
+        scene,
+        scene.contact_scheme,
+        scene.dt_s,
+        duration_s,
+        options,
+        cache,
+    )?;
+    Ok((run.t_s, run.u_m, run.q_n, wall, events))
 }
 
 /// Markdown table of the rows.

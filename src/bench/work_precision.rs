@@ -152,6 +152,10 @@ pub(crate) fn rms_rel(a: &[f64], reference: &[f64]) -> f64 {
     (num / den.max(f64::MIN_POSITIVE)).sqrt()
 }
 
+/// A run of the stable solver recorded every step, its wall time (s, the
+/// steps only) and its located events.
+pub type StableRun = (BaselineRun, f64, u64);
+
 /// Runs the stable solver and records every step.
 pub fn run_stable(
     scene: &Scene,
@@ -160,7 +164,7 @@ pub fn run_stable(
     duration: f64,
     options: SolverOptions,
     cache: &ModeCache,
-) -> Result<(BaselineRun, f64), String> {
+) -> Result<StableRun, String> {
     let mut s = scene.clone();
     s.dt_s = dt;
     s.duration_s = duration;
@@ -176,7 +180,7 @@ pub fn run_stable(
     };
     let start = Instant::now();
     crate::drive::run_to_end(&mut sim, &mut run, Watch::none()).map_err(|e| e.to_string())?;
-    Ok((run, start.elapsed().as_secs_f64()))
+    Ok((run, start.elapsed().as_secs_f64(), sim.stats().events))
 }
 
 /// Times a bare run (no recording) of the stable solver, in seconds.
@@ -275,7 +279,7 @@ pub fn study(
         "{}: reference, located at dt = {dt_ref:e} s",
         scene.name
     ));
-    let (reference, _) = run_stable(
+    let (reference, _, _) = run_stable(
         scene,
         ContactScheme::Located,
         dt_ref,
@@ -317,14 +321,15 @@ pub fn study(
                     } else {
                         ContactScheme::Paper
                     };
-                    run_stable(
+                    let (run, wall, _) = run_stable(
                         scene,
                         scheme,
                         dt,
                         duration,
                         SolverOptions::default(),
                         &cache,
-                    )?
+                    )?;
+                    (run, wall)
                 }
                 Method::AlphaBeta | Method::Direct => {
                     let kernel = if method == Method::AlphaBeta {
