@@ -405,8 +405,15 @@ fn save_as_open_and_csv_work_by_typing_the_path() {
     // the export runs on a thread with a spinner: frames, not `run`
     h.run_steps(2);
     assert!(h.state().file_prompt().is_none());
-    let r = h.state_mut().wait_csv_export().expect("a CSV export");
-    assert!(r.is_ok(), "{r:?}");
+    // still running, or (a short run on a busy machine) already ended and
+    // reported in the banner by one of those frames
+    match h.state_mut().wait_csv_export() {
+        Some(r) => assert!(r.is_ok(), "{r:?}"),
+        None => {
+            let m = h.state().message().expect("the export's end said");
+            assert!(!m.error && m.text.starts_with("wrote"), "{m:?}");
+        }
+    }
     let text = std::fs::read_to_string(&csv).unwrap();
     assert!(text.lines().count() > 50, "{} lines", text.lines().count());
 }

@@ -3,6 +3,7 @@
 //! pushed; and the `eframe::App` glue (close request, session save).
 
 use super::*;
+use crate::gui::ResearchCommand;
 
 impl App {
     /// The keyboard shortcuts (when no text field has the focus).
@@ -57,7 +58,7 @@ impl App {
         let hidden = ctx.input(|i| i.viewport().minimized == Some(true));
         // the background jobs' ends and the frame's solver steps are
         // commands like the user's, applied first
-        let ended: Vec<Command> = [
+        let mut ended: Vec<Command> = [
             self.poll_csv(),
             self.poll_frames(),
             self.poll_identification(),
@@ -65,13 +66,17 @@ impl App {
         .into_iter()
         .flatten()
         .collect();
+        ended.extend(self.research_polls());
         for cmd in ended {
             self.apply(cmd);
         }
         if !hidden {
             self.apply(Command::Advance { frame_s });
         }
-        self.research_frame(&ctx);
+        self.apply(Command::Research(ResearchCommand::Refresh));
+        if self.research_busy() {
+            ctx.request_repaint();
+        }
         let mut cmds = Vec::new();
         self.keyboard(&ctx, &mut cmds);
         let status = toolbar::ToolbarStatus {

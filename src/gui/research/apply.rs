@@ -134,6 +134,8 @@ impl App {
                 };
                 self.report_export(&path, "reference CSV", r);
             }
+            ResearchCommand::SweepEnded(end) => self.sweep_ended(end),
+            ResearchCommand::Refresh => self.research_refresh(),
         }
     }
 
@@ -150,34 +152,49 @@ impl App {
         self.research.fidelity_ref = FidelityRef::of_scene(&self.doc.scene);
     }
 
-    /// Per frame: poll the sweep, follow the scene's ring reference, and
-    /// refresh what the shown view needs. Never blocks.
-    pub(crate) fn research_frame(&mut self, ctx: &egui::Context) {
-        if let Some(state) = self.research.sweep.poll() {
-            let (error, text) = match state {
-                SweepState::Finished(r) => (
-                    false,
-                    format!(
-                        "sweep of {} done: {} runs ({} failed) on {} threads in {}",
-                        r.request.param,
-                        r.points.len(),
-                        r.failed(),
-                        r.threads,
-                        crate::gui::views::wall_time_text(r.wall_s)
-                    ),
-                ),
-                SweepState::Cancelled => (
-                    false,
-                    "sweep cancelled; no results kept, the app is unchanged".to_string(),
-                ),
-                SweepState::Failed(e) => (true, format!("sweep failed: {e}")),
-                _ => (false, String::new()),
-            };
-            self.research_message(error, text);
+    /// The research jobs' ends this frame, as commands (never blocks).
+    pub(crate) fn research_polls(&self) -> Vec<Command> {
+        let mut cmds = Vec::new();
+        if let Some(end) = self.research.sweep.ended() {
+            cmds.push(Command::Research(ResearchCommand::SweepEnded(end)));
         }
-        if self.research.sweep.is_running() {
-            ctx.request_repaint();
-        }
+        cmds
+    }
+
+    /// Whether a research job runs (the frame loop then asks for frames).
+    pub(crate) fn research_busy(&self) -> bool {
+        self.research.sweep.is_running()
+            || (self.view == View::Spectra && self.research.spectra_job.is_some())
+            || (self.view == View::Fidelity && self.research.fidelity_job.is_some())
+    }
+
+    /// A sweep's end: its outcome kept, and said in the banner.
+    fn sweep_ended(&mut self, end: crate::gui::research::sweep_job::SweepEnd) {
+        let (error, text) = match self.research.sweep.end(end) {
+            SweepState::Finished(r) => (
+                false,
+                format!(
+                    "sweep of {} done: {} runs ({} failed) on {} threads in {}",
+                    r.request.param,
+                    r.points.len(),
+                    r.failed(),
+                    r.threads,
+                    crate::gui::views::wall_time_text(r.wall_s)
+                ),
+            ),
+            SweepState::Cancelled => (
+                false,
+                "sweep cancelled; no results kept, the app is unchanged".to_string(),
+            ),
+            SweepState::Failed(e) => (true, format!("sweep failed: {e}")),
+            _ => (false, String::new()),
+        };
+        self.research_message(error, text);
+    }
+
+    /// Follows the scene's ring reference and refreshes what the shown view
+    /// needs ([`ResearchCommand::Refresh`]). Never blocks.
+    fn research_refresh(&mut self) {
         let held = self.research.fidelity_ref.take();
         self.research.fidelity_ref = FidelityRef::follow(held, &self.doc.scene);
         let key = HistoryKey::of(&self.history);
@@ -200,9 +217,6 @@ impl App {
                 if force || (auto && stale) {
                     self.start_spectra(key);
                 }
-                if self.research.spectra_job.is_some() {
-                    ctx.request_repaint();
-                }
             }
             View::Compare => {
                 if let Some(pin) = &self.research.pinned {
@@ -220,7 +234,7 @@ impl App {
                         });
                 }
             }
-            View::Fidelity => self.update_fidelity(ctx),
+            View::Fidelity => self.update_fidelity(),
             _ => {}
         }
     }
@@ -228,7 +242,7 @@ impl App {
     /// The fidelity figures of the modes in use, computed on a background
     /// thread: a finished job's figures are kept if they are still those of
     /// the scene; a job for modes edited since is replaced (and cancelled).
-    fn update_fidelity(&mut self, ctx: &egui::Context) {
+    fn update_fidelity(&mut self) {
         let Some(r) = self.research.fidelity_ref.clone() else {
             self.research.fidelity_job = None;
             return;
@@ -260,9 +274,6 @@ impl App {
                 // shown in the view, not retried every frame
                 Err(e) => self.research.fidelity.set(key, Err(e)),
             }
-        }
-        if self.research.fidelity_job.is_some() {
-            ctx.request_repaint();
         }
     }
 

@@ -27,6 +27,12 @@ pub enum ResearchCommand {
     ExportPinnedCsvDialog,
     /// Write the pinned run as CSV (`t_s, u{i}_m.., q{i}_N..`).
     ExportPinnedCsv(PathBuf),
+    /// The sweep's background job ended (the frame loop pushes it).
+    SweepEnded(crate::gui::research::sweep_job::SweepEnd),
+    /// Once a frame: follow the scene's ring reference and bring what the
+    /// shown research view needs up to date (spectra, differences to the
+    /// pinned run, fidelity figures), starting or picking up their jobs.
+    Refresh,
 }
 
 /// Presentation options of the spectra view.

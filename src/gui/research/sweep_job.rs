@@ -200,18 +200,22 @@ impl SweepState {
         }
     }
 
-    /// Moves a finished job to its outcome; returns it when it just ended.
-    pub fn poll(&mut self) -> Option<&SweepState> {
-        let end = match self {
-            SweepState::Running(job) => job.poll()?,
-            _ => return None,
-        };
+    /// How the running job ended, once it has (never blocks).
+    pub fn ended(&self) -> Option<SweepEnd> {
+        match self {
+            SweepState::Running(job) => job.poll(),
+            _ => None,
+        }
+    }
+
+    /// Moves to the outcome `end` of the job ([`SweepState::ended`]).
+    pub fn end(&mut self, end: SweepEnd) -> &SweepState {
         *self = match end {
             SweepEnd::Done(r) => SweepState::Finished(r),
             SweepEnd::Cancelled => SweepState::Cancelled,
             SweepEnd::Failed(e) => SweepState::Failed(e),
         };
-        Some(self)
+        self
     }
 
     /// The finished result, if any.
