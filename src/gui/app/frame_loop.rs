@@ -48,6 +48,20 @@ impl App {
         });
     }
 
+    /// The background jobs that ended since the last frame, as commands.
+    fn jobs_ended(&self) -> Vec<Command> {
+        let mut ended: Vec<Command> = [
+            self.poll_csv(),
+            self.poll_frames(),
+            self.poll_identification(),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        ended.extend(self.research_polls());
+        ended
+    }
+
     /// One frame of the whole UI (also driven headless by the tests).
     pub fn show(&mut self, ui: &mut egui::Ui) {
         let started = Instant::now();
@@ -58,16 +72,7 @@ impl App {
         let hidden = ctx.input(|i| i.viewport().minimized == Some(true));
         // the background jobs' ends and the frame's solver steps are
         // commands like the user's, applied first
-        let mut ended: Vec<Command> = [
-            self.poll_csv(),
-            self.poll_frames(),
-            self.poll_identification(),
-        ]
-        .into_iter()
-        .flatten()
-        .collect();
-        ended.extend(self.research_polls());
-        for cmd in ended {
+        for cmd in self.jobs_ended() {
             self.apply(cmd);
         }
         if !hidden {
