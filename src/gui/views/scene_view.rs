@@ -449,28 +449,25 @@ impl Geometry {
                 .color(tyre_color)
                 .width(2.0),
         );
-        let (on, off): (Vec<_>, Vec<_>) =
-            displaced.iter().enumerate().partition(|(i, _)| contact[*i]);
-        pui.points(
-            Points::new(
-                CONTACT_NAME,
-                on.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
-            )
-            .color(CONTACT_COLOR)
-            .shape(MarkerShape::Circle)
-            .filled(true)
-            .radius(7.0),
-        );
-        pui.points(
-            Points::new(
-                FLIGHT_NAME,
-                off.into_iter().map(|(_, p)| *p).collect::<Vec<_>>(),
-            )
-            .color(FLIGHT_COLOR)
-            .shape(MarkerShape::Diamond)
-            .filled(true)
-            .radius(7.0),
-        );
+        // points on the road as discs, in flight as diamonds
+        for (on_road, name, color, shape) in [
+            (true, CONTACT_NAME, CONTACT_COLOR, MarkerShape::Circle),
+            (false, FLIGHT_NAME, FLIGHT_COLOR, MarkerShape::Diamond),
+        ] {
+            let pts: Vec<[f64; 2]> = displaced
+                .iter()
+                .zip(contact)
+                .filter(|(_, c)| **c == on_road)
+                .map(|(p, _)| *p)
+                .collect();
+            pui.points(
+                Points::new(name, pts)
+                    .color(color)
+                    .shape(shape)
+                    .filled(true)
+                    .radius(7.0),
+            );
+        }
         let mut labels_floor = None;
         if !a_from.is_empty() {
             pui.arrows(
