@@ -108,6 +108,7 @@ fn headless_default() -> cli::CliResult {
         spectrum_from: None,
         spectrum_max_hz: 5000.0,
         frames: None,
+        frames_clear: false,
         fps: 25.0,
         slow_motion: 20.0,
         frames_from: 0.0,

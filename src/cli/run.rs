@@ -77,6 +77,11 @@ pub struct RunArgs {
     /// End of the animated interval (s); default the scene's duration.
     #[arg(long, requires = "frames", allow_hyphen_values = true, value_parser = super::values::parse_seconds)]
     pub frames_to: Option<f64>,
+    /// Remove the frames of an earlier export from the --frames folder
+    /// (without it, a folder holding frame_*.png is refused: old and new
+    /// frames would mix).
+    #[arg(long, requires = "frames")]
+    pub frames_clear: bool,
     /// Size of the frames, WIDTHxHEIGHT in pixels.
     #[arg(long, default_value = "1280x720", allow_hyphen_values = true, value_parser = parse_size, requires = "frames")]
     pub frame_size: (u32, u32),
@@ -112,6 +117,7 @@ fn write_frames(model: &PreparedModel, args: &RunArgs) -> CliResult {
         Simulation::new(model, tirecontact::SolverOptions::default())?,
         dir,
         &settings,
+        args.frames_clear,
         &AtomicU64::new(0),
         &AtomicBool::new(false),
     )?;

@@ -324,7 +324,11 @@ impl App {
             Command::UnmuteAll => self.unmute_all(),
             // animation export (app/animation_export.rs)
             Command::ExportFramesDialog => self.open_frames_dialog(),
-            Command::ExportFrames { dir, settings } => self.export_frames(dir, settings),
+            Command::ExportFrames {
+                dir,
+                settings,
+                clear_old,
+            } => self.export_frames(dir, settings, clear_old),
             Command::CancelFrames => self.cancel_frames(),
             Command::FramesExportEnded(r) => self.frames_export_ended(r),
             // researcher tools (research/apply.rs)

@@ -331,6 +331,23 @@ fn draw_frame(
     Ok(())
 }
 
+/// The frames of an earlier export in `dir` (`frame_NNNNN.png`), sorted.
+pub fn old_frames(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with("frame_") && n.ends_with(".png"))
+        })
+        .collect();
+    v.sort();
+    v
+}
+
 /// Draws the frames of `settings` into a folder as a run passes their
 /// times (a [`Probe`]): frame `k` shows the first state at or past
 /// `t_k - dt/2`. `progress` counts frames written; setting `cancel` stops
@@ -349,15 +366,32 @@ pub struct FrameWriter<'a> {
 }
 
 impl<'a> FrameWriter<'a> {
-    /// Checks `settings` against `sim`'s scene and creates `dir`.
+    /// Checks `settings` against `sim`'s scene and creates `dir`. Frames of
+    /// an earlier export in `dir` would mix with the new ones (a shorter
+    /// export left the old scene's last frames behind): they are removed
+    /// with `clear_old`, else refused.
     pub fn new(
         sim: &Simulation,
         dir: &Path,
         settings: &FrameSettings,
+        clear_old: bool,
         progress: &'a AtomicU64,
         cancel: &'a AtomicBool,
     ) -> Result<Self, String> {
         settings.check(sim.scene().duration_s)?;
+        let old = old_frames(dir);
+        if !old.is_empty() {
+            if !clear_old {
+                return Err(format!(
+                    "{} already holds {} frames of an earlier export (frame_*.png): expected a new or empty folder, or agree to clear the old frames",
+                    dir.display(),
+                    old.len()
+                ));
+            }
+            for p in &old {
+                std::fs::remove_file(p).map_err(|e| format!("{}: {e}", p.display()))?;
+            }
+        }
         std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         let dt_s = sim.dt_s();
         Ok(FrameWriter {
@@ -437,10 +471,11 @@ pub fn export_frames(
     mut sim: Simulation,
     dir: &Path,
     settings: &FrameSettings,
+    clear_old: bool,
     progress: &AtomicU64,
     cancel: &AtomicBool,
 ) -> Result<u64, String> {
-    let mut frames = FrameWriter::new(&sim, dir, settings, progress, cancel)?;
+    let mut frames = FrameWriter::new(&sim, dir, settings, clear_old, progress, cancel)?;
     run_to_end(&mut sim, &mut frames, Watch::none()).map_err(frames_error)?;
     frames.finish(&sim).map_err(|e| frames_error(e.into()))
 }
@@ -529,7 +564,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("tc-anim-cancel-{}", std::process::id()));
         let cancel = AtomicBool::new(true);
         let progress = AtomicU64::new(0);
-        let r = export_frames(sim, &dir, &settings(), &progress, &cancel);
+        let r = export_frames(sim, &dir, &settings(), false, &progress, &cancel);
         assert!(r.unwrap_err().contains("cancelled after 0 of 5"));
         assert!(!frame_path(&dir, 0).exists());
         let _ = std::fs::remove_dir_all(&dir);

@@ -63,3 +63,50 @@ fn frames_count_size_and_content() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("fps = 0") && err.contains("expected"), "{err}");
 }
+
+/// A second, shorter export into the same folder is refused (the first
+/// one's last frames would stay behind and join the new ones in a video)
+/// unless `--frames-clear` removes the old frames first.
+#[test]
+fn old_frames_are_refused_unless_cleared() {
+    let tmp = temp_dir();
+    let dir = tmp.path().join("frames");
+    let export = |from: &str, clear: bool| {
+        let mut c = bin();
+        c.args([
+            "run",
+            "presets/three_points.ron",
+            "--duration",
+            "0.06",
+            "--fps",
+            "30",
+            "--slow-motion",
+            "10",
+            "--frame-size",
+            "320x200",
+            "--frames-from",
+            from,
+            "--frames",
+        ])
+        .arg(&dir);
+        if clear {
+            c.arg("--frames-clear");
+        }
+        c.output().unwrap()
+    };
+    let count = || std::fs::read_dir(&dir).unwrap().count();
+    let o = export("0.04", false);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(count(), 6);
+    let o = export("0.05", false);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("already holds 6 frames of an earlier export"),
+        "{err}"
+    );
+    assert_eq!(count(), 6, "the refused export wrote or removed frames");
+    let o = export("0.05", true);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(count(), 3, "old frames left behind");
+}

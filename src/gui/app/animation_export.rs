@@ -12,14 +12,19 @@ impl App {
     /// Blocks until a running frames export ends; returns its result.
     pub fn wait_frames_export(&mut self) -> Option<Result<u64, String>> {
         let job = self.handles.frames_job.take()?;
+        let dir = job.dir.clone();
         let r = job.wait();
-        self.frames_done(&r);
+        self.frames_done(&dir, &r);
         Some(r)
     }
 
-    fn frames_done(&mut self, r: &Result<u64, String>) {
+    /// Says how the export ended, and where the frames went.
+    fn frames_done(&mut self, dir: &Path, r: &Result<u64, String>) {
         match r {
-            Ok(n) => self.info(format!("wrote {n} animation frames")),
+            Ok(n) => self.info(format!(
+                "wrote {n} animation frames (frame_00000.png …) into {}",
+                crate::gui::chrome::frames_dialog::resolved(dir).display()
+            )),
             Err(e) => self.error(format!("Animation export stopped: {e}")),
         }
     }
@@ -30,7 +35,7 @@ impl App {
 
     /// Starts the export of the current run (re-simulated from its start
     /// with its live edits) into `dir`.
-    pub(super) fn export_frames(&mut self, dir: PathBuf, settings: FrameSettings) {
+    pub(super) fn export_frames(&mut self, dir: PathBuf, settings: FrameSettings, clear_old: bool) {
         if self.handles.frames_job.is_some() {
             self.error("an animation export is already running");
             return;
@@ -41,6 +46,7 @@ impl App {
             self.run_start.clone(),
             &self.handles.mode_cache,
             self.live_edits.clone(),
+            clear_old,
         ) {
             Ok(job) => {
                 self.frames_dialog = None;
@@ -64,7 +70,8 @@ impl App {
     }
 
     pub(super) fn frames_export_ended(&mut self, r: Result<u64, String>) {
-        self.handles.frames_job = None;
-        self.frames_done(&r);
+        if let Some(job) = self.handles.frames_job.take() {
+            self.frames_done(&job.dir, &r);
+        }
     }
 }

@@ -14,6 +14,17 @@ use std::path::PathBuf;
 pub struct FramesDialog {
     pub settings: FrameSettings,
     pub dir: String,
+    /// Remove the frames of an earlier export from the folder first.
+    pub clear_old: bool,
+}
+
+/// `dir` as an absolute path (a relative one is in the working directory).
+pub fn resolved(dir: &std::path::Path) -> PathBuf {
+    if dir.is_absolute() {
+        dir.to_path_buf()
+    } else {
+        std::env::current_dir().map_or_else(|_| dir.to_path_buf(), |c| c.join(dir))
+    }
 }
 
 impl FramesDialog {
@@ -34,6 +45,7 @@ impl FramesDialog {
                 height: 720,
             },
             dir: "frames".to_string(),
+            clear_old: false,
         }
     }
 }
@@ -42,6 +54,7 @@ impl FramesDialog {
 pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<Command>) {
     let Some(d) = dialog else { return };
     let mut open = true;
+    let mut cancel = false;
     egui::Window::new("Export animation frames")
         .collapsible(false)
         .open(&mut open)
@@ -122,14 +135,29 @@ pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<C
                 n as f64 / d.settings.fps.max(1e-9),
                 d.settings.t1_s - d.settings.t0_s
             ));
-            if ui.button(RichText::new("Export").strong()).clicked() {
-                cmds.push(Command::ExportFrames {
-                    dir: PathBuf::from(d.dir.trim()),
-                    settings: d.settings,
-                });
+            let dir = PathBuf::from(d.dir.trim());
+            ui.label(RichText::new(format!("into {}", resolved(&dir).display())).weak());
+            let old = crate::output::animation::old_frames(&dir).len();
+            if old > 0 {
+                ui.checkbox(
+                    &mut d.clear_old,
+                    format!("clear the {old} old frames in this folder (else they would mix with the new ones)"),
+                );
             }
+            ui.horizontal(|ui| {
+                if ui.button(RichText::new("Export").strong()).clicked() {
+                    cmds.push(Command::ExportFrames {
+                        dir: dir.clone(),
+                        settings: d.settings,
+                        clear_old: d.clear_old,
+                    });
+                }
+                if ui.button("Cancel").clicked() {
+                    cancel = true;
+                }
+            });
         });
-    if !open {
+    if !open || cancel {
         *dialog = None;
     }
 }

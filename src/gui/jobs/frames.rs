@@ -23,8 +23,18 @@ impl FramesJob {
         start: Scene,
         cache: &ModeCache,
         edits: Vec<LiveEdit>,
+        clear_old: bool,
     ) -> Result<Self, String> {
         settings.check(start.duration_s)?;
+        // refused here, with the dialog still open, rather than by the job
+        let old = crate::output::animation::old_frames(&dir);
+        if !clear_old && !old.is_empty() {
+            return Err(format!(
+                "{} already holds {} frames of an earlier export: tick \"clear the old frames\" or choose another folder",
+                crate::gui::chrome::frames_dialog::resolved(&dir).display(),
+                old.len()
+            ));
+        }
         let model = PreparedModel::new(&start, cache).map_err(|e| e.to_string())?;
         let mut sim =
             Simulation::new(&model, SolverOptions::default()).map_err(|e| e.to_string())?;
@@ -35,6 +45,7 @@ impl FramesJob {
                 &sim,
                 &d,
                 &settings,
+                clear_old,
                 progress.done_counter(),
                 progress.cancel_flag(),
             )?;

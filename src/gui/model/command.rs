@@ -111,6 +111,8 @@ pub enum Command {
     ExportFrames {
         dir: PathBuf,
         settings: crate::output::animation::FrameSettings,
+        /// Remove the frames of an earlier export from `dir` first.
+        clear_old: bool,
     },
     CancelFrames,
     /// A researcher-tool request (spectra, sweep, A/B pin, exports).

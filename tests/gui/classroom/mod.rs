@@ -302,6 +302,7 @@ fn animation_export_writes_n_frames_of_the_right_size() {
     h.state_mut().apply(Command::ExportFrames {
         dir: dir.clone(),
         settings,
+        clear_old: false,
     });
     assert!(h.state().exporting_frames());
     h.step(); // the progress window shows while it runs
@@ -323,6 +324,12 @@ fn animation_export_writes_n_frames_of_the_right_size() {
     let a = image::open(frame_path(&dir, 0)).unwrap().to_rgb8();
     let b = image::open(frame_path(&dir, n - 1)).unwrap().to_rgb8();
     assert_ne!(a.as_raw(), b.as_raw());
+    // where they went is said
+    let m = h.state().message().unwrap();
+    assert!(
+        !m.error && m.text.contains(&format!("into {}", dir.display())),
+        "{m:?}"
+    );
     // bad settings are refused with the field named
     h.state_mut().apply(Command::ExportFrames {
         dir: dir.clone(),
@@ -330,9 +337,37 @@ fn animation_export_writes_n_frames_of_the_right_size() {
             fps: -1.0,
             ..settings
         },
+        clear_old: false,
     });
     let m = h.state().message().unwrap();
     assert!(m.error && m.text.contains("fps = -1"), "{m:?}");
+    // a shorter export into the same folder: refused (the old scene's last
+    // frames would stay behind and mix), unless the old frames are cleared
+    let shorter = FrameSettings {
+        t1_s: 0.06,
+        ..settings
+    };
+    h.state_mut().apply(Command::ExportFrames {
+        dir: dir.clone(),
+        settings: shorter,
+        clear_old: false,
+    });
+    assert!(!h.state().exporting_frames());
+    let m = h.state().message().unwrap();
+    assert!(
+        m.error
+            && m.text
+                .contains("already holds 10 frames of an earlier export"),
+        "{m:?}"
+    );
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count() as u64, n);
+    h.state_mut().apply(Command::ExportFrames {
+        dir: dir.clone(),
+        settings: shorter,
+        clear_old: true,
+    });
+    assert_eq!(h.state_mut().wait_frames_export(), Some(Ok(5)));
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 5);
 }
 
 #[test]
