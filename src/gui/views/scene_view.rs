@@ -215,8 +215,9 @@ pub fn show_with(
         .include_y(-geo.y_floor)
         .allow_scroll(false)
         .show(ui, |pui| {
-            let labels_floor = geo.draw(pui, sim.in_contact(), tyre_color, label_color);
-            extra(pui, &geo.displaced, labels_floor);
+            let (labels_floor, displaced) =
+                geo.draw(pui, sim.in_contact(), tyre_color, label_color);
+            extra(pui, &displaced, labels_floor);
         });
     super::axis_title::hover(ui, title_id, &title, Y_TITLE, *r.transform.frame(), 44.0);
 }
@@ -408,14 +409,15 @@ impl Geometry {
     }
 
     /// Road, undeformed and displaced tyre, contact states and force
-    /// arrows with their values; returns the lowest y of the value labels.
+    /// arrows with their values; returns the lowest y of the value labels
+    /// and the points' drawn positions.
     fn draw(
-        &self,
+        self,
         pui: &mut egui_plot::PlotUi<'_>,
         contact: &[bool],
         tyre_color: Color32,
         label_color: Color32,
-    ) -> Option<f64> {
+    ) -> (Option<f64>, Vec<[f64; 2]>) {
         let Geometry {
             road,
             undeformed,
@@ -425,7 +427,6 @@ impl Geometry {
             a_q,
             y_floor,
         } = self;
-        let (road, a_to, y_floor) = (road.clone(), a_to.clone(), *y_floor);
         pui.line(
             Line::new(ROAD_NAME, road)
                 .color(ROAD_COLOR)
@@ -480,14 +481,14 @@ impl Geometry {
                 pui,
                 FORCE_NAME,
                 FORCE_COLOR,
-                a_from,
-                a_q,
+                &a_from,
+                &a_q,
                 label_color,
-                undeformed,
+                &undeformed,
                 UNDEFORMED_MARKER_PX,
             );
         }
-        labels_floor
+        (labels_floor, displaced)
     }
 }
 
