@@ -348,6 +348,21 @@ pub fn old_frames(dir: &Path) -> Vec<PathBuf> {
     v
 }
 
+/// `Err` naming the folder if `dir` holds frames of an earlier export:
+/// new frames would mix with them (a shorter export left the old scene's
+/// last frames behind).
+pub fn refuse_old_frames(dir: &Path) -> Result<(), String> {
+    match old_frames(dir).len() {
+        0 => Ok(()),
+        n => Err(format!(
+            "{} already holds {n} frames of an earlier export (frame_*.png): expected a new or empty folder, or the old frames cleared",
+            std::path::absolute(dir)
+                .unwrap_or_else(|_| dir.to_path_buf())
+                .display()
+        )),
+    }
+}
+
 /// Draws the frames of `settings` into a folder as a run passes their
 /// times (a [`Probe`]): frame `k` shows the first state at or past
 /// `t_k - dt/2`. `progress` counts frames written; setting `cancel` stops
@@ -379,18 +394,12 @@ impl<'a> FrameWriter<'a> {
         cancel: &'a AtomicBool,
     ) -> Result<Self, String> {
         settings.check(sim.scene().duration_s)?;
-        let old = old_frames(dir);
-        if !old.is_empty() {
-            if !clear_old {
-                return Err(format!(
-                    "{} already holds {} frames of an earlier export (frame_*.png): expected a new or empty folder, or agree to clear the old frames",
-                    dir.display(),
-                    old.len()
-                ));
+        if clear_old {
+            for p in old_frames(dir) {
+                std::fs::remove_file(&p).map_err(|e| format!("{}: {e}", p.display()))?;
             }
-            for p in &old {
-                std::fs::remove_file(p).map_err(|e| format!("{}: {e}", p.display()))?;
-            }
+        } else {
+            refuse_old_frames(dir)?;
         }
         std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         let dt_s = sim.dt_s();

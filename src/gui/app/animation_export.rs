@@ -23,7 +23,9 @@ impl App {
         match r {
             Ok(n) => self.info(format!(
                 "wrote {n} animation frames (frame_00000.png …) into {}",
-                crate::gui::chrome::frames_dialog::resolved(dir).display()
+                std::path::absolute(dir)
+                    .unwrap_or_else(|_| dir.to_path_buf())
+                    .display()
             )),
             Err(e) => self.error(format!("Animation export stopped: {e}")),
         }

@@ -18,15 +18,6 @@ pub struct FramesDialog {
     pub clear_old: bool,
 }
 
-/// `dir` as an absolute path (a relative one is in the working directory).
-pub fn resolved(dir: &std::path::Path) -> PathBuf {
-    if dir.is_absolute() {
-        dir.to_path_buf()
-    } else {
-        std::env::current_dir().map_or_else(|_| dir.to_path_buf(), |c| c.join(dir))
-    }
-}
-
 impl FramesDialog {
     /// Defaults for a scene: its whole duration at 25 fps, 20x slow motion,
     /// 1280x720 px, into `frames/` beside the working directory.
@@ -136,7 +127,8 @@ pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<C
                 d.settings.t1_s - d.settings.t0_s
             ));
             let dir = PathBuf::from(d.dir.trim());
-            ui.label(RichText::new(format!("into {}", resolved(&dir).display())).weak());
+            let shown = std::path::absolute(&dir).unwrap_or_else(|_| dir.clone());
+            ui.label(RichText::new(format!("into {}", shown.display())).weak());
             let old = crate::output::animation::old_frames(&dir).len();
             if old > 0 {
                 ui.checkbox(

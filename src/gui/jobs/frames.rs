@@ -27,13 +27,8 @@ impl FramesJob {
     ) -> Result<Self, String> {
         settings.check(start.duration_s)?;
         // refused here, with the dialog still open, rather than by the job
-        let old = crate::output::animation::old_frames(&dir);
-        if !clear_old && !old.is_empty() {
-            return Err(format!(
-                "{} already holds {} frames of an earlier export: tick \"clear the old frames\" or choose another folder",
-                crate::gui::chrome::frames_dialog::resolved(&dir).display(),
-                old.len()
-            ));
+        if !clear_old {
+            crate::output::animation::refuse_old_frames(&dir)?;
         }
         let model = PreparedModel::new(&start, cache).map_err(|e| e.to_string())?;
         let mut sim =
