@@ -34,6 +34,53 @@ fn short_run(scene: &Scene) {
     }
 }
 
+/// A generated scene: modes given by their shapes at the points (one mode
+/// per `(f_hz, damping_ratio, shape)`), points 3 cm apart at heights `h_m`,
+/// a sine road `(amplitude_m, wavelength_m)`, rigid located contact.
+fn sine_scene(
+    name: &str,
+    modes: &[(f64, f64, Vec<f64>)],
+    h_m: &[f64],
+    (amplitude_m, wavelength_m): (f64, f64),
+    speed_mps: f64,
+    ramp_s: f64,
+    dt_s: f64,
+) -> Scene {
+    let p = h_m.len();
+    Scene {
+        name: name.into(),
+        description: String::new(),
+        tyre: Tyre::Modal {
+            modes: modes
+                .iter()
+                .map(|(f, xi, shape)| Mode {
+                    freq_hz: *f,
+                    damping_ratio: *xi,
+                    residue: vec![],
+                    shape: shape[..p].to_vec(),
+                })
+                .collect(),
+        },
+        points: (0..p)
+            .map(|i| Point {
+                x_m: 0.03 * i as f64,
+                h_m: h_m[i],
+            })
+            .collect(),
+        road: Road::Sine {
+            amplitude_m,
+            wavelength_m,
+        },
+        speed_mps,
+        ramp_s,
+        dt_s,
+        duration_s: 200.0 * dt_s,
+        contact_scheme: ContactScheme::Located,
+        contact: Contact::Rigid,
+        base_dir: None,
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: proptest_cases(400), ..ProptestConfig::default() })]
 
@@ -126,22 +173,9 @@ proptest! {
         dt_exp in -6.5f64..-3.0,
         paper in any::<bool>(),
     ) {
-        let scene = Scene {
-            name: "prop".into(),
-            description: String::new(),
-            tyre: Tyre::Modal { modes: modes.iter().map(|(f, xi, shape)| Mode {
-                freq_hz: *f, damping_ratio: *xi, residue: vec![], shape: shape[..p].to_vec(),
-            }).collect() },
-            points: (0..p).map(|i| Point { x_m: 0.03 * i as f64, h_m: h[i] }).collect(),
-            road: Road::Sine { amplitude_m: amp, wavelength_m: wl },
-            speed_mps: speed,
-            ramp_s: ramp,
-            dt_s: 10f64.powf(dt_exp),
-            duration_s: 200.0 * 10f64.powf(dt_exp),
-            contact_scheme: if paper { ContactScheme::Paper } else { ContactScheme::Located },
-            contact: Default::default(),
-            base_dir: None,
-        };
+        let mut scene = sine_scene("prop", &modes, &h[..p], (amp, wl), speed, ramp, 10f64.powf(dt_exp));
+        scene.duration_s = 200.0 * scene.dt_s;
+        scene.contact_scheme = if paper { ContactScheme::Paper } else { ContactScheme::Located };
         let f_max = modes.iter().map(|m| m.0).fold(0.0, f64::max);
         let resolved = speed * scene.dt_s * 20.0 <= wl && f_max * scene.dt_s * 20.0 <= 1.0;
         match Simulation::from_scene(&scene) {
@@ -223,22 +257,9 @@ proptest! {
         ramp in 0.001f64..0.01,
         dt_exp in -5.5f64..-4.0,
     ) {
-        let mut scene = Scene {
-            name: "pull".into(),
-            description: String::new(),
-            tyre: Tyre::Modal { modes: modes.iter().map(|(f, xi, shape)| Mode {
-                freq_hz: *f, damping_ratio: *xi, residue: vec![], shape: shape[..p].to_vec(),
-            }).collect() },
-            points: (0..p).map(|i| Point { x_m: 0.03 * i as f64, h_m: h[i] }).collect(),
-            road: Road::Sine { amplitude_m: amp, wavelength_m: wl },
-            speed_mps: speed,
-            ramp_s: ramp,
-            dt_s: 10f64.powf(dt_exp),
-            duration_s: 0.02,
-            contact_scheme: ContactScheme::Located,
-            contact: Contact::Compliant { stiffness_n_m: stiffness_exp[..p].iter().map(|e| 10f64.powf(*e)).collect() },
-            base_dir: None,
-        };
+        let mut scene = sine_scene("pull", &modes, &h[..p], (amp, wl), speed, ramp, 10f64.powf(dt_exp));
+        scene.duration_s = 0.02;
+        scene.contact = Contact::Compliant { stiffness_n_m: stiffness_exp[..p].iter().map(|e| 10f64.powf(*e)).collect() };
         let compliant = scene.clone();
         scene.contact = Contact::Rigid;
         let located = scene.clone();
