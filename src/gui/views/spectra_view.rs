@@ -96,7 +96,6 @@ pub fn excitation_text(scene: &Scene) -> String {
     }
 }
 
-#[allow(clippy::too_many_arguments)]
 pub fn show(
     ui: &mut Ui,
     scene: &Scene,
