@@ -12,6 +12,7 @@ use tirecontact::lsce::{Identification, Responses, Stability};
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
 use tirecontact::output::paper_figures::paper_figures;
 use tirecontact::output::record::{PLOT_SAMPLES, Recording};
+use tirecontact::output::summary::short_num;
 use tirecontact::scene::Tyre;
 use tirecontact::{Scene, Simulation};
 
@@ -279,11 +280,11 @@ fn run_figures(scene: &Scene, dir: &Path, stem: &str, clip_impacts: bool) -> Cli
     tirecontact::drive::run_to_end(&mut sim, &mut rec, tirecontact::drive::Watch::none())?;
     let wall = start.elapsed().as_secs_f64();
     let sub = format!(
-        "{}: V = {} m/s, road {}, dt = {:e} s ({} steps in {:.1} ms wall)",
+        "{}: V = {} m/s, road {}, dt = {} s ({} steps in {:.1} ms wall)",
         scene.name,
-        scene.speed_mps,
+        short_num(scene.speed_mps, 4),
         scene.road.kind(),
-        scene.dt_s,
+        short_num(scene.dt_s, 4),
         n,
         wall * 1e3
     );

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use tirecontact::drive::Watch;
 use tirecontact::output::csv::{self as csv_out, RunWriter};
+use tirecontact::output::record::{FigureSpec, RunPanel};
 use tirecontact::spectrum::Window;
 use tirecontact::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder, scene_markers};
 use tirecontact::{PreparedModel, Scene, SceneError, Simulation};
@@ -245,32 +246,7 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     ))
 }
 
-/// One line of scene parameters for figure subtitles; `num_modes`: the
-/// tyre's modes, given or identified.
-pub fn scene_summary(scene: &Scene, num_modes: usize) -> String {
-    let road = match &scene.road {
-        tirecontact::road::Road::Sine {
-            amplitude_m,
-            wavelength_m,
-        } => {
-            format!(
-                "sine road {:.2} mm / {:.3} m",
-                amplitude_m * 1e3,
-                wavelength_m
-            )
-        }
-        r => format!("{} road", r.kind()),
-    };
-    format!(
-        "{}, {}, {road}, V = {:.1} m/s ({:.0} km/h), dt = {:e} s, scheme {:?}",
-        tirecontact::output::count(scene.num_points(), "point"),
-        tirecontact::output::count(num_modes, "mode"),
-        scene.speed_mps,
-        scene.speed_mps * 3.6,
-        scene.dt_s,
-        scene.contact_scheme
-    )
-}
+pub use tirecontact::output::summary::scene_summary;
 
 /// Applies command-line overrides and re-validates.
 pub fn scene_with_overrides(args: &RunArgs) -> Result<Scene, SceneError> {
@@ -365,12 +341,14 @@ pub fn run(args: &RunArgs) -> CliResult {
     }
     let wall = start.elapsed().as_secs_f64();
     if let (Some(r), Some(path)) = (rec, &args.plot) {
-        let fig = r.figure(
-            &scene.name,
-            &scene_summary(&scene, model.modes().len()),
-            scene.dt_s,
-            !args.plot_unclipped,
-        );
+        let fig = r.figure(&FigureSpec {
+            title: &scene.name,
+            subtitle: &scene_summary(&scene, model.modes()),
+            dt_s: scene.dt_s,
+            clip_impacts: !args.plot_unclipped,
+            points: None,
+            panels: &RunPanel::RUN,
+        });
         tirecontact::output::figures::render_png(&fig, path, args.plot_size.0, args.plot_size.1)?;
         eprintln!("wrote {}", path.display());
     }
@@ -428,7 +406,7 @@ fn write_spectra(args: &RunArgs, model: &PreparedModel, rec: &SteadyRecorder) ->
         let marks = scene_markers(model, args.spectrum_max_hz);
         let fig = spectra.figure(
             &format!("{}: spectra", scene.name),
-            &scene_summary(scene, model.modes().len()),
+            &scene_summary(scene, model.modes()),
             &marks,
             args.spectrum_max_hz,
         );

@@ -119,7 +119,7 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
             &format!("{}: sweep of {param}", scene.name),
             &format!(
                 "base scene: {}",
-                super::run::scene_summary(&scene, cache.modes(&scene)?.len())
+                super::run::scene_summary(&scene, &cache.modes(&scene)?)
             ),
             param,
             &points,

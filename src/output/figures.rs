@@ -198,6 +198,15 @@ pub fn text_scale(width: u32, height: u32) -> f64 {
         .clamp(0.6, 3.0)
 }
 
+/// [`text_scale`] for `fig`'s stack of panels: at most the height over
+/// 150 px per panel and 100 px of titles, so that a tall stack keeps its
+/// plots high (four panels at 1600 × 1000 px had plots 41 px high under
+/// their text).
+pub fn figure_text_scale(fig: &Figure, width: u32, height: u32) -> f64 {
+    let n = fig.panels.len().max(1) as f64;
+    text_scale(width, height).min((f64::from(height) / (150.0 * n + 100.0)).max(0.6))
+}
+
 /// The font size (px) of the tick labels of a figure of `width × height`
 /// px: 14 × [`text_scale`], 22 px at 1200 px width (digits 14 px tall).
 pub fn tick_label_px(width: u32, height: u32) -> u32 {
@@ -249,6 +258,10 @@ pub struct PanelLayout {
     pub legend_px: Option<[i32; 4]>,
     /// Every series' points as drawn (finite ones), in pixels.
     pub curves_px: Vec<Vec<(i32, i32)>>,
+    /// The caption's and the axis titles' font sizes (px): one for all
+    /// the figure's panels.
+    pub caption_px: u32,
+    pub axis_title_px: u32,
 }
 
 /// [`render_png`], returning where each panel was drawn.
@@ -307,7 +320,7 @@ fn render_on(
 ) -> Result<Vec<PanelLayout>, Box<dyn std::error::Error>> {
     register_fonts();
     root.fill(&WHITE)?;
-    let scale = text_scale(width, height);
+    let scale = figure_text_scale(fig, width, height);
     let fs = |s: f64| (s * scale).round() as i32;
     let mut top = fs(10.0);
     // title and subtitle within the width (with text scaled by the width,
@@ -333,7 +346,39 @@ fn render_on(
     }
     let body = root.margin(top as u32, 0, 0, 0);
     let n = fig.panels.len().max(1);
-    let areas = body.split_evenly((n, 1));
+    // Stacked panels over one x axis (the time plots, a sweep's metrics)
+    // share it: the x title only under the last panel, which is taller by
+    // that much, and tighter margins between them (each panel with its own
+    // x title and margins left 4 % of a 1000 px figure to the plots).
+    let shared_x = n > 1
+        && fig.panels.windows(2).all(|w| {
+            w[0].x_label == w[1].x_label
+                && w[0].log_x == w[1].log_x
+                && data_ranges(&w[0]).0 == data_ranges(&w[1]).0
+        });
+    let frames: Vec<Frame> = (0..n)
+        .map(|k| {
+            let last = k + 1 == n;
+            Frame {
+                scale,
+                x_desc: !shared_x || last,
+                x_area: if !shared_x || last {
+                    fs(45.0)
+                } else {
+                    fs(26.0)
+                } as u32,
+                v_margin: if shared_x { fs(4.0) } else { fs(10.0) } as u32,
+            }
+        })
+        .collect();
+    let areas = if shared_x {
+        let extra = frames[n - 1].x_area as i32 - frames[0].x_area as i32;
+        let each = (body.dim_in_pixel().1 as i32 - extra) / n as i32;
+        let breaks: Vec<i32> = (1..n as i32).map(|k| k * each).collect();
+        body.split_by_breakpoints([] as [i32; 0], breaks)
+    } else {
+        body.split_evenly((n, 1))
+    };
     // When a panel's legend must go in a column right of its plot (no
     // corner free of data), every panel gets a column of the same width and
     // puts its legend there: the panels' plots keep one width and their x
@@ -342,7 +387,8 @@ fn render_on(
         .panels
         .iter()
         .zip(areas.iter())
-        .map(|(panel, area)| panel_legend(panel, area, scale))
+        .zip(&frames)
+        .map(|((panel, area), frame)| panel_legend(panel, area, frame))
         .collect();
     let column_w = legends
         .iter()
@@ -355,12 +401,43 @@ fn render_on(
         .panels
         .iter()
         .zip(areas.iter())
-        .map(|(panel, area)| y_area_px(panel, plot_h_of(panel, area, scale), scale))
+        .zip(&frames)
+        .map(|((panel, area), frame)| y_area_px(panel, plot_h_of(panel, area, frame), scale))
         .max()
         .unwrap_or(0);
+    // one type scale: every panel's caption and axis titles at the size
+    // that fits the tightest panel (each fitted alone, a figure's panels
+    // had captions of three different sizes)
+    type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+    let fitted = |f: &dyn Fn(&Panel, &Area<'_>, &Frame) -> u32| {
+        fig.panels
+            .iter()
+            .zip(areas.iter())
+            .zip(&frames)
+            .map(|((panel, area), frame)| f(panel, area, frame))
+            .min()
+            .unwrap_or(fs(14.0) as u32)
+    };
+    let type_px = TypeScale {
+        caption: fitted(&|panel, area, _| caption_px(panel, area, column_w, scale)),
+        axis_title: fitted(&|panel, area, frame| {
+            axis_title_px(panel, plot_h_of(panel, area, frame), scale)
+        }),
+    };
     let mut layouts = Vec::with_capacity(fig.panels.len());
-    for ((panel, area), legend) in fig.panels.iter().zip(areas.iter()).zip(&legends) {
-        layouts.push(draw_panel(panel, area, scale, legend, column_w, y_area)?);
+    for (((panel, area), legend), frame) in fig
+        .panels
+        .iter()
+        .zip(areas.iter())
+        .zip(&legends)
+        .zip(&frames)
+    {
+        let axes = Axes {
+            column_w,
+            y_area,
+            type_px,
+        };
+        layouts.push(draw_panel(panel, area, frame, legend, &axes)?);
     }
     Ok(layouts)
 }
@@ -375,16 +452,37 @@ fn data_ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
     )
 }
 
-/// The height (px) of `panel`'s plot in `area` at `scale` (estimated:
-/// the caption, the x axis' label area and the margins off).
+/// How a panel sits in the stack: the text scale, the height (px) of its
+/// x axis' label area, whether it carries the x title, its margin above
+/// and below (px).
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    scale: f64,
+    x_area: u32,
+    x_desc: bool,
+    v_margin: u32,
+}
+
+/// What the panels of a figure share: the legend column's width (when the
+/// legends are beside the plots), the y label area's width and the type
+/// scale.
+#[derive(Debug, Clone, Copy)]
+struct Axes {
+    column_w: Option<i32>,
+    y_area: u32,
+    type_px: TypeScale,
+}
+
+/// The height (px) of `panel`'s plot in `area` (estimated: the caption,
+/// the x axis' label area and the margins off).
 fn plot_h_of(
     panel: &Panel,
     area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
-    scale: f64,
+    frame: &Frame,
 ) -> f64 {
-    let fs = |s: f64| (s * scale).round() as u32;
     let area_h = f64::from(area.dim_in_pixel().1);
-    (area_h - f64::from(fs(45.0) + caption_h(panel, scale) + 2 * fs(10.0))).max(1.0)
+    let taken = frame.x_area + caption_h(panel, frame.scale) + 2 * frame.v_margin;
+    (area_h - f64::from(taken)).max(1.0)
 }
 
 /// How many y labels to ask plotters for in a plot `plot_h` px high:
@@ -447,6 +545,33 @@ fn y_area_px(panel: &Panel, plot_h: f64, scale: f64) -> u32 {
     (widest + 5 + fs(8.0) + title + fs(8.0)).min(fs(85.0))
 }
 
+/// The font sizes (px) shared by a figure's panels.
+#[derive(Debug, Clone, Copy)]
+struct TypeScale {
+    caption: u32,
+    axis_title: u32,
+}
+
+/// The largest caption size (px) at which `panel`'s title fits over its
+/// chart in `area` (left of the legend column `column_w`, if any), clear
+/// of the y-axis title's column on both sides (a long one ran into the
+/// rotated y title).
+fn caption_px(
+    panel: &Panel,
+    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    column_w: Option<i32>,
+    scale: f64,
+) -> u32 {
+    let fs = |s: f64| (s * scale).round() as u32;
+    if panel.title.is_empty() {
+        return fs(18.0);
+    }
+    let w = area.dim_in_pixel().0 as i32;
+    let chart_w = column_w.map_or(w, |cw| (w - cw - fs(10.0) as i32).max(w / 2));
+    let caption_w = chart_w - 2 * (fs(85.0) + fs(10.0)) as i32;
+    fit_font_px(&panel.title, caption_w, fs(18.0), fs(11.0))
+}
+
 /// Draws `panel` in `area`; its legend in the corner with the least data,
 /// or, with `column_w` (the figure's legend column, px), in a column of
 /// that width right of the plot (when every corner of some panel has data:
@@ -454,14 +579,19 @@ fn y_area_px(panel: &Panel, plot_h: f64, scale: f64) -> u32 {
 fn draw_panel(
     panel: &Panel,
     area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
-    scale: f64,
+    frame: &Frame,
     legend: &PanelLegend,
-    column_w: Option<i32>,
-    y_area: u32,
+    axes: &Axes,
 ) -> Result<PanelLayout, Box<dyn std::error::Error>> {
+    let scale = frame.scale;
+    let Axes {
+        column_w,
+        y_area,
+        type_px,
+    } = *axes;
     let fs = |s: f64| (s * scale).round() as u32;
     let (xs, ys) = data_ranges(panel);
-    let plot_h = plot_h_of(panel, area, scale);
+    let plot_h = plot_h_of(panel, area, frame);
     let (entries, corner, legend_wh) = (&legend.entries, &legend.corner, legend.size);
     let outside = column_w.is_some() && !entries.is_empty();
     let (chart_area, legend_area) = match column_w {
@@ -471,19 +601,21 @@ fn draw_panel(
         }
         None => area.split_horizontally(area.dim_in_pixel().0),
     };
-    let mut layout = PanelLayout::default();
+    let mut layout = PanelLayout {
+        caption_px: type_px.caption,
+        axis_title_px: type_px.axis_title,
+        ..PanelLayout::default()
+    };
     let mut builder = ChartBuilder::on(&chart_area);
-    // the caption is centred over the chart area: kept clear of the y-axis
-    // title's column on both sides (a long one ran into the rotated y title)
-    let caption_w = chart_area.dim_in_pixel().0 as i32 - 2 * (fs(85.0) + fs(10.0)) as i32;
-    let caption_px = fit_font_px(&panel.title, caption_w, fs(18.0), fs(11.0));
     if !panel.title.is_empty() {
         // none for no title: Fig. 1 and 2 kept an empty line over the plot
-        builder.caption(&panel.title, ("sans-serif", caption_px as i32));
+        builder.caption(&panel.title, ("sans-serif", type_px.caption as i32));
     }
     builder
         .margin(fs(10.0))
-        .x_label_area_size(fs(45.0))
+        .margin_top(frame.v_margin)
+        .margin_bottom(frame.v_margin)
+        .x_label_area_size(frame.x_area)
         .y_label_area_size(y_area);
     macro_rules! finish {
         ($chart:expr) => {{
@@ -499,13 +631,18 @@ fn draw_panel(
                 }
             };
             let y_ticks = y_label_count(panel, plot_h, scale);
-            let y_desc_px = axis_title_px(panel, plot_h, scale);
+            let y_desc_px = type_px.axis_title;
+            let x_desc = if frame.x_desc {
+                panel.x_label.as_str()
+            } else {
+                ""
+            };
             chart
                 .configure_mesh()
                 .x_label_formatter(&fx)
                 .y_label_formatter(&fy)
                 .y_labels(y_ticks)
-                .x_desc(panel.x_label.as_str())
+                .x_desc(x_desc)
                 .y_desc(panel.y_label.as_str())
                 .label_style(("sans-serif", fs(14.0) as i32))
                 .axis_desc_style(("sans-serif", y_desc_px as i32))

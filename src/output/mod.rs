@@ -6,6 +6,7 @@ pub mod figures;
 pub mod impacts;
 pub mod paper_figures;
 pub mod record;
+pub mod summary;
 
 pub use crate::error::count;
 pub use crate::fsio::{AtomicFile, write_atomic, write_atomic_with};

@@ -23,7 +23,7 @@ pub fn paper_figures(
     };
     let win_ms = rec.window_ms(scene.dt_s);
     // (clipped impacts are said by their legend entry, CLIPPED_IMPACTS)
-    let (forces, _clipped) = rec.force_series(clip_impacts, &name);
+    let (forces, _clipped) = rec.force_series(clip_impacts, None, &name);
     let force_title = "Fig. 2: contact force on the contact points".to_string();
     let panel = |y_label: String, series| Panel {
         title: String::new(),
@@ -40,7 +40,7 @@ pub fn paper_figures(
                 subtitle: subtitle.into(),
                 panels: vec![panel(
                     "displacement u (mm), up".into(),
-                    rec.displacement_series(&name),
+                    rec.displacement_series(None, &name),
                 )],
             },
         ),

@@ -5,7 +5,11 @@
 
 use crate::output::figures::{Figure, Panel, Series, Style};
 use crate::output::impacts::{ImpactTracker, clip_level};
+use crate::output::summary;
 use crate::simulation::Simulation;
+
+/// Palette index of the clipped impacts' dots: black.
+const IMPACT_COLOR: usize = 6;
 
 /// Name of the series of clipped impact samples in a recording's figure.
 pub const CLIPPED_IMPACTS: &str = "impacts (impulse / dt), clipped";
@@ -27,11 +31,55 @@ pub struct Recording {
     /// The impact part of `q_n`, window mean `qi[i][k]` (N): located
     /// impulses / dt, or the paper scheme's landing steps.
     pub q_impact_n: Vec<Vec<f64>>,
+    /// `contact[i][k]`: point `i` touched the road during window `k`.
+    pub contact: Vec<Vec<bool>>,
     every: u64,
     count: u64,
     q_sum: Vec<f64>,
     qi_sum: Vec<f64>,
+    contact_any: Vec<bool>,
     impacts: ImpactTracker,
+}
+
+/// A panel of a run figure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunPanel {
+    /// Displacement `u` (mm, positive up).
+    Displacement,
+    /// Window-mean contact force `q` (N).
+    Force,
+    /// Gap to the road `u − r` (mm).
+    Gap,
+    /// Contact state: a lane per point, raised while in contact.
+    Contact,
+}
+
+impl RunPanel {
+    /// The command line's run figure (`run --plot`).
+    pub const RUN: [RunPanel; 2] = [RunPanel::Displacement, RunPanel::Force];
+    /// The visualiser's time plots.
+    pub const TIME_PLOTS: [RunPanel; 4] = [
+        RunPanel::Displacement,
+        RunPanel::Force,
+        RunPanel::Gap,
+        RunPanel::Contact,
+    ];
+}
+
+/// What a run figure shows and how it is titled.
+#[derive(Debug, Clone, Copy)]
+pub struct FigureSpec<'a> {
+    pub title: &'a str,
+    /// One line of scene parameters (`output::summary::scene_summary`).
+    pub subtitle: &'a str,
+    /// The run's step (s): with the recording's window, the force's
+    /// averaging time said in its caption.
+    pub dt_s: f64,
+    /// Cut impact spikes a margin above the force without impacts.
+    pub clip_impacts: bool,
+    /// The points drawn (`None`: all).
+    pub points: Option<&'a [usize]>,
+    pub panels: &'a [RunPanel],
 }
 
 impl Recording {
@@ -42,32 +90,109 @@ impl Recording {
             q_n: vec![Vec::new(); p],
             r_m: vec![Vec::new(); p],
             q_impact_n: vec![Vec::new(); p],
+            contact: vec![Vec::new(); p],
             every: total_steps.div_ceil(max_samples.max(1)).max(1),
             q_sum: vec![0.0; p],
             qi_sum: vec![0.0; p],
+            contact_any: vec![false; p],
             ..Default::default()
         }
     }
 
     /// Call after every step.
     pub fn after_step(&mut self, sim: &Simulation) {
-        for (s, q) in self.q_sum.iter_mut().zip(sim.force_n()) {
+        for ((s, q), c) in self
+            .q_sum
+            .iter_mut()
+            .zip(sim.force_n())
+            .zip(self.contact_any.iter_mut())
+        {
             *s += q;
+            *c |= *q > 0.0;
         }
         self.impacts.add_step(sim, &mut self.qi_sum);
         self.count += 1;
         if self.count == self.every || sim.finished() {
             self.t_s.push(sim.time_s());
             let n = self.count as f64;
+            let touching = sim.in_contact();
             for i in 0..self.q_sum.len() {
                 self.u_m[i].push(sim.displacement_m()[i]);
                 self.r_m[i].push(sim.road_m()[i]);
                 self.q_n[i].push(self.q_sum[i] / n);
                 self.q_impact_n[i].push(self.qi_sum[i] / n);
+                self.contact[i].push(self.contact_any[i] || touching[i]);
             }
             self.q_sum.fill(0.0);
             self.qi_sum.fill(0.0);
+            self.contact_any.fill(false);
             self.count = 0;
+        }
+    }
+
+    /// A recording of samples taken elsewhere (the visualiser's history),
+    /// each a window of `every` steps; the series are per point, all as
+    /// long as `t_s`.
+    pub fn from_samples(
+        every: u64,
+        t_s: Vec<f64>,
+        u_m: Vec<Vec<f64>>,
+        q_n: Vec<Vec<f64>>,
+        r_m: Vec<Vec<f64>>,
+        q_impact_n: Vec<Vec<f64>>,
+        contact: Vec<Vec<bool>>,
+    ) -> Self {
+        Recording {
+            t_s,
+            u_m,
+            q_n,
+            r_m,
+            q_impact_n,
+            contact,
+            every: every.max(1),
+            ..Default::default()
+        }
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.t_s.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.t_s.is_empty()
+    }
+
+    /// The recording with every `factor` consecutive samples merged into
+    /// one window, as if it had been recorded with `factor` times longer
+    /// windows: forces averaged (impulses kept), displacement and road at
+    /// the window's end, contact if any merged sample had it.
+    pub fn merged(&self, factor: usize) -> Recording {
+        let factor = factor.max(1);
+        if factor == 1 {
+            return self.clone();
+        }
+        let chunks = |v: &[f64]| -> Vec<f64> {
+            v.chunks(factor)
+                .map(|c| c.iter().sum::<f64>() / c.len() as f64)
+                .collect()
+        };
+        let last = |v: &[f64]| -> Vec<f64> {
+            v.chunks(factor).filter_map(|c| c.last().copied()).collect()
+        };
+        Recording {
+            t_s: last(&self.t_s),
+            u_m: self.u_m.iter().map(|v| last(v)).collect(),
+            q_n: self.q_n.iter().map(|v| chunks(v)).collect(),
+            r_m: self.r_m.iter().map(|v| last(v)).collect(),
+            q_impact_n: self.q_impact_n.iter().map(|v| chunks(v)).collect(),
+            contact: self
+                .contact
+                .iter()
+                .map(|v| v.chunks(factor).map(|c| c.iter().any(|&b| b)).collect())
+                .collect(),
+            every: self.every * factor as u64,
+            ..Default::default()
         }
     }
 
@@ -79,34 +204,46 @@ impl Recording {
     /// The force level above which the figure clips impact spikes (N): a
     /// margin above the force without impacts; `None` without samples.
     pub fn clip_level_n(&self) -> Option<f64> {
+        self.clip_level_of(None)
+    }
+
+    /// [`Self::clip_level_n`] of `points` only (`None`: all).
+    pub fn clip_level_of(&self, points: Option<&[usize]>) -> Option<f64> {
         let smooth = self
             .q_n
             .iter()
             .zip(&self.q_impact_n)
-            .flat_map(|(q, qi)| q.iter().zip(qi).map(|(a, b)| a - b));
+            .enumerate()
+            .filter(|(i, _)| points.is_none_or(|p| p.contains(i)))
+            .flat_map(|(_, (q, qi))| q.iter().zip(qi).map(|(a, b)| a - b));
         let (lo, hi) = smooth.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
             (lo.min(v), hi.max(v))
         });
         (lo <= hi).then(|| clip_level((lo, hi)))
     }
 
-    /// Displacement (mm) of every point, named `name(i)`.
-    pub fn displacement_series(&self, name: &dyn Fn(usize) -> String) -> Vec<Series> {
-        self.series(&self.u_m, 1e3, name)
+    /// Displacement (mm) of `points` (`None`: all), named `name(i)`.
+    pub fn displacement_series(
+        &self,
+        points: Option<&[usize]>,
+        name: &dyn Fn(usize) -> String,
+    ) -> Vec<Series> {
+        self.series(points, &|i, k| self.u_m[i][k] * 1e3, name)
     }
 
-    /// Window-mean force (N) of every point, named `name(i)`. With
-    /// `clip_impacts` the spikes are cut at [`Self::clip_level_n`] (so the
-    /// force without impacts sets the axis), drawn in thin lines, and the
-    /// cut samples follow as one series of dots, [`CLIPPED_IMPACTS`]; the
-    /// flag returned says whether any sample was cut.
+    /// Window-mean force (N) of `points` (`None`: all), named `name(i)`.
+    /// With `clip_impacts` the spikes are cut at [`Self::clip_level_of`]
+    /// the points (so the force without impacts sets the axis), drawn in
+    /// thin lines, and the cut samples follow as one series of dots,
+    /// [`CLIPPED_IMPACTS`]; the flag returned says whether any was cut.
     pub fn force_series(
         &self,
         clip_impacts: bool,
+        points: Option<&[usize]>,
         name: &dyn Fn(usize) -> String,
     ) -> (Vec<Series>, bool) {
-        let mut forces = self.series(&self.q_n, 1.0, name);
-        let Some(top) = self.clip_level_n().filter(|_| clip_impacts) else {
+        let mut forces = self.series(points, &|i, k| self.q_n[i][k], name);
+        let Some(top) = self.clip_level_of(points).filter(|_| clip_impacts) else {
             return (forces, false);
         };
         let mut marks = Vec::new();
@@ -126,24 +263,35 @@ impl Recording {
                 name: CLIPPED_IMPACTS.into(),
                 points: marks,
                 style: Style::Markers(3),
-                color: Some(6),
+                color: Some(IMPACT_COLOR),
             });
         }
         (forces, clipped)
     }
 
-    fn series(&self, data: &[Vec<f64>], scale: f64, name: &dyn Fn(usize) -> String) -> Vec<Series> {
-        data.iter()
-            .enumerate()
-            .map(|(i, d)| {
-                Series::line(
-                    name(i),
-                    self.t_s
-                        .iter()
-                        .zip(d)
-                        .map(|(&t, &x)| (t, x * scale))
-                        .collect(),
-                )
+    /// The drawn points: `points`, or all.
+    fn chosen(&self, points: Option<&[usize]>) -> Vec<usize> {
+        let p = self.u_m.len();
+        points.map_or_else(
+            || (0..p).collect(),
+            |ps| ps.iter().copied().filter(|&i| i < p).collect(),
+        )
+    }
+
+    /// `value(i, k)` over time for each chosen point, coloured by its index.
+    fn series(
+        &self,
+        points: Option<&[usize]>,
+        value: &dyn Fn(usize, usize) -> f64,
+        name: &dyn Fn(usize) -> String,
+    ) -> Vec<Series> {
+        self.chosen(points)
+            .into_iter()
+            .map(|i| {
+                let pts = (0..self.t_s.len()).map(|k| (self.t_s[k], value(i, k)));
+                let mut s = Series::line(name(i), pts.collect());
+                s.color = Some(i);
+                s
             })
             .collect()
     }
@@ -153,36 +301,82 @@ impl Recording {
         self.every as f64 * dt_s * 1e3
     }
 
-    /// The standard run figure: displacements (mm) and forces (N) per point.
-    /// With `clip_impacts` the force axis fits the force without impacts
-    /// and impact spikes are cut a margin above it, each cut sample marked
-    /// by a dot (impulse / dt of a rigid landing is tens of kN against a
-    /// rolling force of about 1 kN).
-    pub fn figure(&self, title: &str, subtitle: &str, dt_s: f64, clip_impacts: bool) -> Figure {
-        let win_ms = self.window_ms(dt_s);
-        // (clipped impacts are said by their legend entry, CLIPPED_IMPACTS:
-        // said in the title too, it shrank to fit below the tick labels' size)
-        let force_title = format!("Contact force, mean over {win_ms:.3} ms windows");
-        let (forces, _clipped) = self.force_series(clip_impacts, &|i| format!("q{i}"));
+    /// The run figure: `spec.panels` stacked over time, for the chosen
+    /// points, one colour per point in every panel and one legend (in the
+    /// first panel). With `clip_impacts` the force axis fits the force
+    /// without impacts and impact spikes are cut a margin above it, each
+    /// cut sample marked by a dot (impulse / dt of a rigid landing is tens
+    /// of kN against a rolling force of about 1 kN).
+    pub fn figure(&self, spec: &FigureSpec<'_>) -> Figure {
+        let points = spec.points;
+        let win_ms = summary::short_num(self.window_ms(spec.dt_s), 3);
+        let panels = spec
+            .panels
+            .iter()
+            .enumerate()
+            .map(|(n, &what)| {
+                let name = |i: usize| {
+                    if n == 0 {
+                        format!("point {i}")
+                    } else {
+                        String::new()
+                    }
+                };
+                let panel = |title: String, y_label: &str, series: Vec<Series>| Panel {
+                    title,
+                    x_label: "time t (s)".into(),
+                    y_label: y_label.into(),
+                    series,
+                    ..Panel::default()
+                };
+                match what {
+                    RunPanel::Displacement => panel(
+                        "Displacement of the contact points (positive up)".into(),
+                        "displacement u (mm)",
+                        self.displacement_series(points, &name),
+                    ),
+                    // (clipped impacts are said by their legend entry)
+                    RunPanel::Force => panel(
+                        format!("Contact force, mean over {win_ms} ms windows"),
+                        "contact force q (N)",
+                        self.force_series(spec.clip_impacts, points, &name).0,
+                    ),
+                    RunPanel::Gap => panel(
+                        "Gap to the road (u − r)".into(),
+                        "gap (mm)",
+                        self.series(
+                            points,
+                            &|i, k| (self.u_m[i][k] - self.r_m[i][k]) * 1e3,
+                            &name,
+                        ),
+                    ),
+                    RunPanel::Contact => {
+                        let chosen = self.chosen(points);
+                        let lanes = self.series(
+                            points,
+                            &|i, k| {
+                                let lane = chosen.iter().position(|&c| c == i).unwrap_or(0);
+                                lane as f64 + if self.contact[i][k] { 0.7 } else { 0.0 }
+                            },
+                            &name,
+                        );
+                        Panel {
+                            // the lanes named after their points
+                            y_names: chosen.iter().map(|i| format!("p{i}")).collect(),
+                            ..panel(
+                                "Contact state (a lane per point, raised = in contact)".into(),
+                                "point",
+                                lanes,
+                            )
+                        }
+                    }
+                }
+            })
+            .collect();
         Figure {
-            title: title.to_string(),
-            subtitle: subtitle.to_string(),
-            panels: vec![
-                Panel {
-                    title: "Displacement of the contact points (positive up)".into(),
-                    x_label: "time t (s)".into(),
-                    y_label: "displacement u (mm)".into(),
-                    series: self.displacement_series(&|i| format!("u{i}")),
-                    ..Panel::default()
-                },
-                Panel {
-                    title: force_title,
-                    x_label: "time t (s)".into(),
-                    y_label: "contact force q (N)".into(),
-                    series: forces,
-                    ..Panel::default()
-                },
-            ],
+            title: spec.title.to_string(),
+            subtitle: spec.subtitle.to_string(),
+            panels,
         }
     }
 }
@@ -230,17 +424,25 @@ mod tests {
             let top = rec.clip_level_n().unwrap();
             // the spikes are impulses / dt: far above the rolling force
             assert!(raw > 5.0 * top, "{scheme:?}: spikes {raw} N, clip {top} N");
-            let clipped = rec.figure("t", "s", dt, true);
+            let spec = |clip_impacts| FigureSpec {
+                title: "t",
+                subtitle: "s",
+                dt_s: dt,
+                clip_impacts,
+                points: None,
+                panels: &RunPanel::RUN,
+            };
+            let clipped = rec.figure(&spec(true));
             let forces = &clipped.panels[1].series;
-            assert!((highest(forces, "q") - top).abs() <= 1e-9 * top);
+            assert!((highest(forces, "") - top).abs() <= 1e-9 * top);
             let marks = forces.iter().find(|s| s.name == CLIPPED_IMPACTS).unwrap();
             assert!(!marks.points.is_empty());
             assert!(marks.points.iter().all(|p| p.1 == top));
             // said once, by the legend entry, not again in the caption
             assert!(!clipped.panels[1].title.contains("clipped"));
             // unclipped: the spikes are drawn whole
-            let full = rec.figure("t", "s", dt, false);
-            assert_eq!(highest(&full.panels[1].series, "q"), raw);
+            let full = rec.figure(&spec(false));
+            assert_eq!(highest(&full.panels[1].series, ""), raw);
             assert!(
                 full.panels[1]
                     .series
@@ -248,5 +450,84 @@ mod tests {
                     .all(|s| s.name != CLIPPED_IMPACTS)
             );
         }
+    }
+
+    /// Merging the samples of a run recorded every step into windows of
+    /// `f` steps gives what recording with windows of `f` steps gives.
+    #[test]
+    fn merged_samples_equal_a_recording_with_longer_windows() {
+        let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+        scene.duration_s = 0.01;
+        let n = scene.num_steps();
+        let f = 7u64;
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        let mut fine = Recording::new(scene.num_points(), n, n);
+        let mut coarse = Recording::new(scene.num_points(), n, n.div_ceil(f));
+        assert_eq!((fine.every(), coarse.every()), (1, f));
+        while !sim.finished() {
+            sim.step().unwrap();
+            fine.after_step(&sim);
+            coarse.after_step(&sim);
+        }
+        let merged = fine.merged(f as usize);
+        assert_eq!(merged.every(), f);
+        assert_eq!(merged.len(), coarse.len());
+        assert_eq!(merged.t_s, coarse.t_s);
+        assert_eq!(merged.u_m, coarse.u_m);
+        assert_eq!(merged.r_m, coarse.r_m);
+        assert_eq!(merged.contact, coarse.contact);
+        assert!(merged.contact.iter().flatten().any(|&c| c));
+        assert!(merged.contact.iter().flatten().any(|&c| !c));
+        for (a, b) in [
+            (&merged.q_n, &coarse.q_n),
+            (&merged.q_impact_n, &coarse.q_impact_n),
+        ] {
+            for (x, y) in a.iter().flatten().zip(b.iter().flatten()) {
+                assert!((x - y).abs() <= 1e-9 * (1.0 + y.abs()), "{x} vs {y}");
+            }
+        }
+    }
+
+    /// The figure draws the chosen points only, one colour per point in
+    /// every panel, the contact lanes named after their points.
+    #[test]
+    fn the_time_plots_figure_draws_the_chosen_points_in_four_panels() {
+        let (rec, dt) = record(ContactScheme::Located);
+        let fig = rec.figure(&FigureSpec {
+            title: "t",
+            subtitle: "s",
+            dt_s: dt,
+            clip_impacts: true,
+            points: Some(&[0, 2]),
+            panels: &RunPanel::TIME_PLOTS,
+        });
+        assert_eq!(fig.panels.len(), 4);
+        for panel in &fig.panels {
+            let colours: Vec<_> = panel
+                .series
+                .iter()
+                .filter(|s| s.name != CLIPPED_IMPACTS)
+                .map(|s| s.color)
+                .collect();
+            assert_eq!(colours, [Some(0), Some(2)], "{}", panel.title);
+        }
+        let names: Vec<&str> = fig.panels[0]
+            .series
+            .iter()
+            .map(|s| s.name.as_str())
+            .collect();
+        assert_eq!(names, ["point 0", "point 2"]);
+        assert_eq!(fig.panels[3].y_names, ["p0", "p2"]);
+        // lane 1 (point 2) sits at 1 or 1.7
+        assert!(
+            fig.panels[3].series[1]
+                .points
+                .iter()
+                .all(|p| p.1 == 1.0 || p.1 == 1.7)
+        );
+        // the gap is u - r in mm
+        let k = rec.len() / 2;
+        let gap = fig.panels[2].series[1].points[k].1;
+        assert!((gap - (rec.u_m[2][k] - rec.r_m[2][k]) * 1e3).abs() < 1e-12);
     }
 }

@@ -10,23 +10,18 @@
 use crate::drive::{self, Probe, Watch};
 use crate::error::RunError;
 use crate::gui::jobs::{Job, Progress};
-use crate::gui::model::history::{History, Quantity};
-use crate::gui::views::time_plots::{clip_level, force_range};
+use crate::gui::model::history::History;
 use crate::identify::{ModeCache, PreparedModel};
 use crate::modal::Mode;
 use crate::output::csv::RunWriter;
-use crate::output::figures::{Figure, Panel, Series, Style, render_png};
+use crate::output::figures::{Figure, render_png};
+use crate::output::record::{FigureSpec, PLOT_SAMPLES, RunPanel};
+use crate::output::summary::{scene_summary, short_num};
 use crate::road::{Road, RoadProfile};
 use crate::{Scene, Simulation, SolverOptions};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
-
-/// Samples per series in an exported figure (min/max decimated).
-const FIGURE_BUCKETS: usize = 2000;
-
-/// Palette index of the clipped impacts' dots: black.
-const IMPACT_COLOR: usize = 6;
 
 /// A road or speed change made while the run was going.
 #[derive(Debug, Clone, PartialEq)]
@@ -84,64 +79,17 @@ pub fn replay(
     Ok(())
 }
 
-/// Modes listed one by one in a subtitle (more are given as ranges).
-const SUMMARY_MODES: usize = 4;
-
-fn min_max(v: impl Iterator<Item = f64>) -> (f64, f64) {
-    v.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-        (lo.min(x), hi.max(x))
-    })
-}
-
-/// One line of scene parameters for figure subtitles.
-pub fn scene_summary(scene: &Scene, modes: &[Mode]) -> String {
-    let n_modes = modes.len();
-    // a few modes listed, more summarised (the subtitle is one line)
-    let modes: Vec<String> = if n_modes <= SUMMARY_MODES {
-        modes
-            .iter()
-            .map(|m| format!("{:.1} Hz/{:.3}", m.freq_hz, m.damping_ratio))
-            .collect()
-    } else {
-        let (f, z) = (
-            min_max(modes.iter().map(|m| m.freq_hz)),
-            min_max(modes.iter().map(|m| m.damping_ratio)),
-        );
-        vec![format!(
-            "{:.1} … {:.1} Hz/{:.3} … {:.3}",
-            f.0, f.1, z.0, z.1
-        )]
-    };
-    let road = match &scene.road {
-        Road::Sine {
-            amplitude_m,
-            wavelength_m,
-        } => format!("sine a = {} mm, λ = {} m", amplitude_m * 1e3, wavelength_m),
-        Road::Harmonics { components } => format!("{} harmonics", components.len()),
-        Road::Measured { file, .. } => format!("measured {}", file.display()),
-        Road::Random { class, seed, .. } => format!("ISO 8608 class {class:?}, seed {seed}"),
-    };
-    format!(
-        "{} points; {n_modes} modes (f/ξ): {}; road {}; V = {} m/s ({:.1} km/h); ramp {} s; dt = {:e} s",
-        scene.num_points(),
-        modes.join(", "),
-        road,
-        scene.speed_mps,
-        scene.speed_mps * 3.6,
-        scene.ramp_s,
-        scene.dt_s
-    )
-}
-
 /// Name of the exported force panel's series of clipped impacts (the
 /// same as the CLI's figures).
 pub use crate::output::record::CLIPPED_IMPACTS;
 
-/// The figure of the time plots over the whole recorded run. With
-/// `clip_impacts` (the time plots' "clip impact spikes"), the force panel
-/// is cut at the level the time plots use (a margin above the force without
-/// impacts of the shown points) and the clipped samples are marked with dots
-/// at that level, so the rolling force stays readable in a report.
+/// The figure of the time plots over the whole recorded run, drawn as
+/// `run --plot` draws its figure (the history as a recording of at most
+/// [`PLOT_SAMPLES`] windows, forces window means): the four quantities of
+/// the time plots for the `shown` points. With `clip_impacts` (the time
+/// plots' "clip impact spikes"), the force panel is cut a margin above the
+/// force without impacts of the shown points, the cut samples marked by
+/// dots at that level, so the rolling force stays readable in a report.
 pub fn time_figure(
     scene: &Scene,
     modes: &[Mode],
@@ -150,101 +98,19 @@ pub fn time_figure(
     clip_impacts: bool,
 ) -> Figure {
     let t1 = history.last_time().unwrap_or(0.0);
-    let shown_points: Vec<usize> = (0..history.num_points())
+    let points: Vec<usize> = (0..history.num_points())
         .filter(|&i| shown.get(i).copied().unwrap_or(true))
         .collect();
-    let force_top = if clip_impacts {
-        force_range(history, &shown_points, 0.0, t1, FIGURE_BUCKETS).map(clip_level)
-    } else {
-        None
-    };
-    let defs = [
-        (Quantity::Displacement, "displacement", "u (mm, up)", 1e3),
-        (Quantity::Force, "contact force (step mean)", "q (N)", 1.0),
-        (Quantity::Gap, "gap to the road", "gap (mm)", 1e3),
-        (
-            Quantity::Contact,
-            "contact state (lane per point, raised = contact)",
-            "point",
-            1.0,
-        ),
-    ];
-    let panels = defs
-        .iter()
-        .enumerate()
-        .map(|(panel_index, &(what, title, y_label, scale))| {
-            let top = force_top.filter(|_| what == Quantity::Force);
-            let mut marks = Vec::new();
-            let mut series: Vec<Series> = shown_points
-                .iter()
-                .enumerate()
-                .map(|(lane, &i)| {
-                    let mut pts: Vec<(f64, f64)> = history
-                        .decimated(what, i, 0.0, t1, FIGURE_BUCKETS, scale)
-                        .into_iter()
-                        .map(|[t, y]| (t, y))
-                        .collect();
-                    if what == Quantity::Contact {
-                        for p in &mut pts {
-                            p.1 = lane as f64 + 0.7 * p.1;
-                        }
-                    }
-                    if let Some(top) = top {
-                        for p in &mut pts {
-                            if p.1 > top {
-                                p.1 = top;
-                                marks.push(*p);
-                            }
-                        }
-                    }
-                    // the points' colours are the same in every panel: one
-                    // legend, in the first (four legends of 5-50 entries
-                    // covered the data and overflowed short panels)
-                    let name = if panel_index == 0 {
-                        format!("point {i}")
-                    } else {
-                        String::new()
-                    };
-                    let mut s = Series::line(name, pts);
-                    s.color = Some(i);
-                    if what == Quantity::Force {
-                        // one-pixel lines: wide ones overshoot the panel at
-                        // the spikes of impacts (clipped or not)
-                        s.style = Style::ThinLine;
-                    }
-                    s
-                })
-                .collect();
-            // (clipped impacts are said by their legend entry)
-            let title = title.to_string();
-            if top.is_some() && !marks.is_empty() {
-                series.push(Series {
-                    name: CLIPPED_IMPACTS.to_string(),
-                    points: marks,
-                    style: Style::Markers(3),
-                    color: Some(IMPACT_COLOR),
-                });
-            }
-            // the contact lanes named after their points
-            let y_names = match what {
-                Quantity::Contact => shown_points.iter().map(|i| format!("p{i}")).collect(),
-                _ => Vec::new(),
-            };
-            Panel {
-                title,
-                x_label: "time t (s)".to_string(),
-                y_label: y_label.to_string(),
-                series,
-                y_names,
-                ..Panel::default()
-            }
-        })
-        .collect();
-    Figure {
-        title: format!("{} — t = 0 … {:.4} s", scene.name, t1),
-        subtitle: scene_summary(scene, modes),
-        panels,
-    }
+    let rec = history.to_recording();
+    let rec = rec.merged(rec.len().div_ceil(PLOT_SAMPLES as usize));
+    rec.figure(&FigureSpec {
+        title: &format!("{} — t = 0 … {} s", scene.name, short_num(t1, 4)),
+        subtitle: &scene_summary(scene, modes),
+        dt_s: scene.dt_s,
+        clip_impacts,
+        points: Some(&points),
+        panels: &RunPanel::TIME_PLOTS,
+    })
 }
 
 /// Writes the time plots as a `width × height` PNG (force clipped as in

@@ -8,6 +8,7 @@
 use crate::Simulation;
 use crate::output::impacts::ImpactTracker;
 pub use crate::output::impacts::paper_impact_n;
+use crate::output::record::Recording;
 
 /// Samples kept across all series (bounds memory to a few tens of MB).
 pub const DEFAULT_BUDGET: usize = 8_000_000;
@@ -219,6 +220,31 @@ impl History {
             &self.t[lo..hi],
             |k| self.value(what, i, lo + k) * scale,
             buckets,
+        )
+    }
+}
+
+impl History {
+    /// The samples as a [`Recording`] (SI units, windows of the current
+    /// stride): `u`, window-mean `q` and its impact part, the road
+    /// `r = u − gap`, contact. What `run --plot` draws, drawn the same way.
+    pub fn to_recording(&self) -> Recording {
+        let per_point = |f: &dyn Fn(usize, usize) -> f64| -> Vec<Vec<f64>> {
+            (0..self.p)
+                .map(|i| (0..self.len()).map(|k| f(i, k)).collect())
+                .collect()
+        };
+        Recording::from_samples(
+            self.stride,
+            self.t.clone(),
+            per_point(&|i, k| f64::from(self.u[i][k])),
+            per_point(&|i, k| f64::from(self.q[i][k])),
+            per_point(&|i, k| f64::from(self.u[i][k]) - f64::from(self.gap[i][k])),
+            per_point(&|i, k| f64::from(self.q_impact[i][k])),
+            self.contact
+                .iter()
+                .map(|c| c.iter().map(|&b| b != 0).collect())
+                .collect(),
         )
     }
 }

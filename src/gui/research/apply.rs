@@ -1,7 +1,7 @@
 //! The researcher tools' side of `App::apply` and of the frame loop.
 
 use super::ResearchCommand;
-use super::compare::{pin_label, recording_from_history, recording_without_impacts};
+use super::compare::{pin_label, recording_without_impacts};
 use super::fidelity::FidelityRef;
 use super::spectra::{HistoryKey, SpectraInput};
 use super::spectra_job::{INLINE_MAX_WORK, SpectraJob, SpectraPoll};
@@ -98,7 +98,7 @@ impl App {
                 self.report_export(&path, "sweep PNG", r);
             }
             ResearchCommand::PinReference => {
-                let rec = recording_from_history(&self.history);
+                let rec = self.history.to_recording();
                 let label = pin_label(&self.doc.scene, self.sim.time_s());
                 self.research.pinned = Some(PinnedRun::new(label.clone(), &self.doc.scene, &rec));
                 self.research.pinned_without_impacts = Some(PinnedRun::new(
@@ -221,9 +221,9 @@ impl App {
             View::Compare => {
                 if let Some(pin) = &self.research.pinned {
                     let h = &self.history;
-                    self.research.difference.refresh(key, playing, false, || {
-                        pin.difference(&recording_from_history(h))
-                    });
+                    self.research
+                        .difference
+                        .refresh(key, playing, false, || pin.difference(&h.to_recording()));
                 }
                 if let Some(pin) = &self.research.pinned_without_impacts {
                     let h = &self.history;

@@ -5,26 +5,10 @@
 use crate::gui::model::history::{History, Quantity};
 use crate::output::record::Recording;
 
-/// The history's samples as a recording: `u`, window-mean `q`, and the road
-/// `r = u - gap` per point (SI units).
-pub fn recording_from_history(h: &History) -> Recording {
-    let p = h.num_points();
-    let n = h.len();
-    let series = |f: &dyn Fn(usize, usize) -> f64| -> Vec<Vec<f64>> {
-        (0..p).map(|i| (0..n).map(|k| f(i, k)).collect()).collect()
-    };
-    let mut r = Recording::default();
-    r.t_s = h.times().to_vec();
-    r.u_m = series(&|i, k| h.value(Quantity::Displacement, i, k));
-    r.q_n = series(&|i, k| h.value(Quantity::Force, i, k));
-    r.r_m = series(&|i, k| h.value(Quantity::Displacement, i, k) - h.value(Quantity::Gap, i, k));
-    r
-}
-
-/// [`recording_from_history`] with the force without impacts as `q`: what
+/// [`History::to_recording`] with the force without impacts as `q`: what
 /// a clipped force plot fits.
 pub fn recording_without_impacts(h: &History) -> Recording {
-    let mut r = recording_from_history(h);
+    let mut r = h.to_recording();
     r.q_n = (0..h.num_points())
         .map(|i| {
             (0..h.len())
@@ -68,7 +52,7 @@ mod tests {
             (h, sim)
         };
         let (h, sim) = run(&scene);
-        let rec = recording_from_history(&h);
+        let rec = h.to_recording();
         assert_eq!(rec.t_s.len(), h.len());
         // road from the gap: equals the simulation's road at the last sample
         for i in 0..3 {
@@ -86,7 +70,7 @@ mod tests {
         let mut faster = scene.clone();
         faster.speed_mps *= 1.2;
         let (h2, _) = run(&faster);
-        let d = pin.difference(&recording_from_history(&h2));
+        let d = pin.difference(&h2.to_recording());
         assert!(d.rms_dq_n.iter().all(|&x| x > 0.0), "{:?}", d.rms_dq_n);
     }
 }

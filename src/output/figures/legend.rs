@@ -176,12 +176,12 @@ pub(super) fn caption_h(panel: &Panel, scale: f64) -> u32 {
 pub(super) fn panel_legend(
     panel: &Panel,
     area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
-    scale: f64,
+    frame: &super::Frame,
 ) -> PanelLegend {
+    let scale = frame.scale;
     let fs = |s: f64| (s * scale).round() as u32;
-    // legend entry height over the plot's height (caption, axis area, margins off)
-    let area_h = f64::from(area.dim_in_pixel().1);
-    let plot_h = (area_h - f64::from(fs(45.0) + caption_h(panel, scale) + 2 * fs(10.0))).max(1.0);
+    // legend entry height over the plot's height
+    let plot_h = super::plot_h_of(panel, area, frame);
     let entry_frac = 1.6 * f64::from(fs(14.0)) / plot_h;
     let entries: Vec<LegendEntry> = panel
         .series

@@ -12,7 +12,7 @@ use tirecontact::Scene;
 use tirecontact::compare::PinnedRun;
 use tirecontact::gui::Quantity;
 use tirecontact::gui::View;
-use tirecontact::gui::research::compare::{recording_from_history, recording_without_impacts};
+use tirecontact::gui::research::compare::recording_without_impacts;
 use tirecontact::gui::views::compare_view::{FORCE_DIFF_PLOT_ID, FORCE_PLOT_ID};
 use tirecontact::gui::views::time_plots::clip_level;
 use tirecontact::gui::{App, Command};
@@ -143,7 +143,7 @@ fn the_compare_force_difference_is_clipped_at_both_edges() {
     h.run_steps(2);
     h.get_by_label("Pin as reference").click();
     h.run_steps(2);
-    let pin = PinnedRun::new("a", &scene, &recording_from_history(h.state().history()));
+    let pin = PinnedRun::new("a", &scene, &h.state().history().to_recording());
     let pin_smooth = PinnedRun::new("a", &scene, &recording_without_impacts(h.state().history()));
     let mut edited = scene.clone();
     if let Tyre::Modal { modes } = &mut edited.tyre {
@@ -154,10 +154,7 @@ fn the_compare_force_difference_is_clipped_at_both_edges() {
     advance(&mut h, 20_000);
     h.run_steps(4);
 
-    let raw = range(
-        &pin.difference(&recording_from_history(h.state().history()))
-            .dq_n[0],
-    );
+    let raw = range(&pin.difference(&h.state().history().to_recording()).dq_n[0]);
     let smooth = range(
         &pin_smooth
             .difference(&recording_without_impacts(h.state().history()))

@@ -17,7 +17,6 @@ use tirecontact::fidelity::{band_frequencies, relative_l2_error};
 use tirecontact::gui::ResearchCommand;
 use tirecontact::gui::SweepState;
 use tirecontact::gui::View;
-use tirecontact::gui::research::compare::recording_from_history;
 use tirecontact::gui::research::fidelity::FIDELITY_FREQS;
 use tirecontact::gui::{App, Command};
 use tirecontact::modal::ModalModel;
@@ -193,7 +192,7 @@ fn a_pinned_run_survives_a_restart_and_differs_from_itself_by_zero() {
     assert_eq!(h.state().research().pinned().unwrap().scene, scene);
     advance(&mut h, 3000);
     h.run_steps(1);
-    let d = pin.difference(&recording_from_history(h.state().history()));
+    let d = pin.difference(&h.state().history().to_recording());
     assert!(d.rms_dq_n.iter().any(|&x| x > 0.0), "{:?}", d.rms_dq_n);
     assert!(h.query_by_label_contains("reference (dashed): ").is_some());
     // back to the pinned scene: the same run again, difference zero
@@ -201,7 +200,7 @@ fn a_pinned_run_survives_a_restart_and_differs_from_itself_by_zero() {
     h.run_steps(1);
     advance(&mut h, 3000);
     h.run_steps(1);
-    let d = pin.difference(&recording_from_history(h.state().history()));
+    let d = pin.difference(&h.state().history().to_recording());
     assert!(d.rms_dq_n.iter().chain(&d.rms_du_m).all(|&x| x == 0.0));
     h.get_by_label("Unpin").click();
     h.run_steps(1);

@@ -1,7 +1,7 @@
 //! The exported PNG figure of the time plots follows "clip impact spikes":
-//! on, its force panel is cut at the time plots' clip level (a margin above
-//! the force without impacts) with the clipped samples as dots; off, the
-//! impulse / dt spikes set its range. Both contact schemes.
+//! on, its force panel is cut at the clip level (a margin above the force
+//! without impacts of its windows) with the clipped samples as dots; off,
+//! the impulse / dt spikes set its range. Both contact schemes.
 
 use crate::harness::{advance, harness};
 use crate::support::temp_dir;
@@ -12,21 +12,38 @@ use tirecontact::gui::views::time_plots::clip_level;
 use tirecontact::gui::{App, Command};
 use tirecontact::gui::{History, Quantity};
 use tirecontact::output::figures::{Figure, Series};
+use tirecontact::output::record::{PLOT_SAMPLES, Recording};
 use tirecontact::scene::ContactScheme;
 
-/// Range of `what` over all samples of all points of `h`.
-fn range(h: &History, what: Quantity) -> (f64, f64) {
-    (0..h.num_points())
-        .flat_map(|i| (0..h.len()).map(move |k| h.value(what, i, k)))
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
-            (lo.min(y), hi.max(y))
-        })
+/// Range of `values`.
+fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
+        (lo.min(y), hi.max(y))
+    })
+}
+
+/// The windows the exported figure draws: the history's samples merged to
+/// at most the command line's figure samples.
+fn windows(h: &History) -> Recording {
+    let rec = h.to_recording();
+    assert_eq!(rec.len(), h.len());
+    // the recording holds what the history holds
+    for i in 0..h.num_points() {
+        for k in 0..h.len() {
+            let smooth = rec.q_n[i][k] - rec.q_impact_n[i][k];
+            let want = h.value(Quantity::ForceWithoutImpacts, i, k);
+            assert!((smooth - want).abs() <= 1e-6 * (1.0 + want.abs()));
+        }
+    }
+    let merged = rec.merged(rec.len().div_ceil(PLOT_SAMPLES as usize));
+    assert!(merged.len() <= PLOT_SAMPLES as usize);
+    merged
 }
 
 fn force_panel(fig: &Figure) -> &tirecontact::output::figures::Panel {
     fig.panels
         .iter()
-        .find(|p| p.title.starts_with("contact force"))
+        .find(|p| p.title.starts_with("Contact force"))
         .expect("a force panel")
 }
 
@@ -46,8 +63,15 @@ fn check(preset: &str, scheme: ContactScheme, steps: u64) {
     let app = h.state();
     let hist = app.history();
     let shown = vec![true; hist.num_points()];
-    let raw = range(hist, Quantity::Force);
-    let top = clip_level(range(hist, Quantity::ForceWithoutImpacts));
+    let rec = windows(hist);
+    let raw = range(rec.q_n.iter().flatten().copied());
+    let smooth = rec
+        .q_n
+        .iter()
+        .flatten()
+        .zip(rec.q_impact_n.iter().flatten())
+        .map(|(q, qi)| q - qi);
+    let top = clip_level(range(smooth));
     assert!(
         raw.1 > 5.0 * top,
         "{preset}: the run has impact spikes: {} N vs {top} N",
@@ -122,14 +146,14 @@ fn the_exported_contact_lanes_are_named_after_their_points() {
     let lanes = fig
         .panels
         .iter()
-        .find(|p| p.title.starts_with("contact state"))
+        .find(|p| p.title.starts_with("Contact state"))
         .expect("a contact panel");
     assert_eq!(lanes.y_names, ["p0", "p2"]);
     // the other panels keep numeric ticks
     assert!(
         fig.panels
             .iter()
-            .filter(|p| !p.title.starts_with("contact state"))
+            .filter(|p| !p.title.starts_with("Contact state"))
             .all(|p| p.y_names.is_empty())
     );
     // one legend of the points, in the first panel (same colours in all)

@@ -3,6 +3,7 @@
 
 mod axes_align;
 mod export_clip;
+mod export_layout;
 mod legend_ink;
 mod legends;
 mod paper_clip;
