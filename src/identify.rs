@@ -216,14 +216,18 @@ impl ModeCache {
     /// preset, or a ring already identified at these points (else it runs
     /// the identification, a tenth of a second or more).
     pub fn has_modes(&self, scene: &Scene) -> bool {
+        matches!(scene.tyre, Tyre::Modal { .. }) || self.identified(scene).is_some()
+    }
+
+    /// The modes identified from `scene`'s ring tyre, if this cache holds
+    /// them (never identifies); `None` for a modal tyre.
+    pub fn identified(&self, scene: &Scene) -> Option<Arc<Vec<Mode>>> {
         match &scene.tyre {
-            Tyre::Modal { .. } => true,
+            Tyre::Modal { .. } => None,
             Tyre::Ring {
                 ring,
                 identification,
-            } => self
-                .lookup(&cache_key(ring, &positions(scene), identification))
-                .is_some(),
+            } => self.lookup(&cache_key(ring, &positions(scene), identification)),
         }
     }
 

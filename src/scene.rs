@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 mod edits;
 pub mod locate;
-pub use edits::{described_with_edits, edits_since};
+pub use edits::{described_with_edits, edits_since, edits_since_identified};
 
 /// How contact is decided inside a time step (method §4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]

@@ -233,7 +233,17 @@ impl App {
         if self.doc.scene.description != self.doc.saved.description {
             return Vec::new();
         }
-        crate::scene::edits_since(&self.doc.saved, &self.doc.scene)
+        self.changes()
+    }
+    /// What changed since the scene was opened or saved; a ring tyre made
+    /// a modal model is compared through its identified modes.
+    pub(crate) fn changes(&self) -> Vec<String> {
+        let identified = self.handles.mode_cache.identified(&self.doc.saved);
+        crate::scene::edits_since_identified(
+            &self.doc.saved,
+            identified.as_deref().map(Vec::as_slice),
+            &self.doc.scene,
+        )
     }
     pub fn pending_confirmation(&self) -> Option<&Discarding> {
         self.confirm.as_ref()

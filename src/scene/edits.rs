@@ -46,12 +46,52 @@ fn contact_kind(c: &Contact) -> &'static str {
 /// Most modes whose edits are listed one by one; more are counted.
 const MODES_LISTED: usize = 3;
 
-/// The edits of modes `a` to `b` (as many of each): per mode, its
-/// frequency and damping from and to, and whether its residues changed.
+/// "mode k (f Hz, ξ z)" for a mode added or removed.
+fn mode_named(k: usize, m: &Mode) -> String {
+    format!(
+        "mode {k} ({} Hz, ξ {})",
+        num(m.freq_hz),
+        num(m.damping_ratio)
+    )
+}
+
+/// The edits of the modes `a` to `b`: per mode kept, its frequency and
+/// damping from and to and whether its residues changed; the modes added
+/// at the end or removed (anywhere, the others kept as they were); a count
+/// beyond [`MODES_LISTED`] edits, or when the lists cannot be matched.
 fn mode_edits(out: &mut Vec<String>, a: &[Mode], b: &[Mode]) {
-    let changed: Vec<usize> = (0..a.len()).filter(|&k| a[k] != b[k]).collect();
-    if changed.len() > MODES_LISTED {
-        out.push(format!("{} of {} modes", changed.len(), a.len()));
+    if a.len() > b.len() {
+        // removed modes: `b` is `a` without them, in order
+        let mut removed = Vec::new();
+        let mut j = 0;
+        for (k, m) in a.iter().enumerate() {
+            if j < b.len() && b[j] == *m {
+                j += 1;
+            } else {
+                removed.push(k);
+            }
+        }
+        if j == b.len() && removed.len() <= MODES_LISTED {
+            out.extend(
+                removed
+                    .iter()
+                    .map(|&k| format!("{} removed", mode_named(k, &a[k]))),
+            );
+        } else {
+            out.push(format!("{} -> {} modes", a.len(), b.len()));
+        }
+        return;
+    }
+    let common = a.len();
+    let changed: Vec<usize> = (0..common).filter(|&k| a[k] != b[k]).collect();
+    let added = b.len() - common;
+    if changed.len() + added > MODES_LISTED {
+        if !changed.is_empty() {
+            out.push(format!("{} of {} modes", changed.len(), common));
+        }
+        if added > 0 {
+            out.push(format!("{} -> {} modes", common, b.len()));
+        }
         return;
     }
     for k in changed {
@@ -77,18 +117,36 @@ fn mode_edits(out: &mut Vec<String>, a: &[Mode], b: &[Mode]) {
             out.push(format!("{what} residues"));
         }
     }
+    out.extend((common..b.len()).map(|k| format!("{} added", mode_named(k, &b[k]))));
 }
 
 /// The changes from `before` to `after` a reader of `before`'s description
 /// would need to know, one phrase each with units ("speed 10 -> 20 m/s");
 /// empty when none. The name and the description themselves are not listed.
 pub fn edits_since(before: &Scene, after: &Scene) -> Vec<String> {
+    edits_since_identified(before, None, after)
+}
+
+/// [`edits_since`], where `before`'s ring tyre was identified as
+/// `ring_modes`: a ring turned into a modal model ("Edit as a modal
+/// model") and then edited lists the edits of those modes too (tyre ring
+/// -> modal model; mode 0 frequency 40.9 -> 45 Hz; mode 13 added (…)).
+pub fn edits_since_identified(
+    before: &Scene,
+    ring_modes: Option<&[Mode]>,
+    after: &Scene,
+) -> Vec<String> {
     let mut out = Vec::new();
-    match (&before.tyre, &after.tyre) {
-        (Tyre::Modal { modes: a }, Tyre::Modal { modes: b }) if a != b => {
-            if a.len() != b.len() {
-                out.push(format!("{} -> {} modes", a.len(), b.len()));
-            } else {
+    match (&before.tyre, &after.tyre, ring_modes) {
+        (Tyre::Modal { modes: a }, Tyre::Modal { modes: b }, _) if a != b => {
+            mode_edits(&mut out, a, b);
+        }
+        (Tyre::Ring { .. }, Tyre::Modal { modes: b }, Some(a)) => {
+            out.push(format!(
+                "tyre ring -> modal model of its {}",
+                crate::error::count(a.len(), "identified mode")
+            ));
+            if a != b.as_slice() {
                 mode_edits(&mut out, a, b);
             }
         }
@@ -101,6 +159,7 @@ pub fn edits_since(before: &Scene, after: &Scene) -> Vec<String> {
                 ring: rb,
                 identification: ib,
             },
+            _,
         ) => {
             if ra != rb {
                 out.push("ring parameters".to_string());
@@ -109,7 +168,7 @@ pub fn edits_since(before: &Scene, after: &Scene) -> Vec<String> {
                 out.push("identification options".to_string());
             }
         }
-        (a, b) if std::mem::discriminant(a) != std::mem::discriminant(b) => {
+        (a, b, _) if std::mem::discriminant(a) != std::mem::discriminant(b) => {
             out.push(format!("tyre {} -> {}", tyre_kind(a), tyre_kind(b)));
         }
         _ => {}
@@ -269,8 +328,12 @@ mod tests {
         t.contact_scheme = ContactScheme::Paper;
         let e = edits_since(&s, &t);
         let n = s.points.len();
+        let Tyre::Modal { modes } = &s.tyre else {
+            panic!("three_points is a modal scene");
+        };
+        let k = modes.len();
         assert!(
-            e.iter().any(|x| x.ends_with("modes") && x.contains("->")),
+            e.contains(&format!("mode {k} (300 Hz, ξ 0.05) added")),
             "{e:?}"
         );
         assert!(
@@ -333,6 +396,76 @@ mod tests {
         assert_eq!(
             described_with_edits("", "P", &e[..1]),
             "Edited from \"P\": speed 10 -> 20 m/s."
+        );
+    }
+
+    /// A ring made a modal model and then edited: the edits of the
+    /// identified modes are listed, not only the change of kind.
+    #[test]
+    fn edits_of_a_ring_made_modal_are_listed_against_its_identified_modes() {
+        let ring = Scene::parse(include_str!("../../presets/paper.ron"), "paper").unwrap();
+        let identified: Vec<Mode> = (0..5)
+            .map(|k| Mode {
+                freq_hz: 40.0 + 10.0 * k as f64,
+                damping_ratio: 0.05,
+                residue: vec![],
+                shape: vec![1.0; ring.points.len()],
+            })
+            .collect();
+        let mut t = ring.clone();
+        t.tyre = Tyre::Modal {
+            modes: identified.clone(),
+        };
+        // converted, not yet edited
+        let said = edits_since_identified(&ring, Some(&identified), &t);
+        assert_eq!(said, ["tyre ring -> modal model of its 5 identified modes"]);
+        let Tyre::Modal { modes } = &mut t.tyre else {
+            unreachable!()
+        };
+        modes[0].freq_hz = 45.0;
+        modes[0].damping_ratio = 0.02;
+        let mut extra = identified[4].clone();
+        extra.freq_hz = 600.0;
+        modes.push(extra);
+        t.speed_mps = 15.0;
+        let said = edits_since_identified(&ring, Some(&identified), &t);
+        assert_eq!(
+            said,
+            [
+                "tyre ring -> modal model of its 5 identified modes",
+                "mode 0 frequency 40 -> 45 Hz",
+                "mode 0 damping ratio 0.05 -> 0.02",
+                "mode 5 (600 Hz, ξ 0.05) added",
+                "speed 10 -> 15 m/s",
+            ]
+        );
+        // without the identified modes only the kind can be said
+        assert_eq!(edits_since(&ring, &t)[0], "tyre ring -> modal model");
+    }
+
+    #[test]
+    fn removed_modes_are_named_wherever_they_were() {
+        let s = scene();
+        let Tyre::Modal { modes } = &s.tyre else {
+            unreachable!()
+        };
+        let mut t = s.clone();
+        let Tyre::Modal { modes: kept } = &mut t.tyre else {
+            unreachable!()
+        };
+        let gone = kept.remove(1);
+        assert_eq!(
+            edits_since(&s, &t),
+            [format!("{} removed", mode_named(1, &gone))]
+        );
+        // removed and another edited: the lists cannot be matched
+        let Tyre::Modal { modes: kept } = &mut t.tyre else {
+            unreachable!()
+        };
+        kept[0].freq_hz *= 2.0;
+        assert_eq!(
+            edits_since(&s, &t),
+            [format!("{} -> {} modes", modes.len(), modes.len() - 1)]
         );
     }
 }

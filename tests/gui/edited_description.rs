@@ -147,3 +147,66 @@ fn an_open_description_field_is_not_repeated_above_it() {
     h.run();
     assert_eq!(count(&h), 1, "closed again: the description above");
 }
+
+/// A ring tyre made a modal model, then detuned and given one more mode:
+/// the note, the unsaved-changes question and the saved description list
+/// the mode edits against the identified modes, not only "ring -> modal".
+#[test]
+fn mode_edits_after_edit_as_a_modal_model_are_listed() {
+    use crate::harness::{harness_sized, settle};
+    use egui_kittest::kittest::Queryable;
+    let mut h = harness_sized(App::with_default_preset(), [1280.0, 1600.0]);
+    settle(&mut h);
+    let n = h.state().modes().len();
+    let (f0, z0) = (
+        h.state().modes()[0].freq_hz,
+        h.state().modes()[0].damping_ratio,
+    );
+    h.get_by_label("Edit as a modal model").click();
+    settle(&mut h);
+    type_into(&mut h, "tyre.modes[0].freq_hz", "45");
+    type_into(&mut h, "tyre.modes[0].damping_ratio", "0.02");
+    h.get_by_label("Add mode").click();
+    settle(&mut h);
+    assert_eq!(h.state().modes().len(), n + 1);
+    let edits = h.state().edits();
+    let want = [
+        format!("tyre ring -> modal model of its {n} identified modes"),
+        format!("mode 0 frequency {} -> 45 Hz", short(f0)),
+        format!("mode 0 damping ratio {} -> 0.02", short(z0)),
+    ];
+    for w in &want {
+        assert!(edits.contains(w), "{w:?} not in {edits:?}");
+    }
+    assert!(
+        edits
+            .iter()
+            .any(|e| e.starts_with(&format!("mode {n} (")) && e.ends_with("added")),
+        "{edits:?}"
+    );
+    assert!(shows(&h, &want[1]), "the side panel's note");
+    // a new scene asks first, listing them
+    h.state_mut().apply(Command::New);
+    h.run_steps(2);
+    assert!(h.state().pending_confirmation().is_some());
+    assert!(shows(&h, &want[2]), "the unsaved-changes question");
+    h.get_by_label("Cancel").click();
+    h.run_steps(2);
+    // saved into the description
+    let tmp = temp_dir();
+    let path = tmp.path().join("detuned.ron");
+    h.state_mut().apply(Command::SavePath(path.clone()));
+    h.run();
+    let saved = Scene::load(&path).unwrap();
+    assert!(
+        saved.description.contains(&want[1]),
+        "{}",
+        saved.description
+    );
+}
+
+/// `x` to four significant digits, as the edit list writes it.
+fn short(x: f64) -> String {
+    let r: f64 = format!("{x:.3e}").parse().unwrap();
+    format!("{r}")
+}

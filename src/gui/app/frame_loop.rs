@@ -119,7 +119,7 @@ impl App {
             self.normal_layout(ui, &mut cmds);
         }
         let unsaved = if self.confirm.is_some() {
-            crate::scene::edits_since(&self.doc.saved, &self.doc.scene)
+            self.changes()
         } else {
             Vec::new()
         };
