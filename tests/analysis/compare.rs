@@ -20,16 +20,16 @@ fn pinned_run_difference() {
     let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
     scene.duration_s = 0.05;
     let a = record(&scene);
-    let pin = PinnedRun::new("A", &scene, &a);
+    let pin = PinnedRun::new("A", &scene, 3, &a);
     // against itself: zero on every sample
-    let d = pin.difference(&a);
+    let d = pin.difference(&scene.points, &a);
     assert_eq!(d.t_s, a.t_s);
     assert!(d.rms_du_m.iter().chain(&d.rms_dq_n).all(|&x| x == 0.0));
     // the pin survives a parameter change; the difference is the direct one
     scene.speed_mps = 14.0;
     let b = record(&scene);
     assert_eq!(pin.scene.speed_mps, 12.0);
-    let d = pin.difference(&b);
+    let d = pin.difference(&scene.points, &b);
     assert_eq!(d.t_s, b.t_s, "same time grid: every sample compared");
     for i in 0..3 {
         for k in (0..b.t_s.len()).step_by(37) {
@@ -44,4 +44,57 @@ fn pinned_run_difference() {
     let text = String::from_utf8(csv).unwrap();
     assert!(text.starts_with("t_s,u0_m,u1_m,u2_m,q0_N,q1_N,q2_N\n"));
     assert_eq!(text.lines().count(), a.t_s.len() + 1);
+}
+
+/// Runs of unlike scenes are compared only at the points at the same place,
+/// and what differs (points, step, modes) is said.
+#[test]
+fn unlike_scenes_are_compared_only_where_they_match() {
+    let mut five = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    five.duration_s = 0.02;
+    let a = record(&five);
+    let pin = PinnedRun::new("A", &five, 13, &a);
+    assert!(pin.unlike(&five, 13).is_empty(), "a scene is like itself");
+    // three of the five points, in another order, and a finer step
+    let mut three = five.clone();
+    three.points = vec![
+        five.points[3].clone(),
+        five.points[0].clone(),
+        five.points[4].clone(),
+    ];
+    three.points[2].x_m += 0.01; // moved: no counterpart
+    three.dt_s = five.dt_s / 2.0;
+    let b = record(&three);
+    let d = pin.difference(&three.points, &b);
+    assert_eq!(d.matched, [Some(3), Some(0), None]);
+    for k in (0..d.t_s.len()).step_by(53) {
+        let t = d.t_s[k];
+        // the current sample k' at t, the pinned sample at t (both grids
+        // hold t when it is on the coarser one)
+        let kb = b.t_s.iter().position(|&x| x == t).unwrap();
+        if let Some(ka) = a.t_s.iter().position(|&x| x == t) {
+            assert_eq!(d.du_m[0][k], b.u_m[0][kb] - a.u_m[3][ka]);
+            assert_eq!(d.du_m[1][k], b.u_m[1][kb] - a.u_m[0][ka]);
+        }
+    }
+    assert!(d.du_m[2].is_empty() && d.rms_dq_n[2].is_nan());
+    assert!(d.rms_du_m[..2].iter().all(|x| x.is_finite()));
+    let said = pin.unlike(&three, 12).join("\n");
+    for part in [
+        "The reference has 5 points, this scene 3",
+        "compared only at the 2 points at the same place: p0 (reference p3), p1 (reference p0)",
+        "Time step 10 µs in the reference, 5 µs here",
+        "13 modes, this one 12 modes",
+    ] {
+        assert!(said.contains(part), "{part:?} not in {said}");
+    }
+    // nothing at the same place: nothing compared, and said
+    let mut apart = five.clone();
+    for p in &mut apart.points {
+        p.x_m += 1.0;
+    }
+    assert!(pin.unlike(&apart, 13)[0].contains("nothing is compared"));
+    let d = pin.difference(&apart.points, &a);
+    assert!(d.matched.iter().all(Option::is_none));
+    assert!(d.du_m.iter().all(Vec::is_empty));
 }

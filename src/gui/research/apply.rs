@@ -100,10 +100,13 @@ impl App {
             ResearchCommand::PinReference => {
                 let rec = self.history.to_recording();
                 let label = pin_label(&self.doc.scene, self.sim.time_s());
-                self.research.pinned = Some(PinnedRun::new(label.clone(), &self.doc.scene, &rec));
+                let n = self.modes.len();
+                self.research.pinned =
+                    Some(PinnedRun::new(label.clone(), &self.doc.scene, n, &rec));
                 self.research.pinned_without_impacts = Some(PinnedRun::new(
                     label.clone(),
                     &self.doc.scene,
+                    n,
                     &recording_without_impacts(&self.history),
                 ));
                 self.research.difference_without_impacts.invalidate();
@@ -219,18 +222,19 @@ impl App {
                 }
             }
             View::Compare => {
+                let points = &self.doc.scene.points;
                 if let Some(pin) = &self.research.pinned {
                     let h = &self.history;
-                    self.research
-                        .difference
-                        .refresh(key, playing, false, || pin.difference(&h.to_recording()));
+                    self.research.difference.refresh(key, playing, false, || {
+                        pin.difference(points, &h.to_recording())
+                    });
                 }
                 if let Some(pin) = &self.research.pinned_without_impacts {
                     let h = &self.history;
                     self.research
                         .difference_without_impacts
                         .refresh(key, playing, false, || {
-                            pin.difference(&recording_without_impacts(h))
+                            pin.difference(points, &recording_without_impacts(h))
                         });
                 }
             }
@@ -340,11 +344,15 @@ impl App {
             ),
             View::Compare => compare_view::show(
                 ui,
-                &self.history,
-                self.research.pinned.as_ref(),
-                self.research.pinned_without_impacts.as_ref(),
-                self.research.difference.get(),
-                self.research.difference_without_impacts.get(),
+                &compare_view::Compared {
+                    history: &self.history,
+                    scene: &self.doc.scene,
+                    num_modes: self.modes.len(),
+                    pinned: self.research.pinned.as_ref(),
+                    pinned_smooth: self.research.pinned_without_impacts.as_ref(),
+                    diff: self.research.difference.get(),
+                    diff_smooth: self.research.difference_without_impacts.get(),
+                },
                 &mut self.research.compare_opts,
                 cmds,
             ),

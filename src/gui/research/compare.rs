@@ -63,14 +63,14 @@ mod tests {
                 sim.road_m()[i]
             );
         }
-        let pin = PinnedRun::new(pin_label(&scene, 0.03), &scene, &rec);
-        let d = pin.difference(&rec);
+        let pin = PinnedRun::new(pin_label(&scene, 0.03), &scene, 1, &rec);
+        let d = pin.difference(&scene.points, &rec);
         assert_eq!(d.t_s.len(), rec.t_s.len());
         assert!(d.rms_dq_n.iter().chain(&d.rms_du_m).all(|&x| x == 0.0));
         let mut faster = scene.clone();
         faster.speed_mps *= 1.2;
         let (h2, _) = run(&faster);
-        let d = pin.difference(&h2.to_recording());
+        let d = pin.difference(&faster.points, &h2.to_recording());
         assert!(d.rms_dq_n.iter().all(|&x| x > 0.0), "{:?}", d.rms_dq_n);
     }
 }

@@ -6,11 +6,13 @@
 
 use super::time_plots::{clip_at, clip_checkbox, clip_level, force_range, impact_marks, y_range};
 use super::{axis_title, legend_place, point_color};
+use crate::Scene;
 use crate::compare::{PinnedRun, RunDifference};
 use crate::gui::model::command::Command;
 use crate::gui::model::history::{History, Quantity, decimate_min_max};
 use crate::gui::research::ResearchCommand;
 use crate::gui::research::state::CompareOptions;
+use crate::output::summary::short_num;
 use egui::{Id, RichText, Ui};
 use egui_plot::{Line, LineStyle, MarkerShape, Plot};
 
@@ -30,25 +32,38 @@ pub const DIFFERENCE: &str = "current − reference";
 /// Legend entry of the clipped impacts' marks (`time_plots::impact_marks`).
 const IMPACT_LABEL: &str = "impact (impulse / dt, clipped)";
 
-/// `pinned_smooth` is the pinned run with its force without impacts as `q`,
-/// `diff_smooth` its difference: they set the clipped force axes.
-#[allow(clippy::too_many_arguments)]
-pub fn show(
-    ui: &mut Ui,
-    history: &History,
-    pinned: Option<&PinnedRun>,
-    pinned_smooth: Option<&PinnedRun>,
-    diff: Option<&RunDifference>,
-    diff_smooth: Option<&RunDifference>,
-    opts: &mut CompareOptions,
-    cmds: &mut Vec<Command>,
-) {
+/// What the view compares.
+pub struct Compared<'a> {
+    /// The current run's samples, of `scene` with a tyre of `num_modes`.
+    pub history: &'a History,
+    pub scene: &'a Scene,
+    pub num_modes: usize,
+    pub pinned: Option<&'a PinnedRun>,
+    /// The pinned run with its force without impacts as `q`, and
+    /// `diff_smooth` its difference: they set the clipped force axes.
+    pub pinned_smooth: Option<&'a PinnedRun>,
+    pub diff: Option<&'a RunDifference>,
+    pub diff_smooth: Option<&'a RunDifference>,
+}
+
+pub fn show(ui: &mut Ui, c: &Compared<'_>, opts: &mut CompareOptions, cmds: &mut Vec<Command>) {
+    let Compared {
+        history,
+        pinned,
+        pinned_smooth,
+        diff,
+        diff_smooth,
+        ..
+    } = *c;
     let p = history.num_points();
     if opts.shown.len() != p {
         opts.shown = (0..p).map(|i| i < 8).collect();
     }
     controls(ui, pinned.is_some(), opts, cmds);
-    summary(ui, pinned, diff);
+    summary(ui, c);
+    // the reference's point drawn with each current point (the one at the
+    // same place, if any)
+    let matched = pinned.map_or_else(Vec::new, |pin| pin.matched(&c.scene.points));
     let rows = if opts.difference && pinned.is_some() {
         4
     } else {
@@ -72,6 +87,7 @@ pub fn show(
         rows,
         shown: (0..p).filter(|&i| opts.shown[i]).collect(),
         clip_impacts: opts.clip_impacts,
+        matched,
     };
     run_plots(ui, &grid, history, pinned, pinned_smooth);
     if rows == 4 {
@@ -110,30 +126,34 @@ fn controls(ui: &mut Ui, pinned: bool, opts: &mut CompareOptions, cmds: &mut Vec
     });
 }
 
-/// What is pinned, and the RMS difference per point.
-fn summary(ui: &mut Ui, pinned: Option<&PinnedRun>, diff: Option<&RunDifference>) {
-    match pinned {
-        Some(pin) => {
-            ui.label(RichText::new(format!("reference (dashed): {}", pin.label)).strong());
-            if let Some(d) = diff {
-                let rms: Vec<String> = (0..d.rms_dq_n.len())
-                    .map(|i| {
-                        format!(
-                            "p{i}: {:.4} N, {:.5} mm",
-                            d.rms_dq_n[i],
-                            d.rms_du_m[i] * 1e3
-                        )
-                    })
-                    .collect();
-                ui.label(format!(
-                    "RMS of current − reference over {} common samples: {}",
-                    d.t_s.len(),
-                    rms.join("; ")
-                ));
-            }
-        }
-        None => {
-            ui.label("No reference pinned: play a run, press “Pin as reference”, then change parameters; the pinned run is drawn dashed over the new one.");
+/// What is pinned, how the scenes differ, and the RMS difference per
+/// point compared.
+fn summary(ui: &mut Ui, c: &Compared<'_>) {
+    let Some(pin) = c.pinned else {
+        ui.label("No reference pinned: play a run, press “Pin as reference”, then change parameters; the pinned run is drawn dashed over the new one.");
+        return;
+    };
+    ui.label(RichText::new(format!("reference (dashed): {}", pin.label)).strong());
+    for note in pin.unlike(c.scene, c.num_modes) {
+        ui.label(RichText::new(format!("Unlike runs: {note}")).color(ui.visuals().warn_fg_color));
+    }
+    if let Some(d) = c.diff {
+        let rms: Vec<String> = (0..d.rms_dq_n.len())
+            .filter(|&i| d.matched.get(i).copied().flatten().is_some())
+            .map(|i| {
+                format!(
+                    "p{i}: {} N, {} mm",
+                    short_num(d.rms_dq_n[i], 4),
+                    short_num(d.rms_du_m[i] * 1e3, 4)
+                )
+            })
+            .collect();
+        if !rms.is_empty() {
+            ui.label(format!(
+                "RMS of current − reference over {} common samples: {}",
+                d.t_s.len(),
+                rms.join("; ")
+            ));
         }
     }
 }
@@ -148,6 +168,20 @@ struct Grid {
     rows: usize,
     shown: Vec<usize>,
     clip_impacts: bool,
+    /// Per current point, the pinned point at the same place.
+    matched: Vec<Option<usize>>,
+}
+
+impl Grid {
+    /// The pinned run's series of current point `i` (the pinned point at
+    /// the same place), if there is one.
+    fn reference<'a>(&self, ys: &'a [Vec<f64>], i: usize) -> Option<&'a Vec<f64>> {
+        self.matched
+            .get(i)
+            .copied()
+            .flatten()
+            .and_then(|j| ys.get(j))
+    }
 }
 
 impl Grid {
@@ -231,7 +265,11 @@ fn run_plots(
                 let current = force_range(history, shown, t0, t1, buckets);
                 let reference = pinned_smooth.and_then(|pin| {
                     let r = &pin.recording;
-                    series_range(&r.t_s, &r.q_n, shown, t0, t1, buckets)
+                    let ys: Vec<&Vec<f64>> = shown
+                        .iter()
+                        .filter_map(|&i| grid.reference(&r.q_n, i))
+                        .collect();
+                    series_range(&r.t_s, &ys, t0, t1, buckets)
                 });
                 y_range(
                     current
@@ -260,8 +298,8 @@ fn run_plots(
                 if let Some(pin) = pinned {
                     let r = &pin.recording;
                     let y = match what {
-                        Quantity::Force => r.q_n.get(i),
-                        _ => r.u_m.get(i),
+                        Quantity::Force => grid.reference(&r.q_n, i),
+                        _ => grid.reference(&r.u_m, i),
                     };
                     if let Some(y) = y {
                         let mut pts = window(&r.t_s, y, t0, t1, buckets, scale);
@@ -334,9 +372,10 @@ fn difference_plots(
             let (t0, t1) = (b.min()[0], b.max()[0]);
             // impacts of either run give spikes of both signs: clip both
             // edges at the difference of the forces without impacts
-            let range = diff_smooth
-                .filter(|_| clip)
-                .and_then(|ds| series_range(&ds.t_s, &ds.dq_n, shown, t0, t1, buckets));
+            let range = diff_smooth.filter(|_| clip).and_then(|ds| {
+                let ys: Vec<&Vec<f64>> = shown.iter().filter_map(|&i| ds.dq_n.get(i)).collect();
+                series_range(&ds.t_s, &ys, t0, t1, buckets)
+            });
             let (mut above, mut below) = (Vec::new(), Vec::new());
             let mut ink = legend_place::Ink::default();
             for &i in shown {
@@ -389,20 +428,17 @@ pub fn window_changed(used: (f64, f64), now: (f64, f64)) -> bool {
     (used.0 - now.0).abs() > tol || (used.1 - now.1).abs() > tol
 }
 
-/// Lowest and highest of the series `ys[i]` of the `shown` points over
-/// `[t0, t1]` (decimated as drawn).
+/// Lowest and highest of the series `ys` over `[t0, t1]` (decimated as
+/// drawn).
 fn series_range(
     t: &[f64],
-    ys: &[Vec<f64>],
-    shown: &[usize],
+    ys: &[&Vec<f64>],
     t0: f64,
     t1: f64,
     buckets: usize,
 ) -> Option<(f64, f64)> {
     y_range(
-        shown
-            .iter()
-            .filter_map(|&i| ys.get(i))
+        ys.iter()
             .flat_map(|y| window(t, y, t0, t1, buckets, 1.0))
             .map(|p| p[1]),
     )

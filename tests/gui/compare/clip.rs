@@ -143,8 +143,13 @@ fn the_compare_force_difference_is_clipped_at_both_edges() {
     h.run_steps(2);
     h.get_by_label("Pin as reference").click();
     h.run_steps(2);
-    let pin = PinnedRun::new("a", &scene, &h.state().history().to_recording());
-    let pin_smooth = PinnedRun::new("a", &scene, &recording_without_impacts(h.state().history()));
+    let pin = PinnedRun::new("a", &scene, 1, &h.state().history().to_recording());
+    let pin_smooth = PinnedRun::new(
+        "a",
+        &scene,
+        1,
+        &recording_without_impacts(h.state().history()),
+    );
     let mut edited = scene.clone();
     if let Tyre::Modal { modes } = &mut edited.tyre {
         modes[0].freq_hz *= 1.1;
@@ -154,10 +159,16 @@ fn the_compare_force_difference_is_clipped_at_both_edges() {
     advance(&mut h, 20_000);
     h.run_steps(4);
 
-    let raw = range(&pin.difference(&h.state().history().to_recording()).dq_n[0]);
+    let raw = range(
+        &pin.difference(&scene.points, &h.state().history().to_recording())
+            .dq_n[0],
+    );
     let smooth = range(
         &pin_smooth
-            .difference(&recording_without_impacts(h.state().history()))
+            .difference(
+                &scene.points,
+                &recording_without_impacts(h.state().history()),
+            )
             .dq_n[0],
     );
     let (top, bottom) = (clip_level(smooth), -clip_level((-smooth.1, -smooth.0)));

@@ -4,3 +4,4 @@
 mod clip;
 mod current;
 mod titles;
+mod unlike;

@@ -192,7 +192,10 @@ fn a_pinned_run_survives_a_restart_and_differs_from_itself_by_zero() {
     assert_eq!(h.state().research().pinned().unwrap().scene, scene);
     advance(&mut h, 3000);
     h.run_steps(1);
-    let d = pin.difference(&h.state().history().to_recording());
+    let d = pin.difference(
+        &h.state().scene().points,
+        &h.state().history().to_recording(),
+    );
     assert!(d.rms_dq_n.iter().any(|&x| x > 0.0), "{:?}", d.rms_dq_n);
     assert!(h.query_by_label_contains("reference (dashed): ").is_some());
     // back to the pinned scene: the same run again, difference zero
@@ -200,7 +203,10 @@ fn a_pinned_run_survives_a_restart_and_differs_from_itself_by_zero() {
     h.run_steps(1);
     advance(&mut h, 3000);
     h.run_steps(1);
-    let d = pin.difference(&h.state().history().to_recording());
+    let d = pin.difference(
+        &h.state().scene().points,
+        &h.state().history().to_recording(),
+    );
     assert!(d.rms_dq_n.iter().chain(&d.rms_du_m).all(|&x| x == 0.0));
     h.get_by_label("Unpin").click();
     h.run_steps(1);
