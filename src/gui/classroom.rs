@@ -17,6 +17,7 @@ use super::views::time_plots::{
 use super::views::{CONTACT_COLOR, FLIGHT_COLOR, point_color, scene_view};
 use crate::Simulation;
 use crate::gui::model::history::{History, Quantity};
+use crate::gui::views::XTitle;
 use crate::phase::{ContactPhase, PhaseTracker};
 use egui::{Color32, FontId, RichText, TextStyle, Ui};
 use egui_plot::{Line, Plot, PlotPoint, Text};
@@ -388,19 +389,56 @@ fn point_label(
 
 /// A strip of the phases of every point (also what the tests read).
 pub fn phase_strip(ui: &mut Ui, t_s: f64, phases: &PhaseTracker) {
-    ui.horizontal_wrapped(|ui| {
-        ui.label(RichText::new("contact phase:").strong());
-        for i in 0..phases.num_points().min(24) {
+    const PREFIX: &str = "contact phase:";
+    let n = phases.num_points().min(24);
+    let body = egui::TextStyle::Body.resolve(ui.style());
+    let width_at = |text: String, px: f32| {
+        ui.painter()
+            .layout_no_wrap(
+                text,
+                egui::FontId::new(px, body.family.clone()),
+                Color32::WHITE,
+            )
+            .size()
+            .x
+    };
+    // every point's label in a slot as wide as its widest phase, so that
+    // the strip keeps its layout as phases change, on one row: at a
+    // smaller size when the slots do not fit (at 1280 px the strip wrapped
+    // to a second row, and back, pushing the scene down and up)
+    let all = [
+        ContactPhase::Impact,
+        ContactPhase::Release,
+        ContactPhase::InContact,
+        ContactPhase::FreeFlight,
+    ];
+    let slot_at = |px: f32| {
+        all.iter()
+            .map(|&ph| width_at(phase_text(n.saturating_sub(1), ph), px))
+            .fold(0.0, f32::max)
+    };
+    let gap = ui.spacing().item_spacing.x;
+    let need = |px: f32| width_at(PREFIX.into(), px) + n as f32 * (slot_at(px) + gap);
+    let avail = ui.available_width();
+    let px = if need(body.size) <= avail {
+        body.size
+    } else {
+        (body.size * avail / need(body.size))
+            .max(0.6 * body.size)
+            .floor()
+    };
+    let slot = slot_at(px);
+    ui.horizontal(|ui| {
+        ui.label(RichText::new(PREFIX).strong().size(px));
+        for i in 0..n {
             let ph = phases.phase(i, t_s);
-            // each label whole: a label broken over two rows covered its
-            // neighbours
-            ui.add(
-                egui::Label::new(
-                    RichText::new(phase_text(i, ph))
-                        .strong()
-                        .color(phase_color(ph)),
-                )
-                .wrap_mode(egui::TextWrapMode::Extend),
+            let text = RichText::new(phase_text(i, ph))
+                .strong()
+                .size(px)
+                .color(phase_color(ph));
+            ui.add_sized(
+                [slot, ui.spacing().interact_size.y],
+                egui::Label::new(text).wrap_mode(egui::TextWrapMode::Extend),
             )
             .on_hover_text(format!(
                 "{} impacts, {} releases so far",
@@ -492,7 +530,7 @@ pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f6
     let frame_w = (ui.available_width() - 3.0 * ui.text_style_height(&TextStyle::Body)).max(1.0);
     super::views::nice_y_axis(Plot::new("tirecontact.classroom_plot"))
         .id(egui::Id::unique(CLASSROOM_PLOT_ID))
-        .x_axis_label("time t (s)")
+        .x_title(ui, "time t (s)")
         .x_axis_formatter(move |m, range| {
             let span = range.end() - range.start();
             let px = |v: f64| (v / span) as f32 * frame_w;
@@ -585,7 +623,20 @@ pub fn explanation(ui: &mut Ui, name: &str, description: &str, edits: &[String],
         .inner_margin(8.0)
         .corner_radius(4.0)
         .show(ui, |ui| {
-            ui.label(RichText::new(name).strong().heading());
+            // the name as a heading when it fits on one row; a long one in
+            // strong body text (two heading rows cost the description a row)
+            let heading = egui::TextStyle::Heading.resolve(ui.style());
+            let one_row = ui
+                .painter()
+                .layout_no_wrap(name.to_owned(), heading, Color32::WHITE)
+                .size()
+                .x
+                <= ui.available_width();
+            if one_row {
+                ui.label(RichText::new(name).strong().heading());
+            } else {
+                ui.label(RichText::new(name).strong());
+            }
             // up to half the panel, in whole lines (no line cut in half); a
             // longer text scrolls with its scroll bar always shown
             let row_px = ui.text_style_height(&egui::TextStyle::Body);

@@ -62,7 +62,7 @@ impl App {
         egui::CentralPanel::default().show(ui, |ui| {
             crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
             classroom::phase_strip(ui, self.sim.time_s(), &self.phases);
-            let h = (ui.available_height() * 0.64).max(150.0);
+            let h = (ui.available_height() * 0.68).max(150.0);
             let w = ui.available_width();
             ui.allocate_ui(egui::vec2(w, h), |ui| {
                 ui.set_min_size(egui::vec2(w, h));

@@ -5,6 +5,7 @@ use super::{Classroom, point_picker};
 use crate::Simulation;
 use crate::gui::model::command::Command;
 use crate::gui::model::mute_set::Mutes;
+use crate::gui::views::XTitle;
 use crate::gui::views::scene_view;
 use crate::modal::Mode;
 use egui::{Color32, RichText, Ui};
@@ -63,7 +64,7 @@ pub fn mode_bars(
         .id(egui::Id::unique(MODE_BARS_PLOT_ID))
         .height(h)
         .legend(Legend::default().position(Corner::RightBottom))
-        .x_axis_label("mode")
+        .x_title(ui, "mode")
         .y_axis_label(MODE_BARS_Y_LABEL)
         .x_axis_formatter(move |m, _| {
             let k = m.value.round();
@@ -178,11 +179,17 @@ fn mode_bars_label_w(ui: &Ui) -> f32 {
         .x
 }
 
+/// Rows of the modes' Mute/Solo list kept in view below the bars; more
+/// scroll (reserving a row for each of the paper's 13 modes left its
+/// description two lines at 1280 × 720).
+pub const MUTE_ROWS_SHOWN: usize = 3;
+
 /// Height (px) the mode bars need below the description: their heading,
-/// point picker and sum line, the plot at its least height and one row per
-/// mode (`mode_bars` then fits the plot to the rest).
+/// point picker and sum line, the plot at its least height and a row per
+/// mode, up to [`MUTE_ROWS_SHOWN`] (`mode_bars` then fits the plot to the
+/// rest).
 pub fn mode_bars_min_px(ui: &Ui, num_modes: usize) -> f32 {
     let label_w = mode_bars_label_w(ui);
     let row = ui.spacing().interact_size.y + ui.spacing().item_spacing.y;
-    bars_plot_min_px(ui, label_w) + row * (num_modes as f32 + 4.2)
+    bars_plot_min_px(ui, label_w) + row * (num_modes.min(MUTE_ROWS_SHOWN) as f32 + 4.2)
 }

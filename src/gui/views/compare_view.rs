@@ -4,6 +4,7 @@
 //! app across parameter edits and restarts. As in the time plots, the force
 //! plot can clip impact spikes (fit the force without impacts, mark ▼).
 
+use super::XTitle;
 use super::time_plots::{clip_at, clip_checkbox, clip_level, force_range, impact_marks, y_range};
 use super::{axis_title, legend_place, point_color};
 use crate::Scene;
@@ -206,7 +207,7 @@ impl Grid {
             .include_x(self.t_end)
             .allow_scroll(false);
         if last {
-            plot = plot.x_axis_label("time t (s)");
+            plot = plot.x_title(ui, "time t (s)");
         }
         plot
     }

@@ -4,6 +4,7 @@
 //! each mode would cost. The reference is kept by the app after "Edit as a
 //! modal model", so detuning or removing modes updates the figure.
 
+use super::XTitle;
 use super::log_marks;
 use super::point_color;
 use super::spectra_view::log_label;
@@ -188,11 +189,14 @@ fn green_plot(
     let mut plot = Plot::new("tirecontact.fidelity_g")
         .height(height)
         .legend(Legend::default().position(Corner::RightTop))
-        .x_axis_label(if log {
-            "frequency f (Hz, log scale)"
-        } else {
-            "frequency f (Hz)"
-        })
+        .x_title(
+            ui,
+            if log {
+                "frequency f (Hz, log scale)"
+            } else {
+                "frequency f (Hz)"
+            },
+        )
         .y_axis_label(format!("|G_{}{}(f)| (dB re 1 m/N)", opts.i, opts.j))
         .y_axis_min_width(64.0)
         .allow_scroll(false);
@@ -235,7 +239,7 @@ fn removal_costs(ui: &mut Ui, modes: &[Mode], figures: &FidelityFigures, height:
     super::nice_y_axis(Plot::new("tirecontact.fidelity_costs"))
         .height(height)
         .legend(Legend::default().position(Corner::RightTop))
-        .x_axis_label("mode k (removed)")
+        .x_title(ui, "mode k (removed)")
         .y_axis_label("error without mode k (%)")
         .y_axis_min_width(64.0)
         .allow_scroll(false)

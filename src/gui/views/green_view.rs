@@ -2,6 +2,7 @@
 //! and the receptance |G_ij(f)| (log-log), with the modal frequencies marked,
 //! so that tuning a mode shows its effect at once.
 
+use super::XTitle;
 use super::point_color;
 use crate::Scene;
 use crate::modal::ModalModel;
@@ -101,7 +102,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
     super::nice_y_axis(Plot::new("tirecontact.green_t"))
         .height(half)
         .legend(Legend::default().position(Corner::RightTop))
-        .x_axis_label("time t (s)")
+        .x_title(ui, "time t (s)")
         .y_axis_label("g_ij(t) (mm/(N·s))")
         .allow_scroll(false)
         .show(ui, |pui| {
@@ -128,7 +129,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
     Plot::new("tirecontact.green_f")
         .height(half)
         .legend(Legend::default().position(Corner::RightTop))
-        .x_axis_label("frequency f (Hz, log scale)")
+        .x_title(ui, "frequency f (Hz, log scale)")
         .y_axis_label("|G_ij(f)| (dB re 1 m/N)")
         .x_grid_spacer(super::log_marks)
         .x_axis_formatter(|m, _| pow10_label(m.value))

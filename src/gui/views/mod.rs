@@ -16,6 +16,39 @@ pub mod time_plots;
 
 use egui::Color32;
 
+/// Height (px) of an x axis with a row of tick labels and a title under
+/// it (egui_plot's title gap is a quarter of its height).
+pub fn titled_x_axis_px(ui: &egui::Ui) -> f32 {
+    2.3 * ui.text_style_height(&egui::TextStyle::Body)
+}
+
+/// An x axis titled `title`, as high as its tick labels and title from the
+/// first frame on: egui_plot sizes an axis from the labels it drew the
+/// frame before, so a plot that opened while the run was paused (no next
+/// frame) kept its title over its tick labels.
+pub fn titled_x_axis<'a>(
+    ui: &egui::Ui,
+    title: impl Into<egui::WidgetText>,
+) -> egui_plot::AxisHints<'a> {
+    egui_plot::AxisHints::new_x()
+        .label(title)
+        .min_thickness(titled_x_axis_px(ui))
+}
+
+/// [`titled_x_axis`] on a plot.
+pub trait XTitle {
+    /// The plot's x axis titled `title` ([`titled_x_axis`]); set before
+    /// its x formatter, which it replaces.
+    #[must_use]
+    fn x_title(self, ui: &egui::Ui, title: impl Into<egui::WidgetText>) -> Self;
+}
+
+impl XTitle for egui_plot::Plot<'_> {
+    fn x_title(self, ui: &egui::Ui, title: impl Into<egui::WidgetText>) -> Self {
+        self.custom_x_axes(vec![titled_x_axis(ui, title)])
+    }
+}
+
 /// The point colours: the PNG figures' (`output::figures::PALETTE`), with
 /// grey for their black (black would vanish on the dark theme's plots).
 pub const PALETTE: [Color32; 10] = [

@@ -3,6 +3,7 @@
 //! forces as arrows. Heights are exaggerated (factor shown); the height axis
 //! is labelled in true millimetres.
 
+use super::XTitle;
 use super::{CONTACT_COLOR, FLIGHT_COLOR};
 use crate::Simulation;
 use crate::road::{Road, ramp};
@@ -33,6 +34,43 @@ impl Default for SceneViewOptions {
             legend_above: false,
         }
     }
+}
+
+/// The y extent of the scene plot in heights `hmax`: the plot spans
+/// `±HEIGHTS_SPAN / 2 · e · hmax` (room for the force arrows and labels).
+const HEIGHTS_SPAN: f64 = 5.0;
+
+/// The exaggeration at which the plot's heights (`HEIGHTS_SPAN · hmax`,
+/// exaggerated) fill the plot's height when its width shows the drawn
+/// road, `width_in_heights = (x1 − x0) / hmax`: the largest 1-2-5 value
+/// that does, so that the road spans the plot's width at aspect 1 (a fixed
+/// factor left a short classroom plot a road in the middle third).
+fn auto_exaggeration(ui: &Ui, width_in_heights: f64) -> f64 {
+    let avail = ui.available_size();
+    let row = ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y;
+    // the header, and the legend row (classroom) or the ramp's line
+    let above = 2.0 * row;
+    let frame_h = (avail.y - above - super::titled_x_axis_px(ui)).max(60.0);
+    let frame_w = (avail.x - 44.0 - row).max(100.0);
+    floor_125(f64::from(frame_h / frame_w) * width_in_heights / HEIGHTS_SPAN)
+}
+
+/// The largest 1, 2 or 5 times a power of ten not above `x` (1 for `x`
+/// below 1 or not finite).
+pub fn floor_125(x: f64) -> f64 {
+    if !(x.is_finite() && x >= 1.0) {
+        return 1.0;
+    }
+    let e = 10f64.powf(x.log10().floor());
+    let m = x / e;
+    let m = if m < 2.0 {
+        1.0
+    } else if m < 5.0 {
+        2.0
+    } else {
+        5.0
+    };
+    m * e
 }
 
 /// Rounds to 1, 2 or 5 times a power of ten.
@@ -121,12 +159,18 @@ pub fn height_marks(g: egui_plot::GridInput, to_mm: f64, label_px: f64) -> Vec<G
 
 /// Legend entry of the force arrows and their value labels.
 pub const FORCE_NAME: &str = "contact force (length relative to the largest now; value in N)";
+/// [`FORCE_NAME`] in the legend row above the classroom's plot (one row
+/// at 1280 px).
+pub const FORCE_NAME_SHORT: &str = "contact force (N)";
 /// Colour of the force arrows and of their legend entry.
 pub const FORCE_COLOR: Color32 = Color32::from_rgb(0, 114, 178);
 
 /// Legend entries of the road, the undeformed tyre and the points in
 /// contact and in flight, and the road's colour.
 pub const ROAD_NAME: &str = "road (moving)";
+/// [`ROAD_NAME`] in the classroom's legend row, which also says where the
+/// road goes (its header has no room for it).
+pub const ROAD_NAME_LEFT: &str = "road (moving left)";
 pub const ROAD_COLOR: Color32 = Color32::from_rgb(140, 86, 75);
 pub const UNDEFORMED_NAME: &str = "undeformed tyre";
 /// Radius (px) of the undeformed tyre's hollow markers at the points.
@@ -176,7 +220,7 @@ pub fn show_with(
         .fold(sim.road_profile().scale_m(), f64::max)
         .max(1e-6);
     if opts.auto {
-        opts.exaggeration = round_125(0.12 * (x1 - x0) / hmax);
+        opts.exaggeration = auto_exaggeration(ui, (x1 - x0) / hmax);
     }
     let e = opts.exaggeration;
     header(ui, sim, opts);
@@ -202,7 +246,7 @@ pub fn show_with(
     // x1.7) closer than their height, and egui_plot drew none
     let label_px = f64::from(1.5 * ui.text_style_height(&egui::TextStyle::Body)).max(30.0);
     let r = plot
-        .x_axis_label("position along the contact line x (m)")
+        .x_title(ui, "position along the contact line x (m)")
         .y_axis_label(title.text.clone())
         .x_grid_spacer(|g| nice_marks(g.bounds, 1.0))
         .x_axis_formatter(|m, _| crate::gui::widgets::number::format_number(m.value))
@@ -231,11 +275,16 @@ fn header(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
     let contact = sim.in_contact();
     let e = opts.exaggeration;
     ui.horizontal_wrapped(|ui| {
-        ui.label(
-            RichText::new(format!("vertical exaggeration ×{}", crate::gui::widgets::number::format_number(e)))
-                .strong(),
-        )
-        .on_hover_text("heights are drawn this many times larger than lengths; the height axis shows true mm");
+        // classroom (large text, a short plot): the same in fewer words,
+        // on one row at 1280 px
+        let factor = crate::gui::widgets::number::format_number(e);
+        let what = if opts.legend_above {
+            format!("heights ×{factor}")
+        } else {
+            format!("vertical exaggeration ×{factor}")
+        };
+        ui.label(RichText::new(what).strong())
+            .on_hover_text("heights are drawn this many times larger than lengths; the height axis shows true mm");
         ui.checkbox(&mut opts.auto, "auto");
         ui.add_enabled(
             !opts.auto,
@@ -249,24 +298,32 @@ fn header(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
         // each label whole on a row (wrapped, "ramping" ended a row and
         // "in: w = 0.00" began the next at 1280 x 720)
         let whole = |text: RichText| egui::Label::new(text).wrap_mode(egui::TextWrapMode::Extend);
-        let info = format!(
-            "t = {t:.5} s   V = {:.1} km/h   road moves to the left under the tyre   {} of {} points in contact",
-            scene.speed_mps * 3.6,
-            n_contact,
-            contact.len()
-        );
         if opts.legend_above {
-            ui.label(info);
+            // the time is in the toolbar above, in large type
+            // (the road's legend entry says it moves left)
+            ui.label(format!(
+                "V = {:.1} km/h · {} of {} on the road",
+                scene.speed_mps * 3.6,
+                n_contact,
+                contact.len()
+            ));
         } else {
+            let info = format!(
+                "t = {t:.5} s   V = {:.1} km/h   road moves to the left under the tyre   {} of {} points in contact",
+                scene.speed_mps * 3.6,
+                n_contact,
+                contact.len()
+            );
             ui.add(whole(RichText::new(info)));
         }
-        // classroom mode (legend above the plot): as it was, its layout
-        // and label placement are held by the gui_classroom_* tests
+        // classroom mode (legend above the plot): the ramp's progress in
+        // few words, on the header's row (tests/gui/scene_view/layout.rs)
         if opts.legend_above && w < 1.0 {
-            ui.label(
-                RichText::new(format!("ramping in: w = {w:.2}"))
+            ui.add(whole(
+                RichText::new(format!("ramping in {:.0} %", 100.0 * w))
                     .color(Color32::from_rgb(230, 159, 0)),
-            );
+            ))
+            .on_hover_text("the road and the preload are eased in at the start (ramp)");
         }
         // shown all along a ramped run, in the room of its widest text: the
         // header keeps its rows and the plot its place when the ramp ends
@@ -311,7 +368,7 @@ fn with_legend<'a>(
         use super::scene_legend::{Entry, Key, row};
         let mut entries = vec![
             Entry {
-                name: ROAD_NAME,
+                name: ROAD_NAME_LEFT,
                 color: ROAD_COLOR,
                 key: Key::Line,
             },
@@ -340,7 +397,7 @@ fn with_legend<'a>(
         // plot's height and, at aspect 1, its x range) stays the same as
         // points land and leave (it wrapped to a second line and back)
         entries.push(Entry {
-            name: FORCE_NAME,
+            name: FORCE_NAME_SHORT,
             color: FORCE_COLOR,
             key: Key::Disc,
         });
@@ -404,7 +461,7 @@ impl Geometry {
             a_from,
             a_to,
             a_q,
-            y_floor: -e * hmax * 2.5,
+            y_floor: -e * hmax * 0.5 * HEIGHTS_SPAN,
         }
     }
 
@@ -550,5 +607,20 @@ mod tests {
         assert_eq!(round_125(4.0), 5.0);
         assert_eq!(round_125(80.0), 100.0);
         assert_eq!(round_125(f64::NAN), 1.0);
+        use super::floor_125;
+        for (x, want) in [
+            (1.0, 1.0),
+            (1.99, 1.0),
+            (2.0, 2.0),
+            (4.9, 2.0),
+            (5.0, 5.0),
+            (9.99, 5.0),
+            (10.0, 10.0),
+            (73.0, 50.0),
+            (0.3, 1.0),
+            (f64::NAN, 1.0),
+        ] {
+            assert_eq!(floor_125(x), want, "{x}");
+        }
     }
 }

@@ -4,6 +4,7 @@
 //! `n V/λ` and the modal frequencies. Computed by the app (cached by the
 //! history's length), only drawn here.
 
+use super::XTitle;
 use super::{legend_place, point_color};
 use crate::Scene;
 use crate::gui::model::command::Command;
@@ -278,7 +279,7 @@ fn narrow(
     let mut plot = db_y_axis(Plot::new(id))
         .height(pl.h)
         .legend(legend_place::legend(ui.ctx(), legend_id, pl.h))
-        .x_axis_label(pl.x_label())
+        .x_title(ui, pl.x_label())
         .y_axis_label(y_label)
         .y_axis_min_width(64.0)
         .allow_scroll(false);
@@ -329,7 +330,7 @@ fn bands(ui: &mut Ui, pl: &Plots, s: &crate::spectrum::run::RunSpectra, nyquist:
     db_y_axis(Plot::new("tirecontact.spectra_bands"))
         .height(pl.h)
         .legend(legend_place::legend(ui.ctx(), bands_legend_id, pl.h))
-        .x_axis_label("third-octave band (Hz, log scale; IEC 61260 base 10)")
+        .x_title(ui, "third-octave band (Hz, log scale; IEC 61260 base 10)")
         .y_axis_label("band level (dB re 1 N)")
         .y_axis_min_width(64.0)
         .x_grid_spacer(super::log_marks)

@@ -4,6 +4,7 @@
 //! fraction, rolling-noise band levels) are plotted against the parameter
 //! and exported as CSV and PNG like `tirecontact sweep`.
 
+use super::XTitle;
 use super::point_color;
 use crate::Scene;
 use crate::gui::model::command::Command;
@@ -317,7 +318,7 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
                         super::legend_place::legend(ui.ctx(), legend_id, h)
                             .follow_insertion_order(true),
                     )
-                    .x_axis_label(x_label.clone())
+                    .x_title(ui, x_label.clone())
                     .y_axis_label(y_label)
                     .y_axis_min_width(56.0)
                     .allow_scroll(false)

@@ -257,7 +257,9 @@ fn time_plot<'a>(
             )
         });
     if last {
-        x_axis = x_axis.label("time t (s)");
+        x_axis = x_axis
+            .label("time t (s)")
+            .min_thickness(super::titled_x_axis_px(ui));
     }
     // 1-2-5 time steps labelled from TIME_LABEL_SPACING's end on (powers
     // of ten left a narrow plot one label)

@@ -41,23 +41,19 @@ fn check(preset: &str, size: [f32; 2], steps: u64) {
     eprintln!("{preset} {size:?}: forces {forces:?}\n  phases {phases:?}");
     assert!(!forces.is_empty(), "no force label");
     assert!(!phases.is_empty(), "no phase label");
-    // and inside the plot: above its x tick labels (a short plot pushed
-    // the lowest lane out)
-    let axis = all
-        .iter()
-        .find(|(t, _)| t == "position along the contact line x (m)")
-        .expect("x axis label")
-        .1;
-    let ticks = all
-        .iter()
-        .filter(|(t, r)| t.parse::<f64>().is_ok() && r.bottom() <= axis.top() + 1.0)
-        .map(|(_, r)| r.top())
-        .fold(f32::NEG_INFINITY, f32::max);
-    eprintln!("  x tick labels from {ticks} px, axis label {axis:?}");
-    for (p, pr) in &phases {
+    // and inside the plot's frame (a short plot pushed the lowest lane
+    // out, over the x tick labels)
+    let frame = *egui_plot::PlotMemory::load(
+        &h.ctx,
+        egui::Id::unique(tirecontact::gui::views::scene_view::SCENE_PLOT_ID),
+    )
+    .expect("scene plot shown")
+    .transform()
+    .frame();
+    for (p, pr) in phases.iter().filter(|(_, r)| r.top() >= frame.top()) {
         assert!(
-            pr.bottom() <= ticks,
-            "{size:?}: {p:?} at {pr:?} below the plot (x tick labels at {ticks} px)"
+            pr.bottom() <= frame.bottom() && pr.left() >= frame.left(),
+            "{size:?}: {p:?} at {pr:?} outside the plot {frame:?}"
         );
     }
     for (f, fr) in &forces {

@@ -14,7 +14,7 @@ use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::View;
 use tirecontact::gui::views::scene_view::{
-    CONTACT_NAME, DISPLACED_NAME, FLIGHT_NAME, ROAD_NAME, SCENE_PLOT_ID, UNDEFORMED_NAME,
+    CONTACT_NAME, DISPLACED_NAME, FLIGHT_NAME, ROAD_NAME_LEFT, SCENE_PLOT_ID, UNDEFORMED_NAME,
     displaced_tyre_color,
 };
 use tirecontact::gui::views::{CONTACT_COLOR, FLIGHT_COLOR};
@@ -97,7 +97,7 @@ fn classroom_scene_legend_keeps_off_the_tyre_and_phase_labels_do_not_overlap() {
             let tyre = tyre_bounds(&h, points);
             assert!(tyre.is_positive(), "{size:?}: no tyre painted");
             for name in [
-                ROAD_NAME,
+                ROAD_NAME_LEFT,
                 UNDEFORMED_NAME,
                 DISPLACED_NAME,
                 CONTACT_NAME,

@@ -8,7 +8,7 @@ use crate::harness::texts;
 use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::View;
-use tirecontact::gui::views::scene_view::{FORCE_NAME, Y_TITLE, Y_TITLE_SHORT};
+use tirecontact::gui::views::scene_view::{FORCE_NAME_SHORT, Y_TITLE, Y_TITLE_SHORT};
 use tirecontact::gui::{App, Command};
 
 #[test]
@@ -36,7 +36,7 @@ fn the_scene_plot_does_not_move_as_points_land_and_leave() {
         }
         let all = texts(&h);
         assert!(
-            all.iter().any(|(t, _)| t == FORCE_NAME),
+            all.iter().any(|(t, _)| t == FORCE_NAME_SHORT),
             "the force's legend entry is missing at t = {} s",
             h.state().simulation().time_s()
         );

@@ -11,7 +11,7 @@ use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::View;
 use tirecontact::gui::views::force_labels::force_text;
-use tirecontact::gui::views::scene_view::{FORCE_COLOR, FORCE_NAME};
+use tirecontact::gui::views::scene_view::{FORCE_COLOR, FORCE_NAME, FORCE_NAME_SHORT};
 use tirecontact::gui::{App, Command};
 
 /// Fills of the filled circles inside `r` (the legend entry's dot).
@@ -45,7 +45,13 @@ fn check(size: [f32; 2], classroom: bool) {
     let q: Vec<f64> = h.state().simulation().force_n().to_vec();
     assert!(q.iter().any(|q| *q > 0.0), "no point pushes: {q:?}");
 
-    let entry = h.get_by_label(FORCE_NAME).rect();
+    let entry = h
+        .get_by_label(if classroom {
+            FORCE_NAME_SHORT
+        } else {
+            FORCE_NAME
+        })
+        .rect();
     let all = shapes(&h);
     let dots = dots_in(&all, entry);
     eprintln!("{size:?} classroom {classroom}: legend entry {entry:?}, dots {dots:?}");

@@ -5,3 +5,4 @@ mod contrast;
 mod force_label_tyre;
 mod force_labels;
 mod force_legend;
+mod layout;
