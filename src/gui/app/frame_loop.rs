@@ -97,6 +97,9 @@ impl App {
             mode_bars: self.classroom.bars,
             exporting_frames: self.handles.frames_job.is_some(),
         };
+        if !self.classroom.on && legible_small_text(&ctx) {
+            ui.set_style(ctx.global_style());
+        }
         if self.classroom.sync_style(&ctx) {
             ui.set_style(ctx.global_style());
         }
@@ -181,4 +184,24 @@ impl eframe::App for App {
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         self.save_session(storage);
     }
+}
+
+/// The least size (px) of the small text (legends of short plots, short
+/// axis titles): egui's 9 px was hard to read at 1280 × 720.
+pub const SMALL_TEXT_PX: f32 = 11.0;
+
+/// Raises the small text style to [`SMALL_TEXT_PX`]; whether it changed
+/// (once per context; classroom mode scales from it and restores it).
+fn legible_small_text(ctx: &egui::Context) -> bool {
+    let small = egui::TextStyle::Small;
+    let size = ctx.global_style().text_styles.get(&small).map(|f| f.size);
+    if size.is_none_or(|px| px >= SMALL_TEXT_PX) {
+        return false;
+    }
+    ctx.all_styles_mut(|s| {
+        if let Some(f) = s.text_styles.get_mut(&small) {
+            f.size = f.size.max(SMALL_TEXT_PX);
+        }
+    });
+    true
 }

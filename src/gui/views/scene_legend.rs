@@ -12,6 +12,7 @@ use egui::{Color32, Pos2, Role, Sense, Shape, Stroke, TextStyle, Ui, Vec2, Widge
 pub enum Key {
     Line,
     DashedLine,
+    DottedLine,
     Ring,
     Disc,
     Diamond,
@@ -70,6 +71,11 @@ pub fn item(ui: &mut Ui, name: &str, color: Color32, key: Key, style: &TextStyle
                     [c + Vec2::new(x, 0.0), c + Vec2::new(x + 3.0, 0.0)],
                     Stroke::new(1.5, color),
                 );
+            }
+        }
+        Key::DottedLine => {
+            for x in [-8.0, -4.0, 0.0, 4.0, 8.0] {
+                p.circle_filled(c + Vec2::new(x, 0.0), 1.0, color);
             }
         }
         Key::Ring => {

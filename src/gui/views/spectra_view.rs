@@ -5,7 +5,7 @@
 //! history's length), only drawn here.
 
 use super::XTitle;
-use super::{legend_place, point_color};
+use super::point_color;
 use crate::Scene;
 use crate::gui::model::command::Command;
 use crate::gui::research::ResearchCommand;
@@ -137,6 +137,7 @@ pub fn show(
         }
     };
     ui.label(RichText::new(format!("Window: {}", hs.caption())).strong());
+    legend_row(ui, scene, modes, opts);
     let s = &hs.spectra;
     let nyquist = 0.5 * hs.span.sample_rate_hz;
     let max_hz = opts.max_hz.min(nyquist);
@@ -177,6 +178,36 @@ pub fn show(
         "u",
     );
     bands(ui, &pl, s, nyquist);
+}
+
+/// Name of the summed force's curves (legend row, hover).
+pub const TOTAL_NAME: &str = "total: sum of all points";
+/// Names of the markers' legend entries.
+pub const EXCITATION_NAME: &str = "road n·V/λ";
+pub const MODES_NAME: &str = "modal frequencies";
+
+/// One legend for the three plots, in a row above them: a plot's own
+/// legend, eight entries in a 150 px plot at 1280 × 720, covered its
+/// low-frequency curves and ran out of the plot's top.
+fn legend_row(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &SpectraOptions) {
+    use super::scene_legend::{Key, item};
+    let style = egui::TextStyle::Body;
+    let total_color = ui.visuals().strong_text_color();
+    ui.horizontal_wrapped(|ui| {
+        ui.spacing_mut().item_spacing.x = 12.0;
+        for (i, _) in opts.shown.iter().enumerate().filter(|(_, s)| **s) {
+            item(ui, &format!("point {i}"), point_color(i), Key::Line, &style);
+        }
+        if opts.total {
+            item(ui, TOTAL_NAME, total_color, Key::Line, &style);
+        }
+        if !markers(scene, modes, opts.max_hz, HARMONICS).excitation_hz.is_empty() {
+            item(ui, EXCITATION_NAME, EXCITATION_COLOR, Key::DashedLine, &style);
+        }
+        if !modes.is_empty() {
+            item(ui, MODES_NAME, MODE_COLOR, Key::DottedLine, &style);
+        }
+    });
 }
 
 /// Recompute, automatic updates, the axis and the curves shown.
@@ -256,7 +287,7 @@ fn narrow(
         .chain(
             total
                 .filter(|_| pl.total)
-                .map(|sp| ("q total: sum of all points".to_string(), pl.total_color, sp)),
+                .map(|sp| (format!("{unit} {TOTAL_NAME}"), pl.total_color, sp)),
         )
         .map(|(name, c, sp)| (name, c, level_points(sp, pl.max_hz, pl.log)))
         .collect();
@@ -265,20 +296,14 @@ fn narrow(
         .flat_map(|c| c.2.iter().map(|p| p[1]))
         .fold(f64::NEG_INFINITY, f64::max);
     let floor = top - RANGE_DB;
-    let legend_id = egui::Id::unique(id);
-    let mut labels: Vec<&str> = curves.iter().map(|c| c.0.as_str()).collect();
-    if top.is_finite() {
-        if !pl.marks.excitation_hz.is_empty() {
-            labels.push("road n·V/λ");
-        }
-        if !pl.modal.is_empty() {
-            labels.push("modal frequencies");
-        }
-    }
-    let legend_px = legend_place::legend_size(ui, &labels, pl.h);
+    // room above the curves for the markers' labels: two rows of small
+    // text over a frame about the plot's height less its x axis, which
+    // shows at most RANGE_DB below them
+    let rows_px = f64::from(2.0 * label_row_px(ui));
+    let frame_px = f64::from(pl.h - super::titled_x_axis_px(ui));
+    let label_db = rows_px * RANGE_DB / (frame_px - rows_px).max(1.0);
     let mut plot = db_y_axis(Plot::new(id))
         .height(pl.h)
-        .legend(legend_place::legend(ui.ctx(), legend_id, pl.h))
         .x_title(ui, pl.x_label())
         .y_axis_label(y_label)
         .y_axis_min_width(64.0)
@@ -288,48 +313,26 @@ fn narrow(
             .x_grid_spacer(super::log_marks)
             .x_axis_formatter(|m, _| log_label(m.value));
     }
+    if top.is_finite() {
+        plot = plot.include_y(top + label_db);
+    }
+    let label_px = label_row_px(ui);
     plot.show(ui, |pui| {
-        let mut ink = legend_place::Ink::default();
         for (name, c, pts) in curves {
             let pts: Vec<[f64; 2]> = pts.into_iter().map(|p| [p[0], p[1].max(floor)]).collect();
-            ink.add(pui, &pts);
             pui.line(Line::new(name, pts).color(c).width(1.2).allow_band(false));
         }
         if top.is_finite() {
-            draw_markers(pui, &pl.marks.excitation_hz, &pl.modal, pl.log, top);
-            // the markers are data too: vertical lines over the plot
-            let b = pui.plot_bounds();
-            let xs = pl
-                .marks
-                .excitation_hz
-                .iter()
-                .map(|m| m.1)
-                .chain(pl.modal.iter().copied());
-            for x in xs.map(|f| fx(f, pl.log)) {
-                ink.add(pui, &[[x, b.min()[1]], [x, b.max()[1]]]);
-            }
+            draw_markers(pui, &pl.marks.excitation_hz, &pl.modal, pl.log, label_px);
         }
-        ink.place(pui, legend_id, legend_px);
     });
 }
 
 /// Third-octave bands of the forces, drawn as steps over the band edges.
 fn bands(ui: &mut Ui, pl: &Plots, s: &crate::spectrum::run::RunSpectra, nyquist: f64) {
     let hi = DEFAULT_BANDS_HZ.1.min(nyquist / 10f64.powf(0.05));
-    let bands_legend_id = egui::Id::unique("tirecontact.spectra_bands");
-    let mut band_labels: Vec<String> = (0..s.force.len())
-        .filter(|&i| pl.shown.get(i).copied().unwrap_or(false))
-        .map(|i| format!("q{i}: point {i}"))
-        .collect();
-    if pl.total {
-        band_labels.push("q total".into());
-    }
-    band_labels.push("road n·V/λ".into());
-    let band_labels: Vec<&str> = band_labels.iter().map(String::as_str).collect();
-    let bands_legend_px = legend_place::legend_size(ui, &band_labels, pl.h);
     db_y_axis(Plot::new("tirecontact.spectra_bands"))
         .height(pl.h)
-        .legend(legend_place::legend(ui.ctx(), bands_legend_id, pl.h))
         .x_title(ui, "third-octave band (Hz, log scale; IEC 61260 base 10)")
         .y_axis_label("band level (dB re 1 N)")
         .y_axis_min_width(64.0)
@@ -345,9 +348,8 @@ fn bands(ui: &mut Ui, pl: &Plots, s: &crate::spectrum::run::RunSpectra, nyquist:
                 .map(|(i, sp)| (format!("q{i}: point {i}"), point_color(i), sp))
                 .collect();
             if pl.total {
-                series.push(("q total".into(), pl.total_color, &s.total_force));
+                series.push((format!("q {TOTAL_NAME}"), pl.total_color, &s.total_force));
             }
-            let mut ink = legend_place::Ink::default();
             for (name, c, sp) in series {
                 let mut pts = Vec::new();
                 for b in sp.third_octave_levels(DEFAULT_BANDS_HZ.0, hi, 1.0) {
@@ -356,22 +358,18 @@ fn bands(ui: &mut Ui, pl: &Plots, s: &crate::spectrum::run::RunSpectra, nyquist:
                         pts.push([b.band.upper_hz.log10(), b.level_db]);
                     }
                 }
-                ink.add(pui, &pts);
                 // steps: no min/max band merging of the vertical edges
                 pui.line(Line::new(name, pts).color(c).width(1.5).allow_band(false));
             }
             for &(n, f) in pl.marks.excitation_hz.iter().filter(|m| m.1 <= hi) {
                 if n <= 3 {
-                    let b = pui.plot_bounds();
-                    ink.add(pui, &[[f.log10(), b.min()[1]], [f.log10(), b.max()[1]]]);
                     pui.vline(
-                        VLine::new("road n·V/λ", f.log10())
+                        VLine::new(EXCITATION_NAME, f.log10())
                             .color(EXCITATION_COLOR)
                             .style(LineStyle::dashed_loose()),
                     );
                 }
             }
-            ink.place(pui, bands_legend_id, bands_legend_px);
         });
     if hi > DEFAULT_BANDS_HZ.0 {
         ui.label(
@@ -397,51 +395,68 @@ fn level_points(sp: &Spectrum, max_hz: f64, log: bool) -> Vec<[f64; 2]> {
         .collect()
 }
 
+/// Height (px) of a marker label's row.
+fn label_row_px(ui: &Ui) -> f32 {
+    ui.text_style_height(&egui::TextStyle::Small) + 2.0
+}
+
 /// Vertical markers with labels: the road excitation harmonics (red,
-/// labelled `n·V/λ`) and the modal frequencies (grey, labelled `fk`).
+/// labelled `V/λ 100 Hz`, `2V/λ`, … while they are a label apart) and the
+/// modal frequencies (grey, labelled `fk` where there is room), the labels
+/// in the room kept at the plot's top, in small text.
 fn draw_markers(
     pui: &mut egui_plot::PlotUi<'_>,
     excitation: &[(u32, f64)],
     modal: &[f64],
     log: bool,
-    top: f64,
+    label_px: f32,
 ) {
+    let b = pui.plot_bounds();
+    let t = *pui.transform();
+    let top = b.max()[1];
+    // a label's width in px, estimated from its characters (small text)
+    let width_px = |s: &str| 0.62 * label_px * s.chars().count() as f32;
+    let x_px = |f: f64| t.position_from_point_x(fx(f, log));
+    let small = |s: String, c: Color32| RichText::new(s).small().color(c);
+    let mut last_right = f32::NEG_INFINITY;
     for &(n, f) in excitation {
         pui.vline(
-            VLine::new("road n·V/λ", fx(f, log))
+            VLine::new(EXCITATION_NAME, fx(f, log))
                 .color(EXCITATION_COLOR)
                 .width(1.0)
                 .style(LineStyle::dashed_loose()),
         );
-        if n <= 5 {
-            let label = if n == 1 {
-                format!("V/λ {f:.0} Hz")
-            } else {
-                format!("{n}V/λ")
-            };
+        let label = if n == 1 {
+            format!("V/λ {f:.0} Hz")
+        } else {
+            format!("{n}V/λ")
+        };
+        let x = x_px(f) + 2.0;
+        if x >= last_right + 4.0 && x + width_px(&label) <= t.frame().right() {
+            last_right = x + width_px(&label);
             pui.text(
-                Text::new("road n·V/λ", PlotPoint::new(fx(f, log), top + 6.0), label)
-                    .color(EXCITATION_COLOR)
-                    .anchor(egui::Align2::LEFT_BOTTOM),
+                Text::new(EXCITATION_NAME, PlotPoint::new(fx(f, log), top), small(label, EXCITATION_COLOR))
+                    .anchor(egui::Align2::LEFT_TOP),
             );
         }
     }
+    // the modes' labels one row lower, each clear of the one before
+    let row_below = f64::from(label_px) * t.dvalue_dpos()[1].abs();
+    let mut last_right = f32::NEG_INFINITY;
     for (k, &f) in modal.iter().enumerate() {
         pui.vline(
-            VLine::new("modal frequencies", fx(f, log))
+            VLine::new(MODES_NAME, fx(f, log))
                 .color(MODE_COLOR)
                 .width(1.0)
                 .style(LineStyle::dotted_loose()),
         );
-        if modal.len() <= 12 {
+        let label = format!("f{k}");
+        let x = x_px(f) + 2.0;
+        if x >= last_right + 4.0 && x + width_px(&label) <= t.frame().right() {
+            last_right = x + width_px(&label);
             pui.text(
-                Text::new(
-                    "modal frequencies",
-                    PlotPoint::new(fx(f, log), top - 6.0 - 5.0 * (k % 3) as f64),
-                    format!("f{k}"),
-                )
-                .color(MODE_COLOR)
-                .anchor(egui::Align2::LEFT_TOP),
+                Text::new(MODES_NAME, PlotPoint::new(fx(f, log), top - row_below), small(label, MODE_COLOR))
+                    .anchor(egui::Align2::LEFT_TOP),
             );
         }
     }

@@ -66,29 +66,60 @@ fn settle(h: &mut Harness<'_, App>) {
     h.run_steps(4);
 }
 
+/// The spectra's one legend is a row above the three plots, at both
+/// window sizes; the markers' labels are small text that does not overlap.
 #[test]
 fn spectra_legends_keep_off_the_curves() {
-    let scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
-    let mut h = harness(App::new(scene, None).unwrap());
-    h.run();
-    advance(&mut h, 12_000);
-    h.state_mut().apply(Command::ShowView(View::Spectra));
-    settle(&mut h);
-    let labels = [
-        "q0: point 0",
-        "q1: point 1",
-        "q2: point 2",
-        "u0: point 0",
-        "u1: point 1",
-        "u2: point 2",
-        "q total: sum of all points",
-        "road n·V/λ",
-        "modal frequencies",
-    ];
-    let (ink, n) = ink_under(&h, &labels);
-    assert!(n >= 7, "legend entries found: {n}");
-    eprintln!("spectra: {ink:.0} px of curve under {n} legend entries");
-    assert!(ink <= 10.0, "{ink} px of curve under the legends");
+    for size in [[1280.0, 720.0], [1600.0, 1000.0]] {
+        let scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+        let mut h = crate::harness::harness_sized(App::new(scene, None).unwrap(), size);
+        h.run();
+        advance(&mut h, 12_000);
+        h.state_mut().apply(Command::ShowView(View::Spectra));
+        settle(&mut h);
+        let labels = [
+            "point 0",
+            "point 1",
+            "point 2",
+            "total: sum of all points",
+            "road n·V/λ",
+            "modal frequencies",
+        ];
+        let (ink, n) = ink_under(&h, &labels);
+        assert_eq!(n, labels.len(), "{size:?}: legend entries found: {n}");
+        assert!(ink <= 0.5, "{size:?}: {ink} px of curve under the legends");
+        // all above the curves
+        let top_curve = curves(&h)
+            .iter()
+            .flatten()
+            .map(|p| p.y)
+            .fold(f32::MAX, f32::min);
+        for r in entries(&h, &labels) {
+            assert!(r.bottom() <= top_curve, "{size:?}: entry {r:?} below a curve at {top_curve}");
+        }
+        // the markers' labels: apart, and no smaller than the small text
+        let marks: Vec<(String, Rect, f32)> = h
+            .output()
+            .shapes
+            .iter()
+            .filter_map(|c| match &c.shape {
+                Shape::Text(t) => {
+                    let s = t.galley.text().to_owned();
+                    let px = t.galley.job.sections.first().map_or(0.0, |s| s.format.font_id.size);
+                    (s.contains("V/λ") || (s.starts_with('f') && s[1..].parse::<u32>().is_ok()))
+                        .then(|| (s, t.visual_bounding_rect(), px))
+                }
+                _ => None,
+            })
+            .collect();
+        assert!(marks.iter().any(|m| m.0.starts_with("V/λ ")), "{size:?}: {marks:?}");
+        for (i, a) in marks.iter().enumerate() {
+            assert!(a.2 >= 11.0, "{size:?}: {:?} in {} px", a.0, a.2);
+            for b in &marks[i + 1..] {
+                assert!(!a.1.intersects(b.1), "{size:?}: {:?} over {:?}", a.0, b.0);
+            }
+        }
+    }
 }
 
 #[test]

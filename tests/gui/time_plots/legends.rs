@@ -178,3 +178,24 @@ fn narrow_time_plots_keep_their_time_labels() {
         assert!(((b.1 - a.1) as f64 - px).abs() < 1.0, "{labels:?}");
     }
 }
+
+/// At 1280 × 720 the time plots are short and their legends take the small
+/// text: at least 11 px (egui's 9 px could not be read).
+#[test]
+fn short_plots_legends_are_legible() {
+    let mut h = crate::harness::harness_sized(App::with_default_preset(), [1280.0, 720.0]);
+    h.run();
+    advance(&mut h, 500);
+    h.run_steps(2);
+    let sizes: Vec<f32> = crate::harness::shapes(&h)
+        .iter()
+        .filter_map(|s| match s {
+            egui::Shape::Text(t) if t.galley.text() == "point 0" => {
+                t.galley.job.sections.first().map(|s| s.format.font_id.size)
+            }
+            _ => None,
+        })
+        .collect();
+    assert!(sizes.len() >= 4, "{sizes:?}");
+    assert!(sizes.iter().all(|&px| px >= 11.0), "legend text {sizes:?} px");
+}
