@@ -182,7 +182,13 @@ const CONTACT: RGBColor = RGBColor(0, 158, 115);
 const FLIGHT: RGBColor = RGBColor(213, 94, 0);
 const EVENT: RGBColor = RGBColor(204, 0, 102);
 
-/// Draws the current state of `sim` as one PNG at `path`.
+/// Each frame is drawn this many times wider and higher, then scaled down:
+/// plotters draws lines without antialiasing, and the sloped road line of
+/// a frame drawn at its size was a staircase.
+pub const SUPERSAMPLE: u32 = 2;
+
+/// Draws the current state of `sim` as one PNG at `path`, `width × height`
+/// px (drawn at [`SUPERSAMPLE`] times the size and filtered down).
 fn draw_frame(
     sim: &Simulation,
     phases: &PhaseTracker,
@@ -191,13 +197,34 @@ fn draw_frame(
     width: u32,
     height: u32,
 ) -> Result<(), String> {
-    register_fonts();
     let err = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let (w, h) = (width * SUPERSAMPLE, height * SUPERSAMPLE);
+    let mut rgb = vec![0u8; w as usize * h as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+        draw_frame_on(&root, sim, phases, ext, w, h).map_err(|e| err(&e))?;
+        root.present().map_err(|e| err(&e))?;
+    }
+    let big = image::RgbImage::from_raw(w, h, rgb).ok_or_else(|| err(&"frame buffer size"))?;
+    let small = image::imageops::resize(&big, width, height, image::imageops::FilterType::Triangle);
+    small.save(path).map_err(|e| err(&e))
+}
+
+/// Draws the current state of `sim` on `root` (`width × height` px).
+fn draw_frame_on(
+    root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    sim: &Simulation,
+    phases: &PhaseTracker,
+    ext: &Extents,
+    width: u32,
+    height: u32,
+) -> Result<(), String> {
+    register_fonts();
+    let err = |e: &dyn std::fmt::Display| e.to_string();
     let scene = sim.scene();
     let t = sim.time_s();
     let scale = (f64::from(height.min(width)) / 720.0).clamp(0.5, 4.0);
     let fs = |s: f64| (s * scale).round() as i32;
-    let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let caption = format!(
         "{} — t = {:.4} s, V = {:.1} km/h",
@@ -205,7 +232,7 @@ fn draw_frame(
         t,
         scene.speed_mps * 3.6
     );
-    let mut chart = ChartBuilder::on(&root)
+    let mut chart = ChartBuilder::on(root)
         .caption(caption, ("sans-serif", fs(26.0)))
         .margin(fs(12.0))
         .x_label_area_size(fs(55.0))
@@ -239,14 +266,19 @@ fn draw_frame(
         .draw_series(LineSeries::new(road, ROAD.stroke_width(fs(3.0) as u32)))
         .map_err(|e| err(&e))?
         .label("road (moving left)")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], ROAD.stroke_width(3)));
+        .legend(move |(x, y)| {
+            PathElement::new(
+                vec![(x, y), (x + fs(20.0), y)],
+                ROAD.stroke_width(fs(3.0) as u32),
+            )
+        });
     let mut und: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, 1e3 * p.h_m)).collect();
     und.sort_by(|a, b| a.0.total_cmp(&b.0));
     chart
         .draw_series(LineSeries::new(und, BLACK.mix(0.4).stroke_width(1)))
         .map_err(|e| err(&e))?
         .label("undeformed tyre")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.4)));
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + fs(20.0), y)], BLACK.mix(0.4)));
     let u = sim.displacement_m();
     let mut disp: Vec<(f64, f64, usize)> = scene
         .points
@@ -263,7 +295,12 @@ fn draw_frame(
         ))
         .map_err(|e| err(&e))?
         .label("tyre (displaced)")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(60, 60, 60)));
+        .legend(move |(x, y)| {
+            PathElement::new(
+                vec![(x, y), (x + fs(20.0), y)],
+                RGBColor(60, 60, 60).stroke_width(fs(2.0) as u32),
+            )
+        });
     let contact = sim.in_contact();
     let r = fs(9.0);
     for (on, name, color) in [(true, "in contact", CONTACT), (false, "in flight", FLIGHT)] {
@@ -275,7 +312,7 @@ fn draw_frame(
             )
             .map_err(|e| err(&e))?
             .label(name)
-            .legend(move |(x, y)| Circle::new((x + 10, y), 6, color.filled()));
+            .legend(move |(x, y)| Circle::new((x + fs(10.0), y), fs(6.0), color.filled()));
     }
     // phase labels above the highest point, in lanes of text height by
     // point index (i % 3), so that close neighbours' labels do not overlap
@@ -322,12 +359,12 @@ fn draw_frame(
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::UpperRight)
+        .legend_area_size(fs(30.0))
         .label_font(("sans-serif", fs(18.0)))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK.mix(0.3))
         .draw()
         .map_err(|e| err(&e))?;
-    root.present().map_err(|e| err(&e))?;
     Ok(())
 }
 
@@ -577,5 +614,54 @@ mod tests {
         assert!(r.unwrap_err().contains("cancelled after 0 of 5"));
         assert!(!frame_path(&dir, 0).exists());
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Pixels of `rgb` (rows of `w`) that blend the road's colour with the
+    /// white above it by 35 % to 85 %: the road line's antialiased edge
+    /// (the fill under it is a 25 % blend, its line 100 %).
+    fn road_edge_pixels(img: &image::RgbImage) -> usize {
+        let road = [f64::from(ROAD.0), f64::from(ROAD.1), f64::from(ROAD.2)];
+        img.pixels()
+            .filter(|p| {
+                let a = (255.0 - f64::from(p.0[0])) / (255.0 - road[0]);
+                (0.35..0.85).contains(&a)
+                    && (0..3).all(|c| {
+                        let want = a * road[c] + (1.0 - a) * 255.0;
+                        (f64::from(p.0[c]) - want).abs() <= 6.0
+                    })
+            })
+            .count()
+    }
+
+    /// The frames are antialiased: the sloped road line has an edge of
+    /// partial blends along its length (a line drawn without antialiasing
+    /// has almost none), and the frame has the size asked for.
+    #[test]
+    fn frames_draw_the_road_antialiased() {
+        let scene = Scene::parse(include_str!("../../presets/paper.ron"), "paper").unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        for _ in 0..6000 {
+            sim.step().unwrap();
+        }
+        let phases = PhaseTracker::new(sim.num_points(), 0.01);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("f.png");
+        let (w, h) = (640, 360);
+        draw_frame(&sim, &phases, &extents(&sim), &path, w, h).unwrap();
+        let img = image::open(&path).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (w, h));
+        let edge = road_edge_pixels(&img);
+        // the same scene drawn at its size without supersampling
+        let mut rgb = vec![0u8; (w * h * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+            draw_frame_on(&root, &sim, &phases, &extents(&sim), w, h).unwrap();
+            root.present().unwrap();
+        }
+        let aliased = road_edge_pixels(&image::RgbImage::from_raw(w, h, rgb).unwrap());
+        assert!(
+            edge >= 200 && edge >= 5 * aliased.max(1),
+            "{edge} blended road-edge pixels antialiased, {aliased} without"
+        );
     }
 }

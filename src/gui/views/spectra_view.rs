@@ -201,8 +201,17 @@ fn legend_row(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &SpectraOptions)
         if opts.total {
             item(ui, TOTAL_NAME, total_color, Key::Line, &style);
         }
-        if !markers(scene, modes, opts.max_hz, HARMONICS).excitation_hz.is_empty() {
-            item(ui, EXCITATION_NAME, EXCITATION_COLOR, Key::DashedLine, &style);
+        if !markers(scene, modes, opts.max_hz, HARMONICS)
+            .excitation_hz
+            .is_empty()
+        {
+            item(
+                ui,
+                EXCITATION_NAME,
+                EXCITATION_COLOR,
+                Key::DashedLine,
+                &style,
+            );
         }
         if !modes.is_empty() {
             item(ui, MODES_NAME, MODE_COLOR, Key::DottedLine, &style);
@@ -435,8 +444,12 @@ fn draw_markers(
         if x >= last_right + 4.0 && x + width_px(&label) <= t.frame().right() {
             last_right = x + width_px(&label);
             pui.text(
-                Text::new(EXCITATION_NAME, PlotPoint::new(fx(f, log), top), small(label, EXCITATION_COLOR))
-                    .anchor(egui::Align2::LEFT_TOP),
+                Text::new(
+                    EXCITATION_NAME,
+                    PlotPoint::new(fx(f, log), top),
+                    small(label, EXCITATION_COLOR),
+                )
+                .anchor(egui::Align2::LEFT_TOP),
             );
         }
     }
@@ -455,8 +468,12 @@ fn draw_markers(
         if x >= last_right + 4.0 && x + width_px(&label) <= t.frame().right() {
             last_right = x + width_px(&label);
             pui.text(
-                Text::new(MODES_NAME, PlotPoint::new(fx(f, log), top - row_below), small(label, MODE_COLOR))
-                    .anchor(egui::Align2::LEFT_TOP),
+                Text::new(
+                    MODES_NAME,
+                    PlotPoint::new(fx(f, log), top - row_below),
+                    small(label, MODE_COLOR),
+                )
+                .anchor(egui::Align2::LEFT_TOP),
             );
         }
     }

@@ -95,7 +95,10 @@ fn spectra_legends_keep_off_the_curves() {
             .map(|p| p.y)
             .fold(f32::MAX, f32::min);
         for r in entries(&h, &labels) {
-            assert!(r.bottom() <= top_curve, "{size:?}: entry {r:?} below a curve at {top_curve}");
+            assert!(
+                r.bottom() <= top_curve,
+                "{size:?}: entry {r:?} below a curve at {top_curve}"
+            );
         }
         // the markers' labels: apart, and no smaller than the small text
         let marks: Vec<(String, Rect, f32)> = h
@@ -105,14 +108,22 @@ fn spectra_legends_keep_off_the_curves() {
             .filter_map(|c| match &c.shape {
                 Shape::Text(t) => {
                     let s = t.galley.text().to_owned();
-                    let px = t.galley.job.sections.first().map_or(0.0, |s| s.format.font_id.size);
+                    let px = t
+                        .galley
+                        .job
+                        .sections
+                        .first()
+                        .map_or(0.0, |s| s.format.font_id.size);
                     (s.contains("V/λ") || (s.starts_with('f') && s[1..].parse::<u32>().is_ok()))
                         .then(|| (s, t.visual_bounding_rect(), px))
                 }
                 _ => None,
             })
             .collect();
-        assert!(marks.iter().any(|m| m.0.starts_with("V/λ ")), "{size:?}: {marks:?}");
+        assert!(
+            marks.iter().any(|m| m.0.starts_with("V/λ ")),
+            "{size:?}: {marks:?}"
+        );
         for (i, a) in marks.iter().enumerate() {
             assert!(a.2 >= 11.0, "{size:?}: {:?} in {} px", a.0, a.2);
             for b in &marks[i + 1..] {

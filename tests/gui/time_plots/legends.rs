@@ -197,5 +197,8 @@ fn short_plots_legends_are_legible() {
         })
         .collect();
     assert!(sizes.len() >= 4, "{sizes:?}");
-    assert!(sizes.iter().all(|&px| px >= 11.0), "legend text {sizes:?} px");
+    assert!(
+        sizes.iter().all(|&px| px >= 11.0),
+        "legend text {sizes:?} px"
+    );
 }
