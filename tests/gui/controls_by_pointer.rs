@@ -189,6 +189,9 @@ fn a_refused_mode_value_names_what_was_typed_and_what_is_expected_in_place() {
     let scene = h.state().scene().clone();
     let damp_at = h.get_by_label(DAMP).rect();
     let dup_at = h.get_by_label("Duplicate").rect();
+    // what is below the refused field keeps its place (a reason under the
+    // field added a row, gone as the value was fixed: the next click missed)
+    let add_at = h.get_by_label("Add mode").rect();
     for (field, typed, says) in [
         (FREQ, "0", ["frequency > 0 Hz", "got 0 Hz", "keeps 100 Hz"]),
         (DAMP, "-0.1", ["damping", "got -0.1", "keeps 0.05"]),
@@ -237,6 +240,11 @@ fn a_refused_mode_value_names_what_was_typed_and_what_is_expected_in_place() {
             (b.left() - dup_at.left()).abs() < 60.0,
             "{field} = {typed}: Duplicate moved from {dup_at:?} to {b:?}"
         );
+        let a = h.get_by_label("Add mode").rect();
+        assert!(
+            (a.top() - add_at.top()).abs() < 0.5,
+            "{field} = {typed}: Add mode moved from {add_at:?} to {a:?}"
+        );
     }
     // a good value clears the reason and applies
     type_into(&mut h, FREQ, "120");
@@ -247,6 +255,7 @@ fn a_refused_mode_value_names_what_was_typed_and_what_is_expected_in_place() {
         h.query_all_by_label("not applied").count() == 0,
         "a mark stayed after a good value"
     );
+    assert!((h.get_by_label("Add mode").rect().top() - add_at.top()).abs() < 0.5);
     assert_eq!(h.state().message(), None, "the refusal stayed up");
 }
 

@@ -12,6 +12,9 @@ use crate::Scene;
 use crate::gui::model::command::Command;
 use egui::{Color32, Id, RichText, Ui};
 
+/// Accessible name of a refused field's mark.
+pub const NOT_APPLIED: &str = "not applied";
+
 /// Colour of refused values and error text.
 pub const ERROR_COLOR: Color32 = Color32::from_rgb(220, 50, 47);
 /// Colour of the "live" tag.
@@ -138,100 +141,113 @@ impl<'a> NumField<'a> {
             };
         }
         let mut cmd = None;
-        // the reason goes under the field, wrapped to its column: beside it,
-        // it widened the editing panel by its whole length and moved every
-        // field right of it (and the plots) under the user's pointer
-        ui.vertical(|ui| {
-            let row = ui.horizontal(|ui| {
-                // as wide as its text: narrower, it showed the start of a
-                // long value (0.0497 for 0.0497672), a wrong number
-                let width = self.width.max(fit_width(ui, &st.text));
-                let mut edit = egui::TextEdit::singleline(&mut st.text)
-                    .id(id)
-                    .desired_width(width)
-                    // a grid cell offers the width of its column's last frame
-                    // (at first 40 px), which `desired_width` does not exceed
-                    .min_size(egui::vec2(width, 0.0));
-                if st.error.is_some() {
-                    edit = edit.text_color(ERROR_COLOR);
-                }
-                let resp = ui
-                    .add(edit)
-                    .accessible_name(self.name)
-                    .on_hover_text(self.tooltip());
-                if !self.unit.is_empty() {
-                    ui.label(self.unit);
-                }
-                let unchanged = st.text.trim() == format_number(self.value * self.scale);
-                if resp.lost_focus() && unchanged && st.error.take().is_some() {
-                    // the kept value typed back after a refusal: nothing to
-                    // apply, and nothing refused any more
-                    cmd = Some(Command::FieldRestored {
-                        field: self.name.to_string(),
-                    });
-                }
-                if resp.lost_focus() && !unchanged {
-                    match parse_number(&st.text) {
-                        Err(e) => st.error = Some(e),
-                        Ok(x) => {
-                            let v = x / self.scale;
-                            let scene = with(v);
-                            match scene.validate() {
-                                Ok(()) => {
-                                    st.error = None;
-                                    st.shown = v;
-                                    cmd = Some(Command::EditScene(Box::new(scene)));
-                                }
-                                Err(errors) => {
-                                    let mine: Vec<_> =
-                                        errors.iter().filter(|e| e.field == self.field).collect();
-                                    let shown: Vec<String> = if mine.is_empty() {
-                                        errors.iter().map(ToString::to_string).collect()
-                                    } else {
-                                        mine.iter()
-                                            .map(|e| format!("expected {}", e.expected))
-                                            .collect()
-                                    };
-                                    let unit = if self.unit.is_empty() {
-                                        String::new()
-                                    } else {
-                                        format!(" {}", self.unit)
-                                    };
-                                    st.error = Some(format!(
-                                        "refused: {} (got {}{unit})",
-                                        shown.join("; "),
-                                        st.text.trim()
-                                    ));
-                                }
+        // a refusal changes no widget's size or place: the field is ringed
+        // and its text red, the reason is in its hover text and the banner.
+        // (The reason beside the field widened the editing panel and moved
+        // every field right of it; under it, it added a row, and the row
+        // went away as the value was fixed, so the next click missed.)
+        ui.horizontal(|ui| {
+            // as wide as its text: narrower, it showed the start of a
+            // long value (0.0497 for 0.0497672), a wrong number
+            let width = self.width.max(fit_width(ui, &st.text));
+            let mut edit = egui::TextEdit::singleline(&mut st.text)
+                .id(id)
+                .desired_width(width)
+                // a grid cell offers the width of its column's last frame
+                // (at first 40 px), which `desired_width` does not exceed
+                .min_size(egui::vec2(width, 0.0));
+            if st.error.is_some() {
+                edit = edit.text_color(ERROR_COLOR);
+            }
+            let resp = ui.add(edit).accessible_name(self.name);
+            let hover = match &st.error {
+                Some(e) => format!(
+                    "{NOT_APPLIED}: {e}; the scene keeps its previous value\n\n{}",
+                    self.tooltip()
+                ),
+                None => self.tooltip(),
+            };
+            let resp = resp.on_hover_text(&hover);
+            if st.error.is_some() {
+                ui.painter().rect_stroke(
+                    resp.rect.expand(1.0),
+                    3.0,
+                    egui::Stroke::new(1.5, ERROR_COLOR),
+                    egui::StrokeKind::Outside,
+                );
+                // named for screen readers (and the tests), taking no room:
+                // over the field, not allocated in the row; its hover text
+                // the field's
+                let mark = ui.interact(resp.rect, id.with(NOT_APPLIED), egui::Sense::hover());
+                mark.widget_info(|| {
+                    egui::WidgetInfo::labeled(egui::Role::Label, true, NOT_APPLIED)
+                });
+                mark.on_hover_text(&hover);
+            }
+            if !self.unit.is_empty() {
+                ui.label(self.unit);
+            }
+            let unchanged = st.text.trim() == format_number(self.value * self.scale);
+            if resp.lost_focus() && unchanged && st.error.take().is_some() {
+                // the kept value typed back after a refusal: nothing to
+                // apply, and nothing refused any more
+                cmd = Some(Command::FieldRestored {
+                    field: self.name.to_string(),
+                });
+            }
+            if resp.lost_focus() && !unchanged {
+                match parse_number(&st.text) {
+                    Err(e) => st.error = Some(e),
+                    Ok(x) => {
+                        let v = x / self.scale;
+                        let scene = with(v);
+                        match scene.validate() {
+                            Ok(()) => {
+                                st.error = None;
+                                st.shown = v;
+                                cmd = Some(Command::EditScene(Box::new(scene)));
                             }
-                        }
-                    }
-                    // the whole reason goes to the message banner, which has
-                    // the room for it; the field keeps a short mark
-                    if let Some(e) = &st.error {
-                        cmd = Some(Command::FieldRefused {
-                            field: self.name.to_string(),
-                            text: format!(
-                                "{}: {e}; the scene keeps {}{}.",
-                                self.name,
-                                format_number(self.value * self.scale),
-                                if self.unit.is_empty() {
+                            Err(errors) => {
+                                let mine: Vec<_> =
+                                    errors.iter().filter(|e| e.field == self.field).collect();
+                                let shown: Vec<String> = if mine.is_empty() {
+                                    errors.iter().map(ToString::to_string).collect()
+                                } else {
+                                    mine.iter()
+                                        .map(|e| format!("expected {}", e.expected))
+                                        .collect()
+                                };
+                                let unit = if self.unit.is_empty() {
                                     String::new()
                                 } else {
                                     format!(" {}", self.unit)
-                                }
-                            ),
-                        });
+                                };
+                                st.error = Some(format!(
+                                    "refused: {} (got {}{unit})",
+                                    shown.join("; "),
+                                    st.text.trim()
+                                ));
+                            }
+                        }
                     }
                 }
-            });
-            if let Some(e) = &st.error {
-                ui.set_max_width(row.response.rect.width());
-                ui.add(
-                    egui::Label::new(RichText::new("not applied").small().color(ERROR_COLOR))
-                        .wrap(),
-                )
-                .on_hover_text(format!("{e}\nthe scene keeps its previous value"));
+                // the whole reason goes to the message banner, which has
+                // the room for it; the field keeps a short mark
+                if let Some(e) = &st.error {
+                    cmd = Some(Command::FieldRefused {
+                        field: self.name.to_string(),
+                        text: format!(
+                            "{}: {e}; the scene keeps {}{}.",
+                            self.name,
+                            format_number(self.value * self.scale),
+                            if self.unit.is_empty() {
+                                String::new()
+                            } else {
+                                format!(" {}", self.unit)
+                            }
+                        ),
+                    });
+                }
             }
         });
         ui.data_mut(|d| d.insert_temp(id, st));
