@@ -251,7 +251,7 @@ impl ModeCache {
 /// fail on the user's input happens here, once; a
 /// [`crate::Simulation`] is then built from it without I/O or
 /// identification.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct PreparedModel {
     scene: Scene,
     modes: Arc<Vec<Mode>>,

@@ -114,7 +114,8 @@ pub(crate) struct Handles {
     pub(super) csv_job: Option<CsvJob>,
     pub(super) frames_job: Option<FramesJob>,
     /// An edit or a new document waiting for its ring's identification.
-    pub(super) identify_job: Option<crate::gui::jobs::identify::IdentifyJob>,
+    /// The preparation an edit or a document waits for, and its banner.
+    pub(super) prepare_job: Option<(crate::gui::jobs::prepare::PrepareJob, String)>,
     /// The rings identified so far (shared with the identification job).
     pub(crate) mode_cache: Arc<ModeCache>,
     pub(super) title: String,
@@ -174,7 +175,7 @@ impl App {
             handles: Handles {
                 csv_job: None,
                 frames_job: None,
-                identify_job: None,
+                prepare_job: None,
                 mode_cache,
                 title: String::new(),
                 fps: FrameRate::new(),
@@ -298,7 +299,7 @@ impl App {
             Command::Step(n) => self.time.step(n),
             Command::Reset => self.reset_run(),
             Command::Advance { frame_s } => self.advance(frame_s),
-            Command::IdentificationEnded(r) => self.identification_ended(r),
+            Command::PreparationEnded(r) => self.preparation_ended(r),
             Command::SetSpeed(s) => self.time.set_speed(s),
             Command::EditScene(scene) => self.edit(*scene),
             // the document and its files (app/files.rs)

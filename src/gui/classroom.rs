@@ -25,6 +25,8 @@ use std::collections::BTreeMap;
 
 /// Text sizes in classroom mode, relative to the normal ones.
 pub const FONT_SCALE: f32 = 1.7;
+/// Size (px) of the small text in classroom mode.
+pub const CLASSROOM_SMALL_PX: f32 = 9.0 * FONT_SCALE;
 /// Playback speed set when classroom mode starts (simulated s per wall s).
 pub const SLOW_MOTION: f64 = 0.05;
 /// How long an impact or release label stays up at most (wall-clock s at
@@ -76,6 +78,11 @@ impl Classroom {
                 ctx.all_styles_mut(|s| {
                     for f in s.text_styles.values_mut() {
                         f.size *= FONT_SCALE;
+                    }
+                    // the small text no larger than egui's 9 px scaled:
+                    // the scene's legend row in it fits 1280 px
+                    if let Some(f) = s.text_styles.get_mut(&TextStyle::Small) {
+                        f.size = f.size.min(CLASSROOM_SMALL_PX);
                     }
                     s.spacing.interact_size.y *= 1.3;
                 });

@@ -96,7 +96,7 @@ fn a_broken_preset_pauses_the_run_and_keeps_the_scene() {
         "Scene(\n    name: \"x\"\n    description: \"y\",\n)\n",
     );
     h.state_mut().apply(Command::OpenPath(f.0.clone()));
-    h.run_steps(1);
+    crate::harness::settle(&mut h);
     assert!(!h.state().time_control().is_playing(), "still playing");
     assert_eq!(h.state().scene(), &before, "the scene was kept");
     let text = banner(&h);

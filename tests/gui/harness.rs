@@ -8,11 +8,17 @@ pub fn harness(app: App) -> Harness<'static, App> {
     harness_sized(app, [1500.0, 950.0])
 }
 
+/// Frames `Harness::run` may take before the app stops asking for more: a
+/// preset or road file is read off the UI thread, and the app asks for
+/// frames until it is (a few frames; more on a busy machine).
+pub const MAX_RUN_FRAMES: u64 = 200;
+
 /// The app in a window of `size` (points) stepped at 60 frames per second.
 pub fn harness_sized(app: App, size: [f32; 2]) -> Harness<'static, App> {
     Harness::builder()
         .with_size(size)
         .with_step_dt(1.0 / 60.0)
+        .with_max_steps(MAX_RUN_FRAMES)
         .build_ui_state(|ui, app: &mut App| app.show(ui), app)
 }
 

@@ -2,7 +2,8 @@
 //! moved) or a ring preset opened does not stop the window: the edit waits
 //! for the identification on a thread of its own while frames go on and the
 //! current run keeps stepping, then applies with the modes of the new
-//! positions (as `Scene::modes` identifies them).
+//! positions (as `Scene::modes` identifies them). Files are read there too:
+//! an opened preset, a measured road.
 
 use crate::harness::harness_sized;
 use crate::support::temp_dir;
@@ -179,4 +180,75 @@ fn a_ring_preset_opened_is_identified_off_the_ui_thread() {
         .map(|m| m.text.clone())
         .unwrap_or_default();
     assert!(m.starts_with("opened"), "{m}");
+}
+
+/// A preset opened and a measured road chosen are read on the preparation
+/// thread: the app waits for them (the current scene and run go on), then
+/// applies them; a file that cannot be read is refused then, the scene kept.
+#[test]
+fn preset_and_road_files_are_read_off_the_ui_thread() {
+    let tmp = temp_dir();
+    let mut h = harness_sized(
+        App::new(
+            Scene::load(Path::new("presets/single_mode.ron")).unwrap(),
+            None,
+        )
+        .unwrap(),
+        [1280.0, 720.0],
+    );
+    h.run();
+    let before = h.state().scene().clone();
+    h.state_mut()
+        .apply(Command::OpenPath("presets/three_points.ron".into()));
+    assert!(
+        h.state().identifying(),
+        "the preset is read by the UI thread"
+    );
+    assert_eq!(
+        h.state().scene(),
+        &before,
+        "the current scene stays meanwhile"
+    );
+    crate::harness::settle(&mut h);
+    assert_eq!(h.state().scene().num_points(), 3);
+
+    // a live road edit to a measured profile: read off the UI thread, then
+    // applied live (the run is not restarted)
+    h.state_mut().apply(Command::Step(200));
+    h.run();
+    let road = tmp.path().join("road.csv");
+    std::fs::write(&road, "x_m,z_m\n-10,0\n0,0.001\n10,0\n").unwrap();
+    let mut s = h.state().scene().clone();
+    s.road = tirecontact::road::Road::Measured {
+        file: road.clone(),
+        looped: false,
+    };
+    let old_road = h.state().scene().road.clone();
+    h.state_mut().apply(Command::EditScene(Box::new(s.clone())));
+    assert!(
+        h.state().identifying(),
+        "the road file is read by the UI thread"
+    );
+    assert_eq!(h.state().scene().road, old_road, "the old road meanwhile");
+    crate::harness::settle(&mut h);
+    assert_eq!(h.state().scene().road, s.road);
+    assert_eq!(h.state().simulation().scene().road, s.road);
+    assert_eq!(
+        h.state().simulation().steps(),
+        200,
+        "a live edit, no restart"
+    );
+
+    // a road file that is not there: refused when read, the scene kept
+    let kept = h.state().scene().clone();
+    let mut gone = kept.clone();
+    gone.road = tirecontact::road::Road::Measured {
+        file: tmp.path().join("missing.csv"),
+        looped: false,
+    };
+    h.state_mut().apply(Command::EditScene(Box::new(gone)));
+    crate::harness::settle(&mut h);
+    assert_eq!(h.state().scene(), &kept);
+    let m = h.state().message().expect("a refusal");
+    assert!(m.error && m.text.contains("missing.csv"), "{}", m.text);
 }

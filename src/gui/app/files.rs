@@ -3,6 +3,7 @@
 //! `Scene::save`), and the PNG and CSV exports of the run with their dialogs.
 
 use super::*;
+use crate::gui::jobs::prepare::{Then, needs_preparing};
 
 impl App {
     /// The app on the preset at `path`; on error, the default preset with
@@ -104,36 +105,47 @@ impl App {
         }
     }
 
-    /// Opens a preset file; a broken one leaves the current scene untouched.
+    /// Opens a preset file, read on a background thread (the window keeps
+    /// drawing); a broken one leaves the current scene untouched.
     fn open(&mut self, path: &Path) {
-        match Scene::load(path) {
-            Ok(scene) => {
-                let p = path.to_path_buf();
-                self.replace(scene, Some(p), &format!("opened {}", path.display()));
-            }
-            Err(e) => {
-                let head = self.pause_for_error(
-                    "Cannot open this preset; the current scene is kept.".to_string(),
-                );
-                self.error(format!("{head}\n{e}"))
-            }
-        }
+        self.prepare(Then::Open(path.to_path_buf()));
     }
 
-    /// Replaces the document (scene, file) and restarts the run.
+    /// A preset that could not be opened: the current scene is kept.
+    pub(super) fn open_failed(&mut self, e: &str) {
+        let head =
+            self.pause_for_error("Cannot open this preset; the current scene is kept.".to_string());
+        self.error(format!("{head}\n{e}"))
+    }
+
+    /// Replaces the document (scene, file) and restarts the run; a scene
+    /// that reads a file or identifies a ring is prepared off the UI thread
+    /// first.
     pub(super) fn replace(&mut self, scene: Scene, path: Option<PathBuf>, what: &str) {
         // the latest edit or document wins over one still waiting
-        self.handles.identify_job = None;
-        if !self.handles.mode_cache.has_modes(&scene) {
-            // the ring is identified off the UI thread; the document waits
-            self.wait_for_modes(crate::gui::jobs::identify::Then::Replace {
+        self.handles.prepare_job = None;
+        if needs_preparing(&scene, &self.handles.mode_cache) {
+            self.prepare(Then::Replace {
                 scene,
                 path,
                 what: what.to_string(),
             });
             return;
         }
-        match super::build(&scene, &self.handles.mode_cache) {
+        let built = super::build(&scene, &self.handles.mode_cache);
+        self.replace_with(scene, path, what, built);
+    }
+
+    /// Replaces the document by `scene`, run by `built`.
+    pub(super) fn replace_with(
+        &mut self,
+        scene: Scene,
+        path: Option<PathBuf>,
+        what: &str,
+        built: Result<(Simulation, Vec<Mode>), SceneError>,
+    ) {
+        self.handles.prepare_job = None;
+        match built {
             Ok((sim, modes)) => {
                 self.sim = sim;
                 self.modes = modes;

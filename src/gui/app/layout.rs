@@ -76,7 +76,7 @@ impl App {
         let cmds_left = &mut *cmds;
         // while an edit waits for its ring's identification the fields show
         // the running scene: no further edit until the waiting one applies
-        let editable = self.handles.identify_job.is_none();
+        let editable = self.handles.prepare_job.is_none();
         let edits = self.edits();
         egui::Panel::left("tirecontact.edit")
             .resizable(true)

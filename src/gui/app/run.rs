@@ -3,7 +3,9 @@
 
 use super::*;
 use crate::drive::Watch;
-use crate::gui::jobs::identify::{IdentifyJob, Then, waiting_note};
+use crate::gui::jobs::prepare::{
+    PrepareJob, Prepared, Then, needs_preparing, reads_road_file, waiting_note,
+};
 use crate::road::RoadProfile;
 
 /// Said after an error that paused the run.
@@ -104,37 +106,76 @@ impl App {
         }
     }
 
-    /// Starts identifying the ring of the scene `then` waits for (a later
+    /// Prepares what `then` waits for on a background thread (a later
     /// edit or document replaces an earlier one still waiting).
-    pub(super) fn wait_for_modes(&mut self, then: Then) {
-        let scene = match &then {
-            Then::Edit(s) | Then::Replace { scene: s, .. } => s,
+    pub(super) fn prepare(&mut self, then: Then) {
+        let identifies = match &then {
+            Then::Edit(s) | Then::Replace { scene: s, .. } => !self.handles.mode_cache.has_modes(s),
+            Then::Road(_) | Then::Open(_) => false,
         };
-        match IdentifyJob::spawn(scene, then.clone(), Arc::clone(&self.handles.mode_cache)) {
+        let note = waiting_note(&then, identifies);
+        match PrepareJob::spawn(then, Arc::clone(&self.handles.mode_cache)) {
             Ok(job) => {
-                self.info(waiting_note(&then));
-                self.handles.identify_job = Some(job);
+                self.info(note.clone());
+                self.handles.prepare_job = Some((job, note));
             }
-            Err(e) => self.error(format!("Cannot identify the ring tyre: {e}")),
+            Err(e) => self.error(format!("Cannot prepare the scene: {e}")),
         }
     }
 
-    /// Applies what waited for a finished identification.
-    pub(super) fn poll_identification(&self) -> Option<Command> {
-        let r = self.handles.identify_job.as_ref()?.poll()?;
-        Some(Command::IdentificationEnded(r))
+    /// Applies what waited for a finished preparation.
+    pub(super) fn poll_preparation(&self) -> Option<Command> {
+        let r = self.handles.prepare_job.as_ref()?.0.poll()?;
+        Some(Command::PreparationEnded(r))
     }
 
-    /// Applies (or refuses) what waited for the identification that ended.
-    pub(super) fn identification_ended(&mut self, result: Result<(), String>) {
-        if let Some(job) = self.handles.identify_job.take() {
-            self.identified(result, job.then);
+    /// Applies (or refuses) what waited for the preparation that ended.
+    pub(super) fn preparation_ended(&mut self, result: Result<Prepared, String>) {
+        let Some((job, note)) = self.handles.prepare_job.take() else {
+            return;
+        };
+        // the waiting note goes; what is applied says what it says
+        if self.message.as_ref().is_some_and(|m| m.text == note) {
+            self.message = None;
+        }
+        let built = |m: &crate::identify::PreparedModel| {
+            Simulation::new(m, SolverOptions::default()).map(|sim| (sim, m.modes().to_vec()))
+        };
+        match (result, job.then) {
+            (Ok(Prepared::Model(m)), Then::Edit(scene)) => {
+                let b = built(&m);
+                self.restart_with(scene, b);
+            }
+            (Ok(Prepared::Road(profile)), Then::Road(scene)) => {
+                self.live_edit(scene, Some(profile))
+            }
+            (Ok(Prepared::Model(m)), Then::Replace { scene, path, what }) => {
+                let b = built(&m);
+                self.replace_with(scene, path, &what, b);
+            }
+            (Ok(Prepared::Model(m)), Then::Open(path)) => {
+                let b = built(&m);
+                let scene = m.scene().clone();
+                self.replace_with(
+                    scene,
+                    Some(path.clone()),
+                    &format!("opened {}", path.display()),
+                    b,
+                );
+            }
+            (Ok(_), _) => self.error("the preparation gave what was not asked for".to_string()),
+            (Err(e), Then::Edit(_) | Then::Road(_)) => self.error(format!("Edit refused: {e}")),
+            (Err(e), Then::Replace { .. }) => self.error(format!(
+                "Cannot use this scene; the current scene is kept.\n{e}"
+            )),
+            (Err(e), Then::Open(_)) => self.open_failed(&e),
         }
     }
 
-    /// Whether an edit or a new document waits for its ring's identification.
+    /// Whether an edit or a new document waits for its preparation (a
+    /// file read, a ring identified).
     pub fn identifying(&self) -> bool {
-        self.handles.identify_job.is_some()
+        self.handles.prepare_job.is_some()
     }
 
     /// Whether `scene`'s modes are known without an identification (given
@@ -143,27 +184,10 @@ impl App {
         self.handles.mode_cache.has_modes(scene)
     }
 
-    fn identified(&mut self, result: Result<(), String>, then: Then) {
-        // the waiting note goes; what is applied says what it says
-        if let Some(m) = &self.message
-            && m.text == waiting_note(&then)
-        {
-            self.message = None;
-        }
-        match (result, then) {
-            (Ok(()), Then::Edit(scene)) => self.edit(scene),
-            (Ok(()), Then::Replace { scene, path, what }) => self.replace(scene, path, &what),
-            (Err(e), Then::Edit(_)) => self.error(format!("Edit refused: {e}")),
-            (Err(e), Then::Replace { .. }) => self.error(format!(
-                "Cannot use this scene; the current scene is kept.\n{e}"
-            )),
-        }
-    }
-
     /// Applies an edited scene: road and speed live, everything else restarts.
     pub(super) fn edit(&mut self, new: Scene) {
         // the latest edit or document wins over one still waiting
-        self.handles.identify_job = None;
+        self.handles.prepare_job = None;
         if let Err(errors) = new.validate() {
             let list: Vec<String> = errors.iter().map(ToString::to_string).collect();
             self.error(format!("Edit refused: {}", list.join("; ")));
@@ -184,37 +208,60 @@ impl App {
             || new.contact_scheme != old.contact_scheme
             || new.contact != old.contact;
         if restart {
-            if !self.handles.mode_cache.has_modes(&new) {
-                // the ring is identified off the UI thread; the edit waits
-                self.wait_for_modes(Then::Edit(new));
+            if needs_preparing(&new, &self.handles.mode_cache) {
+                // a file read or a ring identified off the UI thread; the
+                // edit waits
+                self.prepare(Then::Edit(new));
                 return;
             }
-            match super::build(&new, &self.handles.mode_cache) {
-                Ok((sim, modes)) => {
-                    // "Edit as a modal model" changed the panel in place and
-                    // said nothing: what happened, and where the modes went
-                    // (a mute also turns a ring into modes, some of them
-                    // zeroed: not the identified ones)
-                    let converted = matches!(old.tyre, crate::scene::Tyre::Ring { .. })
-                        && matches!(&new.tyre, crate::scene::Tyre::Modal { modes } if *modes == self.modes);
-                    let playing = self.time.is_playing();
-                    self.sim = sim;
-                    self.modes = modes;
-                    self.doc.scene = new;
-                    self.reset_run();
-                    if playing {
-                        self.time.play();
-                    }
-                    if converted {
-                        self.info(modal_model_note(self.modes.len()));
-                    }
-                }
-                Err(e) => self.error(format!("Edit refused: {e}")),
-            }
+            let built = super::build(&new, &self.handles.mode_cache);
+            self.restart_with(new, built);
             return;
         }
+        if new.road != old.road && reads_road_file(&new.road) {
+            self.prepare(Then::Road(new));
+            return;
+        }
+        self.live_edit(new, None);
+    }
+
+    /// Restarts the run on the edited scene `new`, run by `built`.
+    fn restart_with(&mut self, new: Scene, built: Result<(Simulation, Vec<Mode>), SceneError>) {
+        let old = &self.doc.scene;
+        match built {
+            Ok((sim, modes)) => {
+                // "Edit as a modal model" changed the panel in place and
+                // said nothing: what happened, and where the modes went
+                // (a mute also turns a ring into modes, some of them
+                // zeroed: not the identified ones)
+                let converted = matches!(old.tyre, crate::scene::Tyre::Ring { .. })
+                    && matches!(&new.tyre, crate::scene::Tyre::Modal { modes } if *modes == self.modes);
+                let playing = self.time.is_playing();
+                self.sim = sim;
+                self.modes = modes;
+                self.doc.scene = new;
+                self.reset_run();
+                if playing {
+                    self.time.play();
+                }
+                if converted {
+                    self.info(modal_model_note(self.modes.len()));
+                }
+            }
+            Err(e) => self.error(format!("Edit refused: {e}")),
+        }
+    }
+
+    /// Applies a road or speed edit to the running simulation (`profile`:
+    /// the new road's, read off the UI thread; else made here).
+    fn live_edit(&mut self, new: Scene, profile: Option<RoadProfile>) {
+        let old = &self.doc.scene;
         if new.road != old.road {
-            match RoadProfile::new(&new.road, self.sim.scene().base_dir.as_deref()) {
+            let profile = match profile {
+                Some(p) => Ok(p),
+                None => RoadProfile::new(&new.road, self.sim.scene().base_dir.as_deref()),
+            };
+            match profile {
                 Ok(profile) => self.sim.set_road(&new.road, profile),
                 Err(e) => {
                     self.error(format!("Road refused: {e}"));

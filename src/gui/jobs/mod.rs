@@ -3,7 +3,7 @@
 
 pub mod export;
 pub mod frames;
-pub mod identify;
 mod job;
+pub mod prepare;
 
 pub use job::{Job, Progress};

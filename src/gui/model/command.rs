@@ -143,7 +143,7 @@ pub enum Command {
     CsvExportEnded(Result<String, String>),
     /// The frames export job ended: the frames written, or why it stopped.
     FramesExportEnded(Result<u64, String>),
-    /// The ring's identification ended: what waited for it is applied (or
-    /// refused with the reason).
-    IdentificationEnded(Result<(), String>),
+    /// A preparation (preset or road file read, ring identified) ended:
+    /// what waited for it is applied (or refused with the reason).
+    PreparationEnded(Result<crate::gui::jobs::prepare::Prepared, String>),
 }

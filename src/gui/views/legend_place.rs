@@ -143,8 +143,10 @@ fn extent_key(id: Id) -> Id {
 /// The top of a y axis whose top `legend_h_px` (plus a gap) stay above
 /// curves spanning `lo..=hi` in a frame `frame_h_px` high: for curves that
 /// fill the whole width (time series), where every corner would cover data.
+/// At most 60 % of the frame goes to the legend: a three-entry legend in
+/// the 113 px plots of A/B compare at 1280 × 720 needs 52 %.
 pub fn headroom_top((lo, hi): (f64, f64), legend_h_px: f32, frame_h_px: f32) -> f64 {
-    let f = ((legend_h_px + 6.0) / frame_h_px.max(1.0)).clamp(0.0, 0.5) as f64;
+    let f = ((legend_h_px + 6.0) / frame_h_px.max(1.0)).clamp(0.0, 0.6) as f64;
     (hi - f * lo) / (1.0 - f)
 }
 

@@ -283,7 +283,7 @@ fn fidelity_figure_equals_the_library_and_grows_when_a_mode_goes() {
         .apply(Command::OpenPath("presets/three_points.ron".into()));
     h.run_steps(1);
     h.state_mut().apply(Command::ConfirmDiscard);
-    h.run_steps(2);
+    crate::harness::settle(&mut h);
     assert_eq!(h.state().scene().num_points(), 3);
     assert!(h.state().research().fidelity_reference().is_none());
     assert!(

@@ -1,0 +1,107 @@
+//! What a new scene needs before it can run, off the UI thread: its preset
+//! file read (Open), its measured road's file read, its ring tyre
+//! identified (method §5-6; a tenth of a second or more, longer in a debug
+//! build). The edit or the document waits here while the window keeps
+//! drawing and the current run goes on, then is applied from what was
+//! prepared (the identified modes are also kept in the app's
+//! [`ModeCache`], which the job shares). A file that cannot be read, or a
+//! scene that cannot run, is refused then, with the current scene kept.
+
+use crate::gui::jobs::Job;
+use crate::identify::{ModeCache, PreparedModel};
+use crate::road::{Road, RoadProfile};
+use crate::{Scene, SceneError};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// What waits for the preparation.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Then {
+    /// An edit of the current scene that restarts the run
+    /// ([`crate::gui::model::command::Command::EditScene`]).
+    Edit(Scene),
+    /// A live edit of the road to a measured profile: its file is read.
+    Road(Scene),
+    /// A new document: a preset, a guided tour, a new scene.
+    Replace {
+        scene: Scene,
+        path: Option<PathBuf>,
+        what: String,
+    },
+    /// A preset file to read and open.
+    Open(PathBuf),
+}
+
+/// What was prepared.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Prepared {
+    /// A whole model (the scene, its modes, its road): for a restart.
+    Model(Box<PreparedModel>),
+    /// A road profile: for a live road edit.
+    Road(RoadProfile),
+}
+
+/// Whether applying `scene` reads a file (a measured road) or identifies a
+/// ring tyre not in `cache`: then it is prepared by a [`PrepareJob`].
+pub fn needs_preparing(scene: &Scene, cache: &ModeCache) -> bool {
+    reads_road_file(&scene.road) || !cache.has_modes(scene)
+}
+
+/// Whether sampling `road` needs its file read.
+pub fn reads_road_file(road: &Road) -> bool {
+    matches!(road, Road::Measured { .. })
+}
+
+/// A preparation running on its own thread, and what waits for it.
+pub struct PrepareJob {
+    job: Job<Result<Prepared, String>>,
+    pub then: Then,
+}
+
+impl PrepareJob {
+    /// Prepares what `then` needs on a new thread, identifying into
+    /// `cache` (kept there even if a later edit replaces this job).
+    pub fn spawn(then: Then, cache: Arc<ModeCache>) -> Result<Self, String> {
+        let what = then.clone();
+        let job = Job::spawn("preparation", 1, move |progress| {
+            let r = prepare(&what, &cache).map_err(|e| e.to_string());
+            progress.add(1);
+            r
+        })?;
+        Ok(PrepareJob { job, then })
+    }
+
+    /// The result, once the thread has finished.
+    pub fn poll(&self) -> Option<Result<Prepared, String>> {
+        self.job.poll().map(Result::flatten)
+    }
+}
+
+fn prepare(then: &Then, cache: &ModeCache) -> Result<Prepared, SceneError> {
+    let model =
+        |scene: &Scene| PreparedModel::new(scene, cache).map(|m| Prepared::Model(Box::new(m)));
+    match then {
+        Then::Edit(scene) | Then::Replace { scene, .. } => model(scene),
+        Then::Road(scene) => {
+            RoadProfile::new(&scene.road, scene.base_dir.as_deref()).map(Prepared::Road)
+        }
+        Then::Open(path) => model(&Scene::load(path)?),
+    }
+}
+
+/// The banner while a scene is prepared.
+pub fn waiting_note(then: &Then, identifies: bool) -> String {
+    let what = match then {
+        Then::Edit(_) | Then::Road(_) => "for the edited scene",
+        Then::Replace { .. } => "for the new scene",
+        Then::Open(p) => return format!("Opening {}…", p.display()),
+    };
+    if identifies {
+        format!(
+            "Identifying the ring tyre's modes at the points {what} (LSCE, docs/method.md §6): \
+             the current run goes on until they are ready."
+        )
+    } else {
+        format!("Reading the road file {what}: the current run goes on until it is read.")
+    }
+}
