@@ -196,6 +196,16 @@ impl Scene {
                 ),
             ))
         })?;
+        let too_big = || {
+            io(std::io::Error::other(format!(
+                "more than {MAX_SCENE_BYTES} bytes: expected a scene file of at most {} MiB",
+                MAX_SCENE_BYTES >> 20
+            )))
+        };
+        // a regular file's size is known: one too big is refused unread
+        if file.metadata().map_err(io)?.len() > MAX_SCENE_BYTES {
+            return Err(too_big());
+        }
         let mut bytes = Vec::new();
         std::io::Read::read_to_end(
             &mut std::io::Read::take(file, MAX_SCENE_BYTES + 1),
@@ -203,10 +213,8 @@ impl Scene {
         )
         .map_err(io)?;
         if bytes.len() as u64 > MAX_SCENE_BYTES {
-            return Err(io(std::io::Error::other(format!(
-                "more than {MAX_SCENE_BYTES} bytes: expected a scene file of at most {} MiB",
-                MAX_SCENE_BYTES >> 20
-            ))));
+            // (grown while read)
+            return Err(too_big());
         }
         let file = path.display().to_string();
         let text = String::from_utf8(bytes).map_err(|e| not_utf8(&file, e))?;
