@@ -5,11 +5,13 @@
 
 use crate::error::SceneError;
 use crate::lsce::{Identification, IdentifyOptions, LsceError, Responses, identify};
+use crate::measured;
 use crate::modal::ModalModel;
 use crate::modal::Mode;
 use crate::ring::RingParams;
 use crate::road::RoadProfile;
 use crate::scene::{Scene, Tyre};
+use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
@@ -102,6 +104,78 @@ pub fn identify_ring(
     })
 }
 
+/// An identification of measured (or externally computed) responses.
+#[derive(Debug, Clone)]
+pub struct MeasuredIdentification {
+    pub identification: Identification,
+    /// The responses LSCE saw (pairs `i <= j`), cut to the options'
+    /// duration.
+    pub responses: Responses,
+    /// What reading the file did (format, reciprocity, conversions).
+    pub notes: Vec<String>,
+    /// Wall time of reading and identification (s).
+    pub elapsed_s: f64,
+}
+
+/// Reads the responses of `num_points` points in `path` (see
+/// [`crate::measured`]) and identifies them with `opts` at the data's own
+/// sampling, over its first `opts.duration_s` seconds. A model whose
+/// `|G|` misses the data's by more than [`MAX_MAGNITUDE_ERROR`] over the
+/// band is an error ([`LsceError::PoorFit`]).
+pub fn identify_measured(
+    path: &Path,
+    nodes: Option<&[i64]>,
+    num_points: usize,
+    opts: &IdentifyOptions,
+) -> Result<MeasuredIdentification, LsceError> {
+    let start = Instant::now();
+    let data =
+        measured::read(path, nodes, num_points).map_err(|e| LsceError::Input(e.to_string()))?;
+    let mut responses = data.responses;
+    let dt = responses.dt_s;
+    let keep = ((opts.duration_s / dt).round() as usize).max(1);
+    for g in &mut responses.data {
+        g.truncate(keep);
+    }
+    let mut opts = opts.clone();
+    opts.sample_rate_hz = 1.0 / dt;
+    opts.duration_s = responses.data.first().map_or(0, Vec::len) as f64 * dt;
+    if opts.band_hz.1 >= 0.5 * opts.sample_rate_hz {
+        return Err(LsceError::Input(format!(
+            "{}: tyre.identification.band_hz = ({}, {}): expected the band below the data's Nyquist frequency {} Hz (sampled every {dt:e} s)",
+            path.display(),
+            opts.band_hz.0,
+            opts.band_hz.1,
+            0.5 * opts.sample_rate_hz
+        )));
+    }
+    let identification = identify(&responses, &opts)?;
+    let e = identification.report.magnitude_error;
+    if e.is_nan() || e > MAX_MAGNITUDE_ERROR {
+        return Err(LsceError::PoorFit {
+            magnitude_error: e,
+            limit: MAX_MAGNITUDE_ERROR,
+            lo_hz: opts.band_hz.0,
+            hi_hz: opts.band_hz.1,
+            lowest_source_hz: identification.modes.first().map_or(f64::NAN, |m| m.freq_hz),
+        });
+    }
+    Ok(MeasuredIdentification {
+        identification,
+        responses,
+        notes: data.notes,
+        elapsed_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// A measured tyre's data file, relative to the scene's folder.
+pub fn data_path(scene: &Scene, file: &Path) -> PathBuf {
+    match &scene.base_dir {
+        Some(d) if file.is_relative() => d.join(file),
+        _ => file.to_path_buf(),
+    }
+}
+
 /// Relative L2 error of `|G_ij(ω)|` of `model` against `reference` over
 /// `n` frequencies spread over the band, all pairs `i <= j` (-).
 pub fn magnitude_error(
@@ -145,6 +219,28 @@ const CACHE_LEN: usize = 8;
 /// The cache key of a ring, its identification options and the points.
 fn cache_key(ring: &RingParams, x_m: &[f64], opts: &IdentifyOptions) -> String {
     format!("{ring:?}|{opts:?}|{x_m:?}")
+}
+
+/// The cache key of a scene's identified tyre (`None`: a modal tyre). A
+/// measured tyre's is its data file's path, options, nodes and point
+/// count: the file is read once per key ([`ModeCache::forget`] drops it).
+fn tyre_key(scene: &Scene) -> Option<String> {
+    match &scene.tyre {
+        Tyre::Modal { .. } => None,
+        Tyre::Ring {
+            ring,
+            identification,
+        } => Some(cache_key(ring, &positions(scene), identification)),
+        Tyre::Measured {
+            file,
+            identification,
+            nodes,
+        } => Some(format!(
+            "measured|{}|{identification:?}|{nodes:?}|{}",
+            data_path(scene, file).display(),
+            scene.num_points()
+        )),
+    }
 }
 
 /// The points' positions along the tyre (m).
@@ -195,9 +291,14 @@ impl ModeCache {
     }
 
     /// The modes of a scene's tyre: those written in the preset
-    /// (`Tyre::Modal`), or the ring identified at the points' positions
-    /// (`Tyre::Ring`, method §5-6) through [`ModeCache::ring_modes`].
+    /// (`Tyre::Modal`), the ring identified at the points' positions
+    /// (`Tyre::Ring`, method §5-6) through [`ModeCache::ring_modes`], or
+    /// the measured responses identified (`Tyre::Measured`).
     pub fn modes(&self, scene: &Scene) -> Result<Arc<Vec<Mode>>, SceneError> {
+        let fail = |e: LsceError| SceneError::Identification {
+            scene: scene.name.clone(),
+            message: e.to_string(),
+        };
         match &scene.tyre {
             Tyre::Modal { modes } => Ok(Arc::new(modes.clone())),
             Tyre::Ring {
@@ -205,41 +306,56 @@ impl ModeCache {
                 identification,
             } => self
                 .ring_modes(ring, &positions(scene), identification)
-                .map_err(|e| SceneError::Identification {
-                    scene: scene.name.clone(),
-                    message: e.to_string(),
-                }),
+                .map_err(fail),
+            Tyre::Measured {
+                file,
+                identification,
+                nodes,
+            } => {
+                let key = tyre_key(scene).unwrap_or_default();
+                if let Some(m) = self.lookup(&key) {
+                    return Ok(m);
+                }
+                let id = identify_measured(
+                    &data_path(scene, file),
+                    nodes.as_deref(),
+                    scene.num_points(),
+                    identification,
+                )
+                .map_err(fail)?;
+                let modes = Arc::new(id.identification.modes);
+                self.store(key, Arc::clone(&modes));
+                Ok(modes)
+            }
         }
     }
 
     /// Whether [`ModeCache::modes`] answers at once: modes written in the
-    /// preset, or a ring already identified at these points (else it runs
-    /// the identification, a tenth of a second or more).
+    /// preset, or a tyre already identified with these points and options
+    /// (else it runs the identification, a tenth of a second or more).
     pub fn has_modes(&self, scene: &Scene) -> bool {
         matches!(scene.tyre, Tyre::Modal { .. }) || self.identified(scene).is_some()
     }
 
-    /// The modes identified from `scene`'s ring tyre, if this cache holds
-    /// them (never identifies); `None` for a modal tyre.
+    /// The modes identified from `scene`'s ring or measured tyre, if this
+    /// cache holds them (never identifies); `None` for a modal tyre.
     pub fn identified(&self, scene: &Scene) -> Option<Arc<Vec<Mode>>> {
-        match &scene.tyre {
-            Tyre::Modal { .. } => None,
-            Tyre::Ring {
-                ring,
-                identification,
-            } => self.lookup(&cache_key(ring, &positions(scene), identification)),
+        self.lookup(&tyre_key(scene)?)
+    }
+
+    /// Drops `scene`'s identified tyre, so that the next use identifies it
+    /// again (a measured tyre's file opened anew may have changed).
+    pub fn forget(&self, scene: &Scene) {
+        if let Some(key) = tyre_key(scene) {
+            let mut entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
+            entries.retain(|(k, _)| *k != key);
         }
     }
 
     /// Keeps the modes of a model prepared elsewhere (a background job
     /// with its own cache), so that the scene is not identified again.
     pub fn remember(&self, model: &PreparedModel) {
-        if let Tyre::Ring {
-            ring,
-            identification,
-        } = &model.scene.tyre
-        {
-            let key = cache_key(ring, &positions(&model.scene), identification);
+        if let Some(key) = tyre_key(&model.scene) {
             self.store(key, Arc::clone(&model.modes));
         }
     }

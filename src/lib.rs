@@ -49,6 +49,7 @@ pub mod gui;
 pub mod identify;
 pub mod linalg;
 pub mod lsce;
+pub mod measured;
 pub mod modal;
 pub mod output;
 pub mod phase;
@@ -86,6 +87,7 @@ mod layers {
         ("phase", 0),
         ("ring", 1),
         ("lsce", 1),
+        ("measured", 1),
         ("road", 1),
         ("convolution", 1),
         ("fidelity", 1),

@@ -77,6 +77,23 @@ pub enum Tyre {
         #[serde(default)]
         identification: IdentifyOptions,
     },
+    /// Responses measured on a real tyre (hammer or shaker tests) or
+    /// computed elsewhere (finite elements, waveguides), identified by LSCE
+    /// (method §6) as the ring's are. The file (relative to the preset's
+    /// folder) is UFF 58 (`.uff`, `.unv`), CSV impulse responses
+    /// (`t_s, g{i}_{j}`, m/(N·s)) or CSV receptances (`freq_hz,
+    /// h{i}_{j}_re, h{i}_{j}_im`, m/N): see [`crate::measured`]. The data's
+    /// sampling is used (`identification.sample_rate_hz` is not); its
+    /// first `identification.duration_s` seconds are identified.
+    Measured {
+        file: PathBuf,
+        #[serde(default)]
+        identification: IdentifyOptions,
+        /// The file's node numbers of the scene's points, in order (UFF);
+        /// default: the file's points in order.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        nodes: Option<Vec<i64>>,
+    },
 }
 
 /// A contact point on the contact line.
@@ -356,6 +373,42 @@ impl Scene {
                     }
                 }
                 v.errors.extend(id_errors);
+            }
+            Tyre::Measured {
+                file,
+                identification,
+                nodes,
+            } => {
+                if file.as_os_str().is_empty() {
+                    v.push(
+                        "tyre.file",
+                        "\"\"",
+                        "the path of a UFF 58 or CSV file of the tyre's responses",
+                    );
+                }
+                if let Some(n) = nodes {
+                    if n.len() != p {
+                        v.push(
+                            "tyre.nodes",
+                            format!("{} nodes", n.len()),
+                            &format!("one node number per point ({p})"),
+                        );
+                    }
+                    for (k, a) in n.iter().enumerate() {
+                        if n[..k].contains(a) {
+                            v.push(
+                                &format!("tyre.nodes[{k}]"),
+                                a.to_string(),
+                                "a node not listed before",
+                            );
+                        }
+                    }
+                }
+                // the band is checked against the data's Nyquist frequency
+                // when the file is read
+                let mut opts = identification.clone();
+                opts.sample_rate_hz = 1e6;
+                v.errors.extend(opts.validate("tyre.identification"));
             }
         }
         validate_road(&mut v, &self.road);

@@ -154,6 +154,12 @@ fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
             ));
             f.push(("tyre.identification.duration_s".into(), &mut o.duration_s));
         }
+        Tyre::Measured { identification, .. } => {
+            let o = identification;
+            f.push(("tyre.identification.band_hz.0".into(), &mut o.band_hz.0));
+            f.push(("tyre.identification.band_hz.1".into(), &mut o.band_hz.1));
+            f.push(("tyre.identification.duration_s".into(), &mut o.duration_s));
+        }
     }
     f
 }

@@ -1,14 +1,17 @@
 //! `tirecontact identify PRESET [-o modal.ron] [--diagram stab.png]
 //! [--responses irf.csv] [--figures DIR]`: identifies the modal model of a
-//! ring-tyre scene by LSCE (method §5-6) and writes what was asked.
+//! ring-tyre or measured-tyre scene by LSCE (method §5-6) and writes what
+//! was asked; `tirecontact identify --data FILE --points N` identifies a
+//! data file (UFF 58 or CSV) without a preset.
 
 use super::{CliResult, load_scene};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tirecontact::fsio::write_atomic;
-use tirecontact::identify::{RingIdentification, identify_ring};
+use tirecontact::identify::{data_path, identify_measured, identify_ring};
 use tirecontact::lsce::{Identification, Responses, Stability};
+use tirecontact::measured::impulse_csv;
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
 use tirecontact::output::paper_figures::paper_figures;
 use tirecontact::output::record::{PLOT_SAMPLES, Recording};
@@ -20,8 +23,17 @@ use tirecontact::{Scene, Simulation};
 // (a negative value reaches validation, which names the field, not clap's "unexpected argument")
 #[command(allow_negative_numbers = true)]
 pub struct IdentifyArgs {
-    /// Scene preset (RON) with `tyre: Ring(...)`.
-    pub preset: PathBuf,
+    /// Scene preset (RON) with `tyre: Ring(...)` or `tyre: Measured(...)`.
+    #[arg(required_unless_present = "data", conflicts_with = "data")]
+    pub preset: Option<PathBuf>,
+    /// A data file of tyre responses to identify without a preset (UFF 58,
+    /// CSV impulse responses or CSV FRFs; see docs/presets.md), with
+    /// --points; the default identification options.
+    #[arg(long, requires = "points")]
+    pub data: Option<PathBuf>,
+    /// Number of points in --data's file.
+    #[arg(long, requires = "data")]
+    pub points: Option<usize>,
     /// Write the identified modal scene (`tyre: Modal(...)`, loadable by `run`).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
@@ -43,8 +55,57 @@ pub struct IdentifyArgs {
     pub figures_unclipped: bool,
 }
 
+/// What an identification gave, whatever its source.
+struct Identified {
+    identification: Identification,
+    responses: Responses,
+    elapsed_s: f64,
+    /// The source's own lines for the summary.
+    notes: Vec<String>,
+}
+
+/// The scene to identify: the preset, or a scene of `--data`'s points
+/// (25 mm apart, on the default preset's road).
+fn scene_of(args: &IdentifyArgs) -> Result<(Scene, PathBuf), Box<dyn std::error::Error>> {
+    if let (Some(data), Some(p)) = (&args.data, args.points) {
+        if !(1..=tirecontact::measured::MAX_POINTS).contains(&p) {
+            return Err(format!(
+                "--points {p}: expected 1 to {} points",
+                tirecontact::measured::MAX_POINTS
+            )
+            .into());
+        }
+        let mut scene = Scene::parse(
+            tirecontact::DEFAULT_PRESET,
+            tirecontact::DEFAULT_PRESET_NAME,
+        )?;
+        scene.name = data
+            .file_stem()
+            .map_or("data".into(), |s| s.to_string_lossy().into_owned());
+        scene.description = format!(
+            "Modes identified from {} ({p} points, placed 25 mm apart: set their positions).",
+            data.display()
+        );
+        scene.points = (0..p)
+            .map(|i| tirecontact::scene::Point {
+                x_m: 0.025 * (i as f64 - 0.5 * (p as f64 - 1.0)),
+                h_m: -0.003,
+            })
+            .collect();
+        scene.tyre = Tyre::Measured {
+            file: data.clone(),
+            identification: Default::default(),
+            nodes: None,
+        };
+        scene.base_dir = None;
+        return Ok((scene, data.clone()));
+    }
+    let preset = args.preset.clone().unwrap_or_default();
+    Ok((load_scene(Some(&preset))?, preset))
+}
+
 pub fn identify(args: &IdentifyArgs) -> CliResult {
-    let scene = load_scene(Some(&args.preset))?;
+    let (scene, source) = scene_of(args)?;
     // every output's folder, before the identification and any file written
     use super::paths::{check_output_file, ensure_output_dir};
     if let Some(path) = &args.output {
@@ -60,20 +121,48 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
         // a folder, like `run --frames` and `bench -o`: created when missing
         ensure_output_dir("--figures", dir)?;
     }
-    let Tyre::Ring {
-        ring,
-        identification,
-    } = &scene.tyre
-    else {
-        return Err(format!(
-            "{}: tyre is not `Ring(...)`: nothing to identify",
-            args.preset.display()
-        )
-        .into());
+    let at = |e: &dyn std::fmt::Display| format!("{}: {e}", source.display());
+    let id = match &scene.tyre {
+        Tyre::Ring {
+            ring,
+            identification,
+        } => {
+            let x: Vec<f64> = scene.points.iter().map(|p| p.x_m).collect();
+            let id = identify_ring(ring, &x, identification).map_err(|e| at(&e))?;
+            Identified {
+                notes: vec![format!("|G| vs full ring {:.3e}", id.ring_magnitude_error)],
+                identification: id.identification,
+                responses: id.responses,
+                elapsed_s: id.elapsed_s,
+            }
+        }
+        Tyre::Measured {
+            file,
+            identification,
+            nodes,
+        } => {
+            let id = identify_measured(
+                &data_path(&scene, file),
+                nodes.as_deref(),
+                scene.num_points(),
+                identification,
+            )
+            .map_err(|e| at(&e))?;
+            Identified {
+                notes: id.notes,
+                identification: id.identification,
+                responses: id.responses,
+                elapsed_s: id.elapsed_s,
+            }
+        }
+        Tyre::Modal { .. } => {
+            return Err(format!(
+                "{}: tyre is `Modal(...)`: nothing to identify (expected `Ring(...)` or `Measured(...)`)",
+                source.display()
+            )
+            .into());
+        }
     };
-    let x: Vec<f64> = scene.points.iter().map(|p| p.x_m).collect();
-    let id = identify_ring(ring, &x, identification)
-        .map_err(|e| format!("{}: {e}", args.preset.display()))?;
     print!("{}", summary(&scene, &id));
     let mut modal = scene.clone();
     modal.tyre = Tyre::Modal {
@@ -89,13 +178,12 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
         println!("wrote {}", path.display());
     }
     if let Some(path) = &args.responses {
-        write_atomic(path, responses_csv(&id.responses).as_bytes())
+        write_atomic(path, impulse_csv(&id.responses).as_bytes())
             .map_err(|e| format!("{}: {e}", path.display()))?;
         println!("wrote {}", path.display());
     }
     if let Some(dir) = &args.figures {
-        let stem = args
-            .preset
+        let stem = source
             .file_stem()
             .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
         run_figures(&modal, dir, &stem, !args.figures_unclipped)?;
@@ -103,12 +191,12 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
     Ok(())
 }
 
-fn summary(scene: &Scene, id: &RingIdentification) -> String {
+fn summary(scene: &Scene, id: &Identified) -> String {
     let ident = &id.identification;
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{}: {} identified at model order {} in {:.3} s; fit error: time {:.3e} (kept modes), {:.3e} (all poles), |G| (sampled) {:.3e}, |G| vs full ring {:.3e}",
+        "{}: {} identified at model order {} in {:.3} s; fit error: time {:.3e} (kept modes), {:.3e} (all poles), |G| (sampled) {:.3e}",
         scene.name,
         tirecontact::output::count(ident.modes.len(), "mode"),
         ident.model_order,
@@ -116,8 +204,10 @@ fn summary(scene: &Scene, id: &RingIdentification) -> String {
         ident.report.time_error,
         ident.report.time_error_all_poles,
         ident.report.magnitude_error,
-        id.ring_magnitude_error
     );
+    for n in &id.notes {
+        let _ = writeln!(s, "  {n}");
+    }
     let ls = ident.report.least_squares;
     let _ = writeln!(
         s,
@@ -238,36 +328,6 @@ fn diagram_figure(scene: &Scene, id: &Identification) -> Figure {
         ),
         panels,
     }
-}
-
-/// `t_s`, then `g{i}_{j}` (m/(N·s)) for every `i, j` (mirrored from `i <= j`).
-fn responses_csv(r: &Responses) -> String {
-    let p = r.num_points;
-    let mut col = vec![vec![None; p]; p];
-    for (c, &(i, j)) in r.pairs.iter().enumerate() {
-        col[i][j] = Some(c);
-        if col[j][i].is_none() {
-            col[j][i] = Some(c);
-        }
-    }
-    let cols: Vec<(usize, usize, usize)> = (0..p)
-        .flat_map(|i| (0..p).map(move |j| (i, j)))
-        .filter_map(|(i, j)| col[i][j].map(|c| (i, j, c)))
-        .collect();
-    let mut s = String::from("t_s");
-    for (i, j, _) in &cols {
-        let _ = write!(s, ",g{i}_{j}");
-    }
-    s.push('\n');
-    let len = r.data.first().map_or(0, Vec::len);
-    for k in 0..len {
-        let _ = write!(s, "{:e}", k as f64 * r.dt_s);
-        for (_, _, c) in &cols {
-            let _ = write!(s, ",{:e}", r.data[*c][k]);
-        }
-        s.push('\n');
-    }
-    s
 }
 
 /// Runs `scene` and draws displacements (mm) and forces (N) of every point,

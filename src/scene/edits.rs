@@ -33,6 +33,7 @@ fn tyre_kind(t: &Tyre) -> &'static str {
     match t {
         Tyre::Modal { .. } => "modal model",
         Tyre::Ring { .. } => "ring",
+        Tyre::Measured { .. } => "measured responses",
     }
 }
 

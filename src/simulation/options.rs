@@ -53,7 +53,9 @@ impl SolverOptions {
     /// [`SolverOptions::rank_tolerance`]).
     pub fn rank_tolerance_for(&self, scene: &Scene) -> f64 {
         self.rank_tolerance.unwrap_or(match scene.tyre {
-            crate::scene::Tyre::Ring { .. } => IDENTIFIED_RANK_TOLERANCE,
+            crate::scene::Tyre::Ring { .. } | crate::scene::Tyre::Measured { .. } => {
+                IDENTIFIED_RANK_TOLERANCE
+            }
             crate::scene::Tyre::Modal { .. } => crate::convolution::EXACT_RANK_TOLERANCE,
         })
     }

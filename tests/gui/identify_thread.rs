@@ -52,7 +52,7 @@ fn a_moved_point_of_a_ring_tyre_is_identified_off_the_ui_thread() {
         .map(|m| m.text.clone())
         .unwrap_or_default();
     assert!(
-        waiting.contains("Identifying the ring tyre's modes"),
+        waiting.contains("Identifying the tyre's modes"),
         "{waiting}"
     );
     // meanwhile the fields take no edit (one would be built on the old

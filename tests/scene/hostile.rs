@@ -183,6 +183,9 @@ fn sites(s: &mut Scene) -> Vec<(String, Site<'_>)> {
                 Site::F(&mut id.min_contribution),
             ));
         }
+        // (no shipped preset has measured responses: their file's
+        // refusals are tested in tirecontact::measured)
+        Tyre::Measured { .. } => {}
     }
     match &mut s.road {
         Road::Sine {
@@ -261,7 +264,7 @@ fn mutate_structure(s: &mut Scene, kind: usize, k: usize, dir: &Path) -> Vec<Str
     let p = s.points.len();
     let modes = match &mut s.tyre {
         Tyre::Modal { modes } => Some(modes),
-        Tyre::Ring { .. } => None,
+        Tyre::Ring { .. } | Tyre::Measured { .. } => None,
     };
     match kind % 12 {
         // no modes

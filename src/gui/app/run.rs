@@ -234,8 +234,10 @@ impl App {
                 // said nothing: what happened, and where the modes went
                 // (a mute also turns a ring into modes, some of them
                 // zeroed: not the identified ones)
-                let converted = matches!(old.tyre, crate::scene::Tyre::Ring { .. })
-                    && matches!(&new.tyre, crate::scene::Tyre::Modal { modes } if *modes == self.modes);
+                let converted = matches!(
+                    old.tyre,
+                    crate::scene::Tyre::Ring { .. } | crate::scene::Tyre::Measured { .. }
+                ) && matches!(&new.tyre, crate::scene::Tyre::Modal { modes } if *modes == self.modes);
                 let playing = self.time.is_playing();
                 self.sim = sim;
                 self.modes = modes;

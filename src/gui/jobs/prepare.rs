@@ -85,7 +85,12 @@ fn prepare(then: &Then, cache: &ModeCache) -> Result<Prepared, SceneError> {
         Then::Road(scene) => {
             RoadProfile::new(&scene.road, scene.base_dir.as_deref()).map(Prepared::Road)
         }
-        Then::Open(path) => model(&Scene::load(path)?),
+        Then::Open(path) => {
+            let scene = Scene::load(path)?;
+            // a measured tyre's data may have changed since it was read
+            cache.forget(&scene);
+            model(&scene)
+        }
     }
 }
 
@@ -98,7 +103,7 @@ pub fn waiting_note(then: &Then, identifies: bool) -> String {
     };
     if identifies {
         format!(
-            "Identifying the ring tyre's modes at the points {what} (LSCE, docs/method.md §6): \
+            "Identifying the tyre's modes at the points {what} (LSCE, docs/method.md §6): \
              the current run goes on until they are ready."
         )
     } else {

@@ -17,11 +17,11 @@ use crate::gui::model::command::Command;
 use crate::scene::{Mode, Tyre};
 
 /// The given modes of a scene, mutably (for building edited copies); a ring
-/// tyre's modes are identified, not edited (`None`).
+/// or measured tyre's modes are identified, not edited (`None`).
 pub(crate) fn modes_mut(scene: &mut Scene) -> Option<&mut Vec<Mode>> {
     match &mut scene.tyre {
         Tyre::Modal { modes } => Some(modes),
-        Tyre::Ring { .. } => None,
+        Tyre::Ring { .. } | Tyre::Measured { .. } => None,
     }
 }
 

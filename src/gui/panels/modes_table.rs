@@ -16,9 +16,14 @@ pub const RING_RESIDUES_NOTE: &str = "their residue matrices A (1/kg): in the mo
 const MAX_INLINE_MATRIX: usize = 8;
 
 pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>) {
-    if let Tyre::Ring { ring, .. } = &scene.tyre {
-        ring_summary(ui, scene, ring, modes, cmds);
-        return;
+    match &scene.tyre {
+        Tyre::Ring { ring, .. } => return ring_summary(ui, scene, ring, modes, cmds),
+        Tyre::Measured {
+            file,
+            identification,
+            ..
+        } => return measured_summary(ui, scene, file, identification, modes, cmds),
+        Tyre::Modal { .. } => {}
     }
     section(ui, "Modes", Apply::Restart);
     let p = scene.num_points();
@@ -216,10 +221,55 @@ fn ring_summary(
         egui::RichText::new("ring parameters are edited in the preset file; the modes below are identified from the ring by LSCE at the points' positions")
             .weak(),
     );
+    identified_modes(ui, scene, modes, cmds);
+}
+
+/// A measured tyre: its data file and identification band, and the modes
+/// identified from its responses (read-only), with the way to a modal model.
+fn measured_summary(
+    ui: &mut Ui,
+    scene: &Scene,
+    file: &std::path::Path,
+    identification: &crate::lsce::IdentifyOptions,
+    modes: &[Mode],
+    cmds: &mut Vec<Command>,
+) {
+    section(
+        ui,
+        "Tyre: measured responses (LSCE, docs/method.md §6)",
+        Apply::Restart,
+    );
+    let num = crate::gui::widgets::number::format_number;
+    Grid::new("tirecontact.measured")
+        .num_columns(2)
+        .show(ui, |ui| {
+            ui.label("data file");
+            ui.label(file.display().to_string());
+            ui.end_row();
+            ui.label("band");
+            ui.label(format!(
+                "{} … {} Hz",
+                num(identification.band_hz.0),
+                num(identification.band_hz.1)
+            ));
+            ui.end_row();
+            ui.label("identified over");
+            ui.label(format!("the first {} s", num(identification.duration_s)));
+            ui.end_row();
+        });
+    ui.label(
+        egui::RichText::new("the data file and the identification options are edited in the preset file; the modes below are identified from the data by LSCE")
+            .weak(),
+    );
+    identified_modes(ui, scene, modes, cmds);
+}
+
+/// "Edit as a modal model" and the list of a tyre's identified modes.
+fn identified_modes(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>) {
     if ui
         .button("Edit as a modal model")
         .on_hover_text(
-            "replace the ring by its identified modes, which can then be tuned one by one",
+            "replace the tyre by its identified modes, which can then be tuned one by one",
         )
         .clicked()
     {

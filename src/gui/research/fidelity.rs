@@ -35,7 +35,8 @@ impl FidelityRef {
                 band_hz: identification.band_hz,
                 source: scene.name.clone(),
             }),
-            Tyre::Modal { .. } => None,
+            // (a measured tyre's reference would be its data: not yet)
+            Tyre::Modal { .. } | Tyre::Measured { .. } => None,
         }
     }
 
