@@ -318,7 +318,7 @@ impl ModeCache {
                 }
                 let id = identify_measured(
                     &data_path(scene, file),
-                    nodes.as_deref(),
+                    (!nodes.is_empty()).then_some(nodes.as_slice()),
                     scene.num_points(),
                     identification,
                 )

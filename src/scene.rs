@@ -90,9 +90,9 @@ pub enum Tyre {
         #[serde(default)]
         identification: IdentifyOptions,
         /// The file's node numbers of the scene's points, in order (UFF);
-        /// default: the file's points in order.
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        nodes: Option<Vec<i64>>,
+        /// empty (the default): the file's points in order.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        nodes: Vec<i64>,
     },
 }
 
@@ -386,7 +386,8 @@ impl Scene {
                         "the path of a UFF 58 or CSV file of the tyre's responses",
                     );
                 }
-                if let Some(n) = nodes {
+                if !nodes.is_empty() {
+                    let n = nodes;
                     if n.len() != p {
                         v.push(
                             "tyre.nodes",

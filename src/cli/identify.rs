@@ -95,7 +95,7 @@ fn scene_of(args: &IdentifyArgs) -> Result<(Scene, PathBuf), Box<dyn std::error:
         scene.tyre = Tyre::Measured {
             file: data.clone(),
             identification: Default::default(),
-            nodes: None,
+            nodes: Vec::new(),
         };
         scene.base_dir = None;
         return Ok((scene, data.clone()));
@@ -143,7 +143,7 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
         } => {
             let id = identify_measured(
                 &data_path(&scene, file),
-                nodes.as_deref(),
+                (!nodes.is_empty()).then_some(nodes.as_slice()),
                 scene.num_points(),
                 identification,
             )

@@ -291,6 +291,16 @@ pub fn parse(text: &str, nodes: Option<&[i64]>) -> Result<(PairSeries, Vec<Strin
         v.dedup();
         v
     };
+    if let Some(ns) = nodes
+        && let Some((k, n)) = ns.iter().enumerate().find(|(_, n)| !all.contains(n))
+    {
+        return Err((
+            String::new(),
+            format!(
+                "tyre.nodes[{k}] = {n}: no record has this node; expected one of the file's nodes {all:?}"
+            ),
+        ));
+    }
     let map: Vec<i64> = nodes.map_or(all.clone(), <[i64]>::to_vec);
     let mut notes = vec![format!(
         "UFF 58: {} records, nodes {:?} as points 0..{}",
