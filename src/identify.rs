@@ -15,6 +15,8 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
+pub mod workbench;
+
 /// An identification of a ring tyre, with what produced it.
 #[derive(Debug, Clone)]
 pub struct RingIdentification {

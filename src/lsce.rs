@@ -429,6 +429,66 @@ fn fit_order(
     })
 }
 
+/// The modes of a fit: each pole with its residues, the `P×P` matrix
+/// filled from the pairs (and mirrored where only `i <= j` was given).
+fn modes_of_fit(r: &Responses, fit: &OrderFit) -> Vec<Mode> {
+    let p = r.num_points;
+    (0..fit.poles.len())
+        .map(|c| {
+            let mut a = vec![vec![0.0; p]; p];
+            let mut seen = vec![vec![false; p]; p];
+            for (col, &(i, j)) in r.pairs.iter().enumerate() {
+                a[i][j] = fit.residues[(c, col)];
+                seen[i][j] = true;
+            }
+            for (col, &(i, j)) in r.pairs.iter().enumerate() {
+                if !seen[j][i] {
+                    a[j][i] = fit.residues[(c, col)];
+                }
+            }
+            Mode {
+                freq_hz: fit.poles[c].freq_hz(),
+                damping_ratio: fit.poles[c].xi,
+                residue: a,
+                shape: Vec::new(),
+            }
+        })
+        .collect()
+}
+
+/// Modes with the poles `(freq_hz, damping_ratio)` given, their residues
+/// fitted to the responses by least squares (the real modal form of
+/// method §6), and the fit's relative time error: the modes picked on a
+/// stabilisation diagram.
+pub fn modes_of_poles(r: &Responses, poles: &[(f64, f64)]) -> Result<(Vec<Mode>, f64), LsceError> {
+    let len = check_input(r)?;
+    if let Some(&(f, xi)) = poles
+        .iter()
+        .find(|(f, xi)| !(f.is_finite() && *f > 0.0 && xi.is_finite() && *xi >= 0.0 && *xi < 1.0))
+    {
+        return Err(LsceError::Input(format!(
+            "pole {f} Hz, damping {xi}: expected f > 0 Hz and 0 <= damping < 1"
+        )));
+    }
+    let data = data_matrix(r, len);
+    let poles: Vec<Pole> = poles
+        .iter()
+        .map(|&(f, xi)| Pole { omega: TAU * f, xi })
+        .collect();
+    let fit = fit_order(poles, &data, r.dt_s, true)?;
+    Ok((modes_of_fit(r, &fit), fit.time_error))
+}
+
+/// `|G(f)|` of each response (the DTFT of its samples, m/N) at `freqs_hz`:
+/// one vector per response, in the order of `r.pairs`.
+pub fn response_magnitudes(r: &Responses, freqs_hz: &[f64]) -> Result<Vec<Vec<f64>>, LsceError> {
+    let len = check_input(r)?;
+    let m = dtft_magnitudes(&data_matrix(r, len), r.dt_s, freqs_hz);
+    Ok((0..m.ncols())
+        .map(|c| (0..m.nrows()).map(|f| m[(f, c)]).collect())
+        .collect())
+}
+
 fn stability(
     pole: &Pole,
     res: &[f64],
@@ -588,29 +648,7 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
         residual: fit_all.residual,
     };
     let time_error_all_poles = fit.time_error;
-    let k = kept.len();
-    let p = r.num_points;
-    let modes: Vec<Mode> = (0..k)
-        .map(|c| {
-            let mut a = vec![vec![0.0; p]; p];
-            let mut seen = vec![vec![false; p]; p];
-            for (col, &(i, j)) in r.pairs.iter().enumerate() {
-                a[i][j] = fit.residues[(c, col)];
-                seen[i][j] = true;
-            }
-            for (col, &(i, j)) in r.pairs.iter().enumerate() {
-                if !seen[j][i] {
-                    a[j][i] = fit.residues[(c, col)];
-                }
-            }
-            Mode {
-                freq_hz: fit.poles[c].freq_hz(),
-                damping_ratio: fit.poles[c].xi,
-                residue: a,
-                shape: Vec::new(),
-            }
-        })
-        .collect();
+    let modes = modes_of_fit(r, &fit);
     let fitted = &basis(&fit.poles, dt, len, false) * &fit.residues;
     let (per_time, time_error) = time_errors(&fitted, &data);
     let nf = 200;

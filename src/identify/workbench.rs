@@ -1,0 +1,305 @@
+//! The identification workbench's state, without a UI: an identification's
+//! stabilisation diagram, the poles picked on it (the automatic choice to
+//! begin with) and the modes they give, their residues fitted to the
+//! responses again at every pick or drop; the fit of each response pair in
+//! `|G|`. The visualiser's view draws it and pushes picks; tests drive it
+//! here.
+
+use crate::lsce::{Identification, LsceError, Responses, modes_of_poles, response_magnitudes};
+use crate::modal::{ModalModel, Mode};
+
+/// A pole of the diagram: its order's index and its index in that order.
+pub type PoleAt = (usize, usize);
+
+/// Frequencies (per band) at which `|G|` is compared.
+const MAGNITUDE_POINTS: usize = 200;
+
+/// The workbench: what was identified and what is picked.
+#[derive(Debug, Clone)]
+pub struct Workbench {
+    pub responses: Responses,
+    pub identification: Identification,
+    /// The band of the identification (Hz).
+    pub band_hz: (f64, f64),
+    /// The poles picked, by frequency.
+    pub picked: Vec<PoleAt>,
+    /// The modes of the picked poles.
+    pub modes: Vec<Mode>,
+    /// Relative time error of the picked modes' fit (-).
+    pub time_error: f64,
+}
+
+impl Workbench {
+    /// A workbench on `identification` of `responses` over `band_hz`, its
+    /// automatic choice picked.
+    pub fn new(
+        responses: Responses,
+        identification: Identification,
+        band_hz: (f64, f64),
+    ) -> Result<Self, LsceError> {
+        let mut w = Workbench {
+            responses,
+            identification,
+            band_hz,
+            picked: Vec::new(),
+            modes: Vec::new(),
+            time_error: 1.0,
+        };
+        w.automatic()?;
+        Ok(w)
+    }
+
+    /// The pole at `at`: `(freq_hz, damping_ratio)`.
+    pub fn pole(&self, at: PoleAt) -> Option<(f64, f64)> {
+        let p = self.identification.diagram.get(at.0)?.poles.get(at.1)?;
+        Some((p.freq_hz, p.damping_ratio))
+    }
+
+    /// Picks the automatic choice: the poles of the chosen order nearest
+    /// the identified modes.
+    pub fn automatic(&mut self) -> Result<(), LsceError> {
+        let id = &self.identification;
+        let Some(oi) = id.diagram.iter().position(|d| d.order == id.model_order) else {
+            self.picked.clear();
+            return self.refit();
+        };
+        let poles = &id.diagram[oi].poles;
+        self.picked = id
+            .modes
+            .iter()
+            .filter_map(|m| {
+                (0..poles.len()).min_by(|&a, &b| {
+                    (poles[a].freq_hz - m.freq_hz)
+                        .abs()
+                        .total_cmp(&(poles[b].freq_hz - m.freq_hz).abs())
+                })
+            })
+            .map(|k| (oi, k))
+            .collect();
+        self.picked.sort_unstable();
+        self.picked.dedup();
+        self.refit()
+    }
+
+    /// Picks the pole at `at`, or drops it if picked; a pole within 0.5 %
+    /// in frequency of one picked from another order replaces it (one
+    /// mode per physical pole).
+    pub fn toggle(&mut self, at: PoleAt) -> Result<(), LsceError> {
+        let Some((f, _)) = self.pole(at) else {
+            return Err(LsceError::Input(format!("no pole {at:?} in the diagram")));
+        };
+        if let Some(k) = self.picked.iter().position(|&p| p == at) {
+            self.picked.remove(k);
+        } else {
+            let keep: Vec<PoleAt> = self
+                .picked
+                .iter()
+                .copied()
+                .filter(|p| self.pole(*p).is_none_or(|(g, _)| (g - f).abs() > 5e-3 * f))
+                .collect();
+            self.picked = keep;
+            self.picked.push(at);
+        }
+        self.refit()
+    }
+
+    /// The pole nearest `(freq_hz, order)` on the diagram, within
+    /// `tol_hz` in frequency and one order.
+    pub fn nearest(&self, freq_hz: f64, order: f64, tol_hz: f64) -> Option<PoleAt> {
+        let mut best: Option<(f64, PoleAt)> = None;
+        for (oi, d) in self.identification.diagram.iter().enumerate() {
+            let dm = (d.order as f64 - order).abs();
+            if dm > 1.0 {
+                continue;
+            }
+            for (k, p) in d.poles.iter().enumerate() {
+                let df = (p.freq_hz - freq_hz).abs();
+                if df > tol_hz {
+                    continue;
+                }
+                let score = df / tol_hz + dm;
+                if best.is_none_or(|(s, _)| score < s) {
+                    best = Some((score, (oi, k)));
+                }
+            }
+        }
+        best.map(|(_, at)| at)
+    }
+
+    /// The modes of the picked poles, residues fitted again.
+    fn refit(&mut self) -> Result<(), LsceError> {
+        let mut by_freq: Vec<(f64, f64, PoleAt)> = self
+            .picked
+            .iter()
+            .filter_map(|&p| self.pole(p).map(|(f, xi)| (f, xi, p)))
+            .collect();
+        by_freq.sort_by(|a, b| a.0.total_cmp(&b.0));
+        self.picked = by_freq.iter().map(|q| q.2).collect();
+        let poles: Vec<(f64, f64)> = by_freq.iter().map(|q| (q.0, q.1)).collect();
+        if poles.is_empty() {
+            self.modes.clear();
+            self.time_error = 1.0;
+            return Ok(());
+        }
+        let (modes, e) = modes_of_poles(&self.responses, &poles)?;
+        self.modes = modes;
+        self.time_error = e;
+        Ok(())
+    }
+
+    /// The frequencies (Hz) of the `|G|` comparisons over the band.
+    pub fn frequencies(&self) -> Vec<f64> {
+        let (lo, hi) = self.band_hz;
+        (0..MAGNITUDE_POINTS)
+            .map(|q| lo + (hi - lo) * (q as f64 + 0.5) / MAGNITUDE_POINTS as f64)
+            .collect()
+    }
+
+    /// Per response pair: `|G|` of the data and of the picked modes at
+    /// [`Self::frequencies`] (m/N), both the DTFT of their samples (so that
+    /// sampling and truncation are alike), and their relative L2
+    /// difference (-).
+    pub fn pair_fits(&self) -> Result<Vec<PairFit>, LsceError> {
+        let freqs = self.frequencies();
+        let r = &self.responses;
+        let data = response_magnitudes(r, &freqs)?;
+        let model = ModalModel::from_modes(&self.modes, r.num_points);
+        let len = r.data.first().map_or(0, Vec::len);
+        let sampled = Responses {
+            data: r
+                .pairs
+                .iter()
+                .map(|&(i, j)| {
+                    (0..len)
+                        .map(|n| model.green(i, j, n as f64 * r.dt_s).0)
+                        .collect()
+                })
+                .collect(),
+            ..r.clone()
+        };
+        let fitted = response_magnitudes(&sampled, &freqs)?;
+        Ok(r.pairs
+            .iter()
+            .zip(data)
+            .zip(fitted)
+            .map(|((&(i, j), d), m)| {
+                let num: f64 = d.iter().zip(&m).map(|(a, b)| (a - b) * (a - b)).sum();
+                let den: f64 = d.iter().map(|a| a * a).sum();
+                PairFit {
+                    pair: (i, j),
+                    data: d,
+                    model: m,
+                    error: if den > 0.0 { (num / den).sqrt() } else { 0.0 },
+                }
+            })
+            .collect())
+    }
+
+    /// The sum over the pairs of the data's `|G|` at [`Self::frequencies`]
+    /// (drawn under the diagram).
+    pub fn summed_magnitude(&self) -> Result<Vec<f64>, LsceError> {
+        let data = response_magnitudes(&self.responses, &self.frequencies())?;
+        Ok((0..MAGNITUDE_POINTS)
+            .map(|q| data.iter().map(|d| d[q]).sum())
+            .collect())
+    }
+}
+
+/// One response pair's `|G|`: data, model and their relative L2 difference.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairFit {
+    pub pair: (usize, usize),
+    pub data: Vec<f64>,
+    pub model: Vec<f64>,
+    pub error: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lsce::{IdentifyOptions, identify};
+
+    /// Responses of a two-point, two-mode model, and their identification.
+    fn bench() -> Workbench {
+        let modes = [
+            Mode {
+                freq_hz: 60.0,
+                damping_ratio: 0.03,
+                residue: vec![],
+                shape: vec![1.0, 0.5],
+            },
+            Mode {
+                freq_hz: 170.0,
+                damping_ratio: 0.02,
+                residue: vec![],
+                shape: vec![0.4, -0.8],
+            },
+        ];
+        let m = ModalModel::from_modes(&modes, 2);
+        let dt = 1.0 / 2000.0;
+        let pairs = vec![(0, 0), (0, 1), (1, 1)];
+        let data = pairs
+            .iter()
+            .map(|&(i, j)| (0..800).map(|n| m.green(i, j, n as f64 * dt).0).collect())
+            .collect();
+        let r = Responses {
+            dt_s: dt,
+            num_points: 2,
+            pairs,
+            data,
+        };
+        let opts = IdentifyOptions {
+            band_hz: (0.0, 400.0),
+            max_model_order: 12,
+            ..Default::default()
+        };
+        let id = identify(&r, &opts).unwrap();
+        Workbench::new(r, id, opts.band_hz).unwrap()
+    }
+
+    #[test]
+    fn the_automatic_choice_gives_the_identified_modes() {
+        let w = bench();
+        assert_eq!(w.modes.len(), 2);
+        for (a, b) in w.modes.iter().zip(&w.identification.modes) {
+            assert!((a.freq_hz - b.freq_hz).abs() < 1e-9 * b.freq_hz);
+        }
+        assert!(w.time_error < 1e-6, "{}", w.time_error);
+        assert!(w.pair_fits().unwrap().iter().all(|p| p.error < 1e-3));
+    }
+
+    #[test]
+    fn dropping_a_pole_drops_its_mode_and_picking_it_back_restores_the_fit() {
+        let mut w = bench();
+        let before = w.time_error;
+        let high = *w.picked.last().unwrap();
+        w.toggle(high).unwrap();
+        assert_eq!(w.modes.len(), 1);
+        assert!((w.modes[0].freq_hz - 60.0).abs() < 0.01);
+        assert!(
+            w.time_error > 0.1,
+            "the 170 Hz mode's share is missing: {}",
+            w.time_error
+        );
+        let errors = w.pair_fits().unwrap();
+        assert!(errors.iter().any(|p| p.error > 0.1));
+        // picked again from another order: the same mode, fitted again
+        let (f, _) = w.pole(high).unwrap();
+        let other = w.identification.diagram.len() - 1;
+        let at = w
+            .nearest(f, w.identification.diagram[other].order as f64, 1.0)
+            .unwrap();
+        assert_eq!(at.0, other);
+        w.toggle(at).unwrap();
+        assert_eq!(w.modes.len(), 2);
+        assert!(
+            w.time_error < 10.0 * before.max(1e-9),
+            "{} vs {before}",
+            w.time_error
+        );
+        // a pole within 0.5 % of a picked one replaces it
+        w.toggle(high).unwrap();
+        assert_eq!(w.modes.len(), 2);
+        assert!(w.picked.contains(&high) && !w.picked.contains(&at));
+    }
+}
