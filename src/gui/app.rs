@@ -29,7 +29,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 mod animation_export;
-mod files;
+pub(crate) mod files;
 mod frame_loop;
 mod layout;
 mod mode_mutes;

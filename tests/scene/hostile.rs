@@ -279,7 +279,12 @@ fn mutate_structure(s: &mut Scene, kind: usize, k: usize, dir: &Path) -> Vec<Str
         // no points (a measured tyre's node list then has too many)
         1 => {
             s.points.clear();
-            vec!["points".into(), "shape".into(), "residue".into(), "tyre.nodes".into()]
+            vec![
+                "points".into(),
+                "shape".into(),
+                "residue".into(),
+                "tyre.nodes".into(),
+            ]
         }
         // 1000 points (distinct positions), shapes left as they are
         2 => {
@@ -289,7 +294,12 @@ fn mutate_structure(s: &mut Scene, kind: usize, k: usize, dir: &Path) -> Vec<Str
                     h_m: -0.001,
                 })
                 .collect();
-            vec!["points".into(), "shape".into(), "residue".into(), "tyre.nodes".into()]
+            vec![
+                "points".into(),
+                "shape".into(),
+                "residue".into(),
+                "tyre.nodes".into(),
+            ]
         }
         // a residue matrix of the wrong size (one row or column too many or few)
         3 => {

@@ -200,6 +200,7 @@ impl App {
             FileAction::SweepCsv => "sweep.csv".to_string(),
             FileAction::SweepPng => "sweep.png".to_string(),
             FileAction::PinnedCsv => "reference.csv".to_string(),
+            FileAction::ModalPreset => format!("{stem}_modal.ron"),
         };
         self.file_prompt = Some(FilePrompt::new(action, path));
     }
@@ -328,7 +329,7 @@ pub(super) fn default_scene() -> Scene {
 /// A file name stem from a scene name: lower-case alphanumerics, each run
 /// of anything else one `_` ("Paper: ring tyre" gives `paper_ring_tyre`,
 /// not `paper__ring_tyre`).
-fn file_stem(name: &str) -> String {
+pub(crate) fn file_stem(name: &str) -> String {
     let mut s = String::new();
     for c in name.chars() {
         if c.is_alphanumeric() {

@@ -40,6 +40,7 @@ impl App {
                 (egui::Key::Num5, View::Sweep),
                 (egui::Key::Num6, View::Compare),
                 (egui::Key::Num7, View::Fidelity),
+                (egui::Key::Num8, View::Workbench),
             ] {
                 if i.key_pressed(key) {
                     cmds.push(Command::ShowView(view));

@@ -111,7 +111,7 @@ impl App {
                 View::Green => {
                     green_view::show(ui, &self.doc.scene, &self.modes, &mut self.green_opts);
                 }
-                View::Spectra | View::Sweep | View::Compare | View::Fidelity => {
+                View::Spectra | View::Sweep | View::Compare | View::Fidelity | View::Workbench => {
                     self.show_research_view(ui, cmds);
                 }
             }

@@ -27,6 +27,8 @@ pub enum FileAction {
     SweepCsv,
     SweepPng,
     PinnedCsv,
+    /// The scene with the workbench's modes as its modal tyre.
+    ModalPreset,
 }
 
 impl FileAction {
@@ -38,12 +40,13 @@ impl FileAction {
             FileAction::SweepCsv => "Export the sweep as CSV",
             FileAction::SweepPng => "Export the sweep as PNG",
             FileAction::PinnedCsv => "Export the pinned run as CSV",
+            FileAction::ModalPreset => "Save as a modal preset",
         }
     }
     fn button(self) -> &'static str {
         match self {
             FileAction::Open => "Open",
-            FileAction::SaveAs => "Save",
+            FileAction::SaveAs | FileAction::ModalPreset => "Save",
             FileAction::ExportCsv | FileAction::SweepCsv | FileAction::PinnedCsv => "Export CSV",
             FileAction::SweepPng => "Export PNG",
         }
@@ -51,7 +54,7 @@ impl FileAction {
     /// File-type name and extension of the dialog's filter.
     fn filter(self) -> (&'static str, &'static str) {
         match self {
-            FileAction::Open | FileAction::SaveAs => ("RON scene", "ron"),
+            FileAction::Open | FileAction::SaveAs | FileAction::ModalPreset => ("RON scene", "ron"),
             FileAction::ExportCsv | FileAction::SweepCsv | FileAction::PinnedCsv => ("CSV", "csv"),
             FileAction::SweepPng => ("PNG image", "png"),
         }
@@ -64,6 +67,7 @@ impl FileAction {
             FileAction::SweepCsv => Command::Research(ResearchCommand::ExportSweepCsv(path)),
             FileAction::SweepPng => Command::Research(ResearchCommand::ExportSweepPng(path)),
             FileAction::PinnedCsv => Command::Research(ResearchCommand::ExportPinnedCsv(path)),
+            FileAction::ModalPreset => Command::Research(ResearchCommand::WorkbenchSave(path)),
         }
     }
 }

@@ -16,10 +16,12 @@ pub enum View {
     Sweep,
     Compare,
     Fidelity,
+    /// The identification workbench (stabilisation diagram, picked poles).
+    Workbench,
 }
 
 impl View {
-    pub const ALL: [View; 7] = [
+    pub const ALL: [View; 8] = [
         View::TimePlots,
         View::Scene,
         View::Green,
@@ -27,6 +29,7 @@ impl View {
         View::Sweep,
         View::Compare,
         View::Fidelity,
+        View::Workbench,
     ];
     pub fn label(self) -> &'static str {
         match self {
@@ -37,6 +40,7 @@ impl View {
             View::Sweep => "Sweep",
             View::Compare => "A/B compare",
             View::Fidelity => "Fidelity",
+            View::Workbench => "Identification",
         }
     }
 }

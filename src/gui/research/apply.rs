@@ -137,6 +137,35 @@ impl App {
                 };
                 self.report_export(&path, "reference CSV", r);
             }
+            ResearchCommand::WorkbenchToggle(at) => self.workbench_do(|w| w.toggle(at)),
+            ResearchCommand::WorkbenchAutomatic => self.workbench_do(|w| w.automatic()),
+            ResearchCommand::WorkbenchUse => {
+                if let Some(modal) = self.workbench_scene() {
+                    let n = match &modal.tyre {
+                        crate::scene::Tyre::Modal { modes } => modes.len(),
+                        _ => 0,
+                    };
+                    self.apply(Command::EditScene(Box::new(modal)));
+                    self.research_message(
+                        false,
+                        format!("the scene's tyre is now the {n} modes picked on the workbench"),
+                    );
+                }
+            }
+            ResearchCommand::WorkbenchSaveDialog => {
+                let stem = crate::gui::app::files::file_stem(&self.doc.scene.name);
+                self.file_prompt = Some(FilePrompt::new(
+                    FileAction::ModalPreset,
+                    format!("{stem}_modal.ron"),
+                ));
+            }
+            ResearchCommand::WorkbenchSave(path) => {
+                let r = match self.workbench_scene() {
+                    Some(s) => s.save(&path).map_err(|e| e.to_string()),
+                    None => Err("no picked modes to save".into()),
+                };
+                self.report_export(&path, "modal preset", r);
+            }
             ResearchCommand::SweepEnded(end) => self.sweep_ended(end),
             ResearchCommand::Refresh => self.research_refresh(),
         }
@@ -164,11 +193,71 @@ impl App {
         cmds
     }
 
+    /// Applies `f` to the workbench (a pick, a drop, the automatic choice).
+    fn workbench_do(
+        &mut self,
+        f: impl FnOnce(&mut crate::identify::workbench::Workbench) -> Result<(), crate::lsce::LsceError>,
+    ) {
+        let r = match &mut self.research.workbench {
+            Some((_, Ok(w))) => f(w).map_err(|e| e.to_string()),
+            _ => Err("no identification on the workbench".into()),
+        };
+        if let Err(e) = r {
+            self.research_message(true, format!("workbench: {e}"));
+        }
+    }
+
+    /// The scene with the workbench's picked modes as its modal tyre.
+    fn workbench_scene(&self) -> Option<crate::Scene> {
+        let Some((_, Ok(w))) = &self.research.workbench else {
+            return None;
+        };
+        if w.modes.is_empty() {
+            return None;
+        }
+        let mut s = self.doc.scene.clone();
+        s.tyre = crate::scene::Tyre::Modal {
+            modes: w.modes.clone(),
+        };
+        Some(s)
+    }
+
+    /// The workbench of the scene's tyre: kept while the tyre and points
+    /// stay, else identified again on a background thread.
+    fn update_workbench(&mut self) {
+        use super::workbench_job::{WorkbenchJob, key_of};
+        if let Some(job) = &self.research.workbench_job
+            && let Some(r) = job.poll()
+        {
+            let key = job.key.clone();
+            self.research.workbench = Some((key, r));
+            self.research.workbench_job = None;
+        }
+        let Some(key) = key_of(&self.doc.scene) else {
+            self.research.workbench = None;
+            self.research.workbench_job = None;
+            return;
+        };
+        let fresh = self.research.workbench.as_ref().is_some_and(|w| w.0 == key);
+        let running = self
+            .research
+            .workbench_job
+            .as_ref()
+            .is_some_and(|j| j.key == key);
+        if !fresh && !running {
+            match WorkbenchJob::spawn(&self.doc.scene, key.clone()) {
+                Ok(job) => self.research.workbench_job = Some(job),
+                Err(e) => self.research.workbench = Some((key, Err(e))),
+            }
+        }
+    }
+
     /// Whether a research job runs (the frame loop then asks for frames).
     pub(crate) fn research_busy(&self) -> bool {
         self.research.sweep.is_running()
             || (self.view == View::Spectra && self.research.spectra_job.is_some())
             || (self.view == View::Fidelity && self.research.fidelity_job.is_some())
+            || (self.view == View::Workbench && self.research.workbench_job.is_some())
     }
 
     /// A sweep's end: its outcome kept, and said in the banner.
@@ -239,6 +328,7 @@ impl App {
                 }
             }
             View::Fidelity => self.update_fidelity(),
+            View::Workbench => self.update_workbench(),
             _ => {}
         }
     }
@@ -367,6 +457,13 @@ impl App {
                 }),
                 self.research.fidelity_computing(),
                 &mut self.research.fidelity_opts,
+            ),
+            View::Workbench => crate::gui::views::workbench_view::show(
+                ui,
+                &self.doc.scene,
+                self.research.workbench(),
+                self.research.workbench_computing(),
+                cmds,
             ),
             _ => {}
         }

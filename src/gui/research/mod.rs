@@ -12,5 +12,6 @@ pub mod spectra;
 pub mod spectra_job;
 pub mod state;
 pub mod sweep_job;
+pub mod workbench_job;
 
 pub use state::{ResearchCommand, ResearchState};

@@ -29,6 +29,17 @@ pub enum ResearchCommand {
     ExportPinnedCsv(PathBuf),
     /// The sweep's background job ended (the frame loop pushes it).
     SweepEnded(crate::gui::research::sweep_job::SweepEnd),
+    /// Pick the pole at (order index, pole index) of the workbench's
+    /// diagram, or drop it.
+    WorkbenchToggle((usize, usize)),
+    /// The workbench's automatic choice of poles.
+    WorkbenchAutomatic,
+    /// The workbench's modes become the scene's modal tyre (the run
+    /// restarts).
+    WorkbenchUse,
+    WorkbenchSaveDialog,
+    /// Write the scene with the workbench's modes as its modal tyre.
+    WorkbenchSave(PathBuf),
     /// Once a frame: follow the scene's ring reference and bring what the
     /// shown research view needs up to date (spectra, differences to the
     /// pinned run, fidelity figures), starting or picking up their jobs.
@@ -136,6 +147,13 @@ pub struct ResearchState {
     pub(crate) fidelity_job: Option<super::fidelity_job::FidelityJob>,
     /// Background fidelity computations started so far.
     pub(crate) fidelity_jobs: u64,
+    /// The identification workbench of the scene's tyre (its key), or why
+    /// there is none.
+    pub(crate) workbench: Option<(
+        super::workbench_job::WorkbenchKey,
+        Result<crate::identify::workbench::Workbench, String>,
+    )>,
+    pub(crate) workbench_job: Option<super::workbench_job::WorkbenchJob>,
 }
 
 impl ResearchState {
@@ -180,5 +198,13 @@ impl ResearchState {
     /// Fidelity computations started on a background thread so far.
     pub fn fidelity_jobs(&self) -> u64 {
         self.fidelity_jobs
+    }
+    /// The identification workbench shown, or why there is none.
+    pub fn workbench(&self) -> Option<&Result<crate::identify::workbench::Workbench, String>> {
+        self.workbench.as_ref().map(|w| &w.1)
+    }
+    /// Whether the workbench's identification is running.
+    pub fn workbench_computing(&self) -> bool {
+        self.workbench_job.is_some()
     }
 }

@@ -13,6 +13,7 @@ pub mod scene_view;
 pub mod spectra_view;
 pub mod sweep_view;
 pub mod time_plots;
+pub mod workbench_view;
 
 use egui::Color32;
 

@@ -7,6 +7,7 @@ mod fidelity_fit;
 mod legends;
 mod spectra_thread;
 mod sweep_note;
+mod workbench;
 
 use crate::harness::{advance, harness, wait_fidelity};
 use crate::support::preset;

@@ -1,0 +1,260 @@
+//! The identification workbench: the stabilisation diagram (frequency
+//! against model order, a marker per pole by how it persists from the
+//! order below) over the summed `|G|` of the data, the poles picked (the
+//! automatic choice to begin with; click a pole to pick or drop it), the
+//! `|G|` of the worst-fitted response pair, data against the picked modes,
+//! and every pair's L2 error. "Use these modes" makes them the scene's
+//! modal tyre; "Save as modal preset…" writes that scene. The logic is
+//! `identify::workbench`; this view draws it and pushes commands.
+
+use super::XTitle;
+use crate::Scene;
+use crate::gui::model::command::Command;
+use crate::gui::research::ResearchCommand;
+use crate::identify::workbench::Workbench;
+use crate::lsce::Stability;
+use crate::scene::Tyre;
+use egui::{Color32, RichText, Ui};
+use egui_plot::{Line, MarkerShape, Plot, Points};
+
+/// Plot id of the stabilisation diagram (read by the tests).
+pub const DIAGRAM_PLOT_ID: &str = "tirecontact.workbench.diagram";
+/// Legend entry of the picked poles.
+pub const PICKED: &str = "picked (click a pole to pick or drop it)";
+/// Colour of the picked poles' rings.
+pub const PICKED_COLOR: Color32 = Color32::from_rgb(230, 159, 0);
+/// A click picks the pole nearest it within this many pixels in frequency.
+pub const PICK_PX: f32 = 10.0;
+
+/// The diagram's marker categories: legend name, shape and colour.
+const CATEGORIES: [(Stability, &str, MarkerShape, Color32); 4] = [
+    (
+        Stability::Stable,
+        "stable in f, ξ and shape",
+        MarkerShape::Circle,
+        Color32::from_rgb(0, 158, 115),
+    ),
+    (
+        Stability::FrequencyDamping,
+        "stable in f and ξ",
+        MarkerShape::Diamond,
+        Color32::from_rgb(86, 180, 233),
+    ),
+    (
+        Stability::Frequency,
+        "stable in f",
+        MarkerShape::Square,
+        Color32::from_rgb(0, 114, 178),
+    ),
+    (
+        Stability::New,
+        "new or unstable",
+        MarkerShape::Cross,
+        Color32::from_rgb(150, 150, 150),
+    ),
+];
+
+pub fn show(
+    ui: &mut Ui,
+    scene: &Scene,
+    bench: Option<&Result<Workbench, String>>,
+    computing: bool,
+    cmds: &mut Vec<Command>,
+) {
+    if matches!(scene.tyre, Tyre::Modal { .. }) {
+        ui.label("The workbench identifies a ring or measured tyre from its responses. This scene's tyre is a modal model given mode by mode: open a ring or measured preset (presets/paper.ron, presets/measured_example.ron).");
+        return;
+    }
+    if computing {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label("identifying the tyre's responses (LSCE, every model order)…");
+        });
+    }
+    let w = match bench {
+        Some(Ok(w)) => w,
+        Some(Err(e)) => {
+            ui.label(
+                RichText::new(format!("No identification: {e}")).color(ui.visuals().error_fg_color),
+            );
+            return;
+        }
+        None => return,
+    };
+    ui.horizontal_wrapped(|ui| {
+        if ui
+            .button("Automatic choice")
+            .on_hover_text("the poles of the order chosen from the stabilisation diagram")
+            .clicked()
+        {
+            cmds.push(Command::Research(ResearchCommand::WorkbenchAutomatic));
+        }
+        let any = !w.modes.is_empty();
+        if ui
+            .add_enabled(any, egui::Button::new("Use these modes"))
+            .on_hover_text("the picked modes become the scene's modal tyre (the run restarts)")
+            .clicked()
+        {
+            cmds.push(Command::Research(ResearchCommand::WorkbenchUse));
+        }
+        if ui
+            .add_enabled(any, egui::Button::new("Save as modal preset…"))
+            .on_hover_text("write the scene with the picked modes as its tyre")
+            .clicked()
+        {
+            cmds.push(Command::Research(ResearchCommand::WorkbenchSaveDialog));
+        }
+        ui.separator();
+        ui.label(format!(
+            "{} picked; time error of their fit {}",
+            crate::output::count(w.modes.len(), "mode"),
+            crate::output::summary::short_num(w.time_error, 3)
+        ));
+    });
+    let fits = w.pair_fits().unwrap_or_default();
+    let worst = fits
+        .iter()
+        .max_by(|a, b| a.error.total_cmp(&b.error))
+        .cloned();
+    let errors: Vec<String> = fits
+        .iter()
+        .map(|f| {
+            format!(
+                "{}-{}: {}",
+                f.pair.0,
+                f.pair.1,
+                crate::output::summary::short_num(f.error, 2)
+            )
+        })
+        .collect();
+    ui.label(format!(
+        "|G| error (relative L2 over the band) per pair i-j: {}",
+        errors.join(", ")
+    ));
+    let gap = ui.spacing().item_spacing.y;
+    let h_diag = ((ui.available_height() - gap) * 0.62).max(160.0);
+    diagram(ui, w, h_diag, cmds);
+    if let Some(f) = worst {
+        pair_plot(ui, w, &f, (ui.available_height()).max(120.0));
+    }
+}
+
+/// The stabilisation diagram over the summed `|G|`, the picked poles
+/// ringed; a click picks or drops the nearest pole.
+fn diagram(ui: &mut Ui, w: &Workbench, h: f32, cmds: &mut Vec<Command>) {
+    let diag = &w.identification.diagram;
+    let max_order = diag.iter().map(|d| d.order).max().unwrap_or(1) as f64;
+    let summed = w.summed_magnitude().unwrap_or_default();
+    let db: Vec<f64> = summed
+        .iter()
+        .map(|g| 20.0 * g.max(1e-300).log10())
+        .collect();
+    let (lo, hi) = db
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(*v), b.max(*v))
+        });
+    let freqs = w.frequencies();
+    let r = Plot::new("tirecontact.workbench.diagram")
+        .id(egui::Id::unique(DIAGRAM_PLOT_ID))
+        .height(h)
+        .legend(egui_plot::Legend::default().position(egui_plot::Corner::RightBottom))
+        .x_title(ui, "frequency f (Hz)")
+        .y_axis_label("model order")
+        .include_x(w.band_hz.0)
+        .include_x(w.band_hz.1)
+        .include_y(0.0)
+        .include_y(max_order + 1.0)
+        .allow_scroll(false)
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_double_click_reset(false)
+        .show(ui, |pui| {
+            if hi > lo {
+                // the data's summed |G| (dB) scaled to the order axis
+                let pts: Vec<[f64; 2]> = freqs
+                    .iter()
+                    .zip(&db)
+                    .map(|(f, d)| [*f, 0.5 + max_order * (d - lo) / (hi - lo)])
+                    .collect();
+                pui.line(
+                    Line::new("summed |G| of the data (dB, scaled)", pts)
+                        .color(Color32::from_gray(120))
+                        .width(1.0),
+                );
+            }
+            for (what, name, shape, color) in CATEGORIES {
+                let pts: Vec<[f64; 2]> = diag
+                    .iter()
+                    .flat_map(|d| {
+                        d.poles
+                            .iter()
+                            .filter(move |p| p.stability == what)
+                            .map(move |p| [p.freq_hz, d.order as f64])
+                    })
+                    .collect();
+                if !pts.is_empty() {
+                    pui.points(
+                        Points::new(name, pts)
+                            .shape(shape)
+                            .radius(3.0)
+                            .color(color)
+                            .filled(true),
+                    );
+                }
+            }
+            let picked: Vec<[f64; 2]> = w
+                .picked
+                .iter()
+                .filter_map(|&(oi, k)| {
+                    let d = diag.get(oi)?;
+                    Some([d.poles.get(k)?.freq_hz, d.order as f64])
+                })
+                .collect();
+            pui.points(
+                Points::new(PICKED, picked)
+                    .shape(MarkerShape::Circle)
+                    .radius(7.0)
+                    .filled(false)
+                    .color(PICKED_COLOR),
+            );
+        });
+    if r.response.clicked()
+        && let Some(pos) = r.response.interact_pointer_pos()
+    {
+        let at = r.transform.value_from_position(pos);
+        let hz_per_px = r.transform.dvalue_dpos()[0].abs();
+        if let Some(p) = w.nearest(at.x, at.y, PICK_PX as f64 * hz_per_px) {
+            cmds.push(Command::Research(ResearchCommand::WorkbenchToggle(p)));
+        }
+    }
+}
+
+/// `|G|` (dB re 1 m/N) of one pair: the data and the picked modes.
+fn pair_plot(ui: &mut Ui, w: &Workbench, f: &crate::identify::workbench::PairFit, h: f32) {
+    let freqs = w.frequencies();
+    let to_db = |v: &[f64]| -> Vec<[f64; 2]> {
+        freqs
+            .iter()
+            .zip(v)
+            .map(|(x, g)| [*x, 20.0 * g.max(1e-300).log10()])
+            .collect()
+    };
+    let (i, j) = f.pair;
+    Plot::new("tirecontact.workbench.pair")
+        .height(h)
+        .legend(egui_plot::Legend::default().position(egui_plot::Corner::RightTop))
+        .x_title(ui, "frequency f (Hz)")
+        .y_axis_label(format!("|G{i}{j}| (dB re 1 m/N)"))
+        .allow_scroll(false)
+        .show(ui, |pui| {
+            pui.line(
+                Line::new(format!("data, pair {i}-{j} (worst fitted)"), to_db(&f.data)).width(1.5),
+            );
+            pui.line(
+                Line::new("picked modes", to_db(&f.model))
+                    .color(PICKED_COLOR)
+                    .width(1.5),
+            );
+        });
+}

@@ -1,0 +1,140 @@
+//! The identification workbench driven by the pointer: a measured tyre's
+//! stabilisation diagram with the automatic choice picked, a click on a
+//! picked pole drops its mode and a click picks it back, "Use these modes"
+//! makes them the scene's modal tyre, and they save as a modal preset.
+
+use crate::harness::{harness_sized, settle};
+use crate::support::temp_dir;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use egui_plot::{PlotMemory, PlotPoint};
+use std::path::Path;
+use tirecontact::Scene;
+use tirecontact::gui::research::ResearchCommand;
+use tirecontact::gui::views::workbench_view::DIAGRAM_PLOT_ID;
+use tirecontact::gui::{App, Command, View};
+use tirecontact::lsce::IdentifyOptions;
+use tirecontact::scene::Tyre;
+
+/// The three-point scene with the pyuff fixture's exact impulse responses
+/// as its measured tyre (three modes: 52, 131 and 247 Hz).
+fn measured_scene() -> Scene {
+    let mut s = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    s.tyre = Tyre::Measured {
+        file: std::fs::canonicalize("tests/data/uff/time3.uff").unwrap(),
+        identification: IdentifyOptions {
+            band_hz: (0.0, 450.0),
+            duration_s: 0.5,
+            ..IdentifyOptions::default()
+        },
+        nodes: Vec::new(),
+    };
+    s
+}
+
+/// Frames until the workbench has its identification.
+fn until_identified(h: &mut Harness<'_, App>) {
+    for _ in 0..20_000 {
+        if h.state().research().workbench().is_some() && !h.state().research().workbench_computing()
+        {
+            h.run_steps(2);
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(2));
+        h.run_steps(1);
+    }
+    panic!("the workbench never identified");
+}
+
+/// Clicks at the diagram's point `(freq_hz, order)`.
+fn click_pole(h: &mut Harness<'_, App>, freq_hz: f64, order: f64) {
+    let mem = PlotMemory::load(&h.ctx, egui::Id::unique(DIAGRAM_PLOT_ID)).expect("the diagram");
+    let pos = mem
+        .transform()
+        .position_from_point(&PlotPoint::new(freq_hz, order));
+    h.hover_at(pos);
+    h.run_steps(1);
+    h.drag_at(pos);
+    h.run_steps(1);
+    h.drop_at(pos);
+    h.run_steps(2);
+}
+
+fn picked_freqs(h: &Harness<'_, App>) -> Vec<f64> {
+    match h.state().research().workbench() {
+        Some(Ok(w)) => w.modes.iter().map(|m| m.freq_hz).collect(),
+        other => panic!("no workbench: {other:?}"),
+    }
+}
+
+#[test]
+fn poles_are_picked_and_dropped_by_clicks_and_the_modes_used_and_saved() {
+    let mut h = harness_sized(App::new(measured_scene(), None).unwrap(), [1600.0, 1000.0]);
+    settle(&mut h);
+    h.state_mut().apply(Command::ShowView(View::Workbench));
+    h.run_steps(1);
+    until_identified(&mut h);
+    // the automatic choice: the three modes
+    let auto = picked_freqs(&h);
+    assert_eq!(auto.len(), 3, "{auto:?}");
+    for (f, want) in auto.iter().zip([52.0, 131.0, 247.0]) {
+        assert!((f - want).abs() < 1e-3 * want, "{auto:?}");
+    }
+    assert!(h.query_by_label_contains("3 modes picked").is_some());
+    // the picked 131 Hz pole, clicked: dropped
+    let (order, f131) = {
+        let Some(Ok(w)) = h.state().research().workbench() else {
+            unreachable!()
+        };
+        let at = w.picked[1];
+        (
+            w.identification.diagram[at.0].order as f64,
+            w.pole(at).unwrap().0,
+        )
+    };
+    click_pole(&mut h, f131, order);
+    let now = picked_freqs(&h);
+    assert_eq!(now.len(), 2, "{now:?}");
+    assert!(now.iter().all(|f| (f - 131.0).abs() > 1.0));
+    assert!(h.query_by_label_contains("2 modes picked").is_some());
+    // clicked again: picked back
+    click_pole(&mut h, f131, order);
+    assert_eq!(picked_freqs(&h).len(), 3);
+    // drop it once more, then use the two modes left
+    click_pole(&mut h, f131, order);
+    let two = match h.state().research().workbench() {
+        Some(Ok(w)) => w.modes.clone(),
+        _ => unreachable!(),
+    };
+    h.get_by_label("Use these modes").click();
+    settle(&mut h);
+    match &h.state().scene().tyre {
+        Tyre::Modal { modes } => assert_eq!(modes, &two),
+        t => panic!("not a modal tyre: {t:?}"),
+    }
+    assert_eq!(h.state().simulation().steps(), 0, "the run restarted");
+    // (the scene now has a modal tyre: the view says there is nothing to identify)
+    assert!(
+        h.query_by_label_contains("open a ring or measured preset")
+            .is_some()
+    );
+
+    // saved as a modal preset, from a measured scene's workbench
+    let mut h = harness_sized(App::new(measured_scene(), None).unwrap(), [1600.0, 1000.0]);
+    settle(&mut h);
+    h.state_mut().apply(Command::ShowView(View::Workbench));
+    h.run_steps(1);
+    until_identified(&mut h);
+    let tmp = temp_dir();
+    let path = tmp.path().join("picked.ron");
+    h.state_mut()
+        .apply(Command::Research(ResearchCommand::WorkbenchSave(
+            path.clone(),
+        )));
+    h.run_steps(1);
+    let saved = Scene::load(&path).unwrap();
+    match saved.tyre {
+        Tyre::Modal { modes } => assert_eq!(modes.len(), 3),
+        t => panic!("not a modal tyre: {t:?}"),
+    }
+}
