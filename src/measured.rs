@@ -643,4 +643,32 @@ mod tests {
         let e = read(d, None, 1).unwrap_err().to_string();
         assert!(e.contains("is a folder"), "{e}");
     }
+
+    /// Files that are not regular, or never end a line, are refused with
+    /// the file named: a FIFO (not waited on: the test would hang),
+    /// `/dev/zero`, a folder, a 100 MB line.
+    #[cfg(unix)]
+    #[test]
+    fn hostile_files_are_refused_at_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("fifo.csv");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        let line = dir.path().join("line.csv");
+        std::fs::write(&line, vec![b'1'; 100 << 20]).unwrap();
+        let mut cases = vec![
+            (std::path::PathBuf::from("/dev/zero"), "not a regular file"),
+            (dir.path().to_path_buf(), "is a folder"),
+            (line, "longer than"),
+        ];
+        if made.is_ok_and(|s| s.success()) {
+            cases.push((fifo, "not a regular file"));
+        }
+        for (path, want) in cases {
+            let e = read(&path, None, 1).unwrap_err().to_string();
+            assert!(
+                e.contains(want) && e.contains(&path.display().to_string()),
+                "{e}"
+            );
+        }
+    }
 }
