@@ -65,7 +65,9 @@ mod imp {
 
     pub fn install() {
         let handler = on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t;
-        for sig in [libc::SIGINT, libc::SIGTERM] {
+        // SIGPIPE too: output piped into `head` ends the command quietly,
+        // as other Unix tools do, not with a panic on the closed pipe
+        for sig in [libc::SIGINT, libc::SIGTERM, libc::SIGPIPE] {
             // SAFETY: `on_signal` only calls async-signal-safe functions and
             // reads atomics.
             unsafe {
@@ -85,7 +87,8 @@ mod imp {
     pub fn install() {}
 }
 
-/// Removes the open temporaries of atomic writes on SIGINT and SIGTERM,
+/// Removes the open temporaries of atomic writes on SIGINT, SIGTERM and
+/// SIGPIPE (stdout piped into a command that stopped reading),
 /// then ends the process by the signal. For the command line (the window
 /// has its own handling); a no-op off Unix.
 pub fn remove_temporaries_on_signal() {

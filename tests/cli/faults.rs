@@ -356,3 +356,29 @@ fn failed_scene_save_keeps_the_old_file() {
     assert_eq!(Scene::load(&ok).unwrap().points, scene.points);
     assert_eq!(names_in(dir).len(), 3, "{:?}", names_in(dir));
 }
+
+/// Output piped into a reader that has stopped (`| head -1`) ends the
+/// command quietly, as other tools do: no panic on the closed pipe. The
+/// pipe is closed before the command prints (it identifies first).
+#[cfg(unix)]
+#[test]
+fn a_closed_stdout_pipe_ends_the_command_without_a_panic() {
+    use std::process::Stdio;
+    let mut child = bin()
+        .args([
+            "identify",
+            "--data",
+            "tests/data/uff/time3.uff",
+            "--points",
+            "3",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let err = stderr(&out);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_ne!(out.status.code(), Some(101), "{err}");
+}
