@@ -58,6 +58,7 @@ pub mod road;
 pub mod scene;
 pub mod simulation;
 pub mod spectrum;
+pub mod study;
 pub mod sweep;
 
 pub use error::{RunError, SceneError, SolverError};
@@ -100,6 +101,7 @@ mod layers {
         ("spectrum", 6),
         ("bench", 6),
         ("sweep", 7),
+        ("study", 7),
         ("cli", 8),
         ("gui", 8),
     ];

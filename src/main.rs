@@ -21,10 +21,12 @@ struct Cli {
 enum Command {
     /// Run a scene headless and write its time histories as CSV.
     Run(cli::run::RunArgs),
-    /// Identify the modal model of a ring-tyre scene by LSCE (method §5-6).
+    /// Identify the modal model of a ring or measured tyre by LSCE (method §5-6).
     Identify(cli::identify::IdentifyArgs),
     /// Run a scene over a range of one parameter; summary and band levels per value.
     Sweep(cli::sweep::SweepArgs),
+    /// Parameter studies: plan, run (in shards), merge.
+    Study(cli::study::StudyArgs),
     /// Work-precision study and before/after timings of skipped work.
     Bench(cli::bench::BenchArgs),
     /// Parse and validate a scene preset.
@@ -53,6 +55,7 @@ fn main() -> std::process::ExitCode {
                 | Command::Sweep(_)
                 | Command::Identify(_)
                 | Command::Bench(_)
+                | Command::Study(_)
                 | Command::Check { .. }
         )
     ) {
@@ -70,6 +73,7 @@ fn main() -> std::process::ExitCode {
         Some(Command::Identify(args)) => cli::identify::identify(&args),
         Some(Command::Bench(args)) => cli::bench::bench(&args),
         Some(Command::Sweep(args)) => cli::sweep::sweep(&args),
+        Some(Command::Study(args)) => cli::study::study(&args),
         None => default_action(),
     };
     match result {

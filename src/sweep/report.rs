@@ -1,6 +1,6 @@
 //! Sweep results as a CSV table and a PNG figure.
 
-use super::SweepPoint;
+use super::{RunSummary, SweepPoint};
 use crate::output::figures::{Figure, Panel, Series, Style};
 use crate::spectrum::{band_label, third_octave_bands};
 use std::io::Write;
@@ -13,14 +13,49 @@ fn table_bands() -> Vec<f64> {
         .collect()
 }
 
-/// Level of the band of nominal centre `nominal_hz` in a point (NaN when
-/// the run failed or the band was not computed, e.g. above Nyquist).
-fn band_db(p: &SweepPoint, nominal_hz: f64) -> f64 {
-    p.result
+/// Level of the band of nominal centre `nominal_hz` in a run's summary
+/// (NaN when the run failed or the band was not computed, e.g. above
+/// Nyquist).
+fn band_db(result: &Result<RunSummary, String>, nominal_hz: f64) -> f64 {
+    result
         .as_ref()
         .ok()
         .and_then(|r| r.bands.iter().find(|b| b.band.nominal_hz == nominal_hz))
         .map_or(f64::NAN, |b| b.level_db)
+}
+
+/// The metric columns of a run of `num_points` points: `q{i}_max_N`..,
+/// `q{i}_rms_N`.., `contact{i}_fraction`.. (named as `run -o`'s `q{i}_N`
+/// and `contact{i}`), `band_{f}hz_db_re_1N`.. (total force).
+pub fn metric_columns(num_points: usize) -> Vec<String> {
+    let mut header: Vec<String> = (0..num_points).map(|i| format!("q{i}_max_N")).collect();
+    header.extend((0..num_points).map(|i| format!("q{i}_rms_N")));
+    header.extend((0..num_points).map(|i| format!("contact{i}_fraction")));
+    header.extend(
+        table_bands()
+            .iter()
+            .map(|&b| format!("band_{}hz_db_re_1N", band_label(b))),
+    );
+    header
+}
+
+/// A run's values in [`metric_columns`]' order (NaN when it failed).
+pub fn metric_values(result: &Result<RunSummary, String>, num_points: usize) -> Vec<String> {
+    let mut row = Vec::new();
+    match result {
+        Ok(r) => {
+            for v in [&r.max_force_n, &r.force_rms_n, &r.contact_fraction] {
+                row.extend(v.iter().map(|x| format!("{x}")));
+            }
+        }
+        Err(_) => row.extend((0..3 * num_points).map(|_| "NaN".to_string())),
+    }
+    row.extend(
+        table_bands()
+            .iter()
+            .map(|&b| format!("{:.6}", band_db(result, b))),
+    );
+    row
 }
 
 /// Writes one row per value: `<param>`, `q{i}_max_N`.., `q{i}_rms_N`..,
@@ -34,29 +69,13 @@ pub fn write_csv<W: Write>(
     num_points: usize,
 ) -> Result<(), csv::Error> {
     let mut w = csv::Writer::from_writer(out);
-    let bands = table_bands();
     let mut header = vec![param.to_string()];
-    header.extend((0..num_points).map(|i| format!("q{i}_max_N")));
-    header.extend((0..num_points).map(|i| format!("q{i}_rms_N")));
-    header.extend((0..num_points).map(|i| format!("contact{i}_fraction")));
-    header.extend(
-        bands
-            .iter()
-            .map(|&b| format!("band_{}hz_db_re_1N", band_label(b))),
-    );
+    header.extend(metric_columns(num_points));
     header.push("error".into());
     w.write_record(&header)?;
     for p in points {
         let mut row = vec![format!("{}", p.value)];
-        match &p.result {
-            Ok(r) => {
-                for v in [&r.max_force_n, &r.force_rms_n, &r.contact_fraction] {
-                    row.extend(v.iter().map(|x| format!("{x}")));
-                }
-            }
-            Err(_) => row.extend((0..3 * num_points).map(|_| "NaN".to_string())),
-        }
-        row.extend(bands.iter().map(|&b| format!("{:.6}", band_db(p, b))));
+        row.extend(metric_values(&p.result, num_points));
         row.push(p.result.as_ref().err().cloned().unwrap_or_default());
         w.write_record(&row)?;
     }
@@ -149,7 +168,7 @@ pub fn figure(
             name: format!("{} Hz", band_label(b.nominal_hz)),
             points: points
                 .iter()
-                .map(|p| (p.value, band_db(p, b.nominal_hz)))
+                .map(|p| (p.value, band_db(&p.result, b.nominal_hz)))
                 .filter(|p| p.1.is_finite())
                 .collect(),
             style: Style::LineMarkers(3),

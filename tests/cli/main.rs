@@ -13,4 +13,5 @@ mod identify_figures;
 mod output_paths;
 mod refusals;
 mod run;
+mod study;
 mod sweep_names;

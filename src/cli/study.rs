@@ -1,0 +1,418 @@
+//! `tirecontact study plan|run|merge`: parameter studies (see
+//! `tirecontact::study`), run on local cores, in shards on other machines
+//! (GNU parallel, Slurm job arrays), and merged.
+
+use super::CliResult;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::Instant;
+use tirecontact::ModeCache;
+use tirecontact::study::{Loaded, Row, header, load, record, run_row, shard};
+
+#[derive(Debug, clap::Args)]
+pub struct StudyArgs {
+    #[command(subcommand)]
+    pub command: StudyCommand,
+}
+
+#[derive(Debug, clap::Subcommand)]
+pub enum StudyCommand {
+    /// Write the design's rows (row id and factor values) and estimate the
+    /// wall time from a short timing run.
+    Plan {
+        /// Study file (RON).
+        study: PathBuf,
+        /// Write the rows (CSV).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+    /// Run rows of a study on local threads into a part (CSV).
+    Run {
+        /// Study file (RON).
+        study: PathBuf,
+        /// Run shard K of N (1-based K): rows K-1, K-1+N, … (a Slurm array
+        /// task's `$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT`).
+        #[arg(long, conflicts_with = "rows")]
+        shard: Option<String>,
+        /// Run rows A..B (B excluded).
+        #[arg(long)]
+        rows: Option<String>,
+        /// Worker threads (default: every core).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Skip the rows already in the output (a killed run loses nothing
+        /// finished).
+        #[arg(long)]
+        resume: bool,
+        /// The part (CSV).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+    /// Merge parts into one table: every row once, all of one study.
+    Merge {
+        /// Parts written by `study run`.
+        #[arg(required = true)]
+        parts: Vec<PathBuf>,
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+}
+
+pub fn study(args: &StudyArgs) -> CliResult {
+    match &args.command {
+        StudyCommand::Plan { study, output } => plan(study, output.as_deref()),
+        StudyCommand::Run {
+            study,
+            shard,
+            rows,
+            threads,
+            resume,
+            output,
+        } => run(
+            study,
+            shard.as_deref(),
+            rows.as_deref(),
+            *threads,
+            *resume,
+            output,
+        ),
+        StudyCommand::Merge { parts, output } => merge(parts, output),
+    }
+}
+
+fn plan(path: &Path, output: Option<&Path>) -> CliResult {
+    let loaded = load(path)?;
+    if let Some(out) = output {
+        super::paths::check_output_file("-o", out, "CSV")?;
+        let mut w = csv::Writer::from_writer(Vec::new());
+        let mut h = vec!["row".to_string()];
+        h.extend(loaded.study.factors.iter().map(|f| f.path.clone()));
+        h.push("replicate".into());
+        w.write_record(&h)?;
+        for r in &loaded.rows {
+            let mut rec = vec![r.id.to_string()];
+            rec.extend(r.values.iter().map(|v| format!("{v}")));
+            rec.push(r.replicate.to_string());
+            w.write_record(&rec)?;
+        }
+        let bytes = w.into_inner().map_err(|e| e.to_string())?;
+        tirecontact::fsio::write_atomic(out, &bytes)
+            .map_err(|e| format!("{}: {e}", out.display()))?;
+        println!("wrote {}", out.display());
+    }
+    // a timing run: the first row's scene prepared (a ring identified:
+    // once per geometry and process, not timed), then a tenth of its steps
+    // (at least 2000) stepped
+    let cache = ModeCache::new();
+    let scene = tirecontact::study::scene_of(&loaded, &loaded.rows[0])?;
+    let model = tirecontact::PreparedModel::new(&scene, &cache)?;
+    let mut sim = tirecontact::Simulation::new(&model, tirecontact::SolverOptions::default())?;
+    let total = scene.num_steps();
+    let n = total.min((total / 10).max(2000));
+    let start = Instant::now();
+    tirecontact::drive::run(&mut sim, n, &mut (), tirecontact::drive::Watch::none())?;
+    let per_run = start.elapsed().as_secs_f64() * total as f64 / n.max(1) as f64;
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    println!(
+        "{}: {} ({} factors, {} per row); about {:.2} s per run, {} on {} threads of this machine",
+        path.display(),
+        tirecontact::output::count(loaded.rows.len(), "run"),
+        loaded.study.factors.len(),
+        tirecontact::output::count(loaded.study.replicates, "replicate"),
+        per_run,
+        human_s(per_run * loaded.rows.len() as f64 / threads as f64),
+        threads
+    );
+    Ok(())
+}
+
+fn human_s(s: f64) -> String {
+    if s < 120.0 {
+        format!("{s:.0} s")
+    } else if s < 7200.0 {
+        format!("{:.0} min", s / 60.0)
+    } else {
+        format!("{:.1} h", s / 3600.0)
+    }
+}
+
+/// `K/N` (1-based K) or `A..B`: the rows chosen.
+fn chosen(
+    loaded: &Loaded,
+    shard_arg: Option<&str>,
+    rows_arg: Option<&str>,
+) -> Result<Vec<Row>, String> {
+    if let Some(s) = shard_arg {
+        let err = || format!("--shard {s}: expected K/N with 1 <= K <= N, e.g. 2/8");
+        let (k, n) = s.split_once('/').ok_or_else(err)?;
+        let (k, n): (usize, usize) = (
+            k.trim().parse().map_err(|_| err())?,
+            n.trim().parse().map_err(|_| err())?,
+        );
+        if k == 0 || k > n {
+            return Err(err());
+        }
+        return Ok(shard(&loaded.rows, k - 1, n));
+    }
+    if let Some(r) = rows_arg {
+        let n = loaded.rows.len();
+        let err = || format!("--rows {r}: expected A..B with 0 <= A < B <= {n}");
+        let (a, b) = r.split_once("..").ok_or_else(err)?;
+        let (a, b): (usize, usize) = (
+            a.trim().parse().map_err(|_| err())?,
+            b.trim().parse().map_err(|_| err())?,
+        );
+        if a >= b || b > n {
+            return Err(err());
+        }
+        return Ok(loaded.rows[a..b].to_vec());
+    }
+    Ok(loaded.rows.clone())
+}
+
+/// A table's rows by id (each its fields).
+type Rows = BTreeMap<usize, Vec<String>>;
+
+/// The records of a part (or merged table) at `path`: its header and rows
+/// by id; a last line cut short (a killed run) is left out.
+fn read_table(path: &Path) -> Result<(Vec<String>, Rows), String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .flexible(true)
+        .from_reader(text.as_bytes());
+    let header: Vec<String> = rdr
+        .headers()
+        .map_err(|e| format!("{}: {e}", path.display()))?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    let mut rows = BTreeMap::new();
+    for (k, rec) in rdr.records().enumerate() {
+        let Ok(rec) = rec else { continue };
+        if rec.len() != header.len() {
+            continue; // cut short
+        }
+        let id: usize = rec[0].parse().map_err(|_| {
+            format!(
+                "{}: line {}: row = `{}`: expected a row number",
+                path.display(),
+                k + 2,
+                &rec[0]
+            )
+        })?;
+        let fields: Vec<String> = rec.iter().map(str::to_string).collect();
+        if rows.insert(id, fields).is_some() {
+            return Err(format!(
+                "{}: row {id} twice: expected every row once",
+                path.display()
+            ));
+        }
+    }
+    Ok((header, rows))
+}
+
+/// Writes `header` and `rows` (by id) to `path` atomically: the one form
+/// of every study table, so that merged shards equal a one-process run.
+fn write_table(
+    path: &Path,
+    header: &[String],
+    rows: &BTreeMap<usize, Vec<String>>,
+) -> Result<(), String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header).map_err(|e| e.to_string())?;
+    for r in rows.values() {
+        w.write_record(r).map_err(|e| e.to_string())?;
+    }
+    let bytes = w.into_inner().map_err(|e| e.to_string())?;
+    tirecontact::fsio::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn run(
+    path: &Path,
+    shard_arg: Option<&str>,
+    rows_arg: Option<&str>,
+    threads: Option<usize>,
+    resume: bool,
+    output: &Path,
+) -> CliResult {
+    let loaded = load(path)?;
+    super::paths::check_output_file("-o", output, "CSV")?;
+    let header = header(&loaded);
+    let mut done: BTreeMap<usize, Vec<String>> = BTreeMap::new();
+    if resume && output.exists() {
+        let (h, rows) = read_table(output)?;
+        if h != header {
+            return Err(format!(
+                "{}: --resume: a table of another study (its columns differ)",
+                output.display()
+            )
+            .into());
+        }
+        for (id, r) in rows {
+            if r.get(2) != Some(&loaded.hash) {
+                return Err(format!(
+                    "{}: --resume: row {id} is of another study (hash {}, this one {})",
+                    output.display(),
+                    r.get(2).cloned().unwrap_or_default(),
+                    loaded.hash
+                )
+                .into());
+            }
+            done.insert(id, r);
+        }
+    }
+    let todo: Vec<Row> = chosen(&loaded, shard_arg, rows_arg)?
+        .into_iter()
+        .filter(|r| !done.contains_key(&r.id))
+        .collect();
+    let threads = match threads {
+        Some(0) => return Err("--threads = 0: expected at least 1 thread".into()),
+        Some(n) => n,
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    };
+    // rows are appended as they finish (a killed run keeps them), then the
+    // table is written sorted
+    let mut journal = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(output)
+        .map_err(|e| format!("{}: {e}", output.display()))?;
+    if done.is_empty() {
+        journal
+            .set_len(0)
+            .map_err(|e| format!("{}: {e}", output.display()))?;
+        let mut w = csv::Writer::from_writer(Vec::new());
+        w.write_record(&header)?;
+        journal.write_all(&w.into_inner().map_err(|e| e.to_string())?)?;
+    }
+    let journal = Mutex::new(journal);
+    let bar = ProgressBar::with_draw_target(Some(todo.len() as u64), ProgressDrawTarget::stderr());
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} rows (eta {eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let cache = ModeCache::new();
+    let cancel = AtomicBool::new(false);
+    let next = AtomicUsize::new(0);
+    let results: Mutex<BTreeMap<usize, Vec<String>>> = Mutex::new(BTreeMap::new());
+    let start = Instant::now();
+    std::thread::scope(|scope| {
+        for _ in 0..threads.clamp(1, todo.len().max(1)) {
+            scope.spawn(|| {
+                loop {
+                    let k = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(row) = todo.get(k) else { break };
+                    let r = run_row(&loaded, row, &cache, &cancel);
+                    let rec = record(&loaded, row, &r);
+                    let mut w = csv::Writer::from_writer(Vec::new());
+                    if w.write_record(&rec).is_ok()
+                        && let Ok(bytes) = w.into_inner()
+                    {
+                        let mut j = journal.lock().unwrap_or_else(|e| e.into_inner());
+                        let _ = j.write_all(&bytes).and_then(|()| j.flush());
+                    }
+                    results
+                        .lock()
+                        .unwrap_or_else(|e| e.into_inner())
+                        .insert(row.id, rec);
+                    bar.inc(1);
+                }
+            });
+        }
+    });
+    bar.finish_and_clear();
+    let results = results.into_inner().unwrap_or_else(|e| e.into_inner());
+    let failed = results
+        .values()
+        .filter(|r| r.last().is_some_and(|e| !e.is_empty()))
+        .count();
+    done.extend(results);
+    write_table(output, &header, &done)?;
+    eprintln!(
+        "wrote {} ({} run in {:.1} s on {}, {failed} failed; {} in the table)",
+        output.display(),
+        tirecontact::output::count(todo.len(), "row"),
+        start.elapsed().as_secs_f64(),
+        tirecontact::output::count(threads, "thread"),
+        tirecontact::output::count(done.len(), "row"),
+    );
+    Ok(())
+}
+
+fn merge(parts: &[PathBuf], output: &Path) -> CliResult {
+    super::paths::check_output_file("-o", output, "CSV")?;
+    let mut header: Option<Vec<String>> = None;
+    let mut all: BTreeMap<usize, Vec<String>> = BTreeMap::new();
+    let mut hash: Option<String> = None;
+    let mut total: Option<usize> = None;
+    for p in parts {
+        let (h, rows) = read_table(p)?;
+        match &header {
+            None => header = Some(h),
+            Some(h0) if *h0 != h => {
+                return Err(format!(
+                    "{}: its columns differ from {}'s: expected parts of one study",
+                    p.display(),
+                    parts[0].display()
+                )
+                .into());
+            }
+            _ => {}
+        }
+        for (id, r) in rows {
+            let (of, hs) = (
+                r.get(1).cloned().unwrap_or_default(),
+                r.get(2).cloned().unwrap_or_default(),
+            );
+            if *hash.get_or_insert(hs.clone()) != hs {
+                return Err(format!("{}: row {id} is of study {hs}, the first part's of {}: expected parts of one study", p.display(), hash.unwrap_or_default()).into());
+            }
+            let of: usize = of.parse().map_err(|_| {
+                format!(
+                    "{}: row {id}: of = `{of}`: expected the study's row count",
+                    p.display()
+                )
+            })?;
+            if *total.get_or_insert(of) != of {
+                return Err(format!(
+                    "{}: row {id}: of = {of}: expected {} as in the other rows",
+                    p.display(),
+                    total.unwrap_or(0)
+                )
+                .into());
+            }
+            if all.insert(id, r).is_some() {
+                return Err(format!(
+                    "{}: row {id} is in two parts: expected every row once",
+                    p.display()
+                )
+                .into());
+            }
+        }
+    }
+    let total = total.unwrap_or(0);
+    let missing: Vec<usize> = (0..total).filter(|id| !all.contains_key(id)).collect();
+    if !missing.is_empty() {
+        let shown: Vec<String> = missing.iter().take(20).map(ToString::to_string).collect();
+        return Err(format!(
+            "{} of {total} rows missing: {}{}; run them (study run --rows A..B) and merge again",
+            missing.len(),
+            shown.join(", "),
+            if missing.len() > 20 { ", …" } else { "" }
+        )
+        .into());
+    }
+    write_table(output, &header.unwrap_or_default(), &all)?;
+    eprintln!(
+        "wrote {} ({} rows from {} parts)",
+        output.display(),
+        all.len(),
+        parts.len()
+    );
+    Ok(())
+}
