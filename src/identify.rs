@@ -170,6 +170,61 @@ pub fn identify_measured(
     })
 }
 
+/// An identification of a scene's ring or measured tyre, whatever its kind.
+#[derive(Debug, Clone)]
+pub struct TyreIdentification {
+    pub identification: Identification,
+    /// The responses LSCE saw (pairs `i <= j`).
+    pub responses: Responses,
+    /// The identification band (Hz).
+    pub band_hz: (f64, f64),
+    /// What the source adds for the user (the ring's |G| error against the
+    /// full ring; a file's format, reciprocity, conversions).
+    pub notes: Vec<String>,
+    /// Wall time of sampling or reading, and identification (s).
+    pub elapsed_s: f64,
+}
+
+/// Identifies `scene`'s tyre: a ring sampled at the points
+/// ([`identify_ring`]), measured responses read ([`identify_measured`]);
+/// `None` for a modal tyre (nothing to identify).
+pub fn identify_tyre(scene: &Scene) -> Option<Result<TyreIdentification, LsceError>> {
+    match &scene.tyre {
+        Tyre::Modal { .. } => None,
+        Tyre::Ring {
+            ring,
+            identification,
+        } => Some(
+            identify_ring(ring, &positions(scene), identification).map(|id| TyreIdentification {
+                notes: vec![format!("|G| vs full ring {:.3e}", id.ring_magnitude_error)],
+                identification: id.identification,
+                responses: id.responses,
+                band_hz: identification.band_hz,
+                elapsed_s: id.elapsed_s,
+            }),
+        ),
+        Tyre::Measured {
+            file,
+            identification,
+            nodes,
+        } => Some(
+            identify_measured(
+                &data_path(scene, file),
+                (!nodes.is_empty()).then_some(nodes.as_slice()),
+                scene.num_points(),
+                identification,
+            )
+            .map(|id| TyreIdentification {
+                notes: id.notes,
+                identification: id.identification,
+                responses: id.responses,
+                band_hz: identification.band_hz,
+                elapsed_s: id.elapsed_s,
+            }),
+        ),
+    }
+}
+
 /// A measured tyre's data file, relative to the scene's folder.
 pub fn data_path(scene: &Scene, file: &Path) -> PathBuf {
     match &scene.base_dir {

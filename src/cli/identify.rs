@@ -9,8 +9,8 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tirecontact::fsio::write_atomic;
-use tirecontact::identify::{data_path, identify_measured, identify_ring};
-use tirecontact::lsce::{Identification, Responses, Stability};
+use tirecontact::identify::{TyreIdentification, identify_tyre};
+use tirecontact::lsce::{Identification, Stability};
 use tirecontact::measured::impulse_csv;
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
 use tirecontact::output::paper_figures::paper_figures;
@@ -53,15 +53,6 @@ pub struct IdentifyArgs {
     /// tens of kN, which squash the rolling force to a line).
     #[arg(long, requires = "figures")]
     pub figures_unclipped: bool,
-}
-
-/// What an identification gave, whatever its source.
-struct Identified {
-    identification: Identification,
-    responses: Responses,
-    elapsed_s: f64,
-    /// The source's own lines for the summary.
-    notes: Vec<String>,
 }
 
 /// The scene to identify: the preset, or a scene of `--data`'s points
@@ -121,41 +112,9 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
         // a folder, like `run --frames` and `bench -o`: created when missing
         ensure_output_dir("--figures", dir)?;
     }
-    let at = |e: &dyn std::fmt::Display| format!("{}: {e}", source.display());
-    let id = match &scene.tyre {
-        Tyre::Ring {
-            ring,
-            identification,
-        } => {
-            let x: Vec<f64> = scene.points.iter().map(|p| p.x_m).collect();
-            let id = identify_ring(ring, &x, identification).map_err(|e| at(&e))?;
-            Identified {
-                notes: vec![format!("|G| vs full ring {:.3e}", id.ring_magnitude_error)],
-                identification: id.identification,
-                responses: id.responses,
-                elapsed_s: id.elapsed_s,
-            }
-        }
-        Tyre::Measured {
-            file,
-            identification,
-            nodes,
-        } => {
-            let id = identify_measured(
-                &data_path(&scene, file),
-                (!nodes.is_empty()).then_some(nodes.as_slice()),
-                scene.num_points(),
-                identification,
-            )
-            .map_err(|e| at(&e))?;
-            Identified {
-                notes: id.notes,
-                identification: id.identification,
-                responses: id.responses,
-                elapsed_s: id.elapsed_s,
-            }
-        }
-        Tyre::Modal { .. } => {
+    let id = match identify_tyre(&scene) {
+        Some(r) => r.map_err(|e| format!("{}: {e}", source.display()))?,
+        None => {
             return Err(format!(
                 "{}: tyre is `Modal(...)`: nothing to identify (expected `Ring(...)` or `Measured(...)`)",
                 source.display()
@@ -191,7 +150,7 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
     Ok(())
 }
 
-fn summary(scene: &Scene, id: &Identified) -> String {
+fn summary(scene: &Scene, id: &TyreIdentification) -> String {
     let ident = &id.identification;
     let mut s = String::new();
     let _ = writeln!(

@@ -3,8 +3,8 @@
 //! with its whole stabilisation diagram, and the workbench made from them.
 
 use crate::gui::jobs::Job;
+use crate::identify::identify_tyre;
 use crate::identify::workbench::Workbench;
-use crate::identify::{data_path, identify_measured, identify_ring};
 use crate::scene::{Scene, Tyre};
 
 /// What a workbench depends on: the tyre and the points' positions (m).
@@ -23,34 +23,10 @@ pub fn key_of(scene: &Scene) -> Option<WorkbenchKey> {
 
 /// Identifies `scene`'s tyre into a workbench (the automatic choice).
 pub fn workbench_of(scene: &Scene) -> Result<Workbench, String> {
-    let e = |e: &dyn std::fmt::Display| e.to_string();
-    match &scene.tyre {
-        Tyre::Ring {
-            ring,
-            identification,
-        } => {
-            let x: Vec<f64> = scene.points.iter().map(|p| p.x_m).collect();
-            let id = identify_ring(ring, &x, identification).map_err(|x| e(&x))?;
-            Workbench::new(id.responses, id.identification, identification.band_hz)
-                .map_err(|x| e(&x))
-        }
-        Tyre::Measured {
-            file,
-            identification,
-            nodes,
-        } => {
-            let id = identify_measured(
-                &data_path(scene, file),
-                (!nodes.is_empty()).then_some(nodes.as_slice()),
-                scene.num_points(),
-                identification,
-            )
-            .map_err(|x| e(&x))?;
-            Workbench::new(id.responses, id.identification, identification.band_hz)
-                .map_err(|x| e(&x))
-        }
-        Tyre::Modal { .. } => Err("a modal tyre: nothing to identify".into()),
-    }
+    let id = identify_tyre(scene)
+        .ok_or_else(|| "a modal tyre: nothing to identify".to_string())?
+        .map_err(|e| e.to_string())?;
+    Workbench::new(id.responses, id.identification, id.band_hz).map_err(|e| e.to_string())
 }
 
 /// A workbench identification under way, and what it is for.
