@@ -17,6 +17,8 @@ use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
+pub mod report;
+
 /// Most rows a study may have.
 pub const MAX_ROWS: usize = 1_000_000;
 /// Most factors of a study (Sobol's dimensions).

@@ -52,6 +52,16 @@ pub enum StudyCommand {
         #[arg(short, long)]
         output: PathBuf,
     },
+    /// Per factor, the main effects of a table (mean and spread of each
+    /// summary metric at each level), a figure and a markdown summary.
+    Report {
+        /// A table written by `study run` or `study merge`.
+        table: PathBuf,
+        /// The folder of `summary.md`, `main_effects.csv` and one PNG per
+        /// factor (created when missing).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
     /// Merge parts into one table: every row once, all of one study.
     Merge {
         /// Parts written by `study run`.
@@ -81,7 +91,68 @@ pub fn study(args: &StudyArgs) -> CliResult {
             output,
         ),
         StudyCommand::Merge { parts, output } => merge(parts, output),
+        StudyCommand::Report { table, output } => report(table, output),
     }
+}
+
+fn report(path: &Path, dir: &Path) -> CliResult {
+    use tirecontact::study::report;
+    super::paths::ensure_output_dir("-o", dir)?;
+    let (header, rows) = read_table(path)?;
+    let records: Vec<Vec<String>> = rows.into_values().collect();
+    let t = report::table(&header, &records).map_err(|e| format!("{}: {e}", path.display()))?;
+    if t.rows.is_empty() {
+        return Err(format!("{}: no row succeeded: nothing to report", path.display()).into());
+    }
+    let effects = report::main_effects(&t);
+    let title = path
+        .file_stem()
+        .map_or("study".into(), |s| s.to_string_lossy().into_owned());
+    let mut csv = csv::Writer::from_writer(Vec::new());
+    csv.write_record(["factor", "level", "rows", "metric", "mean", "std"])?;
+    let mut figures = Vec::new();
+    for e in &effects {
+        let file: String = e
+            .factor
+            .chars()
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+            .collect();
+        let png = format!("main_effect_{file}.png");
+        tirecontact::output::figures::render_png(
+            &report::figure(e, &title),
+            &dir.join(&png),
+            1200,
+            1000,
+        )?;
+        figures.push(png);
+        for l in &e.levels {
+            for (m, (name, _, unit)) in report::METRICS.iter().enumerate() {
+                csv.write_record([
+                    e.factor.clone(),
+                    format!("{}", l.value),
+                    l.rows.to_string(),
+                    format!("{name} ({unit})"),
+                    format!("{}", l.mean[m]),
+                    format!("{}", l.std[m]),
+                ])?;
+            }
+        }
+    }
+    let bytes = csv.into_inner().map_err(|e| e.to_string())?;
+    let out = dir.join("main_effects.csv");
+    tirecontact::fsio::write_atomic(&out, &bytes).map_err(|e| format!("{}: {e}", out.display()))?;
+    let md = dir.join("summary.md");
+    tirecontact::fsio::write_atomic(
+        &md,
+        report::markdown(&title, &t, &effects, &figures).as_bytes(),
+    )
+    .map_err(|e| format!("{}: {e}", md.display()))?;
+    eprintln!(
+        "wrote {} (summary.md, main_effects.csv, {})",
+        dir.display(),
+        tirecontact::output::count(figures.len(), "figure")
+    );
+    Ok(())
 }
 
 fn plan(path: &Path, output: Option<&Path>) -> CliResult {

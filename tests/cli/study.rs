@@ -95,6 +95,22 @@ fn shards_threads_and_resumes_give_the_one_process_table_byte_for_byte() {
     ok(&["run", s, "--rows", "0..2", "-o", &path("resumed.csv")]);
     ok(&["run", s, "--resume", "-o", &path("resumed.csv")]);
     assert_eq!(std::fs::read(path("resumed.csv")).unwrap(), one, "resumed");
+    // the report: per factor, its levels' means (here 3 speeds, 2 rows
+    // each), a figure and the summary
+    ok(&["report", &path("one.csv"), "-o", &path("report")]);
+    let md = std::fs::read_to_string(d.join("report/summary.md")).unwrap();
+    assert!(
+        md.contains("## speed_mps") && md.contains("## road.amplitude_m"),
+        "{md}"
+    );
+    assert!(md.contains("| 15 | 2 |"), "{md}");
+    for f in [
+        "main_effect_speed_mps.png",
+        "main_effect_road_amplitude_m.png",
+        "main_effects.csv",
+    ] {
+        assert!(d.join("report").join(f).is_file(), "{f}");
+    }
     // merge names what is wrong
     let e = err(&[
         "merge",
