@@ -405,11 +405,10 @@ impl Scene {
                         }
                     }
                 }
-                // the band is checked against the data's Nyquist frequency
-                // when the file is read
-                let mut opts = identification.clone();
-                opts.sample_rate_hz = 1e6;
-                v.errors.extend(opts.validate("tyre.identification"));
+                // the band against the data's Nyquist frequency, and the
+                // samples, are checked when the file is read
+                v.errors
+                    .extend(identification.validate_for_data("tyre.identification"));
             }
         }
         validate_road(&mut v, &self.road);

@@ -75,6 +75,19 @@ impl IdentifyOptions {
 
     /// Checks every option; errors name the field as `{prefix}.{field}`.
     pub fn validate(&self, prefix: &str) -> Vec<FieldError> {
+        self.check(prefix, true)
+    }
+
+    /// [`Self::validate`] for responses sampled elsewhere (a measured
+    /// tyre): `sample_rate_hz` is the data's, so the checks that depend on
+    /// it (the band below Nyquist, the samples in `duration_s`) wait for
+    /// the data; the band must still be ordered and the duration positive.
+    pub fn validate_for_data(&self, prefix: &str) -> Vec<FieldError> {
+        self.check(prefix, false)
+    }
+
+    /// The checks, those depending on `sample_rate_hz` only when `sampled`.
+    fn check(&self, prefix: &str, sampled: bool) -> Vec<FieldError> {
         let mut errors = Vec::new();
         let mut push = |field: &str, value: String, expected: String| {
             errors.push(FieldError {
@@ -83,8 +96,12 @@ impl IdentifyOptions {
                 expected,
             })
         };
-        let fs = self.sample_rate_hz;
-        if !(fs.is_finite() && fs > 0.0 && fs <= 1e6) {
+        let fs = if sampled {
+            self.sample_rate_hz
+        } else {
+            f64::INFINITY
+        };
+        if sampled && !(fs.is_finite() && fs > 0.0 && fs <= 1e6) {
             push(
                 "sample_rate_hz",
                 fs.to_string(),
@@ -93,11 +110,12 @@ impl IdentifyOptions {
         }
         let (lo, hi) = self.band_hz;
         if !(lo.is_finite() && hi.is_finite() && lo >= 0.0 && lo < hi && hi < 0.5 * fs) {
-            push(
-                "band_hz",
-                format!("({lo}, {hi})"),
-                format!("0 <= f_lo < f_hi < fs/2 = {} Hz", 0.5 * fs),
-            );
+            let expected = if sampled {
+                format!("0 <= f_lo < f_hi < fs/2 = {} Hz", 0.5 * fs)
+            } else {
+                "0 <= f_lo < f_hi (and f_hi below the data's Nyquist frequency)".to_string()
+            };
+            push("band_hz", format!("({lo}, {hi})"), expected);
         }
         if !(1..=200).contains(&self.max_model_order) {
             push(
@@ -122,13 +140,20 @@ impl IdentifyOptions {
         // (an out-of-range max_model_order is reported above: the bound
         // uses the nearest allowed order, which cannot overflow)
         let need = 4 * self.max_model_order.clamp(1, 200) + 8;
-        if !(self.duration_s.is_finite() && self.duration_s > 0.0) || n < need || n > 2_000_000 {
+        let positive = self.duration_s.is_finite() && self.duration_s > 0.0;
+        if sampled && (!positive || n < need || n > 2_000_000) {
             push(
                 "duration_s",
                 self.duration_s.to_string(),
                 format!(
                     "a duration giving {need}..=2e6 samples at {fs} Hz (4 per pole of max_model_order, plus 8); {n} now"
                 ),
+            );
+        } else if !positive {
+            push(
+                "duration_s",
+                self.duration_s.to_string(),
+                "a duration > 0 s (the first seconds of the data identified)".into(),
             );
         }
         let ratios = [
@@ -169,5 +194,39 @@ impl IdentifyOptions {
             );
         }
         errors
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// For data sampled elsewhere the checks that need the sample rate
+    /// wait for the data: 3 s of responses (3e6 samples at a nominal
+    /// 1 MHz) and a 3 kHz band are not refused; a reversed band and a
+    /// negative duration still are.
+    #[test]
+    fn options_for_data_skip_only_the_checks_that_need_its_sampling() {
+        let o = IdentifyOptions {
+            duration_s: 3.0,
+            band_hz: (0.0, 3000.0),
+            ..IdentifyOptions::default()
+        };
+        assert!(o.validate_for_data("t").is_empty());
+        assert!(
+            !o.validate("t").is_empty(),
+            "sampled at 4 kHz the band is past Nyquist"
+        );
+        let bad = IdentifyOptions {
+            duration_s: -1.0,
+            band_hz: (500.0, 100.0),
+            ..o
+        };
+        let fields: Vec<String> = bad
+            .validate_for_data("t")
+            .into_iter()
+            .map(|e| e.field)
+            .collect();
+        assert_eq!(fields, ["t.band_hz", "t.duration_s"]);
     }
 }
