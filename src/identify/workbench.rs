@@ -27,6 +27,12 @@ pub struct Workbench {
     pub modes: Vec<Mode>,
     /// Relative time error of the picked modes' fit (-).
     pub time_error: f64,
+    /// `|G|` of each response at [`Self::frequencies`] (m/N), and their
+    /// sum over the pairs: the data's, computed once.
+    data_magnitudes: Vec<Vec<f64>>,
+    summed: Vec<f64>,
+    /// The picked modes' fit of each pair, computed at every pick.
+    fits: Vec<PairFit>,
 }
 
 impl Workbench {
@@ -37,6 +43,11 @@ impl Workbench {
         identification: Identification,
         band_hz: (f64, f64),
     ) -> Result<Self, LsceError> {
+        let freqs = frequencies(band_hz);
+        let data_magnitudes = response_magnitudes(&responses, &freqs)?;
+        let summed = (0..freqs.len())
+            .map(|q| data_magnitudes.iter().map(|d| d[q]).sum())
+            .collect();
         let mut w = Workbench {
             responses,
             identification,
@@ -44,6 +55,9 @@ impl Workbench {
             picked: Vec::new(),
             modes: Vec::new(),
             time_error: 1.0,
+            data_magnitudes,
+            summed,
+            fits: Vec::new(),
         };
         w.automatic()?;
         Ok(w)
@@ -139,30 +153,37 @@ impl Workbench {
         if poles.is_empty() {
             self.modes.clear();
             self.time_error = 1.0;
-            return Ok(());
+        } else {
+            let (modes, e) = modes_of_poles(&self.responses, &poles)?;
+            self.modes = modes;
+            self.time_error = e;
         }
-        let (modes, e) = modes_of_poles(&self.responses, &poles)?;
-        self.modes = modes;
-        self.time_error = e;
+        self.fits = self.fit_pairs()?;
         Ok(())
     }
 
     /// The frequencies (Hz) of the `|G|` comparisons over the band.
     pub fn frequencies(&self) -> Vec<f64> {
-        let (lo, hi) = self.band_hz;
-        (0..MAGNITUDE_POINTS)
-            .map(|q| lo + (hi - lo) * (q as f64 + 0.5) / MAGNITUDE_POINTS as f64)
-            .collect()
+        frequencies(self.band_hz)
     }
 
     /// Per response pair: `|G|` of the data and of the picked modes at
-    /// [`Self::frequencies`] (m/N), both the DTFT of their samples (so that
-    /// sampling and truncation are alike), and their relative L2
-    /// difference (-).
-    pub fn pair_fits(&self) -> Result<Vec<PairFit>, LsceError> {
+    /// [`Self::frequencies`] (m/N), and their relative L2 difference (-).
+    pub fn pair_fits(&self) -> &[PairFit] {
+        &self.fits
+    }
+
+    /// The sum over the pairs of the data's `|G|` at [`Self::frequencies`]
+    /// (drawn under the diagram).
+    pub fn summed_magnitude(&self) -> &[f64] {
+        &self.summed
+    }
+
+    /// The pairs' fits of the picked modes: both `|G|` the DTFT of their
+    /// samples (so that sampling and truncation are alike).
+    fn fit_pairs(&self) -> Result<Vec<PairFit>, LsceError> {
         let freqs = self.frequencies();
         let r = &self.responses;
-        let data = response_magnitudes(r, &freqs)?;
         let model = ModalModel::from_modes(&self.modes, r.num_points);
         let len = r.data.first().map_or(0, Vec::len);
         let sampled = Responses {
@@ -180,29 +201,27 @@ impl Workbench {
         let fitted = response_magnitudes(&sampled, &freqs)?;
         Ok(r.pairs
             .iter()
-            .zip(data)
+            .zip(&self.data_magnitudes)
             .zip(fitted)
-            .map(|((&(i, j), d), m)| {
+            .map(|((&pair, d), m)| {
                 let num: f64 = d.iter().zip(&m).map(|(a, b)| (a - b) * (a - b)).sum();
                 let den: f64 = d.iter().map(|a| a * a).sum();
                 PairFit {
-                    pair: (i, j),
-                    data: d,
+                    pair,
+                    data: d.clone(),
                     model: m,
                     error: if den > 0.0 { (num / den).sqrt() } else { 0.0 },
                 }
             })
             .collect())
     }
+}
 
-    /// The sum over the pairs of the data's `|G|` at [`Self::frequencies`]
-    /// (drawn under the diagram).
-    pub fn summed_magnitude(&self) -> Result<Vec<f64>, LsceError> {
-        let data = response_magnitudes(&self.responses, &self.frequencies())?;
-        Ok((0..MAGNITUDE_POINTS)
-            .map(|q| data.iter().map(|d| d[q]).sum())
-            .collect())
-    }
+/// [`MAGNITUDE_POINTS`] frequencies (Hz) spread over `band_hz`.
+fn frequencies((lo, hi): (f64, f64)) -> Vec<f64> {
+    (0..MAGNITUDE_POINTS)
+        .map(|q| lo + (hi - lo) * (q as f64 + 0.5) / MAGNITUDE_POINTS as f64)
+        .collect()
 }
 
 /// One response pair's `|G|`: data, model and their relative L2 difference.
@@ -265,7 +284,7 @@ mod tests {
             assert!((a.freq_hz - b.freq_hz).abs() < 1e-9 * b.freq_hz);
         }
         assert!(w.time_error < 1e-6, "{}", w.time_error);
-        assert!(w.pair_fits().unwrap().iter().all(|p| p.error < 1e-3));
+        assert!(w.pair_fits().iter().all(|p| p.error < 1e-3));
     }
 
     #[test]
@@ -281,7 +300,7 @@ mod tests {
             "the 170 Hz mode's share is missing: {}",
             w.time_error
         );
-        let errors = w.pair_fits().unwrap();
+        let errors = w.pair_fits();
         assert!(errors.iter().any(|p| p.error > 0.1));
         // picked again from another order: the same mode, fitted again
         let (f, _) = w.pole(high).unwrap();

@@ -111,7 +111,7 @@ pub fn show(
             crate::output::summary::short_num(w.time_error, 3)
         ));
     });
-    let fits = w.pair_fits().unwrap_or_default();
+    let fits = w.pair_fits();
     let worst = fits
         .iter()
         .max_by(|a, b| a.error.total_cmp(&b.error))
@@ -144,7 +144,7 @@ pub fn show(
 fn diagram(ui: &mut Ui, w: &Workbench, h: f32, cmds: &mut Vec<Command>) {
     let diag = &w.identification.diagram;
     let max_order = diag.iter().map(|d| d.order).max().unwrap_or(1) as f64;
-    let summed = w.summed_magnitude().unwrap_or_default();
+    let summed = w.summed_magnitude();
     let db: Vec<f64> = summed
         .iter()
         .map(|g| 20.0 * g.max(1e-300).log10())
