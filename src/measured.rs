@@ -495,7 +495,6 @@ pub fn impulse_csv(r: &Responses) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::modal::{ModalModel, Mode};
 
     fn write(dir: &Path, name: &str, text: &str) -> std::path::PathBuf {
         let p = dir.join(name);
@@ -503,28 +502,9 @@ mod tests {
         p
     }
 
-    /// A two-point, two-mode model and its exact impulse responses.
-    fn model() -> ModalModel {
-        let modes = [
-            Mode {
-                freq_hz: 60.0,
-                damping_ratio: 0.03,
-                residue: vec![],
-                shape: vec![1.0, 0.5],
-            },
-            Mode {
-                freq_hz: 170.0,
-                damping_ratio: 0.02,
-                residue: vec![],
-                shape: vec![0.4, -0.8],
-            },
-        ];
-        ModalModel::from_modes(&modes, 2)
-    }
-
     #[test]
     fn frfs_become_the_impulse_responses_of_the_same_model() {
-        let m = model();
+        let m = crate::modal::two_mode_test_model();
         let (df, k) = (0.5, 4000); // to 2000 Hz
         let mut re = Vec::new();
         let mut im = Vec::new();

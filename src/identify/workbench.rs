@@ -240,21 +240,7 @@ mod tests {
 
     /// Responses of a two-point, two-mode model, and their identification.
     fn bench() -> Workbench {
-        let modes = [
-            Mode {
-                freq_hz: 60.0,
-                damping_ratio: 0.03,
-                residue: vec![],
-                shape: vec![1.0, 0.5],
-            },
-            Mode {
-                freq_hz: 170.0,
-                damping_ratio: 0.02,
-                residue: vec![],
-                shape: vec![0.4, -0.8],
-            },
-        ];
-        let m = ModalModel::from_modes(&modes, 2);
+        let m = crate::modal::two_mode_test_model();
         let dt = 1.0 / 2000.0;
         let pairs = vec![(0, 0), (0, 1), (1, 1)];
         let data = pairs
