@@ -189,6 +189,23 @@ impl ModalModel {
     }
 }
 
+/// A two-point model of two modes (60 Hz, ξ 0.03, shape (1, 0.5); 170 Hz,
+/// ξ 0.02, shape (0.4, −0.8)), for the unit tests of what reads or
+/// identifies responses.
+#[cfg(test)]
+pub(crate) fn two_mode_test_model() -> ModalModel {
+    let mode = |freq_hz: f64, damping_ratio: f64, shape: [f64; 2]| Mode {
+        freq_hz,
+        damping_ratio,
+        residue: vec![],
+        shape: shape.to_vec(),
+    };
+    ModalModel::from_modes(
+        &[mode(60.0, 0.03, [1.0, 0.5]), mode(170.0, 0.02, [0.4, -0.8])],
+        2,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -226,21 +243,4 @@ mod tests {
             }
         }
     }
-}
-
-/// A two-point model of two modes (60 Hz, ξ 0.03, shape (1, 0.5); 170 Hz,
-/// ξ 0.02, shape (0.4, −0.8)), for the unit tests of what reads or
-/// identifies responses.
-#[cfg(test)]
-pub(crate) fn two_mode_test_model() -> ModalModel {
-    let mode = |freq_hz: f64, damping_ratio: f64, shape: [f64; 2]| Mode {
-        freq_hz,
-        damping_ratio,
-        residue: vec![],
-        shape: shape.to_vec(),
-    };
-    ModalModel::from_modes(
-        &[mode(60.0, 0.03, [1.0, 0.5]), mode(170.0, 0.02, [0.4, -0.8])],
-        2,
-    )
 }
