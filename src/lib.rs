@@ -50,6 +50,7 @@ pub mod identify;
 pub mod linalg;
 pub mod lsce;
 pub mod measured;
+pub mod metrics;
 pub mod modal;
 pub mod output;
 pub mod phase;
@@ -99,6 +100,7 @@ mod layers {
         ("output", 5),
         ("compare", 6),
         ("spectrum", 6),
+        ("metrics", 6),
         ("bench", 6),
         ("sweep", 7),
         ("study", 7),

@@ -11,6 +11,7 @@
 use crate::drive::Watch;
 use crate::error::RunError;
 use crate::identify::{ModeCache, PreparedModel};
+use crate::metrics::{ContactMetrics, ContactSummary};
 use crate::road::Road;
 use crate::scene::{Contact, Scene, Tyre};
 use crate::simulation::{Simulation, SolverOptions};
@@ -310,12 +311,8 @@ pub fn linspace(from: f64, to: f64, steps: usize) -> Result<Vec<f64>, SweepError
 /// The summary of one run's steady part.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSummary {
-    /// Largest step-mean force per point (N).
-    pub max_force_n: Vec<f64>,
-    /// RMS of the step-mean force per point, static part included (N).
-    pub force_rms_n: Vec<f64>,
-    /// Fraction of the steps ending in contact per point (-).
-    pub contact_fraction: Vec<f64>,
+    /// Contact metrics of the steady part, per point (limits as dt → 0).
+    pub contact: ContactSummary,
     /// Third-octave levels of the total force (dB re 1 N, Hann window,
     /// mean removed), bands 20 Hz - 5 kHz below Nyquist.
     pub bands: Vec<BandLevel>,
@@ -335,6 +332,7 @@ pub fn run_summary(
     let scene = model.scene();
     let mut sim = Simulation::new(model, SolverOptions::default()).map_err(|e| e.to_string())?;
     let mut rec = SteadyRecorder::new(scene, None).map_err(|e| e.to_string())?;
+    let mut metrics = ContactMetrics::new(scene, None);
     let n = scene.num_steps();
     let mut reported = 0;
     let mut progress = |done: u64, _: &Simulation| {
@@ -343,7 +341,7 @@ pub fn run_summary(
     };
     crate::drive::run_to_end(
         &mut sim,
-        &mut rec,
+        &mut (&mut rec, &mut metrics),
         Watch::cancel(cancel).with_progress(&mut progress),
     )
     .map_err(|e| match e {
@@ -356,9 +354,7 @@ pub fn run_summary(
         .map(|s| s.third_octave_levels(DEFAULT_BANDS_HZ.0, hi, 1.0))
         .map_err(|e| e.to_string())?;
     Ok(RunSummary {
-        max_force_n: rec.max_force_n(),
-        force_rms_n: rec.force_rms_n(),
-        contact_fraction: rec.contact_fraction(),
+        contact: metrics.summary(),
         bands,
         steps: n,
     })

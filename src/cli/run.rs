@@ -5,6 +5,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use tirecontact::drive::Watch;
+use tirecontact::metrics::ContactMetrics;
 use tirecontact::output::csv::{self as csv_out, RunWriter};
 use tirecontact::output::record::{FigureSpec, RunPanel};
 use tirecontact::spectrum::Window;
@@ -247,6 +248,7 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 }
 
 pub use tirecontact::output::summary::scene_summary;
+use tirecontact::output::summary::short_num;
 
 /// Applies command-line overrides and re-validates.
 pub fn scene_with_overrides(args: &RunArgs) -> Result<Scene, SceneError> {
@@ -311,6 +313,8 @@ pub fn run(args: &RunArgs) -> CliResult {
     } else {
         None
     };
+    // the one-line summary's forces, over the whole run
+    let mut metrics = ContactMetrics::new(&scene, Some(0.0));
     let start = Instant::now();
     let bar = ProgressBar::with_draw_target(Some(n), indicatif::ProgressDrawTarget::stderr());
     bar.set_style(
@@ -332,7 +336,7 @@ pub fn run(args: &RunArgs) -> CliResult {
     };
     tirecontact::drive::run_to_end(
         &mut sim,
-        &mut (writer.as_mut(), rec.as_mut(), steady.as_mut()),
+        &mut (writer.as_mut(), rec.as_mut(), steady.as_mut(), &mut metrics),
         Watch::none().with_progress(&mut progress),
     )?;
     bar.finish_and_clear();
@@ -365,8 +369,14 @@ pub fn run(args: &RunArgs) -> CliResult {
     let fmt_list = |v: &[f64], f: &dyn Fn(f64) -> String| {
         v.iter().map(|&x| f(x)).collect::<Vec<_>>().join(" ")
     };
+    let m = metrics.summary();
+    let impacts: Vec<f64> = m
+        .impacts_per_s
+        .iter()
+        .map(|&r| (r * m.steps as f64 * scene.dt_s).round())
+        .collect();
     println!(
-        "{}: {} steps of {:e} s to t = {:.4} s in {:.3} s wall ({:.2}x real time, {:.0} steps/s); max force [N]: {}; contact fraction: {}; events {}; worst penetration {:.2e} m{}",
+        "{}: {} steps of {:e} s to t = {:.4} s in {:.3} s wall ({:.2}x real time, {:.0} steps/s); max force without impacts [N]: {}; impacts: {}; largest impulse [N·s]: {}; contact fraction: {}; events {}; worst penetration {:.2e} m{}",
         scene.name,
         st.steps,
         scene.dt_s,
@@ -374,8 +384,10 @@ pub fn run(args: &RunArgs) -> CliResult {
         wall,
         sim.time_s() / wall.max(1e-12),
         st.steps as f64 / wall.max(1e-12),
-        fmt_list(&st.max_force_n, &|x| format!("{x:.1}")),
-        fmt_list(&st.contact_fraction(), &|x| format!("{x:.3}")),
+        fmt_list(&m.force_max_n, &|x| format!("{x:.1}")),
+        fmt_list(&impacts, &|x| format!("{x}")),
+        fmt_list(&m.impulse_max_ns, &|x| short_num(x, 3)),
+        fmt_list(&m.contact_fraction, &|x| format!("{x:.3}")),
         st.events,
         st.worst_penetration_m,
         args.output

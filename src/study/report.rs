@@ -6,14 +6,21 @@
 use crate::output::figures::{Figure, Panel, Series, Style};
 
 /// Summary metrics of a row, from its per-point columns: the mean over
-/// the points of each (name, column suffix, unit).
-pub const METRICS: [(&str, &str, &str); 3] = [
+/// the points of each (name, column suffix, unit). All have a limit as
+/// dt → 0 ([`crate::metrics`]).
+pub const METRICS: [(&str, &str, &str); 5] = [
     (
-        "largest step-mean force, mean over the points",
-        "_max_N",
+        "largest force without impacts, mean over the points",
+        "_smooth_max_N",
         "N",
     ),
-    ("RMS force, mean over the points", "_rms_N", "N"),
+    (
+        "largest 1 ms mean force, mean over the points",
+        "_1ms_max_N",
+        "N",
+    ),
+    ("impacts per second, mean over the points", "_per_s", "1/s"),
+    ("largest impulse, mean over the points", "_max_Ns", "N·s"),
     ("contact fraction, mean over the points", "_fraction", "-"),
 ];
 
@@ -266,8 +273,10 @@ mod tests {
             "a",
             "b",
             "replicate",
-            "q0_max_N",
-            "q0_rms_N",
+            "q0_smooth_max_N",
+            "q0_1ms_max_N",
+            "impacts0_per_s",
+            "impulse0_max_Ns",
             "contact0_fraction",
             "error",
         ]);
@@ -282,13 +291,15 @@ mod tests {
                 "0".into(),
                 v.to_string(),
                 (2.0 * v).to_string(),
+                "100".into(),
+                "0.25".into(),
                 "0.5".into(),
                 String::new(),
             ]
         };
         let mut records = vec![rec(1.0, 1.0), rec(1.0, 3.0), rec(2.0, 1.0), rec(2.0, 3.0)];
         let mut bad = rec(9.0, 9.0);
-        bad[9] = "failed".into();
+        bad[11] = "failed".into();
         records.push(bad);
         let t = table(&h, &records).unwrap();
         assert_eq!((t.rows.len(), t.failed), (4, 1));
@@ -316,8 +327,10 @@ mod tests {
             "study_hash",
             "a",
             "replicate",
-            "q0_max_N",
-            "q0_rms_N",
+            "q0_smooth_max_N",
+            "q0_1ms_max_N",
+            "impacts0_per_s",
+            "impulse0_max_Ns",
             "contact0_fraction",
             "error",
         ]);
@@ -331,6 +344,8 @@ mod tests {
                     a.to_string(),
                     "0".into(),
                     a.to_string(),
+                    "1".into(),
+                    "1".into(),
                     "1".into(),
                     "1".into(),
                     String::new(),

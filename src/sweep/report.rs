@@ -1,6 +1,7 @@
 //! Sweep results as a CSV table and a PNG figure.
 
 use super::{RunSummary, SweepPoint};
+use crate::metrics::ContactSummary;
 use crate::output::figures::{Figure, Panel, Series, Style};
 use crate::spectrum::{band_label, third_octave_bands};
 use std::io::Write;
@@ -24,13 +25,37 @@ fn band_db(result: &Result<RunSummary, String>, nominal_hz: f64) -> f64 {
         .map_or(f64::NAN, |b| b.level_db)
 }
 
-/// The metric columns of a run of `num_points` points: `q{i}_max_N`..,
-/// `q{i}_rms_N`.., `contact{i}_fraction`.. (named as `run -o`'s `q{i}_N`
-/// and `contact{i}`), `band_{f}hz_db_re_1N`.. (total force).
+/// The per-point metrics of [`crate::metrics::ContactSummary`] as table
+/// columns: the name pattern (`{i}` is the point) and the field.
+type PointMetric = (&'static str, fn(&ContactSummary) -> &Vec<f64>);
+
+/// The per-point columns, in table order.
+const POINT_METRICS: [PointMetric; 7] = [
+    ("q{i}_smooth_max_N", |s| &s.force_max_n),
+    ("q{i}_smooth_rms_N", |s| &s.force_rms_n),
+    ("q{i}_1ms_max_N", |s| &s.window_force_max_n),
+    ("impacts{i}_per_s", |s| &s.impacts_per_s),
+    ("impulse{i}_mean_Ns", |s| &s.impulse_mean_ns),
+    ("impulse{i}_max_Ns", |s| &s.impulse_max_ns),
+    ("contact{i}_fraction", |s| &s.contact_fraction),
+];
+
+/// The metric columns of a run of `num_points` points, all with a limit as
+/// dt → 0 ([`crate::metrics`]): `q{i}_smooth_max_N`, `q{i}_smooth_rms_N`
+/// (contact force without impacts), `q{i}_1ms_max_N` (largest 1 ms mean,
+/// impacts included), `impacts{i}_per_s`, `impulse{i}_mean_Ns`,
+/// `impulse{i}_max_Ns`, `contact{i}_fraction` (each for every point in
+/// turn), then `band_{f}hz_db_re_1N`.. (total force).
 pub fn metric_columns(num_points: usize) -> Vec<String> {
-    let mut header: Vec<String> = (0..num_points).map(|i| format!("q{i}_max_N")).collect();
-    header.extend((0..num_points).map(|i| format!("q{i}_rms_N")));
-    header.extend((0..num_points).map(|i| format!("contact{i}_fraction")));
+    debug_assert_eq!(
+        crate::metrics::FORCE_WINDOW_S,
+        1e-3,
+        "rename q{{i}}_1ms_max_N"
+    );
+    let mut header: Vec<String> = POINT_METRICS
+        .iter()
+        .flat_map(|(name, _)| (0..num_points).map(move |i| name.replace("{i}", &i.to_string())))
+        .collect();
     header.extend(
         table_bands()
             .iter()
@@ -44,11 +69,11 @@ pub fn metric_values(result: &Result<RunSummary, String>, num_points: usize) -> 
     let mut row = Vec::new();
     match result {
         Ok(r) => {
-            for v in [&r.max_force_n, &r.force_rms_n, &r.contact_fraction] {
-                row.extend(v.iter().map(|x| format!("{x}")));
+            for (_, get) in POINT_METRICS {
+                row.extend(get(&r.contact).iter().map(|x| format!("{x}")));
             }
         }
-        Err(_) => row.extend((0..3 * num_points).map(|_| "NaN".to_string())),
+        Err(_) => row.extend((0..POINT_METRICS.len() * num_points).map(|_| "NaN".to_string())),
     }
     row.extend(
         table_bands()
@@ -58,10 +83,8 @@ pub fn metric_values(result: &Result<RunSummary, String>, num_points: usize) -> 
     row
 }
 
-/// Writes one row per value: `<param>`, `q{i}_max_N`.., `q{i}_rms_N`..,
-/// `contact{i}_fraction`.. (named as `run -o`'s `q{i}_N` and `contact{i}`),
-/// `band_{f}hz_db_re_1N`.. (total force), `error` (empty when the run
-/// succeeded; its other columns are then NaN).
+/// Writes one row per value: `<param>`, the [`metric_columns`], `error`
+/// (empty when the run succeeded; its other columns are then NaN).
 pub fn write_csv<W: Write>(
     out: W,
     param: &str,
@@ -136,7 +159,8 @@ pub fn param_axis_label(param: &str) -> String {
 /// y titles longer than their plots).
 pub const FIGURE_PX: (u32, u32) = (1400, 1800);
 
-/// The sweep figure: max force, force RMS, contact fraction per point and
+/// The sweep figure: max force without impacts, largest impact impulse,
+/// contact fraction per point and
 /// the rolling-noise bands (315, 500, 800, 1250, 2000 Hz) of the total
 /// force, against the parameter.
 pub fn figure(
@@ -150,11 +174,11 @@ pub fn figure(
         .iter()
         .filter_map(|p| p.result.as_ref().ok().map(|r| (p.value, r)))
         .collect();
-    let per_point = |get: &dyn Fn(&super::RunSummary) -> &Vec<f64>, name: &str| -> Vec<Series> {
+    let per_point = |get: &dyn Fn(&ContactSummary) -> &Vec<f64>, name: &str| -> Vec<Series> {
         (0..num_points)
             .map(|i| Series {
                 name: format!("{name}{i}"),
-                points: ok.iter().map(|(v, r)| (*v, get(r)[i])).collect(),
+                points: ok.iter().map(|(v, r)| (*v, get(&r.contact)[i])).collect(),
                 style: Style::LineMarkers(3),
                 color: None,
             })
@@ -180,17 +204,17 @@ pub fn figure(
         subtitle: subtitle.to_string(),
         panels: vec![
             Panel {
-                title: "Largest step-mean contact force (steady part)".into(),
+                title: "Largest contact force without impacts (steady part)".into(),
                 x_label: param_axis_label(param),
                 y_label: "max force (N)".into(),
-                series: per_point(&|r| &r.max_force_n, "q"),
+                series: per_point(&|r| &r.force_max_n, "q"),
                 ..Panel::default()
             },
             Panel {
-                title: "RMS contact force (steady part, static load included)".into(),
+                title: "Largest impact impulse (steady part; 0: no impact)".into(),
                 x_label: param_axis_label(param),
-                y_label: "force RMS (N)".into(),
-                series: per_point(&|r| &r.force_rms_n, "q"),
+                y_label: "impulse (N·s)".into(),
+                series: per_point(&|r| &r.impulse_max_ns, "q"),
                 ..Panel::default()
             },
             Panel {
@@ -273,6 +297,7 @@ mod tests {
 #[cfg(test)]
 mod figure_tests {
     use super::{FIGURE_PX, figure};
+    use crate::metrics::ContactSummary;
     use crate::output::figures::tests::{ink, runs};
     use crate::output::figures::{render_rgb_layout, tick_label_px};
     use crate::spectrum::{BandLevel, third_octave_bands};
@@ -288,9 +313,12 @@ mod figure_tests {
                 SweepPoint {
                     value: v,
                     result: Ok(RunSummary {
-                        max_force_n: (0..3).map(|i| 9e5 * bump(i)).collect(),
-                        force_rms_n: (0..3).map(|i| 4e4 * bump(i)).collect(),
-                        contact_fraction: (0..3).map(|i| 0.8 * bump(i)).collect(),
+                        contact: ContactSummary {
+                            force_max_n: (0..3).map(|i| 9e5 * bump(i)).collect(),
+                            impulse_max_ns: (0..3).map(|i| 4e-3 * bump(i)).collect(),
+                            contact_fraction: (0..3).map(|i| 0.8 * bump(i)).collect(),
+                            ..ContactSummary::default()
+                        },
                         bands: third_octave_bands(20.0, 5000.0)
                             .into_iter()
                             .map(|band| BandLevel {

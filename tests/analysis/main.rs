@@ -6,6 +6,7 @@
 mod support;
 
 mod compare;
+mod metrics_converge;
 mod palette;
 mod spectrum;
 mod sweep;

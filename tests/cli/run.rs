@@ -132,7 +132,7 @@ fn run_spectrum_and_sweep_write_their_tables() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(&table).unwrap();
     assert_eq!(text.lines().count(), 4);
-    assert!(text.starts_with("points[*].h_m,q0_max_N,"));
+    assert!(text.starts_with("points[*].h_m,q0_smooth_max_N,"));
     let o = bin()
         .args([
             "sweep",

@@ -1,7 +1,8 @@
 //! `sweep`: a parameter path with spaces around it (`--param " speed_mps "`,
 //! a quoted name) is the path; the sweep table names its columns as `run -o`
-//! names the same quantities (`q{i}_N` → `q{i}_max_N`, `q{i}_rms_N`;
-//! `contact{i}` → `contact{i}_fraction`), not `max_force_n_q{i}`.
+//! names the same quantities (`q{i}_N` → `q{i}_smooth_max_N`,
+//! `q{i}_smooth_rms_N`, `q{i}_1ms_max_N`; `contact{i}` →
+//! `contact{i}_fraction`), not `max_force_n_q{i}`.
 
 use crate::support::{bin, temp_dir};
 
@@ -56,8 +57,8 @@ fn a_padded_param_is_trimmed_and_columns_follow_the_run_csv() {
     let run = header(&run_csv);
     // each point's force and contact columns of the run, renamed as the
     // sweep's statistics of them: the suffix after the point's name
-    let mut want: Vec<String> = Vec::new();
-    for (prefix, stats) in [("q", &["max", "rms"][..]), ("contact", &["fraction"][..])] {
+    let renamed = |prefix: &str, stats: &[&str]| -> Vec<String> {
+        let mut want = Vec::new();
         for stat in stats {
             for c in &run {
                 let Some(rest) = c.strip_prefix(prefix) else {
@@ -74,7 +75,13 @@ fn a_padded_param_is_trimmed_and_columns_follow_the_run_csv() {
                 });
             }
         }
-    }
-    assert_eq!(want.len(), 9, "three points, three statistics: {run:?}");
-    assert_eq!(&sweep[1..10], &want[..], "sweep {sweep:?}\nrun {run:?}");
+        want
+    };
+    let forces = renamed("q", &["smooth_max", "smooth_rms", "1ms_max"]);
+    assert_eq!(forces.len(), 9, "three points, three statistics: {run:?}");
+    assert_eq!(&sweep[1..10], &forces[..], "sweep {sweep:?}\nrun {run:?}");
+    // then impacts per second, mean and largest impulse: 9 columns
+    let contact = renamed("contact", &["fraction"]);
+    assert_eq!(contact.len(), 3, "{run:?}");
+    assert_eq!(&sweep[19..22], &contact[..], "sweep {sweep:?}\nrun {run:?}");
 }

@@ -11,6 +11,7 @@ use crate::gui::model::command::Command;
 use crate::gui::research::ResearchCommand;
 use crate::gui::research::state::SweepForm;
 use crate::gui::research::sweep_job::{SweepRequest, SweepResult, SweepState, default_threads};
+use crate::metrics::ContactSummary;
 use crate::spectrum::{band_label, third_octave_bands};
 use crate::sweep::{RunSummary, get_param, param_paths};
 use egui::{Color32, RichText, Ui};
@@ -228,12 +229,12 @@ fn outcome(ui: &mut Ui, scene: &Scene, state: &SweepState, cmds: &mut Vec<Comman
     }
 }
 
-/// What the force figures of a rigid-contact sweep hold: the step-mean
-/// force, where an impact counts as impulse / dt (its "max" is the largest
-/// impact, tens of kN, not a rolling force).
-pub const RIGID_FORCE_NOTE: &str = "Rigid contact: max and RMS are of the step-mean force, \
-in which an impact counts as its impulse / dt; the max is then the largest impact and \
-grows as dt shrinks (compare runs at one dt).";
+/// What the force figures of a rigid-contact sweep hold: the force without
+/// impacts, and the impacts as impulses (as impulse / dt they would be tens
+/// of kN that double when dt halves).
+pub const RIGID_FORCE_NOTE: &str = "Rigid contact: a landing is an impulse. The max force \
+is the contact force without impacts and the impacts are shown as impulses (N·s); both \
+keep their values when dt shrinks.";
 
 /// Named, coloured curves of one plot.
 type Curves = Vec<(String, Color32, Vec<[f64; 2]>)>;
@@ -248,13 +249,15 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
     let gap = ui.spacing().item_spacing;
     let w = ((ui.available_width() - gap.x) / 2.0).max(200.0);
     let h = ((ui.available_height() - gap.y) / 2.0).max(150.0);
-    let per_point = |get: fn(&RunSummary) -> &Vec<f64>, scale: f64| -> Curves {
+    let per_point = |get: fn(&ContactSummary) -> &Vec<f64>, scale: f64| -> Curves {
         (0..r.num_points)
             .map(|i| {
                 (
                     format!("point {i}"),
                     point_color(i),
-                    ok.iter().map(|(v, s)| [*v, get(s)[i] * scale]).collect(),
+                    ok.iter()
+                        .map(|(v, s)| [*v, get(&s.contact)[i] * scale])
+                        .collect(),
                 )
             })
             .collect()
@@ -282,13 +285,13 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
     let grid: [(&str, &str, Curves); 4] = [
         (
             "tirecontact.sweep_max",
-            "max contact force (N)",
-            per_point(|s| &s.max_force_n, 1.0),
+            "max contact force without impacts (N)",
+            per_point(|s| &s.force_max_n, 1.0),
         ),
         (
-            "tirecontact.sweep_rms",
-            "contact force RMS (N)",
-            per_point(|s| &s.force_rms_n, 1.0),
+            "tirecontact.sweep_impulse",
+            "largest impact impulse (N·s)",
+            per_point(|s| &s.impulse_max_ns, 1.0),
         ),
         (
             "tirecontact.sweep_contact",
