@@ -91,6 +91,28 @@ fn one() -> usize {
 #[error("{0}")]
 pub struct StudyError(pub String);
 
+/// A study field that cannot be used: its path in the study file
+/// (`factors[1].values`, `design.samples`) and a message naming the field,
+/// the value and what was expected.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Problem {
+    pub field: String,
+    pub message: String,
+}
+
+impl std::fmt::Display for Problem {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+fn problem(field: impl Into<String>, message: impl Into<String>) -> Problem {
+    Problem {
+        field: field.into(),
+        message: message.into(),
+    }
+}
+
 /// One row of the design.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Row {
@@ -137,6 +159,11 @@ pub fn load(path: &Path) -> Result<Loaded, StudyError> {
             e.span.start.line, e.span.start.col, e.code
         ))
     })?;
+    // `file:line:column` of a field of the study (its nearest written parent)
+    let at = |field: &str| match crate::scene::locate::locate(&text, field) {
+        Some((line, col)) => format!("{file}:{line}:{col}"),
+        None => file.clone(),
+    };
     let dir = path.parent().unwrap_or(Path::new("."));
     let preset = if study.preset.is_relative() {
         dir.join(&study.preset)
@@ -144,7 +171,13 @@ pub fn load(path: &Path) -> Result<Loaded, StudyError> {
         study.preset.clone()
     };
     let preset_text = std::fs::read_to_string(&preset).unwrap_or_default();
-    let mut base = Scene::load(&preset).map_err(|e| StudyError(format!("{file}: preset: {e}")))?;
+    let mut base = Scene::load(&preset).map_err(|e| {
+        StudyError(format!(
+            "{}: preset = {:?}: {e}",
+            at("preset"),
+            study.preset
+        ))
+    })?;
     if let Some(d) = study.duration_s {
         base.duration_s = d;
     }
@@ -152,13 +185,26 @@ pub fn load(path: &Path) -> Result<Loaded, StudyError> {
         base.dt_s = d;
     }
     base.validate().map_err(|errors| {
-        let list: Vec<String> = errors.iter().map(ToString::to_string).collect();
-        StudyError(format!(
-            "{file}: the preset with the study's overrides: {}",
-            list.join("; ")
-        ))
+        // an override the preset refuses is the study's field; another
+        // error is the preset's (its own file's fields are fine alone)
+        let list: Vec<String> = errors
+            .iter()
+            .map(|e| {
+                let overridden = (e.field == "duration_s" && study.duration_s.is_some())
+                    || (e.field == "dt_s" && study.dt_s.is_some());
+                if overridden {
+                    format!("{}: {e}", at(&e.field))
+                } else {
+                    format!(
+                        "{}: the preset with the study's overrides: {e}",
+                        preset.display()
+                    )
+                }
+            })
+            .collect();
+        StudyError(list.join("; "))
     })?;
-    let rows = rows(&study, &base).map_err(|e| StudyError(format!("{file}: {e}")))?;
+    let rows = rows(&study, &base).map_err(|p| StudyError(format!("{}: {p}", at(&p.field))))?;
     Ok(Loaded {
         hash: fnv(&[text.as_bytes(), preset_text.as_bytes()]),
         study,
@@ -168,70 +214,102 @@ pub fn load(path: &Path) -> Result<Loaded, StudyError> {
 }
 
 /// Checks the factors against `base` and makes the design's rows.
-pub fn rows(study: &Study, base: &Scene) -> Result<Vec<Row>, String> {
+pub fn rows(study: &Study, base: &Scene) -> Result<Vec<Row>, Problem> {
     if study.factors.is_empty() {
-        return Err("factors = []: expected at least one factor".into());
+        return Err(problem(
+            "factors",
+            "factors = []: expected at least one factor",
+        ));
     }
     if study.factors.len() > MAX_FACTORS {
-        return Err(format!(
-            "{} factors: expected at most {MAX_FACTORS}",
-            study.factors.len()
+        return Err(problem(
+            "factors",
+            format!(
+                "factors: {} of them: expected at most {MAX_FACTORS}",
+                study.factors.len()
+            ),
         ));
     }
     for (k, f) in study.factors.iter().enumerate() {
         let at = format!("factors[{k}]");
         if f.path == "road.seed" {
             if !matches!(base.road, Road::Random { .. }) {
-                return Err(format!(
-                    "{at}.path = road.seed: expected a preset with a random road"
+                return Err(problem(
+                    format!("{at}.path"),
+                    format!("{at}.path = road.seed: expected a preset with a random road"),
                 ));
             }
         } else {
-            get_param(base, &f.path).map_err(|e| format!("{at}.path: {e}"))?;
+            get_param(base, &f.path)
+                .map_err(|e| problem(format!("{at}.path"), format!("{at}.path: {e}")))?;
         }
+        let values = format!("{at}.values");
         let finite = |x: f64| x.is_finite();
         match &f.values {
             Values::List(v) => {
                 if v.is_empty() || !v.iter().copied().all(finite) {
-                    return Err(format!(
-                        "{at}.values: expected a list of finite numbers, at least one"
+                    return Err(problem(
+                        values,
+                        format!(
+                            "{at}.values = {v:?}: expected a list of finite numbers, at least one"
+                        ),
                     ));
                 }
             }
             Values::Range { from, to, steps } => {
                 if !(finite(*from) && finite(*to)) || *steps == 0 {
-                    return Err(format!(
-                        "{at}.values = Range(from: {from}, to: {to}, steps: {steps}): expected finite ends and steps >= 1"
+                    return Err(problem(
+                        values,
+                        format!(
+                            "{at}.values = Range(from: {from}, to: {to}, steps: {steps}): expected finite ends and steps >= 1"
+                        ),
                     ));
                 }
             }
             Values::Uniform { from, to } => {
                 if !(finite(*from) && finite(*to) && from < to) {
-                    return Err(format!(
-                        "{at}.values = Uniform(from: {from}, to: {to}): expected finite ends, from < to"
+                    return Err(problem(
+                        values,
+                        format!(
+                            "{at}.values = Uniform(from: {from}, to: {to}): expected finite ends, from < to"
+                        ),
                     ));
                 }
                 if study.design == Design::FullFactorial {
-                    return Err(format!(
-                        "{at}.values = Uniform(…): expected List or Range in a FullFactorial design (levels)"
+                    return Err(problem(
+                        values,
+                        format!(
+                            "{at}.values = Uniform(…): expected List or Range in a FullFactorial design (levels)"
+                        ),
                     ));
                 }
             }
         }
     }
     if study.replicates == 0 {
-        return Err("replicates = 0: expected at least 1".into());
+        return Err(problem("replicates", "replicates = 0: expected at least 1"));
     }
     if study.replicates > 1 && !matches!(base.road, Road::Random { .. }) {
-        return Err(format!(
-            "replicates = {}: expected 1 for a preset without a random road (its runs would be identical)",
-            study.replicates
+        return Err(problem(
+            "replicates",
+            format!(
+                "replicates = {}: expected 1 for a preset without a random road (its runs would be identical)",
+                study.replicates
+            ),
         ));
     }
     let design = design_values(study)?;
-    let n = design.len() * study.replicates;
+    let n = design.len().saturating_mul(study.replicates);
     if n > MAX_ROWS {
-        return Err(format!("{n} rows: expected at most {MAX_ROWS}"));
+        return Err(problem(
+            "replicates",
+            format!(
+                "replicates = {}: {} design rows × {} replicates = {n} rows: expected at most {MAX_ROWS}",
+                study.replicates,
+                design.len(),
+                study.replicates
+            ),
+        ));
     }
     let mut out = Vec::with_capacity(n);
     for values in design {
@@ -255,18 +333,24 @@ fn at_unit(v: &Values, u: f64) -> f64 {
 }
 
 /// The design's points, one value per factor.
-fn design_values(study: &Study) -> Result<Vec<Vec<f64>>, String> {
+fn design_values(study: &Study) -> Result<Vec<Vec<f64>>, Problem> {
     let f = &study.factors;
     match study.design {
         Design::FullFactorial => {
             let levels: Vec<Vec<f64>> = f
                 .iter()
-                .map(|x| match &x.values {
-                    Values::List(v) => Ok(v.clone()),
-                    Values::Range { from, to, steps } => {
-                        linspace(*from, *to, *steps).map_err(|e| e.to_string())
+                .enumerate()
+                .map(|(k, x)| {
+                    let field = format!("factors[{k}].values");
+                    match &x.values {
+                        Values::List(v) => Ok(v.clone()),
+                        Values::Range { from, to, steps } => linspace(*from, *to, *steps)
+                            .map_err(|e| problem(&field, format!("{field}: {e}"))),
+                        Values::Uniform { .. } => Err(problem(
+                            &field,
+                            format!("{field} = Uniform(…): expected List or Range in a FullFactorial design"),
+                        )),
                     }
-                    Values::Uniform { .. } => Err("Uniform in a full factorial".to_string()),
                 })
                 .collect::<Result<_, _>>()?;
             let total = levels
@@ -274,7 +358,16 @@ fn design_values(study: &Study) -> Result<Vec<Vec<f64>>, String> {
                 .try_fold(1usize, |a, l| a.checked_mul(l.len()));
             match total {
                 Some(n) if n <= MAX_ROWS => {}
-                _ => return Err(format!("the full factorial has more than {MAX_ROWS} rows")),
+                _ => {
+                    let sizes: Vec<String> = levels.iter().map(|l| l.len().to_string()).collect();
+                    return Err(problem(
+                        "design",
+                        format!(
+                            "design = FullFactorial: {} levels make more than {MAX_ROWS} rows: expected at most {MAX_ROWS} (fewer levels, or a LatinHypercube or Sobol design)",
+                            sizes.join(" × ")
+                        ),
+                    ));
+                }
             }
             let mut rows = vec![Vec::new()];
             for l in &levels {
@@ -293,8 +386,9 @@ fn design_values(study: &Study) -> Result<Vec<Vec<f64>>, String> {
         }
         Design::LatinHypercube { samples, seed } | Design::Sobol { samples, seed } => {
             if samples == 0 || samples > MAX_ROWS {
-                return Err(format!(
-                    "design samples = {samples}: expected 1 to {MAX_ROWS}"
+                return Err(problem(
+                    "design.samples",
+                    format!("design.samples = {samples}: expected 1 to {MAX_ROWS}"),
                 ));
             }
             let lhs = matches!(study.design, Design::LatinHypercube { .. });

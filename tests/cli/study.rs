@@ -182,3 +182,62 @@ fn bad_studies_and_arguments_are_refused_with_where_and_what() {
     let e = err(&["plan", nope.to_str().unwrap()]);
     assert!(e.contains("factors[1].path"), "{e}");
 }
+
+/// Each field the study's checks refuse is named with its line and column
+/// in the study file (`study_file`'s lines: 2 preset, 4 and 5 the factors,
+/// 7 the design, 8 the duration, 9 the extra field).
+#[test]
+fn a_refused_study_field_is_named_at_its_line() {
+    let tmp = temp_dir();
+    let d = tmp.path();
+    let base = std::fs::read_to_string(study_file(d, "\n    replicates: 1,")).unwrap();
+    let cases: [(&str, &str, &str, &[&str]); 7] = [
+        (
+            "road.amplitude_m",
+            "road.nope_m",
+            ":5:",
+            &["factors[1].path", "road.nope_m"],
+        ),
+        (
+            "steps: 3",
+            "steps: 0",
+            ":4:",
+            &["factors[0].values", "steps: 0", "steps >= 1"],
+        ),
+        (
+            "List([0.001, 0.002])",
+            "List([])",
+            ":5:",
+            &["factors[1].values", "at least one"],
+        ),
+        (
+            "FullFactorial",
+            "Sobol(samples: 0, seed: 1)",
+            ":7:",
+            &["design.samples = 0", "expected 1 to"],
+        ),
+        ("Some(0.1)", "Some(-1.0)", ":8:", &["duration_s", "-1"]),
+        (
+            "replicates: 1",
+            "replicates: 2",
+            ":9:",
+            &["replicates = 2", "random road"],
+        ),
+        (
+            "single_mode.ron",
+            "no_such_preset.ron",
+            ":2:",
+            &["preset", "no_such_preset.ron"],
+        ),
+    ];
+    for (from, to, line, want) in cases {
+        assert!(base.contains(from), "{from}");
+        let f = d.join("case.ron");
+        std::fs::write(&f, base.replace(from, to)).unwrap();
+        let e = err(&["plan", f.to_str().unwrap()]);
+        assert!(e.contains(&format!("case.ron{line}")), "{to}: {e}");
+        for w in want {
+            assert!(e.contains(w), "{to}: `{w}` missing: {e}");
+        }
+    }
+}
