@@ -10,8 +10,24 @@ n=$2
 bin=$(realpath "$3")
 here=$(cd "$(dirname "$0")/.." && pwd)
 host=$(hostname -s)
+# slurmctld and slurmd find each other by this name
+getent hosts "$host" >/dev/null || echo "127.0.0.1 $host" >>/etc/hosts
 cpus=$(nproc)
 work=$(mktemp -d /tmp/tirecontact-slurm.XXXXXX)
+started=()
+# stop the daemons this script started, whatever happens
+cleanup() {
+    for d in "${started[@]}"; do pkill -x "$d" 2>/dev/null || true; done
+}
+trap cleanup EXIT
+# the daemons' logs, when something did not work
+fail() {
+    echo "slurm_local: $*" >&2
+    for f in /var/log/slurm/slurmctld.log /var/log/slurm/slurmd.log "$work"/tirecontact-*.out; do
+        [ -f "$f" ] && { echo "--- $f" >&2; tail -20 "$f" >&2; }
+    done
+    exit 1
+}
 # the jobs call `tirecontact`: this binary, first on their PATH
 ln -sf "$bin" "$work/tirecontact"
 export PATH="$work:$PATH"
@@ -21,7 +37,7 @@ mkdir -p /etc/munge /var/run/munge /var/log/munge /var/lib/munge
 [ -s /etc/munge/munge.key ] || dd if=/dev/urandom of=/etc/munge/munge.key bs=1024 count=1 2>/dev/null
 chown -R munge:munge /etc/munge /var/run/munge /var/log/munge /var/lib/munge 2>/dev/null || true
 chmod 400 /etc/munge/munge.key
-pgrep -x munged >/dev/null || munged --force
+pgrep -x munged >/dev/null || { munged --force && started+=(munged); }
 
 # slurm: one node, this host
 mkdir -p /etc/slurm /var/spool/slurmctld /var/spool/slurmd /var/log/slurm
@@ -43,21 +59,26 @@ SlurmdLogFile=/var/log/slurm/slurmd.log
 NodeName=$host CPUs=$cpus State=UNKNOWN
 PartitionName=main Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
-pgrep -x slurmctld >/dev/null || slurmctld
-pgrep -x slurmd >/dev/null || slurmd
+pgrep -x slurmctld >/dev/null || { slurmctld && started+=(slurmctld); }
+pgrep -x slurmd >/dev/null || { slurmd && started+=(slurmd); }
+up=
 for _ in $(seq 60); do
-    sinfo -h -o %t 2>/dev/null | grep -qE '^(idle|mix|alloc)' && break
+    if sinfo -h -o %t 2>/dev/null | grep -qE '^(idle|mix|alloc)'; then up=1; break; fi
     sleep 1
 done
+[ -n "$up" ] || fail "the node did not come up in 60 s"
 sinfo
 
 cd "$work"
 "$here/examples/slurm/submit.sh" "$study" "$n" "$work/out"
+done_=
 for _ in $(seq 600); do
-    [ -z "$(squeue -h 2>/dev/null)" ] && break
+    if [ -z "$(squeue -h 2>/dev/null)" ]; then done_=1; break; fi
     sleep 1
 done
+[ -n "$done_" ] || fail "the jobs did not finish in 600 s"
 cat "$work"/tirecontact-*.out 2>/dev/null | tail -20
+[ -f "$work/out/results.csv" ] || fail "no merged table $work/out/results.csv"
 "$bin" study run "$study" -o "$work/one.csv"
-cmp "$work/out/results.csv" "$work/one.csv"
+cmp "$work/out/results.csv" "$work/one.csv" || fail "the merged table differs from the one-process run"
 echo "slurm_local: $n array tasks and their merge equal the one-process table ($(($(wc -l <"$work/one.csv") - 1)) rows); report in $work/out/report"
