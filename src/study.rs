@@ -10,7 +10,7 @@
 use crate::Scene;
 use crate::identify::{ModeCache, PreparedModel};
 use crate::road::Road;
-use crate::sweep::{RunSummary, get_param, linspace, run_summary, set_param};
+use crate::sweep::{RunSummary, RunTiming, get_param, linspace, run_summary_timed, set_param};
 use rand_chacha::ChaCha8Rng;
 use rand_chacha::rand_core::{RngCore, SeedableRng};
 use serde::Deserialize;
@@ -454,9 +454,24 @@ pub fn run_row(
     cache: &ModeCache,
     cancel: &AtomicBool,
 ) -> Result<RunSummary, String> {
-    let scene = scene_of(loaded, row)?;
-    let model = PreparedModel::new(&scene, cache).map_err(|e| e.to_string())?;
-    run_summary(&model, &|_| {}, cancel)
+    run_row_timed(loaded, row, cache, cancel, &mut RunTiming::default())
+}
+
+/// [`run_row`], adding where its time went to `timing` (the row's scene
+/// and its prepared model count as set-up: a cache hit for a ring already
+/// identified).
+pub fn run_row_timed(
+    loaded: &Loaded,
+    row: &Row,
+    cache: &ModeCache,
+    cancel: &AtomicBool,
+    timing: &mut RunTiming,
+) -> Result<RunSummary, String> {
+    let t0 = std::time::Instant::now();
+    let prepared = scene_of(loaded, row)
+        .and_then(|scene| PreparedModel::new(&scene, cache).map_err(|e| e.to_string()));
+    timing.setup_s += t0.elapsed().as_secs_f64();
+    run_summary_timed(&prepared?, &|_| {}, cancel, timing)
 }
 
 /// The output table's header: `row, of` (the study's row count),

@@ -320,6 +320,26 @@ pub struct RunSummary {
     pub steps: u64,
 }
 
+/// Where a summarised run's time went (s): building the simulation and
+/// its recorders, stepping (the probes included), the spectrum and bands.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RunTiming {
+    pub setup_s: f64,
+    pub stepping_s: f64,
+    pub summary_s: f64,
+}
+
+impl RunTiming {
+    pub fn add(&mut self, o: &RunTiming) {
+        self.setup_s += o.setup_s;
+        self.stepping_s += o.stepping_s;
+        self.summary_s += o.summary_s;
+    }
+    pub fn total_s(&self) -> f64 {
+        self.setup_s + self.stepping_s + self.summary_s
+    }
+}
+
 /// Runs a prepared scene to its end and summarises its steady part
 /// (`t >= ramp_s`). `on_steps` is called with the number of steps done since
 /// its last call (every 1024 steps and at the end); `cancel` stops the run
@@ -329,6 +349,17 @@ pub fn run_summary(
     on_steps: &dyn Fn(u64),
     cancel: &AtomicBool,
 ) -> Result<RunSummary, String> {
+    run_summary_timed(model, on_steps, cancel, &mut RunTiming::default())
+}
+
+/// [`run_summary`], adding where its time went to `timing`.
+pub fn run_summary_timed(
+    model: &PreparedModel,
+    on_steps: &dyn Fn(u64),
+    cancel: &AtomicBool,
+    timing: &mut RunTiming,
+) -> Result<RunSummary, String> {
+    let t0 = std::time::Instant::now();
     let scene = model.scene();
     let mut sim = Simulation::new(model, SolverOptions::default()).map_err(|e| e.to_string())?;
     let mut rec = SteadyRecorder::new(scene, None).map_err(|e| e.to_string())?;
@@ -339,6 +370,8 @@ pub fn run_summary(
         on_steps(done - reported);
         reported = done;
     };
+    let t1 = std::time::Instant::now();
+    timing.setup_s += (t1 - t0).as_secs_f64();
     crate::drive::run_to_end(
         &mut sim,
         &mut (&mut rec, &mut metrics),
@@ -348,16 +381,20 @@ pub fn run_summary(
         RunError::Cancelled { .. } => "cancelled".to_string(),
         e => e.to_string(),
     })?;
+    let t2 = std::time::Instant::now();
+    timing.stepping_s += (t2 - t1).as_secs_f64();
     let fs = 1.0 / scene.dt_s;
     let hi = DEFAULT_BANDS_HZ.1.min(0.5 * fs / 10f64.powf(0.05));
     let bands = crate::spectrum::spectrum(&rec.total_force_n(), fs, Window::Hann, true)
         .map(|s| s.third_octave_levels(DEFAULT_BANDS_HZ.0, hi, 1.0))
         .map_err(|e| e.to_string())?;
-    Ok(RunSummary {
+    let summary = RunSummary {
         contact: metrics.summary(),
         bands,
         steps: n,
-    })
+    };
+    timing.summary_s += t2.elapsed().as_secs_f64();
+    Ok(summary)
 }
 
 /// One point of a sweep.

@@ -11,7 +11,8 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Instant;
 use tirecontact::ModeCache;
-use tirecontact::study::{Loaded, Row, header, load, record, run_row, shard};
+use tirecontact::study::{Loaded, Row, header, load, record, run_row_timed, shard};
+use tirecontact::sweep::RunTiming;
 
 #[derive(Debug, clap::Args)]
 pub struct StudyArgs {
@@ -191,15 +192,37 @@ fn plan(path: &Path, output: Option<&Path>) -> CliResult {
     let n = (total - ramp).min((total / 10).max(2000));
     let start = Instant::now();
     tirecontact::drive::run(&mut sim, n, &mut (), tirecontact::drive::Watch::none())?;
-    let per_run = start.elapsed().as_secs_f64() * total as f64 / n.max(1) as f64;
+    let mut per_run = start.elapsed().as_secs_f64() * total as f64 / n.max(1) as f64;
+    // short runs: the first, middle and last rows run in full (summary
+    // included), the mean of the three
+    let sample: Vec<&Row> = {
+        let r = &loaded.rows;
+        let mut s = vec![&r[0], &r[r.len() / 2], &r[r.len() - 1]];
+        s.dedup_by_key(|row| row.id);
+        s
+    };
+    if per_run * (sample.len() as f64) < 1.0 {
+        let cancel = AtomicBool::new(false);
+        let mut t = RunTiming::default();
+        let start = Instant::now();
+        for row in &sample {
+            // a failing row is timed too: `study run` records it and goes on
+            let _ = run_row_timed(&loaded, row, &cache, &cancel, &mut t);
+        }
+        per_run = start.elapsed().as_secs_f64() / sample.len() as f64;
+    }
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     println!(
-        "{}: {} ({} factors, {} per row); about {:.2} s per run, {} on {} threads of this machine, after {:.2} s of preparation (a ring or measured tyre identified: once per process and geometry)",
+        "{}: {} ({} factors, {} per row); about {} per run, {} on {} threads of this machine, after {:.2} s of preparation (a ring or measured tyre identified: once per process and geometry)",
         path.display(),
         tirecontact::output::count(loaded.rows.len(), "run"),
         loaded.study.factors.len(),
         tirecontact::output::count(loaded.study.replicates, "replicate"),
-        per_run,
+        if per_run < 0.1 {
+            format!("{:.1} ms", per_run * 1e3)
+        } else {
+            format!("{per_run:.2} s")
+        },
         human_s(per_run * loaded.rows.len() as f64 / threads as f64),
         threads,
         prepare_s
@@ -317,6 +340,7 @@ fn run(
     resume: bool,
     output: &Path,
 ) -> CliResult {
+    let begun = Instant::now();
     let loaded = load(path)?;
     super::paths::check_output_file("-o", output, "CSV")?;
     let header = header(&loaded);
@@ -384,14 +408,18 @@ fn run(
     let cancel = AtomicBool::new(false);
     let next = AtomicUsize::new(0);
     let results: Mutex<BTreeMap<usize, Vec<String>>> = Mutex::new(BTreeMap::new());
+    // where the threads' time went: the rows' parts, and all of it
+    let timing = Mutex::new((RunTiming::default(), 0.0));
     let start = Instant::now();
     std::thread::scope(|scope| {
         for _ in 0..threads.clamp(1, todo.len().max(1)) {
             scope.spawn(|| {
+                let mut mine = RunTiming::default();
+                let busy = Instant::now();
                 loop {
                     let k = next.fetch_add(1, Ordering::Relaxed);
                     let Some(row) = todo.get(k) else { break };
-                    let r = run_row(&loaded, row, &cache, &cancel);
+                    let r = run_row_timed(&loaded, row, &cache, &cancel, &mut mine);
                     let rec = record(&loaded, row, &r);
                     let mut w = csv::Writer::from_writer(Vec::new());
                     if w.write_record(&rec).is_ok()
@@ -406,9 +434,13 @@ fn run(
                         .insert(row.id, rec);
                     bar.inc(1);
                 }
+                let mut t = timing.lock().unwrap_or_else(|e| e.into_inner());
+                t.0.add(&mine);
+                t.1 += busy.elapsed().as_secs_f64();
             });
         }
     });
+    let rows_s = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let results = results.into_inner().unwrap_or_else(|e| e.into_inner());
     let failed = results
@@ -421,10 +453,29 @@ fn run(
         "wrote {} ({} run in {:.1} s on {}, {failed} failed; {} in the table)",
         output.display(),
         tirecontact::output::count(todo.len(), "row"),
-        start.elapsed().as_secs_f64(),
+        rows_s,
         tirecontact::output::count(threads, "thread"),
         tirecontact::output::count(done.len(), "row"),
     );
+    if !todo.is_empty() {
+        let (t, busy_s) = timing.into_inner().unwrap_or_else(|e| e.into_inner());
+        let n = todo.len() as f64;
+        let ms = |s: f64| format!("{:.2} ms", 1e3 * s / n);
+        let writing_s = (busy_s - t.total_s()).max(0.0);
+        eprintln!(
+            "per row, of its thread's time: {} = set-up {} + stepping {} + spectrum and metrics {} + writing {}; before the rows: {:.2} s (study, preset, identification){}",
+            ms(busy_s),
+            ms(t.setup_s),
+            ms(t.stepping_s),
+            ms(t.summary_s),
+            ms(writing_s),
+            start.duration_since(begun).as_secs_f64(),
+            format_args!(
+                "; overhead {:.1} % of stepping",
+                100.0 * (busy_s - t.stepping_s - t.summary_s) / t.stepping_s.max(1e-12)
+            )
+        );
+    }
     Ok(())
 }
 
