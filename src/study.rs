@@ -10,7 +10,8 @@
 use crate::Scene;
 use crate::identify::{ModeCache, PreparedModel};
 use crate::road::Road;
-use crate::sweep::{RunSummary, RunTiming, get_param, linspace, run_summary_timed, set_param};
+use crate::sweep::engine::{PoolTiming, run_each};
+use crate::sweep::{RunSummary, get_param, linspace, run_summary, set_param};
 use rand_chacha::ChaCha8Rng;
 use rand_chacha::rand_core::{RngCore, SeedableRng};
 use serde::Deserialize;
@@ -454,24 +455,31 @@ pub fn run_row(
     cache: &ModeCache,
     cancel: &AtomicBool,
 ) -> Result<RunSummary, String> {
-    run_row_timed(loaded, row, cache, cancel, &mut RunTiming::default())
+    let scene = scene_of(loaded, row)?;
+    let model = PreparedModel::new(&scene, cache).map_err(|e| e.to_string())?;
+    run_summary(&model, &|_| {}, cancel)
 }
 
-/// [`run_row`], adding where its time went to `timing` (the row's scene
-/// and its prepared model count as set-up: a cache hit for a ring already
-/// identified).
-pub fn run_row_timed(
+/// Runs `rows` on `threads` threads on the engine sweeps use
+/// ([`crate::sweep::engine::run_each`]); `on_done(row, result)` is called
+/// from the worker as each row ends.
+pub fn run_rows(
     loaded: &Loaded,
-    row: &Row,
+    rows: &[Row],
+    threads: usize,
     cache: &ModeCache,
     cancel: &AtomicBool,
-    timing: &mut RunTiming,
-) -> Result<RunSummary, String> {
-    let t0 = std::time::Instant::now();
-    let prepared = scene_of(loaded, row)
-        .and_then(|scene| PreparedModel::new(&scene, cache).map_err(|e| e.to_string()));
-    timing.setup_s += t0.elapsed().as_secs_f64();
-    run_summary_timed(&prepared?, &|_| {}, cancel, timing)
+    on_done: &(dyn Fn(&Row, Result<RunSummary, String>) + Sync),
+) -> PoolTiming {
+    run_each(
+        rows.len(),
+        threads,
+        cache,
+        cancel,
+        &|k| scene_of(loaded, &rows[k]),
+        &|_| {},
+        &|k, r| on_done(&rows[k], r),
+    )
 }
 
 /// The output table's header: `row, of` (the study's row count),
@@ -702,7 +710,7 @@ mod tests {
         ];
         for (s, want) in cases {
             let e = rows(&s, &b).unwrap_err();
-            assert!(e.contains(want), "{e} (wanted {want})");
+            assert!(e.message.contains(want), "{e} (wanted {want})");
         }
     }
 

@@ -17,10 +17,11 @@ use crate::scene::{Contact, Scene, Tyre};
 use crate::simulation::{Simulation, SolverOptions};
 use crate::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder};
 use crate::spectrum::{BandLevel, Window};
+pub mod engine;
 pub mod report;
 
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Errors of a sweep.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -455,30 +456,20 @@ pub fn run_sweep(
         .map_err(|e| SweepError::Input(e.to_string()))?;
     let total: u64 = scenes.iter().map(Scene::num_steps).sum();
     let done = std::sync::atomic::AtomicU64::new(0);
-    let next = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Result<RunSummary, String>>>> =
         Mutex::new(vec![None; scenes.len()]);
-    let threads = sweep.threads.clamp(1, scenes.len());
-    std::thread::scope(|scope| {
-        for _ in 0..threads {
-            scope.spawn(|| {
-                loop {
-                    let k = next.fetch_add(1, Ordering::Relaxed);
-                    if k >= scenes.len() || cancel.load(Ordering::Relaxed) {
-                        break;
-                    }
-                    let on_steps = |d: u64| {
-                        let now = done.fetch_add(d, Ordering::Relaxed) + d;
-                        progress(now, total);
-                    };
-                    let r = PreparedModel::new(&scenes[k], cache)
-                        .map_err(|e| e.to_string())
-                        .and_then(|model| run_summary(&model, &on_steps, cancel));
-                    results.lock().unwrap_or_else(|e| e.into_inner())[k] = Some(r);
-                }
-            });
-        }
-    });
+    engine::run_each(
+        scenes.len(),
+        sweep.threads,
+        cache,
+        cancel,
+        &|k| Ok(scenes[k].clone()),
+        &|d| {
+            let now = done.fetch_add(d, Ordering::Relaxed) + d;
+            progress(now, total);
+        },
+        &|k, r| results.lock().unwrap_or_else(|e| e.into_inner())[k] = Some(r),
+    );
     if cancel.load(Ordering::Relaxed) {
         return Err(SweepError::Cancelled);
     }

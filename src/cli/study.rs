@@ -8,11 +8,10 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 use tirecontact::ModeCache;
-use tirecontact::study::{Loaded, Row, header, load, record, run_row_timed, shard};
-use tirecontact::sweep::RunTiming;
+use tirecontact::study::{Loaded, Row, header, load, record, run_row, run_rows, shard};
 
 #[derive(Debug, clap::Args)]
 pub struct StudyArgs {
@@ -203,11 +202,10 @@ fn plan(path: &Path, output: Option<&Path>) -> CliResult {
     };
     if per_run * (sample.len() as f64) < 1.0 {
         let cancel = AtomicBool::new(false);
-        let mut t = RunTiming::default();
         let start = Instant::now();
         for row in &sample {
             // a failing row is timed too: `study run` records it and goes on
-            let _ = run_row_timed(&loaded, row, &cache, &cancel, &mut t);
+            let _ = run_row(&loaded, row, &cache, &cancel);
         }
         per_run = start.elapsed().as_secs_f64() / sample.len() as f64;
     }
@@ -406,39 +404,22 @@ fn run(
         let _ = cache.modes(&scene);
     }
     let cancel = AtomicBool::new(false);
-    let next = AtomicUsize::new(0);
     let results: Mutex<BTreeMap<usize, Vec<String>>> = Mutex::new(BTreeMap::new());
-    // where the threads' time went: the rows' parts, and all of it
-    let timing = Mutex::new((RunTiming::default(), 0.0));
     let start = Instant::now();
-    std::thread::scope(|scope| {
-        for _ in 0..threads.clamp(1, todo.len().max(1)) {
-            scope.spawn(|| {
-                let mut mine = RunTiming::default();
-                let busy = Instant::now();
-                loop {
-                    let k = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(row) = todo.get(k) else { break };
-                    let r = run_row_timed(&loaded, row, &cache, &cancel, &mut mine);
-                    let rec = record(&loaded, row, &r);
-                    let mut w = csv::Writer::from_writer(Vec::new());
-                    if w.write_record(&rec).is_ok()
-                        && let Ok(bytes) = w.into_inner()
-                    {
-                        let mut j = journal.lock().unwrap_or_else(|e| e.into_inner());
-                        let _ = j.write_all(&bytes).and_then(|()| j.flush());
-                    }
-                    results
-                        .lock()
-                        .unwrap_or_else(|e| e.into_inner())
-                        .insert(row.id, rec);
-                    bar.inc(1);
-                }
-                let mut t = timing.lock().unwrap_or_else(|e| e.into_inner());
-                t.0.add(&mine);
-                t.1 += busy.elapsed().as_secs_f64();
-            });
+    let timing = run_rows(&loaded, &todo, threads, &cache, &cancel, &|row, r| {
+        let rec = record(&loaded, row, &r);
+        let mut w = csv::Writer::from_writer(Vec::new());
+        if w.write_record(&rec).is_ok()
+            && let Ok(bytes) = w.into_inner()
+        {
+            let mut j = journal.lock().unwrap_or_else(|e| e.into_inner());
+            let _ = j.write_all(&bytes).and_then(|()| j.flush());
         }
+        results
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .insert(row.id, rec);
+        bar.inc(1);
     });
     let rows_s = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
@@ -458,7 +439,7 @@ fn run(
         tirecontact::output::count(done.len(), "row"),
     );
     if !todo.is_empty() {
-        let (t, busy_s) = timing.into_inner().unwrap_or_else(|e| e.into_inner());
+        let (t, busy_s) = (timing.runs, timing.busy_s);
         let n = todo.len() as f64;
         let ms = |s: f64| format!("{:.2} ms", 1e3 * s / n);
         let writing_s = (busy_s - t.total_s()).max(0.0);
