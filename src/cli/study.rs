@@ -121,8 +121,8 @@ fn report(path: &Path, dir: &Path) -> CliResult {
         tirecontact::output::figures::render_png(
             &report::figure(e, &title),
             &dir.join(&png),
-            1200,
-            1000,
+            report::FIGURE_PX.0,
+            report::FIGURE_PX.1,
         )?;
         figures.push(png);
         for l in &e.levels {
@@ -229,7 +229,11 @@ fn plan(path: &Path, output: Option<&Path>) -> CliResult {
 }
 
 fn human_s(s: f64) -> String {
-    if s < 120.0 {
+    if s < 0.1 {
+        "under 0.1 s".into()
+    } else if s < 10.0 {
+        format!("{s:.1} s")
+    } else if s < 120.0 {
         format!("{s:.0} s")
     } else if s < 7200.0 {
         format!("{:.0} min", s / 60.0)

@@ -24,6 +24,10 @@ pub const METRICS: [(&str, &str, &str); 5] = [
     ("contact fraction, mean over the points", "_fraction", "-"),
 ];
 
+/// The size (px) of a factor's figure: a panel per metric, each plot about
+/// 170 px high.
+pub const FIGURE_PX: (u32, u32) = (1200, 1400);
+
 /// Levels of a factor with more distinct values than this are binned.
 pub const MAX_LEVELS: usize = 8;
 
@@ -188,13 +192,13 @@ pub fn figure(e: &Effect, title: &str) -> Figure {
                 y_label: format!("({unit})"),
                 series: vec![
                     Series {
-                        name: named("mean over the other factors and replicates"),
+                        name: named("mean of the rows"),
                         points: at(&|l| l.mean[m]),
                         style: Style::LineMarkers(4),
                         color: Some(0),
                     },
                     Series {
-                        name: named("mean ± one standard deviation"),
+                        name: named("± one standard deviation"),
                         points: at(&|l| l.mean[m] + l.std[m]),
                         style: Style::ThinLine,
                         color: Some(1),

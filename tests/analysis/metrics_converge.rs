@@ -8,6 +8,9 @@ use tirecontact::metrics::ContactSummary;
 use tirecontact::sweep::{RunSummary, run_summary};
 use tirecontact::{ModeCache, PreparedModel};
 
+/// A per-point metric of a summary.
+type Metric = fn(&ContactSummary) -> &Vec<f64>;
+
 fn summary_at(dt_s: f64, cache: &ModeCache) -> RunSummary {
     let mut scene = preset("paper");
     scene.dt_s = dt_s;
@@ -17,7 +20,7 @@ fn summary_at(dt_s: f64, cache: &ModeCache) -> RunSummary {
 
 /// Largest relative spread of a per-point metric over the runs (against
 /// `floor` where the values are near zero).
-fn spread(runs: &[RunSummary], get: fn(&ContactSummary) -> &Vec<f64>, floor: f64) -> f64 {
+fn spread(runs: &[RunSummary], get: Metric, floor: f64) -> f64 {
     let p = get(&runs[0].contact).len();
     (0..p)
         .map(|i| {
@@ -53,7 +56,8 @@ fn every_metric_converges_as_the_time_step_shrinks() {
     let peak = |r: &RunSummary, dt: f64| r.contact.impulse_max_ns[0] / dt;
     let ratio = peak(&runs[2], dts[2]) / peak(&runs[1], dts[1]);
     assert!((ratio - 2.0).abs() < 0.01, "impulse/dt ratio {ratio}");
-    let checks: [(&str, fn(&ContactSummary) -> &Vec<f64>, f64, f64); 7] = [
+    // (name, metric, floor of the relative spread, tolerance)
+    let checks: [(&str, Metric, f64, f64); 7] = [
         ("max force without impacts", |s| &s.force_max_n, 1.0, 5e-3),
         ("RMS force without impacts", |s| &s.force_rms_n, 1.0, 5e-3),
         (
