@@ -494,6 +494,21 @@ pub fn header(loaded: &Loaded) -> Vec<String> {
     h
 }
 
+/// The bytes of a study table: `header`, then `rows` in the order given
+/// (by row id): the one form of every table `study run` and `study merge`
+/// write, so that merged shards equal a one-process run.
+pub fn table_bytes<'a>(
+    header: &[String],
+    rows: impl IntoIterator<Item = &'a Vec<String>>,
+) -> Result<Vec<u8>, csv::Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header)?;
+    for r in rows {
+        w.write_record(r)?;
+    }
+    w.into_inner().map_err(|e| e.into_error().into())
+}
+
 /// The output line of `row` and its result.
 pub fn record(loaded: &Loaded, row: &Row, result: &Result<RunSummary, String>) -> Vec<String> {
     let p = loaded.base.num_points();

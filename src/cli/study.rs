@@ -325,12 +325,8 @@ fn write_table(
     header: &[String],
     rows: &BTreeMap<usize, Vec<String>>,
 ) -> Result<(), String> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record(header).map_err(|e| e.to_string())?;
-    for r in rows.values() {
-        w.write_record(r).map_err(|e| e.to_string())?;
-    }
-    let bytes = w.into_inner().map_err(|e| e.to_string())?;
+    let bytes =
+        tirecontact::study::table_bytes(header, rows.values()).map_err(|e| e.to_string())?;
     tirecontact::fsio::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 

@@ -1,6 +1,7 @@
 //! Output: CSV time histories, atomic file writes, headless figures.
 
 pub mod animation;
+pub mod arrays;
 pub mod csv;
 pub mod figures;
 pub mod impacts;

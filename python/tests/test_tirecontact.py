@@ -1,0 +1,190 @@
+"""The Python package against the command line and closed forms."""
+
+import csv
+import os
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import tirecontact as tc
+
+REPO = Path(__file__).resolve().parents[2]
+PRESETS = REPO / "presets"
+
+
+def cli():
+    """The command-line binary: $TIRECONTACT_BIN, else the repository's build."""
+    env = os.environ.get("TIRECONTACT_BIN")
+    if env:
+        return env
+    for p in ("target/release/tirecontact", "target/debug/tirecontact"):
+        if (REPO / p).exists():
+            return str(REPO / p)
+    pytest.skip("no tirecontact binary: build it or set TIRECONTACT_BIN")
+
+
+def test_arrays_equal_the_cli_csv_of_the_same_scene(tmp_path):
+    scene = tc.Scene.load(PRESETS / "three_points.ron")
+    scene.set("speed_mps", 13.0)
+    path = tmp_path / "scene.ron"
+    path.write_text(scene.to_ron())
+    for every in (1, 7):
+        out = tmp_path / f"run{every}.csv"
+        subprocess.run(
+            [cli(), "run", str(path), "--duration", "0.03", "--every", str(every), "-o", str(out)],
+            check=True,
+            capture_output=True,
+        )
+        with open(out) as f:
+            rows = list(csv.reader(f))
+        header, data = rows[0], np.array(rows[1:], dtype=float)
+        run = tc.run(scene, duration_s=0.03, every=every)
+        df = run.to_pandas()
+        assert list(df.columns) == header
+        p = scene.num_points
+        assert run.q_n.shape == (len(data), p)
+        # the CSV keeps ten significant digits
+        for k, name in enumerate(header):
+            want = data[:, k]
+            got = df[name].to_numpy(dtype=float)
+            np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-300, err_msg=name)
+        # impacts and releases happen: the comparison covers both states
+        assert run.contact.any() and not run.contact.all()
+
+
+def test_the_arrays_are_handed_over_without_a_copy():
+    run = tc.run(tc.Scene.load(PRESETS / "single_mode.ron"), duration_s=0.01)
+    # a view of the vector the solver filled, not a copy of it
+    assert not run.u_m.flags["OWNDATA"] and run.u_m.base is not None
+    assert run.u_m.flags["C_CONTIGUOUS"]
+
+
+def test_get_set_and_errors_carry_the_project_messages(tmp_path):
+    scene = tc.Scene.load(PRESETS / "three_points.ron")
+    scene.set("tyre.modes[0].damping_ratio", 0.07)
+    assert scene.get("tyre.modes[0].damping_ratio") == 0.07
+    scene.set("points[*].h_m", -0.002)
+    assert scene.get("points[2].h_m") == -0.002
+    with pytest.raises(tc.TirecontactError, match=r"speed_kmh.*speed_mps"):
+        scene.set("speed_kmh", 50.0)
+    with pytest.raises(tc.TirecontactError, match=r"dt_s.*-1"):
+        scene.set("dt_s", -1.0)
+    bad = tmp_path / "bad.ron"
+    text = (PRESETS / "single_mode.ron").read_text().replace("damping_ratio: 0.", "damping_ratio: -0.")
+    bad.write_text(text)
+    line = next(i for i, l in enumerate(text.splitlines(), 1) if "damping_ratio: -0." in l)
+    with pytest.raises(tc.TirecontactError, match=rf"bad.ron:{line}:\d+.*damping_ratio"):
+        tc.Scene.load(bad)
+    with pytest.raises(tc.TirecontactError, match=r"<text>:1:\d+"):
+        tc.Scene.from_ron("Scene(name: 1)")
+    study = tmp_path / "study.ron"
+    study.write_text(
+        'Study(\n    preset: "%s",\n    factors: [\n        Factor(path: "speed_kmh", values: List([1.0])),\n    ],\n    design: FullFactorial,\n)'
+        % (PRESETS / "single_mode.ron")
+    )
+    with pytest.raises(tc.TirecontactError, match=r"study.ron:4:\d+: factors\[0\].path"):
+        tc.Study.load(study)
+    assert issubclass(tc.TirecontactError, ValueError)
+
+
+def test_a_modal_tyre_model_is_its_modes_in_closed_form():
+    scene = tc.Scene.load(PRESETS / "single_mode.ron")
+    m = tc.identify(scene)
+    assert m.report is None
+    f, xi = m.freq_hz[0], m.damping_ratio[0]
+    a = m.residues[0]
+    w = 2 * np.pi * f
+    wd = w * np.sqrt(1 - xi**2)
+    t = np.linspace(0.0, 0.05, 11)
+    g = m.green(t)[:, 0, 0]
+    np.testing.assert_allclose(g, a[0, 0] * np.exp(-xi * w * t) * np.sin(wd * t) / wd, rtol=1e-12, atol=1e-15)
+    freq = np.array([0.0, f, 3 * f])
+    h = m.frf(freq)[:, 0, 0]
+    om = 2 * np.pi * freq
+    np.testing.assert_allclose(h, a[0, 0] / (w**2 - om**2 + 2j * xi * w * om), rtol=1e-12)
+
+
+def test_a_ring_is_identified_with_its_report():
+    m = tc.identify(tc.Scene.load(PRESETS / "paper.ron"))
+    assert m.report is not None and m.report["magnitude_error"] < 0.05
+    assert ((m.freq_hz > 0) & (m.freq_hz <= 500.0)).all()
+    assert m.residues.shape == (len(m.freq_hz), 5, 5)
+    # reciprocity: every residue matrix is symmetric
+    np.testing.assert_allclose(m.residues, m.residues.transpose(0, 2, 1), rtol=0, atol=1e-9 * abs(m.residues).max())
+
+
+def test_bands_match_the_cli_band_table(tmp_path):
+    scene = tc.Scene.load(PRESETS / "three_points.ron")
+    run = tc.run(scene)
+    bands = tc.third_octave(run)
+    subprocess.run(
+        [cli(), "run", str(PRESETS / "three_points.ron"), "--spectrum", str(tmp_path / "s.csv")],
+        check=True,
+        capture_output=True,
+    )
+    with open(tmp_path / "s_bands.csv") as f:
+        rows = list(csv.DictReader(f))
+    cli_db = {float(r["band_hz"]): float(r["q_total_db_re_1N"]) for r in rows}
+    checked = 0
+    for f, level in zip(bands["nominal_hz"], bands["level_db"]):
+        if f in cli_db and np.isfinite(level):
+            # (the table's six decimals)
+            assert abs(level - cli_db[f]) < 2e-6, f
+            checked += 1
+    assert checked >= 10
+
+
+def test_two_threads_run_two_scenes_in_parallel():
+    if (os.cpu_count() or 1) < 2:
+        pytest.skip("one core")
+    scene = tc.Scene.load(PRESETS / "paper.ron")
+    tc.run(scene, duration_s=0.01)  # the ring identified once, not timed
+
+    def one():
+        tc.run(scene, duration_s=1.0, every=100)
+
+    t = time.perf_counter()
+    one()
+    single = time.perf_counter() - t
+    threads = [threading.Thread(target=one) for _ in range(2)]
+    t = time.perf_counter()
+    for th in threads:
+        th.start()
+    for th in threads:
+        th.join()
+    both = time.perf_counter() - t
+    # with the GIL held the two would take twice one run
+    assert both < 1.6 * single, f"one {single:.3f} s, two threads {both:.3f} s"
+
+
+def test_the_dask_example_writes_the_cli_table(tmp_path):
+    pytest.importorskip("dask.distributed")
+    out = tmp_path / "dask.csv"
+    subprocess.run(
+        [sys.executable, str(REPO / "examples" / "dask_study.py"), str(REPO / "examples" / "study.ron"), str(out), "--workers", "2"],
+        check=True,
+        capture_output=True,
+        timeout=600,
+    )
+    ref = tmp_path / "cli.csv"
+    subprocess.run([cli(), "study", "run", str(REPO / "examples" / "study.ron"), "-o", str(ref)], check=True, capture_output=True)
+    assert out.read_bytes() == ref.read_bytes()
+
+
+def test_study_rows_and_run_row_make_the_table(tmp_path):
+    study = tc.Study.load(REPO / "examples" / "study.ron")
+    rows = tc.study_rows(study)
+    assert len(rows) == len(study) == 10
+    records = [tc.run_row(study, r) for r, _, _ in reversed(rows)]
+    out = tmp_path / "t.csv"
+    study.write_table(out, records)
+    ref = tmp_path / "cli.csv"
+    subprocess.run([cli(), "study", "run", str(REPO / "examples" / "study.ron"), "-o", str(ref)], check=True, capture_output=True)
+    assert out.read_bytes() == ref.read_bytes()
+    with pytest.raises(tc.TirecontactError, match="row_id = 10"):
+        tc.run_row(study, 10)
