@@ -2,6 +2,7 @@
 
 import csv
 import os
+import signal
 import subprocess
 import sys
 import threading
@@ -188,3 +189,26 @@ def test_study_rows_and_run_row_make_the_table(tmp_path):
     assert out.read_bytes() == ref.read_bytes()
     with pytest.raises(tc.TirecontactError, match="row_id = 10"):
         tc.run_row(study, 10)
+
+
+def test_ctrl_c_stops_a_long_run():
+    code = (
+        "import tirecontact as tc, sys\n"
+        f"s = tc.Scene.load({str(PRESETS / 'paper.ron')!r})\n"
+        "tc.run(s, duration_s=0.01)\n"
+        "print('ready', flush=True)\n"
+        "try:\n"
+        "    tc.run(s, duration_s=500.0, every=1000000)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', flush=True)\n"
+        "    sys.exit(3)\n"
+    )
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    assert proc.stdout.readline().strip() == "ready"
+    time.sleep(0.5)
+    t = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    out, _ = proc.communicate(timeout=60)
+    # 500 s of the paper preset take about 20 s: stopped long before
+    assert proc.returncode == 3 and "interrupted" in out, (proc.returncode, out)
+    assert time.perf_counter() - t < 2.0
