@@ -45,6 +45,21 @@ impl crate::drive::Probe for BaselineRun {
     }
 }
 
+/// The road height and rate `(r_i, ṙ_i)` (m, m/s) point `i` meets at `t`
+/// (method §4): the profile under the point, less its undeformed height,
+/// ramped in over `ramp_s`.
+pub(crate) fn road_seen(scene: &Scene, road: &RoadProfile, t: f64, i: usize) -> (f64, f64) {
+    let pt = scene.points[i];
+    let (w, dw) = ramp(t, scene.ramp_s);
+    let (z, dz) = road
+        .sample(pt.x_m + scene.speed_mps * t)
+        .unwrap_or((0.0, 0.0));
+    (
+        w * (z - pt.h_m),
+        dw * (z - pt.h_m) + w * dz * scene.speed_mps,
+    )
+}
+
 /// Runs `scene` for `n_steps` with the paper's contact scheme on `kernel`.
 /// Errors if the scene's road cannot be built or a mode is not underdamped
 /// (the α/β form needs `ξ < 1`).
@@ -98,17 +113,7 @@ pub fn run_baseline(
     let nm = model.modes.len();
     let mut ab = vec![[0.0f64; 2]; nm * p];
     let mut history: Vec<[f64; 2]> = Vec::new(); // (q1, q2) per step and point
-    let road_at = |t: f64, i: usize| -> (f64, f64) {
-        let pt = scene.points[i];
-        let (w, dw) = ramp(t, scene.ramp_s);
-        let (z, dz) = road
-            .sample(pt.x_m + scene.speed_mps * t)
-            .unwrap_or((0.0, 0.0));
-        (
-            w * (z - pt.h_m),
-            dw * (z - pt.h_m) + w * dz * scene.speed_mps,
-        )
-    };
+    let road_at = |t: f64, i: usize| road_seen(scene, &road, t, i);
     let mut out = BaselineRun::default();
     let (mut uh, mut vh) = (vec![0.0; p], vec![0.0; p]);
     for n in 0..n_steps {

@@ -2,6 +2,7 @@
 //! baselines it compares against (method §3 α/β form, direct convolution).
 
 pub mod baselines;
+pub mod peers;
 pub mod residual;
 pub mod scenes;
 pub mod work_precision;

@@ -25,21 +25,33 @@ pub enum Method {
     AlphaBeta,
     /// Direct O(N²) convolution with the paper's contact rule.
     Direct,
+    /// Newmark (average acceleration) on the modal equations, penalty
+    /// contact ([`crate::bench::peers::run_newmark`]).
+    Newmark,
+    /// Adaptive Dormand–Prince 5(4), penalty contact
+    /// ([`crate::bench::peers::run_dopri`]).
+    Dopri,
 }
 
 impl Method {
-    pub const ALL: [Method; 4] = [
+    pub const ALL: [Method; 6] = [
         Method::Located,
         Method::Paper,
         Method::AlphaBeta,
         Method::Direct,
+        Method::Newmark,
+        Method::Dopri,
     ];
+    /// The methods people use for dynamic contact, swept over penalties.
+    pub const PEERS: [Method; 2] = [Method::Newmark, Method::Dopri];
     pub fn label(self) -> &'static str {
         match self {
             Method::Located => "stable + located events",
             Method::Paper => "stable + paper contact",
             Method::AlphaBeta => "paper alpha/beta",
             Method::Direct => "direct convolution O(N^2)",
+            Method::Newmark => "Newmark + penalty",
+            Method::Dopri => "Dormand-Prince 5(4) + penalty",
         }
     }
     pub fn key(self) -> &'static str {
@@ -48,6 +60,8 @@ impl Method {
             Method::Paper => "paper",
             Method::AlphaBeta => "alpha_beta",
             Method::Direct => "direct",
+            Method::Newmark => "newmark_penalty",
+            Method::Dopri => "dopri5_penalty",
         }
     }
 }
@@ -65,6 +79,10 @@ pub struct Config {
     pub direct_max_steps: usize,
     /// Force window (s).
     pub force_window_s: f64,
+    /// Penalty stiffnesses of the peer baselines (N/m), swept.
+    pub penalties_n_m: Vec<f64>,
+    /// Relative tolerances of the adaptive integrator, swept.
+    pub rtols: Vec<f64>,
 }
 
 impl Config {
@@ -76,6 +94,8 @@ impl Config {
             direct_duration_s: 0.1,
             direct_max_steps: 10_000,
             force_window_s: 1e-3,
+            penalties_n_m: (6..=12).map(|e| 10f64.powi(e)).collect(),
+            rtols: vec![1e-3, 1e-5, 1e-7, 1e-9],
         }
     }
     /// A small study for tests.
@@ -86,6 +106,8 @@ impl Config {
             direct_duration_s: 0.08,
             direct_max_steps: 2_000,
             force_window_s: 1e-3,
+            penalties_n_m: vec![1e7, 1e9],
+            rtols: vec![1e-4, 1e-7],
         }
     }
 }
@@ -104,16 +126,21 @@ pub struct Row {
     pub force_err: f64,
     /// Observed order of the displacement error against the previous dt.
     pub order: Option<f64>,
+    /// The peer baselines' penalty stiffness (N/m).
+    pub penalty_n_m: Option<f64>,
+    /// The adaptive integrator's relative tolerance (its `dt_s` is the
+    /// output interval).
+    pub rtol: Option<f64>,
     pub note: String,
 }
 
 /// Sampled histories: displacements on the grid of the coarsest step, window-mean forces.
-pub(crate) struct Sampled {
-    pub(crate) u: Vec<f64>,
-    pub(crate) q: Vec<f64>,
+pub struct Sampled {
+    pub u: Vec<f64>,
+    pub q: Vec<f64>,
 }
 
-pub(crate) fn sample(
+pub fn sample(
     t_s: &[f64],
     u: &[Vec<f64>],
     q: &[Vec<f64>],
@@ -142,7 +169,7 @@ pub(crate) fn sample(
     Sampled { u: us, q: qs }
 }
 
-pub(crate) fn rms_rel(a: &[f64], reference: &[f64]) -> f64 {
+pub fn rms_rel(a: &[f64], reference: &[f64]) -> f64 {
     let n = a.len().min(reference.len());
     let num: f64 = (0..n).map(|k| (a[k] - reference[k]).powi(2)).sum();
     let den: f64 = (0..n).map(|k| reference[k].powi(2)).sum();
@@ -297,7 +324,12 @@ pub fn study(
         cfg.duration_s,
     );
     let mut rows = Vec::new();
-    for method in Method::ALL {
+    for method in [
+        Method::Located,
+        Method::Paper,
+        Method::AlphaBeta,
+        Method::Direct,
+    ] {
         let mut prev: Option<(f64, f64)> = None;
         for &dt in &cfg.dts {
             let duration = if method == Method::Direct {
@@ -331,6 +363,7 @@ pub fn study(
                     )?;
                     (run, wall)
                 }
+                Method::Newmark | Method::Dopri => unreachable!("the peers run below"),
                 Method::AlphaBeta | Method::Direct => {
                     let kernel = if method == Method::AlphaBeta {
                         Kernel::AlphaBeta
@@ -380,12 +413,121 @@ pub fn study(
                 disp_err,
                 force_err,
                 order,
+                penalty_n_m: None,
+                rtol: None,
                 note,
+            });
+        }
+    }
+    // the peers: Newmark over the time steps and Dormand-Prince over the
+    // tolerances (output every finest step), each for every penalty
+    let dt_out = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min);
+    for &k in &cfg.penalties_n_m {
+        let mut prev: Option<(f64, f64)> = None;
+        for &dt in &cfg.dts {
+            progress(&format!(
+                "{}: Newmark + penalty k = {k:e} N/m at dt = {dt:e} s",
+                scene.name
+            ));
+            let mut s = scene.clone();
+            s.dt_s = dt;
+            let steps = (cfg.duration_s / dt).round() as usize;
+            let start = Instant::now();
+            let run = crate::bench::peers::run_newmark(&s, k, steps, &cache)?;
+            let wall = start.elapsed().as_secs_f64();
+            let smp = sample(
+                &run.t_s,
+                &run.u_m,
+                &run.q_n,
+                grid,
+                cfg.force_window_s,
+                dt,
+                cfg.duration_s,
+            );
+            let disp_err = rms_rel(&smp.u, &ref_s.u);
+            let order = prev.and_then(|(pdt, pe)| {
+                (disp_err.is_finite() && pe.is_finite() && disp_err > 0.0)
+                    .then(|| (pe / disp_err).ln() / (pdt / dt).ln())
+            });
+            prev = Some((dt, disp_err));
+            rows.push(Row {
+                scene: scene.name.clone(),
+                method: Method::Newmark,
+                dt_s: dt,
+                steps,
+                wall_s: wall,
+                disp_err,
+                force_err: rms_rel(&smp.q, &ref_s.q),
+                order,
+                penalty_n_m: Some(k),
+                rtol: None,
+                note: run.overflow_t_s.map_or(String::new(), |t| {
+                    format!("overflow (non-finite) from t = {t:.4} s")
+                }),
+            });
+        }
+        for &rtol in &cfg.rtols {
+            progress(&format!(
+                "{}: Dormand-Prince + penalty k = {k:e} N/m at rtol = {rtol:e}",
+                scene.name
+            ));
+            let start = Instant::now();
+            let (run, st) = match crate::bench::peers::run_dopri(
+                scene,
+                k,
+                rtol,
+                dt_out,
+                cfg.duration_s,
+                &cache,
+            ) {
+                Ok(r) => r,
+                Err(e) => {
+                    progress(&format!("  skipped: {e}"));
+                    continue;
+                }
+            };
+            let wall = start.elapsed().as_secs_f64();
+            let smp = sample(
+                &run.t_s,
+                &run.u_m,
+                &run.q_n,
+                grid,
+                cfg.force_window_s,
+                dt_out,
+                cfg.duration_s,
+            );
+            rows.push(Row {
+                scene: scene.name.clone(),
+                method: Method::Dopri,
+                dt_s: dt_out,
+                steps: st.accepted as usize,
+                wall_s: wall,
+                disp_err: rms_rel(&smp.u, &ref_s.u),
+                force_err: rms_rel(&smp.q, &ref_s.q),
+                order: None,
+                penalty_n_m: Some(k),
+                rtol: Some(rtol),
+                note: format!(
+                    "{} accepted, {} rejected steps, {} evaluations",
+                    st.accepted, st.rejected, st.evaluations
+                ),
             });
         }
     }
     Ok(rows)
 }
+
+/// The fastest run of `method` (any penalty, time step or tolerance) whose
+/// displacement error is at most `target`: the best a user sweeping the
+/// method's choices gets at that error.
+pub fn fastest_at_error(rows: &[Row], method: Method, target: f64) -> Option<&Row> {
+    rows.iter()
+        .filter(|r| r.method == method && r.disp_err.is_finite() && r.disp_err <= target)
+        .min_by(|a, b| a.wall_s.total_cmp(&b.wall_s))
+}
+
+/// Error levels of the speed-ups against the peers.
+pub const PEER_ERROR_LEVELS: [f64; 3] = [1e-2, 1e-4, 1e-6];
 
 /// Interpolated run time (s) of `method` at displacement error `target`
 /// (log-log between the bracketing runs), if its runs bracket it.
@@ -417,6 +559,8 @@ pub fn to_csv(rows: &[Row]) -> Result<String, csv::Error> {
         "disp_rms_rel_err",
         "force_window_rms_rel_err",
         "disp_order",
+        "penalty_n_m",
+        "rtol",
         "note",
     ])?;
     for r in rows {
@@ -429,6 +573,8 @@ pub fn to_csv(rows: &[Row]) -> Result<String, csv::Error> {
             format!("{:.6e}", r.disp_err),
             format!("{:.6e}", r.force_err),
             r.order.map_or(String::new(), |o| format!("{o:.3}")),
+            r.penalty_n_m.map_or(String::new(), |k| format!("{k:e}")),
+            r.rtol.map_or(String::new(), |t| format!("{t:e}")),
             r.note.clone(),
         ])?;
     }
@@ -441,7 +587,7 @@ pub fn to_markdown(rows: &[Row]) -> String {
     let mut s = String::from(
         "| scene | method | dt (s) | steps | run time (s) | displacement error | force error (window means) | order | note |\n|---|---|---|---|---|---|---|---|---|\n",
     );
-    for r in rows {
+    for r in rows.iter().filter(|r| !Method::PEERS.contains(&r.method)) {
         s.push_str(&format!(
             "| {} | {} | {:e} | {} | {:.4} | {:.2e} | {:.2e} | {} | {} |\n",
             r.scene,
@@ -486,7 +632,62 @@ pub fn to_markdown(rows: &[Row]) -> String {
             ));
         }
     }
+    s.push_str(&peer_markdown(rows));
     s
+}
+
+/// The peers' table: per scene, error level and peer, the fastest run of
+/// the peer's sweep (penalty, time step or tolerance) reaching the error,
+/// the fastest located run reaching it, and the speed-up.
+fn peer_markdown(rows: &[Row]) -> String {
+    let mut scenes: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
+    scenes.dedup();
+    let mut s = String::from(
+        "\nSpeed-up of the default method at equal displacement error against the methods people use for dynamic contact: Newmark (average acceleration) on the modal equations and adaptive Dormand-Prince 5(4), both with penalty contact (a spring k with its critical damper at each point), each the fastest run of its sweep over k, the time step or the tolerance that reaches the error; the located method's fastest run reaching it.\n\n| scene | error | peer | its fastest run (s) | its k (N/m), dt or rtol | located run (s) | speed-up |\n|---|---|---|---|---|---|---|\n",
+    );
+    for sc in scenes {
+        let sr: Vec<Row> = rows.iter().filter(|r| r.scene == sc).cloned().collect();
+        for target in PEER_ERROR_LEVELS {
+            let located = fastest_at_error(&sr, Method::Located, target);
+            for m in Method::PEERS {
+                let peer = fastest_at_error(&sr, m, target);
+                let how = |r: &Row| match (r.penalty_n_m, r.rtol) {
+                    (Some(k), Some(t)) => format!("k = {k:.0e}, rtol = {t:.0e}"),
+                    (Some(k), None) => format!("k = {k:.0e}, dt = {:e} s", r.dt_s),
+                    _ => String::new(),
+                };
+                let (pt, pk) = match peer {
+                    Some(r) => (format!("{:.4}", r.wall_s), how(r)),
+                    None => ("not reached".into(), "-".into()),
+                };
+                let lt = located.map_or("not reached".into(), |r| format!("{:.5}", r.wall_s));
+                let speed = match (peer, located) {
+                    (Some(p), Some(l)) => format!("{:.0}x", p.wall_s / l.wall_s.max(1e-9)),
+                    (None, Some(_)) => "peer never reaches it".into(),
+                    _ => "-".into(),
+                };
+                s.push_str(&format!(
+                    "| {sc} | {target:.0e} | {} | {pt} | {pk} | {lt} | {speed} |\n",
+                    m.label()
+                ));
+            }
+        }
+    }
+    s
+}
+
+/// The lower envelope of `(time, error)` points: by time, each point more
+/// accurate than every faster one (what a user sweeping the method's
+/// choices gets for a given time).
+fn best_of_sweep(mut points: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut best = f64::INFINITY;
+    points.retain(|&(_, e)| {
+        let keep = e < best;
+        best = best.min(e);
+        keep
+    });
+    points
 }
 
 /// The diagram: error against run time, log-log, one line per method.
@@ -508,9 +709,8 @@ pub fn figure(rows: &[Row], scene: &str) -> Figure {
         series: Method::ALL
             .iter()
             .enumerate()
-            .map(|(k, &m)| Series {
-                name: m.label().into(),
-                points: rows
+            .map(|(k, &m)| {
+                let mut points: Vec<(f64, f64)> = rows
                     .iter()
                     .filter(|r| r.method == m && r.scene == scene)
                     .map(|r| {
@@ -520,9 +720,20 @@ pub fn figure(rows: &[Row], scene: &str) -> Figure {
                         )
                     })
                     .filter(|p| p.1.is_finite() && p.1 > 0.0)
-                    .collect(),
-                style: Style::LineMarkers(4),
-                color: Some(k),
+                    .collect();
+                if Method::PEERS.contains(&m) {
+                    points = best_of_sweep(points);
+                }
+                Series {
+                    name: if Method::PEERS.contains(&m) {
+                        format!("{} (best of its sweep)", m.label())
+                    } else {
+                        m.label().into()
+                    },
+                    points,
+                    style: Style::LineMarkers(4),
+                    color: Some(k),
+                }
             })
             .collect(),
         log_x: true,
@@ -531,7 +742,7 @@ pub fn figure(rows: &[Row], scene: &str) -> Figure {
     };
     Figure {
         title: format!("Work-precision: {scene}"),
-        subtitle: "each line runs dt from coarse (left) to fine (right); reference: located events at a quarter of the finest dt".into(),
+        subtitle: "each line runs dt from coarse (left) to fine (right); the penalty methods: the most accurate run of their sweep (k, dt or tolerance) for its time; reference: located events at a quarter of the finest dt".into(),
         panels: vec![mk(false), mk(true)],
     }
 }

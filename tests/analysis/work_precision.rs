@@ -16,6 +16,8 @@ fn located_beats_paper_and_baselines_agree() {
         direct_duration_s: 0.06,
         direct_max_steps: 1500,
         force_window_s: 1e-3,
+        penalties_n_m: vec![1e8, 1e10],
+        rtols: vec![1e-6],
     };
     let rows = study(&scene, &cfg, |_| {}).unwrap();
     let get = |m: Method, dt: f64| rows.iter().find(|r| r.method == m && r.dt_s == dt).unwrap();
@@ -45,9 +47,65 @@ fn located_beats_paper_and_baselines_agree() {
         d.disp_err,
         p.disp_err
     );
+    // the peers: a stiffer penalty converges towards the rigid reference
+    let peer = |m: Method, k: f64| {
+        rows.iter()
+            .filter(|r| r.method == m && r.penalty_n_m == Some(k))
+            .map(|r| r.disp_err)
+            .fold(f64::INFINITY, f64::min)
+    };
+    for m in Method::PEERS {
+        assert!(
+            peer(m, 1e10) * 10.0 < peer(m, 1e8),
+            "{m:?}: k 1e10 {} vs k 1e8 {}",
+            peer(m, 1e10),
+            peer(m, 1e8)
+        );
+    }
     let csv = to_csv(&rows).unwrap();
     assert!(csv.starts_with("scene,method,dt_s"));
     assert_eq!(csv.lines().count(), rows.len() + 1);
-    assert!(to_markdown(&rows).contains("Speed-up"));
+    let md = to_markdown(&rows);
+    assert!(
+        md.contains("Speed-up") && md.contains("Newmark + penalty"),
+        "{md}"
+    );
     assert_eq!(figure(&rows, &scene.name).panels.len(), 2);
+}
+
+/// Newmark and Dormand-Prince integrate the same penalty equations: run
+/// finely, they agree with each other far more closely than either agrees
+/// with the rigid contact (the penalty error), on each shipped preset.
+#[test]
+fn the_two_peer_integrators_agree_on_the_penalty_equations() {
+    use tirecontact::ModeCache;
+    use tirecontact::bench::peers::{run_dopri, run_newmark};
+    use tirecontact::bench::work_precision::{rms_rel, run_stable};
+    use tirecontact::scene::ContactScheme;
+    let (dur, dt, k) = (0.05, 2.5e-6, 1e8);
+    for name in ["single_mode", "three_points", "paper"] {
+        let mut scene = Scene::load(std::path::Path::new(&format!("presets/{name}.ron"))).unwrap();
+        scene.dt_s = dt;
+        let cache = ModeCache::new();
+        let steps = (dur / dt).round() as usize;
+        let n = run_newmark(&scene, k, steps, &cache).unwrap();
+        let (d, _) = run_dopri(&scene, k, 1e-9, dt, dur, &cache).unwrap();
+        let (rigid, _, _) = run_stable(
+            &scene,
+            ContactScheme::Located,
+            dt,
+            dur,
+            tirecontact::SolverOptions::default(),
+            &cache,
+        )
+        .unwrap();
+        let flat = |u: &[Vec<f64>]| u.iter().flatten().copied().collect::<Vec<f64>>();
+        assert_eq!(n.u_m.len(), d.u_m.len());
+        let between = rms_rel(&flat(&n.u_m), &flat(&d.u_m));
+        let penalty = rms_rel(&flat(&n.u_m), &flat(&rigid.u_m));
+        assert!(
+            between < 0.05 * penalty && between < 1e-3,
+            "{name}: Newmark vs Dormand-Prince {between:e}, vs rigid {penalty:e}"
+        );
+    }
 }
