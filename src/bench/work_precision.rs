@@ -323,6 +323,19 @@ pub fn study(
         dt_ref,
         cfg.duration_s,
     );
+    // displacement and window-force errors of a run recorded every `dt`
+    let errors = |run: &BaselineRun, dt: f64, duration: f64| {
+        let smp = sample(
+            &run.t_s,
+            &run.u_m,
+            &run.q_n,
+            grid,
+            cfg.force_window_s,
+            dt,
+            duration,
+        );
+        (rms_rel(&smp.u, &ref_s.u), rms_rel(&smp.q, &ref_s.q))
+    };
     let mut rows = Vec::new();
     for method in [
         Method::Located,
@@ -383,21 +396,8 @@ pub fn study(
                     (run, start.elapsed().as_secs_f64())
                 }
             };
-            let smp = sample(
-                &run.t_s,
-                &run.u_m,
-                &run.q_n,
-                grid,
-                cfg.force_window_s,
-                dt,
-                duration,
-            );
-            let disp_err = rms_rel(&smp.u, &ref_s.u);
-            let force_err = rms_rel(&smp.q, &ref_s.q);
-            let order = prev.and_then(|(pdt, pe)| {
-                (disp_err.is_finite() && pe.is_finite() && disp_err > 0.0)
-                    .then(|| (pe / disp_err).ln() / (pdt / dt).ln())
-            });
+            let (disp_err, force_err) = errors(&run, dt, duration);
+            let order = observed_order(prev, dt, disp_err);
             prev = Some((dt, disp_err));
             let note = match run.overflow_t_s {
                 Some(t) => format!("overflow (non-finite) from t = {t:.4} s"),
@@ -422,6 +422,7 @@ pub fn study(
     // the peers: Newmark over the time steps and Dormand-Prince over the
     // tolerances (output every finest step), each for every penalty
     let dt_out = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min);
+
     for &k in &cfg.penalties_n_m {
         let mut prev: Option<(f64, f64)> = None;
         for &dt in &cfg.dts {
@@ -435,20 +436,8 @@ pub fn study(
             let start = Instant::now();
             let run = crate::bench::peers::run_newmark(&s, k, steps, &cache)?;
             let wall = start.elapsed().as_secs_f64();
-            let smp = sample(
-                &run.t_s,
-                &run.u_m,
-                &run.q_n,
-                grid,
-                cfg.force_window_s,
-                dt,
-                cfg.duration_s,
-            );
-            let disp_err = rms_rel(&smp.u, &ref_s.u);
-            let order = prev.and_then(|(pdt, pe)| {
-                (disp_err.is_finite() && pe.is_finite() && disp_err > 0.0)
-                    .then(|| (pe / disp_err).ln() / (pdt / dt).ln())
-            });
+            let (disp_err, force_err) = errors(&run, dt, cfg.duration_s);
+            let order = observed_order(prev, dt, disp_err);
             prev = Some((dt, disp_err));
             rows.push(Row {
                 scene: scene.name.clone(),
@@ -457,7 +446,7 @@ pub fn study(
                 steps,
                 wall_s: wall,
                 disp_err,
-                force_err: rms_rel(&smp.q, &ref_s.q),
+                force_err,
                 order,
                 penalty_n_m: Some(k),
                 rtol: None,
@@ -487,23 +476,15 @@ pub fn study(
                 }
             };
             let wall = start.elapsed().as_secs_f64();
-            let smp = sample(
-                &run.t_s,
-                &run.u_m,
-                &run.q_n,
-                grid,
-                cfg.force_window_s,
-                dt_out,
-                cfg.duration_s,
-            );
+            let (disp_err, force_err) = errors(&run, dt_out, cfg.duration_s);
             rows.push(Row {
                 scene: scene.name.clone(),
                 method: Method::Dopri,
                 dt_s: dt_out,
                 steps: st.accepted as usize,
                 wall_s: wall,
-                disp_err: rms_rel(&smp.u, &ref_s.u),
-                force_err: rms_rel(&smp.q, &ref_s.q),
+                disp_err,
+                force_err,
                 order: None,
                 penalty_n_m: Some(k),
                 rtol: Some(rtol),
@@ -515,6 +496,14 @@ pub fn study(
         }
     }
     Ok(rows)
+}
+
+/// The observed order of the error `err` at `dt` against the previous
+/// run's `(dt, error)`.
+fn observed_order(prev: Option<(f64, f64)>, dt: f64, err: f64) -> Option<f64> {
+    prev.and_then(|(pdt, pe)| {
+        (err.is_finite() && pe.is_finite() && err > 0.0).then(|| (pe / err).ln() / (pdt / dt).ln())
+    })
 }
 
 /// The fastest run of `method` (any penalty, time step or tolerance) whose
