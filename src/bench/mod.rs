@@ -4,5 +4,6 @@
 pub mod baselines;
 pub mod peers;
 pub mod residual;
+pub mod scaling;
 pub mod scenes;
 pub mod work_precision;

@@ -23,6 +23,16 @@ pub struct BenchArgs {
     /// Scenes to study (default: the shipped single-mode, three-point and
     /// paper presets, found from the repository's folder).
     pub presets: Vec<PathBuf>,
+    /// Instead of the work-precision study: the cost of a step against the
+    /// number of points (5 to 400) and of modes (10 to 400), each size run
+    /// in its own process for its peak memory (scaling.csv, .md, .png).
+    #[arg(long)]
+    pub scaling: bool,
+    /// One size of the scaling study, `P,K` (the child process's job), or
+    /// `P,K,SECONDS`: one run with contact of that length, nothing timed
+    /// (what callgrind counts).
+    #[arg(long, hide = true)]
+    pub scaling_one: Option<String>,
 }
 
 /// The scenes studied without preset arguments, relative to the working
@@ -42,6 +52,12 @@ fn default_presets() -> Vec<PathBuf> {
 }
 
 pub fn bench(args: &BenchArgs) -> CliResult {
+    if let Some(pk) = &args.scaling_one {
+        return super::scaling::scaling_one(pk, args.quick);
+    }
+    if args.scaling {
+        return super::scaling::scaling(args);
+    }
     let presets = if args.presets.is_empty() {
         let found = default_presets();
         if found.len() < DEFAULT_PRESETS.len() {
@@ -131,7 +147,7 @@ pub fn bench(args: &BenchArgs) -> CliResult {
     Ok(())
 }
 
-fn write(path: &Path, text: &str) -> CliResult {
+pub(super) fn write(path: &Path, text: &str) -> CliResult {
     tirecontact::fsio::write_atomic(path, text.as_bytes())
         .map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(())

@@ -6,6 +6,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod bench_scaling;
 mod faults;
 mod frames;
 mod hostile_args;

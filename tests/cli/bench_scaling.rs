@@ -1,0 +1,43 @@
+//! `bench --scaling --quick`: every size measured in its own process, the
+//! table, the fitted exponents and the figure written.
+
+use crate::support::{bin, temp_dir};
+
+#[test]
+fn the_scaling_study_writes_its_table_and_figure() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("scaling");
+    let o = bin()
+        .args(["bench", "--scaling", "--quick", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("scaling.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(rows.len(), 4, "{csv}");
+    for r in &rows {
+        let step_s: f64 = r[3].parse().unwrap();
+        let free_s: f64 = r[4].parse().unwrap();
+        assert!(step_s > 0.0 && free_s > 0.0, "{r:?}");
+        // each child reports its own peak memory (Linux)
+        if cfg!(target_os = "linux") {
+            let kb: f64 = r[10].parse().unwrap();
+            assert!(kb > 1000.0, "{r:?}");
+        }
+    }
+    let md = std::fs::read_to_string(out.join("scaling.md")).unwrap();
+    assert!(md.contains("Fitted exponents"), "{md}");
+    assert!(out.join("scaling.png").metadata().unwrap().len() > 10_000);
+    // a bad size is refused with what was expected
+    let o = bin()
+        .args(["bench", "--scaling-one", "5"])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("expected P,K"));
+}
