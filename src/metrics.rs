@@ -73,6 +73,8 @@ pub struct ContactMetrics {
     window_pos: usize,
     window_filled: usize,
     window_max_n: Vec<f64>,
+    /// The summed force of every steady step (N): the band levels' signal.
+    total_n: Vec<f64>,
     steps: u64,
 }
 
@@ -81,8 +83,11 @@ impl ContactMetrics {
     pub fn new(scene: &Scene, start_s: Option<f64>) -> Self {
         let p = scene.num_points();
         let window_steps = ((FORCE_WINDOW_S / scene.dt_s).round() as usize).max(1);
+        let start_s = start_s.unwrap_or(scene.ramp_s).max(0.0);
+        // (a guess: a scene too long to hold says so when its spectrum is taken)
+        let steady = ((scene.duration_s - start_s) / scene.dt_s).clamp(0.0, 1e7) as usize + 1;
         ContactMetrics {
-            start_s: start_s.unwrap_or(scene.ramp_s).max(0.0),
+            start_s,
             dt_s: scene.dt_s,
             tracker: None,
             part_n: vec![0.0; p],
@@ -98,6 +103,7 @@ impl ContactMetrics {
             window_pos: 0,
             window_filled: 0,
             window_max_n: vec![0.0; p],
+            total_n: Vec::with_capacity(steady),
             steps: 0,
         }
     }
@@ -115,6 +121,7 @@ impl ContactMetrics {
         self.steps += 1;
         let (q, c) = (sim.force_n(), sim.in_contact());
         let w = self.window_steps;
+        self.total_n.push(q.iter().sum());
         for i in 0..self.part_n.len() {
             let impact_n = self.part_n[i];
             let smooth = q[i] - impact_n;
@@ -138,6 +145,11 @@ impl ContactMetrics {
                 *m = m.max(s / w as f64);
             }
         }
+    }
+
+    /// The summed contact force of each steady step so far (N).
+    pub fn total_force_n(&self) -> &[f64] {
+        &self.total_n
     }
 
     /// The summary of the steps seen so far. A steady part shorter than the
