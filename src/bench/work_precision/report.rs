@@ -1,0 +1,206 @@
+//! The work-precision study's outputs: its CSV, the markdown tables
+//! (speed-ups at equal error, against the peers at set error levels) and
+//! the diagram.
+
+use super::{Method, PEER_ERROR_LEVELS, Row, fastest_at_error, time_at_error};
+use crate::output::figures::{Figure, Panel, Series, Style};
+
+/// CSV of the rows.
+pub fn to_csv(rows: &[Row]) -> Result<String, csv::Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record([
+        "scene",
+        "method",
+        "dt_s",
+        "steps",
+        "wall_s",
+        "disp_rms_rel_err",
+        "force_window_rms_rel_err",
+        "disp_order",
+        "penalty_n_m",
+        "rtol",
+        "note",
+    ])?;
+    for r in rows {
+        w.write_record([
+            r.scene.clone(),
+            r.method.key().to_string(),
+            format!("{:e}", r.dt_s),
+            r.steps.to_string(),
+            format!("{:.6e}", r.wall_s),
+            format!("{:.6e}", r.disp_err),
+            format!("{:.6e}", r.force_err),
+            r.order.map_or(String::new(), |o| format!("{o:.3}")),
+            r.penalty_n_m.map_or(String::new(), |k| format!("{k:e}")),
+            r.rtol.map_or(String::new(), |t| format!("{t:e}")),
+            r.note.clone(),
+        ])?;
+    }
+    let bytes = w.into_inner().map_err(|e| e.into_error())?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// Markdown table of the rows, plus speed-ups at equal error.
+pub fn to_markdown(rows: &[Row]) -> String {
+    let mut s = String::from(
+        "| scene | method | dt (s) | steps | run time (s) | displacement error | force error (window means) | order | note |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in rows.iter().filter(|r| !Method::PEERS.contains(&r.method)) {
+        s.push_str(&format!(
+            "| {} | {} | {:e} | {} | {:.4} | {:.2e} | {:.2e} | {} | {} |\n",
+            r.scene,
+            r.method.label(),
+            r.dt_s,
+            r.steps,
+            r.wall_s,
+            r.disp_err,
+            r.force_err,
+            r.order.map_or("".into(), |o| format!("{o:.2}")),
+            r.note
+        ));
+    }
+    let mut scenes: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
+    scenes.dedup();
+    s.push_str("\nSpeed-up of the default method (stable + located events) at equal displacement error: the error of each other method's finest run, and the time the located method needs for it (interpolated log-log; `>=` when its coarsest run is already more accurate).\n\n| scene | error | method | its run time (s) | located run time (s) | speed-up |\n|---|---|---|---|---|---|\n");
+    for sc in scenes {
+        let sr: Vec<Row> = rows.iter().filter(|r| r.scene == sc).cloned().collect();
+        let located: Vec<&Row> = sr.iter().filter(|r| r.method == Method::Located).collect();
+        for m in [Method::Paper, Method::AlphaBeta, Method::Direct] {
+            let Some(finest) = sr.iter().rfind(|r| r.method == m && r.disp_err.is_finite()) else {
+                continue;
+            };
+            let target = finest.disp_err;
+            let (tl, bound) = match time_at_error(&sr, Method::Located, target) {
+                Some(t) => (t, ""),
+                None => match located
+                    .iter()
+                    .filter(|r| r.disp_err <= target)
+                    .map(|r| r.wall_s)
+                    .reduce(f64::min)
+                {
+                    Some(t) => (t, ">= "),
+                    None => continue,
+                },
+            };
+            s.push_str(&format!(
+                "| {sc} | {target:.2e} | {} | {:.4} | {tl:.5} | {bound}{:.0}x |\n",
+                m.label(),
+                finest.wall_s,
+                finest.wall_s / tl.max(1e-9)
+            ));
+        }
+    }
+    s.push_str(&peer_markdown(rows));
+    s
+}
+
+/// The peers' table: per scene, error level and peer, the fastest run of
+/// the peer's sweep (penalty, time step or tolerance) reaching the error,
+/// the fastest located run reaching it, and the speed-up.
+fn peer_markdown(rows: &[Row]) -> String {
+    let mut scenes: Vec<&str> = rows.iter().map(|r| r.scene.as_str()).collect();
+    scenes.dedup();
+    let mut s = String::from(
+        "\nSpeed-up of the default method at equal displacement error against the methods people use for dynamic contact: Newmark (average acceleration) on the modal equations and adaptive Dormand-Prince 5(4), both with penalty contact (a spring k with its critical damper at each point), each the fastest run of its sweep over k, the time step or the tolerance that reaches the error; the located method's fastest run reaching it.\n\n| scene | error | peer | its fastest run (s) | its k (N/m), dt or rtol | located run (s) | speed-up |\n|---|---|---|---|---|---|---|\n",
+    );
+    for sc in scenes {
+        let sr: Vec<Row> = rows.iter().filter(|r| r.scene == sc).cloned().collect();
+        for target in PEER_ERROR_LEVELS {
+            let located = fastest_at_error(&sr, Method::Located, target);
+            for m in Method::PEERS {
+                let peer = fastest_at_error(&sr, m, target);
+                let how = |r: &Row| match (r.penalty_n_m, r.rtol) {
+                    (Some(k), Some(t)) => format!("k = {k:.0e}, rtol = {t:.0e}"),
+                    (Some(k), None) => format!("k = {k:.0e}, dt = {:e} s", r.dt_s),
+                    _ => String::new(),
+                };
+                let (pt, pk) = match peer {
+                    Some(r) => (format!("{:.4}", r.wall_s), how(r)),
+                    None => ("not reached".into(), "-".into()),
+                };
+                let lt = located.map_or("not reached".into(), |r| format!("{:.5}", r.wall_s));
+                let speed = match (peer, located) {
+                    (Some(p), Some(l)) => format!("{:.0}x", p.wall_s / l.wall_s.max(1e-9)),
+                    (None, Some(_)) => "peer never reaches it".into(),
+                    _ => "-".into(),
+                };
+                s.push_str(&format!(
+                    "| {sc} | {target:.0e} | {} | {pt} | {pk} | {lt} | {speed} |\n",
+                    m.label()
+                ));
+            }
+        }
+    }
+    s
+}
+
+/// The lower envelope of `(time, error)` points: by time, each point more
+/// accurate than every faster one (what a user sweeping the method's
+/// choices gets for a given time).
+fn best_of_sweep(mut points: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut best = f64::INFINITY;
+    points.retain(|&(_, e)| {
+        let keep = e < best;
+        best = best.min(e);
+        keep
+    });
+    points
+}
+
+/// The diagram: error against run time, log-log, one line per method.
+pub fn figure(rows: &[Row], scene: &str) -> Figure {
+    let mk = |force: bool| Panel {
+        title: if force {
+            "Contact force (means over 1 ms windows)"
+        } else {
+            "Displacement"
+        }
+        .into(),
+        x_label: "run time (s)".into(),
+        y_label: if force {
+            "force RMS relative error (-)"
+        } else {
+            "displacement RMS relative error (-)"
+        }
+        .into(),
+        series: Method::ALL
+            .iter()
+            .enumerate()
+            .map(|(k, &m)| {
+                let mut points: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| r.method == m && r.scene == scene)
+                    .map(|r| {
+                        (
+                            r.wall_s.max(1e-6),
+                            if force { r.force_err } else { r.disp_err },
+                        )
+                    })
+                    .filter(|p| p.1.is_finite() && p.1 > 0.0)
+                    .collect();
+                if Method::PEERS.contains(&m) {
+                    points = best_of_sweep(points);
+                }
+                Series {
+                    name: if Method::PEERS.contains(&m) {
+                        format!("{} (best of its sweep)", m.label())
+                    } else {
+                        m.label().into()
+                    },
+                    points,
+                    style: Style::LineMarkers(4),
+                    color: Some(k),
+                }
+            })
+            .collect(),
+        log_x: true,
+        log_y: true,
+        y_names: Vec::new(),
+    };
+    Figure {
+        title: format!("Work-precision: {scene}"),
+        subtitle: "each line runs dt from coarse (left) to fine (right); the penalty methods: the most accurate run of their sweep (k, dt or tolerance) for its time; reference: located events at a quarter of the finest dt".into(),
+        panels: vec![mk(false), mk(true)],
+    }
+}
