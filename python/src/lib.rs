@@ -185,10 +185,10 @@ impl PyRun {
         pd.call_method1("DataFrame", (data,))
     }
 
-    fn __repr__(&self) -> String {
+    fn __repr__(&self, py: Python<'_>) -> String {
         format!(
             "Run({} rows, {} points, dt_s={:e}, every={})",
-            self.stats.steps / self.every + 1,
+            numpy::PyUntypedArrayMethods::len(self.t_s.bind(py)),
             self.num_points,
             self.dt_s,
             self.every
