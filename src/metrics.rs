@@ -51,7 +51,8 @@ pub struct ContactSummary {
 }
 
 /// A [`crate::drive::Probe`] accumulating a [`ContactSummary`] step by
-/// step; every buffer is allocated in [`ContactMetrics::new`].
+/// step; every buffer is allocated in [`ContactMetrics::new`] (and
+/// [`ContactMetrics::keeping_total_force`]).
 #[derive(Debug, Clone)]
 pub struct ContactMetrics {
     start_s: f64,
@@ -73,19 +74,20 @@ pub struct ContactMetrics {
     window_pos: usize,
     window_filled: usize,
     window_max_n: Vec<f64>,
-    /// The summed force of every steady step (N): the band levels' signal.
+    /// The summed force of every steady step (N): the band levels' signal,
+    /// kept only when asked for ([`ContactMetrics::keeping_total_force`]).
     total_n: Vec<f64>,
+    keep_total: bool,
     steps: u64,
 }
 
 impl ContactMetrics {
-    /// Metrics of `scene`'s steady part from `start_s` (default `ramp_s`).
+    /// Metrics of `scene`'s steady part from `start_s` (default `ramp_s`);
+    /// their memory does not grow with the run's length.
     pub fn new(scene: &Scene, start_s: Option<f64>) -> Self {
         let p = scene.num_points();
         let window_steps = ((FORCE_WINDOW_S / scene.dt_s).round() as usize).max(1);
         let start_s = start_s.unwrap_or(scene.ramp_s).max(0.0);
-        // (a guess: a scene too long to hold says so when its spectrum is taken)
-        let steady = ((scene.duration_s - start_s) / scene.dt_s).clamp(0.0, 1e7) as usize + 1;
         ContactMetrics {
             start_s,
             dt_s: scene.dt_s,
@@ -103,9 +105,20 @@ impl ContactMetrics {
             window_pos: 0,
             window_filled: 0,
             window_max_n: vec![0.0; p],
-            total_n: Vec::with_capacity(steady),
+            total_n: Vec::new(),
+            keep_total: false,
             steps: 0,
         }
+    }
+
+    /// Also keeps the summed force of every steady step (8 bytes a step),
+    /// for the band levels: [`ContactMetrics::total_force_n`].
+    pub fn keeping_total_force(mut self, scene: &Scene) -> Self {
+        // (a guess: a scene too long to hold says so when its spectrum is taken)
+        let steady = ((scene.duration_s - self.start_s) / scene.dt_s).clamp(0.0, 1e7) as usize + 1;
+        self.total_n = Vec::with_capacity(steady);
+        self.keep_total = true;
+        self
     }
 
     /// Call after every step of the run (from its first).
@@ -121,7 +134,9 @@ impl ContactMetrics {
         self.steps += 1;
         let (q, c) = (sim.force_n(), sim.in_contact());
         let w = self.window_steps;
-        self.total_n.push(q.iter().sum());
+        if self.keep_total {
+            self.total_n.push(q.iter().sum());
+        }
         for i in 0..self.part_n.len() {
             let impact_n = self.part_n[i];
             let smooth = q[i] - impact_n;
@@ -147,7 +162,8 @@ impl ContactMetrics {
         }
     }
 
-    /// The summed contact force of each steady step so far (N).
+    /// The summed contact force of each steady step so far (N); empty
+    /// unless made [`ContactMetrics::keeping_total_force`].
     pub fn total_force_n(&self) -> &[f64] {
         &self.total_n
     }
