@@ -12,6 +12,7 @@ use std::path::PathBuf;
 use std::sync::LazyLock;
 use std::sync::atomic::AtomicBool;
 use tirecontact::drive::{Watch, run};
+use tirecontact::metrics::{ContactMetrics, ContactSummary};
 use tirecontact::modal::ModalModel as Model;
 use tirecontact::output::arrays::RunArrays;
 use tirecontact::spectrum::Window;
@@ -141,23 +142,33 @@ struct PyRun {
     ramp_s: f64,
     num_points: usize,
     stats: tirecontact::simulation::RunStats,
+    forces: ContactSummary,
     wall_s: f64,
 }
 
 #[pymethods]
 impl PyRun {
-    /// Steps, located events, worst penetration (m), largest step-mean
-    /// force per point (N, impacts as impulse / dt), contact fraction per
-    /// point, wall time of the run (s).
+    /// Steps, located events, worst penetration (m), wall time of the run
+    /// (s), and per point over the whole run: the largest and RMS contact
+    /// force without impacts (N), impacts per second (1/s), the mean and
+    /// largest impulse (N·s), the largest 1 ms mean force (N) and the
+    /// contact fraction (the figures of `tirecontact run`'s summary, which
+    /// do not change with the time step).
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
+        let f = &self.forces;
         d.set_item("steps", self.stats.steps)?;
         d.set_item("events", self.stats.events)?;
         d.set_item("worst_penetration_m", self.stats.worst_penetration_m)?;
-        d.set_item("max_step_force_n", self.stats.max_force_n.clone())?;
-        d.set_item("contact_fraction", self.stats.contact_fraction())?;
         d.set_item("wall_s", self.wall_s)?;
+        d.set_item("force_max_n", f.force_max_n.clone())?;
+        d.set_item("force_rms_n", f.force_rms_n.clone())?;
+        d.set_item("impacts_per_s", f.impacts_per_s.clone())?;
+        d.set_item("impulse_mean_ns", f.impulse_mean_ns.clone())?;
+        d.set_item("impulse_max_ns", f.impulse_max_ns.clone())?;
+        d.set_item("window_force_max_n", f.window_force_max_n.clone())?;
+        d.set_item("contact_fraction", f.contact_fraction.clone())?;
         Ok(d)
     }
 
@@ -229,10 +240,12 @@ fn run_scene(
     let p = s.num_points();
     let total = s.num_steps();
     let mut arrays = RunArrays::new(p, total, every);
+    // the forces without impacts and the impulses, over the whole run
+    let mut metrics = ContactMetrics::new(&s, Some(0.0));
     tirecontact::drive::Probe::start(&mut arrays, &sim).map_err(err)?;
     while sim.steps() < total {
         let n = (total - sim.steps()).min(CHUNK_STEPS);
-        py.detach(|| run(&mut sim, n, &mut arrays, Watch::none()))
+        py.detach(|| run(&mut sim, n, &mut (&mut arrays, &mut metrics), Watch::none()))
             .map_err(err)?;
         py.check_signals()?;
     }
@@ -262,6 +275,7 @@ fn run_scene(
         ramp_s: s.ramp_s,
         num_points: p,
         stats: sim.stats().clone(),
+        forces: metrics.summary(),
         wall_s,
     })
 }

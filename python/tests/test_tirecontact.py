@@ -65,6 +65,26 @@ def test_the_arrays_are_handed_over_without_a_copy():
     assert run.u_m.flags["C_CONTIGUOUS"]
 
 
+def test_run_stats_are_the_forces_without_impacts_and_the_impulses():
+    scene = tc.Scene.load(PRESETS / "three_points.ron")
+    runs = [tc.run(scene, dt_s=dt, duration_s=0.2) for dt in (1e-5, 5e-6)]
+    for run in runs:
+        st = run.stats
+        # every step's mean force includes the impacts; the steps' contact
+        # states give the contact fraction
+        assert np.all(np.array(st["force_max_n"]) <= run.q_n.max(axis=0) * (1 + 1e-12))
+        np.testing.assert_allclose(st["contact_fraction"], run.contact[1:].mean(axis=0), rtol=1e-12)
+        assert st["steps"] == len(run.t_s) - 1
+    a, b = (r.stats for r in runs)
+    # impacts happen, and the figures do not depend on the time step, unlike
+    # the largest step-mean force (impulse / dt), which doubles
+    assert sum(a["impacts_per_s"]) > 0
+    np.testing.assert_allclose(a["force_max_n"], b["force_max_n"], rtol=1e-2)
+    np.testing.assert_allclose(a["impulse_max_ns"], b["impulse_max_ns"], rtol=1e-2)
+    peak = [r.q_n.max() for r in runs]
+    assert peak[1] > 1.8 * peak[0], peak
+
+
 def test_get_set_and_errors_carry_the_project_messages(tmp_path):
     scene = tc.Scene.load(PRESETS / "three_points.ron")
     scene.set("tyre.modes[0].damping_ratio", 0.07)

@@ -50,7 +50,11 @@ class Run:
     ramp_s: float
     @property
     def stats(self) -> dict[str, Any]:
-        """steps, events, worst_penetration_m, max_step_force_n, contact_fraction, wall_s."""
+        """steps, events, worst_penetration_m (m), wall_s (s), and per point:
+        force_max_n and force_rms_n (N, the contact force without impacts),
+        impacts_per_s (1/s), impulse_mean_ns and impulse_max_ns (N·s),
+        window_force_max_n (N, the largest 1 ms mean force, impacts
+        included), contact_fraction (-)."""
     def to_pandas(self) -> Any:
         """A DataFrame with the columns of `tirecontact run -o`."""
 
