@@ -19,15 +19,26 @@ fn the_scaling_study_writes_its_table_and_figure() {
         .skip(1)
         .map(|l| l.split(',').collect())
         .collect();
-    assert_eq!(rows.len(), 4, "{csv}");
+    // four sizes, each with rigid contact and with tread springs
+    assert_eq!(rows.len(), 8, "{csv}");
     for r in &rows {
-        let step_s: f64 = r[3].parse().unwrap();
-        let free_s: f64 = r[4].parse().unwrap();
+        let step_s: f64 = r[4].parse().unwrap();
+        let free_s: f64 = r[5].parse().unwrap();
         assert!(step_s > 0.0 && free_s > 0.0, "{r:?}");
         // each child reports its own peak memory (Linux)
         if cfg!(target_os = "linux") {
-            let kb: f64 = r[10].parse().unwrap();
+            let kb: f64 = r[13].parse().unwrap();
             assert!(kb > 1000.0, "{r:?}");
+        }
+        // 20 points: the tread holds the pressed third (6) on the road,
+        // rigid contact about one point
+        if r[1] == "20" {
+            let on: f64 = r[7].parse::<f64>().unwrap() * 20.0;
+            match r[0] {
+                "tread" => assert!((5.5..=7.0).contains(&on), "{r:?}"),
+                "rigid" => assert!(on < 3.0, "{r:?}"),
+                other => panic!("contact `{other}`"),
+            }
         }
     }
     let md = std::fs::read_to_string(out.join("scaling.md")).unwrap();
@@ -39,5 +50,5 @@ fn the_scaling_study_writes_its_table_and_figure() {
         .output()
         .unwrap();
     assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("expected P,K"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("expected P,K,CONTACT"));
 }
