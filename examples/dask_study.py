@@ -6,7 +6,9 @@ what `tirecontact study run` (or `study merge` of its shards) writes.
 
 Each worker loads the study once (a ring tyre identified once per worker
 process) and runs the rows it is given; `tirecontact.run_row` releases the
-GIL, so a worker's threads run rows in parallel.
+GIL, so a worker's threads run rows in parallel. Rows go to the workers in
+batches (about eight batches per worker thread): a row of a short study
+takes a few milliseconds, about Dask's own cost per task.
 """
 
 import argparse
@@ -25,9 +27,10 @@ def _study(path):
     return tc.Study.load(path)
 
 
-def run_row(path, row_id):
-    """One row's record, on whichever worker runs it."""
-    return tc.run_row(_study(path), row_id)
+def run_rows(path, row_ids):
+    """The records of a batch of rows, on whichever worker runs it."""
+    study = _study(path)
+    return [tc.run_row(study, row) for row in row_ids]
 
 
 def main(argv=None):
@@ -36,6 +39,11 @@ def main(argv=None):
     ap.add_argument("output", help="results table (CSV)")
     ap.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
     ap.add_argument("--scheduler", help="address of an existing Dask scheduler instead")
+    ap.add_argument(
+        "--rows-per-task",
+        type=int,
+        help="rows in a Dask task (default: about eight tasks per worker thread)",
+    )
     a = ap.parse_args(argv)
     study = tc.Study.load(a.study)
     ids = [row for row, _, _ in tc.study_rows(study)]
@@ -46,8 +54,13 @@ def main(argv=None):
         cluster = LocalCluster(n_workers=a.workers, threads_per_worker=1, processes=True)
         client = Client(cluster)
     try:
-        futures = client.map(run_row, [a.study] * len(ids), ids, pure=False)
-        records = client.gather(futures)
+        threads = sum(client.nthreads().values()) or 1
+        per_task = a.rows_per_task or max(1, len(ids) // (8 * threads))
+        if per_task < 1:
+            ap.error(f"--rows-per-task = {per_task}: expected 1 or more rows")
+        batches = [ids[i : i + per_task] for i in range(0, len(ids), per_task)]
+        futures = client.map(run_rows, [a.study] * len(batches), batches, pure=False)
+        records = [r for batch in client.gather(futures) for r in batch]
     finally:
         client.close()
         if not a.scheduler:
@@ -57,8 +70,8 @@ def main(argv=None):
     table = pd.read_csv(a.output)
     print(
         f"wrote {a.output} ({len(records)} rows on "
-        f"{'the cluster at ' + a.scheduler if a.scheduler else str(a.workers) + ' workers'} "
-        f"in {time.time() - start:.1f} s, {failed} failed; {table.shape[1]} columns)"
+        f"{'the cluster at ' + a.scheduler if a.scheduler else str(a.workers) + (' worker' if a.workers == 1 else ' workers')} "
+        f"in {len(batches)} tasks, {time.time() - start:.1f} s, {failed} failed; {table.shape[1]} columns)"
     )
     return 0
 
