@@ -61,6 +61,10 @@ pub enum StudyCommand {
         /// factor (created when missing).
         #[arg(short, long)]
         output: PathBuf,
+        /// The title of the summary and the figures (default: the table's
+        /// file name without its extension).
+        #[arg(long)]
+        title: Option<String>,
     },
     /// Merge parts into one table: every row once, all of one study.
     Merge {
@@ -91,11 +95,15 @@ pub fn study(args: &StudyArgs) -> CliResult {
             output,
         ),
         StudyCommand::Merge { parts, output } => merge(parts, output),
-        StudyCommand::Report { table, output } => report(table, output),
+        StudyCommand::Report {
+            table,
+            output,
+            title,
+        } => report(table, output, title.as_deref()),
     }
 }
 
-fn report(path: &Path, dir: &Path) -> CliResult {
+fn report(path: &Path, dir: &Path, title: Option<&str>) -> CliResult {
     use tirecontact::study::report;
     super::paths::ensure_output_dir("-o", dir)?;
     let (header, rows) = read_table(path)?;
@@ -105,9 +113,13 @@ fn report(path: &Path, dir: &Path) -> CliResult {
         return Err(format!("{}: no row succeeded: nothing to report", path.display()).into());
     }
     let effects = report::main_effects(&t);
-    let title = path
-        .file_stem()
-        .map_or("study".into(), |s| s.to_string_lossy().into_owned());
+    let title = match title.map(str::trim) {
+        Some("") => return Err("--title is empty: expected a title for the summary and the figures, e.g. --title \"Speed and road amplitude\"".into()),
+        Some(t) => t.to_string(),
+        None => path
+            .file_stem()
+            .map_or("study".into(), |s| s.to_string_lossy().into_owned()),
+    };
     let mut csv = csv::Writer::from_writer(Vec::new());
     csv.write_record(["factor", "level", "rows", "metric", "mean", "std"])?;
     let mut figures = Vec::new();

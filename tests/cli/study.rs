@@ -111,6 +111,27 @@ fn shards_threads_and_resumes_give_the_one_process_table_byte_for_byte() {
     ] {
         assert!(d.join("report").join(f).is_file(), "{f}");
     }
+    // the title is the table's name unless given
+    assert!(md.starts_with("# one\n"), "{md}");
+    ok(&[
+        "report",
+        &path("one.csv"),
+        "-o",
+        &path("titled"),
+        "--title",
+        "Speed and road amplitude",
+    ]);
+    let md = std::fs::read_to_string(d.join("titled/summary.md")).unwrap();
+    assert!(md.starts_with("# Speed and road amplitude\n"), "{md}");
+    let e = err(&[
+        "report",
+        &path("one.csv"),
+        "-o",
+        &path("t2"),
+        "--title",
+        " ",
+    ]);
+    assert!(e.contains("--title is empty"), "{e}");
     // merge names what is wrong
     let e = err(&[
         "merge",
