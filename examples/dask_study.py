@@ -45,6 +45,8 @@ def main(argv=None):
         help="rows in a Dask task (default: about eight tasks per worker thread)",
     )
     a = ap.parse_args(argv)
+    if a.rows_per_task is not None and a.rows_per_task < 1:
+        ap.error(f"--rows-per-task = {a.rows_per_task}: expected 1 or more rows")
     study = tc.Study.load(a.study)
     ids = [row for row, _, _ in tc.study_rows(study)]
     start = time.time()
@@ -56,8 +58,6 @@ def main(argv=None):
     try:
         threads = sum(client.nthreads().values()) or 1
         per_task = a.rows_per_task or max(1, len(ids) // (8 * threads))
-        if per_task < 1:
-            ap.error(f"--rows-per-task = {per_task}: expected 1 or more rows")
         batches = [ids[i : i + per_task] for i in range(0, len(ids), per_task)]
         futures = client.map(run_rows, [a.study] * len(batches), batches, pure=False)
         records = [r for batch in client.gather(futures) for r in batch]

@@ -78,6 +78,8 @@ pub struct ContactMetrics {
     /// kept only when asked for ([`ContactMetrics::keeping_total_force`]).
     total_n: Vec<f64>,
     keep_total: bool,
+    /// Steady steps expected from the scene (capped at 1e7).
+    steady_steps: usize,
     steps: u64,
 }
 
@@ -88,6 +90,8 @@ impl ContactMetrics {
         let p = scene.num_points();
         let window_steps = ((FORCE_WINDOW_S / scene.dt_s).round() as usize).max(1);
         let start_s = start_s.unwrap_or(scene.ramp_s).max(0.0);
+        // (a guess: a scene too long to hold says so when its spectrum is taken)
+        let steady_steps = ((scene.duration_s - start_s) / scene.dt_s).clamp(0.0, 1e7) as usize + 1;
         ContactMetrics {
             start_s,
             dt_s: scene.dt_s,
@@ -107,16 +111,15 @@ impl ContactMetrics {
             window_max_n: vec![0.0; p],
             total_n: Vec::new(),
             keep_total: false,
+            steady_steps,
             steps: 0,
         }
     }
 
     /// Also keeps the summed force of every steady step (8 bytes a step),
     /// for the band levels: [`ContactMetrics::total_force_n`].
-    pub fn keeping_total_force(mut self, scene: &Scene) -> Self {
-        // (a guess: a scene too long to hold says so when its spectrum is taken)
-        let steady = ((scene.duration_s - self.start_s) / scene.dt_s).clamp(0.0, 1e7) as usize + 1;
-        self.total_n = Vec::with_capacity(steady);
+    pub fn keeping_total_force(mut self) -> Self {
+        self.total_n = Vec::with_capacity(self.steady_steps);
         self.keep_total = true;
         self
     }
@@ -206,5 +209,32 @@ impl crate::drive::Probe for ContactMetrics {
     fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
         ContactMetrics::after_step(self, sim);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ContactMetrics;
+    use crate::drive::{Watch, run_to_end};
+    use crate::identify::PreparedModel;
+    use crate::simulation::{Simulation, SolverOptions};
+
+    #[test]
+    fn the_summed_force_is_kept_only_when_asked_for() {
+        let mut scene = crate::bench::scenes::many_points(3, 5);
+        scene.duration_s = 0.02;
+        let model = PreparedModel::of(&scene).unwrap();
+        let mut plain = ContactMetrics::new(&scene, None);
+        let mut kept = ContactMetrics::new(&scene, None).keeping_total_force();
+        let mut sim = Simulation::new(&model, SolverOptions::default()).unwrap();
+        run_to_end(&mut sim, &mut (&mut plain, &mut kept), Watch::none()).unwrap();
+        let steps = kept.summary().steps;
+        assert!(steps > 0);
+        assert_eq!(kept.total_force_n().len() as u64, steps);
+        assert!(plain.total_force_n().is_empty());
+        // the summed force is the points' forces summed (the last step)
+        let last: f64 = sim.force_n().iter().sum();
+        assert_eq!(*kept.total_force_n().last().unwrap(), last);
+        assert_eq!(plain.summary(), kept.summary());
     }
 }

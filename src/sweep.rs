@@ -365,7 +365,7 @@ pub fn run_summary_timed(
     let mut sim = Simulation::new(model, SolverOptions::default()).map_err(|e| e.to_string())?;
     // a steady part too short or too long for a spectrum, before the run
     SteadyRecorder::steady_samples(scene, None).map_err(|e| e.to_string())?;
-    let mut metrics = ContactMetrics::new(scene, None).keeping_total_force(scene);
+    let mut metrics = ContactMetrics::new(scene, None).keeping_total_force();
     let n = scene.num_steps();
     let mut reported = 0;
     let mut progress = |done: u64, _: &Simulation| {

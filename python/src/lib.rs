@@ -153,7 +153,7 @@ impl PyRun {
     /// force without impacts (N), impacts per second (1/s), the mean and
     /// largest impulse (N·s), the largest 1 ms mean force (N) and the
     /// contact fraction (the figures of `tirecontact run`'s summary, which
-    /// do not change with the time step).
+    /// converge as dt → 0; the impact count more slowly, see cli.md).
     #[getter]
     fn stats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
@@ -321,7 +321,7 @@ impl PyModalModel {
             .iter()
             .flat_map(|m| m.residue.iter().copied())
             .collect();
-        Ok(v.into_pyarray(py).reshape([self.model.modes.len(), p, p])?)
+        v.into_pyarray(py).reshape([self.model.modes.len(), p, p])
     }
 
     /// The identification's fit report (a ring or measured tyre), or None
@@ -347,7 +347,7 @@ impl PyModalModel {
                 }
             }
         }
-        Ok(v.into_pyarray(py).reshape([t.len(), p, p])?)
+        v.into_pyarray(py).reshape([t.len(), p, p])
     }
 
     /// Frequency responses G_ij (m/N, complex) at `freq_hz`, shape (F, P, P).
@@ -367,7 +367,7 @@ impl PyModalModel {
                 }
             }
         }
-        Ok(v.into_pyarray(py).reshape([f.len(), p, p])?)
+        v.into_pyarray(py).reshape([f.len(), p, p])
     }
 
     fn __repr__(&self) -> String {

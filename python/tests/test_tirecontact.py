@@ -76,6 +76,7 @@ def test_run_stats_are_the_forces_without_impacts_and_the_impulses():
         np.testing.assert_allclose(st["contact_fraction"], run.contact[1:].mean(axis=0), rtol=1e-12)
         assert st["steps"] == len(run.t_s) - 1
     a, b = (r.stats for r in runs)
+    assert min(a["force_max_n"]) > 0 and min(a["impulse_max_ns"]) > 0, a
     # impacts happen, and the figures do not depend on the time step, unlike
     # the largest step-mean force (impulse / dt), which doubles
     assert sum(a["impacts_per_s"]) > 0
@@ -183,14 +184,20 @@ def test_a_run_releases_the_gil():
         span["end"] = time.perf_counter()
 
     th = threading.Thread(target=worker)
-    beats = []
+    gaps = []  # the main thread's pauses of over 1 ms: (from, to)
+    # (timed from before the start: the worker may take the GIL at once)
+    last = time.perf_counter()
     th.start()
     while th.is_alive():
-        beats.append(time.perf_counter())
+        now = time.perf_counter()
+        if now - last > 1e-3:
+            gaps.append((last, now))
+        last = now
+    gaps.append((last, time.perf_counter()))
     th.join()
     start, end = span["start"], span["end"]
-    inside = [start] + [b for b in beats if start < b < end] + [end]
-    longest = max(b - a for a, b in zip(inside, inside[1:]))
+    # the longest pause within the run
+    longest = max([min(b, end) - max(a, start) for a, b in gaps] + [0.0])
     assert end - start > 0.1, f"the run took {end - start:.3f} s"
     assert longest < 0.5 * (end - start), (
         f"the main thread stood still for {longest:.3f} s of a {end - start:.3f} s run"
@@ -200,8 +207,14 @@ def test_a_run_releases_the_gil():
 def test_two_threads_run_two_scenes_at_once():
     # Two runs on two threads use two cores at once: the process's CPU time
     # is well above its wall time (with the GIL held it could not exceed it).
-    if len(os.sched_getaffinity(0)) < 2:
-        pytest.skip("one core")
+    cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    quota = Path("/sys/fs/cgroup/cpu.max")
+    if quota.exists():
+        limit, period = (quota.read_text().split() + ["100000"])[:2]
+        if limit != "max":
+            cpus = min(cpus, int(limit) // int(period))
+    if cpus < 2:
+        pytest.skip("fewer than two CPUs for this process")
     scene = tc.Scene.load(PRESETS / "paper.ron")
     duration = _timed_duration_s(scene, 0.5)
 
@@ -211,15 +224,21 @@ def test_two_threads_run_two_scenes_at_once():
     t = time.perf_counter()
     one()
     single = time.perf_counter() - t
-    threads = [threading.Thread(target=one) for _ in range(2)]
-    t, c = time.perf_counter(), time.process_time()
-    for th in threads:
-        th.start()
-    for th in threads:
-        th.join()
-    wall, cpu = time.perf_counter() - t, time.process_time() - c
-    print(f"one run {single:.3f} s; two on two threads {wall:.3f} s wall, {cpu:.3f} s CPU")
-    assert cpu > 1.3 * wall, f"two threads: {cpu:.3f} s CPU in {wall:.3f} s wall"
+    # a busy machine can take a core away for a while: three tries
+    tries = []
+    for _ in range(3):
+        threads = [threading.Thread(target=one) for _ in range(2)]
+        t, c = time.perf_counter(), time.process_time()
+        for th in threads:
+            th.start()
+        for th in threads:
+            th.join()
+        wall, cpu = time.perf_counter() - t, time.process_time() - c
+        tries.append((wall, cpu))
+        if cpu > 1.3 * wall:
+            break
+    print(f"one run {single:.3f} s; two on two threads (wall s, CPU s): {tries}")
+    assert cpu > 1.3 * wall, f"two threads, (wall s, CPU s) of each try: {tries}"
 
 
 def test_the_dask_example_writes_the_cli_table(tmp_path):

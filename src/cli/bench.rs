@@ -24,13 +24,15 @@ pub struct BenchArgs {
     /// paper presets, found from the repository's folder).
     pub presets: Vec<PathBuf>,
     /// Instead of the work-precision study: the cost of a step against the
-    /// number of points (5 to 400) and of modes (10 to 400), each size run
-    /// in its own process for its peak memory (scaling.csv, .md, .png).
+    /// number of points (5 to 400) and of modes (10 to 400), with rigid
+    /// contact and with tread springs, each size timed in its own process
+    /// (scaling.csv, .md, .png).
     #[arg(long)]
     pub scaling: bool,
-    /// One size of the scaling study, `P,K` (the child process's job), or
-    /// `P,K,SECONDS`: one run with contact of that length, nothing timed
-    /// (what callgrind counts).
+    /// One size of the scaling study, `P,K,CONTACT` with CONTACT `rigid`
+    /// or `tread` (the child process's job: its timed runs), or
+    /// `P,K,CONTACT,SECONDS[,lifted]`: one run of that length, off the road
+    /// with `lifted`, then the process's peak memory (what callgrind counts).
     #[arg(long, hide = true)]
     pub scaling_one: Option<String>,
 }

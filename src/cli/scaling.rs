@@ -1,7 +1,9 @@
 //! `tirecontact bench --scaling`: the cost of a step against the numbers
-//! of points and modes ([`tirecontact::bench::scaling`]), each size in a
-//! child process of its own (`--scaling-one P,K`) for its peak memory, and
-//! callgrind's instruction counts where valgrind is installed.
+//! of points and modes ([`tirecontact::bench::scaling`]) for both contact
+//! laws, each size timed in a child process of its own
+//! (`--scaling-one P,K,CONTACT`), its peak memory from one run in another
+//! (`P,K,CONTACT,SECONDS`), and callgrind's instruction counts, with
+//! contact and lifted off the road, where valgrind is installed.
 
 use super::CliResult;
 use super::bench::BenchArgs;
@@ -31,6 +33,46 @@ fn scaling_sizes(quick: bool) -> (Sizes, Sizes) {
                 .collect(),
         )
     }
+}
+
+/// The peak memory (kB) of one 0.1 s run of a size in a process of its
+/// own; a warning on the progress bar and `None` when it fails.
+fn peak_memory_kb(
+    exe: &std::path::Path,
+    p: usize,
+    k: usize,
+    regime: Regime,
+    bar: &ProgressBar,
+) -> Option<u64> {
+    let out = std::process::Command::new(exe)
+        .args([
+            "bench",
+            "--scaling-one",
+            &format!("{p},{k},{},0.1", regime.key()),
+        ])
+        .output();
+    let failed = |why: String| {
+        bar.println(format!(
+            "warning: P = {p}, K = {k}, {}: peak memory not measured: {why}",
+            regime.label()
+        ));
+        None
+    };
+    match out {
+        Err(e) => failed(e.to_string()),
+        Ok(o) if !o.status.success() => failed(format!(
+            "{}: {}",
+            o.status,
+            String::from_utf8_lossy(&o.stderr).trim()
+        )),
+        // empty where the system has no /proc/self/status
+        Ok(o) => String::from_utf8_lossy(&o.stdout).trim().parse().ok(),
+    }
+}
+
+/// Length (s) and number of the timed runs of a size.
+fn timed_runs(quick: bool) -> (f64, usize) {
+    if quick { (0.02, 1) } else { (0.1, 5) }
 }
 
 /// This process's peak resident memory (kB, /proc/self/status' VmHWM;
@@ -78,7 +120,7 @@ pub fn scaling_one(pk: &str, quick: bool) -> CliResult {
         println!("{}", peak_rss_kb().unwrap_or_default());
         return Ok(());
     }
-    let (duration, repeats) = if quick { (0.02, 1) } else { (0.1, 5) };
+    let (duration, repeats) = timed_runs(quick);
     let r = tirecontact::bench::scaling::measure(p, k, regime, duration, repeats)?;
     println!(
         "{},{},{},{:e},{:e},{},{},{}",
@@ -101,6 +143,7 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
     super::paths::ensure_output_dir("-o", &args.output)?;
     let exe = std::env::current_exe()?;
     let (by_p, by_k) = scaling_sizes(args.quick);
+    let repeats = timed_runs(args.quick).1;
     // every (size, regime) of the study, points first
     let jobs: Vec<(bool, usize, usize, Regime)> = Regime::ALL
         .iter()
@@ -157,16 +200,7 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
                 instructions_per_step: None,
                 free_instructions_per_step: None,
             },
-            // the peak memory of one run of 0.1 s, in a process of its own
-            std::process::Command::new(&exe)
-                .args([
-                    "bench",
-                    "--scaling-one",
-                    &format!("{p},{k},{},0.1", regime.key()),
-                ])
-                .output()
-                .ok()
-                .and_then(|o| String::from_utf8_lossy(&o.stdout).trim().parse().ok()),
+            peak_memory_kb(&exe, p, k, regime, &bar),
         ));
         bar.inc(1);
     }
@@ -200,9 +234,19 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
                 .output()
                 .ok()?;
             let err = String::from_utf8_lossy(&out.stderr);
-            err.lines()
+            let n = err
+                .lines()
                 .find_map(|l| l.split("Collected :").nth(1))
-                .and_then(|n| n.trim().parse().ok())
+                .and_then(|n| n.trim().parse().ok());
+            if n.is_none() || !out.status.success() {
+                bar.println(format!(
+                    "warning: P = {p}, K = {k}, {}{lifted}: callgrind counted nothing ({}): {}",
+                    regime.label(),
+                    out.status,
+                    err.lines().last().unwrap_or("").trim()
+                ));
+            }
+            n
         };
         let per_step = |lifted: &str| Some((count(0.03, lifted)? - count(0.02, lifted)?) / 1000.0);
         instructions.push(per_step("").zip(per_step(",lifted")));
@@ -212,8 +256,10 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
     let mut csv = String::from(
         "contact,points,modes,steps,step_s,free_step_s,contact_share,on_road,events_per_step,factorisations_per_step,instructions_per_step,free_instructions_per_step,contact_share_instructions,max_rss_kb\n",
     );
-    let mut md = String::from(
-        "# Cost of a step against the problem's size\n\nRank-1 modes; the middle third of the points pressed by up to 2 mm on a 0.1 mm sine road at 10 m/s; dt = 1e-5 s. Rigid contact holds about one point on the road (the smooth mode shapes lift the neighbours of a pressed point); a soft tread spring at each point (compliant contact, 6e3 N/m shared by the points) holds the pressed third. Each size is timed in its own process, the fastest of five runs; its peak resident memory is that of one 0.1 s run in a process of its own. The contact's share is 1 − (the same scene off the road) / (with contact), by wall time and by instructions. Instructions per step: callgrind's count over 1000 rolling steps (`-` without valgrind or with --quick); unlike wall times they repeat exactly.\n\n| contact | points P | modes K | µs per step | off the road | contact share | points on the road | events per step | factorisations per step | instructions per step | off the road | contact share by instructions | peak memory (MB) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    let mut md = format!(
+        "# Cost of a step against the problem's size\n\nRank-1 modes; the middle third of the points pressed by up to {} mm on a 0.1 mm sine road at 10 m/s; dt = 1e-5 s. Rigid contact holds about one point on the road (the smooth mode shapes lift the neighbours of a pressed point); a soft tread spring at each point (compliant contact, {:e} N/m shared by the points) holds the pressed third. Each size is timed in its own process, the fastest of {repeats} run(s); its peak resident memory is that of one 0.1 s run in a process of its own. The contact's share is 1 − (the same scene off the road) / (with contact), by wall time and by instructions. Instructions per step: callgrind's count over 1000 rolling steps (`-` without valgrind or with --quick); unlike wall times they repeat exactly.\n\n| contact | points P | modes K | µs per step | off the road | contact share | points on the road | events per step | factorisations per step | instructions per step | off the road | contact share by instructions | peak memory (MB) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        tirecontact::bench::scaling::PRELOAD_M * 1e3,
+        tirecontact::bench::scaling::TREAD_TOTAL_N_M,
     );
     for ((r, rss), ins) in measured.iter().zip(&instructions) {
         let fmt = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or(String::new(), f);
