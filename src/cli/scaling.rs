@@ -211,16 +211,9 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
             .arg("--version")
             .output()
             .is_ok_and(|o| o.status.success());
-    // (with contact, off the road) per job
-    let mut instructions: Vec<Option<(f64, f64)>> = Vec::new();
-    if valgrind {
-        bar.set_position(0);
-    }
-    for &(_, p, k, regime) in &jobs {
-        if !valgrind {
-            instructions.push(None);
-            continue;
-        }
+    bar.set_position(0);
+    let counted = if valgrind { measured.len() } else { 0 };
+    for (&(_, p, k, regime), (row, _)) in jobs.iter().zip(&mut measured).take(counted) {
         bar.set_message(format!("callgrind, P = {p}, K = {k}, {}", regime.label()));
         let count = |d: f64, lifted: &str| -> Option<f64> {
             let out = std::process::Command::new("valgrind")
@@ -249,7 +242,8 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
             n
         };
         let per_step = |lifted: &str| Some((count(0.03, lifted)? - count(0.02, lifted)?) / 1000.0);
-        instructions.push(per_step("").zip(per_step(",lifted")));
+        row.instructions_per_step = per_step("");
+        row.free_instructions_per_step = per_step(",lifted");
         bar.inc(1);
     }
     bar.finish_and_clear();
@@ -261,10 +255,10 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
         tirecontact::bench::scaling::PRELOAD_M * 1e3,
         tirecontact::bench::scaling::TREAD_TOTAL_N_M,
     );
-    for ((r, rss), ins) in measured.iter().zip(&instructions) {
+    for (r, rss) in &measured {
         let fmt = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or(String::new(), f);
-        let (with, free) = (ins.map(|i| i.0), ins.map(|i| i.1));
-        let share = ins.map(|(w, f)| (1.0 - f / w).max(0.0));
+        let (with, free) = (r.instructions_per_step, r.free_instructions_per_step);
+        let share = r.contact_share_instructions();
         csv.push_str(&format!(
             "{},{},{},{},{:e},{:e},{:.4},{:.4},{:.4},{:.4},{},{},{},{}\n",
             r.regime.key(),
@@ -300,29 +294,32 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
             rss.map_or("-".into(), |v| format!("{:.1}", v as f64 / 1024.0))
         ));
     }
-    // the rows and instruction counts of one scan (by P or by K) of a regime
-    let scan = |by_points: bool, regime: Regime| -> Vec<(&ScalingRow, Option<(f64, f64)>)> {
+    // the rows of one scan (by P or by K) of a regime
+    let scan = |by_points: bool, regime: Regime| -> Vec<&ScalingRow> {
         jobs.iter()
-            .zip(measured.iter().zip(&instructions))
+            .zip(&measured)
             .filter(|((b, _, _, r), _)| *b == by_points && *r == regime)
-            .map(|(_, ((row, _), ins))| (row, *ins))
+            .map(|(_, (row, _))| row)
             .collect()
     };
     let x = |r: &ScalingRow, by_points: bool| (if by_points { r.points } else { r.modes }) as f64;
     let slope = |by_points: bool, regime: Regime, free: bool| {
         let xy: Vec<(f64, f64)> = scan(by_points, regime)
             .iter()
-            .map(|(r, _)| (x(r, by_points), if free { r.free_step_s } else { r.step_s }))
+            .map(|r| (x(r, by_points), if free { r.free_step_s } else { r.step_s }))
             .collect();
         loglog_slope(&xy)
     };
-    let ins_slope = |by_points: bool, regime: Regime| -> Option<f64> {
+    // (x, instructions per step) of a scan, where every row was counted
+    let ins_xy = |by_points: bool, regime: Regime| -> Option<Vec<(f64, f64)>> {
         let xy: Option<Vec<(f64, f64)>> = scan(by_points, regime)
             .iter()
-            .map(|(r, n)| n.map(|n| (x(r, by_points), n.0)))
+            .map(|r| r.instructions_per_step.map(|n| (x(r, by_points), n)))
             .collect();
-        xy.filter(|v| v.len() >= 2).map(|v| loglog_slope(&v))
+        xy.filter(|v| v.len() >= 2)
     };
+    let ins_slope =
+        |by_points: bool, regime: Regime| ins_xy(by_points, regime).map(|v| loglog_slope(&v));
     let (k_fixed, p_fixed) = (
         by_p.first().map_or(0, |s| s.1),
         by_k.first().map_or(0, |s| s.0),
@@ -345,13 +342,8 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
         md.push_str(".\n");
     }
     // the small active set's instructions against K and against P: affine
-    let fit = |by_points: bool| -> Option<(f64, f64)> {
-        let xy: Option<Vec<(f64, f64)>> = scan(by_points, Regime::Rigid)
-            .iter()
-            .map(|(r, n)| n.map(|n| (x(r, by_points), n.0)))
-            .collect();
-        xy.filter(|v| v.len() >= 2)
-            .map(|v| tirecontact::bench::scaling::line_fit(&v))
+    let fit = |by_points: bool| {
+        ins_xy(by_points, Regime::Rigid).map(|v| tirecontact::bench::scaling::line_fit(&v))
     };
     if let (Some((ak, bk)), Some((ap, bp))) = (fit(false), fit(true)) {
         md.push_str(&format!(
@@ -361,21 +353,20 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
         ));
     }
     // the contact's share, by instructions where counted
-    let share = |r: &ScalingRow, ins: Option<(f64, f64)>| {
-        ins.map_or((r.contact_share(), "wall time"), |(w, f)| {
-            ((1.0 - f / w).max(0.0), "instructions")
-        })
+    let share = |r: &ScalingRow| {
+        r.contact_share_instructions()
+            .map_or((r.contact_share(), "wall time"), |s| (s, "instructions"))
     };
     let dominant = scan(true, Regime::Tread)
         .into_iter()
-        .find(|&(r, ins)| share(r, ins).0 > 0.5);
+        .find(|r| share(r).0 > 0.5);
     md.push_str(&match dominant {
-        Some((r, ins)) => format!(
+        Some(r) => format!(
             "\nWith the pressed third on the road the contact takes more than half of a step from P = {} ({:.1} points on the road, {:.0} % of the step by {}).\n",
             r.points,
             r.on_road * r.points as f64,
-            100.0 * share(r, ins).0,
-            share(r, ins).1
+            100.0 * share(r).0,
+            share(r).1
         ),
         None => "\nWith the pressed third on the road the contact stays below half of a step at every measured P.\n".to_string(),
     });
@@ -384,13 +375,7 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
     let rows = |by_points: bool| -> Vec<ScalingRow> {
         Regime::ALL
             .iter()
-            .flat_map(|&r| {
-                scan(by_points, r).into_iter().map(|(row, ins)| ScalingRow {
-                    instructions_per_step: ins.map(|i| i.0),
-                    free_instructions_per_step: ins.map(|i| i.1),
-                    ..row.clone()
-                })
-            })
+            .flat_map(|&r| scan(by_points, r).into_iter().cloned())
             .collect()
     };
     let fig = figure(&rows(true), &rows(false));
