@@ -9,6 +9,8 @@
 //! spring at each point the whole pressed third is on the road, and the
 //! dense contact solve of `2|S|` unknowns grows with `P`.
 
+pub mod report;
+
 use crate::bench::scenes::many_points;
 use crate::drive::{Watch, run_to_end};
 use crate::identify::PreparedModel;

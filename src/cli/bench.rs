@@ -1,6 +1,8 @@
 //! `tirecontact bench [-o DIR] [--quick] [PRESET...]`: the work-precision
 //! study and the measured effect of each piece of skipped work.
 
+mod scaling;
+
 use super::{CliResult, load_scene};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write as _;
@@ -55,10 +57,10 @@ fn default_presets() -> Vec<PathBuf> {
 
 pub fn bench(args: &BenchArgs) -> CliResult {
     if let Some(pk) = &args.scaling_one {
-        return super::scaling::scaling_one(pk, args.quick);
+        return scaling::scaling_one(pk, args.quick);
     }
     if args.scaling {
-        return super::scaling::scaling(args);
+        return scaling::scaling(args);
     }
     let presets = if args.presets.is_empty() {
         let found = default_presets();

@@ -5,7 +5,6 @@ pub mod check;
 pub mod identify;
 pub mod paths;
 pub mod run;
-pub mod scaling;
 pub mod study;
 pub mod sweep;
 pub mod values;
