@@ -1,21 +1,22 @@
 //! The app: owns the scene, the simulation, the history and the UI state.
 //! `App::apply` is the one place where a `Command` changes anything: it
-//! dispatches to the handlers of each concern, in the submodules of `app/`
-//! (`files`, `run`, `mutes`, `frames`, `layout`, `session`, `frame`; the
-//! researcher tools' in `research::apply`).
+//! dispatches to the handlers of each concern, in the submodules of `app/`:
+//! `files`, `run`, `mode_mutes`, `animation_export`, `research_tools`,
+//! `session`, and the frame's `frame_loop` and `layout`.
 
 use super::classroom::{self, Classroom};
 use super::panels::{self, toolbar};
 use super::views::{green_view, scene_view, time_plots};
+use crate::gui::chrome::dialogs::{Message, PngSettings};
 use crate::gui::chrome::file_prompt::{FileAction, FilePrompt};
 use crate::gui::chrome::frames_dialog::FramesDialog;
-use crate::gui::classroom::guided::GUIDED;
 use crate::gui::jobs::export::{CsvJob, LiveEdit};
 use crate::gui::jobs::frames::FramesJob;
 use crate::gui::model::command::{Command, Discarding, View};
 use crate::gui::model::frame_rate::FrameRate;
 use crate::gui::model::history::{DEFAULT_BUDGET, History};
 use crate::gui::model::mute_set::Mutes;
+use crate::gui::model::presets::GUIDED;
 use crate::gui::model::presets::SHIPPED;
 use crate::gui::model::time_control::{Speed, TimeControl};
 use crate::identify::{ModeCache, PreparedModel};
@@ -33,6 +34,7 @@ pub(crate) mod files;
 mod frame_loop;
 mod layout;
 mod mode_mutes;
+mod research_tools;
 mod run;
 mod session;
 
@@ -41,26 +43,6 @@ pub use run::PAUSED_NOTE;
 
 /// Wall time per frame the solver may use (keeps the UI above 30 fps).
 pub const STEP_BUDGET: Duration = Duration::from_millis(12);
-
-/// A message shown in the banner above the views.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Message {
-    pub error: bool,
-    pub text: String,
-}
-
-/// Settings of the PNG export dialog.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PngSettings {
-    pub width: u32,
-    pub height: u32,
-    /// The file, as typed or chosen.
-    pub path: String,
-    /// Why the last export attempt did not start (no file chosen, bad path).
-    pub note: Option<String>,
-    /// The path field takes the keyboard at the next frame.
-    pub focus: bool,
-}
 
 pub struct App {
     /// What the session keeps: the scene, its file, the last saved version.
@@ -342,7 +324,7 @@ impl App {
             } => self.export_frames(dir, settings, clear_old),
             Command::CancelFrames => self.cancel_frames(),
             Command::FramesExportEnded(r) => self.frames_export_ended(r),
-            // researcher tools (research/apply.rs)
+            // researcher tools (app/research_tools.rs)
             Command::Research(c) => self.apply_research(c),
             // a field's refusal (app/run.rs)
             Command::FieldRefused { field: _, text } => self.field_refused(text),

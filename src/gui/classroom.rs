@@ -3,7 +3,6 @@
 //! chosen point below, the mode contribution bars beside), slow motion, and
 //! the guided preset's explanation shown prominently.
 
-pub mod guided;
 mod mode_bars;
 
 pub use mode_bars::{

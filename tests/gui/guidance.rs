@@ -170,6 +170,30 @@ fn the_help_menu_lists_the_keys_and_they_do_what_it_says() {
     h.key_press(egui::Key::R);
     h.run();
     assert_eq!(h.state().simulation().steps(), 0, "R did not reset");
+    // the digit keys listed are the views' keys, 1 to 8 in the views' order
+    let digits: Vec<&str> = SHORTCUTS
+        .iter()
+        .flat_map(|(key, _)| key.split_whitespace())
+        .filter(|k| k.parse::<u8>().is_ok())
+        .collect();
+    assert_eq!(digits, ["1", "2", "3", "4", "5", "6", "7", "8"]);
+    assert_eq!(digits.len(), View::ALL.len());
+    let keys = [
+        egui::Key::Num1,
+        egui::Key::Num2,
+        egui::Key::Num3,
+        egui::Key::Num4,
+        egui::Key::Num5,
+        egui::Key::Num6,
+        egui::Key::Num7,
+        egui::Key::Num8,
+    ];
+    for (key, view) in keys.into_iter().zip(View::ALL) {
+        h.key_press(key);
+        // a research view's job repaints until it ends
+        h.run_steps(2);
+        assert_eq!(h.state().view(), view, "{key:?}");
+    }
 }
 
 #[test]

@@ -3,7 +3,8 @@
 //! pushed; and the `eframe::App` glue (close request, session save).
 
 use super::*;
-use crate::gui::ResearchCommand;
+use crate::gui::chrome::status_bar;
+use crate::gui::model::command::ResearchCommand;
 
 impl App {
     /// The keyboard shortcuts (when no text field has the focus).
@@ -47,6 +48,27 @@ impl App {
                 }
             }
         });
+    }
+
+    /// What the status bar shows.
+    fn status(&self) -> status_bar::Status<'_> {
+        let st = self.sim.stats();
+        status_bar::Status {
+            path: self.doc.path.as_deref(),
+            scene_name: &self.doc.scene.name,
+            dirty: self.is_dirty(),
+            points: self.doc.scene.num_points(),
+            modes: self.modes.len(),
+            steps: st.steps,
+            events: st.events,
+            in_contact: self.sim.in_contact().iter().filter(|c| **c).count(),
+            samples: self.history.len(),
+            stride: self.history.stride(),
+            playing: self.time.is_playing(),
+            fps: self.fps(),
+            app_ms: self.app_ms(),
+            exporting_csv: self.exporting_csv(),
+        }
     }
 
     /// The background jobs that ended since the last frame, as commands.
@@ -111,8 +133,9 @@ impl App {
             toolbar::menu_bar(ui, &status, &mut cmds);
             toolbar::transport(ui, &status, &mut cmds);
         });
+        let bar = self.status();
         egui::Panel::bottom("tirecontact.status").show(ui, |ui| {
-            crate::gui::chrome::status_bar::show(ui, self);
+            status_bar::show(ui, &bar);
         });
         if self.classroom.on {
             self.classroom_layout(ui, &mut cmds);

@@ -3,9 +3,8 @@
 
 use super::*;
 use crate::drive::Watch;
-use crate::gui::jobs::prepare::{
-    PrepareJob, Prepared, Then, needs_preparing, reads_road_file, waiting_note,
-};
+use crate::gui::jobs::prepare::{PrepareJob, Then, needs_preparing, reads_road_file, waiting_note};
+use crate::gui::model::prepared::Prepared;
 use crate::road::RoadProfile;
 
 /// Said after an error that paused the run.

@@ -1,10 +1,31 @@
 //! Message banner, unsaved-changes confirmation and the PNG export
-//! settings. They push `Command`s; the PNG settings are dialog-local state.
+//! settings. They push `Command`s; the banner's [`Message`] and the PNG
+//! dialog's [`PngSettings`] are defined here and kept by the app (the dialog
+//! edits its settings itself).
 
-use crate::gui::app::{Message, PngSettings};
 use crate::gui::model::command::{Command, Discarding};
 use crate::gui::widgets::fields::ERROR_COLOR;
 use egui::{Color32, RichText, Ui};
+
+/// A message shown in the banner above the views.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Message {
+    pub error: bool,
+    pub text: String,
+}
+
+/// Settings of the PNG export dialog.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PngSettings {
+    pub width: u32,
+    pub height: u32,
+    /// The file, as typed or chosen.
+    pub path: String,
+    /// Why the last export attempt did not start (no file chosen, bad path).
+    pub note: Option<String>,
+    /// The path field takes the keyboard at the next frame.
+    pub focus: bool,
+}
 
 /// The message banner above the views (errors in red, with a dismiss button).
 pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {

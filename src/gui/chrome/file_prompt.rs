@@ -8,8 +8,7 @@
 //! fills it when a dialog is available, and says so when none appeared.
 
 use crate::gui::chrome::native_dialog::{Kind, Request, choose_button};
-use crate::gui::model::command::Command;
-use crate::gui::research::ResearchCommand;
+use crate::gui::model::command::{Command, ResearchCommand};
 use egui::{RichText, Ui};
 use std::path::{Path, PathBuf};
 

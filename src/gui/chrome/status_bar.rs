@@ -6,9 +6,34 @@
 //! its full text on hover. Never wraps: a second row moved the widgets above
 //! it (and broke clicks on them).
 
-use crate::gui::app::App;
 use crate::gui::widgets::fields::ERROR_COLOR;
 use egui::{Label, RichText, TextStyle, TextWrapMode, Ui, WidgetText};
+use std::path::Path;
+
+/// What the status bar shows, read from the app each frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Status<'a> {
+    /// The document's file, if it has one.
+    pub path: Option<&'a Path>,
+    pub scene_name: &'a str,
+    /// The scene differs from its saved version.
+    pub dirty: bool,
+    pub points: usize,
+    pub modes: usize,
+    /// Solver steps and contact events of the run.
+    pub steps: u64,
+    pub events: u64,
+    /// Points in contact now.
+    pub in_contact: usize,
+    /// Samples in the history, and the solver steps per sample.
+    pub samples: usize,
+    pub stride: u64,
+    pub playing: bool,
+    /// Frames per second, and the solver and UI code's time per frame (ms).
+    pub fps: f64,
+    pub app_ms: f64,
+    pub exporting_csv: bool,
+}
 
 /// A status bar label: its full text and its short text for narrow windows.
 #[derive(Debug, Clone, PartialEq)]
@@ -18,34 +43,29 @@ pub struct StatusText {
 }
 
 /// The status bar's labels, left to right: document, run, history.
-pub fn texts(app: &App) -> [StatusText; 3] {
-    let st = app.sim.stats();
-    let in_contact = app.sim.in_contact().iter().filter(|c| **c).count();
-    let dirty = app.is_dirty();
+pub fn texts(s: &Status) -> [StatusText; 3] {
     [
         StatusText {
-            full: document_label(app.doc.path.as_deref(), &app.doc.scene.name, dirty),
-            short: short_document_label(app.doc.path.as_deref(), &app.doc.scene.name, dirty),
+            full: document_label(s.path, s.scene_name, s.dirty),
+            short: short_document_label(s.path, s.scene_name, s.dirty),
         },
         StatusText {
             full: format!(
                 "{} · {} · {} · {} · {} in contact",
-                count(app.doc.scene.num_points(), "point"),
-                count(app.modes.len(), "mode"),
-                count(st.steps as usize, "step"),
-                count(st.events as usize, "event"),
-                in_contact
+                count(s.points, "point"),
+                count(s.modes, "mode"),
+                count(s.steps as usize, "step"),
+                count(s.events as usize, "event"),
+                s.in_contact
             ),
             short: format!(
                 "{} pts · {} steps · {} in contact",
-                app.doc.scene.num_points(),
-                st.steps,
-                in_contact
+                s.points, s.steps, s.in_contact
             ),
         },
         StatusText {
-            full: history_text(app.history.len(), app.history.stride()),
-            short: format!("history: {}", count(app.history.len(), "sample")),
+            full: history_text(s.samples, s.stride),
+            short: format!("history: {}", count(s.samples, "sample")),
         },
     ]
 }
@@ -139,21 +159,21 @@ fn text_px(ui: &Ui, text: &str) -> f32 {
 }
 
 /// The status bar: document, run statistics, history, CSV export, frame rate.
-pub fn show(ui: &mut Ui, app: &App) {
-    let texts = texts(app);
+pub fn show(ui: &mut Ui, status: &Status) {
+    let texts = texts(status);
     let gap = ui.spacing().item_spacing.x;
     // a separator is its spacing (6 px) wide plus a gap on each side
     let separator_px = 6.0 + 2.0 * gap;
     // measured over a second of play; paused, frames come only on input,
     // and the last rate measured would be stale
-    let playing = app.time_control().is_playing();
-    let fps_text = if playing && app.fps() > 0.0 {
-        format!("{:.0} fps", app.fps())
+    let playing = status.playing;
+    let fps_text = if playing && status.fps > 0.0 {
+        format!("{:.0} fps", status.fps)
     } else {
         "– fps".to_string()
     };
     let mut other_px = 2.0 * separator_px + text_px(ui, "0000 fps") + 2.0 * gap;
-    if app.exporting_csv() {
+    if status.exporting_csv {
         other_px += separator_px + ui.spacing().interact_size.y + gap + text_px(ui, "writing CSV…");
     }
     let full_px = [0, 1, 2].map(|k| text_px(ui, &texts[k].full));
@@ -166,7 +186,7 @@ pub fn show(ui: &mut Ui, app: &App) {
             }
             let text = if f.short[k] { &t.short } else { &t.full };
             let mut rich = RichText::new(text);
-            if k == 0 && app.is_dirty() {
+            if k == 0 && status.dirty {
                 rich = rich.color(ERROR_COLOR);
             }
             let label = Label::new(rich).show_tooltip_when_elided(false);
@@ -184,7 +204,7 @@ pub fn show(ui: &mut Ui, app: &App) {
                 r.on_hover_text(&t.full);
             }
         }
-        if app.exporting_csv() {
+        if status.exporting_csv {
             ui.separator();
             ui.spinner();
             ui.label("writing CSV…");
@@ -194,7 +214,7 @@ pub fn show(ui: &mut Ui, app: &App) {
                 .on_hover_text(if playing {
                     format!(
                         "frames per second; solver and UI code take {:.1} ms per frame",
-                        app.app_ms()
+                        status.app_ms
                     )
                 } else {
                     "frames per second, measured while playing (paused, the window \

@@ -8,6 +8,7 @@
 //! scene that cannot run, is refused then, with the current scene kept.
 
 use crate::gui::jobs::Job;
+use crate::gui::model::prepared::Prepared;
 use crate::identify::{ModeCache, PreparedModel};
 use crate::road::{Road, RoadProfile};
 use crate::{Scene, SceneError};
@@ -30,15 +31,6 @@ pub enum Then {
     },
     /// A preset file to read and open.
     Open(PathBuf),
-}
-
-/// What was prepared.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Prepared {
-    /// A whole model (the scene, its modes, its road): for a restart.
-    Model(Box<PreparedModel>),
-    /// A road profile: for a live road edit.
-    Road(RoadProfile),
 }
 
 /// Whether applying `scene` reads a file (a measured road) or identifies a

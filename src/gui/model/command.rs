@@ -2,6 +2,8 @@
 //! `App::apply` is the one place they change the app's state.
 
 use crate::Scene;
+use crate::gui::model::prepared::Prepared;
+use crate::gui::model::sweep_request::{SweepEnd, SweepRequest};
 use crate::gui::model::time_control::Speed;
 use std::path::PathBuf;
 
@@ -52,7 +54,7 @@ pub enum Discarding {
     OpenPath(PathBuf),
     Preset(usize),
     Quit,
-    /// A guided-tour preset (index into `guided::GUIDED`).
+    /// A guided-tour preset (index into `presets::GUIDED`).
     Guided(usize),
 }
 
@@ -101,7 +103,7 @@ pub enum Command {
     ShowView(View),
     /// Classroom mode on/off: large fonts, presenter layout, slow motion.
     SetClassroom(bool),
-    /// Open a guided-tour preset (index into `guided::GUIDED`).
+    /// Open a guided-tour preset (index into `presets::GUIDED`).
     OpenGuided(usize),
     /// Show the mode contribution bars in the normal layout.
     ShowModeBars(bool),
@@ -120,7 +122,7 @@ pub enum Command {
     },
     CancelFrames,
     /// A researcher-tool request (spectra, sweep, A/B pin, exports).
-    Research(crate::gui::research::ResearchCommand),
+    Research(ResearchCommand),
     /// A field refused a typed value: `text` (field, value, what is
     /// expected) goes to the message banner until a good edit.
     FieldRefused {
@@ -149,5 +151,45 @@ pub enum Command {
     FramesExportEnded(Result<u64, String>),
     /// A preparation (preset or road file read, ring identified) ended:
     /// what waited for it is applied (or refused with the reason).
-    PreparationEnded(Result<crate::gui::jobs::prepare::Prepared, String>),
+    PreparationEnded(Result<Prepared, String>),
+}
+
+/// A request of the researcher tools (wrapped in `Command::Research`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ResearchCommand {
+    /// Recompute the spectra of the run now.
+    RecomputeSpectra,
+    /// Start a sweep of the current scene on a background thread.
+    StartSweep(SweepRequest),
+    /// Stop the running sweep (its partial results are dropped).
+    CancelSweep,
+    ExportSweepCsvDialog,
+    /// Write the last sweep as CSV (same table as `tirecontact sweep -o`).
+    ExportSweepCsv(PathBuf),
+    ExportSweepPngDialog,
+    /// Draw the last sweep to a PNG (same figure as `tirecontact sweep --plot`).
+    ExportSweepPng(PathBuf),
+    /// Pin the current run as the reference of the A/B comparison.
+    PinReference,
+    Unpin,
+    ExportPinnedCsvDialog,
+    /// Write the pinned run as CSV (`t_s, u{i}_m.., q{i}_N..`).
+    ExportPinnedCsv(PathBuf),
+    /// The sweep's background job ended (the frame loop pushes it).
+    SweepEnded(SweepEnd),
+    /// Pick the pole at (order index, pole index) of the workbench's
+    /// diagram, or drop it.
+    WorkbenchToggle((usize, usize)),
+    /// The workbench's automatic choice of poles.
+    WorkbenchAutomatic,
+    /// The workbench's modes become the scene's modal tyre (the run
+    /// restarts).
+    WorkbenchUse,
+    WorkbenchSaveDialog,
+    /// Write the scene with the workbench's modes as its modal tyre.
+    WorkbenchSave(PathBuf),
+    /// Once a frame: follow the scene's ring reference and bring what the
+    /// shown research view needs up to date (spectra, differences to the
+    /// pinned run, fidelity figures), starting or picking up their jobs.
+    Refresh,
 }

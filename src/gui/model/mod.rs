@@ -1,10 +1,13 @@
-//! The visualiser's state without egui: commands, the play/pause/speed
-//! control, the run's history, mode mutes, shipped presets and the frame
-//! rate. Unit-tested without a window.
+//! The visualiser's state without egui: commands and the data they carry
+//! (a sweep's request and end, what a preparation made ready), the
+//! play/pause/speed control, the run's history, mode mutes, shipped and
+//! guided presets and the frame rate. Unit-tested without a window.
 
 pub mod command;
 pub mod frame_rate;
 pub mod history;
 pub mod mute_set;
+pub mod prepared;
 pub mod presets;
+pub mod sweep_request;
 pub mod time_control;

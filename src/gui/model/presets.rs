@@ -1,4 +1,7 @@
-//! Presets shipped inside the binary, for the Presets menu.
+//! Presets shipped inside the binary: those of the Presets menu, and the
+//! guided tour's (classroom mode) pairs of presets that differ in one thing
+//! (tyre stiffness, damping, speed, road wavelength), each with a
+//! description of what to watch, shown large in classroom mode.
 
 /// `(menu name, file name, RON text)` of every shipped preset.
 pub const SHIPPED: &[(&str, &str, &str)] = &[
@@ -23,3 +26,79 @@ pub const SHIPPED: &[(&str, &str, &str)] = &[
         include_str!("../../../presets/random_road.ron"),
     ),
 ];
+
+/// `(menu name, file name, RON text)` of every guided preset, in tour order.
+pub const GUIDED: &[(&str, &str, &str)] = &[
+    (
+        "1a Soft tyre",
+        "guided_1a_soft_tyre.ron",
+        include_str!("../../../presets/guided_1a_soft_tyre.ron"),
+    ),
+    (
+        "1b Stiff tyre",
+        "guided_1b_stiff_tyre.ron",
+        include_str!("../../../presets/guided_1b_stiff_tyre.ron"),
+    ),
+    (
+        "2a Low damping",
+        "guided_2a_low_damping.ron",
+        include_str!("../../../presets/guided_2a_low_damping.ron"),
+    ),
+    (
+        "2b High damping",
+        "guided_2b_high_damping.ron",
+        include_str!("../../../presets/guided_2b_high_damping.ron"),
+    ),
+    (
+        "3a Slow rolling",
+        "guided_3a_slow.ron",
+        include_str!("../../../presets/guided_3a_slow.ron"),
+    ),
+    (
+        "3b Fast rolling",
+        "guided_3b_fast.ron",
+        include_str!("../../../presets/guided_3b_fast.ron"),
+    ),
+    (
+        "4a Long road wavelength",
+        "guided_4a_long_wavelength.ron",
+        include_str!("../../../presets/guided_4a_long_wavelength.ron"),
+    ),
+    (
+        "4b Short road wavelength",
+        "guided_4b_short_wavelength.ron",
+        include_str!("../../../presets/guided_4b_short_wavelength.ron"),
+    ),
+];
+
+#[cfg(test)]
+mod tests {
+    use super::GUIDED;
+    use crate::Scene;
+
+    #[test]
+    fn every_guided_preset_parses_and_explains() {
+        for (name, file, text) in GUIDED {
+            let s = Scene::parse(text, file).unwrap_or_else(|e| panic!("{file}: {e}"));
+            let sentences = s.description.matches(". ").count() + 1;
+            assert!(
+                (2..=5).contains(&sentences),
+                "{name}: {sentences} sentences"
+            );
+            assert!(s.description.contains("atch"), "{name}: says what to watch");
+        }
+        // every file of presets/guided_* is in the tour
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+        let on_disk = std::fs::read_dir(dir)
+            .unwrap()
+            .filter(|e| {
+                e.as_ref()
+                    .unwrap()
+                    .file_name()
+                    .to_string_lossy()
+                    .starts_with("guided_")
+            })
+            .count();
+        assert_eq!(on_disk, GUIDED.len());
+    }
+}

@@ -13,8 +13,8 @@ pub const SHORTCUTS: &[(&str, &str)] = &[
     ("R", "back to t = 0 (the edits are kept)"),
     ("1  2  3", "time plots, scene view, Green functions"),
     (
-        "4  5  6  7",
-        "research: spectra, sweep, A/B compare, fidelity",
+        "4  5  6  7  8",
+        "research: spectra, sweep, A/B compare, fidelity, identification",
     ),
     ("Ctrl+O", "open a preset file"),
     ("Ctrl+S", "save"),

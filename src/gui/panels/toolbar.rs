@@ -72,7 +72,7 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             }
         });
         ui.menu_button("Guided tour", |ui| {
-            for (k, (name, file, _)) in crate::gui::classroom::guided::GUIDED.iter().enumerate() {
+            for (k, (name, file, _)) in crate::gui::model::presets::GUIDED.iter().enumerate() {
                 if ui.button(*name).on_hover_text(*file).clicked() {
                     cmds.push(Command::OpenGuided(k));
                 }

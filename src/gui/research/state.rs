@@ -1,50 +1,9 @@
-//! What the app keeps for the researcher tools, and their commands.
+//! What the app keeps for the researcher tools.
 
 use super::fidelity::{FidelityCache, FidelityRef};
 use super::spectra::{HistoryCache, HistorySpectra};
-use super::sweep_job::{SweepRequest, SweepState};
+use super::sweep_job::SweepState;
 use crate::compare::{PinnedRun, RunDifference};
-use std::path::PathBuf;
-
-/// A request of the researcher tools (wrapped in `Command::Research`).
-#[derive(Debug, Clone, PartialEq)]
-pub enum ResearchCommand {
-    /// Recompute the spectra of the run now.
-    RecomputeSpectra,
-    /// Start a sweep of the current scene on a background thread.
-    StartSweep(SweepRequest),
-    /// Stop the running sweep (its partial results are dropped).
-    CancelSweep,
-    ExportSweepCsvDialog,
-    /// Write the last sweep as CSV (same table as `tirecontact sweep -o`).
-    ExportSweepCsv(PathBuf),
-    ExportSweepPngDialog,
-    /// Draw the last sweep to a PNG (same figure as `tirecontact sweep --plot`).
-    ExportSweepPng(PathBuf),
-    /// Pin the current run as the reference of the A/B comparison.
-    PinReference,
-    Unpin,
-    ExportPinnedCsvDialog,
-    /// Write the pinned run as CSV (`t_s, u{i}_m.., q{i}_N..`).
-    ExportPinnedCsv(PathBuf),
-    /// The sweep's background job ended (the frame loop pushes it).
-    SweepEnded(crate::gui::research::sweep_job::SweepEnd),
-    /// Pick the pole at (order index, pole index) of the workbench's
-    /// diagram, or drop it.
-    WorkbenchToggle((usize, usize)),
-    /// The workbench's automatic choice of poles.
-    WorkbenchAutomatic,
-    /// The workbench's modes become the scene's modal tyre (the run
-    /// restarts).
-    WorkbenchUse,
-    WorkbenchSaveDialog,
-    /// Write the scene with the workbench's modes as its modal tyre.
-    WorkbenchSave(PathBuf),
-    /// Once a frame: follow the scene's ring reference and bring what the
-    /// shown research view needs up to date (spectra, differences to the
-    /// pinned run, fidelity figures), starting or picking up their jobs.
-    Refresh,
-}
 
 /// Presentation options of the spectra view.
 #[derive(Debug, Clone, PartialEq)]

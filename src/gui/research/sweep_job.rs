@@ -5,65 +5,10 @@
 
 use crate::Scene;
 use crate::gui::jobs::Job;
+use crate::gui::model::sweep_request::{SweepEnd, SweepRequest, SweepResult};
 use crate::identify::ModeCache;
-use crate::sweep::{self, Sweep, SweepError, SweepPoint};
+use crate::sweep::{self, SweepError, SweepPoint};
 use std::sync::Arc;
-
-/// What the user asked to sweep.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SweepRequest {
-    /// Parameter path (`speed_mps`, `points[*].h_m`, ...; see `sweep::param_paths`).
-    pub param: String,
-    pub from: f64,
-    pub to: f64,
-    /// Values, both ends included (>= 1).
-    pub steps: usize,
-}
-
-impl SweepRequest {
-    /// The sweep of `base` this asks for, checked: known parameter, valid
-    /// scene at both ends, at least one value.
-    pub fn to_sweep(&self, base: &Scene, threads: usize) -> Result<Sweep, SweepError> {
-        sweep::get_param(base, &self.param)?;
-        let values = sweep::linspace(self.from, self.to, self.steps)?;
-        for v in [self.from, self.to] {
-            sweep::set_param(&mut base.clone(), &self.param, v)?;
-        }
-        Ok(Sweep {
-            param: self.param.trim().to_string(),
-            values,
-            threads: threads.max(1),
-        })
-    }
-}
-
-/// A finished sweep.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SweepResult {
-    pub request: SweepRequest,
-    /// Name of the base scene.
-    pub scene_name: String,
-    pub num_points: usize,
-    pub points: Vec<SweepPoint>,
-    /// Wall time of the sweep (s), shown, never asserted.
-    pub wall_s: f64,
-    pub threads: usize,
-}
-
-impl SweepResult {
-    /// Runs that failed.
-    pub fn failed(&self) -> usize {
-        self.points.iter().filter(|p| p.result.is_err()).count()
-    }
-}
-
-/// How a sweep job ended.
-#[derive(Debug, Clone, PartialEq)]
-pub enum SweepEnd {
-    Done(SweepResult),
-    Cancelled,
-    Failed(String),
-}
 
 /// A sweep running on a background thread.
 #[derive(Debug)]

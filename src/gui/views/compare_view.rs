@@ -9,9 +9,8 @@ use super::time_plots::{clip_at, clip_checkbox, clip_level, force_range, impact_
 use super::{axis_title, legend_place, point_color};
 use crate::Scene;
 use crate::compare::{PinnedRun, RunDifference};
-use crate::gui::model::command::Command;
+use crate::gui::model::command::{Command, ResearchCommand};
 use crate::gui::model::history::{History, Quantity, decimate_min_max};
-use crate::gui::research::ResearchCommand;
 use crate::gui::research::state::CompareOptions;
 use crate::output::summary::short_num;
 use egui::{Id, RichText, Ui};

@@ -1,4 +1,6 @@
-//! Read-only views of the run: time plots, the scene, the Green functions.
+//! Read-only views of the run: time plots, the scene, the Green functions,
+//! and the research views (spectra, sweep, A/B compare, fidelity, the
+//! identification workbench).
 //! They read the scene, the simulation and the history; the only state they
 //! change is their own presentation options (window, exaggeration, ...).
 

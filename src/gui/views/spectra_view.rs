@@ -7,8 +7,7 @@
 use super::XTitle;
 use super::point_color;
 use crate::Scene;
-use crate::gui::model::command::Command;
-use crate::gui::research::ResearchCommand;
+use crate::gui::model::command::{Command, ResearchCommand};
 use crate::gui::research::spectra::{HistoryCache, HistorySpectra};
 use crate::gui::research::state::SpectraOptions;
 use crate::modal::Mode;

@@ -7,10 +7,10 @@
 use super::XTitle;
 use super::point_color;
 use crate::Scene;
-use crate::gui::model::command::Command;
-use crate::gui::research::ResearchCommand;
+use crate::gui::model::command::{Command, ResearchCommand};
+use crate::gui::model::sweep_request::{SweepRequest, SweepResult};
 use crate::gui::research::state::SweepForm;
-use crate::gui::research::sweep_job::{SweepRequest, SweepResult, SweepState, default_threads};
+use crate::gui::research::sweep_job::{SweepState, default_threads};
 use crate::metrics::ContactSummary;
 use crate::spectrum::{band_label, third_octave_bands};
 use crate::sweep::{RunSummary, get_param, param_paths};

@@ -9,8 +9,7 @@
 
 use super::XTitle;
 use crate::Scene;
-use crate::gui::model::command::Command;
-use crate::gui::research::ResearchCommand;
+use crate::gui::model::command::{Command, ResearchCommand};
 use crate::identify::workbench::Workbench;
 use crate::lsce::Stability;
 use crate::scene::Tyre;

@@ -374,10 +374,7 @@ fn animation_export_writes_n_frames_of_the_right_size() {
 fn every_guided_preset_opens_from_the_menu() {
     let mut h = harness(app_on("single_mode.ron"), [1280.0, 720.0]);
     h.run();
-    for (k, (_, file, _)) in tirecontact::gui::classroom::guided::GUIDED
-        .iter()
-        .enumerate()
-    {
+    for (k, (_, file, _)) in tirecontact::gui::model::presets::GUIDED.iter().enumerate() {
         h.state_mut().apply(Command::OpenGuided(k));
         h.run();
         let m = h.state().message().unwrap();

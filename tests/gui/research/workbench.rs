@@ -10,7 +10,7 @@ use egui_kittest::kittest::Queryable;
 use egui_plot::{PlotMemory, PlotPoint};
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::research::ResearchCommand;
+use tirecontact::gui::ResearchCommand;
 use tirecontact::gui::views::workbench_view::DIAGRAM_PLOT_ID;
 use tirecontact::gui::{App, Command, View};
 use tirecontact::lsce::IdentifyOptions;

@@ -1,21 +1,28 @@
 //! The researcher tools' side of `App::apply` and of the frame loop.
 
-use super::ResearchCommand;
-use super::compare::{pin_label, recording_without_impacts};
-use super::fidelity::FidelityRef;
-use super::spectra::{HistoryKey, SpectraInput};
-use super::spectra_job::{INLINE_MAX_WORK, SpectraJob, SpectraPoll};
-use super::sweep_job::{SweepState, default_threads};
+use super::App;
 use crate::compare::PinnedRun;
-use crate::gui::app::{App, Message};
+use crate::gui::chrome::dialogs::Message;
 use crate::gui::chrome::file_prompt::{FileAction, FilePrompt};
-use crate::gui::model::command::{Command, View};
+use crate::gui::model::command::{Command, ResearchCommand, View};
+use crate::gui::model::sweep_request::SweepEnd;
+use crate::gui::research::ResearchState;
+use crate::gui::research::compare::{pin_label, recording_without_impacts};
+use crate::gui::research::fidelity::FidelityRef;
+use crate::gui::research::fidelity_job::FidelityJob;
+use crate::gui::research::spectra::{HistoryKey, SpectraInput};
+use crate::gui::research::spectra_job::{INLINE_MAX_WORK, SpectraJob, SpectraPoll};
+use crate::gui::research::sweep_job::{SweepState, default_threads};
+use crate::gui::research::workbench_job::{WorkbenchJob, key_of};
+use crate::gui::views::{
+    compare_view, fidelity_view, spectra_view, sweep_view, wall_time_text, workbench_view,
+};
 use crate::spectrum::Window;
 use std::path::Path;
 
 impl App {
     /// The researcher tools' state (spectra, sweep, pinned run, fidelity).
-    pub fn research(&self) -> &super::ResearchState {
+    pub fn research(&self) -> &ResearchState {
         &self.research
     }
 
@@ -153,7 +160,7 @@ impl App {
                 }
             }
             ResearchCommand::WorkbenchSaveDialog => {
-                let stem = crate::gui::app::files::file_stem(&self.doc.scene.name);
+                let stem = super::files::file_stem(&self.doc.scene.name);
                 self.file_prompt = Some(FilePrompt::new(
                     FileAction::ModalPreset,
                     format!("{stem}_modal.ron"),
@@ -225,7 +232,6 @@ impl App {
     /// The workbench of the scene's tyre: kept while the tyre and points
     /// stay, else identified again on a background thread.
     fn update_workbench(&mut self) {
-        use super::workbench_job::{WorkbenchJob, key_of};
         if let Some(job) = &self.research.workbench_job
             && let Some(r) = job.poll()
         {
@@ -261,7 +267,7 @@ impl App {
     }
 
     /// A sweep's end: its outcome kept, and said in the banner.
-    fn sweep_ended(&mut self, end: crate::gui::research::sweep_job::SweepEnd) {
+    fn sweep_ended(&mut self, end: SweepEnd) {
         let (error, text) = match self.research.sweep.end(end) {
             SweepState::Finished(r) => (
                 false,
@@ -271,7 +277,7 @@ impl App {
                     r.points.len(),
                     r.failed(),
                     r.threads,
-                    crate::gui::views::wall_time_text(r.wall_s)
+                    wall_time_text(r.wall_s)
                 ),
             ),
             SweepState::Cancelled => (
@@ -360,7 +366,7 @@ impl App {
             (self.research.fidelity_job.as_ref()).is_some_and(|j| j.is_for(&r, &x, &self.modes));
         if wanted && !under_way {
             let key = (r, x, self.modes.clone());
-            match super::fidelity_job::FidelityJob::spawn(key.clone()) {
+            match FidelityJob::spawn(key.clone()) {
                 Ok(job) => {
                     self.research.fidelity_job = Some(job);
                     self.research.fidelity_jobs += 1;
@@ -413,7 +419,6 @@ impl App {
     /// Draws the researcher view `self.view` (views only read the app; they
     /// change their own presentation options and push commands).
     pub(crate) fn show_research_view(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
-        use crate::gui::views::{compare_view, fidelity_view, spectra_view, sweep_view};
         match self.view {
             View::Spectra => spectra_view::show(
                 ui,
@@ -458,7 +463,7 @@ impl App {
                 self.research.fidelity_computing(),
                 &mut self.research.fidelity_opts,
             ),
-            View::Workbench => crate::gui::views::workbench_view::show(
+            View::Workbench => workbench_view::show(
                 ui,
                 &self.doc.scene,
                 self.research.workbench(),
