@@ -357,22 +357,18 @@ mod tests {
     }
 
     #[test]
-    fn a_step_costs_more_with_more_points_and_modes() {
-        let small = measure(5, 20, Regime::Rigid, 0.02, 1).unwrap();
-        let more_points = measure(60, 20, Regime::Rigid, 0.02, 1).unwrap();
-        let more_modes = measure(5, 200, Regime::Rigid, 0.02, 1).unwrap();
-        assert!(
-            more_points.free_step_s > small.free_step_s,
-            "{small:?} {more_points:?}"
-        );
-        assert!(
-            more_modes.free_step_s > small.free_step_s,
-            "{small:?} {more_modes:?}"
-        );
-        // the footprint's centre is on the road
-        assert!(
-            small.on_road > 0.0 && more_points.on_road > 0.0,
-            "{small:?} {more_points:?}"
-        );
+    fn a_measured_size_counts_its_steps_and_the_footprint_on_the_road() {
+        // wall times are the benchmark's to compare (a loaded machine can
+        // make any two of them swap); here what a row counts must hold
+        for (p, k) in [(5, 20), (60, 20), (5, 200)] {
+            let r = measure(p, k, Regime::Rigid, 0.02, 1).unwrap();
+            // 0.02 s at dt = 1e-5 s
+            assert_eq!(r.steps, 2000, "{r:?}");
+            assert!(r.step_s > 0.0 && r.free_step_s > 0.0, "{r:?}");
+            assert!(r.step_s.is_finite() && r.free_step_s.is_finite(), "{r:?}");
+            // the footprint's centre is on the road, the lifted ends are not
+            assert!(r.on_road > 0.0 && r.on_road < 0.5, "{r:?}");
+            assert!(r.events_per_step >= 0.0 && r.factorisations_per_step >= 0.0);
+        }
     }
 }
