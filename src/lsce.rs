@@ -481,65 +481,16 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
             2 * cols
         )));
     }
+    // one QR factor of the Hankel data serves every order (method §6.2, 1)
     let rmat = hankel_r(r, len, cols)?;
     let data = data_matrix(r, len);
     let orders: Vec<usize> = match opts.model_order {
         Some(m) if m > m_max => return Err(LsceError::Input(format!("model order {m} > {m_max}"))),
         _ => (1..=m_max).collect(),
     };
-    let mut diagram = Vec::with_capacity(orders.len());
-    let mut kept_at: Vec<Vec<usize>> = Vec::with_capacity(orders.len());
     let data_norm = data.norm_l2();
-    let mut prev: Option<(Vec<Pole>, Vec<Vec<f64>>)> = None;
-    for &m in &orders {
-        let (poles, _) = poles_of_order(&rmat, 2 * m, dt, opts)?;
-        // residues with every physical pole, so that the out-of-band ones
-        // take their own share of the responses; the diagram shows the band
-        let fit = fit_order(poles, &data, dt, false)?;
-        let (band_poles, res): (Vec<Pole>, Vec<Vec<f64>>) = fit
-            .poles
-            .iter()
-            .enumerate()
-            .filter(|(_, pl)| pl.in_band(opts))
-            .map(|(c, pl)| (*pl, row(&fit.residues, c)))
-            .unzip();
-        let dpoles: Vec<DiagramPole> = band_poles
-            .iter()
-            .zip(&res)
-            .map(|(pl, rv)| DiagramPole {
-                freq_hz: pl.freq_hz(),
-                damping_ratio: pl.xi,
-                stability: stability(pl, rv, prev.as_ref(), opts),
-            })
-            .collect();
-        let in_band: Vec<usize> = (0..fit.poles.len())
-            .filter(|&c| fit.poles[c].in_band(opts))
-            .collect();
-        let band_basis = basis(
-            &in_band.iter().map(|&c| fit.poles[c]).collect::<Vec<_>>(),
-            dt,
-            len,
-            false,
-        );
-        // the in-band poles the model would keep at this order (a share of
-        // the responses, as below): indices into `dpoles`
-        kept_at.push(
-            (0..in_band.len())
-                .filter(|&k| {
-                    let share = band_basis.col(k).norm_l2() * row_norm(&fit.residues, in_band[k]);
-                    share >= opts.min_contribution * data_norm
-                })
-                .collect::<Vec<usize>>(),
-        );
-        let band_fit = &band_basis * select_rows(&fit.residues, &in_band);
-        diagram.push(DiagramOrder {
-            order: m,
-            poles: dpoles,
-            time_error: fit.time_error,
-            band_time_error: time_errors(&band_fit, &data).1,
-        });
-        prev = Some((band_poles, res));
-    }
+    let (diagram, kept_at) = stabilisation_diagram(&rmat, &data, &orders, dt, data_norm, opts)?;
+    // the given order, or the diagram's choice (method §6.3)
     let chosen = match opts.model_order {
         Some(m) => m,
         None => choose_order(&diagram, &kept_at, opts).unwrap_or(m_max),
@@ -553,13 +504,147 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
     if !all.iter().any(|pl| pl.in_band(opts)) {
         return Err(no_modes);
     }
+    let Some(model) = kept_model(all, &data, dt, data_norm, opts)? else {
+        return Err(no_modes);
+    };
+    let modes = modes_of_fit(r, &model.fit);
+    let stable = stable_modes(&model.fit.poles, &diagram, chosen, opts);
+    let least_squares = LeastSquaresResiduals {
+        prediction: prediction_residual,
+        residues: model.fit.residual,
+        complex_residues: model.complex_residual,
+    };
+    let report = fit_report(r, &model.fit, &data, dt, opts, least_squares);
+    Ok(Identification {
+        modes,
+        model_order: chosen,
+        stable,
+        discarded_ratio: model.discarded_ratio,
+        diagram,
+        report,
+    })
+}
+
+/// The stabilisation diagram over `orders` (method §6.3), and per order the
+/// in-band poles the model would keep at that order (indices into its
+/// diagram poles), for the choice of the order.
+fn stabilisation_diagram(
+    rmat: &Mat<f64>,
+    data: &Mat<f64>,
+    orders: &[usize],
+    dt: f64,
+    data_norm: f64,
+    opts: &IdentifyOptions,
+) -> Result<(Vec<DiagramOrder>, Vec<Vec<usize>>), LsceError> {
+    let mut diagram = Vec::with_capacity(orders.len());
+    let mut kept_at: Vec<Vec<usize>> = Vec::with_capacity(orders.len());
+    let mut prev: Option<BandPoles> = None;
+    for &m in orders {
+        let (order, kept, band) = diagram_order(rmat, data, m, dt, data_norm, prev.as_ref(), opts)?;
+        kept_at.push(kept);
+        diagram.push(order);
+        prev = Some(band);
+    }
+    Ok((diagram, kept_at))
+}
+
+/// The in-band poles of one order of the stabilisation diagram and their
+/// residues (one per response).
+type BandPoles = (Vec<Pole>, Vec<Vec<f64>>);
+
+/// One order `m` of the stabilisation diagram (method §6.2, 1–5, and §6.3):
+/// its in-band poles, each stable or not against `prev` (the in-band poles
+/// and residues of the order below), and its time errors; the in-band poles
+/// the model would keep at this order (indices into the diagram's poles);
+/// and its own in-band poles and residues, for the order above.
+fn diagram_order(
+    rmat: &Mat<f64>,
+    data: &Mat<f64>,
+    m: usize,
+    dt: f64,
+    data_norm: f64,
+    prev: Option<&BandPoles>,
+    opts: &IdentifyOptions,
+) -> Result<(DiagramOrder, Vec<usize>, BandPoles), LsceError> {
+    let (poles, _) = poles_of_order(rmat, 2 * m, dt, opts)?;
+    // residues with every physical pole, so that the out-of-band ones
+    // take their own share of the responses; the diagram shows the band
+    let fit = fit_order(poles, data, dt, false)?;
+    let (band_poles, res): (Vec<Pole>, Vec<Vec<f64>>) = fit
+        .poles
+        .iter()
+        .enumerate()
+        .filter(|(_, pl)| pl.in_band(opts))
+        .map(|(c, pl)| (*pl, row(&fit.residues, c)))
+        .unzip();
+    let dpoles: Vec<DiagramPole> = band_poles
+        .iter()
+        .zip(&res)
+        .map(|(pl, rv)| DiagramPole {
+            freq_hz: pl.freq_hz(),
+            damping_ratio: pl.xi,
+            stability: stability(pl, rv, prev, opts),
+        })
+        .collect();
+    let in_band: Vec<usize> = (0..fit.poles.len())
+        .filter(|&c| fit.poles[c].in_band(opts))
+        .collect();
+    let band_basis = basis(
+        &in_band.iter().map(|&c| fit.poles[c]).collect::<Vec<_>>(),
+        dt,
+        data.nrows(),
+        false,
+    );
+    // the in-band poles the model would keep at this order (a share of
+    // the responses, as `kept_model` keeps them): indices into `dpoles`
+    let kept = (0..in_band.len())
+        .filter(|&k| {
+            let share = band_basis.col(k).norm_l2() * row_norm(&fit.residues, in_band[k]);
+            share >= opts.min_contribution * data_norm
+        })
+        .collect::<Vec<usize>>();
+    let band_fit = &band_basis * select_rows(&fit.residues, &in_band);
+    let order = DiagramOrder {
+        order: m,
+        poles: dpoles,
+        time_error: fit.time_error,
+        band_time_error: time_errors(&band_fit, data).1,
+    };
+    Ok((order, kept, (band_poles, res)))
+}
+
+/// The model at the chosen order and what the real form of its residues
+/// leaves out.
+struct KeptModel {
+    /// The kept poles and their residues; the time error and residual of
+    /// the fit with every physical pole.
+    fit: OrderFit,
+    /// Per kept mode: the discarded `cos` part of its complex residue over
+    /// the kept `sin` part.
+    discarded_ratio: Vec<f64>,
+    /// Relative residual of the complex-residue fit (-).
+    complex_residual: f64,
+}
+
+/// The model of the chosen order's physical poles `all` (method §6.2, 4–5):
+/// residues fitted with every one of them, then the in-band poles with a
+/// share of the responses kept (a spurious pole fitted to round-off has
+/// none); `None` when no pole is kept. A second fit, with the companion
+/// `cos` terms, gives the part of each complex residue that the real form
+/// discards.
+fn kept_model(
+    all: Vec<Pole>,
+    data: &Mat<f64>,
+    dt: f64,
+    data_norm: f64,
+    opts: &IdentifyOptions,
+) -> Result<Option<KeptModel>, LsceError> {
+    let len = data.nrows();
     let n_all = all.len();
     // complex-residue fit (sin and cos parts): the discarded part
     let (full, complex_residual) =
         lstsq(basis(&all, dt, len, true).as_ref(), data.as_ref(), 1e-14)?;
-    let fit_all = fit_order(all, &data, dt, true)?;
-    // in band, and with a share of the responses (a spurious pole fitted to
-    // round-off has none)
+    let fit_all = fit_order(all, data, dt, true)?;
     let b_all = basis(&fit_all.poles, dt, len, false);
     let kept: Vec<usize> = (0..n_all)
         .filter(|&c| {
@@ -568,7 +653,7 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
         })
         .collect();
     if kept.is_empty() {
-        return Err(no_modes);
+        return Ok(None);
     }
     let discarded_ratio = kept
         .iter()
@@ -590,16 +675,33 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
         time_error: fit_all.time_error,
         residual: fit_all.residual,
     };
+    Ok(Some(KeptModel {
+        fit,
+        discarded_ratio,
+        complex_residual,
+    }))
+}
+
+/// The fit report of the kept modes `fit` (method §6.4): the time errors
+/// of the kept modes and of every physical pole, and the `|G|` errors over
+/// 200 frequencies across the band, overall and per response.
+fn fit_report(
+    r: &Responses,
+    fit: &OrderFit,
+    data: &Mat<f64>,
+    dt: f64,
+    opts: &IdentifyOptions,
+    least_squares: LeastSquaresResiduals,
+) -> FitReport {
     let time_error_all_poles = fit.time_error;
-    let modes = modes_of_fit(r, &fit);
-    let fitted = &basis(&fit.poles, dt, len, false) * &fit.residues;
-    let (per_time, time_error) = time_errors(&fitted, &data);
+    let fitted = &basis(&fit.poles, dt, data.nrows(), false) * &fit.residues;
+    let (per_time, time_error) = time_errors(&fitted, data);
     let nf = 200;
     let (lo, hi) = opts.band_hz;
     let freqs: Vec<f64> = (0..nf)
         .map(|q| lo + (hi - lo) * (q as f64 + 0.5) / nf as f64)
         .collect();
-    let gd = dtft_magnitudes(&data, dt, &freqs);
+    let gd = dtft_magnitudes(data, dt, &freqs);
     let gf = dtft_magnitudes(&fitted, dt, &freqs);
     let (per_mag, magnitude_error) = time_errors(&gf, &gd);
     let per_response = r
@@ -612,11 +714,25 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
             magnitude_error: per_mag[c],
         })
         .collect();
-    // a mode is stable when it is stable against order M - 1 or persists,
-    // stable, at order M + 1
+    FitReport {
+        time_error,
+        time_error_all_poles,
+        magnitude_error,
+        per_response,
+        least_squares,
+    }
+}
+
+/// Per kept pole: stable (method §6.3) when it is stable against order
+/// `chosen - 1` or persists, stable, at order `chosen + 1`.
+fn stable_modes(
+    poles: &[Pole],
+    diagram: &[DiagramOrder],
+    chosen: usize,
+    opts: &IdentifyOptions,
+) -> Vec<bool> {
     let at = |m: usize| diagram.iter().find(|d| d.order == m);
-    let stable = fit
-        .poles
+    poles
         .iter()
         .map(|pl| {
             let f = pl.freq_hz();
@@ -628,23 +744,5 @@ pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification,
             };
             at(chosen).is_some_and(near) || at(chosen + 1).is_some_and(near)
         })
-        .collect();
-    Ok(Identification {
-        modes,
-        model_order: chosen,
-        stable,
-        discarded_ratio,
-        diagram,
-        report: FitReport {
-            time_error,
-            time_error_all_poles,
-            magnitude_error,
-            per_response,
-            least_squares: LeastSquaresResiduals {
-                prediction: prediction_residual,
-                residues: fit.residual,
-                complex_residues: complex_residual,
-            },
-        },
-    })
+        .collect()
 }

@@ -311,125 +311,20 @@ impl Scene {
             // the per-point checks below are quadratic: stop here
             return v.finish();
         }
-        for (i, pt) in self.points.iter().enumerate() {
-            v.finite(
-                &format!("points[{i}].x_m"),
-                pt.x_m,
-                "a finite position in m",
-            );
-            if v.finite(&format!("points[{i}].h_m"), pt.h_m, "a finite height in m")
-                && pt.h_m.abs() > 1.0
-            {
-                v.push(
-                    &format!("points[{i}].h_m"),
-                    pt.h_m,
-                    "|h| <= 1 m (a tyre deflection, in metres)",
-                );
-            }
-            for (j, q) in self.points.iter().enumerate().take(i) {
-                if pt.x_m == q.x_m {
-                    v.push(
-                        &format!("points[{i}].x_m"),
-                        pt.x_m,
-                        &format!("a position different from points[{j}].x_m (coincident points make the contact system singular)"),
-                    );
-                }
-            }
-        }
-        match &self.tyre {
-            Tyre::Modal { modes } => {
-                if modes.is_empty() {
-                    v.push("tyre.modes", "[]", "at least one mode");
-                }
-                for (k, m) in modes.iter().enumerate() {
-                    validate_mode(&mut v, &format!("tyre.modes[{k}]"), m, p);
-                }
-            }
-            Tyre::Ring {
-                ring,
-                identification,
-            } => {
-                v.errors.extend(ring.validate("tyre.ring"));
-                let id_errors = identification.validate("tyre.identification");
-                if id_errors.is_empty() {
-                    // identification samples the responses of every pair of points
-                    let n = identification.num_samples();
-                    let values = (p * (p + 1) / 2) as f64 * n as f64;
-                    if values > MAX_RING_RESPONSE_VALUES {
-                        let most = (0..=p)
-                            .rev()
-                            .find(|&q| {
-                                (q * (q + 1) / 2) as f64 * n as f64 <= MAX_RING_RESPONSE_VALUES
-                            })
-                            .unwrap_or(0);
-                        v.push(
-                            "points",
-                            format!("{p} points"),
-                            &format!(
-                                "at most {most} points with tyre: Ring at {n} samples per response (identification samples P(P+1)/2 responses: {values:.3e} values, at most {MAX_RING_RESPONSE_VALUES:e}, {} MB); use fewer points or a shorter tyre.identification.duration_s",
-                                MAX_RING_RESPONSE_VALUES as u64 * 8 / 1_000_000
-                            ),
-                        );
-                    }
-                }
-                v.errors.extend(id_errors);
-            }
-            Tyre::Measured {
-                file,
-                identification,
-                nodes,
-            } => {
-                if file.as_os_str().is_empty() {
-                    v.push(
-                        "tyre.file",
-                        "\"\"",
-                        "the path of a UFF 58 or CSV file of the tyre's responses",
-                    );
-                }
-                if !nodes.is_empty() {
-                    let n = nodes;
-                    if n.len() != p {
-                        v.push(
-                            "tyre.nodes",
-                            format!("{} nodes", n.len()),
-                            &format!("one node number per point ({p})"),
-                        );
-                    }
-                    for (k, a) in n.iter().enumerate() {
-                        if n[..k].contains(a) {
-                            v.push(
-                                &format!("tyre.nodes[{k}]"),
-                                a.to_string(),
-                                "a node not listed before",
-                            );
-                        }
-                    }
-                }
-                // the band against the data's Nyquist frequency, and the
-                // samples, are checked when the file is read
-                v.errors
-                    .extend(identification.validate_for_data("tyre.identification"));
-            }
-        }
+        validate_points(&mut v, &self.points);
+        validate_tyre(&mut v, &self.tyre, p);
         validate_road(&mut v, &self.road);
         if let Contact::Compliant { stiffness_n_m } = &self.contact {
-            if stiffness_n_m.len() != 1 && stiffness_n_m.len() != p {
-                v.push(
-                    "contact.stiffness_n_m",
-                    format!("{} values", stiffness_n_m.len()),
-                    &format!("one stiffness for all points or {p} (one per point)"),
-                );
-            }
-            for (i, &k) in stiffness_n_m.iter().enumerate() {
-                if !(k.is_finite() && k > 0.0 && k <= MAX_TREAD_STIFFNESS_N_M) {
-                    v.push(
-                        &format!("contact.stiffness_n_m[{i}]"),
-                        k,
-                        &format!("a tread stiffness > 0 and <= {MAX_TREAD_STIFFNESS_N_M:e} N/m"),
-                    );
-                }
-            }
+            validate_tread(&mut v, stiffness_n_m, p);
         }
+        self.validate_speed_and_ramp(&mut v);
+        self.validate_time_step(&mut v);
+        v.finish()
+    }
+
+    /// The speed, the ramp time, and a ramp time of 0 where a point starts
+    /// below the road (`ramp_error`; a measured road's when its file is read).
+    fn validate_speed_and_ramp(&self, v: &mut Validator) {
         if v.nonneg("speed_mps", self.speed_mps, "a finite speed >= 0 m/s")
             && self.speed_mps > 1000.0
         {
@@ -442,6 +337,11 @@ impl Scene {
         {
             v.errors.push(e);
         }
+    }
+
+    /// The time step and the duration, each alone and against each other
+    /// (at least one step, at most [`MAX_STEPS`]).
+    fn validate_time_step(&self, v: &mut Validator) {
         // one message per field: an infinite dt_s is "not > 0 and finite", not
         // also "too large"
         if v.positive("dt_s", self.dt_s, "a finite time step > 0 s") && self.dt_s > 0.1 {
@@ -467,7 +367,6 @@ impl Scene {
                 );
             }
         }
-        v.finish()
     }
 }
 
@@ -551,6 +450,152 @@ fn source_excerpt(text: &str, line: usize, col: usize) -> String {
         if from > 0 { "..." } else { "" },
         if from > 0 { "   " } else { "" }
     )
+}
+
+/// The contact points: finite positions, heights of a tyre deflection, no
+/// two at one position.
+fn validate_points(v: &mut Validator, points: &[Point]) {
+    for (i, pt) in points.iter().enumerate() {
+        v.finite(
+            &format!("points[{i}].x_m"),
+            pt.x_m,
+            "a finite position in m",
+        );
+        if v.finite(&format!("points[{i}].h_m"), pt.h_m, "a finite height in m")
+            && pt.h_m.abs() > 1.0
+        {
+            v.push(
+                &format!("points[{i}].h_m"),
+                pt.h_m,
+                "|h| <= 1 m (a tyre deflection, in metres)",
+            );
+        }
+        for (j, q) in points.iter().enumerate().take(i) {
+            if pt.x_m == q.x_m {
+                v.push(
+                    &format!("points[{i}].x_m"),
+                    pt.x_m,
+                    &format!("a position different from points[{j}].x_m (coincident points make the contact system singular)"),
+                );
+            }
+        }
+    }
+}
+
+/// The tyre of a scene of `p` points.
+fn validate_tyre(v: &mut Validator, tyre: &Tyre, p: usize) {
+    match tyre {
+        Tyre::Modal { modes } => {
+            if modes.is_empty() {
+                v.push("tyre.modes", "[]", "at least one mode");
+            }
+            for (k, m) in modes.iter().enumerate() {
+                validate_mode(v, &format!("tyre.modes[{k}]"), m, p);
+            }
+        }
+        Tyre::Ring {
+            ring,
+            identification,
+        } => validate_ring_tyre(v, ring, identification, p),
+        Tyre::Measured {
+            file,
+            identification,
+            nodes,
+        } => validate_measured_tyre(v, file, identification, nodes, p),
+    }
+}
+
+/// A ring tyre of `p` points: the ring, the identification options, and the
+/// size of the sampled responses that identification needs.
+fn validate_ring_tyre(
+    v: &mut Validator,
+    ring: &RingParams,
+    identification: &IdentifyOptions,
+    p: usize,
+) {
+    v.errors.extend(ring.validate("tyre.ring"));
+    let id_errors = identification.validate("tyre.identification");
+    if id_errors.is_empty() {
+        // identification samples the responses of every pair of points
+        let n = identification.num_samples();
+        let values = (p * (p + 1) / 2) as f64 * n as f64;
+        if values > MAX_RING_RESPONSE_VALUES {
+            let most = (0..=p)
+                .rev()
+                .find(|&q| (q * (q + 1) / 2) as f64 * n as f64 <= MAX_RING_RESPONSE_VALUES)
+                .unwrap_or(0);
+            v.push(
+                "points",
+                format!("{p} points"),
+                &format!(
+                    "at most {most} points with tyre: Ring at {n} samples per response (identification samples P(P+1)/2 responses: {values:.3e} values, at most {MAX_RING_RESPONSE_VALUES:e}, {} MB); use fewer points or a shorter tyre.identification.duration_s",
+                    MAX_RING_RESPONSE_VALUES as u64 * 8 / 1_000_000
+                ),
+            );
+        }
+    }
+    v.errors.extend(id_errors);
+}
+
+/// A measured tyre of `p` points: a file named, one distinct node per point
+/// when nodes are given, and the identification options.
+fn validate_measured_tyre(
+    v: &mut Validator,
+    file: &Path,
+    identification: &IdentifyOptions,
+    nodes: &[i64],
+    p: usize,
+) {
+    if file.as_os_str().is_empty() {
+        v.push(
+            "tyre.file",
+            "\"\"",
+            "the path of a UFF 58 or CSV file of the tyre's responses",
+        );
+    }
+    if !nodes.is_empty() {
+        if nodes.len() != p {
+            v.push(
+                "tyre.nodes",
+                format!("{} nodes", nodes.len()),
+                &format!("one node number per point ({p})"),
+            );
+        }
+        for (k, a) in nodes.iter().enumerate() {
+            if nodes[..k].contains(a) {
+                v.push(
+                    &format!("tyre.nodes[{k}]"),
+                    a.to_string(),
+                    "a node not listed before",
+                );
+            }
+        }
+    }
+    // the band against the data's Nyquist frequency, and the
+    // samples, are checked when the file is read
+    v.errors
+        .extend(identification.validate_for_data("tyre.identification"));
+}
+
+/// The tread stiffnesses of compliant contact with `p` points: one for all
+/// or one per point, each in (0, [`MAX_TREAD_STIFFNESS_N_M`]].
+fn validate_tread(v: &mut Validator, stiffness_n_m: &[f64], p: usize) {
+    if stiffness_n_m.len() != 1 && stiffness_n_m.len() != p {
+        v.push(
+            "contact.stiffness_n_m",
+            format!("{} values", stiffness_n_m.len()),
+            &format!("one stiffness for all points or {p} (one per point)"),
+        );
+    }
+    for (i, &k) in stiffness_n_m.iter().enumerate() {
+        if !(k.is_finite() && k > 0.0 && k <= MAX_TREAD_STIFFNESS_N_M) {
+            v.push(
+                &format!("contact.stiffness_n_m[{i}]"),
+                k,
+                &format!("a tread stiffness > 0 and <= {MAX_TREAD_STIFFNESS_N_M:e} N/m"),
+            );
+        }
+    }
 }
 
 fn validate_mode(v: &mut Validator, at: &str, m: &Mode, p: usize) {

@@ -299,43 +299,14 @@ pub fn study(
     cfg: &Config,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<Row>, String> {
-    let grid = cfg.dts[0];
-    let dt_ref = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min) / 4.0;
     // the tyre is identified once for every time step of the study
     let cache = ModeCache::new();
-    progress(&format!(
-        "{}: reference, located at dt = {dt_ref:e} s",
-        scene.name
-    ));
-    let (reference, _, _) = run_stable(
+    let reference = Reference::run(scene, cfg, &cache, &mut progress)?;
+    let runs = Runs {
         scene,
-        ContactScheme::Located,
-        dt_ref,
-        cfg.duration_s,
-        SolverOptions::default(),
-        &cache,
-    )?;
-    let ref_s = sample(
-        &reference.t_s,
-        &reference.u_m,
-        &reference.q_n,
-        grid,
-        cfg.force_window_s,
-        dt_ref,
-        cfg.duration_s,
-    );
-    // displacement and window-force errors of a run recorded every `dt`
-    let errors = |run: &BaselineRun, dt: f64, duration: f64| {
-        let smp = sample(
-            &run.t_s,
-            &run.u_m,
-            &run.q_n,
-            grid,
-            cfg.force_window_s,
-            dt,
-            duration,
-        );
-        (rms_rel(&smp.u, &ref_s.u), rms_rel(&smp.q, &ref_s.q))
+        cfg,
+        cache: &cache,
+        reference,
     };
     let mut rows = Vec::new();
     for method in [
@@ -344,6 +315,104 @@ pub fn study(
         Method::AlphaBeta,
         Method::Direct,
     ] {
+        rows.extend(runs.convolution_rows(method, &mut progress)?);
+    }
+    // the peers: Newmark over the time steps and Dormand-Prince over the
+    // tolerances (output every finest step), each for every penalty
+    for &k in &cfg.penalties_n_m {
+        rows.extend(runs.newmark_rows(k, &mut progress)?);
+        rows.extend(runs.dopri_rows(k, &mut progress)?);
+    }
+    Ok(rows)
+}
+
+/// The converged reference of a study, sampled, and the sampling that
+/// compares a run with it.
+struct Reference {
+    /// Displacements are compared on the grid of the coarsest step (s).
+    grid_s: f64,
+    /// Forces are compared as means over windows of this length (s).
+    window_s: f64,
+    sampled: Sampled,
+}
+
+impl Reference {
+    /// The reference: a Located run at a quarter of the finest step.
+    fn run(
+        scene: &Scene,
+        cfg: &Config,
+        cache: &ModeCache,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<Self, String> {
+        let grid_s = cfg.dts[0];
+        let dt_ref = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min) / 4.0;
+        progress(&format!(
+            "{}: reference, located at dt = {dt_ref:e} s",
+            scene.name
+        ));
+        let (reference, _, _) = run_stable(
+            scene,
+            ContactScheme::Located,
+            dt_ref,
+            cfg.duration_s,
+            SolverOptions::default(),
+            cache,
+        )?;
+        let sampled = sample(
+            &reference.t_s,
+            &reference.u_m,
+            &reference.q_n,
+            grid_s,
+            cfg.force_window_s,
+            dt_ref,
+            cfg.duration_s,
+        );
+        Ok(Reference {
+            grid_s,
+            window_s: cfg.force_window_s,
+            sampled,
+        })
+    }
+
+    /// The displacement and window-force errors of a run recorded every `dt`.
+    fn errors(&self, run: &BaselineRun, dt: f64, duration: f64) -> (f64, f64) {
+        let smp = sample(
+            &run.t_s,
+            &run.u_m,
+            &run.q_n,
+            self.grid_s,
+            self.window_s,
+            dt,
+            duration,
+        );
+        (
+            rms_rel(&smp.u, &self.sampled.u),
+            rms_rel(&smp.q, &self.sampled.q),
+        )
+    }
+}
+
+/// What the runs of a study share: the scene, the configuration, the
+/// tyre's modes and the reference they are compared with.
+struct Runs<'a> {
+    scene: &'a Scene,
+    cfg: &'a Config,
+    cache: &'a ModeCache,
+    reference: Reference,
+}
+
+impl Runs<'_> {
+    /// The rows of a convolution method (`Located`, `Paper`, `AlphaBeta` or
+    /// `Direct`) over the time steps: direct runs only up to
+    /// `direct_max_steps` steps, and a baseline that cannot run ends the
+    /// method's sweep.
+    fn convolution_rows(
+        &self,
+        method: Method,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<Vec<Row>, String> {
+        let cfg = self.cfg;
+        let mut rows = Vec::new();
         let mut prev: Option<(f64, f64)> = None;
         for &dt in &cfg.dts {
             let duration = if method == Method::Direct {
@@ -357,47 +426,14 @@ pub fn study(
             }
             progress(&format!(
                 "{}: {} at dt = {dt:e} s",
-                scene.name,
+                self.scene.name,
                 method.label()
             ));
-            let (run, wall) = match method {
-                Method::Located | Method::Paper => {
-                    let scheme = if method == Method::Located {
-                        ContactScheme::Located
-                    } else {
-                        ContactScheme::Paper
-                    };
-                    let (run, wall, _) = run_stable(
-                        scene,
-                        scheme,
-                        dt,
-                        duration,
-                        SolverOptions::default(),
-                        &cache,
-                    )?;
-                    (run, wall)
-                }
-                Method::Newmark | Method::Dopri => unreachable!("the peers run below"),
-                Method::AlphaBeta | Method::Direct => {
-                    let kernel = if method == Method::AlphaBeta {
-                        Kernel::AlphaBeta
-                    } else {
-                        Kernel::Direct
-                    };
-                    let mut s = scene.clone();
-                    s.dt_s = dt;
-                    let start = Instant::now();
-                    let run = match run_baseline(&s, kernel, steps, &cache) {
-                        Ok(r) => r,
-                        Err(e) => {
-                            progress(&format!("  skipped: {e}"));
-                            break;
-                        }
-                    };
-                    (run, start.elapsed().as_secs_f64())
-                }
+            let Some((run, wall)) = self.convolution_run(method, dt, duration, steps, progress)?
+            else {
+                break;
             };
-            let (disp_err, force_err) = errors(&run, dt, duration);
+            let (disp_err, force_err) = self.reference.errors(&run, dt, duration);
             let order = observed_order(prev, dt, disp_err);
             prev = Some((dt, disp_err));
             let note = match run.overflow_t_s {
@@ -406,7 +442,7 @@ pub fn study(
                 None => String::new(),
             };
             rows.push(Row {
-                scene: scene.name.clone(),
+                scene: self.scene.name.clone(),
                 method,
                 dt_s: dt,
                 steps,
@@ -419,29 +455,83 @@ pub fn study(
                 note,
             });
         }
+        Ok(rows)
     }
-    // the peers: Newmark over the time steps and Dormand-Prince over the
-    // tolerances (output every finest step), each for every penalty
-    let dt_out = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min);
 
-    for &k in &cfg.penalties_n_m {
+    /// One run of a convolution method at `dt`, recorded every step, and
+    /// its wall time (s); `None` when the α/β or direct baseline cannot run
+    /// (told to `progress`).
+    fn convolution_run(
+        &self,
+        method: Method,
+        dt: f64,
+        duration: f64,
+        steps: usize,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<Option<(BaselineRun, f64)>, String> {
+        match method {
+            Method::Located | Method::Paper => {
+                let scheme = if method == Method::Located {
+                    ContactScheme::Located
+                } else {
+                    ContactScheme::Paper
+                };
+                let (run, wall, _) = run_stable(
+                    self.scene,
+                    scheme,
+                    dt,
+                    duration,
+                    SolverOptions::default(),
+                    self.cache,
+                )?;
+                Ok(Some((run, wall)))
+            }
+            Method::Newmark | Method::Dopri => {
+                unreachable!("the peers have their own rows (newmark_rows, dopri_rows)")
+            }
+            Method::AlphaBeta | Method::Direct => {
+                let kernel = if method == Method::AlphaBeta {
+                    Kernel::AlphaBeta
+                } else {
+                    Kernel::Direct
+                };
+                let mut s = self.scene.clone();
+                s.dt_s = dt;
+                let start = Instant::now();
+                let run = match run_baseline(&s, kernel, steps, self.cache) {
+                    Ok(r) => r,
+                    Err(e) => {
+                        progress(&format!("  skipped: {e}"));
+                        return Ok(None);
+                    }
+                };
+                Ok(Some((run, start.elapsed().as_secs_f64())))
+            }
+        }
+    }
+
+    /// The rows of Newmark with penalty contact of stiffness `k` (N/m) over
+    /// the time steps.
+    fn newmark_rows(&self, k: f64, progress: &mut dyn FnMut(&str)) -> Result<Vec<Row>, String> {
+        let cfg = self.cfg;
+        let mut rows = Vec::new();
         let mut prev: Option<(f64, f64)> = None;
         for &dt in &cfg.dts {
             progress(&format!(
                 "{}: Newmark + penalty k = {k:e} N/m at dt = {dt:e} s",
-                scene.name
+                self.scene.name
             ));
-            let mut s = scene.clone();
+            let mut s = self.scene.clone();
             s.dt_s = dt;
             let steps = (cfg.duration_s / dt).round() as usize;
             let start = Instant::now();
-            let run = crate::bench::peers::run_newmark(&s, k, steps, &cache)?;
+            let run = crate::bench::peers::run_newmark(&s, k, steps, self.cache)?;
             let wall = start.elapsed().as_secs_f64();
-            let (disp_err, force_err) = errors(&run, dt, cfg.duration_s);
+            let (disp_err, force_err) = self.reference.errors(&run, dt, cfg.duration_s);
             let order = observed_order(prev, dt, disp_err);
             prev = Some((dt, disp_err));
             rows.push(Row {
-                scene: scene.name.clone(),
+                scene: self.scene.name.clone(),
                 method: Method::Newmark,
                 dt_s: dt,
                 steps,
@@ -456,19 +546,29 @@ pub fn study(
                 }),
             });
         }
+        Ok(rows)
+    }
+
+    /// The rows of Dormand-Prince with penalty contact of stiffness `k`
+    /// (N/m) over the tolerances, its output every finest step; a run that
+    /// cannot start is skipped (told to `progress`).
+    fn dopri_rows(&self, k: f64, progress: &mut dyn FnMut(&str)) -> Result<Vec<Row>, String> {
+        let cfg = self.cfg;
+        let dt_out = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min);
+        let mut rows = Vec::new();
         for &rtol in &cfg.rtols {
             progress(&format!(
                 "{}: Dormand-Prince + penalty k = {k:e} N/m at rtol = {rtol:e}",
-                scene.name
+                self.scene.name
             ));
             let start = Instant::now();
             let (run, st) = match crate::bench::peers::run_dopri(
-                scene,
+                self.scene,
                 k,
                 rtol,
                 dt_out,
                 cfg.duration_s,
-                &cache,
+                self.cache,
             ) {
                 Ok(r) => r,
                 Err(e) => {
@@ -477,9 +577,9 @@ pub fn study(
                 }
             };
             let wall = start.elapsed().as_secs_f64();
-            let (disp_err, force_err) = errors(&run, dt_out, cfg.duration_s);
+            let (disp_err, force_err) = self.reference.errors(&run, dt_out, cfg.duration_s);
             rows.push(Row {
-                scene: scene.name.clone(),
+                scene: self.scene.name.clone(),
                 method: Method::Dopri,
                 dt_s: dt_out,
                 steps: st.accepted as usize,
@@ -495,8 +595,8 @@ pub fn study(
                 ),
             });
         }
+        Ok(rows)
     }
-    Ok(rows)
 }
 
 /// The observed order of the error `err` at `dt` against the previous

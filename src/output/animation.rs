@@ -210,6 +210,19 @@ fn draw_frame(
     small.save(path).map_err(|e| err(&e))
 }
 
+/// The chart of a frame: linear x (m) and height (mm) axes.
+type FrameChart<'a, 'b> = ChartContext<
+    'a,
+    BitMapBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// Sizes (px) of a frame's text, marks and lines: `s` px at 720 px (the
+/// frame's smaller side), times `scale`.
+fn px(scale: f64) -> impl Fn(f64) -> i32 + Copy {
+    move |s: f64| (s * scale).round() as i32
+}
+
 /// Draws the current state of `sim` on `root` (`width × height` px).
 fn draw_frame_on(
     root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
@@ -220,12 +233,11 @@ fn draw_frame_on(
     height: u32,
 ) -> Result<(), String> {
     register_fonts();
-    let err = |e: &dyn std::fmt::Display| e.to_string();
     let scene = sim.scene();
     let t = sim.time_s();
     let scale = (f64::from(height.min(width)) / 720.0).clamp(0.5, 4.0);
-    let fs = |s: f64| (s * scale).round() as i32;
-    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let fs = px(scale);
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
     let caption = format!(
         "{} — t = {:.4} s, V = {:.1} km/h",
         scene.name,
@@ -238,7 +250,7 @@ fn draw_frame_on(
         .x_label_area_size(fs(55.0))
         .y_label_area_size(fs(80.0))
         .build_cartesian_2d(ext.x0..ext.x1, -ext.y_mm..ext.y_mm)
-        .map_err(|e| err(&e))?;
+        .map_err(|e| e.to_string())?;
     chart
         .configure_mesh()
         .x_desc("position along the contact line x (m)")
@@ -247,7 +259,32 @@ fn draw_frame_on(
         .axis_desc_style(("sans-serif", fs(20.0)))
         .light_line_style(WHITE.mix(0.0))
         .draw()
-        .map_err(|e| err(&e))?;
+        .map_err(|e| e.to_string())?;
+    draw_road(&mut chart, sim, ext, scale)?;
+    let disp = draw_tyre(&mut chart, sim, scale)?;
+    draw_points(&mut chart, sim, &disp, scale)?;
+    draw_phase_labels(&mut chart, phases, t, &disp, ext, height, scale)?;
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .legend_area_size(fs(30.0))
+        .label_font(("sans-serif", fs(18.0)))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.3))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    Ok(())
+}
+
+/// The road under the tyre ([`road_in_tyre_frame`]), filled down to the
+/// bottom of the frame.
+fn draw_road(
+    chart: &mut FrameChart<'_, '_>,
+    sim: &Simulation,
+    ext: &Extents,
+    scale: f64,
+) -> Result<(), String> {
+    let fs = px(scale);
     let road: Vec<(f64, f64)> = road_in_tyre_frame(sim, ext.x0, ext.x1, 600)
         .into_iter()
         .map(|[x, y]| (x, 1e3 * y))
@@ -261,10 +298,10 @@ fn draw_frame_on(
                 .collect::<Vec<_>>(),
             ROAD.mix(0.25).filled(),
         )))
-        .map_err(|e| err(&e))?;
+        .map_err(|e| e.to_string())?;
     chart
         .draw_series(LineSeries::new(road, ROAD.stroke_width(fs(3.0) as u32)))
-        .map_err(|e| err(&e))?
+        .map_err(|e| e.to_string())?
         .label("road (moving left)")
         .legend(move |(x, y)| {
             PathElement::new(
@@ -272,11 +309,23 @@ fn draw_frame_on(
                 ROAD.stroke_width(fs(3.0) as u32),
             )
         });
+    Ok(())
+}
+
+/// The tyre's contact line, undeformed and displaced. Returns the displaced
+/// points `(x (m), height (mm), index)`, by position.
+fn draw_tyre(
+    chart: &mut FrameChart<'_, '_>,
+    sim: &Simulation,
+    scale: f64,
+) -> Result<Vec<(f64, f64, usize)>, String> {
+    let fs = px(scale);
+    let scene = sim.scene();
     let mut und: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, 1e3 * p.h_m)).collect();
     und.sort_by(|a, b| a.0.total_cmp(&b.0));
     chart
         .draw_series(LineSeries::new(und, BLACK.mix(0.4).stroke_width(1)))
-        .map_err(|e| err(&e))?
+        .map_err(|e| e.to_string())?
         .label("undeformed tyre")
         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + fs(20.0), y)], BLACK.mix(0.4)));
     let u = sim.displacement_m();
@@ -293,7 +342,7 @@ fn draw_frame_on(
             disp.iter().map(|d| (d.0, d.1)),
             RGBColor(60, 60, 60).stroke_width(fs(2.0) as u32),
         ))
-        .map_err(|e| err(&e))?
+        .map_err(|e| e.to_string())?
         .label("tyre (displaced)")
         .legend(move |(x, y)| {
             PathElement::new(
@@ -301,6 +350,17 @@ fn draw_frame_on(
                 RGBColor(60, 60, 60).stroke_width(fs(2.0) as u32),
             )
         });
+    Ok(disp)
+}
+
+/// The displaced points `disp`, coloured by contact state.
+fn draw_points(
+    chart: &mut FrameChart<'_, '_>,
+    sim: &Simulation,
+    disp: &[(f64, f64, usize)],
+    scale: f64,
+) -> Result<(), String> {
+    let fs = px(scale);
     let contact = sim.in_contact();
     let r = fs(9.0);
     for (on, name, color) in [(true, "in contact", CONTACT), (false, "in flight", FLIGHT)] {
@@ -310,17 +370,32 @@ fn draw_frame_on(
                     .filter(|d| contact.get(d.2).copied().unwrap_or(false) == on)
                     .map(|d| Circle::new((d.0, d.1), r, color.filled())),
             )
-            .map_err(|e| err(&e))?
+            .map_err(|e| e.to_string())?
             .label(name)
             .legend(move |(x, y)| Circle::new((x + fs(10.0), y), fs(6.0), color.filled()));
     }
-    // phase labels above the highest point, in lanes of text height by
-    // point index (i % 3), so that close neighbours' labels do not overlap
+    Ok(())
+}
+
+/// Each point's contact phase at time `t`, written above it: events in
+/// capitals. With several points the labels go above the highest point, in
+/// lanes of text height by point index (i % 3), so that close neighbours'
+/// labels do not overlap.
+fn draw_phase_labels(
+    chart: &mut FrameChart<'_, '_>,
+    phases: &PhaseTracker,
+    t: f64,
+    disp: &[(f64, f64, usize)],
+    ext: &Extents,
+    height: u32,
+    scale: f64,
+) -> Result<(), String> {
+    let fs = px(scale);
     let top = disp.iter().map(|d| d.1).fold(f64::NEG_INFINITY, f64::max);
     let plot_px = (f64::from(height) - f64::from(fs(26.0 + 55.0 + 24.0))).max(50.0);
     let lane = 2.0 * ext.y_mm * f64::from(fs(30.0)) / plot_px;
     let several = disp.len() > 1;
-    for d in &disp {
+    for d in disp {
         let ph = phases.phase(d.2, t);
         let color = match ph {
             ContactPhase::Impact | ContactPhase::Release => EVENT,
@@ -354,17 +429,8 @@ fn draw_frame_on(
                 (d.0, y),
                 style,
             )))
-            .map_err(|e| err(&e))?;
+            .map_err(|e| e.to_string())?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .legend_area_size(fs(30.0))
-        .label_font(("sans-serif", fs(18.0)))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.3))
-        .draw()
-        .map_err(|e| err(&e))?;
     Ok(())
 }
 

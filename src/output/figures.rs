@@ -2,6 +2,8 @@
 //! `epaint_default_fonts`): stacked panels of line or marker series, each
 //! with a title, axis labels with units, and a legend.
 
+use plotters::chart::SeriesAnno;
+use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
@@ -483,8 +485,7 @@ fn draw_panel(
     let fs = |s: f64| (s * scale).round() as u32;
     let (xs, ys) = data_ranges(panel);
     let plot_h = plot_h_of(panel, area, frame);
-    let (entries, corner, legend_wh) = (&legend.entries, &legend.corner, legend.size);
-    let outside = column_w.is_some() && !entries.is_empty();
+    let outside = column_w.is_some() && !legend.entries.is_empty();
     let (chart_area, legend_area) = match column_w {
         Some(cw) => {
             let w = area.dim_in_pixel().0 as i32;
@@ -508,119 +509,201 @@ fn draw_panel(
         .margin_bottom(frame.v_margin)
         .x_label_area_size(frame.x_area)
         .y_label_area_size(y_area);
-    macro_rules! finish {
-        ($chart:expr) => {{
-            let mut chart = $chart;
-            let (lx, ly) = (panel.log_x, panel.log_y);
-            let fx = move |v: &f64| tick_label(*v, lx);
-            let names = &panel.y_names;
-            let fy = move |v: &f64| {
-                if names.is_empty() {
-                    tick_label(*v, ly)
-                } else {
-                    name_tick_label(*v, names)
-                }
-            };
-            let y_ticks = y_label_count(panel, plot_h, scale);
-            let y_desc_px = type_px.axis_title;
-            let x_desc = if frame.x_desc {
-                panel.x_label.as_str()
-            } else {
-                ""
-            };
-            chart
-                .configure_mesh()
-                .x_label_formatter(&fx)
-                .y_label_formatter(&fy)
-                .y_labels(y_ticks)
-                .x_desc(x_desc)
-                .y_desc(panel.y_label.as_str())
-                .label_style(("sans-serif", fs(14.0) as i32))
-                .axis_desc_style(("sans-serif", y_desc_px as i32))
-                .light_line_style(RGBColor(235, 235, 235))
-                .draw()?;
-            let (px, py) = chart.plotting_area().get_pixel_range();
-            layout.plot_px = [px.start, py.start, px.end, py.end];
-            for (k, s) in panel.series.iter().enumerate() {
-                let c = PALETTE[s.color.unwrap_or(k) % PALETTE.len()];
-                let pts = s
-                    .points
-                    .iter()
-                    .copied()
-                    .filter(|p| p.0.is_finite() && p.1.is_finite());
-                layout
-                    .curves_px
-                    .push(pts.clone().map(|p| chart.backend_coord(&p)).collect());
-                let stroke = stroke_of(s, scale);
-                let anno = match s.style {
-                    Style::Line | Style::ThinLine => {
-                        chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
-                    }
-                    Style::LineMarkers(r) => {
-                        let pts: Vec<(f64, f64)> = pts.collect();
-                        chart.draw_series(pts.iter().map(|&p| Circle::new(p, r, c.filled())))?;
-                        chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
-                    }
-                    Style::Markers(r) => {
-                        chart.draw_series(pts.map(move |p| Circle::new(p, r, c.filled())))?
-                    }
-                    Style::HollowMarkers(r) => {
-                        chart.draw_series(pts.map(move |p| Circle::new(p, r, c.stroke_width(1))))?
-                    }
-                };
-                if !s.name.is_empty() {
-                    // as key_element draws them in a legend column
-                    let anno = anno.label(s.name.clone());
-                    let line = move || {
-                        PathElement::new(vec![(0, 0), (20, 0)], c.stroke_width(key_stroke(stroke)))
-                    };
-                    match key_style(s) {
-                        Style::Line | Style::ThinLine => {
-                            anno.legend(move |at| EmptyElement::at(at) + line());
-                        }
-                        Style::LineMarkers(r) => {
-                            anno.legend(move |at| {
-                                EmptyElement::at(at) + line() + Circle::new((10, 0), r, c.filled())
-                            });
-                        }
-                        Style::Markers(r) => {
-                            anno.legend(move |(x, y)| Circle::new((x + 10, y), r, c.filled()));
-                        }
-                        Style::HollowMarkers(r) => {
-                            anno.legend(move |(x, y)| {
-                                Circle::new((x + 10, y), r, c.stroke_width(1))
-                            });
-                        }
-                    }
-                }
-            }
-            if outside {
-                // level with the plot's top, in the column's absolute pixels
-                let (lx, ly) = legend_area.get_base_pixel();
-                let (x, y) = (fs(5.0) as i32, py.start - ly);
-                draw_legend(&legend_area, entries, (x, y), legend_wh, fs(14.0))?;
-                layout.legend_px =
-                    Some([lx + x, ly + y, lx + x + legend_wh.0, ly + y + legend_wh.1]);
-            } else if !entries.is_empty() {
-                chart
-                    .configure_series_labels()
-                    .background_style(WHITE.mix(0.85))
-                    .border_style(RGBColor(180, 180, 180))
-                    .label_font(("sans-serif", fs(14.0) as i32))
-                    .position(corner.clone())
-                    .draw()?;
-            }
-        }};
-    }
+    let parts = ChartParts {
+        panel,
+        frame,
+        plot_h,
+        axis_title_px: type_px.axis_title,
+        legend,
+        beside: outside.then_some(&legend_area),
+    };
     match (panel.log_x, panel.log_y) {
-        (false, false) => finish!(builder.build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)?),
-        (true, false) => finish!(builder.build_cartesian_2d((xs.0..xs.1).log_scale(), ys.0..ys.1)?),
-        (false, true) => finish!(builder.build_cartesian_2d(xs.0..xs.1, (ys.0..ys.1).log_scale())?),
-        (true, true) => {
-            finish!(builder.build_cartesian_2d((xs.0..xs.1).log_scale(), (ys.0..ys.1).log_scale())?)
+        (false, false) => draw_chart(
+            builder.build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)?,
+            &parts,
+            &mut layout,
+        ),
+        (true, false) => draw_chart(
+            builder.build_cartesian_2d((xs.0..xs.1).log_scale(), ys.0..ys.1)?,
+            &parts,
+            &mut layout,
+        ),
+        (false, true) => draw_chart(
+            builder.build_cartesian_2d(xs.0..xs.1, (ys.0..ys.1).log_scale())?,
+            &parts,
+            &mut layout,
+        ),
+        (true, true) => draw_chart(
+            builder.build_cartesian_2d((xs.0..xs.1).log_scale(), (ys.0..ys.1).log_scale())?,
+            &parts,
+            &mut layout,
+        ),
+    }?;
+    Ok(layout)
+}
+
+/// The chart of a panel, on linear or log axes.
+type PanelChart<'a, 'b, X, Y> = ChartContext<'a, BitMapBackend<'b>, Cartesian2d<X, Y>>;
+
+/// What [`draw_chart`] draws besides the chart's axes.
+struct ChartParts<'p, 'a, 'b> {
+    panel: &'p Panel,
+    frame: &'p Frame,
+    /// The plot's estimated height (px), for the number of y ticks.
+    plot_h: f64,
+    axis_title_px: u32,
+    legend: &'p PanelLegend,
+    /// The legend column right of the plot, when the legend goes there.
+    beside: Option<&'a DrawingArea<BitMapBackend<'b>, plotters::coord::Shift>>,
+}
+
+/// Draws the axes, the series and the legend of a panel on `chart`, and
+/// notes in `layout` where the plot, the curves and a legend beside it are.
+fn draw_chart<'a, 'b: 'a, X, Y>(
+    mut chart: PanelChart<'a, 'b, X, Y>,
+    parts: &ChartParts<'_, '_, '_>,
+    layout: &mut PanelLayout,
+) -> Result<(), Box<dyn std::error::Error>>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let ChartParts { panel, frame, .. } = *parts;
+    let scale = frame.scale;
+    let fs = |s: f64| (s * scale).round() as u32;
+    draw_axes(&mut chart, parts)?;
+    let (px, py) = chart.plotting_area().get_pixel_range();
+    layout.plot_px = [px.start, py.start, px.end, py.end];
+    for (k, s) in panel.series.iter().enumerate() {
+        layout.curves_px.push(plot_series(&mut chart, s, k, scale)?);
+    }
+    let (entries, legend_wh) = (&parts.legend.entries, parts.legend.size);
+    if let Some(legend_area) = parts.beside {
+        // level with the plot's top, in the column's absolute pixels
+        let (lx, ly) = legend_area.get_base_pixel();
+        let (x, y) = (fs(5.0) as i32, py.start - ly);
+        draw_legend(legend_area, entries, (x, y), legend_wh, fs(14.0))?;
+        layout.legend_px = Some([lx + x, ly + y, lx + x + legend_wh.0, ly + y + legend_wh.1]);
+    } else if !entries.is_empty() {
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(180, 180, 180))
+            .label_font(("sans-serif", fs(14.0) as i32))
+            .position(parts.legend.corner.clone())
+            .draw()?;
+    }
+    Ok(())
+}
+
+/// The grid, the tick labels (numbers, or the panel's y names) and the axis
+/// titles of a panel (the x title only where the frame shows it).
+fn draw_axes<X, Y>(
+    chart: &mut PanelChart<'_, '_, X, Y>,
+    parts: &ChartParts<'_, '_, '_>,
+) -> Result<(), Box<dyn std::error::Error>>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let ChartParts { panel, frame, .. } = *parts;
+    let scale = frame.scale;
+    let fs = |s: f64| (s * scale).round() as u32;
+    let (lx, ly) = (panel.log_x, panel.log_y);
+    let fx = move |v: &f64| tick_label(*v, lx);
+    let names = &panel.y_names;
+    let fy = move |v: &f64| {
+        if names.is_empty() {
+            tick_label(*v, ly)
+        } else {
+            name_tick_label(*v, names)
+        }
+    };
+    let y_ticks = y_label_count(panel, parts.plot_h, scale);
+    let x_desc = if frame.x_desc {
+        panel.x_label.as_str()
+    } else {
+        ""
+    };
+    chart
+        .configure_mesh()
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
+        .y_labels(y_ticks)
+        .x_desc(x_desc)
+        .y_desc(panel.y_label.as_str())
+        .label_style(("sans-serif", fs(14.0) as i32))
+        .axis_desc_style(("sans-serif", parts.axis_title_px as i32))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()?;
+    Ok(())
+}
+
+/// Draws series `s`, the `k`th of its panel, and its legend key (named
+/// series only). Returns its finite points in pixels.
+fn plot_series<'a, 'b: 'a, X, Y>(
+    chart: &mut PanelChart<'a, 'b, X, Y>,
+    s: &Series,
+    k: usize,
+    scale: f64,
+) -> Result<Vec<(i32, i32)>, Box<dyn std::error::Error>>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let c = PALETTE[s.color.unwrap_or(k) % PALETTE.len()];
+    let pts = s
+        .points
+        .iter()
+        .copied()
+        .filter(|p| p.0.is_finite() && p.1.is_finite());
+    let curve_px = pts.clone().map(|p| chart.backend_coord(&p)).collect();
+    let stroke = stroke_of(s, scale);
+    let anno = match s.style {
+        Style::Line | Style::ThinLine => {
+            chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
+        }
+        Style::LineMarkers(r) => {
+            let pts: Vec<(f64, f64)> = pts.collect();
+            chart.draw_series(pts.iter().map(|&p| Circle::new(p, r, c.filled())))?;
+            chart.draw_series(LineSeries::new(pts, c.stroke_width(stroke)))?
+        }
+        Style::Markers(r) => chart.draw_series(pts.map(move |p| Circle::new(p, r, c.filled())))?,
+        Style::HollowMarkers(r) => {
+            chart.draw_series(pts.map(move |p| Circle::new(p, r, c.stroke_width(1))))?
+        }
+    };
+    if !s.name.is_empty() {
+        add_key(anno.label(s.name.clone()), key_style(s), c, stroke);
+    }
+    Ok(curve_px)
+}
+
+/// The legend key of a series drawn in colour `c` with line width
+/// `stroke`, as `key_element` draws them in a legend column.
+fn add_key<'a, 'b: 'a>(
+    anno: &mut SeriesAnno<'a, BitMapBackend<'b>>,
+    style: Style,
+    c: RGBColor,
+    stroke: u32,
+) {
+    let line = move || PathElement::new(vec![(0, 0), (20, 0)], c.stroke_width(key_stroke(stroke)));
+    match style {
+        Style::Line | Style::ThinLine => {
+            anno.legend(move |at| EmptyElement::at(at) + line());
+        }
+        Style::LineMarkers(r) => {
+            anno.legend(move |at| {
+                EmptyElement::at(at) + line() + Circle::new((10, 0), r, c.filled())
+            });
+        }
+        Style::Markers(r) => {
+            anno.legend(move |(x, y)| Circle::new((x + 10, y), r, c.filled()));
+        }
+        Style::HollowMarkers(r) => {
+            anno.legend(move |(x, y)| Circle::new((x + 10, y), r, c.stroke_width(1)));
         }
     }
-    Ok(layout)
 }
 
 mod font;
