@@ -7,6 +7,7 @@ pub mod figures;
 pub mod impacts;
 pub mod paper_figures;
 pub mod record;
+pub mod sampler;
 pub mod summary;
 
 pub use crate::error::count;
