@@ -1,4 +1,5 @@
-//! Output: CSV time histories, atomic file writes, headless figures.
+//! Output: CSV time histories, atomic file writes, headless figures, and
+//! the one sampler of a run's time histories ([`sampler`]).
 
 pub mod animation;
 pub mod arrays;
