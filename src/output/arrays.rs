@@ -1,9 +1,11 @@
 //! A run's history as flat arrays, row for row what `run -o` writes
-//! ([`super::csv::RunWriter`]): the state at `t = 0`, then one row every
-//! `every` steps and one for a last partial block; the force of a row is
-//! the mean over its steps, so that impulses are kept. For callers that
-//! want numbers, not text (the Python package).
+//! ([`super::csv::RunWriter`]): the run sampler's samples
+//! ([`super::sampler`]), the state at `t = 0`, then one row every `every`
+//! steps and one for a last partial window; the force of a row is the mean
+//! over its steps, so that impulses are kept, the other values the state at
+//! its end. For callers that want numbers, not text (the Python package).
 
+use crate::output::sampler::{LastWindow, Sampler, Stride};
 use crate::simulation::Simulation;
 
 /// Rows of a run, time-major: value `[row * p + i]` is point `i`'s.
@@ -15,10 +17,9 @@ pub struct RunArrays {
     pub v_mps: Vec<f64>,
     pub q_n: Vec<f64>,
     pub gap_m: Vec<f64>,
+    /// Contact state at the row's time.
     pub contact: Vec<bool>,
-    every: u64,
-    sum_n: Vec<f64>,
-    in_block: u64,
+    sampler: Sampler,
 }
 
 impl RunArrays {
@@ -36,9 +37,7 @@ impl RunArrays {
             q_n: Vec::with_capacity(values),
             gap_m: Vec::with_capacity(values),
             contact: Vec::with_capacity(values),
-            every,
-            sum_n: vec![0.0; num_points],
-            in_block: 0,
+            sampler: Sampler::new(num_points, Stride::Every(every), LastWindow::Partial),
         }
     }
 
@@ -47,37 +46,30 @@ impl RunArrays {
         self.t_s.len()
     }
 
-    fn push(&mut self, sim: &Simulation, mean_q: bool) {
+    /// Appends the row of the sampler's last window: its mean forces and
+    /// `sim`'s state at its end.
+    fn push(&mut self, sim: &Simulation) {
+        let w = self.sampler.last_window();
         self.t_s.push(sim.time_s());
         self.u_m.extend_from_slice(sim.displacement_m());
         self.v_mps.extend_from_slice(sim.velocity_mps());
-        let n = self.in_block.max(1) as f64;
-        if mean_q {
-            self.q_n.extend(self.sum_n.iter().map(|s| s / n));
-        } else {
-            self.q_n.extend(std::iter::repeat_n(0.0, self.num_points));
-        }
+        self.q_n.extend_from_slice(w.q_n);
         self.gap_m
             .extend((0..self.num_points).map(|i| sim.gap_m(i)));
         self.contact.extend_from_slice(sim.in_contact());
-        self.sum_n.fill(0.0);
-        self.in_block = 0;
     }
 }
 
 impl crate::drive::Probe for RunArrays {
     fn start(&mut self, sim: &Simulation) -> std::io::Result<()> {
-        self.push(sim, false);
+        self.sampler.start(sim);
+        self.push(sim);
         Ok(())
     }
 
     fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
-        for (s, q) in self.sum_n.iter_mut().zip(sim.force_n()) {
-            *s += q;
-        }
-        self.in_block += 1;
-        if self.in_block == self.every || sim.finished() {
-            self.push(sim, true);
+        if self.sampler.after_step(sim).is_some() {
+            self.push(sim);
         }
         Ok(())
     }

@@ -1,7 +1,10 @@
 //! The run CSV (pandas-friendly): `t_s`, then `u{i}_m`, `v{i}_mps`, `q{i}_N`
 //! (step-mean force, or mean over the `every` steps of a row so impulses are
-//! kept), `gap{i}_m`, `contact{i}` (0/1).
+//! kept), `gap{i}_m`, `contact{i}` (0/1). The rows are the run sampler's
+//! samples ([`super::sampler`]): the force a window mean, the other values
+//! the state at the row's time.
 
+use crate::output::sampler::{LastWindow, Sampler, Stride};
 use crate::simulation::Simulation;
 use std::io::Write;
 
@@ -64,9 +67,7 @@ const BLOCK_VALUES: usize = 1 << 16;
 pub struct RunWriter<W: Write> {
     out: W,
     p: usize,
-    every: u64,
-    count: u64,
-    q_sum: Vec<f64>,
+    sampler: Sampler,
     /// Rows not yet formatted, `1 + 5 p` numbers each.
     rows: Vec<f64>,
     /// Rows per block.
@@ -99,9 +100,7 @@ impl<W: Write> RunWriter<W> {
         Ok(RunWriter {
             out,
             p,
-            every: every.max(1),
-            count: 0,
-            q_sum: vec![0.0; p],
+            sampler: Sampler::new(p, Stride::Every(every), LastWindow::Partial),
             rows: Vec::with_capacity(block_rows * width),
             block_rows,
             text: vec![String::new(); threads.max(1)],
@@ -111,33 +110,27 @@ impl<W: Write> RunWriter<W> {
 
     /// Writes the initial state (t = 0) row.
     pub fn write_initial(&mut self, sim: &Simulation) -> std::io::Result<()> {
-        self.q_sum.fill(0.0);
-        self.push_row(sim, 1)
+        self.sampler.start(sim);
+        self.push_row(sim)
     }
 
-    /// Call after every step; writes a row every `every` steps.
+    /// Call after every step; writes a row every `every` steps, and one for
+    /// the steps after the last whole window at the run's end.
     pub fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
-        for (s, q) in self.q_sum.iter_mut().zip(sim.force_n()) {
-            *s += q;
-        }
-        self.count += 1;
-        if self.count.is_multiple_of(self.every) || sim.finished() {
-            let n = self.count % self.every;
-            let n = if n == 0 { self.every } else { n };
-            self.push_row(sim, n)?;
-            self.q_sum.fill(0.0);
-            self.count = 0;
+        if self.sampler.after_step(sim).is_some() {
+            self.push_row(sim)?;
         }
         Ok(())
     }
 
-    /// Keeps the row's numbers; formats and writes the block once full.
-    fn push_row(&mut self, sim: &Simulation, n: u64) -> std::io::Result<()> {
+    /// Keeps the row of the sampler's last window (its mean forces and
+    /// `sim`'s state at its end); formats and writes the block once full.
+    fn push_row(&mut self, sim: &Simulation) -> std::io::Result<()> {
         let p = self.p;
         self.rows.push(sim.time_s());
         self.rows.extend_from_slice(sim.displacement_m());
         self.rows.extend_from_slice(sim.velocity_mps());
-        self.rows.extend(self.q_sum.iter().map(|x| x / n as f64));
+        self.rows.extend_from_slice(self.sampler.last_window().q_n);
         self.rows.extend((0..p).map(|i| sim.gap_m(i)));
         self.rows
             .extend(sim.in_contact().iter().map(|&c| if c { 1.0 } else { 0.0 }));

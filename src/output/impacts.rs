@@ -61,6 +61,19 @@ impl ImpactTracker {
         }
     }
 
+    /// A tracker of `p` points whose step before the next one had no force.
+    pub fn zeros(p: usize) -> Self {
+        ImpactTracker {
+            q_prev: vec![0.0; p],
+        }
+    }
+
+    /// Starts again from `sim`'s current forces, in the tracker's own buffer.
+    pub fn restart(&mut self, sim: &crate::Simulation) {
+        self.q_prev.clear();
+        self.q_prev.extend_from_slice(sim.force_n());
+    }
+
     /// Adds each point's impact part of the step just taken to `sums`.
     pub fn add_step(&mut self, sim: &crate::Simulation, sums: &mut [f64]) {
         let scene = sim.scene();

@@ -1,4 +1,5 @@
-//! Output: CSV time histories, atomic file writes, headless figures.
+//! Output: CSV time histories, atomic file writes, headless figures, and
+//! the one sampler of a run's time histories ([`sampler`]).
 
 pub mod animation;
 pub mod arrays;
@@ -7,6 +8,7 @@ pub mod figures;
 pub mod impacts;
 pub mod paper_figures;
 pub mod record;
+pub mod sampler;
 pub mod summary;
 
 pub use crate::error::count;

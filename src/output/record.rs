@@ -1,10 +1,12 @@
 //! Recording a run for figures: displacement, window-mean force and contact
-//! per point, at most `max_samples` samples (forces averaged over each
-//! window so impulses are kept, and their impact part beside them so that
-//! the figure can clip impact spikes).
+//! per point, at most `max_samples` samples (the run sampler's windows,
+//! [`super::sampler`]: forces averaged over each window so impulses are
+//! kept, and their impact part beside them so that the figure can clip
+//! impact spikes).
 
 use crate::output::figures::{Figure, Panel, Series, Style};
-use crate::output::impacts::{ImpactTracker, clip_level};
+use crate::output::impacts::clip_level;
+use crate::output::sampler::{LastWindow, Merge, Sampler, Stride, merge_windows};
 use crate::output::summary;
 use crate::simulation::Simulation;
 
@@ -31,14 +33,10 @@ pub struct Recording {
     /// The impact part of `q_n`, window mean `qi[i][k]` (N): located
     /// impulses / dt, or the paper scheme's landing steps.
     pub q_impact_n: Vec<Vec<f64>>,
-    /// `contact[i][k]`: point `i` touched the road during window `k`.
+    /// `contact[i][k]`: point `i` was in contact at some step of window `k`.
     pub contact: Vec<Vec<bool>>,
     every: u64,
-    count: u64,
-    q_sum: Vec<f64>,
-    qi_sum: Vec<f64>,
-    contact_any: Vec<bool>,
-    impacts: ImpactTracker,
+    sampler: Sampler,
 }
 
 /// A panel of a run figure.
@@ -83,50 +81,41 @@ pub struct FigureSpec<'a> {
 }
 
 impl Recording {
-    /// A recording of `total_steps` steps keeping about `max_samples` samples.
+    /// A recording of `total_steps` steps keeping about `max_samples`
+    /// samples: windows of `ceil(total_steps / max_samples)` steps, the last
+    /// one partial. Its buffers are allocated here.
     pub fn new(p: usize, total_steps: u64, max_samples: u64) -> Self {
+        let every = total_steps.div_ceil(max_samples.max(1)).max(1);
+        let rows = usize::try_from(total_steps.div_ceil(every)).unwrap_or(0);
+        // (one `Vec` per point, each with its room: `vec![v; p]` clones
+        // without the capacity)
+        fn per_point<T>(p: usize, rows: usize) -> Vec<Vec<T>> {
+            (0..p).map(|_| Vec::with_capacity(rows)).collect()
+        }
         Recording {
-            u_m: vec![Vec::new(); p],
-            q_n: vec![Vec::new(); p],
-            r_m: vec![Vec::new(); p],
-            q_impact_n: vec![Vec::new(); p],
-            contact: vec![Vec::new(); p],
-            every: total_steps.div_ceil(max_samples.max(1)).max(1),
-            q_sum: vec![0.0; p],
-            qi_sum: vec![0.0; p],
-            contact_any: vec![false; p],
-            ..Default::default()
+            t_s: Vec::with_capacity(rows),
+            u_m: per_point(p, rows),
+            q_n: per_point(p, rows),
+            r_m: per_point(p, rows),
+            q_impact_n: per_point(p, rows),
+            contact: per_point(p, rows),
+            every,
+            sampler: Sampler::new(p, Stride::Every(every), LastWindow::Partial).with_impacts(),
         }
     }
 
     /// Call after every step.
     pub fn after_step(&mut self, sim: &Simulation) {
-        for ((s, q), c) in self
-            .q_sum
-            .iter_mut()
-            .zip(sim.force_n())
-            .zip(self.contact_any.iter_mut())
-        {
-            *s += q;
-            *c |= *q > 0.0;
-        }
-        self.impacts.add_step(sim, &mut self.qi_sum);
-        self.count += 1;
-        if self.count == self.every || sim.finished() {
-            self.t_s.push(sim.time_s());
-            let n = self.count as f64;
-            let touching = sim.in_contact();
-            for i in 0..self.q_sum.len() {
-                self.u_m[i].push(sim.displacement_m()[i]);
-                self.r_m[i].push(sim.road_m()[i]);
-                self.q_n[i].push(self.q_sum[i] / n);
-                self.q_impact_n[i].push(self.qi_sum[i] / n);
-                self.contact[i].push(self.contact_any[i] || touching[i]);
-            }
-            self.q_sum.fill(0.0);
-            self.qi_sum.fill(0.0);
-            self.contact_any.fill(false);
-            self.count = 0;
+        let Some(w) = self.sampler.after_step(sim) else {
+            return;
+        };
+        self.t_s.push(sim.time_s());
+        for i in 0..w.q_n.len() {
+            self.u_m[i].push(sim.displacement_m()[i]);
+            self.r_m[i].push(sim.road_m()[i]);
+            self.q_n[i].push(w.q_n[i]);
+            self.q_impact_n[i].push(w.q_impact_n[i]);
+            self.contact[i].push(w.contact[i]);
         }
     }
 
@@ -150,7 +139,7 @@ impl Recording {
             q_impact_n,
             contact,
             every: every.max(1),
-            ..Default::default()
+            sampler: Sampler::default(),
         }
     }
 
@@ -164,35 +153,41 @@ impl Recording {
     }
 
     /// The recording with every `factor` consecutive samples merged into
-    /// one window, as if it had been recorded with `factor` times longer
-    /// windows: forces averaged (impulses kept), displacement and road at
-    /// the window's end, contact if any merged sample had it.
+    /// one window ([`merge_windows`]), as if it had been recorded with
+    /// `factor` times longer windows: forces averaged (impulses kept),
+    /// displacement and road at the window's end, contact if any merged
+    /// sample had it.
     pub fn merged(&self, factor: usize) -> Recording {
         let factor = factor.max(1);
         if factor == 1 {
             return self.clone();
         }
-        let chunks = |v: &[f64]| -> Vec<f64> {
-            v.chunks(factor)
-                .map(|c| c.iter().sum::<f64>() / c.len() as f64)
-                .collect()
-        };
-        let last = |v: &[f64]| -> Vec<f64> {
-            v.chunks(factor).filter_map(|c| c.last().copied()).collect()
+        fn merged<T: crate::output::sampler::SampleValue>(
+            v: &[T],
+            factor: usize,
+            how: Merge,
+        ) -> Vec<T> {
+            let mut v = v.to_vec();
+            let n = merge_windows(&mut v, factor, how);
+            v.truncate(n);
+            v
+        }
+        let each = |series: &[Vec<f64>], how| -> Vec<Vec<f64>> {
+            series.iter().map(|v| merged(v, factor, how)).collect()
         };
         Recording {
-            t_s: last(&self.t_s),
-            u_m: self.u_m.iter().map(|v| last(v)).collect(),
-            q_n: self.q_n.iter().map(|v| chunks(v)).collect(),
-            r_m: self.r_m.iter().map(|v| last(v)).collect(),
-            q_impact_n: self.q_impact_n.iter().map(|v| chunks(v)).collect(),
+            t_s: merged(&self.t_s, factor, Merge::End),
+            u_m: each(&self.u_m, Merge::End),
+            q_n: each(&self.q_n, Merge::Mean),
+            r_m: each(&self.r_m, Merge::End),
+            q_impact_n: each(&self.q_impact_n, Merge::Mean),
             contact: self
                 .contact
                 .iter()
-                .map(|v| v.chunks(factor).map(|c| c.iter().any(|&b| b)).collect())
+                .map(|v| merged(v, factor, Merge::Any))
                 .collect(),
             every: self.every * factor as u64,
-            ..Default::default()
+            sampler: Sampler::default(),
         }
     }
 

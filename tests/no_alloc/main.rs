@@ -6,6 +6,7 @@
 //! make a test fail.
 
 mod modes;
+mod recorders;
 mod steps;
 
 use std::alloc::{GlobalAlloc, Layout, System};

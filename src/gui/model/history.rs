@@ -1,14 +1,17 @@
 //! Bounded time histories of a run, and min/max decimation for drawing.
 //!
-//! Samples are recorded every `stride` solver steps (forces averaged over the
-//! stride, so impulses are kept). When the buffers are full, pairs of samples
-//! are merged and the stride doubles: memory stays bounded however long the
-//! run, and the whole run stays visible at a coarser resolution.
+//! The samples are the run sampler's ([`Sampler`]) with windows that
+//! double: one step per window at first, each window's mean force (so
+//! impulses are kept) and the state at its end. When the buffers are full,
+//! pairs of windows merge and the windows double: memory stays bounded
+//! however long the run, the whole run stays visible at a coarser
+//! resolution, and the samples are those of the doubled windows from the
+//! start. Values are kept as `f32`.
 
 use crate::Simulation;
-use crate::output::impacts::ImpactTracker;
 pub use crate::output::impacts::paper_impact_n;
 use crate::output::record::Recording;
+use crate::output::sampler::{LastWindow, Merge, Sampler, Stride, merge_column};
 
 /// Samples kept across all series (bounds memory to a few tens of MB).
 pub const DEFAULT_BUDGET: usize = 8_000_000;
@@ -16,19 +19,19 @@ pub const DEFAULT_BUDGET: usize = 8_000_000;
 /// Which quantity of a point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Quantity {
-    /// Displacement `u_i` (m).
+    /// Displacement `u_i` (m) at the window's end.
     Displacement,
-    /// Step-mean contact force `q_i` (N).
+    /// Window-mean contact force `q_i` (N).
     Force,
-    /// Step-mean contact force without the impulses of impacts (N): the
+    /// Window-mean contact force without the impulses of impacts (N): the
     /// force a plot's range should fit (an impact adds impulse / dt). The
     /// located scheme reports its impacts' impulses; the paper scheme
     /// (`contact_scheme: Paper`) locates none, and there a landing step
     /// counts as the impact (see [`paper_impact_n`]).
     ForceWithoutImpacts,
-    /// Gap `u_i - r_i` (m).
+    /// Gap `u_i - r_i` (m) at the window's end.
     Gap,
-    /// Contact state (0/1).
+    /// Contact state (0/1): in contact at some step of the window.
     Contact,
 }
 
@@ -36,14 +39,11 @@ pub enum Quantity {
 #[derive(Debug, Clone)]
 pub struct History {
     p: usize,
+    /// Samples kept at most, the one at `t = 0` included (even).
     capacity: usize,
-    stride: u64,
-    /// Steps since the last recorded sample.
-    count: u64,
-    q_sum: Vec<f64>,
-    /// Sum of the impact impulses / dt since the last sample.
-    q_impact_sum: Vec<f64>,
-    contact_any: Vec<bool>,
+    sampler: Sampler,
+    /// Samples before the windows: 1 once the state at `t = 0` is recorded.
+    first: usize,
     t: Vec<f64>,
     u: Vec<Vec<f32>>,
     q: Vec<Vec<f32>>,
@@ -51,31 +51,39 @@ pub struct History {
     q_impact: Vec<Vec<f32>>,
     gap: Vec<Vec<f32>>,
     contact: Vec<Vec<u8>>,
-    /// The impact part of each step's forces: located impulses / dt, or
-    /// the paper scheme's landing steps (see [`paper_impact_n`]).
-    impacts: ImpactTracker,
 }
 
 impl History {
-    /// Histories for `p` points within a budget of `budget` samples.
+    /// Histories for `p` points within a budget of `budget` samples; every
+    /// buffer is allocated here, so that recording a step allocates nothing.
     pub fn new(p: usize, budget: usize) -> Self {
         let capacity = (budget / (5 * p.max(1) + 1)).max(1024) & !1;
+        // the window that fills the buffers is stored before its pairs merge
+        let room = capacity + 1;
+        // (one `Vec` per point, each with its room: `vec![v; p]` clones
+        // without the capacity)
+        fn with_room<T>(p: usize, room: usize) -> Vec<Vec<T>> {
+            (0..p).map(|_| Vec::with_capacity(room)).collect()
+        }
         History {
             p,
             capacity,
-            stride: 1,
-            count: 0,
-            q_sum: vec![0.0; p],
-            q_impact_sum: vec![0.0; p],
-            contact_any: vec![false; p],
-            t: Vec::new(),
-            u: vec![Vec::new(); p],
-            q: vec![Vec::new(); p],
-            q_impact: vec![Vec::new(); p],
-            gap: vec![Vec::new(); p],
-            contact: vec![Vec::new(); p],
-            impacts: ImpactTracker::default(),
+            sampler: Self::sampler(p, capacity),
+            first: 0,
+            t: Vec::with_capacity(room),
+            u: with_room(p, room),
+            q: with_room(p, room),
+            q_impact: with_room(p, room),
+            gap: with_room(p, room),
+            contact: with_room(p, room),
         }
+    }
+
+    /// One step per window at first; once `capacity` windows are kept, they
+    /// merge in pairs (the sample at `t = 0` besides them keeps the total
+    /// within `capacity`).
+    fn sampler(p: usize, capacity: usize) -> Sampler {
+        Sampler::new(p, Stride::Doubling { capacity }, LastWindow::WholeOnly).with_impacts()
     }
 
     pub fn num_points(&self) -> usize {
@@ -87,9 +95,9 @@ impl History {
     pub fn is_empty(&self) -> bool {
         self.t.is_empty()
     }
-    /// Solver steps per recorded sample.
+    /// Solver steps per recorded sample (the window).
     pub fn stride(&self) -> u64 {
-        self.stride
+        self.sampler.every()
     }
     pub fn capacity(&self) -> usize {
         self.capacity
@@ -101,84 +109,66 @@ impl History {
         self.t.last().copied()
     }
 
-    /// Forgets everything (same points and budget).
+    /// Forgets everything (same points and budget, one step per window).
     pub fn clear(&mut self) {
-        let capacity = self.capacity;
-        *self = History::new(self.p, 0);
-        self.capacity = capacity;
+        self.t.clear();
+        for i in 0..self.p {
+            self.u[i].clear();
+            self.q[i].clear();
+            self.q_impact[i].clear();
+            self.gap[i].clear();
+            self.contact[i].clear();
+        }
+        self.first = 0;
+        self.sampler.restart(&[]);
     }
 
-    /// Records the state at `t = 0` (or after a reset).
+    /// Starts the history at `sim`'s state (`t = 0`, or after a reset):
+    /// earlier samples are forgotten.
     pub fn record_initial(&mut self, sim: &Simulation) {
-        self.q_sum.fill(0.0);
-        self.q_impact_sum.fill(0.0);
-        self.contact_any.fill(false);
-        self.count = 0;
-        self.impacts = ImpactTracker::start(sim);
-        self.push(sim, 1);
+        self.clear();
+        self.sampler.start(sim);
+        self.push(sim);
+        self.first = 1;
     }
 
     /// Call after every solver step.
     pub fn after_step(&mut self, sim: &Simulation) {
-        for ((s, q), c) in self
-            .q_sum
-            .iter_mut()
-            .zip(sim.force_n())
-            .zip(self.contact_any.iter_mut())
-        {
-            *s += q;
-            *c |= *q > 0.0;
-        }
-        self.impacts.add_step(sim, &mut self.q_impact_sum);
-        self.count += 1;
-        if self.count >= self.stride {
-            let n = self.count;
-            self.push(sim, n);
-            self.count = 0;
-            self.q_sum.fill(0.0);
-            self.q_impact_sum.fill(0.0);
-            self.contact_any.fill(false);
+        let Some(merge) = self.sampler.after_step(sim).map(|w| w.merge_pairs) else {
+            return;
+        };
+        self.push(sim);
+        if merge {
+            self.merge_pairs();
         }
     }
 
-    fn push(&mut self, sim: &Simulation, n: u64) {
-        if self.t.len() >= self.capacity {
-            self.compact();
-        }
+    /// Stores the sampler's last window: its means, and `sim`'s state at its end.
+    fn push(&mut self, sim: &Simulation) {
+        let w = self.sampler.last_window();
         self.t.push(sim.time_s());
-        let contact = sim.in_contact();
         for i in 0..self.p.min(sim.num_points()) {
             self.u[i].push(sim.displacement_m()[i] as f32);
-            self.q[i].push((self.q_sum[i] / n as f64) as f32);
-            self.q_impact[i].push((self.q_impact_sum[i] / n as f64) as f32);
+            self.q[i].push(w.q_n[i] as f32);
+            self.q_impact[i].push(w.q_impact_n[i] as f32);
             self.gap[i].push(sim.gap_m(i) as f32);
-            self.contact[i].push(u8::from(contact[i] || self.contact_any[i]));
+            self.contact[i].push(u8::from(w.contact[i]));
         }
     }
 
-    /// Merges pairs of samples: keeps the later time and state, averages the
-    /// force, and keeps contact if either sample had it.
-    fn compact(&mut self) {
-        let n = self.t.len() / 2;
-        for k in 0..n {
-            self.t[k] = self.t[2 * k + 1];
-        }
-        self.t.truncate(n);
+    /// Merges the windows in pairs (the sampler's windows have doubled):
+    /// the later time and state, the mean force, contact if either had it.
+    /// The sample at `t = 0` stays.
+    fn merge_pairs(&mut self) {
+        let keep = self.first;
+        merge_column(&mut self.t, keep, 2, Merge::End);
         for i in 0..self.p {
-            for k in 0..n {
-                self.u[i][k] = self.u[i][2 * k + 1];
-                self.gap[i][k] = self.gap[i][2 * k + 1];
-                self.q[i][k] = 0.5 * (self.q[i][2 * k] + self.q[i][2 * k + 1]);
-                self.q_impact[i][k] = 0.5 * (self.q_impact[i][2 * k] + self.q_impact[i][2 * k + 1]);
-                self.contact[i][k] = self.contact[i][2 * k].max(self.contact[i][2 * k + 1]);
-            }
-            self.u[i].truncate(n);
-            self.gap[i].truncate(n);
-            self.q[i].truncate(n);
-            self.q_impact[i].truncate(n);
-            self.contact[i].truncate(n);
+            merge_column(&mut self.u[i], keep, 2, Merge::End);
+            merge_column(&mut self.gap[i], keep, 2, Merge::End);
+            merge_column(&mut self.q[i], keep, 2, Merge::Mean);
+            merge_column(&mut self.q_impact[i], keep, 2, Merge::Mean);
+            merge_column(&mut self.contact[i], keep, 2, Merge::Any);
         }
-        self.stride *= 2;
     }
 
     /// The value of `what` for point `i` at sample `k` (SI units; contact 0/1).
@@ -235,7 +225,7 @@ impl History {
                 .collect()
         };
         Recording::from_samples(
-            self.stride,
+            self.stride(),
             self.t.clone(),
             per_point(&|i, k| f64::from(self.u[i][k])),
             per_point(&|i, k| f64::from(self.q[i][k])),
@@ -384,5 +374,87 @@ mod tests {
         assert!(impacts > 5, "the preset bounces: {impacts} impacts");
         assert!(max_q > 5.0 * max_smooth, "{max_q} vs {max_smooth}");
         assert!(max_smooth > 0.0);
+    }
+
+    /// The visualiser's history and the command line's recorders, fed the
+    /// same run: after its windows doubled three times (one step, then 2,
+    /// 4, 8), the history holds what the figures' recording and the CSV
+    /// rows with windows of 8 steps from the start hold, to `f32`: times,
+    /// displacements, gaps and contact exactly, window-mean forces and
+    /// their impact parts to a few `f32` roundings. Both contact schemes.
+    #[test]
+    fn after_doubling_the_history_holds_the_command_lines_samples() {
+        use crate::output::csv::RunWriter;
+        use crate::scene::ContactScheme;
+        for scheme in [ContactScheme::Located, ContactScheme::Paper] {
+            let mut scene = Scene::parse(
+                include_str!("../../../presets/three_points.ron"),
+                "three_points",
+            )
+            .unwrap();
+            scene.contact_scheme = scheme;
+            scene.duration_s = 5000.0 * scene.dt_s;
+            let (p, n) = (scene.num_points(), scene.num_steps());
+            assert_eq!(n, 5000);
+            let mut sim = Simulation::from_scene(&scene).unwrap();
+            // 1024 windows kept: they merge after steps 1024, 2048 and 4096
+            let mut h = History::new(p, 1024 * (5 * p + 1));
+            assert_eq!(h.capacity(), 1024);
+            let mut rec = Recording::new(p, n, 625);
+            assert_eq!(rec.every(), 8);
+            let mut csv = RunWriter::new(Vec::new(), p, 8).unwrap();
+            h.record_initial(&sim);
+            csv.write_initial(&sim).unwrap();
+            while !sim.finished() {
+                sim.step().unwrap();
+                h.after_step(&sim);
+                rec.after_step(&sim);
+                csv.after_step(&sim).unwrap();
+            }
+            assert_eq!(h.stride(), 8, "{scheme:?}");
+            // the first sample (t = 0) and 625 windows of 8 steps
+            assert_eq!((h.len(), rec.len()), (626, 625), "{scheme:?}");
+            let text = String::from_utf8(csv.finish().unwrap()).unwrap();
+            let rows: Vec<Vec<&str>> = text
+                .lines()
+                .skip(1)
+                .map(|l| l.split(',').collect())
+                .collect();
+            assert_eq!(rows.len(), h.len());
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * b.abs() + 1e-9;
+            for k in 0..rec.len() {
+                let (row, s) = (&rows[k + 1], k + 1);
+                assert_eq!(h.times()[s], rec.t_s[k]);
+                assert_eq!(row[0], format!("{:.9e}", rec.t_s[k]));
+                for i in 0..p {
+                    let v = |what| h.value(what, i, s);
+                    let f32_of = |x: f64| f64::from(x as f32);
+                    assert_eq!(v(Quantity::Displacement), f32_of(rec.u_m[i][k]));
+                    assert_eq!(v(Quantity::Gap), f32_of(rec.u_m[i][k] - rec.r_m[i][k]));
+                    assert_eq!(v(Quantity::Contact) == 1.0, rec.contact[i][k]);
+                    let (q, qi) = (rec.q_n[i][k], rec.q_impact_n[i][k]);
+                    assert!(
+                        close(v(Quantity::Force), q),
+                        "{scheme:?} {k} {i}: {} vs {q}",
+                        v(Quantity::Force)
+                    );
+                    let smooth = v(Quantity::ForceWithoutImpacts);
+                    assert!(
+                        (smooth - (q - qi)).abs() <= 1e-6 * (q.abs() + qi.abs()) + 1e-9,
+                        "{scheme:?} {k} {i}: {smooth} vs {q} - {qi}"
+                    );
+                    // the CSV: the recording's numbers; its contact is the
+                    // state at the row's time, within the window's contact
+                    assert_eq!(row[1 + i], format!("{:.9e}", rec.u_m[i][k]));
+                    assert_eq!(row[1 + 2 * p + i], format!("{:.9e}", q));
+                    assert!(row[1 + 4 * p + i] == "0" || rec.contact[i][k]);
+                }
+            }
+            // the run has impacts, and contact of both kinds
+            let flat = |v: &Vec<Vec<f64>>| v.iter().flatten().copied().fold(0.0, f64::max);
+            assert!(flat(&rec.q_impact_n) > 0.0, "{scheme:?}");
+            assert!(rec.contact.iter().flatten().any(|&c| c));
+            assert!(rec.contact.iter().flatten().any(|&c| !c));
+        }
     }
 }
