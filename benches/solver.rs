@@ -8,10 +8,10 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use tirecontact::bench::scenes::many_points;
-use tirecontact::contact::DenseSolver;
 use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
 use tirecontact::lsce::{Responses, identify};
 use tirecontact::scene::Tyre;
+use tirecontact::simulation::contact::DenseSolver;
 use tirecontact::{Scene, Simulation};
 
 fn steps(c: &mut Criterion) {
