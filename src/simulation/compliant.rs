@@ -80,25 +80,16 @@ impl Simulation {
                 return Ok(None);
             }
         }
-        let (u, v, r, rd) = (
-            &self.state.u[..p],
-            &self.state.v[..p],
-            &self.state.r[..p],
-            &self.state.rd[..p],
-        );
-        let (ue, ve, re, rde) = (
-            &self.scratch.ue[..p],
-            &self.scratch.ve[..p],
-            &self.scratch.re[..p],
-            &self.scratch.rde[..p],
-        );
+        let (st, s) = (&self.state, &self.scratch);
+        let (u, v, r, rd) = (&st.u[..p], &st.v[..p], &st.r[..p], &st.rd[..p]);
+        let (ue, ve, re, rde) = (&s.ue[..p], &s.ve[..p], &s.re[..p], &s.rde[..p]);
         for i in 0..p {
-            if self.state.contact[i] {
+            if st.contact[i] {
                 continue;
             }
             let (g0, d0) = (u[i] - r[i], (v[i] - rd[i]) * dt);
             let (g1, d1) = (ue[i] - re[i], (ve[i] - rde[i]) * dt);
-            if first_crossing(g0, d0, g1, d1, self.pen_tol_m, self.state.released[i]).is_some() {
+            if first_crossing(g0, d0, g1, d1, self.pen_tol_m, st.released[i]).is_some() {
                 return Ok(None);
             }
         }
@@ -197,8 +188,9 @@ impl Simulation {
         }
         let n = self.state.active.len();
         let p = self.tables.p;
-        self.scratch.ue.copy_from_slice(&self.scratch.uh);
-        self.scratch.ve.copy_from_slice(&self.scratch.vh);
+        let s = &mut self.scratch;
+        s.ue.copy_from_slice(&s.uh);
+        s.ve.copy_from_slice(&s.vh);
         if n == 0 {
             return Ok(());
         }
@@ -226,37 +218,35 @@ impl Simulation {
             let res = self.factors.current.solver.factor(2 * n, entry);
             self.factors.factored = res.is_ok();
             self.factors.current.set.clone_from(&self.state.active);
-            if let Err(s) = res {
+            if let Err(e) = res {
                 return Err(SolverError::SingularContactSystem {
                     t_s: t_end,
                     points: self.state.active.clone(),
-                    pivot: s.pivot,
+                    pivot: e.pivot,
                 });
             }
         }
-        for (k, &i) in self.state.active.iter().enumerate() {
-            self.scratch.rhs[k] = self.scratch.re[i] - self.scratch.uh[i];
-            self.scratch.rhs[n + k] = self.scratch.rde[i] - self.scratch.vh[i];
+        let (active, s) = (&self.state.active, &mut self.scratch);
+        for (k, &i) in active.iter().enumerate() {
+            s.rhs[k] = s.re[i] - s.uh[i];
+            s.rhs[n + k] = s.rde[i] - s.vh[i];
         }
-        self.factors
-            .current
-            .solver
-            .solve(&mut self.scratch.rhs[..2 * n]);
-        self.scratch.q1.fill(0.0);
-        self.scratch.q2.fill(0.0);
-        for (k, &j) in self.state.active.iter().enumerate() {
-            self.scratch.q1[j] = self.scratch.rhs[k];
-            self.scratch.q2[j] = self.scratch.rhs[n + k];
+        self.factors.current.solver.solve(&mut s.rhs[..2 * n]);
+        s.q1.fill(0.0);
+        s.q2.fill(0.0);
+        for (k, &j) in active.iter().enumerate() {
+            s.q1[j] = s.rhs[k];
+            s.q2[j] = s.rhs[n + k];
         }
         let g = &self.tables.full_inf;
         for i in 0..p {
             let (mut du, mut dv) = (0.0, 0.0);
-            for &j in &self.state.active {
-                du += g.gx1[i * p + j] * self.scratch.q1[j] + g.gx2[i * p + j] * self.scratch.q2[j];
-                dv += g.gv1[i * p + j] * self.scratch.q1[j] + g.gv2[i * p + j] * self.scratch.q2[j];
+            for &j in active {
+                du += g.gx1[i * p + j] * s.q1[j] + g.gx2[i * p + j] * s.q2[j];
+                dv += g.gv1[i * p + j] * s.q1[j] + g.gv2[i * p + j] * s.q2[j];
             }
-            self.scratch.ue[i] += du;
-            self.scratch.ve[i] += dv;
+            s.ue[i] += du;
+            s.ve[i] += dv;
         }
         Ok(())
     }

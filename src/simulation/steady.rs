@@ -25,44 +25,35 @@ impl Simulation {
             && self.tables.options.reuse_factorisation
             && self.scene.contact_scheme == ContactScheme::Located
             && self.tables.tread_k_n_m.is_empty()
-            && (n == 0
-                || (self.factors.factored
-                    && !self.road.has_kinks()
-                    && self.factors.current.set.len() == n
-                    && self
-                        .factors
-                        .current
-                        .set
-                        .iter()
-                        .zip(&self.state.active)
-                        .all(|(a, b)| a == b)))
+            && (n == 0 || (!self.road.has_kinks() && self.factors.holds(&self.state.active)))
     }
 
-    /// The step from `t0` when it has no event: `Some(solves)` once
-    /// committed; `None`, with only scratch values changed, when a point
-    /// starts below the road, a force would end pulling, or a free point
-    /// lands inside the step.
+    /// The step from `t0` when it has no event: the stages of `stages.rs`
+    /// over the full step (predict; solve by the kept inverse; the release
+    /// and landing checks; commit). `Some(solves)` once committed; `None`,
+    /// with only scratch values changed, when a point starts below the road,
+    /// a force would end pulling, or a free point lands inside the step.
     pub(super) fn steady_step(&mut self, t0: f64) -> Result<Option<u32>, SolverError> {
         let p = self.tables.p;
         let dt = self.tables.dt_s;
         self.predict(t0, dt, Table::Full)?;
         let n = self.state.active.len();
         if n > 0 {
-            let (re, rde) = (&self.scratch.re[..p], &self.scratch.rde[..p]);
-            let (uh, vh) = (&self.scratch.uh[..p], &self.scratch.vh[..p]);
-            let (rx, rv) = self.scratch.rhs[..2 * n].split_at_mut(n);
-            for (k, &i) in self.state.active.iter().enumerate() {
+            // solve (the factorisation of the set is kept: a product)
+            let (active, s) = (&self.state.active, &mut self.scratch);
+            let (re, rde) = (&s.re[..p], &s.rde[..p]);
+            let (uh, vh) = (&s.uh[..p], &s.vh[..p]);
+            let (rx, rv) = s.rhs[..2 * n].split_at_mut(n);
+            for (k, &i) in active.iter().enumerate() {
                 rx[k] = re[i] - uh[i];
                 rv[k] = rde[i] - vh[i];
             }
-            self.factors
-                .current
-                .solver
-                .solve_by_inverse(&mut self.scratch.rhs[..2 * n]);
-            let (q1, q2) = (&mut self.scratch.q1[..p], &mut self.scratch.q2[..p]);
-            for (k, &j) in self.state.active.iter().enumerate() {
-                q1[j] = self.scratch.rhs[k];
-                q2[j] = self.scratch.rhs[n + k];
+            let solver = &mut self.factors.current.solver;
+            solver.solve_by_inverse(&mut s.rhs[..2 * n]);
+            let (q1, q2) = (&mut s.q1[..p], &mut s.q2[..p]);
+            for (k, &j) in active.iter().enumerate() {
+                q1[j] = s.rhs[k];
+                q2[j] = s.rhs[n + k];
                 // a force ending negative or pulling on average: a release
                 let (qs, qe) = (GA * q1[j] - GB * q2[j], -GB * q1[j] + GA * q2[j]);
                 if qe < 0.0 || qs + qe < 0.0 {
@@ -78,21 +69,12 @@ impl Simulation {
             std::mem::swap(&mut self.scratch.ue, &mut self.scratch.uh);
             std::mem::swap(&mut self.scratch.ve, &mut self.scratch.vh);
         }
-        // a free point left below the road (a live road or speed change)
-        // lands at the step start, one that would cross it inside the step
+        // locate, landings only: a free point left below the road (a live
+        // road or speed change) lands at the step start, one that would cross it inside the step
         // lands there: both are events
-        let (u, v, r, rd) = (
-            &self.state.u[..p],
-            &self.state.v[..p],
-            &self.state.r[..p],
-            &self.state.rd[..p],
-        );
-        let (ue, ve, re, rde) = (
-            &self.scratch.ue[..p],
-            &self.scratch.ve[..p],
-            &self.scratch.re[..p],
-            &self.scratch.rde[..p],
-        );
+        let (st, s) = (&self.state, &self.scratch);
+        let (u, v, r, rd) = (&st.u[..p], &st.v[..p], &st.r[..p], &st.rd[..p]);
+        let (ue, ve, re, rde) = (&s.ue[..p], &s.ve[..p], &s.re[..p], &s.rde[..p]);
         let tol = self.pen_tol_m;
         // Most steps: every free point clearly stays above the road. Checked
         // branch-free over all of them first; only when one is not clear do
