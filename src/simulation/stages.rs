@@ -2,13 +2,13 @@
 //! sub-step `[t, t + τ]`:
 //!
 //! 1. **predict**: the free prediction of the modal states and the road at
-//!    the end ([`Simulation::predict`]);
+//!    the end (`Simulation::predict`);
 //! 2. **solve**: the Gauss-point contact solve of the active set and the end
-//!    values of every point ([`Simulation::solve_contact`]);
+//!    values of every point (`Simulation::solve_contact`);
 //! 3. **locate**: the first release and the first impact inside the trial
-//!    ([`Simulation::locate`]);
+//!    (`Simulation::locate`);
 //! 4. **commit**: the solved forces into the modal states, the end values
-//!    into the current ones ([`Simulation::commit`]).
+//!    into the current ones (`Simulation::commit`).
 //!
 //! Every scheme's step is built from them (`events.rs`, `steady.rs`,
 //! `paper.rs`, `compliant.rs`). [`Stages`] runs them one at a time, for the
@@ -298,13 +298,13 @@ impl Stages<'_> {
         &self.sim.state.active
     }
 
-    /// [`Simulation::predict`] over the full step from the current time.
+    /// `Simulation::predict` over the full step from the current time.
     pub fn predict(&mut self) -> Result<(), SolverError> {
         let (t, dt) = (self.sim.state.t_s, self.sim.tables.dt_s);
         self.sim.predict(t, dt, Table::Full)
     }
 
-    /// [`Simulation::solve_contact`] of the active set over the full step,
+    /// `Simulation::solve_contact` of the active set over the full step,
     /// after [`Stages::predict`] (the factorisation is reused while the set
     /// holds, as in a step).
     pub fn solve(&mut self) -> Result<(), SolverError> {
@@ -312,12 +312,12 @@ impl Stages<'_> {
         self.sim.solve_contact(t_end, Table::Full)
     }
 
-    /// [`Simulation::locate`] in the trial, after [`Stages::solve`].
+    /// `Simulation::locate` in the trial, after [`Stages::solve`].
     pub fn locate(&self) -> Located {
         self.sim.locate(self.sim.tables.dt_s)
     }
 
-    /// [`Simulation::commit`] of the trial over the full step.
+    /// `Simulation::commit` of the trial over the full step.
     pub fn commit(&mut self) {
         let dt = self.sim.tables.dt_s;
         self.sim.commit(dt, Table::Full)
