@@ -1,6 +1,7 @@
 //! criterion benchmarks (`cargo bench`): one step per (mode x source), the
 //! bare loops of the same size (free prediction + projection; and the state
-//! update driven by given forces at every point), the contact solve, the
+//! update driven by given forces at every point), the stages of a step one
+//! at a time (predict, solve, locate, commit), the contact solve, the
 //! ring tyre's sampled responses and their LSCE identification,
 //! the shipped presets end to end. Ratios, not absolute times, are what the
 //! README reports.
@@ -8,10 +9,10 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use tirecontact::bench::scenes::many_points;
-use tirecontact::contact::DenseSolver;
 use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
 use tirecontact::lsce::{Responses, identify};
 use tirecontact::scene::Tyre;
+use tirecontact::simulation::contact::DenseSolver;
 use tirecontact::{Scene, Simulation};
 
 fn steps(c: &mut Criterion) {
@@ -79,6 +80,62 @@ fn steps(c: &mut Criterion) {
             })
         });
     }
+}
+
+/// The four stages of a step (method §4.3-4.4), each alone, over a full
+/// step from a step start with points on the road (past the ramp): the free
+/// prediction (`stage/predict`), the contact solve of the active set the
+/// last step left with its factorisation reused (`stage/solve`), the release
+/// and landing location in the solved trial (`stage/locate`) and the update
+/// of the states by the solved forces (`stage/commit`). Predict, solve and
+/// locate rewrite only scratch values, so every iteration does the same
+/// work from the same state. Commit has no such repeatable form: iterated
+/// alone it adds the same forces again and again into the two alternating
+/// state buffers (values growing linearly, never subnormal); it runs on a
+/// simulation of its own.
+fn stages(c: &mut Criterion) {
+    let mut scenes: Vec<(String, Scene)> = [(5, 20), (50, 200)]
+        .into_iter()
+        .map(|(p, m)| (format!("{p}x{m}"), many_points(p, m)))
+        .collect();
+    if let Ok(scene) = Scene::load(std::path::Path::new("presets/paper.ron")) {
+        scenes.push(("paper".into(), scene));
+    }
+    let mut g = c.benchmark_group("stage");
+    for (name, mut scene) in scenes {
+        scene.duration_s = 10.0;
+        let model = tirecontact::PreparedModel::of(&scene).unwrap();
+        let options = tirecontact::SolverOptions::default();
+        // past the ramp, to a step start with points on the road
+        let at_contact = || {
+            let mut sim = Simulation::new(&model, options).unwrap();
+            let ramp_steps = (scene.ramp_s / scene.dt_s).ceil() as usize;
+            for _ in 0..ramp_steps + 1000 {
+                sim.step().unwrap();
+            }
+            while sim.stages().active().is_empty() && !sim.finished() {
+                sim.step().unwrap();
+            }
+            sim
+        };
+        let mut sim = at_contact();
+        let mut st = sim.stages();
+        g.bench_function(format!("predict/{name}"), |b| {
+            b.iter(|| st.predict().unwrap())
+        });
+        st.predict().unwrap();
+        g.bench_function(format!("solve/{name}"), |b| b.iter(|| st.solve().unwrap()));
+        st.solve().unwrap();
+        g.bench_function(format!("locate/{name}"), |b| {
+            b.iter(|| black_box(st.locate()))
+        });
+        let mut other = at_contact();
+        let mut st = other.stages();
+        st.predict().unwrap();
+        st.solve().unwrap();
+        g.bench_function(format!("commit/{name}"), |b| b.iter(|| st.commit()));
+    }
+    g.finish();
 }
 
 fn contact_solve(c: &mut Criterion) {
@@ -176,5 +233,12 @@ fn ring_and_lsce(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, steps, contact_solve, presets, ring_and_lsce);
+criterion_group!(
+    benches,
+    steps,
+    stages,
+    contact_solve,
+    presets,
+    ring_and_lsce
+);
 criterion_main!(benches);

@@ -20,8 +20,7 @@
 //! | [`modal`] | modes, poles for every damping ratio, `g(t)`, `g'(t)`, `G(ω)` | §2 |
 //! | [`convolution`] | bounded recursive convolution, exact step weights; α/β baseline and direct control | §3 |
 //! | [`road`] | road profiles and the preload/road ramp | §4 |
-//! | [`contact`] | scaled dense solves for the Gauss-point and impulse systems | §4 |
-//! | [`simulation`] | the time stepper: active set, complementarity, events inside the step | §4 |
+//! | [`simulation`] | the time stepper: tables, state and scratch; the stages of a step (predict, solve, locate, commit); events inside the step; the scaled dense solves of the contact systems (`simulation::contact`) | §4 |
 //! | [`drive`] | the run driver and the `Probe` observer every output implements | — |
 //! | [`ring`] | ring tyre on an elastic foundation: orders, modes, radial Green functions | §5 |
 //! | [`linalg`] | checked dense decompositions (faer): rank terms, least squares, eigenvalues | §3, §6 |
@@ -38,7 +37,6 @@
 
 pub mod bench;
 pub mod compare;
-pub mod contact;
 pub mod convolution;
 pub mod drive;
 pub mod error;
@@ -85,7 +83,6 @@ mod layers {
         ("linalg", 0),
         ("fsio", 0),
         ("modal", 0),
-        ("contact", 0),
         ("phase", 0),
         ("ring", 1),
         ("lsce", 1),

@@ -62,38 +62,39 @@ impl Simulation {
     /// (the same prediction and solve, so the same values, bit for bit, as
     /// when that loop takes a step without events).
     pub(super) fn compliant_steady_step(&mut self, t0: f64) -> Result<Option<u32>, SolverError> {
-        let (p, dt) = (self.p, self.dt_s);
-        self.active.clear();
+        let (p, dt) = (self.tables.p, self.tables.dt_s);
+        self.state.active.clear();
         for i in 0..p {
-            if self.contact[i] {
-                self.active.push(i);
-            } else if self.u[i] - self.r[i] < -self.pen_tol_m {
+            if self.state.contact[i] {
+                self.state.active.push(i);
+            } else if self.state.u[i] - self.state.r[i] < -self.pen_tol_m {
                 return Ok(None);
             }
         }
         self.predict(t0, dt, Table::Full)?;
         self.solve_compliant(t0 + dt, Table::Full)?;
-        for &j in &self.active {
-            let (q1, q2) = (self.q1[j], self.q2[j]);
+        for &j in &self.state.active {
+            let (q1, q2) = (self.scratch.q1[j], self.scratch.q2[j]);
             let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
             if qs + qe < 0.0 || qe < 0.0 && !self.spring_unresolved(j, dt) {
                 return Ok(None);
             }
         }
-        let (u, v, r, rd) = (&self.u[..p], &self.v[..p], &self.r[..p], &self.rd[..p]);
-        let (ue, ve, re, rde) = (&self.ue[..p], &self.ve[..p], &self.re[..p], &self.rde[..p]);
+        let (st, s) = (&self.state, &self.scratch);
+        let (u, v, r, rd) = (&st.u[..p], &st.v[..p], &st.r[..p], &st.rd[..p]);
+        let (ue, ve, re, rde) = (&s.ue[..p], &s.ve[..p], &s.re[..p], &s.rde[..p]);
         for i in 0..p {
-            if self.contact[i] {
+            if st.contact[i] {
                 continue;
             }
             let (g0, d0) = (u[i] - r[i], (v[i] - rd[i]) * dt);
             let (g1, d1) = (ue[i] - re[i], (ve[i] - rde[i]) * dt);
-            if first_crossing(g0, d0, g1, d1, self.pen_tol_m, self.released[i]).is_some() {
+            if first_crossing(g0, d0, g1, d1, self.pen_tol_m, st.released[i]).is_some() {
                 return Ok(None);
             }
         }
         self.commit(dt, Table::Full);
-        Ok(Some(!self.active.is_empty() as u32))
+        Ok(Some(!self.state.active.is_empty() as u32))
     }
 
     /// Whether the tread spring of point `j` is stiffer than a (sub-)step
@@ -108,7 +109,7 @@ impl Simulation {
     /// of the (sub-)step, and the step tends to the rigid one as `k` grows.
     #[inline]
     pub(super) fn spring_unresolved(&self, j: usize, tau_s: f64) -> bool {
-        tau_s * tau_s * self.tread_k_n_m[j] * self.jump[j * self.p + j] > 1.0
+        tau_s * tau_s * self.tables.tread_k_n_m[j] * self.tables.jump[j * self.tables.p + j] > 1.0
     }
 
     /// The step-end rule over `[t, t + tau]` (the fallback of a cascade of
@@ -128,17 +129,17 @@ impl Simulation {
         sel: Table,
     ) -> Result<u32, SolverError> {
         self.predict(t, tau, sel)?;
-        self.active.clear();
-        for i in 0..self.p {
-            if self.re[i] - self.uh[i] > 0.0 {
-                self.active.push(i);
+        self.state.active.clear();
+        for i in 0..self.tables.p {
+            if self.scratch.re[i] - self.scratch.uh[i] > 0.0 {
+                self.state.active.push(i);
             }
         }
         let mut solves = 0u32;
         loop {
             self.solve_compliant(t + tau, sel)?;
-            solves += !self.active.is_empty() as u32;
-            if solves as usize >= 2 * self.p {
+            solves += !self.state.active.is_empty() as u32;
+            if solves as usize >= 2 * self.tables.p {
                 break;
             }
             // released: the most negative step-mean force among those that
@@ -146,26 +147,27 @@ impl Simulation {
             // negative mean but a positive end; an unresolved stiff impulse
             // can end negative with a positive mean)
             let worst = self
+                .state
                 .active
                 .iter()
                 .enumerate()
-                .filter(|&(_, &j)| -GB * self.q1[j] + GA * self.q2[j] < 0.0)
-                .map(|(k, &j)| (k, self.q1[j] + self.q2[j]))
+                .filter(|&(_, &j)| -GB * self.scratch.q1[j] + GA * self.scratch.q2[j] < 0.0)
+                .map(|(k, &j)| (k, self.scratch.q1[j] + self.scratch.q2[j]))
                 .filter(|&(_, q)| q < 0.0)
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             if let Some((k, _)) = worst {
-                let j = self.active.remove(k);
-                self.released[j] = true;
+                let j = self.state.active.remove(k);
+                self.state.released[j] = true;
                 continue;
             }
             // a neighbour's force compressed a free point's spring
-            let deepest = (0..self.p)
-                .filter(|&i| !self.released[i] && !self.active.contains(&i))
-                .map(|i| (i, self.re[i] - self.ue[i]))
+            let deepest = (0..self.tables.p)
+                .filter(|&i| !self.state.released[i] && !self.state.active.contains(&i))
+                .map(|i| (i, self.scratch.re[i] - self.scratch.ue[i]))
                 .filter(|&(_, c)| c > self.pen_tol_m)
                 .max_by(|a, b| a.1.total_cmp(&b.1));
             match deepest {
-                Some((i, _)) => self.active.push(i),
+                Some((i, _)) => self.state.active.push(i),
                 None => break,
             }
         }
@@ -184,21 +186,23 @@ impl Simulation {
         if sel == Table::Sub {
             return self.solve_active(t_end, Table::Sub);
         }
-        let n = self.active.len();
-        let p = self.p;
-        self.ue.copy_from_slice(&self.uh);
-        self.ve.copy_from_slice(&self.vh);
+        let n = self.state.active.len();
+        let p = self.tables.p;
+        let s = &mut self.scratch;
+        s.ue.copy_from_slice(&s.uh);
+        s.ve.copy_from_slice(&s.vh);
         if n == 0 {
             return Ok(());
         }
-        let reuse =
-            self.options.reuse_factorisation && self.full_factored && self.full_set == self.active;
+        let reuse = self.tables.options.reuse_factorisation
+            && self.factors.factored
+            && self.factors.current.set == self.state.active;
         if !reuse {
-            self.stats.factorisations += 1;
-            let act = &self.active;
-            let g = &self.full_inf;
-            let kk = &self.tread_k_n_m;
-            let rate = SQRT3 / self.dt_s;
+            self.state.stats.factorisations += 1;
+            let act = &self.state.active;
+            let g = &self.tables.full_inf;
+            let kk = &self.tables.tread_k_n_m;
+            let rate = SQRT3 / self.tables.dt_s;
             let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
             // compliance of the end value (row block 0) and slope (row block 1)
             let diag = [[-GB, GA], [-rate, rate]];
@@ -211,37 +215,38 @@ impl Simulation {
                 }
                 a
             };
-            let res = self.full_solver.factor(2 * n, entry);
-            self.full_factored = res.is_ok();
-            self.full_set.clone_from(&self.active);
-            if let Err(s) = res {
+            let res = self.factors.current.solver.factor(2 * n, entry);
+            self.factors.factored = res.is_ok();
+            self.factors.current.set.clone_from(&self.state.active);
+            if let Err(e) = res {
                 return Err(SolverError::SingularContactSystem {
                     t_s: t_end,
-                    points: self.active.clone(),
-                    pivot: s.pivot,
+                    points: self.state.active.clone(),
+                    pivot: e.pivot,
                 });
             }
         }
-        for (k, &i) in self.active.iter().enumerate() {
-            self.rhs[k] = self.re[i] - self.uh[i];
-            self.rhs[n + k] = self.rde[i] - self.vh[i];
+        let (active, s) = (&self.state.active, &mut self.scratch);
+        for (k, &i) in active.iter().enumerate() {
+            s.rhs[k] = s.re[i] - s.uh[i];
+            s.rhs[n + k] = s.rde[i] - s.vh[i];
         }
-        self.full_solver.solve(&mut self.rhs[..2 * n]);
-        self.q1.fill(0.0);
-        self.q2.fill(0.0);
-        for (k, &j) in self.active.iter().enumerate() {
-            self.q1[j] = self.rhs[k];
-            self.q2[j] = self.rhs[n + k];
+        self.factors.current.solver.solve(&mut s.rhs[..2 * n]);
+        s.q1.fill(0.0);
+        s.q2.fill(0.0);
+        for (k, &j) in active.iter().enumerate() {
+            s.q1[j] = s.rhs[k];
+            s.q2[j] = s.rhs[n + k];
         }
-        let g = &self.full_inf;
+        let g = &self.tables.full_inf;
         for i in 0..p {
             let (mut du, mut dv) = (0.0, 0.0);
-            for &j in &self.active {
-                du += g.gx1[i * p + j] * self.q1[j] + g.gx2[i * p + j] * self.q2[j];
-                dv += g.gv1[i * p + j] * self.q1[j] + g.gv2[i * p + j] * self.q2[j];
+            for &j in active {
+                du += g.gx1[i * p + j] * s.q1[j] + g.gx2[i * p + j] * s.q2[j];
+                dv += g.gv1[i * p + j] * s.q1[j] + g.gv2[i * p + j] * s.q2[j];
             }
-            self.ue[i] += du;
-            self.ve[i] += dv;
+            s.ue[i] += du;
+            s.ve[i] += dv;
         }
         Ok(())
     }
@@ -391,24 +396,26 @@ mod step_end_rule {
             let bits = |x: &[f64]| x.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             let (mut same, mut with_events) = (0, 0);
             for step in 0..20_000 {
-                b.state.clone_from(&a.state);
-                for (x, y) in [(&mut b.u, &a.u), (&mut b.v, &a.v), (&mut b.r, &a.r)] {
+                let (sa, sb) = (&a.state, &mut b.state);
+                sb.modal.clone_from(&sa.modal);
+                for (x, y) in [(&mut sb.u, &sa.u), (&mut sb.v, &sa.v), (&mut sb.r, &sa.r)] {
                     x.clone_from(y);
                 }
-                b.rd.clone_from(&a.rd);
-                (b.t_s, b.steps) = (a.t_s, a.steps);
-                b.impulse.fill(0.0);
-                b.released.fill(false);
+                sb.rd.clone_from(&sa.rd);
+                (sb.t_s, sb.steps) = (sa.t_s, sa.steps);
+                sb.released.fill(false);
+                b.scratch.impulse.fill(0.0);
                 // (every step, so that both advance their road alike)
-                b.compliant_substep(b.t_s, b.dt_s, Table::Full).unwrap();
+                b.compliant_substep(b.state.t_s, b.tables.dt_s, Table::Full)
+                    .unwrap();
                 if a.step().unwrap().events > 0 {
                     with_events += 1;
                     continue;
                 }
                 for (x, y, what) in [
-                    (&a.u, &b.u, "displacements"),
-                    (&a.v, &b.v, "velocities"),
-                    (&a.impulse, &b.impulse, "impulses"),
+                    (&a.state.u, &b.state.u, "displacements"),
+                    (&a.state.v, &b.state.v, "velocities"),
+                    (&a.scratch.impulse, &b.scratch.impulse, "impulses"),
                 ] {
                     assert_eq!(bits(x), bits(y), "k = {k:e}: {what} at step {step}");
                 }
@@ -431,7 +438,7 @@ mod step_end_rule {
         );
         let scene = Scene::parse(&text, "three_points").unwrap();
         let mut sim = Simulation::from_scene(&scene).unwrap();
-        sim.max_events = 0;
+        sim.tables.max_events = 0;
         let (mut lowest, mut largest) = (0.0f64, 0.0f64);
         for _ in 0..20_000 {
             sim.step().unwrap();

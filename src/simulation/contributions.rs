@@ -8,21 +8,28 @@ use super::Simulation;
 impl Simulation {
     /// Number of modes of the modal model in use.
     pub fn num_modes(&self) -> usize {
-        self.basis.modes.len()
+        self.tables.basis.modes.len()
     }
 
     /// Writes into `out` (length >= `num_modes()`) how much each mode adds
     /// to the displacement of point `i` now (m). Allocation-free. Entries past
     /// `num_modes()` are left alone; a point index out of range writes zeros.
     pub fn mode_displacement_m(&self, i: usize, out: &mut [f64]) {
-        let nm = self.basis.modes.len().min(out.len());
+        let nm = self.tables.basis.modes.len().min(out.len());
         out[..nm].fill(0.0);
-        if i >= self.p {
+        if i >= self.tables.p {
             return;
         }
-        let ns = self.basis.stored_states();
-        let a = &self.basis.out[i * ns..(i + 1) * ns];
-        for ((&k, &a_s), &x_s) in self.basis.mode_of_state.iter().zip(a).zip(&self.state.x) {
+        let ns = self.tables.basis.stored_states();
+        let a = &self.tables.basis.out[i * ns..(i + 1) * ns];
+        for ((&k, &a_s), &x_s) in self
+            .tables
+            .basis
+            .mode_of_state
+            .iter()
+            .zip(a)
+            .zip(&self.state.modal.x)
+        {
             if k < nm {
                 out[k] += a_s * x_s;
             }

@@ -1,6 +1,7 @@
-//! The Gauss-point contact solve (method §4): the `2|S| × 2|S|` system of the
-//! active points over a full step (factorisation reused while the set holds)
-//! or a sub-step, and the end values of every point under the solved forces.
+//! The Gauss-point contact solve (method §4.3 step 3, §4.5): the
+//! `2|S| × 2|S|` system of the active points over a full step (factorisation
+//! reused while the set holds) or a sub-step, and the end values of every
+//! point under the solved forces.
 
 use super::{GA, GB, SQRT3, Simulation, Table};
 use crate::error::SolverError;
@@ -9,167 +10,184 @@ impl Simulation {
     /// Solves the Gauss-point system of `active` (after `predict`) and the end
     /// displacement/velocity of every point into `ue`, `ve`.
     pub(super) fn solve_active(&mut self, t_end: f64, sel: Table) -> Result<(), SolverError> {
-        let n = self.active.len();
-        let p = self.p;
+        let n = self.state.active.len();
+        let p = self.tables.p;
         if n == 0 {
-            self.ue.copy_from_slice(&self.uh);
-            self.ve.copy_from_slice(&self.vh);
+            let s = &mut self.scratch;
+            s.ue.copy_from_slice(&s.uh);
+            s.ve.copy_from_slice(&s.vh);
             return Ok(());
         }
         if sel == Table::Sub {
             self.fill_sub_block();
         }
+        let reuse_factorisation = self.tables.options.reuse_factorisation;
         // The full-step operator depends only on the active set: its
         // factorisation is reused while the set is unchanged.
-        let mut reuse = sel == Table::Full
-            && self.options.reuse_factorisation
-            && self.full_factored
-            && self.full_set.len() == n
-            && self.full_set.iter().zip(&self.active).all(|(a, b)| a == b);
-        if !reuse && sel == Table::Full && self.factor_cache.is_enabled() {
+        let mut reuse =
+            sel == Table::Full && reuse_factorisation && self.factors.holds(&self.state.active);
+        if !reuse && sel == Table::Full && self.factors.cache.is_enabled() {
             reuse = self.swap_cached_factorisation();
         }
         if !reuse {
-            self.stats.factorisations += 1;
-            let act = &self.active;
-            let res = match sel {
-                Table::Full => {
-                    let g = &self.full_inf;
-                    let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
-                    let entry = |r: usize, c: usize| {
-                        let blk = 2 * (r >= n) as usize + (c >= n) as usize;
-                        blocks[blk][act[r % n] * p + act[c % n]]
-                    };
-                    self.full_solver.factor(2 * n, entry)
-                }
-                // the interleaved blocks into the 2|S| x 2|S| matrix
-                Table::Sub => {
-                    let gss = &self.gss[..4 * n * n];
-                    self.solver.factor_filled(2 * n, |m| {
-                        let (top, bottom) = m.split_at_mut(2 * n * n);
-                        let rows = top
-                            .chunks_exact_mut(2 * n)
-                            .zip(bottom.chunks_exact_mut(2 * n));
-                        for ((mx, mv), g) in rows.zip(gss.chunks_exact(4 * n)) {
-                            let (mx1, mx2) = mx.split_at_mut(n);
-                            let (mv1, mv2) = mv.split_at_mut(n);
-                            for (b, e) in g.chunks_exact(4).enumerate() {
-                                (mx1[b], mx2[b], mv1[b], mv2[b]) = (e[0], e[1], e[2], e[3]);
-                            }
-                        }
-                    })
-                }
-            };
-            if sel == Table::Full {
-                self.full_factored = res.is_ok();
-                self.full_set.clone_from(&self.active);
-                self.pack_free_rows();
-                if res.is_ok() && self.options.reuse_factorisation {
-                    // reused while the set holds: solves become products
-                    self.full_solver.form_inverse();
-                }
-            }
-            if let Err(s) = res {
-                return Err(SolverError::SingularContactSystem {
-                    t_s: t_end,
-                    points: self.active.clone(),
-                    pivot: s.pivot,
-                });
-            }
+            self.factorise(t_end, sel)?;
         }
-        let (re, rde, uh, vh) = (&self.re[..p], &self.rde[..p], &self.uh[..p], &self.vh[..p]);
-        let (rx, rv) = self.rhs[..2 * n].split_at_mut(n);
-        for (k, &i) in self.active.iter().enumerate() {
+        let s = &mut self.scratch;
+        let (re, rde, uh, vh) = (&s.re[..p], &s.rde[..p], &s.uh[..p], &s.vh[..p]);
+        let (rx, rv) = s.rhs[..2 * n].split_at_mut(n);
+        for (k, &i) in self.state.active.iter().enumerate() {
             rx[k] = re[i] - uh[i];
             rv[k] = rde[i] - vh[i];
         }
         match sel {
-            Table::Full if self.options.reuse_factorisation => {
-                self.full_solver.solve_by_inverse(&mut self.rhs[..2 * n])
-            }
-            Table::Full => self.full_solver.solve(&mut self.rhs[..2 * n]),
-            Table::Sub => self.solver.solve(&mut self.rhs[..2 * n]),
+            Table::Full if reuse_factorisation => self
+                .factors
+                .current
+                .solver
+                .solve_by_inverse(&mut s.rhs[..2 * n]),
+            Table::Full => self.factors.current.solver.solve(&mut s.rhs[..2 * n]),
+            Table::Sub => s.solver.solve(&mut s.rhs[..2 * n]),
         }
         // only the active points' entries of q1, q2 are ever read
-        for (k, &j) in self.active.iter().enumerate() {
-            self.q1[j] = self.rhs[k];
-            self.q2[j] = self.rhs[n + k];
+        for (k, &j) in self.state.active.iter().enumerate() {
+            s.q1[j] = s.rhs[k];
+            s.q2[j] = s.rhs[n + k];
         }
         // O(P |S|) with the precomputed full influence; through the states on sub-steps
         match sel {
-            // (`full_set` is the active set here: reused or just factored)
+            // (`current.set` is the active set here: reused or just factored)
             Table::Full => self.end_values_solved(),
             Table::Sub => self.end_values_sub(),
         }
         Ok(())
     }
 
-    /// Before a full-step factorisation of a new active set (method §4): the
-    /// kept factorisation of `active`, if any, becomes the current one
-    /// (`true`: nothing to factorise); the current one, if valid, is kept in
-    /// its place or in the least recently used entry. Swaps of buffers
-    /// sized once: no allocation, and the same values as a new
-    /// factorisation, bit for bit (it depends only on the set and `dt`).
+    /// Factorises the Gauss-point operator of `active` over `sel` (method
+    /// §4.5): over the full step from the influence blocks into the current
+    /// full-step factorisation (its inverse formed when it is to be reused,
+    /// the free points' rows packed); over a sub-step from the blocks of
+    /// [`Simulation::fill_sub_block`].
+    fn factorise(&mut self, t_end: f64, sel: Table) -> Result<(), SolverError> {
+        let n = self.state.active.len();
+        let p = self.tables.p;
+        self.state.stats.factorisations += 1;
+        let act = &self.state.active;
+        let res = match sel {
+            Table::Full => {
+                let g = &self.tables.full_inf;
+                let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
+                let entry = |r: usize, c: usize| {
+                    let blk = 2 * (r >= n) as usize + (c >= n) as usize;
+                    blocks[blk][act[r % n] * p + act[c % n]]
+                };
+                self.factors.current.solver.factor(2 * n, entry)
+            }
+            // the interleaved blocks into the 2|S| x 2|S| matrix
+            Table::Sub => {
+                let gss = &self.scratch.gss[..4 * n * n];
+                self.scratch.solver.factor_filled(2 * n, |m| {
+                    let (top, bottom) = m.split_at_mut(2 * n * n);
+                    let rows = top
+                        .chunks_exact_mut(2 * n)
+                        .zip(bottom.chunks_exact_mut(2 * n));
+                    for ((mx, mv), g) in rows.zip(gss.chunks_exact(4 * n)) {
+                        let (mx1, mx2) = mx.split_at_mut(n);
+                        let (mv1, mv2) = mv.split_at_mut(n);
+                        for (b, e) in g.chunks_exact(4).enumerate() {
+                            (mx1[b], mx2[b], mv1[b], mv2[b]) = (e[0], e[1], e[2], e[3]);
+                        }
+                    }
+                })
+            }
+        };
+        if sel == Table::Full {
+            self.factors.factored = res.is_ok();
+            self.factors.current.set.clone_from(&self.state.active);
+            self.pack_free_rows();
+            if res.is_ok() && self.tables.options.reuse_factorisation {
+                // reused while the set holds: solves become products
+                self.factors.current.solver.form_inverse();
+            }
+        }
+        if let Err(e) = res {
+            return Err(SolverError::SingularContactSystem {
+                t_s: t_end,
+                points: self.state.active.clone(),
+                pivot: e.pivot,
+            });
+        }
+        Ok(())
+    }
+
+    /// Before a full-step factorisation of a new active set (method §4.5,
+    /// "Reuse"): the kept factorisation of `active`, if any, becomes the
+    /// current one (`true`: nothing to factorise); the current one, if
+    /// valid, is kept in its place or in the least recently used entry.
+    /// Swaps of buffers sized once: no allocation, and the same values as a
+    /// new factorisation, bit for bit (it depends only on the set and `dt`).
     fn swap_cached_factorisation(&mut self) -> bool {
-        let found = self.factor_cache.find(&self.active);
+        let factors = &mut self.factors;
+        let found = factors.cache.find(&self.state.active);
         let k = match found {
             Some(k) => k,
             // nothing to keep: factorise into the current buffers
-            None if !self.full_factored => return false,
-            None => self.factor_cache.victim(),
+            None if !factors.factored => return false,
+            None => factors.cache.victim(),
         };
-        let tick = self.factor_cache.tick();
-        let e = &mut self.factor_cache.entries[k];
-        std::mem::swap(&mut e.solver, &mut self.full_solver);
-        std::mem::swap(&mut e.set, &mut self.full_set);
-        std::mem::swap(&mut e.free, &mut self.full_free);
-        std::mem::swap(&mut e.free_rows, &mut self.full_free_rows);
+        let tick = factors.cache.tick();
+        let e = &mut factors.cache.entries[k];
+        std::mem::swap(&mut e.factor, &mut factors.current);
         // the entry now holds the previous current factorisation
-        e.used = if self.full_factored { tick } else { 0 };
+        e.used = if factors.factored { tick } else { 0 };
         // taken back: valid, inverse formed; else the factorisation follows
-        self.full_factored = found.is_some();
+        factors.factored = found.is_some();
         found.is_some()
     }
 
-    /// [`Simulation::full_free`] and [`Simulation::full_free_rows`] of
-    /// `full_set` (allocation-free: capacities `P` and `4P²`).
+    /// The current factorisation's `free` points and `free_rows` of its
+    /// `set` (allocation-free: capacities `P` and `4P²`).
     fn pack_free_rows(&mut self) {
-        let (p, n) = (self.p, self.full_set.len());
-        self.full_free.clear();
-        self.full_free_rows.clear();
+        let p = self.tables.p;
+        let f = &mut self.factors.current;
+        let n = f.set.len();
+        f.free.clear();
+        f.free_rows.clear();
         for i in 0..p {
-            if self.full_set.contains(&i) {
+            if f.set.contains(&i) {
                 continue;
             }
-            self.full_free.push(i);
-            let g = &self.full_inf;
+            f.free.push(i);
+            let g = &self.tables.full_inf;
             for (b1, b2) in [(&g.gx1, &g.gx2), (&g.gv1, &g.gv2)] {
                 let row = i * p;
-                let set = &self.full_set[..n];
-                self.full_free_rows.extend(set.iter().map(|&j| b1[row + j]));
-                self.full_free_rows.extend(set.iter().map(|&j| b2[row + j]));
+                let set = &f.set[..n];
+                f.free_rows.extend(set.iter().map(|&j| b1[row + j]));
+                f.free_rows.extend(set.iter().map(|&j| b2[row + j]));
             }
         }
     }
 
-    /// End values of every point right after a full-step solve of
-    /// `full_set`, whose forces `q1 | q2` are in `rhs` (method §4): the active
-    /// points end on the road, which is what the solve imposed (exactly, not
-    /// to the solve's round-off); each free point is its free value plus its
-    /// packed influence row times the forces (O((P - |S|) |S|)).
+    /// End values of every point right after a full-step solve of the
+    /// current factorisation's set, whose forces `q1 | q2` are in `rhs`
+    /// (method §4.3 step 3): the active points end on the road, which is
+    /// what the solve imposed (exactly, not to the solve's round-off); each
+    /// free point is its free value plus its packed influence row times the
+    /// forces (O((P - |S|) |S|)).
     pub(super) fn end_values_solved(&mut self) {
-        let n = self.full_set.len();
-        let p = self.p;
+        let f = &self.factors.current;
+        let n = f.set.len();
+        let p = self.tables.p;
+        let s = &mut self.scratch;
         if n == 0 {
-            self.ue[..p].copy_from_slice(&self.uh[..p]);
-            self.ve[..p].copy_from_slice(&self.vh[..p]);
+            s.ue[..p].copy_from_slice(&s.uh[..p]);
+            s.ve[..p].copy_from_slice(&s.vh[..p]);
             return;
         }
         let m = 2 * n;
-        let q = &self.rhs[..m];
-        let (ue, ve) = (&mut self.ue[..p], &mut self.ve[..p]);
-        let (uh, vh) = (&self.uh[..p], &self.vh[..p]);
-        let (free, rows) = (&self.full_free[..], &self.full_free_rows[..]);
+        let q = &s.rhs[..m];
+        let (ue, ve) = (&mut s.ue[..p], &mut s.ve[..p]);
+        let (uh, vh) = (&s.uh[..p], &s.vh[..p]);
+        let (free, rows) = (&f.free[..], &f.free_rows[..]);
         // (fixed lengths for up to five points on the road: unrolled sums)
         match m {
             2 => free_ends::<2>(free, rows, q, uh, vh, ue, ve),
@@ -184,9 +202,9 @@ impl Simulation {
                 }
             }
         }
-        for &j in &self.full_set {
-            ue[j] = self.re[j];
-            ve[j] = self.rde[j];
+        for &j in &f.set {
+            ue[j] = s.re[j];
+            ve[j] = s.rde[j];
         }
     }
 
@@ -194,26 +212,27 @@ impl Simulation {
     /// `q1`, `q2` of the active points over the sub-step (after `predict`),
     /// through the states: O(states (|S| + P)), no P x P influence.
     pub(super) fn end_values_sub(&mut self) {
-        self.delta.x.fill(0.0);
-        self.delta.v.fill(0.0);
-        self.delta
-            .add_gauss_forces(&self.basis, &self.sub, &self.active, &self.q1, &self.q2);
-        self.delta.project(&self.basis, &mut self.du, &mut self.dv);
-        for i in 0..self.p {
-            self.ue[i] = self.uh[i] + self.du[i];
-            self.ve[i] = self.vh[i] + self.dv[i];
+        let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
+        s.delta.x.fill(0.0);
+        s.delta.v.fill(0.0);
+        s.delta
+            .add_gauss_forces(&tb.basis, &s.sub, &st.active, &s.q1, &s.q2);
+        s.delta.project(&tb.basis, &mut s.du, &mut s.dv);
+        for i in 0..tb.p {
+            s.ue[i] = s.uh[i] + s.du[i];
+            s.ve[i] = s.vh[i] + s.dv[i];
         }
-        if !self.residual.is_empty() {
-            let (p, rate) = (self.p, SQRT3 / self.sub.tau_s);
+        if !tb.residual.is_empty() {
+            let (p, rate) = (tb.p, SQRT3 / s.sub.tau_s);
             for i in 0..p {
                 let (mut du, mut dv) = (0.0, 0.0);
-                for &j in &self.active {
-                    let c = self.residual[i * p + j];
-                    du += c * (-GB * self.q1[j] + GA * self.q2[j]);
-                    dv += c * rate * (self.q2[j] - self.q1[j]);
+                for &j in &st.active {
+                    let c = tb.residual[i * p + j];
+                    du += c * (-GB * s.q1[j] + GA * s.q2[j]);
+                    dv += c * rate * (s.q2[j] - s.q1[j]);
                 }
-                self.ue[i] += du;
-                self.ve[i] += dv;
+                s.ue[i] += du;
+                s.ve[i] += dv;
             }
         }
     }
@@ -225,14 +244,15 @@ impl Simulation {
         match sel {
             Table::Sub => self.end_values_sub(),
             Table::Full => {
-                let p = self.p;
-                let (ue, ve) = (&mut self.ue[..p], &mut self.ve[..p]);
-                let (uh, vh) = (&self.uh[..p], &self.vh[..p]);
+                let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
+                let p = tb.p;
+                let (ue, ve) = (&mut s.ue[..p], &mut s.ve[..p]);
+                let (uh, vh) = (&s.uh[..p], &s.vh[..p]);
                 // the free values plus each active point's columns in turn
                 // (the first sets, so that no separate copy runs)
-                for (k, &j) in self.active.iter().enumerate() {
-                    let (a, b) = (self.q1[j], self.q2[j]);
-                    let c = &self.full_inf_cols[4 * p * j..4 * p * (j + 1)];
+                for (k, &j) in st.active.iter().enumerate() {
+                    let (a, b) = (s.q1[j], s.q2[j]);
+                    let c = &tb.full_inf_cols[4 * p * j..4 * p * (j + 1)];
                     let (x1, rest) = c.split_at(p);
                     let (x2, rest) = rest.split_at(p);
                     let (v1, v2) = rest.split_at(p);
@@ -248,7 +268,7 @@ impl Simulation {
                         }
                     }
                 }
-                if self.active.is_empty() {
+                if st.active.is_empty() {
                     ue.copy_from_slice(uh);
                     ve.copy_from_slice(vh);
                 }
@@ -263,17 +283,18 @@ impl Simulation {
     /// and the next three (one 4-wide update per state and pair; each entry
     /// sums the same products in the same order as four separate blocks).
     pub(super) fn fill_sub_block(&mut self) {
-        let n = self.active.len();
-        let (p, ns) = (self.p, self.basis.stored_states());
-        let g = &mut self.gss[..4 * n * n];
-        let (w1, w2) = (&self.sub.w1[..ns], &self.sub.w2[..ns]);
-        let inp = &self.basis.inp[..ns * p];
+        let (tb, active, sc) = (&self.tables, &self.state.active, &mut self.scratch);
+        let n = active.len();
+        let (p, ns) = (tb.p, tb.basis.stored_states());
+        let g = &mut sc.gss[..4 * n * n];
+        let (w1, w2) = (&sc.sub.w1[..ns], &sc.sub.w2[..ns]);
+        let inp = &tb.basis.inp[..ns * p];
         // per pair, the four entries summed over the states in order in
         // registers (the same sums, in the same order, as state by state)
-        for (a, &i) in self.active.iter().enumerate() {
-            let out = &self.basis.out[i * ns..(i + 1) * ns];
+        for (a, &i) in active.iter().enumerate() {
+            let out = &tb.basis.out[i * ns..(i + 1) * ns];
             let row = &mut g[4 * a * n..4 * (a + 1) * n];
-            for (gk, &j) in row.chunks_exact_mut(4).zip(&self.active) {
+            for (gk, &j) in row.chunks_exact_mut(4).zip(active) {
                 let mut acc = [0.0f64; 4];
                 for s in 0..ns {
                     let o = out[s];
@@ -289,11 +310,11 @@ impl Simulation {
                 gk.copy_from_slice(&acc);
             }
         }
-        if !self.residual.is_empty() {
-            let rate = SQRT3 / self.sub.tau_s;
-            for (a, &i) in self.active.iter().enumerate() {
-                for (b, &j) in self.active.iter().enumerate() {
-                    let (c, k) = (self.residual[i * p + j], 4 * (a * n + b));
+        if !tb.residual.is_empty() {
+            let rate = SQRT3 / sc.sub.tau_s;
+            for (a, &i) in active.iter().enumerate() {
+                for (b, &j) in active.iter().enumerate() {
+                    let (c, k) = (tb.residual[i * p + j], 4 * (a * n + b));
                     g[k] += -GB * c;
                     g[k + 1] += GA * c;
                     g[k + 2] += -rate * c;
@@ -303,10 +324,10 @@ impl Simulation {
         }
         // tread springs: their compliance `1 / k` on the diagonal, in the
         // end value and the slope (`compliant.rs`)
-        if !self.tread_k_n_m.is_empty() {
-            let rate = SQRT3 / self.sub.tau_s;
-            for (a, &i) in self.active.iter().enumerate() {
-                let (kt, k) = (self.tread_k_n_m[i], 4 * (a * n + a));
+        if !tb.tread_k_n_m.is_empty() {
+            let rate = SQRT3 / sc.sub.tau_s;
+            for (a, &i) in active.iter().enumerate() {
+                let (kt, k) = (tb.tread_k_n_m[i], 4 * (a * n + a));
                 g[k] += -GB / kt;
                 g[k + 1] += GA / kt;
                 g[k + 2] += -rate / kt;
@@ -364,13 +385,14 @@ mod tests {
         let scene = Scene::parse(text, "three").unwrap();
         let mut a = Simulation::from_scene(&scene).unwrap();
         let mut b = Simulation::from_scene(&scene).unwrap();
-        b.factor_cache = super::super::factor_cache::FactorCache::new(b.p, false);
-        assert!(a.factor_cache.is_enabled() && !b.factor_cache.is_enabled());
+        b.factors.cache = super::super::factor_cache::FactorCache::new(b.tables.p, false);
+        assert!(a.factors.cache.is_enabled() && !b.factors.cache.is_enabled());
         let bits = |x: &[f64]| x.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         for step in 0..15_000 {
             let (ra, rb) = (a.step().unwrap(), b.step().unwrap());
             assert_eq!(ra, rb, "report at step {step}");
-            for (x, y) in [(&a.u, &b.u), (&a.v, &b.v), (&a.q_mean, &b.q_mean)] {
+            let (sa, sb) = (&a.state, &b.state);
+            for (x, y) in [(&sa.u, &sb.u), (&sa.v, &sb.v), (&sa.q_mean, &sb.q_mean)] {
                 assert_eq!(bits(x), bits(y), "outputs at step {step}");
             }
         }
@@ -395,28 +417,30 @@ mod tests {
         let (mut mixed, mut worst) = (0, 0.0f64);
         for _ in 0..20_000 {
             sim.step().unwrap();
-            let n = sim.active.len();
-            if n == 0 || n == sim.p || sim.had_event {
+            let n = sim.state.active.len();
+            if n == 0 || n == sim.tables.p || sim.state.had_event {
                 continue;
             }
             // the next step's trial, solved by hand
-            let t = sim.t_s;
-            sim.predict(t, sim.dt_s, Table::Full).unwrap();
-            sim.solve_active(t + sim.dt_s, Table::Full).unwrap();
-            let (ue, ve) = (sim.ue.clone(), sim.ve.clone());
-            for &j in &sim.active {
-                assert_eq!((ue[j], ve[j]), (sim.re[j], sim.rde[j]), "point {j}");
+            let (t, dt) = (sim.state.t_s, sim.tables.dt_s);
+            sim.predict(t, dt, Table::Full).unwrap();
+            sim.solve_active(t + dt, Table::Full).unwrap();
+            let (ue, ve) = (sim.scratch.ue.clone(), sim.scratch.ve.clone());
+            for &j in &sim.state.active {
+                let s = &sim.scratch;
+                assert_eq!((ue[j], ve[j]), (s.re[j], s.rde[j]), "point {j}");
             }
             sim.end_values_sub_or_full(Table::Full);
-            for i in (0..sim.p).filter(|i| !sim.active.contains(i)) {
-                let scale = sim.ue[i].abs() + sim.uh[i].abs() + 1e-9;
-                worst = worst.max((ue[i] - sim.ue[i]).abs() / scale);
-                let vscale = sim.ve[i].abs() + sim.vh[i].abs() + 1e-6;
-                worst = worst.max((ve[i] - sim.ve[i]).abs() / vscale);
+            let (st, s) = (&sim.state, &sim.scratch);
+            for i in (0..sim.tables.p).filter(|i| !st.active.contains(i)) {
+                let scale = s.ue[i].abs() + s.uh[i].abs() + 1e-9;
+                worst = worst.max((ue[i] - s.ue[i]).abs() / scale);
+                let vscale = s.ve[i].abs() + s.vh[i].abs() + 1e-6;
+                worst = worst.max((ve[i] - s.ve[i]).abs() / vscale);
             }
             mixed += 1;
             // back to the state of the step start: a fresh trial next step
-            sim.had_event = true;
+            sim.state.had_event = true;
         }
         assert!(
             mixed > 100,

@@ -16,40 +16,41 @@ impl Simulation {
         sel: Table,
     ) -> Result<u32, SolverError> {
         self.predict(t, tau, sel)?;
-        self.active.clear();
-        for i in 0..self.p {
-            if self.uh[i] - self.re[i] < 0.0 && !self.released[i] {
-                self.active.push(i);
+        self.state.active.clear();
+        for i in 0..self.tables.p {
+            if self.scratch.uh[i] - self.scratch.re[i] < 0.0 && !self.state.released[i] {
+                self.state.active.push(i);
             }
         }
         let mut solves = 0u32;
         loop {
             self.solve_active(t + tau, sel)?;
-            solves += !self.active.is_empty() as u32;
-            if solves as usize >= 2 * self.p {
+            solves += !self.state.active.is_empty() as u32;
+            if solves as usize >= 2 * self.tables.p {
                 break;
             }
             // most negative step-mean force
             let worst = self
+                .state
                 .active
                 .iter()
                 .enumerate()
-                .map(|(k, &j)| (k, self.q1[j] + self.q2[j]))
+                .map(|(k, &j)| (k, self.scratch.q1[j] + self.scratch.q2[j]))
                 .filter(|&(_, m)| m < 0.0)
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             if let Some((k, _)) = worst {
-                let j = self.active.remove(k);
-                self.released[j] = true;
+                let j = self.state.active.remove(k);
+                self.state.released[j] = true;
                 continue;
             }
             // a neighbour's force pushed a free point below the road
-            let deepest = (0..self.p)
-                .filter(|&i| !self.released[i] && !self.active.contains(&i))
-                .map(|i| (i, self.ue[i] - self.re[i]))
+            let deepest = (0..self.tables.p)
+                .filter(|&i| !self.state.released[i] && !self.state.active.contains(&i))
+                .map(|i| (i, self.scratch.ue[i] - self.scratch.re[i]))
                 .filter(|&(_, g)| g < -self.pen_tol_m)
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             match deepest {
-                Some((i, _)) => self.active.push(i),
+                Some((i, _)) => self.state.active.push(i),
                 None => break,
             }
         }
@@ -64,9 +65,14 @@ impl Simulation {
     /// force zeroed) and the end values are solved again: the forces stay
     /// non-negative, any penetration is reported.
     pub(super) fn let_go_pulling(&mut self, sel: Table) {
-        if self.active.iter().any(|&j| self.q1[j] + self.q2[j] < 0.0) {
-            let (q1, q2) = (&mut self.q1, &mut self.q2);
-            self.active.retain(|&j| {
+        if self
+            .state
+            .active
+            .iter()
+            .any(|&j| self.scratch.q1[j] + self.scratch.q2[j] < 0.0)
+        {
+            let (q1, q2) = (&mut self.scratch.q1, &mut self.scratch.q2);
+            self.state.active.retain(|&j| {
                 let keep = q1[j] + q2[j] >= 0.0;
                 if !keep {
                     (q1[j], q2[j]) = (0.0, 0.0);

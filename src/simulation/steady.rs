@@ -19,41 +19,41 @@ impl Simulation {
     /// is kept, on a road without breakpoints under it.
     #[inline]
     pub(super) fn steady_ready(&self) -> bool {
-        let n = self.active.len();
-        !self.had_event
-            && self.options.steady_path
-            && self.options.reuse_factorisation
+        let n = self.state.active.len();
+        !self.state.had_event
+            && self.tables.options.steady_path
+            && self.tables.options.reuse_factorisation
             && self.scene.contact_scheme == ContactScheme::Located
-            && self.tread_k_n_m.is_empty()
-            && (n == 0
-                || (self.full_factored
-                    && !self.road.has_kinks()
-                    && self.full_set.len() == n
-                    && self.full_set.iter().zip(&self.active).all(|(a, b)| a == b)))
+            && self.tables.tread_k_n_m.is_empty()
+            && (n == 0 || (!self.road.has_kinks() && self.factors.holds(&self.state.active)))
     }
 
-    /// The step from `t0` when it has no event: `Some(solves)` once
-    /// committed; `None`, with only scratch values changed, when a point
-    /// starts below the road, a force would end pulling, or a free point
-    /// lands inside the step.
+    /// The step from `t0` when it has no event: the stages of `stages.rs`
+    /// over the full step (predict; solve by the kept inverse; the release
+    /// and landing checks; commit). `Some(solves)` once committed; `None`,
+    /// with only scratch values changed, when a point starts below the road,
+    /// a force would end pulling, or a free point lands inside the step.
     pub(super) fn steady_step(&mut self, t0: f64) -> Result<Option<u32>, SolverError> {
-        let p = self.p;
-        let dt = self.dt_s;
+        let p = self.tables.p;
+        let dt = self.tables.dt_s;
         self.predict(t0, dt, Table::Full)?;
-        let n = self.active.len();
+        let n = self.state.active.len();
         if n > 0 {
-            let (re, rde) = (&self.re[..p], &self.rde[..p]);
-            let (uh, vh) = (&self.uh[..p], &self.vh[..p]);
-            let (rx, rv) = self.rhs[..2 * n].split_at_mut(n);
-            for (k, &i) in self.active.iter().enumerate() {
+            // solve (the factorisation of the set is kept: a product)
+            let (active, s) = (&self.state.active, &mut self.scratch);
+            let (re, rde) = (&s.re[..p], &s.rde[..p]);
+            let (uh, vh) = (&s.uh[..p], &s.vh[..p]);
+            let (rx, rv) = s.rhs[..2 * n].split_at_mut(n);
+            for (k, &i) in active.iter().enumerate() {
                 rx[k] = re[i] - uh[i];
                 rv[k] = rde[i] - vh[i];
             }
-            self.full_solver.solve_by_inverse(&mut self.rhs[..2 * n]);
-            let (q1, q2) = (&mut self.q1[..p], &mut self.q2[..p]);
-            for (k, &j) in self.active.iter().enumerate() {
-                q1[j] = self.rhs[k];
-                q2[j] = self.rhs[n + k];
+            let solver = &mut self.factors.current.solver;
+            solver.solve_by_inverse(&mut s.rhs[..2 * n]);
+            let (q1, q2) = (&mut s.q1[..p], &mut s.q2[..p]);
+            for (k, &j) in active.iter().enumerate() {
+                q1[j] = s.rhs[k];
+                q2[j] = s.rhs[n + k];
                 // a force ending negative or pulling on average: a release
                 let (qs, qe) = (GA * q1[j] - GB * q2[j], -GB * q1[j] + GA * q2[j]);
                 if qe < 0.0 || qs + qe < 0.0 {
@@ -66,14 +66,15 @@ impl Simulation {
         } else {
             // no force: the end values are the free ones, which nothing reads
             // again before the next prediction rewrites them
-            std::mem::swap(&mut self.ue, &mut self.uh);
-            std::mem::swap(&mut self.ve, &mut self.vh);
+            std::mem::swap(&mut self.scratch.ue, &mut self.scratch.uh);
+            std::mem::swap(&mut self.scratch.ve, &mut self.scratch.vh);
         }
-        // a free point left below the road (a live road or speed change)
-        // lands at the step start, one that would cross it inside the step
+        // locate, landings only: a free point left below the road (a live
+        // road or speed change) lands at the step start, one that would cross it inside the step
         // lands there: both are events
-        let (u, v, r, rd) = (&self.u[..p], &self.v[..p], &self.r[..p], &self.rd[..p]);
-        let (ue, ve, re, rde) = (&self.ue[..p], &self.ve[..p], &self.re[..p], &self.rde[..p]);
+        let (st, s) = (&self.state, &self.scratch);
+        let (u, v, r, rd) = (&st.u[..p], &st.v[..p], &st.r[..p], &st.rd[..p]);
+        let (ue, ve, re, rde) = (&s.ue[..p], &s.ve[..p], &s.re[..p], &s.rde[..p]);
         let tol = self.pen_tol_m;
         // Most steps: every free point clearly stays above the road. Checked
         // branch-free over all of them first; only when one is not clear do
@@ -82,7 +83,7 @@ impl Simulation {
         // not inlined (+10 % instructions per step).
         let mut all_clear = true;
         if n > 0 {
-            for &i in &self.full_free {
+            for &i in &self.factors.current.free {
                 all_clear &= clear(
                     u[i] - r[i],
                     v[i] - rd[i],
@@ -117,7 +118,7 @@ impl Simulation {
                 )
             };
             let landing = if n > 0 {
-                self.full_free.iter().any(|&i| lands_at(i))
+                self.factors.current.free.iter().any(|&i| lands_at(i))
             } else {
                 (0..p).any(lands_at)
             };
