@@ -6,6 +6,7 @@
 //! RMS relative of its means over windows (impacts are impulses, so only
 //! window means compare).
 
+use crate::bench::BenchError;
 use crate::bench::baselines::{BaselineRun, Kernel, run_baseline};
 mod report;
 use crate::drive::Watch;
@@ -192,14 +193,14 @@ pub fn run_stable(
     duration: f64,
     options: SolverOptions,
     cache: &ModeCache,
-) -> Result<StableRun, String> {
+) -> Result<StableRun, BenchError> {
     let mut s = scene.clone();
     s.dt_s = dt;
     s.duration_s = duration;
     s.contact_scheme = scheme;
     let n = s.num_steps() as usize;
-    let model = PreparedModel::new(&s, cache).map_err(|e| e.to_string())?;
-    let mut sim = Simulation::new(&model, options).map_err(|e| e.to_string())?;
+    let model = PreparedModel::new(&s, cache)?;
+    let mut sim = Simulation::new(&model, options)?;
     let mut run = BaselineRun {
         t_s: Vec::with_capacity(n),
         u_m: Vec::with_capacity(n),
@@ -207,7 +208,7 @@ pub fn run_stable(
         overflow_t_s: None,
     };
     let start = Instant::now();
-    crate::drive::run_to_end(&mut sim, &mut run, Watch::none()).map_err(|e| e.to_string())?;
+    crate::drive::run_to_end(&mut sim, &mut run, Watch::none())?;
     Ok((run, start.elapsed().as_secs_f64(), sim.stats().events))
 }
 
@@ -215,10 +216,10 @@ pub fn run_stable(
 pub fn time_stable(
     model: &PreparedModel,
     options: SolverOptions,
-) -> Result<(f64, Simulation), String> {
-    let mut sim = Simulation::new(model, options).map_err(|e| e.to_string())?;
+) -> Result<(f64, Simulation), BenchError> {
+    let mut sim = Simulation::new(model, options)?;
     let start = Instant::now();
-    crate::drive::run_to_end(&mut sim, &mut (), Watch::none()).map_err(|e| e.to_string())?;
+    crate::drive::run_to_end(&mut sim, &mut (), Watch::none())?;
     Ok((start.elapsed().as_secs_f64(), sim))
 }
 
@@ -260,7 +261,7 @@ pub fn time_pair(
     a: SolverOptions,
     b: SolverOptions,
     repeats: usize,
-) -> Result<(TimedRun, TimedRun), String> {
+) -> Result<(TimedRun, TimedRun), BenchError> {
     let (mut ta, mut tb) = (Vec::new(), Vec::new());
     let (mut last_a, mut last_b) = (None, None);
     for _ in 0..repeats.max(1) {
@@ -273,7 +274,7 @@ pub fn time_pair(
     }
     match (last_a, last_b) {
         (Some(sa), Some(sb)) => Ok(((Timing::of(ta), sa), (Timing::of(tb), sb))),
-        _ => Err("no run was timed".into()),
+        _ => Err(BenchError::NoRun),
     }
 }
 
@@ -282,7 +283,7 @@ pub fn time_repeated(
     scene: &PreparedModel,
     options: SolverOptions,
     repeats: usize,
-) -> Result<TimedRun, String> {
+) -> Result<TimedRun, BenchError> {
     let (t, mut sim) = time_stable(scene, options)?;
     let mut runs_s = vec![t];
     for _ in 1..repeats {
@@ -298,7 +299,7 @@ pub fn study(
     scene: &Scene,
     cfg: &Config,
     mut progress: impl FnMut(&str),
-) -> Result<Vec<Row>, String> {
+) -> Result<Vec<Row>, BenchError> {
     let grid = cfg.dts[0];
     let dt_ref = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min) / 4.0;
     // the tyre is identified once for every time step of the study
