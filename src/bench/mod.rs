@@ -1,9 +1,12 @@
 //! Measurements: the work-precision study behind `tirecontact bench`, and the
-//! baselines it compares against (method §3 α/β form, direct convolution).
+//! baselines it compares against (method §3 α/β form, direct convolution;
+//! with the feature `peers`, Newmark and Dormand-Prince with penalty
+//! contact).
 
 use crate::error::{BasisError, RunError, SceneError};
 
 pub mod baselines;
+#[cfg(feature = "peers")]
 pub mod peers;
 pub mod residual;
 pub mod scaling;
@@ -29,6 +32,7 @@ pub enum BenchError {
     )]
     AlphaBetaDamping { mode: usize, damping_ratio: f64 },
     /// The adaptive integrator of a peer baseline gave up.
+    #[cfg(feature = "peers")]
     #[error("Dormand-Prince 5(4): {0}")]
     Integration(#[from] ode_solvers::dop_shared::IntegrationError),
     /// No run was timed (zero repeats).

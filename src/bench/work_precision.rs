@@ -28,10 +28,10 @@ pub enum Method {
     /// Direct O(N²) convolution with the paper's contact rule.
     Direct,
     /// Newmark (average acceleration) on the modal equations, penalty
-    /// contact ([`crate::bench::peers::run_newmark`]).
+    /// contact (`bench::peers::run_newmark`, feature `peers`).
     Newmark,
     /// Adaptive Dormand–Prince 5(4), penalty contact
-    /// ([`crate::bench::peers::run_dopri`]).
+    /// (`bench::peers::run_dopri`, feature `peers`).
     Dopri,
 }
 
@@ -294,7 +294,8 @@ pub fn time_repeated(
     Ok((Timing::of(runs_s), sim))
 }
 
-/// The study of one scene. `progress` is told each run as it starts.
+/// The study of one scene. `progress` is told each run as it starts. The
+/// peers ([`Method::PEERS`]) run with the feature `peers` only.
 pub fn study(
     scene: &Scene,
     cfg: &Config,
@@ -421,80 +422,83 @@ pub fn study(
             });
         }
     }
-    // the peers: Newmark over the time steps and Dormand-Prince over the
-    // tolerances (output every finest step), each for every penalty
-    let dt_out = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min);
+    #[cfg(feature = "peers")]
+    {
+        // the peers: Newmark over the time steps and Dormand-Prince over the
+        // tolerances (output every finest step), each for every penalty
+        let dt_out = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min);
 
-    for &k in &cfg.penalties_n_m {
-        let mut prev: Option<(f64, f64)> = None;
-        for &dt in &cfg.dts {
-            progress(&format!(
-                "{}: Newmark + penalty k = {k:e} N/m at dt = {dt:e} s",
-                scene.name
-            ));
-            let mut s = scene.clone();
-            s.dt_s = dt;
-            let steps = (cfg.duration_s / dt).round() as usize;
-            let start = Instant::now();
-            let run = crate::bench::peers::run_newmark(&s, k, steps, &cache)?;
-            let wall = start.elapsed().as_secs_f64();
-            let (disp_err, force_err) = errors(&run, dt, cfg.duration_s);
-            let order = observed_order(prev, dt, disp_err);
-            prev = Some((dt, disp_err));
-            rows.push(Row {
-                scene: scene.name.clone(),
-                method: Method::Newmark,
-                dt_s: dt,
-                steps,
-                wall_s: wall,
-                disp_err,
-                force_err,
-                order,
-                penalty_n_m: Some(k),
-                rtol: None,
-                note: run.overflow_t_s.map_or(String::new(), |t| {
-                    format!("overflow (non-finite) from t = {t:.4} s")
-                }),
-            });
-        }
-        for &rtol in &cfg.rtols {
-            progress(&format!(
-                "{}: Dormand-Prince + penalty k = {k:e} N/m at rtol = {rtol:e}",
-                scene.name
-            ));
-            let start = Instant::now();
-            let (run, st) = match crate::bench::peers::run_dopri(
-                scene,
-                k,
-                rtol,
-                dt_out,
-                cfg.duration_s,
-                &cache,
-            ) {
-                Ok(r) => r,
-                Err(e) => {
-                    progress(&format!("  skipped: {e}"));
-                    continue;
-                }
-            };
-            let wall = start.elapsed().as_secs_f64();
-            let (disp_err, force_err) = errors(&run, dt_out, cfg.duration_s);
-            rows.push(Row {
-                scene: scene.name.clone(),
-                method: Method::Dopri,
-                dt_s: dt_out,
-                steps: st.accepted as usize,
-                wall_s: wall,
-                disp_err,
-                force_err,
-                order: None,
-                penalty_n_m: Some(k),
-                rtol: Some(rtol),
-                note: format!(
-                    "{} accepted, {} rejected steps, {} evaluations",
-                    st.accepted, st.rejected, st.evaluations
-                ),
-            });
+        for &k in &cfg.penalties_n_m {
+            let mut prev: Option<(f64, f64)> = None;
+            for &dt in &cfg.dts {
+                progress(&format!(
+                    "{}: Newmark + penalty k = {k:e} N/m at dt = {dt:e} s",
+                    scene.name
+                ));
+                let mut s = scene.clone();
+                s.dt_s = dt;
+                let steps = (cfg.duration_s / dt).round() as usize;
+                let start = Instant::now();
+                let run = crate::bench::peers::run_newmark(&s, k, steps, &cache)?;
+                let wall = start.elapsed().as_secs_f64();
+                let (disp_err, force_err) = errors(&run, dt, cfg.duration_s);
+                let order = observed_order(prev, dt, disp_err);
+                prev = Some((dt, disp_err));
+                rows.push(Row {
+                    scene: scene.name.clone(),
+                    method: Method::Newmark,
+                    dt_s: dt,
+                    steps,
+                    wall_s: wall,
+                    disp_err,
+                    force_err,
+                    order,
+                    penalty_n_m: Some(k),
+                    rtol: None,
+                    note: run.overflow_t_s.map_or(String::new(), |t| {
+                        format!("overflow (non-finite) from t = {t:.4} s")
+                    }),
+                });
+            }
+            for &rtol in &cfg.rtols {
+                progress(&format!(
+                    "{}: Dormand-Prince + penalty k = {k:e} N/m at rtol = {rtol:e}",
+                    scene.name
+                ));
+                let start = Instant::now();
+                let (run, st) = match crate::bench::peers::run_dopri(
+                    scene,
+                    k,
+                    rtol,
+                    dt_out,
+                    cfg.duration_s,
+                    &cache,
+                ) {
+                    Ok(r) => r,
+                    Err(e) => {
+                        progress(&format!("  skipped: {e}"));
+                        continue;
+                    }
+                };
+                let wall = start.elapsed().as_secs_f64();
+                let (disp_err, force_err) = errors(&run, dt_out, cfg.duration_s);
+                rows.push(Row {
+                    scene: scene.name.clone(),
+                    method: Method::Dopri,
+                    dt_s: dt_out,
+                    steps: st.accepted as usize,
+                    wall_s: wall,
+                    disp_err,
+                    force_err,
+                    order: None,
+                    penalty_n_m: Some(k),
+                    rtol: Some(rtol),
+                    note: format!(
+                        "{} accepted, {} rejected steps, {} evaluations",
+                        st.accepted, st.rejected, st.evaluations
+                    ),
+                });
+            }
         }
     }
     Ok(rows)
