@@ -1,7 +1,49 @@
 //! Error types: every error carries the context a user needs to act on it.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 use thiserror::Error;
+
+/// An I/O error kept in errors that are cloned and compared (a sweep's
+/// failed runs, kept with its results): clones share the error, and two
+/// are equal when they have the same kind and say the same.
+#[derive(Debug, Clone)]
+pub struct IoError(Arc<std::io::Error>);
+
+impl IoError {
+    /// The error's kind (`NotFound`, `InvalidData`, ...).
+    pub fn kind(&self) -> std::io::ErrorKind {
+        self.0.kind()
+    }
+    /// The I/O error itself.
+    pub fn get(&self) -> &std::io::Error {
+        &self.0
+    }
+}
+
+impl From<std::io::Error> for IoError {
+    fn from(e: std::io::Error) -> Self {
+        IoError(Arc::new(e))
+    }
+}
+
+impl PartialEq for IoError {
+    fn eq(&self, other: &Self) -> bool {
+        self.kind() == other.kind() && self.0.to_string() == other.0.to_string()
+    }
+}
+
+impl std::fmt::Display for IoError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl std::error::Error for IoError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        self.0.source()
+    }
+}
 
 /// One invalid value in a scene: which field, what it was, what was expected.
 #[derive(Debug, Clone, PartialEq)]
@@ -72,7 +114,7 @@ pub enum BasisError {
 }
 
 /// Errors while reading or validating a scene.
-#[derive(Debug, Error)]
+#[derive(Debug, Clone, PartialEq, Error)]
 pub enum SceneError {
     /// The RON text does not parse (line and column are 1-based).
     #[error("{file}:{line}:{col}: {message}")]
@@ -96,7 +138,7 @@ pub enum SceneError {
     Io {
         path: PathBuf,
         #[source]
-        source: std::io::Error,
+        source: IoError,
     },
     /// A measured road profile (`road.file`) is unusable.
     #[error("road.file = {path}: {message}{}", road_file_hint(.message))]

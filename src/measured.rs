@@ -20,6 +20,7 @@
 //! and the load note says so. Errors name the file, the line or record,
 //! the field and what was expected.
 
+use crate::error::IoError;
 use crate::fsio::read::{LineCap, open_regular};
 use crate::lsce::Responses;
 use std::collections::BTreeMap;
@@ -38,12 +39,93 @@ pub const MAX_POINTS: usize = 200;
 /// A data file that cannot be used: the file, where in it, what is wrong
 /// and what was expected.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{file}: {at}{message}")]
-pub struct DataError {
-    pub file: String,
-    /// "line 3: ", "record 2 (58): ", or empty.
-    pub at: String,
-    pub message: String,
+pub enum DataError {
+    /// The file cannot be read as text.
+    #[error("{file}: {source}")]
+    Read {
+        file: String,
+        #[source]
+        source: ReadError,
+    },
+    /// A line or a record does not parse.
+    #[error("{file}: {at}{message}")]
+    Parse {
+        file: String,
+        /// "line 3: ", or empty.
+        at: String,
+        /// What was found and what was expected.
+        message: String,
+    },
+    /// `tyre.nodes` names the file's nodes, and a CSV has none.
+    #[error(
+        "{file}: tyre.nodes is given: expected a UFF file (.uff, .unv), whose records name their nodes; a CSV's columns are the points in order"
+    )]
+    NodesOfCsv { file: String },
+    /// The responses read are not those of the scene's points.
+    #[error("{file}: {source}")]
+    Responses {
+        file: String,
+        #[source]
+        source: ResponsesError,
+    },
+}
+
+/// A data file that cannot be read as text.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ReadError {
+    /// Not found, not a regular file, not readable.
+    #[error("{0}: expected a file of tyre responses (UFF 58, or CSV impulse responses or FRFs)")]
+    Open(#[source] IoError),
+    #[error("{0}")]
+    Metadata(#[source] IoError),
+    #[error(
+        "more than {MAX_DATA_BYTES} bytes: expected a data file of at most {} MiB",
+        MAX_DATA_BYTES >> 20
+    )]
+    TooLarge,
+    /// A line longer than [`MAX_LINE_BYTES`], or the read failed.
+    #[error("{0}: expected lines of at most {MAX_LINE_BYTES} bytes")]
+    Lines(#[source] IoError),
+    #[error("more than {MAX_DATA_BYTES} bytes (grown while read)")]
+    Grown,
+    #[error("empty: expected a header line and rows of data")]
+    Empty,
+    #[error("not UTF-8 text ({0}): expected a text file")]
+    NotUtf8(#[source] std::str::Utf8Error),
+}
+
+/// Responses that do not make a model of the scene's points: the pair,
+/// what it has and what was expected.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ResponsesError {
+    #[error("no responses: expected at least one")]
+    None,
+    #[error("{points} points: expected at most {MAX_POINTS}")]
+    TooManyPoints { points: usize },
+    #[error(
+        "responses of {points} points: expected the scene's {expected} points (its points map to the file's in order)"
+    )]
+    Points { points: usize, expected: usize },
+    #[error(
+        "no response between points {i} and {j} (neither g{i}_{j} nor g{j}_{i}): expected every pair measured one way or the other"
+    )]
+    MissingPair { i: usize, j: usize },
+    #[error(
+        "g{i}_{j} sampled every {dt_s} s: expected every response sampled alike ({expected_s} s)"
+    )]
+    Sampling {
+        i: usize,
+        j: usize,
+        dt_s: f64,
+        expected_s: f64,
+    },
+    #[error("g{i}_{j} has {samples} samples: expected every response as long ({expected})")]
+    Length {
+        i: usize,
+        j: usize,
+        samples: usize,
+        expected: usize,
+    },
 }
 
 /// The responses read from a file, and what was done to them.
@@ -75,59 +157,52 @@ pub enum Series {
 /// `num_points` is the scene's point count, checked against the file's.
 pub fn read(path: &Path, nodes: Option<&[i64]>, num_points: usize) -> Result<Measured, DataError> {
     let file = path.display().to_string();
-    let fail = |at: &str, message: String| DataError {
+    let fail = |(at, message): ParseError| DataError::Parse {
         file: file.clone(),
-        at: at.to_string(),
+        at,
         message,
     };
-    let text = read_text(path).map_err(|m| fail("", m))?;
+    let text = read_text(path).map_err(|source| DataError::Read {
+        file: file.clone(),
+        source,
+    })?;
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
     let (series, format) = if ext == "uff" || ext == "unv" {
-        let (s, notes) = uff::parse(&text, nodes).map_err(|(at, m)| fail(&at, m))?;
-        (s, notes)
+        uff::parse(&text, nodes).map_err(fail)?
     } else {
         if nodes.is_some() {
-            return Err(fail(
-                "",
-                "tyre.nodes is given: expected a UFF file (.uff, .unv), whose records name their nodes; a CSV's columns are the points in order".into(),
-            ));
+            return Err(DataError::NodesOfCsv { file });
         }
-        (
-            parse_csv(&text).map_err(|(at, m)| fail(&at, m))?,
-            Vec::new(),
-        )
+        (parse_csv(&text).map_err(fail)?, Vec::new())
     };
-    assemble(series, num_points, format).map_err(|m| fail("", m))
+    assemble(series, num_points, format).map_err(|source| DataError::Responses { file, source })
 }
 
 /// The file's text, refused when it is not a regular file, too large, has
 /// a line longer than [`MAX_LINE_BYTES`] or is not UTF-8.
-fn read_text(path: &Path) -> Result<String, String> {
-    let f = open_regular(path).map_err(|e| {
-        format!("{e}: expected a file of tyre responses (UFF 58, or CSV impulse responses or FRFs)")
-    })?;
-    if f.metadata().map_err(|e| e.to_string())?.len() > MAX_DATA_BYTES {
-        return Err(format!(
-            "more than {MAX_DATA_BYTES} bytes: expected a data file of at most {} MiB",
-            MAX_DATA_BYTES >> 20
-        ));
+fn read_text(path: &Path) -> Result<String, ReadError> {
+    let f = open_regular(path).map_err(|e| ReadError::Open(e.into()))?;
+    if f.metadata()
+        .map_err(|e| ReadError::Metadata(e.into()))?
+        .len()
+        > MAX_DATA_BYTES
+    {
+        return Err(ReadError::TooLarge);
     }
     let mut bytes = Vec::new();
     LineCap::new(f.take(MAX_DATA_BYTES + 1), MAX_LINE_BYTES)
         .read_to_end(&mut bytes)
-        .map_err(|e| format!("{e}: expected lines of at most {MAX_LINE_BYTES} bytes"))?;
+        .map_err(|e| ReadError::Lines(e.into()))?;
     if bytes.len() as u64 > MAX_DATA_BYTES {
-        return Err(format!(
-            "more than {MAX_DATA_BYTES} bytes (grown while read)"
-        ));
+        return Err(ReadError::Grown);
     }
     if bytes.is_empty() {
-        return Err("empty: expected a header line and rows of data".into());
+        return Err(ReadError::Empty);
     }
-    String::from_utf8(bytes).map_err(|e| format!("not UTF-8 text ({e}): expected a text file"))
+    String::from_utf8(bytes).map_err(|e| ReadError::NotUtf8(e.utf8_error()))
 }
 
 /// What a CSV column holds.
@@ -377,18 +452,19 @@ fn assemble(
     series: PairSeries,
     num_points: usize,
     mut notes: Vec<String>,
-) -> Result<Measured, String> {
+) -> Result<Measured, ResponsesError> {
     let p = series.keys().map(|&(i, j)| i.max(j) + 1).max().unwrap_or(0);
     if p == 0 {
-        return Err("no responses: expected at least one".into());
+        return Err(ResponsesError::None);
     }
     if p > MAX_POINTS {
-        return Err(format!("{p} points: expected at most {MAX_POINTS}"));
+        return Err(ResponsesError::TooManyPoints { points: p });
     }
     if p != num_points {
-        return Err(format!(
-            "responses of {p} points: expected the scene's {num_points} points (its points map to the file's in order)"
-        ));
+        return Err(ResponsesError::Points {
+            points: p,
+            expected: num_points,
+        });
     }
     let mut reciprocal = Vec::new();
     let mut pairs = Vec::new();
@@ -401,11 +477,7 @@ fn assemble(
                     reciprocal.push(format!("g{i}_{j}"));
                     s
                 }
-                (None, None) => {
-                    return Err(format!(
-                        "no response between points {i} and {j} (neither g{i}_{j} nor g{j}_{i}): expected every pair measured one way or the other"
-                    ));
-                }
+                (None, None) => return Err(ResponsesError::MissingPair { i, j }),
             };
             pairs.push((i, j));
             chosen.push(s);
@@ -427,19 +499,24 @@ fn assemble(
         match dt {
             None => dt = Some(d),
             Some(d0) if (d - d0).abs() > 1e-9 * d0 => {
-                return Err(format!(
-                    "g{i}_{j} sampled every {d} s: expected every response sampled alike ({d0} s)"
-                ));
+                return Err(ResponsesError::Sampling {
+                    i,
+                    j,
+                    dt_s: d,
+                    expected_s: d0,
+                });
             }
             _ => {}
         }
         if let Some(first) = data.first().map(Vec::len)
             && g.len() != first
         {
-            return Err(format!(
-                "g{i}_{j} has {} samples: expected every response as long ({first})",
-                g.len()
-            ));
+            return Err(ResponsesError::Length {
+                i,
+                j,
+                samples: g.len(),
+                expected: first,
+            });
         }
         data.push(g);
     }

@@ -194,9 +194,9 @@ impl Scene {
     /// Reads, parses and validates a scene file; relative road files are
     /// resolved against its folder.
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let io = |source| SceneError::Io {
+        let io = |source: std::io::Error| SceneError::Io {
             path: path.to_path_buf(),
-            source,
+            source: source.into(),
         };
         // a regular file only (a named pipe would block, a device never
         // end), and a bounded read: a runaway file is refused
@@ -259,7 +259,7 @@ impl Scene {
         crate::fsio::write_atomic(path, self.to_ron_string().as_bytes()).map_err(|source| {
             SceneError::Io {
                 path: path.to_path_buf(),
-                source,
+                source: source.into(),
             }
         })
     }

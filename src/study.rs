@@ -8,10 +8,11 @@
 //! different studies are not merged.
 
 use crate::Scene;
+use crate::error::{FieldError, IoError, SceneError};
 use crate::identify::{ModeCache, PreparedModel};
 use crate::road::Road;
 use crate::sweep::engine::{PoolTiming, run_each};
-use crate::sweep::{RunSummary, get_param, run_summary, set_param};
+use crate::sweep::{RunSummary, SummaryError, get_param, run_summary, set_param};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
@@ -86,11 +87,69 @@ fn one() -> usize {
     1
 }
 
-/// A study that cannot be used: the file, where, the field, what was
-/// expected.
+/// A study that cannot be used: the file, where in it (`file:line:column`
+/// of the field), the field, its value and what was expected.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{0}")]
-pub struct StudyError(pub String);
+pub enum StudyError {
+    /// The study file cannot be read.
+    #[error("{file}: {source}: expected a study file (RON)")]
+    Read {
+        file: String,
+        #[source]
+        source: IoError,
+    },
+    /// The study's text does not parse (line and column are 1-based).
+    #[error("{file}:{line}:{col}: {source}")]
+    Syntax {
+        file: String,
+        line: usize,
+        col: usize,
+        #[source]
+        source: ron::Error,
+    },
+    /// The base preset cannot be loaded.
+    #[error("{at}: preset = {preset:?}: {source}")]
+    Preset {
+        /// Where the study names it (`file:line:column`).
+        at: String,
+        /// As the study writes it.
+        preset: PathBuf,
+        #[source]
+        source: SceneError,
+    },
+    /// The preset with the study's overrides (`duration_s`, `dt_s`) is
+    /// invalid: each bad field, placed in the study when the study set it,
+    /// else in the preset.
+    #[error("{}", invalid_overrides(.preset, .errors))]
+    Overrides {
+        /// The preset's path as read.
+        preset: PathBuf,
+        /// Each bad field, with where the study sets it (`None`: the
+        /// preset's own field).
+        errors: Vec<(Option<String>, FieldError)>,
+    },
+    /// A field of the study cannot be used.
+    #[error("{at}: {problem}")]
+    Field {
+        /// Where the field is written (`file:line:column`).
+        at: String,
+        problem: Problem,
+    },
+}
+
+fn invalid_overrides(preset: &Path, errors: &[(Option<String>, FieldError)]) -> String {
+    errors
+        .iter()
+        .map(|(at, e)| match at {
+            Some(at) => format!("{at}: {e}"),
+            None => format!(
+                "{}: the preset with the study's overrides: {e}",
+                preset.display()
+            ),
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
 
 /// A study field that cannot be used: its path in the study file
 /// (`factors[1].values`, `design.samples`) and a message naming the field,
@@ -152,13 +211,15 @@ fn fnv(parts: &[&[u8]]) -> String {
 /// Reads, checks and expands the study at `path`.
 pub fn load(path: &Path) -> Result<Loaded, StudyError> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| StudyError(format!("{file}: {e}: expected a study file (RON)")))?;
-    let study: Study = ron::from_str(&text).map_err(|e| {
-        StudyError(format!(
-            "{file}:{}:{}: {}",
-            e.span.start.line, e.span.start.col, e.code
-        ))
+    let text = std::fs::read_to_string(path).map_err(|e| StudyError::Read {
+        file: file.clone(),
+        source: e.into(),
+    })?;
+    let study: Study = ron::from_str(&text).map_err(|e| StudyError::Syntax {
+        file: file.clone(),
+        line: e.span.start.line,
+        col: e.span.start.col,
+        source: e.code,
     })?;
     // `file:line:column` of a field of the study (its nearest written parent)
     let at = |field: &str| match crate::scene::locate::locate(&text, field) {
@@ -172,12 +233,10 @@ pub fn load(path: &Path) -> Result<Loaded, StudyError> {
         study.preset.clone()
     };
     let preset_text = std::fs::read_to_string(&preset).unwrap_or_default();
-    let mut base = Scene::load(&preset).map_err(|e| {
-        StudyError(format!(
-            "{}: preset = {:?}: {e}",
-            at("preset"),
-            study.preset
-        ))
+    let mut base = Scene::load(&preset).map_err(|source| StudyError::Preset {
+        at: at("preset"),
+        preset: study.preset.clone(),
+        source,
     })?;
     if let Some(d) = study.duration_s {
         base.duration_s = d;
@@ -185,27 +244,23 @@ pub fn load(path: &Path) -> Result<Loaded, StudyError> {
     if let Some(d) = study.dt_s {
         base.dt_s = d;
     }
-    base.validate().map_err(|errors| {
+    base.validate().map_err(|errors| StudyError::Overrides {
         // an override the preset refuses is the study's field; another
         // error is the preset's (its own file's fields are fine alone)
-        let list: Vec<String> = errors
-            .iter()
+        errors: errors
+            .into_iter()
             .map(|e| {
                 let overridden = (e.field == "duration_s" && study.duration_s.is_some())
                     || (e.field == "dt_s" && study.dt_s.is_some());
-                if overridden {
-                    format!("{}: {e}", at(&e.field))
-                } else {
-                    format!(
-                        "{}: the preset with the study's overrides: {e}",
-                        preset.display()
-                    )
-                }
+                (overridden.then(|| at(&e.field)), e)
             })
-            .collect();
-        StudyError(list.join("; "))
+            .collect(),
+        preset: preset.clone(),
     })?;
-    let rows = rows(&study, &base).map_err(|p| StudyError(format!("{}: {p}", at(&p.field))))?;
+    let rows = rows(&study, &base).map_err(|problem| StudyError::Field {
+        at: at(&problem.field),
+        problem,
+    })?;
     Ok(Loaded {
         hash: fnv(&[text.as_bytes(), preset_text.as_bytes()]),
         study,
@@ -326,7 +381,7 @@ pub fn rows(study: &Study, base: &Scene) -> Result<Vec<Row>, Problem> {
 }
 
 /// The scene of `row`.
-pub fn scene_of(loaded: &Loaded, row: &Row) -> Result<Scene, String> {
+pub fn scene_of(loaded: &Loaded, row: &Row) -> Result<Scene, SummaryError> {
     let mut s = loaded.base.clone();
     for (f, &v) in loaded.study.factors.iter().zip(&row.values) {
         if f.path == "road.seed" {
@@ -334,19 +389,13 @@ pub fn scene_of(loaded: &Loaded, row: &Row) -> Result<Scene, String> {
                 *seed = v.round().max(0.0) as u64;
             }
         } else {
-            set_param(&mut s, &f.path, v).map_err(|e| e.to_string())?;
+            set_param(&mut s, &f.path, v)?;
         }
     }
     if let Road::Random { seed, .. } = &mut s.road {
         *seed = seed.wrapping_add(row.replicate as u64);
     }
-    s.validate().map_err(|errors| {
-        errors
-            .iter()
-            .map(ToString::to_string)
-            .collect::<Vec<_>>()
-            .join("; ")
-    })?;
+    s.validate().map_err(SummaryError::InvalidScene)?;
     Ok(s)
 }
 
@@ -356,9 +405,9 @@ pub fn run_row(
     row: &Row,
     cache: &ModeCache,
     cancel: &AtomicBool,
-) -> Result<RunSummary, String> {
+) -> Result<RunSummary, SummaryError> {
     let scene = scene_of(loaded, row)?;
-    let model = PreparedModel::new(&scene, cache).map_err(|e| e.to_string())?;
+    let model = PreparedModel::new(&scene, cache)?;
     run_summary(&model, &|_| {}, cancel)
 }
 
@@ -371,7 +420,7 @@ pub fn run_rows(
     threads: usize,
     cache: &ModeCache,
     cancel: &AtomicBool,
-    on_done: &(dyn Fn(&Row, Result<RunSummary, String>) + Sync),
+    on_done: &(dyn Fn(&Row, Result<RunSummary, SummaryError>) + Sync),
 ) -> PoolTiming {
     run_each(
         rows.len(),
@@ -412,7 +461,11 @@ pub fn table_bytes<'a>(
 }
 
 /// The output line of `row` and its result.
-pub fn record(loaded: &Loaded, row: &Row, result: &Result<RunSummary, String>) -> Vec<String> {
+pub fn record(
+    loaded: &Loaded,
+    row: &Row,
+    result: &Result<RunSummary, SummaryError>,
+) -> Vec<String> {
     let p = loaded.base.num_points();
     let mut r = vec![
         row.id.to_string(),
@@ -422,7 +475,13 @@ pub fn record(loaded: &Loaded, row: &Row, result: &Result<RunSummary, String>) -
     r.extend(row.values.iter().map(|v| format!("{v}")));
     r.push(row.replicate.to_string());
     r.extend(crate::sweep::report::metric_values(result, p));
-    r.push(result.as_ref().err().cloned().unwrap_or_default());
+    r.push(
+        result
+            .as_ref()
+            .err()
+            .map(ToString::to_string)
+            .unwrap_or_default(),
+    );
     r
 }
 

@@ -9,42 +9,125 @@
 //! single run of the scene with that value, whatever the thread count.
 
 use crate::drive::Watch;
-use crate::error::RunError;
+use crate::error::{FieldError, IoError, RunError, SceneError, SolverError};
 use crate::identify::{ModeCache, PreparedModel};
 use crate::metrics::{ContactMetrics, ContactSummary};
 use crate::road::Road;
 use crate::scene::{Contact, Scene, Tyre};
 use crate::simulation::{Simulation, SolverOptions};
 use crate::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder};
-use crate::spectrum::{BandLevel, Window};
+use crate::spectrum::{BandLevel, SpectrumError, Window};
 pub mod engine;
 pub mod report;
 
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Errors of a sweep.
+/// Errors of a sweep: its request (parameter, values), or its scenes
+/// before anything runs. A run that fails is kept in its point
+/// ([`SummaryError`]), the others run on.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SweepError {
     #[error("unknown parameter `{path}`: expected one of {}", .valid.join(", "))]
     UnknownParam { path: String, valid: Vec<String> },
-    /// The scene is invalid with the value; `message` names every bad field.
-    #[error("{message}")]
+    /// The scene is invalid with the value: every bad field, what it was
+    /// and what it expects.
+    #[error("{}", invalid_value(.path, *.value, .errors))]
     InvalidValue {
         path: String,
         value: f64,
-        message: String,
+        errors: Vec<FieldError>,
     },
+    #[error("sweep: range {from} .. {to}: expected finite values")]
+    Range { from: f64, to: f64 },
+    #[error("sweep: steps = 0: expected at least 1")]
+    NoSteps,
+    #[error(
+        "sweep: steps = {steps}: expected at most {MAX_SWEEP_VALUES} values (each value is one run of the scene)"
+    )]
+    TooManySteps { steps: usize },
+    #[error("sweep: no values to sweep")]
+    NoValues,
+    /// The base scene's tyre could not be identified.
     #[error("sweep: {0}")]
-    Input(String),
-    #[error("{param} = {value}: {message}")]
-    Run {
+    Identification(#[source] SceneError),
+    /// The steady part of the scene with this value is too short (or too
+    /// long) for the summary's spectrum.
+    #[error("{param} = {value}: {source}")]
+    Steady {
         param: String,
         value: f64,
-        message: String,
+        #[source]
+        source: SpectrumError,
     },
     #[error("sweep cancelled")]
     Cancelled,
+}
+
+/// The bad fields of a scene with `path = value`, each with what it
+/// expects; the value is named when no bad field is the swept one.
+fn invalid_value(path: &str, value: f64, errors: &[FieldError]) -> String {
+    let message = errors
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join("; ");
+    if errors.iter().any(|e| matches(path, &e.field)) {
+        message
+    } else {
+        format!("with {path} = {value}: {message}")
+    }
+}
+
+/// Why one run of a sweep or a study has no summary: its row keeps the
+/// message, the other rows run on.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SummaryError {
+    /// A value of the run's scene cannot be set (a study's factor).
+    #[error(transparent)]
+    Param(#[from] SweepError),
+    /// The run's scene is invalid with its values together: every bad
+    /// field, what it was and what it expects.
+    #[error("{}", join_fields(.0))]
+    InvalidScene(Vec<FieldError>),
+    /// The run could not be set up: its tyre identified, its road read,
+    /// its modes factored.
+    #[error(transparent)]
+    Setup(#[from] SceneError),
+    /// The steady part is too short or too long for a spectrum, or the
+    /// spectrum failed.
+    #[error(transparent)]
+    Spectrum(#[from] SpectrumError),
+    /// A step could not be solved.
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+    /// What the run's recorders write failed.
+    #[error("writing the run's output: {0}")]
+    Output(#[source] IoError),
+    /// The run's cancel flag was set.
+    #[error("cancelled")]
+    Cancelled,
+    /// The run was not started (the sweep was cancelled first).
+    #[error("not run")]
+    NotRun,
+}
+
+impl From<RunError> for SummaryError {
+    fn from(e: RunError) -> Self {
+        match e {
+            RunError::Solver(e) => SummaryError::Solver(e),
+            RunError::Output(e) => SummaryError::Output(e.into()),
+            RunError::Cancelled { .. } => SummaryError::Cancelled,
+        }
+    }
+}
+
+fn join_fields(errors: &[FieldError]) -> String {
+    errors
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 /// Every numeric field of the scene with its path, as mutable references.
@@ -270,20 +353,10 @@ pub fn set_param(scene: &mut Scene, path: &str, value: f64) -> Result<(), SweepE
     if hits == 0 {
         return Err(unknown(&before, path));
     }
-    scene.validate().map_err(|errors| {
-        let mut message = errors
-            .iter()
-            .map(ToString::to_string)
-            .collect::<Vec<_>>()
-            .join("; ");
-        if !errors.iter().any(|e| matches(path, &e.field)) {
-            message = format!("with {path} = {value}: {message}");
-        }
-        SweepError::InvalidValue {
-            path: path.to_string(),
-            value,
-            message,
-        }
+    scene.validate().map_err(|errors| SweepError::InvalidValue {
+        path: path.to_string(),
+        value,
+        errors,
     })
 }
 
@@ -293,15 +366,11 @@ pub const MAX_SWEEP_VALUES: usize = 100_000;
 /// `steps` values from `from` to `to`, evenly spaced (both ends included).
 pub fn linspace(from: f64, to: f64, steps: usize) -> Result<Vec<f64>, SweepError> {
     if !(from.is_finite() && to.is_finite()) {
-        return Err(SweepError::Input(format!(
-            "range {from} .. {to}: expected finite values"
-        )));
+        return Err(SweepError::Range { from, to });
     }
     match steps {
-        0 => Err(SweepError::Input("steps = 0: expected at least 1".into())),
-        n if n > MAX_SWEEP_VALUES => Err(SweepError::Input(format!(
-            "steps = {n}: expected at most {MAX_SWEEP_VALUES} values (each value is one run of the scene)"
-        ))),
+        0 => Err(SweepError::NoSteps),
+        n if n > MAX_SWEEP_VALUES => Err(SweepError::TooManySteps { steps: n }),
         1 => Ok(vec![from]),
         n => Ok((0..n)
             .map(|k| from + (to - from) * k as f64 / (n - 1) as f64)
@@ -349,7 +418,7 @@ pub fn run_summary(
     model: &PreparedModel,
     on_steps: &dyn Fn(u64),
     cancel: &AtomicBool,
-) -> Result<RunSummary, String> {
+) -> Result<RunSummary, SummaryError> {
     run_summary_timed(model, on_steps, cancel, &mut RunTiming::default())
 }
 
@@ -359,12 +428,12 @@ pub fn run_summary_timed(
     on_steps: &dyn Fn(u64),
     cancel: &AtomicBool,
     timing: &mut RunTiming,
-) -> Result<RunSummary, String> {
+) -> Result<RunSummary, SummaryError> {
     let t0 = std::time::Instant::now();
     let scene = model.scene();
-    let mut sim = Simulation::new(model, SolverOptions::default()).map_err(|e| e.to_string())?;
+    let mut sim = Simulation::new(model, SolverOptions::default())?;
     // a steady part too short or too long for a spectrum, before the run
-    SteadyRecorder::steady_samples(scene, None).map_err(|e| e.to_string())?;
+    SteadyRecorder::steady_samples(scene, None)?;
     let mut metrics = ContactMetrics::new(scene, None).keeping_total_force();
     let n = scene.num_steps();
     let mut reported = 0;
@@ -378,18 +447,13 @@ pub fn run_summary_timed(
         &mut sim,
         &mut metrics,
         Watch::cancel(cancel).with_progress(&mut progress),
-    )
-    .map_err(|e| match e {
-        RunError::Cancelled { .. } => "cancelled".to_string(),
-        e => e.to_string(),
-    })?;
+    )?;
     let t2 = std::time::Instant::now();
     timing.stepping_s += (t2 - t1).as_secs_f64();
     let fs = 1.0 / scene.dt_s;
     let hi = DEFAULT_BANDS_HZ.1.min(0.5 * fs / 10f64.powf(0.05));
     let bands = crate::spectrum::spectrum(metrics.total_force_n(), fs, Window::Hann, true)
-        .map(|s| s.third_octave_levels(DEFAULT_BANDS_HZ.0, hi, 1.0))
-        .map_err(|e| e.to_string())?;
+        .map(|s| s.third_octave_levels(DEFAULT_BANDS_HZ.0, hi, 1.0))?;
     let summary = RunSummary {
         contact: metrics.summary(),
         bands,
@@ -403,7 +467,7 @@ pub fn run_summary_timed(
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepPoint {
     pub value: f64,
-    pub result: Result<RunSummary, String>,
+    pub result: Result<RunSummary, SummaryError>,
 }
 
 /// A sweep's definition.
@@ -418,7 +482,7 @@ pub struct Sweep {
 /// The scenes of a sweep, one per value, checked before anything runs.
 pub fn sweep_scenes(base: &Scene, sweep: &Sweep) -> Result<Vec<Scene>, SweepError> {
     if sweep.values.is_empty() {
-        return Err(SweepError::Input("no values to sweep".into()));
+        return Err(SweepError::NoValues);
     }
     sweep
         .values
@@ -428,10 +492,10 @@ pub fn sweep_scenes(base: &Scene, sweep: &Sweep) -> Result<Vec<Scene>, SweepErro
             set_param(&mut s, &sweep.param, v)?;
             // a steady part too short (or too long) for the summary's
             // spectrum: said before any run, not after every one
-            SteadyRecorder::steady_samples(&s, None).map_err(|e| SweepError::Run {
+            SteadyRecorder::steady_samples(&s, None).map_err(|source| SweepError::Steady {
                 param: sweep.param.clone(),
                 value: v,
-                message: e.to_string(),
+                source,
             })?;
             Ok(s)
         })
@@ -454,10 +518,10 @@ pub fn run_sweep(
     // once; a swept ring parameter is identified per value in the threads
     cache
         .modes(&scenes[0])
-        .map_err(|e| SweepError::Input(e.to_string()))?;
+        .map_err(SweepError::Identification)?;
     let total: u64 = scenes.iter().map(Scene::num_steps).sum();
     let done = std::sync::atomic::AtomicU64::new(0);
-    let results: Mutex<Vec<Option<Result<RunSummary, String>>>> =
+    let results: Mutex<Vec<Option<Result<RunSummary, SummaryError>>>> =
         Mutex::new(vec![None; scenes.len()]);
     engine::run_each(
         scenes.len(),
@@ -481,7 +545,7 @@ pub fn run_sweep(
         .zip(results)
         .map(|(&value, r)| SweepPoint {
             value,
-            result: r.unwrap_or_else(|| Err("not run".into())),
+            result: r.unwrap_or(Err(SummaryError::NotRun)),
         })
         .collect())
 }

@@ -9,6 +9,7 @@
 //!
 //! Both share the in-step influence `(dt/2) g(dt - s_m)` of the Gauss forces.
 
+use crate::bench::BenchError;
 use crate::identify::ModeCache;
 use crate::modal::ModalModel;
 use crate::road::{RoadProfile, ramp};
@@ -68,15 +69,23 @@ pub fn run_baseline(
     kernel: Kernel,
     n_steps: usize,
     cache: &ModeCache,
-) -> Result<BaselineRun, String> {
+) -> Result<BaselineRun, BenchError> {
     let p = scene.num_points();
-    let modes = cache.modes(scene).map_err(|e| e.to_string())?;
+    let modes = cache.modes(scene)?;
     let model = ModalModel::from_modes(&modes, p);
-    if kernel == Kernel::AlphaBeta && model.modes.iter().any(|m| m.damping_ratio >= 1.0) {
-        return Err("the α/β form needs every damping ratio < 1".into());
+    if kernel == Kernel::AlphaBeta
+        && let Some((mode, m)) = model
+            .modes
+            .iter()
+            .enumerate()
+            .find(|(_, m)| m.damping_ratio >= 1.0)
+    {
+        return Err(BenchError::AlphaBetaDamping {
+            mode,
+            damping_ratio: m.damping_ratio,
+        });
     }
-    let road =
-        RoadProfile::new(&scene.road, scene.base_dir.as_deref()).map_err(|e| e.to_string())?;
+    let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
     let dt = scene.dt_s;
     let gauss = [
         dt * (0.5 - 0.5 / 3f64.sqrt()),

@@ -22,6 +22,7 @@
 //! rigid model's: a spring alone would bounce back elastically and
 //! converge to another physics.
 
+use crate::bench::BenchError;
 use crate::bench::baselines::{BaselineRun, road_seen};
 use crate::convolution::ModalBasis;
 use crate::identify::ModeCache;
@@ -42,10 +43,10 @@ struct Oscillators {
 }
 
 impl Oscillators {
-    fn new(scene: &Scene, cache: &ModeCache) -> Result<Self, String> {
+    fn new(scene: &Scene, cache: &ModeCache) -> Result<Self, BenchError> {
         let p = scene.num_points();
-        let modes = cache.modes(scene).map_err(|e| e.to_string())?;
-        let basis = ModalBasis::new(&modes, p).map_err(|e| e.to_string())?;
+        let modes = cache.modes(scene)?;
+        let basis = ModalBasis::new(&modes, p)?;
         let ns = basis.num_states();
         let stored = basis.stored_states();
         let mut out = vec![0.0; p * ns];
@@ -148,10 +149,9 @@ pub fn run_newmark(
     k_n_m: f64,
     n_steps: usize,
     cache: &ModeCache,
-) -> Result<BaselineRun, String> {
+) -> Result<BaselineRun, BenchError> {
     let osc = Oscillators::new(scene, cache)?;
-    let road =
-        RoadProfile::new(&scene.road, scene.base_dir.as_deref()).map_err(|e| e.to_string())?;
+    let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
     let (p, ns, dt) = (osc.p, osc.ns(), scene.dt_s);
     let h = 0.25 * dt * dt;
     // D_s = 1 + dt ξω + dt²ω²/4: the implicit step's diagonal
@@ -279,10 +279,9 @@ pub fn run_dopri(
     dt_out_s: f64,
     duration_s: f64,
     cache: &ModeCache,
-) -> Result<(BaselineRun, AdaptiveStats), String> {
+) -> Result<(BaselineRun, AdaptiveStats), BenchError> {
     let osc = Oscillators::new(scene, cache)?;
-    let road =
-        RoadProfile::new(&scene.road, scene.base_dir.as_deref()).map_err(|e| e.to_string())?;
+    let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
     let (p, ns) = (osc.p, osc.ns());
     let sys = PenaltySystem {
         osc: &osc,
@@ -310,7 +309,7 @@ pub fn run_dopri(
         u32::MAX,
         OutputType::Dense,
     );
-    let stats = solver.integrate().map_err(|e| e.to_string())?;
+    let stats = solver.integrate()?;
     let (ts, ys) = (solver.x_out(), solver.y_out());
     let mut out = BaselineRun::default();
     let mut u = vec![0.0; p];

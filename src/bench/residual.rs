@@ -3,6 +3,7 @@
 //! their static compliance (`SolverOptions::residual_above_hz`), against the
 //! full model at the same time step: error against run time.
 
+use crate::bench::BenchError;
 use crate::bench::work_precision::{Sampled, rms_rel, sample};
 use crate::convolution::ModalBasis;
 use crate::identify::{ModeCache, PreparedModel};
@@ -54,7 +55,7 @@ pub fn residual_study(
     cutoff_hz: f64,
     duration_s: f64,
     window_s: f64,
-) -> Result<Vec<ResidualRow>, String> {
+) -> Result<Vec<ResidualRow>, BenchError> {
     let scene = model.scene();
     let modes = model.modes();
     let p = scene.num_points();
@@ -74,7 +75,6 @@ pub fn residual_study(
     let states = |m: &[crate::modal::Mode]| {
         ModalBasis::with_rank_tolerance(m, p, base.rank_tolerance_for(scene))
             .map(|b| b.num_states())
-            .map_err(|e| e.to_string())
     };
     let (states_all, states_kept) = (states(modes)?, states(&kept)?);
     truncated.tyre = Tyre::Modal {
@@ -129,7 +129,7 @@ pub fn residual_study(
         let (t_s, u_m, q_n, wall, events) = match run(sc, duration_s, options, &cache) {
             Ok(r) => r,
             Err(e) if reference.is_some() => {
-                row.note = e;
+                row.note = e.to_string();
                 rows.push(row);
                 continue;
             }
@@ -166,7 +166,7 @@ fn run(
     duration_s: f64,
     options: SolverOptions,
     cache: &ModeCache,
-) -> Result<History, String> {
+) -> Result<History, BenchError> {
     let (run, wall, events) = crate::bench::work_precision::run_stable(
         scene,
         scene.contact_scheme,

@@ -11,6 +11,7 @@
 
 pub mod report;
 
+use crate::bench::BenchError;
 use crate::bench::scenes::many_points;
 use crate::drive::{Watch, run_to_end};
 use crate::identify::PreparedModel;
@@ -153,23 +154,22 @@ pub fn measure(
     regime: Regime,
     duration_s: f64,
     repeats: usize,
-) -> Result<ScalingRow, String> {
+) -> Result<ScalingRow, BenchError> {
     let mut scene = scaling_scene(points, modes, regime);
     scene.duration_s = duration_s;
-    let time = |scene: &crate::Scene| -> Result<(f64, Simulation), String> {
-        let model = PreparedModel::of(scene).map_err(|e| e.to_string())?;
+    let time = |scene: &crate::Scene| -> Result<(f64, Simulation), BenchError> {
+        let model = PreparedModel::of(scene)?;
         let mut best: Option<(f64, Simulation)> = None;
         for _ in 0..repeats.max(1) {
-            let mut sim =
-                Simulation::new(&model, SolverOptions::default()).map_err(|e| e.to_string())?;
+            let mut sim = Simulation::new(&model, SolverOptions::default())?;
             let t = Instant::now();
-            run_to_end(&mut sim, &mut (), Watch::none()).map_err(|e| e.to_string())?;
+            run_to_end(&mut sim, &mut (), Watch::none())?;
             let w = t.elapsed().as_secs_f64();
             if best.as_ref().is_none_or(|(b, _)| w < *b) {
                 best = Some((w, sim));
             }
         }
-        best.ok_or_else(|| "no run".to_string())
+        best.ok_or(BenchError::NoRun)
     };
     let (wall, sim) = time(&scene)?;
     let (free_wall, _) = time(&lifted(&scene))?;

@@ -6,6 +6,7 @@
 //! RMS relative of its means over windows (impacts are impulses, so only
 //! window means compare).
 
+use crate::bench::BenchError;
 use crate::bench::baselines::{BaselineRun, Kernel, run_baseline};
 mod report;
 use crate::drive::Watch;
@@ -27,10 +28,10 @@ pub enum Method {
     /// Direct O(N²) convolution with the paper's contact rule.
     Direct,
     /// Newmark (average acceleration) on the modal equations, penalty
-    /// contact ([`crate::bench::peers::run_newmark`]).
+    /// contact (`bench::peers::run_newmark`, feature `peers`).
     Newmark,
     /// Adaptive Dormand–Prince 5(4), penalty contact
-    /// ([`crate::bench::peers::run_dopri`]).
+    /// (`bench::peers::run_dopri`, feature `peers`).
     Dopri,
 }
 
@@ -192,14 +193,14 @@ pub fn run_stable(
     duration: f64,
     options: SolverOptions,
     cache: &ModeCache,
-) -> Result<StableRun, String> {
+) -> Result<StableRun, BenchError> {
     let mut s = scene.clone();
     s.dt_s = dt;
     s.duration_s = duration;
     s.contact_scheme = scheme;
     let n = s.num_steps() as usize;
-    let model = PreparedModel::new(&s, cache).map_err(|e| e.to_string())?;
-    let mut sim = Simulation::new(&model, options).map_err(|e| e.to_string())?;
+    let model = PreparedModel::new(&s, cache)?;
+    let mut sim = Simulation::new(&model, options)?;
     let mut run = BaselineRun {
         t_s: Vec::with_capacity(n),
         u_m: Vec::with_capacity(n),
@@ -207,7 +208,7 @@ pub fn run_stable(
         overflow_t_s: None,
     };
     let start = Instant::now();
-    crate::drive::run_to_end(&mut sim, &mut run, Watch::none()).map_err(|e| e.to_string())?;
+    crate::drive::run_to_end(&mut sim, &mut run, Watch::none())?;
     Ok((run, start.elapsed().as_secs_f64(), sim.stats().events))
 }
 
@@ -215,10 +216,10 @@ pub fn run_stable(
 pub fn time_stable(
     model: &PreparedModel,
     options: SolverOptions,
-) -> Result<(f64, Simulation), String> {
-    let mut sim = Simulation::new(model, options).map_err(|e| e.to_string())?;
+) -> Result<(f64, Simulation), BenchError> {
+    let mut sim = Simulation::new(model, options)?;
     let start = Instant::now();
-    crate::drive::run_to_end(&mut sim, &mut (), Watch::none()).map_err(|e| e.to_string())?;
+    crate::drive::run_to_end(&mut sim, &mut (), Watch::none())?;
     Ok((start.elapsed().as_secs_f64(), sim))
 }
 
@@ -260,7 +261,7 @@ pub fn time_pair(
     a: SolverOptions,
     b: SolverOptions,
     repeats: usize,
-) -> Result<(TimedRun, TimedRun), String> {
+) -> Result<(TimedRun, TimedRun), BenchError> {
     let (mut ta, mut tb) = (Vec::new(), Vec::new());
     let (mut last_a, mut last_b) = (None, None);
     for _ in 0..repeats.max(1) {
@@ -273,7 +274,7 @@ pub fn time_pair(
     }
     match (last_a, last_b) {
         (Some(sa), Some(sb)) => Ok(((Timing::of(ta), sa), (Timing::of(tb), sb))),
-        _ => Err("no run was timed".into()),
+        _ => Err(BenchError::NoRun),
     }
 }
 
@@ -282,7 +283,7 @@ pub fn time_repeated(
     scene: &PreparedModel,
     options: SolverOptions,
     repeats: usize,
-) -> Result<TimedRun, String> {
+) -> Result<TimedRun, BenchError> {
     let (t, mut sim) = time_stable(scene, options)?;
     let mut runs_s = vec![t];
     for _ in 1..repeats {
@@ -293,12 +294,13 @@ pub fn time_repeated(
     Ok((Timing::of(runs_s), sim))
 }
 
-/// The study of one scene. `progress` is told each run as it starts.
+/// The study of one scene. `progress` is told each run as it starts. The
+/// peers ([`Method::PEERS`]) run with the feature `peers` only.
 pub fn study(
     scene: &Scene,
     cfg: &Config,
     mut progress: impl FnMut(&str),
-) -> Result<Vec<Row>, String> {
+) -> Result<Vec<Row>, BenchError> {
     // the tyre is identified once for every time step of the study
     let cache = ModeCache::new();
     let reference = Reference::run(scene, cfg, &cache, &mut progress)?;
@@ -319,6 +321,7 @@ pub fn study(
     }
     // the peers: Newmark over the time steps and Dormand-Prince over the
     // tolerances (output every finest step), each for every penalty
+    #[cfg(feature = "peers")]
     for &k in &cfg.penalties_n_m {
         rows.extend(runs.newmark_rows(k, &mut progress)?);
         rows.extend(runs.dopri_rows(k, &mut progress)?);
@@ -343,7 +346,7 @@ impl Reference {
         cfg: &Config,
         cache: &ModeCache,
         progress: &mut dyn FnMut(&str),
-    ) -> Result<Self, String> {
+    ) -> Result<Self, BenchError> {
         let grid_s = cfg.dts[0];
         let dt_ref = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min) / 4.0;
         progress(&format!(
@@ -410,7 +413,7 @@ impl Runs<'_> {
         &self,
         method: Method,
         progress: &mut dyn FnMut(&str),
-    ) -> Result<Vec<Row>, String> {
+    ) -> Result<Vec<Row>, BenchError> {
         let cfg = self.cfg;
         let mut rows = Vec::new();
         let mut prev: Option<(f64, f64)> = None;
@@ -468,7 +471,7 @@ impl Runs<'_> {
         duration: f64,
         steps: usize,
         progress: &mut dyn FnMut(&str),
-    ) -> Result<Option<(BaselineRun, f64)>, String> {
+    ) -> Result<Option<(BaselineRun, f64)>, BenchError> {
         match method {
             Method::Located | Method::Paper => {
                 let scheme = if method == Method::Located {
@@ -512,7 +515,8 @@ impl Runs<'_> {
 
     /// The rows of Newmark with penalty contact of stiffness `k` (N/m) over
     /// the time steps.
-    fn newmark_rows(&self, k: f64, progress: &mut dyn FnMut(&str)) -> Result<Vec<Row>, String> {
+    #[cfg(feature = "peers")]
+    fn newmark_rows(&self, k: f64, progress: &mut dyn FnMut(&str)) -> Result<Vec<Row>, BenchError> {
         let cfg = self.cfg;
         let mut rows = Vec::new();
         let mut prev: Option<(f64, f64)> = None;
@@ -552,7 +556,8 @@ impl Runs<'_> {
     /// The rows of Dormand-Prince with penalty contact of stiffness `k`
     /// (N/m) over the tolerances, its output every finest step; a run that
     /// cannot start is skipped (told to `progress`).
-    fn dopri_rows(&self, k: f64, progress: &mut dyn FnMut(&str)) -> Result<Vec<Row>, String> {
+    #[cfg(feature = "peers")]
+    fn dopri_rows(&self, k: f64, progress: &mut dyn FnMut(&str)) -> Result<Vec<Row>, BenchError> {
         let cfg = self.cfg;
         let dt_out = cfg.dts.iter().cloned().fold(f64::INFINITY, f64::min);
         let mut rows = Vec::new();

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use tirecontact::drive::Watch;
 use tirecontact::metrics::ContactMetrics;
+use tirecontact::output::animation::FramesError;
 use tirecontact::output::csv::{self as csv_out, RunWriter};
 use tirecontact::output::record::{FigureSpec, RunPanel};
 use tirecontact::spectrum::Window;
@@ -112,9 +113,7 @@ fn write_frames(model: &PreparedModel, args: &RunArgs) -> CliResult {
         width: args.frame_size.0,
         height: args.frame_size.1,
     };
-    settings
-        .check(scene.duration_s)
-        .map_err(|e| frames_error(&e))?;
+    settings.check(scene.duration_s).map_err(frames_error)?;
     let n = export_frames(
         Simulation::new(model, tirecontact::SolverOptions::default())?,
         dir,
@@ -136,7 +135,7 @@ fn write_frames(model: &PreparedModel, args: &RunArgs) -> CliResult {
 
 /// A refusal of the frame settings, its field named as the option typed
 /// (`fps = 0` -> `--fps = 0`).
-fn frames_error(e: &str) -> String {
+fn frames_error(e: FramesError) -> String {
     const OPTIONS: [(&str, &str); 6] = [
         ("fps", "--fps"),
         ("slow_motion", "--slow-motion"),
@@ -145,12 +144,14 @@ fn frames_error(e: &str) -> String {
         ("width", "--frame-size width"),
         ("height", "--frame-size height"),
     ];
-    for (field, option) in OPTIONS {
-        if let Some(rest) = e.strip_prefix(field)
-            && rest.starts_with(" = ")
-        {
-            return format!("--frames: {option}{rest}");
-        }
+    if let FramesError::Setting {
+        field,
+        value,
+        expected,
+    } = &e
+        && let Some((_, option)) = OPTIONS.iter().find(|(f, _)| f == field)
+    {
+        return format!("--frames: {option} = {value}: expected {expected}");
     }
     format!("--frames: {e}")
 }

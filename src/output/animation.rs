@@ -21,6 +21,80 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 /// Most frames one export may write.
 pub const MAX_FRAMES: u64 = 100_000;
 
+/// What plotters reports when a frame cannot be drawn.
+pub type DrawError = DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>;
+
+/// Why frames cannot be exported: a setting (its field, value and what was
+/// expected), the folder, a frame that cannot be drawn or written, or the
+/// run that drives the export.
+#[derive(Debug, thiserror::Error)]
+pub enum FramesError {
+    /// A field of [`FrameSettings`] out of range.
+    #[error("{field} = {value}: expected {expected}")]
+    Setting {
+        field: &'static str,
+        value: f64,
+        expected: String,
+    },
+    #[error("(t1 - t0) × slow_motion × fps = {frames} frames: expected 1..={MAX_FRAMES}")]
+    FrameCount { frames: u64 },
+    /// The folder holds frames of an earlier export.
+    #[error(
+        "{} already holds {count} frames of an earlier export (frame_*.png): expected a new or empty folder, or the old frames cleared",
+        .dir.display()
+    )]
+    OldFrames {
+        /// The folder, absolute.
+        dir: PathBuf,
+        count: usize,
+    },
+    /// A file or the folder could not be removed, created or written.
+    #[error("{}: {source}", .path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{}: {source}", .path.display())]
+    Draw {
+        path: PathBuf,
+        #[source]
+        source: DrawError,
+    },
+    #[error("{}: frame buffer of {width}x{height} px", .path.display())]
+    Buffer {
+        path: PathBuf,
+        width: u32,
+        height: u32,
+    },
+    #[error("{}: {source}", .path.display())]
+    Image {
+        path: PathBuf,
+        #[source]
+        source: image::ImageError,
+    },
+    /// The export's cancel flag was set.
+    #[error("cancelled after {done} of {total} frames")]
+    Cancelled { done: u64, total: u64 },
+    /// The run that drives the export stopped (a step that cannot be
+    /// solved).
+    #[error(transparent)]
+    Run(RunError),
+}
+
+/// A frames export that stopped: its own error when a frame stopped it
+/// (a cancel, a frame that cannot be written), else the run's.
+impl From<RunError> for FramesError {
+    fn from(e: RunError) -> Self {
+        match e {
+            RunError::Output(io) => io
+                .downcast::<FramesError>()
+                .unwrap_or_else(|io| FramesError::Run(RunError::Output(io))),
+            e => FramesError::Run(e),
+        }
+    }
+}
+
 /// What to export.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FrameSettings {
@@ -58,8 +132,14 @@ impl FrameSettings {
     }
 
     /// Refuses settings that cannot be exported, naming field, value and expectation.
-    pub fn check(&self, duration_s: f64) -> Result<(), String> {
-        let bad = |f: &str, v: f64, e: &str| Err(format!("{f} = {v}: expected {e}"));
+    pub fn check(&self, duration_s: f64) -> Result<(), FramesError> {
+        let bad = |field: &'static str, value: f64, expected: &str| {
+            Err(FramesError::Setting {
+                field,
+                value,
+                expected: expected.to_string(),
+            })
+        };
         if !(self.fps.is_finite() && self.fps > 0.0 && self.fps <= 240.0) {
             return bad("fps", self.fps, "a frame rate in (0, 240] Hz");
         }
@@ -90,9 +170,7 @@ impl FrameSettings {
         }
         let n = self.frame_count();
         if n == 0 || n > MAX_FRAMES {
-            return Err(format!(
-                "(t1 - t0) × slow_motion × fps = {n} frames: expected 1..={MAX_FRAMES}"
-            ));
+            return Err(FramesError::FrameCount { frames: n });
         }
         Ok(())
     }
@@ -196,18 +274,28 @@ fn draw_frame(
     path: &Path,
     width: u32,
     height: u32,
-) -> Result<(), String> {
-    let err = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+) -> Result<(), FramesError> {
+    let draw = |source| FramesError::Draw {
+        path: path.to_path_buf(),
+        source,
+    };
     let (w, h) = (width * SUPERSAMPLE, height * SUPERSAMPLE);
     let mut rgb = vec![0u8; w as usize * h as usize * 3];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-        draw_frame_on(&root, sim, phases, ext, w, h).map_err(|e| err(&e))?;
-        root.present().map_err(|e| err(&e))?;
+        draw_frame_on(&root, sim, phases, ext, w, h).map_err(draw)?;
+        root.present().map_err(draw)?;
     }
-    let big = image::RgbImage::from_raw(w, h, rgb).ok_or_else(|| err(&"frame buffer size"))?;
+    let big = image::RgbImage::from_raw(w, h, rgb).ok_or_else(|| FramesError::Buffer {
+        path: path.to_path_buf(),
+        width: w,
+        height: h,
+    })?;
     let small = image::imageops::resize(&big, width, height, image::imageops::FilterType::Triangle);
-    small.save(path).map_err(|e| err(&e))
+    small.save(path).map_err(|source| FramesError::Image {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// The chart of a frame: linear x (m) and height (mm) axes.
@@ -231,13 +319,13 @@ fn draw_frame_on(
     ext: &Extents,
     width: u32,
     height: u32,
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     register_fonts();
     let scene = sim.scene();
     let t = sim.time_s();
     let scale = (f64::from(height.min(width)) / 720.0).clamp(0.5, 4.0);
     let fs = px(scale);
-    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    root.fill(&WHITE)?;
     let caption = format!(
         "{} — t = {:.4} s, V = {:.1} km/h",
         scene.name,
@@ -249,8 +337,7 @@ fn draw_frame_on(
         .margin(fs(12.0))
         .x_label_area_size(fs(55.0))
         .y_label_area_size(fs(80.0))
-        .build_cartesian_2d(ext.x0..ext.x1, -ext.y_mm..ext.y_mm)
-        .map_err(|e| e.to_string())?;
+        .build_cartesian_2d(ext.x0..ext.x1, -ext.y_mm..ext.y_mm)?;
     chart
         .configure_mesh()
         .x_desc("position along the contact line x (m)")
@@ -258,8 +345,7 @@ fn draw_frame_on(
         .label_style(("sans-serif", fs(18.0)))
         .axis_desc_style(("sans-serif", fs(20.0)))
         .light_line_style(WHITE.mix(0.0))
-        .draw()
-        .map_err(|e| e.to_string())?;
+        .draw()?;
     draw_road(&mut chart, sim, ext, scale)?;
     let disp = draw_tyre(&mut chart, sim, scale)?;
     draw_points(&mut chart, sim, &disp, scale)?;
@@ -271,8 +357,7 @@ fn draw_frame_on(
         .label_font(("sans-serif", fs(18.0)))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK.mix(0.3))
-        .draw()
-        .map_err(|e| e.to_string())?;
+        .draw()?;
     Ok(())
 }
 
@@ -283,25 +368,29 @@ fn draw_road(
     sim: &Simulation,
     ext: &Extents,
     scale: f64,
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     let fs = px(scale);
     let road: Vec<(f64, f64)> = road_in_tyre_frame(sim, ext.x0, ext.x1, 600)
         .into_iter()
         .map(|[x, y]| (x, 1e3 * y))
         .collect();
     let floor = -ext.y_mm;
+    chart.draw_series(std::iter::once(Polygon::new(
+        road.iter()
+            .copied()
+            .chain([(ext.x1, floor), (ext.x0, floor)])
+            .collect::<Vec<_>>(),
+        ROAD.mix(0.25).filled(),
+    )))?;
+    chart.draw_series(std::iter::once(Polygon::new(
+        road.iter()
+            .copied()
+            .chain([(ext.x1, floor), (ext.x0, floor)])
+            .collect::<Vec<_>>(),
+        ROAD.mix(0.25).filled(),
+    )))?;
     chart
-        .draw_series(std::iter::once(Polygon::new(
-            road.iter()
-                .copied()
-                .chain([(ext.x1, floor), (ext.x0, floor)])
-                .collect::<Vec<_>>(),
-            ROAD.mix(0.25).filled(),
-        )))
-        .map_err(|e| e.to_string())?;
-    chart
-        .draw_series(LineSeries::new(road, ROAD.stroke_width(fs(3.0) as u32)))
-        .map_err(|e| e.to_string())?
+        .draw_series(LineSeries::new(road, ROAD.stroke_width(fs(3.0) as u32)))?
         .label("road (moving left)")
         .legend(move |(x, y)| {
             PathElement::new(
@@ -318,14 +407,13 @@ fn draw_tyre(
     chart: &mut FrameChart<'_, '_>,
     sim: &Simulation,
     scale: f64,
-) -> Result<Vec<(f64, f64, usize)>, String> {
+) -> Result<Vec<(f64, f64, usize)>, DrawError> {
     let fs = px(scale);
     let scene = sim.scene();
     let mut und: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, 1e3 * p.h_m)).collect();
     und.sort_by(|a, b| a.0.total_cmp(&b.0));
     chart
-        .draw_series(LineSeries::new(und, BLACK.mix(0.4).stroke_width(1)))
-        .map_err(|e| e.to_string())?
+        .draw_series(LineSeries::new(und, BLACK.mix(0.4).stroke_width(1)))?
         .label("undeformed tyre")
         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + fs(20.0), y)], BLACK.mix(0.4)));
     let u = sim.displacement_m();
@@ -341,8 +429,7 @@ fn draw_tyre(
         .draw_series(LineSeries::new(
             disp.iter().map(|d| (d.0, d.1)),
             RGBColor(60, 60, 60).stroke_width(fs(2.0) as u32),
-        ))
-        .map_err(|e| e.to_string())?
+        ))?
         .label("tyre (displaced)")
         .legend(move |(x, y)| {
             PathElement::new(
@@ -359,7 +446,7 @@ fn draw_points(
     sim: &Simulation,
     disp: &[(f64, f64, usize)],
     scale: f64,
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     let fs = px(scale);
     let contact = sim.in_contact();
     let r = fs(9.0);
@@ -369,8 +456,7 @@ fn draw_points(
                 disp.iter()
                     .filter(|d| contact.get(d.2).copied().unwrap_or(false) == on)
                     .map(|d| Circle::new((d.0, d.1), r, color.filled())),
-            )
-            .map_err(|e| e.to_string())?
+            )?
             .label(name)
             .legend(move |(x, y)| Circle::new((x + fs(10.0), y), fs(6.0), color.filled()));
     }
@@ -389,7 +475,7 @@ fn draw_phase_labels(
     ext: &Extents,
     height: u32,
     scale: f64,
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     let fs = px(scale);
     let top = disp.iter().map(|d| d.1).fold(f64::NEG_INFINITY, f64::max);
     let plot_px = (f64::from(height) - f64::from(fs(26.0 + 55.0 + 24.0))).max(50.0);
@@ -423,13 +509,11 @@ fn draw_phase_labels(
         } else {
             d.1 + 0.22 * ext.y_mm
         };
-        chart
-            .draw_series(std::iter::once(Text::new(
-                format!("p{}: {text}", d.2),
-                (d.0, y),
-                style,
-            )))
-            .map_err(|e| e.to_string())?;
+        chart.draw_series(std::iter::once(Text::new(
+            format!("p{}: {text}", d.2),
+            (d.0, y),
+            style,
+        )))?;
     }
     Ok(())
 }
@@ -454,15 +538,13 @@ pub fn old_frames(dir: &Path) -> Vec<PathBuf> {
 /// `Err` naming the folder if `dir` holds frames of an earlier export:
 /// new frames would mix with them (a shorter export left the old scene's
 /// last frames behind).
-pub fn refuse_old_frames(dir: &Path) -> Result<(), String> {
+pub fn refuse_old_frames(dir: &Path) -> Result<(), FramesError> {
     match old_frames(dir).len() {
         0 => Ok(()),
-        n => Err(format!(
-            "{} already holds {n} frames of an earlier export (frame_*.png): expected a new or empty folder, or the old frames cleared",
-            std::path::absolute(dir)
-                .unwrap_or_else(|_| dir.to_path_buf())
-                .display()
-        )),
+        count => Err(FramesError::OldFrames {
+            dir: std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf()),
+            count,
+        }),
     }
 }
 
@@ -495,16 +577,20 @@ impl<'a> FrameWriter<'a> {
         clear_old: bool,
         progress: &'a AtomicU64,
         cancel: &'a AtomicBool,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, FramesError> {
         settings.check(sim.scene().duration_s)?;
+        let io = |path: &Path| {
+            let path = path.to_path_buf();
+            move |source| FramesError::Io { path, source }
+        };
         if clear_old {
             for p in old_frames(dir) {
-                std::fs::remove_file(&p).map_err(|e| format!("{}: {e}", p.display()))?;
+                std::fs::remove_file(&p).map_err(io(&p))?;
             }
         } else {
             refuse_old_frames(dir)?;
         }
-        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
         let dt_s = sim.dt_s();
         Ok(FrameWriter {
             dir: dir.to_path_buf(),
@@ -528,7 +614,10 @@ impl<'a> FrameWriter<'a> {
             if self.cancel.load(Ordering::Relaxed) {
                 return Err(std::io::Error::new(
                     std::io::ErrorKind::Interrupted,
-                    format!("cancelled after {} of {} frames", self.next, self.count),
+                    FramesError::Cancelled {
+                        done: self.next,
+                        total: self.count,
+                    },
                 ));
             }
             draw_frame(
@@ -568,13 +657,10 @@ impl Probe for FrameWriter<'_> {
     }
 }
 
-/// The message of a frames export that stopped: its own words for a
-/// cancel, the cause otherwise.
-pub fn frames_error(e: RunError) -> String {
-    match e {
-        RunError::Output(e) => e.to_string(),
-        e => e.to_string(),
-    }
+/// The error of a frames export that stopped: its own for a cancel or a
+/// frame that cannot be written, the run's otherwise.
+pub fn frames_error(e: RunError) -> FramesError {
+    FramesError::from(e)
 }
 
 /// Runs `sim` (fresh, at t = 0) and writes the frames of `settings` into
@@ -586,10 +672,10 @@ pub fn export_frames(
     clear_old: bool,
     progress: &AtomicU64,
     cancel: &AtomicBool,
-) -> Result<u64, String> {
+) -> Result<u64, FramesError> {
     let mut frames = FrameWriter::new(&sim, dir, settings, clear_old, progress, cancel)?;
-    run_to_end(&mut sim, &mut frames, Watch::none()).map_err(frames_error)?;
-    frames.finish(&sim).map_err(|e| frames_error(e.into()))
+    run_to_end(&mut sim, &mut frames, Watch::none())?;
+    frames.finish(&sim).map_err(|e| RunError::from(e).into())
 }
 
 #[cfg(test)]
@@ -652,20 +738,27 @@ mod tests {
         }
         .check(1.0)
         .unwrap_err();
+        assert!(
+            matches!(e, FramesError::Setting { field: "fps", value, .. } if value == 0.0),
+            "{e:?}"
+        );
+        let e = e.to_string();
         assert!(e.contains("fps = 0") && e.contains("expected"), "{e}");
         let e = FrameSettings {
             t1_s: 2.0,
             ..settings()
         }
         .check(1.0)
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("t1_s = 2") && e.contains("duration"), "{e}");
         let e = FrameSettings {
             width: 10,
             ..settings()
         }
         .check(1.0)
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
         assert!(e.contains("width = 10"), "{e}");
     }
 
@@ -677,7 +770,12 @@ mod tests {
         let cancel = AtomicBool::new(true);
         let progress = AtomicU64::new(0);
         let r = export_frames(sim, &dir, &settings(), false, &progress, &cancel);
-        assert!(r.unwrap_err().contains("cancelled after 0 of 5"));
+        let e = r.unwrap_err();
+        assert!(
+            matches!(e, FramesError::Cancelled { done: 0, total: 5 }),
+            "{e:?}"
+        );
+        assert_eq!(e.to_string(), "cancelled after 0 of 5 frames");
         assert!(!frame_path(&dir, 0).exists());
         let _ = std::fs::remove_dir_all(&dir);
     }

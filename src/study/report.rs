@@ -59,16 +59,35 @@ pub struct Table {
     pub failed: usize,
 }
 
+/// A study table that cannot be read: the row (0-based, after the
+/// header), the column, its value and what was expected.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TableError {
+    #[error(
+        "columns `study_hash`, `replicate` and `error` expected: a table of `study run` or `study merge`"
+    )]
+    Columns,
+    #[error("row {row}: {fields} fields: expected {expected}")]
+    Fields {
+        row: usize,
+        fields: usize,
+        expected: usize,
+    },
+    #[error("row {row}: {column} = `{value}`: expected a number")]
+    NotANumber {
+        row: usize,
+        column: String,
+        value: String,
+    },
+}
+
 /// Reads the factor and metric columns of a table (`header` and its
 /// records, as `study run` and `study merge` write them).
-pub fn table(header: &[String], records: &[Vec<String>]) -> Result<Table, String> {
+pub fn table(header: &[String], records: &[Vec<String>]) -> Result<Table, TableError> {
     let col = |name: &str| header.iter().position(|h| h == name);
     let (Some(hash), Some(rep), Some(err)) = (col("study_hash"), col("replicate"), col("error"))
     else {
-        return Err(
-            "columns `study_hash`, `replicate` and `error` expected: a table of `study run` or `study merge`"
-                .into(),
-        );
+        return Err(TableError::Columns);
     };
     let factors: Vec<String> = header[hash + 1..rep].to_vec();
     let metric_cols: Vec<Vec<usize>> = METRICS
@@ -83,19 +102,22 @@ pub fn table(header: &[String], records: &[Vec<String>]) -> Result<Table, String
     let mut failed = 0;
     for (k, r) in records.iter().enumerate() {
         if r.len() != header.len() {
-            return Err(format!(
-                "row {k}: {} fields: expected {}",
-                r.len(),
-                header.len()
-            ));
+            return Err(TableError::Fields {
+                row: k,
+                fields: r.len(),
+                expected: header.len(),
+            });
         }
         if !r[err].is_empty() {
             failed += 1;
             continue;
         }
-        let num = |c: usize| -> Result<f64, String> {
-            r[c].parse()
-                .map_err(|_| format!("row {k}: {} = `{}`: expected a number", header[c], r[c]))
+        let num = |c: usize| -> Result<f64, TableError> {
+            r[c].parse().map_err(|_| TableError::NotANumber {
+                row: k,
+                column: header[c].clone(),
+                value: r[c].clone(),
+            })
         };
         let f: Vec<f64> = (hash + 1..rep).map(num).collect::<Result<_, _>>()?;
         let m: Vec<f64> = metric_cols
@@ -104,7 +126,7 @@ pub fn table(header: &[String], records: &[Vec<String>]) -> Result<Table, String
                 let v: Vec<f64> = cols.iter().map(|&c| num(c)).collect::<Result<_, _>>()?;
                 Ok(v.iter().sum::<f64>() / v.len().max(1) as f64)
             })
-            .collect::<Result<_, String>>()?;
+            .collect::<Result<_, TableError>>()?;
         rows.push((f, m));
     }
     Ok(Table {

@@ -4,7 +4,7 @@
 //! ([`super::run_summary_timed`]). Every run is independent and
 //! deterministic, so results do not depend on the thread count.
 
-use super::{RunSummary, RunTiming, run_summary_timed};
+use super::{RunSummary, RunTiming, SummaryError, run_summary_timed};
 use crate::Scene;
 use crate::identify::{ModeCache, PreparedModel};
 use std::sync::Mutex;
@@ -30,9 +30,9 @@ pub fn run_each(
     threads: usize,
     cache: &ModeCache,
     cancel: &AtomicBool,
-    scene: &(dyn Fn(usize) -> Result<Scene, String> + Sync),
+    scene: &(dyn Fn(usize) -> Result<Scene, SummaryError> + Sync),
     on_steps: &(dyn Fn(u64) + Sync),
-    on_done: &(dyn Fn(usize, Result<RunSummary, String>) + Sync),
+    on_done: &(dyn Fn(usize, Result<RunSummary, SummaryError>) + Sync),
 ) -> PoolTiming {
     let next = AtomicUsize::new(0);
     let total = Mutex::new(PoolTiming::default());
@@ -47,8 +47,7 @@ pub fn run_each(
                         break;
                     }
                     let t0 = Instant::now();
-                    let model = scene(k)
-                        .and_then(|s| PreparedModel::new(&s, cache).map_err(|e| e.to_string()));
+                    let model = scene(k).and_then(|s| Ok(PreparedModel::new(&s, cache)?));
                     mine.setup_s += t0.elapsed().as_secs_f64();
                     let r = model.and_then(|m| run_summary_timed(&m, on_steps, cancel, &mut mine));
                     on_done(k, r);

@@ -1,6 +1,6 @@
 //! Sweep results as a CSV table and a PNG figure.
 
-use super::{RunSummary, SweepPoint};
+use super::{RunSummary, SummaryError, SweepPoint};
 use crate::metrics::ContactSummary;
 use crate::output::figures::{Figure, Panel, Series, Style};
 use crate::spectrum::{band_label, third_octave_bands};
@@ -17,7 +17,7 @@ fn table_bands() -> Vec<f64> {
 /// Level of the band of nominal centre `nominal_hz` in a run's summary
 /// (NaN when the run failed or the band was not computed, e.g. above
 /// Nyquist).
-fn band_db(result: &Result<RunSummary, String>, nominal_hz: f64) -> f64 {
+fn band_db(result: &Result<RunSummary, SummaryError>, nominal_hz: f64) -> f64 {
     result
         .as_ref()
         .ok()
@@ -65,7 +65,7 @@ pub fn metric_columns(num_points: usize) -> Vec<String> {
 }
 
 /// A run's values in [`metric_columns`]' order (NaN when it failed).
-pub fn metric_values(result: &Result<RunSummary, String>, num_points: usize) -> Vec<String> {
+pub fn metric_values(result: &Result<RunSummary, SummaryError>, num_points: usize) -> Vec<String> {
     let mut row = Vec::new();
     match result {
         Ok(r) => {
@@ -99,7 +99,13 @@ pub fn write_csv<W: Write>(
     for p in points {
         let mut row = vec![format!("{}", p.value)];
         row.extend(metric_values(&p.result, num_points));
-        row.push(p.result.as_ref().err().cloned().unwrap_or_default());
+        row.push(
+            p.result
+                .as_ref()
+                .err()
+                .map(ToString::to_string)
+                .unwrap_or_default(),
+        );
         w.write_record(&row)?;
     }
     w.flush()?;

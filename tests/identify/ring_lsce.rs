@@ -1,6 +1,7 @@
 //! Ring tyre model (method §5), LSCE identification (method §6) and the paper's
 //! preset (method §7), checked against closed forms and independent routes.
 
+#[cfg(feature = "cli")]
 use crate::support::{bin, temp_dir};
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
@@ -676,6 +677,7 @@ fn identification_failure_is_an_error_naming_the_scene() {
 }
 
 #[test]
+#[cfg(feature = "cli")]
 fn identify_cli_writes_a_runnable_modal_scene_diagram_and_responses() {
     let tmp = temp_dir();
     let dir = tmp.path();

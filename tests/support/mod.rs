@@ -28,9 +28,14 @@ pub fn preset(name: &str) -> tirecontact::Scene {
     tirecontact::Scene::load(&path).unwrap()
 }
 
-/// The `tirecontact` binary cargo built for these tests, as a command.
+/// The `tirecontact` binary cargo built for these tests, as a command. It
+/// is built with the feature `cli` only: a test that also checks the
+/// library runs its command-line part when `cfg!(feature = "cli")`.
 pub fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tirecontact"))
+    Command::new(
+        option_env!("CARGO_BIN_EXE_tirecontact")
+            .expect("the `tirecontact` binary, built with the feature `cli`"),
+    )
 }
 
 /// A new, empty folder of its own in the system's temporary folder, removed

@@ -90,7 +90,10 @@ pub fn to_markdown(rows: &[Row]) -> String {
             ));
         }
     }
-    s.push_str(&peer_markdown(rows));
+    // the peers' table when they ran (the feature `peers`)
+    if rows.iter().any(|r| Method::PEERS.contains(&r.method)) {
+        s.push_str(&peer_markdown(rows));
+    }
     s
 }
 

@@ -25,10 +25,12 @@ impl FramesJob {
         edits: Vec<LiveEdit>,
         clear_old: bool,
     ) -> Result<Self, String> {
-        settings.check(start.duration_s)?;
+        settings
+            .check(start.duration_s)
+            .map_err(|e| e.to_string())?;
         // refused here, with the dialog still open, rather than by the job
         if !clear_old {
-            crate::output::animation::refuse_old_frames(&dir)?;
+            crate::output::animation::refuse_old_frames(&dir).map_err(|e| e.to_string())?;
         }
         let model = PreparedModel::new(&start, cache).map_err(|e| e.to_string())?;
         let mut sim =
@@ -43,10 +45,14 @@ impl FramesJob {
                 clear_old,
                 progress.done_counter(),
                 progress.cancel_flag(),
-            )?;
+            )
+            .map_err(|e| e.to_string())?;
             let end = sim.scene().num_steps();
-            replay(&mut sim, &edits, end, &mut frames, None).map_err(frames_error)?;
-            frames.finish(&sim).map_err(|e| frames_error(e.into()))
+            replay(&mut sim, &edits, end, &mut frames, None)
+                .map_err(|e| frames_error(e).to_string())?;
+            frames
+                .finish(&sim)
+                .map_err(|e| frames_error(e.into()).to_string())
         })?;
         Ok(FramesJob { dir, total, job })
     }
