@@ -115,7 +115,7 @@ pub enum StudyError {
         /// As the study writes it.
         preset: PathBuf,
         #[source]
-        source: SceneError,
+        source: Box<SceneError>,
     },
     /// The preset with the study's overrides (`duration_s`, `dt_s`) is
     /// invalid: each bad field, placed in the study when the study set it,
@@ -236,7 +236,7 @@ pub fn load(path: &Path) -> Result<Loaded, StudyError> {
     let mut base = Scene::load(&preset).map_err(|source| StudyError::Preset {
         at: at("preset"),
         preset: study.preset.clone(),
-        source,
+        source: Box::new(source),
     })?;
     if let Some(d) = study.duration_s {
         base.duration_s = d;

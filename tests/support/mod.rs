@@ -31,11 +31,15 @@ pub fn preset(name: &str) -> tirecontact::Scene {
 /// The `tirecontact` binary cargo built for these tests, as a command. It
 /// is built with the feature `cli` only: a test that also checks the
 /// library runs its command-line part when `cfg!(feature = "cli")`.
+#[cfg(feature = "cli")]
 pub fn bin() -> Command {
-    Command::new(
-        option_env!("CARGO_BIN_EXE_tirecontact")
-            .expect("the `tirecontact` binary, built with the feature `cli`"),
-    )
+    Command::new(env!("CARGO_BIN_EXE_tirecontact"))
+}
+
+/// Without the feature `cli` there is no binary to run.
+#[cfg(not(feature = "cli"))]
+pub fn bin() -> Command {
+    panic!("the `tirecontact` binary is built with the feature `cli`")
 }
 
 /// A new, empty folder of its own in the system's temporary folder, removed
