@@ -8,7 +8,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use tirecontact::bench::scenes::many_points;
+use tirecontact::analysis::bench::scenes::many_points;
 use tirecontact::gui::model::command::View;
 use tirecontact::gui::{App, Command};
 use tirecontact::{DEFAULT_PRESET, DEFAULT_PRESET_NAME, Scene};

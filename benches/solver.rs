@@ -8,11 +8,11 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use tirecontact::bench::scenes::many_points;
-use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
-use tirecontact::lsce::{Responses, identify};
+use tirecontact::analysis::bench::scenes::many_points;
+use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
+use tirecontact::model::lsce::{Responses, identify};
 use tirecontact::scene::Tyre;
-use tirecontact::simulation::contact::DenseSolver;
+use tirecontact::solver::simulation::contact::DenseSolver;
 use tirecontact::{Scene, Simulation};
 
 fn steps(c: &mut Criterion) {

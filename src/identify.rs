@@ -3,13 +3,13 @@
 //! scene -> [`PreparedModel`], what a simulation is built from, with the
 //! identifications kept in a [`ModeCache`] the caller owns.
 
-use crate::error::SceneError;
-use crate::lsce::{Identification, IdentifyOptions, LsceError, Responses, identify};
-use crate::measured;
-use crate::modal::ModalModel;
-use crate::modal::Mode;
-use crate::ring::RingParams;
-use crate::road::RoadProfile;
+use crate::base::error::SceneError;
+use crate::base::modal::ModalModel;
+use crate::base::modal::Mode;
+use crate::model::lsce::{Identification, IdentifyOptions, LsceError, Responses, identify};
+use crate::model::measured;
+use crate::model::ring::RingParams;
+use crate::model::road::RoadProfile;
 use crate::scene::{Scene, Tyre};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -120,7 +120,7 @@ pub struct MeasuredIdentification {
 }
 
 /// Reads the responses of `num_points` points in `path` (see
-/// [`crate::measured`]) and identifies them with `opts` at the data's own
+/// [`crate::model::measured`]) and identifies them with `opts` at the data's own
 /// sampling, over its first `opts.duration_s` seconds. A model whose
 /// `|G|` misses the data's by more than [`MAX_MAGNITUDE_ERROR`] over the
 /// band is an error ([`LsceError::PoorFit`]).

@@ -15,58 +15,40 @@
 //!
 //! ## Module map
 //!
-//! | module | what | method |
-//! |---|---|---|
-//! | [`modal`] | modes, poles for every damping ratio, `g(t)`, `g'(t)`, `G(ω)` | §2 |
-//! | [`convolution`] | bounded recursive convolution, exact step weights; α/β baseline and direct control | §3 |
-//! | [`road`] | road profiles and the preload/road ramp | §4 |
-//! | [`simulation`] | the time stepper: tables, state and scratch; the stages of a step (predict, solve, locate, commit); events inside the step; the scaled dense solves of the contact systems (`simulation::contact`) | §4 |
-//! | [`drive`] | the run driver and the `Probe` observer every output implements | — |
-//! | [`ring`] | ring tyre on an elastic foundation: orders, modes, radial Green functions | §5 |
-//! | [`linalg`] | checked dense decompositions (faer): rank terms, least squares, eigenvalues | §3, §6 |
-//! | [`lsce`] | LSCE identification, stabilisation diagram, fit report | §6 |
-//! | [`identify`] | ring -> sampled responses -> LSCE; `ModeCache`, `PreparedModel` (what a simulation is built from) | §5-6 |
-//! | [`scene`] | RON scenes and their validation | — |
-//! | [`fsio`] | atomic file writes, temporaries removed on Ctrl-C | — |
-//! | [`output`] | CSV writer, headless PNG figures | — |
-//! | [`spectrum`] | amplitude/PSD spectra, third-octave bands, run spectra | — |
-//! | [`sweep`] | scene parameters by path, multi-threaded sweeps | — |
-//! | [`fidelity`] | relative L2 error of a modal model against a reference `G(ω)` | §5-6 |
-//! | [`compare`] | a pinned reference run and the difference to it | — |
-//! | `gui` | the visualiser (feature `gui`) | — |
+//! Each folder of `src/` is a layer; a module imports from its own layer or
+//! those below (`ARCHITECTURE.md`, checked by the test `layers` below).
+//!
+//! | layer | modules | what | method |
+//! |---|---|---|---|
+//! | 0 [`base`] | [`error`](base::error), [`linalg`](base::linalg), [`fsio`](base::fsio), [`modal`](base::modal) | errors; checked dense decompositions (faer); atomic file writes; modes, poles for every damping ratio, `g(t)`, `G(ω)` | §2, §3, §6 |
+//! | 1 [`model`] | [`ring`](model::ring), [`lsce`](model::lsce), [`measured`](model::measured), [`road`](model::road), [`convolution`](model::convolution) | ring tyre on an elastic foundation; LSCE identification; measured responses; road profiles and the ramp; the bounded recursive convolution with exact step weights | §3, §5, §6 |
+//! | 2 [`scene`] | | RON scenes, their validation, edits by path | — |
+//! | 3 [`identify`] | | ring or measured tyre -> LSCE; `ModeCache`, `PreparedModel` (what a simulation is built from) | §5-6 |
+//! | 4 [`solver`] | [`simulation`](solver::simulation), [`drive`](solver::drive), [`phase`](solver::phase) | the time stepper: tables, state and scratch; the stages of a step (predict, solve, locate, commit); the run driver and its `Probe`; contact phases | §4 |
+//! | 5 [`output`] | | the one run sampler, CSV writer, headless PNG figures, animation frames | — |
+//! | 6 [`analysis`] | [`spectrum`](analysis::spectrum), [`metrics`](analysis::metrics), [`compare`](analysis::compare), [`fidelity`](analysis::fidelity), [`bench`](analysis::bench) | spectra and bands; run metrics; A/B compare; the error of a modal model against a reference `G(ω)`; work-precision and scaling studies | §5-6 |
+//! | 7 [`studies`] | [`sweep`](studies::sweep), [`study`](studies::study) | sweeps over scene paths, multi-factor studies | — |
+//! | 8 `gui` | | the visualiser (feature `gui`); the command line lives in the binary | — |
 
-pub mod bench;
-pub mod compare;
-pub mod convolution;
-pub mod drive;
-pub mod error;
-pub mod fidelity;
-pub mod fsio;
+pub mod analysis;
+pub mod base;
 #[cfg(feature = "gui")]
 pub mod gui;
 pub mod identify;
-pub mod linalg;
-pub mod lsce;
-pub mod measured;
-pub mod metrics;
-pub mod modal;
+pub mod model;
 pub mod output;
-pub mod phase;
-pub mod ring;
-pub mod road;
 pub mod scene;
-pub mod simulation;
-pub mod spectrum;
-pub mod study;
-pub mod sweep;
+pub mod solver;
+pub mod studies;
 
-pub use error::{RunError, SceneError, SolverError};
+pub use base::error::{RunError, SceneError, SolverError};
 pub use identify::{ModeCache, PreparedModel};
 pub use scene::Scene;
-pub use simulation::{IDENTIFIED_RANK_TOLERANCE, Simulation, SolverOptions, StepReport};
+pub use solver::simulation::{IDENTIFIED_RANK_TOLERANCE, Simulation, SolverOptions, StepReport};
 
 /// The preset opened when no file is given (embedded in the binary).
-pub const DEFAULT_PRESET: &str = include_str!("../presets/paper.ron");
+pub const DEFAULT_PRESET: &str =
+    include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/presets/paper.ron"));
 /// File name of the embedded default preset, for messages.
 pub const DEFAULT_PRESET_NAME: &str = "presets/paper.ron";
 
@@ -77,30 +59,17 @@ mod layers {
     use std::collections::BTreeMap;
     use std::path::Path;
 
-    /// Each top-level module and its layer (0 the ground floor).
+    /// Each top-level folder and its layer (0 the ground floor): a module's
+    /// layer is the folder it sits in.
     const LAYERS: &[(&str, u8)] = &[
-        ("error", 0),
-        ("linalg", 0),
-        ("fsio", 0),
-        ("modal", 0),
-        ("phase", 0),
-        ("ring", 1),
-        ("lsce", 1),
-        ("measured", 1),
-        ("road", 1),
-        ("convolution", 1),
-        ("fidelity", 1),
+        ("base", 0),
+        ("model", 1),
         ("scene", 2),
         ("identify", 3),
-        ("simulation", 4),
-        ("drive", 4),
+        ("solver", 4),
         ("output", 5),
-        ("compare", 6),
-        ("spectrum", 6),
-        ("metrics", 6),
-        ("bench", 6),
-        ("sweep", 7),
-        ("study", 7),
+        ("analysis", 6),
+        ("studies", 7),
         ("cli", 8),
         ("gui", 8),
     ];
@@ -110,13 +79,13 @@ mod layers {
         ("Scene", "scene"),
         ("ModeCache", "identify"),
         ("PreparedModel", "identify"),
-        ("SceneError", "error"),
-        ("SolverError", "error"),
-        ("RunError", "error"),
-        ("Simulation", "simulation"),
-        ("SolverOptions", "simulation"),
-        ("StepReport", "simulation"),
-        ("IDENTIFIED_RANK_TOLERANCE", "simulation"),
+        ("SceneError", "base"),
+        ("SolverError", "base"),
+        ("RunError", "base"),
+        ("Simulation", "solver"),
+        ("SolverOptions", "solver"),
+        ("StepReport", "solver"),
+        ("IDENTIFIED_RANK_TOLERANCE", "solver"),
     ];
 
     fn layer(module: &str) -> Option<u8> {
@@ -186,7 +155,7 @@ mod layers {
                 // the crate root and the binary
                 assert!(
                     module == "lib" || module == "main",
-                    "{}: module `{module}` has no layer: add it to LAYERS and ARCHITECTURE.md",
+                    "{}: module `{module}` sits in no layer folder: move it into one (LAYERS, ARCHITECTURE.md)",
                     rel.display()
                 );
                 continue;
@@ -210,7 +179,7 @@ mod layers {
 
     #[test]
     fn the_scan_sees_every_import_form() {
-        let text = "use crate::scene::Mode;\nuse crate::{Scene, linalg};\n// crate::gui\nfn f() { crate::output::count(1, \"x\"); }\n#[cfg(test)]\nmod tests { use crate::cli; }";
-        assert_eq!(imports(text), ["scene", "scene", "linalg", "output"]);
+        let text = "use crate::scene::Mode;\nuse crate::{Scene, base::linalg};\n// crate::gui\nfn f() { crate::output::count(1, \"x\"); }\n#[cfg(test)]\nmod tests { use crate::cli; }";
+        assert_eq!(imports(text), ["scene", "scene", "base", "output"]);
     }
 }

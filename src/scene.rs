@@ -3,10 +3,10 @@
 //! expected; syntax errors give file, line and column, and so do validation
 //! errors of a preset's text (where it writes the field, `locate`).
 
-use crate::error::{FieldError, SceneError, fmt_num};
-use crate::lsce::IdentifyOptions;
-use crate::ring::RingParams;
-use crate::road::Road;
+use crate::base::error::{FieldError, SceneError, fmt_num};
+use crate::model::lsce::IdentifyOptions;
+use crate::model::ring::RingParams;
+use crate::model::road::Road;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -60,7 +60,7 @@ impl Contact {
 /// Largest tread stiffness accepted (N/m).
 pub const MAX_TREAD_STIFFNESS_N_M: f64 = 1e16;
 
-pub use crate::modal::Mode;
+pub use crate::base::modal::Mode;
 
 /// Source of the tyre's Green functions.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -82,7 +82,7 @@ pub enum Tyre {
     /// (method §6) as the ring's are. The file (relative to the preset's
     /// folder) is UFF 58 (`.uff`, `.unv`), CSV impulse responses
     /// (`t_s, g{i}_{j}`, m/(N·s)) or CSV receptances (`freq_hz,
-    /// h{i}_{j}_re, h{i}_{j}_im`, m/N): see [`crate::measured`]. The data's
+    /// h{i}_{j}_re, h{i}_{j}_im`, m/N): see [`crate::model::measured`]. The data's
     /// sampling is used (`identification.sample_rate_hz` is not); its
     /// first `identification.duration_s` seconds are identified.
     Measured {
@@ -200,7 +200,7 @@ impl Scene {
         };
         // a regular file only (a named pipe would block, a device never
         // end), and a bounded read: a runaway file is refused
-        let file = crate::fsio::read::open_regular(path).map_err(|e| {
+        let file = crate::base::fsio::read::open_regular(path).map_err(|e| {
             io(std::io::Error::new(
                 e.kind(),
                 format!(
@@ -256,7 +256,7 @@ impl Scene {
     /// it to disk, then renames it over `path`. A failed write leaves the old
     /// file intact.
     pub fn save(&self, path: &Path) -> Result<(), SceneError> {
-        crate::fsio::write_atomic(path, self.to_ron_string().as_bytes()).map_err(|source| {
+        crate::base::fsio::write_atomic(path, self.to_ron_string().as_bytes()).map_err(|source| {
             SceneError::Io {
                 path: path.to_path_buf(),
                 source: source.into(),
@@ -276,7 +276,7 @@ impl Scene {
 
     /// `T_ramp = 0` is allowed only where no point starts below the road
     /// (`z(x_i) - h_i <= 0` for all `i`, method §4).
-    pub fn ramp_error(&self, road: &crate::road::RoadProfile) -> Option<FieldError> {
+    pub fn ramp_error(&self, road: &crate::model::road::RoadProfile) -> Option<FieldError> {
         if self.ramp_s != 0.0 {
             return None;
         }
@@ -332,7 +332,7 @@ impl Scene {
         }
         v.nonneg("ramp_s", self.ramp_s, "a ramp time >= 0 s");
         if !matches!(self.road, Road::Measured { .. })
-            && let Ok(prof) = crate::road::RoadProfile::new(&self.road, None)
+            && let Ok(prof) = crate::model::road::RoadProfile::new(&self.road, None)
             && let Some(e) = self.ramp_error(&prof)
         {
             v.errors.push(e);

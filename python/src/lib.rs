@@ -11,12 +11,12 @@ use pyo3::types::PyDict;
 use std::path::PathBuf;
 use std::sync::LazyLock;
 use std::sync::atomic::AtomicBool;
-use tirecontact::drive::{Watch, run};
-use tirecontact::metrics::{ContactMetrics, ContactSummary};
-use tirecontact::modal::ModalModel as Model;
+use tirecontact::solver::drive::{Watch, run};
+use tirecontact::analysis::metrics::{ContactMetrics, ContactSummary};
+use tirecontact::base::modal::ModalModel as Model;
 use tirecontact::output::arrays::RunArrays;
-use tirecontact::spectrum::Window;
-use tirecontact::study::{Loaded, Row};
+use tirecontact::analysis::spectrum::Window;
+use tirecontact::studies::study::{Loaded, Row};
 use tirecontact::{ModeCache, PreparedModel, Simulation, SolverOptions};
 
 create_exception!(
@@ -70,13 +70,13 @@ impl PyScene {
     /// A numeric field by its path, in the field's unit: `"speed_mps"`,
     /// `"tyre.modes[0].damping_ratio"`, `"points[1].h_m"`.
     fn get(&self, path: &str) -> PyResult<f64> {
-        tirecontact::sweep::get_param(&self.inner, path).map_err(err)
+        tirecontact::studies::sweep::get_param(&self.inner, path).map_err(err)
     }
 
     /// Sets a numeric field by its path (`"points[*].h_m"` sets every
     /// point); refused values raise `TirecontactError` naming the field.
     fn set(&mut self, path: &str, value: f64) -> PyResult<()> {
-        tirecontact::sweep::set_param(&mut self.inner, path, value).map_err(err)
+        tirecontact::studies::sweep::set_param(&mut self.inner, path, value).map_err(err)
     }
 
     /// Raises `TirecontactError` listing every invalid field.
@@ -92,7 +92,7 @@ impl PyScene {
 
     /// Every numeric field's path.
     fn param_paths(&self) -> Vec<String> {
-        tirecontact::sweep::param_paths(&self.inner)
+        tirecontact::studies::sweep::param_paths(&self.inner)
     }
 
     #[getter]
@@ -141,7 +141,7 @@ struct PyRun {
     #[pyo3(get)]
     ramp_s: f64,
     num_points: usize,
-    stats: tirecontact::simulation::RunStats,
+    stats: tirecontact::solver::simulation::RunStats,
     forces: ContactSummary,
     wall_s: f64,
 }
@@ -242,7 +242,7 @@ fn run_scene(
     let mut arrays = RunArrays::new(p, total, every);
     // the forces without impacts and the impulses, over the whole run
     let mut metrics = ContactMetrics::new(&s, Some(0.0));
-    tirecontact::drive::Probe::start(&mut arrays, &sim).map_err(err)?;
+    tirecontact::solver::drive::Probe::start(&mut arrays, &sim).map_err(err)?;
     while sim.steps() < total {
         let n = (total - sim.steps()).min(CHUNK_STEPS);
         py.detach(|| run(&mut sim, n, &mut (&mut arrays, &mut metrics), Watch::none()))
@@ -284,7 +284,7 @@ fn run_scene(
 #[pyclass(name = "ModalModel", module = "tirecontact")]
 struct PyModalModel {
     model: Model,
-    modes: Vec<tirecontact::modal::Mode>,
+    modes: Vec<tirecontact::base::modal::Mode>,
     report: Option<Py<PyDict>>,
 }
 
@@ -450,7 +450,7 @@ fn spectrum<'py>(
     start_s: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (x, fs) = steady_total(run, py, start_s)?;
-    let s = tirecontact::spectrum::spectrum(&x, fs, Window::Hann, true).map_err(err)?;
+    let s = tirecontact::analysis::spectrum::spectrum(&x, fs, Window::Hann, true).map_err(err)?;
     let d = PyDict::new(py);
     d.set_item("freq_hz", s.freq_hz.into_pyarray(py))?;
     d.set_item("amplitude_n", s.amplitude.into_pyarray(py))?;
@@ -471,7 +471,7 @@ fn third_octave<'py>(
     hi_hz: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (x, fs) = steady_total(run, py, start_s)?;
-    let s = tirecontact::spectrum::spectrum(&x, fs, Window::Hann, true).map_err(err)?;
+    let s = tirecontact::analysis::spectrum::spectrum(&x, fs, Window::Hann, true).map_err(err)?;
     let hi = hi_hz.min(0.5 * fs / 10f64.powf(0.05));
     let bands = s.third_octave_levels(lo_hz, hi, 1.0);
     let d = PyDict::new(py);
@@ -506,14 +506,14 @@ impl PyStudy {
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
         Ok(PyStudy {
-            loaded: tirecontact::study::load(&path).map_err(err)?,
+            loaded: tirecontact::studies::study::load(&path).map_err(err)?,
         })
     }
 
     /// The columns of the study's table (as `study run` writes them).
     #[getter]
     fn header(&self) -> Vec<String> {
-        tirecontact::study::header(&self.loaded)
+        tirecontact::studies::study::header(&self.loaded)
     }
 
     /// Number of rows.
@@ -526,8 +526,8 @@ impl PyStudy {
     fn write_table(&self, path: PathBuf, records: Vec<Vec<String>>) -> PyResult<()> {
         let mut rows: Vec<Vec<String>> = records;
         rows.sort_by_key(|r| r.first().and_then(|id| id.parse::<usize>().ok()));
-        let bytes = tirecontact::study::table_bytes(&self.header(), &rows).map_err(err)?;
-        tirecontact::fsio::write_atomic(&path, &bytes)
+        let bytes = tirecontact::studies::study::table_bytes(&self.header(), &rows).map_err(err)?;
+        tirecontact::base::fsio::write_atomic(&path, &bytes)
             .map_err(|e| err(format!("{}: {e}", path.display())))
     }
 }
@@ -557,8 +557,8 @@ fn run_row(py: Python<'_>, study: &PyStudy, row_id: usize) -> PyResult<Vec<Strin
         ))
     })?;
     let cancel = AtomicBool::new(false);
-    let r = py.detach(|| tirecontact::study::run_row(loaded, row, &CACHE, &cancel));
-    Ok(tirecontact::study::record(loaded, row, &r))
+    let r = py.detach(|| tirecontact::studies::study::run_row(loaded, row, &CACHE, &cancel));
+    Ok(tirecontact::studies::study::record(loaded, row, &r))
 }
 
 #[pymodule]

@@ -8,7 +8,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
-use tirecontact::bench::work_precision::{self, Config};
+use tirecontact::analysis::bench::work_precision::{self, Config};
 use tirecontact::output::figures::render_png;
 use tirecontact::{PreparedModel, Scene, SolverOptions};
 
@@ -152,7 +152,7 @@ pub fn bench(args: &BenchArgs) -> CliResult {
 }
 
 pub(super) fn write(path: &Path, text: &str) -> CliResult {
-    tirecontact::fsio::write_atomic(path, text.as_bytes())
+    tirecontact::base::fsio::write_atomic(path, text.as_bytes())
         .map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(())
 }
@@ -181,7 +181,7 @@ const SKIP_REPEATS: usize = 5;
 /// Steps per second and real-time factor of each scene and of synthetic
 /// larger ones (5 points x 20 modes, 50 points x 200 rank-1 modes).
 fn speed(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::error::Error>> {
-    use tirecontact::bench::scenes::many_points;
+    use tirecontact::analysis::bench::scenes::many_points;
     let mut list: Vec<Scene> = scenes.to_vec();
     list.push(many_points(5, 20));
     list.push(many_points(50, 200));
@@ -218,8 +218,8 @@ fn speed(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::error::Er
 /// The α/β form against the stable form on a 4 kHz, ξ = 0.1 mode (method §3):
 /// where the α/β form overflows, and the stable form's state there.
 fn alpha_beta_overflow() -> Result<String, Box<dyn std::error::Error>> {
-    use tirecontact::convolution::paper_alpha_beta::AlphaBeta;
-    use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
+    use tirecontact::model::convolution::paper_alpha_beta::AlphaBeta;
+    use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
     let (f_hz, xi, dt) = (4000.0, 0.1, 1e-5);
     let omega = std::f64::consts::TAU * f_hz;
     let mut ab = AlphaBeta::new(omega, xi, dt);
@@ -290,7 +290,7 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
         )?;
         // identified residues: the default cut against every SVD term kept
         // (modes given in a scene are always exact: nothing to compare)
-        let exact_tol = tirecontact::convolution::EXACT_RANK_TOLERANCE;
+        let exact_tol = tirecontact::model::convolution::EXACT_RANK_TOLERANCE;
         if all.rank_tolerance_for(&sc) > exact_tol {
             let exact = SolverOptions {
                 rank_tolerance: Some(exact_tol),
@@ -414,13 +414,14 @@ fn residual_flexibility(
     scenes: &[Scene],
     quick: bool,
 ) -> Result<String, Box<dyn std::error::Error>> {
-    use tirecontact::bench::residual;
+    use tirecontact::analysis::bench::residual;
     let mut list: Vec<Scene> = scenes.to_vec();
-    list.push(tirecontact::bench::scenes::many_points(5, 20));
+    list.push(tirecontact::analysis::bench::scenes::many_points(5, 20));
     // smooth: 25 Hz excitation below every mode, 400 N preload on a 0.1 mm
     // road, slow ramp; never leaves the road (tests/solver/residual_flexibility.rs)
-    let smooth =
-        tirecontact::bench::scenes::preloaded_three_points(0.05, 400.0, 1e-4, 5.0, 0.1, 1e-5, 0.2);
+    let smooth = tirecontact::analysis::bench::scenes::preloaded_three_points(
+        0.05, 400.0, 1e-4, 5.0, 0.1, 1e-5, 0.2,
+    );
     let duration_s = if quick { 0.05 } else { 0.2 };
     let mut rows = Vec::new();
     for sc in &list {

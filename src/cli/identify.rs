@@ -8,10 +8,10 @@ use super::{CliResult, load_scene};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use tirecontact::fsio::write_atomic;
+use tirecontact::base::fsio::write_atomic;
 use tirecontact::identify::{TyreIdentification, identify_tyre};
-use tirecontact::lsce::{Identification, Stability};
-use tirecontact::measured::impulse_csv;
+use tirecontact::model::lsce::{Identification, Stability};
+use tirecontact::model::measured::impulse_csv;
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
 use tirecontact::output::paper_figures::paper_figures;
 use tirecontact::output::record::{PLOT_SAMPLES, Recording};
@@ -59,10 +59,10 @@ pub struct IdentifyArgs {
 /// (25 mm apart, on the default preset's road).
 fn scene_of(args: &IdentifyArgs) -> Result<(Scene, PathBuf), Box<dyn std::error::Error>> {
     if let (Some(data), Some(p)) = (&args.data, args.points) {
-        if !(1..=tirecontact::measured::MAX_POINTS).contains(&p) {
+        if !(1..=tirecontact::model::measured::MAX_POINTS).contains(&p) {
             return Err(format!(
                 "--points {p}: expected 1 to {} points",
-                tirecontact::measured::MAX_POINTS
+                tirecontact::model::measured::MAX_POINTS
             )
             .into());
         }
@@ -296,7 +296,11 @@ fn run_figures(scene: &Scene, dir: &Path, stem: &str, clip_impacts: bool) -> Cli
     let mut sim = Simulation::from_scene(scene)?;
     let n = scene.num_steps();
     let mut rec = Recording::new(scene.num_points(), n, PLOT_SAMPLES);
-    tirecontact::drive::run_to_end(&mut sim, &mut rec, tirecontact::drive::Watch::none())?;
+    tirecontact::solver::drive::run_to_end(
+        &mut sim,
+        &mut rec,
+        tirecontact::solver::drive::Watch::none(),
+    )?;
     let wall = start.elapsed().as_secs_f64();
     let sub = format!(
         "{}: V = {} m/s, road {}, dt = {} s ({} steps in {:.1} ms wall)",

@@ -4,13 +4,13 @@ use super::CliResult;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
-use tirecontact::drive::Watch;
-use tirecontact::metrics::ContactMetrics;
+use tirecontact::analysis::metrics::ContactMetrics;
+use tirecontact::analysis::spectrum::Window;
+use tirecontact::analysis::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder, scene_markers};
 use tirecontact::output::animation::FramesError;
 use tirecontact::output::csv::{self as csv_out, RunWriter};
 use tirecontact::output::record::{FigureSpec, RunPanel};
-use tirecontact::spectrum::Window;
-use tirecontact::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder, scene_markers};
+use tirecontact::solver::drive::Watch;
 use tirecontact::{PreparedModel, Scene, SceneError, Simulation};
 
 #[derive(Debug, clap::Args)]
@@ -176,7 +176,7 @@ pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> 
     if !(budget_gb.is_finite() && budget_gb > 0.0) {
         return Err(format!(
             "--max-output-gb = {}: expected a finite size > 0 GB",
-            tirecontact::error::fmt_num(budget_gb)
+            tirecontact::base::error::fmt_num(budget_gb)
         ));
     }
     let Some(path) = &args.output else {
@@ -208,7 +208,7 @@ pub fn check_output_budget(scene: &Scene, args: &RunArgs) -> Result<(), String> 
             scene.dt_s,
             args.every,
             csv_out::human_bytes(budget),
-            tirecontact::error::fmt_num(budget_gb),
+            tirecontact::base::error::fmt_num(budget_gb),
         ));
     }
     Ok(())
@@ -274,7 +274,7 @@ pub fn run(args: &RunArgs) -> CliResult {
     let options = tirecontact::SolverOptions {
         rank_tolerance: args
             .exact_rank
-            .then_some(tirecontact::convolution::EXACT_RANK_TOLERANCE),
+            .then_some(tirecontact::model::convolution::EXACT_RANK_TOLERANCE),
         ..tirecontact::SolverOptions::default()
     };
     let mut sim = Simulation::new(&model, options)?;
@@ -282,7 +282,7 @@ pub fn run(args: &RunArgs) -> CliResult {
     let mut writer = match &args.output {
         Some(path) => {
             // written beside `path` and renamed at the end: a failed run keeps the old file
-            let f = tirecontact::fsio::AtomicFile::create(path)
+            let f = tirecontact::base::fsio::AtomicFile::create(path)
                 .map_err(|e| format!("{}: {e}", path.display()))?;
             Some(RunWriter::new(f, scene.num_points(), args.every)?)
         }
@@ -335,7 +335,7 @@ pub fn run(args: &RunArgs) -> CliResult {
             last_tick = Instant::now();
         }
     };
-    tirecontact::drive::run_to_end(
+    tirecontact::solver::drive::run_to_end(
         &mut sim,
         &mut (writer.as_mut(), rec.as_mut(), steady.as_mut(), &mut metrics),
         Watch::none().with_progress(&mut progress),
@@ -406,12 +406,12 @@ fn write_spectra(args: &RunArgs, model: &PreparedModel, rec: &SteadyRecorder) ->
     if let Some(path) = &args.spectrum {
         let mut buf = Vec::new();
         spectra.write_csv(&mut buf, args.spectrum_max_hz)?;
-        tirecontact::fsio::write_atomic(path, &buf)
+        tirecontact::base::fsio::write_atomic(path, &buf)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         let bands = bands_path(path);
         let mut buf = Vec::new();
         spectra.write_bands_csv(&mut buf, DEFAULT_BANDS_HZ.0, DEFAULT_BANDS_HZ.1)?;
-        tirecontact::fsio::write_atomic(&bands, &buf)
+        tirecontact::base::fsio::write_atomic(&bands, &buf)
             .map_err(|e| format!("{}: {e}", bands.display()))?;
         eprintln!("wrote {} and {}", path.display(), bands.display());
     }

@@ -1,5 +1,5 @@
 //! `tirecontact study plan|run|merge`: parameter studies (see
-//! `tirecontact::study`), run on local cores, in shards on other machines
+//! `tirecontact::studies::study`), run on local cores, in shards on other machines
 //! (GNU parallel, Slurm job arrays), and merged.
 
 use super::CliResult;
@@ -11,7 +11,7 @@ use std::sync::Mutex;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 use tirecontact::ModeCache;
-use tirecontact::study::{Loaded, Row, header, load, record, run_row, run_rows, shard};
+use tirecontact::studies::study::{Loaded, Row, header, load, record, run_row, run_rows, shard};
 
 #[derive(Debug, clap::Args)]
 pub struct StudyArgs {
@@ -104,7 +104,7 @@ pub fn study(args: &StudyArgs) -> CliResult {
 }
 
 fn report(path: &Path, dir: &Path, title: Option<&str>) -> CliResult {
-    use tirecontact::study::report;
+    use tirecontact::studies::study::report;
     super::paths::ensure_output_dir("-o", dir)?;
     let (header, rows) = read_table(path)?;
     let records: Vec<Vec<String>> = rows.into_values().collect();
@@ -152,9 +152,10 @@ fn report(path: &Path, dir: &Path, title: Option<&str>) -> CliResult {
     }
     let bytes = csv.into_inner().map_err(|e| e.to_string())?;
     let out = dir.join("main_effects.csv");
-    tirecontact::fsio::write_atomic(&out, &bytes).map_err(|e| format!("{}: {e}", out.display()))?;
+    tirecontact::base::fsio::write_atomic(&out, &bytes)
+        .map_err(|e| format!("{}: {e}", out.display()))?;
     let md = dir.join("summary.md");
-    tirecontact::fsio::write_atomic(
+    tirecontact::base::fsio::write_atomic(
         &md,
         report::markdown(&title, &t, &effects, &figures).as_bytes(),
     )
@@ -183,7 +184,7 @@ fn plan(path: &Path, output: Option<&Path>) -> CliResult {
             w.write_record(&rec)?;
         }
         let bytes = w.into_inner().map_err(|e| e.to_string())?;
-        tirecontact::fsio::write_atomic(out, &bytes)
+        tirecontact::base::fsio::write_atomic(out, &bytes)
             .map_err(|e| format!("{}: {e}", out.display()))?;
         println!("wrote {}", out.display());
     }
@@ -192,17 +193,27 @@ fn plan(path: &Path, output: Option<&Path>) -> CliResult {
     // (points mostly off the road: cheaper), then a tenth of its steps (at
     // least 2000) timed
     let cache = ModeCache::new();
-    let scene = tirecontact::study::scene_of(&loaded, &loaded.rows[0])?;
+    let scene = tirecontact::studies::study::scene_of(&loaded, &loaded.rows[0])?;
     let prepared = Instant::now();
     let model = tirecontact::PreparedModel::new(&scene, &cache)?;
     let prepare_s = prepared.elapsed().as_secs_f64();
     let mut sim = tirecontact::Simulation::new(&model, tirecontact::SolverOptions::default())?;
     let total = scene.num_steps();
     let ramp = ((scene.ramp_s / scene.dt_s).round() as u64).min(total);
-    tirecontact::drive::run(&mut sim, ramp, &mut (), tirecontact::drive::Watch::none())?;
+    tirecontact::solver::drive::run(
+        &mut sim,
+        ramp,
+        &mut (),
+        tirecontact::solver::drive::Watch::none(),
+    )?;
     let n = (total - ramp).min((total / 10).max(2000));
     let start = Instant::now();
-    tirecontact::drive::run(&mut sim, n, &mut (), tirecontact::drive::Watch::none())?;
+    tirecontact::solver::drive::run(
+        &mut sim,
+        n,
+        &mut (),
+        tirecontact::solver::drive::Watch::none(),
+    )?;
     let mut per_run = start.elapsed().as_secs_f64() * total as f64 / n.max(1) as f64;
     // short runs: the first, middle and last rows run in full (summary
     // included), the mean of the three
@@ -337,9 +348,10 @@ fn write_table(
     header: &[String],
     rows: &BTreeMap<usize, Vec<String>>,
 ) -> Result<(), String> {
-    let bytes =
-        tirecontact::study::table_bytes(header, rows.values()).map_err(|e| e.to_string())?;
-    tirecontact::fsio::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))
+    let bytes = tirecontact::studies::study::table_bytes(header, rows.values())
+        .map_err(|e| e.to_string())?;
+    tirecontact::base::fsio::write_atomic(path, &bytes)
+        .map_err(|e| format!("{}: {e}", path.display()))
 }
 
 fn run(
@@ -411,7 +423,7 @@ fn run(
     // a ring or measured tyre identified once up front, not by every
     // thread at once (rows that change its geometry identify their own)
     if let Some(first) = todo.first()
-        && let Ok(scene) = tirecontact::study::scene_of(&loaded, first)
+        && let Ok(scene) = tirecontact::studies::study::scene_of(&loaded, first)
     {
         let _ = cache.modes(&scene);
     }

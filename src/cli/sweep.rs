@@ -5,7 +5,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
-use tirecontact::sweep::{
+use tirecontact::studies::sweep::{
     MAX_SWEEP_VALUES, Sweep, get_param, linspace, report, run_sweep, set_param,
 };
 use tirecontact::{Scene, SceneError};
@@ -110,7 +110,7 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
     if let Some(path) = &args.output {
         let mut buf = Vec::new();
         report::write_csv(&mut buf, param, &points, p)?;
-        tirecontact::fsio::write_atomic(path, &buf)
+        tirecontact::base::fsio::write_atomic(path, &buf)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         eprintln!("wrote {}", path.display());
     }

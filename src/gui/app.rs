@@ -7,6 +7,7 @@
 use super::classroom::{self, Classroom};
 use super::panels::{self, toolbar};
 use super::views::{green_view, scene_view, time_plots};
+use crate::base::modal::Mode;
 use crate::gui::chrome::dialogs::{Message, PngSettings};
 use crate::gui::chrome::file_prompt::{FileAction, FilePrompt};
 use crate::gui::chrome::frames_dialog::FramesDialog;
@@ -20,9 +21,8 @@ use crate::gui::model::presets::GUIDED;
 use crate::gui::model::presets::SHIPPED;
 use crate::gui::model::time_control::{Speed, TimeControl};
 use crate::identify::{ModeCache, PreparedModel};
-use crate::modal::Mode;
 use crate::output::animation::FrameSettings;
-use crate::phase::PhaseTracker;
+use crate::solver::phase::PhaseTracker;
 use crate::{DEFAULT_PRESET, Scene, SceneError, Simulation, SolverOptions};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};

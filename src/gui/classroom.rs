@@ -17,7 +17,7 @@ use super::views::{CONTACT_COLOR, FLIGHT_COLOR, point_color, scene_view};
 use crate::Simulation;
 use crate::gui::model::history::{History, Quantity};
 use crate::gui::views::XTitle;
-use crate::phase::{ContactPhase, PhaseTracker};
+use crate::solver::phase::{ContactPhase, PhaseTracker};
 use egui::{Color32, FontId, RichText, TextStyle, Ui};
 use egui_plot::{Line, Plot, PlotPoint, Text};
 use std::collections::BTreeMap;

@@ -5,8 +5,10 @@
 //! `|G|`. The visualiser's view draws it and pushes picks; tests drive it
 //! here.
 
-use crate::lsce::{Identification, LsceError, Responses, modes_of_poles, response_magnitudes};
-use crate::modal::{ModalModel, Mode};
+use crate::base::modal::{ModalModel, Mode};
+use crate::model::lsce::{
+    Identification, LsceError, Responses, modes_of_poles, response_magnitudes,
+};
 
 /// A pole of the diagram: its order's index and its index in that order.
 pub type PoleAt = (usize, usize);
@@ -236,11 +238,11 @@ pub struct PairFit {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lsce::{IdentifyOptions, identify};
+    use crate::model::lsce::{IdentifyOptions, identify};
 
     /// Responses of a two-point, two-mode model, and their identification.
     fn bench() -> Workbench {
-        let m = crate::modal::two_mode_test_model();
+        let m = crate::base::modal::two_mode_test_model();
         let dt = 1.0 / 2000.0;
         let pairs = vec![(0, 0), (0, 1), (1, 1)];
         let data = pairs

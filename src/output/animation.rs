@@ -10,10 +10,10 @@
 
 use super::figures::register_fonts;
 use crate::Simulation;
-use crate::drive::{Probe, Watch, run_to_end};
-use crate::error::RunError;
-use crate::phase::{ContactPhase, PhaseTracker};
-use crate::road::ramp;
+use crate::base::error::RunError;
+use crate::model::road::ramp;
+use crate::solver::drive::{Probe, Watch, run_to_end};
+use crate::solver::phase::{ContactPhase, PhaseTracker};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -231,13 +231,13 @@ fn extents(sim: &Simulation) -> Extents {
         .map(|p| p.x_m)
         .fold(f64::NEG_INFINITY, f64::max);
     let lambda = match &scene.road {
-        crate::road::Road::Sine { wavelength_m, .. } => *wavelength_m,
-        crate::road::Road::Harmonics { components } => components
+        crate::model::road::Road::Sine { wavelength_m, .. } => *wavelength_m,
+        crate::model::road::Road::Harmonics { components } => components
             .iter()
             .map(|c| c.wavelength_m)
             .fold(0.0, f64::max),
-        crate::road::Road::Measured { .. } => 0.5,
-        crate::road::Road::Random {
+        crate::model::road::Road::Measured { .. } => 0.5,
+        crate::model::road::Road::Random {
             min_wavenumber_cpm, ..
         } => 1.0 / min_wavenumber_cpm,
     };
@@ -699,7 +699,10 @@ mod tests {
     #[test]
     fn road_in_tyre_frame_blends_point_heights_into_the_road() {
         let scene = Scene::parse(
-            include_str!("../../presets/three_points.ron"),
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/three_points.ron"
+            )),
             "three_points",
         )
         .unwrap();
@@ -764,7 +767,14 @@ mod tests {
 
     #[test]
     fn cancel_stops_before_writing() {
-        let scene = Scene::parse(include_str!("../../presets/single_mode.ron"), "s").unwrap();
+        let scene = Scene::parse(
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/single_mode.ron"
+            )),
+            "s",
+        )
+        .unwrap();
         let sim = Simulation::from_scene(&scene).unwrap();
         let dir = std::env::temp_dir().join(format!("tc-anim-cancel-{}", std::process::id()));
         let cancel = AtomicBool::new(true);
@@ -802,7 +812,11 @@ mod tests {
     /// has almost none), and the frame has the size asked for.
     #[test]
     fn frames_draw_the_road_antialiased() {
-        let scene = Scene::parse(include_str!("../../presets/paper.ron"), "paper").unwrap();
+        let scene = Scene::parse(
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/presets/paper.ron")),
+            "paper",
+        )
+        .unwrap();
         let mut sim = Simulation::from_scene(&scene).unwrap();
         for _ in 0..6000 {
             sim.step().unwrap();

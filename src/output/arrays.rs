@@ -6,7 +6,7 @@
 //! its end. For callers that want numbers, not text (the Python package).
 
 use crate::output::sampler::{LastWindow, Sampler, Stride};
-use crate::simulation::Simulation;
+use crate::solver::simulation::Simulation;
 
 /// Rows of a run, time-major: value `[row * p + i]` is point `i`'s.
 #[derive(Debug, Clone, Default)]
@@ -60,7 +60,7 @@ impl RunArrays {
     }
 }
 
-impl crate::drive::Probe for RunArrays {
+impl crate::solver::drive::Probe for RunArrays {
     fn start(&mut self, sim: &Simulation) -> std::io::Result<()> {
         self.sampler.start(sim);
         self.push(sim);
@@ -78,8 +78,8 @@ impl crate::drive::Probe for RunArrays {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::drive::{Watch, run_to_end};
     use crate::output::csv::RunWriter;
+    use crate::solver::drive::{Watch, run_to_end};
 
     /// The arrays hold the CSV's numbers: every field of every row of
     /// `run -o`'s writer, read back, to its ten significant digits.

@@ -5,7 +5,7 @@
 //! the state at the row's time.
 
 use crate::output::sampler::{LastWindow, Sampler, Stride};
-use crate::simulation::Simulation;
+use crate::solver::simulation::Simulation;
 use std::io::Write;
 
 /// The header row for `p` points.
@@ -212,7 +212,7 @@ fn format_rows(rows: &[f64], p: usize, text: &mut String) {
     }
 }
 
-impl<W: Write> crate::drive::Probe for RunWriter<W> {
+impl<W: Write> crate::solver::drive::Probe for RunWriter<W> {
     fn start(&mut self, sim: &Simulation) -> std::io::Result<()> {
         self.write_initial(sim)
     }

@@ -8,7 +8,7 @@ use crate::output::figures::{Figure, Panel, Series, Style};
 use crate::output::impacts::clip_level;
 use crate::output::sampler::{LastWindow, Merge, Sampler, Stride, merge_windows};
 use crate::output::summary;
-use crate::simulation::Simulation;
+use crate::solver::simulation::Simulation;
 
 /// Palette index of the clipped impacts' dots: black.
 const IMPACT_COLOR: usize = 6;
@@ -376,7 +376,7 @@ impl Recording {
     }
 }
 
-impl crate::drive::Probe for Recording {
+impl crate::solver::drive::Probe for Recording {
     fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
         Recording::after_step(self, sim);
         Ok(())

@@ -41,7 +41,7 @@
 //! Every buffer is sized by [`Sampler::new`]: a step allocates nothing.
 
 use crate::output::impacts::ImpactTracker;
-use crate::simulation::Simulation;
+use crate::solver::simulation::Simulation;
 
 /// What closes the steps after the last whole window when the run ends.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -4,9 +4,9 @@
 //! `1.0000000000000001e-7`).
 
 use crate::Scene;
-use crate::error::count;
-use crate::modal::Mode;
-use crate::road::Road;
+use crate::base::error::count;
+use crate::base::modal::Mode;
+use crate::model::road::Road;
 
 /// Modes listed one by one in a subtitle (more are given as ranges).
 const LISTED_MODES: usize = 4;
@@ -161,7 +161,11 @@ mod tests {
 
     #[test]
     fn the_summary_has_no_long_floats_and_lists_few_modes() {
-        let mut scene = Scene::parse(include_str!("../../presets/paper.ron"), "paper").unwrap();
+        let mut scene = Scene::parse(
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/presets/paper.ron")),
+            "paper",
+        )
+        .unwrap();
         scene.dt_s = 1.0 / 1e7 * (1.0 + f64::EPSILON);
         let mode = |freq_hz: f64, damping_ratio: f64| Mode {
             freq_hz,

@@ -4,7 +4,7 @@
 //! preset's text does not describe a scene it no longer is.
 
 use super::{Contact, Mode, Scene, Tyre};
-use crate::road::Road;
+use crate::model::road::Road;
 
 /// `x` to four significant digits, in the shortest form (`10`, `0.025`).
 fn num(x: f64) -> String {
@@ -145,7 +145,7 @@ pub fn edits_since_identified(
         (Tyre::Ring { .. }, Tyre::Modal { modes: b }, Some(a)) => {
             out.push(format!(
                 "tyre ring -> modal model of its {}",
-                crate::error::count(a.len(), "identified mode")
+                crate::base::error::count(a.len(), "identified mode")
             ));
             if a != b.as_slice() {
                 mode_edits(&mut out, a, b);
@@ -256,7 +256,10 @@ mod tests {
 
     fn scene() -> Scene {
         Scene::parse(
-            include_str!("../../presets/three_points.ron"),
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/three_points.ron"
+            )),
             "three_points",
         )
         .expect("shipped preset")
@@ -404,7 +407,11 @@ mod tests {
     /// identified modes are listed, not only the change of kind.
     #[test]
     fn edits_of_a_ring_made_modal_are_listed_against_its_identified_modes() {
-        let ring = Scene::parse(include_str!("../../presets/paper.ron"), "paper").unwrap();
+        let ring = Scene::parse(
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/presets/paper.ron")),
+            "paper",
+        )
+        .unwrap();
         let identified: Vec<Mode> = (0..5)
             .map(|k| Mode {
                 freq_hz: 40.0 + 10.0 * k as f64,

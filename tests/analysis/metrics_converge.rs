@@ -4,8 +4,8 @@
 
 use crate::support::preset;
 use std::sync::atomic::AtomicBool;
-use tirecontact::metrics::ContactSummary;
-use tirecontact::sweep::{RunSummary, run_summary};
+use tirecontact::analysis::metrics::ContactSummary;
+use tirecontact::studies::sweep::{RunSummary, run_summary};
 use tirecontact::{ModeCache, PreparedModel};
 
 /// A per-point metric of a summary.

@@ -4,7 +4,7 @@
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::f64::consts::{SQRT_2, TAU};
-use tirecontact::spectrum::{Window, spectrum, third_octave_bands};
+use tirecontact::analysis::spectrum::{Window, spectrum, third_octave_bands};
 
 fn tone(n: usize, fs: f64, f: f64, amp: f64, phase: f64, offset: f64) -> Vec<f64> {
     (0..n)

@@ -3,8 +3,10 @@
 
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
-use tirecontact::spectrum::{Window, spectrum};
-use tirecontact::sweep::{Sweep, SweepError, get_param, param_paths, run_sweep, set_param};
+use tirecontact::analysis::spectrum::{Window, spectrum};
+use tirecontact::studies::sweep::{
+    Sweep, SweepError, get_param, param_paths, run_sweep, set_param,
+};
 use tirecontact::{Scene, Simulation};
 
 fn three_points() -> Scene {

@@ -5,7 +5,9 @@
 //! markdown and diagram are written.
 
 use tirecontact::Scene;
-use tirecontact::bench::work_precision::{Config, Method, figure, study, to_csv, to_markdown};
+use tirecontact::analysis::bench::work_precision::{
+    Config, Method, figure, study, to_csv, to_markdown,
+};
 
 #[test]
 fn located_beats_paper_and_baselines_agree() {
@@ -90,8 +92,8 @@ fn located_beats_paper_and_baselines_agree() {
 #[cfg(feature = "peers")]
 fn the_two_peer_integrators_agree_on_the_penalty_equations() {
     use tirecontact::ModeCache;
-    use tirecontact::bench::peers::{run_dopri, run_newmark};
-    use tirecontact::bench::work_precision::{rms_rel, run_stable};
+    use tirecontact::analysis::bench::peers::{run_dopri, run_newmark};
+    use tirecontact::analysis::bench::work_precision::{rms_rel, run_stable};
     use tirecontact::scene::ContactScheme;
     let (dur, dt, k) = (0.05, 2.5e-6, 1e8);
     for name in ["single_mode", "three_points", "paper"] {

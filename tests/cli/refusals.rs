@@ -212,7 +212,10 @@ fn run_option_values_are_named_as_typed() {
 #[test]
 fn huge_and_tiny_values_are_shown_short() {
     let mut s = Scene::parse(
-        include_str!("../../presets/single_mode.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/single_mode.ron"
+        )),
         "single_mode.ron",
     )
     .unwrap();

@@ -11,7 +11,10 @@ use tirecontact::gui::{App, Command};
 
 /// The single-mode preset (a modal tyre whose modes the tests edit).
 fn single_mode_app() -> App {
-    let text = include_str!("../../presets/single_mode.ron");
+    let text = include_str!(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/presets/single_mode.ron"
+    ));
     App::new(Scene::parse(text, "presets/single_mode.ron").unwrap(), None).unwrap()
 }
 
@@ -129,7 +132,7 @@ fn live_edits_keep_the_run_going() {
     type_into(&mut h, "road.amplitude_m", "3");
     assert_eq!(h.state().simulation().steps(), 10);
     match &h.state().simulation().scene().road {
-        tirecontact::road::Road::Sine { amplitude_m, .. } => {
+        tirecontact::model::road::Road::Sine { amplitude_m, .. } => {
             assert!((amplitude_m - 0.003).abs() < 1e-15)
         }
         r => panic!("unexpected road {r:?}"),

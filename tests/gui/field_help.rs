@@ -10,7 +10,7 @@ use egui_kittest::kittest::{NodeT, Queryable};
 use tirecontact::Scene;
 use tirecontact::gui::App;
 use tirecontact::gui::widgets::field_help::help;
-use tirecontact::road::{Harmonic, Road};
+use tirecontact::model::road::{Harmonic, Road};
 use tirecontact::scene::Contact;
 
 /// Three points (mode shapes) on a two-harmonic road with compliant contact.

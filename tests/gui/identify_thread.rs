@@ -219,7 +219,7 @@ fn preset_and_road_files_are_read_off_the_ui_thread() {
     let road = tmp.path().join("road.csv");
     std::fs::write(&road, "x_m,z_m\n-10,0\n0,0.001\n10,0\n").unwrap();
     let mut s = h.state().scene().clone();
-    s.road = tirecontact::road::Road::Measured {
+    s.road = tirecontact::model::road::Road::Measured {
         file: road.clone(),
         looped: false,
     };
@@ -242,7 +242,7 @@ fn preset_and_road_files_are_read_off_the_ui_thread() {
     // a road file that is not there: refused when read, the scene kept
     let kept = h.state().scene().clone();
     let mut gone = kept.clone();
-    gone.road = tirecontact::road::Road::Measured {
+    gone.road = tirecontact::model::road::Road::Measured {
         file: tmp.path().join("missing.csv"),
         looped: false,
     };

@@ -4,14 +4,14 @@
 use std::f64::consts::TAU;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::fidelity::{
+use tirecontact::analysis::fidelity::{
     GreenMatrix, SampledGreen, band_frequencies, detuned, relative_l2_error, removal_costs,
     without_mode,
 };
+use tirecontact::base::modal::ModalModel;
 use tirecontact::identify::identify_ring;
-use tirecontact::lsce::IdentifyOptions;
-use tirecontact::modal::ModalModel;
-use tirecontact::ring::RingParams;
+use tirecontact::model::lsce::IdentifyOptions;
+use tirecontact::model::ring::RingParams;
 
 fn three_point_modes() -> Vec<tirecontact::scene::Mode> {
     let scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();

@@ -4,10 +4,10 @@
 //! 58 FRFs) identify to its modes; a measured scene runs like the others.
 
 use std::path::Path;
+use tirecontact::base::modal::{ModalModel, Mode};
 use tirecontact::identify::{identify_measured, identify_ring};
-use tirecontact::lsce::IdentifyOptions;
-use tirecontact::measured::impulse_csv;
-use tirecontact::modal::{ModalModel, Mode};
+use tirecontact::model::lsce::IdentifyOptions;
+use tirecontact::model::measured::impulse_csv;
 use tirecontact::scene::Tyre;
 use tirecontact::{ModeCache, Scene, Simulation};
 
@@ -164,7 +164,7 @@ fn model3() -> (Vec<Mode>, ModalModel) {
 fn uff_files_written_by_pyuff_are_read_to_round_off() {
     let (_, m) = model3();
     let text = std::fs::read_to_string("tests/data/uff/frf3.uff").unwrap();
-    let recs = tirecontact::measured::uff::records(&text).unwrap();
+    let recs = tirecontact::model::measured::uff::records(&text).unwrap();
     assert_eq!(recs.len(), 9);
     let mut worst: f64 = 0.0;
     let mut scale: f64 = 0.0;
@@ -358,7 +358,7 @@ fn identification_under_noise_stays_within_the_documented_bounds() {
             csv.push_str(&format!(",h{i}_{j}_re,h{i}_{j}_im"));
         }
         csv.push('\n');
-        let clean: Vec<Vec<tirecontact::modal::Complex>> = pairs
+        let clean: Vec<Vec<tirecontact::base::modal::Complex>> = pairs
             .iter()
             .map(|&(i, j)| {
                 (0..=k)

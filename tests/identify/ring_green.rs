@@ -15,7 +15,7 @@
 //!   tensioned-beam formula.
 
 use std::f64::consts::{PI, TAU};
-use tirecontact::ring::{RingMotion, RingParams};
+use tirecontact::model::ring::{RingMotion, RingParams};
 
 /// `Σ_{n∈Z} cos(nθ) / (n² + c)` for `c > 0` or `c < 0` (not `-k²`).
 fn lattice(c: f64, theta: f64) -> f64 {

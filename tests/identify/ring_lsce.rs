@@ -5,10 +5,10 @@
 use crate::support::{bin, temp_dir};
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
+use tirecontact::base::modal::ModalModel;
 use tirecontact::identify::identify_ring;
-use tirecontact::lsce::{IdentifyOptions, Responses, identify};
-use tirecontact::modal::ModalModel;
-use tirecontact::ring::{RingMotion, RingParams, free_ring_inextensional_hz};
+use tirecontact::model::lsce::{IdentifyOptions, Responses, identify};
+use tirecontact::model::ring::{RingMotion, RingParams, free_ring_inextensional_hz};
 use tirecontact::scene::{Mode, Tyre};
 use tirecontact::{ModeCache, PreparedModel};
 use tirecontact::{Scene, Simulation};
@@ -171,7 +171,7 @@ fn ring_modes_have_rank_two_residues_and_sum_to_the_green_function() {
     let modes = r.modes(&xs);
     for mode in modes.iter().skip(1) {
         let a = faer::Mat::from_fn(5, 5, |i, j| mode.residue[i][j]);
-        let s = tirecontact::linalg::singular_values(a.as_ref()).unwrap();
+        let s = tirecontact::base::linalg::singular_values(a.as_ref()).unwrap();
         assert!(s[1] > 1e-8 * s[0] && s[2] < 1e-12 * s[0], "{s:?}");
     }
     let model = ModalModel::from_modes(&modes, 5);
@@ -494,7 +494,7 @@ fn lsce_recovers_the_ring_degenerate_modes() {
         // rank 2 for every order n >= 1, rank 1 for the breathing mode
         let sv = |m: &Mode| {
             let a = faer::Mat::from_fn(5, 5, |i, j| m.residue[i][j]);
-            tirecontact::linalg::singular_values(a.as_ref()).unwrap()
+            tirecontact::base::linalg::singular_values(a.as_ref()).unwrap()
         };
         let mut rank2 = 0;
         for (m, t) in id.identification.modes.iter().zip(&truth) {

@@ -4,13 +4,13 @@
 //! CSV writer between two formatted blocks).
 
 use crate::allocations_in;
-use tirecontact::drive::Probe;
 #[cfg(feature = "gui")]
 use tirecontact::gui::History;
 use tirecontact::output::arrays::RunArrays;
 use tirecontact::output::csv::RunWriter;
 use tirecontact::output::record::Recording;
 use tirecontact::output::sampler::{LastWindow, Sampler, Stride};
+use tirecontact::solver::drive::Probe;
 
 #[test]
 fn recording_a_step_does_not_allocate() {

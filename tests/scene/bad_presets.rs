@@ -12,8 +12,8 @@
 
 use crate::support::{bin, temp_dir};
 use std::path::{Path, PathBuf};
-use tirecontact::error::FieldError;
-use tirecontact::road::{MAX_PROFILE_BYTES, read_profile_csv_limited};
+use tirecontact::base::error::FieldError;
+use tirecontact::model::road::{MAX_PROFILE_BYTES, read_profile_csv_limited};
 use tirecontact::{Scene, SceneError, Simulation};
 
 /// Two points, one mode by shape and one by residue, a sine road: valid.
@@ -971,7 +971,10 @@ fn hostile_files_are_refused_at_once() {
     assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
     let long = dir.join("long.csv");
     std::fs::write(&long, vec![b'7'; 100 << 20]).unwrap();
-    let base = include_str!("../../presets/three_points.ron");
+    let base = include_str!(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/presets/three_points.ron"
+    ));
     let with_road = |name: &str, file: &Path| {
         let text = base.replace(
             "road: Sine(amplitude_m: 0.0005, wavelength_m: 0.12)",

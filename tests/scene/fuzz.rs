@@ -8,7 +8,7 @@
 
 use crate::support::{proptest_cases, temp_dir};
 use proptest::prelude::*;
-use tirecontact::road::{Road, read_profile_csv};
+use tirecontact::model::road::{Road, read_profile_csv};
 use tirecontact::scene::{Contact, ContactScheme, Mode, Point, Scene, Tyre};
 use tirecontact::{SceneError, Simulation};
 

@@ -11,7 +11,7 @@
 use crate::support::{proptest_cases, temp_dir};
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
-use tirecontact::road::{Harmonic, Road};
+use tirecontact::model::road::{Harmonic, Road};
 use tirecontact::scene::{Contact, Mode, Point, Scene, Tyre};
 use tirecontact::{DEFAULT_PRESET, DEFAULT_PRESET_NAME, SceneError, Simulation};
 
@@ -184,7 +184,7 @@ fn sites(s: &mut Scene) -> Vec<(String, Site<'_>)> {
             ));
         }
         // (no shipped preset has measured responses: their file's
-        // refusals are tested in tirecontact::measured)
+        // refusals are tested in tirecontact::model::measured)
         Tyre::Measured { .. } => {}
     }
     match &mut s.road {

@@ -73,7 +73,7 @@ fn syntax_error_reports_line_and_column() {
     assert!(e.contains("u.ron:8:") && e.contains("sped_mps"), "{e}");
 }
 
-fn invalid(text: &str) -> Vec<tirecontact::error::FieldError> {
+fn invalid(text: &str) -> Vec<tirecontact::base::error::FieldError> {
     match Scene::parse(text, "x.ron") {
         Err(SceneError::Invalid { errors, .. }) => errors,
         other => panic!("expected invalid, got {other:?}"),

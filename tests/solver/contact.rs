@@ -17,7 +17,7 @@ use std::f64::consts::TAU;
 use std::time::Instant;
 
 use tirecontact::Simulation;
-use tirecontact::road::Road;
+use tirecontact::model::road::Road;
 use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
 
 // ---------------------------------------------------------------------------
@@ -1229,8 +1229,8 @@ fn static_preload_matches_static_compliance() {
 
 #[test]
 fn bounded_recursion_stable_alpha_beta_overflows() {
-    use tirecontact::convolution::paper_alpha_beta::AlphaBeta;
-    use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
+    use tirecontact::model::convolution::paper_alpha_beta::AlphaBeta;
+    use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
     let (f, xi, dt) = (4000.0, 0.1, 1e-5);
     let steps: usize = 10_000_000;
     let omega = TAU * f;
@@ -1322,8 +1322,8 @@ fn gauss_fractions() -> (f64, f64) {
 
 #[test]
 fn fast_convolution_matches_direct_quadrature() {
-    use tirecontact::convolution::direct::direct_convolution;
-    use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
+    use tirecontact::model::convolution::direct::direct_convolution;
+    use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
     // two points: a rank-2 residue mode, a mode shape, an overdamped and an undamped mode
     let modes = vec![
         Mode {
@@ -1440,7 +1440,7 @@ fn my_harmonic_phase(omega: f64, xi: f64, big: f64, phi: f64, t: f64) -> f64 {
 
 #[test]
 fn smooth_force_orders_of_the_force_shapes() {
-    use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
+    use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
     let (f, xi) = (200.0, 0.05);
     let omega = TAU * f;
     let modes = [Mode {
@@ -1536,8 +1536,8 @@ const REGIMES: [f64; 6] = [0.0, 0.05, 1.0, 1.0 - 1e-9, 1.0 + 1e-9, 3.0];
 
 #[test]
 fn impulse_and_step_responses_every_regime() {
-    use tirecontact::convolution::{ModalBasis, ModalState, StepTable, mode_step};
-    use tirecontact::modal::{ModalMode, unit_impulse};
+    use tirecontact::base::modal::{ModalMode, unit_impulse};
+    use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable, mode_step};
     let omega = TAU * 150.0;
     let mut worst = [0.0f64; 6];
     for &xi in &REGIMES {
@@ -1628,8 +1628,8 @@ fn impulse_and_step_responses_every_regime() {
 
 #[test]
 fn harmonic_responses_every_regime() {
-    use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
-    use tirecontact::modal::ModalModel;
+    use tirecontact::base::modal::ModalModel;
+    use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
     let f = 150.0;
     let omega = TAU * f;
     let mut worst = (0.0f64, 0.0f64);

@@ -10,7 +10,7 @@
 //! integral, to round-off.
 
 use std::f64::consts::TAU;
-use tirecontact::convolution::mode_step;
+use tirecontact::model::convolution::mode_step;
 
 use crate::oscillator::{integrals, linear_response};
 
@@ -90,7 +90,7 @@ fn step_weights_match_pole_form_closed_forms_in_every_regime() {
 /// on each piece and summed by superposition (no recursion).
 #[test]
 fn recursion_reproduces_superposed_exact_pieces() {
-    use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
+    use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
     use tirecontact::scene::Mode;
     let (f, xi, dt) = (180.0, 0.07, 3e-4);
     let omega = TAU * f;

@@ -20,8 +20,8 @@ use crate::support::models::{SplitMix, modal_scene, shape_mode};
 use std::f64::consts::TAU;
 
 use tirecontact::Simulation;
-use tirecontact::error::SceneError;
-use tirecontact::road::{Harmonic, Road};
+use tirecontact::base::error::SceneError;
+use tirecontact::model::road::{Harmonic, Road};
 use tirecontact::scene::{Contact, ContactScheme, Mode, Point, Scene};
 
 fn sine(amplitude_m: f64, wavelength_m: f64) -> Road {
@@ -456,7 +456,7 @@ fn hermite_landing_time_matches_brute_force() {
         let (d0, g1, d1) = (r(-4.0, 4.0), r(-1.0, 1.0), r(-4.0, 4.0));
         let tol = if case % 3 == 0 { 1e-3 } else { 1e-12 };
         let rise = case % 5 == 0;
-        let got = tirecontact::simulation::first_crossing(g0, d0, g1, d1, tol, rise);
+        let got = tirecontact::solver::simulation::first_crossing(g0, d0, g1, d1, tol, rise);
         let want = brute_crossing(g0, d0, g1, d1, tol, rise);
         match (got, want) {
             (Some(y), Some(w)) => {

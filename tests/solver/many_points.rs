@@ -4,7 +4,7 @@
 
 #[test]
 fn fifty_points_two_hundred_modes() {
-    let mut scene = tirecontact::bench::scenes::many_points(50, 200);
+    let mut scene = tirecontact::analysis::bench::scenes::many_points(50, 200);
     scene.duration_s = 0.02;
     let mut sim = tirecontact::Simulation::from_scene(&scene).unwrap();
     let mut min_q = f64::INFINITY;

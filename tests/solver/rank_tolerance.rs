@@ -1,7 +1,7 @@
 //! The residue rank cut (`SolverOptions::rank_tolerance`): what it drops,
 //! and what that costs, against the exact-rank factorisation as control.
 
-use tirecontact::convolution::{EXACT_RANK_TOLERANCE, ModalBasis};
+use tirecontact::model::convolution::{EXACT_RANK_TOLERANCE, ModalBasis};
 use tirecontact::scene::Mode;
 use tirecontact::{IDENTIFIED_RANK_TOLERANCE, Scene, Simulation, SolverOptions};
 
@@ -108,7 +108,7 @@ fn modes_given_in_a_scene_keep_every_term_by_default() {
     // a residue with a genuine small third term (1e-7 of the first), below
     // the identified models' cut: a scene's own modes are taken as given
     let modes = vec![mode([2.0, 1.0, 2e-7])];
-    let mut scene = tirecontact::bench::scenes::many_points(3, 1);
+    let mut scene = tirecontact::analysis::bench::scenes::many_points(3, 1);
     scene.tyre = tirecontact::scene::Tyre::Modal { modes };
     let exact = Simulation::from_scene(&scene).unwrap();
     assert_eq!(exact.num_states(), 3);

@@ -6,8 +6,8 @@ use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::TAU;
-use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
-use tirecontact::modal::{ModalModel, unit_impulse};
+use tirecontact::base::modal::{ModalModel, unit_impulse};
+use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
 use tirecontact::scene::{Mode, Tyre};
 use tirecontact::{Scene, Simulation, SolverOptions};
 
@@ -360,7 +360,7 @@ fn contact_run(form: Form, h_m: f64, amplitude_m: f64) -> (Vec<f64>, f64) {
     for p in &mut scene.points {
         p.h_m = h_m;
     }
-    scene.road = tirecontact::road::Road::Sine {
+    scene.road = tirecontact::model::road::Road::Sine {
         amplitude_m,
         wavelength_m: 0.3,
     };

@@ -6,8 +6,8 @@
 //! change speed and road live, and reset.
 
 use crate::support::temp_dir;
-use tirecontact::bench::scenes::many_points;
-use tirecontact::road::{Road, RoadProfile};
+use tirecontact::analysis::bench::scenes::many_points;
+use tirecontact::model::road::{Road, RoadProfile};
 use tirecontact::scene::ContactScheme;
 use tirecontact::{Scene, Simulation, SolverOptions};
 
@@ -41,7 +41,7 @@ fn compliant(name: &str, duration_s: f64, k_n_m: f64) -> Scene {
 /// Runs `scene` with and without the steady path, comparing displacement,
 /// velocity, force, impulses and contact after every step; returns the
 /// steady run's statistics.
-fn compare(scene: &Scene, live: Live) -> tirecontact::simulation::RunStats {
+fn compare(scene: &Scene, live: Live) -> tirecontact::solver::simulation::RunStats {
     let on = SolverOptions::default();
     let off = SolverOptions {
         steady_path: false,
@@ -101,12 +101,12 @@ fn compare(scene: &Scene, live: Live) -> tirecontact::simulation::RunStats {
     sa
 }
 
-/// [`tirecontact::simulation::RunStats`] without the steady-step count.
+/// [`tirecontact::solver::simulation::RunStats`] without the steady-step count.
 #[derive(Debug, PartialEq)]
 struct RunStatsWithoutSteady(Vec<u64>, Vec<u64>, u64);
 
-impl From<&tirecontact::simulation::RunStats> for RunStatsWithoutSteady {
-    fn from(s: &tirecontact::simulation::RunStats) -> Self {
+impl From<&tirecontact::solver::simulation::RunStats> for RunStatsWithoutSteady {
+    fn from(s: &tirecontact::solver::simulation::RunStats) -> Self {
         RunStatsWithoutSteady(
             vec![s.steps, s.events, s.solves, s.factorisations],
             s.max_force_n

@@ -6,8 +6,8 @@
 
 use crate::support::temp_dir;
 use std::f64::consts::TAU;
-use tirecontact::convolution::{ModalBasis, ModalState, StepTable};
-use tirecontact::road::Road;
+use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
+use tirecontact::model::road::Road;
 use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
 use tirecontact::{Simulation, SolverError};
 

@@ -2,7 +2,7 @@
 //! by their mode shapes at the contact points, on a road, and a seeded
 //! random number generator for reproducible inputs.
 
-use tirecontact::road::Road;
+use tirecontact::model::road::Road;
 use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};
 
 /// A mode given by its shape at the contact points (no residue matrix).

@@ -1,5 +1,5 @@
 //! `tirecontact bench --scaling`: the cost of a step against the numbers
-//! of points and modes ([`tirecontact::bench::scaling`]) for both contact
+//! of points and modes ([`tirecontact::analysis::bench::scaling`]) for both contact
 //! laws, each size timed in a child process of its own
 //! (`--scaling-one P,K,CONTACT`), its peak memory from one run in another
 //! (`P,K,CONTACT,SECONDS`), and callgrind's instruction counts, with
@@ -8,8 +8,8 @@
 use super::BenchArgs;
 use crate::cli::CliResult;
 use indicatif::{ProgressBar, ProgressStyle};
-use tirecontact::bench::scaling::report::{MeasuredSize, ScalingReport};
-use tirecontact::bench::scaling::{Regime, ScalingRow};
+use tirecontact::analysis::bench::scaling::report::{MeasuredSize, ScalingReport};
+use tirecontact::analysis::bench::scaling::{Regime, ScalingRow};
 use tirecontact::output::figures::render_png;
 use tirecontact::{PreparedModel, SolverOptions};
 
@@ -108,19 +108,23 @@ pub fn scaling_one(pk: &str, quick: bool) -> CliResult {
     };
     if let Some(d) = f.get(3) {
         // one run of `d` s, then this process's peak memory (kB)
-        let mut scene = tirecontact::bench::scaling::scaling_scene(p, k, regime);
+        let mut scene = tirecontact::analysis::bench::scaling::scaling_scene(p, k, regime);
         if f.get(4).is_some() {
-            scene = tirecontact::bench::scaling::lifted(&scene);
+            scene = tirecontact::analysis::bench::scaling::lifted(&scene);
         }
         scene.duration_s = d.parse().map_err(|_| bad())?;
         let model = PreparedModel::of(&scene)?;
         let mut sim = tirecontact::Simulation::new(&model, SolverOptions::default())?;
-        tirecontact::drive::run_to_end(&mut sim, &mut (), tirecontact::drive::Watch::none())?;
+        tirecontact::solver::drive::run_to_end(
+            &mut sim,
+            &mut (),
+            tirecontact::solver::drive::Watch::none(),
+        )?;
         println!("{}", peak_rss_kb().unwrap_or_default());
         return Ok(());
     }
     let (duration, repeats) = timed_runs(quick);
-    let r = tirecontact::bench::scaling::measure(p, k, regime, duration, repeats)?;
+    let r = tirecontact::analysis::bench::scaling::measure(p, k, regime, duration, repeats)?;
     println!("{}", r.to_line());
     Ok(())
 }

@@ -1,7 +1,8 @@
 //! The researcher tools' side of `App::apply` and of the frame loop.
 
 use super::App;
-use crate::compare::PinnedRun;
+use crate::analysis::compare::PinnedRun;
+use crate::analysis::spectrum::Window;
 use crate::gui::chrome::dialogs::Message;
 use crate::gui::chrome::file_prompt::{FileAction, FilePrompt};
 use crate::gui::model::command::{Command, ResearchCommand, View};
@@ -17,7 +18,6 @@ use crate::gui::research::workbench_job::{WorkbenchJob, key_of};
 use crate::gui::views::{
     compare_view, fidelity_view, spectra_view, sweep_view, wall_time_text, workbench_view,
 };
-use crate::spectrum::Window;
 use std::path::Path;
 
 impl App {
@@ -66,7 +66,7 @@ impl App {
                 let r = match self.research.sweep.result() {
                     Some(res) => {
                         let mut buf = Vec::new();
-                        crate::sweep::report::write_csv(
+                        crate::studies::sweep::report::write_csv(
                             &mut buf,
                             &res.request.param,
                             &res.points,
@@ -85,7 +85,7 @@ impl App {
             ResearchCommand::ExportSweepPng(path) => {
                 let r = match self.research.sweep.result() {
                     Some(res) => {
-                        let fig = crate::sweep::report::figure(
+                        let fig = crate::studies::sweep::report::figure(
                             &format!("{}: sweep of {}", res.scene_name, res.request.param),
                             &format!(
                                 "{} values from {} to {}; steady part t >= ramp_s of each run",
@@ -203,7 +203,9 @@ impl App {
     /// Applies `f` to the workbench (a pick, a drop, the automatic choice).
     fn workbench_do(
         &mut self,
-        f: impl FnOnce(&mut crate::identify::workbench::Workbench) -> Result<(), crate::lsce::LsceError>,
+        f: impl FnOnce(
+            &mut crate::identify::workbench::Workbench,
+        ) -> Result<(), crate::model::lsce::LsceError>,
     ) {
         let r = match &mut self.research.workbench {
             Some((_, Ok(w))) => f(w).map_err(|e| e.to_string()),
@@ -476,5 +478,5 @@ impl App {
 }
 
 fn write_file(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    crate::fsio::write_atomic(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+    crate::base::fsio::write_atomic(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
 }

@@ -2,10 +2,10 @@
 //! budget, and scene edits (road and speed live, anything else restarts).
 
 use super::*;
-use crate::drive::Watch;
 use crate::gui::jobs::prepare::{PrepareJob, Then, needs_preparing, reads_road_file, waiting_note};
 use crate::gui::model::prepared::Prepared;
-use crate::road::RoadProfile;
+use crate::model::road::RoadProfile;
+use crate::solver::drive::Watch;
 
 /// Said after an error that paused the run.
 pub const PAUSED_NOTE: &str = "The run is paused: press Play (Space) to go on.";
@@ -295,7 +295,7 @@ impl App {
         let r = if self.sim.finished() {
             Ok(0)
         } else {
-            crate::drive::run(
+            crate::solver::drive::run(
                 &mut self.sim,
                 want,
                 &mut (&mut self.history, &mut self.phases),

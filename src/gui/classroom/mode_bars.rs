@@ -3,11 +3,11 @@
 
 use super::{Classroom, point_picker};
 use crate::Simulation;
+use crate::base::modal::Mode;
 use crate::gui::model::command::Command;
 use crate::gui::model::mute_set::Mutes;
 use crate::gui::views::XTitle;
 use crate::gui::views::scene_view;
-use crate::modal::Mode;
 use egui::{Color32, RichText, Ui};
 use egui_plot::{Bar, BarChart, Corner, Legend, Plot};
 

@@ -7,17 +7,17 @@
 //! where they were made: the file holds exactly the run that was shown, at
 //! full resolution, whatever the history's decimation.
 
-use crate::drive::{self, Probe, Watch};
-use crate::error::RunError;
+use crate::base::error::RunError;
+use crate::base::modal::Mode;
 use crate::gui::jobs::{Job, Progress};
 use crate::gui::model::history::History;
 use crate::identify::{ModeCache, PreparedModel};
-use crate::modal::Mode;
+use crate::model::road::{Road, RoadProfile};
 use crate::output::csv::RunWriter;
 use crate::output::figures::{Figure, render_png};
 use crate::output::record::{FigureSpec, PLOT_SAMPLES, RunPanel};
 use crate::output::summary::{scene_summary, short_num};
-use crate::road::{Road, RoadProfile};
+use crate::solver::drive::{self, Probe, Watch};
 use crate::{Scene, Simulation, SolverOptions};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -154,7 +154,8 @@ pub fn write_csv(
         .map_err(|e| e.to_string())?;
         w.finish().map_err(|e| e.to_string())?;
     }
-    crate::fsio::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    crate::base::fsio::write_atomic(path, &bytes)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(format!(
         "wrote {} ({} steps, t = 0 … {:.5} s)",
         path.display(),

@@ -10,7 +10,7 @@
 use crate::gui::jobs::Job;
 use crate::gui::model::prepared::Prepared;
 use crate::identify::{ModeCache, PreparedModel};
-use crate::road::{Road, RoadProfile};
+use crate::model::road::{Road, RoadProfile};
 use crate::{Scene, SceneError};
 use std::path::PathBuf;
 use std::sync::Arc;

@@ -276,7 +276,7 @@ pub fn decimate_min_max(t: &[f64], y: impl Fn(usize) -> f64, buckets: usize) -> 
     out
 }
 
-impl crate::drive::Probe for History {
+impl crate::solver::drive::Probe for History {
     fn start(&mut self, sim: &Simulation) -> std::io::Result<()> {
         self.record_initial(sim);
         Ok(())
@@ -318,7 +318,10 @@ mod tests {
     #[test]
     fn history_stays_bounded_and_doubles_stride() {
         let scene = Scene::parse(
-            include_str!("../../../presets/single_mode.ron"),
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/single_mode.ron"
+            )),
             "single_mode",
         )
         .unwrap();
@@ -343,7 +346,10 @@ mod tests {
     #[test]
     fn force_without_impacts_removes_exactly_the_impact_impulses() {
         let scene = Scene::parse(
-            include_str!("../../../presets/single_mode.ron"),
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/single_mode.ron"
+            )),
             "single_mode",
         )
         .unwrap();
@@ -388,7 +394,10 @@ mod tests {
         use crate::scene::ContactScheme;
         for scheme in [ContactScheme::Located, ContactScheme::Paper] {
             let mut scene = Scene::parse(
-                include_str!("../../../presets/three_points.ron"),
+                include_str!(concat!(
+                    env!("CARGO_MANIFEST_DIR"),
+                    "/presets/three_points.ron"
+                )),
                 "three_points",
             )
             .unwrap();

@@ -2,8 +2,8 @@
 //! residue (or shape) is scaled by 0 in the scene, which restarts the run;
 //! un-muting every mode gives the original tyre back exactly.
 
-use crate::convolution::ModalBasis;
-use crate::linalg;
+use crate::base::linalg;
+use crate::model::convolution::ModalBasis;
 use crate::scene::{Contact, Mode, Tyre};
 
 /// Which modes are muted, and the tyre to give back when none is.
@@ -87,7 +87,7 @@ pub fn refusal(base: &[Mode], muted: &[bool], p: usize, contact: &Contact) -> Op
         Err(e) => return Some(format!("the playing modes' contact system: {e}")),
     };
     (rank < p).then(|| {
-        let modes = crate::error::count(playing, "playing mode");
+        let modes = crate::base::error::count(playing, "playing mode");
         format!(
             "Not applied: {modes} cannot hold all {p} points on the road at once (they move \
              them in only {} of the {p} independent ways rigid contact needs): keep more \
@@ -103,7 +103,14 @@ mod tests {
     use crate::Scene;
 
     fn three() -> Scene {
-        Scene::parse(include_str!("../../../presets/three_points.ron"), "three").unwrap()
+        Scene::parse(
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/three_points.ron"
+            )),
+            "three",
+        )
+        .unwrap()
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! `jobs::prepare`).
 
 use crate::identify::PreparedModel;
-use crate::road::RoadProfile;
+use crate::model::road::RoadProfile;
 
 /// What was prepared.
 #[derive(Debug, Clone, PartialEq)]

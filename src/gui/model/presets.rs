@@ -8,22 +8,31 @@ pub const SHIPPED: &[(&str, &str, &str)] = &[
     (
         "Single mode on a sine road",
         "single_mode.ron",
-        include_str!("../../../presets/single_mode.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/single_mode.ron"
+        )),
     ),
     (
         "Three points",
         "three_points.ron",
-        include_str!("../../../presets/three_points.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/three_points.ron"
+        )),
     ),
     (
         "Paper: ring tyre, five points",
         "paper.ron",
-        include_str!("../../../presets/paper.ron"),
+        include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/presets/paper.ron")),
     ),
     (
         "Three points on a random road (ISO 8608 class C)",
         "random_road.ron",
-        include_str!("../../../presets/random_road.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/random_road.ron"
+        )),
     ),
 ];
 
@@ -32,42 +41,66 @@ pub const GUIDED: &[(&str, &str, &str)] = &[
     (
         "1a Soft tyre",
         "guided_1a_soft_tyre.ron",
-        include_str!("../../../presets/guided_1a_soft_tyre.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/guided_1a_soft_tyre.ron"
+        )),
     ),
     (
         "1b Stiff tyre",
         "guided_1b_stiff_tyre.ron",
-        include_str!("../../../presets/guided_1b_stiff_tyre.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/guided_1b_stiff_tyre.ron"
+        )),
     ),
     (
         "2a Low damping",
         "guided_2a_low_damping.ron",
-        include_str!("../../../presets/guided_2a_low_damping.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/guided_2a_low_damping.ron"
+        )),
     ),
     (
         "2b High damping",
         "guided_2b_high_damping.ron",
-        include_str!("../../../presets/guided_2b_high_damping.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/guided_2b_high_damping.ron"
+        )),
     ),
     (
         "3a Slow rolling",
         "guided_3a_slow.ron",
-        include_str!("../../../presets/guided_3a_slow.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/guided_3a_slow.ron"
+        )),
     ),
     (
         "3b Fast rolling",
         "guided_3b_fast.ron",
-        include_str!("../../../presets/guided_3b_fast.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/guided_3b_fast.ron"
+        )),
     ),
     (
         "4a Long road wavelength",
         "guided_4a_long_wavelength.ron",
-        include_str!("../../../presets/guided_4a_long_wavelength.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/guided_4a_long_wavelength.ron"
+        )),
     ),
     (
         "4b Short road wavelength",
         "guided_4b_short_wavelength.ron",
-        include_str!("../../../presets/guided_4b_short_wavelength.ron"),
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/guided_4b_short_wavelength.ron"
+        )),
     ),
 ];
 

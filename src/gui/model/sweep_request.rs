@@ -3,7 +3,7 @@
 //! sweep, and how the sweep ended. The sweep runs in `research::sweep_job`.
 
 use crate::Scene;
-use crate::sweep::{self, Sweep, SweepError, SweepPoint};
+use crate::studies::sweep::{self, Sweep, SweepError, SweepPoint};
 
 /// What the user asked to sweep.
 #[derive(Debug, Clone, PartialEq)]

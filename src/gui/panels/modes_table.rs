@@ -5,7 +5,7 @@ use super::{modes_mut, push_edit};
 use crate::Scene;
 use crate::gui::model::command::Command;
 use crate::gui::widgets::fields::{Apply, NumField, section};
-use crate::ring::RingParams;
+use crate::model::ring::RingParams;
 use crate::scene::{Mode, Tyre};
 use egui::{Grid, RichText, Ui};
 
@@ -230,7 +230,7 @@ fn measured_summary(
     ui: &mut Ui,
     scene: &Scene,
     file: &std::path::Path,
-    identification: &crate::lsce::IdentifyOptions,
+    identification: &crate::model::lsce::IdentifyOptions,
     modes: &[Mode],
     cmds: &mut Vec<Command>,
 ) {

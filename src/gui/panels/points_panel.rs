@@ -145,7 +145,10 @@ mod tests {
     #[test]
     fn adding_and_removing_points_keeps_the_scene_valid() {
         let scene = Scene::parse(
-            include_str!("../../../presets/single_mode.ron"),
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/single_mode.ron"
+            )),
             "single_mode",
         )
         .unwrap();

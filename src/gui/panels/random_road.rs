@@ -6,7 +6,7 @@ use super::push_edit;
 use crate::Scene;
 use crate::gui::model::command::Command;
 use crate::gui::widgets::fields::{Apply, NumField};
-use crate::road::{Road, RoadClass};
+use crate::model::road::{Road, RoadClass};
 use egui::{Grid, Ui};
 
 pub const CLASSES: [(RoadClass, &str); 8] = [

@@ -5,7 +5,7 @@ use super::push_edit;
 use crate::Scene;
 use crate::gui::model::command::Command;
 use crate::gui::widgets::fields::{Apply, NumField, section};
-use crate::road::{Harmonic, Road};
+use crate::model::road::{Harmonic, Road};
 use egui::{Grid, Ui};
 
 pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {

@@ -1,5 +1,5 @@
 //! A/B comparison in the GUI (no egui here): the current run as a
-//! `Recording` built from the History, so that `crate::compare::PinnedRun`
+//! `Recording` built from the History, so that `crate::analysis::compare::PinnedRun`
 //! pins it and differences it.
 
 use crate::gui::model::history::{History, Quantity};
@@ -31,13 +31,16 @@ pub fn pin_label(scene: &crate::Scene, t_s: f64) -> String {
 mod tests {
     use super::*;
     use crate::Scene;
-    use crate::compare::PinnedRun;
-    use crate::simulation::Simulation;
+    use crate::analysis::compare::PinnedRun;
+    use crate::solver::simulation::Simulation;
 
     #[test]
     fn a_run_against_itself_is_zero_and_a_changed_run_is_not() {
         let scene = Scene::parse(
-            include_str!("../../../presets/three_points.ron"),
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/three_points.ron"
+            )),
             "three_points",
         )
         .unwrap();

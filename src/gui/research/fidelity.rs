@@ -1,12 +1,12 @@
 //! The fidelity panel's logic (no egui here): the source Green functions of
 //! a ring tyre kept as the reference, also after the scene was turned into
-//! an editable modal model, and the relative L2 error (crate::fidelity) of
+//! an editable modal model, and the relative L2 error (crate::analysis::fidelity) of
 //! the modes in use against it, cached by the modes.
 
 use crate::Scene;
-use crate::fidelity::{Fidelity, band_frequencies, relative_l2_error, removal_costs};
-use crate::modal::ModalModel;
-use crate::ring::RingParams;
+use crate::analysis::fidelity::{Fidelity, band_frequencies, relative_l2_error, removal_costs};
+use crate::base::modal::ModalModel;
+use crate::model::ring::RingParams;
 use crate::scene::{Mode, Tyre};
 
 /// Frequencies (mid-points of equal slices of the band) of the error figure.
@@ -148,10 +148,14 @@ impl FidelityCache {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fidelity::without_mode;
+    use crate::analysis::fidelity::without_mode;
 
     fn paper() -> Scene {
-        Scene::parse(include_str!("../../../presets/paper.ron"), "paper").unwrap()
+        Scene::parse(
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/presets/paper.ron")),
+            "paper",
+        )
+        .unwrap()
     }
 
     #[test]

@@ -7,10 +7,10 @@
 //! sends its figures through a channel.
 
 use super::fidelity::{FIDELITY_FREQS, FidelityFigures, FidelityRef};
-use crate::fidelity::{band_frequencies, relative_l2_error, without_mode};
+use crate::analysis::fidelity::{band_frequencies, relative_l2_error, without_mode};
+use crate::base::modal::ModalModel;
+use crate::base::modal::Mode;
 use crate::gui::jobs::Job;
-use crate::modal::ModalModel;
-use crate::modal::Mode;
 
 /// What the figures depend on: the reference, the points' positions (m)
 /// and the modes.
@@ -100,7 +100,11 @@ mod tests {
     use std::sync::atomic::{AtomicU64, Ordering};
 
     fn paper_key() -> FidelityKey {
-        let scene = Scene::parse(include_str!("../../../presets/paper.ron"), "paper").unwrap();
+        let scene = Scene::parse(
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/presets/paper.ron")),
+            "paper",
+        )
+        .unwrap();
         let r = FidelityRef::of_scene(&scene).unwrap();
         let x: Vec<f64> = scene.points.iter().map(|p| p.x_m).collect();
         let mut modes = r.ring.modes(&x);

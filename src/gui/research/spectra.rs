@@ -1,11 +1,11 @@
 //! Spectra of the steady part of the current run, from the recorded
 //! History samples (no egui here): the uniformly spaced samples after the
-//! ramp, their Hann-windowed spectra (`crate::spectrum`), and a cache keyed
+//! ramp, their Hann-windowed spectra (`crate::analysis::spectrum`), and a cache keyed
 //! by the history's length so they are recomputed only when the run moved.
 
+use crate::analysis::spectrum::run::RunSpectra;
+use crate::analysis::spectrum::{Spectrum, Window, spectrum};
 use crate::gui::model::history::{History, Quantity};
-use crate::spectrum::run::RunSpectra;
-use crate::spectrum::{Spectrum, Window, spectrum};
 
 /// The part of the history a spectrum was computed from.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -98,10 +98,10 @@ impl SpectraInput {
         }
         let (k0, k1) = steady_range(h.times(), ramp_s, spacing);
         let n = k1 - k0;
-        if n < crate::spectrum::MIN_SAMPLES {
+        if n < crate::analysis::spectrum::MIN_SAMPLES {
             return Err(format!(
                 "{n} sample(s) after the ramp (t ≥ {ramp_s} s): play the run further (at least {} samples are needed)",
-                crate::spectrum::MIN_SAMPLES
+                crate::analysis::spectrum::MIN_SAMPLES
             ));
         }
         let signal = |what: Quantity, i: usize| -> Vec<f64> {
@@ -282,7 +282,7 @@ impl<T> HistoryCache<T> {
 mod tests {
     use super::*;
     use crate::Scene;
-    use crate::simulation::Simulation;
+    use crate::solver::simulation::Simulation;
 
     fn key(len: usize) -> HistoryKey {
         HistoryKey {
@@ -335,7 +335,10 @@ mod tests {
         // compare the tone found in the history spectrum with a spectrum
         // of the same samples recomputed here by a direct DFT at that bin
         let mut scene = Scene::parse(
-            include_str!("../../../presets/single_mode.ron"),
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/single_mode.ron"
+            )),
             "single_mode",
         )
         .unwrap();
@@ -352,7 +355,7 @@ mod tests {
         assert!(hs.span.t0_s >= scene.ramp_s);
         assert_eq!(s.num_samples, hs.span.samples);
         assert!((s.df_hz - hs.span.df_hz()).abs() < 1e-12);
-        let marks = crate::spectrum::markers(&scene, &[], 0.5 / scene.dt_s, 1);
+        let marks = crate::analysis::spectrum::markers(&scene, &[], 0.5 / scene.dt_s, 1);
         if let Some(&(_, f0)) = marks.excitation_hz.first() {
             let tone = s.tone(f0, 3.0 * s.df_hz).unwrap();
             assert!(

@@ -6,8 +6,8 @@
 //! that was restarted meanwhile is dropped.
 
 use super::spectra::{HistoryKey, HistorySpectra, SpectraInput};
+use crate::analysis::spectrum::Window;
 use crate::gui::jobs::Job;
-use crate::spectrum::Window;
 
 /// Below this many samples to transform (in all spectra) the spectra are
 /// computed at once on the UI thread (a few ms at most): no "computing…"
@@ -74,7 +74,10 @@ mod tests {
 
     fn run(steps: usize) -> History {
         let scene = Scene::parse(
-            include_str!("../../../presets/three_points.ron"),
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/three_points.ron"
+            )),
             "three_points",
         )
         .unwrap();

@@ -3,7 +3,7 @@
 use super::fidelity::{FidelityCache, FidelityRef};
 use super::spectra::{HistoryCache, HistorySpectra};
 use super::sweep_job::SweepState;
-use crate::compare::{PinnedRun, RunDifference};
+use crate::analysis::compare::{PinnedRun, RunDifference};
 
 /// Presentation options of the spectra view.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,5 +1,5 @@
 //! A parameter sweep run from the GUI on a background thread (no egui here):
-//! the request is checked at once, the runs go to `crate::sweep::run_sweep`
+//! the request is checked at once, the runs go to `crate::studies::sweep::run_sweep`
 //! on every core, and the frame loop polls progress and the outcome; a
 //! cancel flag stops the runs.
 
@@ -7,7 +7,7 @@ use crate::Scene;
 use crate::gui::jobs::Job;
 use crate::gui::model::sweep_request::{SweepEnd, SweepRequest, SweepResult};
 use crate::identify::ModeCache;
-use crate::sweep::{self, SweepError, SweepPoint};
+use crate::studies::sweep::{self, SweepError, SweepPoint};
 use std::sync::Arc;
 
 /// A sweep running on a background thread.
@@ -179,7 +179,10 @@ mod tests {
 
     fn scene() -> Scene {
         let mut s = Scene::parse(
-            include_str!("../../../presets/single_mode.ron"),
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/single_mode.ron"
+            )),
             "single_mode",
         )
         .unwrap();

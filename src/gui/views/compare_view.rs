@@ -8,7 +8,7 @@ use super::XTitle;
 use super::time_plots::{clip_at, clip_checkbox, clip_level, force_range, impact_marks, y_range};
 use super::{axis_title, legend_place, point_color};
 use crate::Scene;
-use crate::compare::{PinnedRun, RunDifference};
+use crate::analysis::compare::{PinnedRun, RunDifference};
 use crate::gui::model::command::{Command, ResearchCommand};
 use crate::gui::model::history::{History, Quantity, decimate_min_max};
 use crate::gui::research::state::CompareOptions;

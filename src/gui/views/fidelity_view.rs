@@ -1,6 +1,6 @@
 //! The fidelity panel: the ring tyre's source Green functions beside the
 //! modal sum in use (|G_ij(f)| over the band, per point pair), and the live
-//! relative L2 error (crate::fidelity) with its band, plus what removing
+//! relative L2 error (crate::analysis::fidelity) with its band, plus what removing
 //! each mode would cost. The reference is kept by the app after "Edit as a
 //! modal model", so detuning or removing modes updates the figure.
 
@@ -9,9 +9,9 @@ use super::log_marks;
 use super::point_color;
 use super::spectra_view::log_label;
 use crate::Scene;
+use crate::base::modal::ModalModel;
 use crate::gui::research::fidelity::{FidelityFigures, FidelityRef};
 use crate::gui::research::state::FidelityOptions;
-use crate::modal::ModalModel;
 use crate::scene::{Mode, Tyre};
 use egui::{Color32, RichText, Ui};
 use egui_plot::{Bar, BarChart, Corner, HLine, Legend, Line, LineStyle, Plot};

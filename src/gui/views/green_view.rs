@@ -5,8 +5,8 @@
 use super::XTitle;
 use super::point_color;
 use crate::Scene;
-use crate::modal::ModalModel;
-use crate::modal::Mode;
+use crate::base::modal::ModalModel;
+use crate::base::modal::Mode;
 use egui::{Color32, Ui};
 use egui_plot::{Corner, Legend, Line, LineStyle, Plot, VLine};
 
@@ -179,7 +179,10 @@ mod tests {
     #[test]
     fn windows_cover_the_modes() {
         let scene = Scene::parse(
-            include_str!("../../../presets/single_mode.ron"),
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/single_mode.ron"
+            )),
             "single_mode",
         )
         .unwrap();

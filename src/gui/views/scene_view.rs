@@ -6,7 +6,7 @@
 use super::XTitle;
 use super::{CONTACT_COLOR, FLIGHT_COLOR};
 use crate::Simulation;
-use crate::road::{Road, ramp};
+use crate::model::road::{Road, ramp};
 use egui::{Color32, RichText, Ui};
 use egui_plot::{Arrows, Corner, GridMark, Legend, Line, LineStyle, MarkerShape, Plot, Points};
 

@@ -7,12 +7,12 @@
 use super::XTitle;
 use super::point_color;
 use crate::Scene;
+use crate::analysis::spectrum::run::DEFAULT_BANDS_HZ;
+use crate::analysis::spectrum::{Spectrum, band_label, markers};
+use crate::base::modal::Mode;
 use crate::gui::model::command::{Command, ResearchCommand};
 use crate::gui::research::spectra::{HistoryCache, HistorySpectra};
 use crate::gui::research::state::SpectraOptions;
-use crate::modal::Mode;
-use crate::spectrum::run::DEFAULT_BANDS_HZ;
-use crate::spectrum::{Spectrum, band_label, markers};
 use egui::{Color32, RichText, Ui};
 use egui_plot::{Line, LineStyle, Plot, PlotPoint, Text, VLine};
 
@@ -258,7 +258,7 @@ struct Plots {
     h: f32,
     max_hz: f64,
     log: bool,
-    marks: crate::spectrum::Markers,
+    marks: crate::analysis::spectrum::Markers,
     modal: Vec<f64>,
     total_color: Color32,
     shown: Vec<bool>,
@@ -337,7 +337,7 @@ fn narrow(
 }
 
 /// Third-octave bands of the forces, drawn as steps over the band edges.
-fn bands(ui: &mut Ui, pl: &Plots, s: &crate::spectrum::run::RunSpectra, nyquist: f64) {
+fn bands(ui: &mut Ui, pl: &Plots, s: &crate::analysis::spectrum::run::RunSpectra, nyquist: f64) {
     let hi = DEFAULT_BANDS_HZ.1.min(nyquist / 10f64.powf(0.05));
     db_y_axis(Plot::new("tirecontact.spectra_bands"))
         .height(pl.h)

@@ -1,4 +1,4 @@
-//! The sweep panel: a numeric scene field (every path `crate::sweep`
+//! The sweep panel: a numeric scene field (every path `crate::studies::sweep`
 //! accepts), from, to, steps; Run starts it on a background thread with a
 //! progress bar and Cancel; the results (max force, force RMS, contact
 //! fraction, rolling-noise band levels) are plotted against the parameter
@@ -7,13 +7,13 @@
 use super::XTitle;
 use super::point_color;
 use crate::Scene;
+use crate::analysis::metrics::ContactSummary;
+use crate::analysis::spectrum::{band_label, third_octave_bands};
 use crate::gui::model::command::{Command, ResearchCommand};
 use crate::gui::model::sweep_request::{SweepRequest, SweepResult};
 use crate::gui::research::state::SweepForm;
 use crate::gui::research::sweep_job::{SweepState, default_threads};
-use crate::metrics::ContactSummary;
-use crate::spectrum::{band_label, third_octave_bands};
-use crate::sweep::{RunSummary, get_param, param_paths};
+use crate::studies::sweep::{RunSummary, get_param, param_paths};
 use egui::{Color32, RichText, Ui};
 use egui_plot::{Line, MarkerShape, Plot, Points};
 

@@ -11,7 +11,7 @@ use super::XTitle;
 use crate::Scene;
 use crate::gui::model::command::{Command, ResearchCommand};
 use crate::identify::workbench::Workbench;
-use crate::lsce::Stability;
+use crate::model::lsce::Stability;
 use crate::scene::Tyre;
 use egui::{Color32, RichText, Ui};
 use egui_plot::{Line, MarkerShape, Plot, Points};

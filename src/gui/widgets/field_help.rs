@@ -88,7 +88,7 @@ impl FieldHelp {
 /// known here.
 pub fn help(name: &str) -> Option<FieldHelp> {
     let speed = "rolling speed of the tyre over the road (0: the road stands still)";
-    Some(match crate::sweep::wildcard(name).as_str() {
+    Some(match crate::studies::sweep::wildcard(name).as_str() {
         "road.amplitude_m" => FieldHelp::new(
             "height of the sine road's crests above its mean line (half the crest-to-trough height)",
         )
@@ -183,7 +183,7 @@ mod tests {
     #[test]
     fn indices_do_not_matter() {
         assert_eq!(
-            crate::sweep::wildcard("tyre.modes[12].residue[0][3]"),
+            crate::studies::sweep::wildcard("tyre.modes[12].residue[0][3]"),
             "tyre.modes[*].residue[*][*]"
         );
         assert_eq!(help("tyre.modes[7].freq_hz"), help("tyre.modes[0].freq_hz"));

@@ -11,7 +11,7 @@ use tirecontact::gui::classroom::{
     EVENT_COLOR, EVENT_HOLD_WALL_S, EVENT_RING_PX, SLOW_MOTION, phase_text,
 };
 use tirecontact::gui::{App, Command};
-use tirecontact::phase::PhaseTracker;
+use tirecontact::solver::phase::PhaseTracker;
 use tirecontact::{Scene, Simulation};
 
 fn check(size: [f32; 2], steps: u64) -> usize {

@@ -22,10 +22,10 @@ use std::path::{Path, PathBuf};
 use tirecontact::Scene;
 use tirecontact::gui::classroom::FONT_SCALE;
 use tirecontact::gui::{App, Command};
+use tirecontact::model::road::{Road, RoadClass};
 use tirecontact::output::animation::{FrameSettings, frame_path};
-use tirecontact::phase::ContactPhase;
-use tirecontact::road::{Road, RoadClass};
 use tirecontact::scene::{Contact, Tyre};
+use tirecontact::solver::phase::ContactPhase;
 
 fn preset(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

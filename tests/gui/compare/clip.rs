@@ -9,7 +9,7 @@ use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::compare::PinnedRun;
+use tirecontact::analysis::compare::PinnedRun;
 use tirecontact::gui::Quantity;
 use tirecontact::gui::View;
 use tirecontact::gui::research::compare::recording_without_impacts;

@@ -14,16 +14,16 @@ use crate::support::preset;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::sync::atomic::AtomicBool;
-use tirecontact::fidelity::{band_frequencies, relative_l2_error};
+use tirecontact::analysis::fidelity::{band_frequencies, relative_l2_error};
+use tirecontact::base::modal::ModalModel;
 use tirecontact::gui::ResearchCommand;
 use tirecontact::gui::SweepState;
 use tirecontact::gui::View;
 use tirecontact::gui::research::fidelity::FIDELITY_FREQS;
 use tirecontact::gui::{App, Command};
-use tirecontact::modal::ModalModel;
-use tirecontact::road::Road;
+use tirecontact::model::road::Road;
 use tirecontact::scene::Tyre;
-use tirecontact::sweep::{Sweep, linspace, run_sweep};
+use tirecontact::studies::sweep::{Sweep, linspace, run_sweep};
 
 /// Opens a researcher view through the "Research" menu of the top bar.
 fn show(h: &mut Harness<'_, App>, label: &str) {
@@ -126,7 +126,7 @@ fn a_sweep_from_the_gui_equals_the_library_sweep() {
             csv.clone(),
         )));
     let mut expected = Vec::new();
-    tirecontact::sweep::report::write_csv(&mut expected, "speed_mps", &lib, 3).unwrap();
+    tirecontact::studies::sweep::report::write_csv(&mut expected, "speed_mps", &lib, 3).unwrap();
     assert_eq!(std::fs::read(&csv).unwrap(), expected);
     let png = dir.join("sweep.png");
     h.state_mut()

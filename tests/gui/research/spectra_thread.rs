@@ -6,10 +6,10 @@ use crate::harness::{advance, harness};
 use egui_kittest::kittest::Queryable;
 use std::path::Path;
 use tirecontact::Scene;
+use tirecontact::analysis::spectrum::Window;
 use tirecontact::gui::View;
 use tirecontact::gui::research::spectra::history_spectra;
 use tirecontact::gui::{App, Command};
-use tirecontact::spectrum::Window;
 
 #[test]
 fn a_long_run_s_spectra_arrive_from_a_background_thread() {

@@ -13,7 +13,7 @@ use tirecontact::Scene;
 use tirecontact::gui::ResearchCommand;
 use tirecontact::gui::views::workbench_view::DIAGRAM_PLOT_ID;
 use tirecontact::gui::{App, Command, View};
-use tirecontact::lsce::IdentifyOptions;
+use tirecontact::model::lsce::IdentifyOptions;
 use tirecontact::scene::Tyre;
 
 /// The three-point scene with the pyuff fixture's exact impulse responses

@@ -1,0 +1,374 @@
+//! How the cost of a step grows with the number of points `P` and of
+//! rank-1 modes `K` ([`scaling_scene`]: the middle third of the points
+//! pressed on a gentle sine road, the others lifted clear): wall time per
+//! step, the contact's share (against the same scene lifted off the road),
+//! and the fitted exponents of `time per step ∝ P^a`, `∝ K^b`, in two
+//! regimes ([`Regime`]). With the paper's rigid contact the synthetic
+//! tyre's smooth shapes lift the neighbours of a pressed point: about one
+//! point is on the road whatever `P`, a small active set. With a soft tread
+//! spring at each point the whole pressed third is on the road, and the
+//! dense contact solve of `2|S|` unknowns grows with `P`.
+
+pub mod report;
+
+use crate::analysis::bench::BenchError;
+use crate::analysis::bench::scenes::many_points;
+use crate::identify::PreparedModel;
+use crate::model::road::Road;
+use crate::output::figures::{Figure, Panel, Series, Style};
+use crate::solver::drive::{Watch, run_to_end};
+use crate::solver::simulation::{Simulation, SolverOptions};
+use std::time::Instant;
+
+/// Preload of the footprint's centre point (m).
+pub const PRELOAD_M: f64 = 0.002;
+
+/// Total tread stiffness of a [`Regime::Tread`] scene (N/m), shared by its
+/// points: a tenth of the synthetic tyre's stiffness in its first mode
+/// (40 Hz, unit modal mass: about 6.3e4 N/m), so that the tread, not the
+/// tyre, takes the preload and the whole footprint stays on the road.
+pub const TREAD_TOTAL_N_M: f64 = 6e3;
+
+/// The contact of a scaling scene, which sets how many points are on the
+/// road.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Regime {
+    /// The paper's rigid contact: the smooth shapes lift the neighbours of
+    /// a pressed point, about one point is on the road whatever `P`.
+    Rigid,
+    /// A tread spring at each point (compliant contact), soft against the
+    /// tyre: the pressed third of the points is on the road.
+    Tread,
+}
+
+impl Regime {
+    pub const ALL: [Regime; 2] = [Regime::Rigid, Regime::Tread];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Regime::Rigid => "rigid contact",
+            Regime::Tread => "tread springs",
+        }
+    }
+
+    /// The name in `--scaling-one` and the CSV.
+    pub fn key(self) -> &'static str {
+        match self {
+            Regime::Rigid => "rigid",
+            Regime::Tread => "tread",
+        }
+    }
+
+    pub fn from_key(key: &str) -> Option<Regime> {
+        Regime::ALL.into_iter().find(|r| r.key() == key)
+    }
+}
+
+/// [`many_points`] with a footprint: point `i` at `x_i` on a line of
+/// length `L` sits at `h_i = PRELOAD_M ((6 (x_i - x_mid) / L)² - 1)`, so
+/// the middle third is pressed (up to `PRELOAD_M` at the centre) and the
+/// rest lifted; the road is a 0.1 mm, 0.2 m sine at 10 m/s. With
+/// [`Regime::Tread`] each point has a tread of `TREAD_TOTAL_N_M / P`.
+pub fn scaling_scene(points: usize, modes: usize, regime: Regime) -> crate::Scene {
+    let mut s = many_points(points, modes);
+    let xs: Vec<f64> = s.points.iter().map(|p| p.x_m).collect();
+    let (lo, hi) = xs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    let (mid, len) = (0.5 * (lo + hi), (hi - lo).max(1e-9));
+    for p in &mut s.points {
+        let y = 6.0 * (p.x_m - mid) / len;
+        p.h_m = PRELOAD_M * (y * y - 1.0);
+    }
+    s.road = Road::Sine {
+        amplitude_m: 1e-4,
+        wavelength_m: 0.2,
+    };
+    s.speed_mps = 10.0;
+    if regime == Regime::Tread {
+        s.contact = crate::scene::Contact::Compliant {
+            stiffness_n_m: vec![TREAD_TOTAL_N_M / points as f64],
+        };
+    }
+    s.name = format!(
+        "{points} points x {modes} rank-1 modes, footprint, {}",
+        regime.label()
+    );
+    s
+}
+
+/// `scene` with every point 5 cm above the road (a 0.1 mm sine): the same
+/// tyre and steps without contact.
+pub fn lifted(scene: &crate::Scene) -> crate::Scene {
+    let mut free = scene.clone();
+    for p in &mut free.points {
+        p.h_m = 0.05;
+    }
+    free
+}
+
+/// One measured size.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScalingRow {
+    pub points: usize,
+    pub regime: Regime,
+    pub modes: usize,
+    pub steps: u64,
+    /// Wall time per step with contact (s).
+    pub step_s: f64,
+    /// Wall time per step of the same scene off the road (s).
+    pub free_step_s: f64,
+    /// Mean fraction of the points on the road at a step end.
+    pub on_road: f64,
+    /// Located events per step.
+    pub events_per_step: f64,
+    /// Factorisations of the contact system per step.
+    pub factorisations_per_step: f64,
+    /// Instructions per rolling step (callgrind), where counted.
+    pub instructions_per_step: Option<f64>,
+    /// The same off the road.
+    pub free_instructions_per_step: Option<f64>,
+}
+
+impl ScalingRow {
+    /// The share of a step spent on contact: `1 - free / with contact`.
+    pub fn contact_share(&self) -> f64 {
+        (1.0 - self.free_step_s / self.step_s).max(0.0)
+    }
+
+    /// The same share by instructions, where counted: exact, where wall
+    /// times of identical runs vary by tens of percent.
+    pub fn contact_share_instructions(&self) -> Option<f64> {
+        Some((1.0 - self.free_instructions_per_step? / self.instructions_per_step?).max(0.0))
+    }
+}
+
+/// Runs [`scaling_scene`]`(points, modes, regime)` for `duration_s` (ramp 0.01 s)
+/// with contact and lifted off the road; the fastest of `repeats` runs of
+/// each.
+pub fn measure(
+    points: usize,
+    modes: usize,
+    regime: Regime,
+    duration_s: f64,
+    repeats: usize,
+) -> Result<ScalingRow, BenchError> {
+    let mut scene = scaling_scene(points, modes, regime);
+    scene.duration_s = duration_s;
+    let time = |scene: &crate::Scene| -> Result<(f64, Simulation), BenchError> {
+        let model = PreparedModel::of(scene)?;
+        let mut best: Option<(f64, Simulation)> = None;
+        for _ in 0..repeats.max(1) {
+            let mut sim = Simulation::new(&model, SolverOptions::default())?;
+            let t = Instant::now();
+            run_to_end(&mut sim, &mut (), Watch::none())?;
+            let w = t.elapsed().as_secs_f64();
+            if best.as_ref().is_none_or(|(b, _)| w < *b) {
+                best = Some((w, sim));
+            }
+        }
+        best.ok_or(BenchError::NoRun)
+    };
+    let (wall, sim) = time(&scene)?;
+    let (free_wall, _) = time(&lifted(&scene))?;
+    let st = sim.stats();
+    let steps = st.steps.max(1);
+    Ok(ScalingRow {
+        points,
+        regime,
+        modes,
+        steps,
+        step_s: wall / steps as f64,
+        free_step_s: free_wall / steps as f64,
+        on_road: st.contact_steps.iter().sum::<u64>() as f64 / (steps as f64 * points as f64),
+        events_per_step: st.events as f64 / steps as f64,
+        factorisations_per_step: st.factorisations as f64 / steps as f64,
+        instructions_per_step: None,
+        free_instructions_per_step: None,
+    })
+}
+
+/// Least-squares slope of `ln y` against `ln x`.
+pub fn loglog_slope(xy: &[(f64, f64)]) -> f64 {
+    let n = xy.len() as f64;
+    let (lx, ly): (Vec<f64>, Vec<f64>) = xy.iter().map(|&(x, y)| (x.ln(), y.ln())).unzip();
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    let sxy: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = lx.iter().map(|x| (x - mx) * (x - mx)).sum();
+    sxy / sxx.max(f64::MIN_POSITIVE)
+}
+
+/// Least-squares line `y = a + b x` through `xy`: `(a, b)`.
+pub fn line_fit(xy: &[(f64, f64)]) -> (f64, f64) {
+    let n = xy.len() as f64;
+    let mx = xy.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = xy.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxy: f64 = xy.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xy.iter().map(|(x, _)| (x - mx) * (x - mx)).sum();
+    let b = sxy / sxx.max(f64::MIN_POSITIVE);
+    (my - b * mx, b)
+}
+
+/// What a panel of [`figure`] draws per step.
+#[derive(Clone, Copy, PartialEq)]
+enum Measure {
+    WallTime,
+    Instructions,
+}
+
+/// The figure: time per step against `P` (at fixed `K`) and against `K`
+/// (at fixed `P`), log-log, for each regime and off the road, each with
+/// its fitted exponent in the legend; below, the same for callgrind's
+/// instructions per step where every row has them. `by_p`, `by_k` hold
+/// both regimes; the free runs drawn are the rigid regime's (the same tyre
+/// lifted clear).
+pub fn figure(by_p: &[ScalingRow], by_k: &[ScalingRow]) -> Figure {
+    let panel = |rows: &[ScalingRow], by_points: bool, measure: Measure| {
+        let x = |r: &ScalingRow| (if by_points { r.points } else { r.modes }) as f64;
+        let y = |r: &ScalingRow| match measure {
+            Measure::WallTime => r.step_s * 1e6,
+            Measure::Instructions => r.instructions_per_step.unwrap_or(f64::NAN),
+        };
+        let of = |regime: Regime| rows.iter().filter(move |r| r.regime == regime);
+        let mut series: Vec<Series> = Regime::ALL
+            .iter()
+            .enumerate()
+            .map(|(i, &regime)| {
+                let xy: Vec<(f64, f64)> = of(regime).map(|r| (x(r), y(r))).collect();
+                Series {
+                    name: format!("{} (slope {:.2})", regime.label(), loglog_slope(&xy)),
+                    points: xy,
+                    style: Style::LineMarkers(4),
+                    color: Some(i),
+                }
+            })
+            .collect();
+        {
+            let free: Vec<(f64, f64)> = of(Regime::Rigid)
+                .map(|r| {
+                    (
+                        x(r),
+                        match measure {
+                            Measure::WallTime => r.free_step_s * 1e6,
+                            Measure::Instructions => {
+                                r.free_instructions_per_step.unwrap_or(f64::NAN)
+                            }
+                        },
+                    )
+                })
+                .collect();
+            series.push(Series {
+                name: format!("off the road (slope {:.2})", loglog_slope(&free)),
+                points: free,
+                style: Style::LineMarkers(4),
+                color: Some(Regime::ALL.len()),
+            });
+        }
+        let fixed = rows
+            .first()
+            .map_or(0, |r| if by_points { r.modes } else { r.points });
+        let what = match measure {
+            Measure::WallTime => "Wall time",
+            Measure::Instructions => "Instructions (callgrind)",
+        };
+        Panel {
+            title: if by_points {
+                format!("{what} against the number of points P ({fixed} rank-1 modes)")
+            } else {
+                format!("{what} against the number of rank-1 modes K ({fixed} points)")
+            },
+            x_label: if by_points {
+                "points P".into()
+            } else {
+                "modes K".into()
+            },
+            y_label: match measure {
+                Measure::WallTime => "wall time per step (µs)".into(),
+                Measure::Instructions => "instructions per step".into(),
+            },
+            series,
+            log_x: true,
+            log_y: true,
+            y_names: Vec::new(),
+        }
+    };
+    let mut panels = vec![
+        panel(by_p, true, Measure::WallTime),
+        panel(by_k, false, Measure::WallTime),
+    ];
+    let counted = |rows: &[ScalingRow]| {
+        !rows.is_empty() && rows.iter().all(|r| r.instructions_per_step.is_some())
+    };
+    if counted(by_p) && counted(by_k) {
+        panels.push(panel(by_p, true, Measure::Instructions));
+        panels.push(panel(by_k, false, Measure::Instructions));
+    }
+    Figure {
+        title: "Cost of a step against the problem's size".into(),
+        subtitle: format!(
+            "rank-1 modes; middle third pressed (up to {} mm) on a 0.1 mm sine road, 10 m/s, dt = 1e-5 s; on the road: about 1 point (rigid), the pressed third (tread)",
+            PRELOAD_M * 1e3
+        ),
+        panels,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_slope_of_a_power_law_is_its_exponent() {
+        let xy: Vec<(f64, f64)> = [5.0, 20.0, 80.0, 400.0]
+            .iter()
+            .map(|&x: &f64| (x, 3.0 * x.powf(1.7)))
+            .collect();
+        assert!((loglog_slope(&xy) - 1.7).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_line_is_fitted_through_its_points() {
+        let xy: Vec<(f64, f64)> = [10.0, 25.0, 100.0, 400.0]
+            .iter()
+            .map(|&x: &f64| (x, 8300.0 + 110.0 * x))
+            .collect();
+        let (a, b) = line_fit(&xy);
+        assert!(
+            (a - 8300.0).abs() < 1e-8 && (b - 110.0).abs() < 1e-12,
+            "{a} {b}"
+        );
+    }
+
+    #[test]
+    fn tread_springs_hold_the_pressed_third_on_the_road_and_rigid_contact_about_one_point() {
+        for (p, k) in [(30, 10), (60, 50), (90, 200)] {
+            let tread = measure(p, k, Regime::Tread, 0.03, 1).unwrap();
+            let on = tread.on_road * p as f64;
+            assert!(
+                on > 0.28 * p as f64 && on < 0.38 * p as f64,
+                "{on} of {p} on the road: {tread:?}"
+            );
+            let rigid = measure(p, k, Regime::Rigid, 0.03, 1).unwrap();
+            let on = rigid.on_road * p as f64;
+            assert!(on > 0.5 && on < 3.0, "{on} of {p} on the road: {rigid:?}");
+        }
+    }
+
+    #[test]
+    fn a_measured_size_counts_its_steps_and_the_footprint_on_the_road() {
+        // wall times are the benchmark's to compare (a loaded machine can
+        // make any two of them swap); here what a row counts must hold
+        for (p, k) in [(5, 20), (60, 20), (5, 200)] {
+            let r = measure(p, k, Regime::Rigid, 0.02, 1).unwrap();
+            // 0.02 s at dt = 1e-5 s
+            assert_eq!(r.steps, 2000, "{r:?}");
+            assert!(r.step_s > 0.0 && r.free_step_s > 0.0, "{r:?}");
+            assert!(r.step_s.is_finite() && r.free_step_s.is_finite(), "{r:?}");
+            // the footprint's centre is on the road, the lifted ends are not
+            assert!(r.on_road > 0.0 && r.on_road < 0.5, "{r:?}");
+            assert!(r.events_per_step >= 0.0 && r.factorisations_per_step >= 0.0);
+        }
+    }
+}

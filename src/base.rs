@@ -1,0 +1,7 @@
+//! Layer 0, the ground floor: errors, checked dense linear algebra, atomic file
+//! writes, modes and their Green functions.
+
+pub mod error;
+pub mod fsio;
+pub mod linalg;
+pub mod modal;

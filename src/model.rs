@@ -1,0 +1,8 @@
+//! Layer 1, the model: the ring tyre, LSCE identification, measured responses,
+//! roads and the bounded recursive convolution.
+
+pub mod convolution;
+pub mod lsce;
+pub mod measured;
+pub mod ring;
+pub mod road;

@@ -1,0 +1,611 @@
+//! Fast recursive convolution in the stable, bounded form (method §3).
+//!
+//! Per mode `k` and rank term `r` of its residue (`A_k = Σ_r a_kr b_krᵀ`; one
+//! term per mode for a mode shape, `rank A_k` terms for a residue matrix), the
+//! state is the pair
+//!
+//! ```text
+//! x_kr(t) = ∫_0^t h_k(t-τ) β_kr(τ) dτ,  v_kr(t) = ∫_0^t h_k'(t-τ) β_kr(τ) dτ,  β_kr = b_krᵀ q
+//! ```
+//!
+//! i.e. the real coordinates of method §3's rotated complex state `z`
+//! (`x = Im z / ω_d`, `v = Im(λ z) / ω_d`). Unlike `z` they stay well defined
+//! through critical damping and for two real poles, so one code path serves
+//! every `ξ >= 0`. The state is advanced exactly:
+//!
+//! ```text
+//! (x, v)(t + τ) = Φ(τ) (x, v)(t) + ∫_0^τ e^{Aσ} b q(t + τ - σ) dσ,   A = [[0, 1], [-ω², -2ξω]], b = (0, 1)
+//! ```
+//!
+//! `Φ(τ)` and the exact weights of the assumed force shape (constant, or
+//! linear through the two Gauss points, or through the step ends) come from
+//! a Taylor series of `h` on `τ / 2^s` (where `(ω + 2ξω) τ / 2^s <= 1/2`, so
+//! the series never cancels: this is where `(e^z - 1 - z)/z²` would lose
+//! digits) followed by `s` exact doublings. They are computed once per `dt`,
+//! and per sub-step only at event steps; the state is bounded for any `ω dt`.
+//!
+//! The paper's overflowing α/β form is kept in [`paper_alpha_beta`] and a
+//! naive O(N²) quadrature of method eq. 3 in [`direct`], as baseline and control.
+
+pub mod direct;
+mod kernels;
+mod mode_step;
+pub mod paper_alpha_beta;
+
+use crate::base::error::BasisError;
+use crate::base::linalg;
+use crate::base::modal::Mode;
+pub use mode_step::{ModeStep, mode_step, mode_steps_into};
+use std::f64::consts::TAU;
+
+/// Dot product with four independent accumulators (lets the compiler use
+/// SIMD lanes; the summation order is fixed, so results are deterministic).
+#[inline]
+pub fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (ca, cb) = (a[..n].chunks_exact(4), b[..n].chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    let mut acc = [0.0f64; 4];
+    for (x, y) in ca.zip(cb) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let mut s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+    for (x, y) in ra.iter().zip(rb) {
+        s += x * y;
+    }
+    s
+}
+
+/// `(a·x, a·v)` in one pass over `a`, four accumulators each.
+#[inline]
+pub fn dot2(a: &[f64], x: &[f64], v: &[f64]) -> (f64, f64) {
+    let n = a.len().min(x.len()).min(v.len());
+    let (a, x, v) = (&a[..n], &x[..n], &v[..n]);
+    let m = n - n % 4;
+    let (mut su, mut sv) = ([0.0f64; 4], [0.0f64; 4]);
+    for c in (0..m).step_by(4) {
+        for k in 0..4 {
+            su[k] += a[c + k] * x[c + k];
+            sv[k] += a[c + k] * v[c + k];
+        }
+    }
+    let (mut ru, mut rv) = (
+        (su[0] + su[1]) + (su[2] + su[3]),
+        (sv[0] + sv[1]) + (sv[2] + sv[3]),
+    );
+    for c in m..n {
+        ru += a[c] * x[c];
+        rv += a[c] * v[c];
+    }
+    (ru, rv)
+}
+
+/// Relative cut (of `|λ|` or `σ`) below which a residue's rank term is
+/// round-off ([`ModalBasis::new`]).
+pub const EXACT_RANK_TOLERANCE: f64 = 1e-13;
+
+/// The modes factored into rank terms: `A_k = Σ_r a_kr b_krᵀ`.
+#[derive(Debug, Clone)]
+pub struct ModalBasis {
+    pub num_points: usize,
+    /// `(ω, ξ)` per mode.
+    pub modes: Vec<(f64, f64)>,
+    /// Mode index of each state.
+    pub mode_of_state: Vec<usize>,
+    /// `a_s[i]`, stored point-major: `out[i * ns + s]`.
+    pub out: Vec<f64>,
+    /// `b_s[j]`, stored state-major: `inp[s * P + j]`.
+    pub inp: Vec<f64>,
+    /// The same `b_s[j]`, stored point-major: `inp_t[j * ns + s]` (the
+    /// force kernels run over contiguous states).
+    pub inp_t: Vec<f64>,
+    /// Rank terms of the modes ([`ModalBasis::num_states`]); the stored
+    /// states past them are zero padding ([`ModalBasis::stored_states`]).
+    num_terms: usize,
+}
+
+/// The stored states are a multiple of this: whole 4-wide lanes in the
+/// per-step kernels, no scalar tail. The padding states have zero input
+/// and output vectors: they stay zero and add nothing to any output.
+pub const STATE_LANES: usize = 4;
+
+impl ModalBasis {
+    /// Factors each mode: a `shape` gives one rank term; a `residue` matrix
+    /// its rank terms ([`linalg::rank_terms`]: eigendecomposition when
+    /// symmetric, SVD otherwise) above `1e-13` of the largest (rank 1 for
+    /// `φφᵀ`, 2 for the ring's degenerate pairs, at most `P`), checked to
+    /// rebuild the residue to a relative 1e-12 (Frobenius).
+    pub fn new(modes: &[Mode], num_points: usize) -> Result<Self, BasisError> {
+        Self::reduced(modes, num_points, EXACT_RANK_TOLERANCE)
+    }
+
+    /// As [`ModalBasis::new`], keeping the rank terms of each residue above
+    /// `rel_tol` of the largest (clamped to at least
+    /// [`EXACT_RANK_TOLERANCE`]): a truncated decomposition, whose error on
+    /// each residue is at most the largest dropped `|λ|` or `σ` (2-norm).
+    /// See `SolverOptions::rank_tolerance`.
+    pub fn with_rank_tolerance(
+        modes: &[Mode],
+        num_points: usize,
+        rel_tol: f64,
+    ) -> Result<Self, BasisError> {
+        Self::reduced(modes, num_points, rel_tol.max(EXACT_RANK_TOLERANCE))
+    }
+
+    /// One state per (mode, source) as method §3 states it, without rank
+    /// reduction: the "before" of the rank-1 optimisation, for benchmarks,
+    /// and a representation of the same model that decomposes nothing.
+    pub fn per_source(modes: &[Mode], num_points: usize) -> Self {
+        let p = num_points;
+        let mut terms = Vec::with_capacity(modes.len() * p);
+        for (k, m) in modes.iter().enumerate() {
+            let a = m.residue_matrix();
+            for j in 0..p {
+                let mut e = vec![0.0; p];
+                e[j] = 1.0;
+                terms.push((k, (0..p).map(|i| a[i][j]).collect(), e));
+            }
+        }
+        Self::assemble(modes, p, terms)
+    }
+
+    /// The rank terms of every mode above `rel_tol` of its largest.
+    fn reduced(modes: &[Mode], num_points: usize, rel_tol: f64) -> Result<Self, BasisError> {
+        let p = num_points;
+        let mut terms: Vec<(usize, Vec<f64>, Vec<f64>)> = Vec::new();
+        for (k, m) in modes.iter().enumerate() {
+            if !m.shape.is_empty() {
+                terms.push((k, m.shape.clone(), m.shape.clone()));
+                continue;
+            }
+            let a = faer::Mat::from_fn(p, p, |i, j| m.residue[i][j]);
+            let split =
+                linalg::rank_terms(a.as_ref(), rel_tol).map_err(|source| BasisError::Residue {
+                    mode: k,
+                    freq_hz: m.freq_hz,
+                    source,
+                })?;
+            terms.extend(split.terms.into_iter().map(|(a, b)| (k, a, b)));
+        }
+        Ok(Self::assemble(modes, p, terms))
+    }
+
+    /// Stores the terms `(mode, a, b)`, padded with zero states to whole
+    /// lanes.
+    fn assemble(modes: &[Mode], p: usize, mut terms: Vec<(usize, Vec<f64>, Vec<f64>)>) -> Self {
+        let params: Vec<(f64, f64)> = modes
+            .iter()
+            .map(|m| (TAU * m.freq_hz, m.damping_ratio))
+            .collect();
+        let num_terms = terms.len();
+        // zero padding to whole lanes (on the last term's mode: any valid mode)
+        let last_mode = terms.last().map_or(0, |t| t.0);
+        while !terms.len().is_multiple_of(STATE_LANES) && !params.is_empty() {
+            terms.push((last_mode, vec![0.0; p], vec![0.0; p]));
+        }
+        let ns = terms.len();
+        let mut out = vec![0.0; p * ns];
+        let mut inp = vec![0.0; ns * p];
+        let mut inp_t = vec![0.0; ns * p];
+        for (s, (_, a, b)) in terms.iter().enumerate() {
+            for i in 0..p {
+                out[i * ns + s] = a[i];
+                inp[s * p + i] = b[i];
+                inp_t[i * ns + s] = b[i];
+            }
+        }
+        ModalBasis {
+            num_points: p,
+            modes: params,
+            mode_of_state: terms.iter().map(|t| t.0).collect(),
+            out,
+            inp,
+            inp_t,
+            num_terms,
+        }
+    }
+
+    /// States of the convolution: the rank terms of all modes.
+    pub fn num_states(&self) -> usize {
+        self.num_terms
+    }
+
+    /// Length of the stored state arrays: [`ModalBasis::num_states`] padded
+    /// with zero states to a multiple of [`STATE_LANES`].
+    pub fn stored_states(&self) -> usize {
+        self.mode_of_state.len()
+    }
+
+    /// `Σ_k A_k = g'(0+)`: velocity jump per unit impulse (1/kg), row-major.
+    pub fn velocity_jump(&self) -> Vec<f64> {
+        let (p, ns) = (self.num_points, self.stored_states());
+        let mut m = vec![0.0; p * p];
+        for i in 0..p {
+            for j in 0..p {
+                m[i * p + j] = (0..ns)
+                    .map(|s| self.out[i * ns + s] * self.inp[s * p + j])
+                    .sum();
+            }
+        }
+        m
+    }
+}
+
+/// Per-state propagators and weights for one step length (structure of arrays).
+#[derive(Debug, Clone, Default)]
+pub struct StepTable {
+    pub tau_s: f64,
+    pub phi: Vec<[f64; 4]>,
+    pub w_const: Vec<[f64; 2]>,
+    pub w1: Vec<[f64; 2]>,
+    pub w2: Vec<[f64; 2]>,
+    per_mode: Vec<ModeStep>,
+    /// The same propagators and Gauss-point weights as separate columns
+    /// (structure of arrays, for the vectorised kernels).
+    soa: StepColumns,
+}
+
+/// `Φ` and the Gauss-point weights of every state, one array per entry.
+#[derive(Debug, Clone, Default)]
+struct StepColumns {
+    pxx: Vec<f64>,
+    pxv: Vec<f64>,
+    pvx: Vec<f64>,
+    pvv: Vec<f64>,
+    w1x: Vec<f64>,
+    w1v: Vec<f64>,
+    w2x: Vec<f64>,
+    w2v: Vec<f64>,
+}
+
+impl StepTable {
+    pub fn new(basis: &ModalBasis, tau_s: f64) -> Self {
+        let mut t = StepTable::default();
+        t.fill(basis, tau_s);
+        t
+    }
+
+    /// Recomputes the table for `tau_s` in place (no allocation once sized;
+    /// event steps fill the sub-step table twice per event, method §4).
+    pub fn fill(&mut self, basis: &ModalBasis, tau_s: f64) {
+        let ns = basis.stored_states();
+        self.tau_s = tau_s;
+        mode_steps_into(&basis.modes, tau_s, &mut self.per_mode);
+        let c = &mut self.soa;
+        if self.phi.len() != ns || c.pxx.len() != ns {
+            self.phi.resize(ns, [0.0; 4]);
+            self.w_const.resize(ns, [0.0; 2]);
+            self.w1.resize(ns, [0.0; 2]);
+            self.w2.resize(ns, [0.0; 2]);
+            for col in [
+                &mut c.pxx, &mut c.pxv, &mut c.pvx, &mut c.pvv, &mut c.w1x, &mut c.w1v, &mut c.w2x,
+                &mut c.w2v,
+            ] {
+                col.resize(ns, 0.0);
+            }
+        }
+        // (slices of length `ns`: one bounds check per state, for the mode)
+        let (phi, w_const) = (&mut self.phi[..ns], &mut self.w_const[..ns]);
+        let (w1, w2) = (&mut self.w1[..ns], &mut self.w2[..ns]);
+        let (pxx, pxv, pvx, pvv) = (
+            &mut c.pxx[..ns],
+            &mut c.pxv[..ns],
+            &mut c.pvx[..ns],
+            &mut c.pvv[..ns],
+        );
+        let (w1x, w1v, w2x, w2v) = (
+            &mut c.w1x[..ns],
+            &mut c.w1v[..ns],
+            &mut c.w2x[..ns],
+            &mut c.w2v[..ns],
+        );
+        for (s, &k) in basis.mode_of_state[..ns].iter().enumerate() {
+            let m = &self.per_mode[k];
+            phi[s] = m.phi;
+            w_const[s] = m.w_const;
+            w1[s] = m.w_gauss[0];
+            w2[s] = m.w_gauss[1];
+            (pxx[s], pxv[s], pvx[s], pvv[s]) = (m.phi[0], m.phi[1], m.phi[2], m.phi[3]);
+            (w1x[s], w1v[s]) = (m.w_gauss[0][0], m.w_gauss[0][1]);
+            (w2x[s], w2v[s]) = (m.w_gauss[1][0], m.w_gauss[1][1]);
+        }
+    }
+}
+
+/// Influence of the Gauss-point forces over a step on the end displacement
+/// and velocity of every point: `u_i += Σ_j Gx1[i][j] q1_j + Gx2[i][j] q2_j`,
+/// likewise `v` (row-major P×P each).
+#[derive(Debug, Clone, Default)]
+pub struct Influence {
+    pub gx1: Vec<f64>,
+    pub gx2: Vec<f64>,
+    pub gv1: Vec<f64>,
+    pub gv2: Vec<f64>,
+}
+
+impl Influence {
+    /// Full P×P influence for a step table.
+    pub fn new(basis: &ModalBasis, table: &StepTable) -> Self {
+        let mut g = Influence::default();
+        g.fill(basis, table);
+        g
+    }
+
+    /// Recomputes in place (sized once).
+    pub fn fill(&mut self, basis: &ModalBasis, table: &StepTable) {
+        let (p, ns) = (basis.num_points, basis.stored_states());
+        for m in [&mut self.gx1, &mut self.gx2, &mut self.gv1, &mut self.gv2] {
+            m.clear();
+            m.resize(p * p, 0.0);
+        }
+        for i in 0..p {
+            for s in 0..ns {
+                let a = basis.out[i * ns + s];
+                if a == 0.0 {
+                    continue;
+                }
+                let (w1, w2) = (table.w1[s], table.w2[s]);
+                let b = &basis.inp[s * p..(s + 1) * p];
+                for j in 0..p {
+                    let ab = a * b[j];
+                    self.gx1[i * p + j] += ab * w1[0];
+                    self.gx2[i * p + j] += ab * w2[0];
+                    self.gv1[i * p + j] += ab * w1[1];
+                    self.gv2[i * p + j] += ab * w2[1];
+                }
+            }
+        }
+    }
+}
+
+/// The convolution state `(x, v)` per rank term.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModalState {
+    pub x: Vec<f64>,
+    pub v: Vec<f64>,
+}
+
+impl ModalState {
+    pub fn zeros(basis: &ModalBasis) -> Self {
+        let ns = basis.stored_states();
+        ModalState {
+            x: vec![0.0; ns],
+            v: vec![0.0; ns],
+        }
+    }
+
+    pub fn reset(&mut self) {
+        self.x.fill(0.0);
+        self.v.fill(0.0);
+    }
+
+    /// `out = Φ(τ) self` (free evolution over the step, no new force).
+    #[inline]
+    pub fn predict_into(&self, table: &StepTable, out: &mut ModalState) {
+        kernels::predict(&table.soa, &self.x, &self.v, &mut out.x, &mut out.v);
+    }
+
+    /// Adds the response at the step end to Gauss-point forces `q1`, `q2`
+    /// applied at the points listed in `active` (N).
+    #[inline]
+    pub fn add_gauss_forces(
+        &mut self,
+        basis: &ModalBasis,
+        table: &StepTable,
+        active: &[usize],
+        q1: &[f64],
+        q2: &[f64],
+    ) {
+        if active.is_empty() {
+            return;
+        }
+        kernels::add_gauss_forces(
+            &table.soa,
+            &basis.inp_t,
+            active,
+            q1,
+            q2,
+            &mut self.x,
+            &mut self.v,
+        );
+    }
+
+    /// Adds the response to forces constant over the step (N), all points.
+    pub fn add_constant_forces(&mut self, basis: &ModalBasis, table: &StepTable, q: &[f64]) {
+        let p = basis.num_points;
+        for s in 0..self.x.len() {
+            let b: f64 = basis.inp[s * p..(s + 1) * p]
+                .iter()
+                .zip(q)
+                .map(|(b, q)| b * q)
+                .sum();
+            self.x[s] += table.w_const[s][0] * b;
+            self.v[s] += table.w_const[s][1] * b;
+        }
+    }
+
+    /// Applies impulses (N·s) at the points in `active`: `v` jumps, `x` does not
+    /// (`h(0) = 0`, `h'(0) = 1`).
+    pub fn add_impulses(&mut self, basis: &ModalBasis, active: &[usize], impulse: &[f64]) {
+        let p = basis.num_points;
+        for s in 0..self.v.len() {
+            let b = &basis.inp[s * p..(s + 1) * p];
+            self.v[s] += active.iter().map(|&j| b[j] * impulse[j]).sum::<f64>();
+        }
+    }
+
+    /// Point displacements `u` (m) and velocities `v` (m/s) from the state.
+    #[inline]
+    pub fn project(&self, basis: &ModalBasis, u: &mut [f64], v: &mut [f64]) {
+        kernels::project(&basis.out, basis.num_points, &self.x, &self.v, u, v);
+    }
+
+    /// Adds another state of the same size.
+    pub fn add(&mut self, other: &ModalState) {
+        for (a, b) in self.x.iter_mut().zip(&other.x) {
+            *a += b;
+        }
+        for (a, b) in self.v.iter_mut().zip(&other.v) {
+            *a += b;
+        }
+    }
+
+    /// Copies another state of the same size (no allocation).
+    pub fn copy_from(&mut self, other: &ModalState) {
+        self.x.copy_from_slice(&other.x);
+        self.v.copy_from_slice(&other.v);
+    }
+
+    pub fn is_finite(&self) -> bool {
+        self.x.iter().chain(&self.v).all(|x| x.is_finite())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::base::modal::unit_impulse;
+
+    fn check_against_closed_form(omega: f64, xi: f64, tau: f64) {
+        let m = mode_step(omega, xi, tau);
+        let (h, hd) = unit_impulse(omega, xi, tau);
+        let scale_h = tau.min(1.0 / omega);
+        assert!(
+            (m.h[0] - h).abs() <= 1e-12 * scale_h,
+            "h: xi={xi} wt={}: {} vs {h}",
+            omega * tau,
+            m.h[0]
+        );
+        assert!(
+            (m.h[1] - hd).abs() <= 1e-12,
+            "h': xi={xi} wt={}: {} vs {hd}",
+            omega * tau,
+            m.h[1]
+        );
+        // constant-force weight: step response (1 - h' - 2ξωh)/ω², fine only where it does not cancel
+        if omega * tau > 0.5 {
+            let step = (1.0 - hd - 2.0 * xi * omega * h) / (omega * omega);
+            // 16 doublings at ξ = 50, ωτ = 250 leave ~1e-12 relative (round-off growth of the doublings)
+            assert!(
+                (m.w_const[0] - step).abs() <= 1e-11 / (omega * omega),
+                "I0 xi={xi} wt={}: {} vs {step}",
+                omega * tau,
+                m.w_const[0]
+            );
+        } else {
+            // small ωτ: I0 ≈ τ²/2 (1 - (2ξω) τ/3 ...)
+            let approx = tau * tau / 2.0;
+            assert!(
+                (m.w_const[0] / approx - 1.0).abs()
+                    < 2.0 * (omega + 2.0 * xi * omega) * tau + 1e-12
+            );
+        }
+    }
+
+    #[test]
+    fn step_matches_closed_form_every_regime() {
+        for &xi in &[0.0, 0.05, 0.7, 1.0 - 1e-12, 1.0, 1.0 + 1e-12, 1.5, 50.0] {
+            for &wt in &[1e-6, 1e-3, 0.3, 1.0, 7.0, 250.0] {
+                let omega = TAU * 400.0;
+                check_against_closed_form(omega, xi, wt / omega);
+            }
+        }
+    }
+
+    /// Every number of a mode step, as bits.
+    fn bits(m: &ModeStep) -> Vec<u64> {
+        [
+            m.phi.to_vec(),
+            m.w_const.to_vec(),
+            m.w_gauss.concat(),
+            m.h.to_vec(),
+        ]
+        .concat()
+        .iter()
+        .map(|x| x.to_bits())
+        .collect()
+    }
+
+    /// As below over many modes and steps (403 modes, the last three in
+    /// padded lanes; log-spread frequencies 1 Hz to 100 kHz, damping ratios
+    /// of every regime, steps 1e-7 to 1e-2 s): the
+    /// four-lane series (AVX where the CPU has it) rounds as the one-mode
+    /// code in every lane. Reordering one product of the series fails it.
+    #[test]
+    fn batched_mode_steps_round_as_single_ones_over_many_modes() {
+        let xis = [0.0, 0.01, 0.05, 0.3, 1.0, 1.0 + 1e-12, 2.0, 50.0];
+        let modes: Vec<(f64, f64)> = (0..403)
+            .map(|k| {
+                let f = 10f64.powf(5.0 * ((k as f64 * 0.618_033_988_7) % 1.0));
+                (TAU * f, xis[k % xis.len()])
+            })
+            .collect();
+        let mut batch = Vec::new();
+        for j in 0..25 {
+            let tau = 10f64.powf(-7.0 + 5.0 * ((j as f64 * 0.414_213_562_4) % 1.0));
+            mode_steps_into(&modes, tau, &mut batch);
+            for (b, &(w, xi)) in batch.iter().zip(&modes) {
+                let one = mode_step(w, xi, tau);
+                assert_eq!(bits(b), bits(&one), "omega {w}, xi {xi}, tau {tau}");
+            }
+        }
+    }
+
+    #[test]
+    fn batched_mode_steps_equal_single_ones_bit_for_bit() {
+        // lanes converging after different numbers of terms and doublings
+        let modes: Vec<(f64, f64)> = [1.0, 40.0, 700.0, 3e3, 2e4, 9e4, 5.0, 1e5, 250.0]
+            .iter()
+            .zip([0.0, 0.05, 1.0, 0.7, 50.0, 0.1, 1.0 + 1e-12, 0.02, 0.3])
+            .map(|(&f, xi)| (TAU * f, xi))
+            .collect();
+        for tau in [1e-7, 1e-5, 3.3e-4, 1e-2] {
+            let mut batch = Vec::new();
+            mode_steps_into(&modes, tau, &mut batch);
+            assert_eq!(batch.len(), modes.len());
+            for (b, &(w, xi)) in batch.iter().zip(&modes) {
+                let one = mode_step(w, xi, tau);
+                assert_eq!(bits(b), bits(&one), "omega {w}, xi {xi}, tau {tau}");
+            }
+        }
+    }
+
+    #[test]
+    fn weights_integrate_polynomials_exactly() {
+        // ∫_0^τ h(τ-s) q(s) ds by 40-point composite Gauss-Legendre against the weights
+        let (omega, xi, tau) = (TAU * 300.0, 0.08, 7e-4);
+        let m = mode_step(omega, xi, tau);
+        let quad = |f: &dyn Fn(f64) -> f64| {
+            let n = 400;
+            let g = [
+                (-1.0 / 3f64.sqrt() + 1.0) / 2.0,
+                (1.0 / 3f64.sqrt() + 1.0) / 2.0,
+            ];
+            let hs = tau / n as f64;
+            (0..n)
+                .map(|k| {
+                    g.iter()
+                        .map(|&x| f((k as f64 + x) * hs) * hs / 2.0)
+                        .sum::<f64>()
+                })
+                .sum::<f64>()
+        };
+        // linear force through the ends: q(s) = 2 + 3 s/τ
+        let q = |s: f64| 2.0 + 3.0 * s / tau;
+        let exact = quad(&|s| unit_impulse(omega, xi, tau - s).0 * q(s));
+        let w = 2.0 * m.w_ends[0][0] + 5.0 * m.w_ends[1][0];
+        assert!((w - exact).abs() < 1e-9 * exact.abs(), "{w} vs {exact}");
+        // same force through the Gauss points
+        let (s1, s2) = (
+            tau * (1.0 - 1.0 / 3f64.sqrt()) / 2.0,
+            tau * (1.0 + 1.0 / 3f64.sqrt()) / 2.0,
+        );
+        let wg = q(s1) * m.w_gauss[0][0] + q(s2) * m.w_gauss[1][0];
+        assert!((wg - exact).abs() < 1e-9 * exact.abs(), "{wg} vs {exact}");
+        let exact_v = quad(&|s| unit_impulse(omega, xi, tau - s).1 * q(s));
+        let wv = q(s1) * m.w_gauss[0][1] + q(s2) * m.w_gauss[1][1];
+        assert!((wv - exact_v).abs() < 1e-9 * exact_v.abs());
+    }
+}

@@ -1,0 +1,74 @@
+//! Switches for the work a scene does not need ([`SolverOptions`]).
+
+use crate::scene::Scene;
+
+/// Switches for the work a scene does not need; all on by default. Turning
+/// one off gives the "before" of a benchmark; results agree to round-off.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverOptions {
+    /// Keep one state per rank term of each residue (rank 1 for a mode
+    /// shape) instead of one per (mode, source).
+    pub rank_reduction: bool,
+    /// Reuse the LU factorisation of the full-step contact operator while
+    /// the active set is unchanged.
+    pub reuse_factorisation: bool,
+    /// Residual flexibility (off by default; changes results): modes above
+    /// this frequency (Hz) are dropped from the convolution and replaced by
+    /// their static contribution `Σ A_k / ω_k²` (their `G(0)`), applied to
+    /// the contact forces as a quasi-static compliance `C`. The static term
+    /// has no mass, so a landing on it takes no impulse (its velocity
+    /// mismatch becomes a force rate `Δv / C`); a rigid impact on the kept
+    /// modes is left only where `C` is singular on the points on the road.
+    /// The model is then softer than the full one at landings: meant for
+    /// scenes that stay on the road (see the bench's "Residual flexibility"
+    /// table; with impacts both contact schemes agree with each other but
+    /// not with the full model).
+    pub residual_above_hz: Option<f64>,
+    /// Relative cut of the rank reduction: the rank terms (eigen or SVD) of
+    /// a mode's residue below `rank_tolerance` of the largest are dropped. `None`
+    /// (default): [`IDENTIFIED_RANK_TOLERANCE`] for a model identified by
+    /// LSCE (a ring tyre), [`crate::model::convolution::EXACT_RANK_TOLERANCE`]
+    /// (every term, exact to round-off) for modes given in the scene, which
+    /// are taken as they are. Identified residues of the ring tyre are
+    /// rank 2 (its cos/sin mode pairs) plus fit noise 1e-6 to 1e-13 of
+    /// σ_max; keeping the noise costs 2.5x the states (paper preset: 65
+    /// instead of 26) for a change of each residue below 1e-5 of its norm,
+    /// far below the identification's own error (|G| error 1.9e-2 on the
+    /// paper preset). `Some(t)`: the cut `t` for any model. Ignored without
+    /// `rank_reduction`. See [`SolverOptions::rank_tolerance_for`].
+    pub rank_tolerance: Option<f64>,
+    /// Take a step that keeps the same points on the road and locates no
+    /// event without the event loop's bookkeeping (`Located` scheme with
+    /// rigid contact, see `simulation/steady.rs`; compliant contact, see
+    /// `simulation/compliant.rs`). Bit-identical results.
+    pub steady_path: bool,
+}
+
+/// The rank cut of identified models (see [`SolverOptions::rank_tolerance`]):
+/// residue terms below 1e-5 of the largest are identification noise.
+pub const IDENTIFIED_RANK_TOLERANCE: f64 = 1e-5;
+
+impl SolverOptions {
+    /// The relative rank cut used for `scene` (see
+    /// [`SolverOptions::rank_tolerance`]).
+    pub fn rank_tolerance_for(&self, scene: &Scene) -> f64 {
+        self.rank_tolerance.unwrap_or(match scene.tyre {
+            crate::scene::Tyre::Ring { .. } | crate::scene::Tyre::Measured { .. } => {
+                IDENTIFIED_RANK_TOLERANCE
+            }
+            crate::scene::Tyre::Modal { .. } => crate::model::convolution::EXACT_RANK_TOLERANCE,
+        })
+    }
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        SolverOptions {
+            rank_reduction: true,
+            reuse_factorisation: true,
+            residual_above_hz: None,
+            rank_tolerance: None,
+            steady_path: true,
+        }
+    }
+}

@@ -1,0 +1,259 @@
+//! The three parts of a [`Simulation`](super::Simulation):
+//!
+//! - [`SimTables`]: built once from the prepared model, the options and
+//!   `dt` (method §3-4), never changed;
+//! - [`SimState`]: the run at the current time, what a snapshot or a
+//!   restart needs;
+//! - [`Scratch`]: the buffers a step works in, sized once so that the step
+//!   allocates nothing (method §4.5, "Memory").
+//!
+//! The full-step factorisations kept by active set (`factor_cache.rs`) are
+//! a fourth, derived part: a function of the tables and the active set
+//! alone, rebuilt bit for bit when missing.
+
+use super::residual::{add_residual, split_residual};
+use super::{RunStats, SolverOptions};
+use crate::base::error::SceneError;
+use crate::model::convolution::{Influence, ModalBasis, ModalState, StepTable};
+use crate::scene::Scene;
+use crate::solver::simulation::contact::DenseSolver;
+
+/// What a simulation builds once from the prepared model, the options and
+/// `dt`, and never changes: the modal basis and its exact step (method
+/// §3.3-3.4), the full-step influence of the Gauss-point forces (§4.3), the
+/// velocity jump of an impulse (§4.4), the residual and tread compliances
+/// (§4.6-4.7). Every stage of a step reads them; none writes them.
+pub(super) struct SimTables {
+    /// Rank terms of the kept modes (method §3.4).
+    pub basis: ModalBasis,
+    /// Exact step weights over `dt_s` (method §3.3).
+    pub full: StepTable,
+    /// Influence of the Gauss-point forces on the end values over `dt_s`
+    /// (method §4.3 step 3), the residual compliance included.
+    pub full_inf: Influence,
+    /// The same influence by source column: for point `j`, the columns `j`
+    /// of `gx1`, `gx2`, `gv1`, `gv2` one after the other (`4P` values), so
+    /// that the end values run over contiguous memory.
+    pub full_inf_cols: Vec<f64>,
+    /// Velocity jump per unit impulse, `g'(0+) = Σ_k A_k` (m/s per N·s,
+    /// P x P row-major, method §4.4 "Impact").
+    pub jump: Vec<f64>,
+    /// Residual compliance of the dropped modes (m/N, P x P row-major,
+    /// method §4.7); empty: all modes in the convolution.
+    pub residual: Vec<f64>,
+    /// Tread stiffness per point (N/m) of compliant contact (method §4.6);
+    /// empty: rigid.
+    pub tread_k_n_m: Vec<f64>,
+    /// Heights `h_i` of the points above the road (m, `scene.points[i].h_m`).
+    pub h_m: Vec<f64>,
+    /// Number of contact points `P`.
+    pub p: usize,
+    /// The time step (s).
+    pub dt_s: f64,
+    /// Events in one step after which the rest of the step takes the
+    /// step-end rule (`4P + 16`, method §4.4 "Cascades").
+    pub max_events: u32,
+    /// `scene.num_steps()` (duration and `dt` are fixed for the
+    /// simulation's life).
+    pub num_steps: u64,
+    pub options: SolverOptions,
+}
+
+impl SimTables {
+    /// The tables of `scene` with its `modes`. Fails only if a mode's
+    /// residue cannot be split into rank terms (method §3.4) or the
+    /// residual compliance does not apply (method §4.7).
+    pub fn new(
+        scene: &Scene,
+        modes: Vec<crate::base::modal::Mode>,
+        options: SolverOptions,
+    ) -> Result<Self, SceneError> {
+        let p = scene.num_points();
+        let (modes, residual) = split_residual(scene, modes, options.residual_above_hz)?;
+        let basis = if options.rank_reduction {
+            ModalBasis::with_rank_tolerance(&modes, p, options.rank_tolerance_for(scene)).map_err(
+                |source| SceneError::Basis {
+                    scene: scene.name.clone(),
+                    source,
+                },
+            )?
+        } else {
+            ModalBasis::per_source(&modes, p)
+        };
+        let full = StepTable::new(&basis, scene.dt_s);
+        let mut full_inf = Influence::new(&basis, &full);
+        if !residual.is_empty() {
+            add_residual(&mut full_inf, &residual, scene.dt_s);
+        }
+        Ok(SimTables {
+            jump: basis.velocity_jump(),
+            full_inf_cols: influence_columns(&full_inf, p),
+            full_inf,
+            full,
+            basis,
+            residual,
+            tread_k_n_m: scene.contact.stiffness_per_point(p),
+            h_m: scene.points.iter().map(|pt| pt.h_m).collect(),
+            p,
+            dt_s: scene.dt_s,
+            max_events: 4 * p as u32 + 16,
+            num_steps: scene.num_steps(),
+            options,
+        })
+    }
+
+    /// Whether the contact is compliant (tread springs, method §4.6).
+    #[inline]
+    pub fn compliant(&self) -> bool {
+        !self.tread_k_n_m.is_empty()
+    }
+}
+
+/// [`SimTables::full_inf_cols`] of an influence.
+fn influence_columns(g: &Influence, p: usize) -> Vec<f64> {
+    let mut cols = Vec::with_capacity(4 * p * p);
+    for j in 0..p {
+        for m in [&g.gx1, &g.gx2, &g.gv1, &g.gv2] {
+            cols.extend((0..p).map(|i| m[i * p + j]));
+        }
+    }
+    cols
+}
+
+/// The run at the current time: what a snapshot or a restart needs. The
+/// modal states (method §3.2), the points' outputs and the road they see,
+/// the contact and active sets (method §4.2-4.4) and the statistics.
+pub(super) struct SimState {
+    /// Modal states at `t_s` (method §3.2).
+    pub modal: Box<ModalState>,
+    /// Time (s).
+    pub t_s: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// Added to `V t` so that the distance rolled stays continuous when the
+    /// speed changes (m).
+    pub x_offset_m: f64,
+    /// Displacements `u_i` (m, up).
+    pub u: Vec<f64>,
+    /// Velocities `v_i` (m/s).
+    pub v: Vec<f64>,
+    /// Road heights `r_i` seen by the points (m).
+    pub r: Vec<f64>,
+    /// Road rates `r_i'` (m/s).
+    pub rd: Vec<f64>,
+    /// Step-mean contact forces of the last step (N).
+    pub q_mean: Vec<f64>,
+    /// Impulses of the impacts located in the last step (N·s).
+    pub impact_impulse: Vec<f64>,
+    /// Contact per point.
+    pub contact: Vec<bool>,
+    /// The active set `S`, the points the contact solve holds on the road
+    /// (method §4.3), carried over to the next step.
+    pub active: Vec<usize>,
+    /// Points released in the last step (not re-added in it).
+    pub released: Vec<bool>,
+    /// The last step located events or released points: `impact_impulse`
+    /// and `released` need clearing, and the next step rebuilds its active
+    /// set from `contact`.
+    pub had_event: bool,
+    /// Statistics of the run so far.
+    pub stats: RunStats,
+}
+
+impl SimState {
+    /// At rest at `t = 0`, for `p` points on `basis` (the road seen at
+    /// `t = 0` is the caller's to set).
+    pub fn new(basis: &ModalBasis, p: usize) -> Self {
+        SimState {
+            modal: Box::new(ModalState::zeros(basis)),
+            t_s: 0.0,
+            steps: 0,
+            x_offset_m: 0.0,
+            u: vec![0.0; p],
+            v: vec![0.0; p],
+            r: vec![0.0; p],
+            rd: vec![0.0; p],
+            q_mean: vec![0.0; p],
+            impact_impulse: vec![0.0; p],
+            contact: vec![false; p],
+            active: Vec::with_capacity(p),
+            released: vec![false; p],
+            had_event: true,
+            stats: RunStats::default(),
+        }
+    }
+}
+
+/// The buffers a step works in, sized once (method §4.5, "Memory"). Nothing
+/// they hold is carried from one step to the next: `impulse` is cleared at
+/// the step start, every other buffer is written before it is read, and the
+/// sub-step table is refilled whenever its length changes.
+pub(super) struct Scratch {
+    /// The free prediction of the modal states (method §4.3 step 1).
+    pub free: Box<ModalState>,
+    /// Free end displacements (m) and velocities (m/s).
+    pub uh: Vec<f64>,
+    pub vh: Vec<f64>,
+    /// End displacements (m) and velocities (m/s) under the solved forces.
+    pub ue: Vec<f64>,
+    pub ve: Vec<f64>,
+    /// Road heights (m) and rates (m/s) at the end of the (sub-)step.
+    pub re: Vec<f64>,
+    pub rde: Vec<f64>,
+    /// Road samples `z`, `dz/dx` before the ramp (m, m/m).
+    pub zbuf: Vec<f64>,
+    pub dzbuf: Vec<f64>,
+    /// Gauss-point forces of the active points (N, method §3.3).
+    pub q1: Vec<f64>,
+    pub q2: Vec<f64>,
+    /// Trial Gauss-point forces restricted to the interval before an event
+    /// (N).
+    pub rq1: Vec<f64>,
+    pub rq2: Vec<f64>,
+    /// Impulse of the step so far per point (N·s).
+    pub impulse: Vec<f64>,
+    /// Right-hand side and solution of a contact system (`2P`).
+    pub rhs: Vec<f64>,
+    /// Exact step weights over the current sub-step (method §3.3).
+    pub sub: StepTable,
+    /// `|S| x |S|` blocks of the sub-step influence (4 |S|² used).
+    pub gss: Vec<f64>,
+    /// State increment of the solved sub-step forces, and its projection
+    /// (m, m/s).
+    pub delta: ModalState,
+    pub du: Vec<f64>,
+    pub dv: Vec<f64>,
+    /// The sub-step and impulse systems' solver.
+    pub solver: DenseSolver,
+}
+
+impl Scratch {
+    /// Buffers for the tables' points and states.
+    pub fn new(tables: &SimTables) -> Self {
+        let p = tables.p;
+        let zero = ModalState::zeros(&tables.basis);
+        Scratch {
+            free: Box::new(zero.clone()),
+            uh: vec![0.0; p],
+            vh: vec![0.0; p],
+            ue: vec![0.0; p],
+            ve: vec![0.0; p],
+            re: vec![0.0; p],
+            rde: vec![0.0; p],
+            zbuf: vec![0.0; p],
+            dzbuf: vec![0.0; p],
+            q1: vec![0.0; p],
+            q2: vec![0.0; p],
+            rq1: vec![0.0; p],
+            rq2: vec![0.0; p],
+            impulse: vec![0.0; p],
+            rhs: vec![0.0; 2 * p],
+            sub: tables.full.clone(),
+            gss: vec![0.0; 4 * p * p],
+            delta: zero,
+            du: vec![0.0; p],
+            dv: vec![0.0; p],
+            solver: DenseSolver::new(2 * p),
+        }
+    }
+}

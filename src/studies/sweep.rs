@@ -1,0 +1,552 @@
+//! Parameter sweeps: the numeric fields of a scene by path
+//! (`speed_mps`, `road.amplitude_m`, `points[2].h_m`, `tyre.modes[0].freq_hz`,
+//! `tyre.ring.inflation_pa`, ...; `[*]` sets every index at once), and runs
+//! of a scene over a list of values on several threads, each summarised over
+//! its steady part (`t >= ramp_s`): max force, force RMS and contact fraction
+//! per point, third-octave band levels of the total force.
+//!
+//! Every run is independent and deterministic, so a sweep point equals the
+//! single run of the scene with that value, whatever the thread count.
+
+use crate::analysis::metrics::{ContactMetrics, ContactSummary};
+use crate::analysis::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder};
+use crate::analysis::spectrum::{BandLevel, SpectrumError, Window};
+use crate::base::error::{FieldError, IoError, RunError, SceneError, SolverError};
+use crate::identify::{ModeCache, PreparedModel};
+use crate::model::road::Road;
+use crate::scene::{Contact, Scene, Tyre};
+use crate::solver::drive::Watch;
+use crate::solver::simulation::{Simulation, SolverOptions};
+pub mod engine;
+pub mod report;
+
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Errors of a sweep: its request (parameter, values), or its scenes
+/// before anything runs. A run that fails is kept in its point
+/// ([`SummaryError`]), the others run on.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SweepError {
+    #[error("unknown parameter `{path}`: expected one of {}", .valid.join(", "))]
+    UnknownParam { path: String, valid: Vec<String> },
+    /// The scene is invalid with the value: every bad field, what it was
+    /// and what it expects.
+    #[error("{}", invalid_value(.path, *.value, .errors))]
+    InvalidValue {
+        path: String,
+        value: f64,
+        errors: Vec<FieldError>,
+    },
+    #[error("sweep: range {from} .. {to}: expected finite values")]
+    Range { from: f64, to: f64 },
+    #[error("sweep: steps = 0: expected at least 1")]
+    NoSteps,
+    #[error(
+        "sweep: steps = {steps}: expected at most {MAX_SWEEP_VALUES} values (each value is one run of the scene)"
+    )]
+    TooManySteps { steps: usize },
+    #[error("sweep: no values to sweep")]
+    NoValues,
+    /// The base scene's tyre could not be identified.
+    #[error("sweep: {0}")]
+    Identification(#[source] SceneError),
+    /// The steady part of the scene with this value is too short (or too
+    /// long) for the summary's spectrum.
+    #[error("{param} = {value}: {source}")]
+    Steady {
+        param: String,
+        value: f64,
+        #[source]
+        source: SpectrumError,
+    },
+    #[error("sweep cancelled")]
+    Cancelled,
+}
+
+/// The bad fields of a scene with `path = value`, each with what it
+/// expects; the value is named when no bad field is the swept one.
+fn invalid_value(path: &str, value: f64, errors: &[FieldError]) -> String {
+    let message = errors
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join("; ");
+    if errors.iter().any(|e| matches(path, &e.field)) {
+        message
+    } else {
+        format!("with {path} = {value}: {message}")
+    }
+}
+
+/// Why one run of a sweep or a study has no summary: its row keeps the
+/// message, the other rows run on.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SummaryError {
+    /// A value of the run's scene cannot be set (a study's factor).
+    #[error(transparent)]
+    Param(#[from] SweepError),
+    /// The run's scene is invalid with its values together: every bad
+    /// field, what it was and what it expects.
+    #[error("{}", join_fields(.0))]
+    InvalidScene(Vec<FieldError>),
+    /// The run could not be set up: its tyre identified, its road read,
+    /// its modes factored.
+    #[error(transparent)]
+    Setup(#[from] SceneError),
+    /// The steady part is too short or too long for a spectrum, or the
+    /// spectrum failed.
+    #[error(transparent)]
+    Spectrum(#[from] SpectrumError),
+    /// A step could not be solved.
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+    /// What the run's recorders write failed.
+    #[error("writing the run's output: {0}")]
+    Output(#[source] IoError),
+    /// The run's cancel flag was set.
+    #[error("cancelled")]
+    Cancelled,
+    /// The run was not started (the sweep was cancelled first).
+    #[error("not run")]
+    NotRun,
+}
+
+impl From<RunError> for SummaryError {
+    fn from(e: RunError) -> Self {
+        match e {
+            RunError::Solver(e) => SummaryError::Solver(e),
+            RunError::Output(e) => SummaryError::Output(e.into()),
+            RunError::Cancelled { .. } => SummaryError::Cancelled,
+        }
+    }
+}
+
+fn join_fields(errors: &[FieldError]) -> String {
+    errors
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// Every numeric field of the scene with its path, as mutable references.
+/// Integer fields (`tyre.ring.max_order`, ...) and text are not listed.
+fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
+    let mut f: Vec<(String, &mut f64)> = vec![
+        ("speed_mps".into(), &mut scene.speed_mps),
+        ("ramp_s".into(), &mut scene.ramp_s),
+        ("dt_s".into(), &mut scene.dt_s),
+        ("duration_s".into(), &mut scene.duration_s),
+    ];
+    for (i, p) in scene.points.iter_mut().enumerate() {
+        f.push((format!("points[{i}].x_m"), &mut p.x_m));
+        f.push((format!("points[{i}].h_m"), &mut p.h_m));
+    }
+    match &mut scene.road {
+        Road::Sine {
+            amplitude_m,
+            wavelength_m,
+        } => {
+            f.push(("road.amplitude_m".into(), amplitude_m));
+            f.push(("road.wavelength_m".into(), wavelength_m));
+        }
+        Road::Harmonics { components } => {
+            for (k, c) in components.iter_mut().enumerate() {
+                f.push((
+                    format!("road.components[{k}].amplitude_m"),
+                    &mut c.amplitude_m,
+                ));
+                f.push((
+                    format!("road.components[{k}].wavelength_m"),
+                    &mut c.wavelength_m,
+                ));
+                f.push((format!("road.components[{k}].phase_rad"), &mut c.phase_rad));
+            }
+        }
+        Road::Random {
+            length_m,
+            min_wavenumber_cpm,
+            max_wavenumber_cpm,
+            ..
+        } => {
+            f.push(("road.length_m".into(), length_m));
+            f.push(("road.min_wavenumber_cpm".into(), min_wavenumber_cpm));
+            f.push(("road.max_wavenumber_cpm".into(), max_wavenumber_cpm));
+        }
+        Road::Measured { .. } => {}
+    }
+    if let Contact::Compliant { stiffness_n_m } = &mut scene.contact {
+        for (i, k) in stiffness_n_m.iter_mut().enumerate() {
+            f.push((format!("contact.stiffness_n_m[{i}]"), k));
+        }
+    }
+    match &mut scene.tyre {
+        Tyre::Modal { modes } => {
+            for (k, m) in modes.iter_mut().enumerate() {
+                f.push((format!("tyre.modes[{k}].freq_hz"), &mut m.freq_hz));
+                f.push((
+                    format!("tyre.modes[{k}].damping_ratio"),
+                    &mut m.damping_ratio,
+                ));
+                for (i, a) in m.shape.iter_mut().enumerate() {
+                    f.push((format!("tyre.modes[{k}].shape[{i}]"), a));
+                }
+                for (i, row) in m.residue.iter_mut().enumerate() {
+                    for (j, a) in row.iter_mut().enumerate() {
+                        f.push((format!("tyre.modes[{k}].residue[{i}][{j}]"), a));
+                    }
+                }
+            }
+        }
+        Tyre::Ring {
+            ring,
+            identification,
+        } => {
+            let r = ring;
+            f.extend([
+                ("tyre.ring.radius_m".to_string(), &mut r.radius_m),
+                ("tyre.ring.belt_width_m".into(), &mut r.belt_width_m),
+                (
+                    "tyre.ring.mass_per_length_kg_m".into(),
+                    &mut r.mass_per_length_kg_m,
+                ),
+                ("tyre.ring.inflation_pa".into(), &mut r.inflation_pa),
+                (
+                    "tyre.ring.radial_stiffness_n_m2".into(),
+                    &mut r.radial_stiffness_n_m2,
+                ),
+                (
+                    "tyre.ring.tangential_stiffness_n_m2".into(),
+                    &mut r.tangential_stiffness_n_m2,
+                ),
+                (
+                    "tyre.ring.bending_stiffness_n_m2".into(),
+                    &mut r.bending_stiffness_n_m2,
+                ),
+                (
+                    "tyre.ring.extensional_stiffness_n".into(),
+                    &mut r.extensional_stiffness_n,
+                ),
+                ("tyre.ring.damping_ratio".into(), &mut r.damping_ratio),
+            ]);
+            let o = identification;
+            f.push(("tyre.identification.band_hz.0".into(), &mut o.band_hz.0));
+            f.push(("tyre.identification.band_hz.1".into(), &mut o.band_hz.1));
+            f.push((
+                "tyre.identification.sample_rate_hz".into(),
+                &mut o.sample_rate_hz,
+            ));
+            f.push(("tyre.identification.duration_s".into(), &mut o.duration_s));
+        }
+        Tyre::Measured { identification, .. } => {
+            let o = identification;
+            f.push(("tyre.identification.band_hz.0".into(), &mut o.band_hz.0));
+            f.push(("tyre.identification.band_hz.1".into(), &mut o.band_hz.1));
+            f.push(("tyre.identification.duration_s".into(), &mut o.duration_s));
+        }
+    }
+    f
+}
+
+/// `points[3].h_m` -> `points[*].h_m` (every index, nested ones too).
+pub fn wildcard(path: &str) -> String {
+    let mut out = String::with_capacity(path.len());
+    let mut in_index = false;
+    for c in path.chars() {
+        match c {
+            '[' => {
+                in_index = true;
+                out.push_str("[*");
+            }
+            ']' => {
+                in_index = false;
+                out.push(']');
+            }
+            _ if in_index => {}
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+fn matches(pattern: &str, path: &str) -> bool {
+    pattern == path
+        || (pattern.contains("[*]") && wildcard(path) == wildcard(pattern) && {
+            // every explicit index of the pattern must agree
+            let idx = |s: &str| -> Vec<String> {
+                s.split('[')
+                    .skip(1)
+                    .map(|t| t.split(']').next().unwrap_or("").to_string())
+                    .collect()
+            };
+            idx(pattern)
+                .iter()
+                .zip(idx(path))
+                .all(|(a, b)| a == "*" || *a == b)
+        })
+}
+
+/// The numeric parameter paths of `scene` (what [`set_param`] accepts; a
+/// `[*]` in place of an index addresses every index).
+pub fn param_paths(scene: &Scene) -> Vec<String> {
+    let mut s = scene.clone();
+    numeric_fields(&mut s).into_iter().map(|(p, _)| p).collect()
+}
+
+/// The value of the parameter at `path` (the first match of a wildcard;
+/// spaces around the path are ignored).
+pub fn get_param(scene: &Scene, path: &str) -> Result<f64, SweepError> {
+    let path = path.trim();
+    let mut s = scene.clone();
+    let fields = numeric_fields(&mut s);
+    fields
+        .into_iter()
+        .find(|(p, _)| matches(path, p))
+        .map(|(_, v)| *v)
+        .ok_or_else(|| unknown(scene, path))
+}
+
+fn unknown(scene: &Scene, path: &str) -> SweepError {
+    // an indexed list collapsed to its first and last path, with this
+    // scene's indices (`points[0].h_m … points[2].h_m`: the range is seen)
+    let mut groups: Vec<(String, String, String)> = Vec::new();
+    for p in param_paths(scene) {
+        let w = wildcard(&p);
+        match groups.iter_mut().find(|g| g.0 == w) {
+            Some(g) => g.2 = p,
+            None => groups.push((w, p.clone(), p)),
+        }
+    }
+    let mut shown: Vec<String> = groups
+        .into_iter()
+        .map(|(_, first, last)| {
+            if first == last {
+                first
+            } else {
+                format!("{first} … {last}")
+            }
+        })
+        .collect();
+    if shown.iter().any(|s| s.contains('[')) {
+        shown.push("or [*] for an index (every point, mode…: `points[*].h_m`)".into());
+    }
+    SweepError::UnknownParam {
+        path: path.to_string(),
+        valid: shown,
+    }
+}
+
+/// Sets the parameter at `path` (every match of a wildcard) to `value` and
+/// validates the scene; an invalid result names the field and what it expects.
+/// Spaces around the path are ignored.
+pub fn set_param(scene: &mut Scene, path: &str, value: f64) -> Result<(), SweepError> {
+    let path = path.trim();
+    let before = scene.clone();
+    let mut hits = 0;
+    for (p, v) in numeric_fields(scene) {
+        if matches(path, &p) {
+            *v = value;
+            hits += 1;
+        }
+    }
+    if hits == 0 {
+        return Err(unknown(&before, path));
+    }
+    scene.validate().map_err(|errors| SweepError::InvalidValue {
+        path: path.to_string(),
+        value,
+        errors,
+    })
+}
+
+/// The most values a sweep runs (each is a whole run of the scene).
+pub const MAX_SWEEP_VALUES: usize = 100_000;
+
+/// `steps` values from `from` to `to`, evenly spaced (both ends included).
+pub fn linspace(from: f64, to: f64, steps: usize) -> Result<Vec<f64>, SweepError> {
+    if !(from.is_finite() && to.is_finite()) {
+        return Err(SweepError::Range { from, to });
+    }
+    match steps {
+        0 => Err(SweepError::NoSteps),
+        n if n > MAX_SWEEP_VALUES => Err(SweepError::TooManySteps { steps: n }),
+        1 => Ok(vec![from]),
+        n => Ok((0..n)
+            .map(|k| from + (to - from) * k as f64 / (n - 1) as f64)
+            .collect()),
+    }
+}
+
+/// The summary of one run's steady part.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    /// Contact metrics of the steady part, per point (limits as dt → 0).
+    pub contact: ContactSummary,
+    /// Third-octave levels of the total force (dB re 1 N, Hann window,
+    /// mean removed), bands 20 Hz - 5 kHz below Nyquist.
+    pub bands: Vec<BandLevel>,
+    /// Steps run.
+    pub steps: u64,
+}
+
+/// Where a summarised run's time went (s): building the simulation and
+/// its recorders, stepping (the probes included), the spectrum and bands.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RunTiming {
+    pub setup_s: f64,
+    pub stepping_s: f64,
+    pub summary_s: f64,
+}
+
+impl RunTiming {
+    pub fn add(&mut self, o: &RunTiming) {
+        self.setup_s += o.setup_s;
+        self.stepping_s += o.stepping_s;
+        self.summary_s += o.summary_s;
+    }
+    pub fn total_s(&self) -> f64 {
+        self.setup_s + self.stepping_s + self.summary_s
+    }
+}
+
+/// Runs a prepared scene to its end and summarises its steady part
+/// (`t >= ramp_s`). `on_steps` is called with the number of steps done since
+/// its last call (every 1024 steps and at the end); `cancel` stops the run
+/// early.
+pub fn run_summary(
+    model: &PreparedModel,
+    on_steps: &dyn Fn(u64),
+    cancel: &AtomicBool,
+) -> Result<RunSummary, SummaryError> {
+    run_summary_timed(model, on_steps, cancel, &mut RunTiming::default())
+}
+
+/// [`run_summary`], adding where its time went to `timing`.
+pub fn run_summary_timed(
+    model: &PreparedModel,
+    on_steps: &dyn Fn(u64),
+    cancel: &AtomicBool,
+    timing: &mut RunTiming,
+) -> Result<RunSummary, SummaryError> {
+    let t0 = std::time::Instant::now();
+    let scene = model.scene();
+    let mut sim = Simulation::new(model, SolverOptions::default())?;
+    // a steady part too short or too long for a spectrum, before the run
+    SteadyRecorder::steady_samples(scene, None)?;
+    let mut metrics = ContactMetrics::new(scene, None).keeping_total_force();
+    let n = scene.num_steps();
+    let mut reported = 0;
+    let mut progress = |done: u64, _: &Simulation| {
+        on_steps(done - reported);
+        reported = done;
+    };
+    let t1 = std::time::Instant::now();
+    timing.setup_s += (t1 - t0).as_secs_f64();
+    crate::solver::drive::run_to_end(
+        &mut sim,
+        &mut metrics,
+        Watch::cancel(cancel).with_progress(&mut progress),
+    )?;
+    let t2 = std::time::Instant::now();
+    timing.stepping_s += (t2 - t1).as_secs_f64();
+    let fs = 1.0 / scene.dt_s;
+    let hi = DEFAULT_BANDS_HZ.1.min(0.5 * fs / 10f64.powf(0.05));
+    let bands =
+        crate::analysis::spectrum::spectrum(metrics.total_force_n(), fs, Window::Hann, true)
+            .map(|s| s.third_octave_levels(DEFAULT_BANDS_HZ.0, hi, 1.0))?;
+    let summary = RunSummary {
+        contact: metrics.summary(),
+        bands,
+        steps: n,
+    };
+    timing.summary_s += t2.elapsed().as_secs_f64();
+    Ok(summary)
+}
+
+/// One point of a sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepPoint {
+    pub value: f64,
+    pub result: Result<RunSummary, SummaryError>,
+}
+
+/// A sweep's definition.
+#[derive(Debug, Clone)]
+pub struct Sweep {
+    pub param: String,
+    pub values: Vec<f64>,
+    /// Worker threads (>= 1).
+    pub threads: usize,
+}
+
+/// The scenes of a sweep, one per value, checked before anything runs.
+pub fn sweep_scenes(base: &Scene, sweep: &Sweep) -> Result<Vec<Scene>, SweepError> {
+    if sweep.values.is_empty() {
+        return Err(SweepError::NoValues);
+    }
+    sweep
+        .values
+        .iter()
+        .map(|&v| {
+            let mut s = base.clone();
+            set_param(&mut s, &sweep.param, v)?;
+            // a steady part too short (or too long) for the summary's
+            // spectrum: said before any run, not after every one
+            SteadyRecorder::steady_samples(&s, None).map_err(|source| SweepError::Steady {
+                param: sweep.param.clone(),
+                value: v,
+                source,
+            })?;
+            Ok(s)
+        })
+        .collect()
+}
+
+/// Runs the sweep on `sweep.threads` threads (values taken in order by the
+/// next free thread). `progress(done_steps, total_steps)` is called from the
+/// workers; `cancel` stops every run. Failed runs keep their message. A ring
+/// tyre's modes come from `cache` (and are kept there).
+pub fn run_sweep(
+    base: &Scene,
+    sweep: &Sweep,
+    cache: &ModeCache,
+    progress: &(dyn Fn(u64, u64) + Sync),
+    cancel: &AtomicBool,
+) -> Result<Vec<SweepPoint>, SweepError> {
+    let scenes = sweep_scenes(base, sweep)?;
+    // identify a ring tyre once up front rather than in every thread at
+    // once; a swept ring parameter is identified per value in the threads
+    cache
+        .modes(&scenes[0])
+        .map_err(SweepError::Identification)?;
+    let total: u64 = scenes.iter().map(Scene::num_steps).sum();
+    let done = std::sync::atomic::AtomicU64::new(0);
+    let results: Mutex<Vec<Option<Result<RunSummary, SummaryError>>>> =
+        Mutex::new(vec![None; scenes.len()]);
+    engine::run_each(
+        scenes.len(),
+        sweep.threads,
+        cache,
+        cancel,
+        &|k| Ok(scenes[k].clone()),
+        &|d| {
+            let now = done.fetch_add(d, Ordering::Relaxed) + d;
+            progress(now, total);
+        },
+        &|k, r| results.lock().unwrap_or_else(|e| e.into_inner())[k] = Some(r),
+    );
+    if cancel.load(Ordering::Relaxed) {
+        return Err(SweepError::Cancelled);
+    }
+    let results = results.into_inner().unwrap_or_else(|e| e.into_inner());
+    Ok(sweep
+        .values
+        .iter()
+        .zip(results)
+        .map(|(&value, r)| SweepPoint {
+            value,
+            result: r.unwrap_or(Err(SummaryError::NotRun)),
+        })
+        .collect())
+}

@@ -1,0 +1,391 @@
+//! Sweep results as a CSV table and a PNG figure.
+
+use super::{RunSummary, SummaryError, SweepPoint};
+use crate::analysis::metrics::ContactSummary;
+use crate::analysis::spectrum::{band_label, third_octave_bands};
+use crate::output::figures::{Figure, Panel, Series, Style};
+use std::io::Write;
+
+/// Nominal centres of the bands of the sweep table (Hz): 20 Hz - 5 kHz.
+fn table_bands() -> Vec<f64> {
+    third_octave_bands(20.0, 5000.0)
+        .iter()
+        .map(|b| b.nominal_hz)
+        .collect()
+}
+
+/// Level of the band of nominal centre `nominal_hz` in a run's summary
+/// (NaN when the run failed or the band was not computed, e.g. above
+/// Nyquist).
+fn band_db(result: &Result<RunSummary, SummaryError>, nominal_hz: f64) -> f64 {
+    result
+        .as_ref()
+        .ok()
+        .and_then(|r| r.bands.iter().find(|b| b.band.nominal_hz == nominal_hz))
+        .map_or(f64::NAN, |b| b.level_db)
+}
+
+/// The per-point metrics of [`crate::analysis::metrics::ContactSummary`] as table
+/// columns: the name pattern (`{i}` is the point) and the field.
+type PointMetric = (&'static str, fn(&ContactSummary) -> &Vec<f64>);
+
+/// The per-point columns, in table order.
+const POINT_METRICS: [PointMetric; 7] = [
+    ("q{i}_smooth_max_N", |s| &s.force_max_n),
+    ("q{i}_smooth_rms_N", |s| &s.force_rms_n),
+    ("q{i}_1ms_max_N", |s| &s.window_force_max_n),
+    ("impacts{i}_per_s", |s| &s.impacts_per_s),
+    ("impulse{i}_mean_Ns", |s| &s.impulse_mean_ns),
+    ("impulse{i}_max_Ns", |s| &s.impulse_max_ns),
+    ("contact{i}_fraction", |s| &s.contact_fraction),
+];
+
+/// The metric columns of a run of `num_points` points, all with a limit as
+/// dt → 0 ([`crate::analysis::metrics`]): `q{i}_smooth_max_N`, `q{i}_smooth_rms_N`
+/// (contact force without impacts), `q{i}_1ms_max_N` (largest 1 ms mean,
+/// impacts included), `impacts{i}_per_s`, `impulse{i}_mean_Ns`,
+/// `impulse{i}_max_Ns`, `contact{i}_fraction` (each for every point in
+/// turn), then `band_{f}hz_db_re_1N`.. (total force).
+pub fn metric_columns(num_points: usize) -> Vec<String> {
+    debug_assert_eq!(
+        crate::analysis::metrics::FORCE_WINDOW_S,
+        1e-3,
+        "rename q{{i}}_1ms_max_N"
+    );
+    let mut header: Vec<String> = POINT_METRICS
+        .iter()
+        .flat_map(|(name, _)| (0..num_points).map(move |i| name.replace("{i}", &i.to_string())))
+        .collect();
+    header.extend(
+        table_bands()
+            .iter()
+            .map(|&b| format!("band_{}hz_db_re_1N", band_label(b))),
+    );
+    header
+}
+
+/// A run's values in [`metric_columns`]' order (NaN when it failed).
+pub fn metric_values(result: &Result<RunSummary, SummaryError>, num_points: usize) -> Vec<String> {
+    let mut row = Vec::new();
+    match result {
+        Ok(r) => {
+            for (_, get) in POINT_METRICS {
+                row.extend(get(&r.contact).iter().map(|x| format!("{x}")));
+            }
+        }
+        Err(_) => row.extend((0..POINT_METRICS.len() * num_points).map(|_| "NaN".to_string())),
+    }
+    row.extend(
+        table_bands()
+            .iter()
+            .map(|&b| format!("{:.6}", band_db(result, b))),
+    );
+    row
+}
+
+/// Writes one row per value: `<param>`, the [`metric_columns`], `error`
+/// (empty when the run succeeded; its other columns are then NaN).
+pub fn write_csv<W: Write>(
+    out: W,
+    param: &str,
+    points: &[SweepPoint],
+    num_points: usize,
+) -> Result<(), csv::Error> {
+    let mut w = csv::Writer::from_writer(out);
+    let mut header = vec![param.to_string()];
+    header.extend(metric_columns(num_points));
+    header.push("error".into());
+    w.write_record(&header)?;
+    for p in points {
+        let mut row = vec![format!("{}", p.value)];
+        row.extend(metric_values(&p.result, num_points));
+        row.push(
+            p.result
+                .as_ref()
+                .err()
+                .map(ToString::to_string)
+                .unwrap_or_default(),
+        );
+        w.write_record(&row)?;
+    }
+    w.flush()?;
+    Ok(())
+}
+
+/// The x-axis title of a swept parameter: its path and the unit its name
+/// carries, `speed_mps (m/s)`, `tyre.modes[0].freq_hz (Hz)`; the path alone
+/// when the name carries no known unit.
+pub fn param_axis_label(param: &str) -> String {
+    // the field's name without a trailing index (`[2]`, `[*]`, `.0`)
+    let mut name = param;
+    loop {
+        if let Some(head) = name.strip_suffix(']').and_then(|n| n.rsplit_once('[')) {
+            name = head.0;
+        } else if let Some((head, tail)) = name.rsplit_once('.')
+            && !tail.is_empty()
+            && tail.bytes().all(|b| b.is_ascii_digit())
+        {
+            name = head;
+        } else {
+            break;
+        }
+    }
+    let field = name.rsplit('.').next().unwrap_or(name);
+    // names whose suffix alone is ambiguous first, then by suffix
+    let unit = match field {
+        "bending_stiffness_n_m2" => Some("N·m²"),
+        "residue" => Some("1/kg"),
+        "shape" => Some("1/√kg"),
+        _ => [
+            ("_n_m2", "N/m²"),
+            ("_kg_m", "kg/m"),
+            ("_n_m", "N/m"),
+            ("_mps", "m/s"),
+            ("_cpm", "cycles/m"),
+            ("_rad", "rad"),
+            ("_ratio", "-"),
+            ("_hz", "Hz"),
+            ("_pa", "Pa"),
+            ("_m", "m"),
+            ("_s", "s"),
+            ("_n", "N"),
+        ]
+        .iter()
+        .find(|(suffix, _)| field.ends_with(suffix))
+        .map(|(_, unit)| *unit),
+    };
+    match unit {
+        Some(u) => format!("{param} ({u})"),
+        None => param.to_string(),
+    }
+}
+
+/// The size (px) of `sweep --plot`'s figure: four stacked panels, each
+/// plot about 260 px high (at 1400 × 1400, 160 px: two y tick labels, the
+/// y titles longer than their plots).
+pub const FIGURE_PX: (u32, u32) = (1400, 1800);
+
+/// The sweep figure: max force without impacts, largest impact impulse,
+/// contact fraction per point and
+/// the rolling-noise bands (315, 500, 800, 1250, 2000 Hz) of the total
+/// force, against the parameter.
+pub fn figure(
+    title: &str,
+    subtitle: &str,
+    param: &str,
+    points: &[SweepPoint],
+    num_points: usize,
+) -> Figure {
+    let ok: Vec<(f64, &super::RunSummary)> = points
+        .iter()
+        .filter_map(|p| p.result.as_ref().ok().map(|r| (p.value, r)))
+        .collect();
+    let per_point = |get: &dyn Fn(&ContactSummary) -> &Vec<f64>, name: &str| -> Vec<Series> {
+        (0..num_points)
+            .map(|i| Series {
+                name: format!("{name}{i}"),
+                points: ok.iter().map(|(v, r)| (*v, get(&r.contact)[i])).collect(),
+                style: Style::LineMarkers(3),
+                color: None,
+            })
+            .collect()
+    };
+    // every other band of 315 Hz - 2 kHz (all of them are in the CSV)
+    let bands: Vec<Series> = third_octave_bands(315.0, 2000.0)
+        .iter()
+        .step_by(2)
+        .map(|b| Series {
+            name: format!("{} Hz", band_label(b.nominal_hz)),
+            points: points
+                .iter()
+                .map(|p| (p.value, band_db(&p.result, b.nominal_hz)))
+                .filter(|p| p.1.is_finite())
+                .collect(),
+            style: Style::LineMarkers(3),
+            color: None,
+        })
+        .collect();
+    Figure {
+        title: title.to_string(),
+        subtitle: subtitle.to_string(),
+        panels: vec![
+            Panel {
+                title: "Largest contact force without impacts (steady part)".into(),
+                x_label: param_axis_label(param),
+                y_label: "max force (N)".into(),
+                series: per_point(&|r| &r.force_max_n, "q"),
+                ..Panel::default()
+            },
+            Panel {
+                title: "Largest impact impulse (steady part; 0: no impact)".into(),
+                x_label: param_axis_label(param),
+                y_label: "impulse (N·s)".into(),
+                series: per_point(&|r| &r.impulse_max_ns, "q"),
+                ..Panel::default()
+            },
+            Panel {
+                title: "Fraction of steps in contact (steady part)".into(),
+                x_label: param_axis_label(param),
+                y_label: "contact fraction (-)".into(),
+                series: per_point(&|r| &r.contact_fraction, "point "),
+                ..Panel::default()
+            },
+            Panel {
+                title:
+                    "Total contact force, third-octave bands 315 Hz - 2 kHz, every other band (Hann, mean removed)"
+                        .into(),
+                x_label: param_axis_label(param),
+                y_label: "level (dB re 1 N)".into(),
+                series: bands,
+                ..Panel::default()
+            },
+        ],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::param_axis_label;
+
+    #[test]
+    fn swept_parameters_are_labelled_with_their_units() {
+        for (param, want) in [
+            ("speed_mps", "speed_mps (m/s)"),
+            ("ramp_s", "ramp_s (s)"),
+            ("points[*].h_m", "points[*].h_m (m)"),
+            (
+                "road.components[1].phase_rad",
+                "road.components[1].phase_rad (rad)",
+            ),
+            (
+                "road.max_wavenumber_cpm",
+                "road.max_wavenumber_cpm (cycles/m)",
+            ),
+            ("tyre.modes[0].freq_hz", "tyre.modes[0].freq_hz (Hz)"),
+            (
+                "tyre.modes[0].damping_ratio",
+                "tyre.modes[0].damping_ratio (-)",
+            ),
+            (
+                "tyre.modes[2].residue[0][1]",
+                "tyre.modes[2].residue[0][1] (1/kg)",
+            ),
+            ("tyre.modes[2].shape[1]", "tyre.modes[2].shape[1] (1/√kg)"),
+            ("contact.stiffness_n_m[3]", "contact.stiffness_n_m[3] (N/m)"),
+            ("tyre.ring.inflation_pa", "tyre.ring.inflation_pa (Pa)"),
+            (
+                "tyre.ring.radial_stiffness_n_m2",
+                "tyre.ring.radial_stiffness_n_m2 (N/m²)",
+            ),
+            (
+                "tyre.ring.bending_stiffness_n_m2",
+                "tyre.ring.bending_stiffness_n_m2 (N·m²)",
+            ),
+            (
+                "tyre.ring.extensional_stiffness_n",
+                "tyre.ring.extensional_stiffness_n (N)",
+            ),
+            (
+                "tyre.ring.mass_per_length_kg_m",
+                "tyre.ring.mass_per_length_kg_m (kg/m)",
+            ),
+            (
+                "tyre.identification.band_hz.1",
+                "tyre.identification.band_hz.1 (Hz)",
+            ),
+            ("road.seed", "road.seed"),
+        ] {
+            assert_eq!(param_axis_label(param), want);
+        }
+    }
+}
+
+#[cfg(test)]
+mod figure_tests {
+    use super::{FIGURE_PX, figure};
+    use crate::analysis::metrics::ContactSummary;
+    use crate::analysis::spectrum::{BandLevel, third_octave_bands};
+    use crate::output::figures::tests::{ink, runs};
+    use crate::output::figures::{render_rgb_layout, tick_label_px};
+    use crate::studies::sweep::{RunSummary, SweepPoint};
+
+    /// Fifteen speeds of a three-point scene shaped as the three-point
+    /// preset's sweep (forces up to 900 kN, a band dipping to -70 dB).
+    fn points() -> Vec<SweepPoint> {
+        (0..15)
+            .map(|k| {
+                let v = 8.0 + 2.0 * k as f64;
+                let bump = |i: usize| (std::f64::consts::PI * (k as f64 + i as f64) / 16.0).sin();
+                SweepPoint {
+                    value: v,
+                    result: Ok(RunSummary {
+                        contact: ContactSummary {
+                            force_max_n: (0..3).map(|i| 9e5 * bump(i)).collect(),
+                            impulse_max_ns: (0..3).map(|i| 4e-3 * bump(i)).collect(),
+                            contact_fraction: (0..3).map(|i| 0.8 * bump(i)).collect(),
+                            ..ContactSummary::default()
+                        },
+                        bands: third_octave_bands(20.0, 5000.0)
+                            .into_iter()
+                            .map(|band| BandLevel {
+                                band,
+                                mean_square: 1.0,
+                                level_db: if k == 8 { -70.0 } else { 60.0 + bump(0) },
+                                resolved: true,
+                            })
+                            .collect(),
+                        steps: 1000,
+                    }),
+                }
+            })
+            .collect()
+    }
+
+    /// Rows of `rgb` (`w` px wide) in `y0..y1` with dark ink in `x0..x1`.
+    fn ink_rows(rgb: &[u8], w: u32, x: (i32, i32), y: (i32, i32)) -> Vec<i32> {
+        ink(rgb, w, x, y).1
+    }
+
+    #[test]
+    fn every_panel_reads_three_y_labels_and_its_y_title_once() {
+        // at 1400 x 1400 the panels' plots were 160 px high: two y tick
+        // labels (one, 500000, on the force panel), and the rotated y
+        // titles ran past their plots towards their neighbours'
+        let fig = figure("t", "s", "speed_mps", &points(), 3);
+        let (w, h) = FIGURE_PX;
+        let (rgb, l) = render_rgb_layout(&fig, w, h).unwrap();
+        let px = tick_label_px(w, h) as i32;
+        let left = l[0].plot_px[0];
+        // the y titles: ink in the left third of the label area, below the
+        // figure's title and subtitle
+        let titles = runs(
+            &ink_rows(&rgb, w, (0, left / 3), (l[0].plot_px[1] - px, h as i32)),
+            px,
+        );
+        assert_eq!(titles.len(), 4, "y titles {titles:?}");
+        for (k, (p, t)) in l.iter().zip(&titles).enumerate() {
+            let [_, top, _, bottom] = p.plot_px;
+            assert!(
+                bottom - top >= 220,
+                "panel {k}: plot {} px high",
+                bottom - top
+            );
+            assert!(
+                t.0 >= top - px / 2 && t.1 <= bottom + px / 2,
+                "panel {k}: y title on rows {t:?}, plot {top}..{bottom}"
+            );
+            let labels = runs(
+                &ink_rows(&rgb, w, (left - 4 * px, left - 7), (top - px, bottom + px)),
+                px / 3,
+            );
+            assert!(labels.len() >= 3, "panel {k}: y tick labels {labels:?}");
+            for r in &labels {
+                assert!(r.1 - r.0 < px, "panel {k}: labels run together {labels:?}");
+            }
+        }
+        if std::env::var_os("TC_DUMP_FIG").is_some() {
+            let path = std::path::Path::new("/tmp/p12/sweep_like.png");
+            crate::output::figures::render_png(&fig, path, w, h).unwrap();
+        }
+    }
+}
