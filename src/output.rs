@@ -1,5 +1,7 @@
-//! Output: CSV time histories, atomic file writes, headless figures, and
-//! the one sampler of a run's time histories ([`sampler`]).
+//! Layer 5, what a run leaves: CSV time histories, headless figures,
+//! animation frames, recordings, and the one sampler of a run's time
+//! histories ([`sampler`]); files are written atomically by
+//! [`crate::base::fsio`].
 
 pub mod animation;
 pub mod arrays;
