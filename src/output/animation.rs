@@ -382,13 +382,6 @@ fn draw_road(
             .collect::<Vec<_>>(),
         ROAD.mix(0.25).filled(),
     )))?;
-    chart.draw_series(std::iter::once(Polygon::new(
-        road.iter()
-            .copied()
-            .chain([(ext.x1, floor), (ext.x0, floor)])
-            .collect::<Vec<_>>(),
-        ROAD.mix(0.25).filled(),
-    )))?;
     chart
         .draw_series(LineSeries::new(road, ROAD.stroke_width(fs(3.0) as u32)))?
         .label("road (moving left)")
