@@ -191,6 +191,53 @@ impl Recording {
         }
     }
 
+    /// [`Recording::merged`] of the samples after the first, which stays
+    /// on its own: a recording that starts with its t = 0 sample (the
+    /// visualiser's history) merges into the windows of `factor` times its
+    /// stride counted from t = 0, those of a command-line recording at that
+    /// stride, instead of windows shifted by one sample.
+    pub fn merged_after_start(&self, factor: usize) -> Recording {
+        if self.len() < 2 || factor <= 1 {
+            return self.merged(factor);
+        }
+        let tail = |v: &[f64]| v[1..].to_vec();
+        let rest = Recording {
+            t_s: tail(&self.t_s),
+            u_m: self.u_m.iter().map(|v| tail(v)).collect(),
+            q_n: self.q_n.iter().map(|v| tail(v)).collect(),
+            r_m: self.r_m.iter().map(|v| tail(v)).collect(),
+            q_impact_n: self.q_impact_n.iter().map(|v| tail(v)).collect(),
+            contact: self.contact.iter().map(|v| v[1..].to_vec()).collect(),
+            every: self.every,
+            sampler: Sampler::default(),
+        }
+        .merged(factor);
+        let join =
+            |first: f64, v: Vec<f64>| -> Vec<f64> { std::iter::once(first).chain(v).collect() };
+        let joined = |series: &[Vec<f64>], merged: Vec<Vec<f64>>| -> Vec<Vec<f64>> {
+            series
+                .iter()
+                .zip(merged)
+                .map(|(s, m)| join(s[0], m))
+                .collect()
+        };
+        Recording {
+            t_s: join(self.t_s[0], rest.t_s),
+            u_m: joined(&self.u_m, rest.u_m),
+            q_n: joined(&self.q_n, rest.q_n),
+            r_m: joined(&self.r_m, rest.r_m),
+            q_impact_n: joined(&self.q_impact_n, rest.q_impact_n),
+            contact: self
+                .contact
+                .iter()
+                .zip(rest.contact)
+                .map(|(s, m)| std::iter::once(s[0]).chain(m).collect())
+                .collect(),
+            every: rest.every,
+            sampler: Sampler::default(),
+        }
+    }
+
     /// Window length of a sample (steps).
     pub fn every(&self) -> u64 {
         self.every

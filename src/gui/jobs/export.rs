@@ -102,7 +102,8 @@ pub fn time_figure(
         .filter(|&i| shown.get(i).copied().unwrap_or(true))
         .collect();
     let rec = history.to_recording();
-    let rec = rec.merged(rec.len().div_ceil(PLOT_SAMPLES as usize));
+    // the t = 0 sample, then at most the command line's figure windows
+    let rec = rec.merged_after_start((rec.len().max(1) - 1).div_ceil(PLOT_SAMPLES as usize));
     rec.figure(&FigureSpec {
         title: &format!("{} — t = 0 … {} s", scene.name, short_num(t1, 4)),
         subtitle: &scene_summary(scene, modes),

@@ -466,4 +466,51 @@ mod tests {
             assert!(rec.contact.iter().flatten().any(|&c| !c));
         }
     }
+
+    /// The PNG export merges the history's windows after its t = 0 sample:
+    /// its samples are those of a command-line recording whose windows are
+    /// that many times longer from the start.
+    #[test]
+    fn merged_for_export_the_history_holds_the_longer_windows_of_the_command_line() {
+        let mut scene = Scene::parse(
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/three_points.ron"
+            )),
+            "three_points",
+        )
+        .unwrap();
+        scene.duration_s = 3000.0 * scene.dt_s;
+        let (p, n) = (scene.num_points(), scene.num_steps());
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        let mut h = History::new(p, 1 << 20);
+        // 3000 one-step windows kept; merged by 30 they are 100 windows
+        let mut rec = Recording::new(p, n, 100);
+        assert_eq!(rec.every(), 30);
+        h.record_initial(&sim);
+        while !sim.finished() {
+            sim.step().unwrap();
+            h.after_step(&sim);
+            rec.after_step(&sim);
+        }
+        assert_eq!(h.stride(), 1);
+        let merged = h.to_recording().merged_after_start(30);
+        assert_eq!(merged.every(), 30);
+        // the t = 0 sample, then the command line's 100 windows
+        assert_eq!((merged.len(), rec.len()), (101, 100));
+        assert_eq!(merged.t_s[0], 0.0);
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * b.abs() + 1e-9;
+        for k in 0..rec.len() {
+            assert_eq!(merged.t_s[k + 1], rec.t_s[k], "{k}");
+            for i in 0..p {
+                assert_eq!(merged.u_m[i][k + 1], f64::from(rec.u_m[i][k] as f32));
+                assert_eq!(merged.contact[i][k + 1], rec.contact[i][k], "{k} {i}");
+                let (a, b) = (merged.q_n[i][k + 1], rec.q_n[i][k]);
+                assert!(close(a, b), "{k} {i}: {a} vs {b}");
+            }
+        }
+        // merged from the first sample on, the windows would be shifted
+        let shifted = h.to_recording().merged(30);
+        assert_ne!(shifted.t_s[0], rec.t_s[0]);
+    }
 }

@@ -23,7 +23,7 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
 }
 
 /// The windows the exported figure draws: the history's samples merged to
-/// at most the command line's figure samples.
+/// at most the command line's figure samples, the t = 0 sample on its own.
 fn windows(h: &History) -> Recording {
     let rec = h.to_recording();
     assert_eq!(rec.len(), h.len());
@@ -35,8 +35,8 @@ fn windows(h: &History) -> Recording {
             assert!((smooth - want).abs() <= 1e-6 * (1.0 + want.abs()));
         }
     }
-    let merged = rec.merged(rec.len().div_ceil(PLOT_SAMPLES as usize));
-    assert!(merged.len() <= PLOT_SAMPLES as usize);
+    let merged = rec.merged_after_start((rec.len() - 1).div_ceil(PLOT_SAMPLES as usize));
+    assert!(merged.len() <= 1 + PLOT_SAMPLES as usize);
     merged
 }
 
