@@ -117,7 +117,7 @@ const SHORTEN_ORDER: [usize; 3] = [2, 1, 0];
 
 /// Chooses full or short texts for labels `full_px[k]` / `short_px[k]`
 /// wide (px) so that they plus `other_px` (separators, gaps, the frame
-/// rate) fit `avail_px`: labels shorten in [`SHORTEN_ORDER`] only as far as
+/// rate) fit `avail_px`: labels shorten in `SHORTEN_ORDER` only as far as
 /// needed; if even the short texts do not fit, the document label is cut to
 /// what is left (at least `min_doc_px`).
 pub fn fit(full_px: [f32; 3], short_px: [f32; 3], other_px: f32, avail_px: f32) -> Fit {

@@ -186,7 +186,7 @@ pub const MUTE_ROWS_SHOWN: usize = 3;
 
 /// Height (px) the mode bars need below the description: their heading,
 /// point picker and sum line, the plot at its least height and a row per
-/// mode, up to [`MUTE_ROWS_SHOWN`] (`mode_bars` then fits the plot to the
+/// mode, up to `MUTE_ROWS_SHOWN` (`mode_bars` then fits the plot to the
 /// rest).
 pub fn mode_bars_min_px(ui: &Ui, num_modes: usize) -> f32 {
     let label_w = mode_bars_label_w(ui);

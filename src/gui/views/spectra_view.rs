@@ -42,7 +42,7 @@ const DB_STEPS: [f64; 9] = [1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0
 const DB_LABEL_PX: f64 = 30.0;
 
 /// Grid marks of a level axis (dB): multiples of the smallest step of
-/// [`DB_STEPS`] at least [`DB_LABEL_PX`] apart (labelled), with the next finer
+/// `DB_STEPS` at least `DB_LABEL_PX` apart (labelled), with the next finer
 /// step between them. egui_plot's default powers of ten left a 100 dB axis
 /// with the single label "0".
 pub fn db_marks(input: egui_plot::GridInput) -> Vec<egui_plot::GridMark> {
