@@ -505,7 +505,7 @@ pub fn sweep_scenes(base: &Scene, sweep: &Sweep) -> Result<Vec<Scene>, SweepErro
 
 /// Runs the sweep on `sweep.threads` threads (values taken in order by the
 /// next free thread). `progress(done_steps, total_steps)` is called from the
-/// workers; `cancel` stops every run. Failed runs keep their message. A ring
+/// workers; `cancel` stops every run. Failed runs keep their error. A ring
 /// tyre's modes come from `cache` (and are kept there).
 pub fn run_sweep(
     base: &Scene,
