@@ -158,37 +158,7 @@ impl Recording {
     /// displacement and road at the window's end, contact if any merged
     /// sample had it.
     pub fn merged(&self, factor: usize) -> Recording {
-        let factor = factor.max(1);
-        if factor == 1 {
-            return self.clone();
-        }
-        fn merged<T: crate::output::sampler::SampleValue>(
-            v: &[T],
-            factor: usize,
-            how: Merge,
-        ) -> Vec<T> {
-            let mut v = v.to_vec();
-            let n = merge_windows(&mut v, factor, how);
-            v.truncate(n);
-            v
-        }
-        let each = |series: &[Vec<f64>], how| -> Vec<Vec<f64>> {
-            series.iter().map(|v| merged(v, factor, how)).collect()
-        };
-        Recording {
-            t_s: merged(&self.t_s, factor, Merge::End),
-            u_m: each(&self.u_m, Merge::End),
-            q_n: each(&self.q_n, Merge::Mean),
-            r_m: each(&self.r_m, Merge::End),
-            q_impact_n: each(&self.q_impact_n, Merge::Mean),
-            contact: self
-                .contact
-                .iter()
-                .map(|v| merged(v, factor, Merge::Any))
-                .collect(),
-            every: self.every * factor as u64,
-            sampler: Sampler::default(),
-        }
+        self.merged_after(0, factor)
     }
 
     /// [`Recording::merged`] of the samples after the first, which stays
@@ -197,43 +167,45 @@ impl Recording {
     /// stride counted from t = 0, those of a command-line recording at that
     /// stride, instead of windows shifted by one sample.
     pub fn merged_after_start(&self, factor: usize) -> Recording {
-        if self.len() < 2 || factor <= 1 {
-            return self.merged(factor);
+        self.merged_after(1, factor)
+    }
+
+    /// The first `kept` samples as they are, the rest merged by `factor`.
+    fn merged_after(&self, kept: usize, factor: usize) -> Recording {
+        let factor = factor.max(1);
+        if factor == 1 {
+            return self.clone();
         }
-        let tail = |v: &[f64]| v[1..].to_vec();
-        let rest = Recording {
-            t_s: tail(&self.t_s),
-            u_m: self.u_m.iter().map(|v| tail(v)).collect(),
-            q_n: self.q_n.iter().map(|v| tail(v)).collect(),
-            r_m: self.r_m.iter().map(|v| tail(v)).collect(),
-            q_impact_n: self.q_impact_n.iter().map(|v| tail(v)).collect(),
-            contact: self.contact.iter().map(|v| v[1..].to_vec()).collect(),
-            every: self.every,
-            sampler: Sampler::default(),
+        fn merged<T: crate::output::sampler::SampleValue>(
+            v: &[T],
+            kept: usize,
+            factor: usize,
+            how: Merge,
+        ) -> Vec<T> {
+            let mut v = v.to_vec();
+            let kept = kept.min(v.len());
+            let n = merge_windows(&mut v[kept..], factor, how);
+            v.truncate(kept + n);
+            v
         }
-        .merged(factor);
-        let join =
-            |first: f64, v: Vec<f64>| -> Vec<f64> { std::iter::once(first).chain(v).collect() };
-        let joined = |series: &[Vec<f64>], merged: Vec<Vec<f64>>| -> Vec<Vec<f64>> {
+        let each = |series: &[Vec<f64>], how| -> Vec<Vec<f64>> {
             series
                 .iter()
-                .zip(merged)
-                .map(|(s, m)| join(s[0], m))
+                .map(|v| merged(v, kept, factor, how))
                 .collect()
         };
         Recording {
-            t_s: join(self.t_s[0], rest.t_s),
-            u_m: joined(&self.u_m, rest.u_m),
-            q_n: joined(&self.q_n, rest.q_n),
-            r_m: joined(&self.r_m, rest.r_m),
-            q_impact_n: joined(&self.q_impact_n, rest.q_impact_n),
+            t_s: merged(&self.t_s, kept, factor, Merge::End),
+            u_m: each(&self.u_m, Merge::End),
+            q_n: each(&self.q_n, Merge::Mean),
+            r_m: each(&self.r_m, Merge::End),
+            q_impact_n: each(&self.q_impact_n, Merge::Mean),
             contact: self
                 .contact
                 .iter()
-                .zip(rest.contact)
-                .map(|(s, m)| std::iter::once(s[0]).chain(m).collect())
+                .map(|v| merged(v, kept, factor, Merge::Any))
                 .collect(),
-            every: rest.every,
+            every: self.every * factor as u64,
             sampler: Sampler::default(),
         }
     }
