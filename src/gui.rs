@@ -75,7 +75,7 @@ pub fn run_with_options(preset: Option<std::path::PathBuf>, classroom: bool) -> 
 #[cfg(test)]
 mod layers {
     use std::collections::BTreeMap;
-    use std::path::{Path, PathBuf};
+    use std::path::Path;
 
     /// The GUI's folders, highest first: each may import from those after
     /// it, never from those before it.
@@ -220,24 +220,13 @@ mod layers {
         out
     }
 
-    fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
-        for entry in std::fs::read_dir(dir).unwrap().flatten() {
-            let path = entry.path();
-            if path.is_dir() {
-                sources(&path, out);
-            } else if path.extension().is_some_and(|e| e == "rs") {
-                out.push(path);
-            }
-        }
-    }
-
     #[test]
     fn every_gui_folder_imports_only_from_folders_below_it() {
         let gui = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/gui");
         let exports = root_exports(&std::fs::read_to_string(gui.with_extension("rs")).unwrap());
         assert!(exports.contains_key("App"), "root re-exports not read");
         let mut files = Vec::new();
-        sources(&gui, &mut files);
+        crate::layers::sources(&gui, &mut files);
         let mut upward = Vec::new();
         let mut seen = 0;
         for file in &files {

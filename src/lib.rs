@@ -124,7 +124,8 @@ mod layers {
         out
     }
 
-    fn sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    /// Every `.rs` file below `dir` (also the GUI's own layer test).
+    pub(crate) fn sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
         for entry in std::fs::read_dir(dir).unwrap().flatten() {
             let path = entry.path();
             if path.is_dir() {
