@@ -14,6 +14,7 @@ mod contributions;
 mod events;
 mod factor_cache;
 mod gauss;
+mod large;
 mod options;
 mod paper;
 mod parts;
@@ -67,6 +68,16 @@ pub struct RunStats {
     /// Steps taken by the steady path (same contact set, no event; see
     /// [`SolverOptions::steady_path`]).
     pub steady_steps: u64,
+    /// Points that joined or left a large active set's kept inverse by a
+    /// bordered update ([`SolverOptions::large_set_from`]).
+    pub contact_updates: u64,
+    /// Updated inverses whose solve failed the backward-error check and
+    /// were formed again from a factorisation.
+    pub update_refusals: u64,
+    /// Operator applications of the sub-step GMRES solves.
+    pub krylov_applications: u64,
+    /// Sub-step GMRES solves that did not converge (solved directly).
+    pub krylov_fallbacks: u64,
 }
 
 impl RunStats {
@@ -135,7 +146,7 @@ impl Simulation {
         let mut sim = Simulation {
             state: SimState::new(&tables.basis, p),
             scratch: Scratch::new(&tables),
-            factors: FullFactors::new(p, keep),
+            factors: FullFactors::new(p, keep, tables.large_sets()),
             scene: scene.clone(),
             road: PointsRoad::new(model.road().clone(), &xs),
             pen_tol_m,

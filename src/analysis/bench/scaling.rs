@@ -99,6 +99,64 @@ pub fn scaling_scene(points: usize, modes: usize, regime: Regime) -> crate::Scen
     s
 }
 
+/// Points along and across the tread of the patch study's grid (5 mm
+/// apart: 0.25 m by 0.1 m).
+pub const PATCH_GRID: (usize, usize) = (50, 20);
+
+/// A contact patch: `along × across` points 5 mm apart on a tyre with a
+/// width, `modes` rank-1 modes of an orthotropic plate (mode `k` has
+/// order `k / 8` along and `k % 8` across, shape
+/// `(sin(m π (a + 1) / (A + 1)) + [m = 0]) cos(n π (c + ½) / C)` at point
+/// `(a, c)`, 40 Hz and up, masses growing with order as in
+/// [`many_points`]); the preload of [`scaling_scene`] along the patch
+/// (the middle third pressed, the same across), the same road and tread.
+/// Point `a × across + c` is at `x = 5 mm (a - (A - 1)/2)`, and
+/// `y = 5 mm (c - (C - 1)/2)` across.
+pub fn patch_scene(along: usize, across: usize, modes: usize, regime: Regime) -> crate::Scene {
+    use crate::scene::{Mode, Point, Tyre};
+    use std::f64::consts::PI;
+    const ORDERS_ACROSS: usize = 8;
+    let (na, nc, n_modes) = (along as f64, across as f64, modes);
+    let modes: Vec<Mode> = (0..n_modes)
+        .map(|k| {
+            let (m, n) = ((k / ORDERS_ACROSS) as f64, (k % ORDERS_ACROSS) as f64);
+            let amp = 0.5 / ((m + 1.0) * (n + 1.0)).sqrt();
+            let shape = (0..along * across)
+                .map(|i| {
+                    let (a, c) = ((i / across) as f64, (i % across) as f64);
+                    let along =
+                        (m * PI * (a + 1.0) / (na + 1.0)).sin() + if m == 0.0 { 1.0 } else { 0.0 };
+                    amp * along * (n * PI * (c + 0.5) / nc).cos()
+                })
+                .collect();
+            Mode {
+                freq_hz: 40.0 * (1.0 + 0.5 * m).powf(1.4) * (1.0 + 0.3 * n),
+                damping_ratio: 0.05,
+                residue: vec![],
+                shape,
+            }
+        })
+        .collect();
+    let mut s = scaling_scene(along * across, 0, regime);
+    s.tyre = Tyre::Modal { modes };
+    let len = 0.005 * (na - 1.0).max(1e-6);
+    s.points = (0..along * across)
+        .map(|i| {
+            let x_m = 0.005 * ((i / across) as f64 - 0.5 * (na - 1.0));
+            let y = 6.0 * x_m / len;
+            Point {
+                x_m,
+                h_m: PRELOAD_M * (y * y - 1.0),
+            }
+        })
+        .collect();
+    s.name = format!(
+        "{along} x {across} points x {n_modes} plate modes, contact patch, {}",
+        regime.label()
+    );
+    s
+}
+
 /// `scene` with every point 5 cm above the road (a 0.1 mm sine): the same
 /// tyre and steps without contact.
 pub fn lifted(scene: &crate::Scene) -> crate::Scene {

@@ -183,8 +183,16 @@ impl Simulation {
     /// compliant one); over a sub-step it is the rigid sub-step solve with
     /// the tread compliance on the diagonal ([`Simulation::fill_sub_block`]).
     pub(super) fn solve_compliant(&mut self, t_end: f64, sel: Table) -> Result<(), SolverError> {
+        let large = self.tables.large_sets()
+            && self.state.active.len() >= self.tables.options.large_set_from;
         if sel == Table::Sub {
+            if large && self.solve_sub_iterative() {
+                return Ok(());
+            }
             return self.solve_active(t_end, Table::Sub);
+        }
+        if large && self.tables.options.reuse_factorisation {
+            return self.solve_compliant_large(t_end);
         }
         let n = self.state.active.len();
         let p = self.tables.p;

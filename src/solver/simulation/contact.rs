@@ -4,6 +4,9 @@
 //! and LU with partial pivoting. All buffers are sized once; no allocation
 //! per solve.
 
+pub mod bordered;
+pub mod krylov;
+
 /// Why a solve failed: the smallest pivot after scaling.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Singular {
@@ -158,6 +161,12 @@ impl DenseSolver {
             }
             self.col = col;
         }
+    }
+
+    /// The inverse formed by [`DenseSolver::form_inverse`] (`n × n`
+    /// row-major).
+    pub fn inverse(&self) -> &[f64] {
+        &self.inv[..self.n * self.n]
     }
 
     /// `b ← A⁻¹ b` with the inverse formed by [`DenseSolver::form_inverse`]

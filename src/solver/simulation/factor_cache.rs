@@ -9,6 +9,7 @@
 //! `dt`, the modes and the options are fixed for a simulation's life).
 
 use crate::solver::simulation::contact::DenseSolver;
+use crate::solver::simulation::contact::bordered::BorderedInverse;
 
 /// Most factorisations kept.
 const MAX_ENTRIES: usize = 16;
@@ -51,16 +52,23 @@ pub(super) struct FullFactors {
     pub current: FullFactor,
     pub factored: bool,
     pub cache: FactorCache,
+    /// The full-step inverse of a large compliant active set, kept up to
+    /// date as points join and leave (`large.rs`; empty buffers
+    /// otherwise), valid if `updated_valid`.
+    pub updated: BorderedInverse,
+    pub updated_valid: bool,
 }
 
 impl FullFactors {
     /// Buffers for `p` points; `keep: false` (no reuse of the full-step
     /// factorisation, or compliant contact) keeps none for sets left.
-    pub fn new(p: usize, keep: bool) -> Self {
+    pub fn new(p: usize, keep: bool, large: bool) -> Self {
         FullFactors {
             current: FullFactor::new(p),
             factored: false,
             cache: FactorCache::new(p, keep),
+            updated: BorderedInverse::new(if large { p } else { 0 }),
+            updated_valid: false,
         }
     }
 

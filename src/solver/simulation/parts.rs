@@ -17,6 +17,10 @@ use crate::base::error::SceneError;
 use crate::model::convolution::{Influence, ModalBasis, ModalState, StepTable};
 use crate::scene::Scene;
 use crate::solver::simulation::contact::DenseSolver;
+use crate::solver::simulation::contact::krylov::Gmres;
+
+/// Krylov vectors kept between GMRES restarts.
+const GMRES_RESTART: usize = 30;
 
 /// What a simulation builds once from the prepared model, the options and
 /// `dt`, and never changes: the modal basis and its exact step (method
@@ -100,6 +104,14 @@ impl SimTables {
             num_steps: scene.num_steps(),
             options,
         })
+    }
+
+    /// Whether a large active set can occur and takes the methods of
+    /// `large.rs`: compliant contact with at least
+    /// [`SolverOptions::large_set_from`] points.
+    #[inline]
+    pub fn large_sets(&self) -> bool {
+        self.compliant() && self.p >= self.options.large_set_from
     }
 
     /// Whether the contact is compliant (tread springs, method §4.6).
@@ -225,12 +237,24 @@ pub(super) struct Scratch {
     pub dv: Vec<f64>,
     /// The sub-step and impulse systems' solver.
     pub solver: DenseSolver,
+    /// The iterative sub-step solve of large active sets (`large.rs`):
+    /// GMRES, the 2 × 2 block-diagonal preconditioner's inverses per
+    /// active point, and two force projections and state increments per
+    /// state (empty unless [`SimTables::large_sets`]).
+    pub gmres: Gmres,
+    pub jacobi: Vec<[f64; 4]>,
+    pub beta: Vec<[f64; 2]>,
+    pub dxv: Vec<[f64; 2]>,
+    /// The right-hand side in slot order, and a point's slot mark.
+    pub rhs_slots: Vec<f64>,
+    pub mark: Vec<bool>,
 }
 
 impl Scratch {
     /// Buffers for the tables' points and states.
     pub fn new(tables: &SimTables) -> Self {
         let p = tables.p;
+        let (large, ns) = (tables.large_sets(), tables.basis.stored_states());
         let zero = ModalState::zeros(&tables.basis);
         Scratch {
             free: Box::new(zero.clone()),
@@ -254,6 +278,12 @@ impl Scratch {
             du: vec![0.0; p],
             dv: vec![0.0; p],
             solver: DenseSolver::new(2 * p),
+            gmres: Gmres::new(if large { 2 * p } else { 0 }, GMRES_RESTART),
+            jacobi: vec![[0.0; 4]; if large { p } else { 0 }],
+            beta: vec![[0.0; 2]; if large { ns } else { 0 }],
+            dxv: vec![[0.0; 2]; if large { ns } else { 0 }],
+            rhs_slots: vec![0.0; if large { 2 * p } else { 0 }],
+            mark: vec![false; p],
         }
     }
 }
