@@ -429,10 +429,13 @@ impl ModalState {
     /// Applies impulses (N·s) at the points in `active`: `v` jumps, `x` does not
     /// (`h(0) = 0`, `h'(0) = 1`).
     pub fn add_impulses(&mut self, basis: &ModalBasis, active: &[usize], impulse: &[f64]) {
-        let p = basis.num_points;
+        // (the inputs of the active points in contiguous memory, `inp_t`)
+        let ns = basis.stored_states();
         for s in 0..self.v.len() {
-            let b = &basis.inp[s * p..(s + 1) * p];
-            self.v[s] += active.iter().map(|&j| b[j] * impulse[j]).sum::<f64>();
+            self.v[s] += active
+                .iter()
+                .map(|&j| basis.inp_t[j * ns + s] * impulse[j])
+                .sum::<f64>();
         }
     }
 

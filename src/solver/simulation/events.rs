@@ -428,7 +428,7 @@ impl Simulation {
             st.v[a] += st
                 .active
                 .iter()
-                .map(|&j| tb.jump[a * p + j] * s.q1[j])
+                .map(|&j| tb.jump_t[j * p + a] * s.q1[j])
                 .sum::<f64>();
         }
         Ok(solves)

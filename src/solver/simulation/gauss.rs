@@ -153,16 +153,20 @@ impl Simulation {
         f.free.clear();
         f.free_rows.clear();
         for i in 0..p {
-            if f.set.contains(&i) {
-                continue;
+            if !f.set.contains(&i) {
+                f.free.push(i);
             }
-            f.free.push(i);
-            let g = &self.tables.full_inf;
-            for (b1, b2) in [(&g.gx1, &g.gx2), (&g.gv1, &g.gv2)] {
-                let row = i * p;
-                let set = &f.set[..n];
-                f.free_rows.extend(set.iter().map(|&j| b1[row + j]));
-                f.free_rows.extend(set.iter().map(|&j| b2[row + j]));
+        }
+        // each source column read once, contiguous (`full_inf_cols`): a
+        // new set costs 4 |S| P reads in order, not P rows of 4 strided ones
+        let m = 4 * n;
+        f.free_rows.resize(f.free.len() * m, 0.0);
+        for (b, &j) in f.set.iter().enumerate() {
+            let cols = &self.tables.full_inf_cols[4 * p * j..4 * p * (j + 1)];
+            for (blk, col) in cols.chunks_exact(p).enumerate() {
+                for (row, &i) in f.free_rows.chunks_exact_mut(m).zip(&f.free) {
+                    row[blk * n + b] = col[i];
+                }
             }
         }
     }
@@ -212,18 +216,28 @@ impl Simulation {
     /// `q1`, `q2` of the active points over the sub-step (after `predict`),
     /// through the states: O(states (|S| + P)), no P x P influence.
     pub(super) fn end_values_sub(&mut self) {
+        self.end_values_through_states(Table::Sub)
+    }
+
+    /// [`Simulation::end_values_sub`] over the sub-step or the full step
+    /// `sel`.
+    pub(super) fn end_values_through_states(&mut self, sel: Table) {
         let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
+        let table = match sel {
+            Table::Full => &tb.full,
+            Table::Sub => &s.sub,
+        };
         s.delta.x.fill(0.0);
         s.delta.v.fill(0.0);
         s.delta
-            .add_gauss_forces(&tb.basis, &s.sub, &st.active, &s.q1, &s.q2);
+            .add_gauss_forces(&tb.basis, table, &st.active, &s.q1, &s.q2);
         s.delta.project(&tb.basis, &mut s.du, &mut s.dv);
         for i in 0..tb.p {
             s.ue[i] = s.uh[i] + s.du[i];
             s.ve[i] = s.vh[i] + s.dv[i];
         }
         if !tb.residual.is_empty() {
-            let (p, rate) = (tb.p, SQRT3 / s.sub.tau_s);
+            let (p, rate) = (tb.p, SQRT3 / table.tau_s);
             for i in 0..p {
                 let (mut du, mut dv) = (0.0, 0.0);
                 for &j in &st.active {
@@ -288,7 +302,7 @@ impl Simulation {
         let (p, ns) = (tb.p, tb.basis.stored_states());
         let g = &mut sc.gss[..4 * n * n];
         let (w1, w2) = (&sc.sub.w1[..ns], &sc.sub.w2[..ns]);
-        let inp = &tb.basis.inp[..ns * p];
+        let inp_t = &tb.basis.inp_t[..ns * p];
         // per pair, the four entries summed over the states in order in
         // registers (the same sums, in the same order, as state by state)
         for (a, &i) in active.iter().enumerate() {
@@ -296,12 +310,13 @@ impl Simulation {
             let row = &mut g[4 * a * n..4 * (a + 1) * n];
             for (gk, &j) in row.chunks_exact_mut(4).zip(active) {
                 let mut acc = [0.0f64; 4];
+                let inp_j = &inp_t[j * ns..(j + 1) * ns];
                 for s in 0..ns {
                     let o = out[s];
                     if o == 0.0 {
                         continue;
                     }
-                    let ab = o * inp[s * p + j];
+                    let ab = o * inp_j[s];
                     let w = [w1[s][0], w2[s][0], w1[s][1], w2[s][1]];
                     for (x, wq) in acc.iter_mut().zip(w) {
                         *x += ab * wq;

@@ -15,7 +15,7 @@
 //!   factorising it. A solve that does not reach [`GMRES_TOLERANCE`] in
 //!   [`GMRES_MAX_APPLICATIONS`] falls back to the direct one.
 
-use super::{GA, GB, SQRT3, Simulation};
+use super::{GA, GB, SQRT3, Simulation, Table};
 use crate::base::error::SolverError;
 
 /// Largest componentwise backward error accepted from a solve by an
@@ -43,15 +43,18 @@ impl Simulation {
             self.solve_by_updated();
         }
         let (tb, s) = (&self.tables, &mut self.scratch);
-        let inv = &self.factors.updated;
-        let n = inv.n();
-        for (a, &j) in inv.points().iter().enumerate() {
+        for (a, &j) in self.factors.updated.points().iter().enumerate() {
             s.q1[j] = s.rhs[2 * a];
             s.q2[j] = s.rhs[2 * a + 1];
         }
-        let _ = n;
-        // end values: the free prediction plus each active point's columns
-        let p = tb.p;
+        // end values: through the states when the influence columns
+        // (4 P |S| products) cost more than the forces into the states and
+        // back (2 K (|S| + P))
+        let (p, n, ns) = (tb.p, self.state.active.len(), tb.basis.num_states());
+        if 2 * p * n > ns * (n + p) {
+            self.end_values_through_states(Table::Full);
+            return Ok(());
+        }
         s.ue.copy_from_slice(&s.uh);
         s.ve.copy_from_slice(&s.vh);
         let (ue, ve) = (&mut s.ue[..p], &mut s.ve[..p]);

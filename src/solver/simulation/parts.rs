@@ -42,6 +42,9 @@ pub(super) struct SimTables {
     /// Velocity jump per unit impulse, `g'(0+) = Σ_k A_k` (m/s per N·s,
     /// P x P row-major, method §4.4 "Impact").
     pub jump: Vec<f64>,
+    /// Its transpose (`jump_t[j * P + i] = jump[i * P + j]`): the velocity
+    /// change of every point from an impulse at `j` in contiguous memory.
+    pub jump_t: Vec<f64>,
     /// Residual compliance of the dropped modes (m/N, P x P row-major,
     /// method §4.7); empty: all modes in the convolution.
     pub residual: Vec<f64>,
@@ -89,8 +92,11 @@ impl SimTables {
         if !residual.is_empty() {
             add_residual(&mut full_inf, &residual, scene.dt_s);
         }
+        let jump = basis.velocity_jump();
+        let jump_t = (0..p * p).map(|k| jump[(k % p) * p + k / p]).collect();
         Ok(SimTables {
-            jump: basis.velocity_jump(),
+            jump,
+            jump_t,
             full_inf_cols: influence_columns(&full_inf, p),
             full_inf,
             full,
