@@ -15,8 +15,9 @@
 //!   factorising it. A solve that does not reach [`GMRES_TOLERANCE`] in
 //!   [`GMRES_MAX_APPLICATIONS`] falls back to the direct one.
 
-use super::{GA, GB, SQRT3, Simulation, Table};
+use super::{GA, GB, SQRT3, Simulation};
 use crate::base::error::SolverError;
+use crate::model::convolution::dot2;
 
 /// Largest componentwise backward error accepted from a solve by an
 /// updated inverse; a backward-stable solve gives about `1e-15`.
@@ -35,6 +36,7 @@ impl Simulation {
     /// `predict`): the kept inverse brought to the active set, the forces
     /// into `q1`, `q2` and the end values of every point into `ue`, `ve`.
     pub(super) fn solve_compliant_large(&mut self, t_end: f64) -> Result<(), SolverError> {
+        self.project_active_rows();
         let updated = self.sync_updated_inverse(t_end)?;
         self.solve_by_updated();
         if updated && self.updated_backward_error() > UPDATE_BACKWARD_ERROR {
@@ -42,34 +44,61 @@ impl Simulation {
             self.form_updated_inverse(t_end)?;
             self.solve_by_updated();
         }
-        let (tb, s) = (&self.tables, &mut self.scratch);
+        let s = &mut self.scratch;
         for (a, &j) in self.factors.updated.points().iter().enumerate() {
             s.q1[j] = s.rhs[2 * a];
             s.q2[j] = s.rhs[2 * a + 1];
         }
-        // end values: through the states when the influence columns
-        // (4 P |S| products) cost more than the forces into the states and
-        // back (2 K (|S| + P))
-        let (p, n, ns) = (tb.p, self.state.active.len(), tb.basis.num_states());
-        if 2 * p * n > ns * (n + p) {
-            self.end_values_through_states(Table::Full);
-            return Ok(());
+        self.end_state_fused();
+        Ok(())
+    }
+
+    /// Whether a full step's prediction leaves the projection to the solve
+    /// (a large compliant set: [`Simulation::solve_compliant_large`]).
+    #[inline]
+    pub(super) fn fused_full_step(&self) -> bool {
+        self.tables.large_sets()
+            && self.tables.options.reuse_factorisation
+            && self.state.active.len() >= self.tables.options.large_set_from
+    }
+
+    /// The free end values `uh`, `vh` of the active points only, from the
+    /// predicted states (the same sums as the full projection's rows).
+    fn project_active_rows(&mut self) {
+        let (tb, s) = (&self.tables, &mut self.scratch);
+        let ns = tb.basis.stored_states();
+        for &i in &self.state.active {
+            let row = &tb.basis.out[i * ns..(i + 1) * ns];
+            (s.uh[i], s.vh[i]) = dot2(row, &s.free.x, &s.free.v);
         }
-        s.ue.copy_from_slice(&s.uh);
-        s.ve.copy_from_slice(&s.vh);
-        let (ue, ve) = (&mut s.ue[..p], &mut s.ve[..p]);
-        for &j in &self.state.active {
-            let (a, b) = (s.q1[j], s.q2[j]);
-            let c = &tb.full_inf_cols[4 * p * j..4 * p * (j + 1)];
-            let (x1, rest) = c.split_at(p);
-            let (x2, rest) = rest.split_at(p);
-            let (v1, v2) = rest.split_at(p);
+    }
+
+    /// The end state of the full step, the prediction plus the response to
+    /// the solved Gauss-point forces (method §3.3), into `delta` (taken by
+    /// `commit` as it is), and its projection, the end values of every
+    /// point, into `ue`, `ve` (one pass over the output vectors, where the
+    /// free prediction and the forces' response would take two), with the
+    /// residual compliance's share where there is one.
+    fn end_state_fused(&mut self) {
+        let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
+        s.delta.copy_from(&s.free);
+        s.delta
+            .add_gauss_forces(&tb.basis, &tb.full, &st.active, &s.q1, &s.q2);
+        s.delta.project(&tb.basis, &mut s.ue, &mut s.ve);
+        if !tb.residual.is_empty() {
+            let (p, rate) = (tb.p, SQRT3 / tb.dt_s);
             for i in 0..p {
-                ue[i] += x1[i] * a + x2[i] * b;
-                ve[i] += v1[i] * a + v2[i] * b;
+                let (mut du, mut dv) = (0.0, 0.0);
+                for &j in &st.active {
+                    let c = tb.residual[i * p + j];
+                    du += c * (-GB * s.q1[j] + GA * s.q2[j]);
+                    dv += c * rate * (s.q2[j] - s.q1[j]);
+                }
+                s.ue[i] += du;
+                s.ve[i] += dv;
             }
         }
-        Ok(())
+        s.fused_full = true;
     }
 
     /// Brings the kept inverse to the active set: the points that left

@@ -238,7 +238,7 @@ pub(super) struct Scratch {
     pub gss: Vec<f64>,
     /// State increment of the solved sub-step forces, and its projection
     /// (m, m/s).
-    pub delta: ModalState,
+    pub delta: Box<ModalState>,
     pub du: Vec<f64>,
     pub dv: Vec<f64>,
     /// The sub-step and impulse systems' solver.
@@ -251,6 +251,10 @@ pub(super) struct Scratch {
     pub jacobi: Vec<[f64; 4]>,
     pub beta: Vec<[f64; 2]>,
     pub dxv: Vec<[f64; 2]>,
+    /// `delta` holds the end state of a full step of a large compliant
+    /// set (its prediction plus the solved forces, `large.rs`), which
+    /// `commit` takes as it is.
+    pub fused_full: bool,
     /// The right-hand side in slot order, and a point's slot mark.
     pub rhs_slots: Vec<f64>,
     pub mark: Vec<bool>,
@@ -280,7 +284,7 @@ impl Scratch {
             rhs: vec![0.0; 2 * p],
             sub: tables.full.clone(),
             gss: vec![0.0; 4 * p * p],
-            delta: zero,
+            delta: Box::new(zero),
             du: vec![0.0; p],
             dv: vec![0.0; p],
             solver: DenseSolver::new(2 * p),
@@ -290,6 +294,7 @@ impl Scratch {
             dxv: vec![[0.0; 2]; if large { ns } else { 0 }],
             rhs_slots: vec![0.0; if large { 2 * p } else { 0 }],
             mark: vec![false; p],
+            fused_full: false,
         }
     }
 }

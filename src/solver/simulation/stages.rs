@@ -52,8 +52,12 @@ impl Simulation {
             Table::Sub => &self.scratch.sub,
         };
         self.state.modal.predict_into(table, &mut self.scratch.free);
-        let (uh, vh) = (&mut self.scratch.uh, &mut self.scratch.vh);
-        self.scratch.free.project(&self.tables.basis, uh, vh);
+        // (a large compliant set's full step projects only its active
+        // points here, in its solve, and the end values in one pass: `large.rs`)
+        if !(sel == Table::Full && self.fused_full_step()) {
+            let (uh, vh) = (&mut self.scratch.uh, &mut self.scratch.vh);
+            self.scratch.free.project(&self.tables.basis, uh, vh);
+        }
         // a full step from the current time ends at step `steps + 1`
         let step_end = (sel == Table::Full && t == self.state.t_s).then_some(self.state.steps + 1);
         self.sample_road(t + tau, false, step_end)
@@ -142,6 +146,7 @@ impl Simulation {
     /// ([`Simulation::solve_compliant`]).
     #[inline]
     pub(super) fn solve_contact(&mut self, t_end: f64, sel: Table) -> Result<(), SolverError> {
+        self.scratch.fused_full = false;
         if self.tables.tread_k_n_m.is_empty() {
             self.solve_active(t_end, sel)
         } else {
@@ -247,9 +252,15 @@ impl Simulation {
     #[inline(always)]
     pub(super) fn commit(&mut self, tau: f64, sel: Table) {
         let (st, s) = (&mut self.state, &mut self.scratch);
-        // `free` is rewritten by the next prediction before it is read again
-        std::mem::swap(&mut st.modal, &mut s.free);
-        if !st.active.is_empty() {
+        let fused = sel == Table::Full && std::mem::take(&mut s.fused_full);
+        if fused {
+            // the end state is formed already (`large.rs`)
+            std::mem::swap(&mut st.modal, &mut s.delta);
+        } else {
+            // `free` is rewritten by the next prediction before it is read again
+            std::mem::swap(&mut st.modal, &mut s.free);
+        }
+        if !st.active.is_empty() && !fused {
             match sel {
                 Table::Full => st.modal.add_gauss_forces(
                     &self.tables.basis,

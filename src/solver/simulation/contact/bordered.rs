@@ -284,6 +284,26 @@ impl BorderedInverse {
     }
 }
 
+/// `Σ a_k b_k` in eight interleaved partial sums (vector lanes; another
+/// order of the sum than left to right, to round-off).
+#[inline]
+pub fn dot_lanes(a: &[f64], b: &[f64]) -> f64 {
+    const L: usize = 8;
+    let mut acc = [0.0f64; L];
+    let (ca, cb) = (a.chunks_exact(L), b.chunks_exact(L));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..L {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let mut tail = 0.0;
+    for (x, y) in ra.iter().zip(rb) {
+        tail += x * y;
+    }
+    ((acc[0] + acc[4]) + (acc[1] + acc[5])) + ((acc[2] + acc[6]) + (acc[3] + acc[7])) + tail
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
