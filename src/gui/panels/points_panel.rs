@@ -74,15 +74,16 @@ fn with_point(scene: &Scene, i: usize, f: impl FnOnce(&mut Point)) -> Scene {
     s
 }
 
-/// The scene with one more point after the last.
+/// The scene with one more point after the last, on its line across the
+/// tread (its `y`).
 pub fn add_point(scene: &Scene) -> Scene {
     let mut s = scene.clone();
     let p = s.points.len();
-    let last = s
-        .points
-        .last()
-        .copied()
-        .unwrap_or(Point { x_m: 0.0, h_m: 0.0 });
+    let last = s.points.last().copied().unwrap_or(Point {
+        x_m: 0.0,
+        y_m: 0.0,
+        h_m: 0.0,
+    });
     let spacing = if p >= 2 {
         last.x_m - s.points[p - 2].x_m
     } else {
@@ -91,6 +92,7 @@ pub fn add_point(scene: &Scene) -> Scene {
     let spacing = if spacing.abs() > 0.0 { spacing } else { 0.02 };
     s.points.push(Point {
         x_m: last.x_m + spacing,
+        y_m: last.y_m,
         h_m: last.h_m,
     });
     for m in modes_mut(&mut s).into_iter().flatten() {
