@@ -1,6 +1,6 @@
-//! Contact points: position along the contact line and undeformed height;
-//! add and remove (the modes' shapes and residues follow). Every change
-//! restarts the run.
+//! Contact points: position along the contact line and across the tread,
+//! and undeformed height; add and remove (the modes' shapes and residues
+//! follow). Every change restarts the run.
 
 use super::{modes_mut, push_edit};
 use crate::Scene;
@@ -18,10 +18,11 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
     let p = scene.num_points();
     Grid::new("tirecontact.points")
         .striped(true)
-        .num_columns(4)
+        .num_columns(5)
         .show(ui, |ui| {
             ui.label("#");
             ui.label("position x");
+            ui.label("across y");
             ui.label("height h");
             ui.label("");
             ui.end_row();
@@ -32,6 +33,12 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                     cmds,
                     NumField::new(&name, pt.x_m, "m", Apply::Restart)
                         .show(ui, |v| with_point(scene, i, |pt| pt.x_m = v)),
+                );
+                let name = format!("points[{i}].y_m");
+                push_edit(
+                    cmds,
+                    NumField::new(&name, pt.y_m, "m", Apply::Restart)
+                        .show(ui, |v| with_point(scene, i, |pt| pt.y_m = v)),
                 );
                 let name = format!("points[{i}].h_m");
                 push_edit(
@@ -59,7 +66,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
     }
     if ui
         .button("Add point")
-        .on_hover_text("a point after the last one; its mode shape values copy the last point's, its residues are uncoupled")
+        .on_hover_text("a point after the last one, at its y; its mode shape values copy the last point's, its residues are uncoupled")
         .clicked()
     {
         cmds.push(Command::EditScene(Box::new(add_point(scene))));
