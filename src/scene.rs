@@ -96,14 +96,24 @@ pub enum Tyre {
     },
 }
 
-/// A contact point on the contact line.
+/// A contact point of the contact patch.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Point {
     /// Longitudinal position `x_i` (m) along the contact line.
     pub x_m: f64,
+    /// Lateral position `y_i` (m) across the tread, 0 on its centreline;
+    /// default 0, not written when 0. The road is a profile `z(x)` and
+    /// does not see it; a modal tyre's residues may depend on it.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub y_m: f64,
     /// Undeformed height `h_i` (m) above the mean road plane; < 0 is preload.
     pub h_m: f64,
+}
+
+/// `y_m` left out of a saved point: 0, the centreline (either sign).
+fn is_zero(y_m: &f64) -> bool {
+    *y_m == 0.0
 }
 
 /// A complete scene: tyre, contact points, road, speed and time stepping.
@@ -312,6 +322,7 @@ impl Scene {
             return v.finish();
         }
         validate_points(&mut v, &self.points);
+        validate_points_across(&mut v, &self.tyre, &self.contact, &self.points);
         validate_tyre(&mut v, &self.tyre, p);
         validate_road(&mut v, &self.road);
         if let Contact::Compliant { stiffness_n_m } = &self.contact {
@@ -453,13 +464,18 @@ fn source_excerpt(text: &str, line: usize, col: usize) -> String {
 }
 
 /// The contact points: finite positions, heights of a tyre deflection, no
-/// two at one position.
+/// two at one place `(x, y)`.
 fn validate_points(v: &mut Validator, points: &[Point]) {
     for (i, pt) in points.iter().enumerate() {
         v.finite(
             &format!("points[{i}].x_m"),
             pt.x_m,
             "a finite position in m",
+        );
+        v.finite(
+            &format!("points[{i}].y_m"),
+            pt.y_m,
+            "a finite position across the tread in m (0 on its centreline)",
         );
         if v.finite(&format!("points[{i}].h_m"), pt.h_m, "a finite height in m")
             && pt.h_m.abs() > 1.0
@@ -470,14 +486,49 @@ fn validate_points(v: &mut Validator, points: &[Point]) {
                 "|h| <= 1 m (a tyre deflection, in metres)",
             );
         }
-        for (j, q) in points.iter().enumerate().take(i) {
-            if pt.x_m == q.x_m {
-                v.push(
-                    &format!("points[{i}].x_m"),
-                    pt.x_m,
-                    &format!("a position different from points[{j}].x_m (coincident points make the contact system singular)"),
-                );
-            }
+        if let Some(j) = points[..i]
+            .iter()
+            .position(|q| q.x_m == pt.x_m && q.y_m == pt.y_m)
+        {
+            v.push(
+                &format!("points[{i}].x_m"),
+                pt.x_m,
+                &format!(
+                    "a place different from points[{j}]'s: both are at x_m = {} m, y_m = {} m (coincident points make the contact system singular)",
+                    fmt_num(pt.x_m),
+                    fmt_num(pt.y_m)
+                ),
+            );
+        }
+    }
+}
+
+/// Points at one `x` and different `y` on a ring tyre with rigid contact:
+/// the ring's response does not depend on `y`, so their rows (and columns)
+/// of the contact system are identical: it is singular, and nothing shares
+/// their force out between them. Compliant contact adds the tread springs,
+/// one per point, and solves it. A modal tyre's residues
+/// may depend on `y`, and are the user's to give; a measured tyre's rows
+/// are its file's responses, one per point.
+fn validate_points_across(v: &mut Validator, tyre: &Tyre, contact: &Contact, points: &[Point]) {
+    if !(contact.is_rigid() && matches!(tyre, Tyre::Ring { .. })) {
+        return;
+    }
+    for (i, pt) in points.iter().enumerate() {
+        if let Some(j) = points[..i]
+            .iter()
+            .position(|q| q.x_m == pt.x_m && q.y_m != pt.y_m)
+        {
+            v.push(
+                &format!("points[{i}].x_m"),
+                pt.x_m,
+                &format!(
+                    "a position different from points[{j}].x_m: points[{j}] and points[{i}] share x_m = {} m at different y_m ({} m and {} m), but a Ring tyre's response does not depend on y, so with rigid contact their rows of the contact system are identical (singular); use contact: Compliant(...) or a Modal tyre whose residues depend on y",
+                    fmt_num(pt.x_m),
+                    fmt_num(points[j].y_m),
+                    fmt_num(pt.y_m)
+                ),
+            );
         }
     }
 }

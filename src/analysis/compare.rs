@@ -9,8 +9,8 @@ use crate::output::summary::short_num;
 use crate::scene::Point;
 use std::io::Write;
 
-/// Points whose positions along the road differ by less than this (m) are
-/// the same point of two scenes.
+/// Points whose positions along the road and across the tread each differ
+/// by less than this (m) are the same point of two scenes.
 pub const SAME_PLACE_M: f64 = 1e-6;
 
 /// A run kept as a reference.
@@ -86,17 +86,16 @@ impl PinnedRun {
     }
 
     /// For each of `points` (the current scene's), the pinned point at the
-    /// same place along the road (within [`SAME_PLACE_M`]), if any.
+    /// same place along the road and across the tread (within
+    /// [`SAME_PLACE_M`]), if any.
     pub fn matched(&self, points: &[Point]) -> Vec<Option<usize>> {
         let recorded = self.recording.u_m.len();
         points
             .iter()
             .map(|p| {
-                self.scene
-                    .points
-                    .iter()
-                    .take(recorded)
-                    .position(|q| (q.x_m - p.x_m).abs() < SAME_PLACE_M)
+                self.scene.points.iter().take(recorded).position(|q| {
+                    (q.x_m - p.x_m).abs() < SAME_PLACE_M && (q.y_m - p.y_m).abs() < SAME_PLACE_M
+                })
             })
             .collect()
     }

@@ -80,6 +80,7 @@ fn scene_of(args: &IdentifyArgs) -> Result<(Scene, PathBuf), Box<dyn std::error:
         scene.points = (0..p)
             .map(|i| tirecontact::scene::Point {
                 x_m: 0.025 * (i as f64 - 0.5 * (p as f64 - 1.0)),
+                y_m: 0.0,
                 h_m: -0.003,
             })
             .collect();

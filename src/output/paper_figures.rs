@@ -16,11 +16,7 @@ pub fn paper_figures(
     subtitle: &str,
     clip_impacts: bool,
 ) -> [(&'static str, Figure); 2] {
-    let name = |i: usize| {
-        scene.points.get(i).map_or(format!("point {i}"), |p| {
-            format!("point {i} (x = {} m)", p.x_m)
-        })
-    };
+    let name = |i: usize| point_name(scene, i);
     let win_ms = rec.window_ms(scene.dt_s);
     // (clipped impacts are said by their legend entry, CLIPPED_IMPACTS)
     let (forces, _clipped) = rec.force_series(clip_impacts, None, &name);
@@ -56,6 +52,18 @@ pub fn paper_figures(
             },
         ),
     ]
+}
+
+/// Point `i`'s name in the legends: its index and place, `y` only off the
+/// centreline (`point 1 (x = 0.1 m)`, `point 2 (x = 0.1 m, y = 0.04 m)`).
+fn point_name(scene: &Scene, i: usize) -> String {
+    scene.points.get(i).map_or(format!("point {i}"), |p| {
+        if p.y_m == 0.0 {
+            format!("point {i} (x = {} m)", p.x_m)
+        } else {
+            format!("point {i} (x = {} m, y = {} m)", p.x_m, p.y_m)
+        }
+    })
 }
 
 #[cfg(test)]
@@ -215,5 +223,18 @@ mod tests {
             assert_eq!(y_range(&whole).1, raw, "{scheme:?}");
             assert!(!whole.title.contains("clipped"));
         }
+    }
+
+    /// Points on the centreline are named by their `x` alone; points
+    /// across the tread say their `y` too.
+    #[test]
+    fn points_are_named_by_their_place() {
+        let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+        assert_eq!(point_name(&scene, 0), "point 0 (x = -0.05 m)");
+        scene.points[2].x_m = 0.0;
+        scene.points[2].y_m = 0.04;
+        assert_eq!(point_name(&scene, 1), "point 1 (x = 0 m)");
+        assert_eq!(point_name(&scene, 2), "point 2 (x = 0 m, y = 0.04 m)");
+        assert_eq!(point_name(&scene, 3), "point 3");
     }
 }

@@ -328,7 +328,11 @@ mod tests {
                 shape: vec![0.0; s.points.len()],
             });
         }
-        t.points.push(Point { x_m: 1.0, h_m: 0.0 });
+        t.points.push(Point {
+            x_m: 1.0,
+            y_m: 0.0,
+            h_m: 0.0,
+        });
         t.contact_scheme = ContactScheme::Paper;
         let e = edits_since(&s, &t);
         let n = s.points.len();

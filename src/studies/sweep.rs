@@ -141,6 +141,7 @@ fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
     ];
     for (i, p) in scene.points.iter_mut().enumerate() {
         f.push((format!("points[{i}].x_m"), &mut p.x_m));
+        f.push((format!("points[{i}].y_m"), &mut p.y_m));
         f.push((format!("points[{i}].h_m"), &mut p.h_m));
     }
     match &mut scene.road {

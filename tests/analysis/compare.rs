@@ -84,6 +84,13 @@ fn unlike_scenes_are_compared_only_where_they_match() {
     ] {
         assert!(said.contains(part), "{part:?} not in {said}");
     }
+    // a point moved across the tread is at another place
+    let mut across = five.points.clone();
+    across[1].y_m = 0.02;
+    assert_eq!(
+        pin.matched(&across),
+        [Some(0), None, Some(2), Some(3), Some(4)]
+    );
     // nothing at the same place: nothing compared, and said
     let mut apart = five.clone();
     for p in &mut apart.points {

@@ -26,6 +26,7 @@ fn parameter_paths_get_and_set() {
         "ramp_s",
         "dt_s",
         "duration_s",
+        "points[1].y_m",
         "points[1].h_m",
         "tyre.modes[2].freq_hz",
         "tyre.modes[0].damping_ratio",
@@ -43,6 +44,9 @@ fn parameter_paths_get_and_set() {
     assert!(tyre_ok);
     set_param(&mut s, "points[*].h_m", -0.002).unwrap();
     assert!(s.points.iter().all(|p| p.h_m == -0.002));
+    set_param(&mut s, "points[2].y_m", 0.03).unwrap();
+    assert_eq!(get_param(&s, "points[2].y_m").unwrap(), 0.03);
+    assert_eq!(s.points[2].y_m, 0.03);
     set_param(&mut s, "road.amplitude_m", 0.0007).unwrap();
     assert_eq!(get_param(&s, "road.amplitude_m").unwrap(), 0.0007);
 

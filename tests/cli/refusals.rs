@@ -19,6 +19,7 @@ fn ring_tyre_with_a_thousand_points_is_refused_up_front() {
     s.points = (0..1000)
         .map(|i| Point {
             x_m: -0.05 + 1e-4 * i as f64,
+            y_m: 0.0,
             h_m: -0.003,
         })
         .collect();

@@ -115,6 +115,32 @@ fn editing_a_field_changes_the_scene_and_restarts() {
     assert!(h.state().title().starts_with("* "));
 }
 
+/// A point's position across the tread is a field of the points table:
+/// an edit restarts the run; on the ring tyre with rigid contact, a point
+/// moved to another's `x` at a different `y` is refused with the reason.
+#[test]
+fn points_are_edited_across_the_tread() {
+    let mut h = harness(App::with_default_preset());
+    settle(&mut h);
+    type_into(&mut h, "points[1].y_m", "0.04");
+    assert_eq!(h.state().scene().points[1].y_m, 0.04);
+    assert_eq!(h.state().simulation().scene().points[1].y_m, 0.04);
+    assert!(h.state().is_dirty());
+    settle(&mut h);
+    type_into(&mut h, "points[1].x_m", "-0.05");
+    assert_eq!(
+        h.state().scene().points[1].x_m,
+        -0.025,
+        "the old value must be kept"
+    );
+    let reason = format!("{:?}", h.get_by_label_contains("refused"));
+    assert!(
+        reason.contains("share x_m = -0.05 m at different y_m")
+            && reason.contains("does not depend on y"),
+        "{reason}"
+    );
+}
+
 #[test]
 fn live_edits_keep_the_run_going() {
     let mut h = harness(App::with_default_preset());

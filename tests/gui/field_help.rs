@@ -119,6 +119,7 @@ fn every_numeric_field_says_what_it_is_its_unit_and_its_range_on_hover() {
         "tyre.modes[0].residue[0][0]",
         "tyre.modes[0].shape[0]",
         "points[0].x_m",
+        "points[0].y_m",
         "points[0].h_m",
         "road.components[1].amplitude_m",
         "road.components[1].wavelength_m",

@@ -426,7 +426,24 @@ fn cases() -> Vec<Case> {
             &[("x_m: 0.05", "x_m: 0.0")],
             "points[1].x_m",
             "0",
-            "a position different from points[0].x_m",
+            "a place different from points[0]'s: both are at x_m = 0 m, y_m = 0 m (coincident points make the contact system singular)",
+        ),
+        field(
+            "coincident points across the tread",
+            &[
+                ("x_m: 0.0, h_m", "x_m: 0.0, y_m: 0.04, h_m"),
+                ("x_m: 0.05, h_m", "x_m: 0.0, y_m: 0.04, h_m"),
+            ],
+            "points[1].x_m",
+            "0",
+            "a place different from points[0]'s: both are at x_m = 0 m, y_m = 0.04 m",
+        ),
+        field(
+            "position across the tread NaN",
+            &[("x_m: 0.05, h_m", "x_m: 0.05, y_m: NaN, h_m")],
+            "points[1].y_m",
+            "NaN",
+            "a finite position across the tread in m",
         ),
         field(
             "no points",
@@ -562,6 +579,18 @@ fn cases() -> Vec<Case> {
         let ring = RING.replace(from, to);
         v.push(field(name, &[(modal, ring.as_str())], f, val, exp));
     }
+    // a ring tyre at one x across the tread with rigid contact: identical
+    // rows (refused before any identification)
+    v.push(field(
+        "ring points at one x across the tread, rigid contact",
+        &[
+            (modal, RING),
+            ("x_m: 0.05, h_m", "x_m: 0.0, y_m: 0.04, h_m"),
+        ],
+        "points[1].x_m",
+        "0",
+        "a position different from points[0].x_m: points[0] and points[1] share x_m = 0 m at different y_m (0 m and 0.04 m), but a Ring tyre's response does not depend on y, so with rigid contact their rows of the contact system are identical (singular); use contact: Compliant(...) or a Modal tyre whose residues depend on y",
+    ));
     // measured road files
     v.extend([
         Case {

@@ -94,6 +94,7 @@ fn sites(s: &mut Scene) -> Vec<(String, Site<'_>)> {
     ];
     for (i, p) in s.points.iter_mut().enumerate() {
         v.push((format!("points[{i}].x_m"), Site::F(&mut p.x_m)));
+        v.push((format!("points[{i}].y_m"), Site::F(&mut p.y_m)));
         v.push((format!("points[{i}].h_m"), Site::F(&mut p.h_m)));
     }
     match &mut s.tyre {
@@ -291,6 +292,7 @@ fn mutate_structure(s: &mut Scene, kind: usize, k: usize, dir: &Path) -> Vec<Str
             s.points = (0..1000)
                 .map(|i| Point {
                     x_m: -0.05 + 1e-4 * i as f64,
+                    y_m: 0.0,
                     h_m: -0.001,
                 })
                 .collect();

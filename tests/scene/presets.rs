@@ -29,11 +29,82 @@ fn every_shipped_preset_loads_and_steps() {
                 .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
         }
         // saving and re-reading gives the same scene
-        let again = Scene::parse(&scene.to_ron_string(), "roundtrip").unwrap();
+        let saved = scene.to_ron_string();
+        let again = Scene::parse(&saved, "roundtrip").unwrap();
         assert_eq!(again.points, scene.points);
         assert_eq!(again.tyre, scene.tyre);
         assert_eq!(again.road, scene.road);
+        // points on the centreline are saved without `y_m`: `x_m` then
+        // `h_m`, nothing between, nothing else
+        assert!(
+            scene.points.iter().all(|pt| pt.y_m == 0.0),
+            "{}",
+            p.display()
+        );
+        assert!(!saved.contains("y_m"), "{}:\n{saved}", p.display());
+        assert!(
+            saved.contains(&saved_points(&scene.points)),
+            "{}: points not saved as `x_m`, `h_m`:\n{saved}",
+            p.display()
+        );
     }
+}
+
+/// The `points` list of a saved scene whose points are all on the
+/// centreline, as the save writes it (numbers as RON writes them).
+fn saved_points(points: &[tirecontact::scene::Point]) -> String {
+    let num = |x: f64| ron::to_string(&x).unwrap();
+    let mut s = "    points: [\n".to_string();
+    for pt in points {
+        s.push_str(&format!(
+            "        Point(\n            x_m: {},\n            h_m: {},\n        ),\n",
+            num(pt.x_m),
+            num(pt.h_m)
+        ));
+    }
+    s.push_str("    ],\n");
+    s
+}
+
+/// Two points at one `x` across the tread, residues that tell them apart.
+const ACROSS: &str = r#"Scene(
+    name: "across",
+    tyre: Modal(modes: [
+        Mode(freq_hz: 100.0, damping_ratio: 0.05, residue: [[0.1, 0.02], [0.02, 0.06]]),
+    ]),
+    points: [Point(x_m: 0.1, h_m: -0.001), Point(x_m: 0.1, y_m: -0.04, h_m: -0.001)],
+    road: Sine(amplitude_m: 0.002, wavelength_m: 0.5),
+    speed_mps: 20.0,
+    ramp_s: 0.05,
+    dt_s: 1e-5,
+    duration_s: 1.0,
+)"#;
+
+/// `y_m` is optional (0), read when written, saved between `x_m` and `h_m`
+/// when not 0 and left out when 0, and read back as saved.
+#[test]
+fn points_across_the_tread_round_trip() {
+    let s = Scene::parse(ACROSS, "across.ron").unwrap();
+    assert_eq!(
+        s.points
+            .iter()
+            .map(|p| (p.x_m, p.y_m, p.h_m))
+            .collect::<Vec<_>>(),
+        [(0.1, 0.0, -0.001), (0.1, -0.04, -0.001)]
+    );
+    let saved = s.to_ron_string();
+    assert_eq!(saved.matches("y_m").count(), 1, "{saved}");
+    assert!(
+        saved.contains("x_m: 0.1,\n            y_m: -0.04,\n            h_m: -0.001,"),
+        "{saved}"
+    );
+    let back = Scene::parse(&saved, "saved.ron").unwrap();
+    assert_eq!(back, s);
+    // a 0 written is not saved
+    let zero = ACROSS.replace("Point(x_m: 0.1, h_m", "Point(x_m: 0.1, y_m: 0.0, h_m");
+    let z = Scene::parse(&zero, "zero.ron").unwrap();
+    assert_eq!(z, s);
+    assert_eq!(z.to_ron_string(), saved);
 }
 
 #[test]
@@ -114,7 +185,12 @@ fn validation_names_field_value_and_expectation() {
         "points: [Point(x_m: 0.0, h_m: -0.001), Point(x_m: 0.0, h_m: -0.001)]",
     );
     let e = invalid(&two);
-    assert!(e.iter().any(|e| e.field == "points[1].x_m"), "{e:?}");
+    assert!(
+        e.iter().any(|e| e.field == "points[1].x_m"
+            && e.value == "0"
+            && e.expected.contains("points[0]")),
+        "{e:?}"
+    );
 }
 
 /// Contact fraction per point over a whole run of a shipped preset.

@@ -443,7 +443,11 @@ fn one_point_sine_road_against_event_driven_reference() {
                     residue: vec![vec![res]],
                     shape: vec![],
                 }],
-                vec![Point { x_m: 0.0, h_m: h }],
+                vec![Point {
+                    x_m: 0.0,
+                    y_m: 0.0,
+                    h_m: h,
+                }],
                 sine(a, lambda),
                 speed,
                 ramp,
@@ -536,14 +540,17 @@ fn three_point_scene(dt: f64, duration: f64, scheme: ContactScheme) -> Scene {
         vec![
             Point {
                 x_m: -0.05,
+                y_m: 0.0,
                 h_m: -0.001,
             },
             Point {
                 x_m: 0.0,
+                y_m: 0.0,
                 h_m: -0.001,
             },
             Point {
                 x_m: 0.05,
+                y_m: 0.0,
                 h_m: -0.001,
             },
         ],
@@ -1145,6 +1152,7 @@ fn static_preload_matches_static_compliance() {
             modes1.clone(),
             vec![Point {
                 x_m: 0.0,
+                y_m: 0.0,
                 h_m: -pen,
             }],
             scheme,
@@ -1194,6 +1202,7 @@ fn static_preload_matches_static_compliance() {
     let points: Vec<Point> = (0..3)
         .map(|i| Point {
             x_m: x_m[i],
+            y_m: 0.0,
             h_m: hs[i],
         })
         .collect();
@@ -1757,7 +1766,11 @@ fn one_point_two_modes_against_event_driven_reference() {
             .map(|&dt| {
                 let sc = modal_scene(
                     modes.clone(),
-                    vec![Point { x_m: 0.0, h_m: h }],
+                    vec![Point {
+                        x_m: 0.0,
+                        y_m: 0.0,
+                        h_m: h,
+                    }],
                     sine(0.002, 0.5),
                     20.0,
                     0.05,

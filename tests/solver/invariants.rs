@@ -116,7 +116,11 @@ fn three_point_case(scheme: ContactScheme) -> (Scene, Vec<Mode>) {
     ];
     let points = [-0.05, 0.0, 0.05]
         .iter()
-        .map(|&x_m| Point { x_m, h_m: -0.0015 })
+        .map(|&x_m| Point {
+            x_m,
+            y_m: 0.0,
+            h_m: -0.0015,
+        })
         .collect();
     let sc = modal_scene(
         modes.clone(),
@@ -171,10 +175,12 @@ fn decoupled_points_run_as_separate_one_point_runs() {
     let pts = [
         Point {
             x_m: 0.0,
+            y_m: 0.0,
             h_m: -0.001,
         },
         Point {
             x_m: 0.13,
+            y_m: 0.0,
             h_m: -0.0008,
         },
     ];
@@ -208,6 +214,7 @@ fn decoupled_points_run_as_separate_one_point_runs() {
                 vec![shape_mode(m.0, m.1, &[m.2])],
                 vec![Point {
                     x_m: 0.0,
+                    y_m: 0.0,
                     h_m: pts[i].h_m,
                 }], // the same road under the point: shifted by its position
                 Road::Harmonics {
@@ -326,7 +333,7 @@ fn zero_ramp_only_without_initial_penetration() {
     let one = |x_m: f64, h_m: f64, road: Road| {
         modal_scene(
             vec![shape_mode(100.0, 0.05, &[0.3])],
-            vec![Point { x_m, h_m }],
+            vec![Point { x_m, y_m: 0.0, h_m }],
             road,
             20.0,
             0.0,
@@ -523,6 +530,7 @@ fn five_point_scene(xi: f64, h_m: &[f64], amp_m: f64, dt_s: f64, duration_s: f64
             .enumerate()
             .map(|(i, &h_m)| Point {
                 x_m: 0.03 * i as f64,
+                y_m: 0.0,
                 h_m,
             })
             .collect(),

@@ -425,3 +425,69 @@ fn a_residue_that_cannot_be_factored_is_a_typed_error_naming_the_mode() {
         "{text}"
     );
 }
+
+/// Two points at one `x` across the tread (`y = ±0.04 m`) of a modal tyre,
+/// preloaded on a sine road, rigid contact, with the residues of the second
+/// mode `second` (2 × 2).
+fn across_the_tread(first_shape: [f64; 2], second: [[f64; 2]; 2]) -> Scene {
+    let text = format!(
+        "Scene(
+    name: \"across the tread\",
+    tyre: Modal(modes: [
+        Mode(freq_hz: 80.0, damping_ratio: 0.05, shape: {first_shape:?}),
+        Mode(freq_hz: 150.0, damping_ratio: 0.05, residue: {second:?}),
+    ]),
+    points: [Point(x_m: 0.0, y_m: 0.04, h_m: -0.001), Point(x_m: 0.0, y_m: -0.04, h_m: -0.001)],
+    road: Sine(amplitude_m: 0.0005, wavelength_m: 0.2),
+    speed_mps: 10.0,
+    ramp_s: 0.01,
+    dt_s: 1e-5,
+    duration_s: 0.06,
+)"
+    );
+    Scene::parse(&text, "across.ron").unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Points at one `x` and different `y` see the same road and are told
+/// apart by their residues: while both are on the road they sit at one
+/// height, and push with the forces their residues give them. Residues that
+/// do not tell them apart are a modal tyre's to give: accepted, and run as
+/// far as the solver can (identical rows leave the split of the force
+/// between the two points open; it may also find the system singular).
+#[test]
+fn points_across_the_tread_are_told_apart_by_their_residues() {
+    // shapes [0.3, 0.25] and [0.2, -0.15]: rows that differ
+    let scene = across_the_tread([0.3, 0.25], [[0.04, -0.03], [-0.03, 0.0225]]);
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    let (mut both, mut du_max, mut q_max, mut dq_max) = (0, 0.0f64, 0.0f64, 0.0f64);
+    while !sim.finished() {
+        sim.step().unwrap_or_else(|e| panic!("{e}"));
+        let (u, q) = (sim.displacement_m(), sim.force_n());
+        if sim.in_contact().iter().all(|c| *c) {
+            both += 1;
+            du_max = du_max.max((u[0] - u[1]).abs());
+        }
+        q_max = q_max.max(q[0].abs()).max(q[1].abs());
+        dq_max = dq_max.max((q[0] - q[1]).abs());
+    }
+    assert!(both > 1000, "{both} steps with both points on the road");
+    assert!(du_max < 1e-12, "heights differ by {du_max:e} m on one road");
+    assert!(
+        dq_max > 0.1 * q_max,
+        "forces {dq_max:e} N apart of {q_max:e} N: the residues were not told apart"
+    );
+    // identical rows: valid; the two points move as one
+    let same = across_the_tread([0.3, 0.3], [[0.04, 0.04], [0.04, 0.04]]);
+    same.validate().unwrap();
+    let mut sim = Simulation::from_scene(&same).unwrap();
+    while !sim.finished() {
+        match sim.step() {
+            Ok(_) => {
+                let u = sim.displacement_m();
+                assert!((u[0] - u[1]).abs() < 1e-12, "{u:?} at t = {}", sim.time_s());
+            }
+            Err(tirecontact::SolverError::SingularContactSystem { .. }) => break,
+            Err(e) => panic!("{e}"),
+        }
+    }
+}

@@ -25,6 +25,7 @@ fn one_point(freq_hz: f64, xi: f64, dt_s: f64, steps: usize) -> Scene {
         },
         points: vec![Point {
             x_m: 0.0,
+            y_m: 0.0,
             h_m: -0.001,
         }],
         road: Road::Sine {

@@ -25,7 +25,9 @@ pub fn sine(amplitude_m: f64, wavelength_m: f64) -> Road {
 
 /// Contact points from `(x_m, h_m)` pairs.
 pub fn points(xh: &[(f64, f64)]) -> Vec<Point> {
-    xh.iter().map(|&(x_m, h_m)| Point { x_m, h_m }).collect()
+    xh.iter()
+        .map(|&(x_m, h_m)| Point { x_m, y_m: 0.0, h_m })
+        .collect()
 }
 
 /// A modal tyre's scene: `modes` at `points` on `road`, default contact, no

@@ -34,6 +34,7 @@ pub fn many_points(points: usize, n_modes: usize) -> Scene {
         points: (0..points)
             .map(|i| Point {
                 x_m: 0.005 * (i as f64 - 0.5 * (p - 1.0)),
+                y_m: 0.0,
                 h_m: -0.001,
             })
             .collect(),

@@ -1,6 +1,6 @@
-//! Contact points: position along the contact line and undeformed height;
-//! add and remove (the modes' shapes and residues follow). Every change
-//! restarts the run.
+//! Contact points: position along the contact line and across the tread,
+//! and undeformed height; add and remove (the modes' shapes and residues
+//! follow). Every change restarts the run.
 
 use super::{modes_mut, push_edit};
 use crate::Scene;
@@ -18,10 +18,11 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
     let p = scene.num_points();
     Grid::new("tirecontact.points")
         .striped(true)
-        .num_columns(4)
+        .num_columns(5)
         .show(ui, |ui| {
             ui.label("#");
             ui.label("position x");
+            ui.label("across y");
             ui.label("height h");
             ui.label("");
             ui.end_row();
@@ -32,6 +33,12 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                     cmds,
                     NumField::new(&name, pt.x_m, "m", Apply::Restart)
                         .show(ui, |v| with_point(scene, i, |pt| pt.x_m = v)),
+                );
+                let name = format!("points[{i}].y_m");
+                push_edit(
+                    cmds,
+                    NumField::new(&name, pt.y_m, "m", Apply::Restart)
+                        .show(ui, |v| with_point(scene, i, |pt| pt.y_m = v)),
                 );
                 let name = format!("points[{i}].h_m");
                 push_edit(
@@ -59,7 +66,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
     }
     if ui
         .button("Add point")
-        .on_hover_text("a point after the last one; its mode shape values copy the last point's, its residues are uncoupled")
+        .on_hover_text("a point after the last one, at its y; its mode shape values copy the last point's, its residues are uncoupled")
         .clicked()
     {
         cmds.push(Command::EditScene(Box::new(add_point(scene))));
@@ -74,15 +81,16 @@ fn with_point(scene: &Scene, i: usize, f: impl FnOnce(&mut Point)) -> Scene {
     s
 }
 
-/// The scene with one more point after the last.
+/// The scene with one more point after the last, on its line across the
+/// tread (its `y`).
 pub fn add_point(scene: &Scene) -> Scene {
     let mut s = scene.clone();
     let p = s.points.len();
-    let last = s
-        .points
-        .last()
-        .copied()
-        .unwrap_or(Point { x_m: 0.0, h_m: 0.0 });
+    let last = s.points.last().copied().unwrap_or(Point {
+        x_m: 0.0,
+        y_m: 0.0,
+        h_m: 0.0,
+    });
     let spacing = if p >= 2 {
         last.x_m - s.points[p - 2].x_m
     } else {
@@ -91,6 +99,7 @@ pub fn add_point(scene: &Scene) -> Scene {
     let spacing = if spacing.abs() > 0.0 { spacing } else { 0.02 };
     s.points.push(Point {
         x_m: last.x_m + spacing,
+        y_m: last.y_m,
         h_m: last.h_m,
     });
     for m in modes_mut(&mut s).into_iter().flatten() {

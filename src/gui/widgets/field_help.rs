@@ -136,7 +136,15 @@ pub fn help(name: &str) -> Option<FieldHelp> {
         "points[*].x_m" => FieldHelp::new(
             "position of this contact point along the contact line (0: under the wheel centre)",
         )
-        .also("each point at a position of its own"),
+        .also("each point at a place (x, y) of its own"),
+        "points[*].y_m" => FieldHelp::new(
+            "position of this contact point across the tread (0: on its centreline); the road \
+             is the same profile at every y, a modal tyre's residues may differ with it",
+        )
+        .also(
+            "each point at a place (x, y) of its own; a ring tyre's response does not depend \
+             on y, so with rigid contact its points need an x each",
+        ),
         "points[*].h_m" => FieldHelp::new(
             "height of the undeformed tyre at this point above the road's mean line; below 0 \
              the tyre is pressed into the road (preload)",
