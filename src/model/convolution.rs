@@ -445,6 +445,13 @@ impl ModalState {
         kernels::project(&basis.out, basis.num_points, &self.x, &self.v, u, v);
     }
 
+    /// [`ModalState::project`] at the points `rows` only (the same values).
+    #[inline]
+    pub fn project_rows(&self, basis: &ModalBasis, rows: &[usize], u: &mut [f64], v: &mut [f64]) {
+        let ns = basis.stored_states();
+        kernels::project_rows(&basis.out, ns, rows, &self.x, &self.v, u, v);
+    }
+
     /// Adds another state of the same size.
     pub fn add(&mut self, other: &ModalState) {
         for (a, b) in self.x.iter_mut().zip(&other.x) {

@@ -143,10 +143,11 @@ pub fn patch_scene(along: usize, across: usize, modes: usize, regime: Regime) ->
     s.points = (0..along * across)
         .map(|i| {
             let x_m = 0.005 * ((i / across) as f64 - 0.5 * (na - 1.0));
-            let y = 6.0 * x_m / len;
+            let rel = 6.0 * x_m / len;
             Point {
                 x_m,
-                h_m: PRELOAD_M * (y * y - 1.0),
+                y_m: 0.005 * ((i % across) as f64 - 0.5 * (nc - 1.0)),
+                h_m: PRELOAD_M * (rel * rel - 1.0),
             }
         })
         .collect();

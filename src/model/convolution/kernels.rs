@@ -38,6 +38,28 @@ dispatch!(
     predict => predict_body(c: &StepColumns, x: &[f64], v: &[f64], ox: &mut [f64], ov: &mut [f64])
 );
 
+dispatch!(
+    /// `(u_i, v_i) = (a_i · x, a_i · v)` for the points `i` in `rows` only
+    /// (rows of `out`, `ns` wide), each sum in [`dot2`]'s order, as
+    /// [`project`] gives them.
+    project_rows => project_rows_body(out: &[f64], ns: usize, rows: &[usize], x: &[f64], v: &[f64], u: &mut [f64], w: &mut [f64])
+);
+
+#[inline(always)]
+fn project_rows_body(
+    out: &[f64],
+    ns: usize,
+    rows: &[usize],
+    x: &[f64],
+    v: &[f64],
+    u: &mut [f64],
+    w: &mut [f64],
+) {
+    for &i in rows {
+        (u[i], w[i]) = dot2(&out[i * ns..(i + 1) * ns], &x[..ns], &v[..ns]);
+    }
+}
+
 /// `(u_i, v_i) = (a_i · x, a_i · v)` for every point `i` (rows of `out`),
 /// each sum in [`dot2`]'s order.
 #[inline]

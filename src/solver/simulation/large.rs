@@ -17,7 +17,6 @@
 
 use super::{GA, GB, SQRT3, Simulation};
 use crate::base::error::SolverError;
-use crate::model::convolution::dot2;
 
 /// Largest componentwise backward error accepted from a solve by an
 /// updated inverse; a backward-stable solve gives about `1e-15`.
@@ -66,11 +65,8 @@ impl Simulation {
     /// predicted states (the same sums as the full projection's rows).
     fn project_active_rows(&mut self) {
         let (tb, s) = (&self.tables, &mut self.scratch);
-        let ns = tb.basis.stored_states();
-        for &i in &self.state.active {
-            let row = &tb.basis.out[i * ns..(i + 1) * ns];
-            (s.uh[i], s.vh[i]) = dot2(row, &s.free.x, &s.free.v);
-        }
+        s.free
+            .project_rows(&tb.basis, &self.state.active, &mut s.uh, &mut s.vh);
     }
 
     /// The end state of the full step, the prediction plus the response to

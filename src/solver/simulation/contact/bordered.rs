@@ -243,16 +243,19 @@ impl BorderedInverse {
     /// `x ← M⁻¹ b` (slot order), `b` and `x` of length `n`.
     pub fn solve(&self, b: &[f64], x: &mut [f64]) {
         let n = self.n();
-        for (xi, row) in x[..n]
-            .iter_mut()
-            .zip(self.inv[..n * n].chunks_exact(n.max(1)))
+        let (inv, b, x) = (&self.inv[..n * n], &b[..n], &mut x[..n]);
+        #[cfg(target_arch = "x86_64")]
         {
-            let mut s = 0.0;
-            for (a, bj) in row.iter().zip(&b[..n]) {
-                s += a * bj;
+            if std::arch::is_x86_feature_detected!("avx2") {
+                #[target_feature(enable = "avx2")]
+                fn wide(inv: &[f64], b: &[f64], x: &mut [f64]) {
+                    rows_times(inv, b, x)
+                }
+                // SAFETY: the CPU supports AVX2 (checked just above).
+                return unsafe { wide(inv, b, x) };
             }
-            *xi = s;
         }
+        rows_times(inv, b, x)
     }
 
     /// The componentwise backward error of a solution `x` of `M x = b`,
@@ -284,9 +287,18 @@ impl BorderedInverse {
     }
 }
 
+/// `x_i = a_i · b` for the rows `a_i` of `a` (`x.len()` rows of `b.len()`),
+/// each by [`dot_lanes`]: the same operations in any build.
+#[inline(always)]
+fn rows_times(a: &[f64], b: &[f64], x: &mut [f64]) {
+    for (xi, row) in x.iter_mut().zip(a.chunks_exact(b.len().max(1))) {
+        *xi = dot_lanes(row, b);
+    }
+}
+
 /// `Σ a_k b_k` in eight interleaved partial sums (vector lanes; another
 /// order of the sum than left to right, to round-off).
-#[inline]
+#[inline(always)]
 pub fn dot_lanes(a: &[f64], b: &[f64]) -> f64 {
     const L: usize = 8;
     let mut acc = [0.0f64; L];
