@@ -192,7 +192,7 @@ impl Simulation {
             return self.solve_active(t_end, Table::Sub);
         }
         if large && self.tables.options.reuse_factorisation {
-            return self.solve_compliant_large(t_end);
+            return self.solve_full_large(t_end);
         }
         let n = self.state.active.len();
         let p = self.tables.p;

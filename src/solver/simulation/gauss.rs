@@ -18,6 +18,9 @@ impl Simulation {
             s.ve.copy_from_slice(&s.vh);
             return Ok(());
         }
+        if sel == Table::Full && self.fused_full_step() {
+            return self.solve_rigid_large(t_end);
+        }
         if sel == Table::Sub {
             self.fill_sub_block();
         }

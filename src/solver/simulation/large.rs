@@ -34,7 +34,7 @@ impl Simulation {
     /// The full-step compliant solve of a large active set (after
     /// `predict`): the kept inverse brought to the active set, the forces
     /// into `q1`, `q2` and the end values of every point into `ue`, `ve`.
-    pub(super) fn solve_compliant_large(&mut self, t_end: f64) -> Result<(), SolverError> {
+    pub(super) fn solve_full_large(&mut self, t_end: f64) -> Result<(), SolverError> {
         self.project_active_rows();
         let updated = self.sync_updated_inverse(t_end)?;
         self.solve_by_updated();
@@ -52,8 +52,24 @@ impl Simulation {
         Ok(())
     }
 
+    /// The full-step solve of a large rigid active set (after `predict`,
+    /// method §4.3 step 3): as [`Simulation::solve_full_large`], the
+    /// kept inverse brought to the set by bordered updates (a cascade of
+    /// releases at one instant costs `O(|S|²)` each, not a factorisation),
+    /// and the active points ending exactly on the road, which is what the
+    /// solve imposes.
+    pub(super) fn solve_rigid_large(&mut self, t_end: f64) -> Result<(), SolverError> {
+        self.solve_full_large(t_end)?;
+        let s = &mut self.scratch;
+        for &j in &self.state.active {
+            s.ue[j] = s.re[j];
+            s.ve[j] = s.rde[j];
+        }
+        Ok(())
+    }
+
     /// Whether a full step's prediction leaves the projection to the solve
-    /// (a large compliant set: [`Simulation::solve_compliant_large`]).
+    /// (a large compliant set: [`Simulation::solve_full_large`]).
     #[inline]
     pub(super) fn fused_full_step(&self) -> bool {
         self.tables.large_sets()
@@ -335,7 +351,11 @@ fn full_entry(tb: &super::parts::SimTables) -> impl Fn(usize, usize, usize, usiz
     let (p, kk) = (tb.p, &tb.tread_k_n_m);
     move |i, r, j, c| {
         let a = blocks[2 * r + c][i * p + j];
-        if i == j { a + diag[r][c] / kk[i] } else { a }
+        if i == j && !kk.is_empty() {
+            a + diag[r][c] / kk[i]
+        } else {
+            a
+        }
     }
 }
 
@@ -345,46 +365,54 @@ mod tests {
     use crate::{PreparedModel, Simulation, SolverOptions};
 
     /// The same compliant scenes run with the direct solves and with the
-    /// methods of large sets (from 4 points on the road) agree to a
+    /// methods of large sets (from 2 points on the road) agree to a
     /// relative 1e-9 in displacements and step forces over every step,
     /// while the updates, the GMRES solves and their checks all ran.
     #[test]
     fn large_set_methods_agree_with_the_direct_solves() {
-        for (p, k) in [(30, 10), (45, 60), (60, 25)] {
+        for (p, k, regime) in [
+            (30, 10, Regime::Tread),
+            (45, 60, Regime::Tread),
+            (60, 25, Regime::Tread),
+            (60, 25, Regime::Rigid),
+            (90, 40, Regime::Rigid),
+        ] {
             // a rough road: points land and leave inside steps
-            let mut scene = scaling_scene(p, k, Regime::Tread);
+            let mut scene = scaling_scene(p, k, regime);
             scene.road = crate::model::road::Road::Sine {
                 amplitude_m: 5e-4,
                 wavelength_m: 0.03,
             };
-            scene.duration_s = 0.04;
+            // (rigid: the ramp, where the large sets are; later, repeated
+            // impacts amplify round-off differences by about ten decades
+            // over 0.03 s, in both solves alike)
+            scene.duration_s = if regime == Regime::Rigid { 0.01 } else { 0.04 };
             let model = PreparedModel::of(&scene).unwrap();
             let direct = SolverOptions {
                 large_set_from: usize::MAX,
                 ..SolverOptions::default()
             };
             let large = SolverOptions {
-                large_set_from: 4,
+                large_set_from: 2,
                 ..SolverOptions::default()
             };
             let mut a = Simulation::new(&model, direct).unwrap();
             let mut b = Simulation::new(&model, large).unwrap();
-            let (mut worst_u, mut worst_q) = (0.0f64, 0.0f64);
+            // differences against the largest values of the run
+            let (mut du, mut dq, mut u_max, mut q_max) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
             while !a.finished() {
                 a.step().unwrap();
                 b.step().unwrap();
-                let u_scale = a
-                    .displacement_m()
-                    .iter()
-                    .fold(1e-9, |m: f64, x| m.max(x.abs()));
-                let q_scale = a.force_n().iter().fold(1e-9, |m: f64, x| m.max(x.abs()));
                 for (x, y) in a.displacement_m().iter().zip(b.displacement_m()) {
-                    worst_u = worst_u.max((x - y).abs() / u_scale);
+                    du = du.max((x - y).abs());
+                    u_max = u_max.max(x.abs());
                 }
                 for (x, y) in a.force_n().iter().zip(b.force_n()) {
-                    worst_q = worst_q.max((x - y).abs() / q_scale);
+                    dq = dq.max((x - y).abs());
+                    q_max = q_max.max(x.abs());
                 }
             }
+            let (worst_u, worst_q) = (du / u_max, dq / q_max);
             let (sa, sb) = (a.stats(), b.stats());
             eprintln!(
                 "P {p}, K {k}: worst relative difference u {worst_u:.1e}, q {worst_q:.1e}; \
@@ -404,10 +432,10 @@ mod tests {
                 "P {p}, K {k}: u {worst_u:e}, q {worst_q:e}"
             );
             assert_eq!(sa.events, sb.events, "P {p}, K {k}: events");
-            assert!(
-                sb.contact_updates > 0 && sb.krylov_applications > 0,
-                "{sb:?}"
-            );
+            assert!(sb.contact_updates > 0, "{sb:?}");
+            // (GMRES serves the sub-steps of tread springs only)
+            let tread = regime == Regime::Tread;
+            assert_eq!(sb.krylov_applications > 0, tread, "{sb:?}");
             assert!(sb.factorisations < sa.factorisations, "{sa:?} {sb:?}");
         }
     }

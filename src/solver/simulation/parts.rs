@@ -113,11 +113,10 @@ impl SimTables {
     }
 
     /// Whether a large active set can occur and takes the methods of
-    /// `large.rs`: compliant contact with at least
-    /// [`SolverOptions::large_set_from`] points.
+    /// `large.rs`: at least [`SolverOptions::large_set_from`] points.
     #[inline]
     pub fn large_sets(&self) -> bool {
-        self.compliant() && self.p >= self.options.large_set_from
+        self.p >= self.options.large_set_from
     }
 
     /// Whether the contact is compliant (tread springs, method §4.6).

@@ -51,6 +51,7 @@ impl Simulation {
             Table::Full => &self.tables.full,
             Table::Sub => &self.scratch.sub,
         };
+        self.scratch.fused_full = false;
         self.state.modal.predict_into(table, &mut self.scratch.free);
         // (a large compliant set's full step projects only its active
         // points here, in its solve, and the end values in one pass: `large.rs`)
@@ -252,7 +253,8 @@ impl Simulation {
     #[inline(always)]
     pub(super) fn commit(&mut self, tau: f64, sel: Table) {
         let (st, s) = (&mut self.state, &mut self.scratch);
-        let fused = sel == Table::Full && std::mem::take(&mut s.fused_full);
+        // (the end state formed by a full-step solve is that step's only)
+        let fused = std::mem::take(&mut s.fused_full) && sel == Table::Full;
         if fused {
             // the end state is formed already (`large.rs`)
             std::mem::swap(&mut st.modal, &mut s.delta);
