@@ -39,15 +39,20 @@ pub enum Regime {
     /// A tread spring at each point (compliant contact), soft against the
     /// tyre: the pressed third of the points is on the road.
     Tread,
+    /// Tread springs on a contact patch: [`patch_scene`] with `P / 20`
+    /// points along and 20 across the tread (`y_m`), the pressed third on
+    /// the road.
+    Patch,
 }
 
 impl Regime {
-    pub const ALL: [Regime; 2] = [Regime::Rigid, Regime::Tread];
+    pub const ALL: [Regime; 3] = [Regime::Rigid, Regime::Tread, Regime::Patch];
 
     pub fn label(self) -> &'static str {
         match self {
             Regime::Rigid => "rigid contact",
             Regime::Tread => "tread springs",
+            Regime::Patch => "tread springs, patch 20 across",
         }
     }
 
@@ -56,6 +61,7 @@ impl Regime {
         match self {
             Regime::Rigid => "rigid",
             Regime::Tread => "tread",
+            Regime::Patch => "patch",
         }
     }
 
@@ -70,6 +76,10 @@ impl Regime {
 /// rest lifted; the road is a 0.1 mm, 0.2 m sine at 10 m/s. With
 /// [`Regime::Tread`] each point has a tread of `TREAD_TOTAL_N_M / P`.
 pub fn scaling_scene(points: usize, modes: usize, regime: Regime) -> crate::Scene {
+    if regime == Regime::Patch {
+        let across = PATCH_GRID.1;
+        return patch_scene((points / across).max(1), across, modes, Regime::Tread);
+    }
     let mut s = many_points(points, modes);
     let xs: Vec<f64> = s.points.iter().map(|p| p.x_m).collect();
     let (lo, hi) = xs
@@ -87,7 +97,7 @@ pub fn scaling_scene(points: usize, modes: usize, regime: Regime) -> crate::Scen
         wavelength_m: 0.2,
     };
     s.speed_mps = 10.0;
-    if regime == Regime::Tread {
+    if regime != Regime::Rigid {
         s.contact = crate::scene::Contact::Compliant {
             stiffness_n_m: vec![TREAD_TOTAL_N_M / points as f64],
         };
@@ -249,6 +259,16 @@ pub fn measure(
     })
 }
 
+/// The fitted log-log slope of `xy` to two decimals, or "—" for fewer
+/// than two points.
+fn slope_label(xy: &[(f64, f64)]) -> String {
+    if xy.len() < 2 {
+        "—".into()
+    } else {
+        format!("{:.2}", loglog_slope(xy))
+    }
+}
+
 /// Least-squares slope of `ln y` against `ln x`.
 pub fn loglog_slope(xy: &[(f64, f64)]) -> f64 {
     let n = xy.len() as f64;
@@ -294,16 +314,34 @@ pub fn figure(by_p: &[ScalingRow], by_k: &[ScalingRow]) -> Figure {
         let mut series: Vec<Series> = Regime::ALL
             .iter()
             .enumerate()
-            .map(|(i, &regime)| {
+            .filter_map(|(i, &regime)| {
                 let xy: Vec<(f64, f64)> = of(regime).map(|r| (x(r), y(r))).collect();
-                Series {
-                    name: format!("{} (slope {:.2})", regime.label(), loglog_slope(&xy)),
+                (!xy.is_empty()).then(|| Series {
+                    name: format!("{} (slope {})", regime.label(), slope_label(&xy)),
                     points: xy,
                     style: Style::LineMarkers(4),
                     color: Some(i),
-                }
+                })
             })
             .collect();
+        // the patch's own tyre off the road (its plate modes)
+        let patch_free: Vec<(f64, f64)> = of(Regime::Patch)
+            .map(|r| {
+                let y = match measure {
+                    Measure::WallTime => r.free_step_s * 1e6,
+                    Measure::Instructions => r.free_instructions_per_step.unwrap_or(f64::NAN),
+                };
+                (x(r), y)
+            })
+            .collect();
+        if !patch_free.is_empty() {
+            series.push(Series {
+                name: format!("patch off the road (slope {})", slope_label(&patch_free)),
+                points: patch_free,
+                style: Style::LineMarkers(4),
+                color: Some(Regime::ALL.len() + 1),
+            });
+        }
         {
             let free: Vec<(f64, f64)> = of(Regime::Rigid)
                 .map(|r| {
@@ -319,7 +357,7 @@ pub fn figure(by_p: &[ScalingRow], by_k: &[ScalingRow]) -> Figure {
                 })
                 .collect();
             series.push(Series {
-                name: format!("off the road (slope {:.2})", loglog_slope(&free)),
+                name: format!("off the road (slope {})", slope_label(&free)),
                 points: free,
                 style: Style::LineMarkers(4),
                 color: Some(Regime::ALL.len()),
@@ -367,7 +405,7 @@ pub fn figure(by_p: &[ScalingRow], by_k: &[ScalingRow]) -> Figure {
     Figure {
         title: "Cost of a step against the problem's size".into(),
         subtitle: format!(
-            "rank-1 modes; middle third pressed (up to {} mm) on a 0.1 mm sine road, 10 m/s, dt = 1e-5 s; on the road: about 1 point (rigid), the pressed third (tread)",
+            "rank-1 modes; middle third pressed (up to {} mm) on a 0.1 mm sine road, 10 m/s, dt = 1e-5 s; on the road: about 1 point (rigid), the pressed third (tread, patch: 20 points across, plate modes)",
             PRELOAD_M * 1e3
         ),
         panels,

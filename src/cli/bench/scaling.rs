@@ -34,6 +34,16 @@ fn scaling_sizes(quick: bool) -> (Sizes, Sizes) {
     }
 }
 
+/// The sizes of the contact patch (20 points across the tread): 10, 20
+/// and 50 along, 400 modes.
+fn patch_sizes(quick: bool) -> Sizes {
+    if quick {
+        vec![(40, 50), (80, 50)]
+    } else {
+        vec![(200, 400), (400, 400), (1000, 400)]
+    }
+}
+
 /// The peak memory (kB) of one 0.1 s run of a size in a process of its
 /// own; a warning on the progress bar and `None` when it fails.
 fn peak_memory_kb(
@@ -138,7 +148,7 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
     let (by_p, by_k) = scaling_sizes(args.quick);
     let repeats = timed_runs(args.quick).1;
     // every (size, regime) of the study, points first
-    let jobs: Vec<(bool, usize, usize, Regime)> = Regime::ALL
+    let mut jobs: Vec<(bool, usize, usize, Regime)> = [Regime::Rigid, Regime::Tread]
         .iter()
         .flat_map(|&r| {
             by_p.iter()
@@ -146,6 +156,12 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
                 .chain(by_k.iter().map(move |&(p, k)| (false, p, k, r)))
         })
         .collect();
+    // the contact patch, by points only
+    jobs.extend(
+        patch_sizes(args.quick)
+            .into_iter()
+            .map(|(p, k)| (true, p, k, Regime::Patch)),
+    );
     let bar = ProgressBar::new(jobs.len() as u64);
     bar.set_style(
         ProgressStyle::with_template("{elapsed} [{bar:30}] {pos}/{len} sizes {msg}")

@@ -189,12 +189,13 @@ impl ScalingReport {
         md.push_str(&self.markdown_exponents());
         md.push_str(&self.markdown_affine());
         md.push_str(&self.markdown_dominant());
+        md.push_str(&self.markdown_active_set());
         md
     }
 
     fn markdown_table(&self) -> String {
         let mut md = format!(
-            "# Cost of a step against the problem's size\n\nRank-1 modes; the middle third of the points pressed by up to {} mm on a 0.1 mm sine road at 10 m/s; dt = 1e-5 s. Rigid contact holds about one point on the road (the smooth mode shapes lift the neighbours of a pressed point); a soft tread spring at each point (compliant contact, {:e} N/m shared by the points) holds the pressed third. Each size is timed in its own process, the fastest of {} run(s); its peak resident memory is that of one 0.1 s run in a process of its own. The contact's share is 1 − (the same scene off the road) / (with contact), by wall time and by instructions. Instructions per step: callgrind's count over 1000 rolling steps (`-` without valgrind or with --quick); unlike wall times they repeat exactly.\n\n| contact | points P | modes K | µs per step | off the road | contact share | points on the road | events per step | factorisations per step | instructions per step | off the road | contact share by instructions | peak memory (MB) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+            "# Cost of a step against the problem's size\n\nRank-1 modes; the middle third of the points pressed by up to {} mm on a 0.1 mm sine road at 10 m/s; dt = 1e-5 s. Rigid contact holds about one point on the road (the smooth mode shapes lift the neighbours of a pressed point); a soft tread spring at each point (compliant contact, {:e} N/m shared by the points) holds the pressed third. The patch is a grid 20 points across the tread by P / 20 along, 5 mm apart, on a tyre with a width (rank-1 plate modes, up to 7 half-waves across), with tread springs. Each size is timed in its own process, the fastest of {} run(s); its peak resident memory is that of one 0.1 s run in a process of its own. The contact's share is 1 − (the same scene off the road) / (with contact), by wall time and by instructions. Instructions per step: callgrind's count over 1000 rolling steps (`-` without valgrind or with --quick); unlike wall times they repeat exactly.\n\n| contact | points P | modes K | µs per step | off the road | contact share | points on the road | events per step | factorisations per step | instructions per step | off the road | contact share by instructions | peak memory (MB) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
             PRELOAD_M * 1e3,
             TREAD_TOTAL_N_M,
             self.repeats,
@@ -232,12 +233,19 @@ impl ScalingReport {
             self.slope(true, Regime::Rigid, true),
             self.slope(false, Regime::Rigid, true),
         );
+        let exponent = |by_points: bool, regime: Regime| {
+            if self.scan(by_points, regime).len() < 2 {
+                "—".to_string()
+            } else {
+                format!("{:.2}", self.slope(by_points, regime, false))
+            }
+        };
         for regime in Regime::ALL {
             md.push_str(&format!(
-                "- {}: P^{:.2}, K^{:.2}",
+                "- {}: P^{}, K^{}",
                 regime.label(),
-                self.slope(true, regime, false),
-                self.slope(false, regime, false)
+                exponent(true, regime),
+                exponent(false, regime)
             ));
             if let (Some(a), Some(b)) = (
                 self.instruction_slope(true, regime),
@@ -246,6 +254,41 @@ impl ScalingReport {
                 md.push_str(&format!("; instructions per step P^{a:.2}, K^{b:.2}"));
             }
             md.push_str(".\n");
+        }
+        md
+    }
+
+    /// Fitted exponent of the contact's cost (time per step with contact
+    /// less off the road) against the points on the road, over the scan by
+    /// points of a regime; `None` with fewer than two sizes or a cost not
+    /// above zero.
+    pub fn active_set_slope(&self, regime: Regime) -> Option<f64> {
+        let xy: Vec<(f64, f64)> = self
+            .scan(true, regime)
+            .iter()
+            .map(|r| (r.on_road * r.points as f64, r.step_s - r.free_step_s))
+            .filter(|&(s, c)| s > 0.0 && c > 0.0)
+            .collect();
+        (xy.len() >= 2).then(|| loglog_slope(&xy))
+    }
+
+    /// The contact's cost against the active set, for the regimes whose
+    /// pressed third is on the road.
+    fn markdown_active_set(&self) -> String {
+        let mut md = String::new();
+        for regime in [Regime::Tread, Regime::Patch] {
+            if let Some(a) = self.active_set_slope(regime) {
+                let on: Vec<String> = self
+                    .scan(true, regime)
+                    .iter()
+                    .map(|r| format!("{:.0}", r.on_road * r.points as f64))
+                    .collect();
+                md.push_str(&format!(
+                    "\n{}: the contact's cost per step (with contact less off the road) grows as |S|^{a:.2} in the points on the road ({}).\n",
+                    regime.label(),
+                    on.join(", ")
+                ));
+            }
         }
         md
     }
