@@ -1,6 +1,6 @@
-//! Large active sets of compliant contact (method §4.5, "Large active
-//! sets"), from [`SolverOptions::large_set_from`](super::SolverOptions)
-//! points on the road: the cost of the contact follows what changes.
+//! Large active sets (method §4.5, "Large active sets"), from
+//! [`SolverOptions::large_set_from`](super::SolverOptions) points on the
+//! road: the cost of the contact follows what changes.
 //!
 //! - **Full step.** The inverse of the `2|S|` full-step system is kept
 //!   from step to step and, when points join or leave the set, updated by
@@ -8,7 +8,7 @@
 //!   new factorisation and inverse (`O(|S|³)`). The solve of a step after
 //!   an update is checked by its componentwise backward error; above
 //!   [`UPDATE_BACKWARD_ERROR`] the inverse is formed from scratch.
-//! - **Sub-steps** (between events): the system at the sub-step's length
+//! - **Sub-steps** of tread springs (between events): the system at the sub-step's length
 //!   is solved by GMRES (`contact/krylov.rs`) with the operator applied
 //!   through the modal states (`O(|S| K)`) and a preconditioner of each
 //!   point's own 2 × 2 block, instead of filling its `|S|² K` entries and

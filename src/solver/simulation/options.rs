@@ -42,14 +42,15 @@ pub struct SolverOptions {
     /// rigid contact, see `simulation/steady.rs`; compliant contact, see
     /// `simulation/compliant.rs`). Bit-identical results.
     pub steady_path: bool,
-    /// Points on the road from which a compliant contact's solves take
-    /// the methods of large active sets (method §4.5, "Large active sets"):
-    /// the full-step inverse kept up to date as points join and leave
-    /// (bordered updates, `O(|S|²)` each, checked by the residual of the
-    /// solve), and sub-steps solved by GMRES through the modal states
-    /// instead of filling and factorising their `2|S|` system. They agree
-    /// with the direct solves to about 1e-12 relative (`usize::MAX`: never;
-    /// smaller sets keep the direct solves, bit for bit).
+    /// Points on the road from which the contact solves take the methods
+    /// of large active sets (method §4.5, "Large active sets"): the
+    /// full-step inverse kept up to date as points join and leave
+    /// (bordered updates, `O(|S|²)` each, checked by the backward error of
+    /// the solve), and, with tread springs, sub-steps solved by GMRES
+    /// through the modal states instead of filling and factorising their
+    /// `2|S|` system. They agree with the direct solves to round-off
+    /// (`usize::MAX`: never; smaller sets keep the direct solves, bit for
+    /// bit).
     pub large_set_from: usize,
 }
 
