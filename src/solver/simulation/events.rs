@@ -67,6 +67,8 @@ impl Simulation {
         // whole step: the steady path runs only on roads without breakpoints
         // under active points, and a step without them has none to stop at)
         let mut predicted = self.start_active_set(&mut at, after_steady)?;
+        // the span of a prediction still valid for the next trial
+        let mut kept_prediction: Option<(f64, f64, Table)> = None;
         while at.remaining_s > 1e-12 * dt {
             if at.events > self.tables.max_events {
                 at.solves += self.finish_cascade(at.t_s, at.remaining_s)?;
@@ -75,7 +77,12 @@ impl Simulation {
             let (span, sel) = self.next_span(&mut at)?;
             // predict (unless the steady attempt did, over this very span)
             let reuse = std::mem::take(&mut predicted) && sel == Table::Full && at.t_s == t_start;
-            if !reuse {
+            // (or a release at once, which changes no state, left it)
+            // (a road with breakpoints may resample the road between trials)
+            let kept = std::mem::take(&mut kept_prediction) == Some((at.t_s, span, sel))
+                && !self.road.has_kinks()
+                && (self.scratch.projected_all || self.fused_full_step());
+            if !reuse && !kept {
                 self.predict(at.t_s, span, sel)?;
             }
             self.solve_contact(at.t_s + span, sel)?;
@@ -86,6 +93,7 @@ impl Simulation {
             {
                 self.release(k);
                 at.events += 1;
+                kept_prediction = Some((at.t_s, span, sel));
                 continue;
             }
             let th_rel = found.release.map_or(f64::INFINITY, |r| r.1);

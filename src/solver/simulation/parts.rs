@@ -254,6 +254,9 @@ pub(super) struct Scratch {
     /// set (its prediction plus the solved forces, `large.rs`), which
     /// `commit` takes as it is.
     pub fused_full: bool,
+    /// The last prediction projected every point's free end values
+    /// (`uh`, `vh`), not only the active points'.
+    pub projected_all: bool,
     /// The right-hand side in slot order, and a point's slot mark.
     pub rhs_slots: Vec<f64>,
     pub mark: Vec<bool>,
@@ -294,6 +297,7 @@ impl Scratch {
             rhs_slots: vec![0.0; if large { 2 * p } else { 0 }],
             mark: vec![false; p],
             fused_full: false,
+            projected_all: false,
         }
     }
 }

@@ -55,10 +55,12 @@ impl Simulation {
         self.state.modal.predict_into(table, &mut self.scratch.free);
         // (a large compliant set's full step projects only its active
         // points here, in its solve, and the end values in one pass: `large.rs`)
-        if !(sel == Table::Full && self.fused_full_step()) {
+        let fused = sel == Table::Full && self.fused_full_step();
+        if !fused {
             let (uh, vh) = (&mut self.scratch.uh, &mut self.scratch.vh);
             self.scratch.free.project(&self.tables.basis, uh, vh);
         }
+        self.scratch.projected_all = !fused;
         // a full step from the current time ends at step `steps + 1`
         let step_end = (sel == Table::Full && t == self.state.t_s).then_some(self.state.steps + 1);
         self.sample_road(t + tau, false, step_end)
