@@ -405,7 +405,7 @@ pub fn figure(by_p: &[ScalingRow], by_k: &[ScalingRow]) -> Figure {
     Figure {
         title: "Cost of a step against the problem's size".into(),
         subtitle: format!(
-            "rank-1 modes; middle third pressed (up to {} mm) on a 0.1 mm sine road, 10 m/s, dt = 1e-5 s; on the road: about 1 point (rigid), the pressed third (tread, patch: 20 points across, plate modes)",
+            "rank-1 modes, middle third pressed (up to {} mm), 0.1 mm sine road, 10 m/s, dt = 1e-5 s; on the road: about 1 point (rigid), a third (tread, patch)",
             PRELOAD_M * 1e3
         ),
         panels,
