@@ -27,12 +27,13 @@ pub struct BenchArgs {
     pub presets: Vec<PathBuf>,
     /// Instead of the work-precision study: the cost of a step against the
     /// number of points (5 to 400) and of modes (10 to 400), with rigid
-    /// contact and with tread springs, each size timed in its own process
+    /// contact and with tread springs, and on a contact patch 20 points
+    /// across (200 to 1000 points), each size timed in its own process
     /// (scaling.csv, .md, .png).
     #[arg(long)]
     pub scaling: bool,
-    /// One size of the scaling study, `P,K,CONTACT` with CONTACT `rigid`
-    /// or `tread` (the child process's job: its timed runs), or
+    /// One size of the scaling study, `P,K,CONTACT` with CONTACT `rigid`,
+    /// `tread` or `patch` (the child process's job: its timed runs), or
     /// `P,K,CONTACT,SECONDS[,lifted]`: one run of that length, off the road
     /// with `lifted`, then the process's peak memory (what callgrind counts).
     #[arg(long, hide = true)]

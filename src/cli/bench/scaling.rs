@@ -104,7 +104,7 @@ fn peak_rss_kb() -> Option<u64> {
 pub fn scaling_one(pk: &str, quick: bool) -> CliResult {
     let bad = || {
         format!(
-            "--scaling-one {pk}: expected P,K,CONTACT (points, modes, `rigid` or `tread`), e.g. 50,400,tread, then optionally a duration in s and `lifted`"
+            "--scaling-one {pk}: expected P,K,CONTACT (points, modes, `rigid`, `tread` or `patch`), e.g. 50,400,tread, then optionally a duration in s and `lifted`"
         )
     };
     let f: Vec<&str> = pk.split(',').map(str::trim).collect();

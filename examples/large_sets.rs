@@ -1,0 +1,63 @@
+//! A scene of the scaling study run with the direct contact solves and
+//! with the methods of large active sets, one after the other in one
+//! process: wall time per step over windows of steps, and the counts of
+//! events, factorisations, updates and GMRES products (docs/performance.md,
+//! "Large active sets").
+//!
+//! ```sh
+//! cargo run --release --example large_sets -- patch 1000 400 0.014 200
+//! ```
+//!
+//! Arguments: the setting (`rigid`, `tread` or `patch`), points, modes,
+//! duration (s) and the window (steps).
+
+use std::time::Instant;
+use tirecontact::analysis::bench::scaling::{Regime, scaling_scene};
+use tirecontact::{PreparedModel, Simulation, SolverOptions};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let usage = "usage: large_sets SETTING POINTS MODES DURATION_S WINDOW_STEPS (SETTING: rigid, tread or patch)";
+    let [setting, p, k, d, w] = &args[..] else {
+        return Err(usage.into());
+    };
+    let regime = Regime::from_key(setting).ok_or(usage)?;
+    let (p, k, w): (usize, usize, u64) = (p.parse()?, k.parse()?, w.parse()?);
+    let mut scene = scaling_scene(p, k, regime);
+    scene.duration_s = d.parse()?;
+    let model = PreparedModel::of(&scene)?;
+    for (name, from) in [("direct solves", usize::MAX), ("large-set methods", 24)] {
+        let options = SolverOptions {
+            large_set_from: from,
+            ..SolverOptions::default()
+        };
+        let mut sim = Simulation::new(&model, options)?;
+        println!("{} — {name}", scene.name);
+        let (start, mut window) = (Instant::now(), Instant::now());
+        while !sim.finished() {
+            sim.step()?;
+            if sim.steps() % w == 0 {
+                let on = sim.force_n().iter().filter(|f| **f > 0.0).count();
+                println!(
+                    "  steps {:>6} to {:>6}: {:8.1} µs per step, {on} points on the road",
+                    sim.steps() - w + 1,
+                    sim.steps(),
+                    window.elapsed().as_secs_f64() / w as f64 * 1e6
+                );
+                window = Instant::now();
+            }
+        }
+        let st = sim.stats();
+        println!(
+            "  whole run: {:.1} µs per step; {} events, {} factorisations, {} updates ({} refused), {} GMRES products ({} fallbacks)",
+            start.elapsed().as_secs_f64() / st.steps.max(1) as f64 * 1e6,
+            st.events,
+            st.factorisations,
+            st.contact_updates,
+            st.update_refusals,
+            st.krylov_applications,
+            st.krylov_fallbacks
+        );
+    }
+    Ok(())
+}
