@@ -453,6 +453,38 @@ mod tests {
         }
     }
 
+    /// The patch is a grid of points across the tread (distinct `y_m`
+    /// sharing each `x_m`), its tyre's responses differ across the width,
+    /// and its tread holds the pressed third on the road.
+    #[test]
+    fn the_patch_is_a_grid_across_the_tread_with_its_third_on_the_road() {
+        let s = scaling_scene(200, 40, Regime::Patch);
+        assert_eq!(s.num_points(), 200);
+        assert!(s.validate().is_ok(), "{:?}", s.validate());
+        let ys: std::collections::BTreeSet<i64> = s
+            .points
+            .iter()
+            .map(|p| (p.y_m * 1e6).round() as i64)
+            .collect();
+        let xs: std::collections::BTreeSet<i64> = s
+            .points
+            .iter()
+            .map(|p| (p.x_m * 1e6).round() as i64)
+            .collect();
+        assert_eq!((xs.len(), ys.len()), (10, 20), "{xs:?} {ys:?}");
+        // points 0 and 1 share x: a mode across the width tells them apart
+        let crate::scene::Tyre::Modal { modes } = &s.tyre else {
+            panic!("a modal tyre")
+        };
+        assert!(modes.iter().any(|m| (m.shape[0] - m.shape[1]).abs() > 1e-3));
+        let r = measure(200, 40, Regime::Patch, 0.03, 1).unwrap();
+        let on = r.on_road * 200.0;
+        assert!(
+            on > 0.25 * 200.0 && on < 0.42 * 200.0,
+            "{on} of 200 on the road: {r:?}"
+        );
+    }
+
     #[test]
     fn a_measured_size_counts_its_steps_and_the_footprint_on_the_road() {
         // wall times are the benchmark's to compare (a loaded machine can

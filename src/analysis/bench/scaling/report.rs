@@ -457,7 +457,9 @@ mod tests {
         let md = r.markdown();
         assert_eq!(
             md.lines()
-                .filter(|l| l.starts_with("| rigid") || l.starts_with("| tread"))
+                .filter(|l| Regime::ALL
+                    .iter()
+                    .any(|r| l.starts_with(&format!("| {} |", r.key()))))
                 .count(),
             r.sizes.len()
         );
