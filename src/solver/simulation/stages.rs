@@ -51,12 +51,17 @@ impl Simulation {
             Table::Full => &self.tables.full,
             Table::Sub => &self.scratch.sub,
         };
-        self.state.modal.predict_into(table, &mut self.scratch.free);
+        let threads = &self.threads;
+        self.state
+            .modal
+            .predict_into_on(table, &mut self.scratch.free, threads);
         // (a large compliant set's full step projects only its active
         // points here, in its solve, and the end values in one pass: `large.rs`)
         if !(sel == Table::Full && self.fused_full_step()) {
             let (uh, vh) = (&mut self.scratch.uh, &mut self.scratch.vh);
-            self.scratch.free.project(&self.tables.basis, uh, vh);
+            self.scratch
+                .free
+                .project_on(&self.tables.basis, uh, vh, threads);
         }
         // a full step from the current time ends at step `steps + 1`
         let step_end = (sel == Table::Full && t == self.state.t_s).then_some(self.state.steps + 1);
@@ -262,12 +267,13 @@ impl Simulation {
         }
         if !st.active.is_empty() && !fused {
             match sel {
-                Table::Full => st.modal.add_gauss_forces(
+                Table::Full => st.modal.add_gauss_forces_on(
                     &self.tables.basis,
                     &self.tables.full,
                     &st.active,
                     &s.q1,
                     &s.q2,
+                    &self.threads,
                 ),
                 Table::Sub => st.modal.add(&s.delta),
             }
