@@ -20,7 +20,7 @@
 //!
 //! | layer | modules | what | method |
 //! |---|---|---|---|
-//! | 0 [`base`] | [`error`](base::error), [`linalg`](base::linalg), [`fsio`](base::fsio), [`modal`](base::modal) | errors; checked dense decompositions (faer); atomic file writes; modes, poles for every damping ratio, `g(t)`, `G(ω)` | §2, §3, §6 |
+//! | 0 [`base`] | [`error`](base::error), [`linalg`](base::linalg), [`fsio`](base::fsio), [`modal`](base::modal), [`threads`](base::threads) | errors; checked dense decompositions (faer); atomic file writes; modes, poles for every damping ratio, `g(t)`, `G(ω)`; the kernels' worker threads | §2, §3, §6 |
 //! | 1 [`model`] | [`ring`](model::ring), [`lsce`](model::lsce), [`measured`](model::measured), [`road`](model::road), [`convolution`](model::convolution) | ring tyre on an elastic foundation; LSCE identification; measured responses; road profiles and the ramp; the bounded recursive convolution with exact step weights | §3, §5, §6 |
 //! | 2 [`scene`] | | RON scenes, their validation, edits by path | — |
 //! | 3 [`identify`] | | ring or measured tyre -> LSCE; `ModeCache`, `PreparedModel` (what a simulation is built from) | §5-6 |

@@ -119,5 +119,6 @@ fn headless_default() -> cli::CliResult {
         frames_to: None,
         frame_size: (1280, 720),
         exact_rank: false,
+        threads: 1,
     })
 }

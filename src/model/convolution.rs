@@ -35,8 +35,10 @@ pub mod paper_alpha_beta;
 use crate::base::error::BasisError;
 use crate::base::linalg;
 use crate::base::modal::Mode;
+use crate::base::threads::Threads;
 pub use mode_step::{ModeStep, mode_step, mode_steps_into};
 use std::f64::consts::TAU;
+use std::ops::Range;
 
 /// Dot product with four independent accumulators (lets the compiler use
 /// SIMD lanes; the summation order is fixed, so results are deterministic).
@@ -220,14 +222,31 @@ impl ModalBasis {
 
     /// `Σ_k A_k = g'(0+)`: velocity jump per unit impulse (1/kg), row-major.
     pub fn velocity_jump(&self) -> Vec<f64> {
+        self.velocity_jump_on(&Threads::single())
+    }
+
+    /// [`ModalBasis::velocity_jump`] on `threads`, split by rows (points
+    /// `i`) into contiguous ranges ([`Threads::split`]): each entry is the
+    /// same sum over the states in the same order whatever the range, so
+    /// the result is the same for any number of threads.
+    pub fn velocity_jump_on(&self, threads: &Threads) -> Vec<f64> {
         let (p, ns) = (self.num_points, self.stored_states());
         let mut m = vec![0.0; p * p];
-        for i in 0..p {
-            for j in 0..p {
-                m[i * p + j] = (0..ns)
-                    .map(|s| self.out[i * ns + s] * self.inp[s * p + j])
-                    .sum();
+        // (`inp_t` holds `inp`'s values point-major: the same products,
+        // over contiguous memory)
+        let rows = |r: Range<usize>, [m]: [&mut [f64]; 1]| {
+            for (k, i) in r.enumerate() {
+                let a = &self.out[i * ns..(i + 1) * ns];
+                for j in 0..p {
+                    let b = &self.inp_t[j * ns..(j + 1) * ns];
+                    m[k * p + j] = (0..ns).map(|s| a[s] * b[s]).sum();
+                }
             }
+        };
+        if threads.worth(p * p * ns) {
+            threads.split(p, 1, [(&mut m, p)], rows);
+        } else {
+            rows(0..p, [&mut m]);
         }
         m
     }
@@ -247,6 +266,15 @@ pub struct StepTable {
     soa: StepColumns,
 }
 
+/// States per range of the threaded state kernels (`predict`,
+/// `add_gauss_forces`): whole blocks of the force kernel, whose written
+/// states then never share a cache line between threads.
+const STATE_ALIGN: usize = 16;
+
+/// Rows (points) per range of the threaded projections: a cache line of
+/// outputs.
+const ROW_ALIGN: usize = 8;
+
 /// `Φ` and the Gauss-point weights of every state, one array per entry.
 #[derive(Debug, Clone, Default)]
 struct StepColumns {
@@ -258,6 +286,34 @@ struct StepColumns {
     w1v: Vec<f64>,
     w2x: Vec<f64>,
     w2v: Vec<f64>,
+}
+
+/// The columns of [`StepColumns`] over a range of states.
+struct Cols<'a> {
+    pxx: &'a [f64],
+    pxv: &'a [f64],
+    pvx: &'a [f64],
+    pvv: &'a [f64],
+    w1x: &'a [f64],
+    w1v: &'a [f64],
+    w2x: &'a [f64],
+    w2v: &'a [f64],
+}
+
+impl StepColumns {
+    /// The states `r`.
+    fn cols(&self, r: Range<usize>) -> Cols<'_> {
+        Cols {
+            pxx: &self.pxx[r.clone()],
+            pxv: &self.pxv[r.clone()],
+            pvx: &self.pvx[r.clone()],
+            pvv: &self.pvv[r.clone()],
+            w1x: &self.w1x[r.clone()],
+            w1v: &self.w1v[r.clone()],
+            w2x: &self.w2x[r.clone()],
+            w2v: &self.w2v[r],
+        }
+    }
 }
 
 impl StepTable {
@@ -335,27 +391,61 @@ impl Influence {
 
     /// Recomputes in place (sized once).
     pub fn fill(&mut self, basis: &ModalBasis, table: &StepTable) {
+        self.fill_on(basis, table, &Threads::single());
+    }
+
+    /// [`Influence::new`] on `threads`.
+    pub fn new_on(basis: &ModalBasis, table: &StepTable, threads: &Threads) -> Self {
+        let mut g = Influence::default();
+        g.fill_on(basis, table, threads);
+        g
+    }
+
+    /// [`Influence::fill`] on `threads`, split by rows (points `i`) into
+    /// contiguous ranges ([`Threads::split`]): each entry sums the same
+    /// terms in the same order (states ascending) whatever the range, so
+    /// the result is the same for any number of threads.
+    pub fn fill_on(&mut self, basis: &ModalBasis, table: &StepTable, threads: &Threads) {
         let (p, ns) = (basis.num_points, basis.stored_states());
         for m in [&mut self.gx1, &mut self.gx2, &mut self.gv1, &mut self.gv2] {
             m.clear();
             m.resize(p * p, 0.0);
         }
-        for i in 0..p {
-            for s in 0..ns {
-                let a = basis.out[i * ns + s];
-                if a == 0.0 {
-                    continue;
-                }
-                let (w1, w2) = (table.w1[s], table.w2[s]);
-                let b = &basis.inp[s * p..(s + 1) * p];
-                for j in 0..p {
-                    let ab = a * b[j];
-                    self.gx1[i * p + j] += ab * w1[0];
-                    self.gx2[i * p + j] += ab * w2[0];
-                    self.gv1[i * p + j] += ab * w1[1];
-                    self.gv2[i * p + j] += ab * w2[1];
+        let rows = |r: Range<usize>, [gx1, gx2, gv1, gv2]: [&mut [f64]; 4]| {
+            for (k, i) in r.enumerate() {
+                let row = k * p..(k + 1) * p;
+                let (gx1, gx2) = (&mut gx1[row.clone()], &mut gx2[row.clone()]);
+                let (gv1, gv2) = (&mut gv1[row.clone()], &mut gv2[row]);
+                for s in 0..ns {
+                    let a = basis.out[i * ns + s];
+                    if a == 0.0 {
+                        continue;
+                    }
+                    let (w1, w2) = (table.w1[s], table.w2[s]);
+                    let b = &basis.inp[s * p..(s + 1) * p];
+                    for j in 0..p {
+                        let ab = a * b[j];
+                        gx1[j] += ab * w1[0];
+                        gx2[j] += ab * w2[0];
+                        gv1[j] += ab * w1[1];
+                        gv2[j] += ab * w2[1];
+                    }
                 }
             }
+        };
+        if threads.worth(4 * p * p * ns) {
+            let outs = [
+                (&mut self.gx1[..], p),
+                (&mut self.gx2[..], p),
+                (&mut self.gv1[..], p),
+                (&mut self.gv2[..], p),
+            ];
+            threads.split(p, 1, outs, rows);
+        } else {
+            rows(
+                0..p,
+                [&mut self.gx1, &mut self.gx2, &mut self.gv1, &mut self.gv2],
+            );
         }
     }
 }
@@ -384,7 +474,28 @@ impl ModalState {
     /// `out = Φ(τ) self` (free evolution over the step, no new force).
     #[inline]
     pub fn predict_into(&self, table: &StepTable, out: &mut ModalState) {
-        kernels::predict(&table.soa, &self.x, &self.v, &mut out.x, &mut out.v);
+        self.predict_into_on(table, out, &Threads::single());
+    }
+
+    /// [`ModalState::predict_into`] on `threads` when it pays
+    /// ([`Threads::worth`]), split by states into contiguous ranges: each
+    /// state is computed alone, so the result is the same for any number
+    /// of threads.
+    #[inline]
+    pub fn predict_into_on(&self, table: &StepTable, out: &mut ModalState, threads: &Threads) {
+        let ns = self.x.len();
+        let c = &table.soa;
+        if threads.worth(4 * ns) {
+            let (x, v) = (&self.x, &self.v);
+            threads.split(
+                ns,
+                STATE_ALIGN,
+                [(&mut out.x, 1), (&mut out.v, 1)],
+                |r, [ox, ov]| kernels::predict(&c.cols(r.clone()), &x[r.clone()], &v[r], ox, ov),
+            );
+        } else {
+            kernels::predict(&c.cols(0..ns), &self.x, &self.v, &mut out.x, &mut out.v);
+        }
     }
 
     /// Adds the response at the step end to Gauss-point forces `q1`, `q2`
@@ -398,18 +509,50 @@ impl ModalState {
         q1: &[f64],
         q2: &[f64],
     ) {
+        self.add_gauss_forces_on(basis, table, active, q1, q2, &Threads::single());
+    }
+
+    /// [`ModalState::add_gauss_forces`] on `threads` when it pays
+    /// ([`Threads::worth`]), split by states into contiguous ranges of
+    /// whole blocks: each state's sum over the active points runs in
+    /// their order whatever the range, so the result is the same for any
+    /// number of threads.
+    #[inline]
+    pub fn add_gauss_forces_on(
+        &mut self,
+        basis: &ModalBasis,
+        table: &StepTable,
+        active: &[usize],
+        q1: &[f64],
+        q2: &[f64],
+        threads: &Threads,
+    ) {
         if active.is_empty() {
             return;
         }
-        kernels::add_gauss_forces(
-            &table.soa,
-            &basis.inp_t,
-            active,
-            q1,
-            q2,
-            &mut self.x,
-            &mut self.v,
-        );
+        let (ns, c, inp_t) = (self.x.len(), &table.soa, &basis.inp_t[..]);
+        if threads.worth(2 * active.len() * ns) {
+            threads.split(
+                ns,
+                STATE_ALIGN,
+                [(&mut self.x, 1), (&mut self.v, 1)],
+                |r, [x, v]| {
+                    let inp = &inp_t[r.start..];
+                    kernels::add_gauss_forces(&c.cols(r), inp, ns, active, q1, q2, x, v)
+                },
+            );
+        } else {
+            kernels::add_gauss_forces(
+                &c.cols(0..ns),
+                inp_t,
+                ns,
+                active,
+                q1,
+                q2,
+                &mut self.x,
+                &mut self.v,
+            );
+        }
     }
 
     /// Adds the response to forces constant over the step (N), all points.
@@ -445,11 +588,60 @@ impl ModalState {
         kernels::project(&basis.out, basis.num_points, &self.x, &self.v, u, v);
     }
 
+    /// [`ModalState::project`] on `threads` when it pays
+    /// ([`Threads::worth`]), split by rows (points) into contiguous
+    /// ranges: each point's sums are the same whatever the range, so the
+    /// result is the same for any number of threads.
+    #[inline]
+    pub fn project_on(&self, basis: &ModalBasis, u: &mut [f64], v: &mut [f64], threads: &Threads) {
+        let (p, ns) = (basis.num_points, basis.stored_states());
+        if threads.worth(2 * p * ns) {
+            let (out, x, xv) = (&basis.out, &self.x, &self.v);
+            threads.split(p, ROW_ALIGN, [(u, 1), (v, 1)], |r, [u, v]| {
+                kernels::project(&out[r.start * ns..r.end * ns], r.len(), x, xv, u, v)
+            });
+        } else {
+            self.project(basis, u, v);
+        }
+    }
+
     /// [`ModalState::project`] at the points `rows` only (the same values).
     #[inline]
     pub fn project_rows(&self, basis: &ModalBasis, rows: &[usize], u: &mut [f64], v: &mut [f64]) {
         let ns = basis.stored_states();
         kernels::project_rows(&basis.out, ns, rows, &self.x, &self.v, u, v);
+    }
+
+    /// [`ModalState::project_rows`] on `threads` when it pays
+    /// ([`Threads::worth`]): the list `rows` split into contiguous ranges,
+    /// each row's values into `packed` (two buffers of at least
+    /// `rows.len()`, at the row's place in the list), then copied to its
+    /// point. Each row is the same sum whatever the range: the same values
+    /// for any number of threads.
+    pub fn project_rows_on(
+        &self,
+        basis: &ModalBasis,
+        rows: &[usize],
+        u: &mut [f64],
+        v: &mut [f64],
+        packed: [&mut [f64]; 2],
+        threads: &Threads,
+    ) {
+        let ns = basis.stored_states();
+        if !threads.worth(2 * rows.len() * ns) {
+            return self.project_rows(basis, rows, u, v);
+        }
+        let [pu, pv] = packed;
+        let (out, x, xv) = (&basis.out, &self.x, &self.v);
+        threads.split(
+            rows.len(),
+            ROW_ALIGN,
+            [(&mut *pu, 1), (&mut *pv, 1)],
+            |r, [pu, pv]| kernels::project_rows_packed(out, ns, &rows[r], x, xv, pu, pv),
+        );
+        for (k, &i) in rows.iter().enumerate() {
+            (u[i], v[i]) = (pu[k], pv[k]);
+        }
     }
 
     /// Adds another state of the same size.
@@ -511,6 +703,58 @@ mod tests {
                 (m.w_const[0] / approx - 1.0).abs()
                     < 2.0 * (omega + 2.0 * xi * omega) * tau + 1e-12
             );
+        }
+    }
+
+    /// The set-up tables on 2 and 3 threads (every call split) equal, bit
+    /// for bit, those on one: a residue basis of 23 points (ranges of
+    /// uneven lengths) with zero entries (skipped terms).
+    #[test]
+    fn set_up_tables_are_the_same_on_any_number_of_threads() {
+        let p = 23;
+        let modes: Vec<Mode> = (0..9)
+            .map(|k| {
+                let shape: Vec<f64> = (0..p)
+                    .map(|i| {
+                        let x = ((i * 7 + k * 3) as f64 * 0.37).sin();
+                        if (i + k) % 5 == 0 { 0.0 } else { x }
+                    })
+                    .collect();
+                let residue = (0..p)
+                    .map(|i| (0..p).map(|j| shape[i] * shape[j]).collect())
+                    .collect();
+                Mode {
+                    freq_hz: 50.0 + 37.0 * k as f64,
+                    damping_ratio: 0.04,
+                    // (rank terms of a residue, or a shape as it is)
+                    residue: if k % 2 == 0 { vec![] } else { residue },
+                    shape: if k % 2 == 0 { shape } else { vec![] },
+                }
+            })
+            .collect();
+        let basis = ModalBasis::new(&modes, p).unwrap();
+        let table = StepTable::new(&basis, 1e-4);
+        let bits = |a: &[f64]| a.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let g1 = Influence::new(&basis, &table);
+        let j1 = basis.velocity_jump();
+        assert!(j1.iter().any(|&x| x != 0.0));
+        for n in [2, 3] {
+            let threads = Threads::new(n).with_parallel_from(1);
+            let g = Influence::new_on(&basis, &table, &threads);
+            for (a, b) in [
+                (&g.gx1, &g1.gx1),
+                (&g.gx2, &g1.gx2),
+                (&g.gv1, &g1.gv1),
+                (&g.gv2, &g1.gv2),
+            ] {
+                assert_eq!(bits(a), bits(b), "{n} threads");
+            }
+            assert_eq!(
+                bits(&basis.velocity_jump_on(&threads)),
+                bits(&j1),
+                "{n} threads"
+            );
+            assert_eq!(threads.split_calls(), 2);
         }
     }
 

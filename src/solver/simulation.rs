@@ -24,6 +24,7 @@ pub mod stages;
 mod steady;
 
 use crate::base::error::{SceneError, SolverError};
+use crate::base::threads::Threads;
 use crate::identify::PreparedModel;
 use crate::model::road::{PointsRoad, Road, RoadProfile};
 use crate::scene::{ContactScheme, Scene};
@@ -114,6 +115,8 @@ pub struct Simulation {
     /// Depth below the road that counts as on it (m): `1e-12` of the
     /// largest road or point height.
     pen_tol_m: f64,
+    /// The threads of the large kernels ([`SolverOptions::threads`]).
+    threads: Threads,
 }
 
 /// `√3`: the slope of a linear force is `√3 (q2 - q1) / τ` from its
@@ -138,7 +141,8 @@ impl Simulation {
     /// (method §3.4) or the residual compliance does not apply (§4.7).
     pub fn new(model: &PreparedModel, options: SolverOptions) -> Result<Self, SceneError> {
         let scene = model.scene();
-        let tables = SimTables::new(scene, model.modes().to_vec(), options)?;
+        let threads = Threads::new(options.threads).with_parallel_from(options.parallel_from_madds);
+        let tables = SimTables::new(scene, model.modes().to_vec(), options, &threads)?;
         let p = tables.p;
         let pen_tol_m = penetration_tolerance_m(model.road(), &scene.points);
         let xs: Vec<f64> = scene.points.iter().map(|pt| pt.x_m).collect();
@@ -151,6 +155,7 @@ impl Simulation {
             road: PointsRoad::new(model.road().clone(), &xs),
             pen_tol_m,
             tables,
+            threads,
         };
         sim.reset();
         Ok(sim)
@@ -271,6 +276,17 @@ impl Simulation {
     }
     pub fn stats(&self) -> &RunStats {
         &self.state.stats
+    }
+    /// Threads of the kernels ([`SolverOptions::threads`]; fewer if the
+    /// system refused to start some).
+    pub fn threads(&self) -> usize {
+        self.threads.count()
+    }
+    /// Kernel calls split over the threads since the simulation was
+    /// built, set-up included (0 on one thread, and for scenes below
+    /// [`SolverOptions::parallel_from_madds`]).
+    pub fn threaded_kernel_calls(&self) -> u64 {
+        self.threads.split_calls()
     }
     /// Whether the run reached `duration_s`.
     pub fn finished(&self) -> bool {

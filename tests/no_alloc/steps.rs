@@ -49,3 +49,37 @@ fn steps_do_not_allocate() {
         }
     }
 }
+
+#[test]
+fn threaded_steps_do_not_allocate() {
+    // every kernel split over 2 threads (a large compliant set: updated
+    // inverse, GMRES sub-steps), on a rough road
+    let mut scene = tirecontact::analysis::bench::scaling::scaling_scene(
+        60,
+        40,
+        tirecontact::analysis::bench::scaling::Regime::Tread,
+    );
+    scene.road = tirecontact::model::road::Road::Sine {
+        amplitude_m: 5e-4,
+        wavelength_m: 0.03,
+    };
+    scene.ramp_s = 1e-3;
+    let options = tirecontact::SolverOptions {
+        threads: 2,
+        parallel_from_madds: 1,
+        ..tirecontact::SolverOptions::default()
+    };
+    let mut sim = tirecontact::Simulation::from_scene_with(&scene, options).unwrap();
+    for _ in 0..500 {
+        sim.step().unwrap();
+    }
+    let (calls, events) = (sim.threaded_kernel_calls(), sim.stats().events);
+    let allocs = allocations_in(|| {
+        for _ in 0..2000 {
+            sim.step().unwrap();
+        }
+    });
+    assert_eq!(allocs, 0, "{allocs} allocations in 2000 threaded steps");
+    assert!(sim.threaded_kernel_calls() > calls + 2000);
+    assert!(sim.stats().events > events, "the window must contain events");
+}

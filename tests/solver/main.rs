@@ -1,8 +1,8 @@
 //! The contact solver and the fast modal convolution (method §1-4), checked
 //! against closed forms, independent implementations written in these
 //! files, self-convergence and invariants; its options (steady path, rank
-//! cut, residual flexibility) against their controls; stress and large
-//! scenes.
+//! cut, residual flexibility, threads) against their controls; stress and
+//! large scenes.
 
 #[allow(dead_code)] // each test binary uses a part of the shared helpers
 #[path = "../support/mod.rs"]
@@ -21,3 +21,4 @@ mod residual_flexibility;
 mod residues;
 mod steady_path;
 mod stress;
+mod threads;

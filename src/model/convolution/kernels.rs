@@ -4,7 +4,7 @@
 //! without FMA keeps every operation and its order: both builds give
 //! bit-identical results.
 
-use super::{StepColumns, dot2};
+use super::{Cols, dot2};
 
 /// States per block of the force kernel (the block's projections of the
 /// forces stay in registers / on the stack).
@@ -34,8 +34,9 @@ macro_rules! dispatch {
 }
 
 dispatch!(
-    /// `(ox, ov) = Φ (x, v)` per state.
-    predict => predict_body(c: &StepColumns, x: &[f64], v: &[f64], ox: &mut [f64], ov: &mut [f64])
+    /// `(ox, ov) = Φ (x, v)` per state (the states of `c`, `x.len()` of
+    /// them).
+    predict => predict_body(c: &Cols, x: &[f64], v: &[f64], ox: &mut [f64], ov: &mut [f64])
 );
 
 dispatch!(
@@ -44,6 +45,27 @@ dispatch!(
     /// [`project`] gives them.
     project_rows => project_rows_body(out: &[f64], ns: usize, rows: &[usize], x: &[f64], v: &[f64], u: &mut [f64], w: &mut [f64])
 );
+
+dispatch!(
+    /// [`project_rows`] with the values of `rows[k]` into `u[k]`, `w[k]`
+    /// (packed in the list's order; the same sums).
+    project_rows_packed => project_rows_packed_body(out: &[f64], ns: usize, rows: &[usize], x: &[f64], v: &[f64], u: &mut [f64], w: &mut [f64])
+);
+
+#[inline(always)]
+fn project_rows_packed_body(
+    out: &[f64],
+    ns: usize,
+    rows: &[usize],
+    x: &[f64],
+    v: &[f64],
+    u: &mut [f64],
+    w: &mut [f64],
+) {
+    for (k, &i) in rows.iter().enumerate() {
+        (u[k], w[k]) = dot2(&out[i * ns..(i + 1) * ns], &x[..ns], &v[..ns]);
+    }
+}
 
 #[inline(always)]
 fn project_rows_body(
@@ -154,11 +176,15 @@ unsafe fn project_rows_avx<const R: usize>(
     }
 }
 
-/// `(x, v) += w1 (b · q1) + w2 (b · q2)` per state, over the active points.
+/// `(x, v) += w1 (b · q1) + w2 (b · q2)` per state, over the active points:
+/// the `x.len()` states of `c`, whose inputs `b_s[j]` are
+/// `inp_t[j * stride + s]` (`inp_t` from the range's first state, `stride`
+/// the stored states). Each state's sums are the same whatever the range.
 #[inline]
 pub(super) fn add_gauss_forces(
-    c: &StepColumns,
+    c: &Cols,
     inp_t: &[f64],
+    stride: usize,
     active: &[usize],
     q1: &[f64],
     q2: &[f64],
@@ -173,18 +199,18 @@ pub(super) fn add_gauss_forces(
                 .all(|w| w.len() >= n)
             && active
                 .iter()
-                .all(|&j| j < q1.len() && j < q2.len() && (j + 1) * n <= inp_t.len())
+                .all(|&j| j < q1.len() && j < q2.len() && j * stride + n <= inp_t.len())
     );
     #[cfg(target_arch = "x86_64")]
     {
         if std::arch::is_x86_feature_detected!("avx") {
             // SAFETY: the CPU supports AVX (checked just above); the lengths
             // the kernel reads were asserted above.
-            unsafe { add_gauss_forces_avx(c, inp_t, active, q1, q2, x, v) };
+            unsafe { add_gauss_forces_avx(c, inp_t, stride, active, q1, q2, x, v) };
             return;
         }
     }
-    add_gauss_forces_body(c, inp_t, active, q1, q2, x, v);
+    add_gauss_forces_body(c, inp_t, stride, active, q1, q2, x, v);
 }
 
 /// [`add_gauss_forces`] with AVX lanes, 16 states per block (eight
@@ -193,8 +219,9 @@ pub(super) fn add_gauss_forces(
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 unsafe fn add_gauss_forces_avx(
-    c: &StepColumns,
+    c: &Cols,
     inp_t: &[f64],
+    stride: usize,
     active: &[usize],
     q1: &[f64],
     q2: &[f64],
@@ -214,14 +241,14 @@ unsafe fn add_gauss_forces_avx(
     let mut c0 = 0;
     // SAFETY (all loads and stores): c0 + BLOCK <= full <= n (then
     // c0 + 4 <= quads <= n); x, v and the
-    // weight columns hold n entries, inp_t (j + 1) n for every active j
+    // weight columns hold n entries, inp_t j stride + n for every active j
     // (asserted by the caller).
     unsafe {
         while c0 < full {
             let mut b1 = [_mm256_setzero_pd(); 4];
             let mut b2 = [_mm256_setzero_pd(); 4];
             for &j in active {
-                let col = inp_t.as_ptr().add(j * n + c0);
+                let col = inp_t.as_ptr().add(j * stride + c0);
                 let (qa, qb) = (_mm256_set1_pd(q1[j]), _mm256_set1_pd(q2[j]));
                 for k in 0..4 {
                     let b = _mm256_loadu_pd(col.add(4 * k));
@@ -249,7 +276,7 @@ unsafe fn add_gauss_forces_avx(
         while c0 < quads {
             let (mut b1, mut b2) = (_mm256_setzero_pd(), _mm256_setzero_pd());
             for &j in active {
-                let b = _mm256_loadu_pd(inp_t.as_ptr().add(j * n + c0));
+                let b = _mm256_loadu_pd(inp_t.as_ptr().add(j * stride + c0));
                 b1 = _mm256_add_pd(b1, _mm256_mul_pd(b, _mm256_set1_pd(q1[j])));
                 b2 = _mm256_add_pd(b2, _mm256_mul_pd(b, _mm256_set1_pd(q2[j])));
             }
@@ -270,8 +297,8 @@ unsafe fn add_gauss_forces_avx(
     for s in c0..n {
         let (mut b1, mut b2) = (0.0, 0.0);
         for &j in active {
-            b1 += inp_t[j * n + s] * q1[j];
-            b2 += inp_t[j * n + s] * q2[j];
+            b1 += inp_t[j * stride + s] * q1[j];
+            b2 += inp_t[j * stride + s] * q2[j];
         }
         x[s] += c.w1x[s] * b1 + c.w2x[s] * b2;
         v[s] += c.w1v[s] * b1 + c.w2v[s] * b2;
@@ -279,7 +306,7 @@ unsafe fn add_gauss_forces_avx(
 }
 
 #[inline(always)]
-fn predict_body(c: &StepColumns, x: &[f64], v: &[f64], ox: &mut [f64], ov: &mut [f64]) {
+fn predict_body(c: &Cols, x: &[f64], v: &[f64], ox: &mut [f64], ov: &mut [f64]) {
     let n = x.len();
     let (v, ox, ov) = (&v[..n], &mut ox[..n], &mut ov[..n]);
     let (a, b, cc, d) = (&c.pxx[..n], &c.pxv[..n], &c.pvx[..n], &c.pvv[..n]);
@@ -298,8 +325,9 @@ fn project_body(out: &[f64], p: usize, x: &[f64], v: &[f64], u: &mut [f64], w: &
 
 #[inline(always)]
 fn add_gauss_forces_body(
-    c: &StepColumns,
+    c: &Cols,
     inp_t: &[f64],
+    stride: usize,
     active: &[usize],
     q1: &[f64],
     q2: &[f64],
@@ -315,7 +343,7 @@ fn add_gauss_forces_body(
         let (mut b1, mut b2) = ([0.0f64; BLOCK], [0.0f64; BLOCK]);
         if len == BLOCK {
             for &j in active {
-                let col = &inp_t[j * n + c0..j * n + c0 + BLOCK];
+                let col = &inp_t[j * stride + c0..j * stride + c0 + BLOCK];
                 let (qa, qb) = (q1[j], q2[j]);
                 for k in 0..BLOCK {
                     b1[k] += col[k] * qa;
@@ -324,7 +352,7 @@ fn add_gauss_forces_body(
             }
         } else {
             for &j in active {
-                let col = &inp_t[j * n + c0..j * n + c0 + len];
+                let col = &inp_t[j * stride + c0..j * stride + c0 + len];
                 let (qa, qb) = (q1[j], q2[j]);
                 for k in 0..len {
                     b1[k] += col[k] * qa;
@@ -346,6 +374,7 @@ fn add_gauss_forces_body(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::convolution::StepColumns;
 
     /// Deterministic values of mixed sign and scale (no RNG needed).
     fn vals(n: usize, seed: f64) -> Vec<f64> {
@@ -382,13 +411,14 @@ mod tests {
                 assert_eq!(bits(&u1), bits(&u2), "project u, ns {ns}, p {p}");
                 assert_eq!(bits(&w1), bits(&w2), "project v, ns {ns}, p {p}");
 
-                let c = columns(ns);
+                let cols = columns(ns);
+                let c = cols.cols(0..ns);
                 let inp_t = vals(p * ns, 2.9);
                 let (q1, q2) = (vals(p, 3.1), vals(p, 3.7));
                 let active: Vec<usize> = (0..p).rev().step_by(2).collect();
                 let (mut xa, mut va, mut xb, mut vb) = (x.clone(), v.clone(), x.clone(), v.clone());
-                add_gauss_forces(&c, &inp_t, &active, &q1, &q2, &mut xa, &mut va);
-                add_gauss_forces_body(&c, &inp_t, &active, &q1, &q2, &mut xb, &mut vb);
+                add_gauss_forces(&c, &inp_t, ns, &active, &q1, &q2, &mut xa, &mut va);
+                add_gauss_forces_body(&c, &inp_t, ns, &active, &q1, &q2, &mut xb, &mut vb);
                 assert_eq!(bits(&xa), bits(&xb), "forces x, ns {ns}, p {p}");
                 assert_eq!(bits(&va), bits(&vb), "forces v, ns {ns}, p {p}");
                 // and the forces did something
@@ -400,6 +430,92 @@ mod tests {
                 predict_body(&c, &x, &v, &mut ox2, &mut ov2);
                 assert_eq!(bits(&ox1), bits(&ox2));
                 assert_eq!(bits(&ov1), bits(&ov2));
+            }
+        }
+    }
+
+    /// The kernels over the pieces of any split of the rows or states
+    /// give, bit for bit, what they give over the whole: the property the
+    /// threads' fixed partition relies on. Changing a piece's operations
+    /// by its position (a sum carried across pieces, a block that starts
+    /// elsewhere) fails it.
+    #[test]
+    fn kernels_over_pieces_equal_the_whole_bit_for_bit() {
+        let bits = |a: &[f64]| a.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for ns in [4, 17, 36, 70] {
+            let p = 13;
+            let (x, v) = (vals(ns, 1.3), vals(ns, 1.7));
+            let out = vals(p * ns, 2.1);
+            let cols = columns(ns);
+            let inp_t = vals(p * ns, 2.9);
+            let (q1, q2) = (vals(p, 3.1), vals(p, 3.7));
+            let active: Vec<usize> = vec![7, 2, 11, 0, 5];
+            // the whole
+            let (mut u, mut w) = (vec![0.0; p], vec![0.0; p]);
+            project(&out, p, &x, &v, &mut u, &mut w);
+            let (mut xa, mut va) = (x.clone(), v.clone());
+            add_gauss_forces(
+                &cols.cols(0..ns),
+                &inp_t,
+                ns,
+                &active,
+                &q1,
+                &q2,
+                &mut xa,
+                &mut va,
+            );
+            let (mut ox, mut ov) = (vec![0.0; ns], vec![0.0; ns]);
+            predict(&cols.cols(0..ns), &x, &v, &mut ox, &mut ov);
+            for cut in 1..p {
+                let (mut u2, mut w2) = (vec![0.0; p], vec![0.0; p]);
+                for r in [0..cut, cut..p] {
+                    project(
+                        &out[r.start * ns..r.end * ns],
+                        r.len(),
+                        &x,
+                        &v,
+                        &mut u2[r.clone()],
+                        &mut w2[r],
+                    );
+                }
+                assert_eq!(
+                    (bits(&u), bits(&w)),
+                    (bits(&u2), bits(&w2)),
+                    "rows cut {cut}"
+                );
+            }
+            for cut in 1..ns {
+                let (mut xb, mut vb) = (x.clone(), v.clone());
+                let (mut ox2, mut ov2) = (vec![0.0; ns], vec![0.0; ns]);
+                for r in [0..cut, cut..ns] {
+                    add_gauss_forces(
+                        &cols.cols(r.clone()),
+                        &inp_t[r.start..],
+                        ns,
+                        &active,
+                        &q1,
+                        &q2,
+                        &mut xb[r.clone()],
+                        &mut vb[r.clone()],
+                    );
+                    predict(
+                        &cols.cols(r.clone()),
+                        &x[r.clone()],
+                        &v[r.clone()],
+                        &mut ox2[r.clone()],
+                        &mut ov2[r],
+                    );
+                }
+                assert_eq!(
+                    (bits(&xa), bits(&va)),
+                    (bits(&xb), bits(&vb)),
+                    "states cut {cut}"
+                );
+                assert_eq!(
+                    (bits(&ox), bits(&ov)),
+                    (bits(&ox2), bits(&ov2)),
+                    "states cut {cut}"
+                );
             }
         }
     }

@@ -232,9 +232,10 @@ impl Simulation {
         };
         s.delta.x.fill(0.0);
         s.delta.v.fill(0.0);
+        let threads = &self.threads;
         s.delta
-            .add_gauss_forces(&tb.basis, table, &st.active, &s.q1, &s.q2);
-        s.delta.project(&tb.basis, &mut s.du, &mut s.dv);
+            .add_gauss_forces_on(&tb.basis, table, &st.active, &s.q1, &s.q2, threads);
+        s.delta.project_on(&tb.basis, &mut s.du, &mut s.dv, threads);
         for i in 0..tb.p {
             s.ue[i] = s.uh[i] + s.du[i];
             s.ve[i] = s.vh[i] + s.dv[i];

@@ -78,11 +78,18 @@ impl Simulation {
     }
 
     /// The free end values `uh`, `vh` of the active points only, from the
-    /// predicted states (the same sums as the full projection's rows).
+    /// predicted states (the same sums as the full projection's rows; `du`,
+    /// `dv` hold the rows' values in the set's order on the way).
     fn project_active_rows(&mut self) {
         let (tb, s) = (&self.tables, &mut self.scratch);
-        s.free
-            .project_rows(&tb.basis, &self.state.active, &mut s.uh, &mut s.vh);
+        s.free.project_rows_on(
+            &tb.basis,
+            &self.state.active,
+            &mut s.uh,
+            &mut s.vh,
+            [&mut s.du, &mut s.dv],
+            &self.threads,
+        );
     }
 
     /// The end state of the full step, the prediction plus the response to
@@ -93,10 +100,11 @@ impl Simulation {
     /// residual compliance's share where there is one.
     fn end_state_fused(&mut self) {
         let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
+        let threads = &self.threads;
         s.delta.copy_from(&s.free);
         s.delta
-            .add_gauss_forces(&tb.basis, &tb.full, &st.active, &s.q1, &s.q2);
-        s.delta.project(&tb.basis, &mut s.ue, &mut s.ve);
+            .add_gauss_forces_on(&tb.basis, &tb.full, &st.active, &s.q1, &s.q2, threads);
+        s.delta.project_on(&tb.basis, &mut s.ue, &mut s.ve, threads);
         if !tb.residual.is_empty() {
             let (p, rate) = (tb.p, SQRT3 / tb.dt_s);
             for i in 0..p {
@@ -212,15 +220,18 @@ impl Simulation {
             s.rhs_slots[2 * a] = s.re[i] - s.uh[i];
             s.rhs_slots[2 * a + 1] = s.rde[i] - s.vh[i];
         }
-        inv.solve(&s.rhs_slots, &mut s.rhs);
+        inv.solve_on(&s.rhs_slots, &mut s.rhs, &self.threads);
     }
 
     /// The componentwise backward error of the last [`Self::solve_by_updated`].
     fn updated_backward_error(&self) -> f64 {
         let s = &self.scratch;
-        self.factors
-            .updated
-            .backward_error(full_entry(&self.tables), &s.rhs_slots, &s.rhs)
+        self.factors.updated.backward_error_on(
+            full_entry(&self.tables),
+            &s.rhs_slots,
+            &s.rhs,
+            &self.threads,
+        )
     }
 
     /// The sub-step solve of a large compliant active set by GMRES (after

@@ -52,6 +52,27 @@ pub struct SolverOptions {
     /// (`usize::MAX`: never; smaller sets keep the direct solves, bit for
     /// bit).
     pub large_set_from: usize,
+    /// Threads of the simulation's large kernels (1, the default: the
+    /// calling thread alone, no worker started). With more, the
+    /// simulation keeps `threads - 1` workers and splits a kernel over
+    /// them when it has at least
+    /// [`PARALLEL_FROM`](crate::base::threads::PARALLEL_FROM)
+    /// multiply-adds: the projection of the points' values, the free
+    /// prediction and the forces into the states, the large active sets'
+    /// inverse (per step), the influence and velocity-jump tables (at
+    /// set-up). Each is split into contiguous ranges of rows or states
+    /// fixed by its size and the thread count, every output element
+    /// computed as on one thread: results are bit-identical for any
+    /// count. Pays from about `P K` = 10⁵ (points times states); smaller
+    /// scenes run as on one thread.
+    pub threads: usize,
+    /// Multiply-adds of a kernel call from which it is split over the
+    /// [`SolverOptions::threads`] (default
+    /// [`PARALLEL_FROM`](crate::base::threads::PARALLEL_FROM), where the
+    /// second thread starts to save more than the hand-over costs; 1:
+    /// every kernel, as the tests of the partition run them). Ignored on
+    /// one thread.
+    pub parallel_from_madds: usize,
 }
 
 /// The rank cut of identified models (see [`SolverOptions::rank_tolerance`]):
@@ -86,6 +107,8 @@ impl Default for SolverOptions {
             rank_tolerance: None,
             steady_path: true,
             large_set_from: LARGE_SET_FROM,
+            threads: 1,
+            parallel_from_madds: crate::base::threads::PARALLEL_FROM,
         }
     }
 }

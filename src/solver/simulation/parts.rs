@@ -14,6 +14,7 @@
 use super::residual::{add_residual, split_residual};
 use super::{RunStats, SolverOptions};
 use crate::base::error::SceneError;
+use crate::base::threads::Threads;
 use crate::model::convolution::{Influence, ModalBasis, ModalState, StepTable};
 use crate::scene::Scene;
 use crate::solver::simulation::contact::DenseSolver;
@@ -67,13 +68,15 @@ pub(super) struct SimTables {
 }
 
 impl SimTables {
-    /// The tables of `scene` with its `modes`. Fails only if a mode's
-    /// residue cannot be split into rank terms (method §3.4) or the
+    /// The tables of `scene` with its `modes`, the `P x P` ones computed
+    /// on `threads` (the same values for any number). Fails only if a
+    /// mode's residue cannot be split into rank terms (method §3.4) or the
     /// residual compliance does not apply (method §4.7).
     pub fn new(
         scene: &Scene,
         modes: Vec<crate::base::modal::Mode>,
         options: SolverOptions,
+        threads: &Threads,
     ) -> Result<Self, SceneError> {
         let p = scene.num_points();
         let (modes, residual) = split_residual(scene, modes, options.residual_above_hz)?;
@@ -88,11 +91,11 @@ impl SimTables {
             ModalBasis::per_source(&modes, p)
         };
         let full = StepTable::new(&basis, scene.dt_s);
-        let mut full_inf = Influence::new(&basis, &full);
+        let mut full_inf = Influence::new_on(&basis, &full, threads);
         if !residual.is_empty() {
             add_residual(&mut full_inf, &residual, scene.dt_s);
         }
-        let jump = basis.velocity_jump();
+        let jump = basis.velocity_jump_on(threads);
         let jump_t = (0..p * p).map(|k| jump[(k % p) * p + k / p]).collect();
         Ok(SimTables {
             jump,
@@ -236,7 +239,8 @@ pub(super) struct Scratch {
     /// `|S| x |S|` blocks of the sub-step influence (4 |S|² used).
     pub gss: Vec<f64>,
     /// State increment of the solved sub-step forces, and its projection
-    /// (m, m/s).
+    /// (m, m/s; also the active rows' free values, in the set's order, on
+    /// their way to `uh`, `vh` in a threaded projection of those rows).
     pub delta: Box<ModalState>,
     pub du: Vec<f64>,
     pub dv: Vec<f64>,

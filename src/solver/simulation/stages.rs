@@ -52,13 +52,18 @@ impl Simulation {
             Table::Sub => &self.scratch.sub,
         };
         self.scratch.fused_full = false;
-        self.state.modal.predict_into(table, &mut self.scratch.free);
+        let threads = &self.threads;
+        self.state
+            .modal
+            .predict_into_on(table, &mut self.scratch.free, threads);
         // (a large compliant set's full step projects only its active
         // points here, in its solve, and the end values in one pass: `large.rs`)
         let fused = sel == Table::Full && self.fused_full_step();
         if !fused {
             let (uh, vh) = (&mut self.scratch.uh, &mut self.scratch.vh);
-            self.scratch.free.project(&self.tables.basis, uh, vh);
+            self.scratch
+                .free
+                .project_on(&self.tables.basis, uh, vh, threads);
         }
         self.scratch.projected_all = !fused;
         // a full step from the current time ends at step `steps + 1`
@@ -266,12 +271,13 @@ impl Simulation {
         }
         if !st.active.is_empty() && !fused {
             match sel {
-                Table::Full => st.modal.add_gauss_forces(
+                Table::Full => st.modal.add_gauss_forces_on(
                     &self.tables.basis,
                     &self.tables.full,
                     &st.active,
                     &s.q1,
                     &s.q2,
+                    &self.threads,
                 ),
                 Table::Sub => st.modal.add(&s.delta),
             }

@@ -16,6 +16,9 @@
 //! residual of its solves ([`BorderedInverse::backward_error`]) and
 //! refactorises from scratch when it grows.
 
+use crate::base::threads::Threads;
+use std::sync::atomic::{AtomicU64, Ordering};
+
 /// Unknowns (and equations) per point.
 const B: usize = 2;
 
@@ -243,19 +246,22 @@ impl BorderedInverse {
     /// `x ← M⁻¹ b` (slot order), `b` and `x` of length `n`.
     pub fn solve(&self, b: &[f64], x: &mut [f64]) {
         let n = self.n();
-        let (inv, b, x) = (&self.inv[..n * n], &b[..n], &mut x[..n]);
-        #[cfg(target_arch = "x86_64")]
-        {
-            if std::arch::is_x86_feature_detected!("avx2") {
-                #[target_feature(enable = "avx2")]
-                fn wide(inv: &[f64], b: &[f64], x: &mut [f64]) {
-                    rows_times(inv, b, x)
-                }
-                // SAFETY: the CPU supports AVX2 (checked just above).
-                return unsafe { wide(inv, b, x) };
-            }
+        rows_times_dispatch(&self.inv[..n * n], &b[..n], &mut x[..n]);
+    }
+
+    /// [`BorderedInverse::solve`] on `threads` when it pays
+    /// ([`Threads::worth`]), split by rows of the inverse into contiguous
+    /// ranges: each row's product is the same whatever the range, so the
+    /// result is the same for any number of threads.
+    pub fn solve_on(&self, b: &[f64], x: &mut [f64], threads: &Threads) {
+        let n = self.n();
+        if !threads.worth(n * n) {
+            return self.solve(b, x);
         }
-        rows_times(inv, b, x)
+        let (inv, b) = (&self.inv[..n * n], &b[..n]);
+        threads.split(n, ROW_ALIGN, [(x, 1)], |r, [x]| {
+            rows_times_dispatch(&inv[r.start * n..r.end * n], b, x)
+        });
     }
 
     /// The componentwise backward error of a solution `x` of `M x = b`,
@@ -267,11 +273,49 @@ impl BorderedInverse {
         b: &[f64],
         x: &[f64],
     ) -> f64 {
+        self.rows_backward_error(&entry, b, x, 0..self.n())
+    }
+
+    /// [`BorderedInverse::backward_error`] on `threads` when it pays
+    /// ([`Threads::worth`]), the equations split into contiguous ranges:
+    /// each range's largest error is computed as on one thread and the
+    /// largest of them taken (a maximum, exact in any order), so the
+    /// result is the same for any number of threads.
+    pub fn backward_error_on(
+        &self,
+        entry: impl Fn(usize, usize, usize, usize) -> f64 + Sync,
+        b: &[f64],
+        x: &[f64],
+        threads: &Threads,
+    ) -> f64 {
+        let n = self.n();
+        if !threads.worth(n * n) {
+            return self.backward_error(entry, b, x);
+        }
+        // (a non-negative f64's bits order as the values do)
+        let worst = AtomicU64::new(0);
+        threads.run(&|k| {
+            let r = Threads::part_range(n, threads.count(), ROW_ALIGN, k);
+            let w = self.rows_backward_error(&entry, b, x, r);
+            worst.fetch_max(w.to_bits(), Ordering::Relaxed);
+        });
+        f64::from_bits(worst.into_inner())
+    }
+
+    /// The largest componentwise backward error of the equations `rows`
+    /// ([`BorderedInverse::backward_error`]; 0 for none).
+    fn rows_backward_error(
+        &self,
+        entry: &impl Fn(usize, usize, usize, usize) -> f64,
+        b: &[f64],
+        x: &[f64],
+        rows: std::ops::Range<usize>,
+    ) -> f64 {
         let n = self.n();
         let pts = &self.points;
         let entry = |e: usize, u: usize| entry(pts[e / B], e % B, pts[u / B], u % B);
         let mut worst = 0.0f64;
-        for e in 0..n {
+        for e in rows {
             let (mut s, mut mag) = (0.0, b[e].abs());
             for (u, &xu) in x[..n].iter().enumerate() {
                 let t = entry(e, u) * xu;
@@ -285,6 +329,28 @@ impl BorderedInverse {
         }
         worst
     }
+}
+
+/// Rows of the inverse per range of a threaded [`BorderedInverse::solve_on`]
+/// (a cache line of the solution).
+const ROW_ALIGN: usize = 8;
+
+/// [`rows_times`] through an AVX2 build where the CPU has it (the same
+/// operations: bit-identical).
+#[inline]
+fn rows_times_dispatch(a: &[f64], b: &[f64], x: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            #[target_feature(enable = "avx2")]
+            fn wide(a: &[f64], b: &[f64], x: &mut [f64]) {
+                rows_times(a, b, x)
+            }
+            // SAFETY: the CPU supports AVX2 (checked just above).
+            return unsafe { wide(a, b, x) };
+        }
+    }
+    rows_times(a, b, x)
 }
 
 /// `x_i = a_i · b` for the rows `a_i` of `a` (`x.len()` rows of `b.len()`),
