@@ -28,10 +28,14 @@ use crate::identify::ModeCache;
 use crate::model::convolution::ModalBasis;
 use crate::model::road::RoadProfile;
 use crate::scene::Scene;
+use crate::solver::simulation::SolverOptions;
 use ode_solvers::{DVector, Dopri5, OutputType, System};
 
 /// The modal oscillators of a scene: `η_s'' + 2ξω η_s' + ω² η_s = b_sᵀ q`,
-/// `u = Σ_s a_s η_s`.
+/// `u = Σ_s a_s η_s`, one per rank term the located runs keep (the
+/// default rank cut, `SolverOptions::rank_tolerance_for`: identified
+/// residues' terms below 1e-5 of the largest dropped), so that the peers
+/// integrate the model the reference integrates.
 struct Oscillators {
     p: usize,
     omega: Vec<f64>,
@@ -46,7 +50,11 @@ impl Oscillators {
     fn new(scene: &Scene, cache: &ModeCache) -> Result<Self, BenchError> {
         let p = scene.num_points();
         let modes = cache.modes(scene)?;
-        let basis = ModalBasis::new(&modes, p)?;
+        let basis = ModalBasis::with_rank_tolerance(
+            &modes,
+            p,
+            SolverOptions::default().rank_tolerance_for(scene),
+        )?;
         let ns = basis.num_states();
         let stored = basis.stored_states();
         let mut out = vec![0.0; p * ns];
