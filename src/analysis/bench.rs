@@ -35,6 +35,14 @@ pub enum BenchError {
     #[cfg(feature = "peers")]
     #[error("Dormand-Prince 5(4): {0}")]
     Integration(#[from] ode_solvers::dop_shared::IntegrationError),
+    /// The implicit integrator of a peer baseline gave up.
+    #[cfg(feature = "peers")]
+    #[error("BDF: {0}")]
+    Implicit(#[from] diffsol::DiffsolError),
+    /// The implicit peer's contact switched back and forth without end.
+    #[cfg(feature = "peers")]
+    #[error("BDF: the contact switches without end at t = {t_s} s")]
+    Chattering { t_s: f64 },
     /// No run was timed (zero repeats).
     #[error("no run was timed")]
     NoRun,

@@ -19,11 +19,13 @@ pub struct BenchArgs {
     /// Output folder for work_precision.csv, work_precision.md and the diagrams.
     #[arg(short, long, default_value = "bench-out")]
     pub output: PathBuf,
-    /// A small study (under a second instead of about 10 s).
+    /// A small study (under a second instead of about 2 min), without the
+    /// large synthetic scene.
     #[arg(long)]
     pub quick: bool,
     /// Scenes to study (default: the shipped single-mode, three-point and
-    /// paper presets, found from the repository's folder).
+    /// paper presets, found from the repository's folder, and a synthetic
+    /// scene of 50 points on 200 modes).
     pub presets: Vec<PathBuf>,
     /// Instead of the work-precision study: the cost of a step against the
     /// number of points (5 to 400) and of modes (10 to 400), with rigid
@@ -47,6 +49,12 @@ const DEFAULT_PRESETS: [&str; 3] = [
     "presets/three_points.ron",
     "presets/paper.ron",
 ];
+
+/// The large scene of the default study: 50 points on 200 rank-1 modes
+/// (40 Hz to 25 kHz).
+fn large_scene() -> Scene {
+    tirecontact::analysis::bench::scenes::many_points(50, 200)
+}
 
 fn default_presets() -> Vec<PathBuf> {
     DEFAULT_PRESETS
@@ -116,6 +124,14 @@ pub fn bench(args: &BenchArgs) -> CliResult {
             bar.set_message(m.to_string())
         })?);
     }
+    // the shipped presets have at most five points: the default study
+    // adds a large synthetic scene, on its own thinned sweep
+    let large = (!args.quick && args.presets.is_empty()).then(large_scene);
+    if let Some(scene) = &large {
+        rows.extend(work_precision::study(scene, &Config::large(), |m| {
+            bar.set_message(m.to_string())
+        })?);
+    }
     bar.set_message("skipped work, before/after");
     let skip = skipped_work(&scenes, args.quick)?;
     bar.set_message("residual flexibility");
@@ -134,7 +150,7 @@ pub fn bench(args: &BenchArgs) -> CliResult {
     md.push('\n');
     md.push_str(&speed(&scenes, args.quick)?);
     write(&args.output.join("work_precision.md"), &md)?;
-    for scene in &scenes {
+    for scene in scenes.iter().chain(&large) {
         let name = file_stem(&scene.name);
         let fig = work_precision::figure(&rows, &scene.name);
         render_png(

@@ -17,9 +17,11 @@ fn located_beats_paper_and_baselines_agree() {
         duration_s: 0.06,
         direct_duration_s: 0.06,
         direct_max_steps: 1500,
+        baselines: true,
         force_window_s: 1e-3,
         penalties_n_m: vec![1e8, 1e10],
         rtols: vec![1e-6],
+        implicit_rtols: vec![1e-6],
     };
     let rows = study(&scene, &cfg, |_| {}).unwrap();
     let get = |m: Method, dt: f64| rows.iter().find(|r| r.method == m && r.dt_s == dt).unwrap();
@@ -85,14 +87,15 @@ fn located_beats_paper_and_baselines_agree() {
     assert_eq!(figure(&rows, &scene.name).panels.len(), 2);
 }
 
-/// Newmark and Dormand-Prince integrate the same penalty equations: run
-/// finely, they agree with each other far more closely than either agrees
-/// with the rigid contact (the penalty error), on each shipped preset.
+/// Newmark, Dormand-Prince and BDF with located switches integrate the
+/// same penalty equations: run finely, they agree with each other far more
+/// closely than any agrees with the rigid contact (the penalty error), on
+/// each shipped preset.
 #[test]
 #[cfg(feature = "peers")]
-fn the_two_peer_integrators_agree_on_the_penalty_equations() {
+fn the_peer_integrators_agree_on_the_penalty_equations() {
     use tirecontact::ModeCache;
-    use tirecontact::analysis::bench::peers::{run_dopri, run_newmark};
+    use tirecontact::analysis::bench::peers::{run_bdf, run_dopri, run_newmark};
     use tirecontact::analysis::bench::work_precision::{rms_rel, run_stable};
     use tirecontact::scene::ContactScheme;
     let (dur, dt, k) = (0.05, 2.5e-6, 1e8);
@@ -103,6 +106,7 @@ fn the_two_peer_integrators_agree_on_the_penalty_equations() {
         let steps = (dur / dt).round() as usize;
         let n = run_newmark(&scene, k, steps, &cache).unwrap();
         let (d, _) = run_dopri(&scene, k, 1e-9, dt, dur, &cache).unwrap();
+        let b = run_bdf(&scene, k, 1e-9, dt, dur, &cache).unwrap().run;
         let (rigid, _, _) = run_stable(
             &scene,
             ContactScheme::Located,
@@ -114,11 +118,19 @@ fn the_two_peer_integrators_agree_on_the_penalty_equations() {
         .unwrap();
         let flat = |u: &[Vec<f64>]| u.iter().flatten().copied().collect::<Vec<f64>>();
         assert_eq!(n.u_m.len(), d.u_m.len());
+        assert_eq!(b.u_m.len(), d.u_m.len());
         let between = rms_rel(&flat(&n.u_m), &flat(&d.u_m));
         let penalty = rms_rel(&flat(&n.u_m), &flat(&rigid.u_m));
         assert!(
             between < 0.05 * penalty && between < 1e-3,
             "{name}: Newmark vs Dormand-Prince {between:e}, vs rigid {penalty:e}"
+        );
+        // the two adaptive integrators, both at 1e-9, closer still (to a
+        // few 1e-7 of the penalty error)
+        let adaptive = rms_rel(&flat(&b.u_m), &flat(&d.u_m));
+        assert!(
+            adaptive < 1e-5 * penalty,
+            "{name}: BDF vs Dormand-Prince {adaptive:e}, vs rigid {penalty:e}"
         );
     }
 }

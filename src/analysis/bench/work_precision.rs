@@ -33,19 +33,23 @@ pub enum Method {
     /// Adaptive Dormand–Prince 5(4), penalty contact
     /// (`bench::peers::run_dopri`, feature `peers`).
     Dopri,
+    /// Adaptive implicit BDF, penalty contact, its switches located as
+    /// events (`bench::peers::run_bdf`, feature `peers`).
+    Bdf,
 }
 
 impl Method {
-    pub const ALL: [Method; 6] = [
+    pub const ALL: [Method; 7] = [
         Method::Located,
         Method::Paper,
         Method::AlphaBeta,
         Method::Direct,
         Method::Newmark,
         Method::Dopri,
+        Method::Bdf,
     ];
     /// The methods people use for dynamic contact, swept over penalties.
-    pub const PEERS: [Method; 2] = [Method::Newmark, Method::Dopri];
+    pub const PEERS: [Method; 3] = [Method::Newmark, Method::Dopri, Method::Bdf];
     pub fn label(self) -> &'static str {
         match self {
             Method::Located => "stable + located events",
@@ -54,6 +58,7 @@ impl Method {
             Method::Direct => "direct convolution O(N^2)",
             Method::Newmark => "Newmark + penalty",
             Method::Dopri => "Dormand-Prince 5(4) + penalty",
+            Method::Bdf => "BDF, located switches + penalty",
         }
     }
     pub fn key(self) -> &'static str {
@@ -64,6 +69,7 @@ impl Method {
             Method::Direct => "direct",
             Method::Newmark => "newmark_penalty",
             Method::Dopri => "dopri5_penalty",
+            Method::Bdf => "bdf_penalty",
         }
     }
 }
@@ -79,25 +85,51 @@ pub struct Config {
     pub direct_duration_s: f64,
     /// Largest number of steps of a direct run.
     pub direct_max_steps: usize,
+    /// Whether the paper's α/β and direct convolution baselines run.
+    pub baselines: bool,
     /// Force window (s).
     pub force_window_s: f64,
     /// Penalty stiffnesses of the peer baselines (N/m), swept.
     pub penalties_n_m: Vec<f64>,
-    /// Relative tolerances of the adaptive integrator, swept.
+    /// Relative tolerances of the adaptive explicit integrator, swept.
     pub rtols: Vec<f64>,
+    /// Relative tolerances of the adaptive implicit integrator, swept.
+    pub implicit_rtols: Vec<f64>,
 }
 
 impl Config {
-    /// The default study: dt from 4e-5 s to 1.25e-6 s.
+    /// The default study: dt from 4e-5 s to 1.25e-6 s, penalties from
+    /// 1e6 to 1e12 N/m, Dormand-Prince's tolerance from 1e-3 to 1e-7 and
+    /// BDF's from 1e-3 to 1e-8 (tighter, their errors are those of the
+    /// tightest to three digits on every preset: the penalty's).
     pub fn standard() -> Self {
         Config {
             dts: (0..6).map(|k| 4e-5 / 2f64.powi(k)).collect(),
             duration_s: 0.2,
             direct_duration_s: 0.1,
             direct_max_steps: 10_000,
+            baselines: true,
             force_window_s: 1e-3,
             penalties_n_m: (6..=12).map(|e| 10f64.powi(e)).collect(),
-            rtols: vec![1e-3, 1e-5, 1e-7, 1e-9],
+            rtols: vec![1e-3, 1e-5, 1e-7],
+            implicit_rtols: (3..=8).map(|e| 10f64.powi(-e)).collect(),
+        }
+    }
+    /// The study of a large scene (tens of points, hundreds of modes): the
+    /// standard time steps over a shorter run (0.05 s), without the α/β
+    /// and direct baselines (on 50 points and 200 modes an α/β run takes
+    /// up to two minutes; the direct one is O(N²) in steps), and the
+    /// peers' sweeps thinned to every other
+    /// decade of penalty (1e8 to 1e12 N/m; below, the penalty error is
+    /// above 1e-2) and of tolerance.
+    pub fn large() -> Self {
+        Config {
+            duration_s: 0.05,
+            baselines: false,
+            penalties_n_m: vec![1e8, 1e10, 1e12],
+            rtols: vec![1e-3, 1e-5],
+            implicit_rtols: vec![1e-3, 1e-5, 1e-7],
+            ..Config::standard()
         }
     }
     /// A small study for tests.
@@ -107,9 +139,11 @@ impl Config {
             duration_s: 0.08,
             direct_duration_s: 0.08,
             direct_max_steps: 2_000,
+            baselines: true,
             force_window_s: 1e-3,
             penalties_n_m: vec![1e7, 1e9],
             rtols: vec![1e-4, 1e-7],
+            implicit_rtols: vec![1e-4, 1e-7],
         }
     }
 }
@@ -317,14 +351,18 @@ pub fn study(
         Method::AlphaBeta,
         Method::Direct,
     ] {
-        rows.extend(runs.convolution_rows(method, &mut progress)?);
+        if cfg.baselines || matches!(method, Method::Located | Method::Paper) {
+            rows.extend(runs.convolution_rows(method, &mut progress)?);
+        }
     }
-    // the peers: Newmark over the time steps and Dormand-Prince over the
-    // tolerances (output every finest step), each for every penalty
+    // the peers: Newmark over the time steps, Dormand-Prince (output
+    // every finest step) and BDF (output on the comparison grid) over the
+    // tolerances, each for every penalty
     #[cfg(feature = "peers")]
     for &k in &cfg.penalties_n_m {
         rows.extend(runs.newmark_rows(k, &mut progress)?);
         rows.extend(runs.dopri_rows(k, &mut progress)?);
+        rows.extend(runs.bdf_rows(k, &mut progress)?);
     }
     Ok(rows)
 }
@@ -489,8 +527,8 @@ impl Runs<'_> {
                 )?;
                 Ok(Some((run, wall)))
             }
-            Method::Newmark | Method::Dopri => {
-                unreachable!("the peers have their own rows (newmark_rows, dopri_rows)")
+            Method::Newmark | Method::Dopri | Method::Bdf => {
+                unreachable!("the peers have their own rows (newmark_rows, dopri_rows, bdf_rows)")
             }
             Method::AlphaBeta | Method::Direct => {
                 let kernel = if method == Method::AlphaBeta {
@@ -597,6 +635,74 @@ impl Runs<'_> {
                 note: format!(
                     "{} accepted, {} rejected steps, {} evaluations",
                     st.accepted, st.rejected, st.evaluations
+                ),
+            });
+        }
+        Ok(rows)
+    }
+
+    /// The rows of BDF with penalty contact of stiffness `k` (N/m) and
+    /// located switches over the tolerances, its output on the grid the
+    /// errors are sampled on (the coarsest step: displacements there, and
+    /// the impulse differences whose sums are the window means of the
+    /// force); a run that gives up is a row of infinite error, its note
+    /// the reason.
+    #[cfg(feature = "peers")]
+    fn bdf_rows(&self, k: f64, progress: &mut dyn FnMut(&str)) -> Result<Vec<Row>, BenchError> {
+        let cfg = self.cfg;
+        let dt_out = self.reference.grid_s;
+        let mut rows = Vec::new();
+        for &rtol in &cfg.implicit_rtols {
+            progress(&format!(
+                "{}: BDF + penalty k = {k:e} N/m at rtol = {rtol:e}",
+                self.scene.name
+            ));
+            let start = Instant::now();
+            let (run, st) = match crate::analysis::bench::peers::run_bdf(
+                self.scene,
+                k,
+                rtol,
+                dt_out,
+                cfg.duration_s,
+                self.cache,
+            ) {
+                Ok(r) => (r.run, r.stats),
+                Err(e) => {
+                    // kept as a row: a stiff penalty at a loose tolerance
+                    // can make the integrator give up
+                    progress(&format!("  gave up: {e}"));
+                    rows.push(Row {
+                        scene: self.scene.name.clone(),
+                        method: Method::Bdf,
+                        dt_s: dt_out,
+                        steps: 0,
+                        wall_s: start.elapsed().as_secs_f64(),
+                        disp_err: f64::INFINITY,
+                        force_err: f64::INFINITY,
+                        order: None,
+                        penalty_n_m: Some(k),
+                        rtol: Some(rtol),
+                        note: format!("gave up: {e}"),
+                    });
+                    continue;
+                }
+            };
+            let wall = start.elapsed().as_secs_f64();
+            let (disp_err, force_err) = self.reference.errors(&run, dt_out, cfg.duration_s);
+            rows.push(Row {
+                scene: self.scene.name.clone(),
+                method: Method::Bdf,
+                dt_s: dt_out,
+                steps: st.accepted as usize,
+                wall_s: wall,
+                disp_err,
+                force_err,
+                order: None,
+                penalty_n_m: Some(k),
+                rtol: Some(rtol),
+                note: format!(
+                    "{} accepted, {} rejected steps, {} evaluations, {} factorisations, {} located switches",
+                    st.accepted, st.rejected, st.evaluations, st.factorisations, st.switches
                 ),
             });
         }
