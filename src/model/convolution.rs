@@ -288,34 +288,6 @@ struct StepColumns {
     w2v: Vec<f64>,
 }
 
-/// The columns of [`StepColumns`] over a range of states.
-struct Cols<'a> {
-    pxx: &'a [f64],
-    pxv: &'a [f64],
-    pvx: &'a [f64],
-    pvv: &'a [f64],
-    w1x: &'a [f64],
-    w1v: &'a [f64],
-    w2x: &'a [f64],
-    w2v: &'a [f64],
-}
-
-impl StepColumns {
-    /// The states `r`.
-    fn cols(&self, r: Range<usize>) -> Cols<'_> {
-        Cols {
-            pxx: &self.pxx[r.clone()],
-            pxv: &self.pxv[r.clone()],
-            pvx: &self.pvx[r.clone()],
-            pvv: &self.pvv[r.clone()],
-            w1x: &self.w1x[r.clone()],
-            w1v: &self.w1v[r.clone()],
-            w2x: &self.w2x[r.clone()],
-            w2v: &self.w2v[r],
-        }
-    }
-}
-
 impl StepTable {
     pub fn new(basis: &ModalBasis, tau_s: f64) -> Self {
         let mut t = StepTable::default();
@@ -474,7 +446,7 @@ impl ModalState {
     /// `out = Φ(τ) self` (free evolution over the step, no new force).
     #[inline]
     pub fn predict_into(&self, table: &StepTable, out: &mut ModalState) {
-        self.predict_into_on(table, out, &Threads::single());
+        kernels::predict(&table.soa, &self.x, &self.v, &mut out.x, &mut out.v);
     }
 
     /// [`ModalState::predict_into`] on `threads` when it pays
@@ -483,19 +455,21 @@ impl ModalState {
     /// of threads.
     #[inline]
     pub fn predict_into_on(&self, table: &StepTable, out: &mut ModalState, threads: &Threads) {
-        let ns = self.x.len();
-        let c = &table.soa;
-        if threads.worth(4 * ns) {
-            let (x, v) = (&self.x, &self.v);
-            threads.split(
-                ns,
-                STATE_ALIGN,
-                [(&mut out.x, 1), (&mut out.v, 1)],
-                |r, [ox, ov]| kernels::predict(&c.cols(r.clone()), &x[r.clone()], &v[r], ox, ov),
-            );
+        if threads.worth(4 * self.x.len()) {
+            self.predict_split(table, out, threads);
         } else {
-            kernels::predict(&c.cols(0..ns), &self.x, &self.v, &mut out.x, &mut out.v);
+            self.predict_into(table, out);
         }
+    }
+
+    /// [`ModalState::predict_into_on`] split over the threads.
+    #[inline(never)]
+    fn predict_split(&self, table: &StepTable, out: &mut ModalState, threads: &Threads) {
+        let (c, x, v) = (&table.soa, &self.x, &self.v);
+        let outs = [(&mut out.x[..], 1), (&mut out.v[..], 1)];
+        threads.split(x.len(), STATE_ALIGN, outs, |r, [ox, ov]| {
+            kernels::predict_range(c, r.start, &x[r.clone()], &v[r], ox, ov)
+        });
     }
 
     /// Adds the response at the step end to Gauss-point forces `q1`, `q2`
@@ -509,7 +483,18 @@ impl ModalState {
         q1: &[f64],
         q2: &[f64],
     ) {
-        self.add_gauss_forces_on(basis, table, active, q1, q2, &Threads::single());
+        if active.is_empty() {
+            return;
+        }
+        kernels::add_gauss_forces(
+            &table.soa,
+            &basis.inp_t,
+            active,
+            q1,
+            q2,
+            &mut self.x,
+            &mut self.v,
+        );
     }
 
     /// [`ModalState::add_gauss_forces`] on `threads` when it pays
@@ -527,32 +512,29 @@ impl ModalState {
         q2: &[f64],
         threads: &Threads,
     ) {
-        if active.is_empty() {
-            return;
-        }
-        let (ns, c, inp_t) = (self.x.len(), &table.soa, &basis.inp_t[..]);
-        if threads.worth(2 * active.len() * ns) {
-            threads.split(
-                ns,
-                STATE_ALIGN,
-                [(&mut self.x, 1), (&mut self.v, 1)],
-                |r, [x, v]| {
-                    let inp = &inp_t[r.start..];
-                    kernels::add_gauss_forces(&c.cols(r), inp, ns, active, q1, q2, x, v)
-                },
-            );
+        if !active.is_empty() && threads.worth(2 * active.len() * self.x.len()) {
+            self.add_gauss_forces_split(basis, table, active, q1, q2, threads);
         } else {
-            kernels::add_gauss_forces(
-                &c.cols(0..ns),
-                inp_t,
-                ns,
-                active,
-                q1,
-                q2,
-                &mut self.x,
-                &mut self.v,
-            );
+            self.add_gauss_forces(basis, table, active, q1, q2);
         }
+    }
+
+    /// [`ModalState::add_gauss_forces_on`] split over the threads.
+    #[inline(never)]
+    fn add_gauss_forces_split(
+        &mut self,
+        basis: &ModalBasis,
+        table: &StepTable,
+        active: &[usize],
+        q1: &[f64],
+        q2: &[f64],
+        threads: &Threads,
+    ) {
+        let (ns, c, inp_t) = (self.x.len(), &table.soa, &basis.inp_t[..]);
+        let outs = [(&mut self.x[..], 1), (&mut self.v[..], 1)];
+        threads.split(ns, STATE_ALIGN, outs, |r, [x, v]| {
+            kernels::add_gauss_forces_range(c, r.start, inp_t, ns, active, q1, q2, x, v)
+        });
     }
 
     /// Adds the response to forces constant over the step (N), all points.
@@ -594,15 +576,21 @@ impl ModalState {
     /// result is the same for any number of threads.
     #[inline]
     pub fn project_on(&self, basis: &ModalBasis, u: &mut [f64], v: &mut [f64], threads: &Threads) {
-        let (p, ns) = (basis.num_points, basis.stored_states());
-        if threads.worth(2 * p * ns) {
-            let (out, x, xv) = (&basis.out, &self.x, &self.v);
-            threads.split(p, ROW_ALIGN, [(u, 1), (v, 1)], |r, [u, v]| {
-                kernels::project(&out[r.start * ns..r.end * ns], r.len(), x, xv, u, v)
-            });
+        if threads.worth(2 * basis.num_points * self.x.len()) {
+            self.project_split(basis, u, v, threads);
         } else {
             self.project(basis, u, v);
         }
+    }
+
+    /// [`ModalState::project_on`] split over the threads.
+    #[inline(never)]
+    fn project_split(&self, basis: &ModalBasis, u: &mut [f64], v: &mut [f64], threads: &Threads) {
+        let (p, ns) = (basis.num_points, basis.stored_states());
+        let (out, x, xv) = (&basis.out, &self.x, &self.v);
+        threads.split(p, ROW_ALIGN, [(u, 1), (v, 1)], |r, [u, v]| {
+            kernels::project(&out[r.start * ns..r.end * ns], r.len(), x, xv, u, v)
+        });
     }
 
     /// [`ModalState::project`] at the points `rows` only (the same values).

@@ -248,6 +248,35 @@ fn run_warns_when_the_time_step_leaves_penetration() {
     assert!(!err.contains("warning"), "{err}");
 }
 
+/// `run --threads N`: the same CSV, byte for byte, as on one thread;
+/// `--threads 0` is refused, naming the option.
+#[test]
+fn threads_option_keeps_the_results_and_refuses_zero() {
+    let tmp = temp_dir();
+    let d = tmp.path();
+    let csv = |threads: &str| -> String {
+        let out = d.join(format!("threads_{threads}.csv"));
+        let o = bin()
+            .args(["run", "presets/paper.ron", "--duration", "0.05"])
+            .args(["--threads", threads, "-o"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read_to_string(&out).unwrap()
+    };
+    let one = csv("1");
+    assert!(one.lines().count() > 100);
+    assert_eq!(csv("2"), one);
+    let o = bin()
+        .args(["run", "presets/paper.ron", "--threads", "0"])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--threads = 0: expected"), "{err}");
+}
+
 /// `run --exact-rank` keeps every residue term: the paper preset's results
 /// move, by about 1e-6 of the displacements, against the default rank cut.
 #[test]

@@ -81,5 +81,8 @@ fn threaded_steps_do_not_allocate() {
     });
     assert_eq!(allocs, 0, "{allocs} allocations in 2000 threaded steps");
     assert!(sim.threaded_kernel_calls() > calls + 2000);
-    assert!(sim.stats().events > events, "the window must contain events");
+    assert!(
+        sim.stats().events > events,
+        "the window must contain events"
+    );
 }

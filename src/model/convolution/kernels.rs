@@ -4,7 +4,7 @@
 //! without FMA keeps every operation and its order: both builds give
 //! bit-identical results.
 
-use super::{Cols, dot2};
+use super::{StepColumns, dot2};
 
 /// States per block of the force kernel (the block's projections of the
 /// forces stay in registers / on the stack).
@@ -33,11 +33,56 @@ macro_rules! dispatch {
     };
 }
 
-dispatch!(
-    /// `(ox, ov) = Φ (x, v)` per state (the states of `c`, `x.len()` of
-    /// them).
-    predict => predict_body(c: &Cols, x: &[f64], v: &[f64], ox: &mut [f64], ov: &mut [f64])
-);
+/// `(ox, ov) = Φ (x, v)` per state, every state (`x.len()`).
+#[inline]
+pub(super) fn predict(c: &StepColumns, x: &[f64], v: &[f64], ox: &mut [f64], ov: &mut [f64]) {
+    predict_at::<false>(c, 0, x, v, ox, ov)
+}
+
+/// [`predict`] over the `x.len()` states from `s0` (`x`, `v`, `ox`, `ov`
+/// hold those states only): each state as [`predict`] computes it.
+#[inline]
+pub(super) fn predict_range(
+    c: &StepColumns,
+    s0: usize,
+    x: &[f64],
+    v: &[f64],
+    ox: &mut [f64],
+    ov: &mut [f64],
+) {
+    predict_at::<true>(c, s0, x, v, ox, ov)
+}
+
+/// [`predict_body`] through an AVX2 build where the CPU supports AVX2.
+#[inline]
+fn predict_at<const RANGE: bool>(
+    c: &StepColumns,
+    s0: usize,
+    x: &[f64],
+    v: &[f64],
+    ox: &mut [f64],
+    ov: &mut [f64],
+) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            #[target_feature(enable = "avx2")]
+            fn wide<const RANGE: bool>(
+                c: &StepColumns,
+                s0: usize,
+                x: &[f64],
+                v: &[f64],
+                ox: &mut [f64],
+                ov: &mut [f64],
+            ) {
+                predict_body::<RANGE>(c, s0, x, v, ox, ov)
+            }
+            // SAFETY: the CPU supports AVX2 (checked just above).
+            return unsafe { wide::<RANGE>(c, s0, x, v, ox, ov) };
+        }
+    }
+    predict_body::<RANGE>(c, s0, x, v, ox, ov)
+}
 
 dispatch!(
     /// `(u_i, v_i) = (a_i · x, a_i · v)` for the points `i` in `rows` only
@@ -177,12 +222,29 @@ unsafe fn project_rows_avx<const R: usize>(
 }
 
 /// `(x, v) += w1 (b · q1) + w2 (b · q2)` per state, over the active points:
-/// the `x.len()` states of `c`, whose inputs `b_s[j]` are
-/// `inp_t[j * stride + s]` (`inp_t` from the range's first state, `stride`
-/// the stored states). Each state's sums are the same whatever the range.
+/// every state (`x.len()`), whose inputs `b_s[j]` are `inp_t[j * n + s]`.
 #[inline]
 pub(super) fn add_gauss_forces(
-    c: &Cols,
+    c: &StepColumns,
+    inp_t: &[f64],
+    active: &[usize],
+    q1: &[f64],
+    q2: &[f64],
+    x: &mut [f64],
+    v: &mut [f64],
+) {
+    let n = x.len();
+    add_gauss_forces_at::<false>(c, 0, inp_t, n, active, q1, q2, x, v)
+}
+
+/// [`add_gauss_forces`] over the `x.len()` states from `s0` (`x`, `v` hold
+/// those states only), whose inputs `b_s[j]` are `inp_t[j * stride + s]`
+/// (`stride`: the stored states): each state's sums as [`add_gauss_forces`]
+/// computes them.
+#[inline]
+pub(super) fn add_gauss_forces_range(
+    c: &StepColumns,
+    s0: usize,
     inp_t: &[f64],
     stride: usize,
     active: &[usize],
@@ -191,26 +253,44 @@ pub(super) fn add_gauss_forces(
     x: &mut [f64],
     v: &mut [f64],
 ) {
+    add_gauss_forces_at::<true>(c, s0, inp_t, stride, active, q1, q2, x, v)
+}
+
+/// [`add_gauss_forces_range`] from `s0` when `RANGE`, else from state 0
+/// (`s0` unread: the whole-state kernel keeps no offset arithmetic).
+#[inline]
+fn add_gauss_forces_at<const RANGE: bool>(
+    c: &StepColumns,
+    s0: usize,
+    inp_t: &[f64],
+    stride: usize,
+    active: &[usize],
+    q1: &[f64],
+    q2: &[f64],
+    x: &mut [f64],
+    v: &mut [f64],
+) {
+    let s0 = if RANGE { s0 } else { 0 };
     let n = x.len();
     assert!(
         v.len() >= n
             && [&c.w1x, &c.w1v, &c.w2x, &c.w2v]
                 .iter()
-                .all(|w| w.len() >= n)
+                .all(|w| w.len() >= s0 + n)
             && active
                 .iter()
-                .all(|&j| j < q1.len() && j < q2.len() && j * stride + n <= inp_t.len())
+                .all(|&j| j < q1.len() && j < q2.len() && j * stride + s0 + n <= inp_t.len())
     );
     #[cfg(target_arch = "x86_64")]
     {
         if std::arch::is_x86_feature_detected!("avx") {
             // SAFETY: the CPU supports AVX (checked just above); the lengths
             // the kernel reads were asserted above.
-            unsafe { add_gauss_forces_avx(c, inp_t, stride, active, q1, q2, x, v) };
+            unsafe { add_gauss_forces_avx::<RANGE>(c, s0, inp_t, stride, active, q1, q2, x, v) };
             return;
         }
     }
-    add_gauss_forces_body(c, inp_t, stride, active, q1, q2, x, v);
+    add_gauss_forces_body::<RANGE>(c, s0, inp_t, stride, active, q1, q2, x, v);
 }
 
 /// [`add_gauss_forces`] with AVX lanes, 16 states per block (eight
@@ -218,8 +298,9 @@ pub(super) fn add_gauss_forces(
 /// [`add_gauss_forces_body`] (no FMA): bit-identical.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
-unsafe fn add_gauss_forces_avx(
-    c: &Cols,
+unsafe fn add_gauss_forces_avx<const RANGE: bool>(
+    c: &StepColumns,
+    s0: usize,
     inp_t: &[f64],
     stride: usize,
     active: &[usize],
@@ -232,17 +313,16 @@ unsafe fn add_gauss_forces_avx(
     let n = x.len();
     let full = n - n % BLOCK;
     let (xp, vp) = (x.as_mut_ptr(), v.as_mut_ptr());
-    let (w1x, w1v, w2x, w2v) = (
-        c.w1x.as_ptr(),
-        c.w1v.as_ptr(),
-        c.w2x.as_ptr(),
-        c.w2v.as_ptr(),
-    );
+    // (the range's states: pointers from `s0`; `c0` counts from there)
+    let s0 = if RANGE { s0 } else { 0 };
+    let inp_t = &inp_t[s0..];
+    let (w1x, w1v, w2x, w2v) = (&c.w1x[s0..], &c.w1v[s0..], &c.w2x[s0..], &c.w2v[s0..]);
+    let (w1x, w1v, w2x, w2v) = (w1x.as_ptr(), w1v.as_ptr(), w2x.as_ptr(), w2v.as_ptr());
     let mut c0 = 0;
     // SAFETY (all loads and stores): c0 + BLOCK <= full <= n (then
     // c0 + 4 <= quads <= n); x, v and the
-    // weight columns hold n entries, inp_t j stride + n for every active j
-    // (asserted by the caller).
+    // weight columns hold s0 + n entries, inp_t j stride + s0 + n for every
+    // active j (asserted by the caller).
     unsafe {
         while c0 < full {
             let mut b1 = [_mm256_setzero_pd(); 4];
@@ -300,16 +380,26 @@ unsafe fn add_gauss_forces_avx(
             b1 += inp_t[j * stride + s] * q1[j];
             b2 += inp_t[j * stride + s] * q2[j];
         }
-        x[s] += c.w1x[s] * b1 + c.w2x[s] * b2;
-        v[s] += c.w1v[s] * b1 + c.w2v[s] * b2;
+        x[s] += c.w1x[s0 + s] * b1 + c.w2x[s0 + s] * b2;
+        v[s] += c.w1v[s0 + s] * b1 + c.w2v[s0 + s] * b2;
     }
 }
 
 #[inline(always)]
-fn predict_body(c: &Cols, x: &[f64], v: &[f64], ox: &mut [f64], ov: &mut [f64]) {
+fn predict_body<const RANGE: bool>(
+    c: &StepColumns,
+    s0: usize,
+    x: &[f64],
+    v: &[f64],
+    ox: &mut [f64],
+    ov: &mut [f64],
+) {
+    let s0 = if RANGE { s0 } else { 0 };
     let n = x.len();
     let (v, ox, ov) = (&v[..n], &mut ox[..n], &mut ov[..n]);
-    let (a, b, cc, d) = (&c.pxx[..n], &c.pxv[..n], &c.pvx[..n], &c.pvv[..n]);
+    let r = s0..s0 + n;
+    let (a, b) = (&c.pxx[r.clone()], &c.pxv[r.clone()]);
+    let (cc, d) = (&c.pvx[r.clone()], &c.pvv[r]);
     for s in 0..n {
         ox[s] = a[s] * x[s] + b[s] * v[s];
         ov[s] = cc[s] * x[s] + d[s] * v[s];
@@ -324,8 +414,9 @@ fn project_body(out: &[f64], p: usize, x: &[f64], v: &[f64], u: &mut [f64], w: &
 }
 
 #[inline(always)]
-fn add_gauss_forces_body(
-    c: &Cols,
+fn add_gauss_forces_body<const RANGE: bool>(
+    c: &StepColumns,
+    s0: usize,
     inp_t: &[f64],
     stride: usize,
     active: &[usize],
@@ -334,9 +425,13 @@ fn add_gauss_forces_body(
     x: &mut [f64],
     v: &mut [f64],
 ) {
+    let s0 = if RANGE { s0 } else { 0 };
     let n = x.len();
     let v = &mut v[..n];
-    let (w1x, w1v, w2x, w2v) = (&c.w1x[..n], &c.w1v[..n], &c.w2x[..n], &c.w2v[..n]);
+    let r = s0..s0 + n;
+    let (w1x, w1v) = (&c.w1x[r.clone()], &c.w1v[r.clone()]);
+    let (w2x, w2v) = (&c.w2x[r.clone()], &c.w2v[r]);
+    let inp_t = &inp_t[s0..];
     let mut c0 = 0;
     while c0 < n {
         let len = BLOCK.min(n - c0);
@@ -411,14 +506,15 @@ mod tests {
                 assert_eq!(bits(&u1), bits(&u2), "project u, ns {ns}, p {p}");
                 assert_eq!(bits(&w1), bits(&w2), "project v, ns {ns}, p {p}");
 
-                let cols = columns(ns);
-                let c = cols.cols(0..ns);
+                let c = columns(ns);
                 let inp_t = vals(p * ns, 2.9);
                 let (q1, q2) = (vals(p, 3.1), vals(p, 3.7));
                 let active: Vec<usize> = (0..p).rev().step_by(2).collect();
                 let (mut xa, mut va, mut xb, mut vb) = (x.clone(), v.clone(), x.clone(), v.clone());
-                add_gauss_forces(&c, &inp_t, ns, &active, &q1, &q2, &mut xa, &mut va);
-                add_gauss_forces_body(&c, &inp_t, ns, &active, &q1, &q2, &mut xb, &mut vb);
+                add_gauss_forces(&c, &inp_t, &active, &q1, &q2, &mut xa, &mut va);
+                add_gauss_forces_body::<false>(
+                    &c, 0, &inp_t, ns, &active, &q1, &q2, &mut xb, &mut vb,
+                );
                 assert_eq!(bits(&xa), bits(&xb), "forces x, ns {ns}, p {p}");
                 assert_eq!(bits(&va), bits(&vb), "forces v, ns {ns}, p {p}");
                 // and the forces did something
@@ -427,7 +523,7 @@ mod tests {
                 let (mut ox1, mut ov1, mut ox2, mut ov2) =
                     (vec![0.0; ns], vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]);
                 predict(&c, &x, &v, &mut ox1, &mut ov1);
-                predict_body(&c, &x, &v, &mut ox2, &mut ov2);
+                predict_body::<false>(&c, 0, &x, &v, &mut ox2, &mut ov2);
                 assert_eq!(bits(&ox1), bits(&ox2));
                 assert_eq!(bits(&ov1), bits(&ov2));
             }
@@ -454,18 +550,9 @@ mod tests {
             let (mut u, mut w) = (vec![0.0; p], vec![0.0; p]);
             project(&out, p, &x, &v, &mut u, &mut w);
             let (mut xa, mut va) = (x.clone(), v.clone());
-            add_gauss_forces(
-                &cols.cols(0..ns),
-                &inp_t,
-                ns,
-                &active,
-                &q1,
-                &q2,
-                &mut xa,
-                &mut va,
-            );
+            add_gauss_forces(&cols, &inp_t, &active, &q1, &q2, &mut xa, &mut va);
             let (mut ox, mut ov) = (vec![0.0; ns], vec![0.0; ns]);
-            predict(&cols.cols(0..ns), &x, &v, &mut ox, &mut ov);
+            predict(&cols, &x, &v, &mut ox, &mut ov);
             for cut in 1..p {
                 let (mut u2, mut w2) = (vec![0.0; p], vec![0.0; p]);
                 for r in [0..cut, cut..p] {
@@ -488,9 +575,10 @@ mod tests {
                 let (mut xb, mut vb) = (x.clone(), v.clone());
                 let (mut ox2, mut ov2) = (vec![0.0; ns], vec![0.0; ns]);
                 for r in [0..cut, cut..ns] {
-                    add_gauss_forces(
-                        &cols.cols(r.clone()),
-                        &inp_t[r.start..],
+                    add_gauss_forces_range(
+                        &cols,
+                        r.start,
+                        &inp_t,
                         ns,
                         &active,
                         &q1,
@@ -498,8 +586,9 @@ mod tests {
                         &mut xb[r.clone()],
                         &mut vb[r.clone()],
                     );
-                    predict(
-                        &cols.cols(r.clone()),
+                    predict_range(
+                        &cols,
+                        r.start,
                         &x[r.clone()],
                         &v[r.clone()],
                         &mut ox2[r.clone()],
