@@ -878,7 +878,11 @@ mod tests {
     fn the_first_landing_is_located_at_the_zero_of_the_road_force() {
         let mut scene = many_points(1, 1);
         let (a, lambda, v, h) = (0.001, 0.2, 20.0, 0.0005);
-        scene.points[0] = crate::scene::Point { x_m: 0.0, h_m: h };
+        scene.points[0] = crate::scene::Point {
+            x_m: 0.0,
+            y_m: 0.0,
+            h_m: h,
+        };
         scene.ramp_s = 0.0;
         let k = 1e10;
         // the point's mass 1 / φ², φ its modal amplitude (unit modal mass)
