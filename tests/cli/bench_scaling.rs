@@ -19,8 +19,10 @@ fn the_scaling_study_writes_its_table_and_figure() {
         .skip(1)
         .map(|l| l.split(',').collect())
         .collect();
-    // four sizes, each with rigid contact and with tread springs
-    assert_eq!(rows.len(), 8, "{csv}");
+    // four sizes, each with rigid contact and with tread springs, and two
+    // of the contact patch
+    assert_eq!(rows.len(), 10, "{csv}");
+    assert_eq!(rows.iter().filter(|r| r[0] == "patch").count(), 2, "{csv}");
     for r in &rows {
         let step_s: f64 = r[4].parse().unwrap();
         let free_s: f64 = r[5].parse().unwrap();
@@ -39,6 +41,11 @@ fn the_scaling_study_writes_its_table_and_figure() {
                 "rigid" => assert!(on < 3.0, "{r:?}"),
                 other => panic!("contact `{other}`"),
             }
+        }
+        // the patch (20 points across): its pressed third on the road
+        if r[0] == "patch" {
+            let share: f64 = r[7].parse().unwrap();
+            assert!((0.25..=0.42).contains(&share), "{r:?}");
         }
     }
     let md = std::fs::read_to_string(out.join("scaling.md")).unwrap();

@@ -38,7 +38,7 @@ fn scaling_sizes(quick: bool) -> (Sizes, Sizes) {
 /// and 50 along, 400 modes.
 fn patch_sizes(quick: bool) -> Sizes {
     if quick {
-        vec![(40, 50), (80, 50)]
+        vec![(60, 50), (120, 50)]
     } else {
         vec![(200, 400), (400, 400), (1000, 400)]
     }
