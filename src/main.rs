@@ -47,11 +47,6 @@ enum Command {
 }
 
 fn main() -> std::process::ExitCode {
-    // faer's `rayon` feature is on when the bench's implicit peer (diffsol,
-    // feature `peers`) is built, and with it faer's default parallelism:
-    // the program's decompositions stay on this thread, deterministic and
-    // timed on one core as without it
-    faer::set_global_parallelism(faer::Par::Seq);
     let cli = Cli::parse();
     if matches!(
         cli.command,

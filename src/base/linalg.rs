@@ -33,6 +33,21 @@ pub enum LinalgError {
     },
 }
 
+/// Keeps faer's decompositions and products on the caller's thread. The
+/// feature `peers` builds faer with `rayon` (diffsol asks for it), and
+/// faer's default parallelism is then every thread: its results change
+/// with the thread count, and the rank and order choices of an
+/// identification can follow. The library's first decomposition sets
+/// faer's global parallelism to sequential, as it is without `peers`
+/// (once: a caller may set it again afterwards, for all of faer).
+pub(crate) fn sequential() {
+    #[cfg(feature = "peers")]
+    {
+        static ONCE: std::sync::Once = std::sync::Once::new();
+        ONCE.call_once(|| faer::set_global_parallelism(faer::Par::Seq));
+    }
+}
+
 /// `‖m‖_F`.
 pub fn frobenius(m: MatRef<'_, f64>) -> f64 {
     m.norm_l2()
@@ -63,6 +78,7 @@ pub struct RankTerms {
 /// (`Σ λ² = ‖A‖_F²`) and the kept terms must rebuild `A` to
 /// [`REBUILD_TOLERANCE`] plus what the cut drops (both relative, Frobenius).
 pub fn rank_terms(a: MatRef<'_, f64>, rel_tol: f64) -> Result<RankTerms, LinalgError> {
+    sequential();
     let n = a.nrows();
     assert_eq!(n, a.ncols(), "rank_terms of a non-square matrix");
     let what = "residue decomposition";
@@ -178,6 +194,7 @@ pub fn lstsq(
     b: MatRef<'_, f64>,
     rcond: f64,
 ) -> Result<(Mat<f64>, f64), LinalgError> {
+    sequential();
     let what = "least-squares SVD";
     assert_eq!(a.nrows(), b.nrows(), "lstsq: row counts differ");
     let finite =
@@ -230,11 +247,13 @@ pub fn lstsq(
 
 /// The triangular factor `R` (`min(m, n) × n`) of `A = Q R`.
 pub fn qr_r(a: MatRef<'_, f64>) -> Mat<f64> {
+    sequential();
     a.qr().thin_R().to_owned()
 }
 
 /// The eigenvalues of a real square matrix (complex pairs both listed).
 pub fn eigenvalues(a: MatRef<'_, f64>) -> Result<Vec<faer::c64>, LinalgError> {
+    sequential();
     let what = "eigenvalues";
     if (0..a.nrows()).any(|i| (0..a.ncols()).any(|j| !a[(i, j)].is_finite())) {
         return Err(LinalgError::NonFinite { what });
@@ -245,6 +264,7 @@ pub fn eigenvalues(a: MatRef<'_, f64>) -> Result<Vec<faer::c64>, LinalgError> {
 
 /// The singular values of `a`, largest first.
 pub fn singular_values(a: MatRef<'_, f64>) -> Result<Vec<f64>, LinalgError> {
+    sequential();
     let what = "singular values";
     if (0..a.nrows()).any(|i| (0..a.ncols()).any(|j| !a[(i, j)].is_finite())) {
         return Err(LinalgError::NonFinite { what });

@@ -467,6 +467,7 @@ fn stability(
 
 /// Identifies a modal model from sampled impulse responses (method §6).
 pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification, LsceError> {
+    crate::base::linalg::sequential();
     let errors = opts.validate("options");
     if let Some(e) = errors.first() {
         return Err(LsceError::Input(e.to_string()));

@@ -70,6 +70,7 @@ pub fn run_baseline(
     n_steps: usize,
     cache: &ModeCache,
 ) -> Result<BaselineRun, BenchError> {
+    crate::base::linalg::sequential();
     let p = scene.num_points();
     let modes = cache.modes(scene)?;
     let model = ModalModel::from_modes(&modes, p);

@@ -60,6 +60,7 @@ struct Oscillators {
 
 impl Oscillators {
     fn new(scene: &Scene, cache: &ModeCache) -> Result<Self, BenchError> {
+        crate::base::linalg::sequential();
         let p = scene.num_points();
         let modes = cache.modes(scene)?;
         let basis = ModalBasis::with_rank_tolerance(
