@@ -37,9 +37,12 @@ pub const SPIN_S: f64 = 200e-6;
 pub const SPIN_HOT_S: f64 = 20e-6;
 
 /// Work (multiply-adds per call) from which a kernel is split over the
-/// threads: below it, the hand-over (about 1 µs with spinning workers)
-/// costs more than the second thread saves. Measured on `project` and
-/// `add_gauss_forces` of scaling scenes with 2 threads.
+/// threads. A call itself costs 0.02-0.2 µs while the workers watch (9 µs
+/// to wake sleeping ones), but the second core must also fetch the states
+/// the first just wrote: on scaling scenes with 2 threads, splitting from
+/// 30 000 slowed the steps of `P = 50-60`, `K = 400` off the road (to
+/// 0.75-0.85x), while from 60 000 no size lost (`docs/performance.md`,
+/// "Threads").
 pub const PARALLEL_FROM: usize = 60_000;
 
 /// A job: part `k` of a call.

@@ -453,7 +453,7 @@ impl ModalState {
     /// ([`Threads::worth`]), split by states into contiguous ranges: each
     /// state is computed alone, so the result is the same for any number
     /// of threads.
-    #[inline]
+    #[inline(always)]
     pub fn predict_into_on(&self, table: &StepTable, out: &mut ModalState, threads: &Threads) {
         if threads.worth(4 * self.x.len()) {
             self.predict_split(table, out, threads);
@@ -502,7 +502,7 @@ impl ModalState {
     /// whole blocks: each state's sum over the active points runs in
     /// their order whatever the range, so the result is the same for any
     /// number of threads.
-    #[inline]
+    #[inline(always)]
     pub fn add_gauss_forces_on(
         &mut self,
         basis: &ModalBasis,
@@ -574,7 +574,7 @@ impl ModalState {
     /// ([`Threads::worth`]), split by rows (points) into contiguous
     /// ranges: each point's sums are the same whatever the range, so the
     /// result is the same for any number of threads.
-    #[inline]
+    #[inline(always)]
     pub fn project_on(&self, basis: &ModalBasis, u: &mut [f64], v: &mut [f64], threads: &Threads) {
         if threads.worth(2 * basis.num_points * self.x.len()) {
             self.project_split(basis, u, v, threads);

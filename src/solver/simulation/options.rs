@@ -63,7 +63,9 @@ pub struct SolverOptions {
     /// set-up). Each is split into contiguous ranges of rows or states
     /// fixed by its size and the thread count, every output element
     /// computed as on one thread: results are bit-identical for any
-    /// count. Pays from about `P K` = 10⁵ (points times states); smaller
+    /// count. The projection is split from `P K` = 3·10⁴ (points times
+    /// states); 2 threads gain 10-40 % per step from `P K` ≈ 6·10⁴ and
+    /// 1.4-1.7x from 10⁵ (`docs/performance.md`, "Threads"); smaller
     /// scenes run as on one thread.
     pub threads: usize,
     /// Multiply-adds of a kernel call from which it is split over the
