@@ -240,18 +240,28 @@ impl Simulation {
             s.ue[i] = s.uh[i] + s.du[i];
             s.ve[i] = s.vh[i] + s.dv[i];
         }
-        if !tb.residual.is_empty() {
-            let (p, rate) = (tb.p, SQRT3 / table.tau_s);
-            for i in 0..p {
-                let (mut du, mut dv) = (0.0, 0.0);
-                for &j in &st.active {
-                    let c = tb.residual[i * p + j];
-                    du += c * (-GB * s.q1[j] + GA * s.q2[j]);
-                    dv += c * rate * (s.q2[j] - s.q1[j]);
-                }
-                s.ue[i] += du;
-                s.ve[i] += dv;
+        let tau_s = table.tau_s;
+        self.add_residual_ends(tau_s);
+    }
+
+    /// Adds the residual compliance's share to the end values `ue`, `ve`
+    /// of every point (method §4.7): `C` times the forces' end value and
+    /// slope over a (sub-)step of `tau_s`; nothing without residual modes.
+    pub(super) fn add_residual_ends(&mut self, tau_s: f64) {
+        let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
+        if tb.residual.is_empty() {
+            return;
+        }
+        let (p, rate) = (tb.p, SQRT3 / tau_s);
+        for i in 0..p {
+            let (mut du, mut dv) = (0.0, 0.0);
+            for &j in &st.active {
+                let c = tb.residual[i * p + j];
+                du += c * (-GB * s.q1[j] + GA * s.q2[j]);
+                dv += c * rate * (s.q2[j] - s.q1[j]);
             }
+            s.ue[i] += du;
+            s.ve[i] += dv;
         }
     }
 

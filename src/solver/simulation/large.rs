@@ -105,20 +105,9 @@ impl Simulation {
         s.delta
             .add_gauss_forces_on(&tb.basis, &tb.full, &st.active, &s.q1, &s.q2, threads);
         s.delta.project_on(&tb.basis, &mut s.ue, &mut s.ve, threads);
-        if !tb.residual.is_empty() {
-            let (p, rate) = (tb.p, SQRT3 / tb.dt_s);
-            for i in 0..p {
-                let (mut du, mut dv) = (0.0, 0.0);
-                for &j in &st.active {
-                    let c = tb.residual[i * p + j];
-                    du += c * (-GB * s.q1[j] + GA * s.q2[j]);
-                    dv += c * rate * (s.q2[j] - s.q1[j]);
-                }
-                s.ue[i] += du;
-                s.ve[i] += dv;
-            }
-        }
         s.fused_full = true;
+        let dt_s = tb.dt_s;
+        self.add_residual_ends(dt_s);
     }
 
     /// Brings the kept inverse to the active set: the points that left
@@ -307,18 +296,18 @@ impl Simulation {
                     ev += o * d[1];
                 }
                 let (q1, q2) = (z[2 * a], z[2 * a + 1]);
-                let mut kc = 1.0 / tread[i];
+                // the tread's compliance on the point's own forces, the
+                // residual compliance on every active point's
+                let kt = 1.0 / tread[i];
+                ex += kt * (-GB * q1 + GA * q2);
+                ev += kt * rate * (q2 - q1);
                 if !residual.is_empty() {
-                    kc = 0.0;
                     for (b, &j) in act.iter().enumerate() {
-                        let c = residual[i * p + j] + if i == j { 1.0 / tread[i] } else { 0.0 };
-                        let (r1, r2) = (z[2 * b], z[2 * b + 1]);
+                        let (c, r1, r2) = (residual[i * p + j], z[2 * b], z[2 * b + 1]);
                         ex += c * (-GB * r1 + GA * r2);
                         ev += c * rate * (r2 - r1);
                     }
                 }
-                ex += kc * (-GB * q1 + GA * q2);
-                ev += kc * rate * (q2 - q1);
                 let m = jacobi[a];
                 y[2 * a] = m[0] * ex + m[1] * ev;
                 y[2 * a + 1] = m[2] * ex + m[3] * ev;

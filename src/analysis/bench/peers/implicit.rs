@@ -278,7 +278,18 @@ pub(super) struct BorderedLu {
     /// `S`'s LU.
     s_lu: Option<PartialPivLu<f64>>,
     /// Why the last factorisation failed.
-    failure: Option<String>,
+    failure: Option<BorderedLuError>,
+}
+
+/// Why [`BorderedLu`] could not factor the Newton matrix.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+enum BorderedLuError {
+    #[error("bordered LU: no matrix set")]
+    NoMatrix,
+    #[error("bordered LU: stored entry {entry} is outside the bordered block-diagonal form")]
+    OutsideForm { entry: usize },
+    #[error("bordered LU: block {block} is singular")]
+    SingularBlock { block: usize },
 }
 
 impl BorderedLu {
@@ -310,13 +321,11 @@ impl BorderedLu {
         at
     }
 
-    fn factor(&mut self) -> Result<(), String> {
-        let matrix = self.matrix.as_ref().ok_or("no matrix")?;
+    fn factor(&mut self) -> Result<(), BorderedLuError> {
+        let matrix = self.matrix.as_ref().ok_or(BorderedLuError::NoMatrix)?;
         let (nb, p) = (self.blocks.len(), self.border.len());
-        if let Some(k) = self.slots.iter().position(|s| matches!(s, Slot::Outside)) {
-            return Err(format!(
-                "stored entry {k} is outside the bordered block-diagonal form"
-            ));
+        if let Some(entry) = self.slots.iter().position(|s| matches!(s, Slot::Outside)) {
+            return Err(BorderedLuError::OutsideForm { entry });
         }
         self.a.clear();
         self.a.extend(self.blocks.iter().map(|idx| {
@@ -345,7 +354,7 @@ impl BorderedLu {
         for (b, a) in self.a.iter().enumerate() {
             let det = a[0] * a[3] - a[1] * a[2];
             if !(det.is_finite() && det != 0.0) {
-                return Err(format!("block {b} is singular"));
+                return Err(BorderedLuError::SingularBlock { block: b });
             }
             self.a_inv
                 .push([a[3] / det, -a[1] / det, -a[2] / det, a[0] / det]);
@@ -388,8 +397,8 @@ impl BorderedLu {
         let lu = self.s_lu.as_ref().ok_or_else(|| {
             LaError::Other(
                 self.failure
-                    .clone()
-                    .unwrap_or_else(|| "bordered LU: not factored".into()),
+                    .as_ref()
+                    .map_or_else(|| "bordered LU: not factored".into(), |e| e.to_string()),
             )
         })?;
         let p = self.border.len();
@@ -863,7 +872,7 @@ mod tests {
         let mut lu = BorderedLu::for_switched(ns, p);
         lu.set_matrix(sparse);
         let err = lu.factor().unwrap_err();
-        assert!(err.contains("outside"), "{err}");
+        assert!(matches!(err, BorderedLuError::OutsideForm { .. }), "{err}");
         lu.failure = Some(err);
         let mut x = FaerVec::from_vec(vec![1.0; 2 * ns + 2 * p], FaerContext::default());
         assert!(lu.solve(&mut x, false).is_err());
