@@ -443,10 +443,16 @@ impl PreparedModel {
         })?;
         let modes = cache.modes(scene)?;
         let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
-        if let Some(e) = scene.ramp_error(&road) {
+        let mut errors = scene.surface_errors(&road);
+        if errors.is_empty()
+            && let Some(e) = scene.ramp_error(&road)
+        {
+            errors.push(e);
+        }
+        if !errors.is_empty() {
             return Err(SceneError::Invalid {
                 file: scene.name.clone(),
-                errors: vec![e],
+                errors,
                 at: Vec::new(),
             });
         }

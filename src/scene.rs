@@ -284,6 +284,28 @@ impl Scene {
         (self.duration_s / self.dt_s).round().max(1.0) as u64
     }
 
+    /// Points whose `y` lies outside a surface file's grid (the grid does
+    /// not say what the road is there), each named.
+    pub fn surface_errors(&self, road: &crate::model::road::RoadProfile) -> Vec<FieldError> {
+        let Some((lo, hi)) = road.surface().and_then(|g| g.y_range_m()) else {
+            return Vec::new();
+        };
+        self.points
+            .iter()
+            .enumerate()
+            .filter(|(_, pt)| road.surface().is_some_and(|g| g.rows_at(pt.y_m).is_none()))
+            .map(|(i, pt)| FieldError {
+                field: format!("points[{i}].y_m"),
+                value: fmt_num(pt.y_m),
+                expected: format!(
+                    "a position across the tread within the road surface's grid, {} m to {} m",
+                    fmt_num(lo),
+                    fmt_num(hi)
+                ),
+            })
+            .collect()
+    }
+
     /// `T_ramp = 0` is allowed only where no point starts below the road
     /// (`z(x_i) - h_i <= 0` for all `i`, method §4).
     pub fn ramp_error(&self, road: &crate::model::road::RoadProfile) -> Option<FieldError> {
@@ -291,7 +313,7 @@ impl Scene {
             return None;
         }
         self.points.iter().enumerate().find_map(|(i, pt)| {
-            let z = road.sample(pt.x_m).map(|s| s.0).unwrap_or(0.0);
+            let z = road.sample_at(pt.x_m, pt.y_m).map(|s| s.0).unwrap_or(0.0);
             (z - pt.h_m > 0.0).then(|| FieldError {
                 field: "ramp_s".into(),
                 value: "0".into(),
@@ -342,8 +364,12 @@ impl Scene {
             v.push("speed_mps", self.speed_mps, "a speed <= 1000 m/s");
         }
         v.nonneg("ramp_s", self.ramp_s, "a ramp time >= 0 s");
-        if !matches!(self.road, Road::Measured { .. })
-            && let Ok(prof) = crate::model::road::RoadProfile::new(&self.road, None)
+        // (a road read from a file or generated on a grid is checked when it
+        // is loaded: `PreparedModel`)
+        if !matches!(
+            self.road,
+            Road::Measured { .. } | Road::Surface { .. } | Road::Texture { .. }
+        ) && let Ok(prof) = crate::model::road::RoadProfile::new(&self.road, None)
             && let Some(e) = self.ramp_error(&prof)
         {
             v.errors.push(e);
@@ -760,6 +786,16 @@ fn validate_road(v: &mut Validator, road: &Road) {
             }
         }
         Road::Random { .. } => v.errors.extend(road.random_errors("road")),
+        Road::Surface { file, .. } => {
+            if file.as_os_str().is_empty() {
+                v.push(
+                    "road.file",
+                    "\"\"",
+                    "the path of a CSV of `x_m,y_m,z_m` rows (a height grid)",
+                );
+            }
+        }
+        Road::Texture { .. } => v.errors.extend(road.texture_errors("road")),
     }
 }
 

@@ -362,7 +362,10 @@ pub fn markers(
         Road::Sine { wavelength_m, .. } => vec![*wavelength_m],
         Road::Harmonics { components } => components.iter().map(|c| c.wavelength_m).collect(),
         // broadband roads: no discrete excitation lines
-        Road::Measured { .. } | Road::Random { .. } => Vec::new(),
+        Road::Measured { .. }
+        | Road::Random { .. }
+        | Road::Surface { .. }
+        | Road::Texture { .. } => Vec::new(),
     };
     let mut excitation = Vec::new();
     for lambda in wavelengths {

@@ -8,6 +8,8 @@
 
 mod points;
 pub mod random;
+pub mod surface;
+pub mod texture;
 
 use crate::base::error::{FieldError, SceneError};
 pub use points::{PointsRoad, STEPPER_ANCHOR_EVERY};
@@ -15,6 +17,8 @@ pub use random::RoadClass;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+pub use surface::SurfaceGrid;
 
 /// One sinusoidal component `a sin(2π x / λ + φ)` of a multi-harmonic road.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -75,6 +79,54 @@ pub enum Road {
         #[serde(default = "default_max_cpm")]
         max_wavenumber_cpm: f64,
     },
+    /// A road that varies across the tread (method §4.8): a height grid in
+    /// a CSV file, header `x_m,y_m,z_m`, one row per node of a regular grid
+    /// in any order (see [`surface`]). Point `(x, y)` bears on
+    /// `z(x + V t, y)`; a point whose `y` lies outside the grid is refused.
+    /// With `looped` the grid is one period along `x`, of length `nx Δx`
+    /// (its last column is not the first repeated).
+    Surface {
+        /// Path of the CSV, relative to the scene file's folder.
+        file: PathBuf,
+        /// Repeat the grid along `x`.
+        #[serde(default)]
+        looped: bool,
+    },
+    /// A synthetic road texture (see [`texture`]): an isotropic random
+    /// surface whose profiles have the PSD of ISO 8608 class `class` over
+    /// `[min_wavenumber_cpm, max_wavenumber_cpm]`, periodic with `length_m`
+    /// along and `width_m` across (`y` from `-width_m / 2`), seeded.
+    Texture {
+        /// ISO 8608 class of every profile, `A` … `H`.
+        class: RoadClass,
+        /// Seed of the phases (ChaCha8).
+        seed: u64,
+        /// Period along the road (m), > 0; default 2.
+        #[serde(default = "default_texture_length_m")]
+        length_m: f64,
+        /// Period across the road (m), > 0; default 0.25.
+        #[serde(default = "default_texture_width_m")]
+        width_m: f64,
+        /// Lowest radial wavenumber (cycles/m); default 10 (wavelength 10 cm).
+        #[serde(default = "default_texture_min_cpm")]
+        min_wavenumber_cpm: f64,
+        /// Highest radial wavenumber (cycles/m); default 200 (wavelength 5 mm).
+        #[serde(default = "default_texture_max_cpm")]
+        max_wavenumber_cpm: f64,
+    },
+}
+
+fn default_texture_length_m() -> f64 {
+    2.0
+}
+fn default_texture_width_m() -> f64 {
+    0.25
+}
+fn default_texture_min_cpm() -> f64 {
+    10.0
+}
+fn default_texture_max_cpm() -> f64 {
+    200.0
 }
 
 fn default_random_length_m() -> f64 {
@@ -95,7 +147,76 @@ impl Road {
             Road::Harmonics { .. } => "harmonics",
             Road::Measured { .. } => "measured",
             Road::Random { .. } => "random",
+            Road::Surface { .. } => "surface",
+            Road::Texture { .. } => "texture",
         }
+    }
+
+    /// Whether the road varies across the tread (`z(x, y)`).
+    pub fn varies_across(&self) -> bool {
+        matches!(self, Road::Surface { .. } | Road::Texture { .. })
+    }
+
+    /// Field errors of a texture (`at` prefixes the field names); empty for
+    /// other roads and valid textures.
+    pub fn texture_errors(&self, at: &str) -> Vec<FieldError> {
+        let Road::Texture {
+            length_m,
+            width_m,
+            min_wavenumber_cpm: lo,
+            max_wavenumber_cpm: hi,
+            ..
+        } = *self
+        else {
+            return Vec::new();
+        };
+        let mut e = Vec::new();
+        let push = |e: &mut Vec<FieldError>, field: &str, value: f64, expected: String| {
+            e.push(FieldError {
+                field: format!("{at}.{field}"),
+                value: crate::base::error::fmt_num(value),
+                expected,
+            })
+        };
+        let ok = |x: f64| x.is_finite() && x > 0.0;
+        if !ok(length_m) {
+            push(
+                &mut e,
+                "length_m",
+                length_m,
+                "a period along the road > 0 m".into(),
+            );
+        }
+        if !ok(width_m) {
+            push(
+                &mut e,
+                "width_m",
+                width_m,
+                "a period across the road > 0 m".into(),
+            );
+        }
+        if !ok(lo) {
+            push(
+                &mut e,
+                "min_wavenumber_cpm",
+                lo,
+                "a spatial frequency > 0 cycles/m".into(),
+            );
+        }
+        if !ok(hi) || (ok(lo) && hi < lo) {
+            push(
+                &mut e,
+                "max_wavenumber_cpm",
+                hi,
+                format!("a spatial frequency >= min_wavenumber_cpm = {lo} cycles/m"),
+            );
+        }
+        if e.is_empty()
+            && let Some(msg) = texture::grid_error(length_m, width_m, hi)
+        {
+            push(&mut e, "max_wavenumber_cpm", hi, msg);
+        }
+        e
     }
 
     /// Field errors of a random road (`at` prefixes the field names); empty
@@ -183,6 +304,9 @@ pub enum RoadProfile {
         z_m: Vec<f64>,
         dz: Vec<f64>,
     },
+    /// A height grid `z(x, y)` (surface files and textures), shared: the
+    /// largest take hundreds of megabytes.
+    Surface(Arc<SurfaceGrid>),
 }
 
 /// Sampling a measured profile past its ends (without `looped`).
@@ -246,7 +370,45 @@ impl RoadProfile {
                     dz,
                 }
             }
+            Road::Surface { file, looped } => {
+                let path = match base_dir {
+                    Some(d) if file.is_relative() => d.join(file),
+                    _ => file.clone(),
+                };
+                RoadProfile::Surface(Arc::new(surface::read_surface_csv(&path, *looped)?))
+            }
+            Road::Texture {
+                class,
+                seed,
+                length_m,
+                width_m,
+                min_wavenumber_cpm,
+                max_wavenumber_cpm,
+            } => {
+                let errors = road.texture_errors("road");
+                if !errors.is_empty() {
+                    return Err(SceneError::Invalid {
+                        file: "road".into(),
+                        errors,
+                        at: Vec::new(),
+                    });
+                }
+                RoadProfile::Surface(Arc::new(texture::generate(
+                    *class,
+                    *seed,
+                    (*length_m, *width_m),
+                    (*min_wavenumber_cpm, *max_wavenumber_cpm),
+                )))
+            }
         })
+    }
+
+    /// The surface grid of a road that varies across the tread.
+    pub fn surface(&self) -> Option<&SurfaceGrid> {
+        match self {
+            RoadProfile::Surface(g) => Some(g),
+            _ => None,
+        }
     }
 
     /// A length scale of the profile (m): largest possible |z|.
@@ -256,11 +418,23 @@ impl RoadProfile {
             RoadProfile::Measured { z_m, .. } | RoadProfile::Gridded { z_m, .. } => {
                 z_m.iter().fold(0.0, |m, z| m.max(z.abs()))
             }
+            RoadProfile::Surface(g) => g.scale_m(),
+        }
+    }
+
+    /// Height `z(x, y)` (m) and slope `dz/dx` at `(x, y)` (m): profile roads
+    /// do not depend on `y`; a surface file's `y` is clamped to its grid.
+    #[inline]
+    pub fn sample_at(&self, x_m: f64, y_m: f64) -> Result<(f64, f64), OutOfRange> {
+        match self {
+            RoadProfile::Surface(g) => g.sample(x_m, y_m),
+            _ => self.sample_side(x_m, true),
         }
     }
 
     /// Height `z(x)` (m) and slope `dz/dx` at `x` (m); at a breakpoint of a
-    /// measured profile, the slope of the segment after it.
+    /// measured profile, the slope of the segment after it; on the
+    /// centreline `y = 0` of a surface.
     #[inline]
     pub fn sample(&self, x: f64) -> Result<(f64, f64), OutOfRange> {
         self.sample_side(x, true)
@@ -311,6 +485,7 @@ impl RoadProfile {
             RoadProfile::Gridded { dx_m, z_m, dz } => {
                 Ok(random::sample_periodic(z_m, dz, *dx_m, x))
             }
+            RoadProfile::Surface(g) => g.sample(x, 0.0),
         }
     }
 }
@@ -503,7 +678,7 @@ mod tests {
             z_m: vec![0.0, 1.0, -1.0],
             looped: false,
         };
-        let pr = PointsRoad::new(prof, &[0.5, -0.2]);
+        let pr = PointsRoad::new(prof, &[0.5, -0.2], &[]);
         assert_eq!(pr.next_kink(0, 0.0, 1.0), Some(0.5));
         assert_eq!(pr.next_kink(0, 0.5, 1.0), None); // at the start: ignored
         assert_eq!(pr.next_kink(1, 0.3, 1.5), Some(1.2));
@@ -512,7 +687,7 @@ mod tests {
             z_m: vec![0.0, 1.0, 0.0],
             looped: true,
         };
-        let pr = PointsRoad::new(looped, &[0.0]);
+        let pr = PointsRoad::new(looped, &[0.0], &[]);
         assert!((pr.next_kink(0, 2.5, 3.6).unwrap() - 3.0).abs() < 1e-12); // the wrap point
         assert!((pr.next_kink(0, 3.2, 4.5).unwrap() - 4.0).abs() < 1e-12);
     }
@@ -532,7 +707,7 @@ mod tests {
             },
         ]);
         let xs = [-0.05, 0.0, 0.031];
-        let pr = PointsRoad::new(prof.clone(), &xs);
+        let pr = PointsRoad::new(prof.clone(), &xs, &[]);
         let (mut z, mut dz) = ([0.0; 3], [0.0; 3]);
         for s in [0.0, 0.37, 123.456] {
             pr.sample_all(s, true, &mut z, &mut dz).unwrap();

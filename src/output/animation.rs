@@ -236,8 +236,11 @@ fn extents(sim: &Simulation) -> Extents {
             .iter()
             .map(|c| c.wavelength_m)
             .fold(0.0, f64::max),
-        crate::model::road::Road::Measured { .. } => 0.5,
+        crate::model::road::Road::Measured { .. } | crate::model::road::Road::Surface { .. } => 0.5,
         crate::model::road::Road::Random {
+            min_wavenumber_cpm, ..
+        }
+        | crate::model::road::Road::Texture {
             min_wavenumber_cpm, ..
         } => 1.0 / min_wavenumber_cpm,
     };

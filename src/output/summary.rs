@@ -103,6 +103,15 @@ fn road_text(road: &Road) -> String {
                 .to_string_lossy()
         ),
         Road::Random { class, seed, .. } => format!("ISO 8608 class {class:?} road, seed {seed}"),
+        Road::Surface { file, .. } => format!(
+            "road surface {}",
+            file.file_name()
+                .unwrap_or(file.as_os_str())
+                .to_string_lossy()
+        ),
+        Road::Texture { class, seed, .. } => {
+            format!("class {class:?} texture, seed {seed}")
+        }
     }
 }
 

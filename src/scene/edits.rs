@@ -26,6 +26,8 @@ fn road_kind(r: &Road) -> &'static str {
         Road::Harmonics { .. } => "harmonics",
         Road::Measured { .. } => "measured profile",
         Road::Random { .. } => "random",
+        Road::Surface { .. } => "surface",
+        Road::Texture { .. } => "texture",
     }
 }
 

@@ -146,13 +146,14 @@ impl Simulation {
         let p = tables.p;
         let pen_tol_m = penetration_tolerance_m(model.road(), &scene.points);
         let xs: Vec<f64> = scene.points.iter().map(|pt| pt.x_m).collect();
+        let ys: Vec<f64> = scene.points.iter().map(|pt| pt.y_m).collect();
         let keep = options.reuse_factorisation && !tables.compliant();
         let mut sim = Simulation {
             state: SimState::new(&tables.basis, p),
             scratch: Scratch::new(&tables),
             factors: FullFactors::new(p, keep, tables.large_sets()),
             scene: scene.clone(),
-            road: PointsRoad::new(model.road().clone(), &xs),
+            road: PointsRoad::new(model.road().clone(), &xs, &ys),
             pen_tol_m,
             tables,
             threads,
@@ -205,7 +206,8 @@ impl Simulation {
     /// `profile` the caller has loaded ([`RoadProfile::new`]).
     pub fn set_road(&mut self, road: &Road, profile: RoadProfile) {
         let xs: Vec<f64> = self.scene.points.iter().map(|p| p.x_m).collect();
-        self.road = PointsRoad::new(profile, &xs);
+        let ys: Vec<f64> = self.scene.points.iter().map(|p| p.y_m).collect();
+        self.road = PointsRoad::new(profile, &xs, &ys);
         self.scene.road = road.clone();
         self.pen_tol_m = penetration_tolerance_m(&self.road.profile, &self.scene.points);
     }

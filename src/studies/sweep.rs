@@ -175,7 +175,19 @@ fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
             f.push(("road.min_wavenumber_cpm".into(), min_wavenumber_cpm));
             f.push(("road.max_wavenumber_cpm".into(), max_wavenumber_cpm));
         }
-        Road::Measured { .. } => {}
+        Road::Texture {
+            length_m,
+            width_m,
+            min_wavenumber_cpm,
+            max_wavenumber_cpm,
+            ..
+        } => {
+            f.push(("road.length_m".into(), length_m));
+            f.push(("road.width_m".into(), width_m));
+            f.push(("road.min_wavenumber_cpm".into(), min_wavenumber_cpm));
+            f.push(("road.max_wavenumber_cpm".into(), max_wavenumber_cpm));
+        }
+        Road::Measured { .. } | Road::Surface { .. } => {}
     }
     if let Contact::Compliant { stiffness_n_m } = &mut scene.contact {
         for (i, k) in stiffness_n_m.iter_mut().enumerate() {

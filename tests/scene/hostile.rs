@@ -223,6 +223,27 @@ fn sites(s: &mut Scene) -> Vec<(String, Site<'_>)> {
                 Site::F(max_wavenumber_cpm),
             ));
         }
+        Road::Surface { .. } => {}
+        Road::Texture {
+            seed,
+            length_m,
+            width_m,
+            min_wavenumber_cpm,
+            max_wavenumber_cpm,
+            ..
+        } => {
+            v.push(("road.seed".into(), Site::U64(seed)));
+            v.push(("road.length_m".into(), Site::F(length_m)));
+            v.push(("road.width_m".into(), Site::F(width_m)));
+            v.push((
+                "road.min_wavenumber_cpm".into(),
+                Site::F(min_wavenumber_cpm),
+            ));
+            v.push((
+                "road.max_wavenumber_cpm".into(),
+                Site::F(max_wavenumber_cpm),
+            ));
+        }
     }
     if let Contact::Compliant { stiffness_n_m } = &mut s.contact {
         for (i, k) in stiffness_n_m.iter_mut().enumerate() {

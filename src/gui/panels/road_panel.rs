@@ -70,6 +70,24 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
             ));
         }
         Road::Random { .. } => super::random_road::show(ui, scene, cmds),
+        Road::Surface { file, looped } => {
+            ui.label(format!(
+                "road surface {} ({})",
+                file.display(),
+                if *looped { "looped" } else { "not looped" }
+            ));
+        }
+        Road::Texture {
+            class,
+            seed,
+            length_m,
+            width_m,
+            ..
+        } => {
+            ui.label(format!(
+                "texture: ISO 8608 class {class:?} extended across, seed {seed}, {length_m} m × {width_m} m"
+            ));
+        }
     }
     section(ui, "Speed", Apply::Live);
     Grid::new("tirecontact.speed")

@@ -103,8 +103,11 @@ fn x_extent(sim: &Simulation) -> (f64, f64) {
             .iter()
             .map(|c| c.wavelength_m)
             .fold(0.0, f64::max),
-        Road::Measured { .. } => 0.5,
+        Road::Measured { .. } | Road::Surface { .. } => 0.5,
         Road::Random {
+            min_wavenumber_cpm, ..
+        }
+        | Road::Texture {
             min_wavenumber_cpm, ..
         } => 1.0 / min_wavenumber_cpm,
     };

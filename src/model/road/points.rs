@@ -2,6 +2,7 @@
 //! sampled together, harmonic roads by angle addition from per-point phases
 //! and, at consecutive step ends, from the previous step's angles.
 
+use super::surface::RowBlend;
 use super::{Harmonic, OutOfRange, RoadProfile};
 use std::f64::consts::TAU;
 
@@ -17,6 +18,8 @@ pub struct PointsRoad {
     phase: Vec<(f64, f64)>,
     /// Harmonic roads sampled at consecutive step ends.
     stepper: Option<Stepper>,
+    /// The rows of a surface each point blends (`None`: outside the grid).
+    rows: Vec<Option<RowBlend>>,
 }
 
 /// `(sin, cos)` of `κ_h s_n` at the step ends `s_n = s_0 + n ds` of a
@@ -41,7 +44,9 @@ struct Stepper {
 pub const STEPPER_ANCHOR_EVERY: u32 = 32;
 
 impl PointsRoad {
-    pub fn new(profile: RoadProfile, x_m: &[f64]) -> Self {
+    /// The road under points at `x_m` along and `y_m` across (empty: all on
+    /// the centreline; only surfaces depend on `y`).
+    pub fn new(profile: RoadProfile, x_m: &[f64], y_m: &[f64]) -> Self {
         let phase = match &profile {
             RoadProfile::Harmonics(h) => h
                 .iter()
@@ -50,13 +55,22 @@ impl PointsRoad {
                         .map(move |&x| (TAU / c.wavelength_m * x + c.phase_rad).sin_cos())
                 })
                 .collect(),
-            RoadProfile::Measured { .. } | RoadProfile::Gridded { .. } => Vec::new(),
+            RoadProfile::Measured { .. }
+            | RoadProfile::Gridded { .. }
+            | RoadProfile::Surface(_) => Vec::new(),
+        };
+        let rows = match &profile {
+            RoadProfile::Surface(g) => (0..x_m.len())
+                .map(|i| g.rows_at(y_m.get(i).copied().unwrap_or(0.0)))
+                .collect(),
+            _ => Vec::new(),
         };
         PointsRoad {
             profile,
             x_m: x_m.to_vec(),
             phase,
             stepper: None,
+            rows,
         }
     }
 
@@ -271,6 +285,24 @@ impl PointsRoad {
                 }
                 Ok(())
             }
+            RoadProfile::Surface(g) => {
+                for (i, &x) in self.x_m.iter().enumerate() {
+                    let xs = x + s_m;
+                    let Some(rows) = self.rows[i] else {
+                        let (lo, hi) = g.y_range_m().unwrap_or((0.0, 0.0));
+                        return Err((
+                            i,
+                            OutOfRange {
+                                x_m: xs,
+                                min_m: lo,
+                                max_m: hi,
+                            },
+                        ));
+                    };
+                    (z[i], dz[i]) = g.sample_blend(rows, xs).map_err(|e| (i, e))?;
+                }
+                Ok(())
+            }
             RoadProfile::Measured { .. } | RoadProfile::Gridded { .. } => {
                 for (i, &x) in self.x_m.iter().enumerate() {
                     (z[i], dz[i]) = self
@@ -330,7 +362,7 @@ mod tests {
             },
         ];
         let xs = [-0.05, -0.025, 0.0, 0.025, 0.05];
-        let mut road = PointsRoad::new(RoadProfile::Harmonics(h), &xs);
+        let mut road = PointsRoad::new(RoadProfile::Harmonics(h), &xs, &[]);
         let (mut z1, mut d1, mut z2, mut d2) = ([0.0; 5], [0.0; 5], [0.0; 5], [0.0; 5]);
         let (dt, mut vel, mut offset) = (1e-5, 10.0, 0.0);
         let (mut worst_z, mut worst_dz, mut rotated) = (0.0f64, 0.0f64, 0);
@@ -368,8 +400,8 @@ mod tests {
         }];
         let xs = [-0.05, 0.0, 0.05];
         let (dt, vel) = (1e-5, 10.0);
-        let mut once = PointsRoad::new(RoadProfile::Harmonics(h.clone()), &xs);
-        let mut twice = PointsRoad::new(RoadProfile::Harmonics(h), &xs);
+        let mut once = PointsRoad::new(RoadProfile::Harmonics(h.clone()), &xs, &[]);
+        let mut twice = PointsRoad::new(RoadProfile::Harmonics(h), &xs, &[]);
         let (mut za, mut da, mut zb, mut db) = ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]);
         for n in 1..200u64 {
             let s = vel * n as f64 * dt;
