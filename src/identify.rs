@@ -190,7 +190,7 @@ pub struct TyreIdentification {
 /// `None` for a modal tyre (nothing to identify).
 pub fn identify_tyre(scene: &Scene) -> Option<Result<TyreIdentification, LsceError>> {
     match &scene.tyre {
-        Tyre::Modal { .. } => None,
+        Tyre::Modal { .. } | Tyre::Plate { .. } => None,
         Tyre::Ring {
             ring,
             identification,
@@ -283,7 +283,7 @@ fn cache_key(ring: &RingParams, x_m: &[f64], opts: &IdentifyOptions) -> String {
 /// count: the file is read once per key ([`ModeCache::forget`] drops it).
 fn tyre_key(scene: &Scene) -> Option<String> {
     match &scene.tyre {
-        Tyre::Modal { .. } => None,
+        Tyre::Modal { .. } | Tyre::Plate { .. } => None,
         Tyre::Ring {
             ring,
             identification,
@@ -358,6 +358,10 @@ impl ModeCache {
         };
         match &scene.tyre {
             Tyre::Modal { modes } => Ok(Arc::new(modes.clone())),
+            Tyre::Plate { plate } => {
+                let xy: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, p.y_m)).collect();
+                Ok(Arc::new(plate.modes(&xy)))
+            }
             Tyre::Ring {
                 ring,
                 identification,
@@ -391,7 +395,8 @@ impl ModeCache {
     /// preset, or a tyre already identified with these points and options
     /// (else it runs the identification, a tenth of a second or more).
     pub fn has_modes(&self, scene: &Scene) -> bool {
-        matches!(scene.tyre, Tyre::Modal { .. }) || self.identified(scene).is_some()
+        matches!(scene.tyre, Tyre::Modal { .. } | Tyre::Plate { .. })
+            || self.identified(scene).is_some()
     }
 
     /// The modes identified from `scene`'s ring or measured tyre, if this

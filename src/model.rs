@@ -4,5 +4,6 @@
 pub mod convolution;
 pub mod lsce;
 pub mod measured;
+pub mod plate;
 pub mod ring;
 pub mod road;

@@ -94,6 +94,14 @@ pub enum Tyre {
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         nodes: Vec<i64>,
     },
+    /// A tyre with a width (method §5.3): the belt as a tensioned
+    /// orthotropic plate on an elastic foundation, its modes in closed form
+    /// at the points `(x_m, y_m)` (`y_m` within `±width_m/2`). Defaults: a
+    /// passenger car tyre's belt.
+    Plate {
+        #[serde(default)]
+        plate: crate::model::plate::PlateParams,
+    },
 }
 
 /// A contact point of the contact patch.
@@ -346,6 +354,7 @@ impl Scene {
         validate_points(&mut v, &self.points);
         validate_points_across(&mut v, &self.tyre, &self.contact, &self.points);
         validate_tyre(&mut v, &self.tyre, p);
+        validate_plate_points(&mut v, &self.tyre, &self.contact, &self.points);
         validate_road(&mut v, &self.road);
         if let Contact::Compliant { stiffness_n_m } = &self.contact {
             validate_tread(&mut v, stiffness_n_m, p);
@@ -579,6 +588,45 @@ fn validate_tyre(v: &mut Validator, tyre: &Tyre, p: usize) {
             identification,
             nodes,
         } => validate_measured_tyre(v, file, identification, nodes, p),
+        Tyre::Plate { plate } => v.errors.extend(plate.validate("tyre.plate")),
+    }
+}
+
+/// The points of a plate tyre lie inside the belt (its edges do not move),
+/// and rigid contact needs at least as many modes as points (the contact
+/// system is the sum of one rank-one term per mode).
+fn validate_plate_points(v: &mut Validator, tyre: &Tyre, contact: &Contact, points: &[Point]) {
+    let Tyre::Plate { plate } = tyre else {
+        return;
+    };
+    if !plate.validate("tyre.plate").is_empty() {
+        return;
+    }
+    let half = 0.5 * plate.width_m;
+    for (i, pt) in points.iter().enumerate() {
+        if pt.y_m.is_finite() && pt.y_m.abs() >= half {
+            v.push(
+                &format!("points[{i}].y_m"),
+                pt.y_m,
+                &format!(
+                    "a position inside the belt, |y_m| < width_m / 2 = {} m (its edges do not move)",
+                    fmt_num(half)
+                ),
+            );
+        }
+    }
+    if contact.is_rigid() {
+        let k = plate.plate_modes().len();
+        if points.len() > k {
+            v.push(
+                "contact",
+                "Rigid",
+                &format!(
+                    "Compliant(stiffness_n_m: [...]) tread springs: rigid contact of {} points on a plate tyre of {k} modes is singular (at most as many points as modes); or raise tyre.plate.max_freq_hz",
+                    points.len()
+                ),
+            );
+        }
     }
 }
 

@@ -21,7 +21,7 @@ use crate::scene::{Mode, Tyre};
 pub(crate) fn modes_mut(scene: &mut Scene) -> Option<&mut Vec<Mode>> {
     match &mut scene.tyre {
         Tyre::Modal { modes } => Some(modes),
-        Tyre::Ring { .. } | Tyre::Measured { .. } => None,
+        Tyre::Ring { .. } | Tyre::Measured { .. } | Tyre::Plate { .. } => None,
     }
 }
 

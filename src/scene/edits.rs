@@ -36,6 +36,7 @@ fn tyre_kind(t: &Tyre) -> &'static str {
         Tyre::Modal { .. } => "modal model",
         Tyre::Ring { .. } => "ring",
         Tyre::Measured { .. } => "measured responses",
+        Tyre::Plate { .. } => "plate",
     }
 }
 

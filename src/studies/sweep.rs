@@ -258,6 +258,34 @@ fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
             f.push(("tyre.identification.band_hz.1".into(), &mut o.band_hz.1));
             f.push(("tyre.identification.duration_s".into(), &mut o.duration_s));
         }
+        Tyre::Plate { plate: pl } => {
+            f.extend([
+                ("tyre.plate.width_m".to_string(), &mut pl.width_m),
+                (
+                    "tyre.plate.mass_per_area_kg_m2".into(),
+                    &mut pl.mass_per_area_kg_m2,
+                ),
+                (
+                    "tyre.plate.bending_along_nm".into(),
+                    &mut pl.bending_along_nm,
+                ),
+                (
+                    "tyre.plate.bending_across_nm".into(),
+                    &mut pl.bending_across_nm,
+                ),
+                (
+                    "tyre.plate.tension_along_n_m".into(),
+                    &mut pl.tension_along_n_m,
+                ),
+                (
+                    "tyre.plate.tension_across_n_m".into(),
+                    &mut pl.tension_across_n_m,
+                ),
+                ("tyre.plate.foundation_n_m3".into(), &mut pl.foundation_n_m3),
+                ("tyre.plate.damping_ratio".into(), &mut pl.damping_ratio),
+                ("tyre.plate.max_freq_hz".into(), &mut pl.max_freq_hz),
+            ]);
+        }
     }
     f
 }

@@ -187,6 +187,22 @@ fn sites(s: &mut Scene) -> Vec<(String, Site<'_>)> {
         // (no shipped preset has measured responses: their file's
         // refusals are tested in tirecontact::model::measured)
         Tyre::Measured { .. } => {}
+        Tyre::Plate { plate } => {
+            for (name, x) in [
+                ("width_m", &mut plate.width_m),
+                ("circumference_m", &mut plate.circumference_m),
+                ("mass_per_area_kg_m2", &mut plate.mass_per_area_kg_m2),
+                ("bending_along_nm", &mut plate.bending_along_nm),
+                ("bending_across_nm", &mut plate.bending_across_nm),
+                ("tension_along_n_m", &mut plate.tension_along_n_m),
+                ("tension_across_n_m", &mut plate.tension_across_n_m),
+                ("foundation_n_m3", &mut plate.foundation_n_m3),
+                ("damping_ratio", &mut plate.damping_ratio),
+                ("max_freq_hz", &mut plate.max_freq_hz),
+            ] {
+                v.push((format!("tyre.plate.{name}"), Site::F(x)));
+            }
+        }
     }
     match &mut s.road {
         Road::Sine {
@@ -286,7 +302,7 @@ fn mutate_structure(s: &mut Scene, kind: usize, k: usize, dir: &Path) -> Vec<Str
     let p = s.points.len();
     let modes = match &mut s.tyre {
         Tyre::Modal { modes } => Some(modes),
-        Tyre::Ring { .. } | Tyre::Measured { .. } => None,
+        Tyre::Ring { .. } | Tyre::Measured { .. } | Tyre::Plate { .. } => None,
     };
     match kind % 12 {
         // no modes

@@ -23,6 +23,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>)
             identification,
             ..
         } => return measured_summary(ui, scene, file, identification, modes, cmds),
+        Tyre::Plate { plate } => return plate_summary(ui, plate, modes),
         Tyre::Modal { .. } => {}
     }
     section(ui, "Modes", Apply::Restart);
@@ -222,6 +223,47 @@ fn ring_summary(
             .weak(),
     );
     identified_modes(ui, scene, modes, cmds);
+}
+
+/// A plate tyre: its parameters and the number of modes kept (read-only:
+/// the plate is edited in the preset file).
+fn plate_summary(ui: &mut Ui, plate: &crate::model::plate::PlateParams, modes: &[Mode]) {
+    section(
+        ui,
+        "Tyre: orthotropic plate (docs/method.md §5.3)",
+        Apply::Restart,
+    );
+    let num = crate::gui::widgets::number::format_number;
+    Grid::new("tirecontact.plate")
+        .num_columns(2)
+        .show(ui, |ui| {
+            let rows = [
+                ("width W", plate.width_m, "m"),
+                ("circumference L", plate.circumference_m, "m"),
+                ("mass per area", plate.mass_per_area_kg_m2, "kg/m²"),
+                ("bending along Bx", plate.bending_along_nm, "N·m"),
+                ("bending across By", plate.bending_across_nm, "N·m"),
+                ("tension along Tx", plate.tension_along_n_m, "N/m"),
+                ("tension across Ty", plate.tension_across_n_m, "N/m"),
+                ("foundation s", plate.foundation_n_m3, "N/m³"),
+                ("damping ratio", plate.damping_ratio, ""),
+                ("modes up to", plate.max_freq_hz, "Hz"),
+            ];
+            for (name, v, unit) in rows {
+                ui.label(name);
+                ui.label(format!("{} {unit}", num(v)));
+                ui.end_row();
+            }
+        });
+    let lowest = modes.first().map_or(f64::NAN, |m| m.freq_hz);
+    ui.label(
+        egui::RichText::new(format!(
+            "{} modes from {} Hz, in closed form at the points; the plate is edited in the preset file",
+            modes.len(),
+            num(lowest)
+        ))
+        .weak(),
+    );
 }
 
 /// A measured tyre: its data file and identification band, and the modes
