@@ -12,7 +12,9 @@ use std::path::{Path, PathBuf};
 
 mod edits;
 pub mod locate;
+pub mod points;
 pub use edits::{described_with_edits, edits_since, edits_since_identified};
+pub use points::{PointGrid, Points, Preload};
 
 /// How contact is decided inside a time step (method §4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -135,8 +137,9 @@ pub struct Scene {
     pub description: String,
     /// The tyre model. Changing it restarts the run.
     pub tyre: Tyre,
-    /// Contact points. Changing them restarts the run.
-    pub points: Vec<Point>,
+    /// Contact points: a list of `Point(...)`, or `Grid(...)` (see
+    /// [`PointGrid`]). Changing them restarts the run.
+    pub points: Points,
     /// Road profile. Applied live.
     pub road: Road,
     /// Rolling speed `V` (m/s), >= 0. Applied live.

@@ -57,7 +57,7 @@ fn unlike_scenes_are_compared_only_where_they_match() {
     assert!(pin.unlike(&five, 13).is_empty(), "a scene is like itself");
     // three of the five points, in another order, and a finer step
     let mut three = five.clone();
-    three.points = vec![five.points[3], five.points[0], five.points[4]];
+    three.points = vec![five.points[3], five.points[0], five.points[4]].into();
     three.points[2].x_m += 0.01; // moved: no counterpart
     three.dt_s = five.dt_s / 2.0;
     let b = record(&three);

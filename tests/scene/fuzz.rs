@@ -128,7 +128,7 @@ proptest! {
                     name: "road".into(),
                     description: String::new(),
                     tyre: Tyre::Modal { modes: vec![Mode { freq_hz: 100.0, damping_ratio: 0.05, residue: vec![], shape: vec![0.3, 0.2] }] },
-                    points: vec![Point { x_m: x[0], y_m: 0.0, h_m: 0.0 }, Point { x_m: x[0] + 0.5 * (x[1] - x[0]), y_m: 0.0, h_m: -0.001 }],
+                    points: vec![Point { x_m: x[0], y_m: 0.0, h_m: 0.0 }, Point { x_m: x[0] + 0.5 * (x[1] - x[0]), y_m: 0.0, h_m: -0.001 }].into(),
                     road: Road::Measured { file: path.clone(), looped },
                     speed_mps: speed,
                     ramp_s: 0.001,

@@ -414,10 +414,12 @@ fn mutate_structure(s: &mut Scene, kind: usize, k: usize, dir: &Path) -> Vec<Str
             if p >= 2 {
                 let (i, j) = (k % p, (k / p + 1 + k % p) % p);
                 if i != j {
-                    s.points[j].x_m = s.points[i].x_m;
+                    let x_m = s.points[i].x_m;
+                    s.points[j].x_m = x_m;
                 }
             } else if p == 1 {
-                s.points.push(s.points[0]);
+                let first = s.points[0];
+                s.points.push(first);
             }
             vec![
                 "x_m".into(),

@@ -27,7 +27,8 @@ fn one_point(freq_hz: f64, xi: f64, dt_s: f64, steps: usize) -> Scene {
             x_m: 0.0,
             y_m: 0.0,
             h_m: -0.001,
-        }],
+        }]
+        .into(),
         road: Road::Sine {
             amplitude_m: 0.002,
             wavelength_m: 0.5,

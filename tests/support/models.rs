@@ -47,7 +47,7 @@ pub fn modal_scene(
         name: "test scene".into(),
         description: String::new(),
         tyre: Tyre::Modal { modes },
-        points,
+        points: points.into(),
         road,
         speed_mps,
         ramp_s,

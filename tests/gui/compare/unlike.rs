@@ -27,7 +27,7 @@ fn unlike_scenes_are_said_and_compared_only_where_they_match() {
     assert!(h.state().research().pinned().is_some());
 
     let mut three = paper.clone();
-    three.points = vec![paper.points[0], paper.points[2], paper.points[4]];
+    three.points = vec![paper.points[0], paper.points[2], paper.points[4]].into();
     three.points[2].x_m += 0.013;
     h.state_mut().apply(Command::EditScene(Box::new(three)));
     settle(&mut h);
