@@ -9,6 +9,7 @@ pub mod csv;
 pub mod figures;
 pub mod impacts;
 pub mod paper_figures;
+pub mod patch;
 pub mod record;
 pub mod sampler;
 pub mod summary;

@@ -102,6 +102,25 @@ pub struct RunArgs {
     /// thread whatever the count. Results are bit-identical for any count.
     #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = super::values::parse_count_usize)]
     pub threads: usize,
+    /// Write the contact patch over time to this CSV: total contact force,
+    /// contact area (points on the road × the cell Δx Δy) and force per row
+    /// along the rolling direction; and the spectrum of the total force
+    /// after the ramp (Hann window) to `<stem>_spectrum.csv` beside it.
+    /// The points must make a patch (at least 2 rows across).
+    #[arg(long)]
+    pub patch_summary: Option<PathBuf>,
+    /// Write one --patch-summary row every N steps (the spectrum's sample
+    /// rate is 1 / (N dt)).
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true, value_parser = super::values::parse_count, requires = "patch_summary")]
+    pub patch_every: u64,
+    /// Write heat maps of the contact force over the patch (colour bar in
+    /// N, axes in mm) into this folder, `patch_0000.png`, … evenly over the
+    /// run.
+    #[arg(long)]
+    pub patch_frames: Option<PathBuf>,
+    /// Number of --patch-frames heat maps.
+    #[arg(long, default_value_t = 40, allow_hyphen_values = true, value_parser = super::values::parse_count_usize, requires = "patch_frames")]
+    pub patch_frame_count: usize,
 }
 
 /// `--frames DIR`: the animation frames, before the run proper.
@@ -234,6 +253,9 @@ fn check_plot_args(args: &RunArgs) -> Result<(), String> {
     if let Some(path) = &args.spectrum_plot {
         check_output_file("--spectrum-plot", path, "PNG")?;
     }
+    if let Some(path) = &args.patch_summary {
+        check_output_file("--patch-summary", path, "CSV")?;
+    }
     let Some(path) = &args.plot else {
         return Ok(());
     };
@@ -325,6 +347,20 @@ pub fn run(args: &RunArgs) -> CliResult {
     } else {
         None
     };
+    let mut patch = if args.patch_summary.is_some() || args.patch_frames.is_some() {
+        use tirecontact::output::patch::PatchRecorder;
+        let frames = if args.patch_frames.is_some() {
+            args.patch_frame_count
+        } else {
+            0
+        };
+        Some(
+            PatchRecorder::new(&scene, args.patch_every, frames)
+                .map_err(|e| format!("--patch-summary/--patch-frames: {e}"))?,
+        )
+    } else {
+        None
+    };
     // the one-line summary's forces, over the whole run
     let mut metrics = ContactMetrics::new(&scene, Some(0.0));
     let start = Instant::now();
@@ -348,7 +384,13 @@ pub fn run(args: &RunArgs) -> CliResult {
     };
     tirecontact::solver::drive::run_to_end(
         &mut sim,
-        &mut (writer.as_mut(), rec.as_mut(), steady.as_mut(), &mut metrics),
+        &mut (
+            writer.as_mut(),
+            rec.as_mut(),
+            steady.as_mut(),
+            &mut metrics,
+            patch.as_mut(),
+        ),
         Watch::none().with_progress(&mut progress),
     )?;
     bar.finish_and_clear();
@@ -370,6 +412,9 @@ pub fn run(args: &RunArgs) -> CliResult {
     }
     if let Some(r) = steady {
         write_spectra(args, &model, &r)?;
+    }
+    if let Some(p) = &patch {
+        write_patch(args, &scene, p)?;
     }
     let st = sim.stats();
     if st.worst_penetration_m > PENETRATION_WARNING_M {
@@ -406,6 +451,57 @@ pub fn run(args: &RunArgs) -> CliResult {
             .as_ref()
             .map_or(String::new(), |p| format!("; wrote {}", p.display()))
     );
+    Ok(())
+}
+
+/// Writes the patch summary, its total force's spectrum and the heat maps.
+fn write_patch(
+    args: &RunArgs,
+    scene: &Scene,
+    p: &tirecontact::output::patch::PatchRecorder,
+) -> CliResult {
+    if let Some(path) = &args.patch_summary {
+        p.save_csv(path)?;
+        let spectrum_path = {
+            let stem = path
+                .file_stem()
+                .map_or("patch".into(), |s| s.to_string_lossy().into_owned());
+            path.with_file_name(format!("{stem}_spectrum.csv"))
+        };
+        let from = p.t_s.partition_point(|&t| t < scene.ramp_s);
+        let rate_hz = 1.0 / (scene.dt_s * args.patch_every as f64);
+        match tirecontact::analysis::spectrum::spectrum(
+            &p.total_n[from..],
+            rate_hz,
+            Window::Hann,
+            true,
+        ) {
+            Ok(s) => {
+                let mut buf =
+                    b"freq_hz,total_force_psd_n2_per_hz,total_force_amplitude_n\n".to_vec();
+                for k in 0..s.freq_hz.len() {
+                    buf.extend(
+                        format!("{:e},{:e},{:e}\n", s.freq_hz[k], s.psd[k], s.amplitude[k]).bytes(),
+                    );
+                }
+                tirecontact::base::fsio::write_atomic(&spectrum_path, &buf)
+                    .map_err(|e| format!("{}: {e}", spectrum_path.display()))?;
+                eprintln!("wrote {} and {}", path.display(), spectrum_path.display());
+            }
+            Err(e) => eprintln!(
+                "wrote {}; no spectrum of the total force: {e} (samples after the ramp, t >= {} s)",
+                path.display(),
+                scene.ramp_s
+            ),
+        }
+    }
+    if let Some(dir) = &args.patch_frames {
+        let n = p.save_frames(dir, &scene.name, args.plot_size)?;
+        eprintln!(
+            "wrote {n} heat maps of the contact force into {}",
+            dir.display()
+        );
+    }
     Ok(())
 }
 

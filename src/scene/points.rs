@@ -222,7 +222,7 @@ impl FromIterator<Point> for Points {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+
     use crate::scene::Scene;
 
     fn scene_text(points: &str) -> String {

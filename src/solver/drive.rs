@@ -102,6 +102,7 @@ macro_rules! tuple_probe {
 tuple_probe!(A 0, B 1);
 tuple_probe!(A 0, B 1, C 2);
 tuple_probe!(A 0, B 1, C 2, D 3);
+tuple_probe!(A 0, B 1, C 2, D 3, E 4);
 
 /// The visualiser's contact phases follow the run.
 impl Probe for crate::solver::phase::PhaseTracker {

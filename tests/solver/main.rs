@@ -16,6 +16,7 @@ mod exact_step;
 mod invariants;
 mod many_points;
 mod paper_scheme;
+mod patch;
 mod rank_tolerance;
 mod residual_flexibility;
 mod residues;

@@ -213,7 +213,7 @@ impl SurfaceGrid {
     /// baselines of all rows. `None` when a row is shorter than 100 mm.
     pub fn mpd_m(&self) -> Option<f64> {
         let per = (MPD_BASELINE_M / self.dx_m).round() as usize;
-        let len = if self.looped { self.nx } else { self.nx };
+        let len = self.nx;
         if per < 4 || len < per {
             return None;
         }

@@ -87,7 +87,7 @@ impl Simulation {
             }
             self.solve_contact(at.t_s + span, sel)?;
             at.solves += !self.state.active.is_empty() as u32;
-            let found = self.locate(span);
+            let found = self.locate(at.t_s, span);
             if let Some((k, th, _)) = found.release
                 && th <= 0.0
             {
@@ -112,7 +112,7 @@ impl Simulation {
                 // (an event within 1e-9 of the sub-step start happens at its
                 // start: no degenerate sub-step is solved)
                 if let Some(k) = self.pulling_before(th / span) {
-                    self.release(k);
+                    self.release_or_hold(k, at.t_s);
                     at.events += 1;
                     continue;
                 }
@@ -217,6 +217,24 @@ impl Simulation {
     fn release(&mut self, k: usize) {
         let j = self.state.active.remove(k);
         self.state.released[j] = true;
+    }
+
+    /// Frees active entry `k`, whose trial force would pull before an
+    /// event, from time `t` (s) to that event. A point on the road is
+    /// released (it lands again in this step only after it rose clear of
+    /// the road). A tread spring is held free instead: a spring that
+    /// landed a moment ago holds almost no force, and the linear force
+    /// through its Gauss points, positive there, extrapolates below zero
+    /// at the sub-step start; the spring lands again, located as any
+    /// landing, once time has moved on from `t` (method §4.6, "A spring
+    /// freed before an event").
+    fn release_or_hold(&mut self, k: usize, t: f64) {
+        if self.tables.compliant() {
+            let j = self.state.active.remove(k);
+            self.state.held_at_s[j] = t;
+        } else {
+            self.release(k);
+        }
     }
 
     /// The active point (its entry) whose force dips below zero at the

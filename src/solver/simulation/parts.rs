@@ -172,6 +172,9 @@ pub(super) struct SimState {
     pub active: Vec<usize>,
     /// Points released in the last step (not re-added in it).
     pub released: Vec<bool>,
+    /// A spring freed at the instant it landed lands again only after it
+    /// (s); NaN: no hold.
+    pub held_at_s: Vec<f64>,
     /// The last step located events or released points: `impact_impulse`
     /// and `released` need clearing, and the next step rebuilds its active
     /// set from `contact`.
@@ -198,6 +201,7 @@ impl SimState {
             contact: vec![false; p],
             active: Vec::with_capacity(p),
             released: vec![false; p],
+            held_at_s: vec![f64::NAN; p],
             had_event: true,
             stats: RunStats::default(),
         }

@@ -166,7 +166,7 @@ impl Simulation {
     /// in the trial solved over a sub-step of `span`, the first release of
     /// an active point and, unless that release is at once, the first
     /// landing of a free point. Reads the trial; changes nothing.
-    pub(super) fn locate(&self, span: f64) -> Located {
+    pub(super) fn locate(&self, t_s: f64, span: f64) -> Located {
         let release = self.first_release(span);
         if let Some((_, th, _)) = release
             && th <= 0.0
@@ -178,7 +178,7 @@ impl Simulation {
         }
         Located {
             release,
-            impact: self.first_impact(span),
+            impact: self.first_impact(t_s, span),
         }
     }
 
@@ -219,7 +219,7 @@ impl Simulation {
 
     /// The first landing of a free point in the trial (method §4.4, "Impact
     /// location"): the first root of the Hermite cubic of its gap.
-    fn first_impact(&self, span: f64) -> Option<(usize, f64)> {
+    fn first_impact(&self, t_s: f64, span: f64) -> Option<(usize, f64)> {
         let compliant = self.tables.compliant();
         let mut impact: Option<(usize, f64)> = None;
         let p = self.tables.p;
@@ -230,7 +230,7 @@ impl Simulation {
         for i in 0..p {
             // (a compressed spring is not on the road: its gap is far
             // from the cheap rejection, so active points are skipped first)
-            if compliant && active.contains(&i) {
+            if compliant && (active.contains(&i) || st.held_at_s[i] == t_s) {
                 continue;
             }
             let (g0, d0) = (u[i] - r[i], v[i] - rd[i]);
@@ -335,7 +335,7 @@ impl Stages<'_> {
 
     /// `Simulation::locate` in the trial, after [`Stages::solve`].
     pub fn locate(&self) -> Located {
-        self.sim.locate(self.sim.tables.dt_s)
+        self.sim.locate(self.sim.state.t_s, self.sim.tables.dt_s)
     }
 
     /// `Simulation::commit` of the trial over the full step.
