@@ -308,6 +308,8 @@ pub fn render_heat_map(
         .disable_mesh()
         .x_desc("along the rolling direction x (mm)")
         .y_desc("across the tread y (mm)")
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
         .label_style(font.clone())
         .axis_desc_style(font.clone())
         .draw()
@@ -323,10 +325,22 @@ pub fn render_heat_map(
             )
         }))
         .map_err(|e| err(&e))?;
+    // every cell outlined, so that the patch shows where no force is
+    chart
+        .draw_series(layout.xy_m.iter().map(|&(x, y)| {
+            Rectangle::new(
+                [
+                    ((x - 0.5 * dx) * mm, (y - 0.5 * dy) * mm),
+                    ((x + 0.5 * dx) * mm, (y + 0.5 * dy) * mm),
+                ],
+                RGBColor(200, 200, 200).stroke_width(1),
+            )
+        }))
+        .map_err(|e| err(&e))?;
     // the colour bar, 0 N at the bottom
     let top = max_n.max(1e-12);
     let mut bar = ChartBuilder::on(&bar_area)
-        .margin_top(height / 10)
+        .margin_top(height / 7)
         .margin_bottom(height / 8)
         .margin_right(8)
         .y_label_area_size(bar_w * 11 / 20)
@@ -337,6 +351,7 @@ pub fn render_heat_map(
         .disable_mesh()
         .disable_x_axis()
         .y_labels(6)
+        .y_label_formatter(&|v| tick(*v))
         .label_style(font.clone())
         .draw()
         .map_err(|e| err(&e))?;
@@ -354,6 +369,13 @@ pub fn render_heat_map(
     .map_err(|e| err(&e))?;
     root.present().map_err(|e| err(&e))?;
     Ok(())
+}
+
+/// A tick label: no trailing zeros ("40", "2.5", "0.25").
+fn tick(v: f64) -> String {
+    let s = format!("{v:.3}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.to_string() }
 }
 
 #[cfg(test)]
