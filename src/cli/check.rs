@@ -27,6 +27,34 @@ pub fn check(path: &Path) -> CliResult {
             scene.num_points()
         ))
     );
+    if let Some(g) = model.road().surface() {
+        let mpd = g.mpd_m().map_or(
+            "no mean profile depth (rows shorter than 100 mm)".to_string(),
+            |d| format!("mean profile depth (ISO 13473-1) {:.3} mm", d * 1e3),
+        );
+        println!(
+            "  road surface: {} × {} nodes, {:.3} mm along × {:.3} mm across, {}; {mpd}",
+            g.nx,
+            g.ny,
+            g.dx_m * 1e3,
+            g.dy_m * 1e3,
+            if g.looped {
+                "looped along x"
+            } else {
+                "not looped"
+            }
+        );
+    }
+    if let (tirecontact::scene::Tyre::Plate { .. }, Some(first), Some(last)) =
+        (&scene.tyre, model.modes().first(), model.modes().last())
+    {
+        println!(
+            "  plate tyre: {} modes from {:.1} Hz to {:.1} Hz",
+            model.modes().len(),
+            first.freq_hz,
+            last.freq_hz
+        );
+    }
     drop(sim);
     Ok(())
 }

@@ -309,6 +309,11 @@ impl App {
             // views and layouts (app/layout.rs)
             Command::DismissMessage => self.message = None,
             Command::ShowView(v) => self.show_view(v),
+            Command::ShowPoints(points) => {
+                let p = self.doc.scene.num_points();
+                self.plot_opts.shown = (0..p).map(|i| points.contains(&i)).collect();
+                self.show_view(View::TimePlots);
+            }
             Command::SetClassroom(on) => self.set_classroom(on),
             Command::ShowModeBars(on) => self.classroom.bars = on,
             // mode mute and solo (app/mode_mutes.rs)

@@ -10,6 +10,7 @@ pub mod fidelity_view;
 pub mod force_labels;
 pub mod green_view;
 pub mod legend_place;
+pub mod patch_view;
 pub mod scene_legend;
 pub mod scene_view;
 pub mod spectra_view;

@@ -196,53 +196,81 @@ impl PlateParams {
                 expected: expected.to_string(),
             })
         };
-        for (f, x, e) in [
-            ("width_m", self.width_m, "a belt width > 0 m"),
+        // (bounds far outside any tyre, so that every lowest-mode
+        // frequency they allow is a number a time step can be set against)
+        for (f, x, lo, hi, e) in [
+            (
+                "width_m",
+                self.width_m,
+                1e-3,
+                10.0,
+                "a belt width from 0.001 to 10 m",
+            ),
             (
                 "circumference_m",
                 self.circumference_m,
-                "a circumference > 0 m",
+                1e-2,
+                100.0,
+                "a circumference from 0.01 to 100 m",
             ),
             (
                 "mass_per_area_kg_m2",
                 self.mass_per_area_kg_m2,
-                "a mass per area > 0 kg/m²",
+                1e-3,
+                1e4,
+                "a mass per area from 0.001 to 1e4 kg/m²",
             ),
-            (
-                "foundation_n_m3",
-                self.foundation_n_m3,
-                "a foundation stiffness > 0 N/m³ (a free belt has rigid-body modes)",
-            ),
-            ("max_freq_hz", self.max_freq_hz, "a frequency > 0 Hz"),
-        ] {
-            if !(x.is_finite() && x > 0.0) {
-                push(&mut errors, f, x, e);
-            }
-        }
-        for (f, x, e) in [
             (
                 "bending_along_nm",
                 self.bending_along_nm,
-                "a bending stiffness >= 0 N·m",
+                0.0,
+                1e6,
+                "a bending stiffness from 0 to 1e6 N·m",
             ),
             (
                 "bending_across_nm",
                 self.bending_across_nm,
-                "a bending stiffness >= 0 N·m",
+                0.0,
+                1e6,
+                "a bending stiffness from 0 to 1e6 N·m",
             ),
             (
                 "tension_along_n_m",
                 self.tension_along_n_m,
-                "a tension >= 0 N/m",
+                0.0,
+                1e9,
+                "a tension from 0 to 1e9 N/m",
             ),
             (
                 "tension_across_n_m",
                 self.tension_across_n_m,
-                "a tension >= 0 N/m",
+                0.0,
+                1e9,
+                "a tension from 0 to 1e9 N/m",
             ),
-            ("damping_ratio", self.damping_ratio, "a damping ratio >= 0"),
+            (
+                "foundation_n_m3",
+                self.foundation_n_m3,
+                f64::MIN_POSITIVE,
+                1e12,
+                "a foundation stiffness > 0 and <= 1e12 N/m³ (a free belt has rigid-body modes)",
+            ),
+            (
+                "damping_ratio",
+                self.damping_ratio,
+                0.0,
+                1e4,
+                "a damping ratio from 0 to 1e4",
+            ),
+            (
+                "max_freq_hz",
+                self.max_freq_hz,
+                f64::MIN_POSITIVE,
+                1e6,
+                "a frequency > 0 and <= 1e6 Hz",
+            ),
         ] {
-            if !(x.is_finite() && x >= 0.0) {
+            if !(x.is_finite() && x >= lo && x <= hi) {
                 push(&mut errors, f, x, e);
             }
         }

@@ -110,6 +110,42 @@ impl PointGrid {
     }
 }
 
+/// What a `Grid(...)` or, by mistake, a single `Point(...)` may hold: read
+/// first, so that a lone point is told apart from a grid.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GridOrPoint {
+    #[serde(default)]
+    along: Given<usize>,
+    #[serde(default)]
+    across: Given<usize>,
+    #[serde(default)]
+    spacing_m: Given<(f64, f64)>,
+    #[serde(default)]
+    preload: Given<Preload>,
+    #[serde(default)]
+    x_m: Given<f64>,
+    #[serde(default)]
+    y_m: Given<f64>,
+    #[serde(default)]
+    h_m: Given<f64>,
+}
+
+/// A field read as written (RON would want `Some(...)` for an `Option`).
+struct Given<T>(Option<T>);
+
+impl<T> Default for Given<T> {
+    fn default() -> Self {
+        Given(None)
+    }
+}
+
+impl<'de, T: Deserialize<'de>> Deserialize<'de> for Given<T> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        T::deserialize(d).map(|v| Given(Some(v)))
+    }
+}
+
 /// The contact points: the list the solver uses, and the grid it was
 /// written as (kept while the list is not edited, so a save writes the
 /// `Grid(...)` form back). Reads as a `Vec<Point>`; any mutable access
@@ -182,18 +218,26 @@ impl<'de> Deserialize<'de> for Points {
             }
             fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Points, A::Error> {
                 let mut list = Vec::new();
+                // (the count is validated with the scene: its file is bounded)
                 while let Some(p) = seq.next_element::<Point>()? {
-                    if list.len() >= MAX_POINTS {
-                        return Err(de::Error::custom(format!(
-                            "more than {MAX_POINTS} points: expected at most {MAX_POINTS} contact points"
-                        )));
-                    }
                     list.push(p);
                 }
                 Ok(list.into())
             }
             fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Points, A::Error> {
-                let grid = PointGrid::deserialize(de::value::MapAccessDeserializer::new(map))?;
+                let any = GridOrPoint::deserialize(de::value::MapAccessDeserializer::new(map))?;
+                if any.x_m.0.is_some() || any.y_m.0.is_some() || any.h_m.0.is_some() {
+                    return Err(de::Error::custom(
+                        "Expected opening `[` of a list of points: found one Point(...); write points: [Point(...), ...], or a Grid(...)",
+                    ));
+                }
+                let missing = |f: &'static str| de::Error::missing_field(f);
+                let grid = PointGrid {
+                    along: any.along.0.ok_or_else(|| missing("along"))?,
+                    across: any.across.0.ok_or_else(|| missing("across"))?,
+                    spacing_m: any.spacing_m.0.ok_or_else(|| missing("spacing_m"))?,
+                    preload: any.preload.0.ok_or_else(|| missing("preload"))?,
+                };
                 if let Some((field, value, expected)) = grid.check() {
                     return Err(de::Error::custom(format!(
                         "{field} = {value}: expected {expected}"

@@ -176,7 +176,7 @@ fn the_help_menu_lists_the_keys_and_they_do_what_it_says() {
         .flat_map(|(key, _)| key.split_whitespace())
         .filter(|k| k.parse::<u8>().is_ok())
         .collect();
-    assert_eq!(digits, ["1", "2", "3", "4", "5", "6", "7", "8"]);
+    assert_eq!(digits, ["1", "2", "3", "4", "5", "6", "7", "8", "9"]);
     assert_eq!(digits.len(), View::ALL.len());
     let keys = [
         egui::Key::Num1,
@@ -187,6 +187,7 @@ fn the_help_menu_lists_the_keys_and_they_do_what_it_says() {
         egui::Key::Num6,
         egui::Key::Num7,
         egui::Key::Num8,
+        egui::Key::Num9,
     ];
     for (key, view) in keys.into_iter().zip(View::ALL) {
         h.key_press(key);

@@ -223,7 +223,8 @@ fn cases() -> Vec<Case> {
                 "points: [\n        Point(x_m: 0.0, h_m: -0.001),\n        Point(x_m: 0.05, h_m: -0.001),\n    ],",
                 "points: Point(x_m: 0.0, h_m: -0.001),",
             )]),
-            Some("Point("),
+            // (read as a whole, then told apart from a Grid(...))
+            Some("Point(x_m: 0.0, h_m: -0.001),"),
             &["Expected opening `[`", "points: Point("],
         ),
         syntax(

@@ -15,7 +15,9 @@ use tirecontact::{SceneError, Simulation};
 fn presets() -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir("presets")
         .unwrap()
-        .map(|e| std::fs::read_to_string(e.unwrap().path()).unwrap())
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .map(|p| std::fs::read_to_string(p).unwrap())
         .collect();
     v.sort();
     v

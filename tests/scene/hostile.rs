@@ -19,14 +19,14 @@ use tirecontact::{DEFAULT_PRESET, DEFAULT_PRESET_NAME, SceneError, Simulation};
 fn presets() -> Vec<(String, String)> {
     let mut v: Vec<(String, String)> = std::fs::read_dir("presets")
         .unwrap()
-        .map(|e| {
-            let p = e.unwrap().path();
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .map(|p| {
             (
                 p.display().to_string(),
                 std::fs::read_to_string(&p).unwrap(),
             )
         })
-        .filter(|(n, _)| n.ends_with(".ron"))
         .collect();
     v.sort();
     v.push((DEFAULT_PRESET_NAME.to_string(), DEFAULT_PRESET.to_string()));

@@ -42,6 +42,7 @@ impl App {
                 (egui::Key::Num6, View::Compare),
                 (egui::Key::Num7, View::Fidelity),
                 (egui::Key::Num8, View::Workbench),
+                (egui::Key::Num9, View::Patch),
             ] {
                 if i.key_pressed(key) {
                     cmds.push(Command::ShowView(view));

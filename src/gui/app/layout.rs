@@ -111,6 +111,9 @@ impl App {
                 View::Green => {
                     green_view::show(ui, &self.doc.scene, &self.modes, &mut self.green_opts);
                 }
+                View::Patch => {
+                    crate::gui::views::patch_view::show(ui, &self.sim, &self.history, cmds);
+                }
                 View::Spectra | View::Sweep | View::Compare | View::Fidelity | View::Workbench => {
                     self.show_research_view(ui, cmds);
                 }

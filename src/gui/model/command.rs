@@ -20,10 +20,12 @@ pub enum View {
     Fidelity,
     /// The identification workbench (stabilisation diagram, picked poles).
     Workbench,
+    /// The contact patch: force over the points' grid, total force, area.
+    Patch,
 }
 
 impl View {
-    pub const ALL: [View; 8] = [
+    pub const ALL: [View; 9] = [
         View::TimePlots,
         View::Scene,
         View::Green,
@@ -32,6 +34,7 @@ impl View {
         View::Compare,
         View::Fidelity,
         View::Workbench,
+        View::Patch,
     ];
     pub fn label(self) -> &'static str {
         match self {
@@ -43,6 +46,7 @@ impl View {
             View::Compare => "A/B compare",
             View::Fidelity => "Fidelity",
             View::Workbench => "Identification",
+            View::Patch => "Contact patch",
         }
     }
 }
@@ -101,6 +105,8 @@ pub enum Command {
     Quit,
     DismissMessage,
     ShowView(View),
+    /// Show these points (and only these) in the time plots, and the plots.
+    ShowPoints(Vec<usize>),
     /// Classroom mode on/off: large fonts, presenter layout, slow motion.
     SetClassroom(bool),
     /// Open a guided-tour preset (index into `presets::GUIDED`).

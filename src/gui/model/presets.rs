@@ -34,6 +34,14 @@ pub const SHIPPED: &[(&str, &str, &str)] = &[
             "/presets/random_road.ron"
         )),
     ),
+    (
+        "Patch on a road texture (plate tyre, 96 points)",
+        "patch_texture.ron",
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/patch_texture.ron"
+        )),
+    ),
 ];
 
 /// `(menu name, file name, RON text)` of every guided preset, in tour order.

@@ -16,6 +16,7 @@ pub const SHORTCUTS: &[(&str, &str)] = &[
         "4  5  6  7  8",
         "research: spectra, sweep, A/B compare, fidelity, identification",
     ),
+    ("9", "contact patch (points across the tread)"),
     ("Ctrl+O", "open a preset file"),
     ("Ctrl+S", "save"),
     ("Ctrl+Shift+S", "save as"),

@@ -118,11 +118,14 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         }
         ui.separator();
         // the main views as tabs, the researcher tools in a menu
+        // (the patch view, key 9, is a main view)
         let (tabs, tools) = View::ALL.split_at(3);
-        for (k, &v) in tabs.iter().enumerate() {
+        let tools = &tools[..tools.len() - 1];
+        for &v in tabs.iter().chain([&View::Patch]) {
+            let key = View::ALL.iter().position(|&w| w == v).map_or(0, |k| k + 1);
             let r = ui
                 .selectable_label(st.view == v, v.label())
-                .on_hover_text(format!("key {}", k + 1));
+                .on_hover_text(format!("key {key}"));
             if r.clicked() && st.view != v {
                 cmds.push(Command::ShowView(v));
             }

@@ -23,8 +23,8 @@ use std::path::Path;
 /// it is within `1e-9 Δ` of a node.
 pub const GRID_TOLERANCE: f64 = 1e-9;
 
-/// Largest surface grid (nodes): a file's rows take 28 bytes each while it
-/// is read (x, y, z and the line number), 224 MB at the cap; the grid
+/// Largest surface grid (nodes): a file's rows take 32 bytes each while it
+/// is read (x, y, z and the line number), 256 MB at the cap; the grid
 /// keeps 16 bytes per node (heights and slopes).
 pub const MAX_SURFACE_NODES: usize = 8_000_000;
 

@@ -1,0 +1,285 @@
+//! The contact patch: the contact force over the points' grid as a heat
+//! map over the road under it (axes in mm, colour bar in N), and the total
+//! force and contact area against time. Clicking a row shows its points in
+//! the time plots.
+
+use crate::gui::model::command::Command;
+use crate::gui::model::history::{History, Quantity};
+use crate::output::patch::{PatchLayout, force_colour};
+use crate::solver::simulation::Simulation;
+use egui::{Align2, Color32, FontId, Pos2, Rect, Sense, Stroke, StrokeKind, Ui, Vec2};
+use egui_plot::{Legend, Line, Plot, PlotPoints};
+
+/// Road samples per cell side drawn under the heat map.
+const ROAD_SAMPLES_PER_CELL: usize = 3;
+
+/// Draws the patch view; a click on a row pushes [`Command::ShowPoints`].
+pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Command>) {
+    let scene = sim.scene();
+    let layout = match PatchLayout::of(scene) {
+        Ok(l) => l,
+        Err(e) => {
+            ui.add_space(12.0);
+            ui.label(format!(
+                "The patch view shows scenes whose points lie across the tread as well as along it: {e}."
+            ));
+            ui.label(
+                "Open Presets › Patch on a road texture, or give the points a Grid(...) (docs/presets.md).",
+            );
+            return;
+        }
+    };
+    let forces = sim.force_n();
+    let max_n = sim
+        .stats()
+        .max_force_n
+        .iter()
+        .copied()
+        .fold(0.0, f64::max)
+        .max(1e-9);
+    let on = sim.in_contact().iter().filter(|&&c| c).count();
+    let total: f64 = forces.iter().sum();
+    ui.label(format!(
+        "t = {:.4} s: total force {:.1} N, contact area {:.1} cm² ({on} of {} points on the road, cell {:.1} × {:.1} mm); click a row to see its points in the time plots",
+        sim.time_s(),
+        total,
+        on as f64 * layout.cell_area_m2() * 1e4,
+        layout.xy_m.len(),
+        layout.cell_m.0 * 1e3,
+        layout.cell_m.1 * 1e3,
+    ));
+    let h = (ui.available_height() * 0.55).max(160.0);
+    let (resp, painter) = ui.allocate_painter(Vec2::new(ui.available_width(), h), Sense::click());
+    let area = resp.rect;
+    let font = FontId::proportional(13.0);
+    let text = ui.visuals().text_color();
+    // the map's frame: left axis labels, bottom axis labels, right colour bar
+    let map = Rect::from_min_max(
+        Pos2::new(area.left() + 70.0, area.top() + 8.0),
+        Pos2::new(area.right() - 110.0, area.bottom() - 44.0),
+    );
+    let (dx, dy) = layout.cell_m;
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in &layout.xy_m {
+        x0 = x0.min(x - 0.5 * dx);
+        x1 = x1.max(x + 0.5 * dx);
+        y0 = y0.min(y - 0.5 * dy);
+        y1 = y1.max(y + 0.5 * dy);
+    }
+    let to_px = |x: f64, y: f64| {
+        Pos2::new(
+            map.left() + ((x - x0) / (x1 - x0)) as f32 * map.width(),
+            map.bottom() - ((y - y0) / (y1 - y0)) as f32 * map.height(),
+        )
+    };
+    // the road under the patch, grey by height (darker is higher)
+    let road = sim.road_profile();
+    let rolled = sim.rolled_m();
+    let (nx, ny) = (
+        ((x1 - x0) / dx).round() as usize * ROAD_SAMPLES_PER_CELL,
+        ((y1 - y0) / dy).round() as usize * ROAD_SAMPLES_PER_CELL,
+    );
+    let (nx, ny) = (nx.clamp(1, 400), ny.clamp(1, 200));
+    let mut z = vec![0.0; nx * ny];
+    for j in 0..ny {
+        for i in 0..nx {
+            let x = x0 + (i as f64 + 0.5) / nx as f64 * (x1 - x0);
+            let y = y0 + (j as f64 + 0.5) / ny as f64 * (y1 - y0);
+            z[j * nx + i] = road.sample_at(x + rolled, y).map_or(0.0, |s| s.0);
+        }
+    }
+    let (zmin, zmax) = z
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let zspan = (zmax - zmin).max(1e-12);
+    for j in 0..ny {
+        for i in 0..nx {
+            let s = ((z[j * nx + i] - zmin) / zspan) as f32;
+            let g = (235.0 - 90.0 * s) as u8;
+            let a = to_px(
+                x0 + i as f64 / nx as f64 * (x1 - x0),
+                y0 + (j + 1) as f64 / ny as f64 * (y1 - y0),
+            );
+            let b = to_px(
+                x0 + (i + 1) as f64 / nx as f64 * (x1 - x0),
+                y0 + j as f64 / ny as f64 * (y1 - y0),
+            );
+            painter.rect_filled(Rect::from_two_pos(a, b), 0.0, Color32::from_gray(g));
+        }
+    }
+    // the points' cells: the force's colour where the point is on the road
+    for (k, &(x, y)) in layout.xy_m.iter().enumerate() {
+        let r = Rect::from_two_pos(
+            to_px(x - 0.5 * dx, y + 0.5 * dy),
+            to_px(x + 0.5 * dx, y - 0.5 * dy),
+        );
+        if forces[k] > 0.0 {
+            let c = force_colour(forces[k], max_n);
+            painter.rect_filled(r.shrink(1.0), 0.0, Color32::from_rgb(c.0, c.1, c.2));
+        }
+        painter.rect_stroke(
+            r,
+            0.0,
+            Stroke::new(1.0, Color32::from_gray(120)),
+            StrokeKind::Inside,
+        );
+    }
+    // axes: x along (mm) below, y across (mm) at the left, one label per row
+    for &y in &layout.rows_y_m {
+        let p = to_px(x0, y);
+        painter.text(
+            Pos2::new(map.left() - 6.0, p.y),
+            Align2::RIGHT_CENTER,
+            format!("{:.0}", y * 1e3),
+            font.clone(),
+            text,
+        );
+    }
+    let step_mm = nice_step((x1 - x0) * 1e3 / 8.0);
+    let mut m = (x0 * 1e3 / step_mm).ceil() * step_mm;
+    while m <= x1 * 1e3 {
+        let p = to_px(m * 1e-3, y0);
+        painter.text(
+            Pos2::new(p.x, map.bottom() + 4.0),
+            Align2::CENTER_TOP,
+            format!("{m:.0}"),
+            font.clone(),
+            text,
+        );
+        m += step_mm;
+    }
+    painter.text(
+        Pos2::new(map.center().x, area.bottom() - 2.0),
+        Align2::CENTER_BOTTOM,
+        "along the rolling direction x (mm)",
+        font.clone(),
+        text,
+    );
+    painter.text(
+        Pos2::new(area.left() + 2.0, map.top() - 2.0),
+        Align2::LEFT_BOTTOM,
+        "y (mm)",
+        font.clone(),
+        text,
+    );
+    // the colour bar, 0 N at the bottom
+    let bar = Rect::from_min_max(
+        Pos2::new(map.right() + 24.0, map.top() + 20.0),
+        Pos2::new(map.right() + 44.0, map.bottom()),
+    );
+    let steps = 60;
+    for s in 0..steps {
+        let f0 = s as f64 / steps as f64;
+        let c = force_colour((f0 + 0.5 / steps as f64) * max_n, max_n);
+        let ya = bar.bottom() - (s as f32 / steps as f32) * bar.height();
+        let yb = bar.bottom() - ((s + 1) as f32 / steps as f32) * bar.height();
+        painter.rect_filled(
+            Rect::from_min_max(Pos2::new(bar.left(), yb), Pos2::new(bar.right(), ya)),
+            0.0,
+            Color32::from_rgb(c.0, c.1, c.2),
+        );
+    }
+    painter.rect_stroke(
+        bar,
+        0.0,
+        Stroke::new(1.0, Color32::from_gray(120)),
+        StrokeKind::Outside,
+    );
+    painter.text(
+        Pos2::new(bar.center().x, map.top()),
+        Align2::CENTER_TOP,
+        "force (N)",
+        font.clone(),
+        text,
+    );
+    for frac in [0.0, 0.5, 1.0] {
+        painter.text(
+            Pos2::new(bar.right() + 4.0, bar.bottom() - frac as f32 * bar.height()),
+            Align2::LEFT_CENTER,
+            crate::output::summary::short_num(frac * max_n, 3),
+            font.clone(),
+            text,
+        );
+    }
+    // a click on a row: its points in the time plots
+    if resp.clicked()
+        && let Some(pos) = resp.interact_pointer_pos()
+        && map.contains(pos)
+    {
+        let y = y0 + f64::from((map.bottom() - pos.y) / map.height()) * (y1 - y0);
+        let row = layout
+            .rows_y_m
+            .iter()
+            .enumerate()
+            .min_by(|a, b| (a.1 - y).abs().total_cmp(&(b.1 - y).abs()))
+            .map_or(0, |(r, _)| r);
+        let points: Vec<usize> = (0..layout.xy_m.len())
+            .filter(|&k| layout.row_of_point[k] == row)
+            .collect();
+        cmds.push(Command::ShowPoints(points));
+    }
+    resp.on_hover_text("click a row to see its points in the time plots");
+    totals_plot(ui, &layout, history);
+}
+
+/// Total force (N) and contact area (cm²) against time, from the history.
+fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History) {
+    let t = history.times();
+    let p = history.num_points();
+    let total: PlotPoints = (0..t.len())
+        .map(|k| {
+            [
+                t[k],
+                (0..p)
+                    .map(|i| history.value(Quantity::Force, i, k))
+                    .sum::<f64>(),
+            ]
+        })
+        .collect();
+    let cell_cm2 = layout.cell_area_m2() * 1e4;
+    let area: PlotPoints = (0..t.len())
+        .map(|k| {
+            [
+                t[k],
+                (0..p)
+                    .map(|i| history.value(Quantity::Contact, i, k))
+                    .sum::<f64>()
+                    * cell_cm2,
+            ]
+        })
+        .collect();
+    let h = ((ui.available_height() - 8.0) / 2.0).max(80.0);
+    Plot::new("tirecontact.patch.total")
+        .height(h)
+        .legend(Legend::default())
+        .x_axis_label("time t (s)")
+        .y_axis_label("total force (N)")
+        .allow_scroll(false)
+        .show(ui, |pu| {
+            pu.line(Line::new("total contact force (N)", total))
+        });
+    Plot::new("tirecontact.patch.area")
+        .height(h)
+        .legend(Legend::default())
+        .x_axis_label("time t (s)")
+        .y_axis_label("contact area (cm²)")
+        .allow_scroll(false)
+        .show(ui, |pu| pu.line(Line::new("contact area (cm²)", area)));
+}
+
+/// A 1-2-5 step at least `raw`.
+fn nice_step(raw: f64) -> f64 {
+    let e = 10f64.powf(raw.max(1e-9).log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * e)
+        .find(|&s| s >= raw)
+        .unwrap_or(10.0 * e)
+}
