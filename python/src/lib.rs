@@ -119,7 +119,8 @@ impl PyScene {
 
 /// A run's history: one row at t = 0, then one every `every` steps; arrays
 /// are time × points. `q_n` is the mean force over the row's steps (an
-/// impact is kept as impulse / dt).
+/// impact is kept as impulse / dt). `x_m`, `y_m` are the points'
+/// positions along and across the tread (m), the columns' order.
 #[pyclass(name = "Run", module = "tirecontact")]
 struct PyRun {
     #[pyo3(get)]
@@ -134,6 +135,10 @@ struct PyRun {
     gap_m: Py<PyArray2<f64>>,
     #[pyo3(get)]
     contact: Py<PyArray2<bool>>,
+    #[pyo3(get)]
+    x_m: Py<PyArray1<f64>>,
+    #[pyo3(get)]
+    y_m: Py<PyArray1<f64>>,
     #[pyo3(get)]
     dt_s: f64,
     #[pyo3(get)]
@@ -269,6 +274,20 @@ fn run_scene(
         contact: contact
             .into_pyarray(py)
             .reshape([contact_rows, p])?
+            .unbind(),
+        x_m: s
+            .points
+            .iter()
+            .map(|pt| pt.x_m)
+            .collect::<Vec<f64>>()
+            .into_pyarray(py)
+            .unbind(),
+        y_m: s
+            .points
+            .iter()
+            .map(|pt| pt.y_m)
+            .collect::<Vec<f64>>()
+            .into_pyarray(py)
             .unbind(),
         dt_s: s.dt_s,
         every,

@@ -290,3 +290,13 @@ def test_ctrl_c_stops_a_long_run():
     # 500 s of the paper preset take about 20 s: stopped long before
     assert proc.returncode == 3 and "interrupted" in out, (proc.returncode, out)
     assert time.perf_counter() - t < 2.0
+
+
+def test_a_patch_run_carries_the_points_coordinates():
+    scene = tc.Scene.load(PRESETS / "patch_wheel_path.ron")
+    run = tc.run(scene, duration_s=0.002)
+    # the grid's order: along the rolling direction within each row across
+    assert run.x_m.shape == run.y_m.shape == (run.q_n.shape[1],) == (96,)
+    np.testing.assert_allclose(np.unique(run.y_m), [-0.05, -0.03, -0.01, 0.01, 0.03, 0.05], atol=1e-15)
+    assert np.all(np.diff(run.x_m[:16]) > 0) and np.all(run.y_m[:16] == run.y_m[0])
+    assert run.y_m[16] > run.y_m[0]

@@ -8,7 +8,7 @@ use crate::gui::model::history::{History, Quantity};
 use crate::output::patch::{PatchLayout, force_colour};
 use crate::solver::simulation::Simulation;
 use egui::{Align2, Color32, FontId, Pos2, Rect, Sense, Stroke, StrokeKind, Ui, Vec2};
-use egui_plot::{Legend, Line, Plot, PlotPoints};
+use egui_plot::{Line, Plot, PlotPoints};
 
 /// Road samples per cell side drawn under the heat map.
 const ROAD_SAMPLES_PER_CELL: usize = 3;
@@ -55,7 +55,7 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
     let text = ui.visuals().text_color();
     // the map's frame: left axis labels, bottom axis labels, right colour bar
     let map = Rect::from_min_max(
-        Pos2::new(area.left() + 70.0, area.top() + 8.0),
+        Pos2::new(area.left() + 70.0, area.top() + 24.0),
         Pos2::new(area.right() - 110.0, area.bottom() - 44.0),
     );
     let (dx, dy) = layout.cell_m;
@@ -163,8 +163,8 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
         text,
     );
     painter.text(
-        Pos2::new(area.left() + 2.0, map.top() - 2.0),
-        Align2::LEFT_BOTTOM,
+        Pos2::new(map.left() - 6.0, map.top() - 4.0),
+        Align2::RIGHT_BOTTOM,
         "y (mm)",
         font.clone(),
         text,
@@ -256,9 +256,9 @@ fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History) {
         })
         .collect();
     let h = ((ui.available_height() - 8.0) / 2.0).max(80.0);
+    // (one curve each, named by its axis: no legend over the data)
     Plot::new("tirecontact.patch.total")
         .height(h)
-        .legend(Legend::default())
         .x_axis_label("time t (s)")
         .y_axis_label("total force (N)")
         .allow_scroll(false)
@@ -267,7 +267,6 @@ fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History) {
         });
     Plot::new("tirecontact.patch.area")
         .height(h)
-        .legend(Legend::default())
         .x_axis_label("time t (s)")
         .y_axis_label("contact area (cm²)")
         .allow_scroll(false)
