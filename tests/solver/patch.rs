@@ -112,3 +112,72 @@ fn springs_freed_before_an_event_land_again_in_the_step() {
         st.worst_penetration_m
     );
 }
+
+/// A point outside a surface file's grid across the tread is refused when
+/// the road is loaded, naming the point and the grid's range; on the
+/// grid, each point bears on its own row: on a road that rises across the
+/// tread (`z = 2 mm · (y / 0.1 m)` where `y > 0`, flat elsewhere) a row at
+/// `y = 0.05 m` is pressed 1 mm deeper than the row at `y = -0.05 m`,
+/// and carries the larger force.
+#[test]
+fn points_bear_on_their_own_row_of_a_surface_and_outside_it_are_refused() {
+    let dir = crate::support::temp_dir();
+    let mut csv = String::from("x_m,y_m,z_m\n");
+    for j in 0..5 {
+        let y = -0.1 + 0.05 * j as f64;
+        for i in 0..40 {
+            let z = if y > 0.0 { 0.002 * y / 0.1 } else { 0.0 };
+            csv.push_str(&format!("{},{y},{z}\n", i as f64 * 0.01));
+        }
+    }
+    std::fs::write(dir.path().join("ramp.csv"), csv).unwrap();
+    let mut scene = Scene::load(std::path::Path::new("presets/patch_texture.ron")).unwrap();
+    scene.base_dir = Some(dir.path().to_path_buf());
+    scene.road = Road::Surface {
+        file: "ramp.csv".into(),
+        looped: true,
+    };
+    scene.points = Points::from_grid(PointGrid {
+        along: 3,
+        across: 2,
+        spacing_m: (0.01, 0.1),
+        preload: Preload::Flat { depth_m: 0.0005 },
+    });
+    scene.speed_mps = 0.0;
+    scene.duration_s = 0.05;
+    let model = PreparedModel::of(&scene).unwrap();
+    let mut sim = Simulation::new(&model, SolverOptions::default()).unwrap();
+    while !sim.finished() {
+        sim.step().unwrap();
+    }
+    // points 0-2 at y = -0.05 (flat), 3-5 at y = +0.05 (1 mm up)
+    let r = sim.road_m();
+    for i in 0..3 {
+        assert!((r[i] - 0.0005).abs() < 1e-12, "point {i}: road {}", r[i]);
+        assert!(
+            (r[i + 3] - 0.0015).abs() < 1e-12,
+            "point {}: road {}",
+            i + 3,
+            r[i + 3]
+        );
+        assert!(sim.force_n()[i + 3] > sim.force_n()[i], "point {i}");
+    }
+    // a row outside the grid (on a belt wide enough to hold it)
+    if let Tyre::Plate { plate } = &mut scene.tyre {
+        plate.width_m = 0.4;
+    }
+    scene.points = Points::from_grid(PointGrid {
+        along: 2,
+        across: 2,
+        spacing_m: (0.01, 0.24),
+        preload: Preload::Flat { depth_m: 0.0005 },
+    });
+    let e = PreparedModel::of(&scene)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(
+        e.contains("points[2].y_m = 0.12") && e.contains("-0.1 m to 0.1 m"),
+        "{e}"
+    );
+}
