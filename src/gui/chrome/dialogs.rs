@@ -83,7 +83,7 @@ pub fn confirm_window(
         Discarding::Guided(_) => "open a guided-tour preset",
         Discarding::Quit => "quit",
     };
-    egui::Modal::new(egui::Id::unique("tirecontact.confirm")).show(ctx, |ui| {
+    let shown = egui::Modal::new(egui::Id::unique("tirecontact.confirm")).show(ctx, |ui| {
         ui.heading("Unsaved changes");
         ui.label(format!(
             "The scene has unsaved changes. Discard them and {what}?"
@@ -102,11 +102,16 @@ pub fn confirm_window(
             if ui.button("Save first").clicked() {
                 cmds.push(Command::SaveFirst);
             }
-            if ui.button("Cancel").clicked() {
+            if ui.button("Cancel").on_hover_text("Escape").clicked() {
                 cmds.push(Command::CancelDiscard);
             }
         });
     });
+    // Escape (or a click beside the question) keeps the changes, as Cancel;
+    // Enter does not discard them (no default for a destructive choice)
+    if shown.should_close() && !cmds.contains(&Command::CancelDiscard) {
+        cmds.push(Command::CancelDiscard);
+    }
 }
 
 /// PNG export settings: size in pixels, then the file dialog.
