@@ -69,6 +69,10 @@ pub struct App {
     pub(super) phases: PhaseTracker,
     pub(super) mutes: Option<Mutes>,
     frames_dialog: Option<FramesDialog>,
+    /// A save waiting for the answer to "overwrite this shipped preset?".
+    pub(super) overwrite: Option<PathBuf>,
+    /// The folder of the last file opened or saved (Save As offers it).
+    pub(super) last_dir: Option<PathBuf>,
     /// Researcher tools: spectra, sweep, pinned run, fidelity.
     pub(super) research: super::research::ResearchState,
     /// The open, save or export file prompt, when shown.
@@ -150,6 +154,8 @@ impl App {
             phases,
             mutes: None,
             frames_dialog: None,
+            overwrite: None,
+            last_dir: None,
             research: Default::default(),
             file_prompt: None,
             field_refusal: None,
@@ -297,6 +303,12 @@ impl App {
             Command::Save => self.save_document(),
             Command::SaveAsDialog => self.save_as_dialog(),
             Command::SavePath(p) => self.save_to(&p),
+            Command::ConfirmOverwrite => {
+                if let Some(p) = self.overwrite.take() {
+                    self.write_scene(&p);
+                }
+            }
+            Command::CancelOverwrite => self.overwrite = None,
             Command::ExportPngDialog => self.open_png_dialog(),
             Command::ExportPng {
                 path,
@@ -331,7 +343,7 @@ impl App {
             Command::FieldRestored { field } => self.field_restored(&field),
             Command::SaveFirst => self.save_first(),
             Command::ContinueAfterSave(d) => {
-                if !self.is_dirty() {
+                if !self.is_dirty() && self.overwrite.is_none() {
                     self.discard_and(d);
                 }
             }

@@ -23,6 +23,7 @@ mod legends_clear;
 mod mode_fields;
 mod native_dialog;
 mod research;
+mod save_as;
 mod scene_view;
 mod status;
 mod time_plots;

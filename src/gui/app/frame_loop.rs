@@ -59,6 +59,7 @@ impl App {
             || self.png_dialog.is_some()
             || self.frames_dialog.is_some()
             || self.confirm.is_some()
+            || self.overwrite.is_some()
     }
 
     /// What the status bar shows.
@@ -164,6 +165,7 @@ impl App {
             &unsaved,
             &mut cmds,
         );
+        crate::gui::chrome::dialogs::overwrite_window(&ctx, self.overwrite.as_deref(), &mut cmds);
         crate::gui::chrome::dialogs::png_window(&ctx, &mut self.png_dialog, &mut cmds);
         crate::gui::chrome::file_prompt::window(&ctx, &mut self.file_prompt, &mut cmds);
         crate::gui::chrome::frames_dialog::dialog(&ctx, &mut self.frames_dialog, &mut cmds);

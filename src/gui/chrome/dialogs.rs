@@ -114,6 +114,43 @@ pub fn confirm_window(
     }
 }
 
+/// Asks before a save replaces `path`, a preset shipped with the app.
+/// Escape (or a click beside the question) keeps the file.
+pub fn overwrite_window(
+    ctx: &egui::Context,
+    path: Option<&std::path::Path>,
+    cmds: &mut Vec<Command>,
+) {
+    let Some(p) = path else { return };
+    let shown = egui::Modal::new(egui::Id::unique("tirecontact.overwrite")).show(ctx, |ui| {
+        ui.heading("Overwrite a shipped preset?");
+        ui.set_max_width(520.0);
+        ui.add(
+            egui::Label::new(format!(
+                "{} is a preset shipped with tirecontact. Saving replaces it for everyone \
+                 using this folder.",
+                p.display()
+            ))
+            .wrap(),
+        );
+        ui.horizontal(|ui| {
+            if ui.button("Overwrite").clicked() {
+                cmds.push(Command::ConfirmOverwrite);
+            }
+            if ui.button("Save as…").clicked() {
+                cmds.push(Command::CancelOverwrite);
+                cmds.push(Command::SaveAsDialog);
+            }
+            if ui.button("Cancel").on_hover_text("Escape").clicked() {
+                cmds.push(Command::CancelOverwrite);
+            }
+        });
+    });
+    if shown.should_close() && !cmds.contains(&Command::CancelOverwrite) {
+        cmds.push(Command::CancelOverwrite);
+    }
+}
+
 /// PNG export settings: size in pixels, then the file dialog.
 pub fn png_window(
     ctx: &egui::Context,

@@ -140,6 +140,10 @@ pub enum Command {
     /// After a save from the file prompt: do the held action if the scene
     /// is now saved (a failed save keeps it, and the user's edits).
     ContinueAfterSave(Discarding),
+    /// Overwrite the preset shipped with the app that a save was about to
+    /// replace (asked first), or keep it.
+    ConfirmOverwrite,
+    CancelOverwrite,
     /// The frame's share of the run: take the solver steps the time
     /// control asks for in `frame_s` of wall time (the frame loop pushes it).
     Advance {
