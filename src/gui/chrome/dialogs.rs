@@ -27,9 +27,34 @@ pub struct PngSettings {
     pub focus: bool,
 }
 
-/// The message banner above the views (errors in red, with a dismiss button).
+/// Inner margin (px) of the message banner's frame.
+const BANNER_MARGIN_PX: f32 = 6.0;
+
+/// The message banner above the views (errors in red, with a dismiss
+/// button). A strip one banner line high is kept above the views whether or
+/// not a message is shown, and the banner is drawn over it (a longer
+/// message over the top of the view): the views do not move as messages
+/// come and go.
 pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
+    let row_px = ui
+        .text_style_height(&egui::TextStyle::Body)
+        .max(ui.spacing().interact_size.y);
+    let (strip, _) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width(), row_px + 2.0 * BANNER_MARGIN_PX),
+        egui::Sense::hover(),
+    );
     let Some(m) = msg else { return };
+    egui::Area::new(ui.id().with("tirecontact.banner"))
+        .fixed_pos(strip.min)
+        .order(egui::Order::Middle)
+        .show(ui.ctx(), |ui| {
+            ui.set_width(strip.width());
+            banner_frame(ui, m, cmds);
+        });
+}
+
+/// The banner's frame, text and Dismiss button.
+fn banner_frame(ui: &mut Ui, m: &Message, cmds: &mut Vec<Command>) {
     let (fill, color) = if m.error {
         (Color32::from_rgb(255, 235, 235), ERROR_COLOR)
     } else {
@@ -40,7 +65,7 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
     };
     egui::Frame::new()
         .fill(fill)
-        .inner_margin(6.0)
+        .inner_margin(BANNER_MARGIN_PX)
         .corner_radius(4.0)
         .show(ui, |ui| {
             ui.horizontal(|ui| {

@@ -14,6 +14,7 @@ mod panel;
 mod picker_contrast;
 mod scene_ticks;
 mod steady_plot;
+mod theme;
 mod time_ticks;
 
 use egui_kittest::Harness;
