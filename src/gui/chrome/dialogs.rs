@@ -68,7 +68,7 @@ fn banner_frame(ui: &mut Ui, m: &Message, cmds: &mut Vec<Command>) {
         .inner_margin(BANNER_MARGIN_PX)
         .corner_radius(4.0)
         .show(ui, |ui| {
-            ui.horizontal(|ui| {
+            ui.horizontal_top(|ui| {
                 // wrapped to the room left of Dismiss: unwrapped, a long
                 // message (a refused field's reason) widened the central
                 // panel past the window, cutting off Dismiss and the plots
@@ -84,7 +84,7 @@ fn banner_frame(ui: &mut Ui, m: &Message, cmds: &mut Vec<Command>) {
                         ui.add(egui::Label::new(job).wrap());
                     },
                 );
-                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                ui.with_layout(egui::Layout::right_to_left(egui::Align::Min), |ui| {
                     if ui.small_button("Dismiss").clicked() {
                         cmds.push(Command::DismissMessage);
                     }

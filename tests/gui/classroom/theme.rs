@@ -127,3 +127,33 @@ fn banners_do_not_move_the_plots() {
         assert!((force_plot_top(&h) - clear).abs() < 0.5);
     }
 }
+
+/// In classroom mode (larger text) too, the banner neither moves the
+/// view nor covers its first row.
+#[test]
+fn the_classroom_banner_keeps_to_its_strip() {
+    let mut h = harness(app_on("three_points.ron"), [1280.0, 720.0]);
+    h.run();
+    h.state_mut().apply(Command::SetClassroom(true));
+    h.run();
+    h.run();
+    let row_top = |h: &egui_kittest::Harness<'_, tirecontact::gui::App>| {
+        h.get_by_label_contains("contact phase").rect().top()
+    };
+    let clear = row_top(&h);
+    h.state_mut().apply(Command::FieldRefused {
+        field: "speed".into(),
+        text: "opened presets/three_points.ron".into(),
+    });
+    h.run();
+    h.run();
+    assert!(
+        (row_top(&h) - clear).abs() < 0.5,
+        "the banner moved the view"
+    );
+    let dismiss = h.get_by_label("Dismiss").rect();
+    assert!(
+        dismiss.bottom() < clear,
+        "the banner ({dismiss:?}) covers the view's first row at {clear}"
+    );
+}
