@@ -44,7 +44,7 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
         egui::Sense::hover(),
     );
     let Some(m) = msg else { return };
-    egui::Area::new(ui.id().with("tirecontact.banner"))
+    egui::Area::new(egui::Id::unique("tirecontact.banner"))
         .fixed_pos(strip.min)
         .order(egui::Order::Middle)
         .show(ui.ctx(), |ui| {
