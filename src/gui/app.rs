@@ -326,6 +326,15 @@ impl App {
             // mode mute and solo (app/mode_mutes.rs)
             Command::ToggleMute(k) => self.set_mutes(k, false),
             Command::SoloMode(k) => self.set_mutes(k, true),
+            Command::MuteWithCompliantContact => {
+                if let Some(r) = self.classroom.mute_refused.take() {
+                    let contact = crate::scene::Contact::Compliant {
+                        stiffness_n_m: vec![crate::gui::panels::contact_panel::DEFAULT_TREAD_N_M],
+                    };
+                    self.set_mutes_with(r.mode, r.solo, Some(contact));
+                }
+            }
+            Command::DismissMuteRefusal => self.classroom.mute_refused = None,
             Command::UnmuteAll => self.unmute_all(),
             // animation export (app/animation_export.rs)
             Command::ExportFramesDialog => self.open_frames_dialog(),

@@ -50,6 +50,8 @@ pub struct Classroom {
     /// classroom mode: egui keeps the preference between runs, so at the
     /// next start it is classroom mode's light one.
     pub theme_before: Option<egui::ThemePreference>,
+    /// The last mute or solo refused, until the next one or a way out.
+    pub mute_refused: Option<MuteRefusal>,
     /// Point of the plot and the bars.
     pub point: usize,
     /// What the plot shows: force or displacement.
@@ -109,6 +111,17 @@ impl Classroom {
         }
         changed
     }
+}
+
+/// A mute or solo refused (rigid contact would be singular): shown beside
+/// the mode bars with the ways out.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MuteRefusal {
+    pub mode: usize,
+    pub solo: bool,
+    pub text: String,
+    /// The contact was rigid (compliant contact is a way out).
+    pub rigid: bool,
 }
 
 impl Classroom {

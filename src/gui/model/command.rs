@@ -112,6 +112,11 @@ pub enum Command {
     /// Mute every mode but `k`, or un-mute all if `k` is already solo.
     SoloMode(usize),
     UnmuteAll,
+    /// Switch to compliant contact and apply the mute or solo refused with
+    /// rigid contact.
+    MuteWithCompliantContact,
+    /// Keep the modes playing: forget the refused mute or solo.
+    DismissMuteRefusal,
     /// Show the animation export settings.
     ExportFramesDialog,
     ExportFrames {
