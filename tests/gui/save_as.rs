@@ -38,7 +38,7 @@ fn save_as_offers_the_folder_of_the_last_file() {
     assert!(dir.join("first.ron").is_file());
     h.state_mut().apply(Command::New);
     settle(&mut h);
-    assert!(h.state().scene().name.len() > 0);
+    assert!(!h.state().scene().name.is_empty());
     let offer = save_as_offer(&mut h);
     assert_eq!(
         std::path::Path::new(&offer).parent(),

@@ -199,7 +199,7 @@ fn param_unit(param: &str) -> Option<&'static str> {
     }
     let field = name.rsplit('.').next().unwrap_or(name);
     // names whose suffix alone is ambiguous first, then by suffix
-    let unit = match field {
+    match field {
         "bending_stiffness_n_m2" => Some("N·m²"),
         "residue" => Some("1/kg"),
         "shape" => Some("1/√kg"),
@@ -220,8 +220,7 @@ fn param_unit(param: &str) -> Option<&'static str> {
         .iter()
         .find(|(suffix, _)| field.ends_with(suffix))
         .map(|(_, unit)| *unit),
-    };
-    unit
+    }
 }
 
 /// The y titles of the sweep's four plots, shared by the sweep view and

@@ -27,7 +27,7 @@ fn memory(h: &egui_kittest::Harness<'_, App>, id: &str) -> egui_plot::PlotMemory
 fn a_run_shorter_than_the_window_fills_the_time_axis() {
     for size in [[1280.0, 720.0], [1600.0, 1000.0]] {
         let h = run_of(0.002, size);
-        let t = memory(&h, FORCE_PLOT_ID).transform().clone();
+        let t = memory(&h, FORCE_PLOT_ID).transform();
         let frame = t.frame();
         let t_end = h.state().simulation().time_s();
         assert!((t_end - 0.002).abs() < 1e-9, "{t_end}");
