@@ -16,6 +16,7 @@ mod compare;
 mod controls_by_pointer;
 mod edited_description;
 mod field_help;
+mod frames_export;
 mod guidance;
 mod identify_thread;
 mod keyboard_prompts;
