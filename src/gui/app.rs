@@ -69,6 +69,10 @@ pub struct App {
     pub(super) phases: PhaseTracker,
     pub(super) mutes: Option<Mutes>,
     frames_dialog: Option<FramesDialog>,
+    /// A save waiting for the answer to "overwrite this shipped preset?".
+    pub(super) overwrite: Option<PathBuf>,
+    /// The folder of the last file opened or saved (Save As offers it).
+    pub(super) last_dir: Option<PathBuf>,
     /// Researcher tools: spectra, sweep, pinned run, fidelity.
     pub(super) research: super::research::ResearchState,
     /// The open, save or export file prompt, when shown.
@@ -150,6 +154,8 @@ impl App {
             phases,
             mutes: None,
             frames_dialog: None,
+            overwrite: None,
+            last_dir: None,
             research: Default::default(),
             file_prompt: None,
             field_refusal: None,
@@ -297,6 +303,12 @@ impl App {
             Command::Save => self.save_document(),
             Command::SaveAsDialog => self.save_as_dialog(),
             Command::SavePath(p) => self.save_to(&p),
+            Command::ConfirmOverwrite => {
+                if let Some(p) = self.overwrite.take() {
+                    self.write_scene(&p);
+                }
+            }
+            Command::CancelOverwrite => self.overwrite = None,
             Command::ExportPngDialog => self.open_png_dialog(),
             Command::ExportPng {
                 path,
@@ -319,6 +331,15 @@ impl App {
             // mode mute and solo (app/mode_mutes.rs)
             Command::ToggleMute(k) => self.set_mutes(k, false),
             Command::SoloMode(k) => self.set_mutes(k, true),
+            Command::MuteWithCompliantContact => {
+                if let Some(r) = self.classroom.mute_refused.take() {
+                    let contact = crate::scene::Contact::Compliant {
+                        stiffness_n_m: vec![crate::gui::panels::contact_panel::DEFAULT_TREAD_N_M],
+                    };
+                    self.set_mutes_with(r.mode, r.solo, Some(contact));
+                }
+            }
+            Command::DismissMuteRefusal => self.classroom.mute_refused = None,
             Command::UnmuteAll => self.unmute_all(),
             // animation export (app/animation_export.rs)
             Command::ExportFramesDialog => self.open_frames_dialog(),
@@ -336,7 +357,7 @@ impl App {
             Command::FieldRestored { field } => self.field_restored(&field),
             Command::SaveFirst => self.save_first(),
             Command::ContinueAfterSave(d) => {
-                if !self.is_dirty() {
+                if !self.is_dirty() && self.overwrite.is_none() {
                     self.discard_and(d);
                 }
             }

@@ -46,6 +46,12 @@ pub struct Classroom {
     pub on: bool,
     /// Text styles and theme preference before classroom mode changed them.
     saved: Option<(BTreeMap<TextStyle, FontId>, egui::ThemePreference)>,
+    /// The user's theme preference from the last session, when it ended in
+    /// classroom mode: egui keeps the preference between runs, so at the
+    /// next start it is classroom mode's light one.
+    pub theme_before: Option<egui::ThemePreference>,
+    /// The last mute or solo refused, until the next one or a way out.
+    pub mute_refused: Option<MuteRefusal>,
     /// Point of the plot and the bars.
     pub point: usize,
     /// What the plot shows: force or displacement.
@@ -67,10 +73,16 @@ impl Classroom {
     /// in the old text sizes, and the editing panel, shown in classroom
     /// mode's large text on the first frame after it, kept that width).
     pub fn sync_style(&mut self, ctx: &egui::Context) -> bool {
+        if !self.on {
+            self.theme_before = None;
+        }
         let changed = self.on != self.saved.is_some();
         match (self.on, self.saved.is_some()) {
             (true, false) => {
-                let theme = ctx.options(|o| o.theme_preference);
+                let theme = self
+                    .theme_before
+                    .take()
+                    .unwrap_or_else(|| ctx.options(|o| o.theme_preference));
                 self.saved = Some((ctx.global_style().text_styles.clone(), theme));
                 // dark text on white reads best on a projector
                 ctx.set_theme(egui::ThemePreference::Light);
@@ -98,6 +110,28 @@ impl Classroom {
             _ => {}
         }
         changed
+    }
+}
+
+/// A mute or solo refused (rigid contact would be singular): shown beside
+/// the mode bars with the ways out.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MuteRefusal {
+    pub mode: usize,
+    pub solo: bool,
+    pub text: String,
+    /// The contact was rigid (compliant contact is a way out).
+    pub rigid: bool,
+}
+
+impl Classroom {
+    /// The theme preference classroom mode gives back when it ends (`None`
+    /// when it is off).
+    pub fn user_theme(&self) -> Option<egui::ThemePreference> {
+        self.saved
+            .as_ref()
+            .map(|s| s.1)
+            .or(self.theme_before.filter(|_| self.on))
     }
 }
 

@@ -58,7 +58,10 @@ fn a_refused_value_pauses_the_run_and_says_how_to_go_on() {
     type_playing(&mut h, "road.amplitude_m", "abc");
     assert!(!h.state().time_control().is_playing(), "still playing");
     let text = banner(&h);
-    assert!(text.starts_with("road.amplitude_m:"), "{text}");
+    assert!(
+        text.starts_with("road amplitude a (road.amplitude_m):"),
+        "{text}"
+    );
     assert!(text.contains("'abc'"), "{text}");
     assert!(text.contains("expected"), "{text}");
     assert!(text.ends_with(PAUSED_NOTE), "{text}");
@@ -68,7 +71,10 @@ fn a_refused_value_pauses_the_run_and_says_how_to_go_on() {
     // refused while paused: nothing to say about the run
     type_into(&mut h, "road.wavelength_m", "0");
     let text = banner(&h);
-    assert!(text.starts_with("road.wavelength_m:"), "{text}");
+    assert!(
+        text.starts_with("road wavelength λ (road.wavelength_m):"),
+        "{text}"
+    );
     assert!(!text.contains(PAUSED_NOTE), "{text}");
 }
 
@@ -82,7 +88,10 @@ fn a_second_refusal_still_says_the_run_is_paused() {
     assert!(banner(&h).ends_with(PAUSED_NOTE), "{}", banner(&h));
     type_into(&mut h, "road.wavelength_m", "0");
     let text = banner(&h);
-    assert!(text.starts_with("road.wavelength_m:"), "{text}");
+    assert!(
+        text.starts_with("road wavelength λ (road.wavelength_m):"),
+        "{text}"
+    );
     assert!(text.ends_with(PAUSED_NOTE), "{text}");
     assert!(!h.state().time_control().is_playing(), "still paused");
 }
@@ -114,7 +123,11 @@ fn a_refusal_while_paused_leaves_the_run_paused() {
     h.state_mut().apply(Command::SetSpeed(Speed::Max));
     type_into(&mut h, "speed_kmh", "-5");
     assert!(!h.state().time_control().is_playing());
-    assert!(banner(&h).starts_with("speed_kmh:"), "{}", banner(&h));
+    assert!(
+        banner(&h).starts_with("speed V (speed_kmh):"),
+        "{}",
+        banner(&h)
+    );
 }
 
 /// The text of every label (a label's text is its accesskit value) and

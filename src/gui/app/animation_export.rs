@@ -27,7 +27,17 @@ impl App {
                     .unwrap_or_else(|_| dir.to_path_buf())
                     .display()
             )),
-            Err(e) => self.error(format!("Animation export stopped: {e}")),
+            Err(e) => {
+                // the frames written before the stop stay: say where
+                let kept = crate::output::animation::old_frames(dir).len();
+                let at = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
+                self.error(format!(
+                    "Animation export stopped: {e}. The {} written so far stay in {} \
+                     (frame_00000.png …).",
+                    crate::base::error::count(kept, "frame"),
+                    at.display()
+                ))
+            }
         }
     }
 
@@ -52,6 +62,14 @@ impl App {
         ) {
             Ok(job) => {
                 self.frames_dialog = None;
+                // replaces an earlier message (a refusal) for the export
+                self.info(format!(
+                    "exporting {} animation frames into {} …",
+                    settings.frame_count(),
+                    std::path::absolute(&job.dir)
+                        .unwrap_or_else(|_| job.dir.clone())
+                        .display()
+                ));
                 self.handles.frames_job = Some(job);
             }
             Err(e) => self.error(format!("Animation export refused: {e}")),

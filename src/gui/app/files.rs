@@ -151,6 +151,9 @@ impl App {
                 self.modes = modes;
                 self.doc.saved = scene.clone();
                 self.doc.scene = scene;
+                if let Some(dir) = path.as_deref().and_then(Path::parent) {
+                    self.last_dir = Some(dir.to_path_buf());
+                }
                 self.doc.path = path;
                 self.time.reset();
                 self.set_watchable_speed();
@@ -191,11 +194,13 @@ impl App {
                 .map_or_else(String::new, |d| {
                     format!("{}{}", d.display(), std::path::MAIN_SEPARATOR)
                 }),
-            FileAction::SaveAs => self
-                .doc
-                .path
-                .as_deref()
-                .map_or_else(|| format!("{stem}.ron"), |p| p.display().to_string()),
+            // the current file, or a name in the folder of the last file
+            // opened or saved (else the working directory)
+            FileAction::SaveAs => match (&self.doc.path, &self.last_dir) {
+                (Some(p), _) => p.display().to_string(),
+                (None, Some(d)) => d.join(format!("{stem}.ron")).display().to_string(),
+                (None, None) => format!("{stem}.ron"),
+            },
             FileAction::ExportCsv => format!("{stem}.csv"),
             FileAction::SweepCsv => "sweep.csv".to_string(),
             FileAction::SweepPng => "sweep.png".to_string(),
@@ -212,6 +217,16 @@ impl App {
     /// was opened or last saved (the text above it described the scene
     /// before them).
     pub(super) fn save_to(&mut self, path: &Path) {
+        if self.overwrite.is_none() && is_shipped_preset(path) {
+            // a quick save over a preset shipped with the app: ask first
+            self.overwrite = Some(path.to_path_buf());
+            return;
+        }
+        self.write_scene(path);
+    }
+
+    /// Writes the scene to `path` (see [`Self::save_to`]).
+    pub(super) fn write_scene(&mut self, path: &Path) {
         let mut out = self.doc.scene.clone();
         out.description = crate::scene::described_with_edits(
             &self.doc.scene.description,
@@ -222,6 +237,7 @@ impl App {
             Ok(()) => {
                 self.doc.scene.description = out.description;
                 self.doc.path = Some(path.to_path_buf());
+                self.last_dir = path.parent().map(Path::to_path_buf);
                 self.doc.scene.base_dir = path.parent().map(Path::to_path_buf);
                 self.doc.saved = self.doc.scene.clone();
                 self.info(format!("saved {}", path.display()));
@@ -324,6 +340,28 @@ pub(super) fn default_scene() -> Scene {
         Ok(s) => s,
         Err(e) => panic!("embedded default preset is invalid: {e}"),
     }
+}
+
+/// Whether `path` is an existing file in a folder of presets shipped with
+/// the app: the repository's `presets/`, or any folder named `presets`
+/// holding one of the shipped presets' files.
+pub(crate) fn is_shipped_preset(path: &Path) -> bool {
+    if !path.is_file() {
+        return false;
+    }
+    let Some(dir) = std::path::absolute(path)
+        .ok()
+        .and_then(|p| p.parent().map(Path::to_path_buf))
+    else {
+        return false;
+    };
+    let canonical = |d: &Path| std::fs::canonicalize(d).ok();
+    let repository = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+    if canonical(&dir).is_some() && canonical(&dir) == canonical(&repository) {
+        return true;
+    }
+    dir.file_name().is_some_and(|n| n == "presets")
+        && SHIPPED.iter().any(|(_, file, _)| dir.join(file).is_file())
 }
 
 /// A file name stem from a scene name: lower-case alphanumerics, each run

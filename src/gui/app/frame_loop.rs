@@ -7,9 +7,11 @@ use crate::gui::chrome::status_bar;
 use crate::gui::model::command::ResearchCommand;
 
 impl App {
-    /// The keyboard shortcuts (when no text field has the focus).
+    /// The keyboard shortcuts (when no text field has the focus and no
+    /// prompt is open: a prompt's keys are its own, even when a click took
+    /// the focus off its text field).
     fn keyboard(&self, ctx: &egui::Context, cmds: &mut Vec<Command>) {
-        if ctx.egui_wants_keyboard_input() {
+        if ctx.egui_wants_keyboard_input() || self.prompt_open() {
             return;
         }
         ctx.input(|i| {
@@ -49,6 +51,16 @@ impl App {
                 }
             }
         });
+    }
+
+    /// Whether a prompt (a file, PNG or frames dialog, or the
+    /// unsaved-changes question) is open.
+    pub fn prompt_open(&self) -> bool {
+        self.file_prompt.is_some()
+            || self.png_dialog.is_some()
+            || self.frames_dialog.is_some()
+            || self.confirm.is_some()
+            || self.overwrite.is_some()
     }
 
     /// What the status bar shows.
@@ -154,6 +166,7 @@ impl App {
             &unsaved,
             &mut cmds,
         );
+        crate::gui::chrome::dialogs::overwrite_window(&ctx, self.overwrite.as_deref(), &mut cmds);
         crate::gui::chrome::dialogs::png_window(&ctx, &mut self.png_dialog, &mut cmds);
         crate::gui::chrome::file_prompt::window(&ctx, &mut self.file_prompt, &mut cmds);
         crate::gui::chrome::frames_dialog::dialog(&ctx, &mut self.frames_dialog, &mut cmds);

@@ -105,7 +105,13 @@ impl App {
             crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
             match self.view {
                 View::TimePlots => {
-                    time_plots::show(ui, &self.history, &mut self.plot_opts, self.sim.time_s());
+                    time_plots::show(
+                        ui,
+                        &self.history,
+                        &mut self.plot_opts,
+                        self.sim.time_s(),
+                        self.doc.scene.duration_s,
+                    );
                 }
                 View::Scene => scene_view::show(ui, &self.sim, &mut self.scene_opts),
                 View::Green => {

@@ -3,11 +3,20 @@
 
 use super::*;
 use crate::gui::model::mute_set::{muted_tyre, refusal, toggled};
+use crate::scene::Contact;
 
 impl App {
     /// Mutes (or solos) mode `k` through a scene edit, refused with the
     /// reason when the muted model cannot be simulated.
     pub(super) fn set_mutes(&mut self, k: usize, solo: bool) {
+        self.set_mutes_with(k, solo, None);
+    }
+
+    /// [`Self::set_mutes`], with the scene's contact law replaced by
+    /// `contact` in the same edit when given.
+    pub(super) fn set_mutes_with(&mut self, k: usize, solo: bool, contact: Option<Contact>) {
+        self.classroom.mute_refused = None;
+        let contact = contact.unwrap_or_else(|| self.doc.scene.contact.clone());
         let (original, base, current) = match &self.mutes {
             Some(m) => (m.original.clone(), m.base.clone(), m.muted.clone()),
             None => (self.doc.scene.tyre.clone(), self.modes.clone(), Vec::new()),
@@ -17,18 +26,23 @@ impl App {
             self.apply(Command::UnmuteAll);
             return;
         }
-        if let Some(why) = refusal(
-            &base,
-            &muted,
-            self.doc.scene.num_points(),
-            &self.doc.scene.contact,
-        ) {
-            self.error(format!("Mute refused: {why}"));
+        if let Some(why) = refusal(&base, &muted, self.doc.scene.num_points(), &contact) {
+            let what = if solo { "Solo" } else { "Mute" };
+            let text = format!("{what} of mode {k} not applied: {why}");
+            self.error(text.clone());
+            // the ways out, offered beside the mode bars
+            self.classroom.mute_refused = Some(crate::gui::classroom::MuteRefusal {
+                mode: k,
+                solo,
+                text,
+                rigid: contact.is_rigid(),
+            });
             return;
         }
         let tyre = muted_tyre(&base, &muted);
         let mut s = self.doc.scene.clone();
         s.tyre = tyre.clone();
+        s.contact = contact;
         self.edit(s);
         if self.doc.scene.tyre == tyre {
             self.mutes = Some(Mutes {

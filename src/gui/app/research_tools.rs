@@ -86,12 +86,16 @@ impl App {
                 let r = match self.research.sweep.result() {
                     Some(res) => {
                         let fig = crate::studies::sweep::report::figure(
-                            &format!("{}: sweep of {}", res.scene_name, res.request.param),
                             &format!(
-                                "{} values from {} to {}; steady part t >= ramp_s of each run",
+                                "{}: sweep of {}",
+                                res.scene_name,
+                                crate::studies::sweep::report::param_name(&res.request.param)
+                            ),
+                            &crate::studies::sweep::report::sweep_subtitle(
+                                &res.request.param,
                                 res.points.len(),
                                 res.request.from,
-                                res.request.to
+                                res.request.to,
                             ),
                             &res.request.param,
                             &res.points,

@@ -19,6 +19,10 @@ pub(super) struct Session {
     /// The point classroom mode's plot and bars show.
     #[serde(default)]
     classroom_point: usize,
+    /// The theme preference to give back when classroom mode ends (egui
+    /// keeps classroom mode's light one between runs).
+    #[serde(default)]
+    theme_before_classroom: Option<egui::ThemePreference>,
 }
 
 impl App {
@@ -48,6 +52,12 @@ impl App {
                             .unwrap_or_else(default_scene);
                     }
                     if s.classroom {
+                        // a session of a version that did not keep it: the
+                        // app has no theme setting, so the system's
+                        app.classroom.theme_before = Some(
+                            s.theme_before_classroom
+                                .unwrap_or(egui::ThemePreference::System),
+                        );
                         app.set_classroom(true);
                     }
                     let last = app.doc.scene.num_points().saturating_sub(1);
@@ -70,6 +80,7 @@ impl App {
             dirty: self.is_dirty(),
             classroom: self.classroom.on,
             classroom_point: self.classroom.point,
+            theme_before_classroom: self.classroom.user_theme(),
         }
     }
 

@@ -27,9 +27,34 @@ pub struct PngSettings {
     pub focus: bool,
 }
 
-/// The message banner above the views (errors in red, with a dismiss button).
+/// Inner margin (px) of the message banner's frame.
+const BANNER_MARGIN_PX: f32 = 6.0;
+
+/// The message banner above the views (errors in red, with a dismiss
+/// button). A strip one banner line high is kept above the views whether or
+/// not a message is shown, and the banner is drawn over it (a longer
+/// message over the top of the view): the views do not move as messages
+/// come and go.
 pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
+    let row_px = ui
+        .text_style_height(&egui::TextStyle::Body)
+        .max(ui.spacing().interact_size.y);
+    let (strip, _) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width(), row_px + 2.0 * BANNER_MARGIN_PX),
+        egui::Sense::hover(),
+    );
     let Some(m) = msg else { return };
+    egui::Area::new(egui::Id::unique("tirecontact.banner"))
+        .fixed_pos(strip.min)
+        .order(egui::Order::Middle)
+        .show(ui.ctx(), |ui| {
+            ui.set_width(strip.width());
+            banner_frame(ui, m, cmds);
+        });
+}
+
+/// The banner's frame, text and Dismiss button.
+fn banner_frame(ui: &mut Ui, m: &Message, cmds: &mut Vec<Command>) {
     let (fill, color) = if m.error {
         (Color32::from_rgb(255, 235, 235), ERROR_COLOR)
     } else {
@@ -40,10 +65,10 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
     };
     egui::Frame::new()
         .fill(fill)
-        .inner_margin(6.0)
+        .inner_margin(BANNER_MARGIN_PX)
         .corner_radius(4.0)
         .show(ui, |ui| {
-            ui.horizontal(|ui| {
+            ui.horizontal_top(|ui| {
                 // wrapped to the room left of Dismiss: unwrapped, a long
                 // message (a refused field's reason) widened the central
                 // panel past the window, cutting off Dismiss and the plots
@@ -59,7 +84,7 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
                         ui.add(egui::Label::new(job).wrap());
                     },
                 );
-                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                ui.with_layout(egui::Layout::right_to_left(egui::Align::Min), |ui| {
                     if ui.small_button("Dismiss").clicked() {
                         cmds.push(Command::DismissMessage);
                     }
@@ -83,7 +108,7 @@ pub fn confirm_window(
         Discarding::Guided(_) => "open a guided-tour preset",
         Discarding::Quit => "quit",
     };
-    egui::Modal::new(egui::Id::unique("tirecontact.confirm")).show(ctx, |ui| {
+    let shown = egui::Modal::new(egui::Id::unique("tirecontact.confirm")).show(ctx, |ui| {
         ui.heading("Unsaved changes");
         ui.label(format!(
             "The scene has unsaved changes. Discard them and {what}?"
@@ -102,11 +127,53 @@ pub fn confirm_window(
             if ui.button("Save first").clicked() {
                 cmds.push(Command::SaveFirst);
             }
-            if ui.button("Cancel").clicked() {
+            if ui.button("Cancel").on_hover_text("Escape").clicked() {
                 cmds.push(Command::CancelDiscard);
             }
         });
     });
+    // Escape (or a click beside the question) keeps the changes, as Cancel;
+    // Enter does not discard them (no default for a destructive choice)
+    if shown.should_close() && !cmds.contains(&Command::CancelDiscard) {
+        cmds.push(Command::CancelDiscard);
+    }
+}
+
+/// Asks before a save replaces `path`, a preset shipped with the app.
+/// Escape (or a click beside the question) keeps the file.
+pub fn overwrite_window(
+    ctx: &egui::Context,
+    path: Option<&std::path::Path>,
+    cmds: &mut Vec<Command>,
+) {
+    let Some(p) = path else { return };
+    let shown = egui::Modal::new(egui::Id::unique("tirecontact.overwrite")).show(ctx, |ui| {
+        ui.heading("Overwrite a shipped preset?");
+        ui.set_max_width(520.0);
+        ui.add(
+            egui::Label::new(format!(
+                "{} is a preset shipped with tirecontact. Saving replaces it for everyone \
+                 using this folder.",
+                p.display()
+            ))
+            .wrap(),
+        );
+        ui.horizontal(|ui| {
+            if ui.button("Overwrite").clicked() {
+                cmds.push(Command::ConfirmOverwrite);
+            }
+            if ui.button("Save as…").clicked() {
+                cmds.push(Command::CancelOverwrite);
+                cmds.push(Command::SaveAsDialog);
+            }
+            if ui.button("Cancel").on_hover_text("Escape").clicked() {
+                cmds.push(Command::CancelOverwrite);
+            }
+        });
+    });
+    if shown.should_close() && !cmds.contains(&Command::CancelOverwrite) {
+        cmds.push(Command::CancelOverwrite);
+    }
 }
 
 /// PNG export settings: size in pixels, then the file dialog.

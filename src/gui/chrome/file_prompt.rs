@@ -124,6 +124,10 @@ pub fn path_row(
             .accessible_name(accessible)
             .on_hover_text(format!("a path; a relative one is in {}", cwd_text()));
         if std::mem::take(focus) {
+            take_keyboard(ui, &field, path);
+        } else if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
+            // Enter confirms the prompt; one refused (a folder, no name)
+            // stays open, and retyping must edit the path, not fire shortcuts
             field.request_focus();
         }
         let id = egui::Id::unique(("tirecontact.choose", accessible));
@@ -154,6 +158,17 @@ pub fn path_row(
         }
     });
     note
+}
+
+/// Gives the keyboard to the text `field` holding `text`, its text selected
+/// (what is typed then replaces the offered name instead of adding to it).
+pub fn take_keyboard(ui: &Ui, field: &egui::Response, text: &str) {
+    field.request_focus();
+    let mut state = egui::text_edit::TextEditState::load(ui.ctx(), field.id).unwrap_or_default();
+    state
+        .cursor
+        .set_char_range(Some(egui::text::CCursorRange::select_all_str(text)));
+    state.store(ui.ctx(), field.id);
 }
 
 /// The path typed in `text`, or the reason it cannot be used.

@@ -16,6 +16,10 @@ pub struct FramesDialog {
     pub dir: String,
     /// Remove the frames of an earlier export from the folder first.
     pub clear_old: bool,
+    /// The folder field takes the keyboard at the next frame (set when the
+    /// dialog opens: what is typed then goes to the folder, not to the
+    /// shortcuts).
+    pub focus: bool,
 }
 
 impl FramesDialog {
@@ -37,15 +41,17 @@ impl FramesDialog {
             },
             dir: "frames".to_string(),
             clear_old: false,
+            focus: true,
         }
     }
 }
 
-/// The settings window; Export pushes `Command::ExportFrames`.
+/// The settings window; Export (or Enter) pushes `Command::ExportFrames`,
+/// Cancel (or Escape) closes it.
 pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<Command>) {
     let Some(d) = dialog else { return };
     let mut open = true;
-    let mut cancel = false;
+    let (mut export, mut cancel) = crate::gui::chrome::file_prompt::confirm_keys(ctx);
     egui::Window::new("Export animation frames")
         .collapsible(false)
         .open(&mut open)
@@ -103,8 +109,12 @@ pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<C
                     ui.end_row();
                     ui.label("folder");
                     ui.horizontal(|ui| {
-                        ui.add(egui::TextEdit::singleline(&mut d.dir).desired_width(220.0))
+                        let field = ui
+                            .add(egui::TextEdit::singleline(&mut d.dir).desired_width(220.0))
                             .accessible_name("frames folder");
+                        if std::mem::take(&mut d.focus) {
+                            crate::gui::chrome::file_prompt::take_keyboard(ui, &field, &d.dir);
+                        }
                         let request = || crate::gui::chrome::native_dialog::Request {
                             kind: crate::gui::chrome::native_dialog::Kind::Folder,
                             filter: None,
@@ -137,17 +147,19 @@ pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<C
                 );
             }
             ui.horizontal(|ui| {
-                if ui.button(RichText::new("Export").strong()).clicked() {
-                    cmds.push(Command::ExportFrames {
-                        dir: dir.clone(),
-                        settings: d.settings,
-                        clear_old: d.clear_old,
-                    });
-                }
-                if ui.button("Cancel").clicked() {
-                    cancel = true;
-                }
+                export |= ui
+                    .button(RichText::new("Export").strong())
+                    .on_hover_text("Enter")
+                    .clicked();
+                cancel |= ui.button("Cancel").on_hover_text("Escape").clicked();
             });
+            if export && !cancel {
+                cmds.push(Command::ExportFrames {
+                    dir: dir.clone(),
+                    settings: d.settings,
+                    clear_old: d.clear_old,
+                });
+            }
         });
     if !open || cancel {
         *dialog = None;

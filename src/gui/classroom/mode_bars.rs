@@ -59,7 +59,10 @@ pub fn mode_bars(
     // the vertical axis label is centred on the plot frame: a frame shorter
     // than the label let it run up over the "point i: u = …" line
     let label_w = mode_bars_label_w(ui);
-    let h = (ui.available_height() - row * (n as f32 + 1.2)).max(bars_plot_min_px(ui, label_w));
+    // a refused mute's line under the plot takes a row
+    let note = if cls.mute_refused.is_some() { 1.0 } else { 0.0 };
+    let h =
+        (ui.available_height() - row * (n as f32 + 1.2 + note)).max(bars_plot_min_px(ui, label_w));
     Plot::new("tirecontact.mode_bars")
         .id(egui::Id::unique(MODE_BARS_PLOT_ID))
         .height(h)
@@ -102,6 +105,9 @@ pub fn mode_bars(
             pui.bar_chart(BarChart::new("now (mm)", bars).color(bar_key));
         });
     // many modes in a short panel: the rows scroll under the plot
+    if let Some(r) = &cls.mute_refused {
+        refusal_note(ui, r, cmds);
+    }
     egui::ScrollArea::vertical()
         .id_salt("tirecontact.mode_mutes_scroll")
         .show(ui, |ui| mute_rows(ui, &c, modes, mutes, cmds));
@@ -160,6 +166,31 @@ fn mute_rows(
     if mutes.is_some() && ui.button("Un-mute all").clicked() {
         cmds.push(Command::UnmuteAll);
     }
+}
+
+/// A refused mute or solo, where it was asked: a short line (the banner
+/// says why) and the ways out (compliant contact, or keeping the modes
+/// playing), in as little height as the rows below can spare.
+fn refusal_note(ui: &mut Ui, r: &crate::gui::classroom::MuteRefusal, cmds: &mut Vec<Command>) {
+    ui.horizontal_wrapped(|ui| {
+        let what = if r.solo { "Solo" } else { "Mute" };
+        ui.label(
+            RichText::new(format!("{what} {} refused:", r.mode))
+                .color(crate::gui::widgets::fields::ERROR_COLOR),
+        )
+        .on_hover_text(r.text.as_str());
+        if r.rigid
+            && ui
+                .small_button("Use compliant contact")
+                .on_hover_text("a tread spring at each point (2 kN/mm), then the mute or solo; restarts the run")
+                .clicked()
+        {
+            cmds.push(Command::MuteWithCompliantContact);
+        }
+        if ui.small_button("Keep the modes playing").clicked() {
+            cmds.push(Command::DismissMuteRefusal);
+        }
+    });
 }
 
 /// Least height (px) of the mode bars' plot: its y label (`label_w` px

@@ -118,6 +118,11 @@ pub enum Command {
     /// Mute every mode but `k`, or un-mute all if `k` is already solo.
     SoloMode(usize),
     UnmuteAll,
+    /// Switch to compliant contact and apply the mute or solo refused with
+    /// rigid contact.
+    MuteWithCompliantContact,
+    /// Keep the modes playing: forget the refused mute or solo.
+    DismissMuteRefusal,
     /// Show the animation export settings.
     ExportFramesDialog,
     ExportFrames {
@@ -146,6 +151,10 @@ pub enum Command {
     /// After a save from the file prompt: do the held action if the scene
     /// is now saved (a failed save keeps it, and the user's edits).
     ContinueAfterSave(Discarding),
+    /// Overwrite the preset shipped with the app that a save was about to
+    /// replace (asked first), or keep it.
+    ConfirmOverwrite,
+    CancelOverwrite,
     /// The frame's share of the run: take the solver steps the time
     /// control asks for in `frame_s` of wall time (the frame loop pushes it).
     Advance {

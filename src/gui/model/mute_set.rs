@@ -87,12 +87,10 @@ pub fn refusal(base: &[Mode], muted: &[bool], p: usize, contact: &Contact) -> Op
         Err(e) => return Some(format!("the playing modes' contact system: {e}")),
     };
     (rank < p).then(|| {
-        let modes = crate::base::error::count(playing, "playing mode");
         format!(
-            "Not applied: {modes} cannot hold all {p} points on the road at once (they move \
-             them in only {} of the {p} independent ways rigid contact needs): keep more \
-             modes playing.",
-            rank
+            "with rigid contact each of the {p} points must be able to move on its own, \
+             and with these modes playing they can move in only {rank} independent ways. \
+             Use compliant contact, or keep more modes playing."
         )
     })
 }
@@ -148,8 +146,8 @@ mod tests {
         assert!(refusal(&base, &[false; 3], 3, &s.contact).is_none());
         let r = refusal(&base, &[false, true, false], 3, &s.contact).unwrap();
         assert!(
-            r.contains("2 playing modes cannot hold all 3 points on the road")
-                && r.contains("only 2 of the 3 independent ways")
+            r.contains("each of the 3 points must be able to move on its own")
+                && r.contains("only 2 independent ways")
                 && r.contains("keep more modes playing")
                 && !r.contains("mode(s)"),
             "{r}"

@@ -31,23 +31,43 @@ pub struct Entry {
 /// Width (px) of an entry's key.
 const KEY_W_PX: f32 = 18.0;
 
-/// The entries in a wrapped row, text in `style`.
+/// The entries in a wrapped row, text in `style` or larger (up to body
+/// text) as far as one row has room.
 pub fn row(ui: &mut Ui, entries: &[Entry], style: &TextStyle) {
+    // the row's text as large as one row allows, from `style` up to body
+    // text (classroom mode's small text was about 10 px high at 1280 px)
+    let gap_px = 14.0;
+    let font = style.resolve(ui.style());
+    let body = TextStyle::Body.resolve(ui.style()).size.max(font.size);
+    let needed_px: f32 = entries
+        .iter()
+        .map(|e| {
+            let w = ui
+                .painter()
+                .layout_no_wrap(e.name.to_owned(), font.clone(), Color32::WHITE)
+                .size()
+                .x;
+            KEY_W_PX + 4.0 + w + gap_px
+        })
+        .sum();
+    let room = ui.available_width() / needed_px.max(1.0);
+    let size = (font.size * 0.97 * room).clamp(font.size, body);
+    let font = egui::FontId::new(size, font.family);
     ui.horizontal_wrapped(|ui| {
-        ui.spacing_mut().item_spacing.x = 14.0;
+        ui.spacing_mut().item_spacing.x = gap_px;
         for e in entries {
-            entry(ui, e, style);
+            item_in(ui, e.name, e.color, e.key, font.clone());
         }
     });
 }
 
-fn entry(ui: &mut Ui, e: &Entry, style: &TextStyle) {
-    item(ui, e.name, e.color, e.key, style);
-}
-
 /// One legend entry named `name` (any text), its key `key` in `color`.
 pub fn item(ui: &mut Ui, name: &str, color: Color32, key: Key, style: &TextStyle) {
-    let font = style.resolve(ui.style());
+    item_in(ui, name, color, key, style.resolve(ui.style()));
+}
+
+/// [`item`] in `font`.
+fn item_in(ui: &mut Ui, name: &str, color: Color32, key: Key, font: egui::FontId) {
     let text_color = ui.visuals().text_color();
     let galley = ui
         .painter()

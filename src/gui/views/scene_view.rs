@@ -115,29 +115,11 @@ fn x_extent(sim: &Simulation) -> (f64, f64) {
     (lo - margin, hi + margin)
 }
 
-/// About eight grid marks at 1-2-5 steps of the displayed unit (`value × to_unit`).
-fn nice_marks(bounds: (f64, f64), to_unit: f64) -> Vec<GridMark> {
-    let (a, b) = (bounds.0 * to_unit, bounds.1 * to_unit);
-    if !(a.is_finite() && b.is_finite() && b > a) {
-        return Vec::new();
-    }
-    let step = round_125((b - a) / 8.0);
-    let mut out = Vec::new();
-    let mut k = (a / step).ceil();
-    while k * step <= b && out.len() < 100 {
-        out.push(GridMark {
-            value: k * step / to_unit,
-            step_size: step / to_unit,
-        });
-        k += 1.0;
-    }
-    out
-}
-
 /// Marks of the height axis (plot units: exaggerated metres; `to_mm`
 /// converts them to true mm) at a 1-2-5 step of true mm, about eight over
 /// the plot's height as before, but never closer than `label_px` (a short
-/// plot in large text: a label and a half).
+/// plot in large text: a label and a half). With `to_mm` = 1, the marks of
+/// the position axis in m.
 pub fn height_marks(g: egui_plot::GridInput, to_mm: f64, label_px: f64) -> Vec<GridMark> {
     let (a, b) = (g.bounds.0 * to_mm, g.bounds.1 * to_mm);
     // true mm per px (the grid input's step is 8 px of plot units)
@@ -248,10 +230,14 @@ pub fn show_with(
     // the plot's height left a short classroom plot's labels (body text,
     // x1.7) closer than their height, and egui_plot drew none
     let label_px = f64::from(1.5 * ui.text_style_height(&egui::TextStyle::Body)).max(30.0);
+    let x_label_px = f64::from(4.0 * ui.text_style_height(&egui::TextStyle::Body));
     let r = plot
         .x_title(ui, "position along the contact line x (m)")
         .y_axis_label(title.text.clone())
-        .x_grid_spacer(|g| nice_marks(g.bounds, 1.0))
+        // positions (m) at a 1-2-5 step, labels at least four text heights
+        // apart: eight steps left classroom text no room, and egui_plot
+        // drew no position label at all at 1280 px
+        .x_grid_spacer(move |g| height_marks(g, 1.0, x_label_px))
         .x_axis_formatter(|m, _| crate::gui::widgets::number::format_number(m.value))
         .y_grid_spacer(move |g| height_marks(g, 1e3 / e, label_px))
         .y_axis_formatter(move |m, _| crate::gui::widgets::number::format_number(m.value / e * 1e3))

@@ -8,7 +8,7 @@ use super::XTitle;
 use super::point_color;
 use crate::Scene;
 use crate::analysis::metrics::ContactSummary;
-use crate::analysis::spectrum::{band_label, third_octave_bands};
+use crate::analysis::spectrum::third_octave_bands;
 use crate::gui::model::command::{Command, ResearchCommand};
 use crate::gui::model::sweep_request::{SweepRequest, SweepResult};
 use crate::gui::research::state::SweepForm;
@@ -240,7 +240,11 @@ keep their values when dt shrinks.";
 type Curves = Vec<(String, Color32, Vec<[f64; 2]>)>;
 
 fn plots(ui: &mut Ui, r: &SweepResult) {
-    let x_label = format!("{} ({})", r.request.param, param_unit(&r.request.param));
+    use crate::studies::sweep::report::{
+        CONTACT_PERCENT, Y_TITLES, band_series_name, param_axis_label, point_series_name,
+    };
+    // the sweep figure's labels (one labelling for the view and the PNG)
+    let x_label = param_axis_label(&r.request.param);
     let ok: Vec<(f64, &RunSummary)> = r
         .points
         .iter()
@@ -253,7 +257,7 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
         (0..r.num_points)
             .map(|i| {
                 (
-                    format!("point {i}"),
+                    point_series_name(i),
                     point_color(i),
                     ok.iter()
                         .map(|(v, s)| [*v, get(&s.contact)[i] * scale])
@@ -268,7 +272,7 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
         .enumerate()
         .map(|(k, b)| {
             (
-                format!("{} Hz band", band_label(b.nominal_hz)),
+                band_series_name(b.nominal_hz),
                 point_color(k),
                 ok.iter()
                     .filter_map(|(v, s)| {
@@ -285,24 +289,20 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
     let grid: [(&str, &str, Curves); 4] = [
         (
             "tirecontact.sweep_max",
-            "max contact force without impacts (N)",
+            Y_TITLES[0],
             per_point(|s| &s.force_max_n, 1.0),
         ),
         (
             "tirecontact.sweep_impulse",
-            "largest impact impulse (N·s)",
+            Y_TITLES[1],
             per_point(|s| &s.impulse_max_ns, 1.0),
         ),
         (
             "tirecontact.sweep_contact",
-            "fraction of steps in contact (%)",
-            per_point(|s| &s.contact_fraction, 100.0),
+            Y_TITLES[2],
+            per_point(|s| &s.contact_fraction, CONTACT_PERCENT),
         ),
-        (
-            "tirecontact.sweep_bands",
-            "total force, third-octave level (dB re 1 N)",
-            bands,
-        ),
+        ("tirecontact.sweep_bands", Y_TITLES[3], bands),
     ];
     let mut it = grid.into_iter();
     for _ in 0..2 {

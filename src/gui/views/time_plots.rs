@@ -108,15 +108,23 @@ const PLOTS: [PlotDef; 4] = [
     },
 ];
 
-pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f64) {
+/// The time plots of `history` at run time `now_s` of a run `duration_s`
+/// long: the followed window is at most the run (a run shorter than the
+/// window fills the axis), and the time axis is labelled up to the
+/// window's end only (the strip past it holds the legends).
+pub fn show(
+    ui: &mut Ui,
+    history: &History,
+    opts: &mut TimePlotOptions,
+    now_s: f64,
+    duration_s: f64,
+) {
     opts.fit_points(history.num_points());
     header(ui, opts);
     let t_end = history.last_time().unwrap_or(0.0).max(now_s);
+    let window_s = followed_window_s(opts.window_s, duration_s);
     let (t0, t1) = if opts.follow {
-        (
-            (t_end - opts.window_s).max(0.0),
-            t_end.max(opts.window_s.min(1e9)),
-        )
+        ((t_end - window_s).max(0.0), t_end.max(window_s))
     } else {
         (0.0, t_end.max(1e-9))
     };
@@ -168,6 +176,7 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
             &Axes {
                 h,
                 link,
+                t1,
                 t1_axis,
                 axis_px,
             },
@@ -219,6 +228,8 @@ pub fn show(ui: &mut Ui, history: &History, opts: &mut TimePlotOptions, now_s: f
 struct Axes {
     h: f32,
     link: Id,
+    /// The window's (or the run's) end: the last time labelled.
+    t1: f64,
     t1_axis: f64,
     axis_px: f32,
 }
@@ -264,9 +275,14 @@ fn time_plot<'a>(
     // 1-2-5 time steps labelled from TIME_LABEL_SPACING's end on (powers
     // of ten left a narrow plot one label)
     let label_px = f64::from(*TIME_LABEL_SPACING.end());
-    plot = plot
-        .custom_x_axes(vec![x_axis])
-        .x_grid_spacer(move |g| super::nice_marks(g, label_px));
+    // no time is labelled past the window's end (a 0.2 s run's axis read
+    // on to 0.22 s in the legends' strip)
+    let last_label_s = axes.t1 + 1e-9 * axes.t1.abs();
+    plot = plot.custom_x_axes(vec![x_axis]).x_grid_spacer(move |g| {
+        let mut marks = super::nice_marks(g, label_px);
+        marks.retain(|m| m.value <= last_label_s);
+        marks
+    });
     plot = plot.id(Id::unique(match def.what {
         Quantity::Force => FORCE_PLOT_ID,
         Quantity::Contact => CONTACT_PLOT_ID,
@@ -318,6 +334,16 @@ fn legend_width_px(ui: &Ui, names: &[String], plot_h_px: f32) -> f32 {
         .map(|n| super::axis_title::text_length_px(ui, n, &style))
         .fold(0.0, f32::max);
     text_px + 1.2 * row_px + 2.0 * 8.0 + 2.0 * 4.0
+}
+
+/// The followed window (s): `window_s`, at most a run of `duration_s`
+/// (a run of 2 ms followed in a 0.1 s window sat in its left 2 %).
+pub fn followed_window_s(window_s: f64, duration_s: f64) -> f64 {
+    if duration_s.is_finite() && duration_s > 0.0 {
+        window_s.min(duration_s)
+    } else {
+        window_s
+    }
 }
 
 /// Time (s) past the end of a window `span_s` long that leaves a strip

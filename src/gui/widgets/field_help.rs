@@ -50,7 +50,8 @@ impl FieldHelp {
     /// The accepted values in a field's display unit (`scale` × SI), e.g.
     /// "0 to 1000 mm", "> 0 m", "any finite number".
     pub fn range_text(&self, scale: f64, unit: &str) -> String {
-        let u = if unit.is_empty() {
+        // a ratio's "unit" (`none (a ratio)`) is not written after numbers
+        let u = if unit.is_empty() || unit.starts_with("none") {
             String::new()
         } else {
             format!(" {unit}")
@@ -211,5 +212,12 @@ mod tests {
         assert_eq!(v.range_text(3.6, "km/h"), "0 to 3600 km/h");
         let x = help("tyre.modes[0].shape[1]").unwrap();
         assert_eq!(x.range_text(1.0, "1/√kg"), "any finite number 1/√kg");
+        // a ratio has no unit after its range (it read "0 to 10000 none (a ratio)")
+        let z = help("tyre.modes[0].damping_ratio").unwrap();
+        assert_eq!(z.range_text(1.0, z.unit), "0 to 10000");
+        assert!(
+            z.tooltip("tyre.modes[0].damping_ratio", 1.0, "", "restarts the run")
+                .contains("unit: none (a ratio) · accepts: 0 to 10000\n")
+        );
     }
 }

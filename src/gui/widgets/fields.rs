@@ -238,7 +238,7 @@ impl<'a> NumField<'a> {
                         field: self.name.to_string(),
                         text: format!(
                             "{}: {e}; the scene keeps {}{}.",
-                            self.name,
+                            banner_name(self.name),
                             format_number(self.value * self.scale),
                             if self.unit.is_empty() {
                                 String::new()
@@ -307,5 +307,21 @@ mod tests {
         assert!(parse_number("abc").is_err());
         assert!(parse_number("").is_err());
         assert!(parse_number("inf").is_err());
+    }
+}
+
+/// A field as the banner names it: its label in the editor, then its
+/// preset path (`road amplitude a (road.amplitude_m)`); the path alone for
+/// a field without such a label.
+pub fn banner_name(name: &str) -> String {
+    let label = if name == "speed_kmh" {
+        "speed V".to_string()
+    } else {
+        crate::studies::sweep::report::param_name(name)
+    };
+    if label == name {
+        name.to_string()
+    } else {
+        format!("{label} ({name})")
     }
 }

@@ -5,7 +5,9 @@ use super::*;
 
 /// The corner of the panel with the fewest data points under a legend-sized
 /// box (a quarter of the width; `entry_frac` of the plot height per entry),
-/// upper right on ties, and how many points are under it.
+/// upper right on ties, and how many points are under it. The lines drawn
+/// between a series' points count too (samples along each segment): a line
+/// crossing a corner between two points outside it is data under a legend.
 pub(super) fn legend_corner(panel: &Panel, entry_frac: f64) -> (SeriesLabelPosition, usize) {
     let (xs, ys) = data_ranges(panel);
     let norm = |v: f64, (lo, hi): (f64, f64), log: bool| {
@@ -24,17 +26,35 @@ pub(super) fn legend_corner(panel: &Panel, entry_frac: f64) -> (SeriesLabelPosit
     let entries = panel.series.iter().filter(|s| !s.name.is_empty()).count();
     let h = (entry_frac * (entries as f64 + 0.5)).min(0.95);
     let mut counts = [0usize; 4];
+    let mut count = |x: f64, y: f64| {
+        for (c, &(_, right, upper)) in counts.iter_mut().zip(&corners) {
+            let in_x = if right { x > 0.75 } else { x < 0.25 };
+            let in_y = if upper { y > 1.0 - h } else { y < h };
+            *c += usize::from(in_x && in_y);
+        }
+    };
+    // samples per segment of a drawn line (its points are counted apart)
+    const SEGMENT_SAMPLES: usize = 16;
     for s in &panel.series {
+        let lined = matches!(
+            s.style,
+            Style::Line | Style::ThinLine | Style::LineMarkers(_)
+        );
+        let mut last: Option<(f64, f64)> = None;
         for p in &s.points {
             let (x, y) = (norm(p.0, xs, panel.log_x), norm(p.1, ys, panel.log_y));
             if !(x.is_finite() && y.is_finite()) {
+                last = None;
                 continue;
             }
-            for (c, &(_, right, upper)) in counts.iter_mut().zip(&corners) {
-                let in_x = if right { x > 0.75 } else { x < 0.25 };
-                let in_y = if upper { y > 1.0 - h } else { y < h };
-                *c += usize::from(in_x && in_y);
+            count(x, y);
+            if let Some((x0, y0)) = last.filter(|_| lined) {
+                for k in 1..SEGMENT_SAMPLES {
+                    let f = k as f64 / SEGMENT_SAMPLES as f64;
+                    count(x0 + f * (x - x0), y0 + f * (y - y0));
+                }
             }
+            last = Some((x, y));
         }
     }
     let best = (0..4).min_by_key(|&k| (counts[k], k)).unwrap_or(0);
@@ -200,5 +220,37 @@ pub(super) fn panel_legend(
         corner,
         under,
         size,
+    }
+}
+
+#[cfg(test)]
+mod corner_tests {
+    use super::*;
+
+    /// A line between two points outside the upper right corner crosses
+    /// it: the legend goes to another, empty corner.
+    #[test]
+    fn a_line_through_a_corner_keeps_the_legend_out_of_it() {
+        let series = |name: &str, points: Vec<(f64, f64)>| Series {
+            name: name.into(),
+            points,
+            style: Style::LineMarkers(3),
+            color: None,
+        };
+        let panel = Panel {
+            series: vec![
+                // through (0.8, 0.9), inside the upper right box
+                series("a", vec![(0.6, 1.0), (1.0, 0.8)]),
+                // the data's range, clear of every corner
+                series("b", vec![(0.0, 0.5), (0.5, 0.0)]),
+            ],
+            ..Panel::default()
+        };
+        let (corner, under) = legend_corner(&panel, 0.1);
+        assert!(
+            !matches!(corner, SeriesLabelPosition::UpperRight),
+            "the legend went over the line"
+        );
+        assert_eq!(under, 0);
     }
 }

@@ -112,10 +112,77 @@ pub fn write_csv<W: Write>(
     Ok(())
 }
 
-/// The x-axis title of a swept parameter: its path and the unit its name
-/// carries, `speed_mps (m/s)`, `tyre.modes[0].freq_hz (Hz)`; the path alone
-/// when the name carries no known unit.
+/// The x-axis title of a swept parameter: its name as the editor labels it
+/// and the unit its path carries, `speed V (m/s)`, `mode 0 frequency
+/// (Hz)`; the path for a field without such a name, and no unit when the
+/// path carries none (`road.seed`).
 pub fn param_axis_label(param: &str) -> String {
+    match param_unit(param) {
+        Some(u) => format!("{} ({u})", param_name(param)),
+        None => param_name(param),
+    }
+}
+
+/// A swept parameter's name as the editor labels it: `speed V` for
+/// `speed_mps`, `mode 2 damping ratio` for `tyre.modes[2].damping_ratio`,
+/// `every point's height h` for `points[*].h_m`; the path itself for the
+/// fields without such a name.
+pub fn param_name(param: &str) -> String {
+    let top = match param {
+        "speed_mps" => Some("speed V"),
+        "ramp_s" => Some("ramp"),
+        "dt_s" => Some("time step dt"),
+        "duration_s" => Some("duration"),
+        "road.amplitude_m" => Some("road amplitude a"),
+        "road.wavelength_m" => Some("road wavelength λ"),
+        _ => None,
+    };
+    if let Some(t) = top {
+        return t.to_string();
+    }
+    // `head[index].field` of the points, the modes and the tread stiffness
+    let indexed = |head: &str| -> Option<(String, String)> {
+        let rest = param.strip_prefix(head)?.strip_prefix('[')?;
+        let (index, field) = rest.split_once(']')?;
+        Some((index.to_string(), field.trim_start_matches('.').to_string()))
+    };
+    let whose = |what: &str, index: &str| {
+        if index == "*" {
+            format!("every {what}'s")
+        } else {
+            format!("{what} {index}")
+        }
+    };
+    if let Some((i, field)) = indexed("points") {
+        let name = match field.as_str() {
+            "x_m" => "position x",
+            "y_m" => "position y",
+            "h_m" => "height h",
+            _ => return param.to_string(),
+        };
+        return format!("{} {name}", whose("point", &i));
+    }
+    if let Some((i, field)) = indexed("tyre.modes") {
+        let name = match field.as_str() {
+            "freq_hz" => "frequency",
+            "damping_ratio" => "damping ratio",
+            _ => return param.to_string(),
+        };
+        return format!("{} {name}", whose("mode", &i));
+    }
+    if let Some((i, field)) = indexed("contact.stiffness_n_m")
+        && field.is_empty()
+    {
+        return format!(
+            "tread stiffness of {}",
+            whose("point", &i).replace("'s", "")
+        );
+    }
+    param.to_string()
+}
+
+/// The unit a swept parameter's path carries (`None`: none known).
+fn param_unit(param: &str) -> Option<&'static str> {
     // the field's name without a trailing index (`[2]`, `[*]`, `.0`)
     let mut name = param;
     loop {
@@ -132,7 +199,7 @@ pub fn param_axis_label(param: &str) -> String {
     }
     let field = name.rsplit('.').next().unwrap_or(name);
     // names whose suffix alone is ambiguous first, then by suffix
-    let unit = match field {
+    match field {
         "bending_stiffness_n_m2" => Some("N·m²"),
         "residue" => Some("1/kg"),
         "shape" => Some("1/√kg"),
@@ -153,11 +220,42 @@ pub fn param_axis_label(param: &str) -> String {
         .iter()
         .find(|(suffix, _)| field.ends_with(suffix))
         .map(|(_, unit)| *unit),
-    };
-    match unit {
-        Some(u) => format!("{param} ({u})"),
-        None => param.to_string(),
     }
+}
+
+/// The y titles of the sweep's four plots, shared by the sweep view and
+/// the sweep figure: largest force without impacts, largest impulse,
+/// contact share, band levels.
+pub const Y_TITLES: [&str; 4] = [
+    "max contact force without impacts (N)",
+    "largest impact impulse (N·s)",
+    "fraction of steps in contact (%)",
+    "total force, third-octave level (dB re 1 N)",
+];
+
+/// The factor from a contact fraction (0 to 1) to [`Y_TITLES`]' percent.
+pub const CONTACT_PERCENT: f64 = 100.0;
+
+/// The legend name of contact point `i`'s curve (view and figure).
+pub fn point_series_name(i: usize) -> String {
+    format!("point {i}")
+}
+
+/// The legend name of the band of nominal centre `nominal_hz`.
+pub fn band_series_name(nominal_hz: f64) -> String {
+    format!("{} Hz band", band_label(nominal_hz))
+}
+
+/// The sweep's subtitle: how many values of which parameter, over which
+/// range with its unit (`8 values of speed V from 8 to 36 m/s`).
+pub fn sweep_subtitle(param: &str, count: usize, from: f64, to: f64) -> String {
+    let unit = param_unit(param)
+        .filter(|u| *u != "-")
+        .map_or(String::new(), |u| format!(" {u}"));
+    format!(
+        "{count} values of {} from {from} to {to}{unit}; steady part of each run (t ≥ ramp)",
+        param_name(param)
+    )
 }
 
 /// The size (px) of `sweep --plot`'s figure: four stacked panels, each
@@ -180,11 +278,14 @@ pub fn figure(
         .iter()
         .filter_map(|p| p.result.as_ref().ok().map(|r| (p.value, r)))
         .collect();
-    let per_point = |get: &dyn Fn(&ContactSummary) -> &Vec<f64>, name: &str| -> Vec<Series> {
+    let per_point = |get: &dyn Fn(&ContactSummary) -> &Vec<f64>, scale: f64| -> Vec<Series> {
         (0..num_points)
             .map(|i| Series {
-                name: format!("{name}{i}"),
-                points: ok.iter().map(|(v, r)| (*v, get(&r.contact)[i])).collect(),
+                name: point_series_name(i),
+                points: ok
+                    .iter()
+                    .map(|(v, r)| (*v, scale * get(&r.contact)[i]))
+                    .collect(),
                 style: Style::LineMarkers(3),
                 color: None,
             })
@@ -195,7 +296,7 @@ pub fn figure(
         .iter()
         .step_by(2)
         .map(|b| Series {
-            name: format!("{} Hz", band_label(b.nominal_hz)),
+            name: band_series_name(b.nominal_hz),
             points: points
                 .iter()
                 .map(|p| (p.value, band_db(&p.result, b.nominal_hz)))
@@ -212,22 +313,22 @@ pub fn figure(
             Panel {
                 title: "Largest contact force without impacts (steady part)".into(),
                 x_label: param_axis_label(param),
-                y_label: "max force (N)".into(),
-                series: per_point(&|r| &r.force_max_n, "q"),
+                y_label: Y_TITLES[0].into(),
+                series: per_point(&|r| &r.force_max_n, 1.0),
                 ..Panel::default()
             },
             Panel {
                 title: "Largest impact impulse (steady part; 0: no impact)".into(),
                 x_label: param_axis_label(param),
-                y_label: "impulse (N·s)".into(),
-                series: per_point(&|r| &r.impulse_max_ns, "q"),
+                y_label: Y_TITLES[1].into(),
+                series: per_point(&|r| &r.impulse_max_ns, 1.0),
                 ..Panel::default()
             },
             Panel {
                 title: "Fraction of steps in contact (steady part)".into(),
                 x_label: param_axis_label(param),
-                y_label: "contact fraction (-)".into(),
-                series: per_point(&|r| &r.contact_fraction, "point "),
+                y_label: Y_TITLES[2].into(),
+                series: per_point(&|r| &r.contact_fraction, CONTACT_PERCENT),
                 ..Panel::default()
             },
             Panel {
@@ -235,7 +336,7 @@ pub fn figure(
                     "Total contact force, third-octave bands 315 Hz - 2 kHz, every other band (Hann, mean removed)"
                         .into(),
                 x_label: param_axis_label(param),
-                y_label: "level (dB re 1 N)".into(),
+                y_label: Y_TITLES[3].into(),
                 series: bands,
                 ..Panel::default()
             },
@@ -245,14 +346,17 @@ pub fn figure(
 
 #[cfg(test)]
 mod tests {
-    use super::param_axis_label;
+    use super::{CONTACT_PERCENT, Y_TITLES, figure, param_axis_label, sweep_subtitle};
 
     #[test]
     fn swept_parameters_are_labelled_with_their_units() {
         for (param, want) in [
-            ("speed_mps", "speed_mps (m/s)"),
-            ("ramp_s", "ramp_s (s)"),
-            ("points[*].h_m", "points[*].h_m (m)"),
+            ("speed_mps", "speed V (m/s)"),
+            ("ramp_s", "ramp (s)"),
+            ("dt_s", "time step dt (s)"),
+            ("road.amplitude_m", "road amplitude a (m)"),
+            ("points[*].h_m", "every point's height h (m)"),
+            ("points[2].x_m", "point 2 position x (m)"),
             (
                 "road.components[1].phase_rad",
                 "road.components[1].phase_rad (rad)",
@@ -261,17 +365,24 @@ mod tests {
                 "road.max_wavenumber_cpm",
                 "road.max_wavenumber_cpm (cycles/m)",
             ),
-            ("tyre.modes[0].freq_hz", "tyre.modes[0].freq_hz (Hz)"),
+            ("tyre.modes[0].freq_hz", "mode 0 frequency (Hz)"),
             (
-                "tyre.modes[0].damping_ratio",
-                "tyre.modes[0].damping_ratio (-)",
+                "tyre.modes[*].damping_ratio",
+                "every mode's damping ratio (-)",
             ),
             (
                 "tyre.modes[2].residue[0][1]",
                 "tyre.modes[2].residue[0][1] (1/kg)",
             ),
             ("tyre.modes[2].shape[1]", "tyre.modes[2].shape[1] (1/√kg)"),
-            ("contact.stiffness_n_m[3]", "contact.stiffness_n_m[3] (N/m)"),
+            (
+                "contact.stiffness_n_m[3]",
+                "tread stiffness of point 3 (N/m)",
+            ),
+            (
+                "contact.stiffness_n_m[*]",
+                "tread stiffness of every point (N/m)",
+            ),
             ("tyre.ring.inflation_pa", "tyre.ring.inflation_pa (Pa)"),
             (
                 "tyre.ring.radial_stiffness_n_m2",
@@ -298,6 +409,62 @@ mod tests {
             assert_eq!(param_axis_label(param), want);
         }
     }
+
+    /// The subtitle names the parameter as the editor does, with the
+    /// range's unit, and no internal path.
+    #[test]
+    fn the_subtitle_names_the_parameter_and_its_unit() {
+        let s = sweep_subtitle("speed_mps", 8, 8.0, 36.0);
+        assert!(s.starts_with("8 values of speed V from 8 to 36 m/s"), "{s}");
+        assert!(!s.contains("speed_mps") && !s.contains("ramp_s"), "{s}");
+        // a ratio has no unit to name
+        let s = sweep_subtitle("tyre.modes[0].damping_ratio", 3, 0.01, 0.1);
+        assert!(
+            s.starts_with("3 values of mode 0 damping ratio from 0.01 to 0.1;"),
+            "{s}"
+        );
+    }
+
+    /// The figure's panels carry the sweep view's y titles (with units),
+    /// every per-point curve is named `point i` in every panel, the bands
+    /// `… Hz band`, and the contact share is in percent as the title says.
+    #[test]
+    fn the_figure_speaks_as_the_sweep_view() {
+        let pts = super::figure_tests::points();
+        let fig = figure("t", "s", "speed_mps", &pts, 3);
+        let titles: Vec<&str> = fig.panels.iter().map(|p| p.y_label.as_str()).collect();
+        assert_eq!(titles, Y_TITLES.to_vec());
+        for p in &fig.panels[..3] {
+            let names: Vec<&str> = p.series.iter().map(|s| s.name.as_str()).collect();
+            assert_eq!(names, ["point 0", "point 1", "point 2"], "{}", p.title);
+            assert_eq!(p.x_label, "speed V (m/s)");
+        }
+        assert!(
+            fig.panels[3]
+                .series
+                .iter()
+                .all(|s| s.name.ends_with(" Hz band")),
+            "{:?}",
+            fig.panels[3]
+                .series
+                .iter()
+                .map(|s| &s.name)
+                .collect::<Vec<_>>()
+        );
+        // contact fractions up to 0.8 are drawn up to 80 %
+        let top = fig.panels[2]
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.1))
+            .fold(0.0, f64::max);
+        assert!(top > 70.0 && top <= 80.0 + 1e-9, "{top}");
+        for (i, s) in fig.panels[2].series.iter().enumerate() {
+            for (p, pt) in s.points.iter().zip(&pts) {
+                let f = pt.result.as_ref().unwrap().contact.contact_fraction[i];
+                assert!((p.1 - CONTACT_PERCENT * f).abs() < 1e-9);
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -311,7 +478,7 @@ mod figure_tests {
 
     /// Fifteen speeds of a three-point scene shaped as the three-point
     /// preset's sweep (forces up to 900 kN, a band dipping to -70 dB).
-    fn points() -> Vec<SweepPoint> {
+    pub(super) fn points() -> Vec<SweepPoint> {
         (0..15)
             .map(|k| {
                 let v = 8.0 + 2.0 * k as f64;

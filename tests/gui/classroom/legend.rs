@@ -153,3 +153,55 @@ fn classroom_scene_legend_keeps_off_the_tyre_and_phase_labels_do_not_overlap() {
         );
     }
 }
+
+/// The classroom scene legend is one row at 1280 × 720, in text as large
+/// as that row has room for: the small text at 1280 px, larger at 1600 px.
+#[test]
+fn the_classroom_scene_legend_is_one_row_as_large_as_it_fits() {
+    use tirecontact::gui::classroom::CLASSROOM_SMALL_PX;
+    for (preset, size_px, least) in [
+        ("paper.ron", [1280.0, 720.0], 1.0),
+        ("three_points.ron", [1280.0, 720.0], 1.0),
+        ("paper.ron", [1600.0, 1000.0], 1.15),
+    ] {
+        let scene =
+            tirecontact::Scene::load(&std::path::Path::new("presets").join(preset)).unwrap();
+        let mut h = crate::harness::harness_sized(
+            tirecontact::gui::App::new(scene, None).unwrap(),
+            size_px,
+        );
+        h.state_mut()
+            .apply(tirecontact::gui::Command::SetClassroom(true));
+        h.run_steps(4);
+        crate::harness::advance(&mut h, 1_000);
+        h.run_steps(4);
+        let names = [
+            "road (moving left)",
+            "undeformed tyre",
+            "in contact",
+            "contact force (N)",
+        ];
+        let mut found = Vec::new();
+        for s in crate::harness::shapes(&h) {
+            if let egui::Shape::Text(t) = s
+                && names.contains(&t.galley.text())
+            {
+                let size = t.galley.job.sections[0].format.font_id.size;
+                found.push((t.galley.text().to_owned(), size, t.visual_bounding_rect()));
+            }
+        }
+        assert_eq!(found.len(), names.len(), "{preset}: {found:?}");
+        let y = found[0].2.center().y;
+        for (name, size, r) in &found {
+            assert!(
+                *size >= least * CLASSROOM_SMALL_PX - 1e-3,
+                "{preset}: {name} in {size} px text"
+            );
+            assert!(
+                (r.center().y - y).abs() < 2.0,
+                "{preset}: two rows {found:?}"
+            );
+            assert!(r.right() <= size_px[0], "{preset}: {name} cut at {r:?}");
+        }
+    }
+}

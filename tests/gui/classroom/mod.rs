@@ -14,6 +14,7 @@ mod panel;
 mod picker_contrast;
 mod scene_ticks;
 mod steady_plot;
+mod theme;
 mod time_ticks;
 
 use egui_kittest::Harness;
@@ -190,16 +191,35 @@ fn muting_below_the_rank_of_rigid_contact_is_refused_with_the_reason() {
     h.get_all_by_label("Mute").next().unwrap().click();
     h.run();
     let m = h.state().message().unwrap();
-    // said plainly, with the way out at hand (the mode bars), not a panel
-    // classroom mode hides
+    // said plainly, naming what was clicked, with the ways out at hand
+    // (buttons beside the mode bars, not a panel classroom mode hides)
     assert!(
         m.error
-            && m.text.contains("cannot hold all 3 points on the road")
-            && m.text.contains("keep more modes playing")
-            && !m.text.contains("compliant contact"),
+            && m.text.starts_with("Mute of mode 0 not applied")
+            && m.text
+                .contains("each of the 3 points must be able to move on its own")
+            && m.text.contains("keep more modes playing"),
         "{m:?}"
     );
     assert_eq!(h.state().scene(), &before);
+    // Solo says Solo
+    h.get_all_by_label("Solo").nth(1).unwrap().click();
+    h.run();
+    let m = h.state().message().unwrap();
+    assert!(m.text.starts_with("Solo of mode 1 not applied"), "{m:?}");
+    // "Keep the modes playing" closes the note, nothing changes
+    h.get_by_label("Keep the modes playing").click();
+    h.run();
+    assert!(h.query_by_label("Use compliant contact").is_none());
+    assert_eq!(h.state().scene(), &before);
+    // "Use compliant contact": the solo applies with a tread spring
+    h.get_all_by_label("Solo").nth(1).unwrap().click();
+    h.run();
+    h.get_by_label("Use compliant contact").click();
+    h.run();
+    assert!(!h.state().scene().contact.is_rigid(), "still rigid");
+    assert_eq!(h.state().mutes().unwrap().muted, [true, false, true]);
+    assert!(h.query_by_label("Use compliant contact").is_none());
 }
 
 #[test]

@@ -91,3 +91,51 @@ fn the_classroom_scene_labels_its_height_axis() {
         }
     }
 }
+
+/// The classroom scene plot's position axis: at least three numbers under
+/// the frame, increasing to the right, not overlapping.
+#[test]
+fn the_classroom_scene_labels_its_position_axis() {
+    for size in [[1280.0, 720.0], [1600.0, 1000.0]] {
+        for preset in ["paper.ron", "three_points.ron"] {
+            let scene = Scene::load(&Path::new("presets").join(preset)).unwrap();
+            let mut h = crate::harness::harness_sized(App::new(scene, None).unwrap(), size);
+            h.state_mut().apply(Command::SetClassroom(true));
+            h.run_steps(4);
+            advance(&mut h, 1_000);
+            h.run_steps(4);
+            let frame = *egui_plot::PlotMemory::load(&h.ctx, egui::Id::unique(SCENE_PLOT_ID))
+                .expect("scene plot shown")
+                .transform()
+                .frame();
+            let mut ticks: Vec<(f64, Rect)> = texts(&h)
+                .into_iter()
+                .filter(|(_, r)| {
+                    r.top() >= frame.bottom() - 1.0
+                        && r.top() <= frame.bottom() + 30.0
+                        && r.center().x >= frame.left() - 20.0
+                        && r.center().x <= frame.right() + 20.0
+                })
+                .filter_map(|(t, r)| {
+                    t.replace('−', "-")
+                        .trim()
+                        .parse::<f64>()
+                        .ok()
+                        .map(|v| (v, r))
+                })
+                .collect();
+            ticks.sort_by(|a, b| a.1.center().x.total_cmp(&b.1.center().x));
+            assert!(
+                ticks.len() >= 3,
+                "{preset} {size:?}: position labels {:?}",
+                ticks.iter().map(|t| t.0).collect::<Vec<_>>()
+            );
+            for w in ticks.windows(2) {
+                assert!(
+                    w[0].0 < w[1].0 && w[0].1.right() <= w[1].1.left(),
+                    "{ticks:?}"
+                );
+            }
+        }
+    }
+}

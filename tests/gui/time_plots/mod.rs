@@ -7,4 +7,5 @@ mod export_layout;
 mod legend_ink;
 mod legends;
 mod paper_clip;
+mod run_fit;
 mod solid_curves;
