@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 mod edits;
 pub mod locate;
+pub mod share;
 pub use edits::{described_with_edits, edits_since, edits_since_identified};
 
 /// How contact is decided inside a time step (method §4).

@@ -37,6 +37,7 @@ mod mode_mutes;
 mod research_tools;
 mod run;
 mod session;
+mod share_link;
 
 use files::default_scene;
 pub use run::PAUSED_NOTE;
@@ -102,6 +103,10 @@ pub(crate) struct Handles {
     pub(crate) mode_cache: Arc<ModeCache>,
     pub(super) title: String,
     pub(super) fps: FrameRate,
+    /// The link of the last Share, and whether the frame still has to
+    /// copy it to the clipboard.
+    pub(super) shared_link: Option<String>,
+    pub(super) copy_link: bool,
 }
 
 /// The simulation of `scene` and its modes, the ring's identification
@@ -161,6 +166,8 @@ impl App {
                 mode_cache,
                 title: String::new(),
                 fps: FrameRate::new(),
+                shared_link: None,
+                copy_link: false,
             },
         })
     }
@@ -330,6 +337,7 @@ impl App {
             Command::FieldRefused { field: _, text } => self.field_refused(text),
             Command::FieldRestored { field } => self.field_restored(&field),
             Command::SaveFirst => self.save_first(),
+            Command::Share => self.share(),
             Command::ContinueAfterSave(d) => {
                 if !self.is_dirty() {
                     self.discard_and(d);

@@ -164,6 +164,11 @@ impl App {
         for c in cmds {
             self.apply(c);
         }
+        if std::mem::take(&mut self.handles.copy_link)
+            && let Some(link) = &self.handles.shared_link
+        {
+            ctx.copy_text(link.clone());
+        }
         if std::mem::take(&mut self.forget_fields) {
             crate::gui::widgets::fields::forget_all(&ctx);
             ctx.request_repaint();
@@ -171,8 +176,10 @@ impl App {
         let title = self.title();
         if title != self.handles.title {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            crate::gui::chrome::web::set_page_title(&self.doc.scene.name);
             self.handles.title = title;
         }
+        crate::gui::chrome::web::publish_run(self.sim.time_s(), self.sim.steps());
         self.handles.fps.tick(
             self.sim.time_s(),
             self.time.is_playing(),

@@ -94,6 +94,9 @@ pub enum Command {
     },
     ExportCsvDialog,
     ExportCsv(PathBuf),
+    /// Copy a link that carries the scene (and, in a browser, put it in
+    /// the page's address).
+    Share,
     /// The user confirmed dropping unsaved edits.
     ConfirmDiscard,
     CancelDiscard,
