@@ -27,7 +27,8 @@ use crate::{DEFAULT_PRESET, Scene, SceneError, Simulation, SolverOptions};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 mod animation_export;
 pub(crate) mod files;
@@ -296,6 +297,7 @@ impl App {
             // the file first, then the unsaved-changes guard (OpenPath)
             Command::OpenDialog => self.open_file_prompt(FileAction::Open),
             Command::OpenPath(p) => self.guard(Discarding::OpenPath(p)),
+            Command::OpenText { name, text } => self.guard(Discarding::Text { name, text }),
             Command::OpenPreset(k) => self.guard(Discarding::Preset(k)),
             Command::OpenGuided(k) => self.guard(Discarding::Guided(k)),
             Command::Quit => self.guard(Discarding::Quit),

@@ -73,11 +73,15 @@ impl App {
 
     /// The background jobs that ended since the last frame, as commands.
     fn jobs_ended(&self) -> Vec<Command> {
-        let mut ended: Vec<Command> =
-            [self.poll_csv(), self.poll_frames(), self.poll_preparation()]
-                .into_iter()
-                .flatten()
-                .collect();
+        let mut ended: Vec<Command> = [
+            self.poll_csv(),
+            self.poll_frames(),
+            self.poll_preparation(),
+            self.poll_picked(),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
         ended.extend(self.research_polls());
         ended
     }
@@ -188,6 +192,7 @@ impl App {
         if self.handles.csv_job.is_some()
             || self.handles.frames_job.is_some()
             || self.handles.prepare_job.is_some()
+            || crate::gui::chrome::web::picking()
             || (!hidden && (self.time.is_playing() || self.time.pending_steps() > 0))
         {
             ctx.request_repaint();

@@ -1,6 +1,8 @@
 //! Share: the current scene as a link (`scene::share`), copied to the
 //! clipboard; in a browser the page's address takes it too. A link opened
-//! at start (the page's fragment) comes before the saved session.
+//! at start (the page's fragment) comes before the saved session. Beside
+//! `scene=`, the fragment may hold `view=K` (the view of key K, 1 to 8,
+//! which Share writes) and `speed=F` (a real-time factor, or `max`).
 
 use super::*;
 use crate::gui::chrome::web;
@@ -18,6 +20,7 @@ impl App {
                 match App::new(scene, None) {
                     Ok(mut app) => {
                         app.info(format!("opened \"{name}\" from the link"));
+                        app.link_options(link);
                         app
                     }
                     Err(e) => {
@@ -35,6 +38,69 @@ impl App {
         }
     }
 
+    /// The `view=` and `speed=` of a link's fragment (others are ignored,
+    /// as are values out of range).
+    fn link_options(&mut self, link: &str) {
+        let fragment = link.split_once('#').map_or(link, |(_, f)| f);
+        for (key, value) in fragment.split('&').filter_map(|kv| kv.split_once('=')) {
+            match key {
+                "view" => {
+                    let k = value.parse::<usize>().unwrap_or(0);
+                    if let Some(&v) = k.checked_sub(1).and_then(|k| View::ALL.get(k)) {
+                        self.show_view(v);
+                    }
+                }
+                "speed" => match value {
+                    "max" => self.time.set_speed(Speed::Max),
+                    f => {
+                        if let Ok(f) = f.parse::<f64>()
+                            && f.is_finite()
+                            && f > 0.0
+                        {
+                            self.time.set_speed(Speed::Factor(f));
+                        }
+                    }
+                },
+                _ => {}
+            }
+        }
+    }
+
+    /// Open, Save As and the exports in a browser: the browser's picker
+    /// and downloads for presets; the exports need the desktop app.
+    pub(super) fn browser_file(&mut self, action: FileAction, stem: &str) {
+        match action {
+            FileAction::Open => web::pick_preset(),
+            FileAction::SaveAs => {
+                let mut out = self.doc.scene.clone();
+                out.description = crate::scene::described_with_edits(
+                    &self.doc.scene.description,
+                    &self.doc.saved.name,
+                    &self.edits(),
+                );
+                let name = format!("{stem}.ron");
+                web::download(&name, out.to_ron_string().into_bytes());
+                self.doc.scene.description = out.description;
+                self.doc.saved = self.doc.scene.clone();
+                self.info(format!("{name} offered as a download"));
+            }
+            _ => self.error(format!(
+                "{}: not in the browser. {}",
+                action.title(),
+                web::BROWSER_LIMITS
+            )),
+        }
+    }
+
+    /// The preset the browser's picker read, as a command.
+    pub(super) fn poll_picked(&self) -> Option<Command> {
+        let (name, bytes) = web::take_picked()?;
+        Some(Command::OpenText {
+            text: String::from_utf8_lossy(&bytes).into_owned(),
+            name,
+        })
+    }
+
     /// The link of the last Share, if any.
     pub fn shared_link(&self) -> Option<&str> {
         self.handles.shared_link.as_deref()
@@ -43,7 +109,8 @@ impl App {
     /// Makes the link of the current scene; the frame copies it.
     pub(super) fn share(&mut self) {
         let base = web::page_address().unwrap_or_else(|| share::DEFAULT_BASE_URL.to_string());
-        match share::link(&self.doc.scene, &base) {
+        let view = View::ALL.iter().position(|&v| v == self.view).unwrap_or(0) + 1;
+        match share::link(&self.doc.scene, &base).map(|l| format!("{l}&view={view}")) {
             Ok(link) => {
                 web::show_link(&link);
                 let place = if web::IN_BROWSER {
@@ -79,11 +146,22 @@ mod tests {
         let link = app.shared_link().expect("a link").to_string();
         assert!(link.starts_with("index.html#scene=v1."), "{link}");
         assert!(!app.message().unwrap().error, "{:?}", app.message());
+        assert!(link.ends_with("&view=1"), "{link}");
         let opened = App::open_link(&link, None);
         assert_eq!(opened.scene().speed_mps, 17.0);
         assert_eq!(opened.scene().name, "Faster");
         assert!(!opened.is_dirty());
         assert!(opened.message().unwrap().text.contains("from the link"));
+        assert_eq!(opened.view(), View::TimePlots);
+        // the view and a speed in the fragment
+        let opened = App::open_link(&format!("{link}&view=2&speed=max"), None);
+        assert_eq!(opened.view(), View::Scene);
+        assert_eq!(opened.time_control().speed(), Speed::Max);
+        let opened = App::open_link(&format!("{link}&view=9&speed=-1"), None);
+        assert_eq!(opened.view(), View::TimePlots);
+        assert_eq!(opened.time_control().speed(), Speed::watchable(0.2));
+        let opened = App::open_link(&format!("{link}&speed=0.5"), None);
+        assert_eq!(opened.time_control().speed(), Speed::Factor(0.5));
     }
 
     #[test]

@@ -2,13 +2,17 @@
 //! (where a scene link is read and written) and its title. On the desktop
 //! these do nothing: the window's title is eframe's viewport title there.
 
+#[cfg(target_arch = "wasm32")]
+use eframe::web_sys;
+
 /// Whether the visualiser runs in a browser (no files, no threads).
 pub const IN_BROWSER: bool = cfg!(target_arch = "wasm32");
 
 /// What the browser does not do, shown where the desktop would do it.
-pub const BROWSER_LIMITS: &str = "In the browser, files are opened and saved through the \
-    browser's own picker and downloads, and background work (identification, sweeps, spectra, \
-    exports) runs in the page between frames, which pauses the page until it ends.";
+pub const BROWSER_LIMITS: &str = "In the browser, Open reads a preset through the browser's \
+    picker and Save As downloads it; a preset naming a file beside it (a measured tyre or road) \
+    and the exports (CSV, PNG, frames) need the desktop app. Background work (identification, \
+    sweeps, spectra) runs at once in the page, which waits until it ends.";
 
 /// The page's address without its fragment, in a browser.
 pub fn page_address() -> Option<String> {
@@ -67,4 +71,74 @@ pub fn publish_run(time_s: f64, steps: u64) {
     }
     #[cfg(not(target_arch = "wasm32"))]
     let _ = (time_s, steps);
+}
+
+#[cfg(target_arch = "wasm32")]
+thread_local! {
+    /// The file the browser's picker read, waiting for the next frame; and
+    /// whether a picker is open.
+    static PICKED: std::cell::RefCell<(Option<(String, Vec<u8>)>, bool)> =
+        const { std::cell::RefCell::new((None, false)) };
+}
+
+/// Opens the browser's file picker for a RON preset; the file read is
+/// taken by [`take_picked`]. Nothing on the desktop (its file prompt is
+/// used there).
+pub fn pick_preset() {
+    #[cfg(target_arch = "wasm32")]
+    {
+        PICKED.with(|p| p.borrow_mut().1 = true);
+        wasm_bindgen_futures::spawn_local(async {
+            let file = rfd::AsyncFileDialog::new()
+                .add_filter("RON scene", &["ron"])
+                .pick_file()
+                .await;
+            let read = match file {
+                Some(f) => Some((f.file_name(), f.read().await)),
+                None => None,
+            };
+            PICKED.with(|p| *p.borrow_mut() = (read, false));
+        });
+    }
+}
+
+/// Whether the browser's picker is open (the frame then polls for it).
+pub fn picking() -> bool {
+    #[cfg(target_arch = "wasm32")]
+    {
+        PICKED.with(|p| p.borrow().1)
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    false
+}
+
+/// The file the browser's picker read since the last call: its name and
+/// bytes.
+pub fn take_picked() -> Option<(String, Vec<u8>)> {
+    #[cfg(target_arch = "wasm32")]
+    {
+        PICKED.with(|p| p.borrow_mut().0.take())
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    None
+}
+
+/// Offers `bytes` as a download named `file_name` (the browser's own
+/// save); nothing on the desktop.
+pub fn download(file_name: &str, bytes: Vec<u8>) {
+    #[cfg(target_arch = "wasm32")]
+    {
+        let name = file_name.to_string();
+        wasm_bindgen_futures::spawn_local(async move {
+            if let Some(f) = rfd::AsyncFileDialog::new()
+                .set_file_name(&name)
+                .save_file()
+                .await
+            {
+                let _ = f.write(&bytes).await;
+            }
+        });
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    let _ = (file_name, bytes);
 }

@@ -56,6 +56,11 @@ pub enum Discarding {
     Quit,
     /// A guided-tour preset (index into `presets::GUIDED`).
     Guided(usize),
+    /// A preset's text read by the browser's picker, with its file name.
+    Text {
+        name: String,
+        text: String,
+    },
 }
 
 /// A user request.
@@ -79,6 +84,12 @@ pub enum Command {
     OpenDialog,
     /// Open a preset file, after confirmation if dirty.
     OpenPath(PathBuf),
+    /// Open a preset's text (read by the browser's picker, with its file
+    /// name), after confirmation if dirty.
+    OpenText {
+        name: String,
+        text: String,
+    },
     /// Open a shipped preset (index into `presets::SHIPPED`).
     OpenPreset(usize),
     /// Save to the current file (Save As if there is none).
