@@ -63,22 +63,30 @@ RUSTC="$web_rustc" RUSTC_BOOTSTRAP=1 CARGO_TARGET_DIR="$target_dir" \
     --target wasm32-unknown-unknown -Zbuild-std=std,panic_abort
 say "compiled in $(($(date +%s) - t0)) s"
 
+raw=$target_dir/wasm32-unknown-unknown/release/tirecontact-web.wasm
+# Debian's binaryen (108) is old: its wasm-opt is used only if it reads the
+# compiler's output, and before wasm-bindgen (after it, it breaks the
+# externref table wasm-bindgen adds: the page then fails to start).
+input=$raw
+if command -v wasm-opt >/dev/null 2>&1; then
+    t0=$(date +%s)
+    if wasm-opt -O2 --enable-reference-types --enable-bulk-memory --enable-mutable-globals \
+        --enable-sign-ext --enable-nontrapping-float-to-int --enable-multivalue \
+        "$raw" -o "$raw.opt" 2>"$raw.opt.log"; then
+        say "wasm-opt -O2: $(stat -c %s "$raw") -> $(stat -c %s "$raw.opt") bytes in $(($(date +%s) - t0)) s"
+        input=$raw.opt
+    else
+        say "wasm-opt $(wasm-opt --version 2>/dev/null | head -1) does not accept this output; skipped ($(head -c 200 "$raw.opt.log" | tr '\n' ' '))"
+    fi
+    rm -f "$raw.opt.log"
+else
+    say "no wasm-opt (binaryen): the page is not size-optimised"
+fi
+
 rm -rf "$dist"
 mkdir -p "$dist"
-"$bindgen" --target web --no-typescript --out-dir "$dist" --out-name tirecontact-web \
-    "$target_dir/wasm32-unknown-unknown/release/tirecontact-web.wasm"
+"$bindgen" --target web --no-typescript --out-dir "$dist" --out-name tirecontact-web "$input"
+rm -f "$raw.opt"
 wasm=$dist/tirecontact-web_bg.wasm
-
-# Debian's binaryen is old: use its wasm-opt only if it reads this output.
-if command -v wasm-opt >/dev/null 2>&1; then
-    if wasm-opt -O2 --all-features "$wasm" -o "$wasm.opt" 2>"$dist/wasm-opt.log"; then
-        say "wasm-opt -O2: $(stat -c %s "$wasm") -> $(stat -c %s "$wasm.opt") bytes"
-        mv "$wasm.opt" "$wasm"
-        rm -f "$dist/wasm-opt.log"
-    else
-        say "wasm-opt $(wasm-opt --version 2>/dev/null | head -1) does not accept this output; skipped ($(head -c 200 "$dist/wasm-opt.log" | tr '\n' ' '))"
-        rm -f "$wasm.opt" "$dist/wasm-opt.log"
-    fi
-fi
 cp web/index.html "$dist/"
 say "web/dist: wasm $(stat -c %s "$wasm") bytes, $(gzip -9 -c "$wasm" | wc -c) bytes gzipped; in $(($(date +%s) - started)) s"

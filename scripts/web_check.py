@@ -118,6 +118,7 @@ class Browser:
                 "--no-first-run",
                 "--no-default-browser-check",
                 "--disable-gpu-sandbox",
+                "--disable-dev-shm-usage",
                 f"--user-data-dir={self.profile}",
                 f"--remote-debugging-port={port}",
                 "--remote-allow-origins=*",
@@ -345,9 +346,17 @@ def main():
         b.wait_for("the time to advance after Play", lambda: (b.time_s() or 0) > t0, 30)
         print(f"web-check: Play advanced the time from {t0} s to {b.time_s()} s")
         if args.shots:
-            b.pump(1)
-            b.resize(412, 915)
             b.pump(2)
+            with open(os.path.join(args.shots, "web_1280x720_playing.png"), "wb") as f:
+                f.write(b.screenshot())
+            # a phone opens the page at its size
+            b.resize(412, 915)
+            b.navigate(f"{folder}/{args.link.replace('index.html', 'index.html?phone', 1)}&view=2")
+            b.wait_for(f"title {want!r}", lambda: b.title() == want, 120)
+            b.pump(1)
+            b.click(400, 905)
+            b.key(" ", "Space", 32)
+            b.pump(3)
             with open(os.path.join(args.shots, "web_412x915.png"), "wb") as f:
                 f.write(b.screenshot())
             b.resize(1280, 720)
@@ -359,10 +368,20 @@ def main():
             b.click(1270, 715)
             b.key(" ", "Space", 32)
             b.wait_for("the run to start", lambda: (b.steps() or 0) > 0, 30)
-            s0, w0 = b.steps(), time.time()
+            # the browser's frames, counted by requestAnimationFrame
+            b.evaluate(
+                "window.__frames = 0; (function f() { window.__frames++; requestAnimationFrame(f); })()"
+            )
+            s0, f0, w0 = b.steps(), b.evaluate("window.__frames"), time.time()
             b.pump(10)
-            s1, w1 = b.steps(), time.time()
-            print(f"web-check: speed {((s1 - s0) / (w1 - w0)):.0f} steps/s in the page ({s1 - s0} steps in {w1 - w0:.1f} s)")
+            s1, f1, w1 = b.steps(), b.evaluate("window.__frames"), time.time()
+            rate = (s1 - s0) / (w1 - w0)
+            fps = (f1 - f0) / (w1 - w0)
+            # at the fastest speed the solver takes its 12 ms budget per frame
+            print(
+                f"web-check: speed {rate:.0f} steps/s in the page ({s1 - s0} steps in {w1 - w0:.1f} s, "
+                f"{fps:.1f} frames/s: {rate / max(fps, 1e-9) / 0.012:.0f} steps/s within the 12 ms budget)"
+            )
 
         b.pump(0.5)
         if b.errors:
