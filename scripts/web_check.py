@@ -349,17 +349,20 @@ def main():
             b.pump(2)
             with open(os.path.join(args.shots, "web_1280x720_playing.png"), "wb") as f:
                 f.write(b.screenshot())
-            # a phone opens the page at its size
-            b.resize(412, 915)
-            b.navigate(f"{folder}/{args.link.replace('index.html', 'index.html?phone', 1)}&view=2")
-            b.wait_for(f"title {want!r}", lambda: b.title() == want, 120)
-            b.pump(1)
-            b.click(400, 905)
-            b.key(" ", "Space", 32)
-            b.pump(3)
-            with open(os.path.join(args.shots, "web_412x915.png"), "wb") as f:
-                f.write(b.screenshot())
-            b.resize(1280, 720)
+            # a phone opens the page at its size, with nothing kept from before
+            phone = Browser(args.chromium, 412, 915)
+            try:
+                phone.navigate(f"{folder}/{args.link}&view=2")
+                phone.wait_for(f"title {want!r}", lambda: phone.title() == want, 120)
+                phone.pump(1)
+                phone.click(400, 905)
+                phone.key(" ", "Space", 32)
+                phone.pump(3)
+                with open(os.path.join(args.shots, "web_412x915.png"), "wb") as f:
+                    f.write(phone.screenshot())
+                b.errors += phone.errors
+            finally:
+                phone.close()
 
         if args.speed_link:
             b.navigate(f"{folder}/{args.speed_link.replace('index.html', 'index.html?' + str(random.random()), 1)}")

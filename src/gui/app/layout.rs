@@ -78,10 +78,9 @@ impl App {
         // the running scene: no further edit until the waiting one applies
         let editable = self.handles.prepare_job.is_none();
         let edits = self.edits();
-        // (a phone's narrow page keeps room for the views)
         egui::Panel::left("tirecontact.edit")
             .resizable(true)
-            .default_size(380.0_f32.min(0.45 * ui.available_width()))
+            .default_size(380.0)
             .show(ui, |ui| {
                 ui.add_enabled_ui(editable, |ui| {
                     panels::side_panel(ui, &self.doc.scene, &edits, &self.modes, cmds_left)
