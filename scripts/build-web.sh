@@ -68,7 +68,10 @@ raw=$target_dir/wasm32-unknown-unknown/release/tirecontact-web.wasm
 # compiler's output, and before wasm-bindgen (after it, it breaks the
 # externref table wasm-bindgen adds: the page then fails to start).
 input=$raw
-if command -v wasm-opt >/dev/null 2>&1; then
+if [ -f "$raw.opt" ] && [ "$raw.opt" -nt "$raw" ]; then
+    say "wasm-opt: reusing its output for the unchanged build"
+    input=$raw.opt
+elif command -v wasm-opt >/dev/null 2>&1; then
     t0=$(date +%s)
     if wasm-opt -O2 --enable-reference-types --enable-bulk-memory --enable-mutable-globals \
         --enable-sign-ext --enable-nontrapping-float-to-int --enable-multivalue \
@@ -77,6 +80,7 @@ if command -v wasm-opt >/dev/null 2>&1; then
         input=$raw.opt
     else
         say "wasm-opt $(wasm-opt --version 2>/dev/null | head -1) does not accept this output; skipped ($(head -c 200 "$raw.opt.log" | tr '\n' ' '))"
+        rm -f "$raw.opt"
     fi
     rm -f "$raw.opt.log"
 else
@@ -86,7 +90,6 @@ fi
 rm -rf "$dist"
 mkdir -p "$dist"
 "$bindgen" --target web --no-typescript --out-dir "$dist" --out-name tirecontact-web "$input"
-rm -f "$raw.opt"
 wasm=$dist/tirecontact-web_bg.wasm
 cp web/index.html "$dist/"
 say "web/dist: wasm $(stat -c %s "$wasm") bytes, $(gzip -9 -c "$wasm" | wc -c) bytes gzipped; in $(($(date +%s) - started)) s"

@@ -238,6 +238,9 @@ impl App {
     }
 
     pub(super) fn open_png_dialog(&mut self) {
+        if crate::gui::chrome::web::IN_BROWSER {
+            return self.not_in_browser("Plots as PNG");
+        }
         self.png_dialog = Some(PngSettings {
             width: 1600,
             height: 1200,

@@ -84,12 +84,16 @@ impl App {
                 self.doc.saved = self.doc.scene.clone();
                 self.info(format!("{name} offered as a download"));
             }
-            _ => self.error(format!(
-                "{}: not in the browser. {}",
-                action.title(),
-                web::BROWSER_LIMITS
-            )),
+            _ => self.not_in_browser(action.title()),
         }
+    }
+
+    /// What a browser page cannot do, in the banner.
+    pub(super) fn not_in_browser(&mut self, what: &str) {
+        self.error(format!(
+            "{what}: not in the browser. {}",
+            web::BROWSER_LIMITS
+        ));
     }
 
     /// The preset the browser's picker read, as a command.
