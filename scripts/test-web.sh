@@ -39,6 +39,9 @@ trap 'kill $server 2>/dev/null || true; rm -rf "$tmp"' EXIT
 link=$("$bin" share presets/three_points.ron)
 name=$(sed -n 's/^ *name: *"\(.*\)",$/\1/p' presets/three_points.ron | head -1)
 args=("http://127.0.0.1:$port/index.html" "$link" "$name")
+# a second link, pasted into the open page's address bar
+name2=$(sed -n 's/^ *name: *"\(.*\)",$/\1/p' presets/single_mode.ron | head -1)
+args+=(--hash-link "$("$bin" share presets/single_mode.ron)" "$name2")
 [ -n "${WEB_SHOTS:-}" ] && args+=(--shots "$WEB_SHOTS")
 if [ "${WEB_SPEED:-0}" = 1 ]; then
     # the paper preset, long enough to time 10 s of it, at the fastest speed

@@ -13,6 +13,9 @@ URL's folder) of a scene named NAME. Checks, failing with a message:
 2. LINK opens its scene: the title becomes "NAME — tirecontact";
 3. Play (Space) advances the run's time (`data-time-s` on <body>).
 
+With --hash-link LINK2 NAME2, LINK2's fragment set on the open page (a
+link pasted into its address bar) must open NAME2's scene.
+
 With --shots, screenshots at 1280x720 and 412x915 go to DIR. With
 --speed-link, the steps per second of that link's scene at the fastest
 speed are measured and printed.
@@ -313,6 +316,7 @@ def main():
     ap.add_argument("name")
     ap.add_argument("--shots")
     ap.add_argument("--speed-link")
+    ap.add_argument("--hash-link", nargs=2, metavar=("LINK", "NAME"))
     ap.add_argument("--chromium", default=shutil.which("chromium") or "chromium")
     args = ap.parse_args()
     folder = args.url.rsplit("/", 1)[0]
@@ -337,6 +341,15 @@ def main():
         want = f"{args.name} — tirecontact"
         b.wait_for(f"title {want!r}", lambda: b.title() == want, 120)
         print(f"web-check: the link opened {want!r}")
+        if args.hash_link:
+            # another link pasted into the open page's address bar
+            fragment = args.hash_link[0].split("#", 1)[1]
+            b.evaluate(f"location.hash = {json.dumps(fragment)}")
+            other = f"{args.hash_link[1]} — tirecontact"
+            b.wait_for(f"title {other!r}", lambda: b.title() == other, 120)
+            print(f"web-check: a link pasted into the open page opened {other!r}")
+            b.navigate(f"{folder}/{args.link.replace('index.html', 'index.html?' + str(random.random()), 1)}")
+            b.wait_for(f"title {want!r}", lambda: b.title() == want, 120)
 
         # 3. Play (Space, the canvas focused) advances the time
         b.wait_for("the run's time", lambda: b.time_s() is not None, 30)

@@ -36,10 +36,16 @@ pub fn page_fragment() -> Option<String> {
 }
 
 /// Puts `link`'s fragment into the page's address (the browser's address
-/// bar then holds the link); nothing on the desktop.
+/// bar then holds the link); nothing on the desktop. The page's
+/// `data-shared-fragment` tells its `hashchange` handler (index.html) that
+/// this fragment is the app's own: another one, pasted into the address
+/// bar, reloads the page on its scene.
 pub fn show_link(link: &str) {
     #[cfg(target_arch = "wasm32")]
     if let (Some(window), Some((_, fragment))) = (web_sys::window(), link.split_once('#')) {
+        if let Some(body) = window.document().and_then(|d| d.body()) {
+            let _ = body.set_attribute("data-shared-fragment", fragment);
+        }
         let _ = window.location().set_hash(fragment);
     }
     #[cfg(not(target_arch = "wasm32"))]
