@@ -5,6 +5,7 @@ pub mod check;
 pub mod identify;
 pub mod paths;
 pub mod run;
+pub mod share;
 pub mod study;
 pub mod sweep;
 pub mod values;

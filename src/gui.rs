@@ -29,17 +29,20 @@ pub use research::sweep_job::SweepState;
 
 /// Opens the visualiser window on the last session, else the embedded
 /// default preset.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run() -> eframe::Result {
     run_with_preset(None)
 }
 
 /// Opens the visualiser on `preset` (a broken file shows its error over the
 /// default preset), or as [`run`] when `None`.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run_with_preset(preset: Option<std::path::PathBuf>) -> eframe::Result {
     run_with_options(preset, false)
 }
 
 /// [`run_with_preset`], starting in classroom mode when `classroom`.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run_with_options(preset: Option<std::path::PathBuf>, classroom: bool) -> eframe::Result {
     let mut options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -67,6 +70,25 @@ pub fn run_with_options(preset: Option<std::path::PathBuf>, classroom: bool) -> 
             Ok(Box::new(app))
         }),
     )
+}
+
+/// Starts the visualiser in the page's `canvas` (in a browser): on the
+/// scene of the page's link (`#scene=…`) if it has one, else on the last
+/// session kept in the browser's storage.
+#[cfg(target_arch = "wasm32")]
+pub async fn start_in_page(
+    canvas: eframe::web_sys::HtmlCanvasElement,
+) -> Result<(), eframe::wasm_bindgen::JsValue> {
+    eframe::WebRunner::new()
+        .start(
+            canvas,
+            eframe::WebOptions::default(),
+            Box::new(|cc| {
+                let link = chrome::web::page_fragment().unwrap_or_default();
+                Ok(Box::new(App::open_link(&link, cc.storage)))
+            }),
+        )
+        .await
 }
 
 /// The folders of `ARCHITECTURE.md`'s visualiser table: every folder

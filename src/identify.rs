@@ -13,7 +13,7 @@ use crate::model::road::RoadProfile;
 use crate::scene::{Scene, Tyre};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
-use std::time::Instant;
+use web_time::Instant;
 
 pub mod workbench;
 

@@ -34,6 +34,14 @@ enum Command {
         /// Scene preset (RON).
         preset: PathBuf,
     },
+    /// Print a link that opens a preset's scene in the visualiser's web page.
+    Share {
+        /// Scene preset (RON); a measured tyre or road cannot travel in a link.
+        preset: PathBuf,
+        /// The page the link opens.
+        #[arg(long, default_value = tirecontact::scene::share::DEFAULT_BASE_URL)]
+        base_url: String,
+    },
     /// Open the visualiser on a preset (without a subcommand: the last
     /// session or the embedded default preset).
     #[cfg(feature = "gui")]
@@ -65,6 +73,7 @@ fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Some(Command::Run(args)) => cli::run::run(&args),
         Some(Command::Check { preset }) => cli::check::check(&preset),
+        Some(Command::Share { preset, base_url }) => cli::share::share(&preset, &base_url),
         #[cfg(feature = "gui")]
         Some(Command::Gui { preset, classroom }) => {
             tirecontact::gui::run_with_options(preset, classroom)

@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 mod edits;
 pub mod locate;
 pub mod points;
+pub mod share;
 pub use edits::{described_with_edits, edits_since, edits_since_identified};
 pub use points::{PointGrid, Points, Preload};
 

@@ -27,7 +27,8 @@ use crate::{DEFAULT_PRESET, Scene, SceneError, Simulation, SolverOptions};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 mod animation_export;
 pub(crate) mod files;
@@ -37,6 +38,7 @@ mod mode_mutes;
 mod research_tools;
 mod run;
 mod session;
+mod share_link;
 
 use files::default_scene;
 pub use run::PAUSED_NOTE;
@@ -106,6 +108,10 @@ pub(crate) struct Handles {
     pub(crate) mode_cache: Arc<ModeCache>,
     pub(super) title: String,
     pub(super) fps: FrameRate,
+    /// The link of the last Share, and whether the frame still has to
+    /// copy it to the clipboard.
+    pub(super) shared_link: Option<String>,
+    pub(super) copy_link: bool,
 }
 
 /// The simulation of `scene` and its modes, the ring's identification
@@ -167,6 +173,8 @@ impl App {
                 mode_cache,
                 title: String::new(),
                 fps: FrameRate::new(),
+                shared_link: None,
+                copy_link: false,
             },
         })
     }
@@ -295,6 +303,7 @@ impl App {
             // the file first, then the unsaved-changes guard (OpenPath)
             Command::OpenDialog => self.open_file_prompt(FileAction::Open),
             Command::OpenPath(p) => self.guard(Discarding::OpenPath(p)),
+            Command::OpenText { name, text } => self.guard(Discarding::Text { name, text }),
             Command::OpenPreset(k) => self.guard(Discarding::Preset(k)),
             Command::OpenGuided(k) => self.guard(Discarding::Guided(k)),
             Command::Quit => self.guard(Discarding::Quit),
@@ -356,6 +365,7 @@ impl App {
             Command::FieldRefused { field: _, text } => self.field_refused(text),
             Command::FieldRestored { field } => self.field_restored(&field),
             Command::SaveFirst => self.save_first(),
+            Command::Share => self.share(),
             Command::ContinueAfterSave(d) => {
                 if !self.is_dirty() && self.overwrite.is_none() {
                     self.discard_and(d);

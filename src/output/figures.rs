@@ -6,6 +6,7 @@ use plotters::chart::SeriesAnno;
 use plotters::coord::ranged1d::ValueFormatter;
 use plotters::prelude::*;
 use std::path::Path;
+#[cfg(not(target_arch = "wasm32"))]
 use std::sync::Once;
 
 /// How a series is drawn.
@@ -103,7 +104,10 @@ pub const PALETTE: [RGBColor; 10] = [
 ];
 
 pub(crate) fn register_fonts() {
+    // in a browser plotters takes its fonts from the page
+    #[cfg(not(target_arch = "wasm32"))]
     static ONCE: Once = Once::new();
+    #[cfg(not(target_arch = "wasm32"))]
     ONCE.call_once(|| {
         // Ubuntu Light with its glyphs starting at x = 0 (plotters drops
         // side bearings: "1 0" for "10", see font.rs); once per process
@@ -289,10 +293,18 @@ pub fn render_png_layout(
         path: path.display().to_string(),
         message: e.to_string(),
     };
-    let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
-    let layouts = render_on(fig, &root, width, height).map_err(|e| err(&e))?;
-    root.present().map_err(|e| err(&e))?;
-    Ok(layouts)
+    #[cfg(target_arch = "wasm32")]
+    return {
+        let _ = fig;
+        Err(err(&"a page in the browser writes no files"))
+    };
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
+        let layouts = render_on(fig, &root, width, height).map_err(|e| err(&e))?;
+        root.present().map_err(|e| err(&e))?;
+        Ok(layouts)
+    }
 }
 
 /// [`render_png_layout`] into memory: the RGB pixels (3 bytes each, rows
@@ -706,6 +718,8 @@ fn add_key<'a, 'b: 'a>(
     }
 }
 
+// (its glyph fix is for the fonts registered natively)
+#[cfg_attr(target_arch = "wasm32", allow(dead_code))]
 mod font;
 mod layout;
 mod legend;

@@ -29,7 +29,7 @@
 use crate::base::error::RunError;
 use crate::solver::simulation::Simulation;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
+use web_time::Instant;
 
 /// What a run tells its observer.
 pub trait Probe {

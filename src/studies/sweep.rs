@@ -470,7 +470,7 @@ pub fn run_summary_timed(
     cancel: &AtomicBool,
     timing: &mut RunTiming,
 ) -> Result<RunSummary, SummaryError> {
-    let t0 = std::time::Instant::now();
+    let t0 = web_time::Instant::now();
     let scene = model.scene();
     let mut sim = Simulation::new(model, SolverOptions::default())?;
     // a steady part too short or too long for a spectrum, before the run
@@ -482,14 +482,14 @@ pub fn run_summary_timed(
         on_steps(done - reported);
         reported = done;
     };
-    let t1 = std::time::Instant::now();
+    let t1 = web_time::Instant::now();
     timing.setup_s += (t1 - t0).as_secs_f64();
     crate::solver::drive::run_to_end(
         &mut sim,
         &mut metrics,
         Watch::cancel(cancel).with_progress(&mut progress),
     )?;
-    let t2 = std::time::Instant::now();
+    let t2 = web_time::Instant::now();
     timing.stepping_s += (t2 - t1).as_secs_f64();
     let fs = 1.0 / scene.dt_s;
     let hi = DEFAULT_BANDS_HZ.1.min(0.5 * fs / 10f64.powf(0.05));

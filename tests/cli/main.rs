@@ -14,5 +14,6 @@ mod identify_figures;
 mod output_paths;
 mod refusals;
 mod run;
+mod share;
 mod study;
 mod sweep_names;

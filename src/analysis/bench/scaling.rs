@@ -18,7 +18,7 @@ use crate::model::road::Road;
 use crate::output::figures::{Figure, Panel, Series, Style};
 use crate::solver::drive::{Watch, run_to_end};
 use crate::solver::simulation::{Simulation, SolverOptions};
-use std::time::Instant;
+use web_time::Instant;
 
 /// Preload of the footprint's centre point (m).
 pub const PRELOAD_M: f64 = 0.002;

@@ -14,7 +14,7 @@ use crate::scene::{ContactScheme, Scene};
 use crate::solver::drive::Watch;
 use crate::solver::simulation::{Simulation, SolverOptions};
 pub use report::{figure, to_csv, to_markdown};
-use std::time::Instant;
+use web_time::Instant;
 
 /// The methods compared.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

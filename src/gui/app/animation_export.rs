@@ -42,6 +42,9 @@ impl App {
     }
 
     pub(super) fn open_frames_dialog(&mut self) {
+        if crate::gui::chrome::web::IN_BROWSER {
+            return self.not_in_browser("Animation frames");
+        }
         self.frames_dialog = Some(FramesDialog::for_scene(&self.doc.scene, self.sim.time_s()));
     }
 

@@ -97,6 +97,10 @@ impl App {
                 },
                 None => self.error(format!("no guided preset #{k}")),
             },
+            Discarding::Text { name, text } => match Scene::parse(&text, &name) {
+                Ok(scene) => self.replace(scene, None, &format!("opened {name}")),
+                Err(e) => self.open_failed(&e.to_string()),
+            },
             Discarding::Quit => {
                 self.allow_close = true;
                 self.time.pause();
@@ -185,6 +189,9 @@ impl App {
     /// current file, or a name from the scene's.
     pub(super) fn open_file_prompt(&mut self, action: FileAction) {
         let stem = file_stem(&self.doc.scene.name);
+        if crate::gui::chrome::web::IN_BROWSER {
+            return self.browser_file(action, &stem);
+        }
         let path = match action {
             FileAction::Open => self
                 .doc
@@ -247,6 +254,9 @@ impl App {
     }
 
     pub(super) fn open_png_dialog(&mut self) {
+        if crate::gui::chrome::web::IN_BROWSER {
+            return self.not_in_browser("Plots as PNG");
+        }
         self.png_dialog = Some(PngSettings {
             width: 1600,
             height: 1200,

@@ -86,11 +86,15 @@ impl App {
 
     /// The background jobs that ended since the last frame, as commands.
     fn jobs_ended(&self) -> Vec<Command> {
-        let mut ended: Vec<Command> =
-            [self.poll_csv(), self.poll_frames(), self.poll_preparation()]
-                .into_iter()
-                .flatten()
-                .collect();
+        let mut ended: Vec<Command> = [
+            self.poll_csv(),
+            self.poll_frames(),
+            self.poll_preparation(),
+            self.poll_picked(),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
         ended.extend(self.research_polls());
         ended
     }
@@ -178,6 +182,11 @@ impl App {
         for c in cmds {
             self.apply(c);
         }
+        if std::mem::take(&mut self.handles.copy_link)
+            && let Some(link) = &self.handles.shared_link
+        {
+            ctx.copy_text(link.clone());
+        }
         if std::mem::take(&mut self.forget_fields) {
             crate::gui::widgets::fields::forget_all(&ctx);
             ctx.request_repaint();
@@ -185,8 +194,10 @@ impl App {
         let title = self.title();
         if title != self.handles.title {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            crate::gui::chrome::web::set_page_title(&self.doc.scene.name);
             self.handles.title = title;
         }
+        crate::gui::chrome::web::publish_run(self.sim.time_s(), self.sim.steps());
         self.handles.fps.tick(
             self.sim.time_s(),
             self.time.is_playing(),
@@ -195,6 +206,7 @@ impl App {
         if self.handles.csv_job.is_some()
             || self.handles.frames_job.is_some()
             || self.handles.prepare_job.is_some()
+            || crate::gui::chrome::web::picking()
             || (!hidden && (self.time.is_playing() || self.time.pending_steps() > 0))
         {
             ctx.request_repaint();

@@ -103,7 +103,7 @@ pub fn confirm_window(
     let Some(d) = pending else { return };
     let what = match d {
         Discarding::New => "start a new scene",
-        Discarding::OpenPath(_) => "open another preset",
+        Discarding::OpenPath(_) | Discarding::Text { .. } => "open another preset",
         Discarding::Preset(_) => "open a shipped preset",
         Discarding::Guided(_) => "open a guided-tour preset",
         Discarding::Quit => "quit",

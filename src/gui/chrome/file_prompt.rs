@@ -31,7 +31,8 @@ pub enum FileAction {
 }
 
 impl FileAction {
-    fn title(self) -> &'static str {
+    /// The prompt's heading.
+    pub fn title(self) -> &'static str {
         match self {
             FileAction::Open => "Open a scene",
             FileAction::SaveAs => "Save the scene as",

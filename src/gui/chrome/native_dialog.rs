@@ -52,6 +52,7 @@ fn backend() -> Backend {
 }
 
 /// The desktop's dialog (rfd, through the xdg desktop portal).
+#[cfg(not(target_arch = "wasm32"))]
 fn rfd_dialog(r: &Request) -> Option<PathBuf> {
     let mut d = rfd::FileDialog::new();
     if let Some((name, ext)) = &r.filter {
@@ -68,6 +69,12 @@ fn rfd_dialog(r: &Request) -> Option<PathBuf> {
         Kind::Save => d.save_file(),
         Kind::Folder => d.pick_folder(),
     }
+}
+
+/// A page in the browser has no dialog that answers with a path.
+#[cfg(target_arch = "wasm32")]
+fn rfd_dialog(_: &Request) -> Option<PathBuf> {
+    None
 }
 
 /// The answer of a dialog still open (shared through egui's memory).
@@ -102,6 +109,11 @@ pub fn choose_button(
                 .request_repaint_after(std::time::Duration::from_millis(100));
         }
         return answer;
+    }
+    if super::web::IN_BROWSER {
+        ui.add_enabled(false, egui::Button::new("Choose…"))
+            .on_disabled_hover_text(super::web::BROWSER_LIMITS);
+        return None;
     }
     if ui
         .button("Choose…")

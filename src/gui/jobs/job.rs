@@ -69,6 +69,14 @@ impl<T: Send + 'static> Job<T> {
         progress.set_total(total);
         let (tx, rx) = channel();
         let p = progress.clone();
+        // a page in the browser has no threads: the work runs now, and the
+        // first poll picks up its result
+        #[cfg(target_arch = "wasm32")]
+        {
+            let _ = tx.send(work(&p));
+            return Ok(Job { name, progress, rx });
+        }
+        #[cfg(not(target_arch = "wasm32"))]
         std::thread::Builder::new()
             .name(format!("tirecontact-{name}"))
             .spawn(move || {
@@ -77,6 +85,7 @@ impl<T: Send + 'static> Job<T> {
                 let _ = tx.send(work(&p));
             })
             .map_err(|e| format!("cannot start the {name} thread: {e}"))?;
+        #[cfg(not(target_arch = "wasm32"))]
         Ok(Job { name, progress, rx })
     }
 }

@@ -60,6 +60,11 @@ pub enum Discarding {
     Quit,
     /// A guided-tour preset (index into `presets::GUIDED`).
     Guided(usize),
+    /// A preset's text read by the browser's picker, with its file name.
+    Text {
+        name: String,
+        text: String,
+    },
 }
 
 /// A user request.
@@ -83,6 +88,12 @@ pub enum Command {
     OpenDialog,
     /// Open a preset file, after confirmation if dirty.
     OpenPath(PathBuf),
+    /// Open a preset's text (read by the browser's picker, with its file
+    /// name), after confirmation if dirty.
+    OpenText {
+        name: String,
+        text: String,
+    },
     /// Open a shipped preset (index into `presets::SHIPPED`).
     OpenPreset(usize),
     /// Save to the current file (Save As if there is none).
@@ -98,6 +109,9 @@ pub enum Command {
     },
     ExportCsvDialog,
     ExportCsv(PathBuf),
+    /// Copy a link that carries the scene (and, in a browser, put it in
+    /// the page's address).
+    Share,
     /// The user confirmed dropping unsaved edits.
     ConfirmDiscard,
     CancelDiscard,

@@ -1,7 +1,7 @@
 //! Frame rate measured over one-second windows (logged to stderr when
 //! `TIRECONTACT_FPS_LOG` is set, for measurements under Xvfb).
 
-use std::time::Instant;
+use web_time::Instant;
 
 /// Frames per second measured over one-second windows.
 #[derive(Debug, Clone)]

@@ -77,5 +77,10 @@ pub fn show(ui: &mut Ui, cmds: &mut Vec<Command>) {
                 .small()
                 .weak(),
         );
+        if crate::gui::chrome::web::IN_BROWSER {
+            ui.separator();
+            ui.strong("In the browser");
+            ui.label(crate::gui::chrome::web::BROWSER_LIMITS);
+        }
     });
 }

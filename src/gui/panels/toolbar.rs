@@ -60,6 +60,17 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
                 cmds.push(Command::SaveAsDialog);
             }
             ui.separator();
+            if ui
+                .button("Share link")
+                .on_hover_text(
+                    "copies a link that opens this scene in the visualiser's web page \
+                     (a measured tyre or road cannot travel in a link)",
+                )
+                .clicked()
+            {
+                cmds.push(Command::Share);
+            }
+            ui.separator();
             if ui.button("Quit").clicked() {
                 cmds.push(Command::Quit);
             }

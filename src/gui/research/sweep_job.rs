@@ -17,7 +17,7 @@ pub struct SweepJob {
     pub threads: usize,
     pub runs: usize,
     job: Job<Result<Vec<SweepPoint>, SweepError>>,
-    started: std::time::Instant,
+    started: web_time::Instant,
     scene_name: String,
     num_points: usize,
 }
@@ -57,7 +57,7 @@ impl SweepJob {
             threads,
             runs,
             job,
-            started: std::time::Instant::now(),
+            started: web_time::Instant::now(),
         })
     }
 

@@ -9,7 +9,7 @@ use crate::Scene;
 use crate::identify::{ModeCache, PreparedModel};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::time::Instant;
+use web_time::Instant;
 
 /// What the threads' time went to: the runs' parts summed, and the threads'
 /// whole time (s), the difference being the callers' own work per run
@@ -36,27 +36,35 @@ pub fn run_each(
 ) -> PoolTiming {
     let next = AtomicUsize::new(0);
     let total = Mutex::new(PoolTiming::default());
-    std::thread::scope(|scope| {
-        for _ in 0..threads.clamp(1, n.max(1)) {
-            scope.spawn(|| {
-                let mut mine = RunTiming::default();
-                let busy = Instant::now();
-                loop {
-                    let k = next.fetch_add(1, Ordering::Relaxed);
-                    if k >= n || cancel.load(Ordering::Relaxed) {
-                        break;
-                    }
-                    let t0 = Instant::now();
-                    let model = scene(k).and_then(|s| Ok(PreparedModel::new(&s, cache)?));
-                    mine.setup_s += t0.elapsed().as_secs_f64();
-                    let r = model.and_then(|m| run_summary_timed(&m, on_steps, cancel, &mut mine));
-                    on_done(k, r);
-                }
-                let mut t = total.lock().unwrap_or_else(|e| e.into_inner());
-                t.runs.add(&mine);
-                t.busy_s += busy.elapsed().as_secs_f64();
-            });
+    let workers = threads.clamp(1, n.max(1));
+    let work = || {
+        let mut mine = RunTiming::default();
+        let busy = Instant::now();
+        loop {
+            let k = next.fetch_add(1, Ordering::Relaxed);
+            if k >= n || cancel.load(Ordering::Relaxed) {
+                break;
+            }
+            let t0 = Instant::now();
+            let model = scene(k).and_then(|s| Ok(PreparedModel::new(&s, cache)?));
+            mine.setup_s += t0.elapsed().as_secs_f64();
+            let r = model.and_then(|m| run_summary_timed(&m, on_steps, cancel, &mut mine));
+            on_done(k, r);
         }
-    });
+        let mut t = total.lock().unwrap_or_else(|e| e.into_inner());
+        t.runs.add(&mine);
+        t.busy_s += busy.elapsed().as_secs_f64();
+    };
+    // one worker runs on the caller's thread (a page in the browser has
+    // no other)
+    if workers == 1 {
+        work();
+    } else {
+        std::thread::scope(|scope| {
+            for _ in 0..workers {
+                scope.spawn(work);
+            }
+        });
+    }
     total.into_inner().unwrap_or_else(|e| e.into_inner())
 }
