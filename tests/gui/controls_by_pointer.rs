@@ -210,7 +210,8 @@ fn a_refused_mode_value_names_what_was_typed_and_what_is_expected_in_place() {
         // the banner names the field, the value typed and what is expected
         let m = h.state().message().expect("a refusal message").clone();
         assert!(m.error);
-        assert!(m.text.starts_with(field), "{}", m.text);
+        // by its label, then its path
+        assert!(m.text.contains(&format!("({field}):")), "{}", m.text);
         for s in says {
             assert!(
                 m.text.contains(s),

@@ -96,7 +96,10 @@ impl App {
     /// one shown, leaves the banner.
     pub(super) fn field_restored(&mut self, name: &str) {
         if let Some(t) = &self.field_refusal
-            && t.starts_with(&format!("{name}:"))
+            && t.starts_with(&format!(
+                "{}:",
+                crate::gui::widgets::fields::banner_name(name)
+            ))
         {
             if self.message.as_ref().is_some_and(|m| m.text == *t) {
                 self.message = None;

@@ -296,20 +296,6 @@ pub fn parse_number(text: &str) -> Result<f64, String> {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn numbers_parse_as_typed() {
-        assert_eq!(parse_number(" 1,5 "), Ok(1.5));
-        assert_eq!(parse_number("2e-3"), Ok(2e-3));
-        assert!(parse_number("abc").is_err());
-        assert!(parse_number("").is_err());
-        assert!(parse_number("inf").is_err());
-    }
-}
-
 /// A field as the banner names it: its label in the editor, then its
 /// preset path (`road amplitude a (road.amplitude_m)`); the path alone for
 /// a field without such a label.
@@ -323,5 +309,19 @@ pub fn banner_name(name: &str) -> String {
         name.to_string()
     } else {
         format!("{label} ({name})")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_parse_as_typed() {
+        assert_eq!(parse_number(" 1,5 "), Ok(1.5));
+        assert_eq!(parse_number("2e-3"), Ok(2e-3));
+        assert!(parse_number("abc").is_err());
+        assert!(parse_number("").is_err());
+        assert!(parse_number("inf").is_err());
     }
 }
