@@ -172,10 +172,10 @@ fn points_bear_on_their_own_row_of_a_surface_and_outside_it_are_refused() {
         spacing_m: (0.01, 0.24),
         preload: Preload::Flat { depth_m: 0.0005 },
     });
-    let e = PreparedModel::of(&scene)
-        .err()
-        .expect("refused")
-        .to_string();
+    let Err(e) = PreparedModel::of(&scene) else {
+        panic!("a point outside the grid was accepted");
+    };
+    let e = e.to_string();
     assert!(
         e.contains("points[2].y_m = 0.12") && e.contains("-0.1 m to 0.1 m"),
         "{e}"
