@@ -129,5 +129,9 @@ fn headless_default() -> cli::CliResult {
         frame_size: (1280, 720),
         exact_rank: false,
         threads: 1,
+        patch_summary: None,
+        patch_every: 1,
+        patch_frames: None,
+        patch_frame_count: 40,
     })
 }
