@@ -29,3 +29,62 @@ fn identify_figures_clip_by_default_and_draw_whole_on_request() {
     // the spikes are cut in one
     assert_ne!(fig2[0], fig2[1]);
 }
+
+/// `identify --data` of a UFF file takes its points from the file's nodes
+/// and its band from --band-hz, and prints ξ to 6 significant digits; a
+/// CSV file without --points is refused, saying why.
+#[test]
+fn identify_data_takes_points_from_the_file_and_the_band_from_the_flag() {
+    let out = bin()
+        .args([
+            "identify",
+            "--data",
+            "tests/data/uff/time3.uff",
+            "--band-hz",
+            "0",
+            "450",
+        ])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // MODEL3: 52 Hz at ξ = 0.03, 131 Hz at 0.02, 247 Hz at 0.04
+    for (f, xi) in [
+        ("52.00", "xi 0.0300"),
+        ("131.00", "xi 0.0200"),
+        ("247.00", "xi 0.0400"),
+    ] {
+        let line = text
+            .lines()
+            .find(|l| l.contains(f) && l.contains(" Hz "))
+            .unwrap_or_else(|| panic!("{f} Hz in {text}"));
+        let digits = line
+            .split("xi ")
+            .nth(1)
+            .unwrap()
+            .split_whitespace()
+            .next()
+            .unwrap();
+        assert!(line.contains(xi) && digits.len() == 9, "{line}");
+    }
+    assert!(
+        text.contains("nodes [101, 102, 103] as points 0..3"),
+        "{text}"
+    );
+    let dir = temp_dir();
+    let csv = dir.path().join("g.csv");
+    std::fs::write(&csv, "t_s,g0_0\n0,0\n0.001,1\n").unwrap();
+    let out = bin()
+        .args(["identify", "--data", csv.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("expected --points N"),
+        "{err}"
+    );
+}
