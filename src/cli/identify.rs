@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tirecontact::base::fsio::write_atomic;
-use tirecontact::identify::{TyreIdentification, identify_tyre};
+use tirecontact::identify::{TyreIdentification, driving, identify_tyre};
 use tirecontact::model::lsce::{Identification, Stability};
 use tirecontact::model::measured::impulse_csv;
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
@@ -166,14 +166,33 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
         }
     };
     print!("{}", summary(&scene, &id));
+    // the driving-point check (measured tyres): a model only from data
+    // whose driving-point residues are all positive
+    let mut refused = None;
+    if let Tyre::Measured { .. } = &scene.tyre {
+        let names = point_names(&scene);
+        for (i, (name, node)) in names.iter().enumerate() {
+            let d = driving::check(&id.identification.modes, &id.identification.stable, i);
+            let line = driving::describe(&d, name, *node);
+            println!("  {line}");
+            if d != driving::DrivingPoint::Positive && refused.is_none() {
+                refused = Some(line);
+            }
+        }
+    }
     let mut modal = scene.clone();
     modal.tyre = Tyre::Modal {
         modes: id.identification.modes.clone(),
     };
     modal.name = format!("{} (identified)", scene.name);
+    let mut deferred = None;
     if let Some(out) = &args.output {
-        modal.save(out)?;
-        println!("wrote {}", out.display());
+        if let Some(why) = &refused {
+            deferred = Some(format!("-o {}: not written: {why}", out.display()));
+        } else {
+            modal.save(out)?;
+            println!("wrote {}", out.display());
+        }
     }
     if let Some(path) = &args.diagram {
         render_png(&diagram_figure(&scene, &id.identification), path, 1200, 900)?;
@@ -190,7 +209,58 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
             .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
         run_figures(&modal, dir, &stem, !args.figures_unclipped)?;
     }
-    Ok(())
+    match deferred {
+        Some(e) => Err(e.into()),
+        None => Ok(()),
+    }
+}
+
+/// The measured scene's points as messages name them, `point 0 (node
+/// 101 +Z)`, with their node numbers (the point's index when the file does
+/// not name nodes).
+fn point_names(scene: &Scene) -> Vec<(String, i64)> {
+    let p = scene.num_points();
+    let plain = || (0..p).map(|i| (format!("point {i}"), i as i64)).collect();
+    let Tyre::Measured { file, nodes, .. } = &scene.tyre else {
+        return plain();
+    };
+    let path = scene
+        .base_dir
+        .as_ref()
+        .map_or(file.clone(), |b| b.join(file));
+    let Some(recs) = std::fs::read(&path)
+        .ok()
+        .and_then(|b| tirecontact::model::measured::uff::records(&b).ok())
+    else {
+        return plain();
+    };
+    let mut all: Vec<i64> = recs
+        .iter()
+        .filter(|r| matches!(r.function_type, 1 | 4))
+        .flat_map(|r| [r.response_node, r.reference_node])
+        .collect();
+    all.sort_unstable();
+    all.dedup();
+    let map = if nodes.is_empty() { all } else { nodes.clone() };
+    if map.len() != p {
+        return plain();
+    }
+    map.iter()
+        .enumerate()
+        .map(|(i, &n)| {
+            let dir = recs
+                .iter()
+                .find(|r| r.response_node == n && r.reference_node == n)
+                .map_or(0, |r| r.response_direction);
+            (
+                format!(
+                    "point {i} ({})",
+                    tirecontact::model::measured::uff::dof(n, dir)
+                ),
+                n,
+            )
+        })
+        .collect()
 }
 
 fn summary(scene: &Scene, id: &TyreIdentification) -> String {
