@@ -34,7 +34,8 @@
 //! exports).
 //!
 //! Units: a record's units labels (`m`, `mm/s`, `g`, `m/s^2`, `N`, `lbf`,
-//! …) give the factor to SI when they are set; a label that cannot be
+//! …, products and quotients read left to right as in `(1/N)*(m/s²)`)
+//! give the factor to SI when they are set; a label that cannot be
 //! read is refused, naming it. Labels left blank or `NONE` take the
 //! factors of dataset 164 (record 2: length, force and temperature
 //! factors, file units = SI × factor) when the file has one, and SI
@@ -413,9 +414,9 @@ fn header(head: &[&str], at: &str) -> Result<Header, ParseError> {
         abscissa_min,
         abscissa_step,
         numerator,
-        numerator_units: field(head[8], 42, 62),
+        numerator_units: field(head[8], 47, 67),
         denominator,
-        denominator_units: field(head[9], 42, 62),
+        denominator_units: field(head[9], 47, 67),
         id1: head[0].trim_end().to_string(),
     })
 }
@@ -642,8 +643,21 @@ fn units_label(label: &str) -> Option<Result<Dim, String>> {
         f: 0,
         to_si: 1.0,
     };
-    for (k, tok) in s.split('/').enumerate() {
-        let sign = if k == 0 { 1 } else { -1 };
+    // `a/b*c` read left to right: `(a/b)·c`
+    let mut toks = Vec::new();
+    let mut sign = 1;
+    let mut cur = String::new();
+    for ch in s.chars() {
+        if ch == '/' || ch == '*' {
+            toks.push((sign, std::mem::take(&mut cur)));
+            sign = if ch == '/' { -1 } else { 1 };
+        } else {
+            cur.push(ch);
+        }
+    }
+    toks.push((sign, cur));
+    for (k, (sign, tok)) in toks.iter().enumerate() {
+        let (sign, tok) = (*sign, tok.as_str());
         let (base, exp) = match tok.split_once('^') {
             Some((b, e)) => (b, e.parse::<i32>().ok()),
             None => {
@@ -672,7 +686,7 @@ fn units_label(label: &str) -> Option<Result<Dim, String>> {
             "kN" => (0, 0, 1, 1e3),
             "lbf" | "lb" => (0, 0, 1, 4.448_221_615_260_5),
             "g" | "G" => (1, -2, 0, 9.806_65),
-            "" if k == 0 => (0, 0, 0, 1.0), // `1/s`
+            "" | "1" if k == 0 => (0, 0, 0, 1.0), // `1/s`
             _ => {
                 return Some(Err(format!(
                     "`{label}`: unit `{base}` not known (m, mm, cm, µm, in, ft, s, ms, N, kN, lbf, g)"
@@ -730,6 +744,12 @@ impl Record58 {
             };
             let sign = if what == "numerator" { 1 } else { -1 };
             let to_si = match units_label(label) {
+                Some(Ok(d)) if what == "numerator" && (d.l, d.t, d.f) == (l, t, f - 1) => {
+                    // the whole ratio in the numerator's label
+                    how.push(format!("{what} `{label}` (over force)"));
+                    factor *= d.to_si;
+                    break;
+                }
                 Some(Ok(d)) => {
                     if (d.l, d.t, d.f) != (l, t, f) {
                         return Err((
@@ -1335,6 +1355,8 @@ mod tests {
             (11, ("in/s", "N"), 0.0254),
             (8, ("mm", "kN"), 1e-6),
             (8, ("NONE", "NONE"), 1.0),
+            // a label that fills its 20 columns, as LMS exports write it
+            (12, ("(1/N)*(mm/s²)", "NONE"), 1e-3),
         ] {
             let (f, how) = one(rec(num, units)).si_factor(None).unwrap();
             assert!(
