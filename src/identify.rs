@@ -15,6 +15,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use web_time::Instant;
 
+pub mod driving;
 pub mod workbench;
 
 /// An identification of a ring tyre, with what produced it.

@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tirecontact::base::fsio::write_atomic;
-use tirecontact::identify::{TyreIdentification, identify_tyre};
+use tirecontact::identify::{TyreIdentification, driving, identify_tyre};
 use tirecontact::model::lsce::{Identification, Stability};
 use tirecontact::model::measured::impulse_csv;
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
@@ -28,12 +28,16 @@ pub struct IdentifyArgs {
     pub preset: Option<PathBuf>,
     /// A data file of tyre responses to identify without a preset (UFF 58,
     /// CSV impulse responses or CSV FRFs; see docs/presets.md), with
-    /// --points; the default identification options.
-    #[arg(long, requires = "points")]
+    /// --points (a UFF file's nodes, in increasing order, when omitted);
+    /// the default identification options but --band-hz.
+    #[arg(long)]
     pub data: Option<PathBuf>,
-    /// Number of points in --data's file.
+    /// Number of points in --data's file (required for CSV).
     #[arg(long, requires = "data")]
     pub points: Option<usize>,
+    /// Identification band of --data (Hz): `LO HI` (default 0 500).
+    #[arg(long, requires = "data", num_args = 2, value_names = ["LO", "HI"])]
+    pub band_hz: Option<Vec<f64>>,
     /// Write the identified modal scene (`tyre: Modal(...)`, loadable by `run`).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
@@ -58,7 +62,11 @@ pub struct IdentifyArgs {
 /// The scene to identify: the preset, or a scene of `--data`'s points
 /// (25 mm apart, on the default preset's road).
 fn scene_of(args: &IdentifyArgs) -> Result<(Scene, PathBuf), Box<dyn std::error::Error>> {
-    if let (Some(data), Some(p)) = (&args.data, args.points) {
+    if let Some(data) = &args.data {
+        let p = match args.points {
+            Some(p) => p,
+            None => uff_nodes(data)?,
+        };
         if !(1..=tirecontact::model::measured::MAX_POINTS).contains(&p) {
             return Err(format!(
                 "--points {p}: expected 1 to {} points",
@@ -84,9 +92,13 @@ fn scene_of(args: &IdentifyArgs) -> Result<(Scene, PathBuf), Box<dyn std::error:
                 h_m: -0.003,
             })
             .collect();
+        let mut identification = tirecontact::model::lsce::IdentifyOptions::default();
+        if let Some(b) = &args.band_hz {
+            identification.band_hz = (b[0], b[1]);
+        }
         scene.tyre = Tyre::Measured {
             file: data.clone(),
-            identification: Default::default(),
+            identification,
             nodes: Vec::new(),
         };
         scene.base_dir = None;
@@ -94,6 +106,36 @@ fn scene_of(args: &IdentifyArgs) -> Result<(Scene, PathBuf), Box<dyn std::error:
     }
     let preset = args.preset.clone().unwrap_or_default();
     Ok((load_scene(Some(&preset))?, preset))
+}
+
+/// The number of distinct nodes of a UFF file's usable records (`--points`
+/// when omitted); CSV files need `--points`.
+fn uff_nodes(data: &Path) -> Result<usize, Box<dyn std::error::Error>> {
+    let ext = data
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    if ext != "uff" && ext != "unv" {
+        return Err(format!(
+            "--data {}: a CSV file: expected --points N (a UFF file names its nodes)",
+            data.display()
+        )
+        .into());
+    }
+    let bytes = std::fs::read(data).map_err(|e| format!("{}: {e}", data.display()))?;
+    let (series, _) = tirecontact::model::measured::uff::parse(&bytes, None)
+        .map_err(|(at, m)| format!("{}: {at}{m}", data.display()))?;
+    Ok(series.keys().map(|&(i, j)| i.max(j) + 1).max().unwrap_or(0))
+}
+
+/// `x` to 6 significant digits in fixed notation (ξ of lightly damped
+/// tests: 0.000212345).
+fn sig6(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let decimals = (5 - x.abs().log10().floor() as i32).max(0) as usize;
+    format!("{x:.decimals$}")
 }
 
 pub fn identify(args: &IdentifyArgs) -> CliResult {
@@ -124,14 +166,33 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
         }
     };
     print!("{}", summary(&scene, &id));
+    // the driving-point check (measured tyres): a model only from data
+    // whose driving-point residues are all positive
+    let mut refused = None;
+    if let Tyre::Measured { .. } = &scene.tyre {
+        let names = point_names(&scene);
+        for (i, (name, node)) in names.iter().enumerate() {
+            let d = driving::check(&id.identification.modes, &id.identification.stable, i);
+            let line = driving::describe(&d, name, *node);
+            println!("  {line}");
+            if d != driving::DrivingPoint::Positive && refused.is_none() {
+                refused = Some(line);
+            }
+        }
+    }
     let mut modal = scene.clone();
     modal.tyre = Tyre::Modal {
         modes: id.identification.modes.clone(),
     };
     modal.name = format!("{} (identified)", scene.name);
+    let mut deferred = None;
     if let Some(out) = &args.output {
-        modal.save(out)?;
-        println!("wrote {}", out.display());
+        if let Some(why) = &refused {
+            deferred = Some(format!("-o {}: not written: {why}", out.display()));
+        } else {
+            modal.save(out)?;
+            println!("wrote {}", out.display());
+        }
     }
     if let Some(path) = &args.diagram {
         render_png(&diagram_figure(&scene, &id.identification), path, 1200, 900)?;
@@ -148,7 +209,58 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
             .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
         run_figures(&modal, dir, &stem, !args.figures_unclipped)?;
     }
-    Ok(())
+    match deferred {
+        Some(e) => Err(e.into()),
+        None => Ok(()),
+    }
+}
+
+/// The measured scene's points as messages name them, `point 0 (node
+/// 101 +Z)`, with their node numbers (the point's index when the file does
+/// not name nodes).
+fn point_names(scene: &Scene) -> Vec<(String, i64)> {
+    let p = scene.num_points();
+    let plain = || (0..p).map(|i| (format!("point {i}"), i as i64)).collect();
+    let Tyre::Measured { file, nodes, .. } = &scene.tyre else {
+        return plain();
+    };
+    let path = scene
+        .base_dir
+        .as_ref()
+        .map_or(file.clone(), |b| b.join(file));
+    let Some(recs) = std::fs::read(&path)
+        .ok()
+        .and_then(|b| tirecontact::model::measured::uff::records(&b).ok())
+    else {
+        return plain();
+    };
+    let mut all: Vec<i64> = recs
+        .iter()
+        .filter(|r| matches!(r.function_type, 1 | 4))
+        .flat_map(|r| [r.response_node, r.reference_node])
+        .collect();
+    all.sort_unstable();
+    all.dedup();
+    let map = if nodes.is_empty() { all } else { nodes.clone() };
+    if map.len() != p {
+        return plain();
+    }
+    map.iter()
+        .enumerate()
+        .map(|(i, &n)| {
+            let dir = recs
+                .iter()
+                .find(|r| r.response_node == n && r.reference_node == n)
+                .map_or(0, |r| r.response_direction);
+            (
+                format!(
+                    "point {i} ({})",
+                    tirecontact::model::measured::uff::dof(n, dir)
+                ),
+                n,
+            )
+        })
+        .collect()
 }
 
 fn summary(scene: &Scene, id: &TyreIdentification) -> String {
@@ -177,9 +289,9 @@ fn summary(scene: &Scene, id: &TyreIdentification) -> String {
     for (k, m) in ident.modes.iter().enumerate() {
         let _ = writeln!(
             s,
-            "  mode {k:2}: {:8.2} Hz  xi {:.4}  {}  discarded cos part {:.2e}",
+            "  mode {k:2}: {:8.2} Hz  xi {}  {}  discarded cos part {:.2e}",
             m.freq_hz,
-            m.damping_ratio,
+            sig6(m.damping_ratio),
             if ident.stable[k] {
                 "stable  "
             } else {

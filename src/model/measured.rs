@@ -6,8 +6,10 @@
 //! - CSV impulse responses `t_s, g{i}_{j}` (m/(N·s)): what
 //!   `tirecontact identify --responses` writes;
 //! - CSV receptances `freq_hz, h{i}_{j}_re, h{i}_{j}_im` (m/N);
-//! - UFF 58 (`.uff`, `.unv`; see [`uff`]): time responses (function type 1)
-//!   or FRFs (4), displacement, velocity or acceleration over force.
+//! - UFF 58 (`.uff`, `.unv`; see [`uff`]), ASCII or binary: impulse
+//!   responses (function type 1 over force) or FRFs (4), displacement,
+//!   velocity or acceleration over force, in the units its labels or
+//!   dataset 164 give.
 //!
 //! An FRF `H(f)` sampled at `f_k = k Δf`, `k = 0 … K` becomes the impulse
 //! response `g(t_n) = Δf Σ_{k=−K}^{K} H(f_k) e^{2πi f_k t_n}` (`H(−f) =
@@ -162,17 +164,22 @@ pub fn read(path: &Path, nodes: Option<&[i64]>, num_points: usize) -> Result<Mea
         at,
         message,
     };
-    let text = read_text(path).map_err(|source| DataError::Read {
-        file: file.clone(),
-        source,
-    })?;
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    let (series, format) = if ext == "uff" || ext == "unv" {
-        uff::parse(&text, nodes).map_err(fail)?
+    let uff = ext == "uff" || ext == "unv";
+    let bytes = read_bytes(path, !uff).map_err(|source| DataError::Read {
+        file: file.clone(),
+        source,
+    })?;
+    let (series, format) = if uff {
+        uff::parse(&bytes, nodes).map_err(fail)?
     } else {
+        let text = String::from_utf8(bytes).map_err(|e| DataError::Read {
+            file: file.clone(),
+            source: ReadError::NotUtf8(e.utf8_error()),
+        })?;
         if nodes.is_some() {
             return Err(DataError::NodesOfCsv { file });
         }
@@ -181,9 +188,10 @@ pub fn read(path: &Path, nodes: Option<&[i64]>, num_points: usize) -> Result<Mea
     assemble(series, num_points, format).map_err(|source| DataError::Responses { file, source })
 }
 
-/// The file's text, refused when it is not a regular file, too large, has
-/// a line longer than [`MAX_LINE_BYTES`] or is not UTF-8.
-fn read_text(path: &Path) -> Result<String, ReadError> {
+/// The file's bytes, refused when it is not a regular file, too large or
+/// (`text`) has a line longer than [`MAX_LINE_BYTES`]. A UFF file may
+/// hold binary values (58b), whose bytes are not lines.
+fn read_bytes(path: &Path, text: bool) -> Result<Vec<u8>, ReadError> {
     let f = open_regular(path).map_err(|e| ReadError::Open(e.into()))?;
     if f.metadata()
         .map_err(|e| ReadError::Metadata(e.into()))?
@@ -193,16 +201,19 @@ fn read_text(path: &Path) -> Result<String, ReadError> {
         return Err(ReadError::TooLarge);
     }
     let mut bytes = Vec::new();
-    LineCap::new(f.take(MAX_DATA_BYTES + 1), MAX_LINE_BYTES)
-        .read_to_end(&mut bytes)
-        .map_err(|e| ReadError::Lines(e.into()))?;
+    if text {
+        LineCap::new(f.take(MAX_DATA_BYTES + 1), MAX_LINE_BYTES).read_to_end(&mut bytes)
+    } else {
+        f.take(MAX_DATA_BYTES + 1).read_to_end(&mut bytes)
+    }
+    .map_err(|e| ReadError::Lines(e.into()))?;
     if bytes.len() as u64 > MAX_DATA_BYTES {
         return Err(ReadError::Grown);
     }
     if bytes.is_empty() {
         return Err(ReadError::Empty);
     }
-    String::from_utf8(bytes).map_err(|e| ReadError::NotUtf8(e.utf8_error()))
+    Ok(bytes)
 }
 
 /// What a CSV column holds.

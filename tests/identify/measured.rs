@@ -163,8 +163,8 @@ fn model3() -> (Vec<Mode>, ModalModel) {
 #[test]
 fn uff_files_written_by_pyuff_are_read_to_round_off() {
     let (_, m) = model3();
-    let text = std::fs::read_to_string("tests/data/uff/frf3.uff").unwrap();
-    let recs = tirecontact::model::measured::uff::records(&text).unwrap();
+    let bytes = std::fs::read("tests/data/uff/frf3.uff").unwrap();
+    let recs = tirecontact::model::measured::uff::records(&bytes).unwrap();
     assert_eq!(recs.len(), 9);
     let mut worst: f64 = 0.0;
     let mut scale: f64 = 0.0;
@@ -396,4 +396,51 @@ fn identification_under_noise_stays_within_the_documented_bounds() {
         }
     }
     assert!(failed.is_empty(), "{failed:?}");
+}
+
+/// A binary 58b row written by pyuff (`scripts/uff_binary_fixture.py`:
+/// accelerance in g/N of MODEL3's response node 101 to nodes 101–103, a
+/// dataset 164, the driving point's coherence) reads to MODEL3's
+/// accelerances to round-off, the factor g reported.
+#[test]
+fn binary_58b_row_in_g_per_newton_written_by_pyuff_is_read_in_si() {
+    use tirecontact::model::measured::uff;
+    let (_, m) = model3();
+    let bytes = std::fs::read("tests/data/uff/row3_58b.uff").unwrap();
+    let file = uff::read(&bytes).unwrap();
+    assert_eq!(file.records.len(), 4);
+    assert!(file.records.iter().all(|r| r.binary));
+    let units = file.units.clone().expect("dataset 164");
+    assert_eq!((units.length, units.force), (1.0, 1.0));
+    let (mut worst, mut scale): (f64, f64) = (0.0, 0.0);
+    for r in &file.records[..3] {
+        assert_eq!(
+            (r.function_type, r.numerator, r.response_node),
+            (4, 12, 101)
+        );
+        let (factor, how) = r.si_factor(Some(&units)).unwrap();
+        assert!((factor - 9.806_65).abs() < 1e-12, "{factor} {how}");
+        let j = (r.reference_node - 101) as usize;
+        for (k, (re, im)) in r.re.iter().zip(&r.im).enumerate() {
+            let f_hz = r.abscissa_min + k as f64 * r.abscissa_step;
+            let w = std::f64::consts::TAU * f_hz;
+            let h = m.frequency_response(0, j, f_hz);
+            let (a_re, a_im) = (-w * w * h.re, -w * w * h.im);
+            worst = worst.max((re * factor - a_re).abs().max((im * factor - a_im).abs()));
+            scale = scale.max(a_re.hypot(a_im));
+        }
+    }
+    assert!(worst <= 1e-12 * scale, "worst {worst:e} of {scale:e}");
+    assert_eq!(file.records[3].function_type, 6);
+    let (_, notes) = uff::parse(&bytes, None).unwrap();
+    assert!(
+        notes.iter().any(|n| n.contains("coherence min 0.990")),
+        "{notes:?}"
+    );
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("9.806650e0") && n.contains("`g`")),
+        "{notes:?}"
+    );
 }
