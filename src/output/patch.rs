@@ -272,11 +272,31 @@ pub fn render_heat_map(
     path: &Path,
     (width, height): (u32, u32),
 ) -> Result<(), PatchError> {
-    register_fonts();
     let err = |e: &dyn std::fmt::Display| FigureError::Draw {
         path: path.display().to_string(),
         message: e.to_string(),
     };
+    #[cfg(target_arch = "wasm32")]
+    return {
+        let _ = (layout, forces, max_n, title, width, height);
+        Err(err(&"a page in the browser writes no files").into())
+    };
+    #[cfg(not(target_arch = "wasm32"))]
+    draw_heat_map(layout, forces, max_n, title, path, (width, height)).map_err(|e| err(&e).into())
+}
+
+/// [`render_heat_map`]'s drawing (plotters' file backend).
+#[cfg(not(target_arch = "wasm32"))]
+fn draw_heat_map(
+    layout: &PatchLayout,
+    forces: &[f64],
+    max_n: f64,
+    title: &str,
+    path: &Path,
+    (width, height): (u32, u32),
+) -> Result<(), Box<dyn std::error::Error>> {
+    register_fonts();
+    let err = |e: &dyn std::fmt::Display| -> Box<dyn std::error::Error> { e.to_string().into() };
     let (dx, dy) = layout.cell_m;
     let mm = 1e3;
     let (mut x0, mut x1, mut y0, mut y1) = (

@@ -1,7 +1,7 @@
 //! Share: the current scene as a link (`scene::share`), copied to the
 //! clipboard; in a browser the page's address takes it too. A link opened
 //! at start (the page's fragment) comes before the saved session. Beside
-//! `scene=`, the fragment may hold `view=K` (the view of key K, 1 to 8,
+//! `scene=`, the fragment may hold `view=K` (the view of key K, 1 to 9,
 //! which Share writes) and `speed=F` (a real-time factor, or `max`).
 
 use super::*;
@@ -161,7 +161,7 @@ mod tests {
         let opened = App::open_link(&format!("{link}&view=2&speed=max"), None);
         assert_eq!(opened.view(), View::Scene);
         assert_eq!(opened.time_control().speed(), Speed::Max);
-        let opened = App::open_link(&format!("{link}&view=9&speed=-1"), None);
+        let opened = App::open_link(&format!("{link}&view=10&speed=-1"), None);
         assert_eq!(opened.view(), View::TimePlots);
         assert_eq!(opened.time_control().speed(), Speed::watchable(0.2));
         let opened = App::open_link(&format!("{link}&speed=0.5"), None);
