@@ -152,11 +152,6 @@ impl Road {
         }
     }
 
-    /// Whether the road varies across the tread (`z(x, y)`).
-    pub fn varies_across(&self) -> bool {
-        matches!(self, Road::Surface { .. } | Road::Texture { .. })
-    }
-
     /// Field errors of a texture (`at` prefixes the field names); empty for
     /// other roads and valid textures.
     pub fn texture_errors(&self, at: &str) -> Vec<FieldError> {
@@ -171,50 +166,29 @@ impl Road {
             return Vec::new();
         };
         let mut e = Vec::new();
-        let push = |e: &mut Vec<FieldError>, field: &str, value: f64, expected: String| {
-            e.push(FieldError {
-                field: format!("{at}.{field}"),
-                value: crate::base::error::fmt_num(value),
-                expected,
-            })
-        };
-        let ok = |x: f64| x.is_finite() && x > 0.0;
-        if !ok(length_m) {
-            push(
+        if !positive(length_m) {
+            push_field(
                 &mut e,
+                at,
                 "length_m",
                 length_m,
                 "a period along the road > 0 m".into(),
             );
         }
-        if !ok(width_m) {
-            push(
+        if !positive(width_m) {
+            push_field(
                 &mut e,
+                at,
                 "width_m",
                 width_m,
                 "a period across the road > 0 m".into(),
             );
         }
-        if !ok(lo) {
-            push(
-                &mut e,
-                "min_wavenumber_cpm",
-                lo,
-                "a spatial frequency > 0 cycles/m".into(),
-            );
-        }
-        if !ok(hi) || (ok(lo) && hi < lo) {
-            push(
-                &mut e,
-                "max_wavenumber_cpm",
-                hi,
-                format!("a spatial frequency >= min_wavenumber_cpm = {lo} cycles/m"),
-            );
-        }
+        band_errors(&mut e, at, lo, hi);
         if e.is_empty()
             && let Some(msg) = texture::grid_error(length_m, width_m, hi)
         {
-            push(&mut e, "max_wavenumber_cpm", hi, msg);
+            push_field(&mut e, at, "max_wavenumber_cpm", hi, msg);
         }
         e
     }
@@ -232,38 +206,22 @@ impl Road {
             return Vec::new();
         };
         let mut e = Vec::new();
-        let push = |e: &mut Vec<FieldError>, field: &str, value: f64, expected: String| {
-            e.push(FieldError {
-                field: format!("{at}.{field}"),
-                value: crate::base::error::fmt_num(value),
-                expected,
-            })
-        };
-        let ok = |x: f64| x.is_finite() && x > 0.0;
-        if !ok(length_m) {
-            push(&mut e, "length_m", length_m, "a loop length > 0 m".into());
-        }
-        if !ok(lo) {
-            push(
+        if !positive(length_m) {
+            push_field(
                 &mut e,
-                "min_wavenumber_cpm",
-                lo,
-                "a spatial frequency > 0 cycles/m".into(),
+                at,
+                "length_m",
+                length_m,
+                "a loop length > 0 m".into(),
             );
         }
-        if !ok(hi) || (ok(lo) && hi < lo) {
-            push(
-                &mut e,
-                "max_wavenumber_cpm",
-                hi,
-                format!("a spatial frequency >= min_wavenumber_cpm = {lo} cycles/m"),
-            );
-        }
+        band_errors(&mut e, at, lo, hi);
         if e.is_empty() {
             let grid = random::grid_points(length_m, hi);
             if grid > random::MAX_GRID_POINTS as f64 {
-                push(
+                push_field(
                     &mut e,
+                    at,
                     "length_m",
                     length_m,
                     format!(
@@ -274,8 +232,9 @@ impl Road {
                     ),
                 );
             } else if random::harmonic_range(length_m, lo, hi).is_empty() {
-                push(
+                push_field(
                     &mut e,
+                    at,
                     "max_wavenumber_cpm",
                     hi,
                     format!(
@@ -286,6 +245,89 @@ impl Road {
         }
         e
     }
+}
+
+/// Finite and > 0.
+fn positive(x: f64) -> bool {
+    x.is_finite() && x > 0.0
+}
+
+/// Adds the error of field `at.field` (its value `value`).
+fn push_field(e: &mut Vec<FieldError>, at: &str, field: &str, value: f64, expected: String) {
+    e.push(FieldError {
+        field: format!("{at}.{field}"),
+        value: crate::base::error::fmt_num(value),
+        expected,
+    });
+}
+
+/// The errors of a band of spatial frequencies `[lo, hi]` (cycles/m):
+/// both > 0, `hi >= lo`.
+fn band_errors(e: &mut Vec<FieldError>, at: &str, lo: f64, hi: f64) {
+    if !positive(lo) {
+        push_field(
+            e,
+            at,
+            "min_wavenumber_cpm",
+            lo,
+            "a spatial frequency > 0 cycles/m".into(),
+        );
+    }
+    if !positive(hi) || (positive(lo) && hi < lo) {
+        push_field(
+            e,
+            at,
+            "max_wavenumber_cpm",
+            hi,
+            format!("a spatial frequency >= min_wavenumber_cpm = {lo} cycles/m"),
+        );
+    }
+}
+
+/// Opens a road file for reading as CSV: a regular file (a named pipe
+/// would block, a device never end) of at most `max_bytes` (checked before
+/// reading, `limit` saying what that holds), read through a cap one byte
+/// past it and lines of at most [`MAX_LINE_BYTES`]; `rows` names the rows
+/// expected.
+pub(crate) fn open_road_csv(
+    path: &Path,
+    rows: &str,
+    max_bytes: u64,
+    limit: &str,
+) -> Result<csv::Reader<crate::base::fsio::read::LineCap<std::io::Take<std::fs::File>>>, SceneError>
+{
+    let err = |message: String| SceneError::RoadFile {
+        path: path.to_path_buf(),
+        message,
+    };
+    let file = crate::base::fsio::read::open_regular(path).map_err(|e| {
+        err(if e.kind() == std::io::ErrorKind::InvalidInput {
+            format!("{e}: expected a CSV file of {rows} rows")
+        } else {
+            format!("cannot open: {e}")
+        })
+    })?;
+    let len = file
+        .metadata()
+        .map_err(|e| err(format!("cannot read: {e}")))?
+        .len();
+    if len > max_bytes {
+        return Err(err(format!(
+            "{len} bytes: expected at most {max_bytes} bytes ({limit})"
+        )));
+    }
+    Ok(csv::ReaderBuilder::new()
+        .has_headers(false)
+        .trim(csv::Trim::All)
+        .comment(Some(b'#'))
+        .flexible(true)
+        // a file growing while read is cut one byte past the limit, and a
+        // line longer than any row (a file without line ends) is refused
+        // before it is buffered
+        .from_reader(crate::base::fsio::read::LineCap::new(
+            std::io::Read::take(file, max_bytes.saturating_add(1)),
+            MAX_LINE_BYTES,
+        )))
 }
 
 /// A road ready to be sampled: `z(x)` (m) and `dz/dx` (-).
@@ -525,35 +567,12 @@ pub fn read_profile_csv_limited(
         path: path.to_path_buf(),
         message,
     };
-    // a regular file only: a named pipe would block, a device never end
-    let file = crate::base::fsio::read::open_regular(path).map_err(|e| {
-        err(if e.kind() == std::io::ErrorKind::InvalidInput {
-            format!("{e}: expected a CSV file of `x_m, z_m` rows")
-        } else {
-            format!("cannot open: {e}")
-        })
-    })?;
-    let meta = file
-        .metadata()
-        .map_err(|e| err(format!("cannot read: {e}")))?;
-    if meta.len() > max_bytes {
-        return Err(err(format!(
-            "{} bytes: expected at most {max_bytes} bytes ({max_rows} rows; resample the profile)",
-            meta.len()
-        )));
-    }
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .flexible(true)
-        // a file growing while read is cut one byte past the limit, and a
-        // line longer than any row (a file without line ends) is refused
-        // before it is buffered
-        .from_reader(crate::base::fsio::read::LineCap::new(
-            std::io::Read::take(file, max_bytes.saturating_add(1)),
-            MAX_LINE_BYTES,
-        ));
+    let mut rdr = open_road_csv(
+        path,
+        "`x_m, z_m`",
+        max_bytes,
+        &format!("{max_rows} rows; resample the profile"),
+    )?;
     let (mut xs, mut zs) = (Vec::new(), Vec::new());
     let mut rec = csv::StringRecord::new();
     for row in 0usize.. {

@@ -99,6 +99,27 @@ impl PatchLayout {
         })
     }
 
+    /// The patch's extent, its points' cells included: `(x0, x1, y0, y1)` (m).
+    pub fn extent_m(&self) -> (f64, f64, f64, f64) {
+        let (dx, dy) = self.cell_m;
+        self.xy_m.iter().fold(
+            (
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            ),
+            |(x0, x1, y0, y1), &(x, y)| {
+                (
+                    x0.min(x - 0.5 * dx),
+                    x1.max(x + 0.5 * dx),
+                    y0.min(y - 0.5 * dy),
+                    y1.max(y + 0.5 * dy),
+                )
+            },
+        )
+    }
+
     /// The area of one point's cell (m²).
     pub fn cell_area_m2(&self) -> f64 {
         self.cell_m.0 * self.cell_m.1
@@ -299,18 +320,7 @@ fn draw_heat_map(
     let err = |e: &dyn std::fmt::Display| -> Box<dyn std::error::Error> { e.to_string().into() };
     let (dx, dy) = layout.cell_m;
     let mm = 1e3;
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &(x, y) in &layout.xy_m {
-        x0 = x0.min(x - 0.5 * dx);
-        x1 = x1.max(x + 0.5 * dx);
-        y0 = y0.min(y - 0.5 * dy);
-        y1 = y1.max(y + 0.5 * dy);
-    }
+    let (x0, x1, y0, y1) = layout.extent_m();
     let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let bar_w = (width / 9).max(90);

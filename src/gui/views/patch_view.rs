@@ -59,18 +59,7 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
         Pos2::new(area.right() - 110.0, area.bottom() - 44.0),
     );
     let (dx, dy) = layout.cell_m;
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &(x, y) in &layout.xy_m {
-        x0 = x0.min(x - 0.5 * dx);
-        x1 = x1.max(x + 0.5 * dx);
-        y0 = y0.min(y - 0.5 * dy);
-        y1 = y1.max(y + 0.5 * dy);
-    }
+    let (x0, x1, y0, y1) = layout.extent_m();
     let to_px = |x: f64, y: f64| {
         Pos2::new(
             map.left() + ((x - x0) / (x1 - x0)) as f32 * map.width(),

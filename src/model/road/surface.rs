@@ -15,7 +15,7 @@
 //! differences for a file: Catmull-Rom). `z_i` and `dz_i/dx` are continuous
 //! along the rolling direction: the grid's lines are not contact events.
 
-use super::OutOfRange;
+use super::{MAX_LINE_BYTES, OutOfRange};
 use crate::base::error::SceneError;
 use std::path::Path;
 
@@ -32,9 +32,6 @@ pub const MAX_SURFACE_NODES: usize = 8_000_000;
 /// of [`MAX_SURFACE_NODES`] (a row of three full-precision numbers is
 /// about 65 bytes; most files write fewer digits).
 pub const MAX_SURFACE_BYTES: u64 = 80 * MAX_SURFACE_NODES as u64;
-
-/// Longest line of a surface file (bytes).
-const MAX_LINE_BYTES: usize = 4096;
 
 /// A regular height grid, row-major across: node `(i, j)` at
 /// `x = x0 + i Δx`, `y = y0 + j Δy` holds `z[j nx + i]` and its slope
@@ -213,8 +210,7 @@ impl SurfaceGrid {
     /// baselines of all rows. `None` when a row is shorter than 100 mm.
     pub fn mpd_m(&self) -> Option<f64> {
         let per = (MPD_BASELINE_M / self.dx_m).round() as usize;
-        let len = self.nx;
-        if per < 4 || len < per {
+        if per < 4 || self.nx < per {
             return None;
         }
         let (mut sum, mut count) = (0.0, 0usize);
@@ -296,31 +292,12 @@ pub fn read_surface_csv_limited(
         path: path.to_path_buf(),
         message,
     };
-    let file = crate::base::fsio::read::open_regular(path).map_err(|e| {
-        err(if e.kind() == std::io::ErrorKind::InvalidInput {
-            format!("{e}: expected a CSV file of `x_m,y_m,z_m` rows")
-        } else {
-            format!("cannot open: {e}")
-        })
-    })?;
-    let len = file
-        .metadata()
-        .map_err(|e| err(format!("cannot read: {e}")))?
-        .len();
-    if len > max_bytes {
-        return Err(err(format!(
-            "{len} bytes: expected at most {max_bytes} bytes (a grid of at most {max_nodes} nodes; resample the surface)"
-        )));
-    }
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .trim(csv::Trim::All)
-        .comment(Some(b'#'))
-        .flexible(true)
-        .from_reader(crate::base::fsio::read::LineCap::new(
-            std::io::Read::take(file, max_bytes.saturating_add(1)),
-            MAX_LINE_BYTES,
-        ));
+    let mut rdr = super::open_road_csv(
+        path,
+        "`x_m,y_m,z_m`",
+        max_bytes,
+        &format!("a grid of at most {max_nodes} nodes; resample the surface"),
+    )?;
     let mut nodes: Vec<Node> = Vec::new();
     let mut rec = csv::ByteRecord::new();
     let mut header = false;
@@ -443,9 +420,6 @@ fn grid_of_nodes(nodes: &[Node], looped: bool) -> Result<SurfaceGrid, String> {
     }
     let (x0, dx, nx) = axis(nodes, "x_m", |n| n.x)?;
     let (y0, dy, ny) = axis(nodes, "y_m", |n| n.y)?;
-    if nx.checked_mul(ny) != Some(nodes.len()) && nodes.len() < nx.saturating_mul(ny) {
-        // reported below, naming the first missing node
-    }
     let mut z = vec![f64::NAN; nx * ny];
     let mut seen: Vec<u64> = vec![0; nx * ny];
     for n in nodes {

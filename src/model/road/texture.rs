@@ -133,7 +133,7 @@ pub fn generate(
     let mut planner = FftPlanner::<f64>::new();
     inverse_2d(&mut planner, &mut c, nx, ny);
     inverse_2d(&mut planner, &mut s, nx, ny);
-    let mut grid = SurfaceGrid {
+    SurfaceGrid {
         x0_m: 0.0,
         dx_m: length_m / nx as f64,
         nx,
@@ -144,9 +144,7 @@ pub fn generate(
         periodic_y: true,
         z_m: c.iter().map(|v| v.re).collect(),
         dzdx: s.iter().map(|v| v.re).collect(),
-    };
-    grid.z_m.shrink_to_fit();
-    grid
+    }
 }
 
 /// In-place unscaled inverse 2D DFT of a row-major `ny × nx` array.
