@@ -46,4 +46,7 @@ pub enum BenchError {
     /// No run was timed (zero repeats).
     #[error("no run was timed")]
     NoRun,
+    /// A scene measured as a patch whose points are not one.
+    #[error(transparent)]
+    Patch(#[from] crate::output::patch::PatchError),
 }

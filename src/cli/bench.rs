@@ -34,6 +34,12 @@ pub struct BenchArgs {
     /// (scaling.csv, .md, .png).
     #[arg(long)]
     pub scaling: bool,
+    /// Instead of the work-precision study: each contact-patch preset
+    /// (default: the shipped `presets/patch_*.ron`; or the presets given)
+    /// timed as shipped and off the road, beside the scaling study's patch
+    /// of the same grid and number of modes (patch_presets.md).
+    #[arg(long, conflicts_with = "scaling")]
+    pub patch_presets: bool,
     /// One size of the scaling study, `P,K,CONTACT` with CONTACT `rigid`,
     /// `tread` or `patch` (the child process's job: its timed runs), or
     /// `P,K,CONTACT,SECONDS[,lifted]`: one run of that length, off the road
@@ -70,6 +76,9 @@ pub fn bench(args: &BenchArgs) -> CliResult {
     }
     if args.scaling {
         return scaling::scaling(args);
+    }
+    if args.patch_presets {
+        return scaling::patch_presets(args);
     }
     let presets = if args.presets.is_empty() {
         let found = default_presets();

@@ -106,6 +106,10 @@ pub struct ModalBasis {
     /// Rank terms of the modes ([`ModalBasis::num_states`]); the stored
     /// states past them are zero padding ([`ModalBasis::stored_states`]).
     num_terms: usize,
+    /// Every term's output vector is its input vector (`out == inp_t`, as
+    /// for modes given by shape): the influence between two points is the
+    /// same both ways.
+    symmetric: bool,
 }
 
 /// The stored states are a multiple of this: whole 4-wide lanes in the
@@ -198,15 +202,23 @@ impl ModalBasis {
                 inp_t[i * ns + s] = b[i];
             }
         }
+        let symmetric = out == inp_t;
         ModalBasis {
             num_points: p,
             modes: params,
             mode_of_state: terms.iter().map(|t| t.0).collect(),
             out,
             inp,
+            symmetric,
             inp_t,
             num_terms,
         }
+    }
+
+    /// Whether every term's output vector is its input vector, so that
+    /// `Σ_s a_s[i] b_s[j] w_s` is symmetric in `(i, j)` for any weights.
+    pub fn symmetric(&self) -> bool {
+        self.symmetric
     }
 
     /// States of the convolution: the rank terms of all modes.
@@ -692,6 +704,26 @@ mod tests {
                     < 2.0 * (omega + 2.0 * xi * omega) * tau + 1e-12
             );
         }
+    }
+
+    /// Modes given by shape make a symmetric basis (the plate's, and a
+    /// symmetric residue's eigendecomposition); a residue that is not
+    /// symmetric does not.
+    #[test]
+    fn shapes_make_a_symmetric_basis() {
+        let plate = crate::model::plate::PlateParams::default();
+        let xy: Vec<(f64, f64)> = (0..6)
+            .map(|i| (0.01 * i as f64, 0.02 * (i % 3) as f64 - 0.02))
+            .collect();
+        let modes = plate.modes(&xy);
+        assert!(ModalBasis::new(&modes, xy.len()).unwrap().symmetric());
+        let skew = Mode {
+            freq_hz: 100.0,
+            damping_ratio: 0.02,
+            residue: vec![vec![1.0, 0.5], vec![-0.2, 2.0]],
+            shape: vec![],
+        };
+        assert!(!ModalBasis::new(&[skew], 2).unwrap().symmetric());
     }
 
     /// The set-up tables on 2 and 3 threads (every call split) equal, bit

@@ -9,6 +9,7 @@
 //! spring at each point the whole pressed third is on the road, and the
 //! dense contact solve of `2|S|` unknowns grows with `P`.
 
+pub mod presets;
 pub mod report;
 
 use crate::analysis::bench::BenchError;
@@ -214,6 +215,23 @@ impl ScalingRow {
     }
 }
 
+/// The fastest of `repeats` whole runs of `scene` (wall time, s, from the
+/// first step; the set-up not included) and its simulation at the end.
+pub fn fastest_run(scene: &crate::Scene, repeats: usize) -> Result<(f64, Simulation), BenchError> {
+    let model = PreparedModel::of(scene)?;
+    let mut best: Option<(f64, Simulation)> = None;
+    for _ in 0..repeats.max(1) {
+        let mut sim = Simulation::new(&model, SolverOptions::default())?;
+        let t = Instant::now();
+        run_to_end(&mut sim, &mut (), Watch::none())?;
+        let w = t.elapsed().as_secs_f64();
+        if best.as_ref().is_none_or(|(b, _)| w < *b) {
+            best = Some((w, sim));
+        }
+    }
+    best.ok_or(BenchError::NoRun)
+}
+
 /// Runs [`scaling_scene`]`(points, modes, regime)` for `duration_s` (ramp 0.01 s)
 /// with contact and lifted off the road; the fastest of `repeats` runs of
 /// each.
@@ -226,22 +244,20 @@ pub fn measure(
 ) -> Result<ScalingRow, BenchError> {
     let mut scene = scaling_scene(points, modes, regime);
     scene.duration_s = duration_s;
-    let time = |scene: &crate::Scene| -> Result<(f64, Simulation), BenchError> {
-        let model = PreparedModel::of(scene)?;
-        let mut best: Option<(f64, Simulation)> = None;
-        for _ in 0..repeats.max(1) {
-            let mut sim = Simulation::new(&model, SolverOptions::default())?;
-            let t = Instant::now();
-            run_to_end(&mut sim, &mut (), Watch::none())?;
-            let w = t.elapsed().as_secs_f64();
-            if best.as_ref().is_none_or(|(b, _)| w < *b) {
-                best = Some((w, sim));
-            }
-        }
-        best.ok_or(BenchError::NoRun)
-    };
-    let (wall, sim) = time(&scene)?;
-    let (free_wall, _) = time(&lifted(&scene))?;
+    measure_scene(&scene, modes, regime, repeats)
+}
+
+/// [`measure`] of a given scene of `modes` modes: the fastest of
+/// `repeats` runs with contact and lifted off the road.
+pub fn measure_scene(
+    scene: &crate::Scene,
+    modes: usize,
+    regime: Regime,
+    repeats: usize,
+) -> Result<ScalingRow, BenchError> {
+    let points = scene.num_points();
+    let (wall, sim) = fastest_run(scene, repeats)?;
+    let (free_wall, _) = fastest_run(&lifted(scene), repeats)?;
     let st = sim.stats();
     let steps = st.steps.max(1);
     Ok(ScalingRow {

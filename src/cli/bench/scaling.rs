@@ -214,6 +214,61 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
     Ok(())
 }
 
+/// The shipped patch presets (or those given) against the study's patch
+/// of their size, in this process, one after the other
+/// ([`tirecontact::analysis::bench::scaling::presets`]).
+pub fn patch_presets(args: &BenchArgs) -> CliResult {
+    use tirecontact::analysis::bench::scaling::presets;
+    crate::cli::paths::ensure_output_dir("-o", &args.output)?;
+    let paths: Vec<std::path::PathBuf> = if args.presets.is_empty() {
+        let mut found: Vec<_> = std::fs::read_dir("presets")
+            .map_err(|e| {
+                format!("presets/: {e}: run from the repository's folder or name the presets")
+            })?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| {
+                p.file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| n.starts_with("patch_") && n.ends_with(".ron"))
+            })
+            .collect();
+        found.sort();
+        found
+    } else {
+        args.presets.clone()
+    };
+    if paths.is_empty() {
+        return Err(
+            "no patch preset found (presets/patch_*.ron): name the presets to measure".into(),
+        );
+    }
+    let repeats = if args.quick { 1 } else { 3 };
+    let bar = ProgressBar::new(paths.len() as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed} [{bar:30}] {pos}/{len} presets {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let mut rates = Vec::with_capacity(paths.len());
+    for path in &paths {
+        bar.set_message(path.display().to_string());
+        let mut scene = tirecontact::Scene::load(path)?;
+        if args.quick {
+            scene.duration_s = scene.duration_s.min(scene.ramp_s + 0.01);
+        }
+        rates.push(
+            presets::measure_preset(&scene, repeats)
+                .map_err(|e| format!("{}: {e}", path.display()))?,
+        );
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let md = presets::markdown(&rates, repeats);
+    super::write(&args.output.join("patch_presets.md"), &md)?;
+    println!("{md}");
+    println!("wrote {}/patch_presets.md", args.output.display());
+    Ok(())
+}
+
 /// Times one size in a child process (`--scaling-one P,K,CONTACT`).
 fn time_size(
     exe: &std::path::Path,
