@@ -16,7 +16,11 @@
 //! * the force **averaged over a stated window**, impacts included
 //!   ([`FORCE_WINDOW_S`]): its largest value (N), a force level that counts
 //!   the impacts' momentum without dividing it by dt;
-//! * the fraction of the steps ending in contact.
+//! * the fraction of the steps ending in contact;
+//! * over all the points at once: the summed force without impacts (its
+//!   largest value and RMS) and the number of points ending a step in
+//!   contact (its mean and largest value), the contact patch's load and
+//!   area ([`crate::output::patch`]).
 //!
 //! All are taken over the steady part of the run (steps starting at or after
 //! `start_s`, by default the ramp time `ramp_s`).
@@ -46,6 +50,14 @@ pub struct ContactSummary {
     pub window_force_max_n: Vec<f64>,
     /// Fraction of the steady steps ending in contact (-).
     pub contact_fraction: Vec<f64>,
+    /// Largest summed contact force of all the points without impacts (N).
+    pub total_force_max_n: f64,
+    /// RMS of that summed force, static part included (N).
+    pub total_force_rms_n: f64,
+    /// Mean number of points ending a steady step in contact.
+    pub in_contact_mean: f64,
+    /// Largest number of points ending a steady step in contact.
+    pub in_contact_max: usize,
     /// Steady steps summarised.
     pub steps: u64,
 }
@@ -66,6 +78,12 @@ pub struct ContactMetrics {
     impulse_sum_ns: Vec<f64>,
     impulse_max_ns: Vec<f64>,
     contact_steps: Vec<u64>,
+    /// The summed force without impacts: largest and sum of squares (N, N²).
+    total_smooth_max_n: f64,
+    total_smooth_sq_sum: f64,
+    /// Points in contact, summed over the steady steps, and the most at once.
+    in_contact_sum: u64,
+    in_contact_max: usize,
     /// The last `window_steps` step-mean forces per point, a ring buffer
     /// (point-major), their sums and the largest full-window mean.
     window: Vec<f64>,
@@ -103,6 +121,10 @@ impl ContactMetrics {
             impulse_sum_ns: vec![0.0; p],
             impulse_max_ns: vec![0.0; p],
             contact_steps: vec![0; p],
+            total_smooth_max_n: 0.0,
+            total_smooth_sq_sum: 0.0,
+            in_contact_sum: 0,
+            in_contact_max: 0,
             window: vec![0.0; p * window_steps],
             window_steps,
             window_sum: vec![0.0; p],
@@ -140,9 +162,12 @@ impl ContactMetrics {
         if self.keep_total {
             self.total_n.push(q.iter().sum());
         }
+        let (mut total_smooth, mut touching) = (0.0, 0usize);
         for i in 0..self.part_n.len() {
             let impact_n = self.part_n[i];
             let smooth = q[i] - impact_n;
+            total_smooth += smooth;
+            touching += usize::from(c[i]);
             self.force_max_n[i] = self.force_max_n[i].max(smooth);
             self.force_sq_sum[i] += smooth * smooth;
             if impact_n > 0.0 {
@@ -156,6 +181,10 @@ impl ContactMetrics {
             self.window_sum[i] += q[i] - *slot;
             *slot = q[i];
         }
+        self.total_smooth_max_n = self.total_smooth_max_n.max(total_smooth);
+        self.total_smooth_sq_sum += total_smooth * total_smooth;
+        self.in_contact_sum += touching as u64;
+        self.in_contact_max = self.in_contact_max.max(touching);
         self.window_pos = (self.window_pos + 1) % w;
         self.window_filled = (self.window_filled + 1).min(w);
         if self.window_filled == w {
@@ -200,6 +229,10 @@ impl ContactMetrics {
             impulse_max_ns: self.impulse_max_ns.clone(),
             window_force_max_n,
             contact_fraction: per_step(&self.contact_steps),
+            total_force_max_n: self.total_smooth_max_n,
+            total_force_rms_n: (self.total_smooth_sq_sum / n).sqrt(),
+            in_contact_mean: self.in_contact_sum as f64 / n,
+            in_contact_max: self.in_contact_max,
             steps: self.steps,
         }
     }

@@ -133,12 +133,12 @@ fn report(path: &Path, dir: &Path, title: Option<&str>) -> CliResult {
         tirecontact::output::figures::render_png(
             &report::figure(e, &title),
             &dir.join(&png),
-            report::FIGURE_PX.0,
-            report::FIGURE_PX.1,
+            report::figure_px(e.metrics.len()).0,
+            report::figure_px(e.metrics.len()).1,
         )?;
         figures.push(png);
         for l in &e.levels {
-            for (m, (name, _, unit)) in report::METRICS.iter().enumerate() {
+            for (m, report::Metric { name, unit, .. }) in e.metrics.iter().enumerate() {
                 csv.write_record([
                     e.factor.clone(),
                     format!("{}", l.value),

@@ -18,7 +18,9 @@ pub struct SweepArgs {
     pub preset: Option<PathBuf>,
     /// Path of the numeric scene field to sweep, e.g. `speed_mps`,
     /// `road.amplitude_m`, `points[2].h_m`, `points[*].h_m` (all points),
-    /// `tyre.modes[0].freq_hz`, `tyre.ring.inflation_pa`.
+    /// `tyre.modes[0].freq_hz`, `tyre.ring.inflation_pa`; a grid's
+    /// `points.along`, `points.across` (whole numbers), `points.spacing_m.0`,
+    /// `points.preload.depth_m`.
     #[arg(long)]
     pub param: String,
     /// First value, in the unit the parameter's name carries (m/s for
@@ -106,24 +108,24 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
     let points = run_sweep(&scene, &sweep, &cache, &progress, &cancel)?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
-    let p = scene.num_points();
+    let columns = report::Columns::of(&scene, &[param]);
     if let Some(path) = &args.output {
         let mut buf = Vec::new();
-        report::write_csv(&mut buf, param, &points, p)?;
+        report::write_csv(&mut buf, param, &points, &columns)?;
         tirecontact::base::fsio::write_atomic(path, &buf)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         eprintln!("wrote {}", path.display());
     }
     if let Some(path) = &args.plot {
         let fig = report::figure(
-            &format!("{}: sweep of {param}", scene.name),
+            &format!("{}: sweep of {}", scene.name, report::param_name(param)),
             &format!(
                 "base scene: {}",
                 super::run::scene_summary(&scene, &cache.modes(&scene)?)
             ),
             param,
             &points,
-            p,
+            &columns,
         );
         let (w, h) = report::FIGURE_PX;
         tirecontact::output::figures::render_png(&fig, path, w, h)?;

@@ -6,4 +6,4 @@ pub mod frames;
 mod job;
 pub mod prepare;
 
-pub use job::{Job, Progress};
+pub use job::{Job, Progress, SLICE_S, SliceWork};

@@ -152,6 +152,23 @@ impl Road {
         }
     }
 
+    /// The seed of a random road's or a texture's phases (`None`: the road
+    /// is not random).
+    pub fn seed(&self) -> Option<u64> {
+        match self {
+            Road::Random { seed, .. } | Road::Texture { seed, .. } => Some(*seed),
+            _ => None,
+        }
+    }
+
+    /// [`Road::seed`], to change it (a study's replicates and `road.seed`).
+    pub fn seed_mut(&mut self) -> Option<&mut u64> {
+        match self {
+            Road::Random { seed, .. } | Road::Texture { seed, .. } => Some(seed),
+            _ => None,
+        }
+    }
+
     /// Field errors of a texture (`at` prefixes the field names); empty for
     /// other roads and valid textures.
     pub fn texture_errors(&self, at: &str) -> Vec<FieldError> {

@@ -8,7 +8,7 @@
 //! contact area at a step is the number of points on the road times the
 //! cell.
 
-use crate::output::figures::{FigureError, register_fonts};
+use crate::output::figures::FigureError;
 use crate::scene::Scene;
 use crate::solver::drive::Probe;
 use crate::solver::simulation::Simulation;
@@ -316,7 +316,7 @@ fn draw_heat_map(
     path: &Path,
     (width, height): (u32, u32),
 ) -> Result<(), Box<dyn std::error::Error>> {
-    register_fonts();
+    crate::output::figures::register_fonts();
     let err = |e: &dyn std::fmt::Display| -> Box<dyn std::error::Error> { e.to_string().into() };
     let (dx, dy) = layout.cell_m;
     let mm = 1e3;
@@ -402,6 +402,7 @@ fn draw_heat_map(
 }
 
 /// A tick label: no trailing zeros ("40", "2.5", "0.25").
+#[cfg(not(target_arch = "wasm32"))]
 fn tick(v: f64) -> String {
     let s = format!("{v:.3}");
     let s = s.trim_end_matches('0').trim_end_matches('.');

@@ -10,7 +10,6 @@
 use crate::Scene;
 use crate::base::error::{FieldError, IoError, SceneError};
 use crate::identify::{ModeCache, PreparedModel};
-use crate::model::road::Road;
 use crate::studies::sweep::engine::{PoolTiming, run_each};
 use crate::studies::sweep::{RunSummary, SummaryError, get_param, run_summary, set_param};
 use serde::Deserialize;
@@ -194,6 +193,15 @@ pub struct Loaded {
     pub rows: Vec<Row>,
 }
 
+impl Loaded {
+    /// The metric columns of the study's table: per point unless a factor
+    /// changes how many points there are, the patch's for a patch.
+    pub fn columns(&self) -> crate::studies::sweep::report::Columns {
+        let paths: Vec<&str> = self.study.factors.iter().map(|f| f.path.as_str()).collect();
+        crate::studies::sweep::report::Columns::of(&self.base, &paths)
+    }
+}
+
 /// FNV-1a 64 of `parts`, in hex.
 fn fnv(parts: &[&[u8]]) -> String {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -289,10 +297,12 @@ pub fn rows(study: &Study, base: &Scene) -> Result<Vec<Row>, Problem> {
     for (k, f) in study.factors.iter().enumerate() {
         let at = format!("factors[{k}]");
         if f.path == "road.seed" {
-            if !matches!(base.road, Road::Random { .. }) {
+            if base.road.seed().is_none() {
                 return Err(problem(
                     format!("{at}.path"),
-                    format!("{at}.path = road.seed: expected a preset with a random road"),
+                    format!(
+                        "{at}.path = road.seed: expected a preset with a random road or a texture"
+                    ),
                 ));
             }
         } else {
@@ -345,11 +355,11 @@ pub fn rows(study: &Study, base: &Scene) -> Result<Vec<Row>, Problem> {
     if study.replicates == 0 {
         return Err(problem("replicates", "replicates = 0: expected at least 1"));
     }
-    if study.replicates > 1 && !matches!(base.road, Road::Random { .. }) {
+    if study.replicates > 1 && base.road.seed().is_none() {
         return Err(problem(
             "replicates",
             format!(
-                "replicates = {}: expected 1 for a preset without a random road (its runs would be identical)",
+                "replicates = {}: expected 1 for a preset without a random road or a texture (its runs would be identical)",
                 study.replicates
             ),
         ));
@@ -385,14 +395,14 @@ pub fn scene_of(loaded: &Loaded, row: &Row) -> Result<Scene, SummaryError> {
     let mut s = loaded.base.clone();
     for (f, &v) in loaded.study.factors.iter().zip(&row.values) {
         if f.path == "road.seed" {
-            if let Road::Random { seed, .. } = &mut s.road {
+            if let Some(seed) = s.road.seed_mut() {
                 *seed = v.round().max(0.0) as u64;
             }
         } else {
             set_param(&mut s, &f.path, v)?;
         }
     }
-    if let Road::Random { seed, .. } = &mut s.road {
+    if let Some(seed) = s.road.seed_mut() {
         *seed = seed.wrapping_add(row.replicate as u64);
     }
     s.validate().map_err(SummaryError::InvalidScene)?;
@@ -436,11 +446,12 @@ pub fn run_rows(
 /// The output table's header: `row, of` (the study's row count),
 /// `study_hash, <factor paths>, replicate`, the sweep's metrics, `error`.
 pub fn header(loaded: &Loaded) -> Vec<String> {
-    let p = loaded.base.num_points();
     let mut h = vec!["row".to_string(), "of".into(), "study_hash".into()];
     h.extend(loaded.study.factors.iter().map(|f| f.path.clone()));
     h.push("replicate".into());
-    h.extend(crate::studies::sweep::report::metric_columns(p));
+    h.extend(crate::studies::sweep::report::metric_columns(
+        &loaded.columns(),
+    ));
     h.push("error".into());
     h
 }
@@ -466,7 +477,6 @@ pub fn record(
     row: &Row,
     result: &Result<RunSummary, SummaryError>,
 ) -> Vec<String> {
-    let p = loaded.base.num_points();
     let mut r = vec![
         row.id.to_string(),
         loaded.rows.len().to_string(),
@@ -474,7 +484,10 @@ pub fn record(
     ];
     r.extend(row.values.iter().map(|v| format!("{v}")));
     r.push(row.replicate.to_string());
-    r.extend(crate::studies::sweep::report::metric_values(result, p));
+    r.extend(crate::studies::sweep::report::metric_values(
+        result,
+        &loaded.columns(),
+    ));
     r.push(
         result
             .as_ref()

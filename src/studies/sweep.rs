@@ -14,7 +14,7 @@ use crate::analysis::spectrum::{BandLevel, SpectrumError, Window};
 use crate::base::error::{FieldError, IoError, RunError, SceneError, SolverError};
 use crate::identify::{ModeCache, PreparedModel};
 use crate::model::road::Road;
-use crate::scene::{Contact, Scene, Tyre};
+use crate::scene::{Contact, Points, Preload, Scene, Tyre};
 use crate::solver::drive::Watch;
 use crate::solver::simulation::{Simulation, SolverOptions};
 pub mod engine;
@@ -130,19 +130,107 @@ fn join_fields(errors: &[FieldError]) -> String {
         .join("; ")
 }
 
-/// Every numeric field of the scene with its path, as mutable references.
-/// Integer fields (`tyre.ring.max_order`, ...) and text are not listed.
-fn numeric_fields(scene: &mut Scene) -> Vec<(String, &mut f64)> {
+/// The fields of a grid of points (`points: Grid(...)`) a sweep or a study
+/// sets: the whole numbers of points along and rows across, the spacings
+/// (m) and the preload's depth and footprint length (m). Setting one
+/// expands the grid again.
+const GRID_PATHS: [&str; 6] = [
+    "points.along",
+    "points.across",
+    "points.spacing_m.0",
+    "points.spacing_m.1",
+    "points.preload.depth_m",
+    "points.preload.length_m",
+];
+
+/// The grid fields of `scene`'s points that exist (a parabolic preload's
+/// length only), with their values.
+fn grid_fields(scene: &Scene) -> Vec<(&'static str, f64)> {
+    let Some(g) = scene.points.grid() else {
+        return Vec::new();
+    };
+    let (depth_m, length_m) = match g.preload {
+        Preload::Flat { depth_m } => (depth_m, None),
+        Preload::Parabolic { depth_m, length_m } => (depth_m, Some(length_m)),
+    };
+    let mut f = vec![
+        (GRID_PATHS[0], g.along as f64),
+        (GRID_PATHS[1], g.across as f64),
+        (GRID_PATHS[2], g.spacing_m.0),
+        (GRID_PATHS[3], g.spacing_m.1),
+        (GRID_PATHS[4], depth_m),
+    ];
+    if let Some(l) = length_m {
+        f.push((GRID_PATHS[5], l));
+    }
+    f
+}
+
+/// Sets the grid field at `path` of `scene`'s points to `value` and
+/// expands the grid again; `None` when the points hold no such field.
+fn set_grid_field(scene: &mut Scene, path: &str, value: f64) -> Option<Result<(), FieldError>> {
+    let mut g = *scene.points.grid()?;
+    let whole = |v: f64| -> Result<usize, FieldError> {
+        if v.is_finite() && v >= 1.0 && v.fract() == 0.0 && v <= crate::scene::MAX_POINTS as f64 {
+            Ok(v as usize)
+        } else {
+            Err(FieldError {
+                field: path.to_string(),
+                value: format!("{v}"),
+                expected: format!(
+                    "a whole number of points from 1 to {}",
+                    crate::scene::MAX_POINTS
+                ),
+            })
+        }
+    };
+    let set = (|| -> Result<bool, FieldError> {
+        match (path, &mut g.preload) {
+            ("points.along", _) => g.along = whole(value)?,
+            ("points.across", _) => g.across = whole(value)?,
+            ("points.spacing_m.0", _) => g.spacing_m.0 = value,
+            ("points.spacing_m.1", _) => g.spacing_m.1 = value,
+            ("points.preload.depth_m", Preload::Flat { depth_m })
+            | ("points.preload.depth_m", Preload::Parabolic { depth_m, .. }) => *depth_m = value,
+            ("points.preload.length_m", Preload::Parabolic { length_m, .. }) => *length_m = value,
+            _ => return Ok(false),
+        }
+        Ok(true)
+    })();
+    match set {
+        Ok(false) => None,
+        Err(e) => Some(Err(e)),
+        Ok(true) => Some(match g.check() {
+            Some((field, value, expected)) => Err(FieldError {
+                field,
+                value,
+                expected,
+            }),
+            None => {
+                scene.points = Points::from_grid(g);
+                Ok(())
+            }
+        }),
+    }
+}
+
+/// Every numeric field of the scene with its path, as mutable references
+/// (the points' only when `with_points`: reaching them turns a grid into
+/// a list). Integer fields (`tyre.ring.max_order`, ...) and text are not
+/// listed; a grid's fields are [`grid_fields`].
+fn numeric_fields(scene: &mut Scene, with_points: bool) -> Vec<(String, &mut f64)> {
     let mut f: Vec<(String, &mut f64)> = vec![
         ("speed_mps".into(), &mut scene.speed_mps),
         ("ramp_s".into(), &mut scene.ramp_s),
         ("dt_s".into(), &mut scene.dt_s),
         ("duration_s".into(), &mut scene.duration_s),
     ];
-    for (i, p) in scene.points.iter_mut().enumerate() {
-        f.push((format!("points[{i}].x_m"), &mut p.x_m));
-        f.push((format!("points[{i}].y_m"), &mut p.y_m));
-        f.push((format!("points[{i}].h_m"), &mut p.h_m));
+    if with_points {
+        for (i, p) in scene.points.iter_mut().enumerate() {
+            f.push((format!("points[{i}].x_m"), &mut p.x_m));
+            f.push((format!("points[{i}].y_m"), &mut p.y_m));
+            f.push((format!("points[{i}].h_m"), &mut p.h_m));
+        }
     }
     match &mut scene.road {
         Road::Sine {
@@ -332,15 +420,29 @@ fn matches(pattern: &str, path: &str) -> bool {
 /// `[*]` in place of an index addresses every index).
 pub fn param_paths(scene: &Scene) -> Vec<String> {
     let mut s = scene.clone();
-    numeric_fields(&mut s).into_iter().map(|(p, _)| p).collect()
+    let grid = grid_fields(scene).into_iter().map(|(p, _)| p.to_string());
+    let mut paths: Vec<String> = numeric_fields(&mut s, true)
+        .into_iter()
+        .map(|(p, _)| p)
+        .collect();
+    // the grid's fields before the points it expands to
+    let at = paths
+        .iter()
+        .position(|p| p.starts_with("points["))
+        .unwrap_or(paths.len());
+    paths.splice(at..at, grid);
+    paths
 }
 
 /// The value of the parameter at `path` (the first match of a wildcard;
 /// spaces around the path are ignored).
 pub fn get_param(scene: &Scene, path: &str) -> Result<f64, SweepError> {
     let path = path.trim();
+    if let Some((_, v)) = grid_fields(scene).into_iter().find(|(p, _)| *p == path) {
+        return Ok(v);
+    }
     let mut s = scene.clone();
-    let fields = numeric_fields(&mut s);
+    let fields = numeric_fields(&mut s, true);
     fields
         .into_iter()
         .find(|(p, _)| matches(path, p))
@@ -384,8 +486,21 @@ fn unknown(scene: &Scene, path: &str) -> SweepError {
 pub fn set_param(scene: &mut Scene, path: &str, value: f64) -> Result<(), SweepError> {
     let path = path.trim();
     let before = scene.clone();
+    let invalid = |errors| SweepError::InvalidValue {
+        path: path.to_string(),
+        value,
+        errors,
+    };
+    if let Some(set) = set_grid_field(scene, path, value) {
+        if let Err(e) = set {
+            *scene = before;
+            return Err(invalid(vec![e]));
+        }
+        return scene.validate().map_err(invalid);
+    }
     let mut hits = 0;
-    for (p, v) in numeric_fields(scene) {
+    // the points' fields only for a path of theirs (a grid stays a grid)
+    for (p, v) in numeric_fields(scene, path.starts_with("points[")) {
         if matches(path, &p) {
             *v = value;
             hits += 1;
@@ -394,11 +509,7 @@ pub fn set_param(scene: &mut Scene, path: &str, value: f64) -> Result<(), SweepE
     if hits == 0 {
         return Err(unknown(&before, path));
     }
-    scene.validate().map_err(|errors| SweepError::InvalidValue {
-        path: path.to_string(),
-        value,
-        errors,
-    })
+    scene.validate().map_err(invalid)
 }
 
 /// The most values a sweep runs (each is a whole run of the scene).
@@ -427,6 +538,10 @@ pub struct RunSummary {
     /// Third-octave levels of the total force (dB re 1 N, Hann window,
     /// mean removed), bands 20 Hz - 5 kHz below Nyquist.
     pub bands: Vec<BandLevel>,
+    /// The cell of one point when the points make a contact patch (m²,
+    /// [`crate::output::patch::PatchLayout`]): the contact area is the
+    /// points in contact times this.
+    pub cell_area_m2: Option<f64>,
     /// Steps run.
     pub steps: u64,
 }
@@ -471,38 +586,171 @@ pub fn run_summary_timed(
     timing: &mut RunTiming,
 ) -> Result<RunSummary, SummaryError> {
     let t0 = web_time::Instant::now();
-    let scene = model.scene();
-    let mut sim = Simulation::new(model, SolverOptions::default())?;
-    // a steady part too short or too long for a spectrum, before the run
-    SteadyRecorder::steady_samples(scene, None)?;
-    let mut metrics = ContactMetrics::new(scene, None).keeping_total_force();
-    let n = scene.num_steps();
-    let mut reported = 0;
-    let mut progress = |done: u64, _: &Simulation| {
-        on_steps(done - reported);
-        reported = done;
-    };
+    let mut run = SummaryRun::new(model)?;
     let t1 = web_time::Instant::now();
     timing.setup_s += (t1 - t0).as_secs_f64();
-    crate::solver::drive::run_to_end(
-        &mut sim,
-        &mut metrics,
-        Watch::cancel(cancel).with_progress(&mut progress),
-    )?;
+    run.advance(on_steps, cancel, None)?;
     let t2 = web_time::Instant::now();
     timing.stepping_s += (t2 - t1).as_secs_f64();
-    let fs = 1.0 / scene.dt_s;
-    let hi = DEFAULT_BANDS_HZ.1.min(0.5 * fs / 10f64.powf(0.05));
-    let bands =
-        crate::analysis::spectrum::spectrum(metrics.total_force_n(), fs, Window::Hann, true)
-            .map(|s| s.third_octave_levels(DEFAULT_BANDS_HZ.0, hi, 1.0))?;
-    let summary = RunSummary {
-        contact: metrics.summary(),
-        bands,
-        steps: n,
-    };
+    let summary = run.finish();
     timing.summary_s += t2.elapsed().as_secs_f64();
-    Ok(summary)
+    summary
+}
+
+/// A summarised run ([`run_summary`]) that can be advanced in slices:
+/// built, stepped until a deadline as often as needed, then summarised.
+/// Slices change no result: the steps are the same, in the same order.
+pub struct SummaryRun {
+    sim: Simulation,
+    metrics: ContactMetrics,
+    scene: Scene,
+}
+
+impl SummaryRun {
+    /// The simulation of `model` and its metrics; a steady part too short
+    /// or too long for a spectrum is refused here, before any step.
+    pub fn new(model: &PreparedModel) -> Result<Self, SummaryError> {
+        let scene = model.scene();
+        let sim = Simulation::new(model, SolverOptions::default())?;
+        SteadyRecorder::steady_samples(scene, None)?;
+        Ok(SummaryRun {
+            sim,
+            metrics: ContactMetrics::new(scene, None).keeping_total_force(),
+            scene: scene.clone(),
+        })
+    }
+
+    /// Steps until the scene's end or `deadline` (`None`: the end);
+    /// `on_steps` is told of the steps done (every 1024 steps and at the
+    /// end of the call); `cancel` stops the run. `true` once at the end.
+    pub fn advance(
+        &mut self,
+        on_steps: &dyn Fn(u64),
+        cancel: &AtomicBool,
+        deadline: Option<web_time::Instant>,
+    ) -> Result<bool, SummaryError> {
+        let mut reported = 0;
+        let mut progress = |done: u64, _: &Simulation| {
+            on_steps(done - reported);
+            reported = done;
+        };
+        let mut watch = Watch::cancel(cancel).with_progress(&mut progress);
+        watch.deadline = deadline;
+        crate::solver::drive::run_to_end(&mut self.sim, &mut self.metrics, watch)?;
+        Ok(self.sim.finished())
+    }
+
+    /// The summary of the steady part (after [`SummaryRun::advance`] has
+    /// reached the end).
+    pub fn finish(self) -> Result<RunSummary, SummaryError> {
+        let scene = &self.scene;
+        let fs = 1.0 / scene.dt_s;
+        let hi = DEFAULT_BANDS_HZ.1.min(0.5 * fs / 10f64.powf(0.05));
+        let bands = crate::analysis::spectrum::spectrum(
+            self.metrics.total_force_n(),
+            fs,
+            Window::Hann,
+            true,
+        )
+        .map(|s| s.third_octave_levels(DEFAULT_BANDS_HZ.0, hi, 1.0))?;
+        Ok(RunSummary {
+            contact: self.metrics.summary(),
+            bands,
+            cell_area_m2: crate::output::patch::PatchLayout::of(scene)
+                .ok()
+                .map(|l| l.cell_area_m2()),
+            steps: scene.num_steps(),
+        })
+    }
+}
+
+/// A sweep run value after value on the caller's thread, in slices
+/// ([`SweepRun::advance`] until a deadline): what a page in the browser,
+/// which has no threads, runs within its frames. Its points equal
+/// [`run_sweep`]'s.
+pub struct SweepRun {
+    values: Vec<f64>,
+    scenes: Vec<Scene>,
+    /// The value being run and its run (`None` before it is prepared).
+    next: usize,
+    current: Option<SummaryRun>,
+    points: Vec<SweepPoint>,
+    total_steps: u64,
+    done_steps: u64,
+}
+
+impl SweepRun {
+    /// The sweep's scenes, checked before anything runs.
+    pub fn new(base: &Scene, sweep: &Sweep) -> Result<Self, SweepError> {
+        let scenes = sweep_scenes(base, sweep)?;
+        Ok(SweepRun {
+            values: sweep.values.clone(),
+            total_steps: scenes.iter().map(Scene::num_steps).sum(),
+            scenes,
+            next: 0,
+            current: None,
+            points: Vec::new(),
+            done_steps: 0,
+        })
+    }
+
+    /// The steps of every run.
+    pub fn total_steps(&self) -> u64 {
+        self.total_steps
+    }
+
+    /// The steps done so far.
+    pub fn done_steps(&self) -> u64 {
+        self.done_steps
+    }
+
+    /// Runs until `deadline` (`None`: to the end): the sweep's points once
+    /// every value ran, `None` before. A value's preparation (a ring's
+    /// identification, from `cache`) is done whole within a call.
+    pub fn advance(
+        &mut self,
+        cache: &ModeCache,
+        cancel: &AtomicBool,
+        deadline: Option<web_time::Instant>,
+    ) -> Option<Result<Vec<SweepPoint>, SweepError>> {
+        let past = || deadline.is_some_and(|d| web_time::Instant::now() >= d);
+        while self.next < self.scenes.len() {
+            if cancel.load(Ordering::Relaxed) {
+                return Some(Err(SweepError::Cancelled));
+            }
+            let k = self.next;
+            let value = self.values[k];
+            let run = match self.current.take() {
+                Some(run) => Ok(run),
+                None => PreparedModel::new(&self.scenes[k], cache)
+                    .map_err(SummaryError::from)
+                    .and_then(|m| SummaryRun::new(&m)),
+            };
+            let done = std::cell::Cell::new(0);
+            let outcome = run.and_then(|mut run| {
+                let end = run.advance(&|d| done.set(done.get() + d), cancel, deadline)?;
+                Ok((end, run))
+            });
+            self.done_steps += done.get();
+            let result = match outcome {
+                Ok((false, run)) => {
+                    self.current = Some(run);
+                    return None;
+                }
+                Ok((true, run)) => run.finish(),
+                Err(SummaryError::Cancelled) => {
+                    return Some(Err(SweepError::Cancelled));
+                }
+                Err(e) => Err(e),
+            };
+            self.points.push(SweepPoint { value, result });
+            self.next += 1;
+            if past() && self.next < self.scenes.len() {
+                return None;
+            }
+        }
+        Some(Ok(std::mem::take(&mut self.points)))
+    }
 }
 
 /// One point of a sweep.

@@ -70,7 +70,7 @@ impl App {
                             &mut buf,
                             &res.request.param,
                             &res.points,
-                            res.num_points,
+                            &res.columns,
                         )
                         .map_err(|e| e.to_string())
                         .and_then(|()| write_file(&path, &buf))
@@ -99,7 +99,7 @@ impl App {
                             ),
                             &res.request.param,
                             &res.points,
-                            res.num_points,
+                            &res.columns,
                         );
                         crate::output::figures::render_png(&fig, &path, 1400, 1400)
                             .map_err(|e| e.to_string())

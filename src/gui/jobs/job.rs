@@ -3,6 +3,11 @@
 //! named thread, a progress counter (done of total), a cancel flag, and the
 //! result, picked up once by a poll that never blocks. A job dropped while
 //! running (replaced by a newer one, or the app closing) is asked to stop.
+//!
+//! A page in the browser has no threads. There a job made by
+//! [`Job::spawn_sliced`] runs in slices inside the polls, each until a
+//! deadline ([`SLICE_S`] of a frame), so the page keeps drawing; a plain
+//! [`Job::spawn`] runs whole at once.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -49,12 +54,32 @@ impl Progress {
     }
 }
 
-/// A result of type `T` computed on a background thread.
-#[derive(Debug)]
+/// The share of a frame a sliced job takes in each poll where it runs
+/// on the UI thread (s): a 60 Hz frame is 16.7 ms.
+pub const SLICE_S: f64 = 0.008;
+
+/// Work done in slices: each call works until the deadline (`None`: to
+/// the end) and returns the result once done.
+pub type SliceWork<T> = Box<dyn FnMut(&Progress, Option<web_time::Instant>) -> Option<T> + Send>;
+
+/// A result of type `T` computed on a background thread (or, for a sliced
+/// job in the browser, in slices within the polls).
 pub struct Job<T> {
     name: &'static str,
     progress: Progress,
     rx: Receiver<T>,
+    /// The work left of a job run in the polls, and where its result goes.
+    inline: Option<std::sync::Mutex<(SliceWork<T>, std::sync::mpsc::Sender<T>)>>,
+}
+
+impl<T> std::fmt::Debug for Job<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Job")
+            .field("name", &self.name)
+            .field("progress", &self.progress)
+            .field("in_slices", &self.inline.is_some())
+            .finish()
+    }
 }
 
 impl<T: Send + 'static> Job<T> {
@@ -74,7 +99,12 @@ impl<T: Send + 'static> Job<T> {
         #[cfg(target_arch = "wasm32")]
         {
             let _ = tx.send(work(&p));
-            return Ok(Job { name, progress, rx });
+            return Ok(Job {
+                name,
+                progress,
+                rx,
+                inline: None,
+            });
         }
         #[cfg(not(target_arch = "wasm32"))]
         std::thread::Builder::new()
@@ -86,7 +116,54 @@ impl<T: Send + 'static> Job<T> {
             })
             .map_err(|e| format!("cannot start the {name} thread: {e}"))?;
         #[cfg(not(target_arch = "wasm32"))]
-        Ok(Job { name, progress, rx })
+        Ok(Job {
+            name,
+            progress,
+            rx,
+            inline: None,
+        })
+    }
+
+    /// Runs `work` to its end on a thread, or, in the browser, in slices
+    /// of [`SLICE_S`] inside [`Job::poll`] ([`Job::in_slices`]).
+    pub fn spawn_sliced(
+        name: &'static str,
+        total: u64,
+        work: impl FnMut(&Progress, Option<web_time::Instant>) -> Option<T> + Send + 'static,
+    ) -> Result<Self, String> {
+        #[cfg(target_arch = "wasm32")]
+        {
+            return Ok(Self::in_slices(name, total, work));
+        }
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let mut work = work;
+            Self::spawn(name, total, move |p| {
+                loop {
+                    if let Some(t) = work(p, None) {
+                        break t;
+                    }
+                }
+            })
+        }
+    }
+
+    /// The job of `work` run on the caller's thread, a slice at each
+    /// [`Job::poll`] (what [`Job::spawn_sliced`] makes in the browser).
+    pub fn in_slices(
+        name: &'static str,
+        total: u64,
+        work: impl FnMut(&Progress, Option<web_time::Instant>) -> Option<T> + Send + 'static,
+    ) -> Self {
+        let progress = Progress::default();
+        progress.set_total(total);
+        let (tx, rx) = channel();
+        Job {
+            name,
+            progress,
+            rx,
+            inline: Some(std::sync::Mutex::new((Box::new(work), tx))),
+        }
     }
 }
 
@@ -126,6 +203,8 @@ impl<T> Job<T> {
     /// The result once the worker finished, `None` while it runs (never
     /// blocks); an error if the worker died without a result.
     pub fn poll(&self) -> Option<Result<T, String>> {
+        let deadline = web_time::Instant::now() + std::time::Duration::from_secs_f64(SLICE_S);
+        self.run_slice(Some(deadline));
         match self.rx.try_recv() {
             Ok(r) => Some(Ok(r)),
             Err(TryRecvError::Empty) => None,
@@ -135,7 +214,21 @@ impl<T> Job<T> {
 
     /// Blocks until the worker finished (tests, shutdown).
     pub fn wait(&self) -> Result<T, String> {
+        self.run_slice(None);
         self.rx.recv().map_err(|_| self.lost())
+    }
+
+    /// A slice of a job run in the polls, until `deadline`; its result, if
+    /// it ends, is sent to the receiver. Nothing for a threaded job.
+    fn run_slice(&self, deadline: Option<web_time::Instant>) {
+        let Some(inline) = &self.inline else {
+            return;
+        };
+        let mut guard = inline.lock().unwrap_or_else(|e| e.into_inner());
+        let (work, tx) = &mut *guard;
+        if let Some(t) = work(&self.progress, deadline) {
+            let _ = tx.send(t);
+        }
     }
 
     fn lost(&self) -> String {
@@ -217,5 +310,56 @@ mod tests {
         let job: Job<u8> = Job::spawn("test", 1, |_| panic!("boom")).unwrap();
         let e = poll_until(&job).unwrap_err();
         assert!(e.contains("test thread stopped"), "{e}");
+    }
+
+    /// A job in slices (the browser's) runs a slice per poll until the
+    /// deadline, keeps its progress between slices, and gives its result
+    /// once; on a thread the same work gives the same result.
+    #[test]
+    fn a_sliced_job_runs_within_the_polls() {
+        let work = || {
+            let mut left = 50u32;
+            move |p: &Progress, deadline: Option<web_time::Instant>| {
+                while left > 0 {
+                    if p.cancelled() {
+                        return Some(None);
+                    }
+                    std::thread::sleep(Duration::from_millis(1));
+                    left -= 1;
+                    p.add(1);
+                    if deadline.is_some_and(|d| web_time::Instant::now() >= d) {
+                        return None;
+                    }
+                }
+                Some(Some("done"))
+            }
+        };
+        let job = Job::in_slices("test", 50, work());
+        assert_eq!(job.done(), 0, "nothing runs before the first poll");
+        let mut polls = 0;
+        let r = loop {
+            polls += 1;
+            let t = web_time::Instant::now();
+            if let Some(r) = job.poll() {
+                break r;
+            }
+            // a poll returns after its slice, not after the whole job
+            assert!(
+                t.elapsed().as_secs_f64() < 0.2,
+                "a poll ran {:?}",
+                t.elapsed()
+            );
+            assert!(job.done() > 0 && job.done() < 50);
+        };
+        assert_eq!(r, Ok(Some("done")));
+        assert!(polls >= 3, "{polls} polls: the job was not sliced");
+        assert_eq!(job.fraction(), 1.0);
+        let threaded = Job::spawn_sliced("test", 50, work()).unwrap();
+        assert_eq!(threaded.wait(), Ok(Some("done")));
+        // cancelled between slices
+        let job = Job::in_slices("test", 50, work());
+        assert!(job.poll().is_none());
+        job.cancel();
+        assert_eq!(poll_until(&job), Ok(None));
     }
 }

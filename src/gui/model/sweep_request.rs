@@ -39,7 +39,8 @@ pub struct SweepResult {
     pub request: SweepRequest,
     /// Name of the base scene.
     pub scene_name: String,
-    pub num_points: usize,
+    /// What the runs' tables and plots hold (per point, or the patch's).
+    pub columns: crate::studies::sweep::report::Columns,
     pub points: Vec<SweepPoint>,
     /// Wall time of the sweep (s), shown, never asserted.
     pub wall_s: f64,

@@ -25,34 +25,93 @@ pub fn figures_cancellable(
     cancelled: &dyn Fn() -> bool,
     done: &dyn Fn(),
 ) -> Result<FidelityFigures, String> {
-    let freqs = band_frequencies(reference.band_hz.0, reference.band_hz.1, FIDELITY_FREQS)
-        .map_err(|e| e.to_string())?;
-    let src = reference.model(x_m);
-    let p = x_m.len();
-    let stopped = || Err("the fidelity computation was cancelled".to_string());
-    if cancelled() {
-        return stopped();
-    }
-    let fidelity = relative_l2_error(&src, &ModalModel::from_modes(modes, p), &freqs)
-        .map_err(|e| e.to_string())?;
-    done();
-    let mut removal_costs = Vec::with_capacity(modes.len());
-    for k in 0..modes.len() {
-        if cancelled() {
-            return stopped();
+    let mut work = FidelityWork::new(reference, x_m, modes.to_vec())?;
+    loop {
+        if let Some(r) = work.advance(cancelled, done, None) {
+            return r;
         }
-        let cut = without_mode(modes, k).map_err(|e| e.to_string())?;
-        let e = relative_l2_error(&src, &ModalModel::from_modes(&cut, p), &freqs)
-            .map_err(|e| e.to_string())?;
-        removal_costs.push(e.relative_l2);
-        done();
     }
-    Ok(FidelityFigures {
-        fidelity,
-        removal_costs,
-        band_hz: reference.band_hz,
-        num_freqs: FIDELITY_FREQS,
-    })
+}
+
+/// The fidelity figures computed error by error, in slices until a
+/// deadline ([`FidelityWork::advance`]): on a thread, or within the
+/// frames of a page in the browser.
+pub struct FidelityWork {
+    reference: FidelityRef,
+    freqs: Vec<f64>,
+    src: ModalModel,
+    p: usize,
+    modes: Vec<Mode>,
+    fidelity: Option<crate::analysis::fidelity::Fidelity>,
+    removal_costs: Vec<f64>,
+}
+
+impl FidelityWork {
+    pub fn new(reference: &FidelityRef, x_m: &[f64], modes: Vec<Mode>) -> Result<Self, String> {
+        let freqs = band_frequencies(reference.band_hz.0, reference.band_hz.1, FIDELITY_FREQS)
+            .map_err(|e| e.to_string())?;
+        Ok(FidelityWork {
+            reference: reference.clone(),
+            src: reference.model(x_m),
+            p: x_m.len(),
+            freqs,
+            removal_costs: Vec::with_capacity(modes.len()),
+            modes,
+            fidelity: None,
+        })
+    }
+
+    /// Computes errors until `deadline` (`None`: all): the figures once
+    /// every error is done, `None` before; `cancelled` is asked and `done`
+    /// called around each error.
+    pub fn advance(
+        &mut self,
+        cancelled: &dyn Fn() -> bool,
+        done: &dyn Fn(),
+        deadline: Option<web_time::Instant>,
+    ) -> Option<Result<FidelityFigures, String>> {
+        let (p, freqs) = (self.p, &self.freqs);
+        let error = |modes: &[Mode]| {
+            relative_l2_error(&self.src, &ModalModel::from_modes(modes, p), freqs)
+                .map_err(|e| e.to_string())
+        };
+        loop {
+            if cancelled() {
+                return Some(Err("the fidelity computation was cancelled".to_string()));
+            }
+            let k = self.removal_costs.len();
+            match &self.fidelity {
+                None => match error(&self.modes) {
+                    Ok(e) => self.fidelity = Some(e),
+                    Err(e) => return Some(Err(e)),
+                },
+                Some(_) if k < self.modes.len() => {
+                    let cut = match without_mode(&self.modes, k) {
+                        Ok(cut) => cut,
+                        Err(e) => return Some(Err(e.to_string())),
+                    };
+                    match error(&cut) {
+                        Ok(e) => self.removal_costs.push(e.relative_l2),
+                        Err(e) => return Some(Err(e)),
+                    }
+                }
+                Some(fidelity) => {
+                    return Some(Ok(FidelityFigures {
+                        fidelity: fidelity.clone(),
+                        removal_costs: std::mem::take(&mut self.removal_costs),
+                        band_hz: self.reference.band_hz,
+                        num_freqs: FIDELITY_FREQS,
+                    }));
+                }
+            }
+            done();
+            if deadline.is_some_and(|d| web_time::Instant::now() >= d)
+                && self.removal_costs.len() < self.modes.len()
+            {
+                return None;
+            }
+        }
+    }
 }
 
 /// A fidelity computation under way.
@@ -64,13 +123,30 @@ pub struct FidelityJob {
 }
 
 impl FidelityJob {
-    /// Starts the figures of `key` on a std::thread.
+    /// Starts the figures of `key` on a std::thread (in the browser, in
+    /// slices within the frames).
     pub fn spawn(key: FidelityKey) -> Result<Self, String> {
+        Self::start(key, false)
+    }
+
+    /// The figures of `key` computed in slices at each poll, on the
+    /// caller's thread ([`Job::in_slices`]).
+    pub fn spawn_in_slices(key: FidelityKey) -> Result<Self, String> {
+        Self::start(key, true)
+    }
+
+    fn start(key: FidelityKey, in_slices: bool) -> Result<Self, String> {
         let total = key.2.len() as u64 + 1;
         let (reference, x_m, modes) = key.clone();
-        let job = Job::spawn("fidelity", total, move |p| {
-            figures_cancellable(&reference, &x_m, &modes, &|| p.cancelled(), &|| p.add(1))
-        })?;
+        let mut work = FidelityWork::new(&reference, &x_m, modes)?;
+        let slice = move |p: &crate::gui::jobs::Progress, deadline| {
+            work.advance(&|| p.cancelled(), &|| p.add(1), deadline)
+        };
+        let job = if in_slices {
+            Job::in_slices("fidelity", total, slice)
+        } else {
+            Job::spawn_sliced("fidelity", total, slice)?
+        };
         Ok(FidelityJob { key, job })
     }
 
@@ -130,6 +206,24 @@ mod tests {
         let want = figures(&key.0, &key.1, &key.2).unwrap();
         assert_eq!(got, want);
         assert!(got.fidelity.relative_l2 > 0.0);
+    }
+
+    /// In slices (the browser's way) the figures are those of the thread,
+    /// over several polls.
+    #[test]
+    fn figures_in_slices_equal_the_thread_s() {
+        let key = paper_key();
+        let job = FidelityJob::spawn_in_slices(key.clone()).unwrap();
+        let mut polls = 0;
+        let got = loop {
+            polls += 1;
+            if let Some(r) = job.poll() {
+                break r.unwrap();
+            }
+        };
+        assert_eq!(got, figures(&key.0, &key.1, &key.2).unwrap());
+        assert_eq!(job.progress(), 1.0);
+        assert!(polls >= 1);
     }
 
     /// A cancelled computation stops with an error instead of figures.

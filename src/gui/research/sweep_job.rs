@@ -7,6 +7,7 @@ use crate::Scene;
 use crate::gui::jobs::Job;
 use crate::gui::model::sweep_request::{SweepEnd, SweepRequest, SweepResult};
 use crate::identify::ModeCache;
+use crate::studies::sweep::report::Columns;
 use crate::studies::sweep::{self, SweepError, SweepPoint};
 use std::sync::Arc;
 
@@ -19,7 +20,7 @@ pub struct SweepJob {
     job: Job<Result<Vec<SweepPoint>, SweepError>>,
     started: web_time::Instant,
     scene_name: String,
-    num_points: usize,
+    columns: Columns,
 }
 
 /// Worker threads for a sweep: every core.
@@ -29,8 +30,9 @@ pub fn default_threads() -> usize {
 
 impl SweepJob {
     /// Checks `request` against `base` and starts it on a background thread
-    /// (which runs `threads` workers). Errors name the field, value and
-    /// what was expected.
+    /// (which runs `threads` workers; in the browser, one run after the
+    /// other in slices within the frames, [`SweepJob::start_in_slices`]).
+    /// Errors name the field, value and what was expected.
     /// A ring tyre's modes come from (and are kept in) `cache`.
     pub fn start(
         base: &Scene,
@@ -38,27 +40,64 @@ impl SweepJob {
         threads: usize,
         cache: Arc<ModeCache>,
     ) -> Result<Self, String> {
-        let sw = request.to_sweep(base, threads).map_err(|e| e.to_string())?;
-        let scene = base.clone();
-        let runs = sw.values.len();
-        let threads = sw.threads;
-        // the total (solver steps of every run) is known once the scenes are
-        let job = Job::spawn("sweep", 0, move |p| {
-            let progress = |done: u64, total: u64| {
-                p.set_total(total);
-                p.set(done);
-            };
-            sweep::run_sweep(&scene, &sw, &cache, &progress, p.cancel_flag())
-        })?;
-        Ok(SweepJob {
+        #[cfg(target_arch = "wasm32")]
+        {
+            let _ = threads;
+            return Self::start_in_slices(base, request, cache);
+        }
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            let sw = request.to_sweep(base, threads).map_err(|e| e.to_string())?;
+            let scene = base.clone();
+            let runs = sw.values.len();
+            let threads = sw.threads;
+            // the total (solver steps of every run) is known once the scenes are
+            let job = Job::spawn("sweep", 0, move |p| {
+                let progress = |done: u64, total: u64| {
+                    p.set_total(total);
+                    p.set(done);
+                };
+                sweep::run_sweep(&scene, &sw, &cache, &progress, p.cancel_flag())
+            })?;
+            Ok(Self::new(base, request, threads, runs, job))
+        }
+    }
+
+    /// The sweep run value after value on the caller's thread, a slice at
+    /// each poll ([`Job::in_slices`], [`sweep::SweepRun`]): how a page in
+    /// the browser runs it. Its points equal the threaded sweep's.
+    pub fn start_in_slices(
+        base: &Scene,
+        request: SweepRequest,
+        cache: Arc<ModeCache>,
+    ) -> Result<Self, String> {
+        let sw = request.to_sweep(base, 1).map_err(|e| e.to_string())?;
+        let mut run = sweep::SweepRun::new(base, &sw).map_err(|e| e.to_string())?;
+        let (runs, total) = (sw.values.len(), run.total_steps());
+        let job = Job::in_slices("sweep", total, move |p, deadline| {
+            let r = run.advance(&cache, p.cancel_flag(), deadline);
+            p.set(run.done_steps());
+            r
+        });
+        Ok(Self::new(base, request, 1, runs, job))
+    }
+
+    fn new(
+        base: &Scene,
+        request: SweepRequest,
+        threads: usize,
+        runs: usize,
+        job: Job<Result<Vec<SweepPoint>, SweepError>>,
+    ) -> Self {
+        SweepJob {
             scene_name: base.name.clone(),
-            num_points: base.num_points(),
+            columns: Columns::of(base, &[request.param.as_str()]),
             request,
             threads,
             runs,
             job,
             started: web_time::Instant::now(),
-        })
+        }
     }
 
     /// Fraction of the solver steps done (0..=1).
@@ -96,7 +135,7 @@ impl SweepJob {
             Ok(points) => SweepEnd::Done(SweepResult {
                 request: self.request.clone(),
                 scene_name: self.scene_name.clone(),
-                num_points: self.num_points,
+                columns: self.columns,
                 points,
                 wall_s: self.started.elapsed().as_secs_f64(),
                 threads: self.threads,
@@ -256,6 +295,40 @@ mod tests {
         .unwrap();
         assert_eq!(res.points, lib);
         assert_eq!(res.failed(), 0);
+    }
+
+    /// The browser's sweep: run in slices within the polls, each poll
+    /// returning after its slice, with the threaded sweep's points.
+    #[test]
+    fn a_sweep_in_slices_polls_to_the_library_result() {
+        let s = scene();
+        let r = req("speed_mps", 10.0, 20.0, 3);
+        let job = SweepJob::start_in_slices(&s, r.clone(), Arc::new(ModeCache::new())).unwrap();
+        let mut polls = 0;
+        let end = loop {
+            polls += 1;
+            if let Some(end) = job.poll() {
+                break end;
+            }
+            assert!(job.progress() > 0.0 && job.progress() < 1.0);
+        };
+        let SweepEnd::Done(res) = end else {
+            panic!("not done: {end:?}")
+        };
+        let lib = sweep::run_sweep(
+            &s,
+            &r.to_sweep(&s, 2).unwrap(),
+            &ModeCache::new(),
+            &|_, _| {},
+            &AtomicBool::new(false),
+        )
+        .unwrap();
+        assert_eq!(res.points, lib);
+        assert!(polls > 1, "one poll ran the whole sweep");
+        // cancelled between slices
+        let job = SweepJob::start_in_slices(&s, r, Arc::new(ModeCache::new())).unwrap();
+        job.cancel();
+        assert!(matches!(job.poll(), Some(SweepEnd::Cancelled)));
     }
 
     #[test]

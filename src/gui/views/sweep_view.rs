@@ -7,7 +7,6 @@
 use super::XTitle;
 use super::point_color;
 use crate::Scene;
-use crate::analysis::metrics::ContactSummary;
 use crate::analysis::spectrum::third_octave_bands;
 use crate::gui::model::command::{Command, ResearchCommand};
 use crate::gui::model::sweep_request::{SweepRequest, SweepResult};
@@ -241,7 +240,7 @@ type Curves = Vec<(String, Color32, Vec<[f64; 2]>)>;
 
 fn plots(ui: &mut Ui, r: &SweepResult) {
     use crate::studies::sweep::report::{
-        CONTACT_PERCENT, Y_TITLES, band_series_name, param_axis_label, point_series_name,
+        Y_TITLES, band_series_name, contact_curves, param_axis_label,
     };
     // the sweep figure's labels (one labelling for the view and the PNG)
     let x_label = param_axis_label(&r.request.param);
@@ -253,19 +252,20 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
     let gap = ui.spacing().item_spacing;
     let w = ((ui.available_width() - gap.x) / 2.0).max(200.0);
     let h = ((ui.available_height() - gap.y) / 2.0).max(150.0);
-    let per_point = |get: fn(&ContactSummary) -> &Vec<f64>, scale: f64| -> Curves {
-        (0..r.num_points)
-            .map(|i| {
+    // one labelling with the figure: a curve per point, or all the points'
+    let [force, impulse, contact] = contact_curves(&r.columns, &r.points).map(|curves| -> Curves {
+        curves
+            .into_iter()
+            .enumerate()
+            .map(|(i, (name, pts))| {
                 (
-                    point_series_name(i),
+                    name,
                     point_color(i),
-                    ok.iter()
-                        .map(|(v, s)| [*v, get(&s.contact)[i] * scale])
-                        .collect(),
+                    pts.into_iter().map(|(x, y)| [x, y]).collect(),
                 )
             })
             .collect()
-    };
+    });
     let bands: Curves = third_octave_bands(315.0, 2000.0)
         .iter()
         .step_by(2)
@@ -287,21 +287,9 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
         })
         .collect();
     let grid: [(&str, &str, Curves); 4] = [
-        (
-            "tirecontact.sweep_max",
-            Y_TITLES[0],
-            per_point(|s| &s.force_max_n, 1.0),
-        ),
-        (
-            "tirecontact.sweep_impulse",
-            Y_TITLES[1],
-            per_point(|s| &s.impulse_max_ns, 1.0),
-        ),
-        (
-            "tirecontact.sweep_contact",
-            Y_TITLES[2],
-            per_point(|s| &s.contact_fraction, CONTACT_PERCENT),
-        ),
+        ("tirecontact.sweep_max", Y_TITLES[0], force),
+        ("tirecontact.sweep_impulse", Y_TITLES[1], impulse),
+        ("tirecontact.sweep_contact", Y_TITLES[2], contact),
         ("tirecontact.sweep_bands", Y_TITLES[3], bands),
     ];
     let mut it = grid.into_iter();

@@ -24,9 +24,52 @@ pub const METRICS: [(&str, &str, &str); 5] = [
     ("contact fraction, mean over the points", "_fraction", "-"),
 ];
 
-/// The size (px) of a factor's figure: a panel per metric, each plot about
-/// 170 px high.
-pub const FIGURE_PX: (u32, u32) = (1200, 1400);
+/// Summary metrics of a contact patch's row, each a column of its own
+/// (name, column, unit): present when the table has the column.
+pub const PATCH_METRICS: [(&str, &str, &str); 2] = [
+    (
+        "largest summed force of the patch without impacts",
+        "patch_force_max_N",
+        "N",
+    ),
+    ("mean contact area of the patch", "patch_area_mean_m2", "m²"),
+];
+
+/// A summary metric of a table: its name, unit and columns (their mean).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Metric {
+    pub name: &'static str,
+    pub unit: &'static str,
+    columns: Vec<usize>,
+}
+
+/// The metrics a table's header holds, in order: [`METRICS`] with at least
+/// one per-point column (`q{i}…`, none when the factors change how many
+/// points there are), then [`PATCH_METRICS`].
+fn metrics_of(header: &[String], from: usize, to: usize) -> Vec<Metric> {
+    let per_point = METRICS.iter().map(|(name, suffix, unit)| Metric {
+        name,
+        unit,
+        columns: (from..to)
+            .filter(|&c| header[c].ends_with(suffix) && !header[c].starts_with("patch_"))
+            .collect(),
+    });
+    let patch = PATCH_METRICS.iter().map(|(name, column, unit)| Metric {
+        name,
+        unit,
+        columns: (from..to).filter(|&c| header[c] == *column).collect(),
+    });
+    per_point
+        .chain(patch)
+        .filter(|m| !m.columns.is_empty())
+        .collect()
+}
+
+/// The size (px) of a factor's figure of `metrics` panels: each plot
+/// about 170 px high (1200 × 1400 for five).
+pub fn figure_px(metrics: usize) -> (u32, u32) {
+    (1200, 280 * metrics.max(1) as u32)
+}
 
 /// Levels of a factor with more distinct values than this are binned.
 pub const MAX_LEVELS: usize = 8;
@@ -46,6 +89,8 @@ pub struct Level {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Effect {
     pub factor: String,
+    /// The metrics of the levels' means, as the table's.
+    pub metrics: Vec<Metric>,
     pub levels: Vec<Level>,
 }
 
@@ -54,6 +99,8 @@ pub struct Effect {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table {
     pub factors: Vec<String>,
+    /// The summary metrics of the rows, in the order of their values.
+    pub metrics: Vec<Metric>,
     pub rows: Vec<(Vec<f64>, Vec<f64>)>,
     /// Rows that failed (their `error` not empty), left out.
     pub failed: usize,
@@ -90,14 +137,7 @@ pub fn table(header: &[String], records: &[Vec<String>]) -> Result<Table, TableE
         return Err(TableError::Columns);
     };
     let factors: Vec<String> = header[hash + 1..rep].to_vec();
-    let metric_cols: Vec<Vec<usize>> = METRICS
-        .iter()
-        .map(|(_, suffix, _)| {
-            (rep + 1..err)
-                .filter(|&c| header[c].ends_with(suffix))
-                .collect()
-        })
-        .collect();
+    let metrics = metrics_of(header, rep + 1, err);
     let mut rows = Vec::new();
     let mut failed = 0;
     for (k, r) in records.iter().enumerate() {
@@ -120,10 +160,14 @@ pub fn table(header: &[String], records: &[Vec<String>]) -> Result<Table, TableE
             })
         };
         let f: Vec<f64> = (hash + 1..rep).map(num).collect::<Result<_, _>>()?;
-        let m: Vec<f64> = metric_cols
+        let m: Vec<f64> = metrics
             .iter()
-            .map(|cols| {
-                let v: Vec<f64> = cols.iter().map(|&c| num(c)).collect::<Result<_, _>>()?;
+            .map(|metric| {
+                let v: Vec<f64> = metric
+                    .columns
+                    .iter()
+                    .map(|&c| num(c))
+                    .collect::<Result<_, _>>()?;
                 Ok(v.iter().sum::<f64>() / v.len().max(1) as f64)
             })
             .collect::<Result<_, TableError>>()?;
@@ -131,6 +175,7 @@ pub fn table(header: &[String], records: &[Vec<String>]) -> Result<Table, TableE
     }
     Ok(Table {
         factors,
+        metrics,
         rows,
         failed,
     })
@@ -177,7 +222,7 @@ pub fn main_effects(t: &Table) -> Vec<Effect> {
                 .iter()
                 .map(|g| {
                     let value = g.iter().map(|&i| t.rows[i].0[d]).sum::<f64>() / g.len() as f64;
-                    let (mean, std): (Vec<f64>, Vec<f64>) = (0..METRICS.len())
+                    let (mean, std): (Vec<f64>, Vec<f64>) = (0..t.metrics.len())
                         .map(|m| mean_std(&g.iter().map(|&i| t.rows[i].1[m]).collect::<Vec<_>>()))
                         .unzip();
                     Level {
@@ -190,6 +235,7 @@ pub fn main_effects(t: &Table) -> Vec<Effect> {
                 .collect();
             Effect {
                 factor: t.factors[d].clone(),
+                metrics: t.metrics.clone(),
                 levels,
             }
         })
@@ -199,10 +245,11 @@ pub fn main_effects(t: &Table) -> Vec<Effect> {
 /// The figure of one factor's main effects: a panel per metric, its mean
 /// at each level and the mean ± one standard deviation.
 pub fn figure(e: &Effect, title: &str) -> Figure {
-    let panels = METRICS
+    let panels = e
+        .metrics
         .iter()
         .enumerate()
-        .map(|(m, (name, _, unit))| {
+        .map(|(m, Metric { name, unit, .. })| {
             let at = |f: &dyn Fn(&Level) -> f64| -> Vec<(f64, f64)> {
                 e.levels.iter().map(|l| (l.value, f(l))).collect()
             };
@@ -237,7 +284,10 @@ pub fn figure(e: &Effect, title: &str) -> Figure {
         })
         .collect();
     Figure {
-        title: format!("{title}: main effect of {}", e.factor),
+        title: format!(
+            "{title}: main effect of {}",
+            crate::studies::sweep::report::param_name(&e.factor)
+        ),
         subtitle: format!(
             "{} levels; each point the mean of its rows, the thin lines one standard deviation either side",
             e.levels.len()
@@ -258,15 +308,15 @@ pub fn markdown(title: &str, t: &Table, effects: &[Effect], figures: &[String]) 
     );
     for (e, fig) in effects.iter().zip(figures) {
         s.push_str(&format!("\n## {}\n\n| level | rows |", e.factor));
-        for (name, _, unit) in METRICS {
+        for Metric { name, unit, .. } in &t.metrics {
             s.push_str(&format!(" {name} ({unit}) |"));
         }
         s.push_str("\n|---|---|");
-        s.push_str(&"---|".repeat(METRICS.len()));
+        s.push_str(&"---|".repeat(t.metrics.len()));
         s.push('\n');
         for l in &e.levels {
             s.push_str(&format!("| {} | {} |", short(l.value, 4), l.rows));
-            for m in 0..METRICS.len() {
+            for m in 0..t.metrics.len() {
                 s.push_str(&format!(
                     " {} ± {} |",
                     short(l.mean[m], 4),
@@ -343,6 +393,56 @@ mod tests {
             md.contains("| 1 | 2 | 12 ± 1 |") && md.contains("![a](a.png)"),
             "{md}"
         );
+    }
+
+    /// A patch whose factor changes its points: no per-point columns, the
+    /// patch's two metrics from their own columns (not from the per-point
+    /// suffixes they share, `_max_N`).
+    #[test]
+    fn a_patch_table_is_summarised_by_the_patch_metrics() {
+        let h = header(&[
+            "row",
+            "of",
+            "study_hash",
+            "points.across",
+            "replicate",
+            "patch_force_max_N",
+            "patch_force_rms_N",
+            "patch_points_in_contact_mean",
+            "patch_area_mean_m2",
+            "patch_area_max_m2",
+            "band_20hz_db_re_1N",
+            "error",
+        ]);
+        let rec = |across: f64| -> Vec<String> {
+            [
+                "0",
+                "2",
+                "h",
+                &across.to_string(),
+                "0",
+                &(100.0 * across).to_string(),
+                "1",
+                "2",
+                &(1e-4 * across).to_string(),
+                "9",
+                "60",
+                "",
+            ]
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
+        };
+        let t = table(&h, &[rec(2.0), rec(4.0)]).unwrap();
+        let names: Vec<&str> = t.metrics.iter().map(|m| m.name).collect();
+        assert_eq!(names, [PATCH_METRICS[0].0, PATCH_METRICS[1].0]);
+        assert_eq!(t.rows[1].1, vec![400.0, 4e-4]);
+        let e = main_effects(&t);
+        assert_eq!(e[0].metrics.len(), 2);
+        assert_eq!(figure(&e[0], "t").panels.len(), 2);
+        let md = markdown("t", &t, &e, &["a.png".into()]);
+        assert!(md.contains("mean contact area of the patch (m²)"), "{md}");
+        assert!(!md.contains("impacts per second"), "{md}");
     }
 
     #[test]

@@ -4,6 +4,7 @@ use super::{RunSummary, SummaryError, SweepPoint};
 use crate::analysis::metrics::ContactSummary;
 use crate::analysis::spectrum::{band_label, third_octave_bands};
 use crate::output::figures::{Figure, Panel, Series, Style};
+use crate::scene::Scene;
 use std::io::Write;
 
 /// Nominal centres of the bands of the sweep table (Hz): 20 Hz - 5 kHz.
@@ -40,22 +41,84 @@ const POINT_METRICS: [PointMetric; 7] = [
     ("contact{i}_fraction", |s| &s.contact_fraction),
 ];
 
-/// The metric columns of a run of `num_points` points, all with a limit as
-/// dt → 0 ([`crate::analysis::metrics`]): `q{i}_smooth_max_N`, `q{i}_smooth_rms_N`
-/// (contact force without impacts), `q{i}_1ms_max_N` (largest 1 ms mean,
-/// impacts included), `impacts{i}_per_s`, `impulse{i}_mean_Ns`,
-/// `impulse{i}_max_Ns`, `contact{i}_fraction` (each for every point in
-/// turn), then `band_{f}hz_db_re_1N`.. (total force).
-pub fn metric_columns(num_points: usize) -> Vec<String> {
+/// Which columns a table of runs holds: the per-point metrics when every
+/// run has the same points, the patch's when the points make a contact
+/// patch ([`crate::output::patch::PatchLayout`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Columns {
+    /// The points of every run; `None` when the runs' points differ (a
+    /// grid's `points.along` or `points.across` is swept).
+    pub points: Option<usize>,
+    /// The base scene's points make a contact patch.
+    pub patch: bool,
+}
+
+/// The paths that change how many points a scene has.
+pub const POINT_COUNT_PATHS: [&str; 2] = ["points.along", "points.across"];
+
+impl Columns {
+    /// The columns of runs of `base` with the parameters at `paths` varied.
+    pub fn of(base: &Scene, paths: &[&str]) -> Self {
+        let varies = paths.iter().any(|p| POINT_COUNT_PATHS.contains(&p.trim()));
+        Columns {
+            points: (!varies).then(|| base.num_points()),
+            patch: crate::output::patch::PatchLayout::of(base).is_ok(),
+        }
+    }
+
+    /// The contact plots show one curve per point (rather than the whole
+    /// patch's).
+    pub fn per_point(&self) -> bool {
+        !self.patch && self.points.is_some()
+    }
+}
+
+/// The patch's columns: name and value of a run (NaN for a run whose
+/// points are not a patch).
+type PatchMetric = (&'static str, fn(&RunSummary) -> f64);
+
+/// The patch columns, in table order: the summed force without impacts
+/// (largest, RMS), the points in contact (mean), the contact area (mean,
+/// largest; points in contact × cell).
+const PATCH_METRICS: [PatchMetric; 5] = [
+    ("patch_force_max_N", |r| r.contact.total_force_max_n),
+    ("patch_force_rms_N", |r| r.contact.total_force_rms_n),
+    ("patch_points_in_contact_mean", |r| {
+        r.contact.in_contact_mean
+    }),
+    ("patch_area_mean_m2", |r| {
+        r.cell_area_m2
+            .map_or(f64::NAN, |a| a * r.contact.in_contact_mean)
+    }),
+    ("patch_area_max_m2", |r| {
+        r.cell_area_m2
+            .map_or(f64::NAN, |a| a * r.contact.in_contact_max as f64)
+    }),
+];
+
+/// The metric columns of runs with `columns`, all with a limit as dt → 0
+/// ([`crate::analysis::metrics`]): per point (when the runs' points agree)
+/// `q{i}_smooth_max_N`, `q{i}_smooth_rms_N` (contact force without
+/// impacts), `q{i}_1ms_max_N` (largest 1 ms mean, impacts included),
+/// `impacts{i}_per_s`, `impulse{i}_mean_Ns`, `impulse{i}_max_Ns`,
+/// `contact{i}_fraction` (each for every point in turn); for a patch
+/// `patch_force_max_N`, `patch_force_rms_N` (the summed force without
+/// impacts), `patch_points_in_contact_mean`, `patch_area_mean_m2`,
+/// `patch_area_max_m2`; then `band_{f}hz_db_re_1N`.. (total force).
+pub fn metric_columns(columns: &Columns) -> Vec<String> {
     debug_assert_eq!(
         crate::analysis::metrics::FORCE_WINDOW_S,
         1e-3,
         "rename q{{i}}_1ms_max_N"
     );
+    let p = columns.points.unwrap_or(0);
     let mut header: Vec<String> = POINT_METRICS
         .iter()
-        .flat_map(|(name, _)| (0..num_points).map(move |i| name.replace("{i}", &i.to_string())))
+        .flat_map(|(name, _)| (0..p).map(move |i| name.replace("{i}", &i.to_string())))
         .collect();
+    if columns.patch {
+        header.extend(PATCH_METRICS.iter().map(|(name, _)| name.to_string()));
+    }
     header.extend(
         table_bands()
             .iter()
@@ -65,15 +128,28 @@ pub fn metric_columns(num_points: usize) -> Vec<String> {
 }
 
 /// A run's values in [`metric_columns`]' order (NaN when it failed).
-pub fn metric_values(result: &Result<RunSummary, SummaryError>, num_points: usize) -> Vec<String> {
+pub fn metric_values(result: &Result<RunSummary, SummaryError>, columns: &Columns) -> Vec<String> {
+    let p = columns.points.unwrap_or(0);
     let mut row = Vec::new();
     match result {
         Ok(r) => {
             for (_, get) in POINT_METRICS {
-                row.extend(get(&r.contact).iter().map(|x| format!("{x}")));
+                let v = get(&r.contact);
+                row.extend((0..p).map(|i| v.get(i).map_or("NaN".into(), |x| format!("{x}"))));
+            }
+            if columns.patch {
+                row.extend(PATCH_METRICS.iter().map(|(_, get)| format!("{}", get(r))));
             }
         }
-        Err(_) => row.extend((0..POINT_METRICS.len() * num_points).map(|_| "NaN".to_string())),
+        Err(_) => {
+            let n = POINT_METRICS.len() * p
+                + if columns.patch {
+                    PATCH_METRICS.len()
+                } else {
+                    0
+                };
+            row.extend((0..n).map(|_| "NaN".to_string()));
+        }
     }
     row.extend(
         table_bands()
@@ -89,16 +165,16 @@ pub fn write_csv<W: Write>(
     out: W,
     param: &str,
     points: &[SweepPoint],
-    num_points: usize,
+    columns: &Columns,
 ) -> Result<(), csv::Error> {
     let mut w = csv::Writer::from_writer(out);
     let mut header = vec![param.to_string()];
-    header.extend(metric_columns(num_points));
+    header.extend(metric_columns(columns));
     header.push("error".into());
     w.write_record(&header)?;
     for p in points {
         let mut row = vec![format!("{}", p.value)];
-        row.extend(metric_values(&p.result, num_points));
+        row.extend(metric_values(&p.result, columns));
         row.push(
             p.result
                 .as_ref()
@@ -135,6 +211,12 @@ pub fn param_name(param: &str) -> String {
         "duration_s" => Some("duration"),
         "road.amplitude_m" => Some("road amplitude a"),
         "road.wavelength_m" => Some("road wavelength λ"),
+        "points.along" => Some("points along"),
+        "points.across" => Some("rows across"),
+        "points.spacing_m.0" => Some("grid spacing along Δx"),
+        "points.spacing_m.1" => Some("grid spacing across Δy"),
+        "points.preload.depth_m" => Some("press depth"),
+        "points.preload.length_m" => Some("footprint length"),
         _ => None,
     };
     if let Some(t) = top {
@@ -246,6 +328,67 @@ pub fn band_series_name(nominal_hz: f64) -> String {
     format!("{} Hz band", band_label(nominal_hz))
 }
 
+/// One named curve of a sweep plot: `(value, metric)` pairs.
+pub type Curve = (String, Vec<(f64, f64)>);
+
+/// The legend names of the whole-patch curves of the three contact plots.
+pub const PATCH_CURVE_NAMES: [&str; 3] = [
+    "all points: summed force",
+    "all points: largest of any point",
+    "all points: mean over the points",
+];
+
+/// The curves of the sweep's three contact plots ([`Y_TITLES`] 0 to 2),
+/// one labelling for the sweep view and the figure: a curve per point, or,
+/// for a patch or runs whose points differ ([`Columns::per_point`]), one
+/// for all the points (the summed force without impacts, the largest
+/// impulse of any point, the mean contact fraction over the points).
+pub fn contact_curves(columns: &Columns, points: &[SweepPoint]) -> [Vec<Curve>; 3] {
+    let ok: Vec<(f64, &RunSummary)> = points
+        .iter()
+        .filter_map(|p| p.result.as_ref().ok().map(|r| (p.value, r)))
+        .collect();
+    let curve = |name: String, get: &dyn Fn(&RunSummary) -> Option<f64>| -> Curve {
+        let pts = ok
+            .iter()
+            .filter_map(|(v, r)| get(r).map(|y| (*v, y)))
+            .collect();
+        (name, pts)
+    };
+    match columns.points {
+        Some(p) if columns.per_point() => {
+            let per_point = |get: fn(&ContactSummary) -> &Vec<f64>, scale: f64| -> Vec<Curve> {
+                (0..p)
+                    .map(|i| {
+                        curve(point_series_name(i), &|r| {
+                            get(&r.contact).get(i).map(|y| scale * y)
+                        })
+                    })
+                    .collect()
+            };
+            [
+                per_point(|s| &s.force_max_n, 1.0),
+                per_point(|s| &s.impulse_max_ns, 1.0),
+                per_point(|s| &s.contact_fraction, CONTACT_PERCENT),
+            ]
+        }
+        _ => {
+            let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+            [
+                vec![curve(PATCH_CURVE_NAMES[0].into(), &|r| {
+                    Some(r.contact.total_force_max_n)
+                })],
+                vec![curve(PATCH_CURVE_NAMES[1].into(), &|r| {
+                    Some(r.contact.impulse_max_ns.iter().fold(0.0, |a, &b| a.max(b)))
+                })],
+                vec![curve(PATCH_CURVE_NAMES[2].into(), &|r| {
+                    Some(CONTACT_PERCENT * mean(&r.contact.contact_fraction))
+                })],
+            ]
+        }
+    }
+}
+
 /// The sweep's subtitle: how many values of which parameter, over which
 /// range with its unit (`8 values of speed V from 8 to 36 m/s`).
 pub fn sweep_subtitle(param: &str, count: usize, from: f64, to: f64) -> String {
@@ -264,33 +407,27 @@ pub fn sweep_subtitle(param: &str, count: usize, from: f64, to: f64) -> String {
 pub const FIGURE_PX: (u32, u32) = (1400, 1800);
 
 /// The sweep figure: max force without impacts, largest impact impulse,
-/// contact fraction per point and
-/// the rolling-noise bands (315, 500, 800, 1250, 2000 Hz) of the total
+/// contact fraction ([`contact_curves`]: per point, or for all the points
+/// of a patch) and the rolling-noise bands (315, 500, 800, 1250, 2000 Hz) of the total
 /// force, against the parameter.
 pub fn figure(
     title: &str,
     subtitle: &str,
     param: &str,
     points: &[SweepPoint],
-    num_points: usize,
+    columns: &Columns,
 ) -> Figure {
-    let ok: Vec<(f64, &super::RunSummary)> = points
-        .iter()
-        .filter_map(|p| p.result.as_ref().ok().map(|r| (p.value, r)))
-        .collect();
-    let per_point = |get: &dyn Fn(&ContactSummary) -> &Vec<f64>, scale: f64| -> Vec<Series> {
-        (0..num_points)
-            .map(|i| Series {
-                name: point_series_name(i),
-                points: ok
-                    .iter()
-                    .map(|(v, r)| (*v, scale * get(&r.contact)[i]))
-                    .collect(),
+    let [force, impulse, contact] = contact_curves(columns, points).map(|curves| {
+        curves
+            .into_iter()
+            .map(|(name, points)| Series {
+                name,
+                points,
                 style: Style::LineMarkers(3),
                 color: None,
             })
-            .collect()
-    };
+            .collect::<Vec<_>>()
+    });
     // every other band of 315 Hz - 2 kHz (all of them are in the CSV)
     let bands: Vec<Series> = third_octave_bands(315.0, 2000.0)
         .iter()
@@ -314,21 +451,21 @@ pub fn figure(
                 title: "Largest contact force without impacts (steady part)".into(),
                 x_label: param_axis_label(param),
                 y_label: Y_TITLES[0].into(),
-                series: per_point(&|r| &r.force_max_n, 1.0),
+                series: force,
                 ..Panel::default()
             },
             Panel {
                 title: "Largest impact impulse (steady part; 0: no impact)".into(),
                 x_label: param_axis_label(param),
                 y_label: Y_TITLES[1].into(),
-                series: per_point(&|r| &r.impulse_max_ns, 1.0),
+                series: impulse,
                 ..Panel::default()
             },
             Panel {
                 title: "Fraction of steps in contact (steady part)".into(),
                 x_label: param_axis_label(param),
                 y_label: Y_TITLES[2].into(),
-                series: per_point(&|r| &r.contact_fraction, CONTACT_PERCENT),
+                series: contact,
                 ..Panel::default()
             },
             Panel {
@@ -346,7 +483,12 @@ pub fn figure(
 
 #[cfg(test)]
 mod tests {
-    use super::{CONTACT_PERCENT, Y_TITLES, figure, param_axis_label, sweep_subtitle};
+    use super::{CONTACT_PERCENT, Columns, Y_TITLES, figure, param_axis_label, sweep_subtitle};
+
+    const THREE: Columns = Columns {
+        points: Some(3),
+        patch: false,
+    };
 
     #[test]
     fn swept_parameters_are_labelled_with_their_units() {
@@ -431,7 +573,7 @@ mod tests {
     #[test]
     fn the_figure_speaks_as_the_sweep_view() {
         let pts = super::figure_tests::points();
-        let fig = figure("t", "s", "speed_mps", &pts, 3);
+        let fig = figure("t", "s", "speed_mps", &pts, &THREE);
         let titles: Vec<&str> = fig.panels.iter().map(|p| p.y_label.as_str()).collect();
         assert_eq!(titles, Y_TITLES.to_vec());
         for p in &fig.panels[..3] {
@@ -469,12 +611,17 @@ mod tests {
 
 #[cfg(test)]
 mod figure_tests {
-    use super::{FIGURE_PX, figure};
+    use super::{Columns, FIGURE_PX, figure};
     use crate::analysis::metrics::ContactSummary;
     use crate::analysis::spectrum::{BandLevel, third_octave_bands};
     use crate::output::figures::tests::{ink, runs};
     use crate::output::figures::{render_rgb_layout, tick_label_px};
     use crate::studies::sweep::{RunSummary, SweepPoint};
+
+    const THREE: Columns = Columns {
+        points: Some(3),
+        patch: false,
+    };
 
     /// Fifteen speeds of a three-point scene shaped as the three-point
     /// preset's sweep (forces up to 900 kN, a band dipping to -70 dB).
@@ -501,6 +648,7 @@ mod figure_tests {
                                 resolved: true,
                             })
                             .collect(),
+                        cell_area_m2: None,
                         steps: 1000,
                     }),
                 }
@@ -518,7 +666,7 @@ mod figure_tests {
         // at 1400 x 1400 the panels' plots were 160 px high: two y tick
         // labels (one, 500000, on the force panel), and the rotated y
         // titles ran past their plots towards their neighbours'
-        let fig = figure("t", "s", "speed_mps", &points(), 3);
+        let fig = figure("t", "s", "speed_mps", &points(), &THREE);
         let (w, h) = FIGURE_PX;
         let (rgb, l) = render_rgb_layout(&fig, w, h).unwrap();
         let px = tick_label_px(w, h) as i32;

@@ -126,7 +126,12 @@ fn a_sweep_from_the_gui_equals_the_library_sweep() {
             csv.clone(),
         )));
     let mut expected = Vec::new();
-    tirecontact::studies::sweep::report::write_csv(&mut expected, "speed_mps", &lib, 3).unwrap();
+    let columns = tirecontact::studies::sweep::report::Columns {
+        points: Some(3),
+        patch: false,
+    };
+    tirecontact::studies::sweep::report::write_csv(&mut expected, "speed_mps", &lib, &columns)
+        .unwrap();
     assert_eq!(std::fs::read(&csv).unwrap(), expected);
     let png = dir.join("sweep.png");
     h.state_mut()
