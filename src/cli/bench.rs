@@ -40,6 +40,10 @@ pub struct BenchArgs {
     /// of the same grid and number of modes (patch_presets.md).
     #[arg(long, conflicts_with = "scaling")]
     pub patch_presets: bool,
+    /// Solver threads of each timed run of `--scaling` and
+    /// `--patch-presets` (results do not depend on them).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=256))]
+    pub threads: u16,
     /// One size of the scaling study, `P,K,CONTACT` with CONTACT `rigid`,
     /// `tread` or `patch` (the child process's job: its timed runs), or
     /// `P,K,CONTACT,SECONDS[,lifted]`: one run of that length, off the road
@@ -72,7 +76,7 @@ fn default_presets() -> Vec<PathBuf> {
 
 pub fn bench(args: &BenchArgs) -> CliResult {
     if let Some(pk) = &args.scaling_one {
-        return scaling::scaling_one(pk, args.quick);
+        return scaling::scaling_one(pk, args.quick, args.threads.into());
     }
     if args.scaling {
         return scaling::scaling(args);

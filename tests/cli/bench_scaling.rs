@@ -59,3 +59,60 @@ fn the_scaling_study_writes_its_table_and_figure() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("expected P,K,CONTACT"));
 }
+
+/// `bench --patch-presets` on a small patch written here (2 threads): the
+/// table names it with its grid and modes beside the study's patch; a
+/// preset without a patch is refused, named.
+#[test]
+fn patch_presets_are_timed_beside_the_study_patch() {
+    let tmp = temp_dir();
+    let preset = tmp.path().join("small_patch.ron");
+    std::fs::write(
+        &preset,
+        r#"Scene(
+    name: "Small patch",
+    tyre: Plate(plate: (max_freq_hz: 600.0)),
+    points: Grid(along: 4, across: 3, spacing_m: (0.006, 0.02), preload: Flat(depth_m: 0.0005)),
+    road: Sine(amplitude_m: 0.0001, wavelength_m: 0.05),
+    speed_mps: 10.0,
+    ramp_s: 0.002,
+    dt_s: 1e-5,
+    duration_s: 0.004,
+    contact: Compliant(stiffness_n_m: [75000.0]),
+)"#,
+    )
+    .unwrap();
+    let out = tmp.path().join("out");
+    let o = bin()
+        .args([
+            "bench",
+            "--patch-presets",
+            "--quick",
+            "--threads",
+            "2",
+            "-o",
+        ])
+        .arg(&out)
+        .arg(&preset)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(out.join("patch_presets.md")).unwrap();
+    let row = md
+        .lines()
+        .find(|l| l.starts_with("| Small patch |"))
+        .unwrap_or_else(|| panic!("{md}"));
+    assert!(row.contains("| 4 × 3 |"), "{row}");
+    assert!(md.contains("on 2 thread(s)"), "{md}");
+    let line = tmp.path().join("line.ron");
+    std::fs::copy("presets/three_points.ron", &line).unwrap();
+    let o = bin()
+        .args(["bench", "--patch-presets", "--quick", "-o"])
+        .arg(&out)
+        .arg(&line)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("line.ron") && e.contains("2 rows across"), "{e}");
+}

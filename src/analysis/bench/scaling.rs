@@ -215,13 +215,26 @@ impl ScalingRow {
     }
 }
 
-/// The fastest of `repeats` whole runs of `scene` (wall time, s, from the
-/// first step; the set-up not included) and its simulation at the end.
-pub fn fastest_run(scene: &crate::Scene, repeats: usize) -> Result<(f64, Simulation), BenchError> {
+/// How a size is timed: the fastest of `repeats` runs, on `threads`
+/// threads ([`SolverOptions::threads`]; results do not depend on them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Timing {
+    pub repeats: usize,
+    pub threads: usize,
+}
+
+/// The fastest of `timing.repeats` whole runs of `scene` (wall time, s,
+/// from the first step; the set-up not included) and its simulation at
+/// the end.
+pub fn fastest_run(scene: &crate::Scene, timing: Timing) -> Result<(f64, Simulation), BenchError> {
     let model = PreparedModel::of(scene)?;
     let mut best: Option<(f64, Simulation)> = None;
-    for _ in 0..repeats.max(1) {
-        let mut sim = Simulation::new(&model, SolverOptions::default())?;
+    let options = SolverOptions {
+        threads: timing.threads.max(1),
+        ..SolverOptions::default()
+    };
+    for _ in 0..timing.repeats.max(1) {
+        let mut sim = Simulation::new(&model, options)?;
         let t = Instant::now();
         run_to_end(&mut sim, &mut (), Watch::none())?;
         let w = t.elapsed().as_secs_f64();
@@ -240,24 +253,24 @@ pub fn measure(
     modes: usize,
     regime: Regime,
     duration_s: f64,
-    repeats: usize,
+    timing: Timing,
 ) -> Result<ScalingRow, BenchError> {
     let mut scene = scaling_scene(points, modes, regime);
     scene.duration_s = duration_s;
-    measure_scene(&scene, modes, regime, repeats)
+    measure_scene(&scene, modes, regime, timing)
 }
 
 /// [`measure`] of a given scene of `modes` modes: the fastest of
-/// `repeats` runs with contact and lifted off the road.
+/// `timing.repeats` runs with contact and lifted off the road.
 pub fn measure_scene(
     scene: &crate::Scene,
     modes: usize,
     regime: Regime,
-    repeats: usize,
+    timing: Timing,
 ) -> Result<ScalingRow, BenchError> {
     let points = scene.num_points();
-    let (wall, sim) = fastest_run(scene, repeats)?;
-    let (free_wall, _) = fastest_run(&lifted(scene), repeats)?;
+    let (wall, sim) = fastest_run(scene, timing)?;
+    let (free_wall, _) = fastest_run(&lifted(scene), timing)?;
     let st = sim.stats();
     let steps = st.steps.max(1);
     Ok(ScalingRow {
@@ -432,6 +445,11 @@ pub fn figure(by_p: &[ScalingRow], by_k: &[ScalingRow]) -> Figure {
 mod tests {
     use super::*;
 
+    const ONE: Timing = Timing {
+        repeats: 1,
+        threads: 1,
+    };
+
     #[test]
     fn the_slope_of_a_power_law_is_its_exponent() {
         let xy: Vec<(f64, f64)> = [5.0, 20.0, 80.0, 400.0]
@@ -457,13 +475,13 @@ mod tests {
     #[test]
     fn tread_springs_hold_the_pressed_third_on_the_road_and_rigid_contact_about_one_point() {
         for (p, k) in [(30, 10), (60, 50), (90, 200)] {
-            let tread = measure(p, k, Regime::Tread, 0.03, 1).unwrap();
+            let tread = measure(p, k, Regime::Tread, 0.03, ONE).unwrap();
             let on = tread.on_road * p as f64;
             assert!(
                 on > 0.28 * p as f64 && on < 0.38 * p as f64,
                 "{on} of {p} on the road: {tread:?}"
             );
-            let rigid = measure(p, k, Regime::Rigid, 0.03, 1).unwrap();
+            let rigid = measure(p, k, Regime::Rigid, 0.03, ONE).unwrap();
             let on = rigid.on_road * p as f64;
             assert!(on > 0.5 && on < 3.0, "{on} of {p} on the road: {rigid:?}");
         }
@@ -493,7 +511,7 @@ mod tests {
             panic!("a modal tyre")
         };
         assert!(modes.iter().any(|m| (m.shape[0] - m.shape[1]).abs() > 1e-3));
-        let r = measure(200, 40, Regime::Patch, 0.03, 1).unwrap();
+        let r = measure(200, 40, Regime::Patch, 0.03, ONE).unwrap();
         let on = r.on_road * 200.0;
         assert!(
             on > 0.25 * 200.0 && on < 0.42 * 200.0,
@@ -506,7 +524,7 @@ mod tests {
         // wall times are the benchmark's to compare (a loaded machine can
         // make any two of them swap); here what a row counts must hold
         for (p, k) in [(5, 20), (60, 20), (5, 200)] {
-            let r = measure(p, k, Regime::Rigid, 0.02, 1).unwrap();
+            let r = measure(p, k, Regime::Rigid, 0.02, ONE).unwrap();
             // 0.02 s at dt = 1e-5 s
             assert_eq!(r.steps, 2000, "{r:?}");
             assert!(r.step_s > 0.0 && r.free_step_s > 0.0, "{r:?}");

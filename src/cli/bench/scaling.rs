@@ -9,7 +9,7 @@ use super::BenchArgs;
 use crate::cli::CliResult;
 use indicatif::{ProgressBar, ProgressStyle};
 use tirecontact::analysis::bench::scaling::report::{MeasuredSize, ScalingReport};
-use tirecontact::analysis::bench::scaling::{Regime, ScalingRow};
+use tirecontact::analysis::bench::scaling::{Regime, ScalingRow, Timing};
 use tirecontact::output::figures::render_png;
 use tirecontact::{PreparedModel, SolverOptions};
 
@@ -51,6 +51,7 @@ fn peak_memory_kb(
     p: usize,
     k: usize,
     regime: Regime,
+    threads: u16,
     bar: &ProgressBar,
 ) -> Option<u64> {
     let out = std::process::Command::new(exe)
@@ -58,6 +59,8 @@ fn peak_memory_kb(
             "bench",
             "--scaling-one",
             &format!("{p},{k},{},0.1", regime.key()),
+            "--threads",
+            &threads.to_string(),
         ])
         .output();
     let failed = |why: String| {
@@ -101,7 +104,7 @@ fn peak_rss_kb() -> Option<u64> {
 /// Runs one size and prints it as a CSV line (its timed runs), or with a
 /// duration `P,K,CONTACT,SECS` runs it once and prints the process's peak
 /// resident memory (kB; empty where unknown).
-pub fn scaling_one(pk: &str, quick: bool) -> CliResult {
+pub fn scaling_one(pk: &str, quick: bool, threads: usize) -> CliResult {
     let bad = || {
         format!(
             "--scaling-one {pk}: expected P,K,CONTACT (points, modes, `rigid`, `tread` or `patch`), e.g. 50,400,tread, then optionally a duration in s and `lifted`"
@@ -124,7 +127,11 @@ pub fn scaling_one(pk: &str, quick: bool) -> CliResult {
         }
         scene.duration_s = d.parse().map_err(|_| bad())?;
         let model = PreparedModel::of(&scene)?;
-        let mut sim = tirecontact::Simulation::new(&model, SolverOptions::default())?;
+        let options = SolverOptions {
+            threads,
+            ..SolverOptions::default()
+        };
+        let mut sim = tirecontact::Simulation::new(&model, options)?;
         tirecontact::solver::drive::run_to_end(
             &mut sim,
             &mut (),
@@ -134,7 +141,8 @@ pub fn scaling_one(pk: &str, quick: bool) -> CliResult {
         return Ok(());
     }
     let (duration, repeats) = timed_runs(quick);
-    let r = tirecontact::analysis::bench::scaling::measure(p, k, regime, duration, repeats)?;
+    let timing = Timing { repeats, threads };
+    let r = tirecontact::analysis::bench::scaling::measure(p, k, regime, duration, timing)?;
     println!("{}", r.to_line());
     Ok(())
 }
@@ -172,8 +180,8 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
         bar.set_message(format!("P = {p}, K = {k}, {}", regime.label()));
         sizes.push(MeasuredSize {
             by_points,
-            row: time_size(&exe, p, k, regime, args.quick)?,
-            peak_rss_kb: peak_memory_kb(&exe, p, k, regime, &bar),
+            row: time_size(&exe, p, k, regime, args)?,
+            peak_rss_kb: peak_memory_kb(&exe, p, k, regime, args.threads, &bar),
         });
         bar.inc(1);
     }
@@ -190,7 +198,8 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
             let (p, k, regime) = (s.row.points, s.row.modes, s.row.regime);
             bar.set_message(format!("callgrind, P = {p}, K = {k}, {}", regime.label()));
             let per_step = |lifted: &str| {
-                let n = |d: f64| callgrind_count(&exe, p, k, regime, d, lifted, &bar);
+                let n =
+                    |d: f64| callgrind_count(&exe, (p, k, regime), d, lifted, args.threads, &bar);
                 Some((n(0.03)? - n(0.02)?) / 1000.0)
             };
             s.row.instructions_per_step = per_step("");
@@ -199,7 +208,11 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
         }
     }
     bar.finish_and_clear();
-    let report = ScalingReport { sizes, repeats };
+    let report = ScalingReport {
+        sizes,
+        repeats,
+        threads: args.threads.into(),
+    };
     let md = report.markdown();
     super::write(&args.output.join("scaling.csv"), &report.csv())?;
     super::write(&args.output.join("scaling.md"), &md)?;
@@ -242,7 +255,10 @@ pub fn patch_presets(args: &BenchArgs) -> CliResult {
             "no patch preset found (presets/patch_*.ron): name the presets to measure".into(),
         );
     }
-    let repeats = if args.quick { 1 } else { 3 };
+    let timing = Timing {
+        repeats: if args.quick { 1 } else { 3 },
+        threads: args.threads.into(),
+    };
     let bar = ProgressBar::new(paths.len() as u64);
     bar.set_style(
         ProgressStyle::with_template("{elapsed} [{bar:30}] {pos}/{len} presets {msg}")
@@ -256,13 +272,13 @@ pub fn patch_presets(args: &BenchArgs) -> CliResult {
             scene.duration_s = scene.duration_s.min(scene.ramp_s + 0.01);
         }
         rates.push(
-            presets::measure_preset(&scene, repeats)
+            presets::measure_preset(&scene, timing)
                 .map_err(|e| format!("{}: {e}", path.display()))?,
         );
         bar.inc(1);
     }
     bar.finish_and_clear();
-    let md = presets::markdown(&rates, repeats);
+    let md = presets::markdown(&rates, timing);
     super::write(&args.output.join("patch_presets.md"), &md)?;
     println!("{md}");
     println!("wrote {}/patch_presets.md", args.output.display());
@@ -275,15 +291,17 @@ fn time_size(
     p: usize,
     k: usize,
     regime: Regime,
-    quick: bool,
+    args: &BenchArgs,
 ) -> Result<ScalingRow, Box<dyn std::error::Error>> {
     let mut cmd = std::process::Command::new(exe);
     cmd.args([
         "bench",
         "--scaling-one",
         &format!("{p},{k},{}", regime.key()),
+        "--threads",
+        &args.threads.to_string(),
     ]);
-    if quick {
+    if args.quick {
         cmd.arg("--quick");
     }
     let out = cmd.output()?;
@@ -308,11 +326,10 @@ fn time_size(
 /// and `None` when it counted nothing.
 fn callgrind_count(
     exe: &std::path::Path,
-    p: usize,
-    k: usize,
-    regime: Regime,
+    (p, k, regime): (usize, usize, Regime),
     d: f64,
     lifted: &str,
+    threads: u16,
     bar: &ProgressBar,
 ) -> Option<f64> {
     let out = std::process::Command::new("valgrind")
@@ -322,6 +339,8 @@ fn callgrind_count(
             "bench",
             "--scaling-one",
             &format!("{p},{k},{},{d}{lifted}", regime.key()),
+            "--threads",
+            &threads.to_string(),
         ])
         .output()
         .ok()?;

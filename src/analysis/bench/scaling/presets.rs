@@ -6,7 +6,7 @@
 //! rate the study reports for its size; the points on the road, which set
 //! the contact's cost, are given beside it.
 
-use super::{Regime, ScalingRow, fastest_run, lifted, measure_scene, patch_scene};
+use super::{Regime, ScalingRow, Timing, fastest_run, lifted, measure_scene, patch_scene};
 use crate::analysis::bench::BenchError;
 use crate::identify::PreparedModel;
 use crate::output::patch::PatchLayout;
@@ -49,19 +49,19 @@ impl PresetRate {
 /// Measures `scene` (a patch: at least two rows across and two points
 /// along) and the study's patch of its size, the fastest of `repeats`
 /// runs each.
-pub fn measure_preset(scene: &Scene, repeats: usize) -> Result<PresetRate, BenchError> {
+pub fn measure_preset(scene: &Scene, timing: Timing) -> Result<PresetRate, BenchError> {
     let layout = PatchLayout::of(scene)?;
     let across = layout.rows_y_m.len();
     let along = scene.num_points() / across;
     let modes = PreparedModel::of(scene)?.modes().len();
-    let (wall, sim) = fastest_run(scene, repeats)?;
-    let (free_wall, _) = fastest_run(&lifted(scene), repeats)?;
+    let (wall, sim) = fastest_run(scene, timing)?;
+    let (free_wall, _) = fastest_run(&lifted(scene), timing)?;
     let st = sim.stats();
     let steps = st.steps.max(1);
     let mut study = patch_scene(along, across, modes, Regime::Tread);
     study.duration_s = scene.duration_s;
     study.dt_s = scene.dt_s;
-    let study = measure_scene(&study, modes, Regime::Patch, repeats)?;
+    let study = measure_scene(&study, modes, Regime::Patch, timing)?;
     Ok(PresetRate {
         name: scene.name.clone(),
         along,
@@ -80,14 +80,15 @@ pub fn measure_preset(scene: &Scene, repeats: usize) -> Result<PresetRate, Bench
 }
 
 /// The markdown table of measured presets.
-pub fn markdown(rates: &[PresetRate], repeats: usize) -> String {
+pub fn markdown(rates: &[PresetRate], timing: Timing) -> String {
     let mut s = format!(
         "## Shipped patch presets against the study's patch of their size\n\n\
          Each preset as shipped, then the scaling study's patch (`patch_scene`: the same grid \
          and number of modes, rank-1 modes, a sine road) over the same duration and step, in \
-         one process; the fastest of {repeats} runs each, set-up excluded.\n\n\
+         one process; the fastest of {} runs each on {} thread(s), set-up excluded.\n\n\
          | preset | grid | modes | µs/step | off the road (µs/step) | on the road | events/step | factorisations/step | study patch (µs/step) | study on the road | study events/step | preset / study | real time |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|---|---|\n"
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        timing.repeats, timing.threads,
     );
     for r in rates {
         s.push_str(&format!(
@@ -122,18 +123,22 @@ mod tests {
         let mut scene = patch_scene(4, 3, 12, Regime::Tread);
         scene.name = "small".into();
         scene.duration_s = 0.004;
-        let r = measure_preset(&scene, 1).unwrap();
+        let one = Timing {
+            repeats: 1,
+            threads: 1,
+        };
+        let r = measure_preset(&scene, one).unwrap();
         assert_eq!((r.along, r.across, r.modes), (4, 3, 12));
         assert_eq!(r.study.points, 12);
         assert_eq!(r.steps, r.study.steps);
         // the same scene both ways: the same points on the road
         assert!((r.on_road - r.study.on_road).abs() < 1e-12, "{r:?}");
         assert!(r.on_road > 0.0 && r.step_s > 0.0 && r.ratio().is_finite());
-        let md = markdown(&[r], 1);
+        let md = markdown(&[r], one);
         assert!(md.contains("| small | 4 × 3 | 12 |"), "{md}");
         let line = crate::analysis::bench::scenes::many_points(3, 4);
         assert!(matches!(
-            measure_preset(&line, 1),
+            measure_preset(&line, one),
             Err(BenchError::Patch(_))
         ));
     }

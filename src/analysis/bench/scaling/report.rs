@@ -86,6 +86,8 @@ pub struct ScalingReport {
     pub sizes: Vec<MeasuredSize>,
     /// Timed runs of each size (the fastest is kept).
     pub repeats: usize,
+    /// Solver threads of each run.
+    pub threads: usize,
 }
 
 /// The CSV table's header.
@@ -195,9 +197,10 @@ impl ScalingReport {
 
     fn markdown_table(&self) -> String {
         let mut md = format!(
-            "# Cost of a step against the problem's size\n\nRank-1 modes; the middle third of the points pressed by up to {} mm on a 0.1 mm sine road at 10 m/s; dt = 1e-5 s. Rigid contact holds about one point on the road (the smooth mode shapes lift the neighbours of a pressed point); a soft tread spring at each point (compliant contact, {:e} N/m shared by the points) holds the pressed third. The patch is a grid 20 points across the tread by P / 20 along, 5 mm apart, on a tyre with a width (rank-1 plate modes, up to 7 half-waves across), with tread springs. Each size is timed in its own process, the fastest of {} run(s); its peak resident memory is that of one 0.1 s run in a process of its own. The contact's share is 1 − (the same scene off the road) / (with contact), by wall time and by instructions. Instructions per step: callgrind's count over 1000 rolling steps (`-` without valgrind or with --quick); unlike wall times they repeat exactly.\n\n| contact | points P | modes K | µs per step | off the road | contact share | points on the road | events per step | factorisations per step | instructions per step | off the road | contact share by instructions | peak memory (MB) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+            "# Cost of a step against the problem's size\n\nRank-1 modes; the middle third of the points pressed by up to {} mm on a 0.1 mm sine road at 10 m/s; dt = 1e-5 s. Rigid contact holds about one point on the road (the smooth mode shapes lift the neighbours of a pressed point); a soft tread spring at each point (compliant contact, {:e} N/m shared by the points) holds the pressed third. The patch is a grid 20 points across the tread by P / 20 along, 5 mm apart, on a tyre with a width (rank-1 plate modes, up to 7 half-waves across), with tread springs. Each size is timed in its own process on {} solver thread(s), the fastest of {} run(s); its peak resident memory is that of one 0.1 s run in a process of its own. The contact's share is 1 − (the same scene off the road) / (with contact), by wall time and by instructions. Instructions per step: callgrind's count over 1000 rolling steps (`-` without valgrind or with --quick); unlike wall times they repeat exactly.\n\n| contact | points P | modes K | µs per step | off the road | contact share | points on the road | events per step | factorisations per step | instructions per step | off the road | contact share by instructions | peak memory (MB) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
             PRELOAD_M * 1e3,
             TREAD_TOTAL_N_M,
+            self.threads,
             self.repeats,
         );
         for s in &self.sizes {
@@ -390,7 +393,11 @@ mod tests {
                 sizes.push(size(false, 60, k, regime, counted));
             }
         }
-        ScalingReport { sizes, repeats: 5 }
+        ScalingReport {
+            sizes,
+            repeats: 5,
+            threads: 1,
+        }
     }
 
     #[test]
