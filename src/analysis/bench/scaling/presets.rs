@@ -6,7 +6,7 @@
 //! rate the study reports for its size; the points on the road, which set
 //! the contact's cost, are given beside it.
 
-use super::{Regime, ScalingRow, Timing, fastest_run, lifted, measure_scene, patch_scene};
+use super::{Regime, ScalingRow, Timing, measure_scene, patch_scene};
 use crate::analysis::bench::BenchError;
 use crate::identify::PreparedModel;
 use crate::output::patch::PatchLayout;
@@ -19,17 +19,9 @@ pub struct PresetRate {
     /// The grid: points along the rolling direction and rows across.
     pub along: usize,
     pub across: usize,
-    pub modes: usize,
     pub dt_s: f64,
-    pub steps: u64,
-    /// Wall time per step of the preset with contact, and off the road (s).
-    pub step_s: f64,
-    pub free_step_s: f64,
-    /// Mean fraction of the preset's points on the road at a step end.
-    pub on_road: f64,
-    /// Located events and factorisations of the contact system per step.
-    pub events_per_step: f64,
-    pub factorisations_per_step: f64,
+    /// The preset as shipped, with contact and off the road.
+    pub preset: ScalingRow,
     /// The study's patch of the same grid and modes ([`patch_scene`]).
     pub study: ScalingRow,
 }
@@ -37,45 +29,34 @@ pub struct PresetRate {
 impl PresetRate {
     /// The preset's wall time per step over the study patch's.
     pub fn ratio(&self) -> f64 {
-        self.step_s / self.study.step_s
+        self.preset.step_s / self.study.step_s
     }
 
     /// Simulated time per wall time.
     pub fn real_time(&self) -> f64 {
-        self.dt_s / self.step_s
+        self.dt_s / self.preset.step_s
     }
 }
 
 /// Measures `scene` (a patch: at least two rows across and two points
-/// along) and the study's patch of its size, the fastest of `repeats`
-/// runs each.
+/// along) and the study's patch of its size, the fastest of
+/// `timing.repeats` runs each.
 pub fn measure_preset(scene: &Scene, timing: Timing) -> Result<PresetRate, BenchError> {
     let layout = PatchLayout::of(scene)?;
     let across = layout.rows_y_m.len();
     let along = scene.num_points() / across;
     let modes = PreparedModel::of(scene)?.modes().len();
-    let (wall, sim) = fastest_run(scene, timing)?;
-    let (free_wall, _) = fastest_run(&lifted(scene), timing)?;
-    let st = sim.stats();
-    let steps = st.steps.max(1);
+    let preset = measure_scene(scene, modes, Regime::Patch, timing)?;
     let mut study = patch_scene(along, across, modes, Regime::Tread);
     study.duration_s = scene.duration_s;
     study.dt_s = scene.dt_s;
-    let study = measure_scene(&study, modes, Regime::Patch, timing)?;
     Ok(PresetRate {
         name: scene.name.clone(),
         along,
         across,
-        modes,
         dt_s: scene.dt_s,
-        steps,
-        step_s: wall / steps as f64,
-        free_step_s: free_wall / steps as f64,
-        on_road: st.contact_steps.iter().sum::<u64>() as f64
-            / (steps as f64 * scene.num_points() as f64),
-        events_per_step: st.events as f64 / steps as f64,
-        factorisations_per_step: st.factorisations as f64 / steps as f64,
-        study,
+        preset,
+        study: measure_scene(&study, modes, Regime::Patch, timing)?,
     })
 }
 
@@ -96,12 +77,12 @@ pub fn markdown(rates: &[PresetRate], timing: Timing) -> String {
             r.name,
             r.along,
             r.across,
-            r.modes,
-            1e6 * r.step_s,
-            1e6 * r.free_step_s,
-            100.0 * r.on_road,
-            r.events_per_step,
-            r.factorisations_per_step,
+            r.preset.modes,
+            1e6 * r.preset.step_s,
+            1e6 * r.preset.free_step_s,
+            100.0 * r.preset.on_road,
+            r.preset.events_per_step,
+            r.preset.factorisations_per_step,
             1e6 * r.study.step_s,
             100.0 * r.study.on_road,
             r.study.events_per_step,
@@ -128,12 +109,12 @@ mod tests {
             threads: 1,
         };
         let r = measure_preset(&scene, one).unwrap();
-        assert_eq!((r.along, r.across, r.modes), (4, 3, 12));
+        assert_eq!((r.along, r.across, r.preset.modes), (4, 3, 12));
         assert_eq!(r.study.points, 12);
-        assert_eq!(r.steps, r.study.steps);
+        assert_eq!(r.preset.steps, r.study.steps);
         // the same scene both ways: the same points on the road
-        assert!((r.on_road - r.study.on_road).abs() < 1e-12, "{r:?}");
-        assert!(r.on_road > 0.0 && r.step_s > 0.0 && r.ratio().is_finite());
+        assert_eq!(r.preset.on_road, r.study.on_road, "{r:?}");
+        assert!(r.preset.on_road > 0.0 && r.preset.step_s > 0.0 && r.ratio().is_finite());
         let md = markdown(&[r], one);
         assert!(md.contains("| small | 4 × 3 | 12 |"), "{md}");
         let line = crate::analysis::bench::scenes::many_points(3, 4);
