@@ -37,6 +37,7 @@ fn tyre_kind(t: &Tyre) -> &'static str {
         Tyre::Ring { .. } => "ring",
         Tyre::Measured { .. } => "measured responses",
         Tyre::Plate { .. } => "plate",
+        Tyre::FeModes { .. } => "FE modes",
     }
 }
 

@@ -71,6 +71,13 @@ fn needed_file(scene: &Scene) -> Option<ShareError> {
             what: "measured tyre",
         });
     }
+    if let Tyre::FeModes { file, .. } = &scene.tyre {
+        return Some(ShareError::NeedsFile {
+            field: "tyre.file",
+            path: file.clone(),
+            what: "FE tyre",
+        });
+    }
     if let Road::Measured { file, .. } = &scene.road {
         return Some(ShareError::NeedsFile {
             field: "road.file",
