@@ -92,7 +92,10 @@ fn print_fe_modes(scene: &tirecontact::Scene) -> CliResult {
             i,
             m.node,
             m.distance_m
-                .map_or("(no coordinates)".to_string(), |d| format!("{:.4}", d * 1e3))
+                .map_or("(no coordinates)".to_string(), |d| format!(
+                    "{:.4}",
+                    d * 1e3
+                ))
         );
     }
     Ok(())

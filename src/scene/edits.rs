@@ -176,6 +176,11 @@ pub fn edits_since_identified(
         (a, b, _) if std::mem::discriminant(a) != std::mem::discriminant(b) => {
             out.push(format!("tyre {} -> {}", tyre_kind(a), tyre_kind(b)));
         }
+        (a @ (Tyre::Plate { .. } | Tyre::FeModes { .. } | Tyre::Measured { .. }), b, _)
+            if a != b =>
+        {
+            out.push(format!("{} tyre parameters", tyre_kind(b)));
+        }
         _ => {}
     }
     let (pa, pb) = (&before.points, &after.points);

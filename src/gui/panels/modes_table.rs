@@ -327,7 +327,12 @@ pub(super) fn identified_modes(
         };
         cmds.push(Command::EditScene(Box::new(s)));
     }
-    egui::CollapsingHeader::new(format!("{} identified modes", modes.len()))
+    let how = if matches!(scene.tyre, Tyre::FeModes { .. }) {
+        "modes read"
+    } else {
+        "identified modes"
+    };
+    egui::CollapsingHeader::new(format!("{} {how}", modes.len()))
         .id_salt("tirecontact.ring_modes")
         .show(ui, |ui| {
             Grid::new("tirecontact.ring_modes_grid")
