@@ -209,7 +209,9 @@ mod tests {
                 }
                 Err(ShareError::NeedsFile { field, .. }) => {
                     assert!(
-                        name.starts_with("measured") || matches!(scene.road, Road::Surface { .. }),
+                        name.starts_with("measured")
+                            || matches!(scene.tyre, Tyre::FeModes { .. })
+                            || matches!(scene.road, Road::Surface { .. }),
                         "{name} refused: {field}"
                     );
                 }
