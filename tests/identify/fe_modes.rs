@@ -553,3 +553,61 @@ fn fe_tyre_preset_syntax_reads_and_saves() {
         .unwrap_err();
     assert!(e.iter().any(|f| f.field == "tyre.nodes"), "{e:?}");
 }
+
+/// Files as other programs write them read alike: CRLF line ends, a
+/// Latin-1 byte (`µ`) in an ID line, `D` exponents in the 2411
+/// coordinates, and a 2414 record that gives the eigenvalue `ω²` but no
+/// frequency.
+#[test]
+fn crlf_latin1_d_exponents_and_eigenvalues_read_alike() {
+    let g = grid_nodes();
+    let xy: Vec<(f64, f64)> = g.iter().map(|n| (n.1, n.2)).collect();
+    let base = all_nodes(FILES[0]);
+    let text = std::fs::read_to_string(FILES[0]).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let mut out: Vec<u8> = Vec::new();
+    let mut in2411 = false;
+    let mut k = 0;
+    while k < lines.len() {
+        let l = lines[k];
+        if l.trim() == "2411" {
+            in2411 = true;
+        } else if l.trim() == "-1" {
+            in2411 = false;
+        }
+        let mut line = l.as_bytes().to_vec();
+        if in2411 && l.contains("e+") || in2411 && l.contains("e-") {
+            line = l.replace('e', "D").into_bytes();
+        }
+        if l.starts_with("normal mode") {
+            line = b"normal mode, shapes in \xb5m? no: 1/sqrt(t)".to_vec();
+        }
+        // record 12 of a 2414: frequency 0, the eigenvalue kept
+        if k >= 12 && lines[k - 12].trim() == "2414" {
+            let mut f: Vec<String> = l.split_whitespace().map(String::from).collect();
+            f[1] = "0.00000e+00".into();
+            line = format!("  {}", f.join("  ")).into_bytes();
+        }
+        out.extend_from_slice(&line);
+        out.extend_from_slice(b"\r\n");
+        k += 1;
+    }
+    let dir = std::env::temp_dir().join(format!("fe_modes_crlf_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("crlf.uff");
+    std::fs::write(&path, &out).unwrap();
+    let r = fe_modes::load(&spec(path.to_str().unwrap(), FeNodes::Nearest), &xy);
+    std::fs::remove_dir_all(&dir).ok();
+    let r = r.unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(r.modes.len(), base.modes.len());
+    for (a, b) in r.modes.iter().zip(&base.modes) {
+        // f and ω² each written with six digits: within 4e-6 + 2e-6
+        assert!(
+            (a.freq_hz - b.freq_hz).abs() < 6e-6 * b.freq_hz,
+            "{} vs {}",
+            a.freq_hz,
+            b.freq_hz
+        );
+        assert_eq!(a.shape, b.shape);
+    }
+}
