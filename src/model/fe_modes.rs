@@ -86,6 +86,17 @@ pub fn de_masses<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> 
     d.deserialize_any(V)
 }
 
+/// Highest mode frequency accepted (Hz), as for modes given in a preset.
+pub const MAX_FE_FREQ_HZ: f64 = 1e6;
+
+/// Largest damping ratio accepted from a file, as for modes given in a
+/// preset.
+pub const MAX_FE_DAMPING_RATIO: f64 = 1e4;
+
+/// Largest mass-normalised shape value accepted (1/√kg): a mode of a
+/// microgram.
+pub const MAX_SHAPE: f64 = 1e4;
+
 /// Most modes kept from a file.
 pub const MAX_FE_MODES: usize = 4000;
 
@@ -298,13 +309,23 @@ pub enum FeModesError {
         freq_hz: f64,
     },
     #[error(
-        "{file}: record {record} (mode {mode}) at {freq_hz} Hz: expected a frequency > 0 (a rigid-body mode? keep it out with tyre.band_hz)"
+        "{file}: record {record} (mode {mode}) at {freq_hz} Hz: expected a frequency > 0 and <= {MAX_FE_FREQ_HZ} Hz (a rigid-body mode? keep it out with tyre.band_hz)"
     )]
     Frequency {
         file: String,
         record: usize,
         mode: i64,
         freq_hz: f64,
+    },
+    #[error(
+        "{file}: record {record} (mode {mode}) at node {node}: shape {value} 1/√kg in SI: expected a finite value of at most {MAX_SHAPE:e} (check the file's units and modal mass)"
+    )]
+    Shape {
+        file: String,
+        record: usize,
+        mode: i64,
+        node: i64,
+        value: f64,
     },
     #[error("{file}: mode {mode} in records {first} and {second}: expected each mode once")]
     Duplicate {
@@ -332,7 +353,7 @@ pub enum FeModesError {
         modes: usize,
     },
     #[error(
-        "{file}: record {record} (mode {mode}): damping ratio {ratio} at {freq_hz} Hz: expected a finite ratio >= 0"
+        "{file}: record {record} (mode {mode}): damping ratio {ratio} at {freq_hz} Hz: expected a ratio from 0 to {MAX_FE_DAMPING_RATIO}"
     )]
     Damping {
         file: String,
@@ -444,7 +465,7 @@ pub fn build(
         by_number.insert(m.mode_number, m.record);
         let inside = m.freq_hz >= spec.band_hz.0 && m.freq_hz <= spec.band_hz.1;
         if inside {
-            if !(m.freq_hz.is_finite() && m.freq_hz > 0.0) {
+            if !(m.freq_hz.is_finite() && m.freq_hz > 0.0 && m.freq_hz <= MAX_FE_FREQ_HZ) {
                 return Err(FeModesError::Frequency {
                     file,
                     record: m.record,
@@ -537,12 +558,25 @@ pub fn build(
             FeShapeUnits::Consistent => 1.0 / mass_kg.sqrt(),
             FeShapeUnits::LengthPerSqrtKg => 1.0 / (c_l * mass_kg.sqrt()),
         };
-        let shape = mapping
+        let shape: Vec<f64> = mapping
             .iter()
             .map(|nm| m.shape[&nm.node][id] * scale)
             .collect();
+        if let Some((k, v)) = shape
+            .iter()
+            .enumerate()
+            .find(|(_, v)| !(*v * *v).is_finite() || !(v.abs() <= MAX_SHAPE))
+        {
+            return Err(FeModesError::Shape {
+                file,
+                record: m.record,
+                mode: m.mode_number,
+                node: mapping[k].node,
+                value: *v,
+            });
+        }
         let damping_ratio = spec.damping.ratio(k, m.freq_hz, m.viscous_damping);
-        if !(damping_ratio.is_finite() && damping_ratio >= 0.0) {
+        if !(damping_ratio.is_finite() && (0.0..=MAX_FE_DAMPING_RATIO).contains(&damping_ratio)) {
             return Err(FeModesError::Damping {
                 file,
                 record: m.record,

@@ -611,3 +611,39 @@ fn crlf_latin1_d_exponents_and_eigenvalues_read_alike() {
         assert_eq!(a.shape, b.shape);
     }
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: crate::support::proptest_cases(200),
+        ..proptest::prelude::ProptestConfig::default()
+    })]
+
+    /// Hostile bytes: a fixture cut anywhere, with up to four bytes
+    /// overwritten anywhere, is read or refused, never a panic; a refusal
+    /// names a line, and a refusal inside a dataset its record.
+    #[test]
+    fn damaged_files_are_read_or_refused_never_a_panic(
+        which in 0usize..3,
+        cut in 0.0f64..1.0,
+        edits in proptest::collection::vec((0.0f64..1.0, proptest::prelude::any::<u8>()), 0..4),
+    ) {
+        let mut bytes = std::fs::read(FILES[which]).unwrap();
+        let n = ((bytes.len() as f64) * (0.05 + 0.95 * cut)) as usize;
+        bytes.truncate(n.max(1));
+        for (at, b) in edits {
+            let k = ((bytes.len() - 1) as f64 * at) as usize;
+            bytes[k] = b;
+        }
+        match fe_modes::uff_shapes::read(&bytes) {
+            Ok(fe) => {
+                let g = grid_nodes();
+                let xy: Vec<(f64, f64)> = g.iter().map(|n| (n.1, n.2)).collect();
+                let _ = fe_modes::build(&spec("damaged.uff", FeNodes::Nearest), &fe, &xy);
+            }
+            Err(e) => {
+                let s = e.to_string();
+                proptest::prop_assert!(s.contains("line "), "{}", s);
+            }
+        }
+    }
+}
