@@ -565,7 +565,7 @@ pub fn build(
         if let Some((k, v)) = shape
             .iter()
             .enumerate()
-            .find(|(_, v)| !(*v * *v).is_finite() || !(v.abs() <= MAX_SHAPE))
+            .find(|(_, v)| !(v.is_finite() && v.abs() <= MAX_SHAPE))
         {
             return Err(FeModesError::Shape {
                 file,
