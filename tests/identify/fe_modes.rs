@@ -576,7 +576,7 @@ fn crlf_latin1_d_exponents_and_eigenvalues_read_alike() {
             in2411 = false;
         }
         let mut line = l.as_bytes().to_vec();
-        if in2411 && l.contains("e+") || in2411 && l.contains("e-") {
+        if in2411 && (l.contains("e+") || l.contains("e-")) {
             line = l.replace('e', "D").into_bytes();
         }
         if l.starts_with("normal mode") {
