@@ -268,10 +268,20 @@ pub fn fe_model(scene: &Scene) -> Result<crate::model::fe_modes::FeModel, SceneE
             message: "not an FE tyre (tyre: FeModes(...))".into(),
         });
     };
-    crate::model::fe_modes::load(&spec, &points_xy(scene)).map_err(|source| SceneError::FeModes {
+    let fail = |source| SceneError::FeModes {
         scene: scene.name.clone(),
         source,
-    })
+    };
+    let fe = crate::model::fe_modes::load(&spec, &points_xy(scene)).map_err(fail)?;
+    // rigid contact: the contact system is a sum of one rank-one term per
+    // mode, singular with more points than modes
+    if scene.contact.is_rigid() && scene.num_points() > fe.modes.len() {
+        return Err(fail(crate::model::fe_modes::FeModesError::RigidTooFew {
+            points: scene.num_points(),
+            modes: fe.modes.len(),
+        }));
+    }
+    Ok(fe)
 }
 
 type CacheEntry = (String, Arc<Vec<Mode>>);

@@ -346,6 +346,10 @@ pub enum FeModesError {
     },
     #[error("{file}: {modes} modes kept: expected at most {MAX_FE_MODES} (narrow tyre.band_hz)")]
     TooMany { file: String, modes: usize },
+    #[error(
+        "rigid contact of {points} points on {modes} modes is singular: expected at most as many points as modes; use contact: Compliant(stiffness_n_m: [...]) tread springs, or widen tyre.band_hz"
+    )]
+    RigidTooFew { points: usize, modes: usize },
     #[error("tyre.{field} has {given} values: expected one per mode kept ({modes})")]
     PerMode {
         field: &'static str,

@@ -647,3 +647,21 @@ proptest::proptest! {
         }
     }
 }
+
+/// Rigid contact needs at most as many points as modes (the contact
+/// system is a sum of rank-one terms): 15 points on the 5 modes below
+/// 160 Hz are refused, saying so, and accepted with tread springs.
+#[test]
+fn rigid_contact_with_more_points_than_modes_is_refused() {
+    let mut scene = patch_scene(fe_tyre(FILES[0], FeNodes::Nearest, FeDamping::Ratio(0.05)));
+    if let Tyre::FeModes { band_hz, .. } = &mut scene.tyre {
+        *band_hz = (0.0, 160.0);
+    }
+    PreparedModel::of(&scene).unwrap();
+    scene.contact = Contact::Rigid;
+    let e = PreparedModel::of(&scene).unwrap_err().to_string();
+    assert!(
+        e.contains("rigid contact of 15 points on 5 modes") && e.contains("Compliant"),
+        "{e}"
+    );
+}
