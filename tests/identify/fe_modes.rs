@@ -665,3 +665,49 @@ fn rigid_contact_with_more_points_than_modes_is_refused() {
         "{e}"
     );
 }
+
+/// A modal analysis exports more than displacements: normal-mode records
+/// of stresses (result type 2) beside the displacements are skipped, the
+/// model unchanged; a file of stresses alone says what it holds.
+#[test]
+fn other_results_of_the_modes_are_skipped() {
+    let text = std::fs::read_to_string(FILES[0]).unwrap();
+    let blocks: Vec<&str> = text.split("    -1\n    -1\n").collect();
+    // each mode again as a stress record (result type 2): the mode's block
+    // with its record 9 changed
+    let def = "         1         2         2         8         4         3";
+    let stress_def = "         1         2         2         2         4         3";
+    let stresses: Vec<String> = blocks[2..]
+        .iter()
+        .map(|b| {
+            b.replace(def, stress_def)
+                .trim_end_matches("    -1\n")
+                .to_string()
+        })
+        .collect();
+    let both = format!(
+        "{}    -1\n    -1\n{}    -1\n",
+        text,
+        stresses.join("\n    -1\n    -1\n")
+    );
+    let dir = std::env::temp_dir().join(format!("fe_modes_stress_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("both.uff");
+    std::fs::write(&path, &both).unwrap();
+    let g = grid_nodes();
+    let xy: Vec<(f64, f64)> = g.iter().map(|n| (n.1, n.2)).collect();
+    let r = fe_modes::load(&spec(path.to_str().unwrap(), FeNodes::Nearest), &xy);
+    let only = text.replace(def, stress_def);
+    std::fs::write(&path, &only).unwrap();
+    let e = fe_modes::load(&spec(path.to_str().unwrap(), FeNodes::Nearest), &xy);
+    std::fs::remove_dir_all(&dir).ok();
+    assert_eq!(
+        r.unwrap_or_else(|e| panic!("{e}")).modes,
+        all_nodes(FILES[0]).modes
+    );
+    let e = e.unwrap_err().to_string();
+    assert!(
+        e.contains("41 × dataset 2414 of normal mode stress (result type 2)"),
+        "{e}"
+    );
+}

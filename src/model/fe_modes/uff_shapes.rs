@@ -31,6 +31,9 @@
 //!   = SI value × factor` for length and force; time is in seconds, so the
 //!   mass unit's factor is `force / length`.
 //!
+//! Normal-mode records of other results (stresses, strain energy, …) or
+//! on elements are skipped and listed, as are other analyses.
+//!
 //! Numbers are read whitespace-separated (`D` exponents accepted), a
 //! node's values possibly over several lines. Other datasets are skipped
 //! and listed; binary 58b records are stepped over.
@@ -248,14 +251,39 @@ impl Body<'_> {
     }
 }
 
-/// Checks the data definition of a normal mode: real data, 3 or 6 values
-/// per node, displacements.
+/// Whether a normal mode record's specific data (result) type is a
+/// displacement: 8, or unknown, general or an unknown vector (0, 1, 93,
+/// 95, 96). Other results of a modal analysis (stresses, strain energy,
+/// …) are skipped and listed.
+fn is_displacement(specific: i64) -> bool {
+    matches!(specific, 0 | 1 | 8 | 93 | 95 | 96)
+}
+
+/// Name of a result type, for the list of skipped records.
+fn result_name(t: i64) -> &'static str {
+    match t {
+        2 => "stress",
+        3 => "strain",
+        4 => "element force",
+        5 => "temperature",
+        7 => "strain energy",
+        9 => "reaction force",
+        10 => "kinetic energy",
+        11 => "velocity",
+        12 => "acceleration",
+        13 => "strain energy density",
+        14 => "kinetic energy density",
+        _ => "result",
+    }
+}
+
+/// Checks the data definition of a normal mode's displacements: real
+/// data, 3 or 6 values per node.
 fn check_definition(
     b: &Body,
     k: usize,
     data_type: i64,
     per_node: i64,
-    specific: i64,
 ) -> Result<usize, UffShapesError> {
     if !matches!(data_type, 2 | 4) {
         return Err(b.err(
@@ -270,15 +298,6 @@ fn check_definition(
             k,
             format!(
                 "{per_node} values per node: expected 3 (translations) or 6 (translations and rotations)"
-            ),
-        ));
-    }
-    // 0 unknown, 1 general, 8 displacement, 93-96 unknown vectors
-    if !matches!(specific, 0 | 1 | 8 | 93..=96) {
-        return Err(b.err(
-            k,
-            format!(
-                "specific data type {specific}: expected displacements (8) for mode shapes (11 velocity and 12 acceleration are not read)"
             ),
         ));
     }
@@ -299,7 +318,18 @@ fn dataset55(b: &Body, out: &mut FeFile) -> Result<(), UffShapesError> {
         ));
         return Ok(());
     }
-    let n = check_definition(b, 5, def[4], def[5], def[3])?;
+    if !is_displacement(def[3]) {
+        out.other.push((
+            b.record,
+            format!(
+                "dataset 55 of normal mode {} (specific data type {})",
+                result_name(def[3]),
+                def[3]
+            ),
+        ));
+        return Ok(());
+    }
+    let n = check_definition(b, 5, def[4], def[5])?;
     let ints = b.ints(6, 4, "record 7 (2, 4, load case, mode number)")?;
     let reals = b.reals(
         7,
@@ -334,15 +364,23 @@ fn dataset2414(b: &Body, out: &mut FeFile) -> Result<(), UffShapesError> {
         ));
         return Ok(());
     }
-    if location != 1 {
-        return Err(b.err(
-            2,
+    if location != 1 || !is_displacement(def[3]) {
+        out.other.push((
+            b.record,
             format!(
-                "dataset location {location}: expected 1, data at nodes (data on elements is not a mode shape at nodes)"
+                "dataset 2414 of normal mode {} (result type {}{})",
+                result_name(def[3]),
+                def[3],
+                if location != 1 {
+                    format!(", dataset location {location}: not data at nodes")
+                } else {
+                    String::new()
+                }
             ),
         ));
+        return Ok(());
     }
-    let n = check_definition(b, 8, def[4], def[5], def[3])?;
+    let n = check_definition(b, 8, def[4], def[5])?;
     let ints = b.ints(9, 6, "record 10 (integers 1-8: the sixth the mode number)")?;
     b.ints(10, 1, "record 11 (integers 9-10)")?;
     let reals = b.reals(
