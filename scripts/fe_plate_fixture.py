@@ -1,4 +1,5 @@
-"""Writes the FE exports of a plate with known modes, tests/data/fe/*.uff,
+"""Writes the FE exports of a plate with known modes, tests/data/fe/*.uff
+and presets/fe_plate.uff,
 with pyuff (an independent UFF writer, https://pypi.org/project/pyuff/,
 version 2.5.8): the tensioned orthotropic plate on an elastic foundation
 of docs/method.md §5.3, its modes in closed form (computed here, not by
@@ -7,7 +8,7 @@ every 10 mm, y from -60 to 60 mm every 30 mm, z = 0), the modes up to
 400 Hz (41 modes). Mode number 1000 n + 2 m + s: n half-waves across,
 order m along, s = 1 for the sin(k x) mode of a pair.
 
-- plate_2414_mm_t.uff: dataset 164 (user units: mm, N, tonne: length
+- presets/fe_plate.uff (also the preset fe_plate.ron's): dataset 164 (user units: mm, N, tonne: length
   factor 1000, force 1), nodes in 2411 (mm), modes in 2414 (normal mode,
   data at nodes, 3 translations, double precision), mass-normalised in
   that unit system: 1/sqrt(t), so values sqrt(1000) times the SI ones;
@@ -113,7 +114,7 @@ def main():
             "node_nums": nodes,
             "data_at_node": np.stack([zeros, zeros, phi], axis=1),
         })
-    write("tests/data/fe/plate_2414_mm_t.uff", sets)
+    write("presets/fe_plate.uff", sets)
 
     # 55, mm-mN-kg: unit amplitude, modal mass M_nm (kg)
     sets = [units(5, "mm mN kg", 1000.0, 1000.0),

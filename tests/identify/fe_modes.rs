@@ -16,7 +16,7 @@ use tirecontact::scene::{Contact, Mode, PointGrid, Points, Preload, Scene, Tyre}
 use tirecontact::{PreparedModel, Simulation, SolverOptions};
 
 const FILES: [&str; 3] = [
-    "tests/data/fe/plate_2414_mm_t.uff",
+    "presets/fe_plate.uff",
     "tests/data/fe/plate_55_mm.uff",
     "tests/data/fe/plate_55_m.uff",
 ];
