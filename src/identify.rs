@@ -191,7 +191,7 @@ pub struct TyreIdentification {
 /// `None` for a modal tyre (nothing to identify).
 pub fn identify_tyre(scene: &Scene) -> Option<Result<TyreIdentification, LsceError>> {
     match &scene.tyre {
-        Tyre::Modal { .. } | Tyre::Plate { .. } => None,
+        Tyre::Modal { .. } | Tyre::Plate { .. } | Tyre::FeModes { .. } => None,
         Tyre::Ring {
             ring,
             identification,
@@ -258,6 +258,32 @@ pub fn magnitude_error(
     if den > 0.0 { (num / den).sqrt() } else { 0.0 }
 }
 
+/// The modal model of a scene's FE tyre (`Tyre::FeModes`, method §5.4):
+/// its file read and sampled at the points; `None` for other tyres is an
+/// error naming the tyre.
+pub fn fe_model(scene: &Scene) -> Result<crate::model::fe_modes::FeModel, SceneError> {
+    let Some(spec) = scene.tyre.fe_spec(scene.base_dir.as_deref()) else {
+        return Err(SceneError::Identification {
+            scene: scene.name.clone(),
+            message: "not an FE tyre (tyre: FeModes(...))".into(),
+        });
+    };
+    let fail = |source| SceneError::FeModes {
+        scene: scene.name.clone(),
+        source,
+    };
+    let fe = crate::model::fe_modes::load(&spec, &points_xy(scene)).map_err(fail)?;
+    // rigid contact: the contact system is a sum of one rank-one term per
+    // mode, singular with more points than modes
+    if scene.contact.is_rigid() && scene.num_points() > fe.modes.len() {
+        return Err(fail(crate::model::fe_modes::FeModesError::RigidTooFew {
+            points: scene.num_points(),
+            modes: fe.modes.len(),
+        }));
+    }
+    Ok(fe)
+}
+
 type CacheEntry = (String, Arc<Vec<Mode>>);
 
 /// Identified ring modes kept by whoever runs several scenes of one tyre
@@ -285,6 +311,11 @@ fn cache_key(ring: &RingParams, x_m: &[f64], opts: &IdentifyOptions) -> String {
 fn tyre_key(scene: &Scene) -> Option<String> {
     match &scene.tyre {
         Tyre::Modal { .. } | Tyre::Plate { .. } => None,
+        Tyre::FeModes { .. } => Some(format!(
+            "fe|{:?}|{:?}",
+            scene.tyre.fe_spec(scene.base_dir.as_deref()),
+            points_xy(scene)
+        )),
         Tyre::Ring {
             ring,
             identification,
@@ -299,6 +330,11 @@ fn tyre_key(scene: &Scene) -> Option<String> {
             scene.num_points()
         )),
     }
+}
+
+/// The points' positions `(x_m, y_m)` (m).
+fn points_xy(scene: &Scene) -> Vec<(f64, f64)> {
+    scene.points.iter().map(|p| (p.x_m, p.y_m)).collect()
 }
 
 /// The points' positions along the tyre (m).
@@ -359,9 +395,15 @@ impl ModeCache {
         };
         match &scene.tyre {
             Tyre::Modal { modes } => Ok(Arc::new(modes.clone())),
-            Tyre::Plate { plate } => {
-                let xy: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, p.y_m)).collect();
-                Ok(Arc::new(plate.modes(&xy)))
+            Tyre::Plate { plate } => Ok(Arc::new(plate.modes(&points_xy(scene)))),
+            Tyre::FeModes { .. } => {
+                let key = tyre_key(scene).unwrap_or_default();
+                if let Some(m) = self.lookup(&key) {
+                    return Ok(m);
+                }
+                let modes = Arc::new(fe_model(scene)?.modes);
+                self.store(key, Arc::clone(&modes));
+                Ok(modes)
             }
             Tyre::Ring {
                 ring,

@@ -105,6 +105,99 @@ pub enum Tyre {
         #[serde(default)]
         plate: crate::model::plate::PlateParams,
     },
+    /// A tyre computed elsewhere (method §5.4): the normal modes of a
+    /// finite-element model exported as UFF 55 or 2414 (node coordinates in
+    /// 15 or 2411, units in 164), read into a modal model at the points
+    /// without identification. See [`crate::model::fe_modes`].
+    FeModes {
+        /// The UFF file, relative to the preset's folder.
+        file: PathBuf,
+        /// The file's node of each point, in order, or `Nearest`: the node
+        /// nearest each point (within `nearest_within_m`).
+        nodes: crate::model::fe_modes::FeNodes,
+        /// The FE axis normal to the road, pointing away from it; default Z.
+        #[serde(default = "default_fe_direction")]
+        direction: crate::model::fe_modes::FeAxis,
+        /// The FE axes of the points' `x_m` (along) and `y_m` (across);
+        /// default `(along: X, across: Y)`.
+        #[serde(default)]
+        axes: crate::model::fe_modes::FeAxes,
+        /// `Ratio(ξ)`, `Modal([ξ, ...])`, `Rayleigh(alpha_per_s, beta_s)` or
+        /// `FromFile`.
+        damping: crate::model::fe_modes::FeDamping,
+        /// Modal masses (kg) replacing the records': one number, or one per
+        /// mode kept; empty (the default): the records'.
+        #[serde(
+            default,
+            alias = "modal_mass",
+            deserialize_with = "crate::model::fe_modes::de_masses",
+            skip_serializing_if = "Vec::is_empty"
+        )]
+        modal_mass_kg: Vec<f64>,
+        /// Modes kept, `lo <= f <= hi` (Hz); default every mode.
+        #[serde(
+            default = "all_fe_modes",
+            skip_serializing_if = "crate::model::fe_modes::is_all_modes"
+        )]
+        band_hz: (f64, f64),
+        /// `Nearest`: largest distance (m) from a point to its node;
+        /// default 0.001.
+        #[serde(
+            default = "default_nearest_within",
+            skip_serializing_if = "crate::model::fe_modes::is_default_within"
+        )]
+        nearest_within_m: f64,
+        /// How the file scales its shapes: `Consistent` (default, 1/√ of
+        /// the file's mass unit) or `LengthPerSqrtKg`.
+        #[serde(
+            default,
+            skip_serializing_if = "crate::model::fe_modes::FeShapeUnits::is_consistent"
+        )]
+        shape_units: crate::model::fe_modes::FeShapeUnits,
+    },
+}
+
+fn default_fe_direction() -> crate::model::fe_modes::FeAxis {
+    crate::model::fe_modes::FeAxis::Z
+}
+
+fn all_fe_modes() -> (f64, f64) {
+    crate::model::fe_modes::ALL_MODES_HZ
+}
+
+fn default_nearest_within() -> f64 {
+    crate::model::fe_modes::DEFAULT_NEAREST_WITHIN_M
+}
+
+impl Tyre {
+    /// An FE tyre's fields, its file resolved against `base_dir`.
+    pub fn fe_spec(&self, base_dir: Option<&Path>) -> Option<crate::model::fe_modes::FeModesSpec> {
+        let Tyre::FeModes {
+            file,
+            nodes,
+            direction,
+            axes,
+            damping,
+            modal_mass_kg,
+            band_hz,
+            nearest_within_m,
+            shape_units,
+        } = self
+        else {
+            return None;
+        };
+        Some(crate::model::fe_modes::FeModesSpec {
+            file: crate::model::fe_modes::resolve(base_dir, file),
+            nodes: nodes.clone(),
+            direction: *direction,
+            axes: *axes,
+            damping: damping.clone(),
+            modal_mass_kg: modal_mass_kg.clone(),
+            band_hz: *band_hz,
+            nearest_within_m: *nearest_within_m,
+            shape_units: *shape_units,
+        })
+    }
 }
 
 /// A contact point of the contact patch.
@@ -593,8 +686,117 @@ fn validate_tyre(v: &mut Validator, tyre: &Tyre, p: usize) {
             nodes,
         } => validate_measured_tyre(v, file, identification, nodes, p),
         Tyre::Plate { plate } => v.errors.extend(plate.validate("tyre.plate")),
+        Tyre::FeModes { .. } => validate_fe_tyre(v, tyre, p),
     }
 }
+
+/// The fields of an FE tyre (method §5.4) for `p` points; the file itself
+/// is read when the model is prepared.
+fn validate_fe_tyre(v: &mut Validator, tyre: &Tyre, p: usize) {
+    use crate::model::fe_modes::{FeDamping, FeNodes};
+    let Some(spec) = tyre.fe_spec(None) else {
+        return;
+    };
+    if spec.file.as_os_str().is_empty() {
+        v.push(
+            "tyre.file",
+            "\"\"",
+            "the path of a UFF file of normal modes (datasets 55 or 2414)",
+        );
+    }
+    if let FeNodes::List(nodes) = &spec.nodes {
+        if nodes.len() != p {
+            v.push(
+                "tyre.nodes",
+                format!("{} nodes", nodes.len()),
+                &format!("one node number per point ({p}), or Nearest"),
+            );
+        }
+        for (k, a) in nodes.iter().enumerate() {
+            if nodes[..k].contains(a) {
+                v.push(
+                    &format!("tyre.nodes[{k}]"),
+                    a.to_string(),
+                    "a node not listed before",
+                );
+            }
+        }
+    }
+    let (along, across, normal) = (spec.axes.along, spec.axes.across, spec.direction);
+    if along == across {
+        v.push(
+            "tyre.axes.across",
+            across.name(),
+            &format!("an FE axis other than along ({})", along.name()),
+        );
+    }
+    if normal == along || normal == across {
+        v.push(
+            "tyre.direction",
+            normal.name(),
+            &format!(
+                "the FE axis normal to the road, other than the axes along ({}) and across ({})",
+                along.name(),
+                across.name()
+            ),
+        );
+    }
+    let ratio = |v: &mut Validator, field: &str, x: f64| {
+        if !(x.is_finite() && (0.0..=MAX_FE_DAMPING).contains(&x)) {
+            v.push(field, x, "a damping ratio from 0 to 10");
+        }
+    };
+    match &spec.damping {
+        FeDamping::Ratio(x) => ratio(v, "tyre.damping.0", *x),
+        FeDamping::Modal(list) => {
+            if list.is_empty() {
+                v.push("tyre.damping.0", "[]", "one damping ratio per mode kept");
+            }
+            for (k, x) in list.iter().enumerate() {
+                ratio(v, &format!("tyre.damping.0[{k}]"), *x);
+            }
+        }
+        FeDamping::Rayleigh {
+            alpha_per_s,
+            beta_s,
+        } => {
+            if !(alpha_per_s.is_finite() && *alpha_per_s >= 0.0) {
+                v.push("tyre.damping.alpha_per_s", *alpha_per_s, "α >= 0 (1/s)");
+            }
+            if !(beta_s.is_finite() && *beta_s >= 0.0) {
+                v.push("tyre.damping.beta_s", *beta_s, "β >= 0 (s)");
+            }
+        }
+        FeDamping::FromFile => {}
+    }
+    for (k, m) in spec.modal_mass_kg.iter().enumerate() {
+        if !(m.is_finite() && *m > 0.0) {
+            v.push(
+                &format!("tyre.modal_mass_kg[{k}]"),
+                *m,
+                "a modal mass > 0 kg",
+            );
+        }
+    }
+    let (lo, hi) = spec.band_hz;
+    if lo.is_nan() || hi.is_nan() || lo < 0.0 || hi <= lo {
+        v.push(
+            "tyre.band_hz",
+            format!("({lo}, {hi})"),
+            "a band (lo, hi) in Hz with 0 <= lo < hi",
+        );
+    }
+    if !(spec.nearest_within_m.is_finite() && spec.nearest_within_m > 0.0) {
+        v.push(
+            "tyre.nearest_within_m",
+            spec.nearest_within_m,
+            "a distance > 0 m",
+        );
+    }
+}
+
+/// Largest damping ratio an FE tyre may state.
+const MAX_FE_DAMPING: f64 = 10.0;
 
 /// The points of a plate tyre lie inside the belt (its edges do not move),
 /// and rigid contact needs at least as many modes as points (the contact

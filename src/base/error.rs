@@ -151,6 +151,14 @@ pub enum SceneError {
         #[source]
         source: BasisError,
     },
+    /// An FE tyre's file does not give a modal model of the points
+    /// (method §5.4).
+    #[error("scene \"{scene}\": tyre.file: {source}")]
+    FeModes {
+        scene: String,
+        #[source]
+        source: crate::model::fe_modes::FeModesError,
+    },
     /// The modal model of a ring tyre could not be identified (method §6).
     #[error("scene \"{scene}\": tyre identification failed: {message}")]
     Identification { scene: String, message: String },

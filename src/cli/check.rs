@@ -55,6 +55,48 @@ pub fn check(path: &Path) -> CliResult {
             last.freq_hz
         );
     }
+    if let tirecontact::scene::Tyre::FeModes { .. } = &scene.tyre {
+        print_fe_modes(&scene)?;
+    }
     drop(sim);
+    Ok(())
+}
+
+/// An FE tyre: the unit factors, what the reading did, each mode read and
+/// the node of each point.
+fn print_fe_modes(scene: &tirecontact::Scene) -> CliResult {
+    let fe = tirecontact::identify::fe_model(scene)?;
+    println!(
+        "  FE tyre: {} modes from {:.3} Hz to {:.3} Hz; file units: length × {}, force × {}, mass × {} of SI",
+        fe.modes.len(),
+        fe.modes.first().map_or(f64::NAN, |m| m.freq_hz),
+        fe.modes.last().map_or(f64::NAN, |m| m.freq_hz),
+        fe.length_factor,
+        fe.force_factor,
+        fe.mass_factor
+    );
+    for n in &fe.notes {
+        println!("    {n}");
+    }
+    println!("    mode  record  dataset  freq_hz  modal_mass_kg  damping_ratio");
+    for (k, r) in fe.read.iter().enumerate() {
+        println!(
+            "    {:>4}  {:>6}  {:>7}  {:.6}  {:.6e}  {:.6}  (mode {} of the file)",
+            k, r.record, r.dataset, r.freq_hz, r.modal_mass_kg, r.damping_ratio, r.mode_number
+        );
+    }
+    println!("    point  node  distance_mm");
+    for (i, m) in fe.mapping.iter().enumerate() {
+        println!(
+            "    {:>5}  {:>4}  {}",
+            i,
+            m.node,
+            m.distance_m
+                .map_or("(no coordinates)".to_string(), |d| format!(
+                    "{:.4}",
+                    d * 1e3
+                ))
+        );
+    }
     Ok(())
 }

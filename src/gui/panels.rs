@@ -4,6 +4,7 @@
 pub mod about_panel;
 pub mod contact_panel;
 pub mod edits_box;
+pub mod fe_panel;
 pub mod help_menu;
 pub mod modes_table;
 pub mod points_panel;
@@ -21,7 +22,9 @@ use crate::scene::{Mode, Tyre};
 pub(crate) fn modes_mut(scene: &mut Scene) -> Option<&mut Vec<Mode>> {
     match &mut scene.tyre {
         Tyre::Modal { modes } => Some(modes),
-        Tyre::Ring { .. } | Tyre::Measured { .. } | Tyre::Plate { .. } => None,
+        Tyre::Ring { .. } | Tyre::Measured { .. } | Tyre::Plate { .. } | Tyre::FeModes { .. } => {
+            None
+        }
     }
 }
 

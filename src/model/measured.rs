@@ -191,7 +191,7 @@ pub fn read(path: &Path, nodes: Option<&[i64]>, num_points: usize) -> Result<Mea
 /// The file's bytes, refused when it is not a regular file, too large or
 /// (`text`) has a line longer than [`MAX_LINE_BYTES`]. A UFF file may
 /// hold binary values (58b), whose bytes are not lines.
-fn read_bytes(path: &Path, text: bool) -> Result<Vec<u8>, ReadError> {
+pub(crate) fn read_bytes(path: &Path, text: bool) -> Result<Vec<u8>, ReadError> {
     let f = open_regular(path).map_err(|e| ReadError::Open(e.into()))?;
     if f.metadata()
         .map_err(|e| ReadError::Metadata(e.into()))?
@@ -239,7 +239,7 @@ fn column(name: &str) -> Option<Column> {
     pair(rest.strip_suffix("_im")?).map(|(i, j)| Column::Im(i, j))
 }
 
-type ParseError = (String, String);
+pub(crate) type ParseError = (String, String);
 
 /// Responses by point pair `(i, j)`.
 type PairSeries = BTreeMap<(usize, usize), Series>;

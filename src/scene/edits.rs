@@ -37,6 +37,7 @@ fn tyre_kind(t: &Tyre) -> &'static str {
         Tyre::Ring { .. } => "ring",
         Tyre::Measured { .. } => "measured responses",
         Tyre::Plate { .. } => "plate",
+        Tyre::FeModes { .. } => "FE modes",
     }
 }
 
@@ -174,6 +175,11 @@ pub fn edits_since_identified(
         }
         (a, b, _) if std::mem::discriminant(a) != std::mem::discriminant(b) => {
             out.push(format!("tyre {} -> {}", tyre_kind(a), tyre_kind(b)));
+        }
+        (a @ (Tyre::Plate { .. } | Tyre::FeModes { .. } | Tyre::Measured { .. }), b, _)
+            if a != b =>
+        {
+            out.push(format!("{} tyre parameters", tyre_kind(b)));
         }
         _ => {}
     }

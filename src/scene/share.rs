@@ -71,6 +71,13 @@ fn needed_file(scene: &Scene) -> Option<ShareError> {
             what: "measured tyre",
         });
     }
+    if let Tyre::FeModes { file, .. } = &scene.tyre {
+        return Some(ShareError::NeedsFile {
+            field: "tyre.file",
+            path: file.clone(),
+            what: "FE tyre",
+        });
+    }
     if let Road::Measured { file, .. } = &scene.road {
         return Some(ShareError::NeedsFile {
             field: "road.file",
@@ -202,7 +209,9 @@ mod tests {
                 }
                 Err(ShareError::NeedsFile { field, .. }) => {
                     assert!(
-                        name.starts_with("measured") || matches!(scene.road, Road::Surface { .. }),
+                        name.starts_with("measured")
+                            || matches!(scene.tyre, Tyre::FeModes { .. })
+                            || matches!(scene.road, Road::Surface { .. }),
                         "{name} refused: {field}"
                     );
                 }

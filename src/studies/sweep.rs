@@ -13,6 +13,7 @@ use crate::analysis::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder};
 use crate::analysis::spectrum::{BandLevel, SpectrumError, Window};
 use crate::base::error::{FieldError, IoError, RunError, SceneError, SolverError};
 use crate::identify::{ModeCache, PreparedModel};
+use crate::model::fe_modes::FeDamping;
 use crate::model::road::Road;
 use crate::scene::{Contact, Points, Preload, Scene, Tyre};
 use crate::solver::drive::Watch;
@@ -345,6 +346,29 @@ fn numeric_fields(scene: &mut Scene, with_points: bool) -> Vec<(String, &mut f64
             f.push(("tyre.identification.band_hz.0".into(), &mut o.band_hz.0));
             f.push(("tyre.identification.band_hz.1".into(), &mut o.band_hz.1));
             f.push(("tyre.identification.duration_s".into(), &mut o.duration_s));
+        }
+        Tyre::FeModes {
+            damping,
+            nearest_within_m,
+            ..
+        } => {
+            match damping {
+                FeDamping::Ratio(x) => f.push(("tyre.damping.0".into(), x)),
+                FeDamping::Modal(v) => {
+                    for (k, x) in v.iter_mut().enumerate() {
+                        f.push((format!("tyre.damping.0[{k}]"), x));
+                    }
+                }
+                FeDamping::Rayleigh {
+                    alpha_per_s,
+                    beta_s,
+                } => {
+                    f.push(("tyre.damping.alpha_per_s".into(), alpha_per_s));
+                    f.push(("tyre.damping.beta_s".into(), beta_s));
+                }
+                FeDamping::FromFile => {}
+            }
+            f.push(("tyre.nearest_within_m".into(), nearest_within_m));
         }
         Tyre::Plate { plate: pl } => {
             f.extend([

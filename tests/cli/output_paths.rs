@@ -263,6 +263,46 @@ fn check_names_each_number_it_prints() {
     }
 }
 
+/// `check` of an FE tyre lists the unit factors of its file (mm, N, t:
+/// mass × 0.001), each mode read with its record and dataset, and the node
+/// of each point with its distance (the preset's points sit on nodes);
+/// a node listed that the file lacks is refused naming the record.
+#[test]
+fn check_lists_an_fe_tyres_modes_nodes_and_units() {
+    let o = bin()
+        .args(["check", "presets/fe_plate.ron"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for want in [
+        "15 points, 41 modes",
+        "FE tyre: 41 modes from 123.321 Hz to 399.963 Hz; file units: length × 1000, force × 1, mass × 0.001 of SI",
+        "(dataset 164, code 9 `mm N t`)",
+        "       0       3     2414  123.321000  1.000000e3  0.050000  (mode 1000 of the file)",
+        "        0   112  0.0000",
+        "       14   136  0.0000",
+    ] {
+        assert!(out.contains(want), "`{want}` missing in: {out}");
+    }
+    let tmp = temp_dir();
+    let text = std::fs::read_to_string("presets/fe_plate.ron").unwrap();
+    std::fs::copy("presets/fe_plate.uff", tmp.path().join("fe_plate.uff")).unwrap();
+    let listed = text.replace(
+        "nodes: Nearest",
+        "nodes: [112, 113, 114, 115, 116, 122, 123, 124, 125, 126, 132, 133, 134, 135, 999]",
+    );
+    let preset = tmp.path().join("fe.ron");
+    std::fs::write(&preset, listed).unwrap();
+    let o = bin().arg("check").arg(&preset).output().unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("node 999 of points[14]: record 3 (mode 1000) has no value at node 999"),
+        "{err}"
+    );
+}
+
 #[test]
 fn non_numeric_values_say_what_number_was_expected() {
     let sweep = |extra: &[&str]| {

@@ -7,6 +7,7 @@
 
 use crate::harness::harness_sized;
 use crate::support::temp_dir;
+use egui_kittest::kittest::Queryable;
 use std::path::Path;
 use tirecontact::gui::{App, Command};
 use tirecontact::{ModeCache, Scene};
@@ -251,4 +252,52 @@ fn preset_and_road_files_are_read_off_the_ui_thread() {
     assert_eq!(h.state().scene(), &kept);
     let m = h.state().message().expect("a refusal");
     assert!(m.error && m.text.contains("missing.csv"), "{}", m.text);
+}
+
+/// An FE tyre's file is read on the preparation thread: opening its
+/// preset waits off the UI thread, then the side panel shows the file, the
+/// nodes and the modes read; a damping edit restarts the run with it; a
+/// file that is not there is refused when read, naming it, the scene kept.
+#[test]
+fn an_fe_tyre_is_read_off_the_ui_thread() {
+    let mut h = harness_sized(
+        App::new(
+            Scene::load(Path::new("presets/single_mode.ron")).unwrap(),
+            None,
+        )
+        .unwrap(),
+        [1280.0, 720.0],
+    );
+    h.run();
+    h.state_mut()
+        .apply(Command::OpenPath("presets/fe_plate.ron".into()));
+    assert!(
+        h.state().identifying(),
+        "the FE file is read by the UI thread"
+    );
+    crate::harness::settle(&mut h);
+    assert_eq!(h.state().scene().num_points(), 15);
+    assert_eq!(h.state().simulation().scene().num_points(), 15);
+    h.get_by_label("fe_plate.uff");
+    h.get_by_label("41 from 123.321 Hz to 399.963 Hz");
+    // a damping edit: restart with the new ratio
+    let mut s = h.state().scene().clone();
+    let tirecontact::scene::Tyre::FeModes { damping, .. } = &mut s.tyre else {
+        panic!("not an FE tyre");
+    };
+    *damping = tirecontact::model::fe_modes::FeDamping::Ratio(0.02);
+    h.state_mut().apply(Command::EditScene(Box::new(s.clone())));
+    crate::harness::settle(&mut h);
+    assert_eq!(h.state().scene().tyre, s.tyre);
+    // a file that is not there
+    let kept = h.state().scene().clone();
+    let mut gone = kept.clone();
+    if let tirecontact::scene::Tyre::FeModes { file, .. } = &mut gone.tyre {
+        *file = "missing_fe.uff".into();
+    }
+    h.state_mut().apply(Command::EditScene(Box::new(gone)));
+    crate::harness::settle(&mut h);
+    assert_eq!(h.state().scene(), &kept);
+    let m = h.state().message().expect("a refusal");
+    assert!(m.error && m.text.contains("missing_fe.uff"), "{}", m.text);
 }

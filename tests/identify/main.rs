@@ -6,6 +6,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod fe_modes;
 mod fidelity;
 mod measured;
 mod paper_preset;

@@ -203,6 +203,25 @@ fn sites(s: &mut Scene) -> Vec<(String, Site<'_>)> {
                 v.push((format!("tyre.plate.{name}"), Site::F(x)));
             }
         }
+        Tyre::FeModes {
+            damping,
+            nearest_within_m,
+            ..
+        } => {
+            use tirecontact::model::fe_modes::FeDamping;
+            match damping {
+                FeDamping::Ratio(x) => v.push(("tyre.damping.0".into(), Site::F(x))),
+                FeDamping::Rayleigh {
+                    alpha_per_s,
+                    beta_s,
+                } => {
+                    v.push(("tyre.damping.alpha_per_s".into(), Site::F(alpha_per_s)));
+                    v.push(("tyre.damping.beta_s".into(), Site::F(beta_s)));
+                }
+                FeDamping::Modal(_) | FeDamping::FromFile => {}
+            }
+            v.push(("tyre.nearest_within_m".into(), Site::F(nearest_within_m)));
+        }
     }
     match &mut s.road {
         Road::Sine {
@@ -302,7 +321,9 @@ fn mutate_structure(s: &mut Scene, kind: usize, k: usize, dir: &Path) -> Vec<Str
     let p = s.points.len();
     let modes = match &mut s.tyre {
         Tyre::Modal { modes } => Some(modes),
-        Tyre::Ring { .. } | Tyre::Measured { .. } | Tyre::Plate { .. } => None,
+        Tyre::Ring { .. } | Tyre::Measured { .. } | Tyre::Plate { .. } | Tyre::FeModes { .. } => {
+            None
+        }
     };
     match kind % 12 {
         // no modes

@@ -238,7 +238,9 @@ impl App {
                 // zeroed: not the identified ones)
                 let converted = matches!(
                     old.tyre,
-                    crate::scene::Tyre::Ring { .. } | crate::scene::Tyre::Measured { .. }
+                    crate::scene::Tyre::Ring { .. }
+                        | crate::scene::Tyre::Measured { .. }
+                        | crate::scene::Tyre::FeModes { .. }
                 ) && matches!(&new.tyre, crate::scene::Tyre::Modal { modes } if *modes == self.modes);
                 let playing = self.time.is_playing();
                 self.sim = sim;

@@ -24,6 +24,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>)
             ..
         } => return measured_summary(ui, scene, file, identification, modes, cmds),
         Tyre::Plate { plate } => return plate_summary(ui, plate, modes),
+        Tyre::FeModes { .. } => return super::fe_panel::show(ui, scene, modes, cmds),
         Tyre::Modal { .. } => {}
     }
     section(ui, "Modes", Apply::Restart);
@@ -307,7 +308,12 @@ fn measured_summary(
 }
 
 /// "Edit as a modal model" and the list of a tyre's identified modes.
-fn identified_modes(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>) {
+pub(super) fn identified_modes(
+    ui: &mut Ui,
+    scene: &Scene,
+    modes: &[Mode],
+    cmds: &mut Vec<Command>,
+) {
     if ui
         .button("Edit as a modal model")
         .on_hover_text(
@@ -321,7 +327,12 @@ fn identified_modes(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<C
         };
         cmds.push(Command::EditScene(Box::new(s)));
     }
-    egui::CollapsingHeader::new(format!("{} identified modes", modes.len()))
+    let how = if matches!(scene.tyre, Tyre::FeModes { .. }) {
+        "modes read"
+    } else {
+        "identified modes"
+    };
+    egui::CollapsingHeader::new(format!("{} {how}", modes.len()))
         .id_salt("tirecontact.ring_modes")
         .show(ui, |ui| {
             Grid::new("tirecontact.ring_modes_grid")

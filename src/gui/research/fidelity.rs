@@ -36,7 +36,10 @@ impl FidelityRef {
                 source: scene.name.clone(),
             }),
             // (a measured tyre's reference would be its data: not yet)
-            Tyre::Modal { .. } | Tyre::Measured { .. } | Tyre::Plate { .. } => None,
+            Tyre::Modal { .. }
+            | Tyre::Measured { .. }
+            | Tyre::Plate { .. }
+            | Tyre::FeModes { .. } => None,
         }
     }
 

@@ -151,7 +151,7 @@ pub fn function_name(function_type: i64) -> &'static str {
 }
 
 /// A text line, UTF-8 or else Latin-1, without its line end.
-fn decode(bytes: &[u8]) -> String {
+pub(crate) fn decode(bytes: &[u8]) -> String {
     let b = bytes.strip_suffix(b"\r").unwrap_or(bytes);
     match std::str::from_utf8(b) {
         Ok(s) => s.to_string(),
@@ -161,7 +161,7 @@ fn decode(bytes: &[u8]) -> String {
 
 /// Fixed-width field `[a, b)` (0-based character columns) of `line`,
 /// trimmed.
-fn field(line: &str, a: usize, b: usize) -> String {
+pub(crate) fn field(line: &str, a: usize, b: usize) -> String {
     line.chars()
         .skip(a)
         .take(b.saturating_sub(a))
@@ -170,7 +170,7 @@ fn field(line: &str, a: usize, b: usize) -> String {
         .to_string()
 }
 
-fn int(line: &str, a: usize, b: usize, what: &str, at: &str) -> Result<i64, ParseError> {
+pub(crate) fn int(line: &str, a: usize, b: usize, what: &str, at: &str) -> Result<i64, ParseError> {
     let s = field(line, a, b);
     s.parse().map_err(|_| {
         (
@@ -183,11 +183,17 @@ fn int(line: &str, a: usize, b: usize, what: &str, at: &str) -> Result<i64, Pars
     })
 }
 
-fn number(s: &str) -> Option<f64> {
+pub(crate) fn number(s: &str) -> Option<f64> {
     s.replace(['D', 'd'], "E").parse().ok()
 }
 
-fn real(line: &str, a: usize, b: usize, what: &str, at: &str) -> Result<f64, ParseError> {
+pub(crate) fn real(
+    line: &str,
+    a: usize,
+    b: usize,
+    what: &str,
+    at: &str,
+) -> Result<f64, ParseError> {
     let s = field(line, a, b);
     let v = number(&s).ok_or_else(|| {
         (
@@ -205,16 +211,16 @@ fn real(line: &str, a: usize, b: usize, what: &str, at: &str) -> Result<f64, Par
 }
 
 /// A cursor over the file's bytes that counts lines.
-struct Cursor<'a> {
-    bytes: &'a [u8],
-    pos: usize,
+pub(crate) struct Cursor<'a> {
+    pub(crate) bytes: &'a [u8],
+    pub(crate) pos: usize,
     /// 1-based line of `pos`.
-    line: usize,
+    pub(crate) line: usize,
 }
 
 impl<'a> Cursor<'a> {
     /// The next line (without its end), or `None` at the end.
-    fn next_line(&mut self) -> Option<&'a [u8]> {
+    pub(crate) fn next_line(&mut self) -> Option<&'a [u8]> {
         if self.pos >= self.bytes.len() {
             return None;
         }
@@ -237,7 +243,7 @@ impl<'a> Cursor<'a> {
     }
 }
 
-fn is_delim(l: &[u8]) -> bool {
+pub(crate) fn is_delim(l: &[u8]) -> bool {
     l.trim_ascii() == b"-1"
 }
 
@@ -310,7 +316,11 @@ pub fn read(bytes: &[u8]) -> Result<UffFile, ParseError> {
 }
 
 /// Dataset 164 from its records.
-fn units164(lines: &[&str], record: usize, first: usize) -> Result<Units164, ParseError> {
+pub(crate) fn units164(
+    lines: &[&str],
+    record: usize,
+    first: usize,
+) -> Result<Units164, ParseError> {
     let at = format!("record {record} (dataset 164, line {first}): ");
     if lines.len() < 2 {
         return Err((
@@ -515,7 +525,7 @@ fn ascii58(lines: &[&str], record: usize, first: usize) -> Result<Record58, Pars
 
 /// A binary dataset 58b: `id_line` its ID line (on line `first`), the
 /// cursor after it.
-fn binary58(
+pub(crate) fn binary58(
     c: &mut Cursor,
     id_line: &str,
     record: usize,

@@ -95,9 +95,9 @@ impl SolverOptions {
             crate::scene::Tyre::Ring { .. } | crate::scene::Tyre::Measured { .. } => {
                 IDENTIFIED_RANK_TOLERANCE
             }
-            crate::scene::Tyre::Modal { .. } | crate::scene::Tyre::Plate { .. } => {
-                crate::model::convolution::EXACT_RANK_TOLERANCE
-            }
+            crate::scene::Tyre::Modal { .. }
+            | crate::scene::Tyre::Plate { .. }
+            | crate::scene::Tyre::FeModes { .. } => crate::model::convolution::EXACT_RANK_TOLERANCE,
         })
     }
 }
