@@ -83,7 +83,14 @@ impl App {
             .default_size(380.0)
             .show(ui, |ui| {
                 ui.add_enabled_ui(editable, |ui| {
-                    panels::side_panel(ui, &self.doc.scene, &edits, &self.modes, cmds_left)
+                    panels::side_panel(
+                        ui,
+                        &self.doc.scene,
+                        &edits,
+                        &self.modes,
+                        self.sim.road_profile(),
+                        cmds_left,
+                    )
                 });
             });
         if self.classroom.bars {

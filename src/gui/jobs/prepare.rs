@@ -39,9 +39,13 @@ pub fn needs_preparing(scene: &Scene, cache: &ModeCache) -> bool {
     reads_road_file(&scene.road) || !cache.has_modes(scene)
 }
 
-/// Whether sampling `road` needs its file read.
+/// Whether sampling `road` needs its file read or its grid generated
+/// (a surface file of millions of nodes, a texture): off the UI thread.
 pub fn reads_road_file(road: &Road) -> bool {
-    matches!(road, Road::Measured { .. })
+    matches!(
+        road,
+        Road::Measured { .. } | Road::Surface { .. } | Road::Texture { .. }
+    )
 }
 
 /// A preparation running on its own thread, and what waits for it.

@@ -31,7 +31,7 @@ pub fn default_road() -> Road {
     }
 }
 
-fn class_name(c: RoadClass) -> &'static str {
+pub(crate) fn class_name(c: RoadClass) -> &'static str {
     CLASSES
         .iter()
         .find(|(k, _)| *k == c)

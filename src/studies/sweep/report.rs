@@ -135,6 +135,16 @@ pub fn param_name(param: &str) -> String {
         "duration_s" => Some("duration"),
         "road.amplitude_m" => Some("road amplitude a"),
         "road.wavelength_m" => Some("road wavelength λ"),
+        "road.length_m" => Some("road period along"),
+        "road.width_m" => Some("texture period across"),
+        "road.min_wavenumber_cpm" => Some("lowest wavenumber n"),
+        "road.max_wavenumber_cpm" => Some("highest wavenumber n"),
+        "points.along" => Some("points along"),
+        "points.across" => Some("rows across"),
+        "points.spacing_m.0" => Some("spacing along Δx"),
+        "points.spacing_m.1" => Some("spacing across Δy"),
+        "points.preload.depth_m" => Some("press depth"),
+        "points.preload.length_m" => Some("footprint length"),
         _ => None,
     };
     if let Some(t) = top {
