@@ -122,3 +122,56 @@ fn a_texture_is_edited_live_and_refusals_name_the_field() {
         r => panic!("{r:?}"),
     }
 }
+
+/// A patch of a thousand points (50 along × 20 across) is set up on a
+/// background thread: every frame while it is built stays short, the
+/// banner says what is being done, and the run restarts on it after.
+#[test]
+fn a_thousand_point_patch_is_set_up_without_blocking_the_frames() {
+    let mut h = patch_app();
+    // 20 rows 5 mm apart fit the 16 cm wide belt
+    type_into(&mut h, "points.spacing_m.1", "5");
+    settle(&mut h);
+    type_into(&mut h, "points.across", "20");
+    settle(&mut h);
+    assert_eq!(
+        h.state().scene().points.len(),
+        320,
+        "{:?}",
+        h.state().message()
+    );
+    h.get_by_label("points.along").focus();
+    h.run();
+    h.get_by_label("points.along")
+        .set_text_value_accesskit("50");
+    h.run();
+    h.key_press(egui::Key::Enter);
+    let mut frames = 0;
+    let mut slowest_s: f64 = 0.0;
+    let mut said = false;
+    let started = std::time::Instant::now();
+    loop {
+        let t = std::time::Instant::now();
+        h.run_steps(1);
+        slowest_s = slowest_s.max(t.elapsed().as_secs_f64());
+        frames += 1;
+        said |= h
+            .state()
+            .message()
+            .is_some_and(|m| m.text.contains("Setting up the solver for the 1000 points"));
+        if frames > 3 && !h.state().identifying() {
+            break;
+        }
+        assert!(started.elapsed().as_secs() < 300, "the set-up never ended");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let total_s = started.elapsed().as_secs_f64();
+    assert_eq!(h.state().scene().points.len(), 1000);
+    assert_eq!(h.state().simulation().num_points(), 1000);
+    assert!(said, "the banner did not say what was set up");
+    eprintln!("set-up {total_s:.2} s over {frames} frames, slowest frame {slowest_s:.3} s");
+    assert!(
+        slowest_s < 0.25 && slowest_s < 0.5 * total_s,
+        "a frame took {slowest_s:.3} s of a {total_s:.2} s set-up"
+    );
+}
