@@ -175,3 +175,37 @@ fn a_thousand_point_patch_is_set_up_without_blocking_the_frames() {
         "a frame took {slowest_s:.3} s of a {total_s:.2} s set-up"
     );
 }
+
+/// The colour bar's caption and its labels: the caption clear of the top
+/// label (at least 4 px between their painted boxes).
+#[test]
+fn the_colour_bar_caption_does_not_crowd_its_top_label() {
+    use tirecontact::gui::views::patch_view::COLOUR_BAR_CAPTION;
+    let mut h = patch_app();
+    advance(&mut h, 2000);
+    h.run_steps(2);
+    let texts = crate::harness::texts(&h);
+    let caption = texts
+        .iter()
+        .find(|(t, _)| t == COLOUR_BAR_CAPTION)
+        .map(|(_, r)| *r)
+        .expect("the caption");
+    // the bar's labels: texts below the caption, overlapping it across
+    let labels: Vec<_> = texts
+        .iter()
+        .filter(|(t, r)| {
+            t != COLOUR_BAR_CAPTION
+                && r.left() < caption.right() + 40.0
+                && r.right() > caption.left() - 10.0
+                && r.top() < caption.bottom() + 200.0
+                && r.top() > caption.top() - 5.0
+        })
+        .collect();
+    assert!(!labels.is_empty(), "no colour bar labels near {caption:?}");
+    for (t, r) in labels {
+        assert!(
+            r.top() >= caption.bottom() + 4.0,
+            "label {t:?} at {r:?} crowds the caption at {caption:?}"
+        );
+    }
+}
