@@ -367,7 +367,7 @@ mod tests {
         for (grid, want) in [
             (
                 "Grid(along: 0, across: 2, spacing_m: (0.01, 0.01), preload: Flat(depth_m: 0.001))",
-                "points.along = 0: expected at least 1 point along",
+                "points.along = 0: expected 1 to 2000 points along",
             ),
             (
                 "Grid(along: 3, across: 2, spacing_m: (0.01, -1.0), preload: Flat(depth_m: 0.001))",

@@ -135,7 +135,7 @@ pub fn param_name(param: &str) -> String {
         "duration_s" => Some("duration"),
         "road.amplitude_m" => Some("road amplitude a"),
         "road.wavelength_m" => Some("road wavelength λ"),
-        "road.length_m" => Some("road period along"),
+        "road.length_m" => Some("road loop length L"),
         "road.width_m" => Some("texture period across"),
         "road.min_wavenumber_cpm" => Some("lowest wavenumber n"),
         "road.max_wavenumber_cpm" => Some("highest wavenumber n"),
@@ -371,10 +371,7 @@ mod tests {
                 "road.components[1].phase_rad",
                 "road.components[1].phase_rad (rad)",
             ),
-            (
-                "road.max_wavenumber_cpm",
-                "road.max_wavenumber_cpm (cycles/m)",
-            ),
+            ("road.max_wavenumber_cpm", "highest wavenumber n (cycles/m)"),
             ("tyre.modes[0].freq_hz", "mode 0 frequency (Hz)"),
             (
                 "tyre.modes[*].damping_ratio",
