@@ -433,6 +433,10 @@ impl Scene {
     /// Checks every value; returns all problems found.
     pub fn validate(&self) -> Result<(), Vec<FieldError>> {
         let mut v = Validator::default();
+        if let Some((field, value, expected)) = self.points.grid().and_then(|g| g.check()) {
+            v.push(&field, value, &expected);
+            return v.finish();
+        }
         let p = self.points.len();
         if p == 0 {
             v.push("points", "[]", "at least one contact point");

@@ -102,7 +102,8 @@ impl PinnedRun {
 
     /// How `scene` (its tyre of `num_modes` modes) differs from the pinned
     /// scene in ways that make the comparison one of unlike runs: its
-    /// points, its time step, its number of modes. One sentence each;
+    /// points, its time step, its number of modes, its speed and road (the
+    /// runs are excited differently). One sentence each;
     /// empty when the runs are alike in these.
     pub fn unlike(&self, scene: &Scene, num_modes: usize) -> Vec<String> {
         let mut out = Vec::new();
@@ -149,6 +150,16 @@ impl PinnedRun {
                 "The reference's tyre has {}, this one {}.",
                 count(self.num_modes, "mode"),
                 count(num_modes, "mode")
+            ));
+        }
+        let excitation: Vec<String> = crate::scene::edits_since(&self.scene, scene)
+            .into_iter()
+            .filter(|e| e.starts_with("speed") || e.contains("road"))
+            .collect();
+        if !excitation.is_empty() {
+            out.push(format!(
+                "The runs are excited differently (reference -> this scene): {}.",
+                excitation.join("; ")
             ));
         }
         out

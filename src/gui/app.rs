@@ -58,6 +58,8 @@ pub struct App {
     pub(super) history: History,
     pub(super) time: TimeControl,
     pub(super) view: View,
+    /// In a narrow window, the editing panel is shown in place of the views.
+    pub(super) edit_panel_open: bool,
     pub(super) message: Option<Message>,
     pub(super) confirm: Option<Discarding>,
     pub(super) png_dialog: Option<PngSettings>,
@@ -148,6 +150,7 @@ impl App {
             history,
             time,
             view: View::default(),
+            edit_panel_open: false,
             message: None,
             confirm: None,
             png_dialog: None,
@@ -330,6 +333,7 @@ impl App {
             // views and layouts (app/layout.rs)
             Command::DismissMessage => self.message = None,
             Command::ShowView(v) => self.show_view(v),
+            Command::ShowEditPanel(open) => self.edit_panel_open = open,
             Command::ShowPoints(points) => {
                 let p = self.doc.scene.num_points();
                 self.plot_opts.shown = (0..p).map(|i| points.contains(&i)).collect();

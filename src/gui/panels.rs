@@ -7,6 +7,7 @@ pub mod edits_box;
 pub mod fe_panel;
 pub mod help_menu;
 pub mod modes_table;
+pub mod patch_panel;
 pub mod points_panel;
 pub mod random_road;
 pub mod road_panel;
@@ -53,6 +54,7 @@ pub fn side_panel(
     scene: &Scene,
     edits: &[String],
     modes: &[Mode],
+    road: &crate::model::road::RoadProfile,
     cmds: &mut Vec<Command>,
 ) {
     egui::ScrollArea::vertical().show(ui, |ui| {
@@ -71,13 +73,17 @@ pub fn side_panel(
             ui.label("restarts the run.");
         });
         ui.separator();
-        road_panel::show(ui, scene, cmds);
+        road_panel::show(ui, scene, road, cmds);
         ui.separator();
         run_panel::show(ui, scene, cmds);
         ui.separator();
         modes_table::show(ui, scene, modes, cmds);
         ui.separator();
-        points_panel::show(ui, scene, cmds);
+        if scene.points.grid().is_some() {
+            patch_panel::grid(ui, scene, cmds);
+        } else {
+            points_panel::show(ui, scene, cmds);
+        }
         ui.separator();
         contact_panel::show(ui, scene, cmds);
     });

@@ -7,11 +7,15 @@
 
 use crate::base::modal::{ModalModel, Mode};
 use crate::model::lsce::{
-    Identification, LsceError, Responses, modes_of_poles, response_magnitudes,
+    Identification, LsceError, Responses, Stability, modes_of_poles, response_magnitudes,
 };
 
 /// A pole of the diagram: its order's index and its index in that order.
 pub type PoleAt = (usize, usize);
+
+/// Two poles within this relative distance in frequency are one physical
+/// pole (one mode per physical pole).
+const SAME_POLE: f64 = 5e-3;
 
 /// Frequencies (per band) at which `|G|` is compared.
 const MAGNITUDE_POINTS: usize = 200;
@@ -29,6 +33,10 @@ pub struct Workbench {
     pub modes: Vec<Mode>,
     /// Relative time error of the picked modes' fit (-).
     pub time_error: f64,
+    /// Frequencies (Hz) of the identified modes the automatic choice left
+    /// out: their pole is new at the chosen order (not found at the order
+    /// below) and no order draws a persisting pole within 0.5 % of it.
+    pub left_out_hz: Vec<f64>,
     /// `|G|` of each response at [`Self::frequencies`] (m/N), and their
     /// sum over the pairs: the data's, computed once.
     data_magnitudes: Vec<Vec<f64>>,
@@ -57,6 +65,7 @@ impl Workbench {
             picked: Vec::new(),
             modes: Vec::new(),
             time_error: 1.0,
+            left_out_hz: Vec::new(),
             data_magnitudes,
             summed,
             fits: Vec::new(),
@@ -71,30 +80,66 @@ impl Workbench {
         Some((p.freq_hz, p.damping_ratio))
     }
 
-    /// Picks the automatic choice: the poles of the chosen order nearest
-    /// the identified modes.
+    /// Picks the automatic choice: for each identified mode, the pole of
+    /// the chosen order nearest it when the diagram draws it as persisting
+    /// from the order below; else the persisting pole within 0.5 % of it
+    /// at the nearest other order; else the mode is left out (listed in
+    /// [`Self::left_out_hz`]): a pole drawn as new or unstable is never
+    /// picked without the user's click.
     pub fn automatic(&mut self) -> Result<(), LsceError> {
+        self.left_out_hz.clear();
         let id = &self.identification;
         let Some(oi) = id.diagram.iter().position(|d| d.order == id.model_order) else {
             self.picked.clear();
             return self.refit();
         };
         let poles = &id.diagram[oi].poles;
-        self.picked = id
-            .modes
-            .iter()
-            .filter_map(|m| {
-                (0..poles.len()).min_by(|&a, &b| {
-                    (poles[a].freq_hz - m.freq_hz)
-                        .abs()
-                        .total_cmp(&(poles[b].freq_hz - m.freq_hz).abs())
-                })
-            })
-            .map(|k| (oi, k))
-            .collect();
-        self.picked.sort_unstable();
-        self.picked.dedup();
+        let mut picked = Vec::new();
+        let mut left_out = Vec::new();
+        for m in &id.modes {
+            let Some(k) = (0..poles.len()).min_by(|&a, &b| {
+                (poles[a].freq_hz - m.freq_hz)
+                    .abs()
+                    .total_cmp(&(poles[b].freq_hz - m.freq_hz).abs())
+            }) else {
+                continue;
+            };
+            if poles[k].stability != Stability::New {
+                picked.push((oi, k));
+            } else if let Some(at) = self.persisting_near(poles[k].freq_hz, oi) {
+                picked.push(at);
+            } else {
+                left_out.push(m.freq_hz);
+            }
+        }
+        picked.sort_unstable();
+        picked.dedup();
+        self.picked = picked;
+        self.left_out_hz = left_out;
         self.refit()
+    }
+
+    /// The pole drawn as persisting (not new) within 0.5 % of `freq_hz`
+    /// at the order nearest the order `oi` (the lower one on a tie).
+    fn persisting_near(&self, freq_hz: f64, oi: usize) -> Option<PoleAt> {
+        let diag = &self.identification.diagram;
+        let mut best: Option<(usize, f64, PoleAt)> = None;
+        for (oj, d) in diag.iter().enumerate() {
+            if oj == oi {
+                continue;
+            }
+            for (k, p) in d.poles.iter().enumerate() {
+                let df = (p.freq_hz - freq_hz).abs();
+                if p.stability == Stability::New || df > SAME_POLE * freq_hz {
+                    continue;
+                }
+                let dist = oj.abs_diff(oi);
+                if best.is_none_or(|(bd, bf, _)| (dist, df) < (bd, bf)) {
+                    best = Some((dist, df, (oj, k)));
+                }
+            }
+        }
+        best.map(|(_, _, at)| at)
     }
 
     /// Picks the pole at `at`, or drops it if picked; a pole within 0.5 %
@@ -111,7 +156,10 @@ impl Workbench {
                 .picked
                 .iter()
                 .copied()
-                .filter(|p| self.pole(*p).is_none_or(|(g, _)| (g - f).abs() > 5e-3 * f))
+                .filter(|p| {
+                    self.pole(*p)
+                        .is_none_or(|(g, _)| (g - f).abs() > SAME_POLE * f)
+                })
                 .collect();
             self.picked = keep;
             self.picked.push(at);
@@ -273,6 +321,61 @@ mod tests {
         }
         assert!(w.time_error < 1e-6, "{}", w.time_error);
         assert!(w.pair_fits().iter().all(|p| p.error < 1e-3));
+    }
+
+    /// The pole of the chosen order nearest `freq_hz`.
+    fn at_chosen_order(w: &Workbench, freq_hz: f64) -> PoleAt {
+        let id = &w.identification;
+        let oi = id
+            .diagram
+            .iter()
+            .position(|d| d.order == id.model_order)
+            .unwrap();
+        let poles = &id.diagram[oi].poles;
+        let k = (0..poles.len())
+            .min_by(|&a, &b| {
+                (poles[a].freq_hz - freq_hz)
+                    .abs()
+                    .total_cmp(&(poles[b].freq_hz - freq_hz).abs())
+            })
+            .unwrap();
+        (oi, k)
+    }
+
+    #[test]
+    fn the_automatic_choice_takes_no_pole_drawn_as_new() {
+        let mut w = bench();
+        // the 170 Hz pole drawn as new at the chosen order: the same pole
+        // persisting at another order is taken instead
+        let (oi, k) = at_chosen_order(&w, 170.0);
+        w.identification.diagram[oi].poles[k].stability = Stability::New;
+        w.automatic().unwrap();
+        assert_eq!(w.modes.len(), 2);
+        assert!(w.left_out_hz.is_empty());
+        assert!(!w.picked.contains(&(oi, k)));
+        let high = *w.picked.last().unwrap();
+        let (f, _) = w.pole(high).unwrap();
+        assert!((f - 170.0).abs() < 0.01 * 170.0, "{f}");
+        assert_ne!(
+            w.identification.diagram[high.0].poles[high.1].stability,
+            Stability::New
+        );
+        // drawn as new at every order: left out, and said
+        for d in &mut w.identification.diagram {
+            for p in &mut d.poles {
+                if (p.freq_hz - 170.0).abs() < 0.01 * 170.0 {
+                    p.stability = Stability::New;
+                }
+            }
+        }
+        w.automatic().unwrap();
+        assert_eq!(w.modes.len(), 1);
+        assert!((w.modes[0].freq_hz - 60.0).abs() < 0.01);
+        assert_eq!(w.left_out_hz.len(), 1);
+        assert!((w.left_out_hz[0] - 170.0).abs() < 0.01);
+        // a click still picks it
+        w.toggle((oi, k)).unwrap();
+        assert_eq!(w.modes.len(), 2);
     }
 
     #[test]

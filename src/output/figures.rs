@@ -186,6 +186,42 @@ pub fn tick_label(v: f64, log: bool) -> String {
     s.to_string()
 }
 
+/// A tick label of a linear axis spanning `(lo, hi)`: every tick of the
+/// axis in one style, chosen by the axis's largest magnitude: plain
+/// decimals (`0.0002`, `0.0004`, …, `0.0012`) from 1e-3 to 1e6, exponent
+/// form (`2e-4`, `4e-4`, `6e-4`) below and beyond; a log axis as
+/// [`tick_label`]. (Labelled one by one, a 0 to 2 ms axis read `2e-4`,
+/// …, `8e-4`, `0.001`.)
+pub fn axis_tick_label(v: f64, log: bool, (lo, hi): (f64, f64)) -> String {
+    if log {
+        return tick_label(v, true);
+    }
+    let a = lo.abs().max(hi.abs());
+    // a tick computed as a sum of steps: 1e-19 stands for 0
+    if v == 0.0 || !a.is_finite() || a == 0.0 || v.abs() < 1e-9 * a {
+        return "0".into();
+    }
+    if (1e-3..1e6).contains(&a) {
+        // the decimals of a fiftieth of the span: enough for any tick step
+        let span = (hi - lo).abs().max(1e-12 * a);
+        let decimals = (-(span / 50.0).log10().floor()).clamp(0.0, 17.0) as usize;
+        let s = format!("{v:.decimals$}");
+        if !s.contains('.') {
+            return s;
+        }
+        return s.trim_end_matches('0').trim_end_matches('.').to_string();
+    }
+    // two significant digits of the step's size are plenty for a tick
+    let s = format!("{v:.2e}");
+    let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+    let m = if m.contains('.') {
+        m.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        m
+    };
+    format!("{m}e{e}")
+}
+
 /// The largest font size from `px` down to `min_px` at which `text` is at
 /// most `max_w` pixels wide (`min_px` when none is).
 pub fn fit_font_px(text: &str, max_w: i32, px: u32, min_px: u32) -> u32 {
@@ -622,11 +658,12 @@ where
     let scale = frame.scale;
     let fs = |s: f64| (s * scale).round() as u32;
     let (lx, ly) = (panel.log_x, panel.log_y);
-    let fx = move |v: &f64| tick_label(*v, lx);
+    let (xr, yr) = (chart.x_range(), chart.y_range());
+    let fx = move |v: &f64| axis_tick_label(*v, lx, (xr.start, xr.end));
     let names = &panel.y_names;
     let fy = move |v: &f64| {
         if names.is_empty() {
-            tick_label(*v, ly)
+            axis_tick_label(*v, ly, (yr.start, yr.end))
         } else {
             name_tick_label(*v, names)
         }

@@ -46,7 +46,10 @@ pub fn paper_figures(
                 title: force_title,
                 subtitle: subtitle.into(),
                 panels: vec![panel(
-                    format!("contact force q (N), mean over {win_ms:.3} ms windows"),
+                    format!(
+                        "contact force q (N), mean over {} windows",
+                        super::summary::duration_text(win_ms * 1e-3, 3)
+                    ),
                     forces,
                 )],
             },

@@ -323,7 +323,7 @@ impl Recording {
     /// of kN against a rolling force of about 1 kN).
     pub fn figure(&self, spec: &FigureSpec<'_>) -> Figure {
         let points = spec.points;
-        let win_ms = summary::short_num(self.window_ms(spec.dt_s), 3);
+        let window = summary::duration_text(self.window_ms(spec.dt_s) * 1e-3, 3);
         let panels = spec
             .panels
             .iter()
@@ -351,7 +351,7 @@ impl Recording {
                     ),
                     // (clipped impacts are said by their legend entry)
                     RunPanel::Force => panel(
-                        format!("Contact force, mean over {win_ms} ms windows"),
+                        format!("Contact force, mean over {window} windows"),
                         "contact force q (N)",
                         self.force_series(spec.clip_impacts, points, &name).0,
                     ),

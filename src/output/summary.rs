@@ -38,6 +38,19 @@ pub fn short_num(x: f64, digits: usize) -> String {
     trim_zeros(&format!("{x:.decimals$}"))
 }
 
+/// A duration `t_s` (s) to `digits` significant digits in the largest of
+/// s, ms, µs and ns in which it reads at least 0.1 (`0.6 µs`, `2 ms`,
+/// `50 ms`, `1.5 s`): no exponents in a title.
+pub fn duration_text(t_s: f64, digits: usize) -> String {
+    let units = [(1.0, "s"), (1e3, "ms"), (1e6, "µs"), (1e9, "ns")];
+    let (f, unit) = units
+        .iter()
+        .copied()
+        .find(|(f, _)| (t_s * f).abs() >= 0.1)
+        .unwrap_or(units[3]);
+    format!("{} {unit}", short_num(t_s * f, digits))
+}
+
 fn trim_zeros(s: &str) -> String {
     if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -153,6 +166,33 @@ mod tests {
         assert_eq!(short_num(1_234_567.0, 3), "1.23e6");
         assert_eq!(short_num(0.0, 4), "0");
         assert_eq!(short_num(f64::NAN, 4), "NaN");
+    }
+
+    #[test]
+    fn durations_read_in_a_unit_without_exponents() {
+        assert_eq!(duration_text(6e-7, 3), "0.6 µs");
+        assert_eq!(duration_text(2e-3, 3), "2 ms");
+        assert_eq!(duration_text(0.05, 3), "50 ms");
+        assert_eq!(duration_text(1.5, 3), "1.5 s");
+        assert_eq!(duration_text(2.5e-9, 3), "2.5 ns");
+        assert_eq!(duration_text(1e-4, 3), "0.1 ms");
+        // every duration from 1 ns to 100 s: no exponent, value read back
+        let mut t = 1e-9;
+        while t < 100.0 {
+            let s = duration_text(t, 4);
+            assert!(!s.contains('e'), "{t} -> {s}");
+            let (v, unit) = s.split_once(' ').unwrap();
+            let f = match unit {
+                "s" => 1.0,
+                "ms" => 1e-3,
+                "µs" => 1e-6,
+                "ns" => 1e-9,
+                u => panic!("unit {u}"),
+            };
+            let back = v.parse::<f64>().unwrap() * f;
+            assert!((back - t).abs() <= 5e-4 * t, "{t} -> {s}");
+            t *= 3.7;
+        }
     }
 
     /// Every formatted number reads back within its rounding.

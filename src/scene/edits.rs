@@ -184,7 +184,33 @@ pub fn edits_since_identified(
         _ => {}
     }
     let (pa, pb) = (&before.points, &after.points);
-    if pa.len() != pb.len() {
+    if let (Some(ga), Some(gb)) = (pa.grid(), pb.grid()) {
+        if (ga.along, ga.across) != (gb.along, gb.across) {
+            out.push(format!(
+                "patch grid {} × {} -> {} × {} points (along × across)",
+                ga.along, ga.across, gb.along, gb.across
+            ));
+        }
+        change(
+            &mut out,
+            "patch spacing along",
+            ga.spacing_m.0,
+            gb.spacing_m.0,
+            1e3,
+            "mm",
+        );
+        change(
+            &mut out,
+            "patch spacing across",
+            ga.spacing_m.1,
+            gb.spacing_m.1,
+            1e3,
+            "mm",
+        );
+        if ga.preload != gb.preload {
+            out.push("patch preload".to_string());
+        }
+    } else if pa.len() != pb.len() {
         out.push(format!("{} -> {} contact points", pa.len(), pb.len()));
     } else if pa != pb {
         out.push("contact point positions or heights".to_string());

@@ -42,16 +42,42 @@ impl PointGrid {
     pub fn check(&self) -> Option<(String, String, String)> {
         let bad = |f: &str, v: String, e: &str| Some((format!("points.{f}"), v, e.to_string()));
         if self.along == 0 {
-            return bad("along", "0".into(), "at least 1 point along");
-        }
-        if self.across == 0 {
-            return bad("across", "0".into(), "at least 1 row across");
-        }
-        if self.along.saturating_mul(self.across) > MAX_POINTS {
             return bad(
                 "along",
+                "0".into(),
+                &format!("1 to {MAX_POINTS} points along"),
+            );
+        }
+        if self.across == 0 {
+            return bad(
+                "across",
+                "0".into(),
+                &format!("1 to {MAX_POINTS} rows across"),
+            );
+        }
+        if self.along.saturating_mul(self.across) > MAX_POINTS {
+            // the field of the larger count: the one most likely mistyped
+            let (field, room) = if self.along >= self.across {
+                ("along", MAX_POINTS / self.across)
+            } else {
+                ("across", MAX_POINTS / self.along)
+            };
+            return bad(
+                field,
                 format!("{} × {}", self.along, self.across),
-                &format!("at most {MAX_POINTS} points in all"),
+                &format!(
+                    "at most {MAX_POINTS} points in all: 1 to {room} {field} with {} {}",
+                    if field == "along" {
+                        self.across
+                    } else {
+                        self.along
+                    },
+                    if field == "along" {
+                        "rows across"
+                    } else {
+                        "points along"
+                    }
+                ),
             );
         }
         for (k, v) in [self.spacing_m.0, self.spacing_m.1].into_iter().enumerate() {
@@ -157,10 +183,18 @@ pub struct Points {
 }
 
 impl Points {
-    /// The points of a grid (its fields checked by the caller).
+    /// The points of a grid; none when [`PointGrid::check`] refuses it
+    /// (`Scene::validate` then names the field).
     pub fn from_grid(grid: PointGrid) -> Self {
+        // a grid refused by its check has no points (a count typed by
+        // mistake must not allocate billions): validation names its field
+        let list = if grid.check().is_none() {
+            grid.points()
+        } else {
+            Vec::new()
+        };
         Points {
-            list: grid.points(),
+            list,
             grid: Some(grid),
         }
     }
@@ -333,7 +367,7 @@ mod tests {
         for (grid, want) in [
             (
                 "Grid(along: 0, across: 2, spacing_m: (0.01, 0.01), preload: Flat(depth_m: 0.001))",
-                "points.along = 0: expected at least 1 point along",
+                "points.along = 0: expected 1 to 2000 points along",
             ),
             (
                 "Grid(along: 3, across: 2, spacing_m: (0.01, -1.0), preload: Flat(depth_m: 0.001))",

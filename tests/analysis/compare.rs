@@ -55,6 +55,30 @@ fn unlike_scenes_are_compared_only_where_they_match() {
     let a = record(&five);
     let pin = PinnedRun::new("A", &five, 13, &a);
     assert!(pin.unlike(&five, 13).is_empty(), "a scene is like itself");
+    // another speed and another road: said, with their values
+    let mut faster = five.clone();
+    faster.speed_mps = five.speed_mps + 5.0;
+    let said = pin.unlike(&faster, 13);
+    assert_eq!(said.len(), 1, "{said:?}");
+    assert!(
+        said[0].contains("excited differently")
+            && said[0].contains(&format!(
+                "speed {} -> {} m/s",
+                five.speed_mps,
+                five.speed_mps + 5.0
+            )),
+        "{said:?}"
+    );
+    let mut rough = five.clone();
+    rough.road = tirecontact::model::road::Road::Random {
+        class: tirecontact::model::road::RoadClass::C,
+        seed: 1,
+        length_m: 100.0,
+        min_wavenumber_cpm: 1.0,
+        max_wavenumber_cpm: 20.0,
+    };
+    let said = pin.unlike(&rough, 13).join(" ");
+    assert!(said.contains("road") && said.contains("random"), "{said}");
     // three of the five points, in another order, and a finer step
     let mut three = five.clone();
     three.points = vec![five.points[3], five.points[0], five.points[4]].into();

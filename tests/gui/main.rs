@@ -23,6 +23,8 @@ mod keyboard_prompts;
 mod legends_clear;
 mod mode_fields;
 mod native_dialog;
+mod patch_panel;
+mod phone;
 mod research;
 mod save_as;
 mod scene_view;

@@ -3,6 +3,10 @@
 
 use super::*;
 
+/// Below this window width (logical px: a phone) the editing panel hides
+/// behind a button instead of covering the views.
+pub const NARROW_PX: f32 = 700.0;
+
 impl App {
     pub(super) fn show_view(&mut self, v: View) {
         // the presenter layout has one view; another one leaves it
@@ -78,12 +82,54 @@ impl App {
         // the running scene: no further edit until the waiting one applies
         let editable = self.handles.prepare_job.is_none();
         let edits = self.edits();
+        if ui.available_width() < NARROW_PX {
+            // a phone: the editing panel behind a button, not over the views
+            if self.edit_panel_open {
+                egui::CentralPanel::default().show(ui, |ui| {
+                    if ui.button("Back to the views").clicked() {
+                        cmds_left.push(Command::ShowEditPanel(false));
+                    }
+                    ui.add_enabled_ui(editable, |ui| {
+                        panels::side_panel(
+                            ui,
+                            &self.doc.scene,
+                            &edits,
+                            &self.modes,
+                            self.sim.road_profile(),
+                            cmds_left,
+                        )
+                    });
+                });
+                return;
+            }
+            egui::Panel::top("tirecontact.edit_button").show(ui, |ui| {
+                if ui
+                    .button("Edit the scene")
+                    .on_hover_text("the editing panel, in place of the views")
+                    .clicked()
+                {
+                    cmds_left.push(Command::ShowEditPanel(true));
+                }
+            });
+            egui::CentralPanel::default().show(ui, |ui| {
+                crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
+                self.show_current_view(ui, cmds);
+            });
+            return;
+        }
         egui::Panel::left("tirecontact.edit")
             .resizable(true)
             .default_size(380.0)
             .show(ui, |ui| {
                 ui.add_enabled_ui(editable, |ui| {
-                    panels::side_panel(ui, &self.doc.scene, &edits, &self.modes, cmds_left)
+                    panels::side_panel(
+                        ui,
+                        &self.doc.scene,
+                        &edits,
+                        &self.modes,
+                        self.sim.road_profile(),
+                        cmds_left,
+                    )
                 });
             });
         if self.classroom.bars {
@@ -103,27 +149,32 @@ impl App {
         }
         egui::CentralPanel::default().show(ui, |ui| {
             crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
-            match self.view {
-                View::TimePlots => {
-                    time_plots::show(
-                        ui,
-                        &self.history,
-                        &mut self.plot_opts,
-                        self.sim.time_s(),
-                        self.doc.scene.duration_s,
-                    );
-                }
-                View::Scene => scene_view::show(ui, &self.sim, &mut self.scene_opts),
-                View::Green => {
-                    green_view::show(ui, &self.doc.scene, &self.modes, &mut self.green_opts);
-                }
-                View::Patch => {
-                    crate::gui::views::patch_view::show(ui, &self.sim, &self.history, cmds);
-                }
-                View::Spectra | View::Sweep | View::Compare | View::Fidelity | View::Workbench => {
-                    self.show_research_view(ui, cmds);
-                }
-            }
+            self.show_current_view(ui, cmds);
         });
+    }
+
+    /// The view chosen (time plots, scene, …) in `ui`.
+    fn show_current_view(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
+        match self.view {
+            View::TimePlots => {
+                time_plots::show(
+                    ui,
+                    &self.history,
+                    &mut self.plot_opts,
+                    self.sim.time_s(),
+                    self.doc.scene.duration_s,
+                );
+            }
+            View::Scene => scene_view::show(ui, &self.sim, &mut self.scene_opts),
+            View::Green => {
+                green_view::show(ui, &self.doc.scene, &self.modes, &mut self.green_opts);
+            }
+            View::Patch => {
+                crate::gui::views::patch_view::show(ui, &self.sim, &self.history, cmds);
+            }
+            View::Spectra | View::Sweep | View::Compare | View::Fidelity | View::Workbench => {
+                self.show_research_view(ui, cmds);
+            }
+        }
     }
 }

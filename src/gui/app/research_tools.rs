@@ -14,7 +14,7 @@ use crate::gui::research::fidelity_job::FidelityJob;
 use crate::gui::research::spectra::{HistoryKey, SpectraInput};
 use crate::gui::research::spectra_job::{INLINE_MAX_WORK, SpectraJob, SpectraPoll};
 use crate::gui::research::sweep_job::{SweepState, default_threads};
-use crate::gui::research::workbench_job::{WorkbenchJob, key_of};
+use crate::gui::research::workbench_job::{WorkbenchJob, key_of, scene_key};
 use crate::gui::views::{
     compare_view, fidelity_view, spectra_view, sweep_view, wall_time_text, workbench_view,
 };
@@ -156,7 +156,9 @@ impl App {
                         crate::scene::Tyre::Modal { modes } => modes.len(),
                         _ => 0,
                     };
+                    let used = scene_key(&modal);
                     self.apply(Command::EditScene(Box::new(modal)));
+                    self.research.workbench_used = Some(used);
                     self.research_message(
                         false,
                         format!("the scene's tyre is now the {n} modes picked on the workbench"),
@@ -193,6 +195,7 @@ impl App {
     /// to the old one.
     pub(crate) fn research_new_document(&mut self) {
         self.research.fidelity_ref = FidelityRef::of_scene(&self.doc.scene);
+        self.research.workbench_used = None;
     }
 
     /// The research jobs' ends this frame, as commands (never blocks).
@@ -245,6 +248,12 @@ impl App {
             self.research.workbench = Some((key, r));
             self.research.workbench_job = None;
         }
+        let used = self.research.workbench_used.as_ref();
+        if used.is_some_and(|u| *u == scene_key(&self.doc.scene)) {
+            // the scene's tyre is the workbench's choice: keep it to refine
+            return;
+        }
+        self.research.workbench_used = None;
         let Some(key) = key_of(&self.doc.scene) else {
             self.research.workbench = None;
             self.research.workbench_job = None;
@@ -474,6 +483,7 @@ impl App {
                 &self.doc.scene,
                 self.research.workbench(),
                 self.research.workbench_computing(),
+                self.research.workbench_in_use(),
                 cmds,
             ),
             _ => {}

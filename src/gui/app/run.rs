@@ -140,8 +140,12 @@ impl App {
         if self.message.as_ref().is_some_and(|m| m.text == note) {
             self.message = None;
         }
+        // built on the job's thread (a large patch takes seconds)
+        let ready = job.take_built();
         let built = |m: &crate::identify::PreparedModel| {
-            Simulation::new(m, SolverOptions::default()).map(|sim| (sim, m.modes().to_vec()))
+            ready.unwrap_or_else(|| {
+                Simulation::new(m, SolverOptions::default()).map(|sim| (sim, m.modes().to_vec()))
+            })
         };
         match (result, job.then) {
             (Ok(Prepared::Model(m)), Then::Edit(scene)) => {

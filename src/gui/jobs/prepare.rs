@@ -11,9 +11,19 @@ use crate::gui::jobs::Job;
 use crate::gui::model::prepared::Prepared;
 use crate::identify::{ModeCache, PreparedModel};
 use crate::model::road::{Road, RoadProfile};
+use crate::scene::Mode;
+use crate::solver::simulation::{Simulation, SolverOptions};
 use crate::{Scene, SceneError};
 use std::path::PathBuf;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
+
+/// Scenes of more points than this build their solver's tables off the UI
+/// thread (a patch of a thousand points takes seconds; ten points, well
+/// under a frame).
+pub const LARGE_SET_UP_POINTS: usize = 100;
+
+/// A simulation built on the preparation's thread, and its modes.
+pub type Built = Result<(Simulation, Vec<Mode>), SceneError>;
 
 /// What waits for the preparation.
 #[derive(Debug, Clone, PartialEq)]
@@ -35,19 +45,29 @@ pub enum Then {
 
 /// Whether applying `scene` reads a file (a measured road) or identifies a
 /// ring tyre not in `cache`: then it is prepared by a [`PrepareJob`].
+/// So does a scene of more than [`LARGE_SET_UP_POINTS`] points: its
+/// simulation is built there too.
 pub fn needs_preparing(scene: &Scene, cache: &ModeCache) -> bool {
-    reads_road_file(&scene.road) || !cache.has_modes(scene)
+    reads_road_file(&scene.road)
+        || !cache.has_modes(scene)
+        || scene.num_points() > LARGE_SET_UP_POINTS
 }
 
-/// Whether sampling `road` needs its file read.
+/// Whether sampling `road` needs its file read or its grid generated
+/// (a surface file of millions of nodes, a texture): off the UI thread.
 pub fn reads_road_file(road: &Road) -> bool {
-    matches!(road, Road::Measured { .. })
+    matches!(
+        road,
+        Road::Measured { .. } | Road::Surface { .. } | Road::Texture { .. }
+    )
 }
 
 /// A preparation running on its own thread, and what waits for it.
 pub struct PrepareJob {
     job: Job<Result<Prepared, String>>,
     pub then: Then,
+    /// The simulation of a prepared model, built on the job's thread.
+    built: Arc<Mutex<Option<Built>>>,
 }
 
 impl PrepareJob {
@@ -55,12 +75,27 @@ impl PrepareJob {
     /// `cache` (kept there even if a later edit replaces this job).
     pub fn spawn(then: Then, cache: Arc<ModeCache>) -> Result<Self, String> {
         let what = then.clone();
+        let built = Arc::new(Mutex::new(None));
+        let slot = Arc::clone(&built);
         let job = Job::spawn("preparation", 1, move |progress| {
-            let r = prepare(&what, &cache).map_err(|e| e.to_string());
+            let r = prepare(&what, &cache);
+            if let Ok(Prepared::Model(m)) = &r {
+                let b = Simulation::new(m, SolverOptions::default())
+                    .map(|sim| (sim, m.modes().to_vec()));
+                if let Ok(mut s) = slot.lock() {
+                    *s = Some(b);
+                }
+            }
             progress.add(1);
-            r
+            r.map_err(|e| e.to_string())
         })?;
-        Ok(PrepareJob { job, then })
+        Ok(PrepareJob { job, then, built })
+    }
+
+    /// The simulation built from the prepared model, once (after
+    /// [`Self::poll`] gave the model).
+    pub fn take_built(&self) -> Option<Built> {
+        self.built.lock().ok().and_then(|mut s| s.take())
     }
 
     /// The result, once the thread has finished.
@@ -93,11 +128,24 @@ pub fn waiting_note(then: &Then, identifies: bool) -> String {
         Then::Replace { .. } => "for the new scene",
         Then::Open(p) => return format!("Opening {}…", p.display()),
     };
+    let (large, texture) = match then {
+        Then::Edit(s) | Then::Replace { scene: s, .. } | Then::Road(s) => {
+            (s.num_points(), matches!(s.road, Road::Texture { .. }))
+        }
+        Then::Open(_) => (0, false),
+    };
     if identifies {
         format!(
             "Identifying the tyre's modes at the points {what} (LSCE, docs/method.md §6): \
              the current run goes on until they are ready."
         )
+    } else if large > LARGE_SET_UP_POINTS {
+        format!(
+            "Setting up the solver for the {large} points {what} (its tables, and the road): \
+             the current run goes on until it is ready."
+        )
+    } else if texture {
+        format!("Generating the road texture {what}: the current run goes on until it is ready.")
     } else {
         format!("Reading the road file {what}: the current run goes on until it is read.")
     }

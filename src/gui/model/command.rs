@@ -119,6 +119,9 @@ pub enum Command {
     Quit,
     DismissMessage,
     ShowView(View),
+    /// In a narrow window (a phone), show the editing panel in place of
+    /// the views (`true`) or the views again (`false`).
+    ShowEditPanel(bool),
     /// Show these points (and only these) in the time plots, and the plots.
     ShowPoints(Vec<usize>),
     /// Classroom mode on/off: large fonts, presenter layout, slow motion.

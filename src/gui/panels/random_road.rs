@@ -31,7 +31,7 @@ pub fn default_road() -> Road {
     }
 }
 
-fn class_name(c: RoadClass) -> &'static str {
+pub(crate) fn class_name(c: RoadClass) -> &'static str {
     CLASSES
         .iter()
         .find(|(k, _)| *k == c)
@@ -154,14 +154,18 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
             );
             ui.end_row();
         });
-    ui.label(
-        egui::RichText::new(format!(
-            "wavelengths {:.3} m to {:.3} m; excitation {:.1} Hz to {:.1} Hz at V",
-            1.0 / max_wavenumber_cpm,
-            1.0 / min_wavenumber_cpm,
-            scene.speed_mps * min_wavenumber_cpm,
-            scene.speed_mps * max_wavenumber_cpm
-        ))
-        .weak(),
+    // wrapped: cut at the panel's edge in a narrow panel
+    ui.add(
+        egui::Label::new(
+            egui::RichText::new(format!(
+                "wavelengths {:.3} m to {:.3} m; excitation {:.1} Hz to {:.1} Hz at V",
+                1.0 / max_wavenumber_cpm,
+                1.0 / min_wavenumber_cpm,
+                scene.speed_mps * min_wavenumber_cpm,
+                scene.speed_mps * max_wavenumber_cpm
+            ))
+            .weak(),
+        )
+        .wrap(),
     );
 }

@@ -8,7 +8,12 @@ use crate::gui::widgets::fields::{Apply, NumField, section};
 use crate::model::road::{Harmonic, Road};
 use egui::{Grid, Ui};
 
-pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
+pub fn show(
+    ui: &mut Ui,
+    scene: &Scene,
+    profile: &crate::model::road::RoadProfile,
+    cmds: &mut Vec<Command>,
+) {
     section(ui, "Road", Apply::Live);
     road_type(ui, scene, cmds);
     match &scene.road {
@@ -70,24 +75,8 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
             ));
         }
         Road::Random { .. } => super::random_road::show(ui, scene, cmds),
-        Road::Surface { file, looped } => {
-            ui.label(format!(
-                "road surface {} ({})",
-                file.display(),
-                if *looped { "looped" } else { "not looped" }
-            ));
-        }
-        Road::Texture {
-            class,
-            seed,
-            length_m,
-            width_m,
-            ..
-        } => {
-            ui.label(format!(
-                "texture: ISO 8608 class {class:?} extended across, seed {seed}, {length_m} m × {width_m} m"
-            ));
-        }
+        Road::Surface { .. } => super::patch_panel::surface(ui, scene, Some(profile)),
+        Road::Texture { .. } => super::patch_panel::texture(ui, scene, cmds),
     }
     section(ui, "Speed", Apply::Live);
     Grid::new("tirecontact.speed")

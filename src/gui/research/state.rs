@@ -113,6 +113,10 @@ pub struct ResearchState {
         Result<crate::identify::workbench::Workbench, String>,
     )>,
     pub(crate) workbench_job: Option<super::workbench_job::WorkbenchJob>,
+    /// The scene's modal tyre and points as "Use these modes" made them:
+    /// while the scene keeps them, the workbench they came from stays
+    /// shown, its picks ready to refine.
+    pub(crate) workbench_used: Option<super::workbench_job::WorkbenchKey>,
 }
 
 impl ResearchState {
@@ -161,6 +165,10 @@ impl ResearchState {
     /// The identification workbench shown, or why there is none.
     pub fn workbench(&self) -> Option<&Result<crate::identify::workbench::Workbench, String>> {
         self.workbench.as_ref().map(|w| &w.1)
+    }
+    /// Whether the scene's tyre is the modes picked on the workbench shown.
+    pub fn workbench_in_use(&self) -> bool {
+        self.workbench.is_some() && self.workbench_used.is_some()
     }
     /// Whether the workbench's identification is running.
     pub fn workbench_computing(&self) -> bool {

@@ -21,6 +21,14 @@ pub fn key_of(scene: &Scene) -> Option<WorkbenchKey> {
     })
 }
 
+/// The tyre and points of `scene`, whatever its tyre.
+pub fn scene_key(scene: &Scene) -> WorkbenchKey {
+    (
+        scene.tyre.clone(),
+        scene.points.iter().map(|p| p.x_m).collect(),
+    )
+}
+
 /// Identifies `scene`'s tyre into a workbench (the automatic choice).
 pub fn workbench_of(scene: &Scene) -> Result<Workbench, String> {
     let id = identify_tyre(scene)

@@ -14,6 +14,9 @@ use egui_plot::{Line, Plot, PlotPoints};
 const ROAD_SAMPLES_PER_CELL: usize = 3;
 
 /// Draws the patch view; a click on a row pushes [`Command::ShowPoints`].
+/// The colour bar's caption.
+pub const COLOUR_BAR_CAPTION: &str = "force (N)";
+
 pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Command>) {
     let scene = sim.scene();
     let layout = match PatchLayout::of(scene) {
@@ -158,9 +161,11 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
         font.clone(),
         text,
     );
-    // the colour bar, 0 N at the bottom
+    // the colour bar, 0 N at the bottom; its caption above the map's top,
+    // level with the y title, and its top label (centred on the bar's top)
+    // a font height below the caption: not crowding it
     let bar = Rect::from_min_max(
-        Pos2::new(map.right() + 24.0, map.top() + 20.0),
+        Pos2::new(map.right() + 24.0, map.top() + font.size),
         Pos2::new(map.right() + 44.0, map.bottom()),
     );
     let steps = 60;
@@ -182,9 +187,9 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
         StrokeKind::Outside,
     );
     painter.text(
-        Pos2::new(bar.center().x, map.top()),
-        Align2::CENTER_TOP,
-        "force (N)",
+        Pos2::new(bar.center().x, map.top() - 4.0),
+        Align2::CENTER_BOTTOM,
+        COLOUR_BAR_CAPTION,
         font.clone(),
         text,
     );

@@ -23,55 +23,70 @@ pub enum Key {
 /// One legend entry.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Entry {
+    /// Its name (also its accessible name).
     pub name: &'static str,
+    /// A shorter name, shown when the names do not fit one row at the
+    /// smallest readable size.
+    pub short: &'static str,
     pub color: Color32,
     pub key: Key,
 }
 
+/// Smallest text (px) of a legend row (classroom mode: read from the back
+/// of a room; its small text was 15 px).
+pub const ROW_MIN_PX: f32 = 20.0;
+
 /// Width (px) of an entry's key.
 const KEY_W_PX: f32 = 18.0;
 
-/// The entries in a wrapped row, text in `style` or larger (up to body
-/// text) as far as one row has room.
-pub fn row(ui: &mut Ui, entries: &[Entry], style: &TextStyle) {
-    // the row's text as large as one row allows, from `style` up to body
-    // text (classroom mode's small text was about 10 px high at 1280 px)
+/// The entries in a wrapped row, text at least `min_px` high (or
+/// `style`'s size, if larger) and up to body text, as far as one row has
+/// room; their short names when the names do not fit one row at the
+/// smallest size.
+pub fn row(ui: &mut Ui, entries: &[Entry], style: &TextStyle, min_px: f32) {
     let gap_px = 14.0;
     let font = style.resolve(ui.style());
-    let body = TextStyle::Body.resolve(ui.style()).size.max(font.size);
-    let needed_px: f32 = entries
-        .iter()
-        .map(|e| {
-            let w = ui
-                .painter()
-                .layout_no_wrap(e.name.to_owned(), font.clone(), Color32::WHITE)
-                .size()
-                .x;
-            KEY_W_PX + 4.0 + w + gap_px
-        })
-        .sum();
-    let room = ui.available_width() / needed_px.max(1.0);
-    let size = (font.size * 0.97 * room).clamp(font.size, body);
+    let min_px = min_px.max(font.size);
+    let body = TextStyle::Body.resolve(ui.style()).size.max(min_px);
+    let at_min = egui::FontId::new(min_px, font.family.clone());
+    let needed = |short: bool| -> f32 {
+        entries
+            .iter()
+            .map(|e| {
+                let text = if short { e.short } else { e.name };
+                let w = ui
+                    .painter()
+                    .layout_no_wrap(text.to_owned(), at_min.clone(), Color32::WHITE)
+                    .size()
+                    .x;
+                KEY_W_PX + 4.0 + w + gap_px
+            })
+            .sum()
+    };
+    let short = needed(false) > ui.available_width();
+    let room = ui.available_width() / needed(short).max(1.0);
+    let size = (min_px * 0.97 * room).clamp(min_px, body);
     let font = egui::FontId::new(size, font.family);
     ui.horizontal_wrapped(|ui| {
         ui.spacing_mut().item_spacing.x = gap_px;
         for e in entries {
-            item_in(ui, e.name, e.color, e.key, font.clone());
+            let shown = if short { e.short } else { e.name };
+            item_in(ui, e.name, shown, e.color, e.key, font.clone());
         }
     });
 }
 
 /// One legend entry named `name` (any text), its key `key` in `color`.
 pub fn item(ui: &mut Ui, name: &str, color: Color32, key: Key, style: &TextStyle) {
-    item_in(ui, name, color, key, style.resolve(ui.style()));
+    item_in(ui, name, name, color, key, style.resolve(ui.style()));
 }
 
-/// [`item`] in `font`.
-fn item_in(ui: &mut Ui, name: &str, color: Color32, key: Key, font: egui::FontId) {
+/// [`item`] in `font`, showing `shown` (its accessible name `name`).
+fn item_in(ui: &mut Ui, name: &str, shown: &str, color: Color32, key: Key, font: egui::FontId) {
     let text_color = ui.visuals().text_color();
     let galley = ui
         .painter()
-        .layout_no_wrap(name.to_owned(), font, text_color);
+        .layout_no_wrap(shown.to_owned(), font, text_color);
     let size = Vec2::new(KEY_W_PX + 4.0 + galley.size().x, galley.size().y);
     let (rect, response) = ui.allocate_exact_size(size, Sense::hover());
     response.widget_info(|| WidgetInfo::labeled(Role::Label, true, name));

@@ -358,26 +358,31 @@ fn with_legend<'a>(
         let mut entries = vec![
             Entry {
                 name: ROAD_NAME_LEFT,
+                short: "road (to left)",
                 color: ROAD_COLOR,
                 key: Key::Line,
             },
             Entry {
                 name: UNDEFORMED_NAME,
+                short: "undeformed",
                 color: Color32::GRAY,
                 key: Key::DashedLine,
             },
             Entry {
                 name: DISPLACED_NAME,
+                short: "tyre",
                 color: tyre_color,
                 key: Key::Line,
             },
             Entry {
                 name: CONTACT_NAME,
+                short: "in contact",
                 color: CONTACT_COLOR,
                 key: Key::Disc,
             },
             Entry {
                 name: FLIGHT_NAME,
+                short: "in flight",
                 color: FLIGHT_COLOR,
                 key: Key::Diamond,
             },
@@ -387,10 +392,16 @@ fn with_legend<'a>(
         // points land and leave (it wrapped to a second line and back)
         entries.push(Entry {
             name: FORCE_NAME_SHORT,
+            short: "force (N)",
             color: FORCE_COLOR,
             key: Key::Disc,
         });
-        row(ui, &entries, &opts.legend_style);
+        row(
+            ui,
+            &entries,
+            &opts.legend_style,
+            super::scene_legend::ROW_MIN_PX,
+        );
     } else {
         plot = plot.legend(
             Legend::default()

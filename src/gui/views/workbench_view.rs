@@ -58,9 +58,10 @@ pub fn show(
     scene: &Scene,
     bench: Option<&Result<Workbench, String>>,
     computing: bool,
+    in_use: bool,
     cmds: &mut Vec<Command>,
 ) {
-    if matches!(scene.tyre, Tyre::Modal { .. }) {
+    if matches!(scene.tyre, Tyre::Modal { .. }) && !in_use {
         ui.label("The workbench identifies a ring or measured tyre from its responses. This scene's tyre is a modal model given mode by mode: open a ring or measured preset (presets/paper.ron, presets/measured_example.ron).");
         return;
     }
@@ -110,6 +111,18 @@ pub fn show(
             crate::output::summary::short_num(w.time_error, 3)
         ));
     });
+    if in_use {
+        ui.label(
+            "The scene's tyre is the modes used from this diagram: pick or drop poles and \"Use these modes\" again to refine the choice.",
+        );
+    }
+    if !w.left_out_hz.is_empty() {
+        let hz: Vec<String> = w.left_out_hz.iter().map(|f| format!("{f:.0} Hz")).collect();
+        ui.label(format!(
+            "Left out of the automatic choice: {} (drawn as new or unstable: the pole is not found at the order below, nor persisting at any other order). Click the pole to pick it anyway.",
+            hz.join(", ")
+        ));
+    }
     let fits = w.pair_fits();
     let worst = fits
         .iter()
@@ -154,10 +167,10 @@ fn diagram(ui: &mut Ui, w: &Workbench, h: f32, cmds: &mut Vec<Command>) {
             (a.min(*v), b.max(*v))
         });
     let freqs = w.frequencies();
+    let h = h - diagram_legend(ui);
     let r = Plot::new("tirecontact.workbench.diagram")
         .id(egui::Id::unique(DIAGRAM_PLOT_ID))
         .height(h)
-        .legend(egui_plot::Legend::default().position(egui_plot::Corner::RightBottom))
         .x_title(ui, "frequency f (Hz)")
         .y_axis_label("model order")
         .include_x(w.band_hz.0)
@@ -225,6 +238,74 @@ fn diagram(ui: &mut Ui, w: &Workbench, h: f32, cmds: &mut Vec<Command>) {
         let hz_per_px = r.transform.dvalue_dpos()[0].abs();
         if let Some(p) = w.nearest(at.x, at.y, PICK_PX as f64 * hz_per_px) {
             cmds.push(Command::Research(ResearchCommand::WorkbenchToggle(p)));
+        }
+    }
+}
+
+/// The diagram's legend, in a row above it (a legend inside would cover
+/// poles: they fill the plot): a marker of each category's shape and
+/// colour and its name. Returns the height it took (px).
+fn diagram_legend(ui: &mut Ui) -> f32 {
+    let top = ui.cursor().top();
+    ui.horizontal_wrapped(|ui| {
+        let size = ui.text_style_height(&egui::TextStyle::Body);
+        let entry = |ui: &mut Ui, draw: &dyn Fn(&egui::Painter, egui::Pos2, f32), name: &str| {
+            let (rect, _) = ui.allocate_exact_size(egui::vec2(size, size), egui::Sense::hover());
+            draw(ui.painter(), rect.center(), size * 0.3);
+            ui.label(name);
+            ui.add_space(8.0);
+        };
+        entry(
+            ui,
+            &|p, c, r| {
+                p.line_segment(
+                    [c - egui::vec2(2.0 * r, 0.0), c + egui::vec2(2.0 * r, 0.0)],
+                    egui::Stroke::new(1.0, Color32::from_gray(120)),
+                );
+            },
+            "summed |G| of the data (dB, scaled)",
+        );
+        for (_, name, shape, color) in CATEGORIES {
+            entry(ui, &move |p, c, r| marker(p, c, r, shape, color), name);
+        }
+        entry(
+            ui,
+            &|p, c, r| {
+                p.circle_stroke(c, 1.6 * r, egui::Stroke::new(1.5, PICKED_COLOR));
+            },
+            PICKED,
+        );
+    });
+    ui.cursor().top() - top
+}
+
+/// A marker of `shape` as the diagram draws it, centred at `c`, radius `r`.
+fn marker(p: &egui::Painter, c: egui::Pos2, r: f32, shape: MarkerShape, color: Color32) {
+    use egui::{Shape, Stroke, pos2};
+    match shape {
+        MarkerShape::Diamond => {
+            let pts = vec![
+                pos2(c.x, c.y - r),
+                pos2(c.x + r, c.y),
+                pos2(c.x, c.y + r),
+                pos2(c.x - r, c.y),
+            ];
+            p.add(Shape::convex_polygon(pts, color, Stroke::NONE));
+        }
+        MarkerShape::Square => {
+            p.rect_filled(
+                egui::Rect::from_center_size(c, egui::vec2(2.0 * r, 2.0 * r)),
+                0.0,
+                color,
+            );
+        }
+        MarkerShape::Cross => {
+            let s = Stroke::new(1.5, color);
+            p.line_segment([pos2(c.x - r, c.y - r), pos2(c.x + r, c.y + r)], s);
+            p.line_segment([pos2(c.x - r, c.y + r), pos2(c.x + r, c.y - r)], s);
+        }
+        _ => {
+            p.circle_filled(c, r, color);
         }
     }
 }

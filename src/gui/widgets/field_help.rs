@@ -181,6 +181,40 @@ pub fn help(name: &str) -> Option<FieldHelp> {
         )
         .min(0.0, false)
         .also("at least the lowest n"),
+        "road.width_m" => FieldHelp::new(
+            "width of the texture across the road, after which it repeats",
+        )
+        .min(0.0, false),
+        "points.along" => FieldHelp::new(
+            "points of the contact patch along the rolling direction, in each row (a whole number)",
+        )
+        .min(1.0, true)
+        .max(crate::scene::MAX_POINTS as f64)
+        .also("along × across at most the points' limit")
+        .unit("points"),
+        "points.across" => FieldHelp::new("rows of the contact patch across the tread (a whole number)")
+            .min(1.0, true)
+            .max(crate::scene::MAX_POINTS as f64)
+            .also("along × across at most the points' limit")
+            .unit("rows"),
+        "points.spacing_m.0" => {
+            FieldHelp::new("distance between neighbouring points along the rolling direction")
+                .min(0.0, false)
+        }
+        "points.spacing_m.1" => {
+            FieldHelp::new("distance between neighbouring rows across the tread").min(0.0, false)
+        }
+        "points.preload.depth_m" => FieldHelp::new(
+            "how deep the undeformed tyre is pressed into the mean road plane (at the \
+             footprint's centre for a parabolic one)",
+        )
+        .min(0.0, true)
+        .max(1.0),
+        "points.preload.length_m" => FieldHelp::new(
+            "length of the parabolic footprint along the rolling direction; points beyond it \
+             start above the road",
+        )
+        .min(0.0, false),
         _ => return None,
     })
 }

@@ -3,7 +3,7 @@
 //! area and the type scale the panels share.
 
 use super::legend::caption_h;
-use super::{Panel, data_ranges, fit_font_px, linear_label_count, tick_label};
+use super::{Panel, axis_tick_label, data_ranges, fit_font_px, linear_label_count};
 use plotters::prelude::*;
 
 /// How a panel sits in the stack: the text scale, the height (px) of its
@@ -77,7 +77,7 @@ pub(super) fn y_area_px(panel: &Panel, plot_h: f64, scale: f64) -> u32 {
         plotters::coord::types::RangedCoordf64::from(ys.0..ys.1)
             .key_points(y_label_count(panel, plot_h, scale).max_num_points())
             .iter()
-            .map(|v| tick_label(*v, false))
+            .map(|v| axis_tick_label(*v, false, ys))
             .collect()
     } else {
         panel.y_names.clone()

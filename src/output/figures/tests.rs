@@ -123,6 +123,49 @@ fn tick_labels_are_plain_in_the_everyday_range() {
     }
 }
 
+/// The ticks of one linear axis share one style, whatever the scale: a
+/// 0 to 2 ms time axis is all plain or all exponent, never both.
+#[test]
+fn an_axis_labels_every_tick_in_one_style() {
+    use plotters::coord::ranged1d::{KeyPointHint, Ranged};
+    for (lo, hi) in [
+        (0.0, 0.0021),
+        (0.0, 0.00085),
+        (-3e-7, 4e-7),
+        (0.0, 0.125),
+        (-2.0e6, 3.0e6),
+        (1e-3, 1.0e-3 + 4e-9),
+        (950.0, 1040.0),
+    ] {
+        let ticks = plotters::coord::types::RangedCoordf64::from(lo..hi)
+            .key_points(8usize.max_num_points());
+        assert!(ticks.len() >= 3, "{lo}..{hi}: {ticks:?}");
+        let labels: Vec<String> = ticks
+            .iter()
+            .map(|v| axis_tick_label(*v, false, (lo, hi)))
+            .collect();
+        let exp = labels.iter().filter(|l| l.contains('e')).count();
+        let zero = labels.iter().filter(|l| *l == "0").count();
+        assert!(
+            exp == 0 || exp + zero == labels.len(),
+            "{lo}..{hi}: {labels:?}"
+        );
+        // each label reads back as its tick, and no two are alike
+        for (t, l) in ticks.iter().zip(&labels) {
+            let back: f64 = l.parse().unwrap();
+            let step = (ticks[1] - ticks[0]).abs();
+            assert!((back - t).abs() <= 0.01 * step, "{lo}..{hi}: {t} -> {l}");
+        }
+        let mut unique = labels.clone();
+        unique.dedup();
+        assert_eq!(unique.len(), labels.len(), "{lo}..{hi}: {labels:?}");
+    }
+    // the short run's time axis: plain throughout
+    assert_eq!(axis_tick_label(0.0002, false, (0.0, 0.0021)), "0.0002");
+    assert_eq!(axis_tick_label(0.001, false, (0.0, 0.0021)), "0.001");
+    assert_eq!(axis_tick_label(0.0004, false, (0.0, 0.00085)), "4e-4");
+}
+
 #[test]
 fn long_captions_shrink_to_their_width() {
     let width = |t: &str, px: u32| {

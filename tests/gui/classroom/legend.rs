@@ -154,15 +154,17 @@ fn classroom_scene_legend_keeps_off_the_tyre_and_phase_labels_do_not_overlap() {
     }
 }
 
-/// The classroom scene legend is one row at 1280 × 720, in text as large
-/// as that row has room for: the small text at 1280 px, larger at 1600 px.
+/// The classroom scene legend is one row at 1280 × 720, in the classroom's
+/// type scale (at least 20 px: its small text, 15 px, was too small from
+/// the back of a room), its entries' short names where the full ones do
+/// not fit one row; as large as the row has room for at 1600 px.
 #[test]
 fn the_classroom_scene_legend_is_one_row_as_large_as_it_fits() {
-    use tirecontact::gui::classroom::CLASSROOM_SMALL_PX;
+    use tirecontact::gui::views::scene_legend::ROW_MIN_PX;
     for (preset, size_px, least) in [
         ("paper.ron", [1280.0, 720.0], 1.0),
         ("three_points.ron", [1280.0, 720.0], 1.0),
-        ("paper.ron", [1600.0, 1000.0], 1.15),
+        ("paper.ron", [1600.0, 1000.0], 1.0),
     ] {
         let scene =
             tirecontact::Scene::load(&std::path::Path::new("presets").join(preset)).unwrap();
@@ -175,32 +177,33 @@ fn the_classroom_scene_legend_is_one_row_as_large_as_it_fits() {
         h.run_steps(4);
         crate::harness::advance(&mut h, 1_000);
         h.run_steps(4);
+        // each entry's full or short name
         let names = [
-            "road (moving left)",
-            "undeformed tyre",
-            "in contact",
-            "contact force (N)",
+            ("road (moving left)", "road (to left)"),
+            ("undeformed tyre", "undeformed"),
+            ("in contact", "in contact"),
+            ("contact force (N)", "force (N)"),
         ];
         let mut found = Vec::new();
         for s in crate::harness::shapes(&h) {
             if let egui::Shape::Text(t) = s
-                && names.contains(&t.galley.text())
+                && names
+                    .iter()
+                    .any(|(a, b)| *a == t.galley.text() || *b == t.galley.text())
             {
                 let size = t.galley.job.sections[0].format.font_id.size;
                 found.push((t.galley.text().to_owned(), size, t.visual_bounding_rect()));
             }
         }
         assert_eq!(found.len(), names.len(), "{preset}: {found:?}");
-        let y = found[0].2.center().y;
+        // (tops: a name with parentheses reaches lower)
+        let y = found[0].2.top();
         for (name, size, r) in &found {
             assert!(
-                *size >= least * CLASSROOM_SMALL_PX - 1e-3,
+                *size >= least * ROW_MIN_PX - 1e-3,
                 "{preset}: {name} in {size} px text"
             );
-            assert!(
-                (r.center().y - y).abs() < 2.0,
-                "{preset}: two rows {found:?}"
-            );
+            assert!((r.top() - y).abs() < 2.0, "{preset}: two rows {found:?}");
             assert!(r.right() <= size_px[0], "{preset}: {name} cut at {r:?}");
         }
     }

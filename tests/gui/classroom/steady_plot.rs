@@ -36,7 +36,8 @@ fn the_scene_plot_does_not_move_as_points_land_and_leave() {
         }
         let all = texts(&h);
         assert!(
-            all.iter().any(|(t, _)| t == FORCE_NAME_SHORT),
+            all.iter()
+                .any(|(t, _)| t == FORCE_NAME_SHORT || t == "force (N)"),
             "the force's legend entry is missing at t = {} s",
             h.state().simulation().time_s()
         );

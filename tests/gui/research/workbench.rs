@@ -68,6 +68,33 @@ fn picked_freqs(h: &Harness<'_, App>) -> Vec<f64> {
 }
 
 #[test]
+fn the_diagram_legend_covers_no_pole() {
+    let mut h = harness_sized(App::new(measured_scene(), None).unwrap(), [1280.0, 720.0]);
+    settle(&mut h);
+    h.state_mut().apply(Command::ShowView(View::Workbench));
+    h.run_steps(1);
+    until_identified(&mut h);
+    let mem = PlotMemory::load(&h.ctx, egui::Id::unique(DIAGRAM_PLOT_ID)).expect("the diagram");
+    let frame = *mem.transform().frame();
+    for name in [
+        "stable in f, ξ and shape",
+        "stable in f and ξ",
+        "stable in f",
+        "new or unstable",
+    ] {
+        let entries: Vec<_> = h.query_all_by_label(name).collect();
+        assert!(!entries.is_empty(), "no legend entry {name:?}");
+        for e in entries {
+            let r = e.rect();
+            assert!(
+                !frame.intersects(r),
+                "the legend entry {name:?} at {r:?} is inside the diagram {frame:?}"
+            );
+        }
+    }
+}
+
+#[test]
 fn poles_are_picked_and_dropped_by_clicks_and_the_modes_used_and_saved() {
     let mut h = harness_sized(App::new(measured_scene(), None).unwrap(), [1600.0, 1000.0]);
     settle(&mut h);
@@ -80,7 +107,7 @@ fn poles_are_picked_and_dropped_by_clicks_and_the_modes_used_and_saved() {
     for (f, want) in auto.iter().zip([52.0, 131.0, 247.0]) {
         assert!((f - want).abs() < 1e-3 * want, "{auto:?}");
     }
-    assert!(h.query_by_label_contains("3 modes picked").is_some());
+    assert!(h.query_by_label_contains("3 modes picked;").is_some());
     // the picked 131 Hz pole, clicked: dropped
     let (order, f131) = {
         let Some(Ok(w)) = h.state().research().workbench() else {
@@ -96,7 +123,7 @@ fn poles_are_picked_and_dropped_by_clicks_and_the_modes_used_and_saved() {
     let now = picked_freqs(&h);
     assert_eq!(now.len(), 2, "{now:?}");
     assert!(now.iter().all(|f| (f - 131.0).abs() > 1.0));
-    assert!(h.query_by_label_contains("2 modes picked").is_some());
+    assert!(h.query_by_label_contains("2 modes picked;").is_some());
     // clicked again: picked back
     click_pole(&mut h, f131, order);
     assert_eq!(picked_freqs(&h).len(), 3);
@@ -113,7 +140,39 @@ fn poles_are_picked_and_dropped_by_clicks_and_the_modes_used_and_saved() {
         t => panic!("not a modal tyre: {t:?}"),
     }
     assert_eq!(h.state().simulation().steps(), 0, "the run restarted");
-    // (the scene now has a modal tyre: the view says there is nothing to identify)
+    // the diagram and the picks stay, to refine the choice: the 131 Hz
+    // pole picked again and used again
+    h.run_steps(2);
+    assert!(h.state().research().workbench_in_use());
+    assert!(
+        h.query_by_label_contains("open a ring or measured preset")
+            .is_none()
+    );
+    assert!(h.query_by_label_contains("2 modes picked;").is_some());
+    assert!(
+        h.query_by_label_contains("again to refine the choice")
+            .is_some()
+    );
+    click_pole(&mut h, f131, order);
+    assert_eq!(picked_freqs(&h).len(), 3);
+    h.get_by_label("Use these modes").click();
+    settle(&mut h);
+    match &h.state().scene().tyre {
+        Tyre::Modal { modes } => assert_eq!(modes.len(), 3),
+        t => panic!("not a modal tyre: {t:?}"),
+    }
+    h.run_steps(2);
+    assert!(h.state().research().workbench_in_use());
+    // another modal tyre (a mode edited away from the workbench's): the
+    // view says there is nothing to identify
+    let mut other = h.state().scene().clone();
+    if let Tyre::Modal { modes } = &mut other.tyre {
+        modes.pop();
+    }
+    h.state_mut().apply(Command::EditScene(Box::new(other)));
+    settle(&mut h);
+    h.run_steps(2);
+    assert!(!h.state().research().workbench_in_use());
     assert!(
         h.query_by_label_contains("open a ring or measured preset")
             .is_some()
