@@ -16,6 +16,7 @@ use std::sync::{Arc, Mutex};
 use web_time::Instant;
 
 pub mod driving;
+pub mod frequency;
 pub mod workbench;
 
 /// An identification of a ring tyre, with what produced it.

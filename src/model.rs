@@ -2,6 +2,7 @@
 //! roads and the bounded recursive convolution.
 
 pub mod convolution;
+pub mod lscf;
 pub mod lsce;
 pub mod measured;
 pub mod plate;

@@ -29,6 +29,7 @@ use std::collections::BTreeMap;
 use std::io::Read;
 use std::path::Path;
 
+pub mod frf;
 pub mod uff;
 
 /// Largest data file read (bytes).

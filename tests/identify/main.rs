@@ -7,6 +7,7 @@
 mod support;
 
 mod fidelity;
+mod frf_fit;
 mod measured;
 mod paper_preset;
 mod ring_green;
