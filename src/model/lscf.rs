@@ -87,10 +87,12 @@ pub enum FitError {
 /// Options of the frequency-domain fit (method §6.5).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitOptions {
-    /// Highest polynomial order `p` of the stabilisation diagram (each order
-    /// gives `p·N_i` poles, `N_i` the references of the polyreference model).
+    /// Highest polynomial order of the stabilisation diagram, as a pole
+    /// count: each order `p` gives `p·N_i` poles (`N_i` the references of
+    /// the polyreference model), the diagram goes to `max_order / N_i`.
     pub max_order: usize,
-    /// The order whose poles are kept; `None`: `max_order`.
+    /// The polynomial order whose poles are kept; `None`: the diagram's
+    /// highest.
     pub order: Option<usize>,
     /// Largest damping ratio of a kept pole (-).
     pub max_damping_ratio: f64,
@@ -101,8 +103,8 @@ pub struct FitOptions {
     /// Stable: smallest MAC of the participation vectors (-), when there
     /// are several references.
     pub mac_min: f64,
-    /// A kept pole is stable in frequency and damping at this many orders
-    /// below the chosen one.
+    /// A kept pole is stable in frequency at this many orders below the
+    /// chosen one.
     pub persist: usize,
 }
 
@@ -263,16 +265,26 @@ pub fn stabilisation(
     check(set)?;
     let lay = layout(&set.pairs);
     let ni = lay.rows[0].len();
-    let p_max = opts.max_order.max(1);
+    // the same number of poles whatever the references: order p gives p·N_i
+    let p_max = match opts.order {
+        Some(p) => p.max(opts.max_order / ni),
+        None => opts.max_order / ni,
+    }
+    .max(1);
     let nf = set.freq_hz.len();
     let f_hi = set.freq_hz[nf - 1];
     let dt = 0.5 / f_hi;
-    // each pair scaled to unit RMS: every FRF weighs alike
-    let scale: Vec<f64> = set
-        .h
+    // each output's row scaled to unit RMS: every output weighs alike (one
+    // factor per row keeps the common denominator of its references)
+    let scale: Vec<f64> = lay
+        .rows
         .iter()
-        .map(|h| {
-            let s = (h.iter().map(|v| v.norm_sqr()).sum::<f64>() / nf as f64).sqrt();
+        .map(|row| {
+            let ss: f64 = row
+                .iter()
+                .map(|&k| set.h[k].iter().map(|v| v.norm_sqr()).sum::<f64>())
+                .sum();
+            let s = (ss / (nf * row.len()) as f64).sqrt();
             if s > 0.0 { 1.0 / s } else { 0.0 }
         })
         .collect();
@@ -297,10 +309,11 @@ pub fn stabilisation(
     let sums: Vec<LagSums> = lay
         .rows
         .iter()
-        .map(|row| {
+        .zip(&scale)
+        .map(|(row, &g)| {
             let hs: Vec<Vec<c64>> = row
                 .iter()
-                .map(|&k| set.h[k].iter().map(|v| v * scale[k]).collect())
+                .map(|&k| set.h[k].iter().map(|v| v * g).collect())
                 .collect();
             let sigma = (0..ni)
                 .map(|i| {
@@ -442,33 +455,39 @@ fn close(a: &Pole, b: &Pole, opts: &FitOptions) -> (bool, bool) {
     (f, f && x)
 }
 
-/// Each pole marked against the nearest of the order below.
+/// Each pole marked against the order below: the best category any pole
+/// there gives it (a polyreference model of a low-rank matrix has close
+/// twins of a physical pole; the nearest in frequency may be the twin).
 fn mark(mut poles: Vec<Pole>, below: &[Pole], opts: &FitOptions) -> Vec<Pole> {
+    let rank = |s: PoleStability| match s {
+        PoleStability::Stable => 3,
+        PoleStability::FrequencyDamping => 2,
+        PoleStability::Frequency => 1,
+        PoleStability::New => 0,
+    };
     for p in &mut poles {
-        let Some(q) = below
+        p.stability = below
             .iter()
-            .min_by(|a, b| (a.freq_hz - p.freq_hz).abs().total_cmp(&(b.freq_hz - p.freq_hz).abs()))
-        else {
-            continue;
-        };
-        p.stability = match close(p, q, opts) {
-            (true, true) if mac(&p.participation, &q.participation) >= opts.mac_min => {
-                PoleStability::Stable
-            }
-            (true, true) => PoleStability::FrequencyDamping,
-            (true, false) => PoleStability::Frequency,
-            _ => PoleStability::New,
-        };
+            .map(|q| match close(p, q, opts) {
+                (true, true) if mac(&p.participation, &q.participation) >= opts.mac_min => {
+                    PoleStability::Stable
+                }
+                (true, true) => PoleStability::FrequencyDamping,
+                (true, false) => PoleStability::Frequency,
+                _ => PoleStability::New,
+            })
+            .max_by_key(|&s| rank(s))
+            .unwrap_or(PoleStability::New);
     }
     poles
 }
 
 /// The kept poles: those of the chosen order that are stable (frequency,
-/// damping, vector) and stable in frequency and damping at each of the
-/// `persist` orders below; two within the frequency tolerance keep the
-/// first.
+/// damping, vector) against the order below and stable in frequency at
+/// each of the `persist` orders below; two within the frequency tolerance
+/// keep the first.
 pub fn select(diagram: &[DiagramOrder], opts: &FitOptions) -> (usize, Vec<Pole>) {
-    let order = opts.order.unwrap_or(opts.max_order).clamp(1, diagram.len());
+    let order = opts.order.unwrap_or(diagram.len()).clamp(1, diagram.len());
     let at = |p: usize| &diagram[p - 1].poles;
     let mut kept: Vec<Pole> = Vec::new();
     for pole in at(order) {
@@ -476,7 +495,7 @@ pub fn select(diagram: &[DiagramOrder], opts: &FitOptions) -> (usize, Vec<Pole>)
             continue;
         }
         let lowest = order.saturating_sub(opts.persist).max(1);
-        let persists = (lowest..order).all(|q| at(q).iter().any(|b| close(pole, b, opts).1));
+        let persists = (lowest..order).all(|q| at(q).iter().any(|b| close(pole, b, opts).0));
         let twin = kept.iter().any(|k| close(k, pole, opts).0);
         if persists && !twin {
             kept.push(pole.clone());

@@ -9,7 +9,11 @@ use faer::c64;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use std::f64::consts::TAU;
+use std::path::{Path, PathBuf};
+use tirecontact::identify::driving::DrivingPoint;
+use tirecontact::identify::frequency::{ContactError, FrfOptions, identify_frfs};
 use tirecontact::model::lscf::{self, FitOptions, FrfSet, Ordinate};
+use tirecontact::model::measured::frf::FrfRequest;
 
 /// Six modes: `(f_hz, ξ, shape at nodes 1, 2, 3)`.
 pub const SIX: [(f64, f64, [f64; 3]); 6] = [
@@ -119,4 +123,251 @@ fn one_percent_noise_keeps_frequencies_within_five_hundredths_of_a_hertz() {
             );
         }
     }
+}
+
+/// An ASCII dataset 58 of an FRF (complex double), response and
+/// reference `(node, direction)`, numerator specific data type `num`
+/// (8, 11, 12) in SI, values at `f0 + k df`.
+pub fn uff58(resp: (i64, i64), refn: (i64, i64), num: i64, f0: f64, df: f64, vals: &[c64]) -> String {
+    let units = match num {
+        8 => "m",
+        11 => "m/s",
+        _ => "m/s^2",
+    };
+    let mut s = String::from("    -1\n    58\n");
+    for k in 1..=5 {
+        s.push_str(&format!("ID line {k}\n"));
+    }
+    s.push_str(&format!(
+        "{:>5}{:>10}{:>5}{:>10} {:<10}{:>10}{:>4} {:<10}{:>10}{:>4}\n",
+        4, 1, 0, 0, "TYRE", resp.0, resp.1, "TYRE", refn.0, refn.1
+    ));
+    s.push_str(&format!(
+        "{:>10}{:>10}{:>10}{:>13.5E}{:>13.5E}{:>13.5E}\n",
+        6,
+        vals.len(),
+        1,
+        f0,
+        df,
+        0.0
+    ));
+    for (t, label) in [(18, "Hz"), (num, units), (13, "N"), (0, "NONE")] {
+        s.push_str(&format!("{t:>10}{:>5}{:>5}{:>5} {:<20} {label:<20}\n", 0, 0, 0, "NONE"));
+    }
+    for chunk in vals.chunks(2) {
+        for v in chunk {
+            s.push_str(&format!("{:>20.12E}{:>20.12E}", v.re, v.im));
+        }
+        s.push('\n');
+    }
+    s.push_str("    -1\n");
+    s
+}
+
+/// Writes a UFF file of `pairs` (points 0, 1, 2 = nodes 1, 2, 3 +Z) of
+/// `modes` over 0–1000 Hz every 1 Hz, each pair's values times `sign(pair,
+/// mode)` per mode.
+pub fn write_uff(
+    dir: &Path,
+    name: &str,
+    pairs: &[(usize, usize)],
+    q: Ordinate,
+    sign: impl Fn(usize, usize, usize) -> f64,
+) -> PathBuf {
+    let num = [8, 11, 12][q.power() as usize];
+    let mut text = String::new();
+    for &(i, j) in pairs {
+        let vals: Vec<c64> = (0..=1000)
+            .map(|k| {
+                let f = k as f64;
+                if k == 0 {
+                    return c64::new(0.0, 0.0);
+                }
+                SIX.iter()
+                    .enumerate()
+                    .map(|(m, mode)| frf(std::slice::from_ref(mode), i, j, f, q) * sign(i, j, m))
+                    .sum()
+            })
+            .collect();
+        text.push_str(&uff58(
+            (i as i64 + 1, 3),
+            (j as i64 + 1, 3),
+            num,
+            0.0,
+            1.0,
+            &vals,
+        ));
+    }
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// The file's modes against SIX: the worst frequency error (Hz).
+fn worst_freq(id: &tirecontact::identify::frequency::FrfIdentification) -> f64 {
+    assert_eq!(id.poles.len(), 6, "{:?}", id.poles);
+    id.poles
+        .iter()
+        .zip(&SIX)
+        .map(|(p, m)| (p.freq_hz - m.0).abs())
+        .fold(0.0, f64::max)
+}
+
+/// A row, a column and the full matrix (accelerance, mobility, receptance)
+/// read from UFF files: the six modes, and a contact model whose mode
+/// shapes are SIX's (to 1e-6) at every node, whatever the layout.
+#[test]
+fn rows_columns_and_full_matrices_give_the_models_shapes() {
+    let dir = tempfile::tempdir().unwrap();
+    let full: Vec<(usize, usize)> = (0..3).flat_map(|i| (0..3).map(move |j| (i, j))).collect();
+    for (name, pairs, q) in [
+        ("row.uff", ROW.to_vec(), Ordinate::Accelerance),
+        ("column.uff", COLUMN.to_vec(), Ordinate::Mobility),
+        ("full.uff", full, Ordinate::Receptance),
+    ] {
+        let path = write_uff(dir.path(), name, &pairs, q, |_, _, _| 1.0);
+        let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
+        assert!(worst_freq(&id) < 1e-6, "{name}");
+        assert_eq!(id.data.set.ordinate, q);
+        let c = id.contact.as_ref().unwrap();
+        assert_eq!(
+            c.dofs.iter().map(|d| (d.node, d.direction)).collect::<Vec<_>>(),
+            [(1, 3), (2, 3), (3, 3)]
+        );
+        for (m, &(_, _, shape)) in c.modes.iter().zip(&SIX) {
+            // the sign of a whole shape is free
+            let s = shape[0].signum() * m.shape[0].signum();
+            for n in 0..3 {
+                assert!(
+                    (s * m.shape[n] - shape[n]).abs() < 1e-6,
+                    "{name}: {:?} vs {shape:?}",
+                    m.shape
+                );
+            }
+        }
+        assert!(c.error < 1e-6 && id.complex.error < 1e-6, "{name}");
+        assert!(id.is_good());
+    }
+}
+
+/// A sensor mounted reversed (every FRF of response node 1 negated): the
+/// driving point is all negative, the flip is offered, and
+/// `--flip-direction 1` gives back the model; driving residues that change
+/// sign from mode to mode: no contact model, the fit still made.
+#[test]
+fn reversed_and_inconsistent_driving_points_are_told_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write_uff(dir.path(), "reversed.uff", &ROW, Ordinate::Accelerance, |_, _, _| -1.0);
+    let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
+    assert!(worst_freq(&id) < 1e-6);
+    assert_eq!(id.driving.len(), 1);
+    assert_eq!(id.driving[0].1, DrivingPoint::Negative);
+    let e = id.contact.clone().unwrap_err();
+    assert!(matches!(e, ContactError::Negative { node: 1, .. }), "{e}");
+    let msg = e.to_string();
+    assert!(
+        msg.contains("node 1 +Z") && msg.contains("--flip-direction 1"),
+        "{msg}"
+    );
+    let flipped = FrfOptions {
+        request: FrfRequest {
+            flip: vec![1],
+            ..FrfRequest::default()
+        },
+        ..FrfOptions::default()
+    };
+    let id = identify_frfs(&path, &flipped).unwrap();
+    assert_eq!(id.driving[0].1, DrivingPoint::Positive);
+    assert!(id.contact.as_ref().unwrap().error < 1e-6);
+    assert!(id.data.notes.iter().any(|n| n.contains("--flip-direction")));
+
+    // the driving point's residue negated at modes 1, 3, 5
+    let path = write_uff(dir.path(), "mixed.uff", &ROW, Ordinate::Accelerance, |i, j, m| {
+        if i == j && m % 2 == 1 { -1.0 } else { 1.0 }
+    });
+    let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
+    assert!(worst_freq(&id) < 1e-6);
+    assert!(id.complex.error < 1e-6, "the fit stands: {}", id.complex.error);
+    assert_eq!(
+        id.driving[0].1,
+        DrivingPoint::Mixed {
+            negative_modes: vec![1, 3, 5]
+        }
+    );
+    let msg = id.contact.unwrap_err().to_string();
+    assert!(
+        msg.contains("node 1 +Z") && msg.contains("no valid driving point"),
+        "{msg}"
+    );
+    // no driving point at all: two cross FRFs
+    let path = write_uff(dir.path(), "cross.uff", &[(0, 1), (0, 2)], Ordinate::Receptance, |_, _, _| 1.0);
+    let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
+    let msg = id.contact.unwrap_err().to_string();
+    assert!(msg.contains("no driving point") && msg.contains("node 1 +Z / node 2 +Z"), "{msg}");
+}
+
+/// The binary 58b row written by pyuff (accelerance in g/N of MODEL3, 0 to
+/// 500 Hz every 2 Hz; `scripts/uff_binary_fixture.py`) fits to MODEL3's
+/// modes and shapes; `--nodes` keeps two of its nodes.
+#[test]
+fn the_binary_row_written_by_pyuff_fits_to_its_model() {
+    let path = Path::new("tests/data/uff/row3_58b.uff");
+    let id = identify_frfs(path, &FrfOptions::default()).unwrap();
+    let truth = [
+        (52.0, 0.03, [1.0, 0.6, 0.2]),
+        (131.0, 0.02, [0.5, -0.4, -0.9]),
+        (247.0, 0.04, [0.3, -0.8, 0.7]),
+    ];
+    assert_eq!(id.poles.len(), 3, "{:?}", id.poles);
+    let c = id.contact.as_ref().unwrap();
+    for ((p, m), (f, xi, shape)) in id.poles.iter().zip(&c.modes).zip(truth) {
+        assert!((p.freq_hz - f).abs() < 1e-6 * f && (p.damping_ratio - xi).abs() < 1e-6 * xi);
+        for n in 0..3 {
+            assert!((m.shape[n] - shape[n]).abs() < 1e-6, "{:?}", m.shape);
+        }
+    }
+    assert!(id.data.notes.iter().any(|n| n.contains("9.806650e0")));
+    let two = FrfOptions {
+        request: FrfRequest {
+            nodes: Some(vec![101, 103]),
+            ..FrfRequest::default()
+        },
+        ..FrfOptions::default()
+    };
+    let id = identify_frfs(path, &two).unwrap();
+    assert_eq!(id.data.dofs.len(), 2);
+    assert_eq!(id.data.set.pairs.len(), 2);
+    let e = identify_frfs(
+        path,
+        &FrfOptions {
+            request: FrfRequest {
+                nodes: Some(vec![101, 109]),
+                ..FrfRequest::default()
+            },
+            ..FrfOptions::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("--nodes 109: no FRF has this node") && e.matches("row3_58b").count() == 1, "{e}");
+}
+
+/// The full 3×3 matrix with 1 % noise (accelerance), fitted by the
+/// polyreference model with three references: the six modes within
+/// 0.05 Hz, the complex error at the noise floor (measured 0.0135).
+#[test]
+fn a_noisy_full_matrix_fits_with_three_references() {
+    let full: Vec<(usize, usize)> = (0..3).flat_map(|i| (0..3).map(move |j| (i, j))).collect();
+    let s = set(&full, Ordinate::Accelerance, 0.01, 1);
+    let opts = FitOptions::default();
+    let d = lscf::stabilisation(&s, (1.0, 1000.0), &opts).unwrap();
+    // three references: 40 poles over orders 1..=13
+    assert_eq!(d.len(), 13);
+    let (_, sel) = lscf::select(&d, &opts);
+    let (poles, c) = lscf::refine(&s, &sel, 20).unwrap();
+    assert_eq!(poles.len(), 6, "{poles:?}");
+    for (p, m) in poles.iter().zip(&SIX) {
+        assert!((p.freq_hz - m.0).abs() < 0.05, "{} vs {}", p.freq_hz, m.0);
+    }
+    assert!(c.error < 0.015, "{}", c.error);
 }
