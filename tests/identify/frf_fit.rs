@@ -5,39 +5,15 @@
 //! accelerance, with and without noise; the driving-point check and the
 //! contact model; UFF files read in their own ordinate.
 
+use crate::support::frf::{SIX, frf, write_uff};
 use faer::c64;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
-use std::f64::consts::TAU;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use tirecontact::identify::driving::DrivingPoint;
 use tirecontact::identify::frequency::{ContactError, FrfOptions, identify_frfs};
 use tirecontact::model::lscf::{self, FitOptions, FrfSet, Ordinate};
 use tirecontact::model::measured::frf::FrfRequest;
-
-/// Six modes: `(f_hz, ξ, shape at nodes 1, 2, 3)`.
-pub const SIX: [(f64, f64, [f64; 3]); 6] = [
-    (52.3, 0.012, [0.9, 0.5, 0.2]),
-    (131.7, 0.008, [0.6, -0.4, -0.8]),
-    (247.1, 0.006, [0.5, -0.7, 0.6]),
-    (433.9, 0.005, [0.7, 0.3, -0.5]),
-    (687.2, 0.004, [0.4, -0.6, 0.3]),
-    (959.4, 0.003, [0.5, 0.45, 0.35]),
-];
-
-/// The model's receptance `Σ φ_i φ_j / (ω_k² − ω² + 2jξω_kω)` times
-/// `(jω)^q`, `modes` given.
-pub fn frf(modes: &[(f64, f64, [f64; 3])], i: usize, j: usize, f_hz: f64, q: Ordinate) -> c64 {
-    let w = TAU * f_hz;
-    modes
-        .iter()
-        .map(|&(f, xi, s)| {
-            let wk = TAU * f;
-            c64::new(s[i] * s[j], 0.0) / c64::new(wk * wk - w * w, 2.0 * xi * wk * w)
-        })
-        .sum::<c64>()
-        * q.factor(w)
-}
 
 /// A set of `pairs` over 1..=1000 Hz, every 1 Hz, with relative noise
 /// `noise` (each value times `1 + noise·(n₁ + j n₂)`, `n` uniform in
@@ -125,84 +101,6 @@ fn one_percent_noise_keeps_frequencies_within_five_hundredths_of_a_hertz() {
     }
 }
 
-/// An ASCII dataset 58 of an FRF (complex double), response and
-/// reference `(node, direction)`, numerator specific data type `num`
-/// (8, 11, 12) in SI, values at `f0 + k df`.
-pub fn uff58(resp: (i64, i64), refn: (i64, i64), num: i64, f0: f64, df: f64, vals: &[c64]) -> String {
-    let units = match num {
-        8 => "m",
-        11 => "m/s",
-        _ => "m/s^2",
-    };
-    let mut s = String::from("    -1\n    58\n");
-    for k in 1..=5 {
-        s.push_str(&format!("ID line {k}\n"));
-    }
-    s.push_str(&format!(
-        "{:>5}{:>10}{:>5}{:>10} {:<10}{:>10}{:>4} {:<10}{:>10}{:>4}\n",
-        4, 1, 0, 0, "TYRE", resp.0, resp.1, "TYRE", refn.0, refn.1
-    ));
-    s.push_str(&format!(
-        "{:>10}{:>10}{:>10}{:>13.5E}{:>13.5E}{:>13.5E}\n",
-        6,
-        vals.len(),
-        1,
-        f0,
-        df,
-        0.0
-    ));
-    for (t, label) in [(18, "Hz"), (num, units), (13, "N"), (0, "NONE")] {
-        s.push_str(&format!("{t:>10}{:>5}{:>5}{:>5} {:<20} {label:<20}\n", 0, 0, 0, "NONE"));
-    }
-    for chunk in vals.chunks(2) {
-        for v in chunk {
-            s.push_str(&format!("{:>20.12E}{:>20.12E}", v.re, v.im));
-        }
-        s.push('\n');
-    }
-    s.push_str("    -1\n");
-    s
-}
-
-/// Writes a UFF file of `pairs` (points 0, 1, 2 = nodes 1, 2, 3 +Z) of
-/// `modes` over 0–1000 Hz every 1 Hz, each pair's values times `sign(pair,
-/// mode)` per mode.
-pub fn write_uff(
-    dir: &Path,
-    name: &str,
-    pairs: &[(usize, usize)],
-    q: Ordinate,
-    sign: impl Fn(usize, usize, usize) -> f64,
-) -> PathBuf {
-    let num = [8, 11, 12][q.power() as usize];
-    let mut text = String::new();
-    for &(i, j) in pairs {
-        let vals: Vec<c64> = (0..=1000)
-            .map(|k| {
-                let f = k as f64;
-                if k == 0 {
-                    return c64::new(0.0, 0.0);
-                }
-                SIX.iter()
-                    .enumerate()
-                    .map(|(m, mode)| frf(std::slice::from_ref(mode), i, j, f, q) * sign(i, j, m))
-                    .sum()
-            })
-            .collect();
-        text.push_str(&uff58(
-            (i as i64 + 1, 3),
-            (j as i64 + 1, 3),
-            num,
-            0.0,
-            1.0,
-            &vals,
-        ));
-    }
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
 /// The file's modes against SIX: the worst frequency error (Hz).
 fn worst_freq(id: &tirecontact::identify::frequency::FrfIdentification) -> f64 {
     assert_eq!(id.poles.len(), 6, "{:?}", id.poles);
@@ -225,7 +123,7 @@ fn rows_columns_and_full_matrices_give_the_models_shapes() {
         ("column.uff", COLUMN.to_vec(), Ordinate::Mobility),
         ("full.uff", full, Ordinate::Receptance),
     ] {
-        let path = write_uff(dir.path(), name, &pairs, q, |_, _, _| 1.0);
+        let path = write_uff(dir.path(), name, &pairs, q, 0.0, |_, _, _| 1.0);
         let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
         assert!(worst_freq(&id) < 1e-6, "{name}");
         assert_eq!(id.data.set.ordinate, q);
@@ -257,7 +155,7 @@ fn rows_columns_and_full_matrices_give_the_models_shapes() {
 #[test]
 fn reversed_and_inconsistent_driving_points_are_told_apart() {
     let dir = tempfile::tempdir().unwrap();
-    let path = write_uff(dir.path(), "reversed.uff", &ROW, Ordinate::Accelerance, |_, _, _| -1.0);
+    let path = write_uff(dir.path(), "reversed.uff", &ROW, Ordinate::Accelerance, 0.0, |_, _, _| -1.0);
     let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
     assert!(worst_freq(&id) < 1e-6);
     assert_eq!(id.driving.len(), 1);
@@ -282,7 +180,7 @@ fn reversed_and_inconsistent_driving_points_are_told_apart() {
     assert!(id.data.notes.iter().any(|n| n.contains("--flip-direction")));
 
     // the driving point's residue negated at modes 1, 3, 5
-    let path = write_uff(dir.path(), "mixed.uff", &ROW, Ordinate::Accelerance, |i, j, m| {
+    let path = write_uff(dir.path(), "mixed.uff", &ROW, Ordinate::Accelerance, 0.0, |i, j, m| {
         if i == j && m % 2 == 1 { -1.0 } else { 1.0 }
     });
     let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
@@ -300,7 +198,7 @@ fn reversed_and_inconsistent_driving_points_are_told_apart() {
         "{msg}"
     );
     // no driving point at all: two cross FRFs
-    let path = write_uff(dir.path(), "cross.uff", &[(0, 1), (0, 2)], Ordinate::Receptance, |_, _, _| 1.0);
+    let path = write_uff(dir.path(), "cross.uff", &[(0, 1), (0, 2)], Ordinate::Receptance, 0.0, |_, _, _| 1.0);
     let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
     let msg = id.contact.unwrap_err().to_string();
     assert!(msg.contains("no driving point") && msg.contains("node 1 +Z / node 2 +Z"), "{msg}");
@@ -370,4 +268,54 @@ fn a_noisy_full_matrix_fits_with_three_references() {
         assert!((p.freq_hz - m.0).abs() < 0.05, "{} vs {}", p.freq_hz, m.0);
     }
     assert!(c.error < 0.015, "{}", c.error);
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(crate::support::proptest_cases(12)))]
+    /// Any two to four modes between 30 and 900 Hz (10 % apart at least),
+    /// ξ from 0.2 % to 3 %, any real shapes with a positive driving point,
+    /// measured as a row in any ordinate without noise: the poles to 1e-6
+    /// relative, the shapes to 1e-6 of the largest.
+    #[test]
+    fn any_few_well_separated_modes_fit_to_round_off(
+        n in 2usize..=4,
+        gaps in proptest::collection::vec(0.1f64..0.8, 4),
+        xis in proptest::collection::vec(0.002f64..0.03, 4),
+        shapes in proptest::collection::vec((0.3f64..1.0, -1.0f64..1.0, -1.0f64..1.0), 4),
+        q in 0usize..3,
+    ) {
+        let q = [Ordinate::Receptance, Ordinate::Mobility, Ordinate::Accelerance][q];
+        let mut f = 30.0;
+        let modes: Vec<(f64, f64, [f64; 3])> = (0..n)
+            .map(|k| {
+                f *= 1.0 + gaps[k];
+                (f, xis[k], [shapes[k].0, shapes[k].1, shapes[k].2])
+            })
+            .filter(|m| m.0 < 900.0)
+            .collect();
+        let freq_hz: Vec<f64> = (1..=1000).map(f64::from).collect();
+        let s = FrfSet {
+            h: ROW
+                .iter()
+                .map(|&(i, j)| freq_hz.iter().map(|&f| frf(&modes, i, j, f, q)).collect())
+                .collect(),
+            freq_hz,
+            ordinate: q,
+            pairs: ROW.to_vec(),
+        };
+        let opts = FitOptions::default();
+        let d = lscf::stabilisation(&s, (1.0, 1000.0), &opts).unwrap();
+        let (_, sel) = lscf::select(&d, &opts);
+        let (poles, c) = lscf::refine(&s, &sel, 20).unwrap();
+        let real = lscf::real_modes(&s, &poles).unwrap();
+        proptest::prop_assert_eq!(poles.len(), modes.len(), "{:?} vs {:?}", poles, modes);
+        for (k, (p, m)) in poles.iter().zip(&modes).enumerate() {
+            proptest::prop_assert!((p.freq_hz - m.0).abs() < 1e-6 * m.0, "{} vs {}", p.freq_hz, m.0);
+            proptest::prop_assert!((p.damping_ratio - m.1).abs() < 1e-6 * m.1);
+            for (pr, &(i, j)) in s.pairs.iter().enumerate() {
+                proptest::prop_assert!((real.constants[pr][k] - m.2[i] * m.2[j]).abs() < 1e-6);
+            }
+        }
+        proptest::prop_assert!(c.error < 1e-6 && real.error < 1e-6);
+    }
 }
