@@ -133,8 +133,7 @@ pub fn identify_measured(
     opts: &IdentifyOptions,
 ) -> Result<MeasuredIdentification, LsceError> {
     let start = Instant::now();
-    let data =
-        measured::read(path, nodes, num_points).map_err(|e| LsceError::Input(e.to_string()))?;
+    let data = measured::read(path, nodes, num_points)?;
     let mut responses = data.responses;
     let dt = responses.dt_s;
     let keep = ((opts.duration_s / dt).round() as usize).max(1);

@@ -2,8 +2,8 @@
 //! roads and the bounded recursive convolution.
 
 pub mod convolution;
-pub mod lscf;
 pub mod lsce;
+pub mod lscf;
 pub mod measured;
 pub mod plate;
 pub mod ring;

@@ -203,7 +203,11 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
         ensure_output_dir("--figures", dir)?;
     }
     let id = match identify_tyre(&scene) {
-        Some(r) => r.map_err(|e| format!("{}: {e}", source.display()))?,
+        Some(r) => r.map_err(|e| match e {
+            // a file's error names the file
+            tirecontact::model::lsce::LsceError::Data(d) => d.to_string(),
+            e => format!("{}: {e}", source.display()),
+        })?,
         None => {
             return Err(format!(
                 "{}: tyre is `Modal(...)`: nothing to identify (expected `Ring(...)` or `Measured(...)`)",

@@ -67,6 +67,9 @@ pub enum LsceError {
     },
     #[error("LSCE: {0}")]
     Numerical(#[from] LinalgError),
+    /// The data file cannot be read (it names itself).
+    #[error(transparent)]
+    Data(#[from] crate::model::measured::DataError),
     #[error(
         "LSCE: the identified modes miss the source: |G| error {magnitude_error:.3} over {lo_hz}..{hi_hz} Hz (expected below {limit}); the source's lowest mode is at {lowest_source_hz:.1} Hz: move the band (identification.band_hz) to cover the source's modes"
     )]

@@ -602,18 +602,18 @@ pub fn lsfd(set: &FrfSet, poles: &[Pole]) -> Result<ComplexFit, FitError> {
     let k = poles.len();
     let np = set.pairs.len();
     let residues: Vec<Vec<c64>> = (0..np)
-        .map(|pr| (0..k).map(|m| c64::new(x[2 * m][pr], x[2 * m + 1][pr])).collect())
+        .map(|pr| {
+            (0..k)
+                .map(|m| c64::new(x[2 * m][pr], x[2 * m + 1][pr]))
+                .collect()
+        })
         .collect();
     let upper: Vec<f64> = (0..np).map(|pr| x[2 * k][pr]).collect();
     let lower: Vec<f64> = (0..np).map(|pr| x[2 * k + 1][pr]).collect();
     let fit: Vec<Vec<c64>> = (0..np)
         .map(|pr| {
             (0..w.len())
-                .map(|f| {
-                    (0..cols.len())
-                        .map(|c| cols[c][f] * x[c][pr])
-                        .sum::<c64>()
-                })
+                .map(|f| (0..cols.len()).map(|c| cols[c][f] * x[c][pr]).sum::<c64>())
                 .collect()
         })
         .collect();
@@ -644,8 +644,7 @@ fn real_column(set: &FrfSet, freq_hz: f64, damping_ratio: f64) -> Vec<c64> {
     omegas(set)
         .iter()
         .map(|&om| {
-            set.ordinate.factor(om)
-                / c64::new(wk * wk - om * om, 2.0 * damping_ratio * wk * om)
+            set.ordinate.factor(om) / c64::new(wk * wk - om * om, 2.0 * damping_ratio * wk * om)
         })
         .collect()
 }

@@ -48,7 +48,10 @@ fn a_binary_row_of_accelerances_gives_a_fit_and_a_contact_model() {
     }
     assert_eq!(out.matches("row3_58b.uff").count(), 0, "{out}");
     let modes = std::fs::read_to_string(fit.join("modes.csv")).unwrap();
-    assert!(modes.starts_with("freq_hz,damping_ratio,stable\n"), "{modes}");
+    assert!(
+        modes.starts_with("freq_hz,damping_ratio,stable\n"),
+        "{modes}"
+    );
     assert_eq!(modes.matches(",true").count(), 3, "{modes}");
     let csv = std::fs::read_to_string(fit.join("fit.csv")).unwrap();
     let mut lines = csv.lines();
@@ -78,7 +81,14 @@ fn a_binary_row_of_accelerances_gives_a_fit_and_a_contact_model() {
 fn reversed_and_inconsistent_driving_points_write_the_fit_and_no_model() {
     let tmp = temp_dir();
     let d = tmp.path();
-    let rev = write_uff(d, "reversed.uff", &[(0, 0), (0, 1), (0, 2)], Ordinate::Accelerance, 0.0, |_, _, _| -1.0);
+    let rev = write_uff(
+        d,
+        "reversed.uff",
+        &[(0, 0), (0, 1), (0, 2)],
+        Ordinate::Accelerance,
+        0.0,
+        |_, _, _| -1.0,
+    );
     let model = d.join("m.ron");
     let (ok, out) = identify(&["--data"], &[&rev, Path::new("-o"), &model]);
     assert!(!ok, "{out}");
@@ -95,14 +105,27 @@ fn reversed_and_inconsistent_driving_points_write_the_fit_and_no_model() {
     );
     assert!(ok, "{out}");
     assert!(model.exists());
-    let mixed = write_uff(d, "mixed.uff", &[(0, 0), (0, 1), (0, 2)], Ordinate::Mobility, 0.0, |i, j, m| {
-        if i == j && m % 2 == 1 { -1.0 } else { 1.0 }
-    });
+    let mixed = write_uff(
+        d,
+        "mixed.uff",
+        &[(0, 0), (0, 1), (0, 2)],
+        Ordinate::Mobility,
+        0.0,
+        |i, j, m| {
+            if i == j && m % 2 == 1 { -1.0 } else { 1.0 }
+        },
+    );
     let fit = d.join("fit");
     let model2 = d.join("m2.ron");
-    let (ok, out) = identify(&["--data"], &[&mixed, Path::new("--fit"), &fit, Path::new("-o"), &model2]);
+    let (ok, out) = identify(
+        &["--data"],
+        &[&mixed, Path::new("--fit"), &fit, Path::new("-o"), &model2],
+    );
     assert!(!ok, "{out}");
-    assert!(out.contains("no valid driving point") && out.contains("node 1 +Z"), "{out}");
+    assert!(
+        out.contains("no valid driving point") && out.contains("node 1 +Z"),
+        "{out}"
+    );
     assert!(fit.join("fit.csv").exists() && fit.join("fit.png").exists());
     assert!(!model2.exists());
     // without -o: the fit shown, no error
@@ -116,16 +139,32 @@ fn reversed_and_inconsistent_driving_points_write_the_fit_and_no_model() {
 fn a_poor_fit_is_kept_only_when_accepted() {
     let tmp = temp_dir();
     let d = tmp.path();
-    let row = write_uff(d, "row.uff", &[(0, 0), (0, 1), (0, 2)], Ordinate::Receptance, 0.3, |_, _, _| 1.0);
+    let row = write_uff(
+        d,
+        "row.uff",
+        &[(0, 0), (0, 1), (0, 2)],
+        Ordinate::Receptance,
+        0.3,
+        |_, _, _| 1.0,
+    );
     let model = d.join("m.ron");
     let (ok, out) = identify(&["--data"], &[&row, Path::new("-o"), &model]);
     assert!(!ok, "{out}");
-    assert!(out.contains("the fit is poor") && out.contains("--accept"), "{out}");
+    assert!(
+        out.contains("the fit is poor") && out.contains("--accept"),
+        "{out}"
+    );
     assert!(!model.exists());
     let (ok, out) = identify(&["--accept", "--data"], &[&row, Path::new("-o"), &model]);
-    assert!(ok && out.contains("warning: a poor fit kept by --accept"), "{out}");
+    assert!(
+        ok && out.contains("warning: a poor fit kept by --accept"),
+        "{out}"
+    );
     assert!(model.exists());
     // the flags of the frequency-domain fit need a file of FRFs
     let (ok, out) = identify(&["--data", "tests/data/uff/time3.uff", "--accept"], &[]);
-    assert!(!ok && out.contains("--accept: for the frequency-domain fit"), "{out}");
+    assert!(
+        !ok && out.contains("--accept: for the frequency-domain fit"),
+        "{out}"
+    );
 }

@@ -72,10 +72,16 @@ fn fit(s: &FrfSet) -> (Vec<lscf::Pole>, f64, f64, f64, f64, f64) {
 /// modal constants to 1e-6 relative; both errors below 1e-6.
 #[test]
 fn noise_free_rows_and_columns_fit_to_round_off_in_every_ordinate() {
-    for q in [Ordinate::Receptance, Ordinate::Mobility, Ordinate::Accelerance] {
+    for q in [
+        Ordinate::Receptance,
+        Ordinate::Mobility,
+        Ordinate::Accelerance,
+    ] {
         for (name, pairs) in [("row", &ROW), ("column", &COLUMN)] {
             let (_, ef, ex, ea, ec, er) = fit(&set(pairs, q, 0.0, 1));
-            eprintln!("{name} {q:?}: f {ef:.2e} Hz, xi {ex:.2e}, A {ea:.2e}, errors {ec:.2e} {er:.2e}");
+            eprintln!(
+                "{name} {q:?}: f {ef:.2e} Hz, xi {ex:.2e}, A {ea:.2e}, errors {ec:.2e} {er:.2e}"
+            );
             assert!(
                 ef < 1e-6 * 52.0 && ex < 1e-6 && ea < 1e-6 && ec < 1e-6 && er < 1e-6,
                 "{name} {q:?}: f {ef:e} Hz, xi {ex:e}, A {ea:e}, errors {ec:e} {er:e}"
@@ -89,10 +95,16 @@ fn noise_free_rows_and_columns_fit_to_round_off_in_every_ordinate() {
 /// noise level (0.015).
 #[test]
 fn one_percent_noise_keeps_frequencies_within_five_hundredths_of_a_hertz() {
-    for q in [Ordinate::Receptance, Ordinate::Mobility, Ordinate::Accelerance] {
+    for q in [
+        Ordinate::Receptance,
+        Ordinate::Mobility,
+        Ordinate::Accelerance,
+    ] {
         for (name, pairs) in [("row", &ROW), ("column", &COLUMN)] {
             let (_, ef, ex, ea, ec, er) = fit(&set(pairs, q, 0.01, 7));
-            eprintln!("{name} {q:?}: f {ef:.2e} Hz, xi {ex:.2e}, A {ea:.2e}, errors {ec:.2e} {er:.2e}");
+            eprintln!(
+                "{name} {q:?}: f {ef:.2e} Hz, xi {ex:.2e}, A {ea:.2e}, errors {ec:.2e} {er:.2e}"
+            );
             assert!(
                 ef < 0.05 && ex < 0.1 && ea < 0.03 && ec < 0.015 && er < 0.015,
                 "{name} {q:?}: f {ef:e} Hz, xi {ex:e}, A {ea:e}, errors {ec:e} {er:e}"
@@ -129,7 +141,10 @@ fn rows_columns_and_full_matrices_give_the_models_shapes() {
         assert_eq!(id.data.set.ordinate, q);
         let c = id.contact.as_ref().unwrap();
         assert_eq!(
-            c.dofs.iter().map(|d| (d.node, d.direction)).collect::<Vec<_>>(),
+            c.dofs
+                .iter()
+                .map(|d| (d.node, d.direction))
+                .collect::<Vec<_>>(),
             [(1, 3), (2, 3), (3, 3)]
         );
         for (m, &(_, _, shape)) in c.modes.iter().zip(&SIX) {
@@ -155,7 +170,14 @@ fn rows_columns_and_full_matrices_give_the_models_shapes() {
 #[test]
 fn reversed_and_inconsistent_driving_points_are_told_apart() {
     let dir = tempfile::tempdir().unwrap();
-    let path = write_uff(dir.path(), "reversed.uff", &ROW, Ordinate::Accelerance, 0.0, |_, _, _| -1.0);
+    let path = write_uff(
+        dir.path(),
+        "reversed.uff",
+        &ROW,
+        Ordinate::Accelerance,
+        0.0,
+        |_, _, _| -1.0,
+    );
     let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
     assert!(worst_freq(&id) < 1e-6);
     assert_eq!(id.driving.len(), 1);
@@ -180,12 +202,23 @@ fn reversed_and_inconsistent_driving_points_are_told_apart() {
     assert!(id.data.notes.iter().any(|n| n.contains("--flip-direction")));
 
     // the driving point's residue negated at modes 1, 3, 5
-    let path = write_uff(dir.path(), "mixed.uff", &ROW, Ordinate::Accelerance, 0.0, |i, j, m| {
-        if i == j && m % 2 == 1 { -1.0 } else { 1.0 }
-    });
+    let path = write_uff(
+        dir.path(),
+        "mixed.uff",
+        &ROW,
+        Ordinate::Accelerance,
+        0.0,
+        |i, j, m| {
+            if i == j && m % 2 == 1 { -1.0 } else { 1.0 }
+        },
+    );
     let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
     assert!(worst_freq(&id) < 1e-6);
-    assert!(id.complex.error < 1e-6, "the fit stands: {}", id.complex.error);
+    assert!(
+        id.complex.error < 1e-6,
+        "the fit stands: {}",
+        id.complex.error
+    );
     assert_eq!(
         id.driving[0].1,
         DrivingPoint::Mixed {
@@ -198,10 +231,20 @@ fn reversed_and_inconsistent_driving_points_are_told_apart() {
         "{msg}"
     );
     // no driving point at all: two cross FRFs
-    let path = write_uff(dir.path(), "cross.uff", &[(0, 1), (0, 2)], Ordinate::Receptance, 0.0, |_, _, _| 1.0);
+    let path = write_uff(
+        dir.path(),
+        "cross.uff",
+        &[(0, 1), (0, 2)],
+        Ordinate::Receptance,
+        0.0,
+        |_, _, _| 1.0,
+    );
     let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
     let msg = id.contact.unwrap_err().to_string();
-    assert!(msg.contains("no driving point") && msg.contains("node 1 +Z / node 2 +Z"), "{msg}");
+    assert!(
+        msg.contains("no driving point") && msg.contains("node 1 +Z / node 2 +Z"),
+        "{msg}"
+    );
 }
 
 /// The binary 58b row written by pyuff (accelerance in g/N of MODEL3, 0 to
@@ -247,7 +290,10 @@ fn the_binary_row_written_by_pyuff_fits_to_its_model() {
     )
     .unwrap_err()
     .to_string();
-    assert!(e.contains("--nodes 109: no FRF has this node") && e.matches("row3_58b").count() == 1, "{e}");
+    assert!(
+        e.contains("--nodes 109: no FRF has this node") && e.matches("row3_58b").count() == 1,
+        "{e}"
+    );
 }
 
 /// The full 3×3 matrix with 1 % noise (accelerance), fitted by the
@@ -334,7 +380,11 @@ const SDYPY_EMA_ERROR: f64 = 0.01654;
 /// (measured 0.0131).
 #[test]
 fn a_noisy_roving_hammer_row_fits_as_well_as_an_established_tool() {
-    let id = identify_frfs(Path::new("tests/data/uff/row6_noisy.uff"), &FrfOptions::default()).unwrap();
+    let id = identify_frfs(
+        Path::new("tests/data/uff/row6_noisy.uff"),
+        &FrfOptions::default(),
+    )
+    .unwrap();
     assert!(worst_freq(&id) < 0.05, "{:?}", id.poles);
     assert!(
         id.complex.error <= 1.5 * SDYPY_EMA_ERROR,

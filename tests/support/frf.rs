@@ -34,7 +34,14 @@ pub fn frf(modes: &[(f64, f64, [f64; 3])], i: usize, j: usize, f_hz: f64, q: Ord
 /// An ASCII dataset 58 of an FRF (complex double), response and
 /// reference `(node, direction)`, numerator specific data type `num`
 /// (8, 11, 12) in SI, values at `f0 + k df`.
-pub fn uff58(resp: (i64, i64), refn: (i64, i64), num: i64, f0: f64, df: f64, vals: &[c64]) -> String {
+pub fn uff58(
+    resp: (i64, i64),
+    refn: (i64, i64),
+    num: i64,
+    f0: f64,
+    df: f64,
+    vals: &[c64],
+) -> String {
     let units = match num {
         8 => "m",
         11 => "m/s",
@@ -58,7 +65,10 @@ pub fn uff58(resp: (i64, i64), refn: (i64, i64), num: i64, f0: f64, df: f64, val
         0.0
     ));
     for (t, label) in [(18, "Hz"), (num, units), (13, "N"), (0, "NONE")] {
-        s.push_str(&format!("{t:>10}{:>5}{:>5}{:>5} {:<20} {label:<20}\n", 0, 0, 0, "NONE"));
+        s.push_str(&format!(
+            "{t:>10}{:>5}{:>5}{:>5} {:<20} {label:<20}\n",
+            0, 0, 0, "NONE"
+        ));
     }
     for chunk in vals.chunks(2) {
         for v in chunk {
@@ -84,7 +94,9 @@ pub fn write_uff(
 ) -> PathBuf {
     let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
     let mut n = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         noise * 3f64.sqrt() * (2.0 * (state >> 11) as f64 / (1u64 << 53) as f64 - 1.0)
     };
     let num = [8, 11, 12][q.power() as usize];
@@ -116,4 +128,3 @@ pub fn write_uff(
     std::fs::write(&path, text).unwrap();
     path
 }
-

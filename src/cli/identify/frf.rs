@@ -8,6 +8,7 @@ use crate::cli::CliResult;
 use crate::cli::paths::{check_output_file, ensure_output_dir};
 use std::fmt::Write as _;
 use std::path::Path;
+use tirecontact::Scene;
 use tirecontact::base::fsio::write_atomic;
 use tirecontact::identify::driving;
 use tirecontact::identify::frequency::{FrfIdentification, FrfOptions, MAX_FIT_ERROR};
@@ -15,7 +16,6 @@ use tirecontact::model::lscf::{FitOptions, PoleStability};
 use tirecontact::model::measured::frf::FrfRequest;
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
 use tirecontact::scene::Tyre;
-use tirecontact::Scene;
 
 /// Whether `path` names a UFF file (`.uff`, `.unv`).
 pub fn is_uff(path: &Path) -> bool {
@@ -245,11 +245,13 @@ fn write_fit(dir: &Path, name: &str, id: &FrfIdentification) -> CliResult {
         String::from("freq_hz,response_node,reference_node,data_re,data_im,fit_re,fit_im\n");
     for (k, &(a, b)) in id.data.set.pairs.iter().enumerate() {
         let (ra, rb) = (id.data.dofs[a].node, id.data.dofs[b].node);
-        for (f, (d, m)) in id.data.set.freq_hz.iter().zip(
-            id.data.set.h[k]
-                .iter()
-                .zip(&id.complex.fit[k]),
-        ) {
+        for (f, (d, m)) in id
+            .data
+            .set
+            .freq_hz
+            .iter()
+            .zip(id.data.set.h[k].iter().zip(&id.complex.fit[k]))
+        {
             let _ = writeln!(
                 csv,
                 "{f:e},{ra},{rb},{:e},{:e},{:e},{:e}",
@@ -278,7 +280,12 @@ fn fit_figure(name: &str, id: &FrfIdentification) -> Figure {
     let db = |v: &faer::c64| 20.0 * v.norm().max(1e-300).log10();
     let line = |label: &str, vals: &[faer::c64], style: Style, color: usize| Series {
         name: label.into(),
-        points: set.freq_hz.iter().zip(vals).map(|(f, v)| (*f, db(v))).collect(),
+        points: set
+            .freq_hz
+            .iter()
+            .zip(vals)
+            .map(|(f, v)| (*f, db(v)))
+            .collect(),
         style,
         color: Some(color),
     };
@@ -294,7 +301,12 @@ fn fit_figure(name: &str, id: &FrfIdentification) -> Figure {
                 ),
             ];
             if let Ok(c) = &id.contact {
-                series.push(line("contact model (real modes)", &c.fit[k], Style::ThinLine, 6));
+                series.push(line(
+                    "contact model (real modes)",
+                    &c.fit[k],
+                    Style::ThinLine,
+                    6,
+                ));
             }
             Panel {
                 title: pair_name(id, k),
@@ -326,15 +338,30 @@ fn fit_figure(name: &str, id: &FrfIdentification) -> Figure {
 /// The stabilisation diagram of the fit.
 fn diagram(name: &str, id: &FrfIdentification) -> Figure {
     let cats = [
-        (PoleStability::Stable, "stable: f, xi, vector", Style::Markers(5), 2),
+        (
+            PoleStability::Stable,
+            "stable: f, xi, vector",
+            Style::Markers(5),
+            2,
+        ),
         (
             PoleStability::FrequencyDamping,
             "stable: f, xi",
             Style::HollowMarkers(5),
             0,
         ),
-        (PoleStability::Frequency, "stable: f", Style::HollowMarkers(4), 4),
-        (PoleStability::New, "new / not stable", Style::HollowMarkers(2), 8),
+        (
+            PoleStability::Frequency,
+            "stable: f",
+            Style::HollowMarkers(4),
+            4,
+        ),
+        (
+            PoleStability::New,
+            "new / not stable",
+            Style::HollowMarkers(2),
+            8,
+        ),
     ];
     let mut series: Vec<Series> = cats
         .iter()

@@ -116,7 +116,9 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
         if let Some(n) = list.iter().find(|n| !all_nodes.contains(n)) {
             return Err(fail(
                 String::new(),
-                format!("{what} {n}: no FRF has this node; expected one of the file's nodes {all_nodes:?}"),
+                format!(
+                    "{what} {n}: no FRF has this node; expected one of the file's nodes {all_nodes:?}"
+                ),
             ));
         }
     }
@@ -228,12 +230,11 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
                 format!("a second FRF of {resp} to {refd}: expected one record per pair"),
             ));
         }
-        let h = r
-            .re
-            .iter()
-            .zip(&r.im)
-            .map(|(a, b)| c64::new(a * factor * sign, b * factor * sign))
-            .collect();
+        let h =
+            r.re.iter()
+                .zip(&r.im)
+                .map(|(a, b)| c64::new(a * factor * sign, b * factor * sign))
+                .collect();
         pairs.push((resp, refd, h));
     }
     if pairs.is_empty() {
@@ -251,16 +252,16 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
     if dofs.len() > MAX_POINTS {
         return Err(DataError::Responses {
             file,
-            source: ResponsesError::TooManyPoints {
-                points: dofs.len(),
-            },
+            source: ResponsesError::TooManyPoints { points: dofs.len() },
         });
     }
     // the band: frequencies above 0 within the request
     let (lo, hi) = req.band_hz.unwrap_or((0.0, f64::INFINITY));
     let freqs: Vec<(usize, f64)> = (0..first.re.len())
         .map(|k| (k, first.abscissa_min + k as f64 * first.abscissa_step))
-        .filter(|&(_, f)| f > 0.0 && f >= lo - 1e-9 * first.abscissa_step && f <= hi + 1e-9 * first.abscissa_step)
+        .filter(|&(_, f)| {
+            f > 0.0 && f >= lo - 1e-9 * first.abscissa_step && f <= hi + 1e-9 * first.abscissa_step
+        })
         .collect();
     if freqs.len() < 8 {
         let top = first.abscissa_min + (first.re.len() as f64 - 1.0) * first.abscissa_step;
@@ -278,7 +279,10 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
     let set = FrfSet {
         freq_hz: freqs.iter().map(|&(_, f)| f).collect(),
         ordinate,
-        pairs: pairs.iter().map(|(a, b, _)| (index(*a), index(*b))).collect(),
+        pairs: pairs
+            .iter()
+            .map(|(a, b, _)| (index(*a), index(*b)))
+            .collect(),
         h: pairs
             .iter()
             .map(|(_, _, h)| freqs.iter().map(|&(k, _)| h[k]).collect())
