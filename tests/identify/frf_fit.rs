@@ -395,3 +395,58 @@ fn a_noisy_roving_hammer_row_fits_as_well_as_an_established_tool() {
     assert!(c.error <= 0.07, "contact model {}", c.error);
     assert!(id.is_good());
 }
+
+/// A general ordinate (specific data type 1) whose units label is the whole
+/// ratio, `(1/N)*(m/s²)` in Latin-1 as some exporters write it: read as
+/// accelerance in SI, and fitted as such.
+#[test]
+fn an_ordinate_known_by_its_units_label_only_is_read_as_such() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write_uff(
+        dir.path(),
+        "general.uff",
+        &ROW,
+        Ordinate::Accelerance,
+        0.0,
+        |_, _, _| 1.0,
+    );
+    let text = std::fs::read(&path).unwrap();
+    let from = format!(
+        "{:>10}{:>5}{:>5}{:>5} {:<20} {:<20}\n",
+        12, 0, 0, 0, "NONE", "m/s^2"
+    );
+    let mut to = format!("{:>10}{:>5}{:>5}{:>5} {:<20} ", 1, 0, 0, 0, "NONE").into_bytes();
+    to.extend(b"(1/N)*(m/s\xb2)      \n");
+    let den = format!(
+        "{:>10}{:>5}{:>5}{:>5} {:<20} {:<20}\n",
+        13, 0, 0, 0, "NONE", "N"
+    );
+    let den_to = format!(
+        "{:>10}{:>5}{:>5}{:>5} {:<20} {:<20}\n",
+        0, 0, 0, 0, "NONE", "NONE"
+    );
+    let mut out = Vec::new();
+    let mut rest = &text[..];
+    let (a, b) = (from.as_bytes(), den.as_bytes());
+    while !rest.is_empty() {
+        if rest.starts_with(a) {
+            out.extend(&to);
+            rest = &rest[a.len()..];
+        } else if rest.starts_with(b) {
+            out.extend(den_to.as_bytes());
+            rest = &rest[b.len()..];
+        } else {
+            out.push(rest[0]);
+            rest = &rest[1..];
+        }
+    }
+    assert!(
+        out.windows(3).any(|w| w == b"s\xb2)"),
+        "the label was replaced"
+    );
+    std::fs::write(&path, out).unwrap();
+    let id = identify_frfs(&path, &FrfOptions::default()).unwrap();
+    assert_eq!(id.data.set.ordinate, Ordinate::Accelerance);
+    assert!(worst_freq(&id) < 1e-6);
+    assert!(id.contact.as_ref().unwrap().error < 1e-6);
+}

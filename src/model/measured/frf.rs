@@ -124,14 +124,16 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
     }
     let keep = |n: i64| req.nodes.as_ref().is_none_or(|ns| ns.contains(&n));
     let first = recs[0];
-    let ordinate_of = |r: &Record58| match r.numerator {
-        8 => Ok(Ordinate::Receptance),
-        11 => Ok(Ordinate::Mobility),
-        12 => Ok(Ordinate::Accelerance),
-        other => Err(fail(
+    let ordinate_of = |r: &Record58| match r.response_kind() {
+        Some(8) => Ok(Ordinate::Receptance),
+        Some(11) => Ok(Ordinate::Mobility),
+        Some(12) => Ok(Ordinate::Accelerance),
+        _ => Err(fail(
             r.at(),
             format!(
-                "ordinate specific data type {other} (record 9): expected 8 (displacement), 11 (velocity) or 12 (acceleration)"
+                "ordinate specific data type {} (record 9) with units `{}`: expected 8 (displacement), 11 (velocity) or 12 (acceleration), or units of one of them over force",
+                r.numerator,
+                r.numerator_units.trim()
             ),
         )),
     };
@@ -268,7 +270,11 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
         return Err(fail(
             String::new(),
             format!(
-                "band {lo} to {hi} Hz holds {} of the FRFs' frequencies ({} to {top} Hz every {} Hz): expected at least 8",
+                "{} holds {} of the FRFs' frequencies above 0 Hz ({} to {top} Hz every {} Hz): expected at least 8",
+                match req.band_hz {
+                    Some((lo, hi)) => format!("--band-hz {lo} {hi}"),
+                    None => "the file".to_string(),
+                },
                 freqs.len(),
                 first.abscissa_min,
                 first.abscissa_step
