@@ -113,6 +113,9 @@ pub struct ResearchState {
         Result<crate::identify::workbench::Workbench, String>,
     )>,
     pub(crate) workbench_job: Option<super::workbench_job::WorkbenchJob>,
+    /// The frequency-domain fit of a measured file of FRFs, or why there is
+    /// none (with the workbench, same key).
+    pub(crate) frf_fit: Option<Result<crate::identify::frequency::FrfIdentification, String>>,
 }
 
 impl ResearchState {
@@ -161,6 +164,13 @@ impl ResearchState {
     /// The identification workbench shown, or why there is none.
     pub fn workbench(&self) -> Option<&Result<crate::identify::workbench::Workbench, String>> {
         self.workbench.as_ref().map(|w| &w.1)
+    }
+    /// The frequency-domain fit of the measured file's FRFs shown, or why
+    /// there is none (`None`: not a file of FRFs).
+    pub fn frf_fit(
+        &self,
+    ) -> Option<&Result<crate::identify::frequency::FrfIdentification, String>> {
+        self.frf_fit.as_ref()
     }
     /// Whether the workbench's identification is running.
     pub fn workbench_computing(&self) -> bool {
