@@ -410,6 +410,27 @@ fn poles_of_order(
         .eigen()
         .map_err(|_| LinalgError::NoConvergence { what: "eigen" })?;
     let (u, s) = (eig.U(), eig.S().column_vector());
+    // each eigenpair checked: ‖C v − z v‖ ≤ 1e-8 ‖C‖_F ‖v‖
+    let c_norm = linalg::frobenius(comp.as_ref());
+    for e in 0..k {
+        let v_norm = (0..k).map(|a| u[(a, e)].norm_sqr()).sum::<f64>().sqrt();
+        let res = (0..k)
+            .map(|a| {
+                let cv: c64 = (0..k).map(|b| u[(b, e)] * comp[(a, b)]).sum();
+                (cv - s[e] * u[(a, e)]).norm_sqr()
+            })
+            .sum::<f64>()
+            .sqrt();
+        let residual = res / (c_norm * v_norm).max(f64::MIN_POSITIVE);
+        if !(residual <= 1e-8) {
+            return Err(LinalgError::Rebuild {
+                what: "companion eigenpairs",
+                residual,
+                limit: 1e-8,
+            }
+            .into());
+        }
+    }
     let mut poles = Vec::new();
     for e in 0..k {
         let z = s[e];
@@ -767,4 +788,79 @@ pub fn refine(
         }
     }
     Ok((poles, best))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn layouts_pick_the_references_of_the_polyreference_model() {
+        // a row, a column, an incomplete matrix: one reference
+        for pairs in [
+            vec![(0, 0), (0, 1), (0, 2)],
+            vec![(0, 0), (1, 0), (2, 0)],
+            vec![(0, 0), (0, 1), (1, 1)],
+        ] {
+            let l = layout(&pairs);
+            assert!(l.rows.iter().all(|r| r.len() == 1), "{pairs:?}");
+            assert_eq!(l.rows.len(), pairs.len());
+        }
+        // 3 responses × 2 references: two references, three outputs
+        let pairs: Vec<(usize, usize)> = (0..3).flat_map(|o| (3..5).map(move |i| (o, i))).collect();
+        let l = layout(&pairs);
+        assert_eq!((l.rows.len(), l.rows[0].len()), (3, 2));
+        assert_eq!(pairs[l.rows[2][1]], (2, 4));
+        // 2 responses × 3 references: swapped by reciprocity
+        let pairs: Vec<(usize, usize)> = (0..2).flat_map(|o| (2..5).map(move |i| (o, i))).collect();
+        let l = layout(&pairs);
+        assert_eq!((l.rows.len(), l.rows[0].len()), (3, 2));
+        assert_eq!(pairs[l.rows[0][1]], (1, 2));
+    }
+
+    #[test]
+    fn ordinates_multiply_by_powers_of_j_omega() {
+        let w = 3.0;
+        assert_eq!(Ordinate::Receptance.factor(w), c64::new(1.0, 0.0));
+        assert_eq!(Ordinate::Mobility.factor(w), c64::new(0.0, 3.0));
+        assert_eq!(Ordinate::Accelerance.factor(w), c64::new(-9.0, 0.0));
+        let a = [c64::new(1.0, 2.0), c64::new(-0.5, 0.0)];
+        let b: Vec<c64> = a.iter().map(|v| v * c64::new(0.0, -3.0)).collect();
+        assert!((mac(&a, &b) - 1.0).abs() < 1e-15);
+        assert!(mac(&a, &[c64::new(0.0, 0.0), c64::new(1.0, 0.0)]) < 0.1);
+    }
+
+    #[test]
+    fn bad_sets_are_refused_not_panicked_on() {
+        let good = FrfSet {
+            freq_hz: (1..=10).map(f64::from).collect(),
+            ordinate: Ordinate::Receptance,
+            pairs: vec![(0, 0)],
+            h: vec![vec![c64::new(1.0, 0.0); 10]],
+        };
+        let mut nan = good.clone();
+        nan.h[0][3].re = f64::NAN;
+        let mut short = good.clone();
+        short.freq_hz.truncate(5);
+        short.h[0].truncate(5);
+        let mut zero = good.clone();
+        zero.freq_hz[0] = 0.0;
+        let mut ragged = good.clone();
+        ragged.h[0].pop();
+        for (set, want) in [
+            (nan, "non-finite"),
+            (short, "5 frequencies"),
+            (zero, "above 0 Hz"),
+            (ragged, "9 values"),
+        ] {
+            let e = stabilisation(&set, (0.0, 10.0), &FitOptions::default())
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(want), "{e}");
+            assert!(lsfd(&set, &[]).is_err());
+        }
+        // no poles: the fit is the residual terms alone, finite
+        let fit = lsfd(&good, &[]).unwrap();
+        assert!(fit.error.is_finite());
+    }
 }
