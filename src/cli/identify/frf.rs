@@ -291,15 +291,7 @@ fn fit_figure(name: &str, id: &FrfIdentification) -> Figure {
     };
     let panels = (0..set.pairs.len().min(MAX_PANELS))
         .map(|k| {
-            let mut series = vec![
-                line("data", &set.h[k], Style::ThinLine, 0),
-                line(
-                    "complex modes + residual terms",
-                    &id.complex.fit[k],
-                    Style::ThinLine,
-                    2,
-                ),
-            ];
+            let mut series = Vec::with_capacity(4);
             if let Ok(c) = &id.contact {
                 series.push(line(
                     "contact model (real modes)",
@@ -308,6 +300,20 @@ fn fit_figure(name: &str, id: &FrfIdentification) -> Figure {
                     6,
                 ));
             }
+            series.push(line(
+                "complex modes + residual terms",
+                &id.complex.fit[k],
+                Style::ThinLine,
+                2,
+            ));
+            // the data on top, and the complex fit's error below them
+            series.push(line("data", &set.h[k], Style::ThinLine, 0));
+            let diff: Vec<faer::c64> = set.h[k]
+                .iter()
+                .zip(&id.complex.fit[k])
+                .map(|(a, b)| a - b)
+                .collect();
+            series.push(line("|data − complex fit|", &diff, Style::ThinLine, 8));
             Panel {
                 title: pair_name(id, k),
                 x_label: "frequency (Hz)".into(),
@@ -320,11 +326,15 @@ fn fit_figure(name: &str, id: &FrfIdentification) -> Figure {
     Figure {
         title: format!("{name}: {} data against fit", set.ordinate.name()),
         subtitle: format!(
-            "{} at LSCF order {}; relative L2 error: complex {:.3e}, real modes {:.3e}{}",
+            "{} at LSCF order {}; relative L2 error: complex {:.3e}, real modes {:.3e}, contact model {}{}",
             tirecontact::output::count(id.poles.len(), "mode"),
             id.order,
             id.complex.error,
             id.real.error,
+            match &id.contact {
+                Ok(c) => format!("{:.3e}", c.error),
+                Err(_) => "none".to_string(),
+            },
             if set.pairs.len() > MAX_PANELS {
                 format!("; first {MAX_PANELS} of {} pairs drawn", set.pairs.len())
             } else {

@@ -346,7 +346,13 @@ fn frf_section(ui: &mut Ui, f: &Result<FrfIdentification, String>) {
                 let (a, b) = set.pairs[k];
                 format!("{} / {}", id.data.dofs[a], id.data.dofs[b])
             };
-            egui::Grid::new("tirecontact.workbench.residuals")
+            egui::CollapsingHeader::new(format!(
+                "residual terms of the {} pairs",
+                set.pairs.len()
+            ))
+            .default_open(set.pairs.len() <= FRF_PAIRS_DRAWN)
+            .show(ui, |ui| {
+                egui::Grid::new("tirecontact.workbench.residuals")
                 .striped(true)
                 .show(ui, |ui| {
                     ui.label("pair (response / reference)");
@@ -360,6 +366,7 @@ fn frf_section(ui: &mut Ui, f: &Result<FrfIdentification, String>) {
                         ui.end_row();
                     }
                 });
+            });
             let units = set.ordinate.units();
             let to_db = |v: &[faer::c64]| -> Vec<[f64; 2]> {
                 set.freq_hz
@@ -369,15 +376,17 @@ fn frf_section(ui: &mut Ui, f: &Result<FrfIdentification, String>) {
                     .collect()
             };
             let drawn = set.pairs.len().min(FRF_PAIRS_DRAWN);
-            if set.pairs.len() > drawn {
-                ui.label(format!(
-                    "the first {drawn} of {} pairs drawn",
+            ui.label(if set.pairs.len() > drawn {
+                format!(
+                    "data (solid) against the complex fit (dashed): the first {drawn} of {} pairs",
                     set.pairs.len()
-                ));
-            }
+                )
+            } else {
+                "data (solid) against the complex fit (dashed)".to_string()
+            });
             Plot::new("tirecontact.workbench.frf_fit")
                 .height(260.0)
-                .legend(egui_plot::Legend::default().position(egui_plot::Corner::RightBottom))
+                .legend(egui_plot::Legend::default().position(egui_plot::Corner::LeftBottom))
                 .x_title(ui, "frequency f (Hz)")
                 .y_axis_label(format!("|H| (dB re 1 {units})"))
                 .allow_scroll(false)
@@ -385,12 +394,12 @@ fn frf_section(ui: &mut Ui, f: &Result<FrfIdentification, String>) {
                     for k in 0..drawn {
                         let c = PAIR_COLORS[k];
                         pui.line(
-                            Line::new(format!("{}: data", pair_name(k)), to_db(&set.h[k]))
+                            Line::new(pair_name(k), to_db(&set.h[k]))
                                 .color(c)
                                 .width(1.0),
                         );
                         pui.line(
-                            Line::new(format!("{}: fit", pair_name(k)), to_db(&id.complex.fit[k]))
+                            Line::new(pair_name(k), to_db(&id.complex.fit[k]))
                                 .color(c)
                                 .width(2.0)
                                 .style(LineStyle::dashed_loose()),

@@ -177,7 +177,7 @@ fn a_file_of_frfs_shows_its_frequency_domain_fit() {
         "Frequency-domain fit of the FRFs",
         "driving point node 102 +Z: every stable mode's residue positive",
         "node 101 +Z / node 103 +Z",
-        "lower residual",
+        "residual terms of the 9 pairs",
         "contact model (real modes",
     ] {
         assert!(
