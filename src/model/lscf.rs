@@ -422,7 +422,7 @@ fn poles_of_order(
             .sum::<f64>()
             .sqrt();
         let residual = res / (c_norm * v_norm).max(f64::MIN_POSITIVE);
-        if !(residual <= 1e-8) {
+        if residual.is_nan() || residual > 1e-8 {
             return Err(LinalgError::Rebuild {
                 what: "companion eigenpairs",
                 residual,
