@@ -160,7 +160,8 @@ pub fn identify_measured(
             limit: MAX_MAGNITUDE_ERROR,
             lo_hz: opts.band_hz.0,
             hi_hz: opts.band_hz.1,
-            lowest_source_hz: identification.modes.first().map_or(f64::NAN, |m| m.freq_hz),
+            // a file's modes are not known: an identified pole is no hint
+            lowest_source_hz: f64::NAN,
         });
     }
     Ok(MeasuredIdentification {
