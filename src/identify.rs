@@ -16,6 +16,7 @@ use std::sync::{Arc, Mutex};
 use web_time::Instant;
 
 pub mod driving;
+pub mod frequency;
 pub mod workbench;
 
 /// An identification of a ring tyre, with what produced it.
@@ -132,8 +133,7 @@ pub fn identify_measured(
     opts: &IdentifyOptions,
 ) -> Result<MeasuredIdentification, LsceError> {
     let start = Instant::now();
-    let data =
-        measured::read(path, nodes, num_points).map_err(|e| LsceError::Input(e.to_string()))?;
+    let data = measured::read(path, nodes, num_points)?;
     let mut responses = data.responses;
     let dt = responses.dt_s;
     let keep = ((opts.duration_s / dt).round() as usize).max(1);
@@ -160,7 +160,8 @@ pub fn identify_measured(
             limit: MAX_MAGNITUDE_ERROR,
             lo_hz: opts.band_hz.0,
             hi_hz: opts.band_hz.1,
-            lowest_source_hz: identification.modes.first().map_or(f64::NAN, |m| m.freq_hz),
+            // a file's modes are not known: an identified pole is no hint
+            lowest_source_hz: f64::NAN,
         });
     }
     Ok(MeasuredIdentification {

@@ -4,6 +4,7 @@
 pub mod convolution;
 pub mod fe_modes;
 pub mod lsce;
+pub mod lscf;
 pub mod measured;
 pub mod plate;
 pub mod ring;

@@ -5,6 +5,8 @@
 //! data file (UFF 58 or CSV) without a preset.
 
 use super::{CliResult, load_scene};
+
+mod frf;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -57,6 +59,26 @@ pub struct IdentifyArgs {
     /// tens of kN, which squash the rolling force to a line).
     #[arg(long, requires = "figures")]
     pub figures_unclipped: bool,
+    /// The nodes of --data's FRFs to use (all when omitted): the model's
+    /// points, in increasing node number.
+    #[arg(long, requires = "data", num_args = 1.., value_name = "NODE")]
+    pub nodes: Option<Vec<i64>>,
+    /// The polynomial order of the frequency-domain fit whose poles are
+    /// kept (default: the highest of the stabilisation diagram, 40).
+    #[arg(long, requires = "data")]
+    pub order: Option<usize>,
+    /// Write the frequency-domain fit into this folder (created when
+    /// missing): modes.csv, fit.csv (data and fit per pair, in the file's
+    /// ordinate, SI) and fit.png; written even when the fit is poor.
+    #[arg(long, requires = "data")]
+    pub fit: Option<PathBuf>,
+    /// Keep a poor fit for -o (with a warning).
+    #[arg(long, requires = "data")]
+    pub accept: bool,
+    /// Reverse the response direction at NODE (a sensor mounted the other
+    /// way): every FRF whose response is at NODE is negated. Repeatable.
+    #[arg(long, requires = "data", value_name = "NODE")]
+    pub flip_direction: Vec<i64>,
 }
 
 /// The scene to identify: the preset, or a scene of `--data`'s points
@@ -85,13 +107,7 @@ fn scene_of(args: &IdentifyArgs) -> Result<(Scene, PathBuf), Box<dyn std::error:
             "Modes identified from {} ({p} points, placed 25 mm apart: set their positions).",
             data.display()
         );
-        scene.points = (0..p)
-            .map(|i| tirecontact::scene::Point {
-                x_m: 0.025 * (i as f64 - 0.5 * (p as f64 - 1.0)),
-                y_m: 0.0,
-                h_m: -0.003,
-            })
-            .collect();
+        scene.points = data_points(p);
         let mut identification = tirecontact::model::lsce::IdentifyOptions::default();
         if let Some(b) = &args.band_hz {
             identification.band_hz = (b[0], b[1]);
@@ -106,6 +122,17 @@ fn scene_of(args: &IdentifyArgs) -> Result<(Scene, PathBuf), Box<dyn std::error:
     }
     let preset = args.preset.clone().unwrap_or_default();
     Ok((load_scene(Some(&preset))?, preset))
+}
+
+/// `p` points 25 mm apart along the tyre, preloaded by 3 mm.
+fn data_points(p: usize) -> tirecontact::scene::Points {
+    (0..p)
+        .map(|i| tirecontact::scene::Point {
+            x_m: 0.025 * (i as f64 - 0.5 * (p as f64 - 1.0)),
+            y_m: 0.0,
+            h_m: -0.003,
+        })
+        .collect()
 }
 
 /// The number of distinct nodes of a UFF file's usable records (`--points`
@@ -139,6 +166,26 @@ fn sig6(x: f64) -> String {
 }
 
 pub fn identify(args: &IdentifyArgs) -> CliResult {
+    if let Some(data) = &args.data
+        && frf::is_uff(data)
+        && tirecontact::model::measured::frf::holds_frfs(data)?
+    {
+        return frf::identify_frfs(args, data);
+    }
+    for (given, flag) in [
+        (args.nodes.is_some(), "--nodes"),
+        (args.order.is_some(), "--order"),
+        (args.fit.is_some(), "--fit"),
+        (args.accept, "--accept"),
+        (!args.flip_direction.is_empty(), "--flip-direction"),
+    ] {
+        if given {
+            return Err(format!(
+                "{flag}: for the frequency-domain fit of a UFF file of FRFs (dataset 58, function type 4): expected --data FILE.uff holding FRFs"
+            )
+            .into());
+        }
+    }
     let (scene, source) = scene_of(args)?;
     // every output's folder, before the identification and any file written
     use super::paths::{check_output_file, ensure_output_dir};
@@ -156,7 +203,11 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
         ensure_output_dir("--figures", dir)?;
     }
     let id = match identify_tyre(&scene) {
-        Some(r) => r.map_err(|e| format!("{}: {e}", source.display()))?,
+        Some(r) => r.map_err(|e| match e {
+            // a file's error names the file
+            tirecontact::model::lsce::LsceError::Data(d) => d.to_string(),
+            e => format!("{}: {e}", source.display()),
+        })?,
         None => {
             return Err(format!(
                 "{}: tyre is `Modal(...)`: nothing to identify (expected `Ring(...)` or `Measured(...)`)",

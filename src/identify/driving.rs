@@ -32,6 +32,12 @@ pub fn check(modes: &[Mode], counted: &[bool], i: usize) -> DrivingPoint {
         .zip(counted)
         .map(|(m, &c)| if c { m.residue_matrix()[i][i] } else { 0.0 })
         .collect();
+    check_values(&a)
+}
+
+/// The check of one driving point's residues `a[k]` (one per counted
+/// mode), those within [`NEGLIGIBLE`] of the largest not counted.
+pub fn check_values(a: &[f64]) -> DrivingPoint {
     let tol = NEGLIGIBLE * a.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let negative_modes: Vec<usize> = (0..a.len()).filter(|&k| a[k] < -tol).collect();
     let positive = a.iter().filter(|&&v| v > tol).count();

@@ -67,9 +67,12 @@ pub enum LsceError {
     },
     #[error("LSCE: {0}")]
     Numerical(#[from] LinalgError),
-    #[error(
-        "LSCE: the identified modes miss the source: |G| error {magnitude_error:.3} over {lo_hz}..{hi_hz} Hz (expected below {limit}); the source's lowest mode is at {lowest_source_hz:.1} Hz: move the band (identification.band_hz) to cover the source's modes"
-    )]
+    /// The data file cannot be read (it names itself).
+    #[error(transparent)]
+    Data(#[from] crate::model::measured::DataError),
+    /// `lowest_source_hz` is NaN when the source's modes are not known (a
+    /// measured file): the message then names none.
+    #[error("{}", poor_fit(*magnitude_error, *limit, *lo_hz, *hi_hz, *lowest_source_hz))]
     PoorFit {
         magnitude_error: f64,
         limit: f64,
@@ -77,6 +80,22 @@ pub enum LsceError {
         hi_hz: f64,
         lowest_source_hz: f64,
     },
+}
+
+/// The message of [`LsceError::PoorFit`].
+fn poor_fit(magnitude_error: f64, limit: f64, lo_hz: f64, hi_hz: f64, lowest_hz: f64) -> String {
+    let head = format!(
+        "LSCE: the identified modes miss the source: |G| error {magnitude_error:.3} over {lo_hz}..{hi_hz} Hz (expected below {limit})"
+    );
+    if lowest_hz.is_nan() {
+        format!(
+            "{head}: check the band (identification.band_hz) against the data's modes, or fit a UFF file of FRFs in the frequency domain (`tirecontact identify --data FILE`)"
+        )
+    } else {
+        format!(
+            "{head}; the source's lowest mode is at {lowest_hz:.1} Hz: move the band (identification.band_hz) to cover the source's modes"
+        )
+    }
 }
 
 /// How a pole of the stabilisation diagram compares with the previous order.
@@ -746,4 +765,35 @@ fn stable_modes(
             at(chosen).is_some_and(near) || at(chosen + 1).is_some_and(near)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A poor fit of a ring names the ring's lowest mode; of a file (its
+    /// modes unknown), no mode: an identified pole is no hint.
+    #[test]
+    fn a_poor_fit_names_the_sources_lowest_mode_only_when_known() {
+        let e = |lowest| {
+            LsceError::PoorFit {
+                magnitude_error: 0.42,
+                limit: 0.3,
+                lo_hz: 0.0,
+                hi_hz: 500.0,
+                lowest_source_hz: lowest,
+            }
+            .to_string()
+        };
+        let ring = e(12.34);
+        assert!(
+            ring.contains("0.420") && ring.contains("lowest mode is at 12.3 Hz"),
+            "{ring}"
+        );
+        let file = e(f64::NAN);
+        assert!(
+            file.contains("0.420") && !file.contains("lowest mode") && file.contains("--data"),
+            "{file}"
+        );
+    }
 }

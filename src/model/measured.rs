@@ -29,6 +29,7 @@ use std::collections::BTreeMap;
 use std::io::Read;
 use std::path::Path;
 
+pub mod frf;
 pub mod uff;
 
 /// Largest data file read (bytes).
@@ -108,9 +109,7 @@ pub enum ResponsesError {
         "responses of {points} points: expected the scene's {expected} points (its points map to the file's in order)"
     )]
     Points { points: usize, expected: usize },
-    #[error(
-        "no response between points {i} and {j} (neither g{i}_{j} nor g{j}_{i}): expected every pair measured one way or the other"
-    )]
+    #[error("{}", missing_pair(*i, *j))]
     MissingPair { i: usize, j: usize },
     #[error(
         "g{i}_{j} sampled every {dt_s} s: expected every response sampled alike ({expected_s} s)"
@@ -128,6 +127,18 @@ pub enum ResponsesError {
         samples: usize,
         expected: usize,
     },
+}
+
+/// The message of a pair measured neither way.
+fn missing_pair(i: usize, j: usize) -> String {
+    let which = if i == j {
+        format!("g{i}_{i}")
+    } else {
+        format!("neither g{i}_{j} nor g{j}_{i}")
+    };
+    format!(
+        "no response between points {i} and {j} ({which}): expected every pair measured one way or the other (a row or a column of FRFs in a UFF file is fitted in the frequency domain by `tirecontact identify --data FILE`)"
+    )
 }
 
 /// The responses read from a file, and what was done to them.

@@ -9,6 +9,7 @@ mod support;
 mod bench_scaling;
 mod faults;
 mod frames;
+mod frf_fit;
 mod hostile_args;
 mod identify_figures;
 mod output_paths;

@@ -8,6 +8,7 @@ mod support;
 
 mod fe_modes;
 mod fidelity;
+mod frf_fit;
 mod measured;
 mod paper_preset;
 mod ring_green;

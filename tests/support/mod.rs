@@ -3,6 +3,7 @@
 //! temporary folders, and reference models used by several tests.
 
 pub mod colour;
+pub mod frf;
 pub mod models;
 
 use std::process::Command;

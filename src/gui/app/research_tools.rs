@@ -245,7 +245,8 @@ impl App {
             && let Some(r) = job.poll()
         {
             let key = job.key.clone();
-            self.research.workbench = Some((key, r));
+            self.research.workbench = Some((key, r.bench));
+            self.research.frf_fit = r.frf;
             self.research.workbench_job = None;
         }
         let used = self.research.workbench_used.as_ref();
@@ -256,6 +257,7 @@ impl App {
         self.research.workbench_used = None;
         let Some(key) = key_of(&self.doc.scene) else {
             self.research.workbench = None;
+            self.research.frf_fit = None;
             self.research.workbench_job = None;
             return;
         };
@@ -268,7 +270,10 @@ impl App {
         if !fresh && !running {
             match WorkbenchJob::spawn(&self.doc.scene, key.clone()) {
                 Ok(job) => self.research.workbench_job = Some(job),
-                Err(e) => self.research.workbench = Some((key, Err(e))),
+                Err(e) => {
+                    self.research.workbench = Some((key, Err(e)));
+                    self.research.frf_fit = None;
+                }
             }
         }
     }
@@ -482,6 +487,7 @@ impl App {
                 ui,
                 &self.doc.scene,
                 self.research.workbench(),
+                self.research.frf_fit(),
                 self.research.workbench_computing(),
                 self.research.workbench_in_use(),
                 cmds,

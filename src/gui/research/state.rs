@@ -117,6 +117,9 @@ pub struct ResearchState {
     /// while the scene keeps them, the workbench they came from stays
     /// shown, its picks ready to refine.
     pub(crate) workbench_used: Option<super::workbench_job::WorkbenchKey>,
+    /// The frequency-domain fit of a measured file of FRFs, or why there is
+    /// none (with the workbench, same key).
+    pub(crate) frf_fit: Option<Result<crate::identify::frequency::FrfIdentification, String>>,
 }
 
 impl ResearchState {
@@ -169,6 +172,13 @@ impl ResearchState {
     /// Whether the scene's tyre is the modes picked on the workbench shown.
     pub fn workbench_in_use(&self) -> bool {
         self.workbench.is_some() && self.workbench_used.is_some()
+    }
+    /// The frequency-domain fit of the measured file's FRFs shown, or why
+    /// there is none (`None`: not a file of FRFs).
+    pub fn frf_fit(
+        &self,
+    ) -> Option<&Result<crate::identify::frequency::FrfIdentification, String>> {
+        self.frf_fit.as_ref()
     }
     /// Whether the workbench's identification is running.
     pub fn workbench_computing(&self) -> bool {

@@ -4,17 +4,22 @@
 //! automatic choice to begin with; click a pole to pick or drop it), the
 //! `|G|` of the worst-fitted response pair, data against the picked modes,
 //! and every pair's L2 error. "Use these modes" makes them the scene's
-//! modal tyre; "Save as modal preset…" writes that scene. The logic is
-//! `identify::workbench`; this view draws it and pushes commands.
+//! modal tyre; "Save as modal preset…" writes that scene. For a measured
+//! UFF file of FRFs it first shows their frequency-domain fit (method
+//! §6.5): data against fit per pair, the residual terms and the
+//! driving-point check. The logic is `identify::workbench` and
+//! `identify::frequency`; this view draws it and pushes commands.
 
 use super::XTitle;
 use crate::Scene;
 use crate::gui::model::command::{Command, ResearchCommand};
+use crate::identify::driving::{self, DrivingPoint};
+use crate::identify::frequency::FrfIdentification;
 use crate::identify::workbench::Workbench;
 use crate::model::lsce::Stability;
 use crate::scene::Tyre;
 use egui::{Color32, RichText, Ui};
-use egui_plot::{Line, MarkerShape, Plot, Points};
+use egui_plot::{Line, LineStyle, MarkerShape, Plot, Points};
 
 /// Plot id of the stabilisation diagram (read by the tests).
 pub const DIAGRAM_PLOT_ID: &str = "tirecontact.workbench.diagram";
@@ -57,6 +62,7 @@ pub fn show(
     ui: &mut Ui,
     scene: &Scene,
     bench: Option<&Result<Workbench, String>>,
+    frf: Option<&Result<FrfIdentification, String>>,
     computing: bool,
     in_use: bool,
     cmds: &mut Vec<Command>,
@@ -71,8 +77,17 @@ pub fn show(
             ui.label("identifying the tyre's responses (LSCE, every model order)…");
         });
     }
+    if let Some(f) = frf {
+        frf_section(ui, f);
+    }
     let w = match bench {
         Some(Ok(w)) => w,
+        Some(Err(e)) if matches!(frf, Some(Ok(_))) => {
+            ui.label(format!(
+                "No time-domain identification (LSCE): {e}. The fit above is the frequency-domain one."
+            ));
+            return;
+        }
         Some(Err(e)) => {
             ui.label(
                 RichText::new(format!("No identification: {e}")).color(ui.visuals().error_fg_color),
@@ -336,5 +351,141 @@ fn pair_plot(ui: &mut Ui, w: &Workbench, f: &crate::identify::workbench::PairFit
                     .color(PICKED_COLOR)
                     .width(1.5),
             );
+        });
+}
+
+/// Pairs drawn in the FRF fit's plot (the first ones).
+const FRF_PAIRS_DRAWN: usize = 4;
+
+/// Colours of the pairs in the FRF fit's plot (Okabe-Ito).
+const PAIR_COLORS: [Color32; FRF_PAIRS_DRAWN] = [
+    Color32::from_rgb(0, 114, 178),
+    Color32::from_rgb(213, 94, 0),
+    Color32::from_rgb(0, 158, 115),
+    Color32::from_rgb(204, 121, 167),
+];
+
+/// The frequency-domain fit of a measured file of FRFs: its errors, the
+/// driving-point check, the residual terms and data against fit per pair.
+fn frf_section(ui: &mut Ui, f: &Result<FrfIdentification, String>) {
+    egui::CollapsingHeader::new("Frequency-domain fit of the FRFs (LSCF poles, LSFD residues)")
+        .default_open(true)
+        .show(ui, |ui| {
+            let id = match f {
+                Ok(id) => id,
+                Err(e) => {
+                    ui.label(
+                        RichText::new(format!("No fit: {e}")).color(ui.visuals().error_fg_color),
+                    );
+                    return;
+                }
+            };
+            let set = &id.data.set;
+            let short = |x: f64| crate::output::summary::short_num(x, 3);
+            ui.label(format!(
+                "{} at LSCF order {} over {} to {} Hz ({}); relative L2 error, all pairs: complex modes with residual terms {}, real modes {}",
+                crate::output::count(id.poles.len(), "mode"),
+                id.order,
+                id.data.band_hz.0,
+                id.data.band_hz.1,
+                set.ordinate.name(),
+                short(id.complex.error),
+                short(id.real.error),
+            ));
+            ui.label(format!(
+                "modes (Hz, ξ): {}",
+                id.poles
+                    .iter()
+                    .map(|p| format!("{:.2} / {:.5}", p.freq_hz, p.damping_ratio))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+            for (dof, d) in &id.driving {
+                let text = driving::describe(d, &dof.to_string(), dof.node);
+                let color = if *d == DrivingPoint::Positive {
+                    ui.visuals().text_color()
+                } else {
+                    ui.visuals().error_fg_color
+                };
+                ui.label(RichText::new(text).color(color));
+            }
+            match &id.contact {
+                Ok(c) => {
+                    ui.label(format!(
+                        "contact model (real modes scaled by the driving point, no residual terms): error {}",
+                        short(c.error)
+                    ));
+                }
+                Err(e) => {
+                    ui.label(
+                        RichText::new(format!("no contact model: {e}"))
+                            .color(ui.visuals().error_fg_color),
+                    );
+                }
+            }
+            let pair_name = |k: usize| {
+                let (a, b) = set.pairs[k];
+                format!("{} / {}", id.data.dofs[a], id.data.dofs[b])
+            };
+            egui::CollapsingHeader::new(format!(
+                "residual terms of the {} pairs",
+                set.pairs.len()
+            ))
+            .default_open(set.pairs.len() <= FRF_PAIRS_DRAWN)
+            .show(ui, |ui| {
+                egui::Grid::new("tirecontact.workbench.residuals")
+                .striped(true)
+                .show(ui, |ui| {
+                    ui.label("pair (response / reference)");
+                    ui.label("lower residual (m/N·(rad/s)²)");
+                    ui.label("upper residual (m/N)");
+                    ui.end_row();
+                    for k in 0..set.pairs.len() {
+                        ui.label(pair_name(k));
+                        ui.label(format!("{:.4e}", id.complex.lower[k]));
+                        ui.label(format!("{:.4e}", id.complex.upper[k]));
+                        ui.end_row();
+                    }
+                });
+            });
+            let units = set.ordinate.units();
+            let to_db = |v: &[faer::c64]| -> Vec<[f64; 2]> {
+                set.freq_hz
+                    .iter()
+                    .zip(v)
+                    .map(|(x, h)| [*x, 20.0 * h.norm().max(1e-300).log10()])
+                    .collect()
+            };
+            let drawn = set.pairs.len().min(FRF_PAIRS_DRAWN);
+            ui.label(if set.pairs.len() > drawn {
+                format!(
+                    "data (solid) against the complex fit (dashed): the first {drawn} of {} pairs",
+                    set.pairs.len()
+                )
+            } else {
+                "data (solid) against the complex fit (dashed)".to_string()
+            });
+            Plot::new("tirecontact.workbench.frf_fit")
+                .height(260.0)
+                .legend(egui_plot::Legend::default().position(egui_plot::Corner::LeftBottom))
+                .x_title(ui, "frequency f (Hz)")
+                .y_axis_label(format!("|H| (dB re 1 {units})"))
+                .allow_scroll(false)
+                .show(ui, |pui| {
+                    for k in 0..drawn {
+                        let c = PAIR_COLORS[k];
+                        pui.line(
+                            Line::new(pair_name(k), to_db(&set.h[k]))
+                                .color(c)
+                                .width(1.0),
+                        );
+                        pui.line(
+                            Line::new(pair_name(k), to_db(&id.complex.fit[k]))
+                                .color(c)
+                                .width(2.0)
+                                .style(LineStyle::dashed_loose()),
+                        );
+                    }
+                });
         });
 }

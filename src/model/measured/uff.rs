@@ -736,6 +736,29 @@ impl Record58 {
         )
     }
 
+    /// The response of the numerator: 8 displacement, 11 velocity, 12
+    /// acceleration, from its specific data type (record 9) or — a general
+    /// type (0 unknown, 1 general) — from its units label's dimension
+    /// (`m/s^2`, or the whole ratio `(1/N)*(m/s²)`); `None` when neither
+    /// says.
+    pub fn response_kind(&self) -> Option<i64> {
+        if matches!(self.numerator, 8 | 11 | 12) {
+            return Some(self.numerator);
+        }
+        if !matches!(self.numerator, 0 | 1) {
+            return None;
+        }
+        let Some(Ok(d)) = units_label(&self.numerator_units) else {
+            return None;
+        };
+        match (d.l, d.t, d.f) {
+            (1, 0, 0 | -1) => Some(8),
+            (1, -1, 0 | -1) => Some(11),
+            (1, -2, 0 | -1) => Some(12),
+            _ => None,
+        }
+    }
+
     /// The factor that makes its values SI (numerator over denominator)
     /// and how it was found: the units labels when set, else dataset 164
     /// (`units`), else 1.
@@ -743,7 +766,11 @@ impl Record58 {
         let mut factor = 1.0;
         let mut how = Vec::new();
         for (specific, label, what) in [
-            (self.numerator, &self.numerator_units, "numerator"),
+            (
+                self.response_kind().unwrap_or(self.numerator),
+                &self.numerator_units,
+                "numerator",
+            ),
             (self.denominator, &self.denominator_units, "denominator"),
         ] {
             let zero_force = what == "denominator" && specific == 0;

@@ -197,3 +197,51 @@ fn poles_are_picked_and_dropped_by_clicks_and_the_modes_used_and_saved() {
         t => panic!("not a modal tyre: {t:?}"),
     }
 }
+
+/// A measured tyre whose file holds FRFs (`tests/data/uff/frf3.uff`:
+/// MODEL3's receptances, every pair): the workbench shows their
+/// frequency-domain fit above the LSCE diagram — its three modes, every
+/// driving point's check, the residual terms, data against fit.
+#[test]
+fn a_file_of_frfs_shows_its_frequency_domain_fit() {
+    let mut s = measured_scene();
+    s.tyre = Tyre::Measured {
+        file: std::fs::canonicalize("tests/data/uff/frf3.uff").unwrap(),
+        identification: IdentifyOptions {
+            band_hz: (0.0, 450.0),
+            duration_s: 0.5,
+            ..IdentifyOptions::default()
+        },
+        nodes: Vec::new(),
+    };
+    let mut h = harness_sized(App::new(s, None).unwrap(), [1600.0, 1000.0]);
+    settle(&mut h);
+    h.state_mut().apply(Command::ShowView(View::Workbench));
+    h.run_steps(1);
+    until_identified(&mut h);
+    let Some(Ok(fit)) = h.state().research().frf_fit() else {
+        panic!(
+            "no FRF fit: {:?}",
+            h.state().research().frf_fit().map(|r| r.as_ref().err())
+        )
+    };
+    let f: Vec<f64> = fit.poles.iter().map(|p| p.freq_hz).collect();
+    assert_eq!(f.len(), 3, "{f:?}");
+    for (a, b) in f.iter().zip([52.0, 131.0, 247.0]) {
+        assert!((a - b).abs() < 1e-6 * b, "{a} vs {b}");
+    }
+    assert!(fit.complex.error < 1e-9, "{}", fit.complex.error);
+    assert!(matches!(h.state().research().workbench(), Some(Ok(_))));
+    for text in [
+        "Frequency-domain fit of the FRFs",
+        "driving point node 102 +Z: every stable mode's residue positive",
+        "node 101 +Z / node 103 +Z",
+        "residual terms of the 9 pairs",
+        "contact model (real modes",
+    ] {
+        assert!(
+            h.query_all_by_label_contains(text).next().is_some(),
+            "{text}"
+        );
+    }
+}
