@@ -301,7 +301,9 @@ mod tests {
     /// returning after its slice, with the threaded sweep's points.
     #[test]
     fn a_sweep_in_slices_polls_to_the_library_result() {
-        let s = scene();
+        // runs of 50 000 steps: far longer than one 8 ms slice on any machine
+        let mut s = scene();
+        s.duration_s = 0.5;
         let r = req("speed_mps", 10.0, 20.0, 3);
         let job = SweepJob::start_in_slices(&s, r.clone(), Arc::new(ModeCache::new())).unwrap();
         let mut polls = 0;
