@@ -168,16 +168,16 @@ pub fn help(name: &str) -> Option<FieldHelp> {
         .min(0.0, false)
         .max(crate::scene::MAX_TREAD_STIFFNESS_N_M),
         "road.length_m" => {
-            FieldHelp::new("length of the random road, after which it repeats (its loop)")
+            FieldHelp::new("length of the random road or texture along x, after which it repeats (its loop)")
                 .min(0.0, false)
                 .also("with at most a set number of grid points: length × highest n is capped")
         }
         "road.min_wavenumber_cpm" => FieldHelp::new(
-            "lowest spatial frequency of the random road: 1 / its longest wavelength",
+            "lowest spatial frequency of the random road or texture: 1 / its longest wavelength",
         )
         .min(0.0, false),
         "road.max_wavenumber_cpm" => FieldHelp::new(
-            "highest spatial frequency of the random road: 1 / its shortest wavelength",
+            "highest spatial frequency of the random road or texture: 1 / its shortest wavelength",
         )
         .min(0.0, false)
         .also("at least the lowest n"),
