@@ -627,7 +627,6 @@ pub fn run_summary_timed(
 pub struct SummaryRun {
     sim: Simulation,
     metrics: ContactMetrics,
-    scene: Scene,
 }
 
 impl SummaryRun {
@@ -640,7 +639,6 @@ impl SummaryRun {
         Ok(SummaryRun {
             sim,
             metrics: ContactMetrics::new(scene, None).keeping_total_force(),
-            scene: scene.clone(),
         })
     }
 
@@ -667,7 +665,7 @@ impl SummaryRun {
     /// The summary of the steady part (after [`SummaryRun::advance`] has
     /// reached the end).
     pub fn finish(self) -> Result<RunSummary, SummaryError> {
-        let scene = &self.scene;
+        let scene = self.sim.scene();
         let fs = 1.0 / scene.dt_s;
         let hi = DEFAULT_BANDS_HZ.1.min(0.5 * fs / 10f64.powf(0.05));
         let bands = crate::analysis::spectrum::spectrum(

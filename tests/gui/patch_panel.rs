@@ -129,11 +129,19 @@ fn a_texture_is_edited_live_and_refusals_name_the_field() {
 #[test]
 fn a_thousand_point_patch_is_set_up_without_blocking_the_frames() {
     let mut h = patch_app();
-    // 20 rows 5 mm apart fit the 16 cm wide belt
-    type_into(&mut h, "points.spacing_m.1", "5");
-    settle(&mut h);
-    type_into(&mut h, "points.across", "20");
-    settle(&mut h);
+    // 20 rows 5 mm apart fit the 16 cm wide belt; a patch of more than
+    // 100 points is set up off the UI thread, for as many frames as that
+    // takes: typed without running the frames to rest
+    let type_then_settle = |h: &mut egui_kittest::Harness<'static, App>, name: &str, text: &str| {
+        h.get_by_label(name).focus();
+        h.run_steps(2);
+        h.get_by_label(name).set_text_value_accesskit(text);
+        h.run_steps(2);
+        h.key_press(egui::Key::Enter);
+        settle(h);
+    };
+    type_then_settle(&mut h, "points.spacing_m.1", "5");
+    type_then_settle(&mut h, "points.across", "20");
     assert_eq!(
         h.state().scene().points.len(),
         320,
@@ -170,9 +178,11 @@ fn a_thousand_point_patch_is_set_up_without_blocking_the_frames() {
     assert_eq!(h.state().simulation().num_points(), 1000);
     assert!(said, "the banner did not say what was set up");
     eprintln!("set-up {total_s:.2} s over {frames} frames, slowest frame {slowest_s:.3} s");
+    // the frames went on during the set-up: none held the whole of it
+    // (set up inside a frame, one frame took all of it), and many were drawn
     assert!(
-        slowest_s < 0.25 && slowest_s < 0.5 * total_s,
-        "a frame took {slowest_s:.3} s of a {total_s:.2} s set-up"
+        slowest_s < 0.5 * total_s && frames >= 10,
+        "a frame took {slowest_s:.3} s of a {total_s:.2} s set-up ({frames} frames)"
     );
 }
 

@@ -76,6 +76,21 @@ impl App {
         });
     }
 
+    /// The editing panel's fields (disabled while an edit waits for its
+    /// preparation).
+    fn editor(&self, ui: &mut egui::Ui, editable: bool, edits: &[String], cmds: &mut Vec<Command>) {
+        ui.add_enabled_ui(editable, |ui| {
+            panels::side_panel(
+                ui,
+                &self.doc.scene,
+                edits,
+                &self.modes,
+                self.sim.road_profile(),
+                cmds,
+            )
+        });
+    }
+
     pub(super) fn normal_layout(&mut self, ui: &mut egui::Ui, cmds: &mut Vec<Command>) {
         let cmds_left = &mut *cmds;
         // while an edit waits for its ring's identification the fields show
@@ -89,16 +104,7 @@ impl App {
                     if ui.button("Back to the views").clicked() {
                         cmds_left.push(Command::ShowEditPanel(false));
                     }
-                    ui.add_enabled_ui(editable, |ui| {
-                        panels::side_panel(
-                            ui,
-                            &self.doc.scene,
-                            &edits,
-                            &self.modes,
-                            self.sim.road_profile(),
-                            cmds_left,
-                        )
-                    });
+                    self.editor(ui, editable, &edits, cmds_left);
                 });
                 return;
             }
@@ -121,16 +127,7 @@ impl App {
             .resizable(true)
             .default_size(380.0)
             .show(ui, |ui| {
-                ui.add_enabled_ui(editable, |ui| {
-                    panels::side_panel(
-                        ui,
-                        &self.doc.scene,
-                        &edits,
-                        &self.modes,
-                        self.sim.road_profile(),
-                        cmds_left,
-                    )
-                });
+                self.editor(ui, editable, &edits, cmds_left);
             });
         if self.classroom.bars {
             egui::Panel::right("tirecontact.mode_bars")

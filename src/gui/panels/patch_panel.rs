@@ -234,24 +234,7 @@ pub fn texture(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                 }))));
             }
             ui.end_row();
-            ui.label("seed");
-            ui.horizontal(|ui| {
-                let mut s = seed;
-                ui.add(egui::DragValue::new(&mut s).speed(1.0))
-                    .accessible_name("texture seed")
-                    .on_hover_text("phases of the texture: the same seed gives the same surface");
-                if ui.small_button("new texture").clicked() {
-                    s = seed.wrapping_add(1);
-                }
-                if s != seed {
-                    cmds.push(Command::EditScene(Box::new(with(&|r| {
-                        if let Road::Texture { seed, .. } = r {
-                            *seed = s;
-                        }
-                    }))));
-                }
-            });
-            ui.end_row();
+            super::random_road::seed_row(ui, scene, seed, "texture", cmds);
             let fields: [(&str, &str, f64, &str, f64); 4] = [
                 ("period along", "road.length_m", length_m, "m", 1.0),
                 ("period across", "road.width_m", width_m, "mm", 1e3),

@@ -38,6 +38,32 @@ pub(crate) fn class_name(c: RoadClass) -> &'static str {
         .map_or("?", |(_, n)| n)
 }
 
+/// The seed row of a random road or a texture (`what`: "road",
+/// "texture"): the seed, and a button for the next one; the edit sets the
+/// road's seed ([`Road::seed_mut`]).
+pub(super) fn seed_row(ui: &mut Ui, scene: &Scene, seed: u64, what: &str, cmds: &mut Vec<Command>) {
+    ui.label("seed");
+    ui.horizontal(|ui| {
+        let mut s = seed;
+        ui.add(egui::DragValue::new(&mut s).speed(1.0))
+            .accessible_name(format!("{what} seed"))
+            .on_hover_text(format!(
+                "phases of the {what}: the same seed gives the same {what}"
+            ));
+        if ui.small_button(format!("new {what}")).clicked() {
+            s = seed.wrapping_add(1);
+        }
+        if s != seed {
+            let mut edited = scene.clone();
+            if let Some(seed) = edited.road.seed_mut() {
+                *seed = s;
+            }
+            cmds.push(Command::EditScene(Box::new(edited)));
+        }
+    });
+    ui.end_row();
+}
+
 /// The random road's fields: class, seed, length and wavenumber band, each
 /// refusing bad values. Long but flat: one field after another.
 pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
@@ -81,24 +107,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                 }))));
             }
             ui.end_row();
-            ui.label("seed");
-            ui.horizontal(|ui| {
-                let mut s = seed;
-                ui.add(egui::DragValue::new(&mut s).speed(1.0))
-                    .accessible_name("road seed")
-                    .on_hover_text("phases of the road: the same seed gives the same road");
-                if ui.small_button("new road").clicked() {
-                    s = seed.wrapping_add(1);
-                }
-                if s != seed {
-                    cmds.push(Command::EditScene(Box::new(with(&|r| {
-                        if let Road::Random { seed, .. } = r {
-                            *seed = s;
-                        }
-                    }))));
-                }
-            });
-            ui.end_row();
+            seed_row(ui, scene, seed, "road", cmds);
             ui.label("loop length L");
             push_edit(
                 cmds,
