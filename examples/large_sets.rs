@@ -29,6 +29,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for (name, from) in [("direct solves", usize::MAX), ("large-set methods", 24)] {
         let options = SolverOptions {
             large_set_from: from,
+            iterative_sub_from: from,
             ..SolverOptions::default()
         };
         let mut sim = Simulation::new(&model, options)?;

@@ -612,6 +612,20 @@ impl ModalState {
         kernels::project_rows(&basis.out, ns, rows, &self.x, &self.v, u, v);
     }
 
+    /// [`ModalState::project_rows`] with the values of `rows[k]` into
+    /// `u[k]`, `v[k]` (packed in the list's order; the same sums).
+    #[inline]
+    pub fn project_rows_packed(
+        &self,
+        basis: &ModalBasis,
+        rows: &[usize],
+        u: &mut [f64],
+        v: &mut [f64],
+    ) {
+        let ns = basis.stored_states();
+        kernels::project_rows_packed(&basis.out, ns, rows, &self.x, &self.v, u, v);
+    }
+
     /// [`ModalState::project_rows`] on `threads` when it pays
     /// ([`Threads::worth`]): the list `rows` split into contiguous ranges,
     /// each row's values into `packed` (two buffers of at least

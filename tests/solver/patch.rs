@@ -181,3 +181,52 @@ fn points_bear_on_their_own_row_of_a_surface_and_outside_it_are_refused() {
         "{e}"
     );
 }
+
+/// On a rough road a compliant patch has an event or more a step, each
+/// with sub-steps whose small systems (8 to 30 points on the road) are
+/// solved by GMRES through the modal states; the same runs with every
+/// sub-step filled and factorised give the same displacements and forces
+/// to 1e-9 of their largest values, step by step, through the ramp and
+/// the rolling, while the iterative solves did run and saved
+/// factorisations.
+#[test]
+fn iterative_sub_steps_of_small_sets_agree_with_the_direct_solves() {
+    for preset in ["presets/patch_chip_seal.ron", "presets/patch_texture.ron"] {
+        let mut scene = Scene::load(std::path::Path::new(preset)).unwrap();
+        scene.duration_s = 0.06;
+        let model = PreparedModel::of(&scene).unwrap();
+        let direct = SolverOptions {
+            large_set_from: usize::MAX,
+            iterative_sub_from: usize::MAX,
+            ..SolverOptions::default()
+        };
+        let mut a = Simulation::new(&model, direct).unwrap();
+        let mut b = Simulation::new(&model, SolverOptions::default()).unwrap();
+        let (mut du, mut dq, mut u_max, mut q_max) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        while !a.finished() {
+            a.step().unwrap();
+            b.step().unwrap();
+            for (x, y) in a.displacement_m().iter().zip(b.displacement_m()) {
+                du = du.max((x - y).abs());
+                u_max = u_max.max(x.abs());
+            }
+            for (x, y) in a.force_n().iter().zip(b.force_n()) {
+                dq = dq.max((x - y).abs());
+                q_max = q_max.max(x.abs());
+            }
+        }
+        let (sa, sb) = (a.stats(), b.stats());
+        assert!(
+            du <= 1e-9 * u_max && dq <= 1e-9 * q_max,
+            "{preset}: u differs by {du:e} of {u_max:e} m, q by {dq:e} of {q_max:e} N"
+        );
+        assert_eq!(sa.events, sb.events, "{preset}: events");
+        assert!(sb.krylov_applications > 1000, "{preset}: {sb:?}");
+        assert!(
+            2 * sb.factorisations < sa.factorisations,
+            "{preset}: factorisations {} direct, {} iterative",
+            sa.factorisations,
+            sb.factorisations
+        );
+    }
+}

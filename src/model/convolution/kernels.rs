@@ -10,29 +10,6 @@ use super::{StepColumns, dot2};
 /// forces stay in registers / on the stack).
 const BLOCK: usize = 16;
 
-/// Defines `pub(super) fn $name` calling `$body`, through an AVX2 build of
-/// it where the CPU supports AVX2.
-macro_rules! dispatch {
-    ($(#[$doc:meta])* $name:ident => $body:ident ($($arg:ident : $ty:ty),* $(,)?)) => {
-        $(#[$doc])*
-        #[inline]
-        pub(super) fn $name($($arg: $ty),*) {
-            #[cfg(target_arch = "x86_64")]
-            {
-                if std::arch::is_x86_feature_detected!("avx2") {
-                    #[target_feature(enable = "avx2")]
-                    fn wide($($arg: $ty),*) {
-                        $body($($arg),*)
-                    }
-                    // SAFETY: the CPU supports AVX2 (checked just above).
-                    return unsafe { wide($($arg),*) };
-                }
-            }
-            $body($($arg),*)
-        }
-    };
-}
-
 /// `(ox, ov) = Φ (x, v)` per state, every state (`x.len()`).
 #[inline]
 pub(super) fn predict(c: &StepColumns, x: &[f64], v: &[f64], ox: &mut [f64], ov: &mut [f64]) {
@@ -84,21 +61,11 @@ fn predict_at<const RANGE: bool>(
     predict_body::<RANGE>(c, s0, x, v, ox, ov)
 }
 
-dispatch!(
-    /// `(u_i, v_i) = (a_i · x, a_i · v)` for the points `i` in `rows` only
-    /// (rows of `out`, `ns` wide), each sum in [`dot2`]'s order, as
-    /// [`project`] gives them.
-    project_rows => project_rows_body(out: &[f64], ns: usize, rows: &[usize], x: &[f64], v: &[f64], u: &mut [f64], w: &mut [f64])
-);
-
-dispatch!(
-    /// [`project_rows`] with the values of `rows[k]` into `u[k]`, `w[k]`
-    /// (packed in the list's order; the same sums).
-    project_rows_packed => project_rows_packed_body(out: &[f64], ns: usize, rows: &[usize], x: &[f64], v: &[f64], u: &mut [f64], w: &mut [f64])
-);
-
-#[inline(always)]
-fn project_rows_packed_body(
+/// `(u_i, v_i) = (a_i · x, a_i · v)` for the points `i` in `rows` only
+/// (rows of `out`, `ns` wide), each sum in [`dot2`]'s order, as
+/// [`project`] gives them.
+#[inline]
+pub(super) fn project_rows(
     out: &[f64],
     ns: usize,
     rows: &[usize],
@@ -107,23 +74,95 @@ fn project_rows_packed_body(
     u: &mut [f64],
     w: &mut [f64],
 ) {
+    gathered_rows(out, ns, rows, x, v, |k, ru, rv| {
+        let i = rows[k];
+        (u[i], w[i]) = (ru, rv);
+    });
+}
+
+/// [`project_rows`] with the values of `rows[k]` into `u[k]`, `w[k]`
+/// (packed in the list's order; the same sums).
+#[inline]
+pub(super) fn project_rows_packed(
+    out: &[f64],
+    ns: usize,
+    rows: &[usize],
+    x: &[f64],
+    v: &[f64],
+    u: &mut [f64],
+    w: &mut [f64],
+) {
+    gathered_rows(out, ns, rows, x, v, |k, ru, rv| (u[k], w[k]) = (ru, rv));
+}
+
+/// The sums `(a_i · x, a_i · v)` of the rows `rows` of `out` (`ns` wide),
+/// each handed to `put(k, u, v)` with its place `k` in the list: through
+/// [`project_gathered_avx`] where the CPU has AVX (rows six at a time, as
+/// [`project`] takes consecutive ones), else [`dot2`] row by row. The same
+/// operations in the same order either way: bit-identical.
+#[inline]
+fn gathered_rows(
+    out: &[f64],
+    ns: usize,
+    rows: &[usize],
+    x: &[f64],
+    v: &[f64],
+    mut put: impl FnMut(usize, f64, f64),
+) {
+    let (x, v) = (&x[..ns], &v[..ns]);
+    assert!(rows.iter().all(|&i| (i + 1) * ns <= out.len()));
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: the CPU supports AVX (checked just above); every row
+            // of `rows` lies inside `out` (asserted above), `x` and `v`
+            // hold `ns` values.
+            unsafe { project_gathered_avx(out, ns, rows, x, v, &mut put) };
+            return;
+        }
+    }
     for (k, &i) in rows.iter().enumerate() {
-        (u[k], w[k]) = dot2(&out[i * ns..(i + 1) * ns], &x[..ns], &v[..ns]);
+        let (ru, rv) = dot2(&out[i * ns..(i + 1) * ns], x, v);
+        put(k, ru, rv);
     }
 }
 
-#[inline(always)]
-fn project_rows_body(
+/// [`gathered_rows`] with AVX lanes: the rows of `rows` six at a time by
+/// [`project_rows_avx`].
+///
+/// # Safety
+/// The CPU supports AVX; every row of `rows` lies inside `out`; `x` and
+/// `v` hold `ns` values.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+unsafe fn project_gathered_avx(
     out: &[f64],
     ns: usize,
     rows: &[usize],
     x: &[f64],
     v: &[f64],
-    u: &mut [f64],
-    w: &mut [f64],
+    put: &mut impl FnMut(usize, f64, f64),
 ) {
-    for &i in rows {
-        (u[i], w[i]) = dot2(&out[i * ns..(i + 1) * ns], &x[..ns], &v[..ns]);
+    let mut k = 0;
+    while k < rows.len() {
+        let take = (rows.len() - k).min(6);
+        let (mut us, mut vs) = ([0.0; 6], [0.0; 6]);
+        let idx: [usize; 6] = std::array::from_fn(|r| rows[k + r.min(take - 1)] * ns);
+        // SAFETY: the caller's contract: each row lies inside `out`.
+        unsafe {
+            match take {
+                6 => project_rows_avx::<6>(out, idx, x, v, &mut us, &mut vs),
+                5 => project_rows_avx::<5>(out, idx, x, v, &mut us, &mut vs),
+                4 => project_rows_avx::<4>(out, idx, x, v, &mut us, &mut vs),
+                3 => project_rows_avx::<3>(out, idx, x, v, &mut us, &mut vs),
+                2 => project_rows_avx::<2>(out, idx, x, v, &mut us, &mut vs),
+                _ => project_rows_avx::<1>(out, idx, x, v, &mut us, &mut vs),
+            }
+        }
+        for r in 0..take {
+            put(k + r, us[r], vs[r]);
+        }
+        k += take;
     }
 }
 
@@ -156,28 +195,37 @@ unsafe fn project_avx(out: &[f64], p: usize, x: &[f64], v: &[f64], u: &mut [f64]
     let mut i = 0;
     while i < p {
         let rows = (p - i).min(6);
+        let ns = x.len();
+        let idx: [usize; 6] = std::array::from_fn(|r| (i + r.min(rows - 1)) * ns);
+        let (u, w) = (&mut u[i..i + rows], &mut w[i..i + rows]);
         // SAFETY: the caller asserted the lengths; rows i..i + rows exist.
         unsafe {
             match rows {
-                6 => project_rows_avx::<6>(out, i, x, v, u, w),
-                5 => project_rows_avx::<5>(out, i, x, v, u, w),
-                4 => project_rows_avx::<4>(out, i, x, v, u, w),
-                3 => project_rows_avx::<3>(out, i, x, v, u, w),
-                2 => project_rows_avx::<2>(out, i, x, v, u, w),
-                _ => project_rows_avx::<1>(out, i, x, v, u, w),
+                6 => project_rows_avx::<6>(out, idx, x, v, u, w),
+                5 => project_rows_avx::<5>(out, idx, x, v, u, w),
+                4 => project_rows_avx::<4>(out, idx, x, v, u, w),
+                3 => project_rows_avx::<3>(out, idx, x, v, u, w),
+                2 => project_rows_avx::<2>(out, idx, x, v, u, w),
+                _ => project_rows_avx::<1>(out, idx, x, v, u, w),
             }
         }
         i += rows;
     }
 }
 
-/// Rows `i .. i + R` of [`project_avx`].
+/// The `R` rows of `out` starting at `start[r]` (`x.len()` wide each) of
+/// [`project_avx`] and [`project_gathered_avx`], their sums into `u[r]`,
+/// `w[r]`.
+///
+/// # Safety
+/// The CPU supports AVX; `start[r] + x.len() <= out.len()` for `r < R`;
+/// `v` holds `x.len()` values; `u` and `w` hold `R`.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 #[inline]
 unsafe fn project_rows_avx<const R: usize>(
     out: &[f64],
-    i: usize,
+    start: [usize; 6],
     x: &[f64],
     v: &[f64],
     u: &mut [f64],
@@ -195,15 +243,15 @@ unsafe fn project_rows_avx<const R: usize>(
     let (xp, vp) = (x.as_ptr(), v.as_ptr());
     let mut su = [_mm256_setzero_pd(); R];
     let mut sv = [_mm256_setzero_pd(); R];
-    // SAFETY (all loads): c + 3 < m <= ns, rows of `out` have ns entries
-    // (out.len() >= p * ns, asserted by `project`), i + r < p.
+    // SAFETY (all loads): c + 3 < m <= ns, each row has ns entries from
+    // its start inside `out` (the caller's contract).
     unsafe {
-        let base = out.as_ptr().add(i * ns);
+        let base: [*const f64; R] = std::array::from_fn(|r| out.as_ptr().add(start[r]));
         let mut c = 0;
         while c < m {
             let (xc, vc) = (_mm256_loadu_pd(xp.add(c)), _mm256_loadu_pd(vp.add(c)));
             for r in 0..R {
-                let a = _mm256_loadu_pd(base.add(r * ns + c));
+                let a = _mm256_loadu_pd(base[r].add(c));
                 su[r] = _mm256_add_pd(su[r], _mm256_mul_pd(a, xc));
                 sv[r] = _mm256_add_pd(sv[r], _mm256_mul_pd(a, vc));
             }
@@ -211,13 +259,13 @@ unsafe fn project_rows_avx<const R: usize>(
         }
     }
     for r in 0..R {
-        let row = &out[(i + r) * ns..(i + r + 1) * ns];
+        let row = &out[start[r]..start[r] + ns];
         let (mut ru, mut rv) = (lanes(su[r]), lanes(sv[r]));
         for c in m..ns {
             ru += row[c] * x[c];
             rv += row[c] * v[c];
         }
-        (u[i + r], w[i + r]) = (ru, rv);
+        (u[r], w[r]) = (ru, rv);
     }
 }
 
@@ -526,6 +574,43 @@ mod tests {
                 predict_body::<false>(&c, 0, &x, &v, &mut ox2, &mut ov2);
                 assert_eq!(bits(&ox1), bits(&ox2));
                 assert_eq!(bits(&ov1), bits(&ov2));
+            }
+        }
+    }
+
+    /// The gathered rows (any order, repeats, every count modulo the six
+    /// rows a pass takes) give, bit for bit, [`dot2`] of each row alone,
+    /// through both the scattered and the packed outputs.
+    #[test]
+    fn gathered_rows_equal_each_row_alone_bit_for_bit() {
+        let bits = |a: &[f64]| a.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for ns in [1usize, 3, 4, 5, 17, 36, 70] {
+            let p = 15;
+            let (x, v) = (vals(ns, 1.3), vals(ns, 1.7));
+            let out = vals(p * ns, 2.1);
+            for count in 0..=13 {
+                // rows in a scrambled order with one repeat
+                let rows: Vec<usize> = (0..count).map(|k| (7 * k + 3) % p).collect();
+                let alone: Vec<(f64, f64)> = rows
+                    .iter()
+                    .map(|&i| dot2(&out[i * ns..(i + 1) * ns], &x, &v))
+                    .collect();
+                let (mut pu, mut pv) = (vec![0.0; count], vec![0.0; count]);
+                project_rows_packed(&out, ns, &rows, &x, &v, &mut pu, &mut pv);
+                let (au, av): (Vec<f64>, Vec<f64>) = alone.iter().copied().unzip();
+                assert_eq!(
+                    (bits(&pu), bits(&pv)),
+                    (bits(&au), bits(&av)),
+                    "packed, ns {ns}, {count} rows"
+                );
+                let (mut u, mut w) = (vec![f64::NAN; p], vec![f64::NAN; p]);
+                project_rows(&out, ns, &rows, &x, &v, &mut u, &mut w);
+                for (k, &i) in rows.iter().enumerate() {
+                    assert_eq!(
+                        (u[i].to_bits(), w[i].to_bits()),
+                        (au[k].to_bits(), av[k].to_bits())
+                    );
+                }
             }
         }
     }

@@ -186,7 +186,8 @@ impl Simulation {
         let large = self.tables.large_sets()
             && self.state.active.len() >= self.tables.options.large_set_from;
         if sel == Table::Sub {
-            if large && self.solve_sub_iterative() {
+            let iterative = self.state.active.len() >= self.tables.iterative_sub_from();
+            if iterative && self.solve_sub_iterative() {
                 return Ok(());
             }
             return self.solve_active(t_end, Table::Sub);

@@ -232,19 +232,16 @@ impl Simulation {
         let (tb, act, s) = (&self.tables, &self.state.active, &mut self.scratch);
         let (n, p, ns) = (act.len(), tb.p, tb.basis.stored_states());
         let rate = SQRT3 / s.sub.tau_s;
-        let (w1, w2) = (&s.sub.w1[..ns], &s.sub.w2[..ns]);
+        // the sub-step's four weights, each contiguous over the states
+        let wq = &mut s.sub_weights[..4 * ns];
+        for (st, (w1, w2)) in s.sub.w1[..ns].iter().zip(&s.sub.w2[..ns]).enumerate() {
+            (wq[st], wq[ns + st], wq[2 * ns + st], wq[3 * ns + st]) = (w1[0], w2[0], w1[1], w2[1]);
+        }
         let (out, inp_t) = (&tb.basis.out, &tb.basis.inp_t);
         // each point's own 2 x 2 block (end value, slope) x (q1, q2), inverted
         for (a, &i) in act.iter().enumerate() {
             let (o, b) = (&out[i * ns..(i + 1) * ns], &inp_t[i * ns..(i + 1) * ns]);
-            let mut g = [0.0; 4];
-            for st in 0..ns {
-                let ab = o[st] * b[st];
-                g[0] += ab * w1[st][0];
-                g[1] += ab * w2[st][0];
-                g[2] += ab * w1[st][1];
-                g[3] += ab * w2[st][1];
-            }
+            let mut g = own_block(o, b, wq, ns);
             let c = if tb.residual.is_empty() {
                 0.0
             } else {
@@ -269,32 +266,25 @@ impl Simulation {
             s.rhs_slots[2 * a] = z[0] * bx + z[1] * bv;
             s.rhs_slots[2 * a + 1] = z[2] * bx + z[3] * bv;
         }
-        let (beta, dxv, jacobi) = (&mut s.beta[..ns], &mut s.dxv[..ns], &s.jacobi[..n]);
+        let jacobi = &s.jacobi[..n];
         let residual = &tb.residual;
         let tread = &tb.tread_k_n_m;
+        let (state, sub, basis) = (&mut *s.delta, &s.sub, &tb.basis);
+        let (gq1, gq2) = (&mut s.gq1, &mut s.gq2);
+        let (ex, ev) = (&mut s.du[..n], &mut s.dv[..n]);
         let apply = |z: &[f64], y: &mut [f64]| {
-            // forces into the states: β_s = Σ_j b_s[j] (q1_j, q2_j)
-            beta.fill([0.0; 2]);
+            // the forces into the states over the sub-step (their response
+            // at its end, method §3.3), then out to the active points: the
+            // step's own kernels
             for (a, &j) in act.iter().enumerate() {
-                let (q1, q2) = (z[2 * a], z[2 * a + 1]);
-                for (bs, &b) in beta.iter_mut().zip(&inp_t[j * ns..(j + 1) * ns]) {
-                    bs[0] += b * q1;
-                    bs[1] += b * q2;
-                }
+                (gq1[j], gq2[j]) = (z[2 * a], z[2 * a + 1]);
             }
-            for st in 0..ns {
-                let [b1, b2] = beta[st];
-                dxv[st] = [
-                    w1[st][0] * b1 + w2[st][0] * b2,
-                    w1[st][1] * b1 + w2[st][1] * b2,
-                ];
-            }
+            state.x.fill(0.0);
+            state.v.fill(0.0);
+            state.add_gauss_forces(basis, sub, act, gq1, gq2);
+            state.project_rows_packed(basis, act, ex, ev);
             for (a, &i) in act.iter().enumerate() {
-                let (mut ex, mut ev) = (0.0, 0.0);
-                for (d, &o) in dxv.iter().zip(&out[i * ns..(i + 1) * ns]) {
-                    ex += o * d[0];
-                    ev += o * d[1];
-                }
+                let (mut ex, mut ev) = (ex[a], ev[a]);
                 let (q1, q2) = (z[2 * a], z[2 * a + 1]);
                 // the tread's compliance on the point's own forces, the
                 // residual compliance on every active point's
@@ -337,6 +327,35 @@ impl Simulation {
         self.end_values_sub();
         true
     }
+}
+
+/// A point's own 2 × 2 block of the sub-step system without the tread,
+/// `g_m = Σ_s a_s[i] b_s[i] w_m(s)` for the weights `w_m` (end value by
+/// `q1`, by `q2`, slope by `q1`, by `q2`: the four columns of `wq`, `ns`
+/// each), over its output row `o` and input row `b`: four lanes per sum,
+/// so that the sums vectorise.
+fn own_block(o: &[f64], b: &[f64], wq: &[f64], ns: usize) -> [f64; 4] {
+    const L: usize = 4;
+    let (o, b) = (&o[..ns], &b[..ns]);
+    let w: [&[f64]; 4] = std::array::from_fn(|m| &wq[m * ns..(m + 1) * ns]);
+    let full = ns - ns % L;
+    let mut acc = [[0.0f64; L]; 4];
+    for c in (0..full).step_by(L) {
+        for k in 0..L {
+            let ab = o[c + k] * b[c + k];
+            for m in 0..4 {
+                acc[m][k] += ab * w[m][c + k];
+            }
+        }
+    }
+    std::array::from_fn(|m| {
+        let a = &acc[m];
+        let mut g = (a[0] + a[1]) + (a[2] + a[3]);
+        for c in full..ns {
+            g += o[c] * b[c] * w[m][c];
+        }
+        g
+    })
 }
 
 /// The full-step compliant system's entry of equation `r` (0: end value,
@@ -390,6 +409,7 @@ mod tests {
             let model = PreparedModel::of(&scene).unwrap();
             let direct = SolverOptions {
                 large_set_from: usize::MAX,
+                iterative_sub_from: usize::MAX,
                 ..SolverOptions::default()
             };
             let large = SolverOptions {

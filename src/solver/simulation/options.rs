@@ -52,6 +52,16 @@ pub struct SolverOptions {
     /// (`usize::MAX`: never; smaller sets keep the direct solves, bit for
     /// bit).
     pub large_set_from: usize,
+    /// Points on the road from which a sub-step of tread springs (between
+    /// events, method §4.6) is solved by GMRES through the modal states
+    /// (`O(|S| K)` per product, about four products a solve) instead of
+    /// filling its `2|S|` system (`|S|² K` products) and factorising it,
+    /// as the large sets' sub-steps are (method §4.5). On a rough road,
+    /// where a step has an event or more, that fill is most of a step.
+    /// The answers agree with the direct solve to round-off (`usize::MAX`:
+    /// never; the smaller of this and
+    /// [`SolverOptions::large_set_from`] applies).
+    pub iterative_sub_from: usize,
     /// Threads of the simulation's large kernels (1, the default: the
     /// calling thread alone, no worker started). With more, the
     /// simulation keeps `threads - 1` workers and splits a kernel over
@@ -87,6 +97,12 @@ pub const IDENTIFIED_RANK_TOLERANCE: f64 = 1e-5;
 /// filling its blocks.
 pub const LARGE_SET_FROM: usize = 24;
 
+/// Default of [`SolverOptions::iterative_sub_from`]: from this many points
+/// on the road a compliant sub-step's GMRES solve through the states costs
+/// less than filling and factorising its system
+/// (`docs/performance.md`, "The shipped patch presets").
+pub const ITERATIVE_SUB_FROM: usize = 8;
+
 impl SolverOptions {
     /// The relative rank cut used for `scene` (see
     /// [`SolverOptions::rank_tolerance`]).
@@ -111,6 +127,7 @@ impl Default for SolverOptions {
             rank_tolerance: None,
             steady_path: true,
             large_set_from: LARGE_SET_FROM,
+            iterative_sub_from: ITERATIVE_SUB_FROM,
             threads: 1,
             parallel_from_madds: crate::base::threads::PARALLEL_FROM,
         }

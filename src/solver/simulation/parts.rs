@@ -122,6 +122,21 @@ impl SimTables {
         self.p >= self.options.large_set_from
     }
 
+    /// The fewest points on the road whose compliant sub-steps are solved
+    /// by GMRES through the states (`large.rs`,
+    /// [`SolverOptions::iterative_sub_from`]); `usize::MAX` for rigid
+    /// contact, which keeps the direct sub-step solve.
+    #[inline]
+    pub fn iterative_sub_from(&self) -> usize {
+        if self.compliant() {
+            self.options
+                .iterative_sub_from
+                .min(self.options.large_set_from)
+        } else {
+            usize::MAX
+        }
+    }
+
     /// Whether the contact is compliant (tread springs, method §4.6).
     #[inline]
     pub fn compliant(&self) -> bool {
@@ -256,13 +271,15 @@ pub(super) struct Scratch {
     /// The sub-step and impulse systems' solver.
     pub solver: DenseSolver,
     /// The iterative sub-step solve of large active sets (`large.rs`):
-    /// GMRES, the 2 × 2 block-diagonal preconditioner's inverses per
-    /// active point, and two force projections and state increments per
-    /// state (empty unless [`SimTables::large_sets`]).
+    /// GMRES and the 2 × 2 block-diagonal preconditioner's inverses per
+    /// active point (empty unless [`SimTables::large_sets`] or
+    /// [`SimTables::iterative_sub_from`] points can be on the road).
     pub gmres: Gmres,
     pub jacobi: Vec<[f64; 4]>,
-    pub beta: Vec<[f64; 2]>,
-    pub dxv: Vec<[f64; 2]>,
+    /// The Gauss-point forces of a GMRES product by point (its input
+    /// vector scattered for the force kernel).
+    pub gq1: Vec<f64>,
+    pub gq2: Vec<f64>,
     /// `delta` holds the end state of a full step of a large compliant
     /// set (its prediction plus the solved forces, `large.rs`), which
     /// `commit` takes as it is.
@@ -279,7 +296,9 @@ impl Scratch {
     /// Buffers for the tables' points and states.
     pub fn new(tables: &SimTables) -> Self {
         let p = tables.p;
-        let (large, ns) = (tables.large_sets(), tables.basis.stored_states());
+        let ns = tables.basis.stored_states();
+        // (the buffers of the iterative sub-step solve)
+        let large = tables.large_sets() || tables.p >= tables.iterative_sub_from();
         let zero = ModalState::zeros(&tables.basis);
         Scratch {
             free: Box::new(zero.clone()),
@@ -307,8 +326,8 @@ impl Scratch {
             solver: DenseSolver::new(2 * p),
             gmres: Gmres::new(if large { 2 * p } else { 0 }, GMRES_RESTART),
             jacobi: vec![[0.0; 4]; if large { p } else { 0 }],
-            beta: vec![[0.0; 2]; if large { ns } else { 0 }],
-            dxv: vec![[0.0; 2]; if large { ns } else { 0 }],
+            gq1: vec![0.0; if large { p } else { 0 }],
+            gq2: vec![0.0; if large { p } else { 0 }],
             rhs_slots: vec![0.0; if large { 2 * p } else { 0 }],
             mark: vec![false; p],
             fused_full: false,
