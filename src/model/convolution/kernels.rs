@@ -341,9 +341,17 @@ fn add_gauss_forces_at<const RANGE: bool>(
     add_gauss_forces_body::<RANGE>(c, s0, inp_t, stride, active, q1, q2, x, v);
 }
 
-/// [`add_gauss_forces`] with AVX lanes, 16 states per block (eight
-/// independent accumulations). Same operations in the same order as
-/// [`add_gauss_forces_body`] (no FMA): bit-identical.
+/// States per chunk of [`add_gauss_forces_avx`]: the chunk's force
+/// projections (two arrays of this many values) stay in the L1 cache while
+/// every active column streams through.
+const CHUNK: usize = 256;
+
+/// [`add_gauss_forces`] with AVX lanes. The states go in chunks of
+/// [`CHUNK`]; within a chunk the active columns stream four at a time
+/// (contiguous runs the prefetcher follows, where one block of states
+/// across every column jumps from column to column), each added to the
+/// chunk's projections in the active list's order. Same operations in the
+/// same order as [`add_gauss_forces_body`] (no FMA): bit-identical.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 unsafe fn add_gauss_forces_avx<const RANGE: bool>(
@@ -359,77 +367,99 @@ unsafe fn add_gauss_forces_avx<const RANGE: bool>(
 ) {
     use std::arch::x86_64::*;
     let n = x.len();
-    let full = n - n % BLOCK;
     let (xp, vp) = (x.as_mut_ptr(), v.as_mut_ptr());
     // (the range's states: pointers from `s0`; `c0` counts from there)
     let s0 = if RANGE { s0 } else { 0 };
     let inp_t = &inp_t[s0..];
     let (w1x, w1v, w2x, w2v) = (&c.w1x[s0..], &c.w1v[s0..], &c.w2x[s0..], &c.w2v[s0..]);
     let (w1x, w1v, w2x, w2v) = (w1x.as_ptr(), w1v.as_ptr(), w2x.as_ptr(), w2v.as_ptr());
+    let mut b1 = [0.0f64; CHUNK];
+    let mut b2 = [0.0f64; CHUNK];
+    let (p1, p2) = (b1.as_mut_ptr(), b2.as_mut_ptr());
+    let groups = active.len() - active.len() % 4;
     let mut c0 = 0;
-    // SAFETY (all loads and stores): c0 + BLOCK <= full <= n (then
-    // c0 + 4 <= quads <= n); x, v and the
-    // weight columns hold s0 + n entries, inp_t j stride + s0 + n for every
-    // active j (asserted by the caller).
+    // SAFETY (all loads and stores): within a chunk, k + 4 <= quads <= len
+    // <= CHUNK and c0 + len <= n; x, v and the weight columns hold s0 + n
+    // entries, inp_t j stride + s0 + n for every active j (asserted by the
+    // caller).
     unsafe {
-        while c0 < full {
-            let mut b1 = [_mm256_setzero_pd(); 4];
-            let mut b2 = [_mm256_setzero_pd(); 4];
-            for &j in active {
+        while c0 < n {
+            let len = CHUNK.min(n - c0);
+            let quads = len - len % 4;
+            b1[..len].fill(0.0);
+            b2[..len].fill(0.0);
+            // the active columns four at a time, then one at a time; each
+            // state's sums take the columns in the list's order
+            let mut g = 0;
+            while g < groups {
+                let js = [active[g], active[g + 1], active[g + 2], active[g + 3]];
+                let col: [*const f64; 4] =
+                    std::array::from_fn(|r| inp_t.as_ptr().add(js[r] * stride + c0));
+                let qa: [__m256d; 4] = std::array::from_fn(|r| _mm256_set1_pd(q1[js[r]]));
+                let qb: [__m256d; 4] = std::array::from_fn(|r| _mm256_set1_pd(q2[js[r]]));
+                let mut k = 0;
+                while k < quads {
+                    let (mut a1, mut a2) = (_mm256_loadu_pd(p1.add(k)), _mm256_loadu_pd(p2.add(k)));
+                    for r in 0..4 {
+                        let b = _mm256_loadu_pd(col[r].add(k));
+                        a1 = _mm256_add_pd(a1, _mm256_mul_pd(b, qa[r]));
+                        a2 = _mm256_add_pd(a2, _mm256_mul_pd(b, qb[r]));
+                    }
+                    _mm256_storeu_pd(p1.add(k), a1);
+                    _mm256_storeu_pd(p2.add(k), a2);
+                    k += 4;
+                }
+                for k in quads..len {
+                    for r in 0..4 {
+                        let b = *col[r].add(k);
+                        b1[k] += b * q1[js[r]];
+                        b2[k] += b * q2[js[r]];
+                    }
+                }
+                g += 4;
+            }
+            for &j in &active[groups..] {
                 let col = inp_t.as_ptr().add(j * stride + c0);
                 let (qa, qb) = (_mm256_set1_pd(q1[j]), _mm256_set1_pd(q2[j]));
-                for k in 0..4 {
-                    let b = _mm256_loadu_pd(col.add(4 * k));
-                    b1[k] = _mm256_add_pd(b1[k], _mm256_mul_pd(b, qa));
-                    b2[k] = _mm256_add_pd(b2[k], _mm256_mul_pd(b, qb));
+                let mut k = 0;
+                while k < quads {
+                    let b = _mm256_loadu_pd(col.add(k));
+                    let a1 = _mm256_add_pd(_mm256_loadu_pd(p1.add(k)), _mm256_mul_pd(b, qa));
+                    let a2 = _mm256_add_pd(_mm256_loadu_pd(p2.add(k)), _mm256_mul_pd(b, qb));
+                    _mm256_storeu_pd(p1.add(k), a1);
+                    _mm256_storeu_pd(p2.add(k), a2);
+                    k += 4;
+                }
+                for k in quads..len {
+                    let b = *col.add(k);
+                    b1[k] += b * q1[j];
+                    b2[k] += b * q2[j];
                 }
             }
-            for k in 0..4 {
-                let o = c0 + 4 * k;
+            // the chunk's responses into the states
+            let mut k = 0;
+            while k < quads {
+                let o = c0 + k;
+                let (bb1, bb2) = (_mm256_loadu_pd(p1.add(k)), _mm256_loadu_pd(p2.add(k)));
                 let dx = _mm256_add_pd(
-                    _mm256_mul_pd(_mm256_loadu_pd(w1x.add(o)), b1[k]),
-                    _mm256_mul_pd(_mm256_loadu_pd(w2x.add(o)), b2[k]),
+                    _mm256_mul_pd(_mm256_loadu_pd(w1x.add(o)), bb1),
+                    _mm256_mul_pd(_mm256_loadu_pd(w2x.add(o)), bb2),
                 );
                 let dv = _mm256_add_pd(
-                    _mm256_mul_pd(_mm256_loadu_pd(w1v.add(o)), b1[k]),
-                    _mm256_mul_pd(_mm256_loadu_pd(w2v.add(o)), b2[k]),
+                    _mm256_mul_pd(_mm256_loadu_pd(w1v.add(o)), bb1),
+                    _mm256_mul_pd(_mm256_loadu_pd(w2v.add(o)), bb2),
                 );
                 _mm256_storeu_pd(xp.add(o), _mm256_add_pd(_mm256_loadu_pd(xp.add(o)), dx));
                 _mm256_storeu_pd(vp.add(o), _mm256_add_pd(_mm256_loadu_pd(vp.add(o)), dv));
+                k += 4;
             }
-            c0 += BLOCK;
-        }
-        // the last partial block four states at a time
-        let quads = n - n % 4;
-        while c0 < quads {
-            let (mut b1, mut b2) = (_mm256_setzero_pd(), _mm256_setzero_pd());
-            for &j in active {
-                let b = _mm256_loadu_pd(inp_t.as_ptr().add(j * stride + c0));
-                b1 = _mm256_add_pd(b1, _mm256_mul_pd(b, _mm256_set1_pd(q1[j])));
-                b2 = _mm256_add_pd(b2, _mm256_mul_pd(b, _mm256_set1_pd(q2[j])));
+            for k in quads..len {
+                let o = c0 + k;
+                *xp.add(o) += *w1x.add(o) * b1[k] + *w2x.add(o) * b2[k];
+                *vp.add(o) += *w1v.add(o) * b1[k] + *w2v.add(o) * b2[k];
             }
-            let dx = _mm256_add_pd(
-                _mm256_mul_pd(_mm256_loadu_pd(w1x.add(c0)), b1),
-                _mm256_mul_pd(_mm256_loadu_pd(w2x.add(c0)), b2),
-            );
-            let dv = _mm256_add_pd(
-                _mm256_mul_pd(_mm256_loadu_pd(w1v.add(c0)), b1),
-                _mm256_mul_pd(_mm256_loadu_pd(w2v.add(c0)), b2),
-            );
-            _mm256_storeu_pd(xp.add(c0), _mm256_add_pd(_mm256_loadu_pd(xp.add(c0)), dx));
-            _mm256_storeu_pd(vp.add(c0), _mm256_add_pd(_mm256_loadu_pd(vp.add(c0)), dv));
-            c0 += 4;
+            c0 += len;
         }
-    }
-    // the last states: the scalar code on the tail of every column
-    for s in c0..n {
-        let (mut b1, mut b2) = (0.0, 0.0);
-        for &j in active {
-            b1 += inp_t[j * stride + s] * q1[j];
-            b2 += inp_t[j * stride + s] * q2[j];
-        }
-        x[s] += c.w1x[s0 + s] * b1 + c.w2x[s0 + s] * b2;
-        v[s] += c.w1v[s0 + s] * b1 + c.w2v[s0 + s] * b2;
     }
 }
 
@@ -541,9 +571,10 @@ mod tests {
 
     #[test]
     fn dispatched_kernels_equal_the_scalar_code_bit_for_bit() {
-        // every remainder of the 4-wide lanes and the 16-state blocks
-        for ns in [1, 3, 4, 5, 15, 16, 17, 33, 65, 70] {
-            for p in [1, 3, 4, 5, 9] {
+        // every remainder of the 4-wide lanes, the chunks of states and
+        // the groups of four active columns
+        for ns in [1, 3, 4, 5, 15, 16, 17, 33, 65, 70, 255, 256, 257, 530] {
+            for p in [1, 3, 4, 5, 9, 16] {
                 let (x, v) = (vals(ns, 1.3), vals(ns, 1.7));
                 let out = vals(p * ns, 2.1);
                 let (mut u1, mut w1, mut u2, mut w2) =
@@ -623,7 +654,7 @@ mod tests {
     #[test]
     fn kernels_over_pieces_equal_the_whole_bit_for_bit() {
         let bits = |a: &[f64]| a.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-        for ns in [4, 17, 36, 70] {
+        for ns in [4, 17, 36, 70, 300] {
             let p = 13;
             let (x, v) = (vals(ns, 1.3), vals(ns, 1.7));
             let out = vals(p * ns, 2.1);
