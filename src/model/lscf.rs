@@ -787,7 +787,45 @@ pub fn refine(
             break;
         }
     }
+    // a pole whose fitted term is invisible in the data (on exact data a
+    // computational pole can persist through the diagram with a residue
+    // at round-off) is no mode: left out, and the rest fitted again
+    let norm = scale.max(f64::MIN_POSITIVE);
+    let visible: Vec<bool> = (0..poles.len())
+        .map(|k| mode_contribution(set, &poles[k], &best.residues, k) >= NEGLIGIBLE_MODE * norm)
+        .collect();
+    if visible.iter().any(|v| !v) {
+        poles = poles
+            .into_iter()
+            .zip(&visible)
+            .filter_map(|(p, &v)| v.then_some(p))
+            .collect();
+        best = lsfd(set, &poles)?;
+    }
     Ok((poles, best))
+}
+
+/// Relative size, against the data's L2 norm, below which a fitted pole's
+/// own term is no mode ([`refine`]): far below any measurement's noise,
+/// far above the round-off of an exact fit.
+pub const NEGLIGIBLE_MODE: f64 = 1e-7;
+
+/// The L2 norm over every pair and frequency of pole `k`'s own term in the
+/// complex fit, `(jω)^q [r/(jω−λ) + r*/(jω−λ*)]` with its residues
+/// `residues[pair][k]`.
+fn mode_contribution(set: &FrfSet, pole: &Pole, residues: &[Vec<c64>], k: usize) -> f64 {
+    let lam = pole.lambda();
+    let mut sum = 0.0;
+    let w = omegas(set);
+    for r in residues {
+        let r = r[k];
+        for &om in &w {
+            let jw = c64::new(0.0, om);
+            let g = set.ordinate.factor(om);
+            sum += (g * (r / (jw - lam) + r.conj() / (jw - lam.conj()))).norm_sqr();
+        }
+    }
+    sum.sqrt()
 }
 
 #[cfg(test)]
