@@ -75,6 +75,15 @@ pub struct SolverOptions {
     /// every kernel, as the tests of the partition run them). Ignored on
     /// one thread.
     pub parallel_from_madds: usize,
+    /// Solve an inelastic impact as one complementarity problem over every
+    /// point at the road at that instant (method §4.4, "Several events at
+    /// one instant"): a point thrown off leaves moving away from the road,
+    /// and points landing together take one impact. Off: the points on the
+    /// road are thrown off one at a time, most pulling first, and a point
+    /// thrown off while still moving into the road lands again as a
+    /// separate event. They agree wherever no point thrown off moves into
+    /// the road.
+    pub joint_impacts: bool,
 }
 
 /// The rank cut of identified models (see [`SolverOptions::rank_tolerance`]):
@@ -113,6 +122,7 @@ impl Default for SolverOptions {
             large_set_from: LARGE_SET_FROM,
             threads: 1,
             parallel_from_madds: crate::base::threads::PARALLEL_FROM,
+            joint_impacts: true,
         }
     }
 }

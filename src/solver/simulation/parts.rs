@@ -273,6 +273,10 @@ pub(super) struct Scratch {
     /// The right-hand side in slot order, and a point's slot mark.
     pub rhs_slots: Vec<f64>,
     pub mark: Vec<bool>,
+    /// The candidates of a joint impact and a point's mark of being in its
+    /// set (method §4.4, "Several events at one instant").
+    pub impact_candidates: Vec<usize>,
+    pub impact_in_set: Vec<bool>,
 }
 
 impl Scratch {
@@ -311,6 +315,8 @@ impl Scratch {
             dxv: vec![[0.0; 2]; if large { ns } else { 0 }],
             rhs_slots: vec![0.0; if large { 2 * p } else { 0 }],
             mark: vec![false; p],
+            impact_candidates: Vec::with_capacity(p),
+            impact_in_set: vec![false; p],
             fused_full: false,
             projected_all: false,
         }
