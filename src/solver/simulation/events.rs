@@ -485,6 +485,15 @@ fn one_by_one_impact(
     Ok(solves)
 }
 
+/// Throw-offs of a point in one step after which a slow one is a Zeno
+/// sequence (method §4.4, "Zeno sequences").
+const ZENO_THROW_OFFS: u32 = 2;
+
+/// Velocity away from the road, relative to the largest `|v|`, `|r'|` of
+/// an impact's candidates, below which a point of a Zeno sequence stays on
+/// the road (method §4.4, "Zeno sequences").
+const ZENO_VELOCITY: f64 = 1e-3;
+
 /// The impulses of an inelastic impact at `t` as one complementarity
 /// problem (method §4.4, "Several events at one instant"): over the
 /// candidates `C` (the set on the road, the landing point `i`, and every
@@ -498,7 +507,10 @@ fn one_by_one_impact(
 /// first, then the first in `C`'s order (Murty's least-index rule, finite
 /// for a P-matrix: `Σ_k A_k` of symmetric mode shapes is positive
 /// definite on independent points); past `8|C| + 32` flips only pulling
-/// points leave, so the set shrinks to an end. Sets `st.active` to `S` and
+/// points leave, so the set shrinks to an end. A point of the set on the
+/// road thrown off for the third time in the step and moving away slower
+/// than [`ZENO_VELOCITY`] of the velocity scale stays in `S` with no
+/// impulse (method §4.4, "Zeno sequences"). Sets `st.active` to `S` and
 /// leaves `J_S` in `s.rhs` by entry. Returns the solves.
 fn joint_impact(
     tb: &SimTables,
@@ -512,6 +524,7 @@ fn joint_impact(
     let (cand, in_set) = (&mut s.impact_candidates, &mut s.impact_in_set);
     cand.clear();
     cand.extend_from_slice(&st.active);
+    let n_on = cand.len();
     for &j in cand.iter() {
         in_set[j] = true;
     }
@@ -600,6 +613,29 @@ fn joint_impact(
         }
         in_set[j] = !in_set[j];
         flips += 1;
+    }
+    // a point on the road thrown off a third time in the step, moving away
+    // slowly, stays on with no impulse (method §4.4, "Zeno sequences")
+    let n = st.active.len();
+    let vscale = cand
+        .iter()
+        .map(|&j| st.rd[j].abs().max(st.v[j].abs()))
+        .fold(1e-6, f64::max);
+    for c in 0..n_on {
+        let j = cand[c];
+        if j == i || in_set[j] {
+            continue;
+        }
+        let w = st.v[j] - st.rd[j]
+            + (0..n)
+                .map(|k| jump[j * p + st.active[k]] * s.rhs[k])
+                .sum::<f64>();
+        if st.thrown_off[j] >= ZENO_THROW_OFFS && w <= ZENO_VELOCITY * vscale {
+            st.active.push(j);
+            s.rhs[st.active.len() - 1] = 0.0;
+        } else {
+            st.thrown_off[j] += 1;
+        }
     }
     for &j in cand.iter() {
         in_set[j] = false;

@@ -172,6 +172,9 @@ pub(super) struct SimState {
     pub active: Vec<usize>,
     /// Points released in the last step (not re-added in it).
     pub released: Vec<bool>,
+    /// Times each point was thrown off the road by an impact in the last
+    /// step (method §4.4, "Zeno sequences").
+    pub thrown_off: Vec<u32>,
     /// A spring freed at the instant it landed lands again only after it
     /// (s); NaN: no hold.
     pub held_at_s: Vec<f64>,
@@ -198,6 +201,7 @@ impl SimState {
             rd: vec![0.0; p],
             q_mean: vec![0.0; p],
             impact_impulse: vec![0.0; p],
+            thrown_off: vec![0; p],
             contact: vec![false; p],
             active: Vec::with_capacity(p),
             released: vec![false; p],
