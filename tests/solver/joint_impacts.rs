@@ -68,7 +68,7 @@ fn run(scene: &Scene, joint_impacts: bool, window: u64) -> Run {
             out.max_force_n = out.max_force_n.max(q);
             out.min_gap_m = out.min_gap_m.min(sim.gap_m(i));
         }
-        if sim.steps() % window == 0 {
+        if sim.steps().is_multiple_of(window) {
             out.momentum_ns.push(acc);
             acc = 0.0;
         }
