@@ -2,8 +2,7 @@
 //! road (method §4.4, "Several events at one instant") against the
 //! impacts of one point at a time: complementarity at every step end, the
 //! same momentum delivered to the tyre, the same limit as `dt` falls, and
-//! far fewer events where many
-//! fine-spaced rigid points land on a ramp.
+//! far fewer events where many fine-spaced rigid points land on a ramp.
 
 use proptest::prelude::*;
 use tirecontact::analysis::bench::scaling::{Regime, scaling_scene};
