@@ -500,8 +500,10 @@ const ZENO_VELOCITY: f64 = 1e-3;
 /// free point at the road, `u - r <= pen_tol`, moving into it, not
 /// released in this step), impulses `J >= 0` and velocities after the
 /// impact relative to the road `w = v + (Σ_k A_k) J - r' >= 0` with
-/// `J_j w_j = 0`. Solved by principal pivoting from `S = C`: `J_S` from
-/// the impulse system with `w_S = 0`; the worst violation (a pulling
+/// `J_j w_j = 0`. Solved by principal pivoting from `S` = the set on the
+/// road and `i` (the free points join by flips; one whose joining makes
+/// the system singular stays off and lands later): `J_S` from the impulse
+/// system with `w_S = 0`; the worst violation (a pulling
 /// impulse `J_j (Σ_k A_k)_jj < -v_tol`, or a point off the set moving into
 /// the road, `w_j < -v_tol`) flips its point in or out, the most negative
 /// first, then the first in `C`'s order (Murty's least-index rule, finite
@@ -524,10 +526,12 @@ fn joint_impact(
     let (cand, in_set) = (&mut s.impact_candidates, &mut s.impact_in_set);
     cand.clear();
     cand.extend_from_slice(&st.active);
-    let n_on = cand.len();
+    let mut n_on = cand.len();
     for &j in cand.iter() {
         in_set[j] = true;
     }
+    // (the free points at the road join `S` by the flips below, if they
+    // would move into it: `in_set` marks the candidates until then)
     for j in 0..p {
         let w = st.v[j] - st.rd[j];
         if !in_set[j]
@@ -539,6 +543,10 @@ fn joint_impact(
             in_set[j] = true;
         }
     }
+    for &j in &cand[n_on..] {
+        in_set[j] = false;
+    }
+    let mut joined: Option<usize> = None;
     let (most_negative_flips, all_flips) = (4 * cand.len() + 16, 8 * cand.len() + 32);
     let (mut solves, mut flips) = (0, 0);
     loop {
@@ -548,6 +556,16 @@ fn joint_impact(
         let (act, n) = (&st.active, st.active.len());
         if n > 0 {
             if let Err(e) = s.solver.factor(n, |r, c| jump[act[r] * p + act[c]]) {
+                if let Some(j) = joined.take() {
+                    // a point whose joining makes the system singular stays
+                    // off: it lands later as an event of its own
+                    in_set[j] = false;
+                    if let Some(c) = cand.iter().position(|&x| x == j) {
+                        cand.remove(c);
+                        n_on -= usize::from(c < n_on);
+                    }
+                    continue;
+                }
                 for &j in cand.iter() {
                     in_set[j] = false;
                 }
@@ -612,6 +630,7 @@ fn joint_impact(
             break;
         }
         in_set[j] = !in_set[j];
+        joined = in_set[j].then_some(j);
         flips += 1;
     }
     // a point on the road thrown off a third time in the step, moving away
