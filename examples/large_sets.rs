@@ -1,8 +1,10 @@
 //! A scene of the scaling study run with the direct contact solves and
 //! with the methods of large active sets, one after the other in one
-//! process: wall time per step over windows of steps, and the counts of
-//! events, factorisations, updates and GMRES products (docs/performance.md,
-//! "Large active sets").
+//! process (with rigid contact, also with impacts one point at a time,
+//! `SolverOptions::joint_impacts` off): wall time and events per step over
+//! windows of steps, and the counts of events, factorisations, updates and
+//! GMRES products (docs/performance.md, "Large active sets" and "Rigid
+//! contact at 400 points").
 //!
 //! ```sh
 //! cargo run --release --example large_sets -- patch 1000 400 0.014 200
