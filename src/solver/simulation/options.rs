@@ -78,11 +78,13 @@ pub struct SolverOptions {
     /// Solve an inelastic impact as one complementarity problem over every
     /// point at the road at that instant (method §4.4, "Several events at
     /// one instant"): a point thrown off leaves moving away from the road,
-    /// and points landing together take one impact. Off: the points on the
-    /// road are thrown off one at a time, most pulling first, and a point
-    /// thrown off while still moving into the road lands again as a
-    /// separate event. They agree wherever no point thrown off moves into
-    /// the road.
+    /// points landing together take one impact, and a point thrown off a
+    /// third time in a step while moving away slowly stays on ("Zeno
+    /// sequences"). Off: the points on the road are thrown off one at a
+    /// time, most pulling first, and a point thrown off while still moving
+    /// into the road lands again as a separate event. They agree bit for
+    /// bit wherever neither difference arises, and converge to the same
+    /// limit as `dt` falls.
     pub joint_impacts: bool,
 }
 
