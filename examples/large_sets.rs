@@ -1,8 +1,10 @@
 //! A scene of the scaling study run with the direct contact solves and
 //! with the methods of large active sets, one after the other in one
-//! process: wall time per step over windows of steps, and the counts of
-//! events, factorisations, updates and GMRES products (docs/performance.md,
-//! "Large active sets").
+//! process (with rigid contact, also with impacts one point at a time,
+//! `SolverOptions::joint_impacts` off): wall time and events per step over
+//! windows of steps, and the counts of events, factorisations, updates and
+//! GMRES products (docs/performance.md, "Large active sets" and "Rigid
+//! contact at 400 points").
 //!
 //! ```sh
 //! cargo run --release --example large_sets -- patch 1000 400 0.014 200
@@ -26,25 +28,38 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut scene = scaling_scene(p, k, regime);
     scene.duration_s = d.parse()?;
     let model = PreparedModel::of(&scene)?;
-    for (name, from) in [("direct solves", usize::MAX), ("large-set methods", 24)] {
+    let mut runs = vec![
+        ("direct solves", usize::MAX, true),
+        ("large-set methods", 24, true),
+    ];
+    if regime == Regime::Rigid {
+        // (the impacts of method §4.4 before "Several events at one instant")
+        runs.push(("large-set methods, impacts one point at a time", 24, false));
+    }
+    for (name, from, joint_impacts) in runs {
         let options = SolverOptions {
             large_set_from: from,
             iterative_sub_from: from,
+            joint_impacts,
             ..SolverOptions::default()
         };
         let mut sim = Simulation::new(&model, options)?;
         println!("{} — {name}", scene.name);
         let (start, mut window) = (Instant::now(), Instant::now());
+        let mut events_before = 0;
         while !sim.finished() {
             sim.step()?;
             if sim.steps() % w == 0 {
                 let on = sim.force_n().iter().filter(|f| **f > 0.0).count();
+                let events = sim.stats().events;
                 println!(
-                    "  steps {:>6} to {:>6}: {:8.1} µs per step, {on} points on the road",
+                    "  steps {:>6} to {:>6}: {:8.1} µs per step, {:7.2} events per step, {on} points on the road",
                     sim.steps() - w + 1,
                     sim.steps(),
-                    window.elapsed().as_secs_f64() / w as f64 * 1e6
+                    window.elapsed().as_secs_f64() / w as f64 * 1e6,
+                    (events - events_before) as f64 / w as f64
                 );
+                events_before = events;
                 window = Instant::now();
             }
         }

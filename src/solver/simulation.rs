@@ -308,6 +308,7 @@ impl Simulation {
         if self.state.had_event {
             self.state.impact_impulse.fill(0.0);
             self.state.released.fill(false);
+            self.state.thrown_off.fill(0);
         }
         // (read before `had_event` is set below)
         let steady = self.steady_ready();

@@ -14,6 +14,7 @@ mod oscillator;
 mod contact;
 mod exact_step;
 mod invariants;
+mod joint_impacts;
 mod many_points;
 mod paper_scheme;
 mod patch;

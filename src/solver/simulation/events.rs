@@ -8,6 +8,7 @@
 //! predict, solve, locate, then commit up to the first event, which is
 //! applied before the next sub-step.
 
+use super::parts::{Scratch, SimState, SimTables};
 use super::stages::Located;
 use super::{GA, GB, Simulation, Table};
 use crate::base::error::SolverError;
@@ -372,9 +373,11 @@ impl Simulation {
     /// Perfectly inelastic impact of point `i` at `t` (method §4.4,
     /// "Impact"): impulses on all points on the road together so that their
     /// velocities equal the road's; a point whose impulse would pull is
-    /// thrown off (monotone, most negative first).
+    /// thrown off ([`joint_impact`], or [`one_by_one_impact`] without
+    /// `SolverOptions::joint_impacts`).
     fn impact(&mut self, t: f64, i: usize) -> Result<u32, SolverError> {
         self.road_at(t, true)?;
+        let pen_tol_m = self.pen_tol_m;
         let (tb, st, s) = (&self.tables, &mut self.state, &mut self.scratch);
         st.r.copy_from_slice(&s.re);
         st.rd.copy_from_slice(&s.rde);
@@ -399,47 +402,11 @@ impl Simulation {
         {
             return Ok(0);
         }
-        let mut solves = 0;
-        while !st.active.is_empty() {
-            let n = st.active.len();
-            let act = &st.active;
-            let jump = &tb.jump;
-            if let Err(e) = s.solver.factor(n, |r, c| jump[act[r] * p + act[c]]) {
-                return Err(SolverError::SingularContactSystem {
-                    t_s: t,
-                    points: st.active.clone(),
-                    pivot: e.pivot,
-                });
-            }
-            for (k, &j) in act.iter().enumerate() {
-                s.rhs[k] = st.rd[j] - st.v[j];
-            }
-            s.solver.solve(&mut s.rhs[..n]);
-            solves += 1;
-            // Velocity a pulling impulse stands for; below v_tol it is round-off
-            // or the tail of a converged impact cascade, and the point stays on.
-            let v_tol = 1e-9
-                * act
-                    .iter()
-                    .map(|&j| st.rd[j].abs().max(st.v[j].abs()))
-                    .fold(1e-6, f64::max);
-            let worst = (0..n)
-                .map(|k| (k, s.rhs[k] * jump[act[k] * p + act[k]]))
-                .filter(|&(_, dv)| dv < -v_tol)
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            match worst {
-                Some((k, _)) => {
-                    // Thrown off with a positive relative velocity: it may land
-                    // again later in this step (a located event). Only the landing
-                    // point itself, if it cannot land, is kept off until the next step.
-                    let j = st.active.remove(k);
-                    if j == i {
-                        st.released[j] = true;
-                    }
-                }
-                None => break,
-            }
-        }
+        let solves = if tb.options.joint_impacts {
+            joint_impact(tb, st, s, t, i, pen_tol_m)?
+        } else {
+            one_by_one_impact(tb, st, s, t, i)?
+        };
         let n = st.active.len();
         s.q1.fill(0.0);
         for k in 0..n {
@@ -459,6 +426,244 @@ impl Simulation {
         }
         Ok(solves)
     }
+}
+
+/// The impulses of an inelastic impact at `t` (method §4.4, "Impact"),
+/// one point thrown off at a time: the set on the road (`st.active`, with
+/// the landing point `i`) solved together, the point whose impulse would
+/// pull the most thrown off, and solved again. The impulses are left in
+/// `s.rhs`, by entry of the remaining set. Returns the solves.
+fn one_by_one_impact(
+    tb: &SimTables,
+    st: &mut SimState,
+    s: &mut Scratch,
+    t: f64,
+    i: usize,
+) -> Result<u32, SolverError> {
+    let p = tb.p;
+    let mut solves = 0;
+    while !st.active.is_empty() {
+        let n = st.active.len();
+        let act = &st.active;
+        let jump = &tb.jump;
+        if let Err(e) = s.solver.factor(n, |r, c| jump[act[r] * p + act[c]]) {
+            return Err(SolverError::SingularContactSystem {
+                t_s: t,
+                points: st.active.clone(),
+                pivot: e.pivot,
+            });
+        }
+        for (k, &j) in act.iter().enumerate() {
+            s.rhs[k] = st.rd[j] - st.v[j];
+        }
+        s.solver.solve(&mut s.rhs[..n]);
+        solves += 1;
+        // Velocity a pulling impulse stands for; below v_tol it is round-off
+        // or the tail of a converged impact cascade, and the point stays on.
+        let v_tol = 1e-9
+            * act
+                .iter()
+                .map(|&j| st.rd[j].abs().max(st.v[j].abs()))
+                .fold(1e-6, f64::max);
+        let worst = (0..n)
+            .map(|k| (k, s.rhs[k] * jump[act[k] * p + act[k]]))
+            .filter(|&(_, dv)| dv < -v_tol)
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        match worst {
+            Some((k, _)) => {
+                // Thrown off with a positive relative velocity: it may land
+                // again later in this step (a located event). Only the landing
+                // point itself, if it cannot land, is kept off until the next step.
+                let j = st.active.remove(k);
+                if j == i {
+                    st.released[j] = true;
+                }
+            }
+            None => break,
+        }
+    }
+    Ok(solves)
+}
+
+/// Throw-offs of a point in one step after which a slow one is a Zeno
+/// sequence (method §4.4, "Zeno sequences").
+const ZENO_THROW_OFFS: u32 = 2;
+
+/// Velocity away from the road, relative to the largest `|v|`, `|r'|` of
+/// an impact's candidates, below which a point of a Zeno sequence stays on
+/// the road (method §4.4, "Zeno sequences").
+const ZENO_VELOCITY: f64 = 1e-3;
+
+/// The impulses of an inelastic impact at `t` as one complementarity
+/// problem (method §4.4, "Several events at one instant"): over the
+/// candidates `C` (the set on the road, the landing point `i`, and every
+/// free point at the road, `u - r <= pen_tol`, moving into it, not
+/// released in this step), impulses `J >= 0` and velocities after the
+/// impact relative to the road `w = v + (Σ_k A_k) J - r' >= 0` with
+/// `J_j w_j = 0`. Solved by principal pivoting from `S` = the set on the
+/// road and `i` (the free points join by flips; one whose joining makes
+/// the system singular stays off and lands later): `J_S` from the impulse
+/// system with `w_S = 0`; the worst violation (a pulling
+/// impulse `J_j (Σ_k A_k)_jj < -v_tol`, or a point off the set moving into
+/// the road, `w_j < -v_tol`) flips its point in or out, the most negative
+/// first, then the first in `C`'s order (Murty's least-index rule, finite
+/// for a P-matrix: `Σ_k A_k` of symmetric mode shapes is positive
+/// definite on independent points); past `8|C| + 32` flips only pulling
+/// points leave, so the set shrinks to an end. A point of the set on the
+/// road thrown off for the third time in the step and moving away slower
+/// than [`ZENO_VELOCITY`] of the velocity scale stays in `S` with no
+/// impulse (method §4.4, "Zeno sequences"). Sets `st.active` to `S` and
+/// leaves `J_S` in `s.rhs` by entry. Returns the solves.
+fn joint_impact(
+    tb: &SimTables,
+    st: &mut SimState,
+    s: &mut Scratch,
+    t: f64,
+    i: usize,
+    pen_tol_m: f64,
+) -> Result<u32, SolverError> {
+    let (p, jump) = (tb.p, &tb.jump);
+    let (cand, in_set) = (&mut s.impact_candidates, &mut s.impact_in_set);
+    cand.clear();
+    cand.extend_from_slice(&st.active);
+    let mut n_on = cand.len();
+    for &j in cand.iter() {
+        in_set[j] = true;
+    }
+    // (the free points at the road join `S` by the flips below, if they
+    // would move into it: `in_set` marks the candidates until then)
+    for j in 0..p {
+        let w = st.v[j] - st.rd[j];
+        if !in_set[j]
+            && !st.released[j]
+            && st.u[j] - st.r[j] <= pen_tol_m
+            && w < -1e-9 * st.rd[j].abs().max(st.v[j].abs()).max(1e-6)
+        {
+            cand.push(j);
+            in_set[j] = true;
+        }
+    }
+    for &j in &cand[n_on..] {
+        in_set[j] = false;
+    }
+    let mut joined: Option<usize> = None;
+    let (most_negative_flips, all_flips) = (4 * cand.len() + 16, 8 * cand.len() + 32);
+    let (mut solves, mut flips) = (0, 0);
+    loop {
+        st.active.clear();
+        st.active
+            .extend(cand.iter().copied().filter(|&j| in_set[j]));
+        let (act, n) = (&st.active, st.active.len());
+        if n > 0 {
+            if let Err(e) = s.solver.factor(n, |r, c| jump[act[r] * p + act[c]]) {
+                if let Some(j) = joined.take() {
+                    // a point whose joining makes the system singular stays
+                    // off: it lands later as an event of its own
+                    in_set[j] = false;
+                    if let Some(c) = cand.iter().position(|&x| x == j) {
+                        cand.remove(c);
+                        n_on -= usize::from(c < n_on);
+                    }
+                    continue;
+                }
+                for &j in cand.iter() {
+                    in_set[j] = false;
+                }
+                return Err(SolverError::SingularContactSystem {
+                    t_s: t,
+                    points: st.active.clone(),
+                    pivot: e.pivot,
+                });
+            }
+            for (k, &j) in act.iter().enumerate() {
+                s.rhs[k] = st.rd[j] - st.v[j];
+            }
+            s.solver.solve(&mut s.rhs[..n]);
+            solves += 1;
+        }
+        // (as in the one-by-one impact: below v_tol a violation is round-off)
+        let v_tol = 1e-9
+            * act
+                .iter()
+                .map(|&j| st.rd[j].abs().max(st.v[j].abs()))
+                .fold(1e-6, f64::max);
+        let pulling = (0..n)
+            .map(|k| (act[k], s.rhs[k] * jump[act[k] * p + act[k]]))
+            .filter(|&(_, dv)| dv < -v_tol);
+        let mut worst: Option<(usize, f64)> = None;
+        let mut first: Option<usize> = None;
+        for (j, dv) in pulling {
+            if worst.is_none_or(|(_, d)| dv < d) {
+                worst = Some((j, dv));
+            }
+        }
+        if flips < all_flips {
+            for (c, &j) in cand.iter().enumerate() {
+                if in_set[j] {
+                    continue;
+                }
+                let w = st.v[j] - st.rd[j]
+                    + (0..n).map(|k| jump[j * p + act[k]] * s.rhs[k]).sum::<f64>();
+                if w < -v_tol && worst.is_none_or(|(_, d)| w < d) {
+                    worst = Some((j, w));
+                }
+                if w < -v_tol && first.is_none() {
+                    first = Some(c);
+                }
+            }
+        }
+        let Some((mut j, _)) = worst else { break };
+        if flips >= most_negative_flips && flips < all_flips {
+            // Murty's least-index rule: the first violation in `C`'s order
+            let pulls = |c: usize| {
+                act.iter()
+                    .position(|&a| a == cand[c])
+                    .is_some_and(|k| s.rhs[k] * jump[act[k] * p + act[k]] < -v_tol)
+            };
+            let first_pull = (0..cand.len()).find(|&c| pulls(c));
+            j = cand[match (first_pull, first) {
+                (Some(a), Some(b)) => a.min(b),
+                (Some(a), None) | (None, Some(a)) => a,
+                (None, None) => break,
+            }];
+        } else if flips >= all_flips && !in_set[j] {
+            break;
+        }
+        in_set[j] = !in_set[j];
+        joined = in_set[j].then_some(j);
+        flips += 1;
+    }
+    // a point on the road thrown off a third time in the step, moving away
+    // slowly, stays on with no impulse (method §4.4, "Zeno sequences")
+    let n = st.active.len();
+    let vscale = cand
+        .iter()
+        .map(|&j| st.rd[j].abs().max(st.v[j].abs()))
+        .fold(1e-6, f64::max);
+    for c in 0..n_on {
+        let j = cand[c];
+        if j == i || in_set[j] {
+            continue;
+        }
+        let w = st.v[j] - st.rd[j]
+            + (0..n)
+                .map(|k| jump[j * p + st.active[k]] * s.rhs[k])
+                .sum::<f64>();
+        if st.thrown_off[j] >= ZENO_THROW_OFFS && w <= ZENO_VELOCITY * vscale {
+            st.active.push(j);
+            s.rhs[st.active.len() - 1] = 0.0;
+        } else {
+            st.thrown_off[j] += 1;
+        }
+    }
+    for &j in cand.iter() {
+        in_set[j] = false;
+    }
+    // the landing point thrown off is kept off until the next step
+    if !st.active.contains(&i) {
+        st.released[i] = true;
+    }
+    Ok(solves)
 }
 
 /// First `y ∈ (0, 1]` where the cubic Hermite interpolant with values `g0`,

@@ -85,6 +85,17 @@ pub struct SolverOptions {
     /// every kernel, as the tests of the partition run them). Ignored on
     /// one thread.
     pub parallel_from_madds: usize,
+    /// Solve an inelastic impact as one complementarity problem over every
+    /// point at the road at that instant (method §4.4, "Several events at
+    /// one instant"): a point thrown off leaves moving away from the road,
+    /// points landing together take one impact, and a point thrown off a
+    /// third time in a step while moving away slowly stays on ("Zeno
+    /// sequences"). Off: the points on the road are thrown off one at a
+    /// time, most pulling first, and a point thrown off while still moving
+    /// into the road lands again as a separate event. They agree bit for
+    /// bit wherever neither difference arises, and converge to the same
+    /// limit as `dt` falls.
+    pub joint_impacts: bool,
 }
 
 /// The rank cut of identified models (see [`SolverOptions::rank_tolerance`]):
@@ -130,6 +141,7 @@ impl Default for SolverOptions {
             iterative_sub_from: ITERATIVE_SUB_FROM,
             threads: 1,
             parallel_from_madds: crate::base::threads::PARALLEL_FROM,
+            joint_impacts: true,
         }
     }
 }

@@ -187,6 +187,9 @@ pub(super) struct SimState {
     pub active: Vec<usize>,
     /// Points released in the last step (not re-added in it).
     pub released: Vec<bool>,
+    /// Times each point was thrown off the road by an impact in the last
+    /// step (method §4.4, "Zeno sequences").
+    pub thrown_off: Vec<u32>,
     /// A spring freed at the instant it landed lands again only after it
     /// (s); NaN: no hold.
     pub held_at_s: Vec<f64>,
@@ -213,6 +216,7 @@ impl SimState {
             rd: vec![0.0; p],
             q_mean: vec![0.0; p],
             impact_impulse: vec![0.0; p],
+            thrown_off: vec![0; p],
             contact: vec![false; p],
             active: Vec::with_capacity(p),
             released: vec![false; p],
@@ -290,6 +294,10 @@ pub(super) struct Scratch {
     /// The right-hand side in slot order, and a point's slot mark.
     pub rhs_slots: Vec<f64>,
     pub mark: Vec<bool>,
+    /// The candidates of a joint impact and a point's mark of being in its
+    /// set (method §4.4, "Several events at one instant").
+    pub impact_candidates: Vec<usize>,
+    pub impact_in_set: Vec<bool>,
 }
 
 impl Scratch {
@@ -330,6 +338,8 @@ impl Scratch {
             gq2: vec![0.0; if large { p } else { 0 }],
             rhs_slots: vec![0.0; if large { 2 * p } else { 0 }],
             mark: vec![false; p],
+            impact_candidates: Vec::with_capacity(p),
+            impact_in_set: vec![false; p],
             fused_full: false,
             projected_all: false,
         }
