@@ -24,6 +24,7 @@ mod legends_clear;
 mod mode_fields;
 mod native_dialog;
 mod patch_panel;
+mod patch_view;
 mod phone;
 mod research;
 mod save_as;
