@@ -14,6 +14,7 @@ mod app;
 mod classroom;
 mod compare;
 mod controls_by_pointer;
+mod dialog_place;
 mod edited_description;
 mod field_help;
 mod frames_export;
