@@ -24,6 +24,7 @@ mod keyboard_prompts;
 mod legends_clear;
 mod mode_fields;
 mod native_dialog;
+mod panel_edge;
 mod patch_panel;
 mod patch_view;
 mod phone;
