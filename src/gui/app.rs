@@ -205,6 +205,10 @@ impl App {
     pub fn history(&self) -> &History {
         &self.history
     }
+    /// The time plots' options (window, shown points).
+    pub fn plot_options(&self) -> &time_plots::TimePlotOptions {
+        &self.plot_opts
+    }
     pub fn time_control(&self) -> &TimeControl {
         &self.time
     }

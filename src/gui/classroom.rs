@@ -26,6 +26,9 @@ use std::collections::BTreeMap;
 pub const FONT_SCALE: f32 = 1.7;
 /// Size (px) of the small text in classroom mode.
 pub const CLASSROOM_SMALL_PX: f32 = 9.0 * FONT_SCALE;
+/// Smallest text (px) of the classroom's views (legends, phase strip, axis
+/// numbers and titles): read from the back of a room.
+pub const CLASSROOM_MIN_TEXT_PX: f32 = 20.0;
 /// Playback speed set when classroom mode starts (simulated s per wall s).
 pub const SLOW_MOTION: f64 = 0.05;
 /// How long an impact or release label stays up at most (wall-clock s at
@@ -427,10 +430,12 @@ fn point_label(
     }
 }
 
-/// A strip of the phases of every point (also what the tests read).
+/// A strip of the phases of every point (also what the tests read), or,
+/// when the points' labels do not fit one row in the classroom's type
+/// scale, the number of points in each phase.
 pub fn phase_strip(ui: &mut Ui, t_s: f64, phases: &PhaseTracker) {
     const PREFIX: &str = "contact phase:";
-    let n = phases.num_points().min(24);
+    let n = phases.num_points();
     let body = egui::TextStyle::Body.resolve(ui.style());
     let width_at = |text: String, px: f32| {
         ui.painter()
@@ -442,24 +447,44 @@ pub fn phase_strip(ui: &mut Ui, t_s: f64, phases: &PhaseTracker) {
             .size()
             .x
     };
-    // every point's label in a slot as wide as its widest phase, so that
-    // the strip keeps its layout as phases change, on one row: at a
-    // smaller size when the slots do not fit (at 1280 px the strip wrapped
-    // to a second row, and back, pushing the scene down and up)
     let all = [
         ContactPhase::Impact,
         ContactPhase::Release,
         ContactPhase::InContact,
         ContactPhase::FreeFlight,
     ];
-    let slot_at = |px: f32| {
+    // every label in a slot as wide as its widest text, so that the strip
+    // keeps its layout as phases change, on one row
+    let gap = ui.spacing().item_spacing.x;
+    let avail = ui.available_width();
+    let per_point_slot = |px: f32| {
         all.iter()
             .map(|&ph| width_at(phase_text(n.saturating_sub(1), ph), px))
             .fold(0.0, f32::max)
     };
-    let gap = ui.spacing().item_spacing.x;
-    let need = |px: f32| width_at(PREFIX.into(), px) + n as f32 * (slot_at(px) + gap);
-    let avail = ui.available_width();
+    let count_slot = |px: f32| {
+        all.iter()
+            .map(|&ph| width_at(count_text(n, ph), px))
+            .fold(0.0, f32::max)
+    };
+    // each point's phase when every point's slot fits one row in the
+    // classroom's type scale; else how many points are in each phase (a
+    // patch's 96 points took the strip down to 13 px at 1280 px, and a
+    // second row would push the scene down and up as it wrapped)
+    let least_px = CLASSROOM_MIN_TEXT_PX.min(body.size);
+    let per_point =
+        width_at(PREFIX.into(), least_px) + n as f32 * (per_point_slot(least_px) + gap) <= avail;
+    let slots = if per_point { n } else { all.len() };
+    let slot_w = |px: f32| {
+        if per_point {
+            per_point_slot(px)
+        } else {
+            count_slot(px)
+        }
+    };
+    let need = |px: f32| width_at(PREFIX.into(), px) + slots as f32 * (slot_w(px) + gap);
+    // as large as fits, down to the classroom's least size for the points'
+    // labels; a window narrower than the counts' row: smaller, never wrapped
     let px = if need(body.size) <= avail {
         body.size
     } else {
@@ -467,26 +492,50 @@ pub fn phase_strip(ui: &mut Ui, t_s: f64, phases: &PhaseTracker) {
             .max(0.6 * body.size)
             .floor()
     };
-    let slot = slot_at(px);
+    let slot = slot_w(px);
     ui.horizontal(|ui| {
         ui.label(RichText::new(PREFIX).strong().size(px));
-        for i in 0..n {
-            let ph = phases.phase(i, t_s);
-            let text = RichText::new(phase_text(i, ph))
-                .strong()
-                .size(px)
-                .color(phase_color(ph));
-            ui.add_sized(
-                [slot, ui.spacing().interact_size.y],
-                egui::Label::new(text).wrap_mode(egui::TextWrapMode::Extend),
-            )
-            .on_hover_text(format!(
-                "{} impacts, {} releases so far",
-                phases.impacts(i),
-                phases.releases(i)
-            ));
+        if per_point {
+            for i in 0..n {
+                let ph = phases.phase(i, t_s);
+                let text = RichText::new(phase_text(i, ph))
+                    .strong()
+                    .size(px)
+                    .color(phase_color(ph));
+                ui.add_sized(
+                    [slot, ui.spacing().interact_size.y],
+                    egui::Label::new(text).wrap_mode(egui::TextWrapMode::Extend),
+                )
+                .on_hover_text(format!(
+                    "{} impacts, {} releases so far",
+                    phases.impacts(i),
+                    phases.releases(i)
+                ));
+            }
+        } else {
+            for ph in all {
+                let count = (0..n).filter(|&i| phases.phase(i, t_s) == ph).count();
+                let text = RichText::new(count_text(count, ph))
+                    .strong()
+                    .size(px)
+                    .color(phase_color(ph));
+                ui.add_sized(
+                    [slot, ui.spacing().interact_size.y],
+                    egui::Label::new(text).wrap_mode(egui::TextWrapMode::Extend),
+                )
+                .on_hover_text(format!("how many of the {n} points are in each phase"));
+            }
         }
     });
+}
+
+/// `12 IMPACT` (events in capitals): how many points are in phase `p`.
+pub fn count_text(count: usize, p: ContactPhase) -> String {
+    if p.is_event() {
+        format!("{count} {}", p.label().to_uppercase())
+    } else {
+        format!("{count} {}", p.label())
+    }
 }
 
 /// Point picker shared by the plot and the bars.
@@ -502,10 +551,10 @@ pub fn picker_color(visuals: &egui::Visuals, i: usize, selected: bool) -> Color3
 }
 
 pub fn point_picker(ui: &mut Ui, cls: &mut Classroom, p: usize) {
-    if p > 1 {
+    if p > 1 && p <= PICKER_BUTTONS_MAX {
         ui.horizontal(|ui| {
             ui.label("point");
-            for i in 0..p.min(24) {
+            for i in 0..p {
                 let color = picker_color(ui.visuals(), i, cls.point == i);
                 ui.selectable_value(
                     &mut cls.point,
@@ -514,9 +563,24 @@ pub fn point_picker(ui: &mut Ui, cls: &mut Classroom, p: usize) {
                 );
             }
         });
+    } else if p > PICKER_BUTTONS_MAX {
+        // a patch's points: a number field (24 buttons in one row made the
+        // presenter panel as wide as the window, the scene 130 px wide)
+        ui.horizontal(|ui| {
+            ui.label("point");
+            let color = picker_color(ui.visuals(), cls.point, false);
+            ui.visuals_mut().override_text_color = Some(color);
+            ui.add(egui::DragValue::new(&mut cls.point).range(0..=p - 1))
+                .on_hover_text("drag or type the point whose modes are shown");
+            ui.visuals_mut().override_text_color = None;
+            ui.label(format!("of 0 to {}", p - 1));
+        });
     }
     cls.point = cls.point.min(p.saturating_sub(1));
 }
+
+/// Points up to which the picker is a row of buttons (more: a number field).
+pub const PICKER_BUTTONS_MAX: usize = 10;
 
 /// One plot of the chosen point: force or displacement over the last 0.1 s.
 pub fn point_plot(ui: &mut Ui, history: &History, cls: &mut Classroom, now_s: f64) {

@@ -146,14 +146,20 @@ impl App {
             Speed::Max => 0.0,
         }
         .max(20.0 * self.sim.dt_s());
-        egui::Panel::top("tirecontact.top").show(ui, |ui| {
+        let top = egui::Panel::top("tirecontact.top").show(ui, |ui| {
             toolbar::menu_bar(ui, &status, &mut cmds);
             toolbar::transport(ui, &status, &mut cmds);
         });
         let bar = self.status();
-        egui::Panel::bottom("tirecontact.status").show(ui, |ui| {
+        let bottom = egui::Panel::bottom("tirecontact.status").show(ui, |ui| {
             status_bar::show(ui, &bar);
         });
+        // the dialogs open in the views' area, never over the menu bar
+        let content = ctx.content_rect();
+        let views = egui::Rect::from_x_y_ranges(
+            content.x_range(),
+            top.response.rect.bottom()..=bottom.response.rect.top().max(top.response.rect.bottom()),
+        );
         if self.classroom.on {
             self.classroom_layout(ui, &mut cmds);
         } else {
@@ -171,11 +177,12 @@ impl App {
             &mut cmds,
         );
         crate::gui::chrome::dialogs::overwrite_window(&ctx, self.overwrite.as_deref(), &mut cmds);
-        crate::gui::chrome::dialogs::png_window(&ctx, &mut self.png_dialog, &mut cmds);
+        crate::gui::chrome::dialogs::png_window(&ctx, views, &mut self.png_dialog, &mut cmds);
         crate::gui::chrome::file_prompt::window(&ctx, &mut self.file_prompt, &mut cmds);
-        crate::gui::chrome::frames_dialog::dialog(&ctx, &mut self.frames_dialog, &mut cmds);
+        crate::gui::chrome::frames_dialog::dialog(&ctx, views, &mut self.frames_dialog, &mut cmds);
         crate::gui::chrome::frames_dialog::progress(
             &ctx,
+            views,
             self.handles.frames_job.as_ref(),
             &mut cmds,
         );

@@ -179,6 +179,7 @@ pub fn overwrite_window(
 /// PNG export settings: size in pixels, then the file dialog.
 pub fn png_window(
     ctx: &egui::Context,
+    views: egui::Rect,
     settings: &mut Option<PngSettings>,
     cmds: &mut Vec<Command>,
 ) {
@@ -186,6 +187,11 @@ pub fn png_window(
     let mut open = true;
     let (mut go, mut cancel) = crate::gui::chrome::file_prompt::confirm_keys(ctx);
     egui::Window::new("Export plots as PNG")
+        .pivot(egui::Align2::CENTER_TOP)
+        .default_pos(
+            views.center_top() + egui::vec2(0.0, crate::gui::chrome::frames_dialog::DIALOG_DROP_PX),
+        )
+        .constrain_to(views)
         .open(&mut open)
         .collapsible(false)
         .resizable(false)

@@ -9,6 +9,9 @@ use crate::output::animation::FrameSettings;
 use egui::{Context, RichText};
 use std::path::PathBuf;
 
+/// Distance (px) of a dialog's top below the top of the views' area.
+pub const DIALOG_DROP_PX: f32 = 40.0;
+
 /// The dialog's editable settings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FramesDialog {
@@ -48,12 +51,22 @@ impl FramesDialog {
 
 /// The settings window; Export (or Enter) pushes `Command::ExportFrames`,
 /// Cancel (or Escape) closes it.
-pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<Command>) {
+/// It opens in `views` (the area below the menu bar and toolbar, above the
+/// status bar) and stays there.
+pub fn dialog(
+    ctx: &Context,
+    views: egui::Rect,
+    dialog: &mut Option<FramesDialog>,
+    cmds: &mut Vec<Command>,
+) {
     let Some(d) = dialog else { return };
     let mut open = true;
     let (mut export, mut cancel) = crate::gui::chrome::file_prompt::confirm_keys(ctx);
     egui::Window::new("Export animation frames")
         .collapsible(false)
+        .pivot(egui::Align2::CENTER_TOP)
+        .default_pos(views.center_top() + egui::vec2(0.0, DIALOG_DROP_PX))
+        .constrain_to(views)
         .open(&mut open)
         .show(ctx, |ui| {
             let s = &mut d.settings;
@@ -167,10 +180,18 @@ pub fn dialog(ctx: &Context, dialog: &mut Option<FramesDialog>, cmds: &mut Vec<C
 }
 
 /// The progress window of a running export, with Cancel.
-pub fn progress(ctx: &Context, job: Option<&FramesJob>, cmds: &mut Vec<Command>) {
+pub fn progress(
+    ctx: &Context,
+    views: egui::Rect,
+    job: Option<&FramesJob>,
+    cmds: &mut Vec<Command>,
+) {
     let Some(job) = job else { return };
     egui::Window::new("Exporting frames")
         .collapsible(false)
+        .pivot(egui::Align2::CENTER_TOP)
+        .default_pos(views.center_top() + egui::vec2(0.0, DIALOG_DROP_PX))
+        .constrain_to(views)
         .show(ctx, |ui| {
             let done = job.done();
             ui.label(format!(

@@ -5,6 +5,7 @@
 
 use crate::gui::model::command::Command;
 use crate::gui::model::history::{History, Quantity};
+use crate::gui::views::XTitle;
 use crate::output::patch::{PatchLayout, force_colour};
 use crate::solver::simulation::Simulation;
 use egui::{Align2, Color32, FontId, Pos2, Rect, Sense, Stroke, StrokeKind, Ui, Vec2};
@@ -250,22 +251,32 @@ fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History) {
         })
         .collect();
     let h = ((ui.available_height() - 8.0) / 2.0).max(80.0);
-    // (one curve each, named by its axis: no legend over the data)
-    Plot::new("tirecontact.patch.total")
-        .height(h)
-        .x_axis_label("time t (s)")
-        .y_axis_label("total force (N)")
-        .allow_scroll(false)
-        .show(ui, |pu| {
-            pu.line(Line::new("total contact force (N)", total))
-        });
-    Plot::new("tirecontact.patch.area")
-        .height(h)
-        .x_axis_label("time t (s)")
-        .y_axis_label("contact area (cm²)")
-        .allow_scroll(false)
-        .show(ui, |pu| pu.line(Line::new("contact area (cm²)", area)));
+    // (one curve each, named by its axis: no legend over the data); y
+    // numbers at 1-2-5 steps down to 30 px apart (egui_plot's own spacing
+    // left a short plot only its 0)
+    let plot = |ui: &Ui, id: &'static str, y_title: &'static str| {
+        super::nice_y_axis(Plot::new(id))
+            .id(egui::Id::unique(id))
+            .height(h)
+            .x_title(ui, "time t (s)")
+            .y_axis_label(y_title)
+            .allow_scroll(false)
+            .include_y(0.0)
+    };
+    plot(ui, TOTAL_FORCE_PLOT_ID, TOTAL_FORCE_TITLE)
+        .show(ui, |pu| pu.line(Line::new(TOTAL_FORCE_TITLE, total)));
+    plot(ui, CONTACT_AREA_PLOT_ID, CONTACT_AREA_TITLE)
+        .show(ui, |pu| pu.line(Line::new(CONTACT_AREA_TITLE, area)));
 }
+
+/// Plot id of the patch view's total force against time.
+pub const TOTAL_FORCE_PLOT_ID: &str = "tirecontact.patch.total";
+/// Plot id of the patch view's contact area against time.
+pub const CONTACT_AREA_PLOT_ID: &str = "tirecontact.patch.area";
+/// The y title of the total force plot.
+pub const TOTAL_FORCE_TITLE: &str = "total force (N)";
+/// The y title of the contact area plot.
+pub const CONTACT_AREA_TITLE: &str = "contact area (cm²)";
 
 /// A 1-2-5 step at least `raw`.
 fn nice_step(raw: f64) -> f64 {

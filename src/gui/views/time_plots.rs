@@ -355,6 +355,22 @@ pub fn legend_strip_s(span_s: f64, legend_w_px: f32, frame_w_px: f32) -> f64 {
     span_s * f64::from(strip_px) / f64::from(rest_px)
 }
 
+/// Stroke width (px) of the time plots' curves.
+pub const CURVE_WIDTH_PX: f32 = 1.5;
+
+/// Clear background (px) kept between the ink of neighbouring contact
+/// lanes (one lane's raised stroke and the next one's floor).
+pub const LANE_CLEAR_PX: f32 = 3.5;
+
+/// Height (in lanes) a contact lane rises while its point is in contact:
+/// 0.7 of a lane where lanes are tall, less where they are a few px apart
+/// (at 0.7, lanes 10 px apart kept 1.8 px between their strokes, which
+/// anti-aliasing closed), at least 0.3. `lane_px`: px per lane.
+pub fn lane_raise(lane_px: f32) -> f64 {
+    let free = (CURVE_WIDTH_PX + LANE_CLEAR_PX) / lane_px.max(1e-3);
+    f64::from((1.0 - free).clamp(0.3, 0.7))
+}
+
 /// Spacing (px) from which the contact plot's lane labels fade in, and at
 /// which they are opaque.
 pub const LANE_LABEL_SPACING: std::ops::RangeInclusive<f32> = 12.0..=16.0;
@@ -404,9 +420,10 @@ fn draw_series(
     for (lane, i) in shown_points.enumerate() {
         let mut pts = h.decimated(def.what, i, a, b, buckets, def.scale);
         if def.what == Quantity::Contact {
-            // lane of the point, raised by 0.7 while in contact
+            // lane of the point, raised while in contact
+            let raise = lane_raise(pui.transform().dpos_dvalue_y().abs() as f32);
             for p in &mut pts {
-                p[1] = lane as f64 + 0.7 * p[1];
+                p[1] = lane as f64 + raise * p[1];
             }
         }
         if let Some(top) = clip_top {
@@ -416,7 +433,7 @@ fn draw_series(
         lines.push(
             Line::new(format!("point {i}"), pts)
                 .color(point_color(i))
-                .width(1.5)
+                .width(CURVE_WIDTH_PX)
                 .allow_band(false),
         );
     }

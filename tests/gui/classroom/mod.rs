@@ -16,6 +16,7 @@ mod scene_ticks;
 mod steady_plot;
 mod theme;
 mod time_ticks;
+mod type_scale;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;

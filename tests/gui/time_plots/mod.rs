@@ -2,6 +2,7 @@
 //! off the curves, and the clipping of impact spikes (both contact schemes).
 
 mod axes_align;
+mod contact_lanes;
 mod export_clip;
 mod export_layout;
 mod legend_ink;
