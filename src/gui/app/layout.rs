@@ -65,6 +65,7 @@ impl App {
             });
         egui::CentralPanel::default().show(ui, |ui| {
             crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
+            crate::gui::chrome::dialogs::preparation_row(ui, self.preparation_progress(), cmds);
             classroom::phase_strip(ui, self.sim.time_s(), &self.phases);
             let h = (ui.available_height() * 0.68).max(150.0);
             let w = ui.available_width();
@@ -119,6 +120,7 @@ impl App {
             });
             egui::CentralPanel::default().show(ui, |ui| {
                 crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
+                crate::gui::chrome::dialogs::preparation_row(ui, self.preparation_progress(), cmds);
                 self.show_current_view(ui, cmds);
             });
             return;
@@ -146,6 +148,7 @@ impl App {
         }
         egui::CentralPanel::default().show(ui, |ui| {
             crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
+            crate::gui::chrome::dialogs::preparation_row(ui, self.preparation_progress(), cmds);
             self.show_current_view(ui, cmds);
         });
     }
