@@ -159,6 +159,7 @@ impl App {
                     self.last_dir = Some(dir.to_path_buf());
                 }
                 self.doc.path = path;
+                self.doc.from_link = false;
                 self.time.reset();
                 self.set_watchable_speed();
                 self.reset_run();

@@ -19,6 +19,7 @@ impl App {
                 let name = scene.name.clone();
                 match App::new(scene, None) {
                     Ok(mut app) => {
+                        app.doc.from_link = true;
                         app.info(format!("opened \"{name}\" from the link"));
                         app.link_options(link);
                         app

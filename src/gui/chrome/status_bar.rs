@@ -15,6 +15,8 @@ use std::path::Path;
 pub struct Status<'a> {
     /// The document's file, if it has one.
     pub path: Option<&'a Path>,
+    /// The document came from a scene link (and has no file since).
+    pub from_link: bool,
     pub scene_name: &'a str,
     /// The scene differs from its saved version.
     pub dirty: bool,
@@ -45,9 +47,19 @@ pub struct StatusText {
 /// The status bar's labels, left to right: document, run, history.
 pub fn texts(s: &Status) -> [StatusText; 3] {
     [
-        StatusText {
-            full: document_label(s.path, s.scene_name, s.dirty),
-            short: short_document_label(s.path, s.scene_name, s.dirty),
+        match (s.path, s.from_link) {
+            (None, true) => StatusText {
+                full: marked(
+                    format!("{} (from a link)", s.scene_name),
+                    s.dirty,
+                    "unsaved changes",
+                ),
+                short: marked(format!("{} (link)", s.scene_name), s.dirty, "unsaved"),
+            },
+            _ => StatusText {
+                full: document_label(s.path, s.scene_name, s.dirty),
+                short: short_document_label(s.path, s.scene_name, s.dirty),
+            },
         },
         StatusText {
             full: format!(
@@ -81,6 +93,15 @@ pub fn history_text(samples: usize, stride: u64) -> String {
         format!("1 per {stride} steps")
     };
     format!("history: {}, {every}", count(samples, "sample"))
+}
+
+/// `doc`, then `(mark)` if `dirty`.
+fn marked(doc: String, dirty: bool, mark: &str) -> String {
+    if dirty {
+        format!("{doc} ({mark})")
+    } else {
+        doc
+    }
 }
 
 /// The document label for narrow windows: the file's name without its
