@@ -139,3 +139,24 @@ fn a_scene_from_a_link_says_so_in_the_status_bar() {
     assert!(!texts.iter().any(|(t, _)| t.contains("built-in preset")));
     assert!(h.state().title().contains("(from a link)"));
 }
+
+/// At phone size every view's text lies inside the window (the scene
+/// view's one-row header widened the page past its right edge, cutting
+/// the plot, its legend and the status bar).
+#[test]
+fn a_phone_window_keeps_every_view_inside_it() {
+    use tirecontact::gui::{Command, View};
+    let size = [400.0, 800.0];
+    for view in [View::TimePlots, View::Scene, View::Patch] {
+        let mut h = harness_sized(App::with_default_preset(), size);
+        h.state_mut().apply(Command::ShowView(view));
+        crate::harness::advance(&mut h, 3000);
+        settle(&mut h);
+        h.run_steps(2);
+        let past: Vec<_> = texts(&h)
+            .into_iter()
+            .filter(|(t, r)| !t.trim().is_empty() && r.right() > size[0] + 0.5)
+            .collect();
+        assert!(past.is_empty(), "{view:?}: past the right edge: {past:?}");
+    }
+}
