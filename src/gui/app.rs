@@ -305,6 +305,7 @@ impl App {
             Command::Advance { frame_s } => self.advance(frame_s),
             Command::PreparationEnded(r) => self.preparation_ended(r),
             Command::CancelPreparation => self.cancel_preparation(),
+            Command::CancelCsvExport => self.cancel_csv_export(),
             Command::SetSpeed(s) => self.time.set_speed(s),
             Command::EditScene(scene) => self.edit(*scene),
             // the document and its files (app/files.rs)

@@ -336,6 +336,20 @@ impl App {
         Some(Command::CsvExportEnded(r))
     }
 
+    /// Stops the CSV export under way (it stops at its next steps; no
+    /// file is written).
+    pub(super) fn cancel_csv_export(&mut self) {
+        if self.handles.csv_job.take().is_some() {
+            self.info("CSV export cancelled: no file written.");
+        }
+    }
+
+    /// The CSV export's progress (fraction of the steps re-run), while
+    /// one runs.
+    pub fn csv_progress(&self) -> Option<f64> {
+        self.handles.csv_job.as_ref().map(CsvJob::fraction)
+    }
+
     pub(super) fn csv_export_ended(&mut self, r: Result<String, String>) {
         self.handles.csv_job = None;
         match r {

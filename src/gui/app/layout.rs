@@ -66,6 +66,7 @@ impl App {
         egui::CentralPanel::default().show(ui, |ui| {
             crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
             crate::gui::chrome::dialogs::preparation_row(ui, self.preparation_progress(), cmds);
+            crate::gui::chrome::dialogs::csv_row(ui, self.csv_progress(), cmds);
             classroom::phase_strip(ui, self.sim.time_s(), &self.phases);
             let h = (ui.available_height() * 0.68).max(150.0);
             let w = ui.available_width();
@@ -121,6 +122,7 @@ impl App {
             egui::CentralPanel::default().show(ui, |ui| {
                 crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
                 crate::gui::chrome::dialogs::preparation_row(ui, self.preparation_progress(), cmds);
+                crate::gui::chrome::dialogs::csv_row(ui, self.csv_progress(), cmds);
                 self.show_current_view(ui, cmds);
             });
             return;
@@ -149,6 +151,7 @@ impl App {
         egui::CentralPanel::default().show(ui, |ui| {
             crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
             crate::gui::chrome::dialogs::preparation_row(ui, self.preparation_progress(), cmds);
+            crate::gui::chrome::dialogs::csv_row(ui, self.csv_progress(), cmds);
             self.show_current_view(ui, cmds);
         });
     }

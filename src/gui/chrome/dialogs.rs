@@ -52,22 +52,50 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
 /// The progress line of the preparation an edit or a new document waits
 /// for: what it is doing, how far it is, and Cancel.
 pub fn preparation_row(ui: &mut Ui, progress: Option<(&str, f64)>, cmds: &mut Vec<Command>) {
-    let Some((doing, fraction)) = progress else {
-        return;
-    };
+    if let Some((doing, fraction)) = progress {
+        job_row(
+            ui,
+            &format!("Preparing the scene: {doing}…"),
+            fraction,
+            "stop; the current scene is kept",
+            Command::CancelPreparation,
+            cmds,
+        );
+    }
+}
+
+/// The progress line of a CSV export (the run re-simulated), and Cancel.
+pub fn csv_row(ui: &mut Ui, fraction: Option<f64>, cmds: &mut Vec<Command>) {
+    if let Some(fraction) = fraction {
+        job_row(
+            ui,
+            "Writing the CSV: re-running the run from t = 0…",
+            fraction,
+            "stop; no file is written",
+            Command::CancelCsvExport,
+            cmds,
+        );
+    }
+}
+
+/// A background job's line: a progress bar, what it does, Cancel.
+fn job_row(
+    ui: &mut Ui,
+    doing: &str,
+    fraction: f64,
+    cancel_hover: &str,
+    cancel: Command,
+    cmds: &mut Vec<Command>,
+) {
     ui.horizontal_wrapped(|ui| {
         ui.add(
             egui::ProgressBar::new(fraction as f32)
                 .desired_width(140.0)
                 .show_percentage(),
         );
-        ui.label(format!("Preparing the scene: {doing}…"));
-        if ui
-            .button("Cancel")
-            .on_hover_text("stop; the current scene is kept")
-            .clicked()
-        {
-            cmds.push(Command::CancelPreparation);
+        ui.label(doing);
+        if ui.button("Cancel").on_hover_text(cancel_hover).clicked() {
+            cmds.push(cancel);
         }
     });
 }

@@ -187,6 +187,8 @@ pub enum Command {
     /// Stop the preparation an edit or a new document waits for: the
     /// current scene is kept.
     CancelPreparation,
+    /// Stop the CSV export under way (no file is written).
+    CancelCsvExport,
 }
 
 /// A request of the researcher tools (wrapped in `Command::Research`).
