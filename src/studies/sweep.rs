@@ -12,7 +12,7 @@ use crate::analysis::metrics::{ContactMetrics, ContactSummary};
 use crate::analysis::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder};
 use crate::analysis::spectrum::{BandLevel, SpectrumError, Window};
 use crate::base::error::{FieldError, IoError, RunError, SceneError, SolverError};
-use crate::identify::{ModeCache, PreparedModel};
+use crate::identify::{ModeCache, PreparedModel, PreparedModelRun};
 use crate::model::fe_modes::FeDamping;
 use crate::model::road::Road;
 use crate::scene::{Contact, Points, Preload, Scene, Tyre};
@@ -696,6 +696,8 @@ pub struct SweepRun {
     /// The value being run and its run (`None` before it is prepared).
     next: usize,
     current: Option<SummaryRun>,
+    /// The value's scene being prepared (before its run).
+    preparing: Option<PreparedModelRun>,
     points: Vec<SweepPoint>,
     total_steps: u64,
     done_steps: u64,
@@ -711,6 +713,7 @@ impl SweepRun {
             scenes,
             next: 0,
             current: None,
+            preparing: None,
             points: Vec::new(),
             done_steps: 0,
         })
@@ -744,9 +747,28 @@ impl SweepRun {
             let value = self.values[k];
             let run = match self.current.take() {
                 Some(run) => Ok(run),
-                None => PreparedModel::new(&self.scenes[k], cache)
-                    .map_err(SummaryError::from)
-                    .and_then(|m| SummaryRun::new(&m)),
+                None => {
+                    // the scene prepared a stage at a time (a ring's
+                    // identification takes many slices)
+                    let prep = self
+                        .preparing
+                        .get_or_insert_with(|| PreparedModelRun::new(&self.scenes[k], cache));
+                    let model = loop {
+                        if cancel.load(Ordering::Relaxed) {
+                            return Some(Err(SweepError::Cancelled));
+                        }
+                        match prep.stage(cache) {
+                            Ok(Some(m)) => break Ok(m),
+                            Err(e) => break Err(e),
+                            Ok(None) if past() => return None,
+                            Ok(None) => {}
+                        }
+                    };
+                    self.preparing = None;
+                    model
+                        .map_err(SummaryError::from)
+                        .and_then(|m| SummaryRun::new(&m))
+                }
             };
             let done = std::cell::Cell::new(0);
             let outcome = run.and_then(|mut run| {
