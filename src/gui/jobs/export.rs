@@ -176,9 +176,9 @@ pub struct CsvJob {
 /// Where a CSV export is: the start scene prepared (its ring identified),
 /// its solver built, then the run replayed into the CSV.
 enum CsvStage {
-    Model(PreparedModelRun),
-    Build(SimulationBuild),
-    Run(Box<Simulation>, RunWriter<Vec<u8>>),
+    Model(Box<PreparedModelRun>),
+    Build(Box<SimulationBuild>),
+    Run(Box<Simulation>, Box<RunWriter<Vec<u8>>>),
 }
 
 /// Steps re-run per stage of a CSV export in slices: about `2^16 / P²` (a
@@ -223,7 +223,9 @@ impl CsvJob {
     ) -> Result<Self, String> {
         let p = path.clone();
         let block = csv_block_steps(start.num_points());
-        let mut stage = Some(CsvStage::Model(PreparedModelRun::new(&start, &cache)));
+        let mut stage = Some(CsvStage::Model(Box::new(PreparedModelRun::new(
+            &start, &cache,
+        ))));
         let work = move |progress: &Progress, deadline: Option<web_time::Instant>| loop {
             if progress.cancelled() {
                 return Some(Err("cancelled".to_string()));
@@ -236,10 +238,10 @@ impl CsvJob {
                     Err(e) => return Some(Err(e.to_string())),
                     Ok(None) => {}
                     Ok(Some(model)) => {
-                        *current = CsvStage::Build(Simulation::build_in_stages(
+                        *current = CsvStage::Build(Box::new(Simulation::build_in_stages(
                             model,
                             SolverOptions::default(),
-                        ));
+                        )));
                     }
                 },
                 CsvStage::Build(b) => match b.stage() {
@@ -250,7 +252,7 @@ impl CsvJob {
                             Ok(w) => w,
                             Err(e) => return Some(Err(e.to_string())),
                         };
-                        *current = CsvStage::Run(Box::new(sim), w);
+                        *current = CsvStage::Run(Box::new(sim), Box::new(w));
                     }
                 },
                 CsvStage::Run(sim, w) => {
@@ -258,7 +260,7 @@ impl CsvJob {
                     let to = (from + block).min(steps);
                     // the edits not yet replayed (one at step `from` was not)
                     let first = edits.partition_point(|e| e.step < from);
-                    let mut counted = (&mut *w, StepCounter(progress));
+                    let mut counted = (&mut **w, StepCounter(progress));
                     let r = replay(
                         sim,
                         &edits[first..],
@@ -274,7 +276,7 @@ impl CsvJob {
                         let Some(CsvStage::Run(sim, w)) = stage.take() else {
                             unreachable!("running");
                         };
-                        return Some(deliver(&p, w, &sim));
+                        return Some(deliver(&p, *w, &sim));
                     }
                 }
             }

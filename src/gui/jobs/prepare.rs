@@ -77,9 +77,9 @@ pub struct PrepareJob {
 enum Stage {
     /// The scene checked, its tyre identified, its road read
     /// ([`PreparedModelRun`], method §5-6).
-    Model(PreparedModelRun),
+    Model(Box<PreparedModelRun>),
     /// The solver's tables built ([`SimulationBuild`], method §3-4).
-    Build(SimulationBuild),
+    Build(Box<SimulationBuild>),
 }
 
 impl PrepareJob {
@@ -104,7 +104,7 @@ impl PrepareJob {
         let (slot, said) = (Arc::clone(&built), Arc::clone(&doing));
         let mut stage = match &then {
             Then::Edit(scene) | Then::Replace { scene, .. } => {
-                Some(Stage::Model(PreparedModelRun::new(scene, &cache)))
+                Some(Stage::Model(Box::new(PreparedModelRun::new(scene, &cache))))
             }
             Then::Road(_) | Then::Open(_) => None,
         };
@@ -133,7 +133,7 @@ impl PrepareJob {
                             model_stages = run.stages_done() as u64;
                             progress.set_total(model_stages + b.num_stages() as u64);
                             set(&said, "building the solver's tables");
-                            *current = Stage::Build(b);
+                            *current = Stage::Build(Box::new(b));
                         }
                     },
                     Stage::Build(b) => {

@@ -282,7 +282,8 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         } else {
             "paused".to_string()
         };
-        ui.label(RichText::new(rt).weak());
+        // whole: wrapped, it broke into "running at 0.1x" and "real time"
+        ui.add(egui::Label::new(RichText::new(rt).weak()).wrap_mode(egui::TextWrapMode::Extend));
     });
 }
 

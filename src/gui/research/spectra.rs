@@ -191,7 +191,7 @@ impl SpectraRun {
         let i = self.done();
         if i < 2 * self.input.force_n.len() {
             let point = i / 2;
-            if i % 2 == 0 {
+            if i.is_multiple_of(2) {
                 let q = &self.input.force_n[point];
                 for (t, x) in self.total.iter_mut().zip(q) {
                     *t += x;
