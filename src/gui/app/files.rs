@@ -313,12 +313,26 @@ impl App {
         if self.handles.csv_job.is_some() {
             self.error("a CSV export is already running");
         } else {
+            // in the browser: a download of the file's name
+            let deliver: crate::gui::jobs::export::Deliver = if crate::gui::chrome::web::IN_BROWSER
+            {
+                Box::new(|path, bytes| {
+                    let name = path
+                        .file_name()
+                        .map_or("run.csv".into(), |n| n.to_string_lossy().into_owned());
+                    crate::gui::chrome::web::download(&name, bytes);
+                    Ok(format!("{name} offered as a download"))
+                })
+            } else {
+                crate::gui::jobs::export::write_file()
+            };
             match CsvJob::spawn(
                 path.clone(),
                 self.run_start.clone(),
                 Arc::clone(&self.handles.mode_cache),
                 self.live_edits.clone(),
                 self.sim.steps(),
+                deliver,
             ) {
                 Ok(job) => {
                     self.info(format!("writing {} …", path.display()));

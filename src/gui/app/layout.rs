@@ -3,9 +3,7 @@
 
 use super::*;
 
-/// Below this window width (logical px: a phone) the editing panel hides
-/// behind a button instead of covering the views.
-pub const NARROW_PX: f32 = 700.0;
+pub use crate::gui::widgets::NARROW_PX;
 
 impl App {
     pub(super) fn show_view(&mut self, v: View) {

@@ -189,15 +189,17 @@ fn csv_block_steps(p: usize) -> u64 {
 
 impl CsvJob {
     /// Re-runs `start` (its modes from `cache`) on a new thread (in the
-    /// browser, in slices within the polls: [`Job::spawn_sliced`]).
+    /// browser, in slices within the polls: [`Job::spawn_sliced`]); the
+    /// CSV then goes to `deliver` (a file, or the browser's download).
     pub fn spawn(
         path: PathBuf,
         start: Scene,
         cache: Arc<ModeCache>,
         edits: Vec<LiveEdit>,
         steps: u64,
+        deliver: Deliver,
     ) -> Result<Self, String> {
-        Self::start(path, start, cache, edits, steps, false)
+        Self::start(path, start, cache, edits, steps, deliver, false)
     }
 
     /// The export run on the caller's thread, a slice at each poll
@@ -209,8 +211,9 @@ impl CsvJob {
         cache: Arc<ModeCache>,
         edits: Vec<LiveEdit>,
         steps: u64,
+        deliver: Deliver,
     ) -> Result<Self, String> {
-        Self::start(path, start, cache, edits, steps, true)
+        Self::start(path, start, cache, edits, steps, deliver, true)
     }
 
     fn start(
@@ -219,8 +222,10 @@ impl CsvJob {
         cache: Arc<ModeCache>,
         edits: Vec<LiveEdit>,
         steps: u64,
+        deliver: Deliver,
         in_slices: bool,
     ) -> Result<Self, String> {
+        let mut deliver = Some(deliver);
         let p = path.clone();
         let block = csv_block_steps(start.num_points());
         let mut stage = Some(CsvStage::Model(Box::new(PreparedModelRun::new(
@@ -276,7 +281,10 @@ impl CsvJob {
                         let Some(CsvStage::Run(sim, w)) = stage.take() else {
                             unreachable!("running");
                         };
-                        return Some(deliver(&p, *w, &sim));
+                        let Some(deliver) = deliver.take() else {
+                            unreachable!("delivered once");
+                        };
+                        return Some(deliver_csv(&p, *w, &sim, deliver));
                     }
                 }
             }
@@ -308,21 +316,34 @@ impl CsvJob {
     }
 }
 
-/// The CSV of a replayed run written to `path` (atomically) or, in the
-/// browser, offered as a download of its file name.
-fn deliver(path: &Path, w: RunWriter<Vec<u8>>, sim: &Simulation) -> Result<String, String> {
+/// Where the bytes of a finished CSV export go, given its path: the
+/// message to show, or why they could not go there.
+pub type Deliver = Box<dyn FnOnce(&Path, Vec<u8>) -> Result<String, String> + Send>;
+
+/// The desktop's delivery: the file written atomically.
+pub fn write_file() -> Deliver {
+    Box::new(|path, bytes| {
+        crate::base::fsio::write_atomic(path, &bytes)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok(format!("wrote {}", path.display()))
+    })
+}
+
+/// The CSV of a replayed run handed to `deliver`, the run's span after its
+/// message.
+fn deliver_csv(
+    path: &Path,
+    w: RunWriter<Vec<u8>>,
+    sim: &Simulation,
+    deliver: Deliver,
+) -> Result<String, String> {
     let bytes = w.finish().map_err(|e| e.to_string())?;
-    let span = format!("{} steps, t = 0 … {:.5} s", sim.steps(), sim.time_s());
-    if crate::gui::chrome::web::IN_BROWSER {
-        let name = path
-            .file_name()
-            .map_or("run.csv".into(), |n| n.to_string_lossy().into_owned());
-        crate::gui::chrome::web::download(&name, bytes);
-        return Ok(format!("{name} offered as a download ({span})"));
-    }
-    crate::base::fsio::write_atomic(path, &bytes)
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(format!("wrote {} ({span})", path.display()))
+    let said = deliver(path, bytes)?;
+    Ok(format!(
+        "{said} ({} steps, t = 0 … {:.5} s)",
+        sim.steps(),
+        sim.time_s()
+    ))
 }
 
 #[cfg(test)]
@@ -359,9 +380,15 @@ mod tests {
         let (whole, sliced) = (dir.join("whole.csv"), dir.join("sliced.csv"));
         let model = PreparedModel::new(&scene, &ModeCache::new()).unwrap();
         write_csv(&whole, &model, &edits, 2000, None).unwrap();
-        let job =
-            CsvJob::spawn_in_slices(sliced.clone(), scene.clone(), cache, edits.clone(), 2000)
-                .unwrap();
+        let job = CsvJob::spawn_in_slices(
+            sliced.clone(),
+            scene.clone(),
+            cache,
+            edits.clone(),
+            2000,
+            write_file(),
+        )
+        .unwrap();
         let mut polls = 0;
         let r = loop {
             polls += 1;
@@ -380,9 +407,15 @@ mod tests {
         assert!(a == b, "the sliced export differs from the whole one");
         // cancelled between slices: an error, no file
         let gone = dir.join("cancelled.csv");
-        let job =
-            CsvJob::spawn_in_slices(gone.clone(), scene, Arc::new(ModeCache::new()), edits, 2000)
-                .unwrap();
+        let job = CsvJob::spawn_in_slices(
+            gone.clone(),
+            scene,
+            Arc::new(ModeCache::new()),
+            edits,
+            2000,
+            write_file(),
+        )
+        .unwrap();
         job.job.cancel();
         assert_eq!(job.poll(), Some(Err("cancelled".to_string())));
         assert!(!gone.exists());

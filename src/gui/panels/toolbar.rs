@@ -1,10 +1,10 @@
 //! Menu bar (File, Presets, Export, View) and the transport controls:
 //! play/pause, step, N steps, reset, speed, current time and real-time factor.
 
-use crate::gui::app::NARROW_PX;
 use crate::gui::model::command::{Command, View};
 use crate::gui::model::presets::SHIPPED;
 use crate::gui::model::time_control::Speed;
+use crate::gui::widgets::NARROW_PX;
 use egui::{Id, RichText, Ui};
 
 /// What the toolbar shows (read-only snapshot of the app).
