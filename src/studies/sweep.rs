@@ -17,7 +17,7 @@ use crate::model::fe_modes::FeDamping;
 use crate::model::road::Road;
 use crate::scene::{Contact, Points, Preload, Scene, Tyre};
 use crate::solver::drive::Watch;
-use crate::solver::simulation::{Simulation, SolverOptions};
+use crate::solver::simulation::{Simulation, SimulationBuild, SolverOptions};
 pub mod engine;
 pub mod report;
 
@@ -633,13 +633,15 @@ impl SummaryRun {
     /// The simulation of `model` and its metrics; a steady part too short
     /// or too long for a spectrum is refused here, before any step.
     pub fn new(model: &PreparedModel) -> Result<Self, SummaryError> {
-        let scene = model.scene();
-        let sim = Simulation::new(model, SolverOptions::default())?;
+        Self::with_simulation(Simulation::new(model, SolverOptions::default())?)
+    }
+
+    /// [`SummaryRun::new`] on a simulation built already (at rest).
+    pub fn with_simulation(sim: Simulation) -> Result<Self, SummaryError> {
+        let scene = sim.scene();
         SteadyRecorder::steady_samples(scene, None)?;
-        Ok(SummaryRun {
-            sim,
-            metrics: ContactMetrics::new(scene, None).keeping_total_force(),
-        })
+        let metrics = ContactMetrics::new(scene, None).keeping_total_force();
+        Ok(SummaryRun { sim, metrics })
     }
 
     /// Steps until the scene's end or `deadline` (`None`: the end);
@@ -696,8 +698,9 @@ pub struct SweepRun {
     /// The value being run and its run (`None` before it is prepared).
     next: usize,
     current: Option<SummaryRun>,
-    /// The value's scene being prepared (before its run).
-    preparing: Option<PreparedModelRun>,
+    /// The value's scene being prepared and its solver built (before its
+    /// run).
+    preparing: Option<Preparing>,
     points: Vec<SweepPoint>,
     total_steps: u64,
     done_steps: u64,
@@ -748,26 +751,38 @@ impl SweepRun {
             let run = match self.current.take() {
                 Some(run) => Ok(run),
                 None => {
-                    // the scene prepared a stage at a time (a ring's
-                    // identification takes many slices)
-                    let prep = self
-                        .preparing
-                        .get_or_insert_with(|| PreparedModelRun::new(&self.scenes[k], cache));
-                    let model = loop {
+                    // the scene prepared and its solver built a stage at a
+                    // time (a ring's identification, a large patch's
+                    // tables take many slices)
+                    let prep = self.preparing.get_or_insert_with(|| {
+                        Preparing::Model(Box::new(PreparedModelRun::new(&self.scenes[k], cache)))
+                    });
+                    let sim = loop {
                         if cancel.load(Ordering::Relaxed) {
                             return Some(Err(SweepError::Cancelled));
                         }
-                        match prep.stage(cache) {
-                            Ok(Some(m)) => break Ok(m),
-                            Err(e) => break Err(e),
-                            Ok(None) if past() => return None,
-                            Ok(None) => {}
+                        match prep {
+                            Preparing::Model(run) => match run.stage(cache) {
+                                Ok(Some(m)) => {
+                                    *prep = Preparing::Build(Box::new(
+                                        Simulation::build_in_stages(m, SolverOptions::default()),
+                                    ));
+                                }
+                                Err(e) => break Err(SummaryError::from(e)),
+                                Ok(None) => {}
+                            },
+                            Preparing::Build(b) => match b.stage() {
+                                Ok(Some(sim)) => break Ok(sim),
+                                Err(e) => break Err(SummaryError::from(e)),
+                                Ok(None) => {}
+                            },
+                        }
+                        if past() {
+                            return None;
                         }
                     };
                     self.preparing = None;
-                    model
-                        .map_err(SummaryError::from)
-                        .and_then(|m| SummaryRun::new(&m))
+                    sim.and_then(SummaryRun::with_simulation)
                 }
             };
             let done = std::cell::Cell::new(0);
@@ -795,6 +810,12 @@ impl SweepRun {
         }
         Some(Ok(std::mem::take(&mut self.points)))
     }
+}
+
+/// Where the preparation of a sweep value's run is.
+enum Preparing {
+    Model(Box<PreparedModelRun>),
+    Build(Box<SimulationBuild>),
 }
 
 /// One point of a sweep.

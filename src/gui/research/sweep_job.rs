@@ -374,6 +374,49 @@ mod tests {
         );
     }
 
+    /// A sweep of a 200-point patch in slices builds each run's solver
+    /// tables a block at a time: polls return during the set-up, and the
+    /// points are the threaded sweep's.
+    #[test]
+    fn a_patch_sweep_in_slices_sets_up_in_stages() {
+        let text = include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/patch_texture.ron"
+        ))
+        .replace("along: 16", "along: 20")
+        .replace("across: 6", "across: 10")
+        .replace("spacing_m: (0.006, 0.02)", "spacing_m: (0.006, 0.005)");
+        let mut s = Scene::parse(&text, "patch").unwrap();
+        s.duration_s = s.ramp_s + 0.001;
+        let r = req("speed_mps", 10.0, 20.0, 2);
+        let job = SweepJob::start_in_slices(&s, r.clone(), Arc::new(ModeCache::new())).unwrap();
+        let mut polls_setting_up = 0;
+        let end = loop {
+            if let Some(end) = job.poll() {
+                break end;
+            }
+            if job.progress() == 0.0 {
+                polls_setting_up += 1;
+            }
+        };
+        let SweepEnd::Done(res) = end else {
+            panic!("not done: {end:?}")
+        };
+        let lib = sweep::run_sweep(
+            &s,
+            &r.to_sweep(&s, 2).unwrap(),
+            &ModeCache::new(),
+            &|_, _| {},
+            &AtomicBool::new(false),
+        )
+        .unwrap();
+        assert_eq!(res.points, lib);
+        assert!(
+            polls_setting_up >= 2,
+            "{polls_setting_up} polls during the set-up"
+        );
+    }
+
     #[test]
     fn dropping_a_running_job_cancels_its_runs() {
         let mut s = scene();
