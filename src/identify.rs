@@ -6,9 +6,12 @@
 use crate::base::error::SceneError;
 use crate::base::modal::ModalModel;
 use crate::base::modal::Mode;
-use crate::model::lsce::{Identification, IdentifyOptions, LsceError, Responses, identify};
+use crate::model::lsce::{
+    Identification, IdentifyOptions, LsceError, LsceRun, Responses, identify,
+};
 use crate::model::measured;
 use crate::model::ring::RingParams;
+use crate::model::ring::sampled_row;
 use crate::model::road::RoadProfile;
 use crate::scene::{Scene, Tyre};
 use std::path::{Path, PathBuf};
@@ -46,66 +49,168 @@ pub fn identify_ring(
     x_m: &[f64],
     opts: &IdentifyOptions,
 ) -> Result<RingIdentification, LsceError> {
-    let start = Instant::now();
-    if let Some(e) = ring
-        .validate("ring")
-        .first()
-        .or(opts.validate("identification").first())
-    {
-        return Err(LsceError::Input(e.to_string()));
+    RingIdentifyRun::new(ring, x_m, opts)?.finish()
+}
+
+/// [`identify_ring`] a stage at a time, for a caller that must return
+/// between stages (a page in the browser has one thread): the responses
+/// sampled a row of pairs at a time (method §5), the stages of LSCE
+/// ([`LsceRun`], method §6), then the check against the ring. The same
+/// stages as [`identify_ring`] in its order: the same result to the bit.
+#[derive(Debug)]
+pub struct RingIdentifyRun {
+    ring: RingParams,
+    x_m: Vec<f64>,
+    opts: IdentifyOptions,
+    start: Instant,
+    /// What is sampled, and the rows sampled so far.
+    sampling: ModalModel,
+    pairs: Vec<(usize, usize)>,
+    data: Vec<Vec<f64>>,
+    lsce: Option<LsceRun>,
+    identification: Option<Identification>,
+    stages_done: usize,
+}
+
+impl RingIdentifyRun {
+    /// Checks the ring, the options and the points (the input errors of
+    /// [`identify_ring`]).
+    pub fn new(ring: &RingParams, x_m: &[f64], opts: &IdentifyOptions) -> Result<Self, LsceError> {
+        let start = Instant::now();
+        if let Some(e) = ring
+            .validate("ring")
+            .first()
+            .or(opts.validate("identification").first())
+        {
+            return Err(LsceError::Input(e.to_string()));
+        }
+        if x_m.is_empty() {
+            return Err(LsceError::Input("no contact points".into()));
+        }
+        // the sampled responses hold only the modes below Nyquist: without any,
+        // LSCE would see zeros ("every response is zero") and not say why
+        let nyquist_hz = 0.5 * opts.sample_rate_hz;
+        let lowest_hz = lowest_mode_hz(ring);
+        if !lowest_hz.is_finite() || lowest_hz >= nyquist_hz {
+            return Err(LsceError::Input(format!(
+                "no mode of the ring below the Nyquist frequency {nyquist_hz} Hz (identification.sample_rate_hz / 2; lowest mode {lowest_hz:.3e} Hz): expected a ring with modes in identification.band_hz (check ring.radius_m, the stiffnesses and mass_per_length_kg_m) or a higher sample_rate_hz"
+            )));
+        }
+        let p = x_m.len();
+        Ok(RingIdentifyRun {
+            ring: ring.clone(),
+            x_m: x_m.to_vec(),
+            opts: opts.clone(),
+            start,
+            sampling: ring.sampling_model(x_m, opts.dt_s()),
+            pairs: Vec::with_capacity(p * (p + 1) / 2),
+            data: Vec::with_capacity(p * (p + 1) / 2),
+            lsce: None,
+            identification: None,
+            stages_done: 0,
+        })
     }
-    if x_m.is_empty() {
-        return Err(LsceError::Input("no contact points".into()));
+
+    /// Stages of the whole identification: a row of pairs per point, the
+    /// stages of LSCE, the check.
+    pub fn num_stages(&self) -> usize {
+        let p = self.x_m.len();
+        p + LsceRun::stages_for(p * (p + 1) / 2, &self.opts) + 1
     }
-    // the sampled responses hold only the modes below Nyquist: without any,
-    // LSCE would see zeros ("every response is zero") and not say why
-    let nyquist_hz = 0.5 * opts.sample_rate_hz;
-    let lowest_hz = ring
-        .all_modes()
+
+    /// Stages done so far.
+    pub fn stages_done(&self) -> usize {
+        self.stages_done
+    }
+
+    /// What the next stage does, for a progress line.
+    pub fn next_stage(&self) -> &'static str {
+        if self.identification.is_some() {
+            "checking the modes against the ring"
+        } else if self.lsce.is_some() {
+            "LSCE: the stabilisation diagram, an order at a time"
+        } else {
+            "sampling the ring's responses"
+        }
+    }
+
+    /// Runs every stage left.
+    pub fn finish(mut self) -> Result<RingIdentification, LsceError> {
+        loop {
+            if let Some(id) = self.stage()? {
+                return Ok(id);
+            }
+        }
+    }
+
+    /// Runs the next stage; the identification once the last one ran.
+    pub fn stage(&mut self) -> Result<Option<RingIdentification>, LsceError> {
+        self.stages_done += 1;
+        let (opts, p) = (&self.opts, self.x_m.len());
+        let row = if self.pairs.is_empty() {
+            0
+        } else {
+            self.pairs[self.pairs.len() - 1].0 + 1
+        };
+        if row < p {
+            let (pairs, data) = sampled_row(&self.sampling, row, opts.dt_s(), opts.num_samples());
+            self.pairs.extend(pairs);
+            self.data.extend(data);
+            return Ok(None);
+        }
+        if self.identification.is_none() {
+            let lsce = match &mut self.lsce {
+                Some(l) => l,
+                None => {
+                    let responses = Responses {
+                        dt_s: opts.dt_s(),
+                        num_points: p,
+                        pairs: std::mem::take(&mut self.pairs),
+                        data: std::mem::take(&mut self.data),
+                    };
+                    self.lsce.insert(LsceRun::new(responses, opts)?)
+                }
+            };
+            if let Some(id) = lsce.stage()? {
+                self.identification = Some(id);
+            }
+            return Ok(None);
+        }
+        let (Some(identification), Some(lsce)) = (self.identification.take(), self.lsce.take())
+        else {
+            unreachable!("the check runs after LSCE");
+        };
+        let ring_magnitude_error = magnitude_error(
+            &self.ring.modal_model(&self.x_m),
+            &ModalModel::from_modes(&identification.modes, p),
+            opts.band_hz,
+            200,
+        );
+        if ring_magnitude_error.is_nan() || ring_magnitude_error > MAX_MAGNITUDE_ERROR {
+            return Err(LsceError::PoorFit {
+                magnitude_error: ring_magnitude_error,
+                limit: MAX_MAGNITUDE_ERROR,
+                lo_hz: opts.band_hz.0,
+                hi_hz: opts.band_hz.1,
+                lowest_source_hz: lowest_mode_hz(&self.ring),
+            });
+        }
+        Ok(Some(RingIdentification {
+            identification,
+            responses: lsce.into_responses(),
+            ring_magnitude_error,
+            elapsed_s: self.start.elapsed().as_secs_f64(),
+        }))
+    }
+}
+
+/// The ring's lowest mode of nonzero frequency (Hz; infinite if none).
+fn lowest_mode_hz(ring: &RingParams) -> f64 {
+    ring.all_modes()
         .iter()
         .filter(|m| m.omega_rad_s > 0.0)
         .map(|m| m.freq_hz())
-        .fold(f64::INFINITY, f64::min);
-    if !lowest_hz.is_finite() || lowest_hz >= nyquist_hz {
-        return Err(LsceError::Input(format!(
-            "no mode of the ring below the Nyquist frequency {nyquist_hz} Hz (identification.sample_rate_hz / 2; lowest mode {lowest_hz:.3e} Hz): expected a ring with modes in identification.band_hz (check ring.radius_m, the stiffnesses and mass_per_length_kg_m) or a higher sample_rate_hz"
-        )));
-    }
-    let dt = opts.dt_s();
-    let (pairs, data) = ring.sampled_responses(x_m, dt, opts.num_samples());
-    let responses = Responses {
-        dt_s: dt,
-        num_points: x_m.len(),
-        pairs,
-        data,
-    };
-    let identification = identify(&responses, opts)?;
-    let ring_magnitude_error = magnitude_error(
-        &ring.modal_model(x_m),
-        &ModalModel::from_modes(&identification.modes, x_m.len()),
-        opts.band_hz,
-        200,
-    );
-    if ring_magnitude_error.is_nan() || ring_magnitude_error > MAX_MAGNITUDE_ERROR {
-        return Err(LsceError::PoorFit {
-            magnitude_error: ring_magnitude_error,
-            limit: MAX_MAGNITUDE_ERROR,
-            lo_hz: opts.band_hz.0,
-            hi_hz: opts.band_hz.1,
-            lowest_source_hz: ring
-                .all_modes()
-                .iter()
-                .filter(|m| m.omega_rad_s > 0.0)
-                .map(|m| m.freq_hz())
-                .fold(f64::INFINITY, f64::min),
-        });
-    }
-    Ok(RingIdentification {
-        identification,
-        responses,
-        ring_magnitude_error,
-        elapsed_s: start.elapsed().as_secs_f64(),
-    })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// An identification of measured (or externally computed) responses.
@@ -467,6 +572,120 @@ impl ModeCache {
     }
 }
 
+fn validate_scene(scene: &Scene) -> Result<(), SceneError> {
+    scene.validate().map_err(|errors| SceneError::Invalid {
+        file: scene.name.clone(),
+        errors,
+        at: Vec::new(),
+    })
+}
+
+/// [`PreparedModel::new`] a stage at a time, for a caller that must return
+/// between stages (a page in the browser has one thread): the scene
+/// checked, then a ring tyre not in the cache identified a stage at a time
+/// ([`RingIdentifyRun`]; other tyres' modes at once), then the road. The
+/// same steps as [`PreparedModel::new`]: the same model, and the ring's
+/// modes kept in the cache as it keeps them.
+#[derive(Debug)]
+pub struct PreparedModelRun {
+    scene: Scene,
+    /// The ring being identified and its key in the cache.
+    ring: Option<(String, RingIdentifyRun)>,
+    modes: Option<Arc<Vec<Mode>>>,
+    stages_done: usize,
+    num_stages: usize,
+}
+
+impl PreparedModelRun {
+    /// The preparation of `scene`, its modes to come from (or be kept in)
+    /// `cache`.
+    pub fn new(scene: &Scene, cache: &ModeCache) -> Self {
+        let identifies = match &scene.tyre {
+            Tyre::Ring { identification, .. } if !cache.has_modes(scene) => {
+                let p = scene.num_points();
+                p + LsceRun::stages_for(p * (p + 1) / 2, identification) + 1
+            }
+            _ => 0,
+        };
+        PreparedModelRun {
+            scene: scene.clone(),
+            ring: None,
+            modes: None,
+            stages_done: 0,
+            num_stages: 2 + identifies,
+        }
+    }
+
+    /// Stages of the whole preparation.
+    pub fn num_stages(&self) -> usize {
+        self.num_stages
+    }
+
+    /// Stages done so far.
+    pub fn stages_done(&self) -> usize {
+        self.stages_done
+    }
+
+    /// What the next stage does, for a progress line.
+    pub fn next_stage(&self) -> &'static str {
+        match (&self.ring, &self.modes) {
+            (Some((_, run)), _) => run.next_stage(),
+            (None, Some(_)) => "reading the road",
+            (None, None) => "checking the scene",
+        }
+    }
+
+    /// Runs the next stage; the model once the last one ran. A ring
+    /// identified here is kept in `cache`.
+    pub fn stage(&mut self, cache: &ModeCache) -> Result<Option<PreparedModel>, SceneError> {
+        self.stages_done += 1;
+        let scene = &self.scene;
+        if let Some((key, run)) = &mut self.ring {
+            let id = run.stage().map_err(|e| SceneError::Identification {
+                scene: scene.name.clone(),
+                message: e.to_string(),
+            })?;
+            if let Some(id) = id {
+                let modes = Arc::new(id.identification.modes);
+                cache.store(std::mem::take(key), Arc::clone(&modes));
+                self.modes = Some(modes);
+                self.ring = None;
+            }
+            return Ok(None);
+        }
+        let Some(modes) = &self.modes else {
+            validate_scene(scene)?;
+            match &scene.tyre {
+                Tyre::Ring {
+                    ring,
+                    identification,
+                } if !cache.has_modes(scene) => {
+                    let x_m = positions(scene);
+                    let run = RingIdentifyRun::new(ring, &x_m, identification).map_err(|e| {
+                        SceneError::Identification {
+                            scene: scene.name.clone(),
+                            message: e.to_string(),
+                        }
+                    })?;
+                    self.ring = Some((cache_key(ring, &x_m, identification), run));
+                }
+                _ => self.modes = Some(cache.modes(scene)?),
+            }
+            return Ok(None);
+        };
+        PreparedModel::with_modes(scene, Arc::clone(modes)).map(Some)
+    }
+
+    /// Runs every stage left.
+    pub fn finish(mut self, cache: &ModeCache) -> Result<PreparedModel, SceneError> {
+        loop {
+            if let Some(m) = self.stage(cache)? {
+                return Ok(m);
+            }
+        }
+    }
+}
+
 /// A scene made ready to simulate: validated, its tyre's modes known
 /// (identified if it is a ring) and its road profile loaded (a measured
 /// road read from its file). Everything that may take time, read a file or
@@ -485,12 +704,14 @@ impl PreparedModel {
     /// not seen before), reads a measured road file and checks the ramp
     /// against the road (`T_ramp = 0` needs every point above it, method §4).
     pub fn new(scene: &Scene, cache: &ModeCache) -> Result<Self, SceneError> {
-        scene.validate().map_err(|errors| SceneError::Invalid {
-            file: scene.name.clone(),
-            errors,
-            at: Vec::new(),
-        })?;
+        validate_scene(scene)?;
         let modes = cache.modes(scene)?;
+        Self::with_modes(scene, modes)
+    }
+
+    /// The rest of [`PreparedModel::new`] once the (validated) scene's
+    /// modes are known: the road read and checked.
+    fn with_modes(scene: &Scene, modes: Arc<Vec<Mode>>) -> Result<Self, SceneError> {
         let road = RoadProfile::new(&scene.road, scene.base_dir.as_deref())?;
         let mut errors = scene.surface_errors(&road);
         if errors.is_empty()

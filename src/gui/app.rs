@@ -41,6 +41,7 @@ mod session;
 mod share_link;
 
 use files::default_scene;
+pub use layout::NARROW_PX;
 pub use run::PAUSED_NOTE;
 
 /// Wall time per frame the solver may use (keeps the UI above 30 fps).
@@ -96,6 +97,8 @@ pub(super) struct Document {
     /// The scene as last loaded or saved (for the unsaved-changes marker).
     pub(super) saved: Scene,
     pub(super) path: Option<PathBuf>,
+    /// Opened from a scene link (until it is saved or replaced).
+    pub(super) from_link: bool,
 }
 
 /// What the app holds while it runs and never persists: background jobs,
@@ -144,6 +147,7 @@ impl App {
                 saved: scene.clone(),
                 scene,
                 path,
+                from_link: false,
             },
             sim,
             live_edits: Vec::new(),
@@ -263,14 +267,15 @@ impl App {
 
     /// Window title: scene name, file, and `*` when there are unsaved changes.
     pub fn title(&self) -> String {
-        let file = self
-            .doc
-            .path
-            .as_deref()
-            .and_then(Path::file_name)
-            .map_or("built-in preset".to_string(), |n| {
-                n.to_string_lossy().into_owned()
-            });
+        let file = self.doc.path.as_deref().and_then(Path::file_name).map_or(
+            if self.doc.from_link {
+                "from a link"
+            } else {
+                "built-in preset"
+            }
+            .to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        );
         format!(
             "{}{} ({file}) — tirecontact",
             if self.is_dirty() { "* " } else { "" },
@@ -303,6 +308,8 @@ impl App {
             Command::Reset => self.reset_run(),
             Command::Advance { frame_s } => self.advance(frame_s),
             Command::PreparationEnded(r) => self.preparation_ended(r),
+            Command::CancelPreparation => self.cancel_preparation(),
+            Command::CancelCsvExport => self.cancel_csv_export(),
             Command::SetSpeed(s) => self.time.set_speed(s),
             Command::EditScene(scene) => self.edit(*scene),
             // the document and its files (app/files.rs)

@@ -244,23 +244,29 @@ impl ModalBasis {
     pub fn velocity_jump_on(&self, threads: &Threads) -> Vec<f64> {
         let (p, ns) = (self.num_points, self.stored_states());
         let mut m = vec![0.0; p * p];
-        // (`inp_t` holds `inp`'s values point-major: the same products,
-        // over contiguous memory)
-        let rows = |r: Range<usize>, [m]: [&mut [f64]; 1]| {
-            for (k, i) in r.enumerate() {
-                let a = &self.out[i * ns..(i + 1) * ns];
-                for j in 0..p {
-                    let b = &self.inp_t[j * ns..(j + 1) * ns];
-                    m[k * p + j] = (0..ns).map(|s| a[s] * b[s]).sum();
-                }
-            }
-        };
+        let rows = |r: Range<usize>, [m]: [&mut [f64]; 1]| self.velocity_jump_rows(r, m);
         if threads.worth(p * p * ns) {
             threads.split(p, 1, [(&mut m, p)], rows);
         } else {
             rows(0..p, [&mut m]);
         }
         m
+    }
+
+    /// The rows `r` (points `i`) of [`ModalBasis::velocity_jump`] into `m`
+    /// (`r.len() × P`, row-major): each entry the same sum in the same
+    /// order as the whole matrix's.
+    pub fn velocity_jump_rows(&self, r: Range<usize>, m: &mut [f64]) {
+        let (p, ns) = (self.num_points, self.stored_states());
+        // (`inp_t` holds `inp`'s values point-major: the same products,
+        // over contiguous memory)
+        for (k, i) in r.enumerate() {
+            let a = &self.out[i * ns..(i + 1) * ns];
+            for j in 0..p {
+                let b = &self.inp_t[j * ns..(j + 1) * ns];
+                m[k * p + j] = (0..ns).map(|s| a[s] * b[s]).sum();
+            }
+        }
     }
 }
 
@@ -391,32 +397,8 @@ impl Influence {
     /// the result is the same for any number of threads.
     pub fn fill_on(&mut self, basis: &ModalBasis, table: &StepTable, threads: &Threads) {
         let (p, ns) = (basis.num_points, basis.stored_states());
-        for m in [&mut self.gx1, &mut self.gx2, &mut self.gv1, &mut self.gv2] {
-            m.clear();
-            m.resize(p * p, 0.0);
-        }
-        let rows = |r: Range<usize>, [gx1, gx2, gv1, gv2]: [&mut [f64]; 4]| {
-            for (k, i) in r.enumerate() {
-                let row = k * p..(k + 1) * p;
-                let (gx1, gx2) = (&mut gx1[row.clone()], &mut gx2[row.clone()]);
-                let (gv1, gv2) = (&mut gv1[row.clone()], &mut gv2[row]);
-                for s in 0..ns {
-                    let a = basis.out[i * ns + s];
-                    if a == 0.0 {
-                        continue;
-                    }
-                    let (w1, w2) = (table.w1[s], table.w2[s]);
-                    let b = &basis.inp[s * p..(s + 1) * p];
-                    for j in 0..p {
-                        let ab = a * b[j];
-                        gx1[j] += ab * w1[0];
-                        gx2[j] += ab * w2[0];
-                        gv1[j] += ab * w1[1];
-                        gv2[j] += ab * w2[1];
-                    }
-                }
-            }
-        };
+        self.zeroed(p);
+        let rows = |r: Range<usize>, out: [&mut [f64]; 4]| influence_rows(basis, table, r, out);
         if threads.worth(4 * p * p * ns) {
             let outs = [
                 (&mut self.gx1[..], p),
@@ -430,6 +412,66 @@ impl Influence {
                 0..p,
                 [&mut self.gx1, &mut self.gx2, &mut self.gv1, &mut self.gv2],
             );
+        }
+    }
+
+    /// Sizes the four matrices to `P × P` zeros.
+    pub fn zeroed(&mut self, p: usize) {
+        for m in [&mut self.gx1, &mut self.gx2, &mut self.gv1, &mut self.gv2] {
+            m.clear();
+            m.resize(p * p, 0.0);
+        }
+    }
+
+    /// Adds the rows `r` (points `i`) of [`Influence::fill`] to the
+    /// matrices sized by [`Influence::zeroed`]: each entry the same terms
+    /// in the same order as the whole fill's, so a fill row block by row
+    /// block is the whole fill to the bit.
+    pub fn add_rows(&mut self, basis: &ModalBasis, table: &StepTable, r: Range<usize>) {
+        let p = basis.num_points;
+        let span = r.start * p..r.end * p;
+        influence_rows(
+            basis,
+            table,
+            r,
+            [
+                &mut self.gx1[span.clone()],
+                &mut self.gx2[span.clone()],
+                &mut self.gv1[span.clone()],
+                &mut self.gv2[span],
+            ],
+        );
+    }
+}
+
+/// The rows `r` of an [`Influence`] into `[gx1, gx2, gv1, gv2]` (each
+/// `r.len() × P`, zero on entry): the terms summed over the states
+/// ascending.
+fn influence_rows(
+    basis: &ModalBasis,
+    table: &StepTable,
+    r: Range<usize>,
+    [gx1, gx2, gv1, gv2]: [&mut [f64]; 4],
+) {
+    let (p, ns) = (basis.num_points, basis.stored_states());
+    for (k, i) in r.enumerate() {
+        let row = k * p..(k + 1) * p;
+        let (gx1, gx2) = (&mut gx1[row.clone()], &mut gx2[row.clone()]);
+        let (gv1, gv2) = (&mut gv1[row.clone()], &mut gv2[row]);
+        for s in 0..ns {
+            let a = basis.out[i * ns + s];
+            if a == 0.0 {
+                continue;
+            }
+            let (w1, w2) = (table.w1[s], table.w2[s]);
+            let b = &basis.inp[s * p..(s + 1) * p];
+            for j in 0..p {
+                let ab = a * b[j];
+                gx1[j] += ab * w1[0];
+                gx2[j] += ab * w2[0];
+                gv1[j] += ab * w1[1];
+                gv2[j] += ab * w2[1];
+            }
         }
     }
 }

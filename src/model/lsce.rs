@@ -255,43 +255,42 @@ fn lstsq(a: MatRef<'_, f64>, b: MatRef<'_, f64>, rcond: f64) -> Result<(Mat<f64>
     Ok(linalg::lstsq(a, b, rcond)?)
 }
 
-/// The triangular factor `R` of the stacked Hankel matrix with `cols` columns
-/// (rows `[g(k), ..., g(k + cols - 1)]`, responses scaled to unit peak).
-fn hankel_r(r: &Responses, len: usize, cols: usize) -> Result<Mat<f64>, LsceError> {
+/// Responses stacked per QR of the Hankel data ([`hankel_add`]): a few at
+/// a time keeps the stacked block small.
+const HANKEL_CHUNK: usize = 4;
+
+/// The triangular factor `R` of the stacked Hankel matrix with `cols`
+/// columns (rows `[g(k), ..., g(k + cols - 1)]`, responses scaled to unit
+/// peak), a chunk at a time: stacks the Hankel rows of the (nonzero)
+/// responses of `chunk` under the factor `acc` so far and replaces it by
+/// the `R` of their QR.
+fn hankel_add(acc: &mut Mat<f64>, chunk: &[Vec<f64>], len: usize, cols: usize) {
     let rows = len - cols + 1;
-    let mut acc = Mat::<f64>::zeros(0, cols);
-    // a few responses at a time keeps the stacked block small
-    for chunk in r.data.chunks(4) {
-        let blocks: Vec<&Vec<f64>> = chunk
-            .iter()
-            .filter(|d| d.iter().any(|x| *x != 0.0))
-            .collect();
-        if blocks.is_empty() {
-            continue;
+    let blocks: Vec<&Vec<f64>> = chunk
+        .iter()
+        .filter(|d| d.iter().any(|x| *x != 0.0))
+        .collect();
+    if blocks.is_empty() {
+        return;
+    }
+    let n = acc.nrows() + rows * blocks.len();
+    let mut m = Mat::<f64>::zeros(n, cols);
+    for i in 0..acc.nrows() {
+        for c in 0..cols {
+            m[(i, c)] = acc[(i, c)];
         }
-        let n = acc.nrows() + rows * blocks.len();
-        let mut m = Mat::<f64>::zeros(n, cols);
-        for i in 0..acc.nrows() {
+    }
+    let mut row = acc.nrows();
+    for d in blocks {
+        let peak = d.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+        for k in 0..rows {
             for c in 0..cols {
-                m[(i, c)] = acc[(i, c)];
+                m[(row, c)] = d[k + c] / peak;
             }
+            row += 1;
         }
-        let mut row = acc.nrows();
-        for d in blocks {
-            let peak = d.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
-            for k in 0..rows {
-                for c in 0..cols {
-                    m[(row, c)] = d[k + c] / peak;
-                }
-                row += 1;
-            }
-        }
-        acc = linalg::qr_r(m.as_ref());
     }
-    if acc.nrows() == 0 {
-        return Err(LsceError::Input("every response is zero".into()));
-    }
-    Ok(acc)
+    *acc = linalg::qr_r(m.as_ref());
 }
 
 /// Roots of the order-`p` prediction polynomial -> the physical poles
@@ -389,6 +388,7 @@ fn mac(a: &[f64], b: &[f64]) -> f64 {
     }
 }
 
+#[derive(Debug)]
 struct OrderFit {
     poles: Vec<Pole>,
     /// Residue per pole and response (K × responses).
@@ -486,86 +486,184 @@ fn stability(
 
 /// Identifies a modal model from sampled impulse responses (method §6).
 pub fn identify(r: &Responses, opts: &IdentifyOptions) -> Result<Identification, LsceError> {
-    crate::base::linalg::sequential();
-    let errors = opts.validate("options");
-    if let Some(e) = errors.first() {
-        return Err(LsceError::Input(e.to_string()));
-    }
-    let len = check_input(r)?;
-    let dt = r.dt_s;
-    let m_max = opts.max_model_order;
-    let cols = 2 * m_max + 1;
-    if len < 2 * cols {
-        return Err(LsceError::Input(format!(
-            "{len} samples per response: expected at least {} for max_model_order = {m_max}",
-            2 * cols
-        )));
-    }
-    // one QR factor of the Hankel data serves every order (method §6.2, 1)
-    let rmat = hankel_r(r, len, cols)?;
-    let data = data_matrix(r, len);
-    let orders: Vec<usize> = match opts.model_order {
-        Some(m) if m > m_max => return Err(LsceError::Input(format!("model order {m} > {m_max}"))),
-        _ => (1..=m_max).collect(),
-    };
-    let data_norm = data.norm_l2();
-    let (diagram, kept_at) = stabilisation_diagram(&rmat, &data, &orders, dt, data_norm, opts)?;
-    // the given order, or the diagram's choice (method §6.3)
-    let chosen = match opts.model_order {
-        Some(m) => m,
-        None => choose_order(&diagram, &kept_at, opts).unwrap_or(m_max),
-    };
-    let (all, prediction_residual) = poles_of_order(&rmat, 2 * chosen, dt, opts)?;
-    let no_modes = LsceError::NoModes {
-        lo_hz: opts.band_hz.0,
-        hi_hz: opts.band_hz.1,
-        order: chosen,
-    };
-    if !all.iter().any(|pl| pl.in_band(opts)) {
-        return Err(no_modes);
-    }
-    let Some(model) = kept_model(all, &data, dt, data_norm, opts)? else {
-        return Err(no_modes);
-    };
-    let modes = modes_of_fit(r, &model.fit);
-    let stable = stable_modes(&model.fit.poles, &diagram, chosen, opts);
-    let least_squares = LeastSquaresResiduals {
-        prediction: prediction_residual,
-        residues: model.fit.residual,
-        complex_residues: model.complex_residual,
-    };
-    let report = fit_report(r, &model.fit, &data, dt, opts, least_squares);
-    Ok(Identification {
-        modes,
-        model_order: chosen,
-        stable,
-        discarded_ratio: model.discarded_ratio,
-        diagram,
-        report,
-    })
+    LsceRun::new(r.clone(), opts)?.finish()
 }
 
-/// The stabilisation diagram over `orders` (method §6.3), and per order the
-/// in-band poles the model would keep at that order (indices into its
-/// diagram poles), for the choice of the order.
-fn stabilisation_diagram(
-    rmat: &Mat<f64>,
-    data: &Mat<f64>,
-    orders: &[usize],
-    dt: f64,
-    data_norm: f64,
-    opts: &IdentifyOptions,
-) -> Result<(Vec<DiagramOrder>, Vec<Vec<usize>>), LsceError> {
-    let mut diagram = Vec::with_capacity(orders.len());
-    let mut kept_at: Vec<Vec<usize>> = Vec::with_capacity(orders.len());
-    let mut prev: Option<BandPoles> = None;
-    for &m in orders {
-        let (order, kept, band) = diagram_order(rmat, data, m, dt, data_norm, prev.as_ref(), opts)?;
-        kept_at.push(kept);
-        diagram.push(order);
-        prev = Some(band);
+/// [`identify`] one stage at a time, for a caller that must return between
+/// stages (a page in the browser, which has one thread): the QR of the
+/// Hankel data a few responses at a time, then each order of the
+/// stabilisation diagram, then the model at the chosen order and its
+/// report. The stages are [`identify`]'s own, in its order: the result is
+/// the same to the bit.
+#[derive(Debug)]
+pub struct LsceRun {
+    r: Responses,
+    opts: IdentifyOptions,
+    len: usize,
+    cols: usize,
+    /// The Hankel data's `R` so far, and the responses stacked into it.
+    rmat: Mat<f64>,
+    stacked: usize,
+    /// The data matrix and its norm, once the `R` is complete.
+    data: Option<(Mat<f64>, f64)>,
+    orders: Vec<usize>,
+    diagram: Vec<DiagramOrder>,
+    kept_at: Vec<Vec<usize>>,
+    prev: Option<BandPoles>,
+    /// The chosen order, its model and its prediction residual.
+    model: Option<(usize, KeptModel, f64)>,
+    stages_done: usize,
+}
+
+impl LsceRun {
+    /// Checks the options and the responses (the errors of [`identify`]).
+    pub fn new(r: Responses, opts: &IdentifyOptions) -> Result<Self, LsceError> {
+        crate::base::linalg::sequential();
+        let errors = opts.validate("options");
+        if let Some(e) = errors.first() {
+            return Err(LsceError::Input(e.to_string()));
+        }
+        let len = check_input(&r)?;
+        let m_max = opts.max_model_order;
+        let cols = 2 * m_max + 1;
+        if len < 2 * cols {
+            return Err(LsceError::Input(format!(
+                "{len} samples per response: expected at least {} for max_model_order = {m_max}",
+                2 * cols
+            )));
+        }
+        Ok(LsceRun {
+            r,
+            opts: opts.clone(),
+            len,
+            cols,
+            rmat: Mat::<f64>::zeros(0, cols),
+            stacked: 0,
+            data: None,
+            orders: Vec::new(),
+            diagram: Vec::new(),
+            kept_at: Vec::new(),
+            prev: None,
+            model: None,
+            stages_done: 0,
+        })
     }
-    Ok((diagram, kept_at))
+
+    /// Stages of the whole identification (the QR chunks, the data, the
+    /// diagram's orders, the model, the report).
+    pub fn num_stages(&self) -> usize {
+        Self::stages_for(self.r.data.len(), &self.opts)
+    }
+
+    /// [`LsceRun::num_stages`] of `num_responses` responses identified
+    /// with `opts`.
+    pub fn stages_for(num_responses: usize, opts: &IdentifyOptions) -> usize {
+        num_responses.div_ceil(HANKEL_CHUNK) + 1 + opts.max_model_order + 2
+    }
+
+    /// The responses identified.
+    pub fn into_responses(self) -> Responses {
+        self.r
+    }
+
+    /// Stages done so far.
+    pub fn stages_done(&self) -> usize {
+        self.stages_done
+    }
+
+    /// Runs every stage left.
+    pub fn finish(mut self) -> Result<Identification, LsceError> {
+        loop {
+            if let Some(id) = self.stage()? {
+                return Ok(id);
+            }
+        }
+    }
+
+    /// Runs the next stage; the identification once the last one ran.
+    pub fn stage(&mut self) -> Result<Option<Identification>, LsceError> {
+        self.stages_done += 1;
+        let (len, dt, opts) = (self.len, self.r.dt_s, &self.opts);
+        // one QR factor of the Hankel data serves every order (method §6.2, 1)
+        if self.stacked < self.r.data.len() {
+            let end = (self.stacked + HANKEL_CHUNK).min(self.r.data.len());
+            hankel_add(
+                &mut self.rmat,
+                &self.r.data[self.stacked..end],
+                len,
+                self.cols,
+            );
+            self.stacked = end;
+            return Ok(None);
+        }
+        let Some((data, data_norm)) = &self.data else {
+            if self.rmat.nrows() == 0 {
+                return Err(LsceError::Input("every response is zero".into()));
+            }
+            let m_max = opts.max_model_order;
+            self.orders = match opts.model_order {
+                Some(m) if m > m_max => {
+                    return Err(LsceError::Input(format!("model order {m} > {m_max}")));
+                }
+                _ => (1..=m_max).collect(),
+            };
+            let data = data_matrix(&self.r, len);
+            let norm = data.norm_l2();
+            self.data = Some((data, norm));
+            return Ok(None);
+        };
+        let (data, data_norm) = (data, *data_norm);
+        // the stabilisation diagram, an order at a time (method §6.3)
+        if self.diagram.len() < self.orders.len() {
+            let m = self.orders[self.diagram.len()];
+            let (order, kept, band) =
+                diagram_order(&self.rmat, data, m, dt, data_norm, self.prev.as_ref(), opts)?;
+            self.kept_at.push(kept);
+            self.diagram.push(order);
+            self.prev = Some(band);
+            return Ok(None);
+        }
+        let Some((chosen, model, prediction_residual)) = &self.model else {
+            // the given order, or the diagram's choice (method §6.3)
+            let chosen = match opts.model_order {
+                Some(m) => m,
+                None => {
+                    choose_order(&self.diagram, &self.kept_at, opts).unwrap_or(opts.max_model_order)
+                }
+            };
+            let (all, prediction_residual) = poles_of_order(&self.rmat, 2 * chosen, dt, opts)?;
+            let no_modes = LsceError::NoModes {
+                lo_hz: opts.band_hz.0,
+                hi_hz: opts.band_hz.1,
+                order: chosen,
+            };
+            if !all.iter().any(|pl| pl.in_band(opts)) {
+                return Err(no_modes);
+            }
+            let Some(model) = kept_model(all, data, dt, data_norm, opts)? else {
+                return Err(no_modes);
+            };
+            self.model = Some((chosen, model, prediction_residual));
+            return Ok(None);
+        };
+        let r = &self.r;
+        let modes = modes_of_fit(r, &model.fit);
+        let stable = stable_modes(&model.fit.poles, &self.diagram, *chosen, opts);
+        let least_squares = LeastSquaresResiduals {
+            prediction: *prediction_residual,
+            residues: model.fit.residual,
+            complex_residues: model.complex_residual,
+        };
+        let report = fit_report(r, &model.fit, data, dt, opts, least_squares);
+        Ok(Some(Identification {
+            modes,
+            model_order: *chosen,
+            stable,
+            discarded_ratio: model.discarded_ratio.clone(),
+            diagram: std::mem::take(&mut self.diagram),
+            report,
+        }))
+    }
 }
 
 /// The in-band poles of one order of the stabilisation diagram and their
@@ -635,6 +733,7 @@ fn diagram_order(
 
 /// The model at the chosen order and what the real form of its residues
 /// leaves out.
+#[derive(Debug)]
 struct KeptModel {
     /// The kept poles and their residues; the time error and residual of
     /// the fit with every physical pole.

@@ -279,6 +279,21 @@ impl RingParams {
         dt_s: f64,
         len: usize,
     ) -> (Vec<(usize, usize)>, Vec<Vec<f64>>) {
+        let model = self.sampling_model(x_m, dt_s);
+        let mut pairs = Vec::new();
+        let mut data = Vec::new();
+        for i in 0..x_m.len() {
+            let (p, d) = sampled_row(&model, i, dt_s, len);
+            pairs.extend(p);
+            data.extend(d);
+        }
+        (pairs, data)
+    }
+
+    /// The order modes below the Nyquist frequency `1/(2 dt)` at the points
+    /// `x_m`: the model [`RingParams::sampled_responses`] samples
+    /// ([`sampled_row`] a row of it at a time).
+    pub fn sampling_model(&self, x_m: &[f64], dt_s: f64) -> ModalModel {
         let nyquist = 0.5 / dt_s;
         let modes: Vec<Mode> = self
             .all_modes()
@@ -286,21 +301,7 @@ impl RingParams {
             .filter(|m| m.omega_rad_s > 0.0 && m.freq_hz() < nyquist)
             .map(|m| self.mode_at(&m, x_m))
             .collect();
-        let p = x_m.len();
-        let model = ModalModel::from_modes(&modes, p);
-        let mut pairs = Vec::new();
-        let mut data = Vec::new();
-        for i in 0..p {
-            for j in i..p {
-                pairs.push((i, j));
-                data.push(
-                    (0..len)
-                        .map(|k| model.green(i, j, k as f64 * dt_s).0)
-                        .collect(),
-                );
-            }
-        }
-        (pairs, data)
+        ModalModel::from_modes(&modes, x_m.len())
     }
 
     /// Checks every parameter; errors name the field as `{prefix}.{field}`.
@@ -379,4 +380,23 @@ pub fn free_ring_inextensional_hz(n: usize, radius_m: f64, ei_n_m2: f64, m_kg_m:
     let nf = n as f64;
     nf * (nf * nf - 1.0) / (2.0 * PI * radius_m * radius_m)
         * (ei_n_m2 / (m_kg_m * (nf * nf + 1.0))).sqrt()
+}
+
+/// Row `i` of [`RingParams::sampled_responses`]: the pairs `(i, j)`,
+/// `j >= i`, and their responses `g_ij(k dt)`, `k = 0..len`, sampled from
+/// `model` ([`RingParams::sampling_model`]).
+pub fn sampled_row(
+    model: &ModalModel,
+    i: usize,
+    dt_s: f64,
+    len: usize,
+) -> (Vec<(usize, usize)>, Vec<Vec<f64>>) {
+    (i..model.num_points)
+        .map(|j| {
+            let g = (0..len)
+                .map(|k| model.green(i, j, k as f64 * dt_s).0)
+                .collect();
+            ((i, j), g)
+        })
+        .unzip()
 }

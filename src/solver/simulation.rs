@@ -31,7 +31,7 @@ use crate::scene::{ContactScheme, Scene};
 pub use events::first_crossing;
 use factor_cache::FullFactors;
 pub use options::{IDENTIFIED_RANK_TOLERANCE, SolverOptions};
-use parts::{Scratch, SimState, SimTables};
+use parts::{Scratch, SimState, SimTables, SimTablesBuild};
 
 /// Values of a linear force at the step start and end from its Gauss-point values.
 const GA: f64 = 1.366_025_403_784_438_6;
@@ -119,6 +119,68 @@ pub struct Simulation {
     threads: Threads,
 }
 
+/// [`Simulation::new`] a stage at a time: the tables' basis, then their
+/// `P × P` parts a block of rows (about a millisecond of work) at a time,
+/// then the simulation. The tables are [`Simulation::new`]'s to the bit, so
+/// the run is the same.
+pub struct SimulationBuild {
+    model: PreparedModel,
+    options: SolverOptions,
+    tables: SimTablesBuild,
+    stages_done: usize,
+}
+
+impl std::fmt::Debug for SimulationBuild {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SimulationBuild")
+            .field("scene", &self.model.scene().name)
+            .field("stages_done", &self.stages_done)
+            .finish()
+    }
+}
+
+impl SimulationBuild {
+    /// Runs the next stage; the simulation once the last one ran.
+    pub fn stage(&mut self) -> Result<Option<Simulation>, SceneError> {
+        self.stages_done += 1;
+        Ok(self.tables.stage()?.map(|tables| {
+            let threads = Threads::new(self.options.threads)
+                .with_parallel_from(self.options.parallel_from_madds);
+            Simulation::with_tables(&self.model, tables, threads)
+        }))
+    }
+
+    /// Stages done so far.
+    pub fn stages_done(&self) -> usize {
+        self.stages_done
+    }
+
+    /// Stages of the whole build (exact once the basis is built, the
+    /// first stage; an estimate before).
+    pub fn num_stages(&self) -> usize {
+        self.stages_done + self.tables.stages_left()
+    }
+
+    /// The model the simulation is built from.
+    pub fn model(&self) -> &PreparedModel {
+        &self.model
+    }
+
+    /// The model back (after the last stage, or to drop the build).
+    pub fn into_model(self) -> PreparedModel {
+        self.model
+    }
+
+    /// Runs every stage left.
+    pub fn finish(mut self) -> Result<Simulation, SceneError> {
+        loop {
+            if let Some(sim) = self.stage()? {
+                return Ok(sim);
+            }
+        }
+    }
+}
+
 /// `√3`: the slope of a linear force is `√3 (q2 - q1) / τ` from its
 /// Gauss-point values.
 const SQRT3: f64 = 1.732_050_807_568_877_2;
@@ -143,6 +205,24 @@ impl Simulation {
         let scene = model.scene();
         let threads = Threads::new(options.threads).with_parallel_from(options.parallel_from_madds);
         let tables = SimTables::new(scene, model.modes().to_vec(), options, &threads)?;
+        Ok(Self::with_tables(model, tables, threads))
+    }
+
+    /// [`Simulation::new`] a stage at a time ([`SimulationBuild`]), for a
+    /// caller that must return between stages (a page in the browser).
+    pub fn build_in_stages(model: PreparedModel, options: SolverOptions) -> SimulationBuild {
+        SimulationBuild {
+            tables: SimTablesBuild::new(model.scene(), model.modes().to_vec(), options),
+            model,
+            options,
+            stages_done: 0,
+        }
+    }
+
+    /// The simulation of `model` on its tables, at rest.
+    fn with_tables(model: &PreparedModel, tables: SimTables, threads: Threads) -> Self {
+        let scene = model.scene();
+        let options = tables.options;
         let p = tables.p;
         let pen_tol_m = penetration_tolerance_m(model.road(), &scene.points);
         let xs: Vec<f64> = scene.points.iter().map(|pt| pt.x_m).collect();
@@ -159,7 +239,7 @@ impl Simulation {
             threads,
         };
         sim.reset();
-        Ok(sim)
+        sim
     }
 
     /// Back to `t = 0`, at rest, zero gap.

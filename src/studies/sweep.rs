@@ -12,12 +12,12 @@ use crate::analysis::metrics::{ContactMetrics, ContactSummary};
 use crate::analysis::spectrum::run::{DEFAULT_BANDS_HZ, SteadyRecorder};
 use crate::analysis::spectrum::{BandLevel, SpectrumError, Window};
 use crate::base::error::{FieldError, IoError, RunError, SceneError, SolverError};
-use crate::identify::{ModeCache, PreparedModel};
+use crate::identify::{ModeCache, PreparedModel, PreparedModelRun};
 use crate::model::fe_modes::FeDamping;
 use crate::model::road::Road;
 use crate::scene::{Contact, Points, Preload, Scene, Tyre};
 use crate::solver::drive::Watch;
-use crate::solver::simulation::{Simulation, SolverOptions};
+use crate::solver::simulation::{Simulation, SimulationBuild, SolverOptions};
 pub mod engine;
 pub mod report;
 
@@ -633,13 +633,15 @@ impl SummaryRun {
     /// The simulation of `model` and its metrics; a steady part too short
     /// or too long for a spectrum is refused here, before any step.
     pub fn new(model: &PreparedModel) -> Result<Self, SummaryError> {
-        let scene = model.scene();
-        let sim = Simulation::new(model, SolverOptions::default())?;
+        Self::with_simulation(Simulation::new(model, SolverOptions::default())?)
+    }
+
+    /// [`SummaryRun::new`] on a simulation built already (at rest).
+    pub fn with_simulation(sim: Simulation) -> Result<Self, SummaryError> {
+        let scene = sim.scene();
         SteadyRecorder::steady_samples(scene, None)?;
-        Ok(SummaryRun {
-            sim,
-            metrics: ContactMetrics::new(scene, None).keeping_total_force(),
-        })
+        let metrics = ContactMetrics::new(scene, None).keeping_total_force();
+        Ok(SummaryRun { sim, metrics })
     }
 
     /// Steps until the scene's end or `deadline` (`None`: the end);
@@ -696,6 +698,9 @@ pub struct SweepRun {
     /// The value being run and its run (`None` before it is prepared).
     next: usize,
     current: Option<SummaryRun>,
+    /// The value's scene being prepared and its solver built (before its
+    /// run).
+    preparing: Option<Preparing>,
     points: Vec<SweepPoint>,
     total_steps: u64,
     done_steps: u64,
@@ -711,6 +716,7 @@ impl SweepRun {
             scenes,
             next: 0,
             current: None,
+            preparing: None,
             points: Vec::new(),
             done_steps: 0,
         })
@@ -744,9 +750,40 @@ impl SweepRun {
             let value = self.values[k];
             let run = match self.current.take() {
                 Some(run) => Ok(run),
-                None => PreparedModel::new(&self.scenes[k], cache)
-                    .map_err(SummaryError::from)
-                    .and_then(|m| SummaryRun::new(&m)),
+                None => {
+                    // the scene prepared and its solver built a stage at a
+                    // time (a ring's identification, a large patch's
+                    // tables take many slices)
+                    let prep = self.preparing.get_or_insert_with(|| {
+                        Preparing::Model(Box::new(PreparedModelRun::new(&self.scenes[k], cache)))
+                    });
+                    let sim = loop {
+                        if cancel.load(Ordering::Relaxed) {
+                            return Some(Err(SweepError::Cancelled));
+                        }
+                        match prep {
+                            Preparing::Model(run) => match run.stage(cache) {
+                                Ok(Some(m)) => {
+                                    *prep = Preparing::Build(Box::new(
+                                        Simulation::build_in_stages(m, SolverOptions::default()),
+                                    ));
+                                }
+                                Err(e) => break Err(SummaryError::from(e)),
+                                Ok(None) => {}
+                            },
+                            Preparing::Build(b) => match b.stage() {
+                                Ok(Some(sim)) => break Ok(sim),
+                                Err(e) => break Err(SummaryError::from(e)),
+                                Ok(None) => {}
+                            },
+                        }
+                        if past() {
+                            return None;
+                        }
+                    };
+                    self.preparing = None;
+                    sim.and_then(SummaryRun::with_simulation)
+                }
             };
             let done = std::cell::Cell::new(0);
             let outcome = run.and_then(|mut run| {
@@ -773,6 +810,12 @@ impl SweepRun {
         }
         Some(Ok(std::mem::take(&mut self.points)))
     }
+}
+
+/// Where the preparation of a sweep value's run is.
+enum Preparing {
+    Model(Box<PreparedModelRun>),
+    Build(Box<SimulationBuild>),
 }
 
 /// One point of a sweep.

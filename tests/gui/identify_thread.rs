@@ -301,3 +301,43 @@ fn an_fe_tyre_is_read_off_the_ui_thread() {
     let m = h.state().message().expect("a refusal");
     assert!(m.error && m.text.contains("missing_fe.uff"), "{}", m.text);
 }
+
+/// While an edit waits for its ring's identification, a progress line says
+/// what the preparation is doing, and its Cancel stops it: the current
+/// scene is kept and no edit applies later.
+#[test]
+fn a_preparation_shows_its_progress_and_can_be_cancelled() {
+    let scene = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    let mut h = harness_sized(App::new(scene.clone(), None).unwrap(), [1280.0, 720.0]);
+    h.run_steps(2);
+    let mut edited = scene.clone();
+    edited.points[0].x_m += 0.004;
+    h.state_mut()
+        .apply(Command::EditScene(Box::new(edited.clone())));
+    assert!(h.state().identifying());
+    h.step();
+    let (doing, fraction) = h.state().preparation_progress().expect("a preparation");
+    assert!(!doing.is_empty() && (0.0..=1.0).contains(&fraction));
+    assert!(
+        h.query_by_label_contains("Preparing the scene:").is_some(),
+        "no progress line"
+    );
+    h.get_by_label("Cancel").click();
+    h.run_steps(3);
+    assert!(!h.state().identifying(), "the preparation goes on");
+    assert!(h.state().preparation_progress().is_none());
+    assert!(h.query_by_label_contains("Preparing the scene:").is_none());
+    assert_eq!(
+        h.state().scene().points,
+        scene.points,
+        "the current scene is kept"
+    );
+    let m = h.state().message().unwrap();
+    assert!(m.text.contains("Cancelled"), "{m:?}");
+    // nothing applies later
+    for _ in 0..20 {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.step();
+    }
+    assert_eq!(h.state().scene().points, scene.points);
+}

@@ -35,3 +35,128 @@ fn a_narrow_window_keeps_the_editing_panel_behind_a_button() {
     assert!(wide.query_by_label("road.amplitude_m").is_some());
     assert!(wide.query_by_label("Edit the scene").is_none());
 }
+
+/// Every control of a label `label` lies inside a `w × h` window.
+fn inside(h: &egui_kittest::Harness<'_, App>, label: &str, [w, ht]: [f32; 2]) {
+    let nodes: Vec<_> = h.query_all_by_label(label).collect();
+    assert!(!nodes.is_empty(), "no {label}");
+    for n in nodes {
+        let r = n.rect();
+        assert!(
+            r.left() >= 0.0 && r.right() <= w && r.top() >= 0.0 && r.bottom() <= ht,
+            "{label} at {r:?}: outside the {w} × {ht} window"
+        );
+    }
+}
+
+/// At phone size (400 × 800 logical px) the menu bar folds into Menu, View
+/// and Help, and the transport row wraps: every control of both is inside
+/// the window (the menu bar and the clock ran past its right edge).
+#[test]
+fn a_phone_window_shows_the_whole_menu_bar_and_transport() {
+    let size = [400.0, 800.0];
+    let mut h = harness_sized(App::with_default_preset(), size);
+    settle(&mut h);
+    h.run_steps(2);
+    let texts = texts(&h);
+    let clock = texts
+        .iter()
+        .find(|(t, _)| t.starts_with("t = "))
+        .expect("the clock");
+    assert!(clock.1.right() <= size[0], "the clock at {:?}", clock.1);
+    for label in [
+        "Help", "Play", "Step", "Step N", "N steps", "Reset", "speed", "Menu", "View",
+    ] {
+        inside(&h, label, size);
+    }
+    // the folded menus hold what the wide bar shows
+    h.get_by_label("Menu").click();
+    h.run_steps(2);
+    for label in ["File", "Presets", "Guided tour", "Export"] {
+        inside(&h, label, size);
+    }
+    h.key_press(egui::Key::Escape);
+    h.run_steps(2);
+    h.get_by_label("View").click();
+    h.run_steps(2);
+    for label in ["Classroom", "Time plots", "Mode bars"] {
+        inside(&h, label, size);
+    }
+    // a wide window keeps the flat bar
+    let mut wide = harness_sized(App::with_default_preset(), [1280.0, 720.0]);
+    settle(&mut wide);
+    assert!(wide.query_by_label("Menu").is_none());
+    inside(&wide, "File", [1280.0, 720.0]);
+    inside(&wide, "Help", [1280.0, 720.0]);
+}
+
+/// A message of several lines (a refused link's reason, at phone width)
+/// takes its own room above the views: it does not cover the time plots'
+/// "follow latest" row.
+#[test]
+fn a_long_banner_does_not_cover_the_views_controls() {
+    for size in [[400.0, 800.0], [1280.0, 720.0]] {
+        let app = App::open_link("index.html#scene=v1.%%%", None);
+        let text = app.message().unwrap().text.clone();
+        let mut h = harness_sized(app, size);
+        settle(&mut h);
+        h.run_steps(2);
+        let texts = texts(&h);
+        let banner = texts
+            .iter()
+            .filter(|(t, _)| text.starts_with(t.as_str()) || t.contains("refused"))
+            .map(|(_, r)| *r)
+            .reduce(|a, b| a.union(b))
+            .expect("the banner")
+            // its frame's margin
+            .expand(4.0);
+        if size[0] < 700.0 {
+            assert!(banner.height() > 20.0, "a banner of one line: {banner:?}");
+        }
+        let follow = h.get_by_label("follow latest").rect();
+        assert!(
+            !banner.intersects(follow),
+            "at {size:?} the banner {banner:?} covers the follow row {follow:?}"
+        );
+    }
+}
+
+/// A scene opened from a link says so in the status bar, with its name
+/// (not "built-in preset").
+#[test]
+fn a_scene_from_a_link_says_so_in_the_status_bar() {
+    let scene = tirecontact::Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+    let link = tirecontact::scene::share::link(&scene, "index.html").unwrap();
+    let mut h = harness_sized(App::open_link(&link, None), [1280.0, 720.0]);
+    settle(&mut h);
+    let texts = texts(&h);
+    let label = format!("{} (from a link)", scene.name);
+    assert!(
+        texts.iter().any(|(t, _)| *t == label),
+        "no {label:?} in {:?}",
+        texts.iter().map(|(t, _)| t).collect::<Vec<_>>()
+    );
+    assert!(!texts.iter().any(|(t, _)| t.contains("built-in preset")));
+    assert!(h.state().title().contains("(from a link)"));
+}
+
+/// At phone size every view's text lies inside the window (the scene
+/// view's one-row header widened the page past its right edge, cutting
+/// the plot, its legend and the status bar).
+#[test]
+fn a_phone_window_keeps_every_view_inside_it() {
+    use tirecontact::gui::{Command, View};
+    let size = [400.0, 800.0];
+    for view in [View::TimePlots, View::Scene, View::Patch] {
+        let mut h = harness_sized(App::with_default_preset(), size);
+        h.state_mut().apply(Command::ShowView(view));
+        crate::harness::advance(&mut h, 3000);
+        settle(&mut h);
+        h.run_steps(2);
+        let past: Vec<_> = texts(&h)
+            .into_iter()
+            .filter(|(t, r)| !t.trim().is_empty() && r.right() > size[0] + 0.5)
+            .collect();
+        assert!(past.is_empty(), "{view:?}: past the right edge: {past:?}");
+    }
+}

@@ -159,6 +159,7 @@ impl App {
                     self.last_dir = Some(dir.to_path_buf());
                 }
                 self.doc.path = path;
+                self.doc.from_link = false;
                 self.time.reset();
                 self.set_watchable_speed();
                 self.reset_run();
@@ -312,12 +313,26 @@ impl App {
         if self.handles.csv_job.is_some() {
             self.error("a CSV export is already running");
         } else {
+            // in the browser: a download of the file's name
+            let deliver: crate::gui::jobs::export::Deliver = if crate::gui::chrome::web::IN_BROWSER
+            {
+                Box::new(|path, bytes| {
+                    let name = path
+                        .file_name()
+                        .map_or("run.csv".into(), |n| n.to_string_lossy().into_owned());
+                    crate::gui::chrome::web::download(&name, bytes);
+                    Ok(format!("{name} offered as a download"))
+                })
+            } else {
+                crate::gui::jobs::export::write_file()
+            };
             match CsvJob::spawn(
                 path.clone(),
                 self.run_start.clone(),
                 Arc::clone(&self.handles.mode_cache),
                 self.live_edits.clone(),
                 self.sim.steps(),
+                deliver,
             ) {
                 Ok(job) => {
                     self.info(format!("writing {} …", path.display()));
@@ -333,6 +348,20 @@ impl App {
     pub(super) fn poll_csv(&self) -> Option<Command> {
         let r = self.handles.csv_job.as_ref()?.poll()?;
         Some(Command::CsvExportEnded(r))
+    }
+
+    /// Stops the CSV export under way (it stops at its next steps; no
+    /// file is written).
+    pub(super) fn cancel_csv_export(&mut self) {
+        if self.handles.csv_job.take().is_some() {
+            self.info("CSV export cancelled: no file written.");
+        }
+    }
+
+    /// The CSV export's progress (fraction of the steps re-run), while
+    /// one runs.
+    pub fn csv_progress(&self) -> Option<f64> {
+        self.handles.csv_job.as_ref().map(CsvJob::fraction)
     }
 
     pub(super) fn csv_export_ended(&mut self, r: Result<String, String>) {

@@ -68,6 +68,7 @@ impl App {
         let st = self.sim.stats();
         status_bar::Status {
             path: self.doc.path.as_deref(),
+            from_link: self.doc.from_link,
             scene_name: &self.doc.scene.name,
             dirty: self.is_dirty(),
             points: self.doc.scene.num_points(),

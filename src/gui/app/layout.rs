@@ -3,9 +3,7 @@
 
 use super::*;
 
-/// Below this window width (logical px: a phone) the editing panel hides
-/// behind a button instead of covering the views.
-pub const NARROW_PX: f32 = 700.0;
+pub use crate::gui::widgets::NARROW_PX;
 
 impl App {
     pub(super) fn show_view(&mut self, v: View) {
@@ -65,6 +63,8 @@ impl App {
             });
         egui::CentralPanel::default().show(ui, |ui| {
             crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
+            crate::gui::chrome::dialogs::preparation_row(ui, self.preparation_progress(), cmds);
+            crate::gui::chrome::dialogs::csv_row(ui, self.csv_progress(), cmds);
             classroom::phase_strip(ui, self.sim.time_s(), &self.phases);
             let h = (ui.available_height() * 0.68).max(150.0);
             let w = ui.available_width();
@@ -119,6 +119,8 @@ impl App {
             });
             egui::CentralPanel::default().show(ui, |ui| {
                 crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
+                crate::gui::chrome::dialogs::preparation_row(ui, self.preparation_progress(), cmds);
+                crate::gui::chrome::dialogs::csv_row(ui, self.csv_progress(), cmds);
                 self.show_current_view(ui, cmds);
             });
             return;
@@ -146,6 +148,8 @@ impl App {
         }
         egui::CentralPanel::default().show(ui, |ui| {
             crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);
+            crate::gui::chrome::dialogs::preparation_row(ui, self.preparation_progress(), cmds);
+            crate::gui::chrome::dialogs::csv_row(ui, self.csv_progress(), cmds);
             self.show_current_view(ui, cmds);
         });
     }

@@ -178,6 +178,25 @@ impl App {
         }
     }
 
+    /// Stops the preparation under way (a dropped job stops at its next
+    /// stage); the current scene is kept.
+    pub(super) fn cancel_preparation(&mut self) {
+        if let Some((job, note)) = self.handles.prepare_job.take() {
+            job.cancel();
+            if self.message.as_ref().is_some_and(|m| m.text == note) {
+                self.message = None;
+            }
+            self.info("Cancelled: the current scene is kept.".to_string());
+        }
+    }
+
+    /// What the preparation under way is doing and the fraction of it
+    /// done, for its progress line.
+    pub fn preparation_progress(&self) -> Option<(&'static str, f64)> {
+        let (job, _) = self.handles.prepare_job.as_ref()?;
+        Some((job.doing(), job.progress()))
+    }
+
     /// Whether an edit or a new document waits for its preparation (a
     /// file read, a ring identified).
     pub fn identifying(&self) -> bool {

@@ -19,6 +19,7 @@ impl App {
                 let name = scene.name.clone();
                 match App::new(scene, None) {
                     Ok(mut app) => {
+                        app.doc.from_link = true;
                         app.info(format!("opened \"{name}\" from the link"));
                         app.link_options(link);
                         app
@@ -67,7 +68,8 @@ impl App {
     }
 
     /// Open, Save As and the exports in a browser: the browser's picker
-    /// and downloads for presets; the exports need the desktop app.
+    /// and downloads for presets, a download for the run's CSV; the other
+    /// exports need the desktop app.
     pub(super) fn browser_file(&mut self, action: FileAction, stem: &str) {
         match action {
             FileAction::Open => web::pick_preset(),
@@ -84,6 +86,8 @@ impl App {
                 self.doc.saved = self.doc.scene.clone();
                 self.info(format!("{name} offered as a download"));
             }
+            // re-run in slices within the frames, then downloaded
+            FileAction::ExportCsv => self.export_csv(PathBuf::from(format!("{stem}.csv"))),
             _ => self.not_in_browser(action.title()),
         }
     }

@@ -31,26 +31,73 @@ pub struct PngSettings {
 const BANNER_MARGIN_PX: f32 = 6.0;
 
 /// The message banner above the views (errors in red, with a dismiss
-/// button). A strip one banner line high is kept above the views whether or
-/// not a message is shown, and the banner is drawn over it (a longer
-/// message over the top of the view): the views do not move as messages
-/// come and go.
+/// button). It takes its own room above the views, at least one banner
+/// line high whether or not a message is shown (the views do not move as
+/// one-line messages come and go); a longer message pushes the views down
+/// rather than covering their controls.
 pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
     let row_px = ui
         .text_style_height(&egui::TextStyle::Body)
         .max(ui.spacing().interact_size.y);
-    let (strip, _) = ui.allocate_exact_size(
-        egui::vec2(ui.available_width(), row_px + 2.0 * BANNER_MARGIN_PX),
-        egui::Sense::hover(),
-    );
-    let Some(m) = msg else { return };
-    egui::Area::new(egui::Id::unique("tirecontact.banner"))
-        .fixed_pos(strip.min)
-        .order(egui::Order::Middle)
-        .show(ui.ctx(), |ui| {
-            ui.set_width(strip.width());
+    let size = egui::vec2(ui.available_width(), row_px + 2.0 * BANNER_MARGIN_PX);
+    ui.allocate_ui_with_layout(size, egui::Layout::top_down(egui::Align::Min), |ui| {
+        ui.set_min_size(size);
+        if let Some(m) = msg {
+            ui.set_width(size.x);
             banner_frame(ui, m, cmds);
-        });
+        }
+    });
+}
+
+/// The progress line of the preparation an edit or a new document waits
+/// for: what it is doing, how far it is, and Cancel.
+pub fn preparation_row(ui: &mut Ui, progress: Option<(&str, f64)>, cmds: &mut Vec<Command>) {
+    if let Some((doing, fraction)) = progress {
+        job_row(
+            ui,
+            &format!("Preparing the scene: {doing}…"),
+            fraction,
+            "stop; the current scene is kept",
+            Command::CancelPreparation,
+            cmds,
+        );
+    }
+}
+
+/// The progress line of a CSV export (the run re-simulated), and Cancel.
+pub fn csv_row(ui: &mut Ui, fraction: Option<f64>, cmds: &mut Vec<Command>) {
+    if let Some(fraction) = fraction {
+        job_row(
+            ui,
+            "Writing the CSV: re-running the run from t = 0…",
+            fraction,
+            "stop; no file is written",
+            Command::CancelCsvExport,
+            cmds,
+        );
+    }
+}
+
+/// A background job's line: a progress bar, what it does, Cancel.
+fn job_row(
+    ui: &mut Ui,
+    doing: &str,
+    fraction: f64,
+    cancel_hover: &str,
+    cancel: Command,
+    cmds: &mut Vec<Command>,
+) {
+    ui.horizontal_wrapped(|ui| {
+        ui.add(
+            egui::ProgressBar::new(fraction as f32)
+                .desired_width(140.0)
+                .show_percentage(),
+        );
+        ui.label(doing);
+        if ui.button("Cancel").on_hover_text(cancel_hover).clicked() {
+            cmds.push(cancel);
+        }
+    });
 }
 
 /// The banner's frame, text and Dismiss button.

@@ -15,6 +15,8 @@ use std::path::Path;
 pub struct Status<'a> {
     /// The document's file, if it has one.
     pub path: Option<&'a Path>,
+    /// The document came from a scene link (and has no file since).
+    pub from_link: bool,
     pub scene_name: &'a str,
     /// The scene differs from its saved version.
     pub dirty: bool,
@@ -45,9 +47,19 @@ pub struct StatusText {
 /// The status bar's labels, left to right: document, run, history.
 pub fn texts(s: &Status) -> [StatusText; 3] {
     [
-        StatusText {
-            full: document_label(s.path, s.scene_name, s.dirty),
-            short: short_document_label(s.path, s.scene_name, s.dirty),
+        match (s.path, s.from_link) {
+            (None, true) => StatusText {
+                full: marked(
+                    format!("{} (from a link)", s.scene_name),
+                    s.dirty,
+                    "unsaved changes",
+                ),
+                short: marked(format!("{} (link)", s.scene_name), s.dirty, "unsaved"),
+            },
+            _ => StatusText {
+                full: document_label(s.path, s.scene_name, s.dirty),
+                short: short_document_label(s.path, s.scene_name, s.dirty),
+            },
         },
         StatusText {
             full: format!(
@@ -83,6 +95,15 @@ pub fn history_text(samples: usize, stride: u64) -> String {
     format!("history: {}, {every}", count(samples, "sample"))
 }
 
+/// `doc`, then `(mark)` if `dirty`.
+fn marked(doc: String, dirty: bool, mark: &str) -> String {
+    if dirty {
+        format!("{doc} ({mark})")
+    } else {
+        doc
+    }
+}
+
 /// The document label for narrow windows: the file's name without its
 /// folder, "(unsaved)" for "(unsaved changes)".
 pub fn short_document_label(
@@ -105,11 +126,14 @@ pub fn short_document_label(
 }
 
 /// How the labels are shown: `short[k]` takes label `k`'s short text;
-/// `doc_max_px`, when set, cuts the document label to that width.
+/// `doc_max_px`, when set, cuts the document label to that width;
+/// `no_history`: the history label is left out (a phone's width), its text
+/// in the run label's hover.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fit {
     pub short: [bool; 3],
     pub doc_max_px: Option<f32>,
+    pub no_history: bool,
 }
 
 /// Order in which labels give up their full text (history, run, document).
@@ -133,14 +157,28 @@ pub fn fit(full_px: [f32; 3], short_px: [f32; 3], other_px: f32, avail_px: f32) 
             return Fit {
                 short,
                 doc_max_px: None,
+                no_history: false,
             };
         }
         short[k] = true;
     }
-    let over = width(&short) - avail_px;
+    let mut over = width(&short) - avail_px;
+    // the document cut to its least width still leaves no room: the
+    // history label goes (a phone)
+    let no_history = over > short_px[0] - MIN_DOC_PX;
+    if no_history {
+        over -= short_px[2] + HISTORY_GAP_PX;
+    }
     let doc_max_px = (over > 0.0).then(|| (short_px[0] - over).max(MIN_DOC_PX));
-    Fit { short, doc_max_px }
+    Fit {
+        short,
+        doc_max_px,
+        no_history,
+    }
 }
+
+/// The room (px) of the separator before the history label.
+const HISTORY_GAP_PX: f32 = 18.0;
 
 /// The least width (px) the document label is cut to.
 pub const MIN_DOC_PX: f32 = 60.0;
@@ -181,6 +219,9 @@ pub fn show(ui: &mut Ui, status: &Status) {
     let f = fit(full_px, short_px, other_px, ui.available_width());
     ui.horizontal(|ui| {
         for (k, t) in texts.iter().enumerate() {
+            if k == 2 && f.no_history {
+                break;
+            }
             if k > 0 {
                 ui.separator();
             }
@@ -200,7 +241,9 @@ pub fn show(ui: &mut Ui, status: &Status) {
                 }
                 None => ui.add(label.extend()),
             };
-            if f.short[k] {
+            if k == 1 && f.no_history {
+                r.on_hover_text(format!("{}\n{}", t.full, texts[2].full));
+            } else if f.short[k] {
                 r.on_hover_text(&t.full);
             }
         }
@@ -284,8 +327,15 @@ mod tests {
         let f = fit(FULL, SHORT, 100.0, 700.0);
         assert_eq!(f.short, [true; 3]);
         assert_eq!(f.doc_max_px, Some(220.0));
-        // never below the least width
+        assert!(!f.no_history);
+        // never below the least width: the history label goes first
+        // (630 + 100 px wanted, 500 px: without its 120 + 18 px the
+        // document keeps 250 - 92 = 158 px)
+        let f = fit(FULL, SHORT, 100.0, 500.0);
+        assert!(f.no_history);
+        assert_eq!(f.doc_max_px, Some(158.0));
         let f = fit(FULL, SHORT, 100.0, 100.0);
+        assert!(f.no_history);
         assert_eq!(f.doc_max_px, Some(MIN_DOC_PX));
     }
 

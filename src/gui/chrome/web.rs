@@ -10,9 +10,11 @@ pub const IN_BROWSER: bool = cfg!(target_arch = "wasm32");
 
 /// What the browser does not do, shown where the desktop would do it.
 pub const BROWSER_LIMITS: &str = "In the browser, Open reads a preset through the browser's \
-    picker and Save As downloads it; a preset naming a file beside it (a measured tyre or road) \
-    and the exports (CSV, PNG, frames) need the desktop app. Background work (identification, \
-    sweeps, spectra) runs at once in the page, which waits until it ends.";
+    picker, Save As and Export → Run as CSV download their file; a preset naming a file beside \
+    it (a measured tyre or road) and the PNG exports (plots, animation frames, sweep figures) \
+    need the desktop app. Background work (a ring's identification, a large patch's set-up, \
+    sweeps, spectra, the CSV's re-run) runs in slices within the frames, one core, with its \
+    progress and Cancel.";
 
 /// The page's address without its fragment, in a browser.
 pub fn page_address() -> Option<String> {

@@ -11,13 +11,14 @@ use crate::base::error::RunError;
 use crate::base::modal::Mode;
 use crate::gui::jobs::{Job, Progress};
 use crate::gui::model::history::History;
-use crate::identify::{ModeCache, PreparedModel};
+use crate::identify::{ModeCache, PreparedModel, PreparedModelRun};
 use crate::model::road::{Road, RoadProfile};
 use crate::output::csv::RunWriter;
 use crate::output::figures::{Figure, render_png};
 use crate::output::record::{FigureSpec, PLOT_SAMPLES, RunPanel};
 use crate::output::summary::{scene_summary, short_num};
 use crate::solver::drive::{self, Probe, Watch};
+use crate::solver::simulation::SimulationBuild;
 use crate::{Scene, Simulation, SolverOptions};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -165,27 +166,137 @@ pub fn write_csv(
     ))
 }
 
-/// A CSV export running on its own thread.
+/// A CSV export running on its own thread (in the browser, in slices
+/// within the frames, the file then offered as a download).
 pub struct CsvJob {
     pub path: PathBuf,
     job: Job<Result<String, String>>,
 }
 
+/// Where a CSV export is: the start scene prepared (its ring identified),
+/// its solver built, then the run replayed into the CSV.
+enum CsvStage {
+    Model(Box<PreparedModelRun>),
+    Build(Box<SimulationBuild>),
+    Run(Box<Simulation>, Box<RunWriter<Vec<u8>>>),
+}
+
+/// Steps re-run per stage of a CSV export in slices: about `2^16 / P²` (a
+/// step's contact solve grows as `P²`), 1 to 256.
+fn csv_block_steps(p: usize) -> u64 {
+    (65_536 / (p * p).max(1)).clamp(1, 256) as u64
+}
+
 impl CsvJob {
-    /// Re-runs `start` (its modes from `cache`) on a new thread.
+    /// Re-runs `start` (its modes from `cache`) on a new thread (in the
+    /// browser, in slices within the polls: [`Job::spawn_sliced`]); the
+    /// CSV then goes to `deliver` (a file, or the browser's download).
     pub fn spawn(
         path: PathBuf,
         start: Scene,
         cache: Arc<ModeCache>,
         edits: Vec<LiveEdit>,
         steps: u64,
+        deliver: Deliver,
     ) -> Result<Self, String> {
+        Self::start(path, start, cache, edits, steps, deliver, false)
+    }
+
+    /// The export run on the caller's thread, a slice at each poll
+    /// ([`Job::in_slices`]): how a page in the browser runs it. It writes
+    /// the threaded export's file.
+    pub fn spawn_in_slices(
+        path: PathBuf,
+        start: Scene,
+        cache: Arc<ModeCache>,
+        edits: Vec<LiveEdit>,
+        steps: u64,
+        deliver: Deliver,
+    ) -> Result<Self, String> {
+        Self::start(path, start, cache, edits, steps, deliver, true)
+    }
+
+    fn start(
+        path: PathBuf,
+        start: Scene,
+        cache: Arc<ModeCache>,
+        edits: Vec<LiveEdit>,
+        steps: u64,
+        deliver: Deliver,
+        in_slices: bool,
+    ) -> Result<Self, String> {
+        let mut deliver = Some(deliver);
         let p = path.clone();
-        let job = Job::spawn("CSV export", steps, move |progress| {
-            PreparedModel::new(&start, &cache)
-                .map_err(|e| e.to_string())
-                .and_then(|model| write_csv(&p, &model, &edits, steps, Some(progress)))
-        })?;
+        let block = csv_block_steps(start.num_points());
+        let mut stage = Some(CsvStage::Model(Box::new(PreparedModelRun::new(
+            &start, &cache,
+        ))));
+        let work = move |progress: &Progress, deadline: Option<web_time::Instant>| loop {
+            if progress.cancelled() {
+                return Some(Err("cancelled".to_string()));
+            }
+            let Some(current) = &mut stage else {
+                return Some(Err("the export already ended".to_string()));
+            };
+            match current {
+                CsvStage::Model(run) => match run.stage(&cache) {
+                    Err(e) => return Some(Err(e.to_string())),
+                    Ok(None) => {}
+                    Ok(Some(model)) => {
+                        *current = CsvStage::Build(Box::new(Simulation::build_in_stages(
+                            model,
+                            SolverOptions::default(),
+                        )));
+                    }
+                },
+                CsvStage::Build(b) => match b.stage() {
+                    Err(e) => return Some(Err(e.to_string())),
+                    Ok(None) => {}
+                    Ok(Some(sim)) => {
+                        let w = match RunWriter::new(Vec::new(), sim.num_points(), 1) {
+                            Ok(w) => w,
+                            Err(e) => return Some(Err(e.to_string())),
+                        };
+                        *current = CsvStage::Run(Box::new(sim), Box::new(w));
+                    }
+                },
+                CsvStage::Run(sim, w) => {
+                    let from = sim.steps();
+                    let to = (from + block).min(steps);
+                    // the edits not yet replayed (one at step `from` was not)
+                    let first = edits.partition_point(|e| e.step < from);
+                    let mut counted = (&mut **w, StepCounter(progress));
+                    let r = replay(
+                        sim,
+                        &edits[first..],
+                        to,
+                        &mut counted,
+                        Some(progress.cancel_flag()),
+                    );
+                    if let Err(e) = r {
+                        return Some(Err(e.to_string()));
+                    }
+                    // the whole run, or the scene ended before it
+                    if sim.steps() >= steps || sim.steps() < to {
+                        let Some(CsvStage::Run(sim, w)) = stage.take() else {
+                            unreachable!("running");
+                        };
+                        let Some(deliver) = deliver.take() else {
+                            unreachable!("delivered once");
+                        };
+                        return Some(deliver_csv(&p, *w, &sim, deliver));
+                    }
+                }
+            }
+            if deadline.is_some_and(|d| web_time::Instant::now() >= d) {
+                return None;
+            }
+        };
+        let job = if in_slices {
+            Job::in_slices("CSV export", steps, work)
+        } else {
+            Job::spawn_sliced("CSV export", steps, work)?
+        };
         Ok(CsvJob { path, job })
     }
 
@@ -202,5 +313,124 @@ impl CsvJob {
     /// Blocks until the export ends (tests).
     pub fn wait(self) -> Result<String, String> {
         self.job.wait().and_then(|r| r)
+    }
+}
+
+/// Where the bytes of a finished CSV export go, given its path: the
+/// message to show, or why they could not go there.
+pub type Deliver = Box<dyn FnOnce(&Path, Vec<u8>) -> Result<String, String> + Send>;
+
+/// The desktop's delivery: the file written atomically.
+pub fn write_file() -> Deliver {
+    Box::new(|path, bytes| {
+        crate::base::fsio::write_atomic(path, &bytes)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok(format!("wrote {}", path.display()))
+    })
+}
+
+/// The CSV of a replayed run handed to `deliver`, the run's span after its
+/// message.
+fn deliver_csv(
+    path: &Path,
+    w: RunWriter<Vec<u8>>,
+    sim: &Simulation,
+    deliver: Deliver,
+) -> Result<String, String> {
+    let bytes = w.finish().map_err(|e| e.to_string())?;
+    let said = deliver(path, bytes)?;
+    Ok(format!(
+        "{said} ({} steps, t = 0 … {:.5} s)",
+        sim.steps(),
+        sim.time_s()
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The paper preset (a ring tyre: its identification is part of the
+    /// export), with a speed edit made at step 700 of 2000.
+    fn paper_run() -> (Scene, Vec<LiveEdit>) {
+        let scene = Scene::parse(
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/presets/paper.ron")),
+            "paper",
+        )
+        .unwrap();
+        let profile = RoadProfile::new(&scene.road, None).unwrap();
+        let edits = vec![LiveEdit {
+            step: 700,
+            road: scene.road.clone(),
+            profile,
+            speed_mps: 0.5 * scene.speed_mps,
+        }];
+        (scene, edits)
+    }
+
+    /// A CSV export in slices (the browser's way) writes the bytes of the
+    /// whole re-run on a thread, live edit included, over several polls; a
+    /// cancelled one writes nothing.
+    #[test]
+    fn a_csv_export_in_slices_writes_the_threaded_export_s_file() {
+        let dir = std::env::temp_dir().join(format!("tirecontact-csv-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (scene, edits) = paper_run();
+        let cache = Arc::new(ModeCache::new());
+        let (whole, sliced) = (dir.join("whole.csv"), dir.join("sliced.csv"));
+        let model = PreparedModel::new(&scene, &ModeCache::new()).unwrap();
+        write_csv(&whole, &model, &edits, 2000, None).unwrap();
+        let job = CsvJob::spawn_in_slices(
+            sliced.clone(),
+            scene.clone(),
+            cache,
+            edits.clone(),
+            2000,
+            write_file(),
+        )
+        .unwrap();
+        let mut polls = 0;
+        let r = loop {
+            polls += 1;
+            if let Some(r) = job.poll() {
+                break r;
+            }
+        };
+        assert!(r.as_ref().is_ok_and(|m| m.contains("2000 steps")), "{r:?}");
+        assert!(polls >= 2, "one poll ran the whole export");
+        let (a, b) = (
+            std::fs::read(&whole).unwrap(),
+            std::fs::read(&sliced).unwrap(),
+        );
+        // the header, t = 0, the 2000 steps
+        assert_eq!(String::from_utf8_lossy(&a).lines().count(), 2002);
+        assert!(a == b, "the sliced export differs from the whole one");
+        // cancelled between slices: an error, no file
+        let gone = dir.join("cancelled.csv");
+        let job = CsvJob::spawn_in_slices(
+            gone.clone(),
+            scene,
+            Arc::new(ModeCache::new()),
+            edits,
+            2000,
+            write_file(),
+        )
+        .unwrap();
+        job.job.cancel();
+        assert_eq!(job.poll(), Some(Err("cancelled".to_string())));
+        assert!(!gone.exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// A stage of the re-run holds at most `2^16` point pairs' worth of
+    /// steps (one step for a thousand points), at least one step.
+    #[test]
+    fn csv_blocks_shrink_with_the_points() {
+        for p in [1, 5, 16, 100, 1000, 5000] {
+            let b = csv_block_steps(p) as usize;
+            assert!(b >= 1 && (b == 1 || b * p * p <= 65_536), "{p}: {b}");
+        }
+        assert_eq!(csv_block_steps(1000), 1);
+        assert_eq!(csv_block_steps(5), 256);
     }
 }

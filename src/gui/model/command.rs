@@ -184,6 +184,11 @@ pub enum Command {
     /// A preparation (preset or road file read, ring identified) ended:
     /// what waited for it is applied (or refused with the reason).
     PreparationEnded(Result<Prepared, String>),
+    /// Stop the preparation an edit or a new document waits for: the
+    /// current scene is kept.
+    CancelPreparation,
+    /// Stop the CSV export under way (no file is written).
+    CancelCsvExport,
 }
 
 /// A request of the researcher tools (wrapped in `Command::Research`).

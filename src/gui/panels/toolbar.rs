@@ -4,6 +4,7 @@
 use crate::gui::model::command::{Command, View};
 use crate::gui::model::presets::SHIPPED;
 use crate::gui::model::time_control::Speed;
+use crate::gui::widgets::NARROW_PX;
 use egui::{Id, RichText, Ui};
 
 /// What the toolbar shows (read-only snapshot of the app).
@@ -22,156 +23,187 @@ pub struct ToolbarStatus {
 }
 
 /// The menu bar. Long but flat: the File, Presets, View and Help menus one
-/// after another, each item as it appears.
+/// after another, each item as it appears. In a window narrower than
+/// [`NARROW_PX`] (a phone) it folds into three menus, Menu (File, Presets,
+/// Guided tour, Export), View and Help, so that it fits the width.
 pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
+    let narrow = ui.available_width() < NARROW_PX;
     egui::MenuBar::new().ui(ui, |ui| {
-        ui.menu_button("File", |ui| {
-            if ui
-                .button("New")
-                .on_hover_text("the default scene")
-                .clicked()
-            {
-                cmds.push(Command::New);
-            }
-            if ui
-                .add(egui::Button::new("Open…").shortcut_text("Ctrl+O"))
-                .clicked()
-            {
-                cmds.push(Command::OpenDialog);
-            }
-            ui.menu_button("Open shipped preset", |ui| {
-                for (k, (name, file, _)) in SHIPPED.iter().enumerate() {
-                    if ui.button(*name).on_hover_text(*file).clicked() {
-                        cmds.push(Command::OpenPreset(k));
-                    }
-                }
+        if narrow {
+            ui.menu_button("Menu", |ui| {
+                ui.menu_button("File", |ui| file_items(ui, cmds));
+                ui.menu_button("Presets", |ui| preset_items(ui, cmds));
+                ui.menu_button("Guided tour", |ui| guided_items(ui, cmds));
+                ui.menu_button("Export", |ui| export_items(ui, st, cmds));
             });
+            ui.menu_button("View", |ui| view_items(ui, st, cmds));
+        } else {
+            ui.menu_button("File", |ui| file_items(ui, cmds));
+            ui.menu_button("Presets", |ui| preset_items(ui, cmds));
+            ui.menu_button("Guided tour", |ui| guided_items(ui, cmds));
+            ui.menu_button("Export", |ui| export_items(ui, st, cmds));
             ui.separator();
-            if ui
-                .add(egui::Button::new("Save").shortcut_text("Ctrl+S"))
-                .clicked()
-            {
-                cmds.push(Command::Save);
-            }
-            if ui
-                .add(egui::Button::new("Save As…").shortcut_text("Ctrl+Shift+S"))
-                .clicked()
-            {
-                cmds.push(Command::SaveAsDialog);
-            }
+            view_items(ui, st, cmds);
             ui.separator();
-            if ui
-                .button("Share link")
-                .on_hover_text(
-                    "copies a link that opens this scene in the visualiser's web page \
-                     (a measured tyre or road cannot travel in a link)",
-                )
-                .clicked()
-            {
-                cmds.push(Command::Share);
-            }
-            ui.separator();
-            if ui.button("Quit").clicked() {
-                cmds.push(Command::Quit);
-            }
-        });
-        ui.menu_button("Presets", |ui| {
-            for (k, (name, file, _)) in SHIPPED.iter().enumerate() {
-                if ui.button(*name).on_hover_text(*file).clicked() {
-                    cmds.push(Command::OpenPreset(k));
-                }
-            }
-        });
-        ui.menu_button("Guided tour", |ui| {
-            for (k, (name, file, _)) in crate::gui::model::presets::GUIDED.iter().enumerate() {
-                if ui.button(*name).on_hover_text(*file).clicked() {
-                    cmds.push(Command::OpenGuided(k));
-                }
-            }
-        });
-        ui.menu_button("Export", |ui| {
-            let frames = ui.add_enabled(
-                !st.exporting_frames,
-                egui::Button::new("Animation frames (PNG)…"),
-            );
-            if frames
-                .on_hover_text("numbered PNG frames of the scene view, for slides")
-                .clicked()
-            {
-                cmds.push(Command::ExportFramesDialog);
-            }
-            if ui
-                .button("Plots as PNG…")
-                .on_hover_text(
-                    "the time plots (displacement, force, gap, contact) of the run so far, as one \
-                     figure with title, units and legends",
-                )
-                .clicked()
-            {
-                cmds.push(Command::ExportPngDialog);
-            }
-            let csv = ui.add_enabled(!st.exporting_csv, egui::Button::new("Run as CSV…"));
-            if csv
-                .on_hover_text("the run so far, every step, same columns as `tirecontact run`")
-                .clicked()
-            {
-                cmds.push(Command::ExportCsvDialog);
-            }
-        });
-        ui.separator();
-        // first, so that it stays reachable with classroom mode's large text
-        if ui
-            .selectable_label(st.classroom, "Classroom")
-            .on_hover_text("large fonts, scene and one plot, slow motion, contact phases labelled")
-            .clicked()
-        {
-            cmds.push(Command::SetClassroom(!st.classroom));
         }
-        ui.separator();
-        // the main views as tabs, the researcher tools in a menu
-        // (the patch view, key 9, is a main view)
-        let (tabs, tools) = View::ALL.split_at(3);
-        let tools = &tools[..tools.len() - 1];
-        for &v in tabs.iter().chain([&View::Patch]) {
-            let key = View::ALL.iter().position(|&w| w == v).map_or(0, |k| k + 1);
-            let r = ui
-                .selectable_label(st.view == v, v.label())
-                .on_hover_text(format!("key {key}"));
-            if r.clicked() && st.view != v {
-                cmds.push(Command::ShowView(v));
-            }
-        }
-        let current_tool = tools.iter().find(|&&v| v == st.view);
-        let title = match current_tool {
-            Some(v) => format!("Research: {}", v.label()),
-            None => "Research".to_string(),
-        };
-        ui.menu_button(title, |ui| {
-            for (k, &v) in tools.iter().enumerate() {
-                let r = ui
-                    .selectable_label(st.view == v, v.label())
-                    .on_hover_text(format!("key {}", k + 4));
-                if r.clicked() && st.view != v {
-                    cmds.push(Command::ShowView(v));
-                }
-            }
-        });
-        ui.separator();
-        if ui
-            .selectable_label(st.mode_bars, "Mode bars")
-            .on_hover_text("per-mode contributions to a point's displacement, with mute and solo")
-            .clicked()
-        {
-            cmds.push(Command::ShowModeBars(!st.mode_bars));
-        }
-        ui.separator();
         super::help_menu::show(ui, cmds);
     });
 }
 
+/// The File menu's items.
+fn file_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
+    if ui
+        .button("New")
+        .on_hover_text("the default scene")
+        .clicked()
+    {
+        cmds.push(Command::New);
+    }
+    if ui
+        .add(egui::Button::new("Open…").shortcut_text("Ctrl+O"))
+        .clicked()
+    {
+        cmds.push(Command::OpenDialog);
+    }
+    ui.menu_button("Open shipped preset", |ui| {
+        for (k, (name, file, _)) in SHIPPED.iter().enumerate() {
+            if ui.button(*name).on_hover_text(*file).clicked() {
+                cmds.push(Command::OpenPreset(k));
+            }
+        }
+    });
+    ui.separator();
+    if ui
+        .add(egui::Button::new("Save").shortcut_text("Ctrl+S"))
+        .clicked()
+    {
+        cmds.push(Command::Save);
+    }
+    if ui
+        .add(egui::Button::new("Save As…").shortcut_text("Ctrl+Shift+S"))
+        .clicked()
+    {
+        cmds.push(Command::SaveAsDialog);
+    }
+    ui.separator();
+    if ui
+        .button("Share link")
+        .on_hover_text(
+            "copies a link that opens this scene in the visualiser's web page \
+             (a measured tyre or road cannot travel in a link)",
+        )
+        .clicked()
+    {
+        cmds.push(Command::Share);
+    }
+    ui.separator();
+    if ui.button("Quit").clicked() {
+        cmds.push(Command::Quit);
+    }
+}
+
+/// The shipped presets.
+fn preset_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
+    for (k, (name, file, _)) in SHIPPED.iter().enumerate() {
+        if ui.button(*name).on_hover_text(*file).clicked() {
+            cmds.push(Command::OpenPreset(k));
+        }
+    }
+}
+
+/// The guided tour's presets.
+fn guided_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
+    for (k, (name, file, _)) in crate::gui::model::presets::GUIDED.iter().enumerate() {
+        if ui.button(*name).on_hover_text(*file).clicked() {
+            cmds.push(Command::OpenGuided(k));
+        }
+    }
+}
+
+/// The exports.
+fn export_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
+    let frames = ui.add_enabled(
+        !st.exporting_frames,
+        egui::Button::new("Animation frames (PNG)…"),
+    );
+    if frames
+        .on_hover_text("numbered PNG frames of the scene view, for slides")
+        .clicked()
+    {
+        cmds.push(Command::ExportFramesDialog);
+    }
+    if ui
+        .button("Plots as PNG…")
+        .on_hover_text(
+            "the time plots (displacement, force, gap, contact) of the run so far, as one \
+             figure with title, units and legends",
+        )
+        .clicked()
+    {
+        cmds.push(Command::ExportPngDialog);
+    }
+    let csv = ui.add_enabled(!st.exporting_csv, egui::Button::new("Run as CSV…"));
+    if csv
+        .on_hover_text("the run so far, every step, same columns as `tirecontact run`")
+        .clicked()
+    {
+        cmds.push(Command::ExportCsvDialog);
+    }
+}
+
+/// Classroom mode, the views and the mode bars.
+fn view_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
+    // first, so that it stays reachable with classroom mode's large text
+    if ui
+        .selectable_label(st.classroom, "Classroom")
+        .on_hover_text("large fonts, scene and one plot, slow motion, contact phases labelled")
+        .clicked()
+    {
+        cmds.push(Command::SetClassroom(!st.classroom));
+    }
+    ui.separator();
+    // the main views as tabs, the researcher tools in a menu
+    // (the patch view, key 9, is a main view)
+    let (tabs, tools) = View::ALL.split_at(3);
+    let tools = &tools[..tools.len() - 1];
+    for &v in tabs.iter().chain([&View::Patch]) {
+        let key = View::ALL.iter().position(|&w| w == v).map_or(0, |k| k + 1);
+        let r = ui
+            .selectable_label(st.view == v, v.label())
+            .on_hover_text(format!("key {key}"));
+        if r.clicked() && st.view != v {
+            cmds.push(Command::ShowView(v));
+        }
+    }
+    let current_tool = tools.iter().find(|&&v| v == st.view);
+    let title = match current_tool {
+        Some(v) => format!("Research: {}", v.label()),
+        None => "Research".to_string(),
+    };
+    ui.menu_button(title, |ui| {
+        for (k, &v) in tools.iter().enumerate() {
+            let r = ui
+                .selectable_label(st.view == v, v.label())
+                .on_hover_text(format!("key {}", k + 4));
+            if r.clicked() && st.view != v {
+                cmds.push(Command::ShowView(v));
+            }
+        }
+    });
+    ui.separator();
+    if ui
+        .selectable_label(st.mode_bars, "Mode bars")
+        .on_hover_text("per-mode contributions to a point's displacement, with mute and solo")
+        .clicked()
+    {
+        cmds.push(Command::ShowModeBars(!st.mode_bars));
+    }
+}
+
 /// Transport controls and the clock.
 pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
-    ui.horizontal(|ui| {
+    // wrapped: in a narrow window (a phone) the clock goes to a second line
+    ui.horizontal_wrapped(|ui| {
         let play = if st.playing { "Pause" } else { "Play" };
         if ui
             .button(RichText::new(play).strong())
@@ -250,7 +282,8 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         } else {
             "paused".to_string()
         };
-        ui.label(RichText::new(rt).weak());
+        // whole: wrapped, it broke into "running at 0.1x" and "real time"
+        ui.add(egui::Label::new(RichText::new(rt).weak()).wrap_mode(egui::TextWrapMode::Extend));
     });
 }
 

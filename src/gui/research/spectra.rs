@@ -139,36 +139,79 @@ impl SpectraInput {
         cancelled: &dyn Fn() -> bool,
         done: &dyn Fn(),
     ) -> Result<HistorySpectra, String> {
-        let fs = self.span.sample_rate_hz;
-        let p = self.force_n.len();
-        let one = |x: &[f64]| -> Result<Spectrum, String> {
+        let mut run = SpectraRun::new(self.clone(), window);
+        loop {
             if cancelled() {
                 return Err("cancelled".to_string());
             }
-            let s = spectrum(x, fs, window, true).map_err(|e| e.to_string())?;
+            let r = run.stage()?;
             done();
-            Ok(s)
-        };
-        let mut force = Vec::with_capacity(p);
-        let mut disp = Vec::with_capacity(p);
-        let mut total = vec![0.0; self.span.samples];
-        for (q, u) in self.force_n.iter().zip(&self.disp_m) {
-            for (t, x) in total.iter_mut().zip(q) {
-                *t += x;
+            if let Some(s) = r {
+                return Ok(s);
             }
-            force.push(one(q)?);
-            disp.push(one(u)?);
         }
-        let total_force = one(&total)?;
-        Ok(HistorySpectra {
+    }
+}
+
+/// [`SpectraInput::compute`] a spectrum at a time, for a caller that must
+/// return between them (a page in the browser has one thread): per point
+/// its force then its displacement, then the total force, as
+/// [`SpectraInput::compute`] takes them: the same spectra to the bit.
+#[derive(Debug)]
+pub struct SpectraRun {
+    input: SpectraInput,
+    window: Window,
+    force: Vec<Spectrum>,
+    disp: Vec<Spectrum>,
+    /// The total force summed over the points transformed so far.
+    total: Vec<f64>,
+}
+
+impl SpectraRun {
+    pub fn new(input: SpectraInput, window: Window) -> Self {
+        let p = input.force_n.len();
+        SpectraRun {
+            total: vec![0.0; input.span.samples],
+            force: Vec::with_capacity(p),
+            disp: Vec::with_capacity(p),
+            input,
+            window,
+        }
+    }
+
+    /// Spectra done so far.
+    pub fn done(&self) -> usize {
+        self.force.len() + self.disp.len()
+    }
+
+    /// Computes the next spectrum; all of them once the last one is done.
+    pub fn stage(&mut self) -> Result<Option<HistorySpectra>, String> {
+        let fs = self.input.span.sample_rate_hz;
+        let one = |x: &[f64]| spectrum(x, fs, self.window, true).map_err(|e| e.to_string());
+        let i = self.done();
+        if i < 2 * self.input.force_n.len() {
+            let point = i / 2;
+            if i.is_multiple_of(2) {
+                let q = &self.input.force_n[point];
+                for (t, x) in self.total.iter_mut().zip(q) {
+                    *t += x;
+                }
+                self.force.push(one(q)?);
+            } else {
+                self.disp.push(one(&self.input.disp_m[point])?);
+            }
+            return Ok(None);
+        }
+        let total_force = one(&self.total)?;
+        Ok(Some(HistorySpectra {
             spectra: RunSpectra {
-                force,
-                displacement: disp,
+                force: std::mem::take(&mut self.force),
+                displacement: std::mem::take(&mut self.disp),
                 total_force,
-                start_s: self.span.t0_s,
+                start_s: self.input.span.t0_s,
             },
-            span: self.span,
-        })
+            span: self.input.span,
+        }))
     }
 }
 

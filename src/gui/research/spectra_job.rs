@@ -5,9 +5,9 @@
 //! replaced is cancelled and its result never read; a result for a history
 //! that was restarted meanwhile is dropped.
 
-use super::spectra::{HistoryKey, HistorySpectra, SpectraInput};
+use super::spectra::{HistoryKey, HistorySpectra, SpectraInput, SpectraRun};
 use crate::analysis::spectrum::Window;
-use crate::gui::jobs::Job;
+use crate::gui::jobs::{Job, Progress};
 
 /// Below this many samples to transform (in all spectra) the spectra are
 /// computed at once on the UI thread (a few ms at most): no "computing…"
@@ -34,11 +34,54 @@ pub enum SpectraPoll {
 
 impl SpectraJob {
     /// Starts the transforms of `input` (samples of the history `key`).
+    /// (In the browser, a spectrum at a time within the frames:
+    /// [`Job::spawn_sliced`].)
     pub fn spawn(key: HistoryKey, input: SpectraInput, window: Window) -> Result<Self, String> {
+        Self::start(key, input, window, false)
+    }
+
+    /// The transforms run on the caller's thread, a slice at each poll
+    /// ([`Job::in_slices`]): how a page in the browser runs them. The
+    /// spectra equal the threaded job's.
+    pub fn spawn_in_slices(
+        key: HistoryKey,
+        input: SpectraInput,
+        window: Window,
+    ) -> Result<Self, String> {
+        Self::start(key, input, window, true)
+    }
+
+    fn start(
+        key: HistoryKey,
+        input: SpectraInput,
+        window: Window,
+        in_slices: bool,
+    ) -> Result<Self, String> {
         let total = input.num_spectra() as u64;
-        let job = Job::spawn("spectra", total, move |p| {
-            input.compute(window, &|| p.cancelled(), &|| p.add(1))
-        })?;
+        let mut run = SpectraRun::new(input, window);
+        let work = move |p: &Progress, deadline: Option<web_time::Instant>| loop {
+            if p.cancelled() {
+                return Some(Err("cancelled".to_string()));
+            }
+            let r = run.stage();
+            p.set(run.done() as u64);
+            match r {
+                Err(e) => return Some(Err(e)),
+                Ok(Some(s)) => {
+                    p.set(total);
+                    return Some(Ok(s));
+                }
+                Ok(None) if deadline.is_some_and(|d| web_time::Instant::now() >= d) => {
+                    return None;
+                }
+                Ok(None) => {}
+            }
+        };
+        let job = if in_slices {
+            Job::in_slices("spectra", total, work)
+        } else {
+            Job::spawn_sliced("spectra", total, work)?
+        };
         Ok(SpectraJob { key, job })
     }
 
@@ -140,6 +183,54 @@ mod tests {
         };
         assert!(!restarted(&key, &grown));
         assert!(restarted(&key, &reset));
+    }
+
+    /// The spectra computed in slices (the browser's way, a spectrum at a
+    /// time within the polls) are those of each signal transformed alone:
+    /// per point its force and displacement over the steady span, and the
+    /// sum of the forces, to the bit.
+    #[test]
+    fn spectra_in_slices_are_each_signal_s_spectrum() {
+        use crate::analysis::spectrum::spectrum;
+        use crate::gui::model::history::Quantity;
+        use crate::gui::research::spectra::steady_range;
+        let h = run(8000);
+        let (ramp, dt) = (0.03, 1e-5);
+        let key = HistoryKey::of(&h);
+        let input = SpectraInput::of_history(&h, ramp, dt).unwrap();
+        let job = SpectraJob::spawn_in_slices(key, input, Window::Hann).unwrap();
+        assert_eq!(job.progress(), 0.0, "nothing runs before the first poll");
+        let got = loop {
+            match job.poll(&key) {
+                SpectraPoll::Running => {}
+                SpectraPoll::Done(r) => break r.unwrap(),
+                SpectraPoll::Stale => panic!("same history, not stale"),
+            }
+        };
+        assert_eq!(job.progress(), 1.0);
+        let spacing = h.stride() as f64 * dt;
+        let (k0, k1) = steady_range(h.times(), ramp, spacing);
+        let signal = |q: Quantity, i: usize| (k0..k1).map(|k| h.value(q, i, k)).collect::<Vec<_>>();
+        let alone = |x: &[f64]| spectrum(x, 1.0 / spacing, Window::Hann, true).unwrap();
+        let mut total = vec![0.0; k1 - k0];
+        for i in 0..h.num_points() {
+            let q = signal(Quantity::Force, i);
+            for (t, x) in total.iter_mut().zip(&q) {
+                *t += x;
+            }
+            assert_eq!(got.spectra.force[i].amplitude, alone(&q).amplitude);
+            let u = signal(Quantity::Displacement, i);
+            assert_eq!(got.spectra.displacement[i].amplitude, alone(&u).amplitude);
+        }
+        assert_eq!(got.spectra.total_force.amplitude, alone(&total).amplitude);
+        // cancelled between slices: an error, not spectra
+        let input = SpectraInput::of_history(&h, ramp, dt).unwrap();
+        let job = SpectraJob::spawn_in_slices(key, input, Window::Hann).unwrap();
+        job.job.cancel();
+        match job.poll(&key) {
+            SpectraPoll::Done(r) => assert!(r.is_err()),
+            p => panic!("{p:?}"),
+        }
     }
 
     /// A cancelled computation stops with an error instead of spectra.

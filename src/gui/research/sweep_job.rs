@@ -333,6 +333,90 @@ mod tests {
         assert!(matches!(job.poll(), Some(SweepEnd::Cancelled)));
     }
 
+    /// A sweep of a ring tyre in slices identifies the ring a stage at a
+    /// time: polls return while it is identified (no step run yet), and
+    /// the points are the threaded sweep's.
+    #[test]
+    fn a_ring_sweep_in_slices_identifies_in_stages() {
+        let mut s = Scene::parse(
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/presets/paper.ron")),
+            "paper",
+        )
+        .unwrap();
+        s.duration_s = s.ramp_s + 0.01;
+        let r = req("speed_mps", 10.0, 20.0, 2);
+        let job = SweepJob::start_in_slices(&s, r.clone(), Arc::new(ModeCache::new())).unwrap();
+        let (mut polls_identifying, mut polls) = (0, 0);
+        let end = loop {
+            polls += 1;
+            if let Some(end) = job.poll() {
+                break end;
+            }
+            if job.progress() == 0.0 {
+                polls_identifying += 1;
+            }
+        };
+        let SweepEnd::Done(res) = end else {
+            panic!("not done: {end:?}")
+        };
+        let lib = sweep::run_sweep(
+            &s,
+            &r.to_sweep(&s, 2).unwrap(),
+            &ModeCache::new(),
+            &|_, _| {},
+            &AtomicBool::new(false),
+        )
+        .unwrap();
+        assert_eq!(res.points, lib);
+        assert!(
+            polls_identifying >= 2,
+            "{polls_identifying} of {polls} polls while the ring was identified"
+        );
+    }
+
+    /// A sweep of a 200-point patch in slices builds each run's solver
+    /// tables a block at a time: polls return during the set-up, and the
+    /// points are the threaded sweep's.
+    #[test]
+    fn a_patch_sweep_in_slices_sets_up_in_stages() {
+        let text = include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/presets/patch_texture.ron"
+        ))
+        .replace("along: 16", "along: 20")
+        .replace("across: 6", "across: 10")
+        .replace("spacing_m: (0.006, 0.02)", "spacing_m: (0.006, 0.005)");
+        let mut s = Scene::parse(&text, "patch").unwrap();
+        s.duration_s = s.ramp_s + 0.001;
+        let r = req("speed_mps", 10.0, 20.0, 2);
+        let job = SweepJob::start_in_slices(&s, r.clone(), Arc::new(ModeCache::new())).unwrap();
+        let mut polls_setting_up = 0;
+        let end = loop {
+            if let Some(end) = job.poll() {
+                break end;
+            }
+            if job.progress() == 0.0 {
+                polls_setting_up += 1;
+            }
+        };
+        let SweepEnd::Done(res) = end else {
+            panic!("not done: {end:?}")
+        };
+        let lib = sweep::run_sweep(
+            &s,
+            &r.to_sweep(&s, 2).unwrap(),
+            &ModeCache::new(),
+            &|_, _| {},
+            &AtomicBool::new(false),
+        )
+        .unwrap();
+        assert_eq!(res.points, lib);
+        assert!(
+            polls_setting_up >= 2,
+            "{polls_setting_up} polls during the set-up"
+        );
+    }
+
     #[test]
     fn dropping_a_running_job_cancels_its_runs() {
         let mut s = scene();

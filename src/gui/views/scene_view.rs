@@ -272,8 +272,9 @@ fn header(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
         } else {
             format!("vertical exaggeration ×{factor}")
         };
-        ui.label(RichText::new(what).strong())
-            .on_hover_text("heights are drawn this many times larger than lengths; the height axis shows true mm");
+        ui.label(RichText::new(what).strong()).on_hover_text(
+            "heights are drawn this many times larger than lengths; the height axis shows true mm",
+        );
         ui.checkbox(&mut opts.auto, "auto");
         ui.add_enabled(
             !opts.auto,
@@ -297,13 +298,16 @@ fn header(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
                 contact.len()
             ));
         } else {
-            let info = format!(
-                "t = {t:.5} s   V = {:.1} km/h   road moves to the left under the tyre   {} of {} points in contact",
-                scene.speed_mps * 3.6,
-                n_contact,
-                contact.len()
-            );
-            ui.add(whole(RichText::new(info)));
+            // four labels, each whole: at phone width they take rows of
+            // their own instead of one row wider than the window
+            for info in [
+                format!("t = {t:.5} s"),
+                format!("V = {:.1} km/h", scene.speed_mps * 3.6),
+                "road moves to the left under the tyre".to_string(),
+                format!("{} of {} points in contact", n_contact, contact.len()),
+            ] {
+                ui.add(whole(RichText::new(info)));
+            }
         }
         // classroom mode (legend above the plot): the ramp's progress in
         // few words, on the header's row (tests/gui/scene_view/layout.rs)

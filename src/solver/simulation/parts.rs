@@ -19,6 +19,7 @@ use crate::model::convolution::{Influence, ModalBasis, ModalState, StepTable};
 use crate::scene::Scene;
 use crate::solver::simulation::contact::DenseSolver;
 use crate::solver::simulation::contact::krylov::Gmres;
+use std::ops::Range;
 
 /// Krylov vectors kept between GMRES restarts.
 const GMRES_RESTART: usize = 30;
@@ -79,28 +80,41 @@ impl SimTables {
         threads: &Threads,
     ) -> Result<Self, SceneError> {
         let p = scene.num_points();
-        let (modes, residual) = split_residual(scene, modes, options.residual_above_hz)?;
-        let basis = if options.rank_reduction {
-            ModalBasis::with_rank_tolerance(&modes, p, options.rank_tolerance_for(scene)).map_err(
-                |source| SceneError::Basis {
-                    scene: scene.name.clone(),
-                    source,
-                },
-            )?
-        } else {
-            ModalBasis::per_source(&modes, p)
-        };
+        let (basis, residual) = tables_basis(scene, modes, options)?;
         let full = StepTable::new(&basis, scene.dt_s);
         let mut full_inf = Influence::new_on(&basis, &full, threads);
         if !residual.is_empty() {
             add_residual(&mut full_inf, &residual, scene.dt_s);
         }
         let jump = basis.velocity_jump_on(threads);
-        let jump_t = (0..p * p).map(|k| jump[(k % p) * p + k / p]).collect();
-        Ok(SimTables {
+        let jump_t = transposed(&jump, p);
+        let mut full_inf_cols = Vec::with_capacity(4 * p * p);
+        influence_columns(&full_inf, p, 0..p, &mut full_inf_cols);
+        Ok(Self::assemble(
+            scene,
+            options,
+            (basis, residual, full),
+            full_inf,
+            full_inf_cols,
             jump,
             jump_t,
-            full_inf_cols: influence_columns(&full_inf, p),
+        ))
+    }
+
+    fn assemble(
+        scene: &Scene,
+        options: SolverOptions,
+        (basis, residual, full): (ModalBasis, Vec<f64>, StepTable),
+        full_inf: Influence,
+        full_inf_cols: Vec<f64>,
+        jump: Vec<f64>,
+        jump_t: Vec<f64>,
+    ) -> Self {
+        let p = scene.num_points();
+        SimTables {
+            jump,
+            jump_t,
+            full_inf_cols,
             full_inf,
             full,
             basis,
@@ -112,7 +126,7 @@ impl SimTables {
             max_events: 4 * p as u32 + 16,
             num_steps: scene.num_steps(),
             options,
-        })
+        }
     }
 
     /// Whether a large active set can occur and takes the methods of
@@ -144,15 +158,166 @@ impl SimTables {
     }
 }
 
-/// [`SimTables::full_inf_cols`] of an influence.
-fn influence_columns(g: &Influence, p: usize) -> Vec<f64> {
-    let mut cols = Vec::with_capacity(4 * p * p);
-    for j in 0..p {
+/// The modal basis of `modes` (rank terms, method §3.4) and the residual
+/// compliance of the modes left out of it (method §4.7).
+fn tables_basis(
+    scene: &Scene,
+    modes: Vec<crate::base::modal::Mode>,
+    options: SolverOptions,
+) -> Result<(ModalBasis, Vec<f64>), SceneError> {
+    let p = scene.num_points();
+    let (modes, residual) = split_residual(scene, modes, options.residual_above_hz)?;
+    let basis = if options.rank_reduction {
+        ModalBasis::with_rank_tolerance(&modes, p, options.rank_tolerance_for(scene)).map_err(
+            |source| SceneError::Basis {
+                scene: scene.name.clone(),
+                source,
+            },
+        )?
+    } else {
+        ModalBasis::per_source(&modes, p)
+    };
+    Ok((basis, residual))
+}
+
+/// The transpose of the `P × P` row-major `m`.
+fn transposed(m: &[f64], p: usize) -> Vec<f64> {
+    (0..p * p).map(|k| m[(k % p) * p + k / p]).collect()
+}
+
+/// The points `js` of [`SimTables::full_inf_cols`] of an influence,
+/// appended to `cols`.
+fn influence_columns(g: &Influence, p: usize, js: Range<usize>, cols: &mut Vec<f64>) {
+    for j in js {
         for m in [&g.gx1, &g.gx2, &g.gv1, &g.gv2] {
             cols.extend((0..p).map(|i| m[i * p + j]));
         }
     }
-    cols
+}
+
+/// Multiply-adds per block of [`SimTablesBuild`]'s `P × P` tables
+/// (about a millisecond of a desktop core).
+const BLOCK_MADDS: usize = 1 << 21;
+
+/// [`SimTables::new`] a stage at a time, for a caller that must return
+/// between stages (a page in the browser has one thread): the basis, then
+/// the step table, the influence and the velocity jump a block of rows at
+/// a time, then the columns a block of points at a time. Every entry is
+/// the same sum in the same order as [`SimTables::new`]'s on any number
+/// of threads: the same tables to the bit.
+pub(super) struct SimTablesBuild {
+    scene: Scene,
+    modes: Vec<crate::base::modal::Mode>,
+    options: SolverOptions,
+    parts: Option<(ModalBasis, Vec<f64>, StepTable)>,
+    inf: Influence,
+    jump: Vec<f64>,
+    jump_t: Vec<f64>,
+    cols: Vec<f64>,
+    /// Rows of the influence, rows of the jump and points of the columns
+    /// done so far.
+    inf_rows: usize,
+    jump_rows: usize,
+    col_points: usize,
+    /// Rows (or points) per block.
+    block: usize,
+}
+
+impl SimTablesBuild {
+    pub fn new(
+        scene: &Scene,
+        modes: Vec<crate::base::modal::Mode>,
+        options: SolverOptions,
+    ) -> Self {
+        SimTablesBuild {
+            scene: scene.clone(),
+            modes,
+            options,
+            parts: None,
+            inf: Influence::default(),
+            jump: Vec::new(),
+            jump_t: Vec::new(),
+            cols: Vec::new(),
+            inf_rows: 0,
+            jump_rows: 0,
+            col_points: 0,
+            block: 1,
+        }
+    }
+
+    /// Stages left before the tables are complete (known once the basis
+    /// is: until then, an estimate from the modes).
+    pub fn stages_left(&self) -> usize {
+        let p = self.scene.num_points();
+        let blocks = |done: usize| (p - done).div_ceil(self.block);
+        match &self.parts {
+            None if self.col_points == p && p > 0 => 0,
+            None => {
+                let block = block_rows(p, self.modes.len().max(1));
+                1 + 3 * p.div_ceil(block) + 2
+            }
+            Some(_) => blocks(self.inf_rows) + blocks(self.jump_rows) + blocks(self.col_points) + 2,
+        }
+    }
+
+    /// Runs the next stage; the tables once the last one ran.
+    pub fn stage(&mut self) -> Result<Option<SimTables>, SceneError> {
+        let (p, dt_s) = (self.scene.num_points(), self.scene.dt_s);
+        let Some((basis, residual, full)) = &self.parts else {
+            let modes = std::mem::take(&mut self.modes);
+            let (basis, residual) = tables_basis(&self.scene, modes, self.options)?;
+            let full = StepTable::new(&basis, dt_s);
+            self.block = block_rows(p, basis.stored_states());
+            self.inf.zeroed(p);
+            self.jump = vec![0.0; p * p];
+            self.cols = Vec::with_capacity(4 * p * p);
+            self.parts = Some((basis, residual, full));
+            return Ok(None);
+        };
+        if self.inf_rows < p {
+            let r = self.inf_rows..(self.inf_rows + self.block).min(p);
+            self.inf_rows = r.end;
+            self.inf.add_rows(basis, full, r);
+            if self.inf_rows == p && !residual.is_empty() {
+                add_residual(&mut self.inf, residual, dt_s);
+            }
+            return Ok(None);
+        }
+        if self.jump_rows < p {
+            let r = self.jump_rows..(self.jump_rows + self.block).min(p);
+            self.jump_rows = r.end;
+            basis.velocity_jump_rows(r.clone(), &mut self.jump[r.start * p..r.end * p]);
+            return Ok(None);
+        }
+        if self.jump_t.is_empty() && p > 0 {
+            self.jump_t = transposed(&self.jump, p);
+            return Ok(None);
+        }
+        if self.col_points < p {
+            let js = self.col_points..(self.col_points + self.block).min(p);
+            self.col_points = js.end;
+            influence_columns(&self.inf, p, js, &mut self.cols);
+            return Ok(None);
+        }
+        let Some(parts) = self.parts.take() else {
+            unreachable!("the basis is the first stage");
+        };
+        Ok(Some(SimTables::assemble(
+            &self.scene,
+            self.options,
+            parts,
+            std::mem::take(&mut self.inf),
+            std::mem::take(&mut self.cols),
+            std::mem::take(&mut self.jump),
+            std::mem::take(&mut self.jump_t),
+        )))
+    }
+}
+
+/// Rows of a `P × P` table over `states` states per block of about
+/// [`BLOCK_MADDS`] multiply-adds (at least one).
+fn block_rows(p: usize, states: usize) -> usize {
+    (BLOCK_MADDS / (4 * p * states).max(1)).max(1)
 }
 
 /// The run at the current time: what a snapshot or a restart needs. The
