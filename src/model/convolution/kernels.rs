@@ -344,6 +344,7 @@ fn add_gauss_forces_at<const RANGE: bool>(
 /// States per chunk of [`add_gauss_forces_avx`]: the chunk's force
 /// projections (two arrays of this many values) stay in the L1 cache while
 /// every active column streams through.
+#[cfg(target_arch = "x86_64")]
 const CHUNK: usize = 256;
 
 /// [`add_gauss_forces`] with AVX lanes. The states go in chunks of

@@ -8,6 +8,7 @@
 //! predict, solve, locate, then commit up to the first event, which is
 //! applied before the next sub-step.
 
+use super::contact::{DenseSolver, Singular};
 use super::parts::{Scratch, SimState, SimTables};
 use super::stages::Located;
 use super::{GA, GB, Simulation, Table};
@@ -446,25 +447,15 @@ fn one_by_one_impact(
         let n = st.active.len();
         let act = &st.active;
         let jump = &tb.jump;
-        if let Err(e) = s.solver.factor(n, |r, c| jump[act[r] * p + act[c]]) {
+        if let Err(e) = solve_impulses(tb, st, &mut s.solver, &mut s.rhs) {
             return Err(SolverError::SingularContactSystem {
                 t_s: t,
                 points: st.active.clone(),
                 pivot: e.pivot,
             });
         }
-        for (k, &j) in act.iter().enumerate() {
-            s.rhs[k] = st.rd[j] - st.v[j];
-        }
-        s.solver.solve(&mut s.rhs[..n]);
         solves += 1;
-        // Velocity a pulling impulse stands for; below v_tol it is round-off
-        // or the tail of a converged impact cascade, and the point stays on.
-        let v_tol = 1e-9
-            * act
-                .iter()
-                .map(|&j| st.rd[j].abs().max(st.v[j].abs()))
-                .fold(1e-6, f64::max);
+        let v_tol = impact_v_tol(st);
         let worst = (0..n)
             .map(|k| (k, s.rhs[k] * jump[act[k] * p + act[k]]))
             .filter(|&(_, dv)| dv < -v_tol)
@@ -483,6 +474,36 @@ fn one_by_one_impact(
         }
     }
     Ok(solves)
+}
+
+/// The impact's impulses of the set on the road `st.active` (method §4.4,
+/// "Impact"): `(Σ_k A_k)_S J = r'_S − v_S` factored and solved, `J` into
+/// `rhs` by entry of the set.
+fn solve_impulses(
+    tb: &SimTables,
+    st: &SimState,
+    solver: &mut DenseSolver,
+    rhs: &mut [f64],
+) -> Result<(), Singular> {
+    let (p, jump, act) = (tb.p, &tb.jump, &st.active);
+    let n = act.len();
+    solver.factor(n, |r, c| jump[act[r] * p + act[c]])?;
+    for (k, &j) in act.iter().enumerate() {
+        rhs[k] = st.rd[j] - st.v[j];
+    }
+    solver.solve(&mut rhs[..n]);
+    Ok(())
+}
+
+/// Velocity (m/s) a pulling impulse of the set on the road stands for:
+/// below it a violation is round-off or the tail of a converged impact
+/// cascade, and the point stays on.
+fn impact_v_tol(st: &SimState) -> f64 {
+    1e-9 * st
+        .active
+        .iter()
+        .map(|&j| st.rd[j].abs().max(st.v[j].abs()))
+        .fold(1e-6, f64::max)
 }
 
 /// Throw-offs of a point in one step after which a slow one is a Zeno
@@ -555,7 +576,7 @@ fn joint_impact(
             .extend(cand.iter().copied().filter(|&j| in_set[j]));
         let (act, n) = (&st.active, st.active.len());
         if n > 0 {
-            if let Err(e) = s.solver.factor(n, |r, c| jump[act[r] * p + act[c]]) {
+            if let Err(e) = solve_impulses(tb, st, &mut s.solver, &mut s.rhs) {
                 if let Some(j) = joined.take() {
                     // a point whose joining makes the system singular stays
                     // off: it lands later as an event of its own
@@ -575,18 +596,9 @@ fn joint_impact(
                     pivot: e.pivot,
                 });
             }
-            for (k, &j) in act.iter().enumerate() {
-                s.rhs[k] = st.rd[j] - st.v[j];
-            }
-            s.solver.solve(&mut s.rhs[..n]);
             solves += 1;
         }
-        // (as in the one-by-one impact: below v_tol a violation is round-off)
-        let v_tol = 1e-9
-            * act
-                .iter()
-                .map(|&j| st.rd[j].abs().max(st.v[j].abs()))
-                .fold(1e-6, f64::max);
+        let v_tol = impact_v_tol(st);
         let pulling = (0..n)
             .map(|k| (act[k], s.rhs[k] * jump[act[k] * p + act[k]]))
             .filter(|&(_, dv)| dv < -v_tol);
