@@ -44,9 +44,6 @@ use files::default_scene;
 pub use layout::NARROW_PX;
 pub use run::PAUSED_NOTE;
 
-/// Wall time per frame the solver may use (keeps the UI above 30 fps).
-pub const STEP_BUDGET: Duration = Duration::from_millis(12);
-
 pub struct App {
     /// What the session keeps: the scene, its file, the last saved version.
     pub(super) doc: Document,

@@ -4,6 +4,7 @@
 use super::*;
 use crate::gui::jobs::prepare::{PrepareJob, Then, needs_preparing, reads_road_file, waiting_note};
 use crate::gui::model::prepared::Prepared;
+use crate::gui::model::time_control::step_budget_s;
 use crate::model::road::RoadProfile;
 use crate::solver::drive::Watch;
 
@@ -327,7 +328,7 @@ impl App {
                 &mut self.sim,
                 want,
                 &mut (&mut self.history, &mut self.phases),
-                Watch::until(Instant::now() + STEP_BUDGET),
+                Watch::until(Instant::now() + Duration::from_secs_f64(step_budget_s(frame_s))),
             )
         };
         let taken = self.sim.steps() - before;

@@ -62,8 +62,31 @@ impl Speed {
 }
 
 /// Longest wall-clock frame time honoured (s): after a stall (a file dialog,
-/// a dragged window) the simulation does not try to catch up.
-pub const MAX_FRAME_S: f64 = 0.1;
+/// a dragged window) the simulation does not try to catch up. A renderer
+/// that draws three frames a second (software WebGL) still plays in real
+/// time.
+pub const MAX_FRAME_S: f64 = 0.35;
+
+/// Wall time per frame the solver may use at least (s): at 60 frames a
+/// second the UI stays above 30.
+pub const MIN_STEP_BUDGET_S: f64 = 0.012;
+
+/// Wall time per frame the solver may use at most (s).
+pub const MAX_STEP_BUDGET_S: f64 = 0.1;
+
+/// The solver's wall-time budget in a frame that came `frame_s` after the
+/// last (s): [`MIN_STEP_BUDGET_S`], or half the frame interval where
+/// frames are slower, up to [`MAX_STEP_BUDGET_S`]. Where drawing is slow
+/// (software rendering, a large patch's heat map), the run keeps pace with
+/// its speed instead of being held to a fixed share of a fast frame; since
+/// the interval includes the solver's own time, the solver never takes
+/// more than the drawing does, so the frame rate at most halves.
+pub fn step_budget_s(frame_s: f64) -> f64 {
+    if !frame_s.is_finite() || frame_s <= 0.0 {
+        return MIN_STEP_BUDGET_S;
+    }
+    (0.5 * frame_s).clamp(MIN_STEP_BUDGET_S, MAX_STEP_BUDGET_S)
+}
 
 /// Steps requested per frame at `Speed::Max` (the time budget cuts it short).
 pub const MAX_SPEED_STEPS: u64 = 1 << 40;
@@ -225,6 +248,40 @@ mod tests {
         assert_eq!(total, 2);
         let total: u64 = (0..500).map(|_| tc.steps_this_frame(0.004, DT)).sum();
         assert_eq!(total, 200);
+    }
+
+    /// Fast frames keep the fixed budget; slow ones give the solver half
+    /// the interval, never more than the cap: at the fixed point (solver
+    /// time = half of draw + solver) it takes no more than drawing does.
+    #[test]
+    fn the_step_budget_follows_slow_frames() {
+        assert_eq!(step_budget_s(1.0 / 60.0), MIN_STEP_BUDGET_S);
+        assert_eq!(step_budget_s(1.0 / 144.0), MIN_STEP_BUDGET_S);
+        assert!((step_budget_s(0.1) - 0.05).abs() < 1e-15);
+        assert_eq!(step_budget_s(0.25), MAX_STEP_BUDGET_S);
+        assert_eq!(step_budget_s(5.0), MAX_STEP_BUDGET_S);
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert_eq!(step_budget_s(bad), MIN_STEP_BUDGET_S);
+        }
+        // a renderer at 4 frames/s (0.24 s to draw): the solver's share
+        // settles where it is at most what drawing takes
+        let draw_s = 0.24;
+        let mut solver_s = MIN_STEP_BUDGET_S;
+        for _ in 0..50 {
+            solver_s = step_budget_s(draw_s + solver_s);
+        }
+        assert!(
+            solver_s <= draw_s && solver_s > MIN_STEP_BUDGET_S,
+            "{solver_s}"
+        );
+        // and real time at 1x is asked for over those frames
+        let mut tc = TimeControl::default();
+        tc.play();
+        let frame_s = draw_s + solver_s;
+        assert_eq!(
+            tc.steps_this_frame(frame_s, DT),
+            (frame_s / DT).round() as u64
+        );
     }
 
     #[test]
