@@ -8,7 +8,9 @@
 #   scripts/test-web.sh [TIRECONTACT_BIN]     (default target/debug/tirecontact)
 #
 # WEB_SHOTS=DIR also saves screenshots (1280x720, 412x915) there;
-# WEB_SPEED=1 also measures the paper preset's steps per second in the page.
+# WEB_SPEED=1 also measures the paper preset's steps per second in the page
+# at the fastest speed, and the real-time factor it plays at when it opens
+# at 1x.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 cd "$repo"
@@ -47,6 +49,7 @@ if [ "${WEB_SPEED:-0}" = 1 ]; then
     # the paper preset, long enough to time 10 s of it, at the fastest speed
     sed 's/^    duration_s: .*/    duration_s: 100.0,/' presets/paper.ron >"$tmp/paper_long.ron"
     args+=(--speed-link "$("$bin" share "$tmp/paper_long.ron")&speed=max")
+    args+=(--realtime-link "$("$bin" share "$tmp/paper_long.ron")")
 fi
 for _ in $(seq 50); do
     python3 -c "import urllib.request; urllib.request.urlopen('http://127.0.0.1:$port/index.html')" 2>/dev/null && break

@@ -316,6 +316,8 @@ def main():
     ap.add_argument("name")
     ap.add_argument("--shots")
     ap.add_argument("--speed-link")
+    ap.add_argument("--realtime-link")
+    ap.add_argument("--dt", type=float, default=1e-5)
     ap.add_argument("--hash-link", nargs=2, metavar=("LINK", "NAME"))
     ap.add_argument("--chromium", default=shutil.which("chromium") or "chromium")
     args = ap.parse_args()
@@ -397,6 +399,22 @@ def main():
             print(
                 f"web-check: speed {rate:.0f} steps/s in the page ({s1 - s0} steps in {w1 - w0:.1f} s, "
                 f"{fps:.1f} frames/s: {rate / max(fps, 1e-9) / 0.012:.0f} steps/s within the 12 ms budget)"
+            )
+
+        if args.realtime_link:
+            # the same scene at the speed it opens at (1x for a run of 4 s or more)
+            b.navigate(f"{folder}/{args.realtime_link.replace('index.html', 'index.html?' + str(random.random()), 1)}")
+            b.wait_for("the real-time scene", lambda: b.steps() == 0, 120)
+            b.pump(1)
+            b.click(1270, 715)
+            b.key(" ", "Space", 32)
+            b.wait_for("the run to start", lambda: (b.steps() or 0) > 0, 30)
+            s0, w0 = b.steps(), time.time()
+            b.pump(10)
+            s1, w1 = b.steps(), time.time()
+            print(
+                f"web-check: at the speed it opens at, the page plays {(s1 - s0) * args.dt / (w1 - w0):.2f}x "
+                f"real time ({s1 - s0} steps of {args.dt:g} s in {w1 - w0:.1f} s)"
             )
 
         b.pump(0.5)
