@@ -322,6 +322,12 @@ fn a_preparation_shows_its_progress_and_can_be_cancelled() {
         h.query_by_label_contains("Preparing the scene:").is_some(),
         "no progress line"
     );
+    // Cancel stays in place while the stage's text changes length
+    let at = h.get_by_label("Cancel").rect();
+    for _ in 0..2 {
+        h.step();
+        assert_eq!(h.get_by_label("Cancel").rect(), at, "Cancel moved");
+    }
     h.get_by_label("Cancel").click();
     h.run_steps(3);
     assert!(!h.state().identifying(), "the preparation goes on");

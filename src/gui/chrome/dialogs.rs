@@ -78,7 +78,10 @@ pub fn csv_row(ui: &mut Ui, fraction: Option<f64>, cmds: &mut Vec<Command>) {
     }
 }
 
-/// A background job's line: a progress bar, what it does, Cancel.
+/// A background job's line: Cancel, a progress bar, what it does. Cancel
+/// comes first so that it stays where it is while the text of the stage
+/// under way changes length (a button after the text moved under the
+/// pointer from one stage to the next).
 fn job_row(
     ui: &mut Ui,
     doing: &str,
@@ -88,15 +91,15 @@ fn job_row(
     cmds: &mut Vec<Command>,
 ) {
     ui.horizontal_wrapped(|ui| {
+        if ui.button("Cancel").on_hover_text(cancel_hover).clicked() {
+            cmds.push(cancel);
+        }
         ui.add(
             egui::ProgressBar::new(fraction as f32)
                 .desired_width(140.0)
                 .show_percentage(),
         );
         ui.label(doing);
-        if ui.button("Cancel").on_hover_text(cancel_hover).clicked() {
-            cmds.push(cancel);
-        }
     });
 }
 
