@@ -284,6 +284,17 @@ pub struct StepTable {
     soa: StepColumns,
 }
 
+impl StepTable {
+    /// The Gauss-point weights as columns over the states, in the order of
+    /// a point pair's four entries in the contact system: end value by
+    /// `q1`, by `q2`, slope by `q1`, by `q2` (`w1[s][0]`, `w2[s][0]`,
+    /// `w1[s][1]`, `w2[s][1]`), the first `ns` states each.
+    pub fn weight_columns(&self, ns: usize) -> [&[f64]; 4] {
+        let c = &self.soa;
+        [&c.w1x[..ns], &c.w2x[..ns], &c.w1v[..ns], &c.w2v[..ns]]
+    }
+}
+
 /// States per range of the threaded state kernels (`predict`,
 /// `add_gauss_forces`): whole blocks of the force kernel, whose written
 /// states then never share a cache line between threads.

@@ -316,10 +316,7 @@ impl Simulation {
         let (p, ns) = (tb.p, tb.basis.stored_states());
         let g = &mut sc.gss[..4 * n * n];
         // the weights of the four entries, each contiguous over the states
-        let wq = &mut sc.sub_weights[..4 * ns];
-        for (s, (w1, w2)) in sc.sub.w1[..ns].iter().zip(&sc.sub.w2[..ns]).enumerate() {
-            (wq[s], wq[ns + s], wq[2 * ns + s], wq[3 * ns + s]) = (w1[0], w2[0], w1[1], w2[1]);
-        }
+        let wq = sc.sub.weight_columns(ns);
         PairFill {
             out: &tb.basis.out[..p * ns],
             inp_t: &tb.basis.inp_t[..ns * p],
@@ -371,12 +368,18 @@ struct PairFill<'a> {
 }
 
 impl PairFill<'_> {
-    fn fill(&self, active: &[usize], wq: &[f64], ow: &mut [f64], g: &mut [f64]) {
+    fn fill(&self, active: &[usize], wq: [&[f64]; 4], ow: &mut [f64], g: &mut [f64]) {
         #[cfg(target_arch = "x86_64")]
         {
             if std::arch::is_x86_feature_detected!("avx2") {
                 #[target_feature(enable = "avx2")]
-                fn wide(f: &PairFill, active: &[usize], wq: &[f64], ow: &mut [f64], g: &mut [f64]) {
+                fn wide(
+                    f: &PairFill,
+                    active: &[usize],
+                    wq: [&[f64]; 4],
+                    ow: &mut [f64],
+                    g: &mut [f64],
+                ) {
                     f.body(active, wq, ow, g)
                 }
                 // SAFETY: the CPU supports AVX2 (checked just above).
@@ -387,7 +390,7 @@ impl PairFill<'_> {
     }
 
     #[inline(always)]
-    fn body(&self, active: &[usize], wq: &[f64], ow: &mut [f64], g: &mut [f64]) {
+    fn body(&self, active: &[usize], wq: [&[f64]; 4], ow: &mut [f64], g: &mut [f64]) {
         let ns = self.ns;
         debug_assert_eq!(ns % 4, 0, "the stored states fill whole lanes");
         let n = active.len();
@@ -395,7 +398,7 @@ impl PairFill<'_> {
         for (a, &i) in active.iter().enumerate() {
             let o = &self.out[i * ns..(i + 1) * ns];
             for (q, owq) in ow[..4 * ns].chunks_exact_mut(ns).enumerate() {
-                for ((x, &oi), &w) in owq.iter_mut().zip(o).zip(&wq[q * ns..(q + 1) * ns]) {
+                for ((x, &oi), &w) in owq.iter_mut().zip(o).zip(&wq[q][..ns]) {
                     *x = oi * w;
                 }
             }
@@ -615,8 +618,9 @@ mod tests {
                 let n = active.len();
                 let mut ow = vec![0.0; 4 * ns];
                 let (mut g, mut g_base) = (vec![0.0; 4 * n * n], vec![0.0; 4 * n * n]);
-                f.fill(&active, &wq, &mut ow, &mut g);
-                f.body(&active, &wq, &mut ow, &mut g_base);
+                let cols: [&[f64]; 4] = std::array::from_fn(|q| &wq[q * ns..(q + 1) * ns]);
+                f.fill(&active, cols, &mut ow, &mut g);
+                f.body(&active, cols, &mut ow, &mut g_base);
                 assert_eq!(g, g_base, "the two builds differ");
                 for (a, &i) in active.iter().enumerate() {
                     for (b, &j) in active.iter().enumerate() {

@@ -233,10 +233,7 @@ impl Simulation {
         let (n, p, ns) = (act.len(), tb.p, tb.basis.stored_states());
         let rate = SQRT3 / s.sub.tau_s;
         // the sub-step's four weights, each contiguous over the states
-        let wq = &mut s.sub_weights[..4 * ns];
-        for (st, (w1, w2)) in s.sub.w1[..ns].iter().zip(&s.sub.w2[..ns]).enumerate() {
-            (wq[st], wq[ns + st], wq[2 * ns + st], wq[3 * ns + st]) = (w1[0], w2[0], w1[1], w2[1]);
-        }
+        let wq = s.sub.weight_columns(ns);
         let (out, inp_t) = (&tb.basis.out, &tb.basis.inp_t);
         // each point's own 2 x 2 block (end value, slope) x (q1, q2), inverted
         for (a, &i) in act.iter().enumerate() {
@@ -331,13 +328,13 @@ impl Simulation {
 
 /// A point's own 2 × 2 block of the sub-step system without the tread,
 /// `g_m = Σ_s a_s[i] b_s[i] w_m(s)` for the weights `w_m` (end value by
-/// `q1`, by `q2`, slope by `q1`, by `q2`: the four columns of `wq`, `ns`
-/// each), over its output row `o` and input row `b`: four lanes per sum,
-/// so that the sums vectorise.
-fn own_block(o: &[f64], b: &[f64], wq: &[f64], ns: usize) -> [f64; 4] {
+/// `q1`, by `q2`, slope by `q1`, by `q2`: `w`, `ns` each), over its
+/// output row `o` and input row `b`: four lanes per sum, so that the sums
+/// vectorise.
+fn own_block(o: &[f64], b: &[f64], w: [&[f64]; 4], ns: usize) -> [f64; 4] {
     const L: usize = 4;
     let (o, b) = (&o[..ns], &b[..ns]);
-    let w: [&[f64]; 4] = std::array::from_fn(|m| &wq[m * ns..(m + 1) * ns]);
+    let w: [&[f64]; 4] = std::array::from_fn(|m| &w[m][..ns]);
     let full = ns - ns % L;
     let mut acc = [[0.0f64; L]; 4];
     for c in (0..full).step_by(L) {

@@ -426,9 +426,6 @@ pub(super) struct Scratch {
     pub sub: StepTable,
     /// `|S| x |S|` blocks of the sub-step influence (4 |S|² used).
     pub gss: Vec<f64>,
-    /// The sub-step's weights by entry of a block, each over the stored
-    /// states: `w1[s][0]`, `w2[s][0]`, `w1[s][1]`, `w2[s][1]` (`4 ns`).
-    pub sub_weights: Vec<f64>,
     /// One point's output vector times each of those weights (`4 ns`).
     pub sub_out_weighted: Vec<f64>,
     /// State increment of the solved sub-step forces, and its projection
@@ -491,7 +488,6 @@ impl Scratch {
             rhs: vec![0.0; 2 * p],
             sub: tables.full.clone(),
             gss: vec![0.0; 4 * p * p],
-            sub_weights: vec![0.0; 4 * ns],
             sub_out_weighted: vec![0.0; 4 * ns],
             delta: Box::new(zero),
             du: vec![0.0; p],
