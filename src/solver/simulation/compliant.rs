@@ -129,6 +129,7 @@ impl Simulation {
         sel: Table,
     ) -> Result<u32, SolverError> {
         self.predict(t, tau, sel)?;
+        self.ensure_projected_all();
         self.state.active.clear();
         for i in 0..self.tables.p {
             if self.scratch.re[i] - self.scratch.uh[i] > 0.0 {
@@ -247,15 +248,26 @@ impl Simulation {
             s.q1[j] = s.rhs[k];
             s.q2[j] = s.rhs[n + k];
         }
-        let g = &self.tables.full_inf;
-        for i in 0..p {
-            let (mut du, mut dv) = (0.0, 0.0);
-            for &j in active {
-                du += g.gx1[i * p + j] * s.q1[j] + g.gx2[i * p + j] * s.q2[j];
-                dv += g.gv1[i * p + j] * s.q1[j] + g.gv2[i * p + j] * s.q2[j];
+        // every point's response to the active points' forces, source
+        // column by source column over contiguous memory (`full_inf_cols`);
+        // each point sums its terms in the order of the active set
+        let (du, dv) = (&mut s.du[..p], &mut s.dv[..p]);
+        du.fill(0.0);
+        dv.fill(0.0);
+        for &j in active {
+            let cols = &self.tables.full_inf_cols[4 * p * j..4 * p * (j + 1)];
+            let (gx1, rest) = cols.split_at(p);
+            let (gx2, rest) = rest.split_at(p);
+            let (gv1, gv2) = rest.split_at(p);
+            let (q1, q2) = (s.q1[j], s.q2[j]);
+            for i in 0..p {
+                du[i] += gx1[i] * q1 + gx2[i] * q2;
+                dv[i] += gv1[i] * q1 + gv2[i] * q2;
             }
-            s.ue[i] += du;
-            s.ve[i] += dv;
+        }
+        for i in 0..p {
+            s.ue[i] += du[i];
+            s.ve[i] += dv[i];
         }
         Ok(())
     }

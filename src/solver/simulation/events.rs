@@ -83,7 +83,9 @@ impl Simulation {
             // (a road with breakpoints may resample the road between trials)
             let kept = std::mem::take(&mut kept_prediction) == Some((at.t_s, span, sel))
                 && !self.road.has_kinks()
-                && (self.scratch.projected_all || self.fused_full_step());
+                && (self.scratch.projected_all
+                    || self.fused_full_step()
+                    || (sel == Table::Sub && self.iterative_sub_step()));
             if !reuse && !kept {
                 self.predict(at.t_s, span, sel)?;
             }

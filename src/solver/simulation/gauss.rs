@@ -10,6 +10,9 @@ impl Simulation {
     /// Solves the Gauss-point system of `active` (after `predict`) and the end
     /// displacement/velocity of every point into `ue`, `ve`.
     pub(super) fn solve_active(&mut self, t_end: f64, sel: Table) -> Result<(), SolverError> {
+        if sel == Table::Sub {
+            self.ensure_projected_all();
+        }
         let n = self.state.active.len();
         let p = self.tables.p;
         if n == 0 {
@@ -230,9 +233,22 @@ impl Simulation {
             Table::Full => &tb.full,
             Table::Sub => &s.sub,
         };
+        let threads = &self.threads;
+        if !s.projected_all && sel == Table::Sub {
+            // the prediction projected only the active points: the end
+            // state, prediction plus forces, projected once (as the fused
+            // full step, `large.rs`), and taken by `commit` as it is
+            s.delta.copy_from(&s.free);
+            s.delta
+                .add_gauss_forces_on(&tb.basis, table, &st.active, &s.q1, &s.q2, threads);
+            s.delta.project_on(&tb.basis, &mut s.ue, &mut s.ve, threads);
+            s.fused_end = true;
+            let tau_s = table.tau_s;
+            self.add_residual_ends(tau_s);
+            return;
+        }
         s.delta.x.fill(0.0);
         s.delta.v.fill(0.0);
-        let threads = &self.threads;
         s.delta
             .add_gauss_forces_on(&tb.basis, table, &st.active, &s.q1, &s.q2, threads);
         s.delta.project_on(&tb.basis, &mut s.du, &mut s.dv, threads);

@@ -77,6 +77,25 @@ impl Simulation {
             && self.state.active.len() >= self.tables.options.large_set_from
     }
 
+    /// Whether a sub-step's prediction leaves the projection to the solve
+    /// (a compliant set solved by GMRES: [`Simulation::solve_sub_iterative`]).
+    #[inline]
+    pub(super) fn iterative_sub_step(&self) -> bool {
+        self.state.active.len() >= self.tables.iterative_sub_from()
+    }
+
+    /// The free end values `uh`, `vh` of every point, where the last
+    /// prediction left them to the solve (before a solve that reads them
+    /// all: the direct ones).
+    pub(super) fn ensure_projected_all(&mut self) {
+        let s = &mut self.scratch;
+        if !s.projected_all {
+            s.free
+                .project_on(&self.tables.basis, &mut s.uh, &mut s.vh, &self.threads);
+            s.projected_all = true;
+        }
+    }
+
     /// The free end values `uh`, `vh` of the active points only, from the
     /// predicted states (the same sums as the full projection's rows; `du`,
     /// `dv` hold the rows' values in the set's order on the way).
@@ -105,7 +124,7 @@ impl Simulation {
         s.delta
             .add_gauss_forces_on(&tb.basis, &tb.full, &st.active, &s.q1, &s.q2, threads);
         s.delta.project_on(&tb.basis, &mut s.ue, &mut s.ve, threads);
-        s.fused_full = true;
+        s.fused_end = true;
         let dt_s = tb.dt_s;
         self.add_residual_ends(dt_s);
     }
@@ -229,16 +248,17 @@ impl Simulation {
     /// changed, when GMRES did not converge or a point's own block is
     /// singular: the direct solve follows.
     pub(super) fn solve_sub_iterative(&mut self) -> bool {
+        if !self.scratch.projected_all {
+            self.project_active_rows();
+        }
         let (tb, act, s) = (&self.tables, &self.state.active, &mut self.scratch);
         let (n, p, ns) = (act.len(), tb.p, tb.basis.stored_states());
         let rate = SQRT3 / s.sub.tau_s;
         // the sub-step's four weights, each contiguous over the states
         let wq = s.sub.weight_columns(ns);
-        let (out, inp_t) = (&tb.basis.out, &tb.basis.inp_t);
         // each point's own 2 x 2 block (end value, slope) x (q1, q2), inverted
         for (a, &i) in act.iter().enumerate() {
-            let (o, b) = (&out[i * ns..(i + 1) * ns], &inp_t[i * ns..(i + 1) * ns]);
-            let mut g = own_block(o, b, wq, ns);
+            let mut g = own_block(&tb.own_terms[i * ns..(i + 1) * ns], wq);
             let c = if tb.residual.is_empty() {
                 0.0
             } else {
@@ -328,31 +348,53 @@ impl Simulation {
 
 /// A point's own 2 × 2 block of the sub-step system without the tread,
 /// `g_m = Σ_s a_s[i] b_s[i] w_m(s)` for the weights `w_m` (end value by
-/// `q1`, by `q2`, slope by `q1`, by `q2`: `w`, `ns` each), over its
-/// output row `o` and input row `b`: four lanes per sum, so that the sums
-/// vectorise.
-fn own_block(o: &[f64], b: &[f64], w: [&[f64]; 4], ns: usize) -> [f64; 4] {
+/// `q1`, by `q2`, slope by `q1`, by `q2`), over the point's terms
+/// `ab = a_s[i] b_s[i]` ([`SimTables::own_terms`](super::parts::SimTables),
+/// a whole number of 4-wide lanes): four lanes per sum, run in AVX2 lanes
+/// where the CPU has them (the same operations in the same order: the same
+/// bits).
+fn own_block(ab: &[f64], w: [&[f64]; 4]) -> [f64; 4] {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            #[target_feature(enable = "avx2")]
+            fn wide(ab: &[f64], w: [&[f64]; 4]) -> [f64; 4] {
+                own_block_body(ab, w)
+            }
+            // SAFETY: the CPU supports AVX2 (checked just above).
+            return unsafe { wide(ab, w) };
+        }
+    }
+    own_block_body(ab, w)
+}
+
+/// [`own_block`]'s sums: lane `k` adds the states `s ≡ k (mod 4)` in
+/// order, then `(l0 + l1) + (l2 + l3)`.
+#[inline(always)]
+fn own_block_body(ab: &[f64], w: [&[f64]; 4]) -> [f64; 4] {
     const L: usize = 4;
-    let (o, b) = (&o[..ns], &b[..ns]);
+    let (ab_all, w_all, ab_len) = (ab, w, ab.len());
+    let ns = ab_len - ab_len % L;
+    let ab = &ab[..ns];
     let w: [&[f64]; 4] = std::array::from_fn(|m| &w[m][..ns]);
-    let full = ns - ns % L;
     let mut acc = [[0.0f64; L]; 4];
-    for c in (0..full).step_by(L) {
-        for k in 0..L {
-            let ab = o[c + k] * b[c + k];
-            for m in 0..4 {
-                acc[m][k] += ab * w[m][c + k];
+    for c in (0..ns).step_by(L) {
+        let t: &[f64; L] = ab[c..c + L].try_into().unwrap_or(&[0.0; L]);
+        for (m, a) in acc.iter_mut().enumerate() {
+            let wm: &[f64; L] = w[m][c..c + L].try_into().unwrap_or(&[0.0; L]);
+            for k in 0..L {
+                a[k] += t[k] * wm[k];
             }
         }
     }
-    std::array::from_fn(|m| {
-        let a = &acc[m];
-        let mut g = (a[0] + a[1]) + (a[2] + a[3]);
-        for c in full..ns {
-            g += o[c] * b[c] * w[m][c];
+    let mut g = acc.map(|a| (a[0] + a[1]) + (a[2] + a[3]));
+    // (stored states come in whole lanes: no tail, but a short one is summed)
+    for (m, gm) in g.iter_mut().enumerate() {
+        for c in ns..ab_len {
+            *gm += ab_all[c] * w_all[m][c];
         }
-        g
-    })
+    }
+    g
 }
 
 /// The full-step compliant system's entry of equation `r` (0: end value,

@@ -53,6 +53,11 @@ pub(super) struct SimTables {
     /// Tread stiffness per point (N/m) of compliant contact (method §4.6);
     /// empty: rigid.
     pub tread_k_n_m: Vec<f64>,
+    /// `a_s[i] b_s[i]` per point and state (`P x ns`, point-major) of
+    /// compliant contact: the terms of a point's own influence block, whose
+    /// weighted sums precondition the iterative sub-step solves
+    /// (`large.rs`); empty: rigid.
+    pub own_terms: Vec<f64>,
     /// Heights `h_i` of the points above the road (m, `scene.points[i].h_m`).
     pub h_m: Vec<f64>,
     /// Number of contact points `P`.
@@ -111,6 +116,17 @@ impl SimTables {
         jump_t: Vec<f64>,
     ) -> Self {
         let p = scene.num_points();
+        let tread_k_n_m = scene.contact.stiffness_per_point(p);
+        let own_terms = if tread_k_n_m.is_empty() {
+            Vec::new()
+        } else {
+            basis
+                .out
+                .iter()
+                .zip(&basis.inp_t)
+                .map(|(o, b)| o * b)
+                .collect()
+        };
         SimTables {
             jump,
             jump_t,
@@ -119,7 +135,8 @@ impl SimTables {
             full,
             basis,
             residual,
-            tread_k_n_m: scene.contact.stiffness_per_point(p),
+            tread_k_n_m,
+            own_terms,
             h_m: scene.points.iter().map(|pt| pt.h_m).collect(),
             p,
             dt_s: scene.dt_s,
@@ -446,10 +463,11 @@ pub(super) struct Scratch {
     /// vector scattered for the force kernel).
     pub gq1: Vec<f64>,
     pub gq2: Vec<f64>,
-    /// `delta` holds the end state of a full step of a large compliant
-    /// set (its prediction plus the solved forces, `large.rs`), which
-    /// `commit` takes as it is.
-    pub fused_full: bool,
+    /// `delta` holds the end state of the (sub-)step solved last (its
+    /// prediction plus the solved forces: a large compliant set's full
+    /// step, or a sub-step whose prediction projected only the active
+    /// points, `large.rs`), which `commit` takes as it is.
+    pub fused_end: bool,
     /// The last prediction projected every point's free end values
     /// (`uh`, `vh`), not only the active points'.
     pub projected_all: bool,
@@ -501,7 +519,7 @@ impl Scratch {
             mark: vec![false; p],
             impact_candidates: Vec::with_capacity(p),
             impact_in_set: vec![false; p],
-            fused_full: false,
+            fused_end: false,
             projected_all: false,
         }
     }

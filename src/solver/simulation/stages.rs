@@ -51,14 +51,18 @@ impl Simulation {
             Table::Full => &self.tables.full,
             Table::Sub => &self.scratch.sub,
         };
-        self.scratch.fused_full = false;
+        self.scratch.fused_end = false;
         let threads = &self.threads;
         self.state
             .modal
             .predict_into_on(table, &mut self.scratch.free, threads);
-        // (a large compliant set's full step projects only its active
-        // points here, in its solve, and the end values in one pass: `large.rs`)
-        let fused = sel == Table::Full && self.fused_full_step();
+        // (a large compliant set's full step, and a sub-step solved by
+        // GMRES, project only their active points, in their solve, and the
+        // end values in one pass: `large.rs`)
+        let fused = match sel {
+            Table::Full => self.fused_full_step(),
+            Table::Sub => self.iterative_sub_step(),
+        };
         if !fused {
             let (uh, vh) = (&mut self.scratch.uh, &mut self.scratch.vh);
             self.scratch
@@ -154,7 +158,7 @@ impl Simulation {
     /// ([`Simulation::solve_compliant`]).
     #[inline]
     pub(super) fn solve_contact(&mut self, t_end: f64, sel: Table) -> Result<(), SolverError> {
-        self.scratch.fused_full = false;
+        self.scratch.fused_end = false;
         if self.tables.tread_k_n_m.is_empty() {
             self.solve_active(t_end, sel)
         } else {
@@ -260,8 +264,9 @@ impl Simulation {
     #[inline(always)]
     pub(super) fn commit(&mut self, tau: f64, sel: Table) {
         let (st, s) = (&mut self.state, &mut self.scratch);
-        // (the end state formed by a full-step solve is that step's only)
-        let fused = std::mem::take(&mut s.fused_full) && sel == Table::Full;
+        // (the end state formed by the last solve, over this very span:
+        // `predict` and `solve_contact` clear the mark)
+        let fused = std::mem::take(&mut s.fused_end);
         if fused {
             // the end state is formed already (`large.rs`)
             std::mem::swap(&mut st.modal, &mut s.delta);
