@@ -156,8 +156,9 @@ impl SurfaceGrid {
         );
         let u = (x_m - self.x0_m) / self.dx_m;
         let (m, m1, s) = if self.looped {
-            let u = u.rem_euclid(self.nx as f64);
-            let m = (u.floor() as usize).min(self.nx - 1);
+            let u = rem_euclid_exact(u, self.nx as f64);
+            // (`u >= 0`: the truncation is the floor, without a libm call)
+            let m = (u as usize).min(self.nx - 1);
             (m, (m + 1) % self.nx, (u - m as f64).clamp(0.0, 1.0))
         } else {
             let last = (self.nx - 1) as f64;
@@ -223,6 +224,31 @@ impl SurfaceGrid {
         }
         (count > 0).then(|| sum / count as f64)
     }
+}
+
+/// `u.rem_euclid(n)` for a whole number `n >= 1`, without the software
+/// `fmod` where `0 <= u < 2^52`: `u - k n` with `k = ⌊u / n⌋` (corrected
+/// by one where the quotient rounded across a whole number) is exact there
+/// (a multiple of `ulp(u)`, no larger than `u`), as `fmod` is: the same
+/// value, bit for bit.
+#[inline]
+fn rem_euclid_exact(u: f64, n: f64) -> f64 {
+    if (0.0..n).contains(&u) {
+        return u;
+    }
+    if (0.0..4_503_599_627_370_496.0).contains(&u) {
+        // (`u / n >= 0` below 2^52: the truncation is the floor)
+        let k = (u / n) as u64 as f64;
+        let r = u - k * n;
+        if r < 0.0 {
+            return u - (k - 1.0) * n;
+        }
+        if r >= n {
+            return u - (k + 1.0) * n;
+        }
+        return r;
+    }
+    u.rem_euclid(n)
 }
 
 /// Baseline of the mean profile depth (m), ISO 13473-1.
@@ -458,6 +484,38 @@ fn grid_of_nodes(nodes: &[Node], looped: bool) -> Result<SurfaceGrid, String> {
 
 #[cfg(test)]
 mod tests {
+    /// The wrap of a looped grid equals `rem_euclid` bit for bit: near
+    /// every multiple of the period, at large distances, for odd periods
+    /// and below zero.
+    #[test]
+    fn the_exact_wrap_equals_rem_euclid_bit_for_bit() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for n in [1.0, 2.0, 3.0, 7.0, 500.0, 1001.0, 65_537.0] {
+            for _ in 0..20_000 {
+                let k = (next() % 100_000) as f64;
+                let ulps = (next() % 9) as i64 - 4;
+                let base: f64 = k * n;
+                // a few ulps either side of a multiple of the period
+                let u = f64::from_bits((base.to_bits() as i64 + ulps).max(0) as u64);
+                let w = (next() % 1_000_000) as f64 / 1_000.0 * n;
+                let neg = -((next() % 1_000_000) as f64) / 997.0;
+                for x in [u, w, neg, base + 0.5, 4.5e15, 1e300] {
+                    assert_eq!(
+                        super::rem_euclid_exact(x, n).to_bits(),
+                        x.rem_euclid(n).to_bits(),
+                        "u = {x:e}, n = {n}"
+                    );
+                }
+            }
+        }
+    }
+
     use super::*;
     use std::io::Write;
 
