@@ -246,6 +246,7 @@ impl Simulation {
     pub fn reset(&mut self) {
         let st = &mut self.state;
         st.modal.reset();
+        self.scratch.ahead_ready = false;
         st.t_s = 0.0;
         st.x_offset_m = 0.0;
         st.steps = 0;

@@ -99,11 +99,27 @@ impl Simulation {
     /// The free end values `uh`, `vh` of the active points only, from the
     /// predicted states (the same sums as the full projection's rows; `du`,
     /// `dv` hold the rows' values in the set's order on the way).
+    /// After a fused full step the rows projected ahead from its end state
+    /// are this prediction's (`ahead_use`, once): only the active points
+    /// without one are projected here.
     fn project_active_rows(&mut self) {
         let (tb, s) = (&self.tables, &mut self.scratch);
+        let rows = if std::mem::take(&mut s.ahead_use) {
+            s.others.clear();
+            for &i in &self.state.active {
+                if s.ahead_row[i] {
+                    (s.uh[i], s.vh[i]) = (s.uh_ahead[i], s.vh_ahead[i]);
+                } else {
+                    s.others.push(i);
+                }
+            }
+            &s.others[..]
+        } else {
+            &self.state.active[..]
+        };
         s.free.project_rows_on(
             &tb.basis,
-            &self.state.active,
+            rows,
             &mut s.uh,
             &mut s.vh,
             [&mut s.du, &mut s.dv],
@@ -117,16 +133,58 @@ impl Simulation {
     /// point, into `ue`, `ve` (one pass over the output vectors, where the
     /// free prediction and the forces' response would take two), with the
     /// residual compliance's share where there is one.
+    ///
+    /// With tread springs, the active points' end values are instead what
+    /// the solve imposes (the road less the springs' compression and its
+    /// rate, method §4.6), and their rows project the next step's free
+    /// prediction from this end state (`ahead`, read by that step's
+    /// [`Self::project_active_rows`] once `commit` took this state): every
+    /// row is read once a step, as in a step off the road.
     fn end_state_fused(&mut self) {
         let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
         let threads = &self.threads;
         s.delta.copy_from(&s.free);
         s.delta
             .add_gauss_forces_on(&tb.basis, &tb.full, &st.active, &s.q1, &s.q2, threads);
-        s.delta.project_on(&tb.basis, &mut s.ue, &mut s.ve, threads);
         s.fused_end = true;
         let dt_s = tb.dt_s;
+        if !tb.compliant() {
+            s.delta.project_on(&tb.basis, &mut s.ue, &mut s.ve, threads);
+            self.add_residual_ends(dt_s);
+            return;
+        }
+        // the points off the set, from the end state
+        for &j in &s.ahead_points {
+            s.ahead_row[j] = false;
+        }
+        s.ahead_points.clear();
+        s.ahead_points.extend_from_slice(&st.active);
+        for &j in &st.active {
+            s.ahead_row[j] = true;
+        }
+        s.others.clear();
+        s.others.extend((0..tb.p).filter(|&i| !s.ahead_row[i]));
+        let pk = [&mut s.du[..], &mut s.dv[..]];
+        s.delta
+            .project_rows_on(&tb.basis, &s.others, &mut s.ue, &mut s.ve, pk, threads);
+        // the next step's prediction and its active rows
+        s.delta.predict_into_on(&tb.full, &mut s.ahead, threads);
+        let pk = [&mut s.du[..], &mut s.dv[..]];
+        let (uh, vh) = (&mut s.uh_ahead, &mut s.vh_ahead);
+        s.ahead
+            .project_rows_on(&tb.basis, &st.active, uh, vh, pk, threads);
+        s.ahead_pending = true;
         self.add_residual_ends(dt_s);
+        // the active points: the road less the compression (the residual
+        // compliance is in the solved system)
+        let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
+        let rate = SQRT3 / dt_s;
+        for &j in &st.active {
+            let (q1, q2) = (s.q1[j], s.q2[j]);
+            let kt = 1.0 / tb.tread_k_n_m[j];
+            s.ue[j] = s.re[j] - kt * (-GB * q1 + GA * q2);
+            s.ve[j] = s.rde[j] - kt * rate * (q2 - q1);
+        }
     }
 
     /// Brings the kept inverse to the active set: the points that left
@@ -421,6 +479,70 @@ fn full_entry(tb: &super::parts::SimTables) -> impl Fn(usize, usize, usize, usiz
 mod tests {
     use crate::analysis::bench::scaling::{Regime, scaling_scene};
     use crate::{PreparedModel, Simulation, SolverOptions};
+
+    /// The active rows a fused full step projects ahead, from its end
+    /// state, are the next prediction's to the bit: a run that reads them
+    /// and the same run made to project every step's rows afresh (its
+    /// `ahead_ready` cleared before each step) give bit-identical states,
+    /// forces and end values, on rough roads (landings and releases inside
+    /// steps, releases at once), one and two threads, while the rows
+    /// ahead were read on most steps.
+    #[test]
+    fn rows_projected_ahead_are_the_next_predictions_bit_for_bit() {
+        for (p, k, regime, threads) in [
+            (30, 10, Regime::Tread, 1),
+            (60, 25, Regime::Tread, 1),
+            (100, 40, Regime::Patch, 1),
+            (100, 40, Regime::Patch, 2),
+        ] {
+            let mut scene = scaling_scene(p, k, regime);
+            scene.road = crate::model::road::Road::Sine {
+                amplitude_m: 2e-4,
+                wavelength_m: 0.05,
+            };
+            scene.duration_s = 0.03;
+            let model = PreparedModel::of(&scene).unwrap();
+            let options = SolverOptions {
+                large_set_from: 2,
+                threads,
+                parallel_from_madds: 0,
+                ..SolverOptions::default()
+            };
+            let mut a = Simulation::new(&model, options).unwrap();
+            let mut b = Simulation::new(&model, options).unwrap();
+            let (mut read_ahead, mut steps) = (0, 0);
+            while !a.finished() {
+                read_ahead += a.scratch.ahead_ready as u32;
+                b.scratch.ahead_ready = false;
+                a.step().unwrap();
+                b.step().unwrap();
+                steps += 1;
+                let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(
+                    bits(&a.state.modal.x),
+                    bits(&b.state.modal.x),
+                    "{p} x {k}, step {steps}"
+                );
+                assert_eq!(
+                    bits(&a.state.modal.v),
+                    bits(&b.state.modal.v),
+                    "{p} x {k}, step {steps}"
+                );
+                assert_eq!(
+                    bits(a.force_n()),
+                    bits(b.force_n()),
+                    "{p} x {k}, step {steps}"
+                );
+                assert_eq!(bits(a.displacement_m()), bits(b.displacement_m()));
+                assert_eq!(bits(a.velocity_mps()), bits(b.velocity_mps()));
+            }
+            assert!(a.stats().events > 0, "{p} x {k}: no event");
+            assert!(
+                2 * read_ahead > steps,
+                "{p} x {k}: rows ahead read on {read_ahead} of {steps} steps"
+            );
+        }
+    }
 
     /// The same compliant scenes run with the direct solves and with the
     /// methods of large sets (from 2 points on the road) agree to a

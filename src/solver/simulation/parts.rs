@@ -410,9 +410,11 @@ impl SimState {
 }
 
 /// The buffers a step works in, sized once (method §4.5, "Memory"). Nothing
-/// they hold is carried from one step to the next: `impulse` is cleared at
-/// the step start, every other buffer is written before it is read, and the
-/// sub-step table is refilled whenever its length changes.
+/// they hold is carried from one step to the next but the next step's
+/// active rows (`uh_ahead`, read only while `ahead_ready` says they are of
+/// the committed state): `impulse` is cleared at the step start, every
+/// other buffer is written before it is read, and the sub-step table is
+/// refilled whenever its length changes.
 pub(super) struct Scratch {
     /// The free prediction of the modal states (method §4.3 step 1).
     pub free: Box<ModalState>,
@@ -468,6 +470,25 @@ pub(super) struct Scratch {
     /// step, or a sub-step whose prediction projected only the active
     /// points, `large.rs`), which `commit` takes as it is.
     pub fused_end: bool,
+    /// The next step's free prediction from the end state formed last
+    /// (large compliant sets, `large.rs`), its active points' free end
+    /// values `uh_ahead`, `vh_ahead` (by point), the points they were
+    /// projected for (`ahead_row`, `ahead_points`), and the other points
+    /// (`others`).
+    pub ahead: Box<ModalState>,
+    pub uh_ahead: Vec<f64>,
+    pub vh_ahead: Vec<f64>,
+    pub ahead_row: Vec<bool>,
+    pub ahead_points: Vec<usize>,
+    pub others: Vec<usize>,
+    /// The last solve formed `ahead` (set by the solve, taken by `commit`).
+    pub ahead_pending: bool,
+    /// `ahead` is the prediction of the committed state (set by `commit`
+    /// after a fused full step, taken by the next `predict`).
+    pub ahead_ready: bool,
+    /// The current prediction is `ahead`'s: its active rows are read from
+    /// `uh_ahead` (taken by the solve's projection of the active rows).
+    pub ahead_use: bool,
     /// The last prediction projected every point's free end values
     /// (`uh`, `vh`), not only the active points'.
     pub projected_all: bool,
@@ -487,6 +508,8 @@ impl Scratch {
         let ns = tables.basis.stored_states();
         // (the buffers of the iterative sub-step solve)
         let large = tables.large_sets() || tables.p >= tables.iterative_sub_from();
+        // (the next step's active rows, formed by a large compliant set's full step)
+        let ahead = tables.large_sets() && tables.compliant();
         let zero = ModalState::zeros(&tables.basis);
         Scratch {
             free: Box::new(zero.clone()),
@@ -520,6 +543,22 @@ impl Scratch {
             impact_candidates: Vec::with_capacity(p),
             impact_in_set: vec![false; p],
             fused_end: false,
+            ahead: Box::new(if ahead {
+                ModalState::zeros(&tables.basis)
+            } else {
+                ModalState {
+                    x: Vec::new(),
+                    v: Vec::new(),
+                }
+            }),
+            uh_ahead: vec![0.0; if ahead { p } else { 0 }],
+            vh_ahead: vec![0.0; if ahead { p } else { 0 }],
+            ahead_row: vec![false; if ahead { p } else { 0 }],
+            ahead_points: Vec::with_capacity(if ahead { p } else { 0 }),
+            others: Vec::with_capacity(if ahead { p } else { 0 }),
+            ahead_pending: false,
+            ahead_ready: false,
+            ahead_use: false,
             projected_all: false,
         }
     }

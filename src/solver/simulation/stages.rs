@@ -70,6 +70,10 @@ impl Simulation {
                 .project_on(&self.tables.basis, uh, vh, threads);
         }
         self.scratch.projected_all = !fused;
+        // (the rows projected ahead by the last step, for this very prediction)
+        let ahead = std::mem::take(&mut self.scratch.ahead_ready);
+        self.scratch.ahead_use =
+            ahead && fused && sel == Table::Full && t == self.state.t_s && tau == self.tables.dt_s;
         // a full step from the current time ends at step `steps + 1`
         let step_end = (sel == Table::Full && t == self.state.t_s).then_some(self.state.steps + 1);
         self.sample_road(t + tau, false, step_end)
@@ -267,6 +271,8 @@ impl Simulation {
         // (the end state formed by the last solve, over this very span:
         // `predict` and `solve_contact` clear the mark)
         let fused = std::mem::take(&mut s.fused_end);
+        let ahead = std::mem::take(&mut s.ahead_pending);
+        s.ahead_ready = ahead && fused && sel == Table::Full;
         if fused {
             // the end state is formed already (`large.rs`)
             std::mem::swap(&mut st.modal, &mut s.delta);
