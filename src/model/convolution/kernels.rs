@@ -389,34 +389,15 @@ unsafe fn add_gauss_forces_avx<const RANGE: bool>(
             let quads = len - len % 4;
             b1[..len].fill(0.0);
             b2[..len].fill(0.0);
-            // the active columns four at a time, then one at a time; each
-            // state's sums take the columns in the list's order
+            // the active columns eight, then four at a time, then one at a
+            // time; each state's sums take the columns in the list's order
             let mut g = 0;
+            while g + 8 <= groups {
+                gauss_columns_avx::<8>(&active[g..g + 8], inp_t, stride, c0, q1, q2, p1, p2, len);
+                g += 8;
+            }
             while g < groups {
-                let js = [active[g], active[g + 1], active[g + 2], active[g + 3]];
-                let col: [*const f64; 4] =
-                    std::array::from_fn(|r| inp_t.as_ptr().add(js[r] * stride + c0));
-                let qa: [__m256d; 4] = std::array::from_fn(|r| _mm256_set1_pd(q1[js[r]]));
-                let qb: [__m256d; 4] = std::array::from_fn(|r| _mm256_set1_pd(q2[js[r]]));
-                let mut k = 0;
-                while k < quads {
-                    let (mut a1, mut a2) = (_mm256_loadu_pd(p1.add(k)), _mm256_loadu_pd(p2.add(k)));
-                    for r in 0..4 {
-                        let b = _mm256_loadu_pd(col[r].add(k));
-                        a1 = _mm256_add_pd(a1, _mm256_mul_pd(b, qa[r]));
-                        a2 = _mm256_add_pd(a2, _mm256_mul_pd(b, qb[r]));
-                    }
-                    _mm256_storeu_pd(p1.add(k), a1);
-                    _mm256_storeu_pd(p2.add(k), a2);
-                    k += 4;
-                }
-                for k in quads..len {
-                    for r in 0..4 {
-                        let b = *col[r].add(k);
-                        b1[k] += b * q1[js[r]];
-                        b2[k] += b * q2[js[r]];
-                    }
-                }
+                gauss_columns_avx::<4>(&active[g..g + 4], inp_t, stride, c0, q1, q2, p1, p2, len);
                 g += 4;
             }
             for &j in &active[groups..] {
@@ -460,6 +441,58 @@ unsafe fn add_gauss_forces_avx<const RANGE: bool>(
                 *vp.add(o) += *w1v.add(o) * b1[k] + *w2v.add(o) * b2[k];
             }
             c0 += len;
+        }
+    }
+}
+
+/// `G` active columns `js` of [`add_gauss_forces_avx`] added to a chunk's
+/// projections `p1`, `p2` (`len` states from `c0`): each state's sums take
+/// the columns in order, the projections loaded and stored once per `G`
+/// columns.
+///
+/// # Safety
+/// AVX; `p1`, `p2` hold `len` values; every column `j` of `js` holds
+/// `j * stride + c0 + len` values of `inp_t`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn gauss_columns_avx<const G: usize>(
+    js: &[usize],
+    inp_t: &[f64],
+    stride: usize,
+    c0: usize,
+    q1: &[f64],
+    q2: &[f64],
+    p1: *mut f64,
+    p2: *mut f64,
+    len: usize,
+) {
+    use std::arch::x86_64::*;
+    let quads = len - len % 4;
+    let js: [usize; G] = std::array::from_fn(|r| js[r]);
+    // SAFETY: as the caller guarantees
+    unsafe {
+        let col: [*const f64; G] = std::array::from_fn(|r| inp_t.as_ptr().add(js[r] * stride + c0));
+        let qa: [__m256d; G] = std::array::from_fn(|r| _mm256_set1_pd(q1[js[r]]));
+        let qb: [__m256d; G] = std::array::from_fn(|r| _mm256_set1_pd(q2[js[r]]));
+        let mut k = 0;
+        while k < quads {
+            let (mut a1, mut a2) = (_mm256_loadu_pd(p1.add(k)), _mm256_loadu_pd(p2.add(k)));
+            for r in 0..G {
+                let b = _mm256_loadu_pd(col[r].add(k));
+                a1 = _mm256_add_pd(a1, _mm256_mul_pd(b, qa[r]));
+                a2 = _mm256_add_pd(a2, _mm256_mul_pd(b, qb[r]));
+            }
+            _mm256_storeu_pd(p1.add(k), a1);
+            _mm256_storeu_pd(p2.add(k), a2);
+            k += 4;
+        }
+        for k in quads..len {
+            for r in 0..G {
+                let b = *col[r].add(k);
+                *p1.add(k) += b * q1[js[r]];
+                *p2.add(k) += b * q2[js[r]];
+            }
         }
     }
 }
@@ -573,9 +606,10 @@ mod tests {
     #[test]
     fn dispatched_kernels_equal_the_scalar_code_bit_for_bit() {
         // every remainder of the 4-wide lanes, the chunks of states and
-        // the groups of four active columns
+        // the groups of eight and four active columns (1 to 20 of them:
+        // 8 + 8 + 4, 8 + 4 + 2, ...)
         for ns in [1, 3, 4, 5, 15, 16, 17, 33, 65, 70, 255, 256, 257, 530] {
-            for p in [1, 3, 4, 5, 9, 16] {
+            for p in [1, 3, 4, 5, 9, 16, 17, 27, 40] {
                 let (x, v) = (vals(ns, 1.3), vals(ns, 1.7));
                 let out = vals(p * ns, 2.1);
                 let (mut u1, mut w1, mut u2, mut w2) =
