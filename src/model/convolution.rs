@@ -215,6 +215,20 @@ impl ModalBasis {
         }
     }
 
+    /// `b_s[j]` point-major for the force kernels: the output vectors
+    /// themselves where every term's input is its output
+    /// ([`ModalBasis::symmetric`]), so that a step's forces and its
+    /// projection read the same memory (the rows the forces read are then
+    /// in cache for the projection).
+    #[inline]
+    pub fn inputs_point_major(&self) -> &[f64] {
+        if self.symmetric {
+            &self.out
+        } else {
+            &self.inp_t
+        }
+    }
+
     /// Whether every term's output vector is its input vector, so that
     /// `Σ_s a_s[i] b_s[j] w_s` is symmetric in `(i, j)` for any weights.
     pub fn symmetric(&self) -> bool {
@@ -553,7 +567,7 @@ impl ModalState {
         }
         kernels::add_gauss_forces(
             &table.soa,
-            &basis.inp_t,
+            basis.inputs_point_major(),
             active,
             q1,
             q2,
@@ -595,7 +609,7 @@ impl ModalState {
         q2: &[f64],
         threads: &Threads,
     ) {
-        let (ns, c, inp_t) = (self.x.len(), &table.soa, &basis.inp_t[..]);
+        let (ns, c, inp_t) = (self.x.len(), &table.soa, basis.inputs_point_major());
         let outs = [(&mut self.x[..], 1), (&mut self.v[..], 1)];
         threads.split(ns, STATE_ALIGN, outs, |r, [x, v]| {
             kernels::add_gauss_forces_range(c, r.start, inp_t, ns, active, q1, q2, x, v)

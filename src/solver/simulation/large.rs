@@ -162,17 +162,18 @@ impl Simulation {
         for &j in &st.active {
             s.ahead_row[j] = true;
         }
-        s.others.clear();
-        s.others.extend((0..tb.p).filter(|&i| !s.ahead_row[i]));
-        let pk = [&mut s.du[..], &mut s.dv[..]];
-        s.delta
-            .project_rows_on(&tb.basis, &s.others, &mut s.ue, &mut s.ve, pk, threads);
-        // the next step's prediction and its active rows
+        // the next step's prediction and its active rows (first: with a
+        // symmetric basis the forces just read these rows)
         s.delta.predict_into_on(&tb.full, &mut s.ahead, threads);
         let pk = [&mut s.du[..], &mut s.dv[..]];
         let (uh, vh) = (&mut s.uh_ahead, &mut s.vh_ahead);
         s.ahead
             .project_rows_on(&tb.basis, &st.active, uh, vh, pk, threads);
+        s.others.clear();
+        s.others.extend((0..tb.p).filter(|&i| !s.ahead_row[i]));
+        let pk = [&mut s.du[..], &mut s.dv[..]];
+        s.delta
+            .project_rows_on(&tb.basis, &s.others, &mut s.ue, &mut s.ve, pk, threads);
         s.ahead_pending = true;
         self.add_residual_ends(dt_s);
         // the active points: the road less the compression (the residual
