@@ -709,22 +709,7 @@ fn validate_fe_tyre(v: &mut Validator, tyre: &Tyre, p: usize) {
         );
     }
     if let FeNodes::List(nodes) = &spec.nodes {
-        if nodes.len() != p {
-            v.push(
-                "tyre.nodes",
-                format!("{} nodes", nodes.len()),
-                &format!("one node number per point ({p}), or Nearest"),
-            );
-        }
-        for (k, a) in nodes.iter().enumerate() {
-            if nodes[..k].contains(a) {
-                v.push(
-                    &format!("tyre.nodes[{k}]"),
-                    a.to_string(),
-                    "a node not listed before",
-                );
-            }
-        }
+        validate_node_list(v, nodes, p, ", or Nearest");
     }
     let (along, across, normal) = (spec.axes.along, spec.axes.across, spec.direction);
     if along == across {
@@ -889,22 +874,7 @@ fn validate_measured_tyre(
         );
     }
     if !nodes.is_empty() {
-        if nodes.len() != p {
-            v.push(
-                "tyre.nodes",
-                format!("{} nodes", nodes.len()),
-                &format!("one node number per point ({p})"),
-            );
-        }
-        for (k, a) in nodes.iter().enumerate() {
-            if nodes[..k].contains(a) {
-                v.push(
-                    &format!("tyre.nodes[{k}]"),
-                    a.to_string(),
-                    "a node not listed before",
-                );
-            }
-        }
+        validate_node_list(v, nodes, p, "");
     }
     // the band against the data's Nyquist frequency, and the
     // samples, are checked when the file is read
@@ -914,6 +884,27 @@ fn validate_measured_tyre(
 
 /// The tread stiffnesses of compliant contact with `p` points: one for all
 /// or one per point, each in (0, [`MAX_TREAD_STIFFNESS_N_M`]].
+/// `tyre.nodes` as a list: one node per point (`or_else`: the other form
+/// the field takes, said after the count), none listed twice.
+fn validate_node_list(v: &mut Validator, nodes: &[i64], p: usize, or_else: &str) {
+    if nodes.len() != p {
+        v.push(
+            "tyre.nodes",
+            format!("{} nodes", nodes.len()),
+            &format!("one node number per point ({p}){or_else}"),
+        );
+    }
+    for (k, a) in nodes.iter().enumerate() {
+        if nodes[..k].contains(a) {
+            v.push(
+                &format!("tyre.nodes[{k}]"),
+                a.to_string(),
+                "a node not listed before",
+            );
+        }
+    }
+}
+
 fn validate_tread(v: &mut Validator, stiffness_n_m: &[f64], p: usize) {
     if stiffness_n_m.len() != 1 && stiffness_n_m.len() != p {
         v.push(
