@@ -64,9 +64,12 @@ fn threaded_steps_do_not_allocate() {
         wavelength_m: 0.03,
     };
     scene.ramp_s = 1e-3;
+    // (the methods of large sets from 2 points on the road: every step's
+    // set takes them, the rows projected ahead included)
     let options = tirecontact::SolverOptions {
         threads: 2,
         parallel_from_madds: 1,
+        large_set_from: 2,
         ..tirecontact::SolverOptions::default()
     };
     let mut sim = tirecontact::Simulation::from_scene_with(&scene, options).unwrap();
