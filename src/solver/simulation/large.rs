@@ -99,6 +99,7 @@ impl Simulation {
     /// The free end values `uh`, `vh` of the active points only, from the
     /// predicted states (the same sums as the full projection's rows; `du`,
     /// `dv` hold the rows' values in the set's order on the way).
+    ///
     /// After a fused full step the rows projected ahead from its end state
     /// are this prediction's (`ahead_use`, once): only the active points
     /// without one are projected here.
@@ -153,7 +154,7 @@ impl Simulation {
             self.add_residual_ends(dt_s);
             return;
         }
-        // the points off the set, from the end state
+        // the rows ahead: the active points'
         for &j in &s.ahead_points {
             s.ahead_row[j] = false;
         }
@@ -169,6 +170,7 @@ impl Simulation {
         let (uh, vh) = (&mut s.uh_ahead, &mut s.vh_ahead);
         s.ahead
             .project_rows_on(&tb.basis, &st.active, uh, vh, pk, threads);
+        // the points off the set: their end values from the end state
         s.others.clear();
         s.others.extend((0..tb.p).filter(|&i| !s.ahead_row[i]));
         let pk = [&mut s.du[..], &mut s.dv[..]];
