@@ -557,13 +557,31 @@ fn draw_panel(
         .margin_bottom(frame.v_margin)
         .x_label_area_size(frame.x_area)
         .y_label_area_size(y_area);
+    let chart_w = f64::from(chart_area.dim_in_pixel().0);
     let parts = ChartParts {
         panel,
         frame,
         plot_h,
+        x_ticks: if panel.log_x {
+            log_axis_ticks(xs.0, xs.1, x_log_label_count(chart_w, scale))
+        } else {
+            LogTicks::default()
+        },
+        y_ticks: if panel.log_y {
+            log_axis_ticks(ys.0, ys.1, y_label_count(panel, plot_h, scale))
+        } else {
+            LogTicks::default()
+        },
         axis_title_px: type_px.axis_title,
         legend,
         beside: outside.then_some(&legend_area),
+    };
+    // a log axis's ticks are chosen here (plotters' named some values twice)
+    let log_axis = |(lo, hi): (f64, f64), ticks: &LogTicks| {
+        (lo..hi)
+            .log_scale()
+            .with_key_points(ticks.labelled.iter().map(|t| t.0).collect())
+            .with_light_points(ticks.light.iter().copied())
     };
     match (panel.log_x, panel.log_y) {
         (false, false) => draw_chart(
@@ -572,17 +590,18 @@ fn draw_panel(
             &mut layout,
         ),
         (true, false) => draw_chart(
-            builder.build_cartesian_2d((xs.0..xs.1).log_scale(), ys.0..ys.1)?,
+            builder.build_cartesian_2d(log_axis(xs, &parts.x_ticks), ys.0..ys.1)?,
             &parts,
             &mut layout,
         ),
         (false, true) => draw_chart(
-            builder.build_cartesian_2d(xs.0..xs.1, (ys.0..ys.1).log_scale())?,
+            builder.build_cartesian_2d(xs.0..xs.1, log_axis(ys, &parts.y_ticks))?,
             &parts,
             &mut layout,
         ),
         (true, true) => draw_chart(
-            builder.build_cartesian_2d((xs.0..xs.1).log_scale(), (ys.0..ys.1).log_scale())?,
+            builder
+                .build_cartesian_2d(log_axis(xs, &parts.x_ticks), log_axis(ys, &parts.y_ticks))?,
             &parts,
             &mut layout,
         ),
@@ -599,6 +618,10 @@ struct ChartParts<'p, 'a, 'b> {
     frame: &'p Frame,
     /// The plot's estimated height (px), for the number of y ticks.
     plot_h: f64,
+    /// The ticks of a log x axis (none on a linear one).
+    x_ticks: LogTicks,
+    /// The ticks of a log y axis (none on a linear one).
+    y_ticks: LogTicks,
     axis_title_px: u32,
     legend: &'p PanelLegend,
     /// The legend column right of the plot, when the legend goes there.
@@ -659,10 +682,19 @@ where
     let fs = |s: f64| (s * scale).round() as u32;
     let (lx, ly) = (panel.log_x, panel.log_y);
     let (xr, yr) = (chart.x_range(), chart.y_range());
-    let fx = move |v: &f64| axis_tick_label(*v, lx, (xr.start, xr.end));
+    let (x_ticks, y_ticks) = (&parts.x_ticks, &parts.y_ticks);
+    let fx = move |v: &f64| {
+        if lx {
+            x_ticks.label(*v)
+        } else {
+            axis_tick_label(*v, false, (xr.start, xr.end))
+        }
+    };
     let names = &panel.y_names;
     let fy = move |v: &f64| {
-        if names.is_empty() {
+        if ly && names.is_empty() {
+            y_ticks.label(*v)
+        } else if names.is_empty() {
             axis_tick_label(*v, ly, (yr.start, yr.end))
         } else {
             name_tick_label(*v, names)
@@ -760,8 +792,10 @@ fn add_key<'a, 'b: 'a>(
 mod font;
 mod layout;
 mod legend;
+mod ticks;
 use layout::*;
 use legend::*;
+pub use ticks::{LogTicks, log_axis_ticks};
 
 #[cfg(test)]
 pub(crate) mod tests;

@@ -55,6 +55,12 @@ pub(super) fn y_label_count(panel: &Panel, plot_h: f64, scale: f64) -> usize {
     }
 }
 
+/// How many labels a log x axis `plot_w` px wide takes: at most one per
+/// 70 px (× scale; a label such as `2000` is about 30 px wide), 3 to 12.
+pub(super) fn x_log_label_count(plot_w: f64, scale: f64) -> usize {
+    ((plot_w / (70.0 * scale)) as usize).clamp(3, 12)
+}
+
 /// The font size (px) of `panel`'s axis titles: its rotated y title no
 /// longer than the plot is high (in a short panel it ran past the plot
 /// towards its neighbour's).
