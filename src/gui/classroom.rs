@@ -166,11 +166,16 @@ const LABEL_GAP_PX: f64 = 2.0;
 /// points' colours and the strip above give the steady phases), in up to
 /// three lanes of text height below the lowest point and the force value
 /// labels and up to two above the highest point, so that no labels overlap.
+///
+/// On a patch (several rows across the tread) the side view draws the row
+/// of `point` (the point of the plot and the bars) in full, with its
+/// labels, and the other rows faded behind it.
 pub fn scene_with_phases(
     ui: &mut Ui,
     sim: &Simulation,
     opts: &mut scene_view::SceneViewOptions,
     phases: &PhaseTracker,
+    point: usize,
 ) {
     let t = sim.time_s();
     let heading = ui.text_style_height(&TextStyle::Heading);
@@ -178,7 +183,8 @@ pub fn scene_with_phases(
     let normal_legend = std::mem::replace(&mut opts.legend_style, TextStyle::Small);
     // the legend in a row above the plot: in a corner it covered the tyre
     let normal_above = std::mem::replace(&mut opts.legend_above, true);
-    scene_view::show_with(ui, sim, opts, |pui, displaced, labels_floor| {
+    let normal_row = opts.row_of_point.replace(point);
+    let frame = scene_view::show_with(ui, sim, opts, |pui, displaced, labels_floor| {
         let at = PhasesAt { phases, t_s: t };
         if displaced.len() > 1 {
             let lanes = Lanes::of(pui, sim, displaced, labels_floor, body);
@@ -189,6 +195,113 @@ pub fn scene_with_phases(
     });
     opts.legend_style = normal_legend;
     opts.legend_above = normal_above;
+    opts.row_of_point = normal_row;
+    top_view(ui, sim, frame, point);
+}
+
+/// Caption of the top view of a patch in the classroom's scene.
+pub fn top_view_caption(rows: usize) -> String {
+    format!("top view: {rows} rows")
+}
+
+/// Radius (px) of the points of the top view at most.
+pub const TOP_VIEW_DOT_PX: f32 = 4.5;
+
+/// On a patch, a top view of its points in the lower left corner of the
+/// scene plot `frame` (below the road line, left of the points): x along
+/// (as the side view), one line per row across the tread, each point a dot
+/// coloured by its contact state, the row the side view draws in full
+/// underlined and its dots ringed.
+fn top_view(ui: &Ui, sim: &Simulation, frame: egui::Rect, point: usize) {
+    let scene = sim.scene();
+    let rows = scene_view::rows_y_m(scene);
+    if rows.len() < 2 {
+        return;
+    }
+    let text_px = CLASSROOM_MIN_TEXT_PX;
+    let caption = top_view_caption(rows.len());
+    let text_color = ui.visuals().strong_text_color();
+    let galley = ui
+        .painter()
+        .layout_no_wrap(caption, FontId::proportional(text_px), text_color);
+    let pad = 6.0;
+    let row_px = 10.0;
+    let w = (0.28 * frame.width()).clamp(galley.size().x + 2.0 * pad, 260.0);
+    let h = galley.size().y + pad * 3.0 + row_px * (rows.len() - 1) as f32;
+    if w > frame.width() - 8.0 || h > frame.height() - 8.0 {
+        return;
+    }
+    let rect = egui::Rect::from_min_size(
+        egui::pos2(frame.left() + 4.0, frame.bottom() - 4.0 - h),
+        egui::vec2(w, h),
+    );
+    let painter = ui.painter_at(frame);
+    painter.rect(
+        rect,
+        4.0,
+        ui.visuals().extreme_bg_color.gamma_multiply(0.92),
+        egui::Stroke::new(1.0, Color32::GRAY),
+        egui::StrokeKind::Inside,
+    );
+    painter.galley(
+        rect.min + egui::vec2(pad, pad * 0.5),
+        galley.clone(),
+        text_color,
+    );
+    let (xmin, xmax) = scene
+        .points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.x_m), b.max(p.x_m))
+        });
+    let grid = egui::Rect::from_min_max(
+        egui::pos2(
+            rect.left() + 2.0 * pad,
+            rect.top() + galley.size().y + 1.5 * pad,
+        ),
+        egui::pos2(rect.right() - 2.0 * pad, rect.bottom() - 1.5 * pad),
+    );
+    let span = (xmax - xmin).max(1e-12);
+    let at = |x_m: f64, row: usize| {
+        egui::pos2(
+            grid.left() + grid.width() * ((x_m - xmin) / span) as f32,
+            // y across the tread upwards, as seen from above with the road
+            // moving left
+            grid.bottom() - row_px * row as f32,
+        )
+    };
+    let along = scene.points.len().div_ceil(rows.len()).max(1);
+    let dot = (0.4 * grid.width() / along as f32)
+        .min(0.4 * row_px)
+        .min(TOP_VIEW_DOT_PX);
+    let row_of = |y: f64| rows.partition_point(|r| *r < y);
+    let focus = scene
+        .points
+        .get(point.min(scene.points.len().saturating_sub(1)))
+        .map(|p| row_of(p.y_m));
+    if let Some(r) = focus {
+        let y = at(xmin, r).y;
+        painter.line_segment(
+            [
+                egui::pos2(grid.left() - pad, y),
+                egui::pos2(grid.right() + pad, y),
+            ],
+            egui::Stroke::new(1.5, text_color),
+        );
+    }
+    for (p, on_road) in scene.points.iter().zip(sim.in_contact()) {
+        let r = row_of(p.y_m);
+        let c = at(p.x_m, r);
+        let color = if *on_road {
+            CONTACT_COLOR
+        } else {
+            FLIGHT_COLOR
+        };
+        painter.circle_filled(c, dot, color);
+        if Some(r) == focus {
+            painter.circle_stroke(c, dot + 1.5, egui::Stroke::new(1.0, text_color));
+        }
+    }
 }
 
 /// The phases of the points at one time.
@@ -308,7 +421,7 @@ impl Lanes {
             .force_n()
             .iter()
             .zip(displaced)
-            .filter(|(q, _)| **q > 0.0)
+            .filter(|(q, d)| **q > 0.0 && d[0].is_finite())
             .map(|(q, d)| {
                 let x = pui.transform().position_from_point_x(d[0]);
                 let w = measure(pui, &force_text(*q), body).x;
@@ -353,7 +466,8 @@ fn event_labels(
     let mut events: Vec<(usize, f32, f32)> = displaced
         .iter()
         .enumerate()
-        .filter(|(i, _)| at.of(*i).is_event())
+        // the faded rows of a patch (NaN) take no label
+        .filter(|(i, d)| d[0].is_finite() && at.of(*i).is_event())
         .map(|(i, d)| {
             let x = pui.transform().position_from_point_x(d[0]);
             let w = measure(pui, &phase_text(i, at.of(i)), body).x;

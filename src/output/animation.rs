@@ -176,16 +176,35 @@ impl FrameSettings {
     }
 }
 
-/// Path of frame `k` in `dir`.
 /// The road as the tyre sees it at the simulation's time, `n + 1` points
 /// `[x (m), height (m)]` over `[x0, x1]`: `w z(x + rolled) + (1 − w) h(x)`,
 /// the ramp weight `w` blending the point heights `h` (interpolated between
 /// the points) into the road profile `z` (shared by the scene view and the
 /// animation frames; positions off a measured profile are left out).
 pub fn road_in_tyre_frame(sim: &Simulation, x0: f64, x1: f64, n: usize) -> Vec<[f64; 2]> {
+    road_in_tyre_frame_at(sim, x0, x1, n, None)
+}
+
+/// [`road_in_tyre_frame`] under one row across the tread (`row_y_m`): the
+/// road surface at that `y` ([`RoadProfile::sample_at`]) and the heights
+/// of that row's points (`None`: the centreline `y = 0` and every point).
+///
+/// [`RoadProfile::sample_at`]: crate::model::road::RoadProfile::sample_at
+pub fn road_in_tyre_frame_at(
+    sim: &Simulation,
+    x0: f64,
+    x1: f64,
+    n: usize,
+    row_y_m: Option<f64>,
+) -> Vec<[f64; 2]> {
     let scene = sim.scene();
     let (w, _) = ramp(sim.time_s(), scene.ramp_s);
-    let mut sorted: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, p.h_m)).collect();
+    let mut sorted: Vec<(f64, f64)> = scene
+        .points
+        .iter()
+        .filter(|p| row_y_m.is_none_or(|y| p.y_m == y))
+        .map(|p| (p.x_m, p.h_m))
+        .collect();
     sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
     let h_at = |x: f64| -> f64 {
         match sorted.iter().position(|p| p.0 >= x) {
@@ -201,12 +220,18 @@ pub fn road_in_tyre_frame(sim: &Simulation, x0: f64, x1: f64, n: usize) -> Vec<[
     (0..=n)
         .filter_map(|k| {
             let x = x0 + (x1 - x0) * k as f64 / n as f64;
-            let z = sim.road_profile().sample(x + sim.rolled_m()).ok()?.0;
+            let z = match row_y_m {
+                Some(y) => sim.road_profile().sample_at(x + sim.rolled_m(), y),
+                None => sim.road_profile().sample(x + sim.rolled_m()),
+            }
+            .ok()?
+            .0;
             Some([x, w * z + (1.0 - w) * h_at(x)])
         })
         .collect()
 }
 
+/// Path of frame `k` in `dir`.
 pub fn frame_path(dir: &Path, k: u64) -> PathBuf {
     dir.join(format!("frame_{k:05}.png"))
 }
@@ -716,6 +741,58 @@ mod tests {
             let z = sim.road_profile().sample(x + sim.rolled_m()).unwrap().0;
             assert!((y - z).abs() < 1e-15, "x = {x}: {y} vs {z}");
         }
+    }
+
+    /// Under a row across the tread of a patch on a road surface, the road
+    /// is the surface at that row's `y`, and before the ramp the heights
+    /// of that row's points.
+    #[test]
+    fn road_under_a_row_is_the_surface_at_its_y() {
+        let mut scene = Scene::parse(
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/patch_texture.ron"
+            )),
+            "patch_texture",
+        )
+        .unwrap();
+        let y_row = scene
+            .points
+            .iter()
+            .map(|p| p.y_m)
+            .fold(f64::INFINITY, f64::min);
+        let row: Vec<(f64, f64)> = scene
+            .points
+            .iter()
+            .filter(|p| p.y_m == y_row)
+            .map(|p| (p.x_m, p.h_m))
+            .collect();
+        assert!(row.len() > 2 && y_row < 0.0);
+        // before the ramp: the row's own heights at its points
+        let sim = Simulation::from_scene(&scene).unwrap();
+        for &(x, h) in &row {
+            let at = road_in_tyre_frame_at(&sim, x, x, 1, Some(y_row));
+            assert!((at[0][1] - h).abs() < 1e-15, "x = {x}: {:?} vs {h}", at[0]);
+        }
+        // after a short ramp: the surface at the row's y, not the
+        // centreline's
+        scene.ramp_s = 1e-4;
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        while sim.time_s() < scene.ramp_s + 1e-9 {
+            sim.step().unwrap();
+        }
+        let mut differs = false;
+        for [x, z] in road_in_tyre_frame_at(&sim, -0.05, 0.05, 20, Some(y_row)) {
+            let want = sim
+                .road_profile()
+                .sample_at(x + sim.rolled_m(), y_row)
+                .unwrap()
+                .0;
+            assert!((z - want).abs() < 1e-15, "x = {x}: {z} vs {want}");
+            let centre = sim.road_profile().sample(x + sim.rolled_m()).unwrap().0;
+            differs |= (z - centre).abs() > 1e-6;
+        }
+        assert!(differs, "the texture is the same across the tread");
     }
 
     #[test]

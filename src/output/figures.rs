@@ -222,16 +222,29 @@ pub fn axis_tick_label(v: f64, log: bool, (lo, hi): (f64, f64)) -> String {
     format!("{m}e{e}")
 }
 
+/// Width (px) of `text` in the figures' font at `size` px: as plotters
+/// measures it on the desktop, as [`GlyphBitmap`] draws it in a browser.
+pub(crate) fn text_width_px(text: &str, size: u32) -> u32 {
+    #[cfg(target_arch = "wasm32")]
+    {
+        backend::text_box(text, f64::from(size)).0.max(0) as u32
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        ("sans-serif", size as i32)
+            .into_font()
+            .box_size(text)
+            .map_or(text.chars().count() as u32 * size / 2, |b| b.0)
+    }
+}
+
 /// The largest font size from `px` down to `min_px` at which `text` is at
 /// most `max_w` pixels wide (`min_px` when none is).
 pub fn fit_font_px(text: &str, max_w: i32, px: u32, min_px: u32) -> u32 {
     register_fonts();
     let mut size = px;
     while size > min_px {
-        let w = ("sans-serif", size as i32)
-            .into_font()
-            .box_size(text)
-            .map_or(text.chars().count() as u32 * size / 2, |b| b.0);
+        let w = text_width_px(text, size);
         if w as i64 <= i64::from(max_w) {
             break;
         }
@@ -343,6 +356,22 @@ pub fn render_png_layout(
     }
 }
 
+/// `fig` as the bytes of a `width × height` PNG file, drawn in memory (the
+/// web page offers them as a download; on the desktop [`render_png`] writes
+/// the file).
+pub fn render_png_bytes(fig: &Figure, width: u32, height: u32) -> Result<Vec<u8>, FigureError> {
+    use image::ImageEncoder;
+    let (rgb, _) = render_rgb_layout(fig, width, height)?;
+    let mut png = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png)
+        .write_image(&rgb, width, height, image::ExtendedColorType::Rgb8)
+        .map_err(|e| FigureError::Draw {
+            path: "(memory)".into(),
+            message: e.to_string(),
+        })?;
+    Ok(png)
+}
+
 /// [`render_png_layout`] into memory: the RGB pixels (3 bytes each, rows
 /// top to bottom) and where each panel was drawn.
 pub fn render_rgb_layout(
@@ -357,7 +386,7 @@ pub fn render_rgb_layout(
     };
     let mut rgb = vec![0u8; width as usize * height as usize * 3];
     let layouts = {
-        let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
+        let root = FigureBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
         let layouts = render_on(fig, &root, width, height).map_err(|e| err(&e))?;
         root.present().map_err(|e| err(&e))?;
         layouts
@@ -375,7 +404,7 @@ fn check_size(width: u32, height: u32) -> Result<(), FigureError> {
 /// Draws `fig` on `root` (`width × height` px).
 fn render_on(
     fig: &Figure,
-    root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    root: &DrawingArea<FigureBackend<'_>, plotters::coord::Shift>,
     width: u32,
     height: u32,
 ) -> Result<Vec<PanelLayout>, Box<dyn std::error::Error>> {
@@ -469,7 +498,7 @@ fn render_on(
     // one type scale: every panel's caption and axis titles at the size
     // that fits the tightest panel (each fitted alone, a figure's panels
     // had captions of three different sizes)
-    type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+    type Area<'a> = DrawingArea<FigureBackend<'a>, plotters::coord::Shift>;
     let fitted = |f: &dyn Fn(&Panel, &Area<'_>, &Frame) -> u32| {
         fig.panels
             .iter()
@@ -519,7 +548,7 @@ fn data_ranges(panel: &Panel) -> ((f64, f64), (f64, f64)) {
 /// Fig. 2, whose force spikes fill the whole plot).
 fn draw_panel(
     panel: &Panel,
-    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    area: &DrawingArea<FigureBackend<'_>, plotters::coord::Shift>,
     frame: &Frame,
     legend: &PanelLegend,
     axes: &Axes,
@@ -557,13 +586,31 @@ fn draw_panel(
         .margin_bottom(frame.v_margin)
         .x_label_area_size(frame.x_area)
         .y_label_area_size(y_area);
+    let chart_w = f64::from(chart_area.dim_in_pixel().0);
     let parts = ChartParts {
         panel,
         frame,
         plot_h,
+        x_ticks: if panel.log_x {
+            log_axis_ticks(xs.0, xs.1, x_log_label_count(chart_w, scale))
+        } else {
+            LogTicks::default()
+        },
+        y_ticks: if panel.log_y {
+            log_axis_ticks(ys.0, ys.1, y_label_count(panel, plot_h, scale))
+        } else {
+            LogTicks::default()
+        },
         axis_title_px: type_px.axis_title,
         legend,
         beside: outside.then_some(&legend_area),
+    };
+    // a log axis's ticks are chosen here (plotters' named some values twice)
+    let log_axis = |(lo, hi): (f64, f64), ticks: &LogTicks| {
+        (lo..hi)
+            .log_scale()
+            .with_key_points(ticks.labelled.iter().map(|t| t.0).collect())
+            .with_light_points(ticks.light.iter().copied())
     };
     match (panel.log_x, panel.log_y) {
         (false, false) => draw_chart(
@@ -572,17 +619,18 @@ fn draw_panel(
             &mut layout,
         ),
         (true, false) => draw_chart(
-            builder.build_cartesian_2d((xs.0..xs.1).log_scale(), ys.0..ys.1)?,
+            builder.build_cartesian_2d(log_axis(xs, &parts.x_ticks), ys.0..ys.1)?,
             &parts,
             &mut layout,
         ),
         (false, true) => draw_chart(
-            builder.build_cartesian_2d(xs.0..xs.1, (ys.0..ys.1).log_scale())?,
+            builder.build_cartesian_2d(xs.0..xs.1, log_axis(ys, &parts.y_ticks))?,
             &parts,
             &mut layout,
         ),
         (true, true) => draw_chart(
-            builder.build_cartesian_2d((xs.0..xs.1).log_scale(), (ys.0..ys.1).log_scale())?,
+            builder
+                .build_cartesian_2d(log_axis(xs, &parts.x_ticks), log_axis(ys, &parts.y_ticks))?,
             &parts,
             &mut layout,
         ),
@@ -591,7 +639,7 @@ fn draw_panel(
 }
 
 /// The chart of a panel, on linear or log axes.
-type PanelChart<'a, 'b, X, Y> = ChartContext<'a, BitMapBackend<'b>, Cartesian2d<X, Y>>;
+type PanelChart<'a, 'b, X, Y> = ChartContext<'a, FigureBackend<'b>, Cartesian2d<X, Y>>;
 
 /// What [`draw_chart`] draws besides the chart's axes.
 struct ChartParts<'p, 'a, 'b> {
@@ -599,10 +647,14 @@ struct ChartParts<'p, 'a, 'b> {
     frame: &'p Frame,
     /// The plot's estimated height (px), for the number of y ticks.
     plot_h: f64,
+    /// The ticks of a log x axis (none on a linear one).
+    x_ticks: LogTicks,
+    /// The ticks of a log y axis (none on a linear one).
+    y_ticks: LogTicks,
     axis_title_px: u32,
     legend: &'p PanelLegend,
     /// The legend column right of the plot, when the legend goes there.
-    beside: Option<&'a DrawingArea<BitMapBackend<'b>, plotters::coord::Shift>>,
+    beside: Option<&'a DrawingArea<FigureBackend<'b>, plotters::coord::Shift>>,
 }
 
 /// Draws the axes, the series and the legend of a panel on `chart`, and
@@ -659,10 +711,19 @@ where
     let fs = |s: f64| (s * scale).round() as u32;
     let (lx, ly) = (panel.log_x, panel.log_y);
     let (xr, yr) = (chart.x_range(), chart.y_range());
-    let fx = move |v: &f64| axis_tick_label(*v, lx, (xr.start, xr.end));
+    let (x_ticks, y_ticks) = (&parts.x_ticks, &parts.y_ticks);
+    let fx = move |v: &f64| {
+        if lx {
+            x_ticks.label(*v)
+        } else {
+            axis_tick_label(*v, false, (xr.start, xr.end))
+        }
+    };
     let names = &panel.y_names;
     let fy = move |v: &f64| {
-        if names.is_empty() {
+        if ly && names.is_empty() {
+            y_ticks.label(*v)
+        } else if names.is_empty() {
             axis_tick_label(*v, ly, (yr.start, yr.end))
         } else {
             name_tick_label(*v, names)
@@ -731,7 +792,7 @@ where
 /// The legend key of a series drawn in colour `c` with line width
 /// `stroke`, as `key_element` draws them in a legend column.
 fn add_key<'a, 'b: 'a>(
-    anno: &mut SeriesAnno<'a, BitMapBackend<'b>>,
+    anno: &mut SeriesAnno<'a, FigureBackend<'b>>,
     style: Style,
     c: RGBColor,
     stroke: u32,
@@ -756,12 +817,16 @@ fn add_key<'a, 'b: 'a>(
 }
 
 // (its glyph fix is for the fonts registered natively)
+mod backend;
 #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
 mod font;
 mod layout;
 mod legend;
+mod ticks;
+pub use backend::{FigureBackend, GlyphBitmap};
 use layout::*;
 use legend::*;
+pub use ticks::{LogTicks, log_axis_ticks};
 
 #[cfg(test)]
 pub(crate) mod tests;

@@ -256,7 +256,9 @@ impl App {
 
     pub(super) fn open_png_dialog(&mut self) {
         if crate::gui::chrome::web::IN_BROWSER {
-            return self.not_in_browser("Plots as PNG");
+            // no file to choose: the PNG at the dialog's size, downloaded
+            let name = format!("{}_plots.png", file_stem(&self.doc.scene.name));
+            return self.export_png(Path::new(&name), 1600, 1200);
         }
         self.png_dialog = Some(PngSettings {
             width: 1600,
@@ -288,6 +290,29 @@ impl App {
             return;
         }
         self.png_dialog = None;
+        if crate::gui::chrome::web::IN_BROWSER {
+            let name = path
+                .file_name()
+                .map_or("plots.png".into(), |n| n.to_string_lossy().into_owned());
+            match crate::gui::jobs::export::plots_png_bytes(
+                width,
+                height,
+                &self.doc.scene,
+                &self.modes,
+                &self.history,
+                &self.plot_opts.shown,
+                self.plot_opts.clip_impacts,
+            ) {
+                Ok(bytes) => {
+                    crate::gui::chrome::web::download(&name, bytes);
+                    self.info(format!(
+                        "{name} ({width}x{height} px) offered as a download"
+                    ));
+                }
+                Err(e) => self.error(format!("PNG export failed: {e}")),
+            }
+            return;
+        }
         match crate::gui::jobs::export::export_png(
             path,
             width,

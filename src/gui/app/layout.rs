@@ -70,7 +70,13 @@ impl App {
             let w = ui.available_width();
             ui.allocate_ui(egui::vec2(w, h), |ui| {
                 ui.set_min_size(egui::vec2(w, h));
-                classroom::scene_with_phases(ui, &self.sim, &mut self.scene_opts, &self.phases);
+                classroom::scene_with_phases(
+                    ui,
+                    &self.sim,
+                    &mut self.scene_opts,
+                    &self.phases,
+                    self.classroom.point,
+                );
             });
             classroom::point_plot(ui, &self.history, &mut self.classroom, self.sim.time_s());
         });

@@ -79,33 +79,28 @@ impl App {
                 };
                 self.report_export(&path, "sweep CSV", r);
             }
+            // in a browser: the PNG's bytes offered as a download
+            ResearchCommand::ExportSweepPngDialog if crate::gui::chrome::web::IN_BROWSER => {
+                let r = self.sweep_figure().and_then(|fig| {
+                    crate::output::figures::render_png_bytes(&fig, 1400, 1400)
+                        .map_err(|e| e.to_string())
+                });
+                match r {
+                    Ok(bytes) => {
+                        crate::gui::chrome::web::download("sweep.png", bytes);
+                        self.research_message(false, "sweep.png offered as a download");
+                    }
+                    Err(e) => self.research_message(true, format!("sweep PNG export failed: {e}")),
+                }
+            }
             ResearchCommand::ExportSweepPngDialog => {
                 self.file_prompt = Some(FilePrompt::new(FileAction::SweepPng, "sweep.png"));
             }
             ResearchCommand::ExportSweepPng(path) => {
-                let r = match self.research.sweep.result() {
-                    Some(res) => {
-                        let fig = crate::studies::sweep::report::figure(
-                            &format!(
-                                "{}: sweep of {}",
-                                res.scene_name,
-                                crate::studies::sweep::report::param_name(&res.request.param)
-                            ),
-                            &crate::studies::sweep::report::sweep_subtitle(
-                                &res.request.param,
-                                res.points.len(),
-                                res.request.from,
-                                res.request.to,
-                            ),
-                            &res.request.param,
-                            &res.points,
-                            &res.columns,
-                        );
-                        crate::output::figures::render_png(&fig, &path, 1400, 1400)
-                            .map_err(|e| e.to_string())
-                    }
-                    None => Err("no finished sweep to export".into()),
-                };
+                let r = self.sweep_figure().and_then(|fig| {
+                    crate::output::figures::render_png(&fig, &path, 1400, 1400)
+                        .map_err(|e| e.to_string())
+                });
                 self.report_export(&path, "sweep PNG", r);
             }
             ResearchCommand::PinReference => {
@@ -182,6 +177,31 @@ impl App {
             ResearchCommand::SweepEnded(end) => self.sweep_ended(end),
             ResearchCommand::Refresh => self.research_refresh(),
         }
+    }
+
+    /// The figure of the finished sweep.
+    fn sweep_figure(&self) -> Result<crate::output::figures::Figure, String> {
+        let res = self
+            .research
+            .sweep
+            .result()
+            .ok_or("no finished sweep to export")?;
+        Ok(crate::studies::sweep::report::figure(
+            &format!(
+                "{}: sweep of {}",
+                res.scene_name,
+                crate::studies::sweep::report::param_name(&res.request.param)
+            ),
+            &crate::studies::sweep::report::sweep_subtitle(
+                &res.request.param,
+                res.points.len(),
+                res.request.from,
+                res.request.to,
+            ),
+            &res.request.param,
+            &res.points,
+            &res.columns,
+        ))
     }
 
     fn report_export(&mut self, path: &Path, what: &str, r: Result<(), String>) {

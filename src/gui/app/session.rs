@@ -23,6 +23,10 @@ pub(super) struct Session {
     /// keeps classroom mode's light one between runs).
     #[serde(default)]
     theme_before_classroom: Option<egui::ThemePreference>,
+    /// The scene came from a scene link (and has no file): the title and
+    /// the status bar say "from a link" (absent from older sessions).
+    #[serde(default)]
+    from_link: bool,
 }
 
 impl App {
@@ -60,6 +64,7 @@ impl App {
                         );
                         app.set_classroom(true);
                     }
+                    app.doc.from_link = s.from_link && s.path.is_none();
                     let last = app.doc.scene.num_points().saturating_sub(1);
                     app.classroom.point = s.classroom_point.min(last);
                     app.message = Some(Message {
@@ -81,6 +86,7 @@ impl App {
             classroom: self.classroom.on,
             classroom_point: self.classroom.point,
             theme_before_classroom: self.classroom.user_theme(),
+            from_link: self.doc.from_link,
         }
     }
 
@@ -95,6 +101,7 @@ impl App {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::share;
     use eframe::Storage as _;
     use std::collections::HashMap;
 
@@ -136,6 +143,31 @@ mod tests {
         app.apply(Command::SetClassroom(false));
         app.save_session(&mut storage);
         assert!(!App::restore(Some(&storage)).classroom());
+    }
+
+    #[test]
+    fn a_scene_from_a_link_is_still_from_a_link_after_a_restart() {
+        let scene = Scene::parse(
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/single_mode.ron"
+            )),
+            "single_mode",
+        )
+        .unwrap();
+        let link = share::link(&scene, share::DEFAULT_BASE_URL).unwrap();
+        let app = App::open_link(&link, None);
+        assert!(app.title().contains("(from a link)"), "{}", app.title());
+        let mut storage = MemStorage::default();
+        app.save_session(&mut storage);
+        let restored = App::restore(Some(&storage));
+        assert_eq!(restored.doc.scene.name, scene.name);
+        assert_eq!(restored.title(), app.title());
+        assert!(restored.doc.from_link);
+        // a scene with its file is not from a link
+        let mut storage = MemStorage::default();
+        App::with_default_preset().save_session(&mut storage);
+        assert!(!App::restore(Some(&storage)).title().contains("from a link"));
     }
 
     #[test]

@@ -131,6 +131,21 @@ pub fn export_png(
     render_png(&fig, path, width, height).map_err(|e| e.to_string())
 }
 
+/// The time plots as the bytes of a `width × height` PNG (the figure of
+/// [`export_png`]): the web page's download.
+pub fn plots_png_bytes(
+    width: u32,
+    height: u32,
+    scene: &Scene,
+    modes: &[Mode],
+    history: &History,
+    shown: &[bool],
+    clip_impacts: bool,
+) -> Result<Vec<u8>, String> {
+    let fig = time_figure(scene, modes, history, shown, clip_impacts);
+    crate::output::figures::render_png_bytes(&fig, width, height).map_err(|e| e.to_string())
+}
+
 /// Re-runs `start` for `steps` steps, replaying `edits`, into `path` (CSV);
 /// counts the steps in `progress` and stops if it is cancelled.
 pub fn write_csv(
@@ -366,6 +381,57 @@ mod tests {
             speed_mps: 0.5 * scene.speed_mps,
         }];
         (scene, edits)
+    }
+
+    /// The page's PNG of the time plots: a PNG of the asked size, with the
+    /// pixels of the figure drawn in memory, and the same image as the
+    /// desktop's file.
+    #[test]
+    fn the_plots_png_bytes_decode_as_the_figure_at_its_size() {
+        let scene = Scene::parse(
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/three_points.ron"
+            )),
+            "three_points",
+        )
+        .unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        let modes = ModeCache::new().modes(&scene).unwrap().to_vec();
+        let mut history = History::new(scene.num_points(), 100_000);
+        history.record_initial(&sim);
+        for _ in 0..2000 {
+            sim.step().unwrap();
+            history.after_step(&sim);
+        }
+        let shown = vec![true; scene.num_points()];
+        for (w, h) in [(1600, 1200), (641, 487)] {
+            let png = plots_png_bytes(w, h, &scene, &modes, &history, &shown, true).unwrap();
+            assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+            let img = image::load_from_memory_with_format(&png, image::ImageFormat::Png)
+                .unwrap()
+                .to_rgb8();
+            assert_eq!(img.dimensions(), (w, h));
+            let fig = time_figure(&scene, &modes, &history, &shown, true);
+            let (rgb, _) = crate::output::figures::render_rgb_layout(&fig, w, h).unwrap();
+            assert!(img.as_raw() == &rgb, "{w}x{h}: the PNG is not the figure");
+            // and the figure: more than a blank page
+            let dark = rgb.chunks(3).filter(|p| p.iter().all(|c| *c < 100)).count();
+            assert!(dark > 1000, "{w}x{h}: {dark} dark pixels");
+            // the desktop's file holds the same image
+            let path = std::env::temp_dir()
+                .join(format!("tirecontact-plots-{}-{w}.png", std::process::id()));
+            export_png(&path, w, h, &scene, &modes, &history, &shown, true).unwrap();
+            let file = image::open(&path).unwrap().to_rgb8();
+            std::fs::remove_file(&path).ok();
+            assert!(
+                file.as_raw() == img.as_raw(),
+                "{w}x{h}: file and bytes differ"
+            );
+        }
+        // a size out of range is an error naming it, no panic
+        let e = plots_png_bytes(100, 50, &scene, &modes, &history, &shown, true).unwrap_err();
+        assert!(e.contains("100x50"), "{e}");
     }
 
     /// A CSV export in slices (the browser's way) writes the bytes of the

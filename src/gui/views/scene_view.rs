@@ -23,6 +23,11 @@ pub struct SceneViewOptions {
     /// The legend as a row above the plot instead of in a corner of it
     /// (classroom mode: a short plot's corner legend covered the tyre).
     pub legend_above: bool,
+    /// On a patch (points in several rows across the tread, `y_m`): the
+    /// row of this point drawn in full, the other rows faded and small
+    /// behind it (classroom mode; they share `x`, and in full every row was
+    /// drawn over the others). `None`: every point in full.
+    pub row_of_point: Option<usize>,
 }
 
 impl Default for SceneViewOptions {
@@ -32,6 +37,7 @@ impl Default for SceneViewOptions {
             exaggeration: 20.0,
             legend_style: egui::TextStyle::Body,
             legend_above: false,
+            row_of_point: None,
         }
     }
 }
@@ -166,6 +172,45 @@ pub const FLIGHT_NAME: &str = "in flight";
 /// Id of the scene plot (its `PlotMemory` holds the frame).
 pub const SCENE_PLOT_ID: &str = "tirecontact.scene_view";
 
+/// Colour of the faded rows of a patch behind the row drawn in full.
+pub const FADED_ROW_COLOR: Color32 = Color32::from_rgba_premultiplied(120, 120, 120, 120);
+/// Radius (px) of the faded rows' markers (the row in full: 7 px).
+pub const FADED_ROW_MARKER_PX: f32 = 3.5;
+/// Plot item name of the faded rows (no legend entry: the header names them).
+const FADED_ROW_NAME: &str = "";
+
+/// The rows across the tread of `scene`'s points: their distinct `y_m`,
+/// increasing.
+pub fn rows_y_m(scene: &crate::Scene) -> Vec<f64> {
+    let mut rows: Vec<f64> = scene.points.iter().map(|p| p.y_m).collect();
+    rows.sort_by(f64::total_cmp);
+    rows.dedup();
+    rows
+}
+
+/// The row drawn in full under `opts` (its index among [`rows_y_m`] and its
+/// `y_m`), where the scene has more than one row.
+fn focus_row(scene: &crate::Scene, opts: &SceneViewOptions) -> Option<(usize, usize, f64)> {
+    let point = opts.row_of_point?;
+    let rows = rows_y_m(scene);
+    let y = scene
+        .points
+        .get(point.min(scene.points.len().checked_sub(1)?))?
+        .y_m;
+    (rows.len() > 1).then(|| (rows.partition_point(|r| *r < y), rows.len(), y))
+}
+
+/// The header's text naming the row drawn in full: `row 2 of 6 across the
+/// tread (y = -30 mm) · the other 5 faded`.
+pub fn row_text(row: usize, rows: usize, y_m: f64) -> String {
+    format!(
+        "row {} of {rows} across the tread (y = {} mm) · the other {} faded",
+        row + 1,
+        crate::gui::widgets::number::format_number(y_m * 1e3),
+        rows - 1
+    )
+}
+
 /// Legend entry of the displaced tyre's line.
 pub const DISPLACED_NAME: &str = "tyre (displaced)";
 
@@ -185,6 +230,7 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
 }
 
 /// [`show`], with `extra(plot, displaced, labels_floor)` drawing more items
+/// (returns the plot's frame)
 /// over the scene (`displaced[i]` = drawn position of point `i`,
 /// exaggerated plot units; `labels_floor` = the lowest y the force value
 /// labels reach, if any are drawn).
@@ -193,7 +239,7 @@ pub fn show_with(
     sim: &Simulation,
     opts: &mut SceneViewOptions,
     extra: impl FnOnce(&mut egui_plot::PlotUi<'_>, &[[f64; 2]], Option<f64>),
-) {
+) -> egui::Rect {
     let scene = sim.scene();
     let (x0, x1) = x_extent(sim);
     let u = sim.displacement_m();
@@ -209,7 +255,8 @@ pub fn show_with(
     }
     let e = opts.exaggeration;
     header(ui, sim, opts);
-    let geo = Geometry::of(sim, (x0, x1), e, hmax);
+    let focus = focus_row(scene, opts);
+    let geo = Geometry::of(sim, (x0, x1), e, hmax, focus.map(|f| f.2));
     let label_color = ui.visuals().strong_text_color();
     let tyre_color = displaced_tyre_color(ui.visuals());
     let plot = with_legend(
@@ -248,11 +295,11 @@ pub fn show_with(
         .include_y(-geo.y_floor)
         .allow_scroll(false)
         .show(ui, |pui| {
-            let (labels_floor, displaced) =
-                geo.draw(pui, sim.in_contact(), tyre_color, label_color);
+            let (labels_floor, displaced) = geo.draw(pui, tyre_color, label_color);
             extra(pui, &displaced, labels_floor);
         });
     super::axis_title::hover(ui, title_id, &title, Y_TITLE, *r.transform.frame(), 44.0);
+    *r.transform.frame()
 }
 
 /// Above the plot: the exaggeration (auto or set), time, speed, points in
@@ -308,6 +355,14 @@ fn header(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
             ] {
                 ui.add(whole(RichText::new(info)));
             }
+        }
+        if let Some((row, rows, y_m)) = focus_row(scene, opts) {
+            ui.add(whole(RichText::new(row_text(row, rows, y_m))))
+                .on_hover_text(
+                    "the points across the tread share their x: the chosen point's row is drawn \
+                     in full, the other rows small and grey behind it; choose a point to see \
+                     its row",
+                );
         }
         // classroom mode (legend above the plot): the ramp's progress in
         // few words, on the header's row (tests/gui/scene_view/layout.rs)
@@ -420,8 +475,15 @@ fn with_legend<'a>(
 /// What the scene plot draws, in plot units (heights exaggerated).
 struct Geometry {
     road: Vec<[f64; 2]>,
+    /// The points drawn in full (one row of a patch, or all).
     undeformed: Vec<[f64; 2]>,
     displaced: Vec<[f64; 2]>,
+    /// Every point's drawn position, NaN for those of faded rows.
+    displaced_all: Vec<[f64; 2]>,
+    /// The points of the faded rows.
+    faded: Vec<[f64; 2]>,
+    /// Contact of the points drawn in full.
+    contact: Vec<bool>,
     /// Force arrows of the points that push: tails, tips and forces (N).
     a_from: Vec<[f64; 2]>,
     a_to: Vec<[f64; 2]>,
@@ -430,29 +492,70 @@ struct Geometry {
 }
 
 impl Geometry {
-    fn of(sim: &Simulation, (x0, x1): (f64, f64), e: f64, hmax: f64) -> Self {
+    /// With `focus_y_m`, only the points of that row in full.
+    fn of(
+        sim: &Simulation,
+        (x0, x1): (f64, f64),
+        e: f64,
+        hmax: f64,
+        focus_y_m: Option<f64>,
+    ) -> Self {
         let pts = &sim.scene().points;
-        // road seen in the tyre's frame: w z(x + V t) + (1 - w) h(x)
-        let road: Vec<[f64; 2]> = crate::output::animation::road_in_tyre_frame(sim, x0, x1, 400)
-            .into_iter()
-            .map(|[x, y]| [x, e * y])
+        let shown: Vec<bool> = pts
+            .iter()
+            .map(|p| focus_y_m.is_none_or(|y| p.y_m == y))
             .collect();
-        let undeformed: Vec<[f64; 2]> = pts.iter().map(|p| [p.x_m, e * p.h_m]).collect();
-        let displaced: Vec<[f64; 2]> = pts
+        // road seen in the tyre's frame: w z(x + V t) + (1 - w) h(x)
+        // under a patch's row in full: the road at its y
+        let road: Vec<[f64; 2]> =
+            crate::output::animation::road_in_tyre_frame_at(sim, x0, x1, 400, focus_y_m)
+                .into_iter()
+                .map(|[x, y]| [x, e * y])
+                .collect();
+        let undeformed: Vec<[f64; 2]> = pts
+            .iter()
+            .zip(&shown)
+            .filter(|(_, s)| **s)
+            .map(|(p, _)| [p.x_m, e * p.h_m])
+            .collect();
+        let every: Vec<[f64; 2]> = pts
             .iter()
             .zip(sim.displacement_m())
             .map(|(p, u)| [p.x_m, e * (p.h_m + u)])
             .collect();
+        let pick = |keep: bool| -> Vec<[f64; 2]> {
+            every
+                .iter()
+                .zip(&shown)
+                .filter(|(_, s)| **s == keep)
+                .map(|(d, _)| *d)
+                .collect()
+        };
+        let (displaced, faded) = (pick(true), pick(false));
+        let displaced_all: Vec<[f64; 2]> = every
+            .iter()
+            .zip(&shown)
+            .map(|(d, s)| if *s { *d } else { [f64::NAN; 2] })
+            .collect();
+        let contact: Vec<bool> = sim
+            .in_contact()
+            .iter()
+            .zip(&shown)
+            .filter(|(_, s)| **s)
+            .map(|(c, _)| *c)
+            .collect();
         let qmax = sim
             .force_n()
             .iter()
-            .fold(0.0, |m: f64, q| m.max(*q))
+            .zip(&shown)
+            .filter(|(_, s)| **s)
+            .fold(0.0, |m: f64, (q, _)| m.max(*q))
             .max(1e-12);
         let arrow_len = 0.25 * e * hmax * 2.0;
         let (mut a_from, mut a_to, mut a_q) = (Vec::new(), Vec::new(), Vec::new());
         for (i, q) in sim.force_n().iter().enumerate() {
-            if *q > 0.0 {
-                let [x, y] = displaced[i];
+            if *q > 0.0 && shown[i] {
+                let [x, y] = every[i];
                 a_from.push([x, y - arrow_len * q / qmax]);
                 a_to.push([x, y]);
                 a_q.push(*q);
@@ -462,6 +565,9 @@ impl Geometry {
             road,
             undeformed,
             displaced,
+            displaced_all,
+            faded,
+            contact,
             a_from,
             a_to,
             a_q,
@@ -471,11 +577,10 @@ impl Geometry {
 
     /// Road, undeformed and displaced tyre, contact states and force
     /// arrows with their values; returns the lowest y of the value labels
-    /// and the points' drawn positions.
+    /// and the points' drawn positions (NaN for the faded rows').
     fn draw(
         self,
         pui: &mut egui_plot::PlotUi<'_>,
-        contact: &[bool],
         tyre_color: Color32,
         label_color: Color32,
     ) -> (Option<f64>, Vec<[f64; 2]>) {
@@ -483,6 +588,9 @@ impl Geometry {
             road,
             undeformed,
             displaced,
+            displaced_all,
+            faded,
+            contact,
             a_from,
             a_to,
             a_q,
@@ -495,6 +603,14 @@ impl Geometry {
                 .fill(y_floor as f32)
                 .fill_alpha(0.25),
         );
+        if !faded.is_empty() {
+            pui.points(
+                Points::new(FADED_ROW_NAME, faded)
+                    .color(FADED_ROW_COLOR)
+                    .filled(true)
+                    .radius(FADED_ROW_MARKER_PX),
+            );
+        }
         pui.line(
             Line::new(UNDEFORMED_NAME, undeformed.clone())
                 .color(Color32::GRAY)
@@ -518,7 +634,7 @@ impl Geometry {
         ] {
             let pts: Vec<[f64; 2]> = displaced
                 .iter()
-                .zip(contact)
+                .zip(&contact)
                 .filter(|(_, c)| **c == on_road)
                 .map(|(p, _)| *p)
                 .collect();
@@ -549,7 +665,7 @@ impl Geometry {
                 UNDEFORMED_MARKER_PX,
             );
         }
-        (labels_floor, displaced)
+        (labels_floor, displaced_all)
     }
 }
 

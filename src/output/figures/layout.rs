@@ -3,7 +3,7 @@
 //! area and the type scale the panels share.
 
 use super::legend::caption_h;
-use super::{Panel, axis_tick_label, data_ranges, fit_font_px, linear_label_count};
+use super::{FigureBackend, Panel, axis_tick_label, data_ranges, fit_font_px, linear_label_count};
 use plotters::prelude::*;
 
 /// How a panel sits in the stack: the text scale, the height (px) of its
@@ -31,7 +31,7 @@ pub(super) struct Axes {
 /// the x axis' label area and the margins off).
 pub(super) fn plot_h_of(
     panel: &Panel,
-    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    area: &DrawingArea<FigureBackend<'_>, plotters::coord::Shift>,
     frame: &Frame,
 ) -> f64 {
     let area_h = f64::from(area.dim_in_pixel().1);
@@ -53,6 +53,12 @@ pub(super) fn y_label_count(panel: &Panel, plot_h: f64, scale: f64) -> usize {
     } else {
         linear_label_count(data_ranges(panel).1, plot_h, 1.8 * label_px)
     }
+}
+
+/// How many labels a log x axis `plot_w` px wide takes: at most one per
+/// 70 px (× scale; a label such as `2000` is about 30 px wide), 3 to 12.
+pub(super) fn x_log_label_count(plot_w: f64, scale: f64) -> usize {
+    ((plot_w / (70.0 * scale)) as usize).clamp(3, 12)
 }
 
 /// The font size (px) of `panel`'s axis titles: its rotated y title no
@@ -82,13 +88,9 @@ pub(super) fn y_area_px(panel: &Panel, plot_h: f64, scale: f64) -> u32 {
     } else {
         panel.y_names.clone()
     };
-    let font = ("sans-serif", fs(14.0) as i32).into_font();
     let widest = labels
         .iter()
-        .map(|t| {
-            font.box_size(t)
-                .map_or(t.chars().count() as u32 * fs(14.0), |b| b.0)
-        })
+        .map(|t| super::text_width_px(t, fs(14.0)))
         .max()
         .unwrap_or(0);
     let title = if panel.y_label.is_empty() {
@@ -112,7 +114,7 @@ pub(super) struct TypeScale {
 /// rotated y title).
 pub(super) fn caption_px(
     panel: &Panel,
-    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    area: &DrawingArea<FigureBackend<'_>, plotters::coord::Shift>,
     column_w: Option<i32>,
     scale: f64,
 ) -> u32 {

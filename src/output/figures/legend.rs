@@ -71,7 +71,7 @@ type LegendEntry = (String, RGBColor, Style, u32);
 /// Size (px) of the legend box of `entries` in `font_px` text: a row of
 /// 1.6 text heights per entry, a 20 px key, 8 px gaps and padding.
 pub(super) fn legend_size(
-    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    area: &DrawingArea<FigureBackend<'_>, plotters::coord::Shift>,
     entries: &[LegendEntry],
     font_px: u32,
 ) -> (i32, i32) {
@@ -93,7 +93,7 @@ pub(super) fn legend_size(
 
 /// Draws the legend box of `entries` with its top left at `(x, y)` of `area`.
 pub(super) fn draw_legend(
-    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    area: &DrawingArea<FigureBackend<'_>, plotters::coord::Shift>,
     entries: &[LegendEntry],
     (x, y): (i32, i32),
     (w, h): (i32, i32),
@@ -195,7 +195,7 @@ pub(super) fn caption_h(panel: &Panel, scale: f64) -> u32 {
 
 pub(super) fn panel_legend(
     panel: &Panel,
-    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    area: &DrawingArea<FigureBackend<'_>, plotters::coord::Shift>,
     frame: &super::Frame,
 ) -> PanelLegend {
     let scale = frame.scale;
