@@ -400,23 +400,8 @@ unsafe fn add_gauss_forces_avx<const RANGE: bool>(
                 gauss_columns_avx::<4>(&active[g..g + 4], inp_t, stride, c0, q1, q2, p1, p2, len);
                 g += 4;
             }
-            for &j in &active[groups..] {
-                let col = inp_t.as_ptr().add(j * stride + c0);
-                let (qa, qb) = (_mm256_set1_pd(q1[j]), _mm256_set1_pd(q2[j]));
-                let mut k = 0;
-                while k < quads {
-                    let b = _mm256_loadu_pd(col.add(k));
-                    let a1 = _mm256_add_pd(_mm256_loadu_pd(p1.add(k)), _mm256_mul_pd(b, qa));
-                    let a2 = _mm256_add_pd(_mm256_loadu_pd(p2.add(k)), _mm256_mul_pd(b, qb));
-                    _mm256_storeu_pd(p1.add(k), a1);
-                    _mm256_storeu_pd(p2.add(k), a2);
-                    k += 4;
-                }
-                for k in quads..len {
-                    let b = *col.add(k);
-                    b1[k] += b * q1[j];
-                    b2[k] += b * q2[j];
-                }
+            for j in active[groups..].chunks(1) {
+                gauss_columns_avx::<1>(j, inp_t, stride, c0, q1, q2, p1, p2, len);
             }
             // the chunk's responses into the states
             let mut k = 0;

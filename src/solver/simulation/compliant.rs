@@ -187,8 +187,7 @@ impl Simulation {
         let large = self.tables.large_sets()
             && self.state.active.len() >= self.tables.options.large_set_from;
         if sel == Table::Sub {
-            let iterative = self.state.active.len() >= self.tables.iterative_sub_from();
-            if iterative && self.solve_sub_iterative() {
+            if self.iterative_sub_step() && self.solve_sub_iterative() {
                 return Ok(());
             }
             return self.solve_active(t_end, Table::Sub);

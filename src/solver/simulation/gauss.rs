@@ -228,25 +228,18 @@ impl Simulation {
     /// [`Simulation::end_values_sub`] over the sub-step or the full step
     /// `sel`.
     pub(super) fn end_values_through_states(&mut self, sel: Table) {
+        if !self.scratch.projected_all && sel == Table::Sub {
+            // the prediction projected only the active points: the end
+            // state, prediction plus forces, projected once (as the fused
+            // full step, `large.rs`), and taken by `commit` as it is
+            return self.end_state_projected(Table::Sub);
+        }
         let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
         let table = match sel {
             Table::Full => &tb.full,
             Table::Sub => &s.sub,
         };
         let threads = &self.threads;
-        if !s.projected_all && sel == Table::Sub {
-            // the prediction projected only the active points: the end
-            // state, prediction plus forces, projected once (as the fused
-            // full step, `large.rs`), and taken by `commit` as it is
-            s.delta.copy_from(&s.free);
-            s.delta
-                .add_gauss_forces_on(&tb.basis, table, &st.active, &s.q1, &s.q2, threads);
-            s.delta.project_on(&tb.basis, &mut s.ue, &mut s.ve, threads);
-            s.fused_end = true;
-            let tau_s = table.tau_s;
-            self.add_residual_ends(tau_s);
-            return;
-        }
         s.delta.x.fill(0.0);
         s.delta.v.fill(0.0);
         s.delta

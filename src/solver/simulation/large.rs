@@ -15,7 +15,7 @@
 //!   factorising it. A solve that does not reach [`GMRES_TOLERANCE`] in
 //!   [`GMRES_MAX_APPLICATIONS`] falls back to the direct one.
 
-use super::{GA, GB, SQRT3, Simulation};
+use super::{GA, GB, SQRT3, Simulation, Table};
 use crate::base::error::SolverError;
 
 /// Largest componentwise backward error accepted from a solve by an
@@ -142,18 +142,13 @@ impl Simulation {
     /// [`Self::project_active_rows`] once `commit` took this state): every
     /// row is read once a step, as in a step off the road.
     fn end_state_fused(&mut self) {
+        if !self.tables.compliant() {
+            return self.end_state_projected(Table::Full);
+        }
+        self.form_end_state(Table::Full);
         let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
         let threads = &self.threads;
-        s.delta.copy_from(&s.free);
-        s.delta
-            .add_gauss_forces_on(&tb.basis, &tb.full, &st.active, &s.q1, &s.q2, threads);
-        s.fused_end = true;
         let dt_s = tb.dt_s;
-        if !tb.compliant() {
-            s.delta.project_on(&tb.basis, &mut s.ue, &mut s.ve, threads);
-            self.add_residual_ends(dt_s);
-            return;
-        }
         // the rows ahead: the active points'
         for &j in &s.ahead_points {
             s.ahead_row[j] = false;
@@ -188,6 +183,36 @@ impl Simulation {
             s.ue[j] = s.re[j] - kt * (-GB * q1 + GA * q2);
             s.ve[j] = s.rde[j] - kt * rate * (q2 - q1);
         }
+    }
+
+    /// The end state over `sel`, the prediction plus the response to the
+    /// solved Gauss-point forces (method §3.3), into `delta`, which
+    /// `commit` takes as it is.
+    fn form_end_state(&mut self, sel: Table) {
+        let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
+        let table = match sel {
+            Table::Full => &tb.full,
+            Table::Sub => &s.sub,
+        };
+        s.delta.copy_from(&s.free);
+        s.delta
+            .add_gauss_forces_on(&tb.basis, table, &st.active, &s.q1, &s.q2, &self.threads);
+        s.fused_end = true;
+    }
+
+    /// [`Self::form_end_state`] and its projection, the end values of
+    /// every point, into `ue`, `ve`, with the residual compliance's share
+    /// where there is one.
+    pub(super) fn end_state_projected(&mut self, sel: Table) {
+        self.form_end_state(sel);
+        let (tb, s) = (&self.tables, &mut self.scratch);
+        s.delta
+            .project_on(&tb.basis, &mut s.ue, &mut s.ve, &self.threads);
+        let tau_s = match sel {
+            Table::Full => tb.dt_s,
+            Table::Sub => s.sub.tau_s,
+        };
+        self.add_residual_ends(tau_s);
     }
 
     /// Brings the kept inverse to the active set: the points that left
@@ -434,28 +459,27 @@ fn own_block(ab: &[f64], w: [&[f64]; 4]) -> [f64; 4] {
 #[inline(always)]
 fn own_block_body(ab: &[f64], w: [&[f64]; 4]) -> [f64; 4] {
     const L: usize = 4;
-    let (ab_all, w_all, ab_len) = (ab, w, ab.len());
-    let ns = ab_len - ab_len % L;
-    let ab = &ab[..ns];
-    let w: [&[f64]; 4] = std::array::from_fn(|m| &w[m][..ns]);
     let mut acc = [[0.0f64; L]; 4];
-    for c in (0..ns).step_by(L) {
-        let t: &[f64; L] = ab[c..c + L].try_into().unwrap_or(&[0.0; L]);
-        for (m, a) in acc.iter_mut().enumerate() {
-            let wm: &[f64; L] = w[m][c..c + L].try_into().unwrap_or(&[0.0; L]);
+    let lanes = ab.chunks_exact(L);
+    let tail = lanes.remainder();
+    for (c, t) in lanes.enumerate() {
+        for (a, wm) in acc.iter_mut().zip(w) {
+            let wm = &wm[c * L..c * L + L];
             for k in 0..L {
                 a[k] += t[k] * wm[k];
             }
         }
     }
-    let mut g = acc.map(|a| (a[0] + a[1]) + (a[2] + a[3]));
     // (stored states come in whole lanes: no tail, but a short one is summed)
-    for (m, gm) in g.iter_mut().enumerate() {
-        for c in ns..ab_len {
-            *gm += ab_all[c] * w_all[m][c];
+    let start = ab.len() - tail.len();
+    std::array::from_fn(|m| {
+        let a = acc[m];
+        let mut g = (a[0] + a[1]) + (a[2] + a[3]);
+        for (c, t) in tail.iter().enumerate() {
+            g += t * w[m][start + c];
         }
-    }
-    g
+        g
+    })
 }
 
 /// The full-step compliant system's entry of equation `r` (0: end value,
