@@ -290,19 +290,18 @@ impl App {
             return;
         }
         self.png_dialog = None;
+        let fig = crate::gui::jobs::export::time_figure(
+            &self.doc.scene,
+            &self.modes,
+            &self.history,
+            &self.plot_opts.shown,
+            self.plot_opts.clip_impacts,
+        );
         if crate::gui::chrome::web::IN_BROWSER {
             let name = path
                 .file_name()
                 .map_or("plots.png".into(), |n| n.to_string_lossy().into_owned());
-            match crate::gui::jobs::export::plots_png_bytes(
-                width,
-                height,
-                &self.doc.scene,
-                &self.modes,
-                &self.history,
-                &self.plot_opts.shown,
-                self.plot_opts.clip_impacts,
-            ) {
+            match crate::output::figures::render_png_bytes(&fig, width, height) {
                 Ok(bytes) => {
                     crate::gui::chrome::web::download(&name, bytes);
                     self.info(format!(
@@ -313,16 +312,7 @@ impl App {
             }
             return;
         }
-        match crate::gui::jobs::export::export_png(
-            path,
-            width,
-            height,
-            &self.doc.scene,
-            &self.modes,
-            &self.history,
-            &self.plot_opts.shown,
-            self.plot_opts.clip_impacts,
-        ) {
+        match crate::output::figures::render_png(&fig, path, width, height) {
             Ok(()) => self.info(format!("wrote {} ({width}x{height} px)", path.display())),
             Err(e) => self.error(format!("PNG export failed: {e}")),
         }

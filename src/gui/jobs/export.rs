@@ -14,7 +14,7 @@ use crate::gui::model::history::History;
 use crate::identify::{ModeCache, PreparedModel, PreparedModelRun};
 use crate::model::road::{Road, RoadProfile};
 use crate::output::csv::RunWriter;
-use crate::output::figures::{Figure, render_png};
+use crate::output::figures::Figure;
 use crate::output::record::{FigureSpec, PLOT_SAMPLES, RunPanel};
 use crate::output::summary::{scene_summary, short_num};
 use crate::solver::drive::{self, Probe, Watch};
@@ -113,37 +113,6 @@ pub fn time_figure(
         points: Some(&points),
         panels: &RunPanel::TIME_PLOTS,
     })
-}
-
-/// Writes the time plots as a `width × height` PNG (force clipped as in
-/// [`time_figure`] with `clip_impacts`).
-pub fn export_png(
-    path: &Path,
-    width: u32,
-    height: u32,
-    scene: &Scene,
-    modes: &[Mode],
-    history: &History,
-    shown: &[bool],
-    clip_impacts: bool,
-) -> Result<(), String> {
-    let fig = time_figure(scene, modes, history, shown, clip_impacts);
-    render_png(&fig, path, width, height).map_err(|e| e.to_string())
-}
-
-/// The time plots as the bytes of a `width × height` PNG (the figure of
-/// [`export_png`]): the web page's download.
-pub fn plots_png_bytes(
-    width: u32,
-    height: u32,
-    scene: &Scene,
-    modes: &[Mode],
-    history: &History,
-    shown: &[bool],
-    clip_impacts: bool,
-) -> Result<Vec<u8>, String> {
-    let fig = time_figure(scene, modes, history, shown, clip_impacts);
-    crate::output::figures::render_png_bytes(&fig, width, height).map_err(|e| e.to_string())
 }
 
 /// Re-runs `start` for `steps` steps, replaying `edits`, into `path` (CSV);
@@ -364,6 +333,7 @@ fn deliver_csv(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::output::figures::{render_png, render_png_bytes};
 
     /// The paper preset (a ring tyre: its identification is part of the
     /// export), with a speed edit made at step 700 of 2000.
@@ -405,14 +375,14 @@ mod tests {
             history.after_step(&sim);
         }
         let shown = vec![true; scene.num_points()];
+        let fig = time_figure(&scene, &modes, &history, &shown, true);
         for (w, h) in [(1600, 1200), (641, 487)] {
-            let png = plots_png_bytes(w, h, &scene, &modes, &history, &shown, true).unwrap();
+            let png = render_png_bytes(&fig, w, h).unwrap();
             assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
             let img = image::load_from_memory_with_format(&png, image::ImageFormat::Png)
                 .unwrap()
                 .to_rgb8();
             assert_eq!(img.dimensions(), (w, h));
-            let fig = time_figure(&scene, &modes, &history, &shown, true);
             let (rgb, _) = crate::output::figures::render_rgb_layout(&fig, w, h).unwrap();
             assert!(img.as_raw() == &rgb, "{w}x{h}: the PNG is not the figure");
             // and the figure: more than a blank page
@@ -421,7 +391,7 @@ mod tests {
             // the desktop's file holds the same image
             let path = std::env::temp_dir()
                 .join(format!("tirecontact-plots-{}-{w}.png", std::process::id()));
-            export_png(&path, w, h, &scene, &modes, &history, &shown, true).unwrap();
+            render_png(&fig, &path, w, h).unwrap();
             let file = image::open(&path).unwrap().to_rgb8();
             std::fs::remove_file(&path).ok();
             assert!(
@@ -430,7 +400,7 @@ mod tests {
             );
         }
         // a size out of range is an error naming it, no panic
-        let e = plots_png_bytes(100, 50, &scene, &modes, &history, &shown, true).unwrap_err();
+        let e = render_png_bytes(&fig, 100, 50).unwrap_err().to_string();
         assert!(e.contains("100x50"), "{e}");
     }
 
