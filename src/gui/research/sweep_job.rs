@@ -345,33 +345,42 @@ mod tests {
         .unwrap();
         s.duration_s = s.ramp_s + 0.01;
         let r = req("speed_mps", 10.0, 20.0, 2);
-        let job = SweepJob::start_in_slices(&s, r.clone(), Arc::new(ModeCache::new())).unwrap();
-        let (mut polls_identifying, mut polls) = (0, 0);
+        let (polls_identifying, polls) = sliced_sweep_agrees_with_the_library(&s, &r);
+        assert!(
+            polls_identifying >= 2,
+            "{polls_identifying} of {polls} polls while the ring was identified"
+        );
+    }
+
+    /// Runs the sweep `r` of `s` in slices to its end, checks that its
+    /// points are the library's sweep's, and returns the polls that found
+    /// no run done yet (progress 0: identifying or setting up) and all the
+    /// polls.
+    fn sliced_sweep_agrees_with_the_library(s: &Scene, r: &SweepRequest) -> (usize, usize) {
+        let job = SweepJob::start_in_slices(s, r.clone(), Arc::new(ModeCache::new())).unwrap();
+        let (mut before_first_run, mut polls) = (0, 0);
         let end = loop {
             polls += 1;
             if let Some(end) = job.poll() {
                 break end;
             }
             if job.progress() == 0.0 {
-                polls_identifying += 1;
+                before_first_run += 1;
             }
         };
         let SweepEnd::Done(res) = end else {
             panic!("not done: {end:?}")
         };
         let lib = sweep::run_sweep(
-            &s,
-            &r.to_sweep(&s, 2).unwrap(),
+            s,
+            &r.to_sweep(s, 2).unwrap(),
             &ModeCache::new(),
             &|_, _| {},
             &AtomicBool::new(false),
         )
         .unwrap();
         assert_eq!(res.points, lib);
-        assert!(
-            polls_identifying >= 2,
-            "{polls_identifying} of {polls} polls while the ring was identified"
-        );
+        (before_first_run, polls)
     }
 
     /// A sweep of a 200-point patch in slices builds each run's solver
@@ -389,28 +398,7 @@ mod tests {
         let mut s = Scene::parse(&text, "patch").unwrap();
         s.duration_s = s.ramp_s + 0.001;
         let r = req("speed_mps", 10.0, 20.0, 2);
-        let job = SweepJob::start_in_slices(&s, r.clone(), Arc::new(ModeCache::new())).unwrap();
-        let mut polls_setting_up = 0;
-        let end = loop {
-            if let Some(end) = job.poll() {
-                break end;
-            }
-            if job.progress() == 0.0 {
-                polls_setting_up += 1;
-            }
-        };
-        let SweepEnd::Done(res) = end else {
-            panic!("not done: {end:?}")
-        };
-        let lib = sweep::run_sweep(
-            &s,
-            &r.to_sweep(&s, 2).unwrap(),
-            &ModeCache::new(),
-            &|_, _| {},
-            &AtomicBool::new(false),
-        )
-        .unwrap();
-        assert_eq!(res.points, lib);
+        let (polls_setting_up, _) = sliced_sweep_agrees_with_the_library(&s, &r);
         assert!(
             polls_setting_up >= 2,
             "{polls_setting_up} polls during the set-up"
