@@ -8,6 +8,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
+use tirecontact::SceneSimulation;
 use tirecontact::analysis::bench::scenes::many_points;
 use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
 use tirecontact::model::lsce::{Responses, identify};
@@ -34,7 +35,9 @@ fn steps(c: &mut Criterion) {
         let p = scene.num_points();
         // the full step, warmed up past the ramp (contact, events)
         let model = tirecontact::PreparedModel::of(&scene).unwrap();
-        let mut sim = Simulation::new(&model, tirecontact::SolverOptions::default()).unwrap();
+        let mut sim = model
+            .simulation(tirecontact::SolverOptions::default())
+            .unwrap();
         for _ in 0..warm_up {
             sim.step().unwrap();
         }
@@ -45,7 +48,7 @@ fn steps(c: &mut Criterion) {
         let basis = ModalBasis::with_rank_tolerance(
             model.modes(),
             p,
-            tirecontact::SolverOptions::default().rank_tolerance_for(&scene),
+            tirecontact::SolverOptions::default().rank_tolerance_for(model.problem()),
         )
         .unwrap();
         let table = StepTable::new(&basis, scene.dt_s);
@@ -108,7 +111,7 @@ fn stages(c: &mut Criterion) {
         let options = tirecontact::SolverOptions::default();
         // past the ramp, to a step start with points on the road
         let at_contact = || {
-            let mut sim = Simulation::new(&model, options).unwrap();
+            let mut sim = model.simulation(options).unwrap();
             let ramp_steps = (scene.ramp_s / scene.dt_s).ceil() as usize;
             for _ in 0..ramp_steps + 1000 {
                 sim.step().unwrap();

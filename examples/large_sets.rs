@@ -15,7 +15,7 @@
 
 use std::time::Instant;
 use tirecontact::analysis::bench::scaling::{Regime, scaling_scene};
-use tirecontact::{PreparedModel, Simulation, SolverOptions};
+use tirecontact::{PreparedModel, SolverOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -43,7 +43,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             joint_impacts,
             ..SolverOptions::default()
         };
-        let mut sim = Simulation::new(&model, options)?;
+        let mut sim = model.simulation(options)?;
         println!("{} — {name}", scene.name);
         let (start, mut window) = (Instant::now(), Instant::now());
         let mut events_before = 0;

@@ -68,7 +68,7 @@ fn main() -> std::process::ExitCode {
         )
     ) {
         // an interrupted run leaves no half-written temporary behind
-        tirecontact::base::fsio::interrupt::remove_temporaries_on_signal();
+        tirecontact::fsio::interrupt::remove_temporaries_on_signal();
     }
     let result = match cli.command {
         Some(Command::Run(args)) => cli::run::run(&args),

@@ -546,7 +546,7 @@ impl PyStudy {
         let mut rows: Vec<Vec<String>> = records;
         rows.sort_by_key(|r| r.first().and_then(|id| id.parse::<usize>().ok()));
         let bytes = tirecontact::studies::study::table_bytes(&self.header(), &rows).map_err(err)?;
-        tirecontact::base::fsio::write_atomic(&path, &bytes)
+        tirecontact::fsio::write_atomic(&path, &bytes)
             .map_err(|e| err(format!("{}: {e}", path.display())))
     }
 }

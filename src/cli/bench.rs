@@ -182,7 +182,7 @@ pub fn bench(args: &BenchArgs) -> CliResult {
 }
 
 pub(super) fn write(path: &Path, text: &str) -> CliResult {
-    tirecontact::base::fsio::write_atomic(path, text.as_bytes())
+    tirecontact::fsio::write_atomic(path, text.as_bytes())
         .map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(())
 }
@@ -321,7 +321,7 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
         // identified residues: the default cut against every SVD term kept
         // (modes given in a scene are always exact: nothing to compare)
         let exact_tol = tirecontact::model::convolution::EXACT_RANK_TOLERANCE;
-        if all.rank_tolerance_for(&sc) > exact_tol {
+        if all.rank_tolerance_of(sc.modes_identified()) > exact_tol {
             let exact = SolverOptions {
                 rank_tolerance: Some(exact_tol),
                 ..all
@@ -334,7 +334,7 @@ fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::er
                 s,
                 "| {} | identified residue terms below {:.0e} of the largest dropped ({} states instead of {}) | {t_exact:.4} | {t_cut:.4} | {:.2}x | largest displacement difference {du:.1e} of the largest displacement; force difference (RMS over steps) {dq:.1e} of the RMS force |",
                 scene.name,
-                all.rank_tolerance_for(&sc),
+                all.rank_tolerance_of(sc.modes_identified()),
                 sim.num_states(),
                 sim_e.num_states(),
                 t_exact / t_cut

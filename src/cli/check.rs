@@ -2,13 +2,13 @@
 
 use super::{CliResult, load_scene};
 use std::path::Path;
-use tirecontact::{PreparedModel, Simulation, SolverOptions};
+use tirecontact::{PreparedModel, SolverOptions};
 
 pub fn check(path: &Path) -> CliResult {
     let scene = load_scene(Some(path))?;
     // also identifies a ring, reads a measured road file and factors the modes
     let model = PreparedModel::of(&scene)?;
-    let sim = Simulation::new(&model, SolverOptions::default())?;
+    let sim = model.simulation(SolverOptions::default())?;
     println!(
         "{}: ok — \"{}\": {}, {}, road {}, speed V = {} m/s ({:.0} km/h), dt = {:e} s, duration {} s ({} steps); CSV of `run -o` about {} (--every 1)",
         path.display(),

@@ -10,14 +10,15 @@ mod frf;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use tirecontact::base::fsio::write_atomic;
+use tirecontact::SceneSimulation;
+use tirecontact::fsio::write_atomic;
 use tirecontact::identify::{TyreIdentification, driving, identify_tyre};
 use tirecontact::model::lsce::{Identification, Stability};
-use tirecontact::model::measured::impulse_csv;
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
 use tirecontact::output::paper_figures::paper_figures;
 use tirecontact::output::record::{PLOT_SAMPLES, Recording};
 use tirecontact::output::summary::short_num;
+use tirecontact::readers::measured::impulse_csv;
 use tirecontact::scene::Tyre;
 use tirecontact::{Scene, Simulation};
 
@@ -89,10 +90,10 @@ fn scene_of(args: &IdentifyArgs) -> Result<(Scene, PathBuf), Box<dyn std::error:
             Some(p) => p,
             None => uff_nodes(data)?,
         };
-        if !(1..=tirecontact::model::measured::MAX_POINTS).contains(&p) {
+        if !(1..=tirecontact::readers::measured::MAX_POINTS).contains(&p) {
             return Err(format!(
                 "--points {p}: expected 1 to {} points",
-                tirecontact::model::measured::MAX_POINTS
+                tirecontact::readers::measured::MAX_POINTS
             )
             .into());
         }
@@ -150,7 +151,7 @@ fn uff_nodes(data: &Path) -> Result<usize, Box<dyn std::error::Error>> {
         .into());
     }
     let bytes = std::fs::read(data).map_err(|e| format!("{}: {e}", data.display()))?;
-    let (series, _) = tirecontact::model::measured::uff::parse(&bytes, None)
+    let (series, _) = tirecontact::readers::measured::uff::parse(&bytes, None)
         .map_err(|(at, m)| format!("{}: {at}{m}", data.display()))?;
     Ok(series.keys().map(|&(i, j)| i.max(j) + 1).max().unwrap_or(0))
 }
@@ -168,7 +169,7 @@ fn sig6(x: f64) -> String {
 pub fn identify(args: &IdentifyArgs) -> CliResult {
     if let Some(data) = &args.data
         && frf::is_uff(data)
-        && tirecontact::model::measured::frf::holds_frfs(data)?
+        && tirecontact::readers::measured::frf::holds_frfs(data)?
     {
         return frf::identify_frfs(args, data);
     }
@@ -205,7 +206,7 @@ pub fn identify(args: &IdentifyArgs) -> CliResult {
     let id = match identify_tyre(&scene) {
         Some(r) => r.map_err(|e| match e {
             // a file's error names the file
-            tirecontact::model::lsce::LsceError::Data(d) => d.to_string(),
+            tirecontact::identify::IdentifyError::Data(d) => d.to_string(),
             e => format!("{}: {e}", source.display()),
         })?,
         None => {
@@ -281,7 +282,7 @@ fn point_names(scene: &Scene) -> Vec<(String, i64)> {
         .map_or(file.clone(), |b| b.join(file));
     let Some(recs) = std::fs::read(&path)
         .ok()
-        .and_then(|b| tirecontact::model::measured::uff::records(&b).ok())
+        .and_then(|b| tirecontact::readers::measured::uff::records(&b).ok())
     else {
         return plain();
     };
@@ -306,7 +307,7 @@ fn point_names(scene: &Scene) -> Vec<(String, i64)> {
             (
                 format!(
                     "point {i} ({})",
-                    tirecontact::model::measured::uff::dof(n, dir)
+                    tirecontact::readers::measured::uff::dof(n, dir)
                 ),
                 n,
             )

@@ -141,7 +141,8 @@ fn write_frames(model: &PreparedModel, args: &RunArgs) -> CliResult {
     };
     settings.check(scene.duration_s).map_err(frames_error)?;
     let n = export_frames(
-        Simulation::new(model, tirecontact::SolverOptions::default())?,
+        model.simulation(tirecontact::SolverOptions::default())?,
+        &scene.road,
         dir,
         &settings,
         args.frames_clear,
@@ -310,12 +311,12 @@ pub fn run(args: &RunArgs) -> CliResult {
         threads: args.threads,
         ..tirecontact::SolverOptions::default()
     };
-    let mut sim = Simulation::new(&model, options)?;
+    let mut sim = model.simulation(options)?;
     let n = scene.num_steps();
     let mut writer = match &args.output {
         Some(path) => {
             // written beside `path` and renamed at the end: a failed run keeps the old file
-            let f = tirecontact::base::fsio::AtomicFile::create(path)
+            let f = tirecontact::fsio::AtomicFile::create(path)
                 .map_err(|e| format!("{}: {e}", path.display()))?;
             Some(RunWriter::new(f, scene.num_points(), args.every)?)
         }
@@ -484,7 +485,7 @@ fn write_patch(
                         format!("{:e},{:e},{:e}\n", s.freq_hz[k], s.psd[k], s.amplitude[k]).bytes(),
                     );
                 }
-                tirecontact::base::fsio::write_atomic(&spectrum_path, &buf)
+                tirecontact::fsio::write_atomic(&spectrum_path, &buf)
                     .map_err(|e| format!("{}: {e}", spectrum_path.display()))?;
                 eprintln!("wrote {} and {}", path.display(), spectrum_path.display());
             }
@@ -513,12 +514,12 @@ fn write_spectra(args: &RunArgs, model: &PreparedModel, rec: &SteadyRecorder) ->
     if let Some(path) = &args.spectrum {
         let mut buf = Vec::new();
         spectra.write_csv(&mut buf, args.spectrum_max_hz)?;
-        tirecontact::base::fsio::write_atomic(path, &buf)
+        tirecontact::fsio::write_atomic(path, &buf)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         let bands = bands_path(path);
         let mut buf = Vec::new();
         spectra.write_bands_csv(&mut buf, DEFAULT_BANDS_HZ.0, DEFAULT_BANDS_HZ.1)?;
-        tirecontact::base::fsio::write_atomic(&bands, &buf)
+        tirecontact::fsio::write_atomic(&bands, &buf)
             .map_err(|e| format!("{}: {e}", bands.display()))?;
         eprintln!("wrote {} and {}", path.display(), bands.display());
     }

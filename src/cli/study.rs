@@ -152,10 +152,9 @@ fn report(path: &Path, dir: &Path, title: Option<&str>) -> CliResult {
     }
     let bytes = csv.into_inner().map_err(|e| e.to_string())?;
     let out = dir.join("main_effects.csv");
-    tirecontact::base::fsio::write_atomic(&out, &bytes)
-        .map_err(|e| format!("{}: {e}", out.display()))?;
+    tirecontact::fsio::write_atomic(&out, &bytes).map_err(|e| format!("{}: {e}", out.display()))?;
     let md = dir.join("summary.md");
-    tirecontact::base::fsio::write_atomic(
+    tirecontact::fsio::write_atomic(
         &md,
         report::markdown(&title, &t, &effects, &figures).as_bytes(),
     )
@@ -184,7 +183,7 @@ fn plan(path: &Path, output: Option<&Path>) -> CliResult {
             w.write_record(&rec)?;
         }
         let bytes = w.into_inner().map_err(|e| e.to_string())?;
-        tirecontact::base::fsio::write_atomic(out, &bytes)
+        tirecontact::fsio::write_atomic(out, &bytes)
             .map_err(|e| format!("{}: {e}", out.display()))?;
         println!("wrote {}", out.display());
     }
@@ -197,7 +196,7 @@ fn plan(path: &Path, output: Option<&Path>) -> CliResult {
     let prepared = Instant::now();
     let model = tirecontact::PreparedModel::new(&scene, &cache)?;
     let prepare_s = prepared.elapsed().as_secs_f64();
-    let mut sim = tirecontact::Simulation::new(&model, tirecontact::SolverOptions::default())?;
+    let mut sim = model.simulation(tirecontact::SolverOptions::default())?;
     let total = scene.num_steps();
     let ramp = ((scene.ramp_s / scene.dt_s).round() as u64).min(total);
     tirecontact::solver::drive::run(
@@ -350,8 +349,7 @@ fn write_table(
 ) -> Result<(), String> {
     let bytes = tirecontact::studies::study::table_bytes(header, rows.values())
         .map_err(|e| e.to_string())?;
-    tirecontact::base::fsio::write_atomic(path, &bytes)
-        .map_err(|e| format!("{}: {e}", path.display()))
+    tirecontact::fsio::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 fn run(

@@ -112,7 +112,7 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
     if let Some(path) = &args.output {
         let mut buf = Vec::new();
         report::write_csv(&mut buf, param, &points, &columns)?;
-        tirecontact::base::fsio::write_atomic(path, &buf)
+        tirecontact::fsio::write_atomic(path, &buf)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         eprintln!("wrote {}", path.display());
     }

@@ -123,7 +123,7 @@ pub(super) fn build(
     cache: &ModeCache,
 ) -> Result<(Simulation, Vec<Mode>), SceneError> {
     let model = PreparedModel::new(scene, cache)?;
-    let sim = Simulation::new(&model, SolverOptions::default())?;
+    let sim = model.simulation(SolverOptions::default())?;
     Ok((sim, model.modes().to_vec()))
 }
 

@@ -173,6 +173,7 @@ const LABEL_GAP_PX: f64 = 2.0;
 pub fn scene_with_phases(
     ui: &mut Ui,
     sim: &Simulation,
+    road: &crate::model::road::Road,
     opts: &mut scene_view::SceneViewOptions,
     phases: &PhaseTracker,
     point: usize,
@@ -184,7 +185,7 @@ pub fn scene_with_phases(
     // the legend in a row above the plot: in a corner it covered the tyre
     let normal_above = std::mem::replace(&mut opts.legend_above, true);
     let normal_row = opts.row_of_point.replace(point);
-    let frame = scene_view::show_with(ui, sim, opts, |pui, displaced, labels_floor| {
+    let frame = scene_view::show_with(ui, sim, road, opts, |pui, displaced, labels_floor| {
         let at = PhasesAt { phases, t_s: t };
         if displaced.len() > 1 {
             let lanes = Lanes::of(pui, sim, displaced, labels_floor, body);
@@ -213,8 +214,8 @@ pub const TOP_VIEW_DOT_PX: f32 = 4.5;
 /// coloured by its contact state, the row the side view draws in full
 /// underlined and its dots ringed.
 fn top_view(ui: &Ui, sim: &Simulation, frame: egui::Rect, point: usize) {
-    let scene = sim.scene();
-    let rows = scene_view::rows_y_m(scene);
+    let scene = sim.problem();
+    let rows = scene_view::rows_y_m(&scene.points);
     if rows.len() < 2 {
         return;
     }

@@ -1,6 +1,7 @@
 //! A/B comparison: the difference of a run against a pinned run.
 
 use std::path::Path;
+use tirecontact::SceneSimulation;
 use tirecontact::analysis::compare::PinnedRun;
 use tirecontact::output::record::Recording;
 use tirecontact::{Scene, Simulation};

@@ -3,6 +3,7 @@
 
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
+use tirecontact::SceneSimulation;
 use tirecontact::analysis::spectrum::{Window, spectrum};
 use tirecontact::studies::sweep::{
     Sweep, SweepError, get_param, param_paths, run_sweep, set_param,

@@ -6,6 +6,7 @@
 use crate::support::{bin, temp_dir};
 use std::path::Path;
 use std::process::Output;
+use tirecontact::SceneSimulation;
 use tirecontact::output::csv::{estimated_bytes, human_bytes};
 use tirecontact::output::{write_atomic, write_atomic_with};
 use tirecontact::{Scene, Simulation, SolverError};

@@ -3,6 +3,7 @@
 //! each is now refused with a message naming the option or field.
 
 use crate::support::{bin, temp_dir};
+use tirecontact::SceneSimulation;
 use tirecontact::scene::{Point, Scene};
 use tirecontact::{DEFAULT_PRESET, DEFAULT_PRESET_NAME};
 

@@ -233,7 +233,10 @@ fn preset_and_road_files_are_read_off_the_ui_thread() {
     assert_eq!(h.state().scene().road, old_road, "the old road meanwhile");
     crate::harness::settle(&mut h);
     assert_eq!(h.state().scene().road, s.road);
-    assert_eq!(h.state().simulation().scene().road, s.road);
+    assert_eq!(
+        *h.state().simulation().problem().road,
+        tirecontact::readers::road::load(&s.road, s.base_dir.as_deref()).unwrap()
+    );
     assert_eq!(
         h.state().simulation().steps(),
         200,
@@ -277,7 +280,7 @@ fn an_fe_tyre_is_read_off_the_ui_thread() {
     );
     crate::harness::settle(&mut h);
     assert_eq!(h.state().scene().num_points(), 15);
-    assert_eq!(h.state().simulation().scene().num_points(), 15);
+    assert_eq!(h.state().simulation().problem().num_points(), 15);
     h.get_by_label("fe_plate.uff");
     h.get_by_label("41 from 123.321 Hz to 399.963 Hz");
     // a damping edit: restart with the new ratio
@@ -285,7 +288,7 @@ fn an_fe_tyre_is_read_off_the_ui_thread() {
     let tirecontact::scene::Tyre::FeModes { damping, .. } = &mut s.tyre else {
         panic!("not an FE tyre");
     };
-    *damping = tirecontact::model::fe_modes::FeDamping::Ratio(0.02);
+    *damping = tirecontact::readers::fe_modes::FeDamping::Ratio(0.02);
     h.state_mut().apply(Command::EditScene(Box::new(s.clone())));
     crate::harness::settle(&mut h);
     assert_eq!(h.state().scene().tyre, s.tyre);

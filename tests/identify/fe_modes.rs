@@ -8,12 +8,12 @@
 
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
-use tirecontact::model::fe_modes::{
+use tirecontact::model::plate::PlateParams;
+use tirecontact::readers::fe_modes::{
     self, FeAxes, FeAxis, FeDamping, FeModel, FeModesError, FeModesSpec, FeNodes, FeShapeUnits,
 };
-use tirecontact::model::plate::PlateParams;
 use tirecontact::scene::{Contact, Mode, PointGrid, Points, Preload, Scene, Tyre};
-use tirecontact::{PreparedModel, Simulation, SolverOptions};
+use tirecontact::{PreparedModel, SolverOptions};
 
 const FILES: [&str; 3] = [
     "presets/fe_plate.uff",
@@ -210,8 +210,8 @@ fn fe_tyre_and_plate_tyre_agree_at_the_nodes() {
         eprintln!("{file}: Green functions within {d:.2e} of the plate tyre's");
         assert!(d < 5e-5, "{file}: {d:e}");
         // a short run
-        let mut sa = Simulation::new(&a, SolverOptions::default()).unwrap();
-        let mut sb = Simulation::new(&b, SolverOptions::default()).unwrap();
+        let mut sa = a.simulation(SolverOptions::default()).unwrap();
+        let mut sb = b.simulation(SolverOptions::default()).unwrap();
         let (mut num, mut den) = (0.0, 0.0);
         while !sa.finished() {
             sa.step().unwrap();

@@ -13,7 +13,7 @@ use std::path::Path;
 use tirecontact::identify::driving::DrivingPoint;
 use tirecontact::identify::frequency::{ContactError, FrfOptions, identify_frfs};
 use tirecontact::model::lscf::{self, FitOptions, FrfSet, Ordinate};
-use tirecontact::model::measured::frf::FrfRequest;
+use tirecontact::readers::measured::frf::FrfRequest;
 
 /// A set of `pairs` over 1..=1000 Hz, every 1 Hz, with relative noise
 /// `noise` (each value times `1 + noise·(n₁ + j n₂)`, `n` uniform in

@@ -7,9 +7,9 @@ use std::path::Path;
 use tirecontact::base::modal::{ModalModel, Mode};
 use tirecontact::identify::{identify_measured, identify_ring};
 use tirecontact::model::lsce::IdentifyOptions;
-use tirecontact::model::measured::impulse_csv;
+use tirecontact::readers::measured::impulse_csv;
 use tirecontact::scene::Tyre;
-use tirecontact::{ModeCache, Scene, Simulation};
+use tirecontact::{ModeCache, Scene};
 
 /// The paper's ring, its responses written as `identify --responses`
 /// writes them, read back as a measured tyre: the same modes, to 1e-6 in
@@ -61,7 +61,9 @@ fn ring_responses_read_back_identify_to_the_rings_modes() {
     // and it runs
     measured.duration_s = 0.01;
     let model = tirecontact::PreparedModel::new(&measured, &cache).unwrap();
-    let mut sim = Simulation::new(&model, tirecontact::SolverOptions::default()).unwrap();
+    let mut sim = model
+        .simulation(tirecontact::SolverOptions::default())
+        .unwrap();
     while !sim.finished() {
         sim.step().unwrap();
     }
@@ -164,7 +166,7 @@ fn model3() -> (Vec<Mode>, ModalModel) {
 fn uff_files_written_by_pyuff_are_read_to_round_off() {
     let (_, m) = model3();
     let bytes = std::fs::read("tests/data/uff/frf3.uff").unwrap();
-    let recs = tirecontact::model::measured::uff::records(&bytes).unwrap();
+    let recs = tirecontact::readers::measured::uff::records(&bytes).unwrap();
     assert_eq!(recs.len(), 9);
     let mut worst: f64 = 0.0;
     let mut scale: f64 = 0.0;
@@ -404,7 +406,7 @@ fn identification_under_noise_stays_within_the_documented_bounds() {
 /// accelerances to round-off, the factor g reported.
 #[test]
 fn binary_58b_row_in_g_per_newton_written_by_pyuff_is_read_in_si() {
-    use tirecontact::model::measured::uff;
+    use tirecontact::readers::measured::uff;
     let (_, m) = model3();
     let bytes = std::fs::read("tests/data/uff/row3_58b.uff").unwrap();
     let file = uff::read(&bytes).unwrap();

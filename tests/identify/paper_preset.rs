@@ -13,6 +13,7 @@
 //! preset's forces are those of its 0-500 Hz model, not of the ring.
 
 use crate::support::rel_rms;
+use tirecontact::SceneSimulation;
 use tirecontact::base::modal::ModalModel;
 use tirecontact::scene::Tyre;
 use tirecontact::{DEFAULT_PRESET, DEFAULT_PRESET_NAME, Scene, Simulation};

@@ -5,6 +5,7 @@
 use crate::support::{bin, temp_dir};
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
+use tirecontact::SceneSimulation;
 use tirecontact::base::modal::ModalModel;
 use tirecontact::identify::identify_ring;
 use tirecontact::model::lsce::{IdentifyOptions, Responses, identify};

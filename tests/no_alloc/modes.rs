@@ -2,6 +2,7 @@
 //! (`Simulation::mode_displacement_m`) do not allocate.
 
 use crate::allocations_in;
+use tirecontact::SceneSimulation;
 
 #[test]
 fn mode_contributions_do_not_allocate() {

@@ -4,6 +4,7 @@
 //! CSV writer between two formatted blocks).
 
 use crate::allocations_in;
+use tirecontact::SceneSimulation;
 #[cfg(feature = "gui")]
 use tirecontact::gui::History;
 use tirecontact::output::arrays::RunArrays;

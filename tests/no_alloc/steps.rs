@@ -2,6 +2,7 @@
 //! contact schemes and through located impacts and releases.
 
 use crate::allocations_in;
+use tirecontact::SceneSimulation;
 
 #[test]
 fn steps_do_not_allocate() {

@@ -12,8 +12,9 @@
 
 use crate::support::{bin, temp_dir};
 use std::path::{Path, PathBuf};
+use tirecontact::SceneSimulation;
 use tirecontact::base::error::FieldError;
-use tirecontact::model::road::{MAX_PROFILE_BYTES, read_profile_csv_limited};
+use tirecontact::readers::road::{MAX_PROFILE_BYTES, read_profile_csv_limited};
 use tirecontact::{Scene, SceneError, Simulation};
 
 /// Two points, one mode by shape and one by residue, a sine road: valid.

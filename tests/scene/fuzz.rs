@@ -8,7 +8,9 @@
 
 use crate::support::{proptest_cases, temp_dir};
 use proptest::prelude::*;
-use tirecontact::model::road::{Road, read_profile_csv};
+use tirecontact::SceneSimulation;
+use tirecontact::model::road::Road;
+use tirecontact::readers::road::read_profile_csv;
 use tirecontact::scene::{Contact, ContactScheme, Mode, Point, Scene, Tyre};
 use tirecontact::{SceneError, Simulation};
 

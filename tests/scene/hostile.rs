@@ -11,6 +11,7 @@
 use crate::support::{proptest_cases, temp_dir};
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
+use tirecontact::SceneSimulation;
 use tirecontact::model::road::{Harmonic, Road};
 use tirecontact::scene::{Contact, Mode, Point, Scene, Tyre};
 use tirecontact::{DEFAULT_PRESET, DEFAULT_PRESET_NAME, SceneError, Simulation};
@@ -185,7 +186,7 @@ fn sites(s: &mut Scene) -> Vec<(String, Site<'_>)> {
             ));
         }
         // (no shipped preset has measured responses: their file's
-        // refusals are tested in tirecontact::model::measured)
+        // refusals are tested in tirecontact::readers::measured)
         Tyre::Measured { .. } => {}
         Tyre::Plate { plate } => {
             for (name, x) in [
@@ -208,7 +209,7 @@ fn sites(s: &mut Scene) -> Vec<(String, Site<'_>)> {
             nearest_within_m,
             ..
         } => {
-            use tirecontact::model::fe_modes::FeDamping;
+            use tirecontact::readers::fe_modes::FeDamping;
             match damping {
                 FeDamping::Ratio(x) => v.push(("tyre.damping.0".into(), Site::F(x))),
                 FeDamping::Rayleigh {

@@ -2,6 +2,7 @@
 //! report file, line and column, or the field, value and expectation.
 
 use std::path::Path;
+use tirecontact::SceneSimulation;
 use tirecontact::{Scene, SceneError, Simulation};
 
 fn shipped() -> Vec<std::path::PathBuf> {

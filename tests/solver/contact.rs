@@ -16,6 +16,7 @@ use crate::support::rel_rms;
 use std::f64::consts::TAU;
 use std::time::Instant;
 
+use tirecontact::SceneSimulation;
 use tirecontact::Simulation;
 use tirecontact::model::road::Road;
 use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};

@@ -13,6 +13,7 @@
 //!   refused otherwise naming `ramp_s`, for sine, harmonic and measured roads.
 
 use crate::support::temp_dir;
+use tirecontact::SceneSimulation;
 // Numerical loops index several arrays in parallel; ranges read clearer here.
 use crate::dense::solve;
 use crate::support::models::{SplitMix, modal_scene, shape_mode};
@@ -20,8 +21,8 @@ use crate::support::models::{SplitMix, modal_scene, shape_mode};
 use std::f64::consts::TAU;
 
 use tirecontact::Simulation;
-use tirecontact::base::error::SceneError;
 use tirecontact::model::road::{Harmonic, Road};
+use tirecontact::scene::SceneError;
 use tirecontact::scene::{Contact, ContactScheme, Mode, Point, Scene};
 
 fn sine(amplitude_m: f64, wavelength_m: f64) -> Road {

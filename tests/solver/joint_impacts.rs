@@ -7,7 +7,7 @@
 use proptest::prelude::*;
 use tirecontact::analysis::bench::scaling::{Regime, scaling_scene};
 use tirecontact::model::road::Road;
-use tirecontact::{PreparedModel, Scene, Simulation, SolverError, SolverOptions};
+use tirecontact::{PreparedModel, Scene, SolverError, SolverOptions};
 
 /// A rigid footprint of `p` points `spacing_m` apart on `k` modes, rolling
 /// onto a sine road of `amplitude_m` and `wavelength_m` over the 0.01 s
@@ -50,7 +50,7 @@ fn run(scene: &Scene, joint_impacts: bool, window: u64) -> Result<Run, SolverErr
         joint_impacts,
         ..SolverOptions::default()
     };
-    let mut sim = Simulation::new(&model, options).unwrap();
+    let mut sim = model.simulation(options).unwrap();
     let dt = sim.dt_s();
     let mut out = Run {
         momentum_ns: vec![],
@@ -152,7 +152,7 @@ fn samples(scene: &Scene, dt_s: f64, joint_impacts: bool, every_s: f64) -> Vec<f
         joint_impacts,
         ..SolverOptions::default()
     };
-    let mut sim = Simulation::new(&model, options).unwrap();
+    let mut sim = model.simulation(options).unwrap();
     let every = (every_s / dt_s).round() as u64;
     let mut out = vec![];
     while !sim.finished() {

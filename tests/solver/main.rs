@@ -11,13 +11,16 @@ mod support;
 mod dense;
 mod oscillator;
 
+mod compliant_robustness;
 mod contact;
 mod exact_step;
 mod invariants;
 mod joint_impacts;
+mod large_sets;
 mod many_points;
 mod paper_scheme;
 mod patch;
+mod phases;
 mod rank_tolerance;
 mod residual_flexibility;
 mod residues;

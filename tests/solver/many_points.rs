@@ -2,6 +2,7 @@
 //! complementarity (non-negative forces, no penetration beyond round-off)
 //! and stays bounded.
 
+use tirecontact::SceneSimulation;
 #[test]
 fn fifty_points_two_hundred_modes() {
     let mut scene = tirecontact::analysis::bench::scenes::many_points(50, 200);

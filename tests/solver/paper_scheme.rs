@@ -8,6 +8,7 @@ use crate::dense::solve_equilibrated;
 use crate::oscillator::{gauss_weights, propagator};
 use crate::support::models::{modal_scene, points, shape_mode, sine};
 use std::f64::consts::TAU;
+use tirecontact::SceneSimulation;
 use tirecontact::Simulation;
 use tirecontact::scene::{ContactScheme, Mode};
 

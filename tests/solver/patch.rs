@@ -1,6 +1,7 @@
 //! Contact patches: points across the tread on a tyre with a width and a
 //! road that varies across it.
 
+use tirecontact::SceneSimulation;
 use tirecontact::model::road::Road;
 use tirecontact::scene::{Contact, PointGrid, Points, Preload, Scene, Tyre};
 use tirecontact::{PreparedModel, Simulation, SolverOptions};
@@ -36,7 +37,7 @@ fn a_patch_on_a_flat_road_settles_to_the_static_solution() {
     scene.dt_s = 5e-5;
     scene.duration_s = 0.2;
     let model = PreparedModel::of(&scene).unwrap();
-    let mut sim = Simulation::new(&model, SolverOptions::default()).unwrap();
+    let mut sim = model.simulation(SolverOptions::default()).unwrap();
     while !sim.finished() {
         sim.step().unwrap();
     }
@@ -146,7 +147,7 @@ fn points_bear_on_their_own_row_of_a_surface_and_outside_it_are_refused() {
     scene.speed_mps = 0.0;
     scene.duration_s = 0.05;
     let model = PreparedModel::of(&scene).unwrap();
-    let mut sim = Simulation::new(&model, SolverOptions::default()).unwrap();
+    let mut sim = model.simulation(SolverOptions::default()).unwrap();
     while !sim.finished() {
         sim.step().unwrap();
     }
@@ -200,8 +201,8 @@ fn iterative_sub_steps_of_small_sets_agree_with_the_direct_solves() {
             iterative_sub_from: usize::MAX,
             ..SolverOptions::default()
         };
-        let mut a = Simulation::new(&model, direct).unwrap();
-        let mut b = Simulation::new(&model, SolverOptions::default()).unwrap();
+        let mut a = model.simulation(direct).unwrap();
+        let mut b = model.simulation(SolverOptions::default()).unwrap();
         let (mut du, mut dq, mut u_max, mut q_max) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
         while !a.finished() {
             a.step().unwrap();

@@ -1,6 +1,7 @@
 //! The residue rank cut (`SolverOptions::rank_tolerance`): what it drops,
 //! and what that costs, against the exact-rank factorisation as control.
 
+use tirecontact::SceneSimulation;
 use tirecontact::model::convolution::{EXACT_RANK_TOLERANCE, ModalBasis};
 use tirecontact::scene::Mode;
 use tirecontact::{IDENTIFIED_RANK_TOLERANCE, Scene, Simulation, SolverOptions};
@@ -121,7 +122,23 @@ fn modes_given_in_a_scene_keep_every_term_by_default() {
     assert_eq!(cut.num_states(), 2);
     // and the automatic choice per model kind
     let auto = SolverOptions::default();
-    assert_eq!(auto.rank_tolerance_for(&scene), EXACT_RANK_TOLERANCE);
+    assert_eq!(
+        auto.rank_tolerance_of(scene.modes_identified()),
+        EXACT_RANK_TOLERANCE
+    );
     let paper = Scene::load(std::path::Path::new("presets/paper.ron")).unwrap();
-    assert_eq!(auto.rank_tolerance_for(&paper), IDENTIFIED_RANK_TOLERANCE);
+    assert_eq!(
+        auto.rank_tolerance_of(paper.modes_identified()),
+        IDENTIFIED_RANK_TOLERANCE
+    );
+    // and the problem built from each scene carries its kind to the solver
+    let problem = |s: &Scene| tirecontact::PreparedModel::of(s).unwrap().problem().clone();
+    assert_eq!(
+        auto.rank_tolerance_for(&problem(&scene)),
+        EXACT_RANK_TOLERANCE
+    );
+    assert_eq!(
+        auto.rank_tolerance_for(&problem(&paper)),
+        IDENTIFIED_RANK_TOLERANCE
+    );
 }

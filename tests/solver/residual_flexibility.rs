@@ -3,6 +3,7 @@
 
 use tirecontact::{Scene, Simulation, SolverOptions};
 
+use tirecontact::SceneSimulation;
 use tirecontact::analysis::bench::scenes::preloaded_three_points as scene;
 
 fn options(fc: Option<f64>) -> SolverOptions {

@@ -6,6 +6,7 @@ use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::TAU;
+use tirecontact::SceneSimulation;
 use tirecontact::base::modal::{ModalModel, unit_impulse};
 use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
 use tirecontact::scene::{Mode, Tyre};

@@ -6,8 +6,9 @@
 //! change speed and road live, and reset.
 
 use crate::support::temp_dir;
+use tirecontact::SceneSimulation;
 use tirecontact::analysis::bench::scenes::many_points;
-use tirecontact::model::road::{Road, RoadProfile};
+use tirecontact::model::road::Road;
 use tirecontact::scene::ContactScheme;
 use tirecontact::{Scene, Simulation, SolverOptions};
 
@@ -61,9 +62,9 @@ fn compare(scene: &Scene, live: Live) -> tirecontact::solver::simulation::RunSta
                     amplitude_m: 0.002,
                     wavelength_m,
                 };
-                let profile = RoadProfile::new(&road, None).unwrap();
-                a.set_road(&road, profile.clone());
-                b.set_road(&road, profile);
+                let profile = tirecontact::readers::road::load(&road, None).unwrap();
+                a.set_road(profile.clone());
+                b.set_road(profile);
             }
             Live::Reset(at) if at == step => {
                 a.reset();

@@ -6,6 +6,7 @@
 
 use crate::support::temp_dir;
 use std::f64::consts::TAU;
+use tirecontact::SceneSimulation;
 use tirecontact::model::convolution::{ModalBasis, ModalState, StepTable};
 use tirecontact::model::road::Road;
 use tirecontact::scene::{ContactScheme, Mode, Point, Scene, Tyre};

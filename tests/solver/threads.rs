@@ -22,10 +22,10 @@ fn compare(scene: &Scene, steps: u64, counts: &[usize], parallel_from_madds: usi
         parallel_from_madds,
         ..SolverOptions::default()
     };
-    let mut one = Simulation::new(&model, options(1)).unwrap();
+    let mut one = model.simulation(options(1)).unwrap();
     let mut many: Vec<Simulation> = counts
         .iter()
-        .map(|&n| Simulation::new(&model, options(n)).unwrap())
+        .map(|&n| model.simulation(options(n)).unwrap())
         .collect();
     let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
     for step in 0..steps {

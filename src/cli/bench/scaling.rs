@@ -131,7 +131,7 @@ pub fn scaling_one(pk: &str, quick: bool, threads: usize) -> CliResult {
             threads,
             ..SolverOptions::default()
         };
-        let mut sim = tirecontact::Simulation::new(&model, options)?;
+        let mut sim = model.simulation(options)?;
         tirecontact::solver::drive::run_to_end(
             &mut sim,
             &mut (),

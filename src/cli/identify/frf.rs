@@ -9,12 +9,12 @@ use crate::cli::paths::{check_output_file, ensure_output_dir};
 use std::fmt::Write as _;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::base::fsio::write_atomic;
+use tirecontact::fsio::write_atomic;
 use tirecontact::identify::driving;
 use tirecontact::identify::frequency::{FrfIdentification, FrfOptions, MAX_FIT_ERROR};
 use tirecontact::model::lscf::{FitOptions, PoleStability};
-use tirecontact::model::measured::frf::FrfRequest;
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
+use tirecontact::readers::measured::frf::FrfRequest;
 use tirecontact::scene::Tyre;
 
 /// Whether `path` names a UFF file (`.uff`, `.unv`).

@@ -73,6 +73,7 @@ impl App {
                 classroom::scene_with_phases(
                     ui,
                     &self.sim,
+                    &self.doc.scene.road,
                     &mut self.scene_opts,
                     &self.phases,
                     self.classroom.point,
@@ -172,7 +173,9 @@ impl App {
                     self.doc.scene.duration_s,
                 );
             }
-            View::Scene => scene_view::show(ui, &self.sim, &mut self.scene_opts),
+            View::Scene => {
+                scene_view::show(ui, &self.sim, &self.doc.scene.road, &mut self.scene_opts)
+            }
             View::Green => {
                 green_view::show(ui, &self.doc.scene, &self.modes, &mut self.green_opts);
             }

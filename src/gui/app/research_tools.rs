@@ -518,5 +518,5 @@ impl App {
 }
 
 fn write_file(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    crate::base::fsio::write_atomic(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+    crate::fsio::write_atomic(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
 }

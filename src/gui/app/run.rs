@@ -39,7 +39,7 @@ impl App {
         self.clear_info();
         self.sim.reset();
         self.time.reset();
-        self.run_start = self.sim.scene().clone();
+        self.run_start = self.doc.scene.clone();
         self.live_edits.clear();
         self.history = History::new(self.sim.num_points(), DEFAULT_BUDGET);
         self.history.record_initial(&self.sim);
@@ -145,7 +145,8 @@ impl App {
         let ready = job.take_built();
         let built = |m: &crate::identify::PreparedModel| {
             ready.unwrap_or_else(|| {
-                Simulation::new(m, SolverOptions::default()).map(|sim| (sim, m.modes().to_vec()))
+                m.simulation(SolverOptions::default())
+                    .map(|sim| (sim, m.modes().to_vec()))
             })
         };
         match (result, job.then) {
@@ -289,10 +290,10 @@ impl App {
         if new.road != old.road {
             let profile = match profile {
                 Some(p) => Ok(p),
-                None => RoadProfile::new(&new.road, self.sim.scene().base_dir.as_deref()),
+                None => crate::readers::road::load(&new.road, old.base_dir.as_deref()),
             };
             match profile {
-                Ok(profile) => self.sim.set_road(&new.road, profile),
+                Ok(profile) => self.sim.set_road(profile),
                 Err(e) => {
                     self.error(format!("Road refused: {e}"));
                     return;

@@ -7,7 +7,6 @@
 //! where they were made: the file holds exactly the run that was shown, at
 //! full resolution, whatever the history's decimation.
 
-use crate::base::error::RunError;
 use crate::base::modal::Mode;
 use crate::gui::jobs::{Job, Progress};
 use crate::gui::model::history::History;
@@ -18,6 +17,7 @@ use crate::output::figures::Figure;
 use crate::output::record::{FigureSpec, PLOT_SAMPLES, RunPanel};
 use crate::output::summary::{scene_summary, short_num};
 use crate::solver::drive::{self, Probe, Watch};
+use crate::solver::error::RunError;
 use crate::solver::simulation::SimulationBuild;
 use crate::{Scene, Simulation, SolverOptions};
 use std::path::{Path, PathBuf};
@@ -38,7 +38,7 @@ pub struct LiveEdit {
 impl LiveEdit {
     /// Replays the edit on `sim`.
     pub fn apply(&self, sim: &mut Simulation) {
-        sim.set_road(&self.road, self.profile.clone());
+        sim.set_road(self.profile.clone());
         sim.set_speed(self.speed_mps);
     }
 }
@@ -124,7 +124,9 @@ pub fn write_csv(
     steps: u64,
     progress: Option<&Progress>,
 ) -> Result<String, String> {
-    let mut sim = Simulation::new(start, SolverOptions::default()).map_err(|e| e.to_string())?;
+    let mut sim = start
+        .simulation(SolverOptions::default())
+        .map_err(|e| e.to_string())?;
     let start = start.scene();
     let mut bytes = Vec::new();
     {
@@ -140,8 +142,7 @@ pub fn write_csv(
         .map_err(|e| e.to_string())?;
         w.finish().map_err(|e| e.to_string())?;
     }
-    crate::base::fsio::write_atomic(path, &bytes)
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+    crate::fsio::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(format!(
         "wrote {} ({} steps, t = 0 … {:.5} s)",
         path.display(),
@@ -228,13 +229,13 @@ impl CsvJob {
                     Ok(None) => {}
                     Ok(Some(model)) => {
                         *current = CsvStage::Build(Box::new(Simulation::build_in_stages(
-                            model,
+                            model.problem().clone(),
                             SolverOptions::default(),
                         )));
                     }
                 },
                 CsvStage::Build(b) => match b.stage() {
-                    Err(e) => return Some(Err(e.to_string())),
+                    Err(e) => return Some(Err(crate::SceneError::from(e).to_string())),
                     Ok(None) => {}
                     Ok(Some(sim)) => {
                         let w = match RunWriter::new(Vec::new(), sim.num_points(), 1) {
@@ -307,8 +308,7 @@ pub type Deliver = Box<dyn FnOnce(&Path, Vec<u8>) -> Result<String, String> + Se
 /// The desktop's delivery: the file written atomically.
 pub fn write_file() -> Deliver {
     Box::new(|path, bytes| {
-        crate::base::fsio::write_atomic(path, &bytes)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        crate::fsio::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
         Ok(format!("wrote {}", path.display()))
     })
 }
@@ -333,6 +333,7 @@ fn deliver_csv(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::SceneSimulation;
     use crate::output::figures::{render_png, render_png_bytes};
 
     /// The paper preset (a ring tyre: its identification is part of the
@@ -343,7 +344,7 @@ mod tests {
             "paper",
         )
         .unwrap();
-        let profile = RoadProfile::new(&scene.road, None).unwrap();
+        let profile = crate::readers::road::load(&scene.road, None).unwrap();
         let edits = vec![LiveEdit {
             step: 700,
             road: scene.road.clone(),

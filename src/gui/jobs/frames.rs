@@ -6,7 +6,7 @@ use crate::gui::jobs::Job;
 use crate::gui::jobs::export::{LiveEdit, replay};
 use crate::identify::{ModeCache, PreparedModel};
 use crate::output::animation::{FrameSettings, FrameWriter, frames_error};
-use crate::{Scene, Simulation, SolverOptions};
+use crate::{Scene, SolverOptions};
 use std::path::PathBuf;
 
 /// A frames export running on its own thread.
@@ -33,13 +33,16 @@ impl FramesJob {
             crate::output::animation::refuse_old_frames(&dir).map_err(|e| e.to_string())?;
         }
         let model = PreparedModel::new(&start, cache).map_err(|e| e.to_string())?;
-        let mut sim =
-            Simulation::new(&model, SolverOptions::default()).map_err(|e| e.to_string())?;
+        let mut sim = model
+            .simulation(SolverOptions::default())
+            .map_err(|e| e.to_string())?;
         let d = dir.clone();
         let total = settings.frame_count();
+        let road = start.road.clone();
         let job = Job::spawn("frames export", total, move |progress| {
             let mut frames = FrameWriter::new(
                 &sim,
+                &road,
                 &d,
                 &settings,
                 clear_old,
@@ -47,7 +50,7 @@ impl FramesJob {
                 progress.cancel_flag(),
             )
             .map_err(|e| e.to_string())?;
-            let end = sim.scene().num_steps();
+            let end = sim.problem().num_steps();
             replay(&mut sim, &edits, end, &mut frames, None)
                 .map_err(|e| frames_error(e).to_string())?;
             frames

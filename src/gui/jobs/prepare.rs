@@ -10,7 +10,7 @@
 use crate::gui::jobs::{Job, Progress};
 use crate::gui::model::prepared::Prepared;
 use crate::identify::{ModeCache, PreparedModel, PreparedModelRun};
-use crate::model::road::{Road, RoadProfile};
+use crate::model::road::Road;
 use crate::scene::Mode;
 use crate::solver::simulation::{Simulation, SimulationBuild, SolverOptions};
 use crate::{Scene, SceneError};
@@ -78,8 +78,9 @@ enum Stage {
     /// The scene checked, its tyre identified, its road read
     /// ([`PreparedModelRun`], method §5-6).
     Model(Box<PreparedModelRun>),
-    /// The solver's tables built ([`SimulationBuild`], method §3-4).
-    Build(Box<SimulationBuild>),
+    /// The solver's tables built ([`SimulationBuild`], method §3-4), and
+    /// the model they are built from.
+    Build(Box<(SimulationBuild, PreparedModel)>),
 }
 
 impl PrepareJob {
@@ -129,25 +130,29 @@ impl PrepareJob {
                             set(&said, run.next_stage());
                         }
                         Ok(Some(model)) => {
-                            let b = Simulation::build_in_stages(model, SolverOptions::default());
+                            let b = Simulation::build_in_stages(
+                                model.problem().clone(),
+                                SolverOptions::default(),
+                            );
                             model_stages = run.stages_done() as u64;
                             progress.set_total(model_stages + b.num_stages() as u64);
                             set(&said, "building the solver's tables");
-                            *current = Stage::Build(Box::new(b));
+                            *current = Stage::Build(Box::new((b, model)));
                         }
                     },
-                    Stage::Build(b) => {
-                        let r = b.stage();
+                    Stage::Build(built) => {
+                        let b = &mut built.0;
+                        let r = b.stage().map_err(SceneError::from);
                         progress.set_total(model_stages + b.num_stages() as u64);
                         progress.set(model_stages + b.stages_done() as u64);
                         match r {
                             Err(e) => return Some(Err(e.to_string())),
                             Ok(None) => {}
                             Ok(Some(sim)) => {
-                                let Some(Stage::Build(b)) = stage.take() else {
+                                let Some(Stage::Build(built)) = stage.take() else {
                                     unreachable!("building");
                                 };
-                                let model = b.into_model();
+                                let model = built.1;
                                 let modes = model.modes().to_vec();
                                 if let Ok(mut s) = slot.lock() {
                                     *s = Some(Ok((sim, modes)));
@@ -219,7 +224,7 @@ fn prepare(then: &Then, cache: &ModeCache) -> Result<Prepared, SceneError> {
     match then {
         Then::Edit(scene) | Then::Replace { scene, .. } => model(scene),
         Then::Road(scene) => {
-            RoadProfile::new(&scene.road, scene.base_dir.as_deref()).map(Prepared::Road)
+            crate::readers::road::load(&scene.road, scene.base_dir.as_deref()).map(Prepared::Road)
         }
         Then::Open(path) => {
             let scene = Scene::load(path)?;
@@ -382,7 +387,7 @@ mod tests {
             "{n} stages, the longest {share:.2} of the whole"
         );
         let model = PreparedModel::of(&patch(20, 10)).unwrap();
-        let mut b = Simulation::build_in_stages(model, SolverOptions::default());
+        let mut b = Simulation::build_in_stages(model.problem().clone(), SolverOptions::default());
         let (share, n) = shares(Box::new(move || b.stage().unwrap().is_some()));
         assert!(
             n >= 20 && share < 0.25,

@@ -291,6 +291,7 @@ impl crate::solver::drive::Probe for History {
 mod tests {
     use super::*;
     use crate::Scene;
+    use crate::SceneSimulation;
 
     #[test]
     fn decimation_keeps_peaks_and_bounds_points() {

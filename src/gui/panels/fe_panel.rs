@@ -7,7 +7,7 @@ use super::push_edit;
 use crate::Scene;
 use crate::gui::model::command::Command;
 use crate::gui::widgets::fields::{Apply, NumField, section};
-use crate::model::fe_modes::{FeDamping, FeNodes};
+use crate::readers::fe_modes::{FeDamping, FeNodes};
 use crate::scene::{Mode, Tyre};
 use egui::{Grid, Ui};
 

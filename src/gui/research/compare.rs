@@ -31,6 +31,7 @@ pub fn pin_label(scene: &crate::Scene, t_s: f64) -> String {
 mod tests {
     use super::*;
     use crate::Scene;
+    use crate::SceneSimulation;
     use crate::analysis::compare::PinnedRun;
     use crate::solver::simulation::Simulation;
 

@@ -325,6 +325,7 @@ impl<T> HistoryCache<T> {
 mod tests {
     use super::*;
     use crate::Scene;
+    use crate::SceneSimulation;
     use crate::solver::simulation::Simulation;
 
     fn key(len: usize) -> HistoryKey {

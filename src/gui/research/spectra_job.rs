@@ -112,6 +112,7 @@ pub fn restarted(then: &HistoryKey, now: &HistoryKey) -> bool {
 mod tests {
     use super::*;
     use crate::Scene;
+    use crate::SceneSimulation;
     use crate::gui::model::history::History;
     use crate::gui::research::spectra::history_spectra;
 

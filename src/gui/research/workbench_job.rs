@@ -8,7 +8,7 @@ use crate::gui::jobs::{Job, Progress};
 use crate::identify::frequency::{FrfIdentification, FrfOptions, identify_frfs};
 use crate::identify::workbench::Workbench;
 use crate::identify::{RingIdentifyRun, identify_tyre};
-use crate::model::measured::frf::{FrfRequest, holds_frfs};
+use crate::readers::measured::frf::{FrfRequest, holds_frfs};
 use crate::scene::{Scene, Tyre};
 
 /// What a workbench depends on: the tyre and the points' positions (m).

@@ -19,7 +19,7 @@ const ROAD_SAMPLES_PER_CELL: usize = 3;
 pub const COLOUR_BAR_CAPTION: &str = "force (N)";
 
 pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Command>) {
-    let scene = sim.scene();
+    let scene = sim.problem();
     let layout = match PatchLayout::of(scene) {
         Ok(l) => l,
         Err(e) => {

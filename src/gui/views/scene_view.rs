@@ -99,24 +99,11 @@ pub fn round_125(x: f64) -> f64 {
 }
 
 /// Horizontal extent drawn (m): the contact line and about a wavelength around it.
-fn x_extent(sim: &Simulation) -> (f64, f64) {
-    let pts = &sim.scene().points;
+fn x_extent(sim: &Simulation, road: &Road) -> (f64, f64) {
+    let pts = &sim.problem().points;
     let lo = pts.iter().map(|p| p.x_m).fold(f64::INFINITY, f64::min);
     let hi = pts.iter().map(|p| p.x_m).fold(f64::NEG_INFINITY, f64::max);
-    let lambda = match &sim.scene().road {
-        Road::Sine { wavelength_m, .. } => *wavelength_m,
-        Road::Harmonics { components } => components
-            .iter()
-            .map(|c| c.wavelength_m)
-            .fold(0.0, f64::max),
-        Road::Measured { .. } | Road::Surface { .. } => 0.5,
-        Road::Random {
-            min_wavenumber_cpm, ..
-        }
-        | Road::Texture {
-            min_wavenumber_cpm, ..
-        } => 1.0 / min_wavenumber_cpm,
-    };
+    let lambda = road.drawn_wavelength_m();
     let margin = (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05);
     (lo - margin, hi + margin)
 }
@@ -181,8 +168,8 @@ const FADED_ROW_NAME: &str = "";
 
 /// The rows across the tread of `scene`'s points: their distinct `y_m`,
 /// increasing.
-pub fn rows_y_m(scene: &crate::Scene) -> Vec<f64> {
-    let mut rows: Vec<f64> = scene.points.iter().map(|p| p.y_m).collect();
+pub fn rows_y_m(points: &[crate::scene::Point]) -> Vec<f64> {
+    let mut rows: Vec<f64> = points.iter().map(|p| p.y_m).collect();
     rows.sort_by(f64::total_cmp);
     rows.dedup();
     rows
@@ -190,13 +177,13 @@ pub fn rows_y_m(scene: &crate::Scene) -> Vec<f64> {
 
 /// The row drawn in full under `opts` (its index among [`rows_y_m`] and its
 /// `y_m`), where the scene has more than one row.
-fn focus_row(scene: &crate::Scene, opts: &SceneViewOptions) -> Option<(usize, usize, f64)> {
+fn focus_row(
+    points: &[crate::scene::Point],
+    opts: &SceneViewOptions,
+) -> Option<(usize, usize, f64)> {
     let point = opts.row_of_point?;
-    let rows = rows_y_m(scene);
-    let y = scene
-        .points
-        .get(point.min(scene.points.len().checked_sub(1)?))?
-        .y_m;
+    let rows = rows_y_m(points);
+    let y = points.get(point.min(points.len().checked_sub(1)?))?.y_m;
     (rows.len() > 1).then(|| (rows.partition_point(|r| *r < y), rows.len(), y))
 }
 
@@ -225,8 +212,10 @@ pub fn displaced_tyre_color(v: &egui::Visuals) -> Color32 {
     }
 }
 
-pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
-    show_with(ui, sim, opts, |_, _, _| {});
+/// The scene view of `sim` on `road` (the scene's description of the road
+/// it runs on, which sets the window drawn).
+pub fn show(ui: &mut Ui, sim: &Simulation, road: &Road, opts: &mut SceneViewOptions) {
+    show_with(ui, sim, road, opts, |_, _, _| {});
 }
 
 /// [`show`], with `extra(plot, displaced, labels_floor)` drawing more items
@@ -237,11 +226,12 @@ pub fn show(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
 pub fn show_with(
     ui: &mut Ui,
     sim: &Simulation,
+    road: &Road,
     opts: &mut SceneViewOptions,
     extra: impl FnOnce(&mut egui_plot::PlotUi<'_>, &[[f64; 2]], Option<f64>),
 ) -> egui::Rect {
-    let scene = sim.scene();
-    let (x0, x1) = x_extent(sim);
+    let scene = sim.problem();
+    let (x0, x1) = x_extent(sim, road);
     let u = sim.displacement_m();
     let hmax = scene
         .points
@@ -255,7 +245,7 @@ pub fn show_with(
     }
     let e = opts.exaggeration;
     header(ui, sim, opts);
-    let focus = focus_row(scene, opts);
+    let focus = focus_row(&scene.points, opts);
     let geo = Geometry::of(sim, (x0, x1), e, hmax, focus.map(|f| f.2));
     let label_color = ui.visuals().strong_text_color();
     let tyre_color = displaced_tyre_color(ui.visuals());
@@ -305,7 +295,7 @@ pub fn show_with(
 /// Above the plot: the exaggeration (auto or set), time, speed, points in
 /// contact, and the ramp's progress.
 fn header(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
-    let scene = sim.scene();
+    let scene = sim.problem();
     let t = sim.time_s();
     let (w, _) = ramp(t, scene.ramp_s);
     let contact = sim.in_contact();
@@ -356,7 +346,7 @@ fn header(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
                 ui.add(whole(RichText::new(info)));
             }
         }
-        if let Some((row, rows, y_m)) = focus_row(scene, opts) {
+        if let Some((row, rows, y_m)) = focus_row(&scene.points, opts) {
             ui.add(whole(RichText::new(row_text(row, rows, y_m))))
                 .on_hover_text(
                     "the points across the tread share their x: the chosen point's row is drawn \
@@ -500,7 +490,7 @@ impl Geometry {
         hmax: f64,
         focus_y_m: Option<f64>,
     ) -> Self {
-        let pts = &sim.scene().points;
+        let pts = &sim.problem().points;
         let shown: Vec<bool> = pts
             .iter()
             .map(|p| focus_y_m.is_none_or(|y| p.y_m == y))

@@ -6,6 +6,7 @@
 
 use crate::harness::{advance, shapes, texts};
 use std::path::Path;
+use tirecontact::SceneSimulation;
 use tirecontact::gui::View;
 use tirecontact::gui::classroom::{
     EVENT_COLOR, EVENT_HOLD_WALL_S, EVENT_RING_PX, SLOW_MOTION, phase_text,

@@ -240,7 +240,10 @@ fn choosing_a_random_road_class_in_the_panel_changes_the_road() {
     assert_eq!(class, RoadClass::E);
     assert_eq!(seed, 2026);
     // live: the running simulation samples the new road, no restart
-    assert_eq!(h.state().simulation().scene().road, h.state().scene().road);
+    assert_eq!(
+        *h.state().simulation().problem().road,
+        tirecontact::readers::road::load(&h.state().scene().road, None).unwrap()
+    );
     assert_eq!(h.state().simulation().steps(), 100);
     // a new seed regenerates it
     h.get_by_label("new road").click();
@@ -282,7 +285,7 @@ fn the_compliant_switch_edits_the_contact_and_restarts() {
         }
     );
     assert_eq!(
-        h.state().simulation().scene().contact,
+        h.state().simulation().problem().contact,
         h.state().scene().contact
     );
     assert_eq!(h.state().simulation().steps(), 0, "restarted");

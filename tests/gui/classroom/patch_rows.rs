@@ -70,7 +70,7 @@ fn a_patch_shows_one_row_in_full_and_names_it() {
     let preset = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets/patch_texture.ron");
     let scene = Scene::load(&preset).unwrap();
     let n = scene.points.len();
-    let rows = tirecontact::gui::views::scene_view::rows_y_m(&scene);
+    let rows = tirecontact::gui::views::scene_view::rows_y_m(&scene.points);
     assert_eq!((n, rows.len()), (96, 6));
     let along = n / rows.len();
     let row0: Vec<f64> = scene

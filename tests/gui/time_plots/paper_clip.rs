@@ -8,6 +8,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use egui_plot::PlotMemory;
 use std::path::Path;
+use tirecontact::SceneSimulation;
 use tirecontact::gui::views::time_plots::{FORCE_PLOT_ID, clip_level};
 use tirecontact::gui::{App, Command};
 use tirecontact::gui::{History, Quantity};

@@ -1,0 +1,377 @@
+//! Roads that vary across the tread: a height grid `z(x, y)` read from a
+//! CSV file (`Road::Surface`) or generated as a random texture
+//! (`Road::Texture`, see [`texture`](super::texture)), method §4.8.
+//!
+//! A point `(x_i, y_i)` at time `t` bears on `R(x_i + V t, y_i)`, the
+//! convention of the profile roads. Points do not move across the tread, so
+//! each point sees the blend of two grid rows,
+//!
+//! ```text
+//! z_i(s) = (1 - w_i) Z_j(x_i + s) + w_i Z_{j+1}(x_i + s),   y_i = y_j + w_i Δy,
+//! ```
+//!
+//! and each row `Z_j(x)` is a cubic Hermite curve through its nodes with
+//! slopes `dZ/dx` at the nodes (exact slopes for a texture, centred
+//! differences for a file: Catmull-Rom). `z_i` and `dz_i/dx` are continuous
+//! along the rolling direction: the grid's lines are not contact events.
+
+use super::OutOfRange;
+
+/// Relative tolerance on a grid's spacing: a coordinate is on the grid when
+/// it is within `1e-9 Δ` of a node.
+pub const GRID_TOLERANCE: f64 = 1e-9;
+
+/// Largest surface grid (nodes): a file's rows take 32 bytes each while it
+/// is read (x, y, z and the line number), 256 MB at the cap; the grid
+/// keeps 16 bytes per node (heights and slopes).
+pub const MAX_SURFACE_NODES: usize = 8_000_000;
+
+/// Largest surface file (bytes), checked before reading: 64 bytes per node
+/// of [`MAX_SURFACE_NODES`] (a row of three full-precision numbers is
+/// about 65 bytes; most files write fewer digits).
+pub const MAX_SURFACE_BYTES: u64 = 80 * MAX_SURFACE_NODES as u64;
+
+/// A regular height grid, row-major across: node `(i, j)` at
+/// `x = x0 + i Δx`, `y = y0 + j Δy` holds `z[j nx + i]` and its slope
+/// along `x`, `dzdx[j nx + i]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceGrid {
+    pub x0_m: f64,
+    pub dx_m: f64,
+    pub nx: usize,
+    pub y0_m: f64,
+    pub dy_m: f64,
+    pub ny: usize,
+    /// Repeats along `x` with period `nx Δx` (its last column is not the
+    /// first repeated).
+    pub looped: bool,
+    /// Repeats across `y` with period `ny Δy` (a generated texture); a
+    /// file's grid covers `[y0, y0 + (ny - 1) Δy]` only.
+    pub periodic_y: bool,
+    pub z_m: Vec<f64>,
+    pub dzdx: Vec<f64>,
+}
+
+/// Where a point sits across the grid: rows `j0`, `j1` and the weight `w`
+/// of `j1`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RowBlend {
+    pub j0: usize,
+    pub j1: usize,
+    pub w: f64,
+}
+
+impl SurfaceGrid {
+    /// Builds a grid from its heights, computing the slopes along `x` by
+    /// centred differences (one-sided at the ends of a grid that is not
+    /// looped).
+    pub fn from_heights(
+        (x0_m, dx_m, nx): (f64, f64, usize),
+        (y0_m, dy_m, ny): (f64, f64, usize),
+        looped: bool,
+        z_m: Vec<f64>,
+    ) -> Self {
+        let mut dzdx = vec![0.0; z_m.len()];
+        for j in 0..ny {
+            let row = &z_m[j * nx..(j + 1) * nx];
+            let d = &mut dzdx[j * nx..(j + 1) * nx];
+            for i in 0..nx {
+                d[i] = if nx < 2 {
+                    0.0
+                } else if looped {
+                    (row[(i + 1) % nx] - row[(i + nx - 1) % nx]) / (2.0 * dx_m)
+                } else if i == 0 {
+                    (row[1] - row[0]) / dx_m
+                } else if i == nx - 1 {
+                    (row[i] - row[i - 1]) / dx_m
+                } else {
+                    (row[i + 1] - row[i - 1]) / (2.0 * dx_m)
+                };
+            }
+        }
+        SurfaceGrid {
+            x0_m,
+            dx_m,
+            nx,
+            y0_m,
+            dy_m,
+            ny,
+            looped,
+            periodic_y: false,
+            z_m,
+            dzdx,
+        }
+    }
+
+    /// The range of `y` (m) the grid covers; `None` when it repeats across.
+    pub fn y_range_m(&self) -> Option<(f64, f64)> {
+        (!self.periodic_y).then(|| (self.y0_m, self.y0_m + (self.ny - 1) as f64 * self.dy_m))
+    }
+
+    /// The range of `x` (m) covered by one period (looped) or by the grid.
+    pub fn x_range_m(&self) -> (f64, f64) {
+        let n = if self.looped { self.nx } else { self.nx - 1 };
+        (self.x0_m, self.x0_m + n as f64 * self.dx_m)
+    }
+
+    /// Largest |z| (m).
+    pub fn scale_m(&self) -> f64 {
+        self.z_m.iter().fold(0.0, |m, z| m.max(z.abs()))
+    }
+
+    /// The rows a point at `y` (m) blends; `None` outside a file's grid.
+    pub fn rows_at(&self, y_m: f64) -> Option<RowBlend> {
+        let u = (y_m - self.y0_m) / self.dy_m;
+        if self.periodic_y {
+            let u = u.rem_euclid(self.ny as f64);
+            let j0 = (u.floor() as usize).min(self.ny - 1);
+            return Some(RowBlend {
+                j0,
+                j1: (j0 + 1) % self.ny,
+                w: (u - j0 as f64).clamp(0.0, 1.0),
+            });
+        }
+        let last = (self.ny - 1) as f64;
+        // on the edges within the grid's tolerance
+        if !(u >= -GRID_TOLERANCE && u <= last + GRID_TOLERANCE) {
+            return None;
+        }
+        let u = u.clamp(0.0, last);
+        let j0 = (u.floor() as usize).min(self.ny.saturating_sub(2));
+        Some(RowBlend {
+            j0,
+            j1: (j0 + 1).min(self.ny - 1),
+            w: (u - j0 as f64).clamp(0.0, 1.0),
+        })
+    }
+
+    /// Height (m) and slope along `x` (-) of row `j` at `x` (m).
+    #[inline]
+    fn sample_row(&self, j: usize, x_m: f64) -> Result<(f64, f64), OutOfRange> {
+        let (z, d) = (
+            &self.z_m[j * self.nx..(j + 1) * self.nx],
+            &self.dzdx[j * self.nx..(j + 1) * self.nx],
+        );
+        let u = (x_m - self.x0_m) / self.dx_m;
+        let (m, m1, s) = if self.looped {
+            let u = rem_euclid_exact(u, self.nx as f64);
+            // (`u >= 0`: the truncation is the floor, without a libm call)
+            let m = (u as usize).min(self.nx - 1);
+            (m, (m + 1) % self.nx, (u - m as f64).clamp(0.0, 1.0))
+        } else {
+            let last = (self.nx - 1) as f64;
+            if !(u >= -GRID_TOLERANCE && u <= last + GRID_TOLERANCE) {
+                let (min_m, max_m) = self.x_range_m();
+                return Err(OutOfRange { x_m, min_m, max_m });
+            }
+            let u = u.clamp(0.0, last);
+            let m = (u.floor() as usize).min(self.nx - 2);
+            (m, m + 1, (u - m as f64).clamp(0.0, 1.0))
+        };
+        Ok(hermite(z[m], z[m1], d[m], d[m1], self.dx_m, s))
+    }
+
+    /// Height (m) and slope along `x` (-) where a point blending `rows`
+    /// is at `x` (m).
+    #[inline]
+    pub fn sample_blend(&self, rows: RowBlend, x_m: f64) -> Result<(f64, f64), OutOfRange> {
+        let (z0, d0) = self.sample_row(rows.j0, x_m)?;
+        if rows.w == 0.0 {
+            return Ok((z0, d0));
+        }
+        let (z1, d1) = self.sample_row(rows.j1, x_m)?;
+        Ok((
+            (1.0 - rows.w) * z0 + rows.w * z1,
+            (1.0 - rows.w) * d0 + rows.w * d1,
+        ))
+    }
+
+    /// Height (m) and slope (-) at `(x, y)`; `y` outside a file's grid is
+    /// clamped to its nearest edge (points are checked against it first).
+    pub fn sample(&self, x_m: f64, y_m: f64) -> Result<(f64, f64), OutOfRange> {
+        let y = match self.y_range_m() {
+            Some((lo, hi)) => y_m.clamp(lo, hi),
+            None => y_m,
+        };
+        // a finite y in range always has rows
+        let rows = self.rows_at(y).unwrap_or(RowBlend {
+            j0: 0,
+            j1: 0,
+            w: 0.0,
+        });
+        self.sample_blend(rows, x_m)
+    }
+
+    /// The mean profile depth (m) of the grid's rows along `x`, ISO
+    /// 13473-1: each row is cut into 100 mm baselines; on each, the
+    /// least-squares line is removed and the mean segment depth is the mean
+    /// of the peaks of its two 50 mm halves; MPD is the mean over all
+    /// baselines of all rows. `None` when a row is shorter than 100 mm.
+    pub fn mpd_m(&self) -> Option<f64> {
+        let per = (MPD_BASELINE_M / self.dx_m).round() as usize;
+        if per < 4 || self.nx < per {
+            return None;
+        }
+        let (mut sum, mut count) = (0.0, 0usize);
+        for j in 0..self.ny {
+            let row = &self.z_m[j * self.nx..(j + 1) * self.nx];
+            for seg in row.chunks_exact(per) {
+                sum += segment_depth(seg);
+                count += 1;
+            }
+        }
+        (count > 0).then(|| sum / count as f64)
+    }
+}
+
+/// `u.rem_euclid(n)` for a whole number `n >= 1`, without the software
+/// `fmod` where `0 <= u < 2^52`: `u - k n` with `k = ⌊u / n⌋` (corrected
+/// by one where the quotient rounded across a whole number) is exact there
+/// (a multiple of `ulp(u)`, no larger than `u`), as `fmod` is: the same
+/// value, bit for bit.
+#[inline]
+fn rem_euclid_exact(u: f64, n: f64) -> f64 {
+    if (0.0..n).contains(&u) {
+        return u;
+    }
+    if (0.0..4_503_599_627_370_496.0).contains(&u) {
+        // (`u / n >= 0` below 2^52: the truncation is the floor)
+        let k = (u / n) as u64 as f64;
+        let r = u - k * n;
+        if r < 0.0 {
+            return u - (k - 1.0) * n;
+        }
+        if r >= n {
+            return u - (k + 1.0) * n;
+        }
+        return r;
+    }
+    u.rem_euclid(n)
+}
+
+/// Baseline of the mean profile depth (m), ISO 13473-1.
+pub const MPD_BASELINE_M: f64 = 0.1;
+
+/// Mean segment depth of one baseline of equally spaced heights (ISO
+/// 13473-1): the least-squares line removed, the mean of the two halves'
+/// peaks.
+pub fn segment_depth(seg: &[f64]) -> f64 {
+    let n = seg.len() as f64;
+    let xm = (n - 1.0) / 2.0;
+    let zm = seg.iter().sum::<f64>() / n;
+    let (mut sxz, mut sxx) = (0.0, 0.0);
+    for (i, z) in seg.iter().enumerate() {
+        let dx = i as f64 - xm;
+        sxz += dx * (z - zm);
+        sxx += dx * dx;
+    }
+    let slope = if sxx > 0.0 { sxz / sxx } else { 0.0 };
+    let detrended = |i: usize| seg[i] - zm - slope * (i as f64 - xm);
+    let half = seg.len() / 2;
+    let peak = |r: std::ops::Range<usize>| r.map(detrended).fold(f64::NEG_INFINITY, f64::max);
+    0.5 * (peak(0..half) + peak(half..seg.len()))
+}
+
+/// Cubic Hermite interpolation over one interval of length `h` at
+/// fraction `s`: height and slope.
+#[inline]
+fn hermite(z0: f64, z1: f64, d0: f64, d1: f64, h: f64, s: f64) -> (f64, f64) {
+    let (d0, d1) = (d0 * h, d1 * h);
+    let (s2, s3) = (s * s, s * s * s);
+    let zv = (2.0 * s3 - 3.0 * s2 + 1.0) * z0
+        + (s3 - 2.0 * s2 + s) * d0
+        + (-2.0 * s3 + 3.0 * s2) * z1
+        + (s3 - s2) * d1;
+    let dv = ((6.0 * s2 - 6.0 * s) * (z0 - z1)
+        + (3.0 * s2 - 4.0 * s + 1.0) * d0
+        + (3.0 * s2 - 2.0 * s) * d1)
+        / h;
+    (zv, dv)
+}
+
+#[cfg(test)]
+mod tests {
+    /// The wrap of a looped grid equals `rem_euclid` bit for bit: near
+    /// every multiple of the period, at large distances, for odd periods
+    /// and below zero.
+    #[test]
+    fn the_exact_wrap_equals_rem_euclid_bit_for_bit() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for n in [1.0, 2.0, 3.0, 7.0, 500.0, 1001.0, 65_537.0] {
+            for _ in 0..20_000 {
+                let k = (next() % 100_000) as f64;
+                let ulps = (next() % 9) as i64 - 4;
+                let base: f64 = k * n;
+                // a few ulps either side of a multiple of the period
+                let u = f64::from_bits((base.to_bits() as i64 + ulps).max(0) as u64);
+                let w = (next() % 1_000_000) as f64 / 1_000.0 * n;
+                let neg = -((next() % 1_000_000) as f64) / 997.0;
+                for x in [u, w, neg, base + 0.5, 4.5e15, 1e300] {
+                    assert_eq!(
+                        super::rem_euclid_exact(x, n).to_bits(),
+                        x.rem_euclid(n).to_bits(),
+                        "u = {x:e}, n = {n}"
+                    );
+                }
+            }
+        }
+    }
+
+    use super::*;
+
+    /// A looped grid's period is `nx Δx`: the surface `sin(2π x / L)`
+    /// sampled on `nx` columns repeats seamlessly across the wrap.
+    #[test]
+    fn a_looped_grid_repeats_with_period_nx_dx() {
+        let (nx, ny, dx) = (64, 2, 0.01);
+        let len = nx as f64 * dx;
+        let z: Vec<f64> = (0..ny)
+            .flat_map(|_| {
+                (0..nx).map(move |i| 1e-3 * (std::f64::consts::TAU * i as f64 * dx / len).sin())
+            })
+            .collect();
+        let g = SurfaceGrid::from_heights((0.0, dx, nx), (0.0, 0.01, ny), true, z);
+        for x in [-0.3, 0.005, 0.637, 0.6395, 1.0] {
+            let want = 1e-3 * (std::f64::consts::TAU * x / len).sin();
+            let (zz, _) = g.sample(x, 0.005).unwrap();
+            assert!((zz - want).abs() < 2e-7, "x = {x}: {zz} vs {want}");
+            // one period on
+            let (z2, _) = g.sample(x + len, 0.005).unwrap();
+            assert!((z2 - zz).abs() < 1e-15);
+        }
+    }
+
+    /// ISO 13473-1 on closed forms: on each 100 mm baseline, a cosine
+    /// symmetric about the baseline's centre (so that it adds nothing to the
+    /// least-squares line) with its peaks on nodes of both halves has a
+    /// segment depth of its amplitude less its mean; a tilt is removed.
+    #[test]
+    fn mean_profile_depth_of_cosines_and_tilts() {
+        let per = 201; // nodes per 100 mm baseline, centre node 100
+        let dx = MPD_BASELINE_M / per as f64;
+        let (nx, amp) = (3 * per, 7e-4);
+        let cosine = |m: usize| (std::f64::consts::TAU * (m as f64 - 100.0) / 40.0).cos();
+        let mean = (0..per).map(cosine).sum::<f64>() / per as f64;
+        for tilt in [0.0, 0.02, -0.3] {
+            let z: Vec<f64> = (0..2)
+                .flat_map(|_| (0..nx).map(move |i| amp * cosine(i % per) + tilt * i as f64 * dx))
+                .collect();
+            let g = SurfaceGrid::from_heights((0.0, dx, nx), (0.0, 0.01, 2), false, z);
+            let mpd = g.mpd_m().unwrap();
+            let want = amp * (1.0 - mean);
+            assert!(
+                (mpd - want).abs() < 1e-12 * amp.max(tilt.abs()),
+                "tilt {tilt}: MPD {mpd} vs {want}"
+            );
+        }
+        // shorter than a baseline: no MPD
+        let g = SurfaceGrid::from_heights((0.0, dx, 100), (0.0, 0.01, 2), false, vec![0.0; 200]);
+        assert!(g.mpd_m().is_none());
+    }
+}

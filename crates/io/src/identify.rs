@@ -1,0 +1,823 @@
+//! Ring tyre -> modal model: sample the ring's radial impulse responses at
+//! the contact points (method §5) and identify them by LSCE (method §6); and
+//! scene -> [`PreparedModel`], what a simulation is built from, with the
+//! identifications kept in a [`ModeCache`] the caller owns.
+
+use crate::readers::measured;
+use crate::scene::SceneError;
+use crate::scene::{Scene, Tyre};
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+use tirecontact_core::base::modal::ModalModel;
+use tirecontact_core::base::modal::Mode;
+use tirecontact_core::model::lsce::{
+    Identification, IdentifyOptions, LsceError, LsceRun, Responses, identify,
+};
+use tirecontact_core::model::ring::RingParams;
+use tirecontact_core::model::ring::sampled_row;
+use tirecontact_core::model::road::RoadProfile;
+use tirecontact_core::solver::problem::Problem;
+use tirecontact_core::{Simulation, SolverOptions};
+use web_time::Instant;
+
+pub mod driving;
+pub mod frequency;
+pub mod workbench;
+
+/// An identification of a ring tyre, with what produced it.
+#[derive(Debug, Clone)]
+pub struct RingIdentification {
+    pub identification: Identification,
+    /// The sampled responses LSCE saw (pairs `i <= j`).
+    pub responses: Responses,
+    /// Relative L2 error of `|G(ω)|` of the identified model against the
+    /// full ring (all orders `0..=N`, analytic receptance) over the band, all
+    /// pairs (-).
+    pub ring_magnitude_error: f64,
+    /// Wall time of sampling and identification (s).
+    pub elapsed_s: f64,
+}
+
+/// Largest relative L2 error of `|G(ω)|` over the band, identified model
+/// against the full ring, that an identification may have (-): above it the
+/// modes found do not represent the ring (the shipped paper preset: 0.017).
+pub const MAX_MAGNITUDE_ERROR: f64 = 0.3;
+
+/// Samples the ring's responses at the points `x_m` and identifies them;
+/// an identification whose model misses the ring is an error
+/// ([`LsceError::PoorFit`]), not a silently wrong tyre.
+pub fn identify_ring(
+    ring: &RingParams,
+    x_m: &[f64],
+    opts: &IdentifyOptions,
+) -> Result<RingIdentification, LsceError> {
+    RingIdentifyRun::new(ring, x_m, opts)?.finish()
+}
+
+/// [`identify_ring`] a stage at a time, for a caller that must return
+/// between stages (a page in the browser has one thread): the responses
+/// sampled a row of pairs at a time (method §5), the stages of LSCE
+/// ([`LsceRun`], method §6), then the check against the ring. The same
+/// stages as [`identify_ring`] in its order: the same result to the bit.
+#[derive(Debug)]
+pub struct RingIdentifyRun {
+    ring: RingParams,
+    x_m: Vec<f64>,
+    opts: IdentifyOptions,
+    start: Instant,
+    /// What is sampled, and the rows sampled so far.
+    sampling: ModalModel,
+    pairs: Vec<(usize, usize)>,
+    data: Vec<Vec<f64>>,
+    lsce: Option<LsceRun>,
+    identification: Option<Identification>,
+    stages_done: usize,
+}
+
+impl RingIdentifyRun {
+    /// Checks the ring, the options and the points (the input errors of
+    /// [`identify_ring`]).
+    pub fn new(ring: &RingParams, x_m: &[f64], opts: &IdentifyOptions) -> Result<Self, LsceError> {
+        let start = Instant::now();
+        if let Some(e) = ring
+            .validate("ring")
+            .first()
+            .or(opts.validate("identification").first())
+        {
+            return Err(LsceError::Input(e.to_string()));
+        }
+        if x_m.is_empty() {
+            return Err(LsceError::Input("no contact points".into()));
+        }
+        // the sampled responses hold only the modes below Nyquist: without any,
+        // LSCE would see zeros ("every response is zero") and not say why
+        let nyquist_hz = 0.5 * opts.sample_rate_hz;
+        let lowest_hz = lowest_mode_hz(ring);
+        if !lowest_hz.is_finite() || lowest_hz >= nyquist_hz {
+            return Err(LsceError::Input(format!(
+                "no mode of the ring below the Nyquist frequency {nyquist_hz} Hz (identification.sample_rate_hz / 2; lowest mode {lowest_hz:.3e} Hz): expected a ring with modes in identification.band_hz (check ring.radius_m, the stiffnesses and mass_per_length_kg_m) or a higher sample_rate_hz"
+            )));
+        }
+        let p = x_m.len();
+        Ok(RingIdentifyRun {
+            ring: ring.clone(),
+            x_m: x_m.to_vec(),
+            opts: opts.clone(),
+            start,
+            sampling: ring.sampling_model(x_m, opts.dt_s()),
+            pairs: Vec::with_capacity(p * (p + 1) / 2),
+            data: Vec::with_capacity(p * (p + 1) / 2),
+            lsce: None,
+            identification: None,
+            stages_done: 0,
+        })
+    }
+
+    /// Stages of the whole identification: a row of pairs per point, the
+    /// stages of LSCE, the check.
+    pub fn num_stages(&self) -> usize {
+        let p = self.x_m.len();
+        p + LsceRun::stages_for(p * (p + 1) / 2, &self.opts) + 1
+    }
+
+    /// Stages done so far.
+    pub fn stages_done(&self) -> usize {
+        self.stages_done
+    }
+
+    /// What the next stage does, for a progress line.
+    pub fn next_stage(&self) -> &'static str {
+        if self.identification.is_some() {
+            "checking the modes against the ring"
+        } else if self.lsce.is_some() {
+            "LSCE: the stabilisation diagram, an order at a time"
+        } else {
+            "sampling the ring's responses"
+        }
+    }
+
+    /// Runs every stage left.
+    pub fn finish(mut self) -> Result<RingIdentification, LsceError> {
+        loop {
+            if let Some(id) = self.stage()? {
+                return Ok(id);
+            }
+        }
+    }
+
+    /// Runs the next stage; the identification once the last one ran.
+    pub fn stage(&mut self) -> Result<Option<RingIdentification>, LsceError> {
+        self.stages_done += 1;
+        let (opts, p) = (&self.opts, self.x_m.len());
+        let row = if self.pairs.is_empty() {
+            0
+        } else {
+            self.pairs[self.pairs.len() - 1].0 + 1
+        };
+        if row < p {
+            let (pairs, data) = sampled_row(&self.sampling, row, opts.dt_s(), opts.num_samples());
+            self.pairs.extend(pairs);
+            self.data.extend(data);
+            return Ok(None);
+        }
+        if self.identification.is_none() {
+            let lsce = match &mut self.lsce {
+                Some(l) => l,
+                None => {
+                    let responses = Responses {
+                        dt_s: opts.dt_s(),
+                        num_points: p,
+                        pairs: std::mem::take(&mut self.pairs),
+                        data: std::mem::take(&mut self.data),
+                    };
+                    self.lsce.insert(LsceRun::new(responses, opts)?)
+                }
+            };
+            if let Some(id) = lsce.stage()? {
+                self.identification = Some(id);
+            }
+            return Ok(None);
+        }
+        let (Some(identification), Some(lsce)) = (self.identification.take(), self.lsce.take())
+        else {
+            unreachable!("the check runs after LSCE");
+        };
+        let ring_magnitude_error = magnitude_error(
+            &self.ring.modal_model(&self.x_m),
+            &ModalModel::from_modes(&identification.modes, p),
+            opts.band_hz,
+            200,
+        );
+        if ring_magnitude_error.is_nan() || ring_magnitude_error > MAX_MAGNITUDE_ERROR {
+            return Err(LsceError::PoorFit {
+                magnitude_error: ring_magnitude_error,
+                limit: MAX_MAGNITUDE_ERROR,
+                lo_hz: opts.band_hz.0,
+                hi_hz: opts.band_hz.1,
+                lowest_source_hz: lowest_mode_hz(&self.ring),
+            });
+        }
+        Ok(Some(RingIdentification {
+            identification,
+            responses: lsce.into_responses(),
+            ring_magnitude_error,
+            elapsed_s: self.start.elapsed().as_secs_f64(),
+        }))
+    }
+}
+
+/// The ring's lowest mode of nonzero frequency (Hz; infinite if none).
+fn lowest_mode_hz(ring: &RingParams) -> f64 {
+    ring.all_modes()
+        .iter()
+        .filter(|m| m.omega_rad_s > 0.0)
+        .map(|m| m.freq_hz())
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// An identification of measured (or externally computed) responses.
+#[derive(Debug, Clone)]
+pub struct MeasuredIdentification {
+    pub identification: Identification,
+    /// The responses LSCE saw (pairs `i <= j`), cut to the options'
+    /// duration.
+    pub responses: Responses,
+    /// What reading the file did (format, reciprocity, conversions).
+    pub notes: Vec<String>,
+    /// Wall time of reading and identification (s).
+    pub elapsed_s: f64,
+}
+
+/// Why a tyre could not be identified: its data file (which names
+/// itself), or the identification.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum IdentifyError {
+    /// The data file cannot be read (it names itself).
+    #[error(transparent)]
+    Data(#[from] measured::DataError),
+    #[error(transparent)]
+    Lsce(#[from] LsceError),
+}
+
+/// Reads the responses of `num_points` points in `path` (see
+/// [`crate::readers::measured`]) and identifies them with `opts` at the data's own
+/// sampling, over its first `opts.duration_s` seconds. A model whose
+/// `|G|` misses the data's by more than [`MAX_MAGNITUDE_ERROR`] over the
+/// band is an error ([`LsceError::PoorFit`]).
+pub fn identify_measured(
+    path: &Path,
+    nodes: Option<&[i64]>,
+    num_points: usize,
+    opts: &IdentifyOptions,
+) -> Result<MeasuredIdentification, IdentifyError> {
+    let start = Instant::now();
+    let data = measured::read(path, nodes, num_points)?;
+    let mut responses = data.responses;
+    let dt = responses.dt_s;
+    let keep = ((opts.duration_s / dt).round() as usize).max(1);
+    for g in &mut responses.data {
+        g.truncate(keep);
+    }
+    let mut opts = opts.clone();
+    opts.sample_rate_hz = 1.0 / dt;
+    opts.duration_s = responses.data.first().map_or(0, Vec::len) as f64 * dt;
+    if opts.band_hz.1 >= 0.5 * opts.sample_rate_hz {
+        return Err(LsceError::Input(format!(
+            "{}: tyre.identification.band_hz = ({}, {}): expected the band below the data's Nyquist frequency {} Hz (sampled every {dt:e} s)",
+            path.display(),
+            opts.band_hz.0,
+            opts.band_hz.1,
+            0.5 * opts.sample_rate_hz
+        ))
+        .into());
+    }
+    let identification = identify(&responses, &opts)?;
+    let e = identification.report.magnitude_error;
+    if e.is_nan() || e > MAX_MAGNITUDE_ERROR {
+        return Err(LsceError::PoorFit {
+            magnitude_error: e,
+            limit: MAX_MAGNITUDE_ERROR,
+            lo_hz: opts.band_hz.0,
+            hi_hz: opts.band_hz.1,
+            // a file's modes are not known: an identified pole is no hint
+            lowest_source_hz: f64::NAN,
+        }
+        .into());
+    }
+    Ok(MeasuredIdentification {
+        identification,
+        responses,
+        notes: data.notes,
+        elapsed_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// An identification of a scene's ring or measured tyre, whatever its kind.
+#[derive(Debug, Clone)]
+pub struct TyreIdentification {
+    pub identification: Identification,
+    /// The responses LSCE saw (pairs `i <= j`).
+    pub responses: Responses,
+    /// The identification band (Hz).
+    pub band_hz: (f64, f64),
+    /// What the source adds for the user (the ring's |G| error against the
+    /// full ring; a file's format, reciprocity, conversions).
+    pub notes: Vec<String>,
+    /// Wall time of sampling or reading, and identification (s).
+    pub elapsed_s: f64,
+}
+
+/// Identifies `scene`'s tyre: a ring sampled at the points
+/// ([`identify_ring`]), measured responses read ([`identify_measured`]);
+/// `None` for a modal tyre (nothing to identify).
+pub fn identify_tyre(scene: &Scene) -> Option<Result<TyreIdentification, IdentifyError>> {
+    match &scene.tyre {
+        Tyre::Modal { .. } | Tyre::Plate { .. } | Tyre::FeModes { .. } => None,
+        Tyre::Ring {
+            ring,
+            identification,
+        } => Some(
+            identify_ring(ring, &positions(scene), identification)
+                .map(|id| TyreIdentification {
+                    notes: vec![format!("|G| vs full ring {:.3e}", id.ring_magnitude_error)],
+                    identification: id.identification,
+                    responses: id.responses,
+                    band_hz: identification.band_hz,
+                    elapsed_s: id.elapsed_s,
+                })
+                .map_err(IdentifyError::from),
+        ),
+        Tyre::Measured {
+            file,
+            identification,
+            nodes,
+        } => Some(
+            identify_measured(
+                &data_path(scene, file),
+                (!nodes.is_empty()).then_some(nodes.as_slice()),
+                scene.num_points(),
+                identification,
+            )
+            .map(|id| TyreIdentification {
+                notes: id.notes,
+                identification: id.identification,
+                responses: id.responses,
+                band_hz: identification.band_hz,
+                elapsed_s: id.elapsed_s,
+            }),
+        ),
+    }
+}
+
+/// A measured tyre's data file, relative to the scene's folder.
+pub fn data_path(scene: &Scene, file: &Path) -> PathBuf {
+    match &scene.base_dir {
+        Some(d) if file.is_relative() => d.join(file),
+        _ => file.to_path_buf(),
+    }
+}
+
+/// Relative L2 error of `|G_ij(ω)|` of `model` against `reference` over
+/// `n` frequencies spread over the band, all pairs `i <= j` (-).
+pub fn magnitude_error(
+    reference: &ModalModel,
+    model: &ModalModel,
+    band_hz: (f64, f64),
+    n: usize,
+) -> f64 {
+    let p = reference.num_points.min(model.num_points);
+    let (mut num, mut den) = (0.0, 0.0);
+    for q in 0..n {
+        let f = band_hz.0 + (band_hz.1 - band_hz.0) * (q as f64 + 0.5) / n as f64;
+        for i in 0..p {
+            for j in i..p {
+                let a = reference.frequency_response(i, j, f).norm();
+                let b = model.frequency_response(i, j, f).norm();
+                num += (a - b) * (a - b);
+                den += a * a;
+            }
+        }
+    }
+    if den > 0.0 { (num / den).sqrt() } else { 0.0 }
+}
+
+/// The modal model of a scene's FE tyre (`Tyre::FeModes`, method §5.4):
+/// its file read and sampled at the points; `None` for other tyres is an
+/// error naming the tyre.
+pub fn fe_model(scene: &Scene) -> Result<crate::readers::fe_modes::FeModel, SceneError> {
+    let Some(spec) = scene.tyre.fe_spec(scene.base_dir.as_deref()) else {
+        return Err(SceneError::Identification {
+            scene: scene.name.clone(),
+            message: "not an FE tyre (tyre: FeModes(...))".into(),
+        });
+    };
+    let fail = |source| SceneError::FeModes {
+        scene: scene.name.clone(),
+        source,
+    };
+    let fe = crate::readers::fe_modes::load(&spec, &points_xy(scene)).map_err(fail)?;
+    // rigid contact: the contact system is a sum of one rank-one term per
+    // mode, singular with more points than modes
+    if scene.contact.is_rigid() && scene.num_points() > fe.modes.len() {
+        return Err(fail(crate::readers::fe_modes::FeModesError::RigidTooFew {
+            points: scene.num_points(),
+            modes: fe.modes.len(),
+        }));
+    }
+    Ok(fe)
+}
+
+type CacheEntry = (String, Arc<Vec<Mode>>);
+
+/// Identified ring modes kept by whoever runs several scenes of one tyre
+/// (the visualiser, a sweep), keyed on the exact ring, identification options
+/// and point positions; the 8 most recent are kept. A value the caller owns
+/// and passes where modes are needed: nothing is cached behind its back.
+/// Shared between threads by reference (the identification itself runs
+/// outside the lock).
+#[derive(Debug, Default)]
+pub struct ModeCache {
+    entries: Mutex<Vec<CacheEntry>>,
+}
+
+/// How many identifications a [`ModeCache`] keeps.
+const CACHE_LEN: usize = 8;
+
+/// The cache key of a ring, its identification options and the points.
+fn cache_key(ring: &RingParams, x_m: &[f64], opts: &IdentifyOptions) -> String {
+    format!("{ring:?}|{opts:?}|{x_m:?}")
+}
+
+/// The cache key of a scene's identified tyre (`None`: a modal tyre). A
+/// measured tyre's is its data file's path, options, nodes and point
+/// count: the file is read once per key ([`ModeCache::forget`] drops it).
+fn tyre_key(scene: &Scene) -> Option<String> {
+    match &scene.tyre {
+        Tyre::Modal { .. } | Tyre::Plate { .. } => None,
+        Tyre::FeModes { .. } => Some(format!(
+            "fe|{:?}|{:?}",
+            scene.tyre.fe_spec(scene.base_dir.as_deref()),
+            points_xy(scene)
+        )),
+        Tyre::Ring {
+            ring,
+            identification,
+        } => Some(cache_key(ring, &positions(scene), identification)),
+        Tyre::Measured {
+            file,
+            identification,
+            nodes,
+        } => Some(format!(
+            "measured|{}|{identification:?}|{nodes:?}|{}",
+            data_path(scene, file).display(),
+            scene.num_points()
+        )),
+    }
+}
+
+/// The points' positions `(x_m, y_m)` (m).
+fn points_xy(scene: &Scene) -> Vec<(f64, f64)> {
+    scene.points.iter().map(|p| (p.x_m, p.y_m)).collect()
+}
+
+/// The points' positions along the tyre (m).
+fn positions(scene: &Scene) -> Vec<f64> {
+    scene.points.iter().map(|p| p.x_m).collect()
+}
+
+impl ModeCache {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn lookup(&self, key: &str) -> Option<Arc<Vec<Mode>>> {
+        let entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
+        entries
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, m)| Arc::clone(m))
+    }
+
+    fn store(&self, key: String, modes: Arc<Vec<Mode>>) {
+        let mut entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
+        if entries.iter().any(|(k, _)| *k == key) {
+            return;
+        }
+        if entries.len() >= CACHE_LEN {
+            entries.remove(0);
+        }
+        entries.push((key, modes));
+    }
+
+    /// The identified modes of a ring at the points `x_m`: from the cache
+    /// when this ring, these options and positions were identified before,
+    /// else identified now ([`identify_ring`]) and kept.
+    pub fn ring_modes(
+        &self,
+        ring: &RingParams,
+        x_m: &[f64],
+        opts: &IdentifyOptions,
+    ) -> Result<Arc<Vec<Mode>>, LsceError> {
+        let key = cache_key(ring, x_m, opts);
+        if let Some(modes) = self.lookup(&key) {
+            return Ok(modes);
+        }
+        let modes = Arc::new(identify_ring(ring, x_m, opts)?.identification.modes);
+        self.store(key, Arc::clone(&modes));
+        Ok(modes)
+    }
+
+    /// The modes of a scene's tyre: those written in the preset
+    /// (`Tyre::Modal`), the ring identified at the points' positions
+    /// (`Tyre::Ring`, method §5-6) through [`ModeCache::ring_modes`], or
+    /// the measured responses identified (`Tyre::Measured`).
+    pub fn modes(&self, scene: &Scene) -> Result<Arc<Vec<Mode>>, SceneError> {
+        let fail = |e: IdentifyError| SceneError::Identification {
+            scene: scene.name.clone(),
+            message: e.to_string(),
+        };
+        match &scene.tyre {
+            Tyre::Modal { modes } => Ok(Arc::new(modes.clone())),
+            Tyre::Plate { plate } => Ok(Arc::new(plate.modes(&points_xy(scene)))),
+            Tyre::FeModes { .. } => {
+                let key = tyre_key(scene).unwrap_or_default();
+                if let Some(m) = self.lookup(&key) {
+                    return Ok(m);
+                }
+                let modes = Arc::new(fe_model(scene)?.modes);
+                self.store(key, Arc::clone(&modes));
+                Ok(modes)
+            }
+            Tyre::Ring {
+                ring,
+                identification,
+            } => self
+                .ring_modes(ring, &positions(scene), identification)
+                .map_err(|e| fail(e.into())),
+            Tyre::Measured {
+                file,
+                identification,
+                nodes,
+            } => {
+                let key = tyre_key(scene).unwrap_or_default();
+                if let Some(m) = self.lookup(&key) {
+                    return Ok(m);
+                }
+                let id = identify_measured(
+                    &data_path(scene, file),
+                    (!nodes.is_empty()).then_some(nodes.as_slice()),
+                    scene.num_points(),
+                    identification,
+                )
+                .map_err(fail)?;
+                let modes = Arc::new(id.identification.modes);
+                self.store(key, Arc::clone(&modes));
+                Ok(modes)
+            }
+        }
+    }
+
+    /// Whether [`ModeCache::modes`] answers at once: modes written in the
+    /// preset, or a tyre already identified with these points and options
+    /// (else it runs the identification, a tenth of a second or more).
+    pub fn has_modes(&self, scene: &Scene) -> bool {
+        matches!(scene.tyre, Tyre::Modal { .. } | Tyre::Plate { .. })
+            || self.identified(scene).is_some()
+    }
+
+    /// The modes identified from `scene`'s ring or measured tyre, if this
+    /// cache holds them (never identifies); `None` for a modal tyre.
+    pub fn identified(&self, scene: &Scene) -> Option<Arc<Vec<Mode>>> {
+        self.lookup(&tyre_key(scene)?)
+    }
+
+    /// Drops `scene`'s identified tyre, so that the next use identifies it
+    /// again (a measured tyre's file opened anew may have changed).
+    pub fn forget(&self, scene: &Scene) {
+        if let Some(key) = tyre_key(scene) {
+            let mut entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
+            entries.retain(|(k, _)| *k != key);
+        }
+    }
+
+    /// Keeps the modes of a model prepared elsewhere (a background job
+    /// with its own cache), so that the scene is not identified again.
+    pub fn remember(&self, model: &PreparedModel) {
+        if let Some(key) = tyre_key(&model.scene) {
+            self.store(key, Arc::clone(&model.problem.modes));
+        }
+    }
+}
+
+fn validate_scene(scene: &Scene) -> Result<(), SceneError> {
+    scene.validate().map_err(|errors| SceneError::Invalid {
+        file: scene.name.clone(),
+        errors,
+        at: Vec::new(),
+    })
+}
+
+/// [`PreparedModel::new`] a stage at a time, for a caller that must return
+/// between stages (a page in the browser has one thread): the scene
+/// checked, then a ring tyre not in the cache identified a stage at a time
+/// ([`RingIdentifyRun`]; other tyres' modes at once), then the road. The
+/// same steps as [`PreparedModel::new`]: the same model, and the ring's
+/// modes kept in the cache as it keeps them.
+#[derive(Debug)]
+pub struct PreparedModelRun {
+    scene: Scene,
+    /// The ring being identified and its key in the cache.
+    ring: Option<(String, RingIdentifyRun)>,
+    modes: Option<Arc<Vec<Mode>>>,
+    stages_done: usize,
+    num_stages: usize,
+}
+
+impl PreparedModelRun {
+    /// The preparation of `scene`, its modes to come from (or be kept in)
+    /// `cache`.
+    pub fn new(scene: &Scene, cache: &ModeCache) -> Self {
+        let identifies = match &scene.tyre {
+            Tyre::Ring { identification, .. } if !cache.has_modes(scene) => {
+                let p = scene.num_points();
+                p + LsceRun::stages_for(p * (p + 1) / 2, identification) + 1
+            }
+            _ => 0,
+        };
+        PreparedModelRun {
+            scene: scene.clone(),
+            ring: None,
+            modes: None,
+            stages_done: 0,
+            num_stages: 2 + identifies,
+        }
+    }
+
+    /// Stages of the whole preparation.
+    pub fn num_stages(&self) -> usize {
+        self.num_stages
+    }
+
+    /// Stages done so far.
+    pub fn stages_done(&self) -> usize {
+        self.stages_done
+    }
+
+    /// What the next stage does, for a progress line.
+    pub fn next_stage(&self) -> &'static str {
+        match (&self.ring, &self.modes) {
+            (Some((_, run)), _) => run.next_stage(),
+            (None, Some(_)) => "reading the road",
+            (None, None) => "checking the scene",
+        }
+    }
+
+    /// Runs the next stage; the model once the last one ran. A ring
+    /// identified here is kept in `cache`.
+    pub fn stage(&mut self, cache: &ModeCache) -> Result<Option<PreparedModel>, SceneError> {
+        self.stages_done += 1;
+        let scene = &self.scene;
+        if let Some((key, run)) = &mut self.ring {
+            let id = run.stage().map_err(|e| SceneError::Identification {
+                scene: scene.name.clone(),
+                message: e.to_string(),
+            })?;
+            if let Some(id) = id {
+                let modes = Arc::new(id.identification.modes);
+                cache.store(std::mem::take(key), Arc::clone(&modes));
+                self.modes = Some(modes);
+                self.ring = None;
+            }
+            return Ok(None);
+        }
+        let Some(modes) = &self.modes else {
+            validate_scene(scene)?;
+            match &scene.tyre {
+                Tyre::Ring {
+                    ring,
+                    identification,
+                } if !cache.has_modes(scene) => {
+                    let x_m = positions(scene);
+                    let run = RingIdentifyRun::new(ring, &x_m, identification).map_err(|e| {
+                        SceneError::Identification {
+                            scene: scene.name.clone(),
+                            message: e.to_string(),
+                        }
+                    })?;
+                    self.ring = Some((cache_key(ring, &x_m, identification), run));
+                }
+                _ => self.modes = Some(cache.modes(scene)?),
+            }
+            return Ok(None);
+        };
+        PreparedModel::with_modes(scene, Arc::clone(modes)).map(Some)
+    }
+
+    /// Runs every stage left.
+    pub fn finish(mut self, cache: &ModeCache) -> Result<PreparedModel, SceneError> {
+        loop {
+            if let Some(m) = self.stage(cache)? {
+                return Ok(m);
+            }
+        }
+    }
+}
+
+/// A scene made ready to simulate: validated, its tyre's modes known
+/// (identified if it is a ring) and its road profile loaded (a measured
+/// road read from its file). Everything that may take time, read a file or
+/// fail on the user's input happens here, once; a
+/// [`crate::Simulation`] is then built from it without I/O or
+/// identification.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreparedModel {
+    scene: Scene,
+    problem: Problem,
+}
+
+impl PreparedModel {
+    /// Validates `scene`, takes its modes from `cache` (identifying a ring
+    /// not seen before), reads a measured road file and checks the ramp
+    /// against the road (`T_ramp = 0` needs every point above it, method §4).
+    pub fn new(scene: &Scene, cache: &ModeCache) -> Result<Self, SceneError> {
+        validate_scene(scene)?;
+        let modes = cache.modes(scene)?;
+        Self::with_modes(scene, modes)
+    }
+
+    /// The rest of [`PreparedModel::new`] once the (validated) scene's
+    /// modes are known: the road read and checked.
+    fn with_modes(scene: &Scene, modes: Arc<Vec<Mode>>) -> Result<Self, SceneError> {
+        let road = crate::readers::road::load(&scene.road, scene.base_dir.as_deref())?;
+        let mut errors = scene.surface_errors(&road);
+        if errors.is_empty()
+            && let Some(e) = scene.ramp_error(&road)
+        {
+            errors.push(e);
+        }
+        if !errors.is_empty() {
+            return Err(SceneError::Invalid {
+                file: scene.name.clone(),
+                errors,
+                at: Vec::new(),
+            });
+        }
+        Ok(Self {
+            problem: problem_of(scene, modes, road),
+            scene: scene.clone(),
+        })
+    }
+
+    /// [`PreparedModel::new`] with a cache of its own: for one scene run
+    /// once. Several runs of one ring tyre share a [`ModeCache`] instead.
+    pub fn of(scene: &Scene) -> Result<Self, SceneError> {
+        Self::new(scene, &ModeCache::new())
+    }
+
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The tyre's modes (given or identified).
+    pub fn modes(&self) -> &[Mode] {
+        &self.problem.modes
+    }
+
+    /// The road profile, loaded.
+    pub fn road(&self) -> &RoadProfile {
+        &self.problem.road
+    }
+
+    /// What the solver is given: the scene's points, modes, road, contact,
+    /// time step, speed and ramp.
+    pub fn problem(&self) -> &Problem {
+        &self.problem
+    }
+
+    /// The simulation of this model with `options` (no I/O, no
+    /// identification: the solver's tables only).
+    pub fn simulation(&self, options: SolverOptions) -> Result<Simulation, SceneError> {
+        Ok(Simulation::new(&self.problem, options)?)
+    }
+}
+
+/// The solver's problem of a validated `scene` with its `modes` and loaded
+/// `road`.
+pub fn problem_of(scene: &Scene, modes: Arc<Vec<Mode>>, road: RoadProfile) -> Problem {
+    Problem {
+        name: scene.name.clone(),
+        points: scene.points.to_vec(),
+        modes,
+        modes_identified: scene.modes_identified(),
+        road: Arc::new(road),
+        contact: scene.contact.clone(),
+        contact_scheme: scene.contact_scheme,
+        dt_s: scene.dt_s,
+        duration_s: scene.duration_s,
+        speed_mps: scene.speed_mps,
+        ramp_s: scene.ramp_s,
+    }
+}
+
+/// A [`Simulation`] built from a scene: validated, its modes taken or
+/// identified, its road loaded ([`PreparedModel`]), then the solver's
+/// tables. The solver itself knows no scene; this trait, in scope, gives
+/// it the constructors of one.
+pub trait SceneSimulation: Sized {
+    /// Prepares `scene` with a cache of its own and builds its simulation
+    /// with default options: for a scene run once. Runs of one ring tyre
+    /// share a [`ModeCache`] and call [`PreparedModel::simulation`].
+    fn from_scene(scene: &Scene) -> Result<Self, SceneError>;
+    /// As [`SceneSimulation::from_scene`], with explicit [`SolverOptions`].
+    fn from_scene_with(scene: &Scene, options: SolverOptions) -> Result<Self, SceneError>;
+}
+
+impl SceneSimulation for Simulation {
+    fn from_scene(scene: &Scene) -> Result<Self, SceneError> {
+        PreparedModel::of(scene)?.simulation(SolverOptions::default())
+    }
+
+    fn from_scene_with(scene: &Scene, options: SolverOptions) -> Result<Self, SceneError> {
+        PreparedModel::of(scene)?.simulation(options)
+    }
+}

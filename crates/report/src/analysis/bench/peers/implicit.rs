@@ -1,0 +1,1018 @@
+//! The implicit peer: the penalty equations by adaptive variable-order BDF
+//! (`diffsol::Bdf`) with their contact switches located as events.
+//!
+//! Between two switches each point's force is either its penalty force
+//! `g_i = k (r_i - u_i) + c_i (ṙ_i - u̇_i)` or zero, so the equations are
+//! linear and smooth; the kink of `max(0, g_i)` is where `g_i` crosses
+//! zero. Each crossing is a root of [`Switched::roots`], located by
+//! diffsol's root finder on the BDF interpolant; the run moves back to it,
+//! switches the point and restarts BDF there in the new mode. No step ever
+//! spans a switch.
+//!
+//! The forces are unknowns of the system (a semi-explicit index-1 DAE, see
+//! [`Switched`]): the modes then couple only through the `P` force rows
+//! and columns of the Newton matrix, which [`BorderedLu`] factors in
+//! `O(K P² + P³)` instead of the `O((2K + P)³)` of a dense LU.
+
+use super::Oscillators;
+use crate::analysis::bench::BenchError;
+use crate::analysis::bench::baselines::{BaselineRun, road_seen};
+use diffsol::{
+    Bdf, FaerContext, FaerSparseLU, FaerSparseMat, FaerVec, LaError, LaLinearOp, Matrix,
+    MatrixCommon, OdeBuilder, OdeSolverMethod, OdeSolverStopReason,
+};
+use diffsol_la::LinearSolver;
+use faer::linalg::solvers::{PartialPivLu, SolveCore};
+use std::cell::{Cell, RefCell};
+use tirecontact_core::model::road::RoadProfile;
+use tirecontact_io::identify::ModeCache;
+use tirecontact_io::scene::Scene;
+
+/// The penalty equations in one mode (a fixed active set `A`), a
+/// semi-explicit index-1 DAE `M y' = f(t, y)` in `y = [η, η', J, w]`:
+///
+/// `η_s'' = -ω_s² η_s - 2ξ_s ω_s η_s' + Σ_i b_s[i] w_i`, `J_i' = w_i`,
+/// `0 = [i∈A] g_i - w_i`,
+///
+/// with `g_i = k (r_i - u_i) + c_i (ṙ_i - u̇_i)` the force point `i` bears
+/// when active (`u = Σ_s a_s η_s`), `w_i` its force (N) and `J_i` its
+/// impulse (N·s). Within a mode `f` is linear in `y`.
+pub(super) struct Switched<'a> {
+    osc: &'a Oscillators,
+    scene: &'a Scene,
+    road: &'a RoadProfile,
+    k_n_m: f64,
+    c: Vec<f64>,
+    /// Whether each point bears its force `g_i` in the current mode.
+    active: RefCell<Vec<bool>>,
+    /// Offsets of the root functions ([`Switched::roots`]).
+    shift: RefCell<Vec<f64>>,
+    /// Evaluations of `f`.
+    evaluations: Cell<u64>,
+}
+
+impl<'a> Switched<'a> {
+    fn new(osc: &'a Oscillators, scene: &'a Scene, road: &'a RoadProfile, k_n_m: f64) -> Self {
+        Switched {
+            osc,
+            scene,
+            road,
+            k_n_m,
+            c: osc.dampers(k_n_m),
+            active: RefCell::new(vec![false; osc.p]),
+            shift: RefCell::new(vec![0.0; osc.p]),
+            evaluations: Cell::new(0),
+        }
+    }
+
+    fn ns(&self) -> usize {
+        self.osc.ns()
+    }
+
+    /// The length of `y`: `2K + 2P`.
+    fn len(&self) -> usize {
+        2 * self.ns() + 2 * self.osc.p
+    }
+
+    /// Where the forces `w` start in `y`; before them the differential part.
+    fn forces_at(&self) -> usize {
+        2 * self.ns() + self.osc.p
+    }
+
+    /// `g_i = k (r_i - u_i) + c_i (ṙ_i - u̇_i)` (N) of point `i` at `(t, y)`.
+    fn gap(&self, t: f64, y: &[f64], i: usize) -> f64 {
+        let ns = self.ns();
+        let a = &self.osc.out[i * ns..(i + 1) * ns];
+        let (mut u, mut v) = (0.0, 0.0);
+        for s in 0..ns {
+            u += a[s] * y[s];
+            v += a[s] * y[ns + s];
+        }
+        let (r, rd) = road_seen(self.scene, self.road, t, i);
+        self.k_n_m * (r - u) + self.c[i] * (rd - v)
+    }
+
+    /// `f(t, y)` in the current mode.
+    fn rhs(&self, t: f64, y: &[f64], f: &mut [f64]) {
+        self.evaluations.set(self.evaluations.get() + 1);
+        let (p, ns, m) = (self.osc.p, self.ns(), self.forces_at());
+        let w = &y[m..];
+        for s in 0..ns {
+            let (om, xi) = (self.osc.omega[s], self.osc.xi[s]);
+            let b = &self.osc.inp[s * p..(s + 1) * p];
+            let bw: f64 = b.iter().zip(w).map(|(b, w)| b * w).sum();
+            f[s] = y[ns + s];
+            f[ns + s] = bw - 2.0 * xi * om * y[ns + s] - om * om * y[s];
+        }
+        let active = self.active.borrow();
+        for i in 0..p {
+            f[2 * ns + i] = w[i];
+            let g = if active[i] { self.gap(t, y, i) } else { 0.0 };
+            f[m + i] = g - w[i];
+        }
+    }
+
+    /// The analytic Jacobian times `v`, `(∂f/∂y) v`, in the current mode
+    /// (constant within a mode): the Jacobian's columns of the non-zeros
+    /// of `v` summed, so that the unit vectors diffsol assembles the
+    /// Jacobian with cost `O(K + P)` each.
+    fn jac_mul(&self, v: &[f64], out: &mut [f64]) {
+        let (p, ns, m) = (self.osc.p, self.ns(), self.forces_at());
+        out.fill(0.0);
+        let active = self.active.borrow();
+        for (k, &vk) in v.iter().enumerate() {
+            if vk == 0.0 {
+                continue;
+            }
+            if k < ns {
+                // ∂/∂η_s: the mode's spring, the active points' stiffness
+                let (s, om) = (k, self.osc.omega[k]);
+                out[ns + s] -= om * om * vk;
+                for i in (0..p).filter(|&i| active[i]) {
+                    out[m + i] -= self.k_n_m * self.osc.out[i * ns + s] * vk;
+                }
+            } else if k < 2 * ns {
+                // ∂/∂η'_s: the mode's velocity, its damper, the points' dampers
+                let (s, om, xi) = (k - ns, self.osc.omega[k - ns], self.osc.xi[k - ns]);
+                out[s] += vk;
+                out[ns + s] -= 2.0 * xi * om * vk;
+                for i in (0..p).filter(|&i| active[i]) {
+                    out[m + i] -= self.c[i] * self.osc.out[i * ns + s] * vk;
+                }
+            } else if k >= m {
+                // ∂/∂w_i: the force drives the modes and the impulse
+                let i = k - m;
+                for s in 0..ns {
+                    out[ns + s] += self.osc.inp[s * p + i] * vk;
+                }
+                out[2 * ns + i] += vk;
+                out[m + i] -= vk;
+            }
+            // J appears in no equation
+        }
+    }
+
+    /// `M v + β y`, `M` the identity on `[η, η', J]` and zero on `w`.
+    fn mass(&self, v: &[f64], beta: f64, y: &mut [f64]) {
+        let m = self.forces_at();
+        for (k, yk) in y.iter_mut().enumerate() {
+            *yk = if k < m { v[k] } else { 0.0 } + beta * *yk;
+        }
+    }
+
+    /// The root functions, one a point: `σ_i g_i + shift_i`, `σ_i = +1`
+    /// for an active point, `-1` for an inactive one, so that each is
+    /// positive while the point's mode agrees with its force and crosses
+    /// zero at its switch. Right after a switch `g_i ≈ 0`: the shift holds
+    /// the switched point's function at [`Switched::switch_margin`] there
+    /// (the root finder sees sign changes only), and is dropped once
+    /// `σ_i g_i` is positive on its own ([`Switched::settle`]).
+    fn roots(&self, t: f64, y: &[f64], out: &mut [f64]) {
+        let (active, shift) = (self.active.borrow(), self.shift.borrow());
+        for (i, r) in out.iter_mut().enumerate() {
+            let sigma = if active[i] { 1.0 } else { -1.0 };
+            *r = sigma * self.gap(t, y, i) + shift[i];
+        }
+    }
+
+    /// A root function's value right after its switch (N): the force of a
+    /// penetration of 1e-12 m.
+    fn switch_margin(&self) -> f64 {
+        self.k_n_m * 1e-12
+    }
+
+    /// Puts each point in the mode its force `g_i` says at `(t, y)`, its
+    /// root function shifted up to the switch margin if below it (the
+    /// start of a run).
+    fn start(&self, t: f64, y: &[f64]) {
+        let margin = self.switch_margin();
+        let mut active = self.active.borrow_mut();
+        let mut shift = self.shift.borrow_mut();
+        for i in 0..self.osc.p {
+            let g = self.gap(t, y, i);
+            active[i] = g > 0.0;
+            shift[i] = (margin - g.abs()).max(0.0);
+        }
+    }
+
+    /// Switches point `i` at `(t, y)`, its root function shifted up to the
+    /// switch margin there; whether it is now active.
+    fn switch(&self, i: usize, t: f64, y: &[f64]) -> bool {
+        let g = self.gap(t, y, i);
+        let mut active = self.active.borrow_mut();
+        active[i] = !active[i];
+        let sigma = if active[i] { 1.0 } else { -1.0 };
+        self.shift.borrow_mut()[i] = (self.switch_margin() - sigma * g).max(0.0);
+        active[i]
+    }
+
+    /// Drops the shift of each point whose root function is positive
+    /// without it at `(t, y)`.
+    fn settle(&self, t: f64, y: &[f64]) {
+        let active = self.active.borrow();
+        for (i, sh) in self.shift.borrow_mut().iter_mut().enumerate() {
+            let sigma = if active[i] { 1.0 } else { -1.0 };
+            if *sh != 0.0 && sigma * self.gap(t, y, i) > 0.0 {
+                *sh = 0.0;
+            }
+        }
+    }
+
+    /// Sets the forces `w` of `y` to the current mode's at `t`.
+    fn consistent_forces(&self, t: f64, y: &mut [f64]) {
+        let m = self.forces_at();
+        for i in 0..self.osc.p {
+            let on = self.active.borrow()[i];
+            y[m + i] = if on { self.gap(t, y, i) } else { 0.0 };
+        }
+    }
+}
+
+/// Where an entry of the Newton matrix goes in [`BorderedLu`].
+#[derive(Debug, Clone, Copy)]
+enum Slot {
+    /// Block `b`'s `(r, c)` entry.
+    Block(usize, usize, usize),
+    /// Row `r` of block `b`, border column `j`.
+    Right(usize, usize, usize),
+    /// Border row `i`, column `c` of block `b`.
+    Below(usize, usize, usize),
+    /// Border `(i, j)`.
+    Border(usize, usize),
+    /// A structural non-zero outside the bordered block-diagonal form.
+    Outside,
+}
+
+/// LU of a bordered block-diagonal matrix
+///
+/// `N = [A B; C D]`, `A = diag(A_1, …, A_n)` with 1×1 or 2×2 blocks,
+///
+/// by block elimination: `S = D - Σ_b C_b A_b⁻¹ B_b` (dense, `P × P`,
+/// LU with partial pivoting), then `N x = r` as `z_b = A_b⁻¹ r_b`,
+/// `S x_D = r_D - Σ_b C_b z_b`, `x_b = z_b - A_b⁻¹ B_b x_D`. The Newton
+/// matrix `M - γ ∂f/∂y` of [`Switched`] has this form: a 2×2 block per
+/// mode (`η_s`, `η'_s`), a 1×1 block per impulse and the forces as the
+/// border. Cost `O(n P²)` to factor and `O(n P)` to solve, against
+/// `O((2K + P)³)` and `O((2K + P)²)` dense.
+///
+/// A diffsol [`LinearSolver`] of [`FaerSparseMat`]: diffsol assembles the
+/// matrix on the Jacobian's sparsity pattern, this reads its entries.
+#[derive(Default)]
+pub(super) struct BorderedLu {
+    /// The blocks' indices (a 1×1 block's second is `usize::MAX`).
+    blocks: Vec<[usize; 2]>,
+    /// The border's indices.
+    border: Vec<usize>,
+    /// The matrix, on diffsol's sparsity pattern.
+    matrix: Option<FaerSparseMat<f64>>,
+    /// Where each stored entry of `matrix` goes.
+    slots: Vec<Slot>,
+    /// `A_b`, row-major 2×2 (identity in the unused row and column of a
+    /// 1×1 block), then their inverses.
+    a: Vec<[f64; 4]>,
+    a_inv: Vec<[f64; 4]>,
+    /// `B_b`: 2 rows of `P` per block.
+    b: Vec<f64>,
+    /// `C_b`: its 2 columns of `P` per block.
+    c: Vec<f64>,
+    /// `S`'s LU.
+    s_lu: Option<PartialPivLu<f64>>,
+    /// Why the last factorisation failed.
+    failure: Option<BorderedLuError>,
+}
+
+/// Why [`BorderedLu`] could not factor the Newton matrix.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+enum BorderedLuError {
+    #[error("bordered LU: no matrix set")]
+    NoMatrix,
+    #[error("bordered LU: stored entry {entry} is outside the bordered block-diagonal form")]
+    OutsideForm { entry: usize },
+    #[error("bordered LU: block {block} is singular")]
+    SingularBlock { block: usize },
+}
+
+impl BorderedLu {
+    /// The layout of [`Switched`]'s Newton matrix: `ns` modes, `p` points.
+    fn for_switched(ns: usize, p: usize) -> Self {
+        let mut blocks: Vec<[usize; 2]> = (0..ns).map(|s| [s, ns + s]).collect();
+        blocks.extend((0..p).map(|i| [2 * ns + i, usize::MAX]));
+        BorderedLu {
+            blocks,
+            border: (2 * ns + p..2 * ns + 2 * p).collect(),
+            ..Default::default()
+        }
+    }
+
+    /// Maps each row or column index to its place: `(true, b, r)` row or
+    /// column `r` of block `b`, `(false, i, 0)` border index `i`.
+    fn places(&self, n: usize) -> Vec<(bool, usize, usize)> {
+        let mut at = vec![(false, usize::MAX, 0); n];
+        for (b, idx) in self.blocks.iter().enumerate() {
+            for (r, &k) in idx.iter().enumerate() {
+                if k != usize::MAX {
+                    at[k] = (true, b, r);
+                }
+            }
+        }
+        for (i, &k) in self.border.iter().enumerate() {
+            at[k] = (false, i, 0);
+        }
+        at
+    }
+
+    fn factor(&mut self) -> Result<(), BorderedLuError> {
+        let matrix = self.matrix.as_ref().ok_or(BorderedLuError::NoMatrix)?;
+        let (nb, p) = (self.blocks.len(), self.border.len());
+        if let Some(entry) = self.slots.iter().position(|s| matches!(s, Slot::Outside)) {
+            return Err(BorderedLuError::OutsideForm { entry });
+        }
+        self.a.clear();
+        self.a.extend(self.blocks.iter().map(|idx| {
+            if idx[1] == usize::MAX {
+                [0.0, 0.0, 0.0, 1.0]
+            } else {
+                [0.0; 4]
+            }
+        }));
+        self.b.clear();
+        self.b.resize(nb * 2 * p, 0.0);
+        self.c.clear();
+        self.c.resize(nb * 2 * p, 0.0);
+        let mut s = faer::Mat::<f64>::zeros(p, p);
+        let values = matrix.inner()[0].val();
+        for (slot, &v) in self.slots.iter().zip(values) {
+            match *slot {
+                Slot::Block(b, r, c) => self.a[b][2 * r + c] += v,
+                Slot::Right(b, r, j) => self.b[(2 * b + r) * p + j] += v,
+                Slot::Below(i, b, c) => self.c[(2 * b + c) * p + i] += v,
+                Slot::Border(i, j) => s[(i, j)] += v,
+                Slot::Outside => unreachable!(),
+            }
+        }
+        self.a_inv.clear();
+        for (b, a) in self.a.iter().enumerate() {
+            let det = a[0] * a[3] - a[1] * a[2];
+            if !(det.is_finite() && det != 0.0) {
+                return Err(BorderedLuError::SingularBlock { block: b });
+            }
+            self.a_inv
+                .push([a[3] / det, -a[1] / det, -a[2] / det, a[0] / det]);
+        }
+        // S = D - Σ_b C_b (A_b⁻¹ B_b)
+        let mut g = vec![0.0; 2 * p];
+        for b in 0..nb {
+            let ai = self.a_inv[b];
+            let (b0, b1) = (
+                &self.b[2 * b * p..(2 * b + 1) * p],
+                &self.b[(2 * b + 1) * p..(2 * b + 2) * p],
+            );
+            if b0.iter().chain(b1).all(|&x| x == 0.0) {
+                continue;
+            }
+            for j in 0..p {
+                g[j] = ai[0] * b0[j] + ai[1] * b1[j];
+                g[p + j] = ai[2] * b0[j] + ai[3] * b1[j];
+            }
+            let (c0, c1) = (
+                &self.c[2 * b * p..(2 * b + 1) * p],
+                &self.c[(2 * b + 1) * p..(2 * b + 2) * p],
+            );
+            for i in 0..p {
+                let (x0, x1) = (c0[i], c1[i]);
+                if x0 == 0.0 && x1 == 0.0 {
+                    continue;
+                }
+                for j in 0..p {
+                    s[(i, j)] -= x0 * g[j] + x1 * g[p + j];
+                }
+            }
+        }
+        self.s_lu = Some(s.partial_piv_lu());
+        Ok(())
+    }
+
+    /// `N x = r` (or `Nᵀ x = r`) in place.
+    fn solve(&self, x: &mut FaerVec<f64>, transpose: bool) -> Result<(), LaError> {
+        let lu = self.s_lu.as_ref().ok_or_else(|| {
+            LaError::Other(
+                self.failure
+                    .as_ref()
+                    .map_or_else(|| "bordered LU: not factored".into(), |e| e.to_string()),
+            )
+        })?;
+        let p = self.border.len();
+        // Nᵀ = [Aᵀ Cᵀ; Bᵀ Dᵀ]: the same elimination with B and C swapped
+        let (right, below) = if transpose {
+            (&self.c, &self.b)
+        } else {
+            (&self.b, &self.c)
+        };
+        let inv = |b: usize| {
+            let a = self.a_inv[b];
+            if transpose {
+                [a[0], a[2], a[1], a[3]]
+            } else {
+                a
+            }
+        };
+        let get = |x: &FaerVec<f64>, k: usize| if k == usize::MAX { 0.0 } else { x[k] };
+        // z_b = A_b⁻¹ r_b; r_D -= Σ_b C_b z_b
+        let mut z = vec![0.0; 2 * self.blocks.len()];
+        let mut rd = faer::Mat::<f64>::from_fn(p, 1, |i, _| x[self.border[i]]);
+        for (b, idx) in self.blocks.iter().enumerate() {
+            let a = inv(b);
+            let (r0, r1) = (get(x, idx[0]), get(x, idx[1]));
+            let (z0, z1) = (a[0] * r0 + a[1] * r1, a[2] * r0 + a[3] * r1);
+            z[2 * b] = z0;
+            z[2 * b + 1] = z1;
+            let (c0, c1) = (
+                &below[2 * b * p..(2 * b + 1) * p],
+                &below[(2 * b + 1) * p..(2 * b + 2) * p],
+            );
+            for i in 0..p {
+                rd[(i, 0)] -= c0[i] * z0 + c1[i] * z1;
+            }
+        }
+        if transpose {
+            lu.solve_transpose_in_place_with_conj(faer::Conj::No, rd.as_mut());
+        } else {
+            lu.solve_in_place_with_conj(faer::Conj::No, rd.as_mut());
+        }
+        // x_b = z_b - A_b⁻¹ B_b x_D
+        for (b, idx) in self.blocks.iter().enumerate() {
+            let a = inv(b);
+            let (b0, b1) = (
+                &right[2 * b * p..(2 * b + 1) * p],
+                &right[(2 * b + 1) * p..(2 * b + 2) * p],
+            );
+            let (mut y0, mut y1) = (0.0, 0.0);
+            for j in 0..p {
+                y0 += b0[j] * rd[(j, 0)];
+                y1 += b1[j] * rd[(j, 0)];
+            }
+            x[idx[0]] = z[2 * b] - (a[0] * y0 + a[1] * y1);
+            if idx[1] != usize::MAX {
+                x[idx[1]] = z[2 * b + 1] - (a[2] * y0 + a[3] * y1);
+            }
+        }
+        for (i, &k) in self.border.iter().enumerate() {
+            x[k] = rd[(i, 0)];
+        }
+        Ok(())
+    }
+}
+
+impl BorderedLu {
+    /// Takes `matrix` (its pattern: later ones share it) and finds where
+    /// each of its stored entries goes.
+    fn set_matrix(&mut self, matrix: FaerSparseMat<f64>) {
+        let at = self.places(matrix.nrows());
+        let (entries, _) = matrix.triplet_iter();
+        self.slots = entries
+            .map(|(r, c)| match (at[r], at[c]) {
+                ((true, b, i), (true, b2, j)) if b == b2 => Slot::Block(b, i, j),
+                ((true, b, i), (false, j, _)) => Slot::Right(b, i, j),
+                ((false, i, _), (true, b, j)) => Slot::Below(i, b, j),
+                ((false, i, _), (false, j, _)) => Slot::Border(i, j),
+                _ => Slot::Outside,
+            })
+            .collect();
+        self.matrix = Some(matrix);
+        self.s_lu = None;
+    }
+}
+
+impl LinearSolver<FaerSparseMat<f64>> for BorderedLu {
+    fn set_sparsity<
+        C: LaLinearOp<V = FaerVec<f64>, T = f64, M = FaerSparseMat<f64>, C = FaerContext>,
+    >(
+        &mut self,
+        op: &C,
+    ) {
+        self.set_matrix(FaerSparseMat::new_from_sparsity(
+            op.nrows(),
+            op.ncols(),
+            op.sparsity(),
+            *op.context(),
+        ));
+    }
+
+    fn set_linearisation<
+        C: LaLinearOp<V = FaerVec<f64>, T = f64, M = FaerSparseMat<f64>, C = FaerContext>,
+    >(
+        &mut self,
+        op: &C,
+    ) {
+        if let Some(m) = self.matrix.as_mut() {
+            op.matrix_inplace(m);
+        }
+        self.s_lu = None;
+        self.failure = self.factor().err();
+    }
+
+    fn solve_in_place(&self, x: &mut FaerVec<f64>) -> Result<(), LaError> {
+        self.solve(x, false)
+    }
+
+    fn solve_transpose_in_place(&self, x: &mut FaerVec<f64>) -> Result<(), LaError> {
+        self.solve(x, true)
+    }
+}
+
+/// A contact switch located by [`run_bdf`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Switch {
+    pub t_s: f64,
+    pub point: usize,
+    /// Whether the point bears its force from `t_s` on.
+    pub on: bool,
+}
+
+/// A run of [`run_bdf`]: its outputs, what it took and its switches.
+#[derive(Debug, Clone)]
+pub struct ImplicitRun {
+    pub run: BaselineRun,
+    pub stats: ImplicitStats,
+    pub switches: Vec<Switch>,
+}
+
+/// What an implicit run took.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImplicitStats {
+    /// Evaluations of the right-hand side.
+    pub evaluations: u64,
+    pub accepted: u64,
+    /// Steps rejected by the error test.
+    pub rejected: u64,
+    /// Factorisations of the Newton matrix.
+    pub factorisations: u64,
+    /// Contact switches located (each a restart; simultaneous ones count
+    /// once a point).
+    pub switches: u64,
+}
+
+/// Largest number of located switches of one run: a run whose contact
+/// chatters (switches back and forth without advancing) stops with an
+/// error.
+const MAX_SWITCHES: u64 = 10_000_000;
+
+/// Adaptive variable-order BDF (`diffsol::Bdf`, orders 1 to 5, the method
+/// of scipy's `solve_ivp(method="BDF")`) on the penalty equations of
+/// stiffness `k_n_m` (N/m) and its critical dampers, written in each mode
+/// (a fixed set `A` of points bearing their force) as the index-1 DAE
+///
+/// `η_s'' = -ω_s² η_s - 2ξ_s ω_s η_s' + Σ_i b_s[i] w_i`, `J_i' = w_i`,
+/// `0 = [i∈A] g_i - w_i`, `g_i = k (r_i - u_i) + c_i (ṙ_i - u̇_i)`,
+///
+/// its switches (the zeros of each `g_i`) located as events; at relative
+/// tolerance `rtol` and absolute `rtol` × 1e-3 (as `run_dopri`), the
+/// forces `w` (algebraic) out of the error test, as IDA's suppressed
+/// algebraic variables; recorded every `dt_out_s` to `duration_s`: the
+/// displacements and the step means of the force (impulse differences).
+///
+/// Tuned as the equations allow: the Jacobian is analytic and, within a
+/// mode, exact and constant, so it is re-evaluated only at the switches
+/// and the Newton matrix refactored only when the step size or order
+/// changes it (diffsol's 30 % rule) or a step fails; the Newton matrix,
+/// 2×2 blocks per mode bordered by the `P` force rows and columns, is
+/// factored by block elimination and a dense `P × P` Schur complement.
+/// Each switch is a root of the functions `σ_i g_i` (`σ_i = +1` active,
+/// `-1` inactive), found by diffsol on the BDF interpolant: the state is
+/// moved back to it, every point whose function is not positive there
+/// changes mode, the forces and `y'` are set to the new mode's, the
+/// Jacobian is re-evaluated and BDF restarts at order 1 with a step
+/// re-estimated for the new mode (diffsol's initial step size rule).
+pub fn run_bdf(
+    scene: &Scene,
+    k_n_m: f64,
+    rtol: f64,
+    dt_out_s: f64,
+    duration_s: f64,
+    cache: &ModeCache,
+) -> Result<ImplicitRun, BenchError> {
+    let osc = Oscillators::new(scene, cache)?;
+    let road = tirecontact_io::readers::road::load(&scene.road, scene.base_dir.as_deref())?;
+    let (p, ns) = (osc.p, osc.ns());
+    let sys = Switched::new(&osc, scene, &road, k_n_m);
+    let (n, m) = (sys.len(), sys.forces_at());
+    // every point active while diffsol finds the Jacobian's sparsity
+    sys.active.borrow_mut().fill(true);
+    let mut problem = OdeBuilder::<FaerSparseMat<f64>>::new()
+        .rtol(rtol)
+        .atol((0..n).map(|k| if k < m { rtol * 1e-3 } else { f64::MAX }))
+        .rhs_implicit(
+            |y: &[f64], _: &[f64], t: f64, f: &mut [f64]| sys.rhs(t, y, f),
+            |_: &[f64], _: &[f64], _: f64, v: &[f64], out: &mut [f64]| sys.jac_mul(v, out),
+        )
+        .mass(|v: &[f64], _: &[f64], _: f64, beta: f64, y: &mut [f64]| sys.mass(v, beta, y))
+        .init(|_: &[f64], _: f64, y: &mut [f64]| y.fill(0.0), n)
+        .root(
+            |y: &[f64], _: &[f64], t: f64, out: &mut [f64]| sys.roots(t, y, out),
+            p,
+        )
+        .build()?;
+    problem.ode_options.max_number_timesteps = usize::MAX;
+    problem.ode_options.update_jacobian_after_steps = usize::MAX;
+    problem.ode_options.update_rhs_jacobian_after_steps = usize::MAX;
+    sys.start(0.0, &vec![0.0; n]);
+    let state = problem.bdf_state::<FaerSparseLU<f64>>()?;
+    let mut solver: Bdf<'_, _, BorderedLu> =
+        Bdf::new(&problem, state, BorderedLu::for_switched(ns, p))?;
+    solver.set_stop_time(duration_s)?;
+
+    let n_out = (duration_s / dt_out_s).round() as usize;
+    let mut out = BaselineRun {
+        t_s: Vec::with_capacity(n_out),
+        u_m: Vec::with_capacity(n_out),
+        q_n: Vec::with_capacity(n_out),
+        overflow_t_s: None,
+    };
+    let mut recorder = Recorder {
+        osc: &osc,
+        dt_out_s,
+        n_out,
+        next: 1,
+        y: solver.state().y.clone(),
+        impulse: vec![0.0; p],
+        eta: vec![0.0; ns],
+    };
+    let (mut y, mut f, mut roots) = (vec![0.0; n], vec![0.0; n], vec![0.0; p]);
+    let mut switches = Vec::new();
+    loop {
+        let reason = solver.step()?;
+        let t_end = match reason {
+            OdeSolverStopReason::RootFound(t, _) => t,
+            _ => solver.state().t,
+        };
+        recorder.record(&solver, t_end, &mut out)?;
+        match reason {
+            OdeSolverStopReason::TstopReached => break,
+            OdeSolverStopReason::InternalTimestep => {
+                let st = solver.state();
+                for k in 0..n {
+                    y[k] = st.y[k];
+                }
+                sys.settle(st.t, &y);
+            }
+            OdeSolverStopReason::RootFound(t, idx) => {
+                if switches.len() as u64 >= MAX_SWITCHES {
+                    return Err(BenchError::Chattering { t_s: t });
+                }
+                solver.state_mut_back(t)?;
+                for k in 0..n {
+                    y[k] = solver.state().y[k];
+                }
+                sys.roots(t, &y, &mut roots);
+                for i in 0..p {
+                    if roots[i] <= 0.0 || i == idx {
+                        let on = sys.switch(i, t, &y);
+                        switches.push(Switch {
+                            t_s: t,
+                            point: i,
+                            on,
+                        });
+                    }
+                }
+                sys.consistent_forces(t, &mut y);
+                sys.rhs(t, &y, &mut f);
+                {
+                    let st = solver.state_mut();
+                    for k in 0..n {
+                        st.y[k] = y[k];
+                        // the forces' rates jump at a switch: the restart's
+                        // first-order predictor takes them as zero
+                        st.dy[k] = if k < m { f[k] } else { 0.0 };
+                    }
+                }
+                // the new mode's Jacobian, from which the Newton matrix is
+                // rebuilt at the restart, and a first step for it
+                drop(solver.jacobian());
+                let problem = solver.problem();
+                solver
+                    .state_mut()
+                    .set_step_size(1.0, &problem.atol, problem.rtol, &problem.eqn, 1);
+            }
+        }
+    }
+    let st = solver.get_statistics();
+    Ok(ImplicitRun {
+        run: out,
+        stats: ImplicitStats {
+            evaluations: sys.evaluations.get(),
+            accepted: st.number_of_steps as u64,
+            rejected: st.number_of_error_test_failures as u64,
+            factorisations: st.number_of_linear_solver_setups as u64,
+            switches: switches.len() as u64,
+        },
+        switches,
+    })
+}
+
+/// The outputs of a run every `dt_out_s`, from the BDF interpolant.
+struct Recorder<'a> {
+    osc: &'a Oscillators,
+    dt_out_s: f64,
+    n_out: usize,
+    /// The next output's index (its time `next · dt_out_s`).
+    next: usize,
+    y: FaerVec<f64>,
+    /// The impulses at the last output (N·s).
+    impulse: Vec<f64>,
+    eta: Vec<f64>,
+}
+
+impl Recorder<'_> {
+    /// The outputs at or before `t_end`, the end of the last step (or a
+    /// root inside it).
+    fn record<'a, S, E>(
+        &mut self,
+        solver: &S,
+        t_end: f64,
+        out: &mut BaselineRun,
+    ) -> Result<(), BenchError>
+    where
+        E: diffsol::OdeEquations<V = FaerVec<f64>, T = f64> + 'a,
+        S: OdeSolverMethod<'a, E>,
+    {
+        let (p, ns) = (self.osc.p, self.osc.ns());
+        while self.next <= self.n_out {
+            let t = self.next as f64 * self.dt_out_s;
+            if t > t_end * (1.0 + 1e-12) {
+                break;
+            }
+            solver.interpolate_inplace(t.min(t_end), &mut self.y)?;
+            for s in 0..ns {
+                self.eta[s] = self.y[s];
+            }
+            let mut u = vec![0.0; p];
+            self.osc.displacement(&self.eta, &mut u);
+            if out.overflow_t_s.is_none() && u.iter().any(|x| !x.is_finite()) {
+                out.overflow_t_s = Some(t);
+            }
+            let q = (0..p)
+                .map(|i| {
+                    let j = self.y[2 * ns + i];
+                    let q = (j - self.impulse[i]) / self.dt_out_s;
+                    self.impulse[i] = j;
+                    q
+                })
+                .collect();
+            out.t_s.push(t);
+            out.u_m.push(u);
+            out.q_n.push(q);
+            self.next += 1;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::bench::scenes::many_points;
+    use crate::analysis::bench::work_precision::{rms_rel, run_stable, sample};
+    use diffsol::Vector;
+    use tirecontact_core::solver::simulation::SolverOptions;
+    use tirecontact_io::scene::{ContactScheme, Tyre};
+
+    /// A bordered block-diagonal matrix of `ns` 2×2 blocks, `p` 1×1 blocks
+    /// and a border of `p` (the layout of the Newton matrix of
+    /// [`Switched`]), entries from a fixed sequence, and its dense copy.
+    fn bordered(
+        ns: usize,
+        p: usize,
+        extra: Option<(usize, usize)>,
+    ) -> (FaerSparseMat<f64>, faer::Mat<f64>) {
+        let n = 2 * ns + 2 * p;
+        let mut entries = Vec::new();
+        let mut k = 0.0f64;
+        let mut next = || {
+            k += 1.0;
+            (1.7 * k).sin()
+        };
+        for s in 0..ns {
+            for (r, c) in [(s, s), (s, ns + s), (ns + s, s), (ns + s, ns + s)] {
+                let diag = if r == c { 4.0 } else { 0.0 };
+                entries.push((r, c, diag + next()));
+            }
+            for i in 0..p {
+                let w = 2 * ns + p + i;
+                entries.push((ns + s, w, next()));
+                entries.push((w, s, next()));
+                entries.push((w, ns + s, next()));
+            }
+        }
+        for i in 0..p {
+            let (j, w) = (2 * ns + i, 2 * ns + p + i);
+            entries.push((j, j, 3.0 + next()));
+            entries.push((j, w, next()));
+            for l in 0..p {
+                let wl = 2 * ns + p + l;
+                entries.push((w, wl, if l == i { 5.0 } else { 0.0 } + next()));
+            }
+        }
+        if let Some((r, c)) = extra {
+            entries.push((r, c, 1.0));
+        }
+        let mut dense = faer::Mat::<f64>::zeros(n, n);
+        for &(r, c, v) in &entries {
+            dense[(r, c)] += v;
+        }
+        let sparse = FaerSparseMat::try_from_triplets(
+            n,
+            n,
+            entries.iter().map(|&(r, c, _)| (r, c)).collect(),
+            entries.iter().map(|&(_, _, v)| v).collect(),
+            FaerContext::default(),
+        )
+        .unwrap();
+        (sparse, dense)
+    }
+
+    /// The block elimination solves `N x = b` and `Nᵀ x = b` as faer's
+    /// dense LU does, to round-off.
+    #[test]
+    fn bordered_lu_solves_as_a_dense_lu() {
+        use faer::linalg::solvers::Solve;
+        let (ns, p) = (5, 3);
+        let (sparse, dense) = bordered(ns, p, None);
+        let n = dense.nrows();
+        let mut lu = BorderedLu::for_switched(ns, p);
+        lu.set_matrix(sparse);
+        lu.factor().unwrap();
+        let b: Vec<f64> = (0..n).map(|i| (0.3 * i as f64).cos()).collect();
+        let bm = faer::Mat::from_fn(n, 1, |i, _| b[i]);
+        let dense_lu = dense.partial_piv_lu();
+        for transpose in [false, true] {
+            let want = if transpose {
+                dense.transpose().partial_piv_lu().solve(&bm)
+            } else {
+                dense_lu.solve(&bm)
+            };
+            let mut x = FaerVec::from_vec(b.clone(), FaerContext::default());
+            lu.solve(&mut x, transpose).unwrap();
+            for i in 0..n {
+                assert!(
+                    (x[i] - want[(i, 0)]).abs() < 1e-12 * (1.0 + want[(i, 0)].abs()),
+                    "transpose {transpose}: x[{i}] = {} against {}",
+                    x[i],
+                    want[(i, 0)]
+                );
+            }
+        }
+    }
+
+    /// An entry coupling two modes is outside the form: the solve says so
+    /// instead of dropping it.
+    #[test]
+    fn bordered_lu_refuses_a_matrix_outside_its_form() {
+        let (ns, p) = (4, 2);
+        let (sparse, _) = bordered(ns, p, Some((0, 1)));
+        let mut lu = BorderedLu::for_switched(ns, p);
+        lu.set_matrix(sparse);
+        let err = lu.factor().unwrap_err();
+        assert!(matches!(err, BorderedLuError::OutsideForm { .. }), "{err}");
+        lu.failure = Some(err);
+        let mut x = FaerVec::from_vec(vec![1.0; 2 * ns + 2 * p], FaerContext::default());
+        assert!(lu.solve(&mut x, false).is_err());
+    }
+
+    /// One point on one mode, 0.5 mm above a 1 mm, 0.2 m sine road at
+    /// 20 m/s, no ramp: until it first touches, the tyre is at rest, so its
+    /// penalty force would be `k r(t) + c ṙ(t)` with `r(t) = a sin(2π v t / λ) - h`.
+    /// The first switch is that function's first zero (found here by
+    /// bisection), to far below any step size.
+    #[test]
+    fn the_first_landing_is_located_at_the_zero_of_the_road_force() {
+        let mut scene = many_points(1, 1);
+        let (a, lambda, v, h) = (0.001, 0.2, 20.0, 0.0005);
+        scene.points[0] = tirecontact_io::scene::Point {
+            x_m: 0.0,
+            y_m: 0.0,
+            h_m: h,
+        };
+        scene.ramp_s = 0.0;
+        let k = 1e10;
+        // the point's mass 1 / φ², φ its modal amplitude (unit modal mass)
+        let phi = match &scene.tyre {
+            Tyre::Modal { modes } => modes[0].shape[0],
+            _ => unreachable!(),
+        };
+        let c = 2.0 * (k / (phi * phi)).sqrt();
+        let w = std::f64::consts::TAU * v / lambda;
+        let force = |t: f64| k * (a * (w * t).sin() - h) + c * a * w * (w * t).cos();
+        assert!(force(0.0) < 0.0);
+        let mut hi = 1e-6;
+        while force(hi) < 0.0 {
+            hi += 1e-6;
+        }
+        let mut lo = hi - 1e-6;
+        for _ in 0..80 {
+            let mid = 0.5 * (lo + hi);
+            if force(mid) < 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let run = run_bdf(&scene, k, 1e-6, 1e-4, 0.01, &ModeCache::new()).unwrap();
+        let first = run.switches[0];
+        assert!(first.on && first.point == 0, "{first:?}");
+        assert!(
+            (first.t_s - hi).abs() < 1e-10,
+            "switch at {} s, the road force crosses zero at {hi} s",
+            first.t_s
+        );
+        // at rest until then
+        for (t, u) in run.run.t_s.iter().zip(&run.run.u_m) {
+            if *t < hi {
+                assert_eq!(u[0], 0.0, "moved at {t} s");
+            }
+        }
+    }
+
+    /// The located reference of the single-mode preset (dt = 1 µs) and a
+    /// BDF penalty run's displacement error against it (RMS relative on
+    /// the 40 µs grid), with the switch times of the run.
+    fn single_mode_errors(ks: &[f64], rtol: f64) -> (Vec<f64>, Vec<Vec<Switch>>, BaselineRun) {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../presets/single_mode.ron");
+        let scene = Scene::load(&path).unwrap();
+        let (dur, dt, grid) = (0.2, 1e-6, 4e-5);
+        let cache = ModeCache::new();
+        let (reference, _, _) = run_stable(
+            &scene,
+            ContactScheme::Located,
+            dt,
+            dur,
+            SolverOptions::default(),
+            &cache,
+        )
+        .unwrap();
+        let r = sample(
+            &reference.t_s,
+            &reference.u_m,
+            &reference.q_n,
+            grid,
+            1e-3,
+            dt,
+            dur,
+        );
+        let mut errors = Vec::new();
+        let mut switches = Vec::new();
+        for &k in ks {
+            let run = run_bdf(&scene, k, rtol, grid, dur, &cache).unwrap();
+            let s = sample(
+                &run.run.t_s,
+                &run.run.u_m,
+                &run.run.q_n,
+                grid,
+                1e-3,
+                grid,
+                dur,
+            );
+            errors.push(rms_rel(&s.u, &r.u));
+            switches.push(run.switches);
+        }
+        (errors, switches, reference)
+    }
+
+    /// As the penalty stiffens, the BDF runs converge to the rigid contact
+    /// of the located solver (the penalty error falls as about `k^-1/2`),
+    /// to 4e-6 at 1e12 N/m; and their contact switches fall where the
+    /// located solver's contact begins and ends (its steps of 1 µs; the
+    /// penalty's own offset is about `√(m/k)`, 3 µs).
+    #[test]
+    fn bdf_converges_to_the_located_solution_and_its_switches() {
+        let (errors, switches, reference) = single_mode_errors(&[1e8, 1e10, 1e12], 1e-8);
+        assert!(
+            errors[1] * 20.0 < errors[0] && errors[2] * 20.0 < errors[1] && errors[2] < 1e-5,
+            "errors at k = 1e8, 1e10, 1e12 N/m: {errors:?}"
+        );
+        // the located run's contact changes: its step-mean force turning
+        // positive (a landing: an impact or a force) or zero (leaving)
+        let mut changes = Vec::new();
+        let mut on = false;
+        for (k, q) in reference.q_n.iter().enumerate() {
+            if (q[0] > 0.0) != on {
+                on = !on;
+                // the step's start: the change falls inside the step
+                changes.push((reference.t_s[k] - 1e-6, on));
+            }
+        }
+        let stiff = &switches[2];
+        assert_eq!(
+            stiff.len(),
+            changes.len(),
+            "BDF switches {stiff:?}, located changes {changes:?}"
+        );
+        for (s, &(t, on)) in stiff.iter().zip(&changes) {
+            assert_eq!(s.on, on, "{s:?} against {t} s");
+            assert!(
+                (s.t_s - t).abs() < 1e-5,
+                "switch {s:?}, located change at {t} s"
+            );
+        }
+    }
+}

@@ -1,0 +1,922 @@
+//! Animation frames of the scene view for slides: numbered PNGs
+//! `frame_00000.png`, … of the road moving under the contact line and the
+//! displaced points coloured by contact state, with the contact phase of each
+//! point written above it. Drawn headlessly with plotters (no GPU, no egui),
+//! by re-running the scene from t = 0: the frames hold exactly the run.
+//!
+//! Frame `k` shows simulated time `t0 + k / (fps × slow_motion)`: with
+//! `slow_motion = 20`, one second of video shows 50 ms of the run. There are
+//! `round((t1 - t0) × slow_motion × fps)` frames.
+
+use super::figures::register_fonts;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use tirecontact_core::Simulation;
+use tirecontact_core::model::road::Road;
+use tirecontact_core::model::road::ramp;
+use tirecontact_core::solver::drive::{Probe, Watch, run_to_end};
+use tirecontact_core::solver::error::RunError;
+use tirecontact_core::solver::phase::{ContactPhase, PhaseTracker};
+
+/// Most frames one export may write.
+pub const MAX_FRAMES: u64 = 100_000;
+
+/// What plotters reports when a frame cannot be drawn.
+pub type DrawError = DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>;
+
+/// Why frames cannot be exported: a setting (its field, value and what was
+/// expected), the folder, a frame that cannot be drawn or written, or the
+/// run that drives the export.
+#[derive(Debug, thiserror::Error)]
+pub enum FramesError {
+    /// A field of [`FrameSettings`] out of range.
+    #[error("{field} = {value}: expected {expected}")]
+    Setting {
+        field: &'static str,
+        value: f64,
+        expected: String,
+    },
+    #[error("(t1 - t0) × slow_motion × fps = {frames} frames: expected 1..={MAX_FRAMES}")]
+    FrameCount { frames: u64 },
+    /// The folder holds frames of an earlier export.
+    #[error(
+        "{} already holds {count} frames of an earlier export (frame_*.png): expected a new or empty folder, or the old frames cleared",
+        .dir.display()
+    )]
+    OldFrames {
+        /// The folder, absolute.
+        dir: PathBuf,
+        count: usize,
+    },
+    /// A file or the folder could not be removed, created or written.
+    #[error("{}: {source}", .path.display())]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{}: {source}", .path.display())]
+    Draw {
+        path: PathBuf,
+        #[source]
+        source: DrawError,
+    },
+    #[error("{}: frame buffer of {width}x{height} px", .path.display())]
+    Buffer {
+        path: PathBuf,
+        width: u32,
+        height: u32,
+    },
+    #[error("{}: {source}", .path.display())]
+    Image {
+        path: PathBuf,
+        #[source]
+        source: image::ImageError,
+    },
+    /// The export's cancel flag was set.
+    #[error("cancelled after {done} of {total} frames")]
+    Cancelled { done: u64, total: u64 },
+    /// The run that drives the export stopped (a step that cannot be
+    /// solved).
+    #[error(transparent)]
+    Run(RunError),
+}
+
+/// A frames export that stopped: its own error when a frame stopped it
+/// (a cancel, a frame that cannot be written), else the run's.
+impl From<RunError> for FramesError {
+    fn from(e: RunError) -> Self {
+        match e {
+            RunError::Output(io) => io
+                .downcast::<FramesError>()
+                .unwrap_or_else(|io| FramesError::Run(RunError::Output(io))),
+            e => FramesError::Run(e),
+        }
+    }
+}
+
+/// What to export.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameSettings {
+    /// First frame's simulated time (s).
+    pub t0_s: f64,
+    /// End of the interval (s), exclusive.
+    pub t1_s: f64,
+    /// Frames per second of the video (Hz).
+    pub fps: f64,
+    /// Video seconds per simulated second (1 = real time, 20 = 0.05x).
+    pub slow_motion: f64,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl FrameSettings {
+    /// Number of frames: `round((t1 - t0) × slow_motion × fps)`.
+    pub fn frame_count(&self) -> u64 {
+        let n = ((self.t1_s - self.t0_s) * self.slow_motion * self.fps).round();
+        if n.is_finite() && n > 0.0 {
+            n as u64
+        } else {
+            0
+        }
+    }
+
+    /// Simulated time between frames (s).
+    pub fn frame_dt_s(&self) -> f64 {
+        1.0 / (self.fps * self.slow_motion)
+    }
+
+    /// Simulated time of frame `k` (s).
+    pub fn frame_time_s(&self, k: u64) -> f64 {
+        self.t0_s + k as f64 * self.frame_dt_s()
+    }
+
+    /// Refuses settings that cannot be exported, naming field, value and expectation.
+    pub fn check(&self, duration_s: f64) -> Result<(), FramesError> {
+        let bad = |field: &'static str, value: f64, expected: &str| {
+            Err(FramesError::Setting {
+                field,
+                value,
+                expected: expected.to_string(),
+            })
+        };
+        if !(self.fps.is_finite() && self.fps > 0.0 && self.fps <= 240.0) {
+            return bad("fps", self.fps, "a frame rate in (0, 240] Hz");
+        }
+        if !(self.slow_motion.is_finite() && self.slow_motion > 0.0 && self.slow_motion <= 1e6) {
+            return bad(
+                "slow_motion",
+                self.slow_motion,
+                "video seconds per simulated second in (0, 1e6]",
+            );
+        }
+        if !(self.t0_s.is_finite() && self.t0_s >= 0.0) {
+            return bad("t0_s", self.t0_s, "a start time >= 0 s");
+        }
+        if !(self.t1_s.is_finite() && self.t1_s > self.t0_s && self.t1_s <= duration_s + 1e-12) {
+            return bad(
+                "t1_s",
+                self.t1_s,
+                &format!(
+                    "an end time after t0 = {} s and at most the scene's duration {duration_s} s",
+                    self.t0_s
+                ),
+            );
+        }
+        for (f, v) in [("width", self.width), ("height", self.height)] {
+            if !(200..=4000).contains(&v) {
+                return bad(f, f64::from(v), "200..=4000 px");
+            }
+        }
+        let n = self.frame_count();
+        if n == 0 || n > MAX_FRAMES {
+            return Err(FramesError::FrameCount { frames: n });
+        }
+        Ok(())
+    }
+}
+
+/// The road as the tyre sees it at the simulation's time, `n + 1` points
+/// `[x (m), height (m)]` over `[x0, x1]`: `w z(x + rolled) + (1 − w) h(x)`,
+/// the ramp weight `w` blending the point heights `h` (interpolated between
+/// the points) into the road profile `z` (shared by the scene view and the
+/// animation frames; positions off a measured profile are left out).
+pub fn road_in_tyre_frame(sim: &Simulation, x0: f64, x1: f64, n: usize) -> Vec<[f64; 2]> {
+    road_in_tyre_frame_at(sim, x0, x1, n, None)
+}
+
+/// [`road_in_tyre_frame`] under one row across the tread (`row_y_m`): the
+/// road surface at that `y` ([`RoadProfile::sample_at`]) and the heights
+/// of that row's points (`None`: the centreline `y = 0` and every point).
+///
+/// [`RoadProfile::sample_at`]: tirecontact_core::model::road::RoadProfile::sample_at
+pub fn road_in_tyre_frame_at(
+    sim: &Simulation,
+    x0: f64,
+    x1: f64,
+    n: usize,
+    row_y_m: Option<f64>,
+) -> Vec<[f64; 2]> {
+    let scene = sim.problem();
+    let (w, _) = ramp(sim.time_s(), scene.ramp_s);
+    let mut sorted: Vec<(f64, f64)> = scene
+        .points
+        .iter()
+        .filter(|p| row_y_m.is_none_or(|y| p.y_m == y))
+        .map(|p| (p.x_m, p.h_m))
+        .collect();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let h_at = |x: f64| -> f64 {
+        match sorted.iter().position(|p| p.0 >= x) {
+            None => sorted.last().map_or(0.0, |p| p.1),
+            Some(0) => sorted[0].1,
+            Some(k) => {
+                let (a, b) = (sorted[k - 1], sorted[k]);
+                a.1 + (b.1 - a.1) * (x - a.0) / (b.0 - a.0)
+            }
+        }
+    };
+    let n = n.max(1);
+    (0..=n)
+        .filter_map(|k| {
+            let x = x0 + (x1 - x0) * k as f64 / n as f64;
+            let z = match row_y_m {
+                Some(y) => sim.road_profile().sample_at(x + sim.rolled_m(), y),
+                None => sim.road_profile().sample(x + sim.rolled_m()),
+            }
+            .ok()?
+            .0;
+            Some([x, w * z + (1.0 - w) * h_at(x)])
+        })
+        .collect()
+}
+
+/// Path of frame `k` in `dir`.
+pub fn frame_path(dir: &Path, k: u64) -> PathBuf {
+    dir.join(format!("frame_{k:05}.png"))
+}
+
+/// Fixed drawing ranges of a scene for every frame: x (m) and height (mm).
+struct Extents {
+    x0: f64,
+    x1: f64,
+    y_mm: f64,
+}
+
+/// The drawn window: the points with a margin of the road's longest
+/// wavelength (`road`, the scene's description of it).
+fn extents(sim: &Simulation, road: &Road) -> Extents {
+    let scene = sim.problem();
+    let lo = scene
+        .points
+        .iter()
+        .map(|p| p.x_m)
+        .fold(f64::INFINITY, f64::min);
+    let hi = scene
+        .points
+        .iter()
+        .map(|p| p.x_m)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let lambda = road.drawn_wavelength_m();
+    let margin = (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05);
+    let hmax = scene
+        .points
+        .iter()
+        .map(|p| p.h_m.abs())
+        .fold(sim.road_profile().scale_m(), f64::max)
+        .max(1e-6);
+    Extents {
+        x0: lo - margin,
+        x1: hi + margin,
+        y_mm: 2.5 * hmax * 1e3,
+    }
+}
+
+const ROAD: RGBColor = RGBColor(140, 86, 75);
+const CONTACT: RGBColor = RGBColor(0, 158, 115);
+const FLIGHT: RGBColor = RGBColor(213, 94, 0);
+const EVENT: RGBColor = RGBColor(204, 0, 102);
+
+/// Each frame is drawn this many times wider and higher, then scaled down:
+/// plotters draws lines without antialiasing, and the sloped road line of
+/// a frame drawn at its size was a staircase.
+pub const SUPERSAMPLE: u32 = 2;
+
+/// Draws the current state of `sim` as one PNG at `path`, `width × height`
+/// px (drawn at [`SUPERSAMPLE`] times the size and filtered down).
+fn draw_frame(
+    sim: &Simulation,
+    phases: &PhaseTracker,
+    ext: &Extents,
+    path: &Path,
+    width: u32,
+    height: u32,
+) -> Result<(), FramesError> {
+    let draw = |source| FramesError::Draw {
+        path: path.to_path_buf(),
+        source,
+    };
+    let (w, h) = (width * SUPERSAMPLE, height * SUPERSAMPLE);
+    let mut rgb = vec![0u8; w as usize * h as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+        draw_frame_on(&root, sim, phases, ext, w, h).map_err(draw)?;
+        root.present().map_err(draw)?;
+    }
+    let big = image::RgbImage::from_raw(w, h, rgb).ok_or_else(|| FramesError::Buffer {
+        path: path.to_path_buf(),
+        width: w,
+        height: h,
+    })?;
+    let small = image::imageops::resize(&big, width, height, image::imageops::FilterType::Triangle);
+    small.save(path).map_err(|source| FramesError::Image {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// The chart of a frame: linear x (m) and height (mm) axes.
+type FrameChart<'a, 'b> = ChartContext<
+    'a,
+    BitMapBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// Sizes (px) of a frame's text, marks and lines: `s` px at 720 px (the
+/// frame's smaller side), times `scale`.
+fn px(scale: f64) -> impl Fn(f64) -> i32 + Copy {
+    move |s: f64| (s * scale).round() as i32
+}
+
+/// Draws the current state of `sim` on `root` (`width × height` px).
+fn draw_frame_on(
+    root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    sim: &Simulation,
+    phases: &PhaseTracker,
+    ext: &Extents,
+    width: u32,
+    height: u32,
+) -> Result<(), DrawError> {
+    register_fonts();
+    let scene = sim.problem();
+    let t = sim.time_s();
+    let scale = (f64::from(height.min(width)) / 720.0).clamp(0.5, 4.0);
+    let fs = px(scale);
+    root.fill(&WHITE)?;
+    let caption = format!(
+        "{} — t = {:.4} s, V = {:.1} km/h",
+        scene.name,
+        t,
+        scene.speed_mps * 3.6
+    );
+    let mut chart = ChartBuilder::on(root)
+        .caption(caption, ("sans-serif", fs(26.0)))
+        .margin(fs(12.0))
+        .x_label_area_size(fs(55.0))
+        .y_label_area_size(fs(80.0))
+        .build_cartesian_2d(ext.x0..ext.x1, -ext.y_mm..ext.y_mm)?;
+    chart
+        .configure_mesh()
+        .x_desc("position along the contact line x (m)")
+        .y_desc("height (mm)")
+        .label_style(("sans-serif", fs(18.0)))
+        .axis_desc_style(("sans-serif", fs(20.0)))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()?;
+    draw_road(&mut chart, sim, ext, scale)?;
+    let disp = draw_tyre(&mut chart, sim, scale)?;
+    draw_points(&mut chart, sim, &disp, scale)?;
+    draw_phase_labels(&mut chart, phases, t, &disp, ext, height, scale)?;
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .legend_area_size(fs(30.0))
+        .label_font(("sans-serif", fs(18.0)))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.3))
+        .draw()?;
+    Ok(())
+}
+
+/// The road under the tyre ([`road_in_tyre_frame`]), filled down to the
+/// bottom of the frame.
+fn draw_road(
+    chart: &mut FrameChart<'_, '_>,
+    sim: &Simulation,
+    ext: &Extents,
+    scale: f64,
+) -> Result<(), DrawError> {
+    let fs = px(scale);
+    let road: Vec<(f64, f64)> = road_in_tyre_frame(sim, ext.x0, ext.x1, 600)
+        .into_iter()
+        .map(|[x, y]| (x, 1e3 * y))
+        .collect();
+    let floor = -ext.y_mm;
+    chart.draw_series(std::iter::once(Polygon::new(
+        road.iter()
+            .copied()
+            .chain([(ext.x1, floor), (ext.x0, floor)])
+            .collect::<Vec<_>>(),
+        ROAD.mix(0.25).filled(),
+    )))?;
+    chart
+        .draw_series(LineSeries::new(road, ROAD.stroke_width(fs(3.0) as u32)))?
+        .label("road (moving left)")
+        .legend(move |(x, y)| {
+            PathElement::new(
+                vec![(x, y), (x + fs(20.0), y)],
+                ROAD.stroke_width(fs(3.0) as u32),
+            )
+        });
+    Ok(())
+}
+
+/// The tyre's contact line, undeformed and displaced. Returns the displaced
+/// points `(x (m), height (mm), index)`, by position.
+fn draw_tyre(
+    chart: &mut FrameChart<'_, '_>,
+    sim: &Simulation,
+    scale: f64,
+) -> Result<Vec<(f64, f64, usize)>, DrawError> {
+    let fs = px(scale);
+    let scene = sim.problem();
+    let mut und: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, 1e3 * p.h_m)).collect();
+    und.sort_by(|a, b| a.0.total_cmp(&b.0));
+    chart
+        .draw_series(LineSeries::new(und, BLACK.mix(0.4).stroke_width(1)))?
+        .label("undeformed tyre")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + fs(20.0), y)], BLACK.mix(0.4)));
+    let u = sim.displacement_m();
+    let mut disp: Vec<(f64, f64, usize)> = scene
+        .points
+        .iter()
+        .zip(u)
+        .enumerate()
+        .map(|(i, (p, u))| (p.x_m, 1e3 * (p.h_m + u), i))
+        .collect();
+    disp.sort_by(|a, b| a.0.total_cmp(&b.0));
+    chart
+        .draw_series(LineSeries::new(
+            disp.iter().map(|d| (d.0, d.1)),
+            RGBColor(60, 60, 60).stroke_width(fs(2.0) as u32),
+        ))?
+        .label("tyre (displaced)")
+        .legend(move |(x, y)| {
+            PathElement::new(
+                vec![(x, y), (x + fs(20.0), y)],
+                RGBColor(60, 60, 60).stroke_width(fs(2.0) as u32),
+            )
+        });
+    Ok(disp)
+}
+
+/// The displaced points `disp`, coloured by contact state.
+fn draw_points(
+    chart: &mut FrameChart<'_, '_>,
+    sim: &Simulation,
+    disp: &[(f64, f64, usize)],
+    scale: f64,
+) -> Result<(), DrawError> {
+    let fs = px(scale);
+    let contact = sim.in_contact();
+    let r = fs(9.0);
+    for (on, name, color) in [(true, "in contact", CONTACT), (false, "in flight", FLIGHT)] {
+        chart
+            .draw_series(
+                disp.iter()
+                    .filter(|d| contact.get(d.2).copied().unwrap_or(false) == on)
+                    .map(|d| Circle::new((d.0, d.1), r, color.filled())),
+            )?
+            .label(name)
+            .legend(move |(x, y)| Circle::new((x + fs(10.0), y), fs(6.0), color.filled()));
+    }
+    Ok(())
+}
+
+/// Each point's contact phase at time `t`, written above it: events in
+/// capitals. With several points the labels go above the highest point, in
+/// lanes of text height by point index (i % 3), so that close neighbours'
+/// labels do not overlap.
+fn draw_phase_labels(
+    chart: &mut FrameChart<'_, '_>,
+    phases: &PhaseTracker,
+    t: f64,
+    disp: &[(f64, f64, usize)],
+    ext: &Extents,
+    height: u32,
+    scale: f64,
+) -> Result<(), DrawError> {
+    let fs = px(scale);
+    let top = disp.iter().map(|d| d.1).fold(f64::NEG_INFINITY, f64::max);
+    let plot_px = (f64::from(height) - f64::from(fs(26.0 + 55.0 + 24.0))).max(50.0);
+    let lane = 2.0 * ext.y_mm * f64::from(fs(30.0)) / plot_px;
+    let several = disp.len() > 1;
+    for d in disp {
+        let ph = phases.phase(d.2, t);
+        let color = match ph {
+            ContactPhase::Impact | ContactPhase::Release => EVENT,
+            ContactPhase::InContact => CONTACT,
+            ContactPhase::FreeFlight => FLIGHT,
+        };
+        let text = if ph.is_event() {
+            ph.label().to_uppercase()
+        } else {
+            ph.label().to_string()
+        };
+        let size = match (several, ph.is_event()) {
+            (true, _) => 22.0,
+            (false, true) => 26.0,
+            (false, false) => 20.0,
+        };
+        let style = ("sans-serif", fs(size)).into_font().color(&color).pos(
+            plotters::style::text_anchor::Pos::new(
+                plotters::style::text_anchor::HPos::Center,
+                plotters::style::text_anchor::VPos::Bottom,
+            ),
+        );
+        let y = if several {
+            top + lane * (0.5 + (d.2 % 3) as f64)
+        } else {
+            d.1 + 0.22 * ext.y_mm
+        };
+        chart.draw_series(std::iter::once(Text::new(
+            format!("p{}: {text}", d.2),
+            (d.0, y),
+            style,
+        )))?;
+    }
+    Ok(())
+}
+
+/// The frames of an earlier export in `dir` (`frame_NNNNN.png`), sorted.
+pub fn old_frames(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with("frame_") && n.ends_with(".png"))
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+/// `Err` naming the folder if `dir` holds frames of an earlier export:
+/// new frames would mix with them (a shorter export left the old scene's
+/// last frames behind).
+pub fn refuse_old_frames(dir: &Path) -> Result<(), FramesError> {
+    match old_frames(dir).len() {
+        0 => Ok(()),
+        count => Err(FramesError::OldFrames {
+            dir: std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf()),
+            count,
+        }),
+    }
+}
+
+/// Draws the frames of `settings` into a folder as a run passes their
+/// times (a [`Probe`]): frame `k` shows the first state at or past
+/// `t_k - dt/2`. `progress` counts frames written; setting `cancel` stops
+/// the export before the next frame. Satisfied once the last frame is
+/// drawn, so a run driven with it stops there.
+pub struct FrameWriter<'a> {
+    dir: PathBuf,
+    settings: FrameSettings,
+    ext: Extents,
+    phases: PhaseTracker,
+    dt_s: f64,
+    next: u64,
+    count: u64,
+    progress: &'a AtomicU64,
+    cancel: &'a AtomicBool,
+}
+
+impl<'a> FrameWriter<'a> {
+    /// Checks `settings` against `sim`'s scene and creates `dir`. Frames of
+    /// an earlier export in `dir` would mix with the new ones (a shorter
+    /// export left the old scene's last frames behind): they are removed
+    /// with `clear_old`, else refused.
+    pub fn new(
+        sim: &Simulation,
+        road: &Road,
+        dir: &Path,
+        settings: &FrameSettings,
+        clear_old: bool,
+        progress: &'a AtomicU64,
+        cancel: &'a AtomicBool,
+    ) -> Result<Self, FramesError> {
+        settings.check(sim.problem().duration_s)?;
+        let io = |path: &Path| {
+            let path = path.to_path_buf();
+            move |source| FramesError::Io { path, source }
+        };
+        if clear_old {
+            for p in old_frames(dir) {
+                std::fs::remove_file(&p).map_err(io(&p))?;
+            }
+        } else {
+            refuse_old_frames(dir)?;
+        }
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let dt_s = sim.dt_s();
+        Ok(FrameWriter {
+            dir: dir.to_path_buf(),
+            settings: *settings,
+            ext: extents(sim, road),
+            phases: PhaseTracker::new(sim.num_points(), settings.frame_dt_s().max(dt_s)),
+            dt_s,
+            next: 0,
+            count: settings.frame_count(),
+            progress,
+            cancel,
+        })
+    }
+
+    /// Draws every frame due at `sim`'s time; `all`: every frame left (the
+    /// run ended before their times).
+    fn draw_due(&mut self, sim: &Simulation, all: bool) -> std::io::Result<()> {
+        while self.next < self.count
+            && (all || sim.time_s() >= self.settings.frame_time_s(self.next) - 0.5 * self.dt_s)
+        {
+            if self.cancel.load(Ordering::Relaxed) {
+                return Err(std::io::Error::new(
+                    std::io::ErrorKind::Interrupted,
+                    FramesError::Cancelled {
+                        done: self.next,
+                        total: self.count,
+                    },
+                ));
+            }
+            draw_frame(
+                sim,
+                &self.phases,
+                &self.ext,
+                &frame_path(&self.dir, self.next),
+                self.settings.width,
+                self.settings.height,
+            )
+            .map_err(std::io::Error::other)?;
+            self.next += 1;
+            self.progress.store(self.next, Ordering::Relaxed);
+        }
+        Ok(())
+    }
+
+    /// Draws the frames left after the run (none if it reached them all):
+    /// returns the number of frames written.
+    pub fn finish(mut self, sim: &Simulation) -> std::io::Result<u64> {
+        self.draw_due(sim, true)?;
+        Ok(self.next)
+    }
+}
+
+impl Probe for FrameWriter<'_> {
+    fn start(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        self.draw_due(sim, false)
+    }
+    fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        self.phases
+            .after_step(sim.time_s(), sim.in_contact(), sim.force_n());
+        self.draw_due(sim, false)
+    }
+    fn satisfied(&self) -> bool {
+        self.next >= self.count
+    }
+}
+
+/// The error of a frames export that stopped: its own for a cancel or a
+/// frame that cannot be written, the run's otherwise.
+pub fn frames_error(e: RunError) -> FramesError {
+    FramesError::from(e)
+}
+
+/// Runs `sim` (fresh, at t = 0) and writes the frames of `settings` into
+/// `dir` ([`FrameWriter`]). Returns the number of frames written.
+pub fn export_frames(
+    mut sim: Simulation,
+    road: &Road,
+    dir: &Path,
+    settings: &FrameSettings,
+    clear_old: bool,
+    progress: &AtomicU64,
+    cancel: &AtomicBool,
+) -> Result<u64, FramesError> {
+    let mut frames = FrameWriter::new(&sim, road, dir, settings, clear_old, progress, cancel)?;
+    run_to_end(&mut sim, &mut frames, Watch::none())?;
+    frames.finish(&sim).map_err(|e| RunError::from(e).into())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tirecontact_io::Scene;
+    use tirecontact_io::SceneSimulation;
+
+    fn settings() -> FrameSettings {
+        FrameSettings {
+            t0_s: 0.0,
+            t1_s: 0.1,
+            fps: 25.0,
+            slow_motion: 2.0,
+            width: 320,
+            height: 240,
+        }
+    }
+
+    /// Before the ramp the tyre sees its own point heights (interpolated,
+    /// held beyond the end points); after it, the road profile itself.
+    #[test]
+    fn road_in_tyre_frame_blends_point_heights_into_the_road() {
+        let scene = Scene::parse(
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../../presets/three_points.ron"
+            )),
+            "three_points",
+        )
+        .unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        let at_start = road_in_tyre_frame(&sim, -0.1, 0.1, 8);
+        assert_eq!(at_start.len(), 9);
+        for [x, y] in &at_start {
+            // h = -1.5 mm at every point of this preset
+            assert!((y + 0.0015).abs() < 1e-15, "x = {x}: {y}");
+        }
+        while sim.time_s() < scene.ramp_s + 1e-3 {
+            sim.step().unwrap();
+        }
+        for [x, y] in road_in_tyre_frame(&sim, -0.1, 0.1, 8) {
+            let z = sim.road_profile().sample(x + sim.rolled_m()).unwrap().0;
+            assert!((y - z).abs() < 1e-15, "x = {x}: {y} vs {z}");
+        }
+    }
+
+    /// Under a row across the tread of a patch on a road surface, the road
+    /// is the surface at that row's `y`, and before the ramp the heights
+    /// of that row's points.
+    #[test]
+    fn road_under_a_row_is_the_surface_at_its_y() {
+        let mut scene = Scene::parse(
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../../presets/patch_texture.ron"
+            )),
+            "patch_texture",
+        )
+        .unwrap();
+        let y_row = scene
+            .points
+            .iter()
+            .map(|p| p.y_m)
+            .fold(f64::INFINITY, f64::min);
+        let row: Vec<(f64, f64)> = scene
+            .points
+            .iter()
+            .filter(|p| p.y_m == y_row)
+            .map(|p| (p.x_m, p.h_m))
+            .collect();
+        assert!(row.len() > 2 && y_row < 0.0);
+        // before the ramp: the row's own heights at its points
+        let sim = Simulation::from_scene(&scene).unwrap();
+        for &(x, h) in &row {
+            let at = road_in_tyre_frame_at(&sim, x, x, 1, Some(y_row));
+            assert!((at[0][1] - h).abs() < 1e-15, "x = {x}: {:?} vs {h}", at[0]);
+        }
+        // after a short ramp: the surface at the row's y, not the
+        // centreline's
+        scene.ramp_s = 1e-4;
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        while sim.time_s() < scene.ramp_s + 1e-9 {
+            sim.step().unwrap();
+        }
+        let mut differs = false;
+        for [x, z] in road_in_tyre_frame_at(&sim, -0.05, 0.05, 20, Some(y_row)) {
+            let want = sim
+                .road_profile()
+                .sample_at(x + sim.rolled_m(), y_row)
+                .unwrap()
+                .0;
+            assert!((z - want).abs() < 1e-15, "x = {x}: {z} vs {want}");
+            let centre = sim.road_profile().sample(x + sim.rolled_m()).unwrap().0;
+            differs |= (z - centre).abs() > 1e-6;
+        }
+        assert!(differs, "the texture is the same across the tread");
+    }
+
+    #[test]
+    fn frame_count_is_interval_times_rate() {
+        assert_eq!(settings().frame_count(), 5);
+        let s = FrameSettings {
+            slow_motion: 20.0,
+            ..settings()
+        };
+        assert_eq!(s.frame_count(), 50);
+        assert!((s.frame_time_s(10) - 0.02).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bad_settings_name_field_value_and_expectation() {
+        let e = FrameSettings {
+            fps: 0.0,
+            ..settings()
+        }
+        .check(1.0)
+        .unwrap_err();
+        assert!(
+            matches!(e, FramesError::Setting { field: "fps", value, .. } if value == 0.0),
+            "{e:?}"
+        );
+        let e = e.to_string();
+        assert!(e.contains("fps = 0") && e.contains("expected"), "{e}");
+        let e = FrameSettings {
+            t1_s: 2.0,
+            ..settings()
+        }
+        .check(1.0)
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("t1_s = 2") && e.contains("duration"), "{e}");
+        let e = FrameSettings {
+            width: 10,
+            ..settings()
+        }
+        .check(1.0)
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("width = 10"), "{e}");
+    }
+
+    #[test]
+    fn cancel_stops_before_writing() {
+        let scene = Scene::parse(
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../../presets/single_mode.ron"
+            )),
+            "s",
+        )
+        .unwrap();
+        let sim = Simulation::from_scene(&scene).unwrap();
+        let dir = std::env::temp_dir().join(format!("tc-anim-cancel-{}", std::process::id()));
+        let cancel = AtomicBool::new(true);
+        let progress = AtomicU64::new(0);
+        let r = export_frames(
+            sim,
+            &scene.road,
+            &dir,
+            &settings(),
+            false,
+            &progress,
+            &cancel,
+        );
+        let e = r.unwrap_err();
+        assert!(
+            matches!(e, FramesError::Cancelled { done: 0, total: 5 }),
+            "{e:?}"
+        );
+        assert_eq!(e.to_string(), "cancelled after 0 of 5 frames");
+        assert!(!frame_path(&dir, 0).exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Pixels of `rgb` (rows of `w`) that blend the road's colour with the
+    /// white above it by 35 % to 85 %: the road line's antialiased edge
+    /// (the fill under it is a 25 % blend, its line 100 %).
+    fn road_edge_pixels(img: &image::RgbImage) -> usize {
+        let road = [f64::from(ROAD.0), f64::from(ROAD.1), f64::from(ROAD.2)];
+        img.pixels()
+            .filter(|p| {
+                let a = (255.0 - f64::from(p.0[0])) / (255.0 - road[0]);
+                (0.35..0.85).contains(&a)
+                    && (0..3).all(|c| {
+                        let want = a * road[c] + (1.0 - a) * 255.0;
+                        (f64::from(p.0[c]) - want).abs() <= 6.0
+                    })
+            })
+            .count()
+    }
+
+    /// The frames are antialiased: the sloped road line has an edge of
+    /// partial blends along its length (a line drawn without antialiasing
+    /// has almost none), and the frame has the size asked for.
+    #[test]
+    fn frames_draw_the_road_antialiased() {
+        let scene = Scene::parse(
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../../presets/paper.ron"
+            )),
+            "paper",
+        )
+        .unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        for _ in 0..6000 {
+            sim.step().unwrap();
+        }
+        let phases = PhaseTracker::new(sim.num_points(), 0.01);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("f.png");
+        let (w, h) = (640, 360);
+        draw_frame(&sim, &phases, &extents(&sim, &scene.road), &path, w, h).unwrap();
+        let img = image::open(&path).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (w, h));
+        let edge = road_edge_pixels(&img);
+        // the same scene drawn at its size without supersampling
+        let mut rgb = vec![0u8; (w * h * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+            draw_frame_on(&root, &sim, &phases, &extents(&sim, &scene.road), w, h).unwrap();
+            root.present().unwrap();
+        }
+        let aliased = road_edge_pixels(&image::RgbImage::from_raw(w, h, rgb).unwrap());
+        assert!(
+            edge >= 200 && edge >= 5 * aliased.max(1),
+            "{edge} blended road-edge pixels antialiased, {aliased} without"
+        );
+    }
+}

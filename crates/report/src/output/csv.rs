@@ -1,0 +1,325 @@
+//! The run CSV (pandas-friendly): `t_s`, then `u{i}_m`, `v{i}_mps`, `q{i}_N`
+//! (step-mean force, or mean over the `every` steps of a row so impulses are
+//! kept), `gap{i}_m`, `contact{i}` (0/1). The rows are the run sampler's
+//! samples ([`super::sampler`]): the force a window mean, the other values
+//! the state at the row's time.
+
+use crate::output::sampler::{LastWindow, Sampler, Stride};
+use std::io::Write;
+use tirecontact_core::solver::simulation::Simulation;
+
+/// The header row for `p` points.
+pub fn header(p: usize) -> Vec<String> {
+    let mut h = vec!["t_s".to_string()];
+    for (prefix, suffix) in [
+        ("u", "_m"),
+        ("v", "_mps"),
+        ("q", "_N"),
+        ("gap", "_m"),
+        ("contact", ""),
+    ] {
+        h.extend((0..p).map(|i| format!("{prefix}{i}{suffix}")));
+    }
+    h
+}
+
+/// Bytes of one value in a row: `-1.234567890e-10` and its comma, the
+/// longest with a one- or two-digit exponent (most are 16 bytes or fewer).
+pub const BYTES_PER_VALUE: u64 = 17;
+
+/// Estimated size (bytes) of the CSV of a run of `steps` steps of `p` points
+/// written every `every` steps: rows (header, initial state, one per `every`
+/// steps and a last partial one) × columns (`1 + 5 p`) × [`BYTES_PER_VALUE`].
+/// An overestimate for the 0/1 contact columns; exact enough to refuse a run
+/// up front.
+pub fn estimated_bytes(steps: u64, every: u64, p: usize) -> f64 {
+    let rows = steps.div_ceil(every.max(1)) as f64 + 3.0;
+    rows * (1 + 5 * p) as f64 * BYTES_PER_VALUE as f64
+}
+
+/// A byte count for messages, in decimal units (`8.52 TB`).
+pub fn human_bytes(b: f64) -> String {
+    let units = ["bytes", "kB", "MB", "GB", "TB", "PB", "EB"];
+    let mut x = b;
+    let mut k = 0;
+    while x >= 1000.0 && k + 1 < units.len() {
+        x /= 1000.0;
+        k += 1;
+    }
+    if k == 0 {
+        format!("{x:.0} bytes")
+    } else {
+        format!("{x:.2} {}", units[k])
+    }
+}
+
+/// Values (numbers) per formatting block: about 512 kB of rows kept before
+/// they are formatted and written.
+const BLOCK_VALUES: usize = 1 << 16;
+
+/// Streams rows of a run, averaging forces over `every` steps.
+///
+/// Rows are kept as numbers and formatted a block at a time, the block split
+/// between the machine's cores (formatting, not the solver, is what a long
+/// `run -o` waits for: about 90 ns per value). The bytes do not depend on the
+/// thread count: `{:.9e}` for every number, `0`/`1` for the contact flags,
+/// comma-separated, one `\n`-terminated line per row.
+pub struct RunWriter<W: Write> {
+    out: W,
+    p: usize,
+    sampler: Sampler,
+    /// Rows not yet formatted, `1 + 5 p` numbers each.
+    rows: Vec<f64>,
+    /// Rows per block.
+    block_rows: usize,
+    /// One text buffer per formatting thread, reused block after block.
+    text: Vec<String>,
+    /// Rows below which a block part is not worth a thread of its own.
+    min_rows_per_thread: usize,
+}
+
+impl<W: Write> RunWriter<W> {
+    pub fn new(out: W, p: usize, every: u64) -> std::io::Result<Self> {
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(8));
+        Self::with_layout(out, p, every, threads, BLOCK_VALUES)
+    }
+
+    /// [`RunWriter::new`] with `threads` formatting threads and blocks of
+    /// about `block_values` numbers (at least one row).
+    pub fn with_layout(
+        mut out: W,
+        p: usize,
+        every: u64,
+        threads: usize,
+        block_values: usize,
+    ) -> std::io::Result<Self> {
+        out.write_all(header(p).join(",").as_bytes())?;
+        out.write_all(b"\n")?;
+        let width = 1 + 5 * p;
+        let block_rows = (block_values / width).max(1);
+        Ok(RunWriter {
+            out,
+            p,
+            sampler: Sampler::new(p, Stride::Every(every), LastWindow::Partial),
+            rows: Vec::with_capacity(block_rows * width),
+            block_rows,
+            text: vec![String::new(); threads.max(1)],
+            min_rows_per_thread: MIN_ROWS_PER_THREAD,
+        })
+    }
+
+    /// Writes the initial state (t = 0) row.
+    pub fn write_initial(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        self.sampler.start(sim);
+        self.push_row(sim)
+    }
+
+    /// Call after every step; writes a row every `every` steps, and one for
+    /// the steps after the last whole window at the run's end.
+    pub fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        if self.sampler.after_step(sim).is_some() {
+            self.push_row(sim)?;
+        }
+        Ok(())
+    }
+
+    /// Keeps the row of the sampler's last window (its mean forces and
+    /// `sim`'s state at its end); formats and writes the block once full.
+    fn push_row(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        let p = self.p;
+        self.rows.push(sim.time_s());
+        self.rows.extend_from_slice(sim.displacement_m());
+        self.rows.extend_from_slice(sim.velocity_mps());
+        self.rows.extend_from_slice(self.sampler.last_window().q_n);
+        self.rows.extend((0..p).map(|i| sim.gap_m(i)));
+        self.rows
+            .extend(sim.in_contact().iter().map(|&c| if c { 1.0 } else { 0.0 }));
+        if self.rows.len() >= self.block_rows * (1 + 5 * p) {
+            self.write_block()?;
+        }
+        Ok(())
+    }
+
+    /// Formats the kept rows, split by whole rows between the threads, and
+    /// writes the parts in order.
+    fn write_block(&mut self) -> std::io::Result<()> {
+        let (p, width) = (self.p, 1 + 5 * self.p);
+        let nrows = self.rows.len() / width;
+        if nrows == 0 {
+            return Ok(());
+        }
+        let parts = self
+            .text
+            .len()
+            .min(nrows.div_ceil(self.min_rows_per_thread))
+            .max(1);
+        let per = nrows.div_ceil(parts);
+        // (as many parts as chunks of `per` rows, which can be fewer)
+        let parts = nrows.div_ceil(per);
+        let chunks = self.rows.chunks(per * width);
+        let texts = &mut self.text[..parts];
+        if parts == 1 {
+            format_rows(&self.rows, p, &mut texts[0]);
+        } else {
+            std::thread::scope(|scope| {
+                let mut texts = texts.iter_mut();
+                let mut chunks = chunks;
+                let first = (texts.next(), chunks.next());
+                for (text, rows) in texts.zip(chunks) {
+                    scope.spawn(move || format_rows(rows, p, text));
+                }
+                if let (Some(text), Some(rows)) = first {
+                    format_rows(rows, p, text);
+                }
+            });
+        }
+        for text in &self.text[..parts] {
+            self.out.write_all(text.as_bytes())?;
+        }
+        self.rows.clear();
+        Ok(())
+    }
+
+    pub fn finish(mut self) -> std::io::Result<W> {
+        if !self.rows.is_empty() {
+            self.write_block()?;
+        }
+        self.out.flush()?;
+        Ok(self.out)
+    }
+}
+
+/// Rows below which a block is not worth a thread of its own.
+const MIN_ROWS_PER_THREAD: usize = 256;
+
+/// `rows` (`1 + 5 p` numbers each) as CSV lines into `text` (cleared first).
+fn format_rows(rows: &[f64], p: usize, text: &mut String) {
+    use std::fmt::Write as _;
+    text.clear();
+    for row in rows.chunks_exact(1 + 5 * p) {
+        let (values, flags) = row.split_at(1 + 4 * p);
+        for (k, x) in values.iter().enumerate() {
+            if k > 0 {
+                text.push(',');
+            }
+            // (writing into a String cannot fail)
+            let _ = write!(text, "{x:.9e}");
+        }
+        for &c in flags {
+            text.push_str(if c != 0.0 { ",1" } else { ",0" });
+        }
+        text.push('\n');
+    }
+}
+
+impl<W: Write> tirecontact_core::solver::drive::Probe for RunWriter<W> {
+    fn start(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        self.write_initial(sim)
+    }
+    fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
+        RunWriter::after_step(self, sim)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tirecontact_io::SceneSimulation;
+    use tirecontact_io::scene::Scene;
+
+    /// The rows of `steps` steps of the three-point preset (impacts,
+    /// releases, every point in and out of contact), formatted the plain way:
+    /// each value on its own, rows averaged over `every` steps here.
+    fn plain(scene: &Scene, steps: u64, every: u64) -> String {
+        let mut sim = Simulation::from_scene(scene).unwrap();
+        let p = sim.num_points();
+        let mut out = header(p).join(",") + "\n";
+        let row = |sim: &Simulation, q: &[f64]| {
+            let mut fields = vec![format!("{:.9e}", sim.time_s())];
+            fields.extend(sim.displacement_m().iter().map(|x| format!("{x:.9e}")));
+            fields.extend(sim.velocity_mps().iter().map(|x| format!("{x:.9e}")));
+            fields.extend(q.iter().map(|x| format!("{x:.9e}")));
+            fields.extend((0..p).map(|i| format!("{:.9e}", sim.gap_m(i))));
+            fields.extend(sim.in_contact().iter().map(|&c| u8::from(c).to_string()));
+            fields.join(",") + "\n"
+        };
+        out += &row(&sim, &vec![0.0; p]);
+        let (mut sum, mut n) = (vec![0.0; p], 0u64);
+        for _ in 0..steps {
+            sim.step().unwrap();
+            sum.iter_mut().zip(sim.force_n()).for_each(|(s, q)| *s += q);
+            n += 1;
+            if n == every || sim.finished() {
+                let mean: Vec<f64> = sum.iter().map(|s| s / n as f64).collect();
+                out += &row(&sim, &mean);
+                sum.fill(0.0);
+                n = 0;
+            }
+        }
+        out
+    }
+
+    fn written(
+        scene: &Scene,
+        steps: u64,
+        every: u64,
+        (threads, block, min_rows): (usize, usize, usize),
+    ) -> String {
+        let mut sim = Simulation::from_scene(scene).unwrap();
+        let mut w =
+            RunWriter::with_layout(Vec::new(), sim.num_points(), every, threads, block).unwrap();
+        w.min_rows_per_thread = min_rows;
+        w.write_initial(&sim).unwrap();
+        for _ in 0..steps {
+            sim.step().unwrap();
+            w.after_step(&sim).unwrap();
+        }
+        String::from_utf8(w.finish().unwrap()).unwrap()
+    }
+
+    /// Blocks and threads change nothing: every layout writes the bytes of
+    /// the plain row-by-row formatting, including the partial last block,
+    /// a block split unevenly between threads or into fewer parts than
+    /// threads, and the mean forces of rows that gather several steps (the
+    /// run ends inside a gathered row).
+    #[test]
+    fn blocks_and_threads_write_the_plain_rows() {
+        let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+        scene.duration_s = 3001.0 * scene.dt_s;
+        let steps = scene.num_steps();
+        assert_eq!(steps, 3001);
+        let width = 1 + 5 * scene.num_points();
+        for every in [1, 7] {
+            let want = plain(&scene, steps, every);
+            assert!(
+                want.contains(",1,") && want.contains(",0"),
+                "contact flags of both kinds"
+            );
+            // (threads, rows per block, fewest rows per thread): one block;
+            // a row per block; even and uneven splits; 8 threads on blocks
+            // of 16 rows, 8 parts of 2, then a last block of 10 (every 1)
+            // or 14 rows (every 7), which splits into 5 parts of 2, or 7 of 2
+            let layouts = [
+                (1, 100_000, 256),
+                (1, 1, 256),
+                (2, 2000, 256),
+                (3, 1000, 256),
+                (8, 5000, 256),
+                (4, 9, 1),
+                (8, 16, 1),
+            ];
+            for (threads, block_rows, min_rows) in layouts {
+                let got = written(
+                    &scene,
+                    steps,
+                    every,
+                    (threads, block_rows * width, min_rows),
+                );
+                assert!(
+                    got == want,
+                    "every {every}, {threads} threads, {block_rows} rows per block: rows differ"
+                );
+            }
+        }
+    }
+}

@@ -1,7 +1,0 @@
-//! Layer 4, the time stepper and its driver: the simulation (prediction,
-//! contact solve, events located in the step), the run driver with its `Probe`
-//! observer, and the contact phase of each point.
-
-pub mod drive;
-pub mod phase;
-pub mod simulation;
