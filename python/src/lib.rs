@@ -11,13 +11,14 @@ use pyo3::types::PyDict;
 use std::path::PathBuf;
 use std::sync::LazyLock;
 use std::sync::atomic::AtomicBool;
-use tirecontact::solver::drive::{Watch, run};
-use tirecontact::analysis::metrics::{ContactMetrics, ContactSummary};
-use tirecontact::base::modal::ModalModel as Model;
-use tirecontact::output::arrays::RunArrays;
-use tirecontact::analysis::spectrum::Window;
-use tirecontact::studies::study::{Loaded, Row};
-use tirecontact::{ModeCache, PreparedModel, Simulation, SolverOptions};
+use tirecontact_core::solver::drive::{Watch, run};
+use tirecontact_report::analysis::metrics::{ContactMetrics, ContactSummary};
+use tirecontact_core::base::modal::ModalModel as Model;
+use tirecontact_report::output::arrays::RunArrays;
+use tirecontact_report::analysis::spectrum::Window;
+use tirecontact_report::studies::study::{Loaded, Row};
+use tirecontact_core::SolverOptions;
+use tirecontact_io::{ModeCache, PreparedModel};
 
 create_exception!(
     _tirecontact,
@@ -40,7 +41,7 @@ const CHUNK_STEPS: u64 = 50_000;
 #[pyclass(name = "Scene", module = "tirecontact")]
 #[derive(Clone)]
 struct PyScene {
-    inner: tirecontact::Scene,
+    inner: tirecontact_io::Scene,
 }
 
 #[pymethods]
@@ -50,7 +51,7 @@ impl PyScene {
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
         Ok(PyScene {
-            inner: tirecontact::Scene::load(&path).map_err(err)?,
+            inner: tirecontact_io::Scene::load(&path).map_err(err)?,
         })
     }
 
@@ -58,7 +59,7 @@ impl PyScene {
     #[staticmethod]
     fn from_ron(text: &str) -> PyResult<Self> {
         Ok(PyScene {
-            inner: tirecontact::Scene::parse(text, "<text>").map_err(err)?,
+            inner: tirecontact_io::Scene::parse(text, "<text>").map_err(err)?,
         })
     }
 
@@ -70,13 +71,13 @@ impl PyScene {
     /// A numeric field by its path, in the field's unit: `"speed_mps"`,
     /// `"tyre.modes[0].damping_ratio"`, `"points[1].h_m"`.
     fn get(&self, path: &str) -> PyResult<f64> {
-        tirecontact::studies::sweep::get_param(&self.inner, path).map_err(err)
+        tirecontact_report::studies::sweep::get_param(&self.inner, path).map_err(err)
     }
 
     /// Sets a numeric field by its path (`"points[*].h_m"` sets every
     /// point); refused values raise `TirecontactError` naming the field.
     fn set(&mut self, path: &str, value: f64) -> PyResult<()> {
-        tirecontact::studies::sweep::set_param(&mut self.inner, path, value).map_err(err)
+        tirecontact_report::studies::sweep::set_param(&mut self.inner, path, value).map_err(err)
     }
 
     /// Raises `TirecontactError` listing every invalid field.
@@ -92,7 +93,7 @@ impl PyScene {
 
     /// Every numeric field's path.
     fn param_paths(&self) -> Vec<String> {
-        tirecontact::studies::sweep::param_paths(&self.inner)
+        tirecontact_report::studies::sweep::param_paths(&self.inner)
     }
 
     #[getter]
@@ -146,7 +147,7 @@ struct PyRun {
     #[pyo3(get)]
     ramp_s: f64,
     num_points: usize,
-    stats: tirecontact::solver::simulation::RunStats,
+    stats: tirecontact_core::solver::simulation::RunStats,
     forces: ContactSummary,
     wall_s: f64,
 }
@@ -181,7 +182,7 @@ impl PyRun {
     /// `t_s`, `u{i}_m`, `v{i}_mps`, `q{i}_N`, `gap{i}_m`, `contact{i}`.
     fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let pd = py.import("pandas")?;
-        let cols = tirecontact::output::csv::header(self.num_points);
+        let cols = tirecontact_report::output::csv::header(self.num_points);
         let data = PyDict::new(py);
         data.set_item(&cols[0], self.t_s.bind(py))?;
         let p = self.num_points;
@@ -241,13 +242,13 @@ fn run_scene(
     }
     let start = std::time::Instant::now();
     let model = py.detach(|| PreparedModel::new(&s, &CACHE)).map_err(err)?;
-    let mut sim = Simulation::new(&model, SolverOptions::default()).map_err(err)?;
+    let mut sim = model.simulation(SolverOptions::default()).map_err(err)?;
     let p = s.num_points();
     let total = s.num_steps();
     let mut arrays = RunArrays::new(p, total, every);
     // the forces without impacts and the impulses, over the whole run
     let mut metrics = ContactMetrics::new(&s, Some(0.0));
-    tirecontact::solver::drive::Probe::start(&mut arrays, &sim).map_err(err)?;
+    tirecontact_core::solver::drive::Probe::start(&mut arrays, &sim).map_err(err)?;
     while sim.steps() < total {
         let n = (total - sim.steps()).min(CHUNK_STEPS);
         py.detach(|| run(&mut sim, n, &mut (&mut arrays, &mut metrics), Watch::none()))
@@ -303,7 +304,7 @@ fn run_scene(
 #[pyclass(name = "ModalModel", module = "tirecontact")]
 struct PyModalModel {
     model: Model,
-    modes: Vec<tirecontact::base::modal::Mode>,
+    modes: Vec<tirecontact_core::base::modal::Mode>,
     report: Option<Py<PyDict>>,
 }
 
@@ -407,7 +408,7 @@ impl PyModalModel {
 fn identify(py: Python<'_>, scene: &PyScene) -> PyResult<PyModalModel> {
     let s = scene.inner.clone();
     let p = s.num_points();
-    match py.detach(|| tirecontact::identify::identify_tyre(&s)) {
+    match py.detach(|| tirecontact_io::identify::identify_tyre(&s)) {
         None => {
             let modes = CACHE.modes(&s).map_err(err)?.to_vec();
             Ok(PyModalModel {
@@ -469,7 +470,7 @@ fn spectrum<'py>(
     start_s: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (x, fs) = steady_total(run, py, start_s)?;
-    let s = tirecontact::analysis::spectrum::spectrum(&x, fs, Window::Hann, true).map_err(err)?;
+    let s = tirecontact_report::analysis::spectrum::spectrum(&x, fs, Window::Hann, true).map_err(err)?;
     let d = PyDict::new(py);
     d.set_item("freq_hz", s.freq_hz.into_pyarray(py))?;
     d.set_item("amplitude_n", s.amplitude.into_pyarray(py))?;
@@ -490,7 +491,7 @@ fn third_octave<'py>(
     hi_hz: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (x, fs) = steady_total(run, py, start_s)?;
-    let s = tirecontact::analysis::spectrum::spectrum(&x, fs, Window::Hann, true).map_err(err)?;
+    let s = tirecontact_report::analysis::spectrum::spectrum(&x, fs, Window::Hann, true).map_err(err)?;
     let hi = hi_hz.min(0.5 * fs / 10f64.powf(0.05));
     let bands = s.third_octave_levels(lo_hz, hi, 1.0);
     let d = PyDict::new(py);
@@ -525,14 +526,14 @@ impl PyStudy {
     #[staticmethod]
     fn load(path: PathBuf) -> PyResult<Self> {
         Ok(PyStudy {
-            loaded: tirecontact::studies::study::load(&path).map_err(err)?,
+            loaded: tirecontact_report::studies::study::load(&path).map_err(err)?,
         })
     }
 
     /// The columns of the study's table (as `study run` writes them).
     #[getter]
     fn header(&self) -> Vec<String> {
-        tirecontact::studies::study::header(&self.loaded)
+        tirecontact_report::studies::study::header(&self.loaded)
     }
 
     /// Number of rows.
@@ -545,8 +546,8 @@ impl PyStudy {
     fn write_table(&self, path: PathBuf, records: Vec<Vec<String>>) -> PyResult<()> {
         let mut rows: Vec<Vec<String>> = records;
         rows.sort_by_key(|r| r.first().and_then(|id| id.parse::<usize>().ok()));
-        let bytes = tirecontact::studies::study::table_bytes(&self.header(), &rows).map_err(err)?;
-        tirecontact::fsio::write_atomic(&path, &bytes)
+        let bytes = tirecontact_report::studies::study::table_bytes(&self.header(), &rows).map_err(err)?;
+        tirecontact_io::fsio::write_atomic(&path, &bytes)
             .map_err(|e| err(format!("{}: {e}", path.display())))
     }
 }
@@ -576,8 +577,8 @@ fn run_row(py: Python<'_>, study: &PyStudy, row_id: usize) -> PyResult<Vec<Strin
         ))
     })?;
     let cancel = AtomicBool::new(false);
-    let r = py.detach(|| tirecontact::studies::study::run_row(loaded, row, &CACHE, &cancel));
-    Ok(tirecontact::studies::study::record(loaded, row, &r))
+    let r = py.detach(|| tirecontact_report::studies::study::run_row(loaded, row, &CACHE, &cancel));
+    Ok(tirecontact_report::studies::study::record(loaded, row, &r))
 }
 
 #[pymodule]

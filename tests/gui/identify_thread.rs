@@ -235,7 +235,7 @@ fn preset_and_road_files_are_read_off_the_ui_thread() {
     assert_eq!(h.state().scene().road, s.road);
     assert_eq!(
         *h.state().simulation().problem().road,
-        tirecontact::readers::road::load(&s.road, s.base_dir.as_deref()).unwrap()
+        tirecontact::scene::load_road(&s.road, s.base_dir.as_deref()).unwrap()
     );
     assert_eq!(
         h.state().simulation().steps(),

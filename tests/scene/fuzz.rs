@@ -144,8 +144,7 @@ proptest! {
                 };
                 short_run(&scene);
             }
-            Err(SceneError::RoadFile { message, .. }) => prop_assert!(!message.is_empty()),
-            Err(e) => prop_assert!(false, "unexpected error {e}"),
+            Err(e) => prop_assert!(!e.message.is_empty() && e.path == path),
         }
     }
 

@@ -62,7 +62,7 @@ fn compare(scene: &Scene, live: Live) -> tirecontact::solver::simulation::RunSta
                     amplitude_m: 0.002,
                     wavelength_m,
                 };
-                let profile = tirecontact::readers::road::load(&road, None).unwrap();
+                let profile = tirecontact::scene::load_road(&road, None).unwrap();
                 a.set_road(profile.clone());
                 b.set_road(profile);
             }

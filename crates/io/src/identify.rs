@@ -707,7 +707,7 @@ impl PreparedModelRun {
 /// (identified if it is a ring) and its road profile loaded (a measured
 /// road read from its file). Everything that may take time, read a file or
 /// fail on the user's input happens here, once; a
-/// [`crate::Simulation`] is then built from it without I/O or
+/// [`Simulation`] is then built from it without I/O or
 /// identification.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PreparedModel {
@@ -728,7 +728,7 @@ impl PreparedModel {
     /// The rest of [`PreparedModel::new`] once the (validated) scene's
     /// modes are known: the road read and checked.
     fn with_modes(scene: &Scene, modes: Arc<Vec<Mode>>) -> Result<Self, SceneError> {
-        let road = crate::readers::road::load(&scene.road, scene.base_dir.as_deref())?;
+        let road = crate::scene::load_road(&scene.road, scene.base_dir.as_deref())?;
         let mut errors = scene.surface_errors(&road);
         if errors.is_empty()
             && let Some(e) = scene.ramp_error(&road)

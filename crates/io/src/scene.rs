@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use tirecontact_core::base::error::{FieldError, fmt_num};
 use tirecontact_core::model::lsce::IdentifyOptions;
 use tirecontact_core::model::ring::RingParams;
-use tirecontact_core::model::road::Road;
+use tirecontact_core::model::road::{Road, RoadProfile};
 
 mod edits;
 mod error;
@@ -435,7 +435,7 @@ impl Scene {
         if !matches!(
             self.road,
             Road::Measured { .. } | Road::Surface { .. } | Road::Texture { .. }
-        ) && let Ok(prof) = crate::readers::road::load(&self.road, None)
+        ) && let Ok(prof) = load_road(&self.road, None)
             && let Some(e) = self.ramp_error(&prof)
         {
             v.errors.push(e);
@@ -1085,5 +1085,37 @@ impl RunShape for Scene {
     }
     fn grid_spacing_m(&self) -> Option<(f64, f64)> {
         self.points.grid().map(|g| g.spacing_m)
+    }
+}
+
+/// The profile of `road`, ready to be sampled: a measured or surface file
+/// read relative to `base_dir`, a generated road made after its fields are
+/// checked (refused as invalid values of `road`).
+pub fn load_road(road: &Road, base_dir: Option<&Path>) -> Result<RoadProfile, SceneError> {
+    let path = |file: &Path| match base_dir {
+        Some(d) if file.is_relative() => d.join(file),
+        _ => file.to_path_buf(),
+    };
+    match road {
+        Road::Measured { file, looped } => {
+            let (x_m, z_m) = crate::readers::road::read_profile_csv(&path(file))?;
+            Ok(RoadProfile::Measured {
+                x_m,
+                z_m,
+                looped: *looped,
+            })
+        }
+        Road::Surface { file, looped } => Ok(RoadProfile::Surface(std::sync::Arc::new(
+            crate::readers::road::read_surface_csv(&path(file), *looped)?,
+        ))),
+        _ => match RoadProfile::generated(road) {
+            Some(Ok(profile)) => Ok(profile),
+            Some(Err(errors)) => Err(SceneError::Invalid {
+                file: "road".into(),
+                errors,
+                at: Vec::new(),
+            }),
+            None => unreachable!("every road without a file is generated"),
+        },
     }
 }

@@ -290,7 +290,7 @@ impl App {
         if new.road != old.road {
             let profile = match profile {
                 Some(p) => Ok(p),
-                None => crate::readers::road::load(&new.road, old.base_dir.as_deref()),
+                None => crate::scene::load_road(&new.road, old.base_dir.as_deref()),
             };
             match profile {
                 Ok(profile) => self.sim.set_road(profile),

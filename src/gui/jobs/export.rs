@@ -344,7 +344,7 @@ mod tests {
             "paper",
         )
         .unwrap();
-        let profile = crate::readers::road::load(&scene.road, None).unwrap();
+        let profile = crate::scene::load_road(&scene.road, None).unwrap();
         let edits = vec![LiveEdit {
             step: 700,
             road: scene.road.clone(),

@@ -224,7 +224,7 @@ fn prepare(then: &Then, cache: &ModeCache) -> Result<Prepared, SceneError> {
     match then {
         Then::Edit(scene) | Then::Replace { scene, .. } => model(scene),
         Then::Road(scene) => {
-            crate::readers::road::load(&scene.road, scene.base_dir.as_deref()).map(Prepared::Road)
+            crate::scene::load_road(&scene.road, scene.base_dir.as_deref()).map(Prepared::Road)
         }
         Then::Open(path) => {
             let scene = Scene::load(path)?;

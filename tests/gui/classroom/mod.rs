@@ -242,7 +242,7 @@ fn choosing_a_random_road_class_in_the_panel_changes_the_road() {
     // live: the running simulation samples the new road, no restart
     assert_eq!(
         *h.state().simulation().problem().road,
-        tirecontact::readers::road::load(&h.state().scene().road, None).unwrap()
+        tirecontact::scene::load_road(&h.state().scene().road, None).unwrap()
     );
     assert_eq!(h.state().simulation().steps(), 100);
     // a new seed regenerates it

@@ -1,47 +1,21 @@
 //! Road files (method §4.1): a measured profile `x_m, z_m` and a surface
 //! grid `x_m, y_m, z_m`, both CSV, read with bounded sizes and errors that
-//! name the file, the line and the column; [`load`] makes any road of a
-//! scene into the profile the solver samples.
+//! name the file, the line and the column (`crate::scene::load_road`
+//! makes any road of a scene into the profile the solver samples).
 
-use crate::scene::SceneError;
-use std::path::Path;
-use std::sync::Arc;
+use std::path::{Path, PathBuf};
+use tirecontact_core::model::road::SurfaceGrid;
 use tirecontact_core::model::road::surface::{
     GRID_TOLERANCE, MAX_SURFACE_BYTES, MAX_SURFACE_NODES,
 };
-use tirecontact_core::model::road::{Road, RoadProfile, SurfaceGrid};
 
-/// The profile of `road`, ready to be sampled: a measured or surface file
-/// read relative to `base_dir`, a generated road made after its fields are
-/// checked (refused as invalid values of `road`).
-pub fn load(road: &Road, base_dir: Option<&Path>) -> Result<RoadProfile, SceneError> {
-    let path = |file: &Path| match base_dir {
-        Some(d) if file.is_relative() => d.join(file),
-        _ => file.to_path_buf(),
-    };
-    match road {
-        Road::Measured { file, looped } => {
-            let (x_m, z_m) = read_profile_csv(&path(file))?;
-            Ok(RoadProfile::Measured {
-                x_m,
-                z_m,
-                looped: *looped,
-            })
-        }
-        Road::Surface { file, looped } => Ok(RoadProfile::Surface(Arc::new(read_surface_csv(
-            &path(file),
-            *looped,
-        )?))),
-        _ => match RoadProfile::generated(road) {
-            Some(Ok(profile)) => Ok(profile),
-            Some(Err(errors)) => Err(SceneError::Invalid {
-                file: "road".into(),
-                errors,
-                at: Vec::new(),
-            }),
-            None => unreachable!("every road without a file is generated"),
-        },
-    }
+/// A road file that cannot be used: which file, and why (naming the line
+/// and column where one is at fault).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{path}: {message}")]
+pub struct RoadFileError {
+    pub path: PathBuf,
+    pub message: String,
 }
 
 /// Opens a road file for reading as CSV: a regular file (a named pipe
@@ -54,8 +28,8 @@ fn open_road_csv(
     rows: &str,
     max_bytes: u64,
     limit: &str,
-) -> Result<csv::Reader<crate::fsio::read::LineCap<std::io::Take<std::fs::File>>>, SceneError> {
-    let err = |message: String| SceneError::RoadFile {
+) -> Result<csv::Reader<crate::fsio::read::LineCap<std::io::Take<std::fs::File>>>, RoadFileError> {
+    let err = |message: String| RoadFileError {
         path: path.to_path_buf(),
         message,
     };
@@ -105,7 +79,7 @@ pub const MAX_LINE_BYTES: usize = 4096;
 
 /// Reads a `x_m, z_m` CSV: optional header, strictly increasing finite `x`,
 /// at most [`MAX_PROFILE_ROWS`] rows and [`MAX_PROFILE_BYTES`] bytes.
-pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>), SceneError> {
+pub fn read_profile_csv(path: &Path) -> Result<(Vec<f64>, Vec<f64>), RoadFileError> {
     read_profile_csv_limited(path, MAX_PROFILE_ROWS, MAX_PROFILE_BYTES)
 }
 
@@ -115,8 +89,8 @@ pub fn read_profile_csv_limited(
     path: &Path,
     max_rows: usize,
     max_bytes: u64,
-) -> Result<(Vec<f64>, Vec<f64>), SceneError> {
-    let err = |message: String| SceneError::RoadFile {
+) -> Result<(Vec<f64>, Vec<f64>), RoadFileError> {
+    let err = |message: String| RoadFileError {
         path: path.to_path_buf(),
         message,
     };
@@ -201,7 +175,7 @@ struct Node {
 /// Reads a surface file: the header `x_m,y_m,z_m` (spaces around commas and
 /// `#` comment lines allowed), then one row per node of a regular grid, rows
 /// in any order. See [`read_surface_csv_limited`].
-pub fn read_surface_csv(path: &Path, looped: bool) -> Result<SurfaceGrid, SceneError> {
+pub fn read_surface_csv(path: &Path, looped: bool) -> Result<SurfaceGrid, RoadFileError> {
     read_surface_csv_limited(path, looped, MAX_SURFACE_NODES, MAX_SURFACE_BYTES)
 }
 
@@ -212,8 +186,8 @@ pub fn read_surface_csv_limited(
     looped: bool,
     max_nodes: usize,
     max_bytes: u64,
-) -> Result<SurfaceGrid, SceneError> {
-    let err = |message: String| SceneError::RoadFile {
+) -> Result<SurfaceGrid, RoadFileError> {
+    let err = |message: String| RoadFileError {
         path: path.to_path_buf(),
         message,
     };

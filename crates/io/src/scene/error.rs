@@ -95,3 +95,12 @@ impl From<BuildError> for SceneError {
         }
     }
 }
+
+impl From<crate::readers::road::RoadFileError> for SceneError {
+    fn from(e: crate::readers::road::RoadFileError) -> Self {
+        SceneError::RoadFile {
+            path: e.path,
+            message: e.message,
+        }
+    }
+}

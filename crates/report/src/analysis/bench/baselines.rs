@@ -86,7 +86,7 @@ pub fn run_baseline(
             damping_ratio: m.damping_ratio,
         });
     }
-    let road = tirecontact_io::readers::road::load(&scene.road, scene.base_dir.as_deref())?;
+    let road = tirecontact_io::scene::load_road(&scene.road, scene.base_dir.as_deref())?;
     let dt = scene.dt_s;
     let gauss = [
         dt * (0.5 - 0.5 / 3f64.sqrt()),

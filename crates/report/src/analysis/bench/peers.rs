@@ -172,7 +172,7 @@ pub fn run_newmark(
     cache: &ModeCache,
 ) -> Result<BaselineRun, BenchError> {
     let osc = Oscillators::new(scene, cache)?;
-    let road = tirecontact_io::readers::road::load(&scene.road, scene.base_dir.as_deref())?;
+    let road = tirecontact_io::scene::load_road(&scene.road, scene.base_dir.as_deref())?;
     let (p, ns, dt) = (osc.p, osc.ns(), scene.dt_s);
     let h = 0.25 * dt * dt;
     // D_s = 1 + dt ξω + dt²ω²/4: the implicit step's diagonal
@@ -302,7 +302,7 @@ pub fn run_dopri(
     cache: &ModeCache,
 ) -> Result<(BaselineRun, AdaptiveStats), BenchError> {
     let osc = Oscillators::new(scene, cache)?;
-    let road = tirecontact_io::readers::road::load(&scene.road, scene.base_dir.as_deref())?;
+    let road = tirecontact_io::scene::load_road(&scene.road, scene.base_dir.as_deref())?;
     let (p, ns) = (osc.p, osc.ns());
     let sys = PenaltySystem {
         osc: &osc,

@@ -592,7 +592,7 @@ pub fn run_bdf(
     cache: &ModeCache,
 ) -> Result<ImplicitRun, BenchError> {
     let osc = Oscillators::new(scene, cache)?;
-    let road = tirecontact_io::readers::road::load(&scene.road, scene.base_dir.as_deref())?;
+    let road = tirecontact_io::scene::load_road(&scene.road, scene.base_dir.as_deref())?;
     let (p, ns) = (osc.p, osc.ns());
     let sys = Switched::new(&osc, scene, &road, k_n_m);
     let (n, m) = (sys.len(), sys.forces_at());
