@@ -13,6 +13,26 @@
 //! Each crate depends only on those above it in this table: Cargo keeps the
 //! layers. Inside a crate the folders keep an order of their own, checked
 //! by the test `layers` below (ARCHITECTURE.md).
+//!
+//! A preset read, prepared (validated, modes known, road loaded) and run to
+//! its end by the one run driver with one probe:
+//!
+//! ```
+//! use tirecontact::solver::drive::{Watch, run_to_end};
+//! use tirecontact::output::record::Recording;
+//! use tirecontact::{ModeCache, PreparedModel, Scene, SolverOptions};
+//!
+//! let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron"))?;
+//! scene.duration_s = 0.01;
+//! // validation, a ring tyre's identification, a measured road's file: here
+//! let model = PreparedModel::new(&scene, &ModeCache::new())?;
+//! let mut sim = model.simulation(SolverOptions::default())?;
+//! let mut rec = Recording::new(scene.num_points(), scene.num_steps(), 100);
+//! run_to_end(&mut sim, &mut rec, Watch::none())?;
+//! assert!(sim.finished());
+//! assert_eq!(rec.t_s.last(), Some(&sim.time_s()));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 pub use tirecontact_core::{base, model, solver};
 pub use tirecontact_io::{fsio, identify, readers, scene};

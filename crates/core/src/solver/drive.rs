@@ -9,22 +9,8 @@
 //! probes are told in order, so `(&mut csv, &mut figure, &mut steady)` is
 //! one probe.
 //!
-//! ```
-//! use tirecontact::solver::drive::{Watch, run_to_end};
-//! use tirecontact::output::record::Recording;
-//! use tirecontact::{ModeCache, PreparedModel, Scene, Simulation, SolverOptions};
-//!
-//! let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron"))?;
-//! scene.duration_s = 0.01;
-//! // validation, a ring tyre's identification, a measured road's file: here
-//! let model = PreparedModel::new(&scene, &ModeCache::new())?;
-//! let mut sim = Simulation::new(&model, SolverOptions::default())?;
-//! let mut rec = Recording::new(scene.num_points(), scene.num_steps(), 100);
-//! run_to_end(&mut sim, &mut rec, Watch::none())?;
-//! assert!(sim.finished());
-//! assert_eq!(rec.t_s.last(), Some(&sim.time_s()));
-//! # Ok::<(), Box<dyn std::error::Error>>(())
-//! ```
+//! (an example that runs a preset to its end is in the `tirecontact` crate's
+//! documentation, where scenes are read).
 
 use crate::solver::error::RunError;
 use crate::solver::simulation::Simulation;

@@ -177,7 +177,7 @@ mod tests {
 
     /// Every preset of the repository that reads no file.
     fn shipped() -> Vec<(String, Scene)> {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../presets");
         let mut out = Vec::new();
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
@@ -246,7 +246,7 @@ mod tests {
 
     #[test]
     fn a_measured_tyre_or_road_is_refused_both_ways_with_the_field() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../presets");
         let measured = Scene::load(&dir.join("measured_example.ron")).unwrap();
         let e = link(&measured, DEFAULT_BASE_URL).unwrap_err();
         assert!(e.to_string().starts_with("tyre.file = "), "{e}");

@@ -86,8 +86,11 @@ mod tests {
     /// `run -o`'s writer, read back, to its ten significant digits.
     #[test]
     fn the_arrays_are_the_csv_rows() {
-        let mut scene =
-            tirecontact_io::Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+        let mut scene = tirecontact_io::Scene::load(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )))
+        .unwrap();
         scene.duration_s = 0.012;
         let p = scene.num_points();
         for every in [1, 7] {

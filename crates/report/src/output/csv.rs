@@ -284,7 +284,11 @@ mod tests {
     /// run ends inside a gathered row).
     #[test]
     fn blocks_and_threads_write_the_plain_rows() {
-        let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+        let mut scene = Scene::load(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )))
+        .unwrap();
         scene.duration_s = 3001.0 * scene.dt_s;
         let steps = scene.num_steps();
         assert_eq!(steps, 3001);

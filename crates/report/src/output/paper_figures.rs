@@ -82,7 +82,11 @@ mod tests {
     /// `identify --figures` does, and beside it, step by step, the range of
     /// its force without impacts averaged over the same windows.
     fn run(scheme: ContactScheme) -> (Scene, Recording, (f64, f64), f64) {
-        let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+        let mut scene = Scene::load(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )))
+        .unwrap();
         scene.duration_s = 0.06;
         scene.contact_scheme = scheme;
         let mut sim = Simulation::from_scene(&scene).unwrap();
@@ -233,7 +237,11 @@ mod tests {
     /// across the tread say their `y` too.
     #[test]
     fn points_are_named_by_their_place() {
-        let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+        let mut scene = Scene::load(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )))
+        .unwrap();
         assert_eq!(point_name(&scene, 0), "point 0 (x = -0.05 m)");
         scene.points[2].x_m = 0.0;
         scene.points[2].y_m = 0.04;

@@ -411,7 +411,11 @@ mod tests {
 
     /// Records the three-point preset (impacts at every landing) with `scheme`.
     fn record(scheme: ContactScheme) -> (Recording, f64) {
-        let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+        let mut scene = Scene::load(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )))
+        .unwrap();
         scene.duration_s = 0.06;
         scene.contact_scheme = scheme;
         let mut sim = Simulation::from_scene(&scene).unwrap();
@@ -471,7 +475,11 @@ mod tests {
     /// `f` steps gives what recording with windows of `f` steps gives.
     #[test]
     fn merged_samples_equal_a_recording_with_longer_windows() {
-        let mut scene = Scene::load(std::path::Path::new("presets/three_points.ron")).unwrap();
+        let mut scene = Scene::load(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )))
+        .unwrap();
         scene.duration_s = 0.01;
         let n = scene.num_steps();
         let f = 7u64;
