@@ -117,14 +117,10 @@ mod layers {
         FOLDERS.iter().position(|f| *f == folder)
     }
 
-    /// Code without its test module and its comment lines.
-    fn code(text: &str) -> String {
-        let code = text.split("#[cfg(test)]").next().unwrap_or("");
-        code.lines()
-            .filter(|l| !l.trim_start().starts_with("//"))
-            .collect::<Vec<_>>()
-            .join("\n")
-    }
+    /// Code without its `#[cfg(test)]` items and its comment lines (the
+    /// whole file is read: a test module in the middle hides nothing
+    /// below it).
+    use crate::layers::code;
 
     fn ident(text: &str) -> &str {
         let end = text

@@ -42,6 +42,11 @@ pub(crate) fn code(text: &str) -> String {
         for (k, c) in after.char_indices() {
             match c {
                 '{' => depth += 1,
+                // the closing brace of what holds an attributed field or arm
+                '}' if depth == 0 => {
+                    end = k;
+                    break;
+                }
                 '}' => {
                     depth -= 1;
                     if depth == 0 {
@@ -140,9 +145,10 @@ fn the_scan_sees_every_import_form_and_skips_only_test_items() {
     let text = "use crate::scene::Mode;\nuse crate::{identify, fsio::read};\n// crate::studies\n\
                 fn f() { tirecontact_core::solver::x(); crate::readers::y(); }\n\
                 #[cfg(test)]\nmod tests { fn g() { if true { crate::identify::z(); } } }\n\
-                #[cfg(test)]\nmod more;\nfn h() { crate::scene::w(); }";
+                #[cfg(test)]\nmod more;\nfn h() { crate::scene::w(); }\n\
+                struct S { #[cfg(test)] t: u8 }\nfn k() { crate::fsio::v(); }";
     assert_eq!(
         imports(text),
-        ["scene", "identify", "fsio", "readers", "scene"]
+        ["scene", "identify", "fsio", "readers", "scene", "fsio"]
     );
 }

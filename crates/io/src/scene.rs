@@ -335,8 +335,9 @@ impl Scene {
         matches!(self.tyre, Tyre::Ring { .. } | Tyre::Measured { .. })
     }
 
+    /// Steps of the whole run ([`RunShape::num_steps`]).
     pub fn num_steps(&self) -> u64 {
-        (self.duration_s / self.dt_s).round().max(1.0) as u64
+        RunShape::num_steps(self)
     }
 
     /// Points whose `y` lies outside a surface file's grid (the grid does

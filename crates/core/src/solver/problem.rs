@@ -110,9 +110,9 @@ impl Problem {
         self.points.len()
     }
 
-    /// Steps of the whole run, `round(duration / dt)`, at least 1.
+    /// Steps of the whole run ([`RunShape::num_steps`]).
     pub fn num_steps(&self) -> u64 {
-        (self.duration_s / self.dt_s).round().max(1.0) as u64
+        RunShape::num_steps(self)
     }
 }
 

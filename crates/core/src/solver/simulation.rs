@@ -198,7 +198,7 @@ impl Simulation {
     /// residual compliance does not apply (§4.7).
     pub fn new(problem: &Problem, options: SolverOptions) -> Result<Self, BuildError> {
         let threads = Threads::new(options.threads).with_parallel_from(options.parallel_from_madds);
-        let tables = SimTables::new(problem, problem.modes.to_vec(), options, &threads)?;
+        let tables = SimTables::new(problem, options, &threads)?;
         Ok(Self::with_tables(problem, tables, threads))
     }
 
@@ -206,7 +206,7 @@ impl Simulation {
     /// caller that must return between stages (a page in the browser).
     pub fn build_in_stages(problem: Problem, options: SolverOptions) -> SimulationBuild {
         SimulationBuild {
-            tables: SimTablesBuild::new(&problem, problem.modes.to_vec(), options),
+            tables: SimTablesBuild::new(options),
             problem,
             options,
             stages_done: 0,

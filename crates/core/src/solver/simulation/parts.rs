@@ -1,6 +1,6 @@
 //! The three parts of a [`Simulation`](super::Simulation):
 //!
-//! - [`SimTables`]: built once from the prepared model, the options and
+//! - [`SimTables`]: built once from the problem, the options and
 //!   `dt` (method §3-4), never changed;
 //! - [`SimState`]: the run at the current time, what a snapshot or a
 //!   restart needs;
@@ -24,7 +24,7 @@ use std::ops::Range;
 /// Krylov vectors kept between GMRES restarts.
 const GMRES_RESTART: usize = 30;
 
-/// What a simulation builds once from the prepared model, the options and
+/// What a simulation builds once from the problem, the options and
 /// `dt`, and never changes: the modal basis and its exact step (method
 /// §3.3-3.4), the full-step influence of the Gauss-point forces (§4.3), the
 /// velocity jump of an impulse (§4.4), the residual and tread compliances
@@ -74,18 +74,17 @@ pub(super) struct SimTables {
 }
 
 impl SimTables {
-    /// The tables of `scene` with its `modes`, the `P x P` ones computed
+    /// The tables of `problem` with its modes, the `P x P` ones computed
     /// on `threads` (the same values for any number). Fails only if a
     /// mode's residue cannot be split into rank terms (method §3.4) or the
     /// residual compliance does not apply (method §4.7).
     pub fn new(
         problem: &Problem,
-        modes: Vec<crate::base::modal::Mode>,
         options: SolverOptions,
         threads: &Threads,
     ) -> Result<Self, BuildError> {
         let p = problem.num_points();
-        let (basis, residual) = tables_basis(problem, modes, options)?;
+        let (basis, residual) = tables_basis(problem, problem.modes.to_vec(), options)?;
         let full = StepTable::new(&basis, problem.dt_s);
         let mut full_inf = Influence::new_on(&basis, &full, threads);
         if !residual.is_empty() {
@@ -223,7 +222,6 @@ const BLOCK_MADDS: usize = 1 << 21;
 /// the same sum in the same order as [`SimTables::new`]'s on any number
 /// of threads: the same tables to the bit.
 pub(super) struct SimTablesBuild {
-    modes: Vec<crate::base::modal::Mode>,
     options: SolverOptions,
     parts: Option<(ModalBasis, Vec<f64>, StepTable)>,
     inf: Influence,
@@ -240,14 +238,8 @@ pub(super) struct SimTablesBuild {
 }
 
 impl SimTablesBuild {
-    pub fn new(
-        problem: &Problem,
-        modes: Vec<crate::base::modal::Mode>,
-        options: SolverOptions,
-    ) -> Self {
-        debug_assert_eq!(modes.len(), problem.modes.len());
+    pub fn new(options: SolverOptions) -> Self {
         SimTablesBuild {
-            modes,
             options,
             parts: None,
             inf: Influence::default(),
@@ -269,7 +261,7 @@ impl SimTablesBuild {
         match &self.parts {
             None if self.col_points == p && p > 0 => 0,
             None => {
-                let block = block_rows(p, self.modes.len().max(1));
+                let block = block_rows(p, problem.modes.len().max(1));
                 1 + 3 * p.div_ceil(block) + 2
             }
             Some(_) => blocks(self.inf_rows) + blocks(self.jump_rows) + blocks(self.col_points) + 2,
@@ -280,8 +272,7 @@ impl SimTablesBuild {
     pub fn stage(&mut self, problem: &Problem) -> Result<Option<SimTables>, BuildError> {
         let (p, dt_s) = (problem.num_points(), problem.dt_s);
         let Some((basis, residual, full)) = &self.parts else {
-            let modes = std::mem::take(&mut self.modes);
-            let (basis, residual) = tables_basis(problem, modes, self.options)?;
+            let (basis, residual) = tables_basis(problem, problem.modes.to_vec(), self.options)?;
             let full = StepTable::new(&basis, dt_s);
             self.block = block_rows(p, basis.stored_states());
             self.inf.zeroed(p);
