@@ -3,6 +3,7 @@
 //! histories ([`sampler`]); files are written atomically by
 //! [`tirecontact_io::fsio`].
 
+#[cfg(feature = "figures")]
 pub mod animation;
 pub mod arrays;
 pub mod csv;

@@ -123,6 +123,7 @@ mod tests {
 
     /// Length (px) of the polylines `curves` inside the box `[l, t, r, b]`,
     /// from samples every 0.5 px along each segment.
+    #[cfg(feature = "figures")]
     fn px_inside(curves: &[Vec<(i32, i32)>], [l, t, r, b]: [i32; 4]) -> f64 {
         let mut len = 0.0;
         for c in curves {
@@ -147,6 +148,7 @@ mod tests {
         len
     }
 
+    #[cfg(feature = "figures")]
     #[test]
     fn fig2_legend_is_beside_the_plot_where_no_curve_is() {
         use crate::output::figures::render_png_layout;

@@ -9,6 +9,7 @@
 //! cell.
 
 use crate::output::figures::FigureError;
+#[cfg(feature = "figures")]
 use plotters::prelude::*;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -201,6 +202,7 @@ impl PatchRecorder {
 
     /// Writes the heat maps `patch_0000.png`, … into `dir` (created), on one
     /// colour scale; returns their number.
+    #[cfg(feature = "figures")]
     pub fn save_frames(
         &self,
         dir: &Path,
@@ -259,6 +261,7 @@ impl Probe for PatchRecorder {
 
 /// A colour of the scale from white (0 N) through yellow and orange to dark
 /// red (`max`), readable in grey scale (lightness falls monotonically).
+#[cfg(feature = "figures")]
 pub fn force_colour(f: f64, max: f64) -> RGBColor {
     let s = if max > 0.0 {
         (f / max).clamp(0.0, 1.0)
@@ -286,6 +289,7 @@ pub fn force_colour(f: f64, max: f64) -> RGBColor {
 
 /// A heat map of `forces` (N) over the patch, axes in mm, a colour bar in N
 /// from 0 to `max_n`.
+#[cfg(feature = "figures")]
 pub fn render_heat_map(
     layout: &PatchLayout,
     forces: &[f64],
@@ -308,7 +312,7 @@ pub fn render_heat_map(
 }
 
 /// [`render_heat_map`]'s drawing (plotters' file backend).
-#[cfg(not(target_arch = "wasm32"))]
+#[cfg(all(feature = "figures", not(target_arch = "wasm32")))]
 fn draw_heat_map(
     layout: &PatchLayout,
     forces: &[f64],
@@ -403,14 +407,14 @@ fn draw_heat_map(
 }
 
 /// A tick label: no trailing zeros ("40", "2.5", "0.25").
-#[cfg(not(target_arch = "wasm32"))]
+#[cfg(all(feature = "figures", not(target_arch = "wasm32")))]
 fn tick(v: f64) -> String {
     let s = format!("{v:.3}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" { "0".into() } else { s.to_string() }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "figures"))]
 mod tests {
     use super::*;
 

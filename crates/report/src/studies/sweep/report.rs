@@ -612,13 +612,17 @@ mod tests {
 
 #[cfg(test)]
 mod figure_tests {
+    #[cfg(feature = "figures")]
     use super::{Columns, FIGURE_PX, figure};
     use crate::analysis::metrics::ContactSummary;
     use crate::analysis::spectrum::{BandLevel, third_octave_bands};
+    #[cfg(feature = "figures")]
     use crate::output::figures::tests::{ink, runs};
+    #[cfg(feature = "figures")]
     use crate::output::figures::{render_rgb_layout, tick_label_px};
     use crate::studies::sweep::{RunSummary, SweepPoint};
 
+    #[cfg(feature = "figures")]
     const THREE: Columns = Columns {
         points: Some(3),
         patch: false,
@@ -658,10 +662,12 @@ mod figure_tests {
     }
 
     /// Rows of `rgb` (`w` px wide) in `y0..y1` with dark ink in `x0..x1`.
+    #[cfg(feature = "figures")]
     fn ink_rows(rgb: &[u8], w: u32, x: (i32, i32), y: (i32, i32)) -> Vec<i32> {
         ink(rgb, w, x, y).1
     }
 
+    #[cfg(feature = "figures")]
     #[test]
     fn every_panel_reads_three_y_labels_and_its_y_title_once() {
         // at 1400 x 1400 the panels' plots were 160 px high: two y tick
