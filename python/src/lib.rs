@@ -96,6 +96,21 @@ impl PyScene {
         tirecontact_report::studies::sweep::param_paths(&self.inner)
     }
 
+    /// The field at `path` as the visualiser names it, with its unit:
+    /// "speed V (m/s)", "mode 0 frequency (Hz)" (the path for a field
+    /// without a name).
+    #[staticmethod]
+    fn param_label(path: &str) -> String {
+        tirecontact_io::scene::fields::axis_label(path)
+    }
+
+    /// The SI unit of the field at `path` (`None`: a count, or no such
+    /// field).
+    #[staticmethod]
+    fn param_unit(path: &str) -> Option<&'static str> {
+        tirecontact_io::scene::fields::unit(path)
+    }
+
     #[getter]
     fn name(&self) -> String {
         self.inner.name.clone()

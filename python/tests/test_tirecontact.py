@@ -114,6 +114,17 @@ def test_get_set_and_errors_carry_the_project_messages(tmp_path):
     assert issubclass(tc.TirecontactError, ValueError)
 
 
+def test_every_parameter_has_a_label_and_the_units_are_the_field_table_s():
+    scene = tc.Scene.load(PRESETS / "three_points.ron")
+    for path in scene.param_paths():
+        label = tc.Scene.param_label(path)
+        assert label and "_" not in label.split(" (")[0] or "shape" in path or "residue" in path, path
+    assert tc.Scene.param_label("speed_mps") == "speed V (m/s)"
+    assert tc.Scene.param_label("tyre.modes[1].freq_hz") == "mode 1 frequency (Hz)"
+    assert tc.Scene.param_unit("contact.stiffness_n_m[0]") == "N/m"
+    assert tc.Scene.param_unit("points.along") is None
+
+
 def test_a_modal_tyre_model_is_its_modes_in_closed_form():
     scene = tc.Scene.load(PRESETS / "single_mode.ron")
     m = tc.identify(scene)

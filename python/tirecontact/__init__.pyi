@@ -26,6 +26,12 @@ class Scene:
         """Sets a numeric field by path; "points[*].h_m" sets every point."""
     def validate(self) -> None: ...
     def param_paths(self) -> list[str]: ...
+    @staticmethod
+    def param_label(path: str) -> str:
+        """The field as the visualiser names it, with its unit: "speed V (m/s)"."""
+    @staticmethod
+    def param_unit(path: str) -> Optional[str]:
+        """The field's SI unit; None for a count or an unknown path."""
     @property
     def name(self) -> str: ...
     @property

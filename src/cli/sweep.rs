@@ -118,7 +118,11 @@ pub fn sweep(args: &SweepArgs) -> CliResult {
     }
     if let Some(path) = &args.plot {
         let fig = report::figure(
-            &format!("{}: sweep of {}", scene.name, report::param_name(param)),
+            &format!(
+                "{}: sweep of {}",
+                scene.name,
+                tirecontact::scene::fields::label(param)
+            ),
             &format!(
                 "base scene: {}",
                 super::run::scene_summary(&scene, &cache.modes(&scene)?)

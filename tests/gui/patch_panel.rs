@@ -86,7 +86,7 @@ fn the_grid_is_edited_in_the_side_panel_and_keeps_its_form() {
     let edits = h.state().edits().join("; ");
     assert!(
         edits.contains("patch grid 16 × 6 -> 20 × 6 points")
-            && edits.contains("patch spacing across 20 -> 25 mm")
+            && edits.contains("spacing across Δy 20 -> 25 mm")
             && edits.contains("patch preload"),
         "{edits}"
     );

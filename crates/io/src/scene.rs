@@ -12,6 +12,7 @@ use tirecontact_core::model::road::{Road, RoadProfile};
 
 mod edits;
 mod error;
+pub mod fields;
 pub mod locate;
 pub mod points;
 pub mod share;

@@ -40,8 +40,12 @@ impl App {
             ResearchCommand::RecomputeSpectra => self.research.spectra_now = true,
             ResearchCommand::StartSweep(req) => {
                 let text = format!(
-                    "sweep of {} from {} to {} in {} steps started",
-                    req.param, req.from, req.to, req.steps
+                    "sweep of {} from {} to {} {} in {} steps started",
+                    crate::scene::fields::label(&req.param),
+                    req.from,
+                    req.to,
+                    crate::scene::fields::unit(&req.param).unwrap_or(""),
+                    req.steps
                 );
                 match self.research.sweep.start(
                     &self.doc.scene,
@@ -190,7 +194,7 @@ impl App {
             &format!(
                 "{}: sweep of {}",
                 res.scene_name,
-                crate::studies::sweep::report::param_name(&res.request.param)
+                crate::scene::fields::label(&res.request.param)
             ),
             &crate::studies::sweep::report::sweep_subtitle(
                 &res.request.param,
@@ -313,7 +317,7 @@ impl App {
                 false,
                 format!(
                     "sweep of {} done: {} runs ({} failed) on {} threads in {}",
-                    r.request.param,
+                    crate::scene::fields::label(&r.request.param),
                     r.points.len(),
                     r.failed(),
                     r.threads,

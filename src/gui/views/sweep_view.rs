@@ -16,40 +16,10 @@ use crate::studies::sweep::{RunSummary, get_param, param_paths};
 use egui::{Color32, RichText, Ui};
 use egui_plot::{Line, MarkerShape, Plot, Points};
 
-/// The unit of a parameter, from its path's suffix (for the axis label).
-pub fn param_unit(path: &str) -> &'static str {
-    // longest suffixes first
-    let units = [
-        ("_mps", "m/s"),
-        ("_n_m2", "N/m²"),
-        ("_n_m", "N/m"),
-        ("_kg_m", "kg/m"),
-        ("_cpm", "cycles/m"),
-        ("_rad", "rad"),
-        ("_hz", "Hz"),
-        ("_pa", "Pa"),
-        ("_m", "m"),
-        ("_s", "s"),
-        ("_n", "N"),
-    ];
-    // the last named segment: `band_hz.0` -> `band_hz`, `stiffness_n_m[0]` -> `stiffness_n_m`
-    let last = path
-        .rsplit('.')
-        .find(|seg| !seg.chars().all(|c| c.is_ascii_digit()))
-        .unwrap_or(path);
-    let last = last.split('[').next().unwrap_or(last);
-    for (suffix, unit) in units {
-        if last.ends_with(suffix) {
-            return unit;
-        }
-    }
-    if last.contains("shape") {
-        "1/√kg"
-    } else if last.contains("residue") {
-        "1/kg"
-    } else {
-        "-"
-    }
+/// The unit of a parameter (the scene format's table of fields; empty
+/// for a count).
+fn param_unit(path: &str) -> &'static str {
+    crate::scene::fields::unit(path).unwrap_or("")
 }
 
 pub fn show(
@@ -80,15 +50,22 @@ fn request_form(
         ui.label("parameter");
         let before = form.param.clone();
         egui::ComboBox::from_id_salt("tirecontact.sweep_param")
-            .selected_text(&form.param)
+            .selected_text(crate::scene::fields::axis_label(&form.param))
             .height(400.0)
             .show_ui(ui, |ui| {
+                // the editor's names with units; the preset path on hover
                 for p in paths {
-                    ui.selectable_value(&mut form.param, p.clone(), p);
+                    ui.selectable_value(
+                        &mut form.param,
+                        p.clone(),
+                        crate::scene::fields::axis_label(p),
+                    )
+                    .on_hover_text(format!("preset field `{p}`"));
                 }
             })
             .response
-            .accessible_name("sweep parameter");
+            .accessible_name("sweep parameter")
+            .on_hover_text(format!("preset field `{}`", form.param));
         if form.param != before
             && let Ok(v) = get_param(scene, &form.param)
         {
@@ -171,7 +148,7 @@ fn outcome(ui: &mut Ui, scene: &Scene, state: &SweepState, cmds: &mut Vec<Comman
                     .text(format!(
                         "{} runs of {} on {} threads: {:.0} % of the solver steps{}",
                         job.runs,
-                        job.request.param,
+                        crate::scene::fields::label(&job.request.param),
                         job.threads,
                         100.0 * f,
                         if job.cancel_requested() {
@@ -196,7 +173,7 @@ fn outcome(ui: &mut Ui, scene: &Scene, state: &SweepState, cmds: &mut Vec<Comman
                 ui.label(format!(
                     "{} runs of {} from {} to {} {} ({} failed) on {} threads in {} (scene “{}”)",
                     r.points.len(),
-                    r.request.param,
+                    crate::scene::fields::label(&r.request.param),
                     r.request.from,
                     r.request.to,
                     param_unit(&r.request.param),
@@ -239,11 +216,9 @@ keep their values when dt shrinks.";
 type Curves = Vec<(String, Color32, Vec<[f64; 2]>)>;
 
 fn plots(ui: &mut Ui, r: &SweepResult) {
-    use crate::studies::sweep::report::{
-        Y_TITLES, band_series_name, contact_curves, param_axis_label,
-    };
+    use crate::studies::sweep::report::{Y_TITLES, band_series_name, contact_curves};
     // the sweep figure's labels (one labelling for the view and the PNG)
-    let x_label = param_axis_label(&r.request.param);
+    let x_label = crate::scene::fields::axis_label(&r.request.param);
     let ok: Vec<(f64, &RunSummary)> = r
         .points
         .iter()
@@ -329,25 +304,5 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
                     });
             }
         });
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::param_unit;
-
-    #[test]
-    fn units_from_paths() {
-        assert_eq!(param_unit("speed_mps"), "m/s");
-        assert_eq!(param_unit("points[2].h_m"), "m");
-        assert_eq!(param_unit("tyre.modes[0].freq_hz"), "Hz");
-        assert_eq!(param_unit("tyre.ring.inflation_pa"), "Pa");
-        assert_eq!(param_unit("tyre.ring.radial_stiffness_n_m2"), "N/m²");
-        assert_eq!(param_unit("contact.stiffness_n_m[0]"), "N/m");
-        assert_eq!(param_unit("tyre.modes[0].damping_ratio"), "-");
-        assert_eq!(param_unit("tyre.modes[1].shape[0]"), "1/√kg");
-        assert_eq!(param_unit("dt_s"), "s");
-        assert_eq!(param_unit("tyre.ring.mass_per_length_kg_m"), "kg/m");
-        assert_eq!(param_unit("tyre.identification.band_hz.1"), "Hz");
     }
 }

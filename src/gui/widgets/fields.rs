@@ -303,7 +303,7 @@ pub fn banner_name(name: &str) -> String {
     let label = if name == "speed_kmh" {
         "speed V".to_string()
     } else {
-        crate::studies::sweep::report::param_name(name)
+        crate::scene::fields::label(name)
     };
     if label == name {
         name.to_string()

@@ -116,7 +116,7 @@ fn a_sweep_from_the_gui_equals_the_library_sweep() {
     )
     .unwrap();
     assert_eq!(r.points, lib);
-    assert!(h.query_by_label_contains("8 runs of speed_mps").is_some());
+    assert!(h.query_by_label_contains("8 runs of speed V").is_some());
     // exports: the CSV is the CLI's table
     let tmp = temp_dir();
     let dir = tmp.path();
@@ -153,7 +153,7 @@ fn cancel_stops_a_sweep_and_leaves_the_app_usable() {
     // one frame applies the click, the next draws Cancel enabled
     h.run_steps(2);
     assert!(h.state().research().sweep().is_running());
-    assert!(h.query_by_label_contains("runs of speed_mps on").is_some());
+    assert!(h.query_by_label_contains("runs of speed V on").is_some());
     h.get_by_label("Cancel").click();
     wait_sweep(&mut h);
     assert!(

@@ -12,6 +12,13 @@ fn num(x: f64) -> String {
     format!("{r}")
 }
 
+/// "label a -> b unit" of the scene field at `path` when `a != b`, in the
+/// label and unit the editor shows it in (the table of fields).
+fn change_of(out: &mut Vec<String>, path: &str, a: f64, b: f64) {
+    let (scale, unit) = super::fields::field(path).map_or((1.0, ""), |f| f.shown);
+    change(out, &super::fields::label(path), a, b, scale, unit);
+}
+
 /// "what a -> b unit" when `a != b`.
 fn change(out: &mut Vec<String>, what: &str, a: f64, b: f64, scale: f64, unit: &str) {
     if a != b {
@@ -126,7 +133,7 @@ fn mode_edits(out: &mut Vec<String>, a: &[Mode], b: &[Mode]) {
 }
 
 /// The changes from `before` to `after` a reader of `before`'s description
-/// would need to know, one phrase each with units ("speed 10 -> 20 m/s");
+/// would need to know, one phrase each with units ("speed V 10 -> 20 m/s");
 /// empty when none. The name and the description themselves are not listed.
 pub fn edits_since(before: &Scene, after: &Scene) -> Vec<String> {
     edits_since_identified(before, None, after)
@@ -191,21 +198,17 @@ pub fn edits_since_identified(
                 ga.along, ga.across, gb.along, gb.across
             ));
         }
-        change(
+        change_of(
             &mut out,
-            "patch spacing along",
+            "points.spacing_m.0",
             ga.spacing_m.0,
             gb.spacing_m.0,
-            1e3,
-            "mm",
         );
-        change(
+        change_of(
             &mut out,
-            "patch spacing across",
+            "points.spacing_m.1",
             ga.spacing_m.1,
             gb.spacing_m.1,
-            1e3,
-            "mm",
         );
         if ga.preload != gb.preload {
             out.push("patch preload".to_string());
@@ -226,8 +229,8 @@ pub fn edits_since_identified(
                 wavelength_m: l1,
             },
         ) => {
-            change(&mut out, "road amplitude", *a0, *a1, 1e3, "mm");
-            change(&mut out, "road wavelength", *l0, *l1, 1.0, "m");
+            change_of(&mut out, "road.amplitude_m", *a0, *a1);
+            change_of(&mut out, "road.wavelength_m", *l0, *l1);
         }
         (a, b) if std::mem::discriminant(a) != std::mem::discriminant(b) => {
             out.push(format!("road {} -> {}", road_kind(a), road_kind(b)));
@@ -235,24 +238,14 @@ pub fn edits_since_identified(
         (a, b) if a != b => out.push(format!("{} road parameters", road_kind(b))),
         _ => {}
     }
-    change(
-        &mut out,
-        "speed",
-        before.speed_mps,
-        after.speed_mps,
-        1.0,
-        "m/s",
-    );
-    change(&mut out, "ramp", before.ramp_s, after.ramp_s, 1.0, "s");
-    change(&mut out, "time step", before.dt_s, after.dt_s, 1e6, "µs");
-    change(
-        &mut out,
-        "duration",
-        before.duration_s,
-        after.duration_s,
-        1.0,
-        "s",
-    );
+    for (path, a, b) in [
+        ("speed_mps", before.speed_mps, after.speed_mps),
+        ("ramp_s", before.ramp_s, after.ramp_s),
+        ("dt_s", before.dt_s, after.dt_s),
+        ("duration_s", before.duration_s, after.duration_s),
+    ] {
+        change_of(&mut out, path, a, b);
+    }
     if before.contact_scheme != after.contact_scheme {
         out.push(format!(
             "contact scheme {:?} -> {:?}",
@@ -271,7 +264,7 @@ pub fn edits_since_identified(
 }
 
 /// `description` with a closing paragraph listing `edits` ("Edited from
-/// "Paper": speed 10 -> 20 m/s; …."); unchanged when there are none.
+/// "Paper": speed V 10 -> 20 m/s; …."); unchanged when there are none.
 pub fn described_with_edits(description: &str, from_name: &str, edits: &[String]) -> String {
     if edits.is_empty() {
         return description.to_string();
@@ -319,11 +312,11 @@ mod tests {
         t.dt_s = 2e-5;
         t.duration_s = s.duration_s + 0.5;
         let e = edits_since(&s, &t);
-        let speed = format!("speed {} -> {} m/s", num(s.speed_mps), num(t.speed_mps));
+        let speed = format!("speed V {} -> {} m/s", num(s.speed_mps), num(t.speed_mps));
         assert!(e.contains(&speed), "{e:?}");
         assert!(
             e.iter()
-                .any(|x| x.starts_with("time step") && x.ends_with("-> 20 µs")),
+                .any(|x| x.starts_with("time step dt") && x.ends_with("-> 20 µs")),
             "{e:?}"
         );
         assert!(
@@ -346,7 +339,7 @@ mod tests {
             amplitude_m: 2.5e-3,
             wavelength_m: 0.1,
         };
-        assert_eq!(edits_since(&s, &t), ["road amplitude 1 -> 2.5 mm"]);
+        assert_eq!(edits_since(&s, &t), ["road amplitude a 1 -> 2.5 mm"]);
         t.road = Road::Harmonics { components: vec![] };
         assert_eq!(edits_since(&s, &t), ["road sine -> harmonics"]);
     }
@@ -425,12 +418,12 @@ mod tests {
     #[test]
     fn the_note_closes_the_description() {
         let e = vec![
-            "speed 10 -> 20 m/s".to_string(),
+            "speed V 10 -> 20 m/s".to_string(),
             "ramp 0 -> 0.1 s".to_string(),
         ];
         assert_eq!(
             described_with_edits("Five points.\n", "Paper", &e),
-            "Five points.\n\nEdited from \"Paper\": speed 10 -> 20 m/s; ramp 0 -> 0.1 s."
+            "Five points.\n\nEdited from \"Paper\": speed V 10 -> 20 m/s; ramp 0 -> 0.1 s."
         );
         assert_eq!(
             described_with_edits("Five points.", "Paper", &[]),
@@ -438,7 +431,7 @@ mod tests {
         );
         assert_eq!(
             described_with_edits("", "P", &e[..1]),
-            "Edited from \"P\": speed 10 -> 20 m/s."
+            "Edited from \"P\": speed V 10 -> 20 m/s."
         );
     }
 
@@ -486,7 +479,7 @@ mod tests {
                 "mode 0 frequency 40 -> 45 Hz",
                 "mode 0 damping ratio 0.05 -> 0.02",
                 "mode 5 (600 Hz, ξ 0.05) added",
-                "speed 10 -> 15 m/s",
+                "speed V 10 -> 15 m/s",
             ]
         );
         // without the identified modes only the kind can be said

@@ -257,7 +257,7 @@ pub fn figure(e: &Effect, title: &str) -> Figure {
             let named = |n: &str| if m == 0 { n.to_string() } else { String::new() };
             Panel {
                 title: (*name).to_string(),
-                x_label: crate::studies::sweep::report::param_axis_label(&e.factor),
+                x_label: tirecontact_io::scene::fields::axis_label(&e.factor),
                 y_label: format!("({unit})"),
                 series: vec![
                     Series {
@@ -286,7 +286,7 @@ pub fn figure(e: &Effect, title: &str) -> Figure {
     Figure {
         title: format!(
             "{title}: main effect of {}",
-            crate::studies::sweep::report::param_name(&e.factor)
+            tirecontact_io::scene::fields::label(&e.factor)
         ),
         subtitle: format!(
             "{} levels; each point the mean of its rows, the thin lines one standard deviation either side",

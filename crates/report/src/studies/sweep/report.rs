@@ -6,6 +6,7 @@ use crate::analysis::spectrum::{band_label, third_octave_bands};
 use crate::output::figures::{Figure, Panel, Series, Style};
 use std::io::Write;
 use tirecontact_io::scene::Scene;
+use tirecontact_io::scene::fields;
 
 /// Nominal centres of the bands of the sweep table (Hz): 20 Hz - 5 kHz.
 fn table_bands() -> Vec<f64> {
@@ -188,127 +189,6 @@ pub fn write_csv<W: Write>(
     Ok(())
 }
 
-/// The x-axis title of a swept parameter: its name as the editor labels it
-/// and the unit its path carries, `speed V (m/s)`, `mode 0 frequency
-/// (Hz)`; the path for a field without such a name, and no unit when the
-/// path carries none (`road.seed`).
-pub fn param_axis_label(param: &str) -> String {
-    match param_unit(param) {
-        Some(u) => format!("{} ({u})", param_name(param)),
-        None => param_name(param),
-    }
-}
-
-/// A swept parameter's name as the editor labels it: `speed V` for
-/// `speed_mps`, `mode 2 damping ratio` for `tyre.modes[2].damping_ratio`,
-/// `every point's height h` for `points[*].h_m`; the path itself for the
-/// fields without such a name.
-pub fn param_name(param: &str) -> String {
-    let top = match param {
-        "speed_mps" => Some("speed V"),
-        "ramp_s" => Some("ramp"),
-        "dt_s" => Some("time step dt"),
-        "duration_s" => Some("duration"),
-        "road.amplitude_m" => Some("road amplitude a"),
-        "road.wavelength_m" => Some("road wavelength λ"),
-        "road.length_m" => Some("road loop length L"),
-        "road.width_m" => Some("texture period across"),
-        "road.min_wavenumber_cpm" => Some("lowest wavenumber n"),
-        "road.max_wavenumber_cpm" => Some("highest wavenumber n"),
-        "points.along" => Some("points along"),
-        "points.across" => Some("rows across"),
-        "points.spacing_m.0" => Some("spacing along Δx"),
-        "points.spacing_m.1" => Some("spacing across Δy"),
-        "points.preload.depth_m" => Some("press depth"),
-        "points.preload.length_m" => Some("footprint length"),
-        _ => None,
-    };
-    if let Some(t) = top {
-        return t.to_string();
-    }
-    // `head[index].field` of the points, the modes and the tread stiffness
-    let indexed = |head: &str| -> Option<(String, String)> {
-        let rest = param.strip_prefix(head)?.strip_prefix('[')?;
-        let (index, field) = rest.split_once(']')?;
-        Some((index.to_string(), field.trim_start_matches('.').to_string()))
-    };
-    let whose = |what: &str, index: &str| {
-        if index == "*" {
-            format!("every {what}'s")
-        } else {
-            format!("{what} {index}")
-        }
-    };
-    if let Some((i, field)) = indexed("points") {
-        let name = match field.as_str() {
-            "x_m" => "position x",
-            "y_m" => "position y",
-            "h_m" => "height h",
-            _ => return param.to_string(),
-        };
-        return format!("{} {name}", whose("point", &i));
-    }
-    if let Some((i, field)) = indexed("tyre.modes") {
-        let name = match field.as_str() {
-            "freq_hz" => "frequency",
-            "damping_ratio" => "damping ratio",
-            _ => return param.to_string(),
-        };
-        return format!("{} {name}", whose("mode", &i));
-    }
-    if let Some((i, field)) = indexed("contact.stiffness_n_m")
-        && field.is_empty()
-    {
-        return format!(
-            "tread stiffness of {}",
-            whose("point", &i).replace("'s", "")
-        );
-    }
-    param.to_string()
-}
-
-/// The unit a swept parameter's path carries (`None`: none known).
-fn param_unit(param: &str) -> Option<&'static str> {
-    // the field's name without a trailing index (`[2]`, `[*]`, `.0`)
-    let mut name = param;
-    loop {
-        if let Some(head) = name.strip_suffix(']').and_then(|n| n.rsplit_once('[')) {
-            name = head.0;
-        } else if let Some((head, tail)) = name.rsplit_once('.')
-            && !tail.is_empty()
-            && tail.bytes().all(|b| b.is_ascii_digit())
-        {
-            name = head;
-        } else {
-            break;
-        }
-    }
-    let field = name.rsplit('.').next().unwrap_or(name);
-    // names whose suffix alone is ambiguous first, then by suffix
-    match field {
-        "bending_stiffness_n_m2" => Some("N·m²"),
-        "residue" => Some("1/kg"),
-        "shape" => Some("1/√kg"),
-        _ => [
-            ("_n_m2", "N/m²"),
-            ("_kg_m", "kg/m"),
-            ("_n_m", "N/m"),
-            ("_mps", "m/s"),
-            ("_cpm", "cycles/m"),
-            ("_rad", "rad"),
-            ("_ratio", "-"),
-            ("_hz", "Hz"),
-            ("_pa", "Pa"),
-            ("_m", "m"),
-            ("_s", "s"),
-            ("_n", "N"),
-        ]
-        .iter()
-        .find(|(suffix, _)| field.ends_with(suffix))
-        .map(|(_, unit)| *unit),
-    }
-}
-
 /// The y titles of the sweep's four plots, shared by the sweep view and
 /// the sweep figure: largest force without impacts, largest impulse,
 /// contact share, band levels.
@@ -396,12 +276,12 @@ pub fn contact_curves(columns: &Columns, points: &[SweepPoint]) -> [Vec<Curve>; 
 /// The sweep's subtitle: how many values of which parameter, over which
 /// range with its unit (`8 values of speed V from 8 to 36 m/s`).
 pub fn sweep_subtitle(param: &str, count: usize, from: f64, to: f64) -> String {
-    let unit = param_unit(param)
+    let unit = fields::unit(param)
         .filter(|u| *u != "-")
         .map_or(String::new(), |u| format!(" {u}"));
     format!(
         "{count} values of {} from {from} to {to}{unit}; steady part of each run (t ≥ ramp)",
-        param_name(param)
+        fields::label(param)
     )
 }
 
@@ -453,21 +333,21 @@ pub fn figure(
         panels: vec![
             Panel {
                 title: "Largest contact force without impacts (steady part)".into(),
-                x_label: param_axis_label(param),
+                x_label: fields::axis_label(param),
                 y_label: Y_TITLES[0].into(),
                 series: force,
                 ..Panel::default()
             },
             Panel {
                 title: "Largest impact impulse (steady part; 0: no impact)".into(),
-                x_label: param_axis_label(param),
+                x_label: fields::axis_label(param),
                 y_label: Y_TITLES[1].into(),
                 series: impulse,
                 ..Panel::default()
             },
             Panel {
                 title: "Fraction of steps in contact (steady part)".into(),
-                x_label: param_axis_label(param),
+                x_label: fields::axis_label(param),
                 y_label: Y_TITLES[2].into(),
                 series: contact,
                 ..Panel::default()
@@ -476,7 +356,7 @@ pub fn figure(
                 title:
                     "Total contact force, third-octave bands 315 Hz - 2 kHz, every other band (Hann, mean removed)"
                         .into(),
-                x_label: param_axis_label(param),
+                x_label: fields::axis_label(param),
                 y_label: Y_TITLES[3].into(),
                 series: bands,
                 ..Panel::default()
@@ -487,7 +367,7 @@ pub fn figure(
 
 #[cfg(test)]
 mod tests {
-    use super::{CONTACT_PERCENT, Columns, Y_TITLES, figure, param_axis_label, sweep_subtitle};
+    use super::{CONTACT_PERCENT, Columns, Y_TITLES, fields, figure, sweep_subtitle};
 
     const THREE: Columns = Columns {
         points: Some(3),
@@ -503,10 +383,7 @@ mod tests {
             ("road.amplitude_m", "road amplitude a (m)"),
             ("points[*].h_m", "every point's height h (m)"),
             ("points[2].x_m", "point 2 position x (m)"),
-            (
-                "road.components[1].phase_rad",
-                "road.components[1].phase_rad (rad)",
-            ),
+            ("road.components[1].phase_rad", "harmonic 1 phase (rad)"),
             ("road.max_wavenumber_cpm", "highest wavenumber n (cycles/m)"),
             ("tyre.modes[0].freq_hz", "mode 0 frequency (Hz)"),
             (
@@ -526,30 +403,30 @@ mod tests {
                 "contact.stiffness_n_m[*]",
                 "tread stiffness of every point (N/m)",
             ),
-            ("tyre.ring.inflation_pa", "tyre.ring.inflation_pa (Pa)"),
+            ("tyre.ring.inflation_pa", "inflation (Pa)"),
             (
                 "tyre.ring.radial_stiffness_n_m2",
-                "tyre.ring.radial_stiffness_n_m2 (N/m²)",
+                "ring radial stiffness (N/m²)",
             ),
             (
                 "tyre.ring.bending_stiffness_n_m2",
-                "tyre.ring.bending_stiffness_n_m2 (N·m²)",
+                "ring bending stiffness EI (N·m²)",
             ),
             (
                 "tyre.ring.extensional_stiffness_n",
-                "tyre.ring.extensional_stiffness_n (N)",
+                "ring extensional stiffness EA (N)",
             ),
             (
                 "tyre.ring.mass_per_length_kg_m",
-                "tyre.ring.mass_per_length_kg_m (kg/m)",
+                "ring mass per length (kg/m)",
             ),
             (
                 "tyre.identification.band_hz.1",
-                "tyre.identification.band_hz.1 (Hz)",
+                "identification band to (Hz)",
             ),
             ("road.seed", "road.seed"),
         ] {
-            assert_eq!(param_axis_label(param), want);
+            assert_eq!(fields::axis_label(param), want);
         }
     }
 

@@ -1,0 +1,781 @@
+//! The numeric fields of the scene format, in one table: each path (a
+//! `[*]` stands for any index) with the label the editor gives it, its SI
+//! unit, the unit it is shown in, what it means and the values the scene
+//! accepts. Sweeps and studies name their parameters and axes from it, the
+//! edit list of a description names its changes from it, the visualiser's
+//! tooltips read it, and [`numeric_fields`] reaches the values it lists.
+//!
+//! A new numeric field of the scene is one entry of [`FIELDS`] and one
+//! line of [`numeric_fields`] (the tests below fail when either is missing).
+
+use super::{Contact, MAX_POINTS, MAX_TREAD_STIFFNESS_N_M, Points, Preload, Scene, Tyre};
+use crate::readers::fe_modes::FeDamping;
+use tirecontact_core::base::error::FieldError;
+use tirecontact_core::model::road::Road;
+
+/// One numeric field of the scene format.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Field {
+    /// Its path, `[*]` for every index: `tyre.modes[*].freq_hz`.
+    pub path: &'static str,
+    /// The editor's name of it: `speed V`; for an indexed field the name
+    /// after its holder (`frequency` of `mode 2`, see [`label`]). Empty:
+    /// the path is its name.
+    pub label: &'static str,
+    /// The holder named before the label of an indexed field (`mode`,
+    /// `point`); empty for a field of the scene itself.
+    pub holder: &'static str,
+    /// Its SI unit (`m/s`, `-` for a ratio); empty for a count or a
+    /// number without unit.
+    pub unit: &'static str,
+    /// The factor and the unit it is shown in by the editor (`1e3`, `mm`
+    /// for a road amplitude in m).
+    pub shown: (f64, &'static str),
+    /// What the value is, in words.
+    pub what: &'static str,
+    /// The lowest accepted value (SI) and whether it is itself accepted.
+    pub min_si: Option<(f64, bool)>,
+    /// The highest accepted value (SI), accepted itself.
+    pub max_si: Option<f64>,
+    /// Conditions on other fields, if any (empty if none).
+    pub also: &'static str,
+}
+
+impl Field {
+    const fn new(path: &'static str, unit: &'static str, what: &'static str) -> Self {
+        Field {
+            path,
+            label: "",
+            holder: "",
+            unit,
+            shown: (1.0, unit),
+            what,
+            min_si: None,
+            max_si: None,
+            also: "",
+        }
+    }
+    const fn label(mut self, label: &'static str) -> Self {
+        self.label = label;
+        self
+    }
+    const fn of(mut self, holder: &'static str, label: &'static str) -> Self {
+        self.holder = holder;
+        self.label = label;
+        self
+    }
+    const fn shown(mut self, scale: f64, unit: &'static str) -> Self {
+        self.shown = (scale, unit);
+        self
+    }
+    const fn min(mut self, lo: f64, inclusive: bool) -> Self {
+        self.min_si = Some((lo, inclusive));
+        self
+    }
+    const fn max(mut self, hi: f64) -> Self {
+        self.max_si = Some(hi);
+        self
+    }
+    const fn also(mut self, also: &'static str) -> Self {
+        self.also = also;
+        self
+    }
+}
+
+const SPEED: &str = "rolling speed of the tyre over the road (0: the road stands still)";
+const ALONG_ACROSS: &str = "along × across at most the points' limit";
+
+/// Every numeric field of the scene format, in the order
+/// [`numeric_fields`] lists them (the grid's fields after the points').
+pub const FIELDS: &[Field] = &[
+    Field::new("speed_mps", "m/s", SPEED)
+        .label("speed V")
+        .min(0.0, true)
+        .max(1000.0),
+    Field::new(
+        "ramp_s",
+        "s",
+        "time over which the road and the preload are eased in from zero, so that the run \
+         starts at rest without a shock",
+    )
+    .label("ramp")
+    .min(0.0, true)
+    .also("0 only if no point starts below the road"),
+    Field::new(
+        "dt_s",
+        "s",
+        "solver time step: smaller is more accurate (impacts are located inside the step) \
+         and slower",
+    )
+    .label("time step dt")
+    .shown(1e6, "µs")
+    .min(0.0, false)
+    .max(0.1)
+    .also("at most the duration"),
+    Field::new("duration_s", "s", "simulated time of one run, from t = 0")
+        .label("duration")
+        .min(0.0, false)
+        .also("at most 1e10 time steps"),
+    Field::new(
+        "points[*].x_m",
+        "m",
+        "position of this contact point along the contact line (0: under the wheel centre)",
+    )
+    .of("point", "position x")
+    .shown(1e3, "mm")
+    .also("each point at a place (x, y) of its own"),
+    Field::new(
+        "points[*].y_m",
+        "m",
+        "position of this contact point across the tread (0: on its centreline); the road \
+         is the same profile at every y, a modal tyre's residues may differ with it",
+    )
+    .of("point", "position y")
+    .shown(1e3, "mm")
+    .also(
+        "each point at a place (x, y) of its own; a ring tyre's response does not depend \
+         on y, so with rigid contact its points need an x each",
+    ),
+    Field::new(
+        "points[*].h_m",
+        "m",
+        "height of the undeformed tyre at this point above the road's mean line; below 0 \
+         the tyre is pressed into the road (preload)",
+    )
+    .of("point", "height h")
+    .shown(1e3, "mm")
+    .min(-1.0, true)
+    .max(1.0),
+    Field::new(
+        "road.amplitude_m",
+        "m",
+        "height of the sine road's crests above its mean line (half the crest-to-trough height)",
+    )
+    .label("road amplitude a")
+    .shown(1e3, "mm")
+    .min(0.0, true)
+    .max(1.0),
+    Field::new(
+        "road.wavelength_m",
+        "m",
+        "length of one road period: crest to crest; the excitation frequency is V / λ",
+    )
+    .label("road wavelength λ")
+    .min(0.0, false),
+    Field::new(
+        "road.components[*].amplitude_m",
+        "m",
+        "amplitude of this harmonic of the road (its crest height)",
+    )
+    .of("harmonic", "amplitude")
+    .shown(1e3, "mm"),
+    Field::new(
+        "road.components[*].wavelength_m",
+        "m",
+        "wavelength of this harmonic of the road",
+    )
+    .of("harmonic", "wavelength")
+    .min(0.0, false),
+    Field::new(
+        "road.components[*].phase_rad",
+        "rad",
+        "phase of this harmonic of the road at x = 0",
+    )
+    .of("harmonic", "phase"),
+    Field::new(
+        "road.length_m",
+        "m",
+        "length of the random road or texture along x, after which it repeats (its loop)",
+    )
+    .label("road loop length L")
+    .min(0.0, false)
+    .also("with at most a set number of grid points: length × highest n is capped"),
+    Field::new(
+        "road.width_m",
+        "m",
+        "width of the texture across the road, after which it repeats",
+    )
+    .label("texture period across")
+    .min(0.0, false),
+    Field::new(
+        "road.min_wavenumber_cpm",
+        "cycles/m",
+        "lowest spatial frequency of the random road or texture: 1 / its longest wavelength",
+    )
+    .label("lowest wavenumber n")
+    .min(0.0, false),
+    Field::new(
+        "road.max_wavenumber_cpm",
+        "cycles/m",
+        "highest spatial frequency of the random road or texture: 1 / its shortest wavelength",
+    )
+    .label("highest wavenumber n")
+    .min(0.0, false)
+    .also("at least the lowest n"),
+    Field::new(
+        "contact.stiffness_n_m[*]",
+        "N/m",
+        "tread stiffness: the spring between the contact point and the road (compliant \
+         contact)",
+    )
+    .of("point", "tread stiffness of")
+    .min(0.0, false)
+    .max(MAX_TREAD_STIFFNESS_N_M),
+    Field::new(
+        "tyre.modes[*].freq_hz",
+        "Hz",
+        "natural frequency of this mode of the tyre",
+    )
+    .of("mode", "frequency")
+    .min(0.0, false)
+    .max(1e6),
+    Field::new(
+        "tyre.modes[*].damping_ratio",
+        "-",
+        "damping ratio ξ of this mode: 0 undamped, about 0.05 for a tyre, 1 critical, \
+         more than 1 overdamped",
+    )
+    .of("mode", "damping ratio")
+    .min(0.0, true)
+    .max(1e4),
+    Field::new(
+        "tyre.modes[*].shape[*]",
+        "1/√kg",
+        "this mode's shape at this contact point (mass-normalised): the residue between \
+         points i and j is shape[i] × shape[j]",
+    ),
+    Field::new(
+        "tyre.modes[*].residue[*][*]",
+        "1/kg",
+        "residue A[i][j] of this mode: how much a force at point j moves point i through it",
+    ),
+    Field::new("tyre.ring.radius_m", "m", "radius of the ring's belt").label("ring radius"),
+    Field::new("tyre.ring.belt_width_m", "m", "width of the ring's belt").label("belt width"),
+    Field::new(
+        "tyre.ring.mass_per_length_kg_m",
+        "kg/m",
+        "mass of the belt per length of its circumference",
+    )
+    .label("ring mass per length"),
+    Field::new(
+        "tyre.ring.inflation_pa",
+        "Pa",
+        "inflation pressure of the tyre",
+    )
+    .label("inflation")
+    .shown(1e-5, "bar"),
+    Field::new(
+        "tyre.ring.radial_stiffness_n_m2",
+        "N/m²",
+        "stiffness of the sidewalls against a radial displacement of the belt, per length",
+    )
+    .label("ring radial stiffness"),
+    Field::new(
+        "tyre.ring.tangential_stiffness_n_m2",
+        "N/m²",
+        "stiffness of the sidewalls against a tangential displacement of the belt, per length",
+    )
+    .label("ring tangential stiffness"),
+    Field::new(
+        "tyre.ring.bending_stiffness_n_m2",
+        "N·m²",
+        "bending stiffness EI of the belt",
+    )
+    .label("ring bending stiffness EI"),
+    Field::new(
+        "tyre.ring.extensional_stiffness_n",
+        "N",
+        "extensional stiffness EA of the belt",
+    )
+    .label("ring extensional stiffness EA"),
+    Field::new(
+        "tyre.ring.damping_ratio",
+        "-",
+        "damping ratio of every mode of the ring",
+    )
+    .label("ring damping ratio"),
+    Field::new(
+        "tyre.identification.band_hz.0",
+        "Hz",
+        "lowest frequency of the band in which the modes are identified",
+    )
+    .label("identification band from"),
+    Field::new(
+        "tyre.identification.band_hz.1",
+        "Hz",
+        "highest frequency of the band in which the modes are identified",
+    )
+    .label("identification band to"),
+    Field::new(
+        "tyre.identification.sample_rate_hz",
+        "Hz",
+        "sample rate of the ring's simulated impulse responses",
+    )
+    .label("identification sample rate"),
+    Field::new(
+        "tyre.identification.duration_s",
+        "s",
+        "length of the impulse responses the modes are identified from",
+    )
+    .label("identification duration"),
+    Field::new(
+        "tyre.damping.0",
+        "-",
+        "damping ratio of every mode of the FE model",
+    )
+    .label("FE damping ratio"),
+    Field::new(
+        "tyre.damping.0[*]",
+        "-",
+        "damping ratio of this mode of the FE model",
+    )
+    .of("FE mode", "damping ratio"),
+    Field::new(
+        "tyre.damping.alpha_per_s",
+        "1/s",
+        "Rayleigh damping's mass factor α: ξ = α / (2ω) + β ω / 2",
+    )
+    .label("Rayleigh α"),
+    Field::new(
+        "tyre.damping.beta_s",
+        "s",
+        "Rayleigh damping's stiffness factor β: ξ = α / (2ω) + β ω / 2",
+    )
+    .label("Rayleigh β"),
+    Field::new(
+        "tyre.nearest_within_m",
+        "m",
+        "largest distance from a contact point to the FE node that stands for it",
+    )
+    .label("nearest node within")
+    .shown(1e3, "mm"),
+    Field::new("tyre.plate.width_m", "m", "width W of the plate").label("plate width W"),
+    Field::new(
+        "tyre.plate.mass_per_area_kg_m2",
+        "kg/m²",
+        "mass of the plate per area",
+    )
+    .label("plate mass per area"),
+    Field::new(
+        "tyre.plate.bending_along_nm",
+        "N·m",
+        "bending stiffness Bx of the plate along the rolling direction",
+    )
+    .label("plate bending along Bx"),
+    Field::new(
+        "tyre.plate.bending_across_nm",
+        "N·m",
+        "bending stiffness By of the plate across the tread",
+    )
+    .label("plate bending across By"),
+    Field::new(
+        "tyre.plate.tension_along_n_m",
+        "N/m",
+        "tension Tx of the plate along the rolling direction (the inflation's)",
+    )
+    .label("plate tension along Tx"),
+    Field::new(
+        "tyre.plate.tension_across_n_m",
+        "N/m",
+        "tension Ty of the plate across the tread",
+    )
+    .label("plate tension across Ty"),
+    Field::new(
+        "tyre.plate.foundation_n_m3",
+        "N/m³",
+        "stiffness s of the elastic foundation under the plate (the sidewalls), per area",
+    )
+    .label("plate foundation s"),
+    Field::new(
+        "tyre.plate.damping_ratio",
+        "-",
+        "damping ratio of every mode of the plate",
+    )
+    .label("plate damping ratio"),
+    Field::new(
+        "tyre.plate.max_freq_hz",
+        "Hz",
+        "the plate's modes are kept up to this frequency",
+    )
+    .label("plate modes up to"),
+    Field::new(
+        "points.along",
+        "",
+        "points of the contact patch along the rolling direction, in each row (a whole number)",
+    )
+    .label("points along")
+    .shown(1.0, "points")
+    .min(1.0, true)
+    .max(MAX_POINTS as f64)
+    .also(ALONG_ACROSS),
+    Field::new(
+        "points.across",
+        "",
+        "rows of the contact patch across the tread (a whole number)",
+    )
+    .label("rows across")
+    .shown(1.0, "rows")
+    .min(1.0, true)
+    .max(MAX_POINTS as f64)
+    .also(ALONG_ACROSS),
+    Field::new(
+        "points.spacing_m.0",
+        "m",
+        "distance between neighbouring points along the rolling direction",
+    )
+    .label("spacing along Δx")
+    .shown(1e3, "mm")
+    .min(0.0, false),
+    Field::new(
+        "points.spacing_m.1",
+        "m",
+        "distance between neighbouring rows across the tread",
+    )
+    .label("spacing across Δy")
+    .shown(1e3, "mm")
+    .min(0.0, false),
+    Field::new(
+        "points.preload.depth_m",
+        "m",
+        "how deep the undeformed tyre is pressed into the mean road plane (at the \
+         footprint's centre for a parabolic one)",
+    )
+    .label("press depth")
+    .shown(1e3, "mm")
+    .min(0.0, true)
+    .max(1.0),
+    Field::new(
+        "points.preload.length_m",
+        "m",
+        "length of the parabolic footprint along the rolling direction; points beyond it \
+         start above the road",
+    )
+    .label("footprint length")
+    .shown(1e3, "mm")
+    .min(0.0, false),
+];
+
+/// `points[3].h_m` -> `points[*].h_m` (every index, nested ones too).
+pub fn wildcard(path: &str) -> String {
+    let mut out = String::with_capacity(path.len());
+    let mut in_index = false;
+    for c in path.chars() {
+        match c {
+            '[' => {
+                in_index = true;
+                out.push_str("[*");
+            }
+            ']' => {
+                in_index = false;
+                out.push(']');
+            }
+            _ if in_index => {}
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// The entry of the field at `path` (any index, or `[*]`); `None` for a
+/// path the scene format has no number at.
+pub fn field(path: &str) -> Option<&'static Field> {
+    let w = wildcard(path.trim());
+    FIELDS.iter().find(|f| f.path == w)
+}
+
+/// The field at `path` as the editor names it: `speed V` for `speed_mps`,
+/// `mode 2 damping ratio` for `tyre.modes[2].damping_ratio`, `every
+/// point's height h` for `points[*].h_m`, `tread stiffness of point 1`;
+/// the path itself for a field without a name.
+pub fn label(path: &str) -> String {
+    let path = path.trim();
+    let Some(f) = field(path).filter(|f| !f.label.is_empty()) else {
+        return path.to_string();
+    };
+    if f.holder.is_empty() {
+        return f.label.to_string();
+    }
+    // the first index of the path names the holder
+    let index = path
+        .split_once('[')
+        .and_then(|(_, rest)| rest.split_once(']'))
+        .map_or("*", |(i, _)| i);
+    // a label that ends in "of" takes its holder after it
+    if let Some(head) = f.label.strip_suffix(" of") {
+        return if index == "*" {
+            format!("{head} of every {}", f.holder)
+        } else {
+            format!("{head} of {} {index}", f.holder)
+        };
+    }
+    if index == "*" {
+        format!("every {}'s {}", f.holder, f.label)
+    } else {
+        format!("{} {index} {}", f.holder, f.label)
+    }
+}
+
+/// The SI unit of the field at `path`; `None` for an unknown path or a
+/// field without unit (a count).
+pub fn unit(path: &str) -> Option<&'static str> {
+    field(path).map(|f| f.unit).filter(|u| !u.is_empty())
+}
+
+/// An axis title of the field at `path`: its [`label`] and its [`unit`],
+/// `speed V (m/s)`, `mode 0 frequency (Hz)`; no unit when it has none.
+pub fn axis_label(path: &str) -> String {
+    match unit(path) {
+        Some(u) => format!("{} ({u})", label(path)),
+        None => label(path),
+    }
+}
+
+/// Every numeric field of the scene with its path, as mutable references
+/// (the points' only when `with_points`: reaching them turns a grid into
+/// a list). Integer fields (`tyre.ring.max_order`, ...) and text are not
+/// listed; a grid's fields are [`grid_fields`].
+pub fn numeric_fields(scene: &mut Scene, with_points: bool) -> Vec<(String, &mut f64)> {
+    let mut f: Vec<(String, &mut f64)> = vec![
+        ("speed_mps".into(), &mut scene.speed_mps),
+        ("ramp_s".into(), &mut scene.ramp_s),
+        ("dt_s".into(), &mut scene.dt_s),
+        ("duration_s".into(), &mut scene.duration_s),
+    ];
+    if with_points {
+        for (i, p) in scene.points.iter_mut().enumerate() {
+            f.push((format!("points[{i}].x_m"), &mut p.x_m));
+            f.push((format!("points[{i}].y_m"), &mut p.y_m));
+            f.push((format!("points[{i}].h_m"), &mut p.h_m));
+        }
+    }
+    road_fields(&mut scene.road, &mut f);
+    if let Contact::Compliant { stiffness_n_m } = &mut scene.contact {
+        for (i, k) in stiffness_n_m.iter_mut().enumerate() {
+            f.push((format!("contact.stiffness_n_m[{i}]"), k));
+        }
+    }
+    tyre_fields(&mut scene.tyre, &mut f);
+    f
+}
+
+/// The road's part of [`numeric_fields`].
+fn road_fields<'a>(road: &'a mut Road, f: &mut Vec<(String, &'a mut f64)>) {
+    match road {
+        Road::Sine {
+            amplitude_m,
+            wavelength_m,
+        } => {
+            f.push(("road.amplitude_m".into(), amplitude_m));
+            f.push(("road.wavelength_m".into(), wavelength_m));
+        }
+        Road::Harmonics { components } => {
+            for (k, c) in components.iter_mut().enumerate() {
+                let at = |name: &str| format!("road.components[{k}].{name}");
+                f.push((at("amplitude_m"), &mut c.amplitude_m));
+                f.push((at("wavelength_m"), &mut c.wavelength_m));
+                f.push((at("phase_rad"), &mut c.phase_rad));
+            }
+        }
+        Road::Random {
+            length_m,
+            min_wavenumber_cpm,
+            max_wavenumber_cpm,
+            ..
+        } => {
+            f.push(("road.length_m".into(), length_m));
+            f.push(("road.min_wavenumber_cpm".into(), min_wavenumber_cpm));
+            f.push(("road.max_wavenumber_cpm".into(), max_wavenumber_cpm));
+        }
+        Road::Texture {
+            length_m,
+            width_m,
+            min_wavenumber_cpm,
+            max_wavenumber_cpm,
+            ..
+        } => {
+            f.push(("road.length_m".into(), length_m));
+            f.push(("road.width_m".into(), width_m));
+            f.push(("road.min_wavenumber_cpm".into(), min_wavenumber_cpm));
+            f.push(("road.max_wavenumber_cpm".into(), max_wavenumber_cpm));
+        }
+        Road::Measured { .. } | Road::Surface { .. } => {}
+    }
+}
+
+/// The tyre's part of [`numeric_fields`].
+fn tyre_fields<'a>(tyre: &'a mut Tyre, f: &mut Vec<(String, &'a mut f64)>) {
+    match tyre {
+        Tyre::Modal { modes } => {
+            for (k, m) in modes.iter_mut().enumerate() {
+                f.push((format!("tyre.modes[{k}].freq_hz"), &mut m.freq_hz));
+                f.push((
+                    format!("tyre.modes[{k}].damping_ratio"),
+                    &mut m.damping_ratio,
+                ));
+                for (i, a) in m.shape.iter_mut().enumerate() {
+                    f.push((format!("tyre.modes[{k}].shape[{i}]"), a));
+                }
+                for (i, row) in m.residue.iter_mut().enumerate() {
+                    for (j, a) in row.iter_mut().enumerate() {
+                        f.push((format!("tyre.modes[{k}].residue[{i}][{j}]"), a));
+                    }
+                }
+            }
+        }
+        Tyre::Ring {
+            ring: r,
+            identification: o,
+        } => {
+            let at = |name: &str| format!("tyre.ring.{name}");
+            f.push((at("radius_m"), &mut r.radius_m));
+            f.push((at("belt_width_m"), &mut r.belt_width_m));
+            f.push((at("mass_per_length_kg_m"), &mut r.mass_per_length_kg_m));
+            f.push((at("inflation_pa"), &mut r.inflation_pa));
+            f.push((at("radial_stiffness_n_m2"), &mut r.radial_stiffness_n_m2));
+            f.push((
+                at("tangential_stiffness_n_m2"),
+                &mut r.tangential_stiffness_n_m2,
+            ));
+            f.push((at("bending_stiffness_n_m2"), &mut r.bending_stiffness_n_m2));
+            f.push((
+                at("extensional_stiffness_n"),
+                &mut r.extensional_stiffness_n,
+            ));
+            f.push((at("damping_ratio"), &mut r.damping_ratio));
+            f.push(("tyre.identification.band_hz.0".into(), &mut o.band_hz.0));
+            f.push(("tyre.identification.band_hz.1".into(), &mut o.band_hz.1));
+            f.push((
+                "tyre.identification.sample_rate_hz".into(),
+                &mut o.sample_rate_hz,
+            ));
+            f.push(("tyre.identification.duration_s".into(), &mut o.duration_s));
+        }
+        Tyre::Measured {
+            identification: o, ..
+        } => {
+            f.push(("tyre.identification.band_hz.0".into(), &mut o.band_hz.0));
+            f.push(("tyre.identification.band_hz.1".into(), &mut o.band_hz.1));
+            f.push(("tyre.identification.duration_s".into(), &mut o.duration_s));
+        }
+        Tyre::FeModes {
+            damping,
+            nearest_within_m,
+            ..
+        } => {
+            match damping {
+                FeDamping::Ratio(x) => f.push(("tyre.damping.0".into(), x)),
+                FeDamping::Modal(v) => {
+                    for (k, x) in v.iter_mut().enumerate() {
+                        f.push((format!("tyre.damping.0[{k}]"), x));
+                    }
+                }
+                FeDamping::Rayleigh {
+                    alpha_per_s,
+                    beta_s,
+                } => {
+                    f.push(("tyre.damping.alpha_per_s".into(), alpha_per_s));
+                    f.push(("tyre.damping.beta_s".into(), beta_s));
+                }
+                FeDamping::FromFile => {}
+            }
+            f.push(("tyre.nearest_within_m".into(), nearest_within_m));
+        }
+        Tyre::Plate { plate: pl } => {
+            let at = |name: &str| format!("tyre.plate.{name}");
+            f.push((at("width_m"), &mut pl.width_m));
+            f.push((at("mass_per_area_kg_m2"), &mut pl.mass_per_area_kg_m2));
+            f.push((at("bending_along_nm"), &mut pl.bending_along_nm));
+            f.push((at("bending_across_nm"), &mut pl.bending_across_nm));
+            f.push((at("tension_along_n_m"), &mut pl.tension_along_n_m));
+            f.push((at("tension_across_n_m"), &mut pl.tension_across_n_m));
+            f.push((at("foundation_n_m3"), &mut pl.foundation_n_m3));
+            f.push((at("damping_ratio"), &mut pl.damping_ratio));
+            f.push((at("max_freq_hz"), &mut pl.max_freq_hz));
+        }
+    }
+}
+
+/// The fields of a grid of points (`points: Grid(...)`) a sweep or a study
+/// sets: the whole numbers of points along and rows across, the spacings
+/// (m) and the preload's depth and footprint length (m). Setting one
+/// expands the grid again.
+pub const GRID_PATHS: [&str; 6] = [
+    "points.along",
+    "points.across",
+    "points.spacing_m.0",
+    "points.spacing_m.1",
+    "points.preload.depth_m",
+    "points.preload.length_m",
+];
+
+/// The grid fields of `scene`'s points that exist (a parabolic preload's
+/// length only), with their values.
+pub fn grid_fields(scene: &Scene) -> Vec<(&'static str, f64)> {
+    let Some(g) = scene.points.grid() else {
+        return Vec::new();
+    };
+    let (depth_m, length_m) = match g.preload {
+        Preload::Flat { depth_m } => (depth_m, None),
+        Preload::Parabolic { depth_m, length_m } => (depth_m, Some(length_m)),
+    };
+    let mut f = vec![
+        (GRID_PATHS[0], g.along as f64),
+        (GRID_PATHS[1], g.across as f64),
+        (GRID_PATHS[2], g.spacing_m.0),
+        (GRID_PATHS[3], g.spacing_m.1),
+        (GRID_PATHS[4], depth_m),
+    ];
+    if let Some(l) = length_m {
+        f.push((GRID_PATHS[5], l));
+    }
+    f
+}
+
+/// Sets the grid field at `path` of `scene`'s points to `value` and
+/// expands the grid again; `None` when the points hold no such field.
+pub fn set_grid_field(scene: &mut Scene, path: &str, value: f64) -> Option<Result<(), FieldError>> {
+    let mut g = *scene.points.grid()?;
+    let whole = |v: f64| -> Result<usize, FieldError> {
+        if v.is_finite() && v >= 1.0 && v.fract() == 0.0 && v <= MAX_POINTS as f64 {
+            Ok(v as usize)
+        } else {
+            Err(FieldError {
+                field: path.to_string(),
+                value: format!("{v}"),
+                expected: format!("a whole number of points from 1 to {MAX_POINTS}"),
+            })
+        }
+    };
+    let set = (|| -> Result<bool, FieldError> {
+        match (path, &mut g.preload) {
+            ("points.along", _) => g.along = whole(value)?,
+            ("points.across", _) => g.across = whole(value)?,
+            ("points.spacing_m.0", _) => g.spacing_m.0 = value,
+            ("points.spacing_m.1", _) => g.spacing_m.1 = value,
+            ("points.preload.depth_m", Preload::Flat { depth_m })
+            | ("points.preload.depth_m", Preload::Parabolic { depth_m, .. }) => *depth_m = value,
+            ("points.preload.length_m", Preload::Parabolic { length_m, .. }) => *length_m = value,
+            _ => return Ok(false),
+        }
+        Ok(true)
+    })();
+    match set {
+        Ok(false) => None,
+        Err(e) => Some(Err(e)),
+        Ok(true) => Some(match g.check() {
+            Some((field, value, expected)) => Err(FieldError {
+                field,
+                value,
+                expected,
+            }),
+            None => {
+                scene.points = Points::from_grid(g);
+                Ok(())
+            }
+        }),
+    }
+}
+
+#[cfg(test)]
+#[path = "fields/tests.rs"]
+mod tests;
