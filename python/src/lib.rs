@@ -559,11 +559,9 @@ impl PyStudy {
     /// Writes `records` (lists of fields, as `run_row` returns them) as the
     /// study's table, sorted by row, byte for byte as `study merge` would.
     fn write_table(&self, path: PathBuf, records: Vec<Vec<String>>) -> PyResult<()> {
-        let mut rows: Vec<Vec<String>> = records;
-        rows.sort_by_key(|r| r.first().and_then(|id| id.parse::<usize>().ok()));
-        let bytes = tirecontact_report::studies::study::table_bytes(&self.header(), &rows).map_err(err)?;
-        tirecontact_io::fsio::write_atomic(&path, &bytes)
-            .map_err(|e| err(format!("{}: {e}", path.display())))
+        use tirecontact_report::studies::study::table;
+        let rows = table::rows_by_id(records).map_err(err)?;
+        table::write_table(&path, &self.header(), &rows).map_err(err)
     }
 }
 

@@ -146,7 +146,11 @@ pub fn bench(args: &BenchArgs) -> CliResult {
         })?);
     }
     bar.set_message("skipped work, before/after");
-    let skip = skipped_work(&scenes, args.quick)?;
+    let skip = tirecontact::analysis::bench::skipped::skipped_work(
+        &scenes,
+        if args.quick { 1 } else { SKIP_REPEATS },
+        if args.quick { 0.05 } else { 0.5 },
+    )?;
     bar.set_message("residual flexibility");
     let residual = residual_flexibility(&scenes, args.quick)?;
     bar.finish_and_clear();
@@ -280,160 +284,6 @@ fn alpha_beta_overflow() -> Result<String, Box<dyn std::error::Error>> {
         "## Stability: 4 kHz mode, ξ = 0.1, dt = 1e-5 s, bounded force, 0.4 s\n\n| form | first non-finite displacement | largest |x| (m per N/kg) |\n|---|---|---|\n| paper α/β (predicted overflow at {:.3} s) | {} | - |\n| stable (this solver) | none | {max_stable:.3e} |\n",
         ab.overflow_time_s(),
         first_bad.map_or("none".to_string(), |t| format!("t = {t:.4} s"))
-    ))
-}
-
-/// Each optimisation switched off and on, timed in this one process.
-fn skipped_work(scenes: &[Scene], quick: bool) -> Result<String, Box<dyn std::error::Error>> {
-    let repeats = if quick { 1 } else { SKIP_REPEATS };
-    let mut s = format!(
-        "## Work skipped, measured before/after (same process)\n\nBefore and after each timed {repeats} times, alternately; medians (s).\n\n| scene | optimisation | before (s) | after (s) | speed-up | detail |\n|---|---|---|---|---|---|\n",
-    );
-    for scene in scenes {
-        let mut sc = scene.clone();
-        sc.duration_s = if quick { 0.05 } else { 0.5 };
-        let model = PreparedModel::of(&sc)?;
-        let all = SolverOptions::default();
-        // each "before" is timed alternately with its own "after" runs
-        let ((before, sim_r), (after, sim)) = work_precision::time_pair(
-            &model,
-            SolverOptions {
-                rank_reduction: false,
-                ..all
-            },
-            all,
-            repeats,
-        )?;
-        let (t_rank, t_on) = (before.median_s(), after.median_s());
-        let st = sim.stats().clone();
-        let same = sim_r
-            .displacement_m()
-            .iter()
-            .zip(sim.displacement_m())
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
-        writeln!(
-            s,
-            "| {} | rank-1 states for mode shapes / low-rank residues | {t_rank:.4} | {t_on:.4} | {:.2}x | same result to {same:.1e} m |",
-            scene.name,
-            t_rank / t_on
-        )?;
-        // identified residues: the default cut against every SVD term kept
-        // (modes given in a scene are always exact: nothing to compare)
-        let exact_tol = tirecontact::model::convolution::EXACT_RANK_TOLERANCE;
-        if all.rank_tolerance_of(sc.modes_identified()) > exact_tol {
-            let exact = SolverOptions {
-                rank_tolerance: Some(exact_tol),
-                ..all
-            };
-            let ((before, sim_e), (after, _)) =
-                work_precision::time_pair(&model, exact, all, repeats)?;
-            let (t_exact, t_cut) = (before.median_s(), after.median_s());
-            let (du, dq) = option_difference(&sc, exact, all)?;
-            writeln!(
-                s,
-                "| {} | identified residue terms below {:.0e} of the largest dropped ({} states instead of {}) | {t_exact:.4} | {t_cut:.4} | {:.2}x | largest displacement difference {du:.1e} of the largest displacement; force difference (RMS over steps) {dq:.1e} of the RMS force |",
-                scene.name,
-                all.rank_tolerance_of(sc.modes_identified()),
-                sim.num_states(),
-                sim_e.num_states(),
-                t_exact / t_cut
-            )?;
-        }
-        let ((before, sim_f), (after, _)) = work_precision::time_pair(
-            &model,
-            SolverOptions {
-                reuse_factorisation: false,
-                ..all
-            },
-            all,
-            repeats,
-        )?;
-        let (t_fact, t_reuse) = (before.median_s(), after.median_s());
-        writeln!(
-            s,
-            "| {} | reuse the contact factorisation while the active set is unchanged | {t_fact:.4} | {t_reuse:.4} | {:.2}x | {} factorisations for {} solves (else {}) |",
-            scene.name,
-            t_fact / t_reuse,
-            st.factorisations,
-            st.solves,
-            sim_f.stats().factorisations
-        )?;
-        let ((before, sim_s), (after, _)) = work_precision::time_pair(
-            &model,
-            SolverOptions {
-                steady_path: false,
-                ..all
-            },
-            all,
-            repeats,
-        )?;
-        let (t_loop, t_steady) = (before.median_s(), after.median_s());
-        let identical = sim_s
-            .displacement_m()
-            .iter()
-            .chain(sim_s.force_n())
-            .zip(sim.displacement_m().iter().chain(sim.force_n()))
-            .all(|(a, b)| a.to_bits() == b.to_bits());
-        writeln!(
-            s,
-            "| {} | steps with the same contact set and no event outside the event loop | {t_loop:.4} | {t_steady:.4} | {:.2}x | {} |",
-            scene.name,
-            t_loop / t_steady,
-            if identical {
-                "bit-identical end state"
-            } else {
-                "END STATES DIFFER"
-            }
-        )?;
-        let mean_active = st.contact_steps.iter().sum::<u64>() as f64 / st.steps.max(1) as f64;
-        writeln!(
-            s,
-            "| {} | contact solve only for points on the road or landing | - | {t_on:.4} | - | {mean_active:.2} of {} points in the solve on average; {} located events in {} steps |",
-            scene.name,
-            scene.num_points(),
-            st.events,
-            st.steps
-        )?;
-    }
-    Ok(s)
-}
-
-/// Two runs of `scene` with options `a` and `b`: the largest displacement
-/// difference relative to the largest displacement, and the RMS of the
-/// step-mean force difference relative to the RMS force.
-fn option_difference(
-    scene: &Scene,
-    a: SolverOptions,
-    b: SolverOptions,
-) -> Result<(f64, f64), Box<dyn std::error::Error>> {
-    let cache = tirecontact::ModeCache::new();
-    let run = |options| {
-        work_precision::run_stable(
-            scene,
-            scene.contact_scheme,
-            scene.dt_s,
-            scene.duration_s,
-            options,
-            &cache,
-        )
-        .map(|(run, _, _)| run)
-    };
-    let (ra, rb) = (run(a)?, run(b)?);
-    let (mut du, mut umax, mut dq2, mut q2) = (0.0f64, 0.0f64, 0.0, 0.0);
-    for k in 0..ra.t_s.len().min(rb.t_s.len()) {
-        for i in 0..scene.num_points() {
-            let (ua, ub) = (ra.u_m[k][i], rb.u_m[k][i]);
-            du = du.max((ua - ub).abs());
-            umax = umax.max(ua.abs());
-            let (qa, qb) = (ra.q_n[k][i], rb.q_n[k][i]);
-            dq2 += (qa - qb).powi(2);
-            q2 += qa * qa;
-        }
-    }
-    Ok((
-        du / umax.max(f64::MIN_POSITIVE),
-        (dq2 / q2.max(f64::MIN_POSITIVE)).sqrt(),
     ))
 }
 

@@ -11,7 +11,9 @@ use std::sync::Mutex;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 use tirecontact::ModeCache;
-use tirecontact::studies::study::{Loaded, Row, header, load, record, run_row, run_rows, shard};
+use tirecontact::studies::study::{
+    Loaded, Row, header, load, record, run_row, run_rows, shard, table,
+};
 
 #[derive(Debug, clap::Args)]
 pub struct StudyArgs {
@@ -106,7 +108,7 @@ pub fn study(args: &StudyArgs) -> CliResult {
 fn report(path: &Path, dir: &Path, title: Option<&str>) -> CliResult {
     use tirecontact::studies::study::report;
     super::paths::ensure_output_dir("-o", dir)?;
-    let (header, rows) = read_table(path)?;
+    let table::StudyTable { header, rows } = table::read_table(path)?;
     let records: Vec<Vec<String>> = rows.into_values().collect();
     let t = report::table(&header, &records).map_err(|e| format!("{}: {e}", path.display()))?;
     if t.rows.is_empty() {
@@ -298,60 +300,6 @@ fn chosen(
     Ok(loaded.rows.clone())
 }
 
-/// A table's rows by id (each its fields).
-type Rows = BTreeMap<usize, Vec<String>>;
-
-/// The records of a part (or merged table) at `path`: its header and rows
-/// by id; a last line cut short (a killed run) is left out.
-fn read_table(path: &Path) -> Result<(Vec<String>, Rows), String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .flexible(true)
-        .from_reader(text.as_bytes());
-    let header: Vec<String> = rdr
-        .headers()
-        .map_err(|e| format!("{}: {e}", path.display()))?
-        .iter()
-        .map(str::to_string)
-        .collect();
-    let mut rows = BTreeMap::new();
-    for (k, rec) in rdr.records().enumerate() {
-        let Ok(rec) = rec else { continue };
-        if rec.len() != header.len() {
-            continue; // cut short
-        }
-        let id: usize = rec[0].parse().map_err(|_| {
-            format!(
-                "{}: line {}: row = `{}`: expected a row number",
-                path.display(),
-                k + 2,
-                &rec[0]
-            )
-        })?;
-        let fields: Vec<String> = rec.iter().map(str::to_string).collect();
-        if rows.insert(id, fields).is_some() {
-            return Err(format!(
-                "{}: row {id} twice: expected every row once",
-                path.display()
-            ));
-        }
-    }
-    Ok((header, rows))
-}
-
-/// Writes `header` and `rows` (by id) to `path` atomically: the one form
-/// of every study table, so that merged shards equal a one-process run.
-fn write_table(
-    path: &Path,
-    header: &[String],
-    rows: &BTreeMap<usize, Vec<String>>,
-) -> Result<(), String> {
-    let bytes = tirecontact::studies::study::table_bytes(header, rows.values())
-        .map_err(|e| e.to_string())?;
-    tirecontact::fsio::write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))
-}
-
 fn run(
     path: &Path,
     shard_arg: Option<&str>,
@@ -366,7 +314,7 @@ fn run(
     let header = header(&loaded);
     let mut done: BTreeMap<usize, Vec<String>> = BTreeMap::new();
     if resume && output.exists() {
-        let (h, rows) = read_table(output)?;
+        let table::StudyTable { header: h, rows } = table::read_table(output)?;
         if h != header {
             return Err(format!(
                 "{}: --resume: a table of another study (its columns differ)",
@@ -451,7 +399,7 @@ fn run(
         .filter(|r| r.last().is_some_and(|e| !e.is_empty()))
         .count();
     done.extend(results);
-    write_table(output, &header, &done)?;
+    table::write_table(output, &header, &done)?;
     eprintln!(
         "wrote {} ({} run in {:.1} s on {}, {failed} failed; {} in the table)",
         output.display(),
@@ -484,72 +432,12 @@ fn run(
 
 fn merge(parts: &[PathBuf], output: &Path) -> CliResult {
     super::paths::check_output_file("-o", output, "CSV")?;
-    let mut header: Option<Vec<String>> = None;
-    let mut all: BTreeMap<usize, Vec<String>> = BTreeMap::new();
-    let mut hash: Option<String> = None;
-    let mut total: Option<usize> = None;
-    for p in parts {
-        let (h, rows) = read_table(p)?;
-        match &header {
-            None => header = Some(h),
-            Some(h0) if *h0 != h => {
-                return Err(format!(
-                    "{}: its columns differ from {}'s: expected parts of one study",
-                    p.display(),
-                    parts[0].display()
-                )
-                .into());
-            }
-            _ => {}
-        }
-        for (id, r) in rows {
-            let (of, hs) = (
-                r.get(1).cloned().unwrap_or_default(),
-                r.get(2).cloned().unwrap_or_default(),
-            );
-            if *hash.get_or_insert(hs.clone()) != hs {
-                return Err(format!("{}: row {id} is of study {hs}, the first part's of {}: expected parts of one study", p.display(), hash.unwrap_or_default()).into());
-            }
-            let of: usize = of.parse().map_err(|_| {
-                format!(
-                    "{}: row {id}: of = `{of}`: expected the study's row count",
-                    p.display()
-                )
-            })?;
-            if *total.get_or_insert(of) != of {
-                return Err(format!(
-                    "{}: row {id}: of = {of}: expected {} as in the other rows",
-                    p.display(),
-                    total.unwrap_or(0)
-                )
-                .into());
-            }
-            if all.insert(id, r).is_some() {
-                return Err(format!(
-                    "{}: row {id} is in two parts: expected every row once",
-                    p.display()
-                )
-                .into());
-            }
-        }
-    }
-    let total = total.unwrap_or(0);
-    let missing: Vec<usize> = (0..total).filter(|id| !all.contains_key(id)).collect();
-    if !missing.is_empty() {
-        let shown: Vec<String> = missing.iter().take(20).map(ToString::to_string).collect();
-        return Err(format!(
-            "{} of {total} rows missing: {}{}; run them (study run --rows A..B) and merge again",
-            missing.len(),
-            shown.join(", "),
-            if missing.len() > 20 { ", …" } else { "" }
-        )
-        .into());
-    }
-    write_table(output, &header.unwrap_or_default(), &all)?;
+    let merged = table::merge(parts)?;
+    table::write_table(output, &merged.header, &merged.rows)?;
     eprintln!(
         "wrote {} ({} rows from {} parts)",
         output.display(),
-        all.len(),
+        merged.rows.len(),
         parts.len()
     );
     Ok(())

@@ -13,6 +13,7 @@ pub mod peers;
 pub mod residual;
 pub mod scaling;
 pub mod scenes;
+pub mod skipped;
 pub mod work_precision;
 
 /// Why a measurement could not be made: its scene (a tyre not identified,

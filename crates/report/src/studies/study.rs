@@ -19,6 +19,7 @@ use tirecontact_io::scene::SceneError;
 
 mod design;
 pub mod report;
+pub mod table;
 use design::design_values;
 
 /// Most rows a study may have.
