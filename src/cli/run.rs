@@ -301,6 +301,7 @@ pub fn run(args: &RunArgs) -> CliResult {
     // before anything is built, computed or written
     check_output_budget(&scene, args)?;
     check_plot_args(args)?;
+    check_spectrum_args(args, &scene)?;
     // identification, road file: once, for the frames and the run
     let model = PreparedModel::of(&scene)?;
     write_frames(&model, args)?;
@@ -327,41 +328,12 @@ pub fn run(args: &RunArgs) -> CliResult {
         Recording::new(scene.num_points(), n, PLOT_SAMPLES)
     });
     let want_spectrum = args.spectrum.is_some() || args.spectrum_plot.is_some();
-    if want_spectrum && !(args.spectrum_max_hz.is_finite() && args.spectrum_max_hz > 0.0) {
-        return Err(format!(
-            "--spectrum-max-hz = {}: expected a frequency > 0 Hz",
-            args.spectrum_max_hz
-        )
-        .into());
-    }
-    if let Some(from) = args.spectrum_from
-        && !(from.is_finite() && from >= 0.0 && from < scene.duration_s)
-    {
-        return Err(format!(
-            "--spectrum-from = {from}: expected a start time >= 0 s and < duration_s = {} s",
-            scene.duration_s
-        )
-        .into());
-    }
     let mut steady = if want_spectrum {
         Some(SteadyRecorder::new(&scene, args.spectrum_from)?)
     } else {
         None
     };
-    let mut patch = if args.patch_summary.is_some() || args.patch_frames.is_some() {
-        use tirecontact::output::patch::PatchRecorder;
-        let frames = if args.patch_frames.is_some() {
-            args.patch_frame_count
-        } else {
-            0
-        };
-        Some(
-            PatchRecorder::new(&scene, args.patch_every, frames)
-                .map_err(|e| format!("--patch-summary/--patch-frames: {e}"))?,
-        )
-    } else {
-        None
-    };
+    let mut patch = patch_recorder(args, &scene)?;
     // the one-line summary's forces, over the whole run
     let mut metrics = ContactMetrics::new(&scene, Some(0.0));
     let start = Instant::now();
@@ -424,6 +396,58 @@ pub fn run(args: &RunArgs) -> CliResult {
             st.worst_penetration_m, scene.dt_s
         );
     }
+    println!("{}", summary_line(args, &scene, &sim, &metrics, wall));
+    Ok(())
+}
+
+/// The spectrum options, checked before anything is built.
+fn check_spectrum_args(args: &RunArgs, scene: &Scene) -> Result<(), String> {
+    let want_spectrum = args.spectrum.is_some() || args.spectrum_plot.is_some();
+    if want_spectrum && !(args.spectrum_max_hz.is_finite() && args.spectrum_max_hz > 0.0) {
+        return Err(format!(
+            "--spectrum-max-hz = {}: expected a frequency > 0 Hz",
+            args.spectrum_max_hz
+        ));
+    }
+    if let Some(from) = args.spectrum_from
+        && !(from.is_finite() && from >= 0.0 && from < scene.duration_s)
+    {
+        return Err(format!(
+            "--spectrum-from = {from}: expected a start time >= 0 s and < duration_s = {} s",
+            scene.duration_s
+        ));
+    }
+    Ok(())
+}
+
+/// The patch recorder of `--patch-summary` / `--patch-frames`, if asked.
+fn patch_recorder(
+    args: &RunArgs,
+    scene: &Scene,
+) -> Result<Option<tirecontact::output::patch::PatchRecorder>, String> {
+    if args.patch_summary.is_none() && args.patch_frames.is_none() {
+        return Ok(None);
+    }
+    let frames = if args.patch_frames.is_some() {
+        args.patch_frame_count
+    } else {
+        0
+    };
+    tirecontact::output::patch::PatchRecorder::new(scene, args.patch_every, frames)
+        .map(Some)
+        .map_err(|e| format!("--patch-summary/--patch-frames: {e}"))
+}
+
+/// The one-line summary of a finished run: steps, wall time and real-time
+/// factor, forces, impacts, contact, events and penetration.
+fn summary_line(
+    args: &RunArgs,
+    scene: &Scene,
+    sim: &Simulation,
+    metrics: &ContactMetrics,
+    wall: f64,
+) -> String {
+    let st = sim.stats();
     let fmt_list = |v: &[f64], f: &dyn Fn(f64) -> String| {
         v.iter().map(|&x| f(x)).collect::<Vec<_>>().join(" ")
     };
@@ -433,7 +457,7 @@ pub fn run(args: &RunArgs) -> CliResult {
         .iter()
         .map(|&r| (r * m.steps as f64 * scene.dt_s).round())
         .collect();
-    println!(
+    format!(
         "{}: {} steps of {:e} s to t = {:.4} s in {:.3} s wall ({:.2}x real time, {:.0} steps/s); max force without impacts [N]: {}; impacts: {}; largest impulse [N·s]: {}; contact fraction: {}; events {}; worst penetration {:.2e} m{}",
         scene.name,
         st.steps,
@@ -451,8 +475,7 @@ pub fn run(args: &RunArgs) -> CliResult {
         args.output
             .as_ref()
             .map_or(String::new(), |p| format!("; wrote {}", p.display()))
-    );
-    Ok(())
+    )
 }
 
 /// Writes the patch summary, its total force's spectrum and the heat maps.
