@@ -7,7 +7,7 @@ use egui::text::{LayoutJob, TextFormat};
 use egui::{Color32, FontId, TextStyle, Ui};
 
 /// Whether `line` is a line of a quoted source excerpt: `  12 | text` or
-/// `       |    ^` (`scene::source_excerpt`).
+/// `       |    ^` (`scene::load::source_excerpt`).
 pub fn is_excerpt_line(line: &str) -> bool {
     let t = line.trim_start();
     if t.len() == line.len() {

@@ -5,8 +5,8 @@
 //! numbers and directions; a negative direction (`−Z`) is made positive by
 //! negating the record.
 
-use super::uff::{self, Record58};
-use super::{DataError, MAX_POINTS, ResponsesError, read_bytes};
+use super::uff::{self, Record58, Units164};
+use super::{DataError, MAX_POINTS, ParseError, ResponsesError, read_bytes};
 use faer::c64;
 use std::path::Path;
 use tirecontact_core::model::lscf::{FrfSet, Ordinate};
@@ -66,16 +66,98 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
         file: file.clone(),
         source,
     })?;
-    let fail = |at: String, message: String| DataError::Parse {
+    let fail = |(at, message): ParseError| DataError::Parse {
         file: file.clone(),
         at,
         message,
     };
-    let parsed = uff::read(&bytes).map_err(|(at, m)| fail(at, m))?;
-    let units = parsed.units.clone();
+    let parsed = uff::read(&bytes).map_err(fail)?;
+    let units = parsed.units.as_ref();
+    let (recs, notes) = frf_records(&parsed.records);
+    if recs.is_empty() {
+        return Err(fail((
+            String::new(),
+            "no FRF (dataset 58 of function type 4): expected FRFs for the frequency-domain fit"
+                .into(),
+        )));
+    }
+    check_nodes(&recs, req).map_err(fail)?;
+    let first = recs[0];
+    let pairs = frf_pairs(&recs, req, units).map_err(fail)?;
+    if pairs.list.is_empty() {
+        return Err(fail((
+            String::new(),
+            format!(
+                "no FRF between the nodes {:?}: expected at least one",
+                req.nodes.clone().unwrap_or_default()
+            ),
+        )));
+    }
+    let mut dofs: Vec<Dof> = pairs.list.iter().flat_map(|(a, b, _)| [*a, *b]).collect();
+    dofs.sort_unstable();
+    dofs.dedup();
+    if dofs.len() > MAX_POINTS {
+        return Err(DataError::Responses {
+            file,
+            source: ResponsesError::TooManyPoints { points: dofs.len() },
+        });
+    }
+    let freqs = band(first, req).map_err(fail)?;
+    let index = |d: Dof| dofs.iter().position(|&x| x == d).unwrap_or(0);
+    let set = FrfSet {
+        freq_hz: freqs.iter().map(|&(_, f)| f).collect(),
+        ordinate: pairs.ordinate,
+        pairs: pairs
+            .list
+            .iter()
+            .map(|(a, b, _)| (index(*a), index(*b)))
+            .collect(),
+        h: pairs
+            .list
+            .iter()
+            .map(|(_, _, h)| freqs.iter().map(|&(k, _)| h[k]).collect())
+            .collect(),
+    };
+    let band_hz = (set.freq_hz[0], set.freq_hz[set.freq_hz.len() - 1]);
+    let mut head = vec![format!(
+        "UFF 58: {} FRFs ({}, {}) of {} over {} to {} Hz ({} frequencies)",
+        set.pairs.len(),
+        pairs.ordinate.name(),
+        pairs.ordinate.units(),
+        dofs.iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>()
+            .join(", "),
+        band_hz.0,
+        band_hz.1,
+        set.freq_hz.len()
+    )];
+    let binary = recs.iter().filter(|r| r.binary).count();
+    if binary > 0 {
+        head.push(format!("{binary} of them binary (58b)"));
+    }
+    if let Some(u) = units {
+        head.push(format!(
+            "dataset 164 (record {}): units `{}`, length factor {}, force factor {} (file = SI × factor)",
+            u.record, u.description, u.length, u.force
+        ));
+    }
+    head.extend(pairs.notes());
+    head.extend(notes);
+    Ok(MeasuredFrfs {
+        set,
+        dofs,
+        band_hz,
+        notes: head,
+    })
+}
+
+/// The FRFs (function type 4) among `records`, and a note of each other
+/// record (coherences shown, the rest not fitted).
+fn frf_records(records: &[Record58]) -> (Vec<&Record58>, Vec<String>) {
     let mut notes = Vec::new();
     let mut recs: Vec<&Record58> = Vec::new();
-    for r in &parsed.records {
+    for r in records {
         if r.function_type == 4 {
             recs.push(r);
         } else if matches!(r.function_type, 6 | 26) {
@@ -93,13 +175,11 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
             ));
         }
     }
-    if recs.is_empty() {
-        return Err(fail(
-            String::new(),
-            "no FRF (dataset 58 of function type 4): expected FRFs for the frequency-domain fit"
-                .into(),
-        ));
-    }
+    (recs, notes)
+}
+
+/// The nodes of `--nodes` and `--flip-direction`, each one the FRFs have.
+fn check_nodes(recs: &[&Record58], req: &FrfRequest) -> Result<(), ParseError> {
     let all_nodes: Vec<i64> = {
         let mut v: Vec<i64> = recs
             .iter()
@@ -114,7 +194,7 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
         ("--flip-direction", req.flip.clone()),
     ] {
         if let Some(n) = list.iter().find(|n| !all_nodes.contains(n)) {
-            return Err(fail(
+            return Err((
                 String::new(),
                 format!(
                     "{what} {n}: no FRF has this node; expected one of the file's nodes {all_nodes:?}"
@@ -122,13 +202,17 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
             ));
         }
     }
-    let keep = |n: i64| req.nodes.as_ref().is_none_or(|ns| ns.contains(&n));
-    let first = recs[0];
-    let ordinate_of = |r: &Record58| match r.response_kind() {
+    Ok(())
+}
+
+/// The ordinate of an FRF: from its numerator's specific data type or
+/// units.
+fn ordinate_of(r: &Record58) -> Result<Ordinate, ParseError> {
+    match r.response_kind() {
         Some(8) => Ok(Ordinate::Receptance),
         Some(11) => Ok(Ordinate::Mobility),
         Some(12) => Ok(Ordinate::Accelerance),
-        _ => Err(fail(
+        _ => Err((
             r.at(),
             format!(
                 "ordinate specific data type {} (record 9) with units `{}`: expected 8 (displacement), 11 (velocity) or 12 (acceleration), or units of one of them over force",
@@ -136,66 +220,25 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
                 r.numerator_units.trim()
             ),
         )),
-    };
-    let ordinate = ordinate_of(first)?;
-    let mut pairs: Vec<(Dof, Dof, Vec<c64>)> = Vec::new();
-    let mut factors: Vec<String> = Vec::new();
-    let mut signs = Vec::new();
-    let mut flipped = Vec::new();
-    for r in &recs {
-        if !(keep(r.response_node) && keep(r.reference_node)) {
-            continue;
-        }
-        let o = ordinate_of(r)?;
-        if o != ordinate {
-            return Err(fail(
-                r.at(),
-                format!(
-                    "{}: expected every FRF in one ordinate ({}, as {})",
-                    o.name(),
-                    ordinate.name(),
-                    first.at().trim_end_matches(": ")
-                ),
-            ));
-        }
-        if !matches!(r.denominator, 0 | 9 | 13) {
-            return Err(fail(
-                r.at(),
-                format!(
-                    "denominator specific data type {} (record 10): expected 13 (excitation force)",
-                    r.denominator
-                ),
-            ));
-        }
-        if r.im.is_empty() {
-            return Err(fail(
-                r.at(),
-                "a real FRF: expected complex values (ordinate type 5 or 6)".into(),
-            ));
-        }
-        let same = (r.abscissa_min - first.abscissa_min).abs() <= 1e-9 * first.abscissa_step
-            && (r.abscissa_step - first.abscissa_step).abs() <= 1e-9 * first.abscissa_step
-            && r.re.len() == first.re.len();
-        if !same {
-            return Err(fail(
-                r.at(),
-                format!(
-                    "{} values from {} Hz every {} Hz: expected every FRF sampled as {} ({} values from {} Hz every {} Hz)",
-                    r.re.len(),
-                    r.abscissa_min,
-                    r.abscissa_step,
-                    first.at().trim_end_matches(": "),
-                    first.re.len(),
-                    first.abscissa_min,
-                    first.abscissa_step
-                ),
-            ));
-        }
-        let (factor, how) = r.si_factor(units.as_ref()).map_err(|(at, m)| fail(at, m))?;
-        let note = format!("values × {factor:.6e} to SI ({how})");
-        if !factors.contains(&note) {
-            factors.push(note);
-        }
+    }
+}
+
+/// The FRFs kept, in SI, directions positive, and what was done to them.
+struct Pairs {
+    ordinate: Ordinate,
+    list: Vec<(Dof, Dof, Vec<c64>)>,
+    /// Factors to SI, each said once.
+    factors: Vec<String>,
+    /// Pairs with a negative direction, made positive.
+    signs: Vec<String>,
+    /// Pairs reversed by `--flip-direction`.
+    flipped: Vec<String>,
+}
+
+impl Pairs {
+    /// The sign that makes `r`'s directions positive and applies
+    /// `--flip-direction`; what it did is noted.
+    fn sign(&mut self, r: &Record58, req: &FrfRequest) -> f64 {
         let mut sign = 1.0;
         if r.response_direction < 0 {
             sign = -sign;
@@ -204,7 +247,7 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
             sign = -sign;
         }
         if r.response_direction < 0 || r.reference_direction < 0 {
-            signs.push(format!(
+            self.signs.push(format!(
                 "{} / {}",
                 uff::dof(r.response_node, r.response_direction),
                 uff::dof(r.reference_node, r.reference_direction)
@@ -212,12 +255,61 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
         }
         if req.flip.contains(&r.response_node) {
             sign = -sign;
-            flipped.push(format!(
+            self.flipped.push(format!(
                 "{} / {}",
                 uff::dof(r.response_node, r.response_direction.abs()),
                 uff::dof(r.reference_node, r.reference_direction.abs())
             ));
         }
+        sign
+    }
+
+    /// The notes of what was done: factors, signs, flips.
+    fn notes(self) -> Vec<String> {
+        let mut notes = self.factors;
+        if !self.signs.is_empty() {
+            notes.push(format!(
+                "negative directions made positive (values negated): {}",
+                self.signs.join(", ")
+            ));
+        }
+        if !self.flipped.is_empty() {
+            notes.push(format!(
+                "response direction reversed by --flip-direction (values negated): {}",
+                self.flipped.join(", ")
+            ));
+        }
+        notes
+    }
+}
+
+/// The FRFs between the nodes kept, all in the first one's ordinate and
+/// sampling, one per pair.
+fn frf_pairs(
+    recs: &[&Record58],
+    req: &FrfRequest,
+    units: Option<&Units164>,
+) -> Result<Pairs, ParseError> {
+    let keep = |n: i64| req.nodes.as_ref().is_none_or(|ns| ns.contains(&n));
+    let first = recs[0];
+    let mut pairs = Pairs {
+        ordinate: ordinate_of(first)?,
+        list: Vec::new(),
+        factors: Vec::new(),
+        signs: Vec::new(),
+        flipped: Vec::new(),
+    };
+    for r in recs {
+        if !(keep(r.response_node) && keep(r.reference_node)) {
+            continue;
+        }
+        check_like_first(r, first, pairs.ordinate)?;
+        let (factor, how) = r.si_factor(units)?;
+        let note = format!("values × {factor:.6e} to SI ({how})");
+        if !pairs.factors.contains(&note) {
+            pairs.factors.push(note);
+        }
+        let sign = pairs.sign(r, req);
         let resp = Dof {
             node: r.response_node,
             direction: r.response_direction.abs(),
@@ -226,8 +318,8 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
             node: r.reference_node,
             direction: r.reference_direction.abs(),
         };
-        if pairs.iter().any(|(a, b, _)| (*a, *b) == (resp, refd)) {
-            return Err(fail(
+        if pairs.list.iter().any(|(a, b, _)| (*a, *b) == (resp, refd)) {
+            return Err((
                 r.at(),
                 format!("a second FRF of {resp} to {refd}: expected one record per pair"),
             ));
@@ -237,27 +329,65 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
                 .zip(&r.im)
                 .map(|(a, b)| c64::new(a * factor * sign, b * factor * sign))
                 .collect();
-        pairs.push((resp, refd, h));
+        pairs.list.push((resp, refd, h));
     }
-    if pairs.is_empty() {
-        return Err(fail(
-            String::new(),
+    Ok(pairs)
+}
+
+/// An FRF over force, complex, in the ordinate `ordinate` and sampled as
+/// `first`.
+fn check_like_first(r: &Record58, first: &Record58, ordinate: Ordinate) -> Result<(), ParseError> {
+    let o = ordinate_of(r)?;
+    if o != ordinate {
+        return Err((
+            r.at(),
             format!(
-                "no FRF between the nodes {:?}: expected at least one",
-                req.nodes.clone().unwrap_or_default()
+                "{}: expected every FRF in one ordinate ({}, as {})",
+                o.name(),
+                ordinate.name(),
+                first.at().trim_end_matches(": ")
             ),
         ));
     }
-    let mut dofs: Vec<Dof> = pairs.iter().flat_map(|(a, b, _)| [*a, *b]).collect();
-    dofs.sort_unstable();
-    dofs.dedup();
-    if dofs.len() > MAX_POINTS {
-        return Err(DataError::Responses {
-            file,
-            source: ResponsesError::TooManyPoints { points: dofs.len() },
-        });
+    if !matches!(r.denominator, 0 | 9 | 13) {
+        return Err((
+            r.at(),
+            format!(
+                "denominator specific data type {} (record 10): expected 13 (excitation force)",
+                r.denominator
+            ),
+        ));
     }
-    // the band: frequencies above 0 within the request
+    if r.im.is_empty() {
+        return Err((
+            r.at(),
+            "a real FRF: expected complex values (ordinate type 5 or 6)".into(),
+        ));
+    }
+    let same = (r.abscissa_min - first.abscissa_min).abs() <= 1e-9 * first.abscissa_step
+        && (r.abscissa_step - first.abscissa_step).abs() <= 1e-9 * first.abscissa_step
+        && r.re.len() == first.re.len();
+    if !same {
+        return Err((
+            r.at(),
+            format!(
+                "{} values from {} Hz every {} Hz: expected every FRF sampled as {} ({} values from {} Hz every {} Hz)",
+                r.re.len(),
+                r.abscissa_min,
+                r.abscissa_step,
+                first.at().trim_end_matches(": "),
+                first.re.len(),
+                first.abscissa_min,
+                first.abscissa_step
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The frequencies fitted (index, Hz): above 0 and within the request, at
+/// least 8 of them.
+fn band(first: &Record58, req: &FrfRequest) -> Result<Vec<(usize, f64)>, ParseError> {
     let (lo, hi) = req.band_hz.unwrap_or((0.0, f64::INFINITY));
     let freqs: Vec<(usize, f64)> = (0..first.re.len())
         .map(|k| (k, first.abscissa_min + k as f64 * first.abscissa_step))
@@ -267,7 +397,7 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
         .collect();
     if freqs.len() < 8 {
         let top = first.abscissa_min + (first.re.len() as f64 - 1.0) * first.abscissa_step;
-        return Err(fail(
+        return Err((
             String::new(),
             format!(
                 "{} holds {} of the FRFs' frequencies above 0 Hz ({} to {top} Hz every {} Hz): expected at least 8",
@@ -281,61 +411,5 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
             ),
         ));
     }
-    let index = |d: Dof| dofs.iter().position(|&x| x == d).unwrap_or(0);
-    let set = FrfSet {
-        freq_hz: freqs.iter().map(|&(_, f)| f).collect(),
-        ordinate,
-        pairs: pairs
-            .iter()
-            .map(|(a, b, _)| (index(*a), index(*b)))
-            .collect(),
-        h: pairs
-            .iter()
-            .map(|(_, _, h)| freqs.iter().map(|&(k, _)| h[k]).collect())
-            .collect(),
-    };
-    let band_hz = (set.freq_hz[0], set.freq_hz[set.freq_hz.len() - 1]);
-    let mut head = vec![format!(
-        "UFF 58: {} FRFs ({}, {}) of {} over {} to {} Hz ({} frequencies)",
-        set.pairs.len(),
-        ordinate.name(),
-        ordinate.units(),
-        dofs.iter()
-            .map(ToString::to_string)
-            .collect::<Vec<_>>()
-            .join(", "),
-        band_hz.0,
-        band_hz.1,
-        set.freq_hz.len()
-    )];
-    let binary = recs.iter().filter(|r| r.binary).count();
-    if binary > 0 {
-        head.push(format!("{binary} of them binary (58b)"));
-    }
-    if let Some(u) = &units {
-        head.push(format!(
-            "dataset 164 (record {}): units `{}`, length factor {}, force factor {} (file = SI × factor)",
-            u.record, u.description, u.length, u.force
-        ));
-    }
-    head.extend(factors);
-    if !signs.is_empty() {
-        head.push(format!(
-            "negative directions made positive (values negated): {}",
-            signs.join(", ")
-        ));
-    }
-    if !flipped.is_empty() {
-        head.push(format!(
-            "response direction reversed by --flip-direction (values negated): {}",
-            flipped.join(", ")
-        ));
-    }
-    head.extend(notes);
-    Ok(MeasuredFrfs {
-        set,
-        dofs,
-        band_hz,
-        notes: head,
-    })
+    Ok(freqs)
 }

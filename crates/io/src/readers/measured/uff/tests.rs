@@ -2,6 +2,7 @@
 //! orders), units, refusals naming the record and line.
 
 use super::*;
+use crate::readers::measured::Series;
 
 /// How a test dataset 58 is written: ASCII, or binary with a byte
 /// order (1 little, 2 big endian).
