@@ -77,7 +77,11 @@ pub fn side_panel(
         ui.separator();
         run_panel::show(ui, scene, cmds);
         ui.separator();
-        modes_table::show(ui, scene, modes, cmds);
+        if matches!(scene.tyre, Tyre::FeModes { .. }) {
+            fe_panel::show(ui, scene, modes, cmds);
+        } else {
+            modes_table::show(ui, scene, modes, cmds);
+        }
         ui.separator();
         if scene.points.grid().is_some() {
             patch_panel::grid(ui, scene, cmds);

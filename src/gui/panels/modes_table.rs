@@ -15,6 +15,9 @@ pub const RING_RESIDUES_NOTE: &str = "their residue matrices A (1/kg): in the mo
 /// Largest number of points whose residue matrix is edited inline.
 const MAX_INLINE_MATRIX: usize = 8;
 
+/// The tyre's modes: a modal tyre's table, or the summary of a ring, a
+/// measured tyre or a plate with the modes identified from it (an FE
+/// tyre has its own panel, `fe_panel`).
 pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>) {
     match &scene.tyre {
         Tyre::Ring { ring, .. } => return ring_summary(ui, scene, ring, modes, cmds),
@@ -24,8 +27,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>)
             ..
         } => return measured_summary(ui, scene, file, identification, modes, cmds),
         Tyre::Plate { plate } => return plate_summary(ui, plate, modes),
-        Tyre::FeModes { .. } => return super::fe_panel::show(ui, scene, modes, cmds),
-        Tyre::Modal { .. } => {}
+        Tyre::Modal { .. } | Tyre::FeModes { .. } => {}
     }
     section(ui, "Modes", Apply::Restart);
     let p = scene.num_points();
