@@ -64,7 +64,7 @@ fn unlike_scenes_are_compared_only_where_they_match() {
     assert!(
         said[0].contains("excited differently")
             && said[0].contains(&format!(
-                "speed {} -> {} m/s",
+                "speed V {} -> {} m/s",
                 five.speed_mps,
                 five.speed_mps + 5.0
             )),

@@ -26,7 +26,7 @@ fn an_edit_is_said_under_the_description_and_saved_into_it() {
     assert!(!shows(&h, "Changed since opened or saved"));
     type_into(&mut h, "speed_mps", &format!("{}", 2.0 * v0));
     assert_eq!(h.state().scene().speed_mps, 2.0 * v0);
-    let said = format!("speed {v0} -> {} m/s", 2.0 * v0);
+    let said = format!("speed V {v0} -> {} m/s", 2.0 * v0);
     assert!(shows(&h, "Changed since opened or saved"), "no note");
     assert!(shows(&h, &said), "the note does not say {said:?}");
 

@@ -410,7 +410,7 @@ fn the_unsaved_changes_question_names_the_changes() {
         .find(|t| t.starts_with("Changed: "))
         .unwrap_or_else(|| panic!("no list of changes: {shown:?}"));
     assert!(line.contains("speed V 10 -> 20 m/s"), "{line}");
-    assert!(line.contains("amplitude 1 -> 2 mm"), "{line}");
+    assert!(line.contains("road amplitude a 1 -> 2 mm"), "{line}");
     h.get_by_label("Cancel").click();
     h.run();
     assert!(h.state().pending_confirmation().is_none());
