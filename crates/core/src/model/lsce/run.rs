@@ -16,12 +16,12 @@ use super::{
 use crate::model::stability::{DiagramOrder, DiagramPole, Stability};
 use faer::Mat;
 
-/// [`identify`] one stage at a time, for a caller that must return between
-/// stages (a page in the browser, which has one thread): the QR of the
-/// Hankel data a few responses at a time, then each order of the
-/// stabilisation diagram, then the model at the chosen order and its
-/// report. The stages are [`identify`]'s own, in its order: the result is
-/// the same to the bit.
+/// [`identify`](super::identify) one stage at a time, for a caller that
+/// must return between stages (a page in the browser, which has one
+/// thread): the QR of the Hankel data a few responses at a time, then each
+/// order of the stabilisation diagram, then the model at the chosen order
+/// and its report. The stages are `identify`'s own, in its order: the
+/// result is the same to the bit.
 #[derive(Debug)]
 pub struct LsceRun {
     r: Responses,
@@ -44,7 +44,8 @@ pub struct LsceRun {
 }
 
 impl LsceRun {
-    /// Checks the options and the responses (the errors of [`identify`]).
+    /// Checks the options and the responses (the errors of
+    /// [`identify`](super::identify)).
     pub fn new(r: Responses, opts: &IdentifyOptions) -> Result<Self, LsceError> {
         crate::base::linalg::sequential();
         let errors = opts.validate("options");
