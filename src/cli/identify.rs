@@ -13,10 +13,11 @@ use std::time::Instant;
 use tirecontact::SceneSimulation;
 use tirecontact::fsio::write_atomic;
 use tirecontact::identify::{TyreIdentification, driving, identify_tyre};
-use tirecontact::model::lsce::{Identification, Stability};
-use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
+use tirecontact::model::lsce::Identification;
+use tirecontact::output::figures::{Figure, Panel, Series, render_png};
 use tirecontact::output::paper_figures::paper_figures;
 use tirecontact::output::record::{PLOT_SAMPLES, Recording};
+use tirecontact::output::stabilisation::{self, Method};
 use tirecontact::output::summary::short_num;
 use tirecontact::readers::measured::impulse_csv;
 use tirecontact::scene::Tyre;
@@ -356,66 +357,13 @@ fn summary(scene: &Scene, id: &TyreIdentification) -> String {
 }
 
 fn diagram_figure(scene: &Scene, id: &Identification) -> Figure {
-    let cats = [
-        (
-            Stability::Stable,
-            "stable: f, xi, MAC",
-            Style::Markers(5),
-            2,
-        ),
-        (
-            Stability::FrequencyDamping,
-            "stable: f, xi",
-            Style::HollowMarkers(5),
-            0,
-        ),
-        (
-            Stability::Frequency,
-            "stable: f",
-            Style::HollowMarkers(4),
-            4,
-        ),
-        (
-            Stability::New,
-            "new / not stable",
-            Style::HollowMarkers(2),
-            8,
-        ),
-    ];
-    let series = cats
-        .iter()
-        .map(|&(cat, name, style, color)| Series {
-            name: name.into(),
-            points: id
-                .diagram
-                .iter()
-                .flat_map(|d| {
-                    d.poles
-                        .iter()
-                        .filter(move |p| p.stability == cat)
-                        .map(move |p| (p.freq_hz, d.order as f64))
-                })
-                .collect(),
-            style,
-            color: Some(color),
-        })
-        .collect();
-    let mut chosen = Series::line(
-        format!("selected order {}", id.model_order),
-        id.modes
-            .iter()
-            .map(|m| (m.freq_hz, id.model_order as f64))
-            .collect(),
-    );
-    chosen.style = Style::HollowMarkers(9);
-    chosen.color = Some(6);
-    let mut panels = vec![Panel {
-        title: "LSCE stabilisation diagram".into(),
-        x_label: "frequency (Hz)".into(),
-        y_label: "model order M (pole pairs)".into(),
-        series: [series, vec![chosen]].concat(),
-        ..Panel::default()
-    }];
+    let chosen: Vec<f64> = id.modes.iter().map(|m| m.freq_hz).collect();
+    let mut panels = vec![stabilisation::panel(
+        &id.diagram,
+        Method::Lsce,
+        id.model_order,
+        &chosen,
+    )];
     panels.push(Panel {
         title: "relative L2 fit error in time vs model order".into(),
         x_label: "model order M (pole pairs)".into(),
@@ -423,7 +371,7 @@ fn diagram_figure(scene: &Scene, id: &Identification) -> Figure {
         series: vec![
             Series::line(
                 "log10 time-domain error, all responses",
-                id.diagram
+                id.order_errors
                     .iter()
                     .filter(|d| d.time_error > 0.0)
                     .map(|d| (d.order as f64, d.time_error.log10()))
@@ -431,7 +379,7 @@ fn diagram_figure(scene: &Scene, id: &Identification) -> Figure {
             ),
             Series::line(
                 "log10 time-domain error of the in-band poles only",
-                id.diagram
+                id.order_errors
                     .iter()
                     .filter(|d| d.band_time_error > 0.0)
                     .map(|d| (d.order as f64, d.band_time_error.log10()))

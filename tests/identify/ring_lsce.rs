@@ -344,7 +344,7 @@ fn lsce_recovers_a_known_model_exactly() {
     )
     .unwrap();
     let errs: Vec<(usize, f64, f64)> = auto
-        .diagram
+        .order_errors
         .iter()
         .map(|d| (d.order, d.time_error, d.band_time_error))
         .collect();

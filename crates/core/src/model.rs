@@ -8,3 +8,4 @@ pub mod lscf;
 pub mod plate;
 pub mod ring;
 pub mod road;
+pub mod stability;

@@ -13,6 +13,8 @@ pub mod paper_figures;
 pub mod patch;
 pub mod record;
 pub mod sampler;
+#[cfg(feature = "figures")]
+pub mod stabilisation;
 pub mod summary;
 
 pub use tirecontact_core::base::error::count;

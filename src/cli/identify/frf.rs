@@ -12,8 +12,9 @@ use tirecontact::Scene;
 use tirecontact::fsio::write_atomic;
 use tirecontact::identify::driving;
 use tirecontact::identify::frequency::{FrfIdentification, FrfOptions, MAX_FIT_ERROR};
-use tirecontact::model::lscf::{FitOptions, PoleStability};
+use tirecontact::model::lscf::FitOptions;
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
+use tirecontact::output::stabilisation::{self, Method};
 use tirecontact::readers::measured::frf::FrfRequest;
 use tirecontact::scene::Tyre;
 
@@ -347,60 +348,7 @@ fn fit_figure(name: &str, id: &FrfIdentification) -> Figure {
 
 /// The stabilisation diagram of the fit.
 fn diagram(name: &str, id: &FrfIdentification) -> Figure {
-    let cats = [
-        (
-            PoleStability::Stable,
-            "stable: f, xi, vector",
-            Style::Markers(5),
-            2,
-        ),
-        (
-            PoleStability::FrequencyDamping,
-            "stable: f, xi",
-            Style::HollowMarkers(5),
-            0,
-        ),
-        (
-            PoleStability::Frequency,
-            "stable: f",
-            Style::HollowMarkers(4),
-            4,
-        ),
-        (
-            PoleStability::New,
-            "new / not stable",
-            Style::HollowMarkers(2),
-            8,
-        ),
-    ];
-    let mut series: Vec<Series> = cats
-        .iter()
-        .map(|&(cat, label, style, color)| Series {
-            name: label.into(),
-            points: id
-                .diagram
-                .iter()
-                .flat_map(|d| {
-                    d.poles
-                        .iter()
-                        .filter(move |p| p.stability == cat)
-                        .map(move |p| (p.freq_hz, d.order as f64))
-                })
-                .collect(),
-            style,
-            color: Some(color),
-        })
-        .collect();
-    series.push(Series {
-        name: format!("kept at order {}", id.order),
-        points: id
-            .poles
-            .iter()
-            .map(|p| (p.freq_hz, id.order as f64))
-            .collect(),
-        style: Style::HollowMarkers(9),
-        color: Some(6),
-    });
+    let kept: Vec<f64> = id.poles.iter().map(|p| p.freq_hz).collect();
     Figure {
         title: format!("{name}: LSCF stabilisation diagram"),
         subtitle: format!(
@@ -409,12 +357,11 @@ fn diagram(name: &str, id: &FrfIdentification) -> Figure {
             id.complex.error,
             id.real.error
         ),
-        panels: vec![Panel {
-            title: "poles by polynomial order".into(),
-            x_label: "frequency (Hz)".into(),
-            y_label: "polynomial order p".into(),
-            series,
-            ..Panel::default()
-        }],
+        panels: vec![stabilisation::panel(
+            &id.diagram,
+            Method::Lscf,
+            id.order,
+            &kept,
+        )],
     }
 }

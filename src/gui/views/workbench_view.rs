@@ -16,7 +16,7 @@ use crate::gui::model::command::{Command, ResearchCommand};
 use crate::identify::driving::{self, DrivingPoint};
 use crate::identify::frequency::FrfIdentification;
 use crate::identify::workbench::Workbench;
-use crate::model::lsce::Stability;
+use crate::model::stability::{DiagramOrder, Stability, points_of};
 use crate::scene::Tyre;
 use egui::{Color32, RichText, Ui};
 use egui_plot::{Line, LineStyle, MarkerShape, Plot, Points};
@@ -30,33 +30,31 @@ pub const PICKED_COLOR: Color32 = Color32::from_rgb(230, 159, 0);
 /// A click picks the pole nearest it within this many pixels in frequency.
 pub const PICK_PX: f32 = 10.0;
 
-/// The diagram's marker categories: legend name, shape and colour.
-const CATEGORIES: [(Stability, &str, MarkerShape, Color32); 4] = [
-    (
-        Stability::Stable,
-        "stable in f, ξ and shape",
-        MarkerShape::Circle,
-        Color32::from_rgb(0, 158, 115),
-    ),
-    (
-        Stability::FrequencyDamping,
-        "stable in f and ξ",
-        MarkerShape::Diamond,
-        Color32::from_rgb(86, 180, 233),
-    ),
-    (
-        Stability::Frequency,
-        "stable in f",
-        MarkerShape::Square,
-        Color32::from_rgb(0, 114, 178),
-    ),
-    (
-        Stability::New,
-        "new or unstable",
-        MarkerShape::Cross,
-        Color32::from_rgb(150, 150, 150),
-    ),
-];
+/// A category's legend name, marker shape and colour in the diagram.
+fn category(stability: Stability) -> (&'static str, MarkerShape, Color32) {
+    match stability {
+        Stability::Stable => (
+            "stable in f, ξ and shape",
+            MarkerShape::Circle,
+            Color32::from_rgb(0, 158, 115),
+        ),
+        Stability::FrequencyDamping => (
+            "stable in f and ξ",
+            MarkerShape::Diamond,
+            Color32::from_rgb(86, 180, 233),
+        ),
+        Stability::Frequency => (
+            "stable in f",
+            MarkerShape::Square,
+            Color32::from_rgb(0, 114, 178),
+        ),
+        Stability::New => (
+            "new or unstable",
+            MarkerShape::Cross,
+            Color32::from_rgb(150, 150, 150),
+        ),
+    }
+}
 
 pub fn show(
     ui: &mut Ui,
@@ -210,26 +208,7 @@ fn diagram(ui: &mut Ui, w: &Workbench, h: f32, cmds: &mut Vec<Command>) {
                         .width(1.0),
                 );
             }
-            for (what, name, shape, color) in CATEGORIES {
-                let pts: Vec<[f64; 2]> = diag
-                    .iter()
-                    .flat_map(|d| {
-                        d.poles
-                            .iter()
-                            .filter(move |p| p.stability == what)
-                            .map(move |p| [p.freq_hz, d.order as f64])
-                    })
-                    .collect();
-                if !pts.is_empty() {
-                    pui.points(
-                        Points::new(name, pts)
-                            .shape(shape)
-                            .radius(3.0)
-                            .color(color)
-                            .filled(true),
-                    );
-                }
-            }
+            diagram_poles(pui, diag);
             let picked: Vec<[f64; 2]> = w
                 .picked
                 .iter()
@@ -257,6 +236,24 @@ fn diagram(ui: &mut Ui, w: &Workbench, h: f32, cmds: &mut Vec<Command>) {
     }
 }
 
+/// The poles of a stabilisation diagram at their frequency and model
+/// order, a marker per category ([`category`]), most stable first.
+fn diagram_poles(pui: &mut egui_plot::PlotUi<'_>, diagram: &[DiagramOrder]) {
+    for what in Stability::ALL {
+        let (name, shape, color) = category(what);
+        let pts: Vec<[f64; 2]> = points_of(diagram, what).map(|(f, m)| [f, m]).collect();
+        if !pts.is_empty() {
+            pui.points(
+                Points::new(name, pts)
+                    .shape(shape)
+                    .radius(3.0)
+                    .color(color)
+                    .filled(true),
+            );
+        }
+    }
+}
+
 /// The diagram's legend, in a row above it (a legend inside would cover
 /// poles: they fill the plot): a marker of each category's shape and
 /// colour and its name. Returns the height it took (px).
@@ -280,7 +277,7 @@ fn diagram_legend(ui: &mut Ui) -> f32 {
             },
             "summed |G| of the data (dB, scaled)",
         );
-        for (_, name, shape, color) in CATEGORIES {
+        for (name, shape, color) in Stability::ALL.map(category) {
             entry(ui, &move |p, c, r| marker(p, c, r, shape, color), name);
         }
         entry(

@@ -13,8 +13,9 @@ use faer::c64;
 use std::path::Path;
 use tirecontact_core::base::modal::Mode;
 use tirecontact_core::model::lscf::{
-    self, ComplexFit, DiagramOrder, FitError, FitOptions, FrfSet, Pole, RealFit,
+    self, ComplexFit, FitError, FitOptions, FrfSet, Pole, RealFit,
 };
+use tirecontact_core::model::stability::DiagramOrder;
 use web_time::Instant;
 
 /// Largest relative L2 error (over the band, all pairs) of the complex fit

@@ -7,8 +7,9 @@
 
 use tirecontact_core::base::modal::{ModalModel, Mode};
 use tirecontact_core::model::lsce::{
-    Identification, LsceError, Responses, Stability, modes_of_poles, response_magnitudes,
+    Identification, LsceError, Responses, modes_of_poles, response_magnitudes,
 };
+use tirecontact_core::model::stability::Stability;
 
 /// A pole of the diagram: its order's index and its index in that order.
 pub type PoleAt = (usize, usize);

@@ -2,6 +2,7 @@
 //! `tyre: Ring(identification: (...))`.
 
 use crate::base::error::FieldError;
+use crate::model::stability::{Criteria, Matching};
 use serde::{Deserialize, Serialize};
 
 /// Identification options (method §6): sampling of the responses, band, model
@@ -64,6 +65,18 @@ impl Default for IdentifyOptions {
 }
 
 impl IdentifyOptions {
+    /// The stabilisation criteria of LSCE (method §6.3): the options'
+    /// tolerances, each pole compared with the nearest in frequency of the
+    /// order below.
+    pub fn stability_criteria(&self) -> Criteria {
+        Criteria {
+            freq_tol: self.stable_freq_tol,
+            damping_tol: self.stable_damping_tol,
+            mac_min: self.stable_mac_min,
+            matching: Matching::Nearest,
+        }
+    }
+
     /// Time step of the samples (s).
     pub fn dt_s(&self) -> f64 {
         1.0 / self.sample_rate_hz

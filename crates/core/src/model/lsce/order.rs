@@ -1,27 +1,30 @@
 //! The automatic model order of LSCE (method §6: "chosen with a
 //! stabilisation diagram").
 
-use super::{DiagramOrder, EXACT_FIT, IdentifyOptions, Stability};
+use super::{EXACT_FIT, IdentifyOptions, OrderErrors};
+use crate::model::stability::{DiagramOrder, Stability};
 
 /// The automatic model order (method §6: chosen with the stabilisation
 /// diagram): among the orders whose in-band fit error is near the best
 /// (within `order_tolerance`, plus [`EXACT_FIT`]), the smallest whose kept
-/// poles (`kept_at[k]`: indices into `diagram[k].poles`) all persist, each
+/// poles (`kept_at[k]`: indices into `diagram[k].poles`; `errors[k]` the
+/// order's fit errors) all persist, each
 /// stable against the order below or found stable at the order above; if
 /// no near-best order has only persistent poles, the smallest near-best
 /// order. `None` without any in-band pole.
 pub(super) fn choose_order(
     diagram: &[DiagramOrder],
+    errors: &[OrderErrors],
     kept_at: &[Vec<usize>],
     opts: &IdentifyOptions,
 ) -> Option<usize> {
-    let best = diagram
-        .iter()
-        .filter(|d| !d.poles.is_empty())
-        .map(|d| d.band_time_error)
+    let best = (0..diagram.len())
+        .filter(|&k| !diagram[k].poles.is_empty())
+        .map(|k| errors[k].band_time_error)
         .fold(f64::INFINITY, f64::min);
-    let near_best = |d: &DiagramOrder| {
-        !d.poles.is_empty() && d.band_time_error <= (1.0 + opts.order_tolerance) * best + EXACT_FIT
+    let near_best = |k: usize| {
+        !diagram[k].poles.is_empty()
+            && errors[k].band_time_error <= (1.0 + opts.order_tolerance) * best + EXACT_FIT
     };
     let persists = |k: usize| {
         let d = &diagram[k];
@@ -40,15 +43,15 @@ pub(super) fn choose_order(
         })
     };
     (0..diagram.len())
-        .find(|&k| near_best(&diagram[k]) && persists(k))
-        .or_else(|| (0..diagram.len()).find(|&k| near_best(&diagram[k])))
+        .find(|&k| near_best(k) && persists(k))
+        .or_else(|| (0..diagram.len()).find(|&k| near_best(k)))
         .map(|k| diagram[k].order)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::lsce::DiagramPole;
+    use crate::model::stability::DiagramPole;
 
     fn pole(freq_hz: f64, stability: Stability) -> DiagramPole {
         DiagramPole {
@@ -58,13 +61,19 @@ mod tests {
         }
     }
 
-    fn order(order: usize, poles: Vec<DiagramPole>, band_time_error: f64) -> DiagramOrder {
-        DiagramOrder {
-            order,
-            poles,
-            time_error: band_time_error,
-            band_time_error,
-        }
+    fn order(
+        order: usize,
+        poles: Vec<DiagramPole>,
+        band_time_error: f64,
+    ) -> (DiagramOrder, OrderErrors) {
+        (
+            DiagramOrder { order, poles },
+            OrderErrors {
+                order,
+                time_error: band_time_error,
+                band_time_error,
+            },
+        )
     }
 
     /// The smallest near-best order keeps a pole that appears there only
@@ -74,7 +83,7 @@ mod tests {
     #[test]
     fn a_near_best_order_with_a_passing_pole_is_skipped() {
         use Stability::*;
-        let d = vec![
+        let (d, e): (Vec<DiagramOrder>, Vec<OrderErrors>) = [
             order(1, vec![pole(100.0, New)], 0.5),
             order(2, vec![pole(100.0, Stable), pole(200.0, New)], 0.2),
             order(
@@ -96,22 +105,27 @@ mod tests {
                 ],
                 0.0102,
             ),
-        ];
+        ]
+        .into_iter()
+        .unzip();
         let all: Vec<Vec<usize>> = d.iter().map(|o| (0..o.poles.len()).collect()).collect();
         let opts = IdentifyOptions::default();
         // order 4's new pole persists, stable, at order 5: order 4
-        assert_eq!(choose_order(&d, &all, &opts), Some(4));
+        assert_eq!(choose_order(&d, &e, &all, &opts), Some(4));
         // the passing pole carries no share (not kept): order 3
         let mut kept = all.clone();
         kept[2] = vec![0, 1];
-        assert_eq!(choose_order(&d, &kept, &opts), Some(3));
+        assert_eq!(choose_order(&d, &e, &kept, &opts), Some(3));
         // nothing near the best persists: the smallest near-best order
         let mut d2 = d.clone();
         d2[4].poles[2].stability = New;
         d2[3].poles[2].stability = New;
-        assert_eq!(choose_order(&d2[..4], &all[..4], &opts), Some(3));
+        assert_eq!(choose_order(&d2[..4], &e[..4], &all[..4], &opts), Some(3));
         // no in-band pole at all
-        let empty = vec![order(1, vec![], 0.1)];
-        assert_eq!(choose_order(&empty, &[vec![]], &opts), None);
+        let (empty, empty_errors) = order(1, vec![], 0.1);
+        assert_eq!(
+            choose_order(&[empty], &[empty_errors], &[vec![]], &opts),
+            None
+        );
     }
 }

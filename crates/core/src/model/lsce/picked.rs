@@ -3,7 +3,8 @@
 //! what the identification workbench refits at every pick.
 
 use super::dtft::dtft_magnitudes;
-use super::{LsceError, OrderFit, Pole, Responses, check_input, data_matrix, fit_order};
+use super::fit::{OrderFit, data_matrix, fit_order};
+use super::{LsceError, Pole, Responses, check_input};
 use crate::base::modal::Mode;
 use std::f64::consts::TAU;
 
