@@ -8,7 +8,7 @@ use tirecontact::{PreparedModel, Simulation, SolverOptions};
 /// The active rows a fused full step projects ahead, from its end
 /// state, are the next prediction's to the bit: a run that reads them
 /// and the same run made to project every step's rows afresh (its
-/// `ahead_ready` cleared before each step) give bit-identical states,
+/// rows ahead forgotten before each step) give bit-identical states,
 /// forces and end values, on rough roads (landings and releases inside
 /// steps, releases at once), one and two threads, while the rows
 /// ahead were read on most steps.

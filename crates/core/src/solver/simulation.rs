@@ -6,8 +6,11 @@
 //! A [`Simulation`] is in three parts (`parts.rs`): the tables built once,
 //! the run's state and the per-step scratch. Its step is made of four
 //! stages (`stages.rs`): predict, solve, locate, commit; the schemes
-//! combine them (`steady.rs`, `events.rs`, `paper.rs`, `compliant.rs`).
+//! combine them (`steady.rs`, `events.rs`, `paper.rs`, `compliant.rs`),
+//! the paper's and the compliant step-end rules in one active-set loop
+//! (`active_set.rs`).
 
+mod active_set;
 mod compliant;
 pub mod contact;
 mod contributions;
@@ -239,7 +242,7 @@ impl Simulation {
     pub fn reset(&mut self) {
         let st = &mut self.state;
         st.modal.reset();
-        self.scratch.ahead_ready = false;
+        self.scratch.ahead.ready = false;
         st.t_s = 0.0;
         st.x_offset_m = 0.0;
         st.steps = 0;

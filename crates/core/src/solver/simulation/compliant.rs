@@ -48,8 +48,40 @@
 //! therefore tends to the rigid one as `k` grows for points that stay in
 //! contact (`u = r - q / k`, an `O(1/k)` difference), not through impacts.
 
+use super::active_set::ActiveSetRule;
 use super::{GA, GB, SQRT3, Simulation, Table, first_crossing};
 use crate::solver::error::SolverError;
+
+/// The compliant step-end rule (method §4.6): a point enters where the
+/// free prediction leaves its spring compressed; a point may leave only if
+/// its linear force also ends negative (a landing late in the interval has
+/// a negative mean but a positive end; an unresolved stiff impulse can end
+/// negative with a positive mean); the compliant Gauss-point solve.
+pub(super) struct CompliantRule;
+
+impl ActiveSetRule for CompliantRule {
+    const FIRST_OF_EQUALLY_DEEP: bool = false;
+
+    fn start_set(sim: &mut Simulation) {
+        sim.ensure_projected_all();
+        let (st, s) = (&mut sim.state, &sim.scratch);
+        st.active.clear();
+        for i in 0..sim.tables.p {
+            if s.re[i] - s.uh[i] > 0.0 {
+                st.active.push(i);
+            }
+        }
+    }
+
+    #[inline]
+    fn may_release(q1: f64, q2: f64) -> bool {
+        -GB * q1 + GA * q2 < 0.0
+    }
+
+    fn solve(sim: &mut Simulation, t_end: f64, sel: Table) -> Result<(), SolverError> {
+        sim.solve_compliant(t_end, sel)
+    }
+}
 
 impl Simulation {
     /// The step from `t0` when it has no event, as most are: the springs
@@ -113,10 +145,11 @@ impl Simulation {
     }
 
     /// The step-end rule over `[t, t + tau]` (the fallback of a cascade of
-    /// events, as the paper's rule is for rigid contact): candidates are
-    /// the points the free prediction leaves compressed (`r_e - u_h > 0`);
-    /// a point whose step-mean force `(q1 + q2)/2` and end force `q_e` are
-    /// both negative is released (the most negative mean first) and not
+    /// events, as the paper's rule is for rigid contact), in the loop of
+    /// `active_set.rs` with [`CompliantRule`]: candidates are the points
+    /// the free prediction leaves compressed (`r_e - u_h > 0`); a point
+    /// whose step-mean force `(q1 + q2)/2` and end force `q_e` are both
+    /// negative is released (the most negative mean first) and not
     /// re-added in that step; a free point compressed by its neighbours'
     /// forces is added; at most `2P` solves. A point still pulling on
     /// average then (a landing late in the interval) is let go, its force
@@ -128,53 +161,7 @@ impl Simulation {
         tau: f64,
         sel: Table,
     ) -> Result<u32, SolverError> {
-        self.predict(t, tau, sel)?;
-        self.ensure_projected_all();
-        self.state.active.clear();
-        for i in 0..self.tables.p {
-            if self.scratch.re[i] - self.scratch.uh[i] > 0.0 {
-                self.state.active.push(i);
-            }
-        }
-        let mut solves = 0u32;
-        loop {
-            self.solve_compliant(t + tau, sel)?;
-            solves += !self.state.active.is_empty() as u32;
-            if solves as usize >= 2 * self.tables.p {
-                break;
-            }
-            // released: the most negative step-mean force among those that
-            // also end negative (a landing late in the interval has a
-            // negative mean but a positive end; an unresolved stiff impulse
-            // can end negative with a positive mean)
-            let worst = self
-                .state
-                .active
-                .iter()
-                .enumerate()
-                .filter(|&(_, &j)| -GB * self.scratch.q1[j] + GA * self.scratch.q2[j] < 0.0)
-                .map(|(k, &j)| (k, self.scratch.q1[j] + self.scratch.q2[j]))
-                .filter(|&(_, q)| q < 0.0)
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            if let Some((k, _)) = worst {
-                let j = self.state.active.remove(k);
-                self.state.released[j] = true;
-                continue;
-            }
-            // a neighbour's force compressed a free point's spring
-            let deepest = (0..self.tables.p)
-                .filter(|&i| !self.state.released[i] && !self.state.active.contains(&i))
-                .map(|i| (i, self.scratch.re[i] - self.scratch.ue[i]))
-                .filter(|&(_, c)| c > self.pen_tol_m)
-                .max_by(|a, b| a.1.total_cmp(&b.1));
-            match deepest {
-                Some((i, _)) => self.state.active.push(i),
-                None => break,
-            }
-        }
-        self.let_go_pulling(sel);
-        self.commit(tau, sel);
-        Ok(solves)
+        self.step_end_rule::<CompliantRule>(t, tau, sel)
     }
 
     /// Solves the compliant Gauss-point system of `active` (after `predict`

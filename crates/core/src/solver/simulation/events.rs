@@ -273,8 +273,8 @@ impl Simulation {
         for &j in &self.state.active {
             let (q1, q2) = (s.q1[j], s.q2[j]);
             let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
-            s.rq1[j] = qs + (qe - qs) * f * ya;
-            s.rq2[j] = qs + (qe - qs) * f * yb;
+            s.events.rq1[j] = qs + (qe - qs) * f * ya;
+            s.events.rq2[j] = qs + (qe - qs) * f * yb;
         }
         self.prepare_sub(th);
         self.predict(at.t_s, th, Table::Sub)?;
@@ -292,7 +292,7 @@ impl Simulation {
         if restricted {
             let s = &mut self.scratch;
             for &j in &self.state.active {
-                (s.q1[j], s.q2[j]) = (s.rq1[j], s.rq2[j]);
+                (s.q1[j], s.q2[j]) = (s.events.rq1[j], s.events.rq2[j]);
             }
             self.end_values_sub();
         }
@@ -401,7 +401,7 @@ impl Simulation {
         // the points on the road (fewer dropped modes than such points) is a
         // rigid impact left.
         if !tb.residual.is_empty()
-            && super::residual::compliant_on(&tb.residual, p, &st.active, &mut s.gss)
+            && super::residual::compliant_on(&tb.residual, p, &st.active, &mut s.dense.gss)
         {
             return Ok(0);
         }
@@ -449,7 +449,7 @@ fn one_by_one_impact(
         let n = st.active.len();
         let act = &st.active;
         let jump = &tb.jump;
-        if let Err(e) = solve_impulses(tb, st, &mut s.solver, &mut s.rhs) {
+        if let Err(e) = solve_impulses(tb, st, &mut s.dense.solver, &mut s.rhs) {
             return Err(SolverError::SingularContactSystem {
                 t_s: t,
                 points: st.active.clone(),
@@ -546,7 +546,7 @@ fn joint_impact(
     pen_tol_m: f64,
 ) -> Result<u32, SolverError> {
     let (p, jump) = (tb.p, &tb.jump);
-    let (cand, in_set) = (&mut s.impact_candidates, &mut s.impact_in_set);
+    let (cand, in_set) = (&mut s.events.impact_candidates, &mut s.events.impact_in_set);
     cand.clear();
     cand.extend_from_slice(&st.active);
     let mut n_on = cand.len();
@@ -578,7 +578,7 @@ fn joint_impact(
             .extend(cand.iter().copied().filter(|&j| in_set[j]));
         let (act, n) = (&st.active, st.active.len());
         if n > 0 {
-            if let Err(e) = solve_impulses(tb, st, &mut s.solver, &mut s.rhs) {
+            if let Err(e) = solve_impulses(tb, st, &mut s.dense.solver, &mut s.rhs) {
                 if let Some(j) = joined.take() {
                     // a point whose joining makes the system singular stays
                     // off: it lands later as an event of its own

@@ -52,7 +52,7 @@ impl Simulation {
                 .solver
                 .solve_by_inverse(&mut s.rhs[..2 * n]),
             Table::Full => self.factors.current.solver.solve(&mut s.rhs[..2 * n]),
-            Table::Sub => s.solver.solve(&mut s.rhs[..2 * n]),
+            Table::Sub => s.dense.solver.solve(&mut s.rhs[..2 * n]),
         }
         // only the active points' entries of q1, q2 are ever read
         for (k, &j) in self.state.active.iter().enumerate() {
@@ -90,8 +90,8 @@ impl Simulation {
             }
             // the interleaved blocks into the 2|S| x 2|S| matrix
             Table::Sub => {
-                let gss = &self.scratch.gss[..4 * n * n];
-                self.scratch.solver.factor_filled(2 * n, |m| {
+                let gss = &self.scratch.dense.gss[..4 * n * n];
+                self.scratch.dense.solver.factor_filled(2 * n, |m| {
                     let (top, bottom) = m.split_at_mut(2 * n * n);
                     let rows = top
                         .chunks_exact_mut(2 * n)
@@ -323,7 +323,7 @@ impl Simulation {
         let (tb, active, sc) = (&self.tables, &self.state.active, &mut self.scratch);
         let n = active.len();
         let (p, ns) = (tb.p, tb.basis.stored_states());
-        let g = &mut sc.gss[..4 * n * n];
+        let g = &mut sc.dense.gss[..4 * n * n];
         // the weights of the four entries, each contiguous over the states
         let wq = sc.sub.weight_columns(ns);
         PairFill {
@@ -332,7 +332,7 @@ impl Simulation {
             ns,
             symmetric: tb.basis.symmetric(),
         }
-        .fill(active, wq, &mut sc.sub_out_weighted, g);
+        .fill(active, wq, &mut sc.dense.sub_out_weighted, g);
         if !tb.residual.is_empty() {
             let rate = SQRT3 / sc.sub.tau_s;
             for (a, &i) in active.iter().enumerate() {

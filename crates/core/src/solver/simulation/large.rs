@@ -101,20 +101,20 @@ impl Simulation {
     /// `dv` hold the rows' values in the set's order on the way).
     ///
     /// After a fused full step the rows projected ahead from its end state
-    /// are this prediction's (`ahead_use`, once): only the active points
+    /// are this prediction's (`ahead.in_use`, once): only the active points
     /// without one are projected here.
     fn project_active_rows(&mut self) {
         let (tb, s) = (&self.tables, &mut self.scratch);
-        let rows = if std::mem::take(&mut s.ahead_use) {
-            s.others.clear();
+        let rows = if std::mem::take(&mut s.ahead.in_use) {
+            s.ahead.others.clear();
             for &i in &self.state.active {
-                if s.ahead_row[i] {
-                    (s.uh[i], s.vh[i]) = (s.uh_ahead[i], s.vh_ahead[i]);
+                if s.ahead.row[i] {
+                    (s.uh[i], s.vh[i]) = (s.ahead.uh[i], s.ahead.vh[i]);
                 } else {
-                    s.others.push(i);
+                    s.ahead.others.push(i);
                 }
             }
-            &s.others[..]
+            &s.ahead.others[..]
         } else {
             &self.state.active[..]
         };
@@ -138,7 +138,7 @@ impl Simulation {
     /// With tread springs, the active points' end values are instead what
     /// the solve imposes (the road less the springs' compression and its
     /// rate, method §4.6), and their rows project the next step's free
-    /// prediction from this end state (`ahead`, read by that step's
+    /// prediction from this end state (`ahead.free`, read by that step's
     /// [`Self::project_active_rows`] once `commit` took this state): every
     /// row is read once a step, as in a step off the road.
     fn end_state_fused(&mut self) {
@@ -150,28 +150,38 @@ impl Simulation {
         let threads = &self.threads;
         let dt_s = tb.dt_s;
         // the rows ahead: the active points'
-        for &j in &s.ahead_points {
-            s.ahead_row[j] = false;
+        for &j in &s.ahead.points {
+            s.ahead.row[j] = false;
         }
-        s.ahead_points.clear();
-        s.ahead_points.extend_from_slice(&st.active);
+        s.ahead.points.clear();
+        s.ahead.points.extend_from_slice(&st.active);
         for &j in &st.active {
-            s.ahead_row[j] = true;
+            s.ahead.row[j] = true;
         }
         // the next step's prediction and its active rows (first: with a
         // symmetric basis the forces just read these rows)
-        s.delta.predict_into_on(&tb.full, &mut s.ahead, threads);
+        s.delta
+            .predict_into_on(&tb.full, &mut s.ahead.free, threads);
         let pk = [&mut s.du[..], &mut s.dv[..]];
-        let (uh, vh) = (&mut s.uh_ahead, &mut s.vh_ahead);
+        let (uh, vh) = (&mut s.ahead.uh, &mut s.ahead.vh);
         s.ahead
+            .free
             .project_rows_on(&tb.basis, &st.active, uh, vh, pk, threads);
         // the points off the set: their end values from the end state
-        s.others.clear();
-        s.others.extend((0..tb.p).filter(|&i| !s.ahead_row[i]));
+        s.ahead.others.clear();
+        s.ahead
+            .others
+            .extend((0..tb.p).filter(|&i| !s.ahead.row[i]));
         let pk = [&mut s.du[..], &mut s.dv[..]];
-        s.delta
-            .project_rows_on(&tb.basis, &s.others, &mut s.ue, &mut s.ve, pk, threads);
-        s.ahead_pending = true;
+        s.delta.project_rows_on(
+            &tb.basis,
+            &s.ahead.others,
+            &mut s.ue,
+            &mut s.ve,
+            pk,
+            threads,
+        );
+        s.ahead.pending = true;
         self.add_residual_ends(dt_s);
         // the active points: the road less the compression (the residual
         // compliance is in the solved system)
@@ -228,13 +238,13 @@ impl Simulation {
         }
         // marks: the active points
         for &j in &st.active {
-            s.mark[j] = true;
+            s.large.mark[j] = true;
         }
-        let leaving = inv.points().iter().filter(|&&j| !s.mark[j]).count();
+        let leaving = inv.points().iter().filter(|&&j| !s.large.mark[j]).count();
         let staying = inv.points().len() - leaving;
         let joining = st.active.len() - staying;
         for &j in &st.active {
-            s.mark[j] = false;
+            s.large.mark[j] = false;
         }
         if leaving + joining == 0 {
             return Ok(false);
@@ -245,32 +255,32 @@ impl Simulation {
         let mut ok = true;
         // leaving, from the last slot down (the slots after one move down)
         for &j in &st.active {
-            s.mark[j] = true;
+            s.large.mark[j] = true;
         }
         let mut k = inv.points().len();
         while k > 0 && ok {
             k -= 1;
-            if !s.mark[inv.points()[k]] {
+            if !s.large.mark[inv.points()[k]] {
                 ok = inv.leave(k);
             }
         }
         for &j in &st.active {
-            s.mark[j] = false;
+            s.large.mark[j] = false;
         }
         // joining: the active points not in a slot
         for &j in inv.points() {
-            s.mark[j] = true;
+            s.large.mark[j] = true;
         }
         {
             let entry = full_entry(&self.tables);
             for &j in &st.active {
-                if ok && !s.mark[j] {
+                if ok && !s.large.mark[j] {
                     ok = inv.join(j, &entry);
                 }
             }
         }
         for &j in inv.points() {
-            s.mark[j] = false;
+            s.large.mark[j] = false;
         }
         self.state.stats.contact_updates += (leaving + joining) as u64;
         if !ok {
@@ -311,10 +321,10 @@ impl Simulation {
         let s = &mut self.scratch;
         let inv = &self.factors.updated;
         for (a, &i) in inv.points().iter().enumerate() {
-            s.rhs_slots[2 * a] = s.re[i] - s.uh[i];
-            s.rhs_slots[2 * a + 1] = s.rde[i] - s.vh[i];
+            s.large.rhs_slots[2 * a] = s.re[i] - s.uh[i];
+            s.large.rhs_slots[2 * a + 1] = s.rde[i] - s.vh[i];
         }
-        inv.solve_on(&s.rhs_slots, &mut s.rhs, &self.threads);
+        inv.solve_on(&s.large.rhs_slots, &mut s.rhs, &self.threads);
     }
 
     /// The componentwise backward error of the last [`Self::solve_by_updated`].
@@ -322,7 +332,7 @@ impl Simulation {
         let s = &self.scratch;
         self.factors.updated.backward_error_on(
             full_entry(&self.tables),
-            &s.rhs_slots,
+            &s.large.rhs_slots,
             &s.rhs,
             &self.threads,
         )
@@ -359,21 +369,21 @@ impl Simulation {
             if !(det.is_finite() && det != 0.0) {
                 return false;
             }
-            s.jacobi[a] = [g[3] / det, -g[1] / det, -g[2] / det, g[0] / det];
+            s.large.jacobi[a] = [g[3] / det, -g[1] / det, -g[2] / det, g[0] / det];
         }
         // the preconditioned right-hand side; unknowns and equations
         // interleaved per point: (q1, q2) and (end value, slope)
         for (a, &i) in act.iter().enumerate() {
             let (bx, bv) = (s.re[i] - s.uh[i], s.rde[i] - s.vh[i]);
-            let z = s.jacobi[a];
-            s.rhs_slots[2 * a] = z[0] * bx + z[1] * bv;
-            s.rhs_slots[2 * a + 1] = z[2] * bx + z[3] * bv;
+            let z = s.large.jacobi[a];
+            s.large.rhs_slots[2 * a] = z[0] * bx + z[1] * bv;
+            s.large.rhs_slots[2 * a + 1] = z[2] * bx + z[3] * bv;
         }
-        let jacobi = &s.jacobi[..n];
+        let jacobi = &s.large.jacobi[..n];
         let residual = &tb.residual;
         let tread = &tb.tread_k_n_m;
         let (state, sub, basis) = (&mut *s.delta, &s.sub, &tb.basis);
-        let (gq1, gq2) = (&mut s.gq1, &mut s.gq2);
+        let (gq1, gq2) = (&mut s.large.gq1, &mut s.large.gq2);
         let (ex, ev) = (&mut s.du[..n], &mut s.dv[..n]);
         let apply = |z: &[f64], y: &mut [f64]| {
             // the forces into the states over the sub-step (their response
@@ -408,11 +418,11 @@ impl Simulation {
         };
         // from the block-diagonal solution
         let x = &mut s.rhs[..2 * n];
-        x.copy_from_slice(&s.rhs_slots[..2 * n]);
-        let outcome = s.gmres.solve(
+        x.copy_from_slice(&s.large.rhs_slots[..2 * n]);
+        let outcome = s.large.gmres.solve(
             2 * n,
             apply,
-            &s.rhs_slots[..2 * n],
+            &s.large.rhs_slots[..2 * n],
             x,
             GMRES_TOLERANCE,
             GMRES_MAX_APPLICATIONS,

@@ -5,7 +5,9 @@
 //! - [`SimState`]: the run at the current time, what a snapshot or a
 //!   restart needs;
 //! - [`Scratch`]: the buffers a step works in, sized once so that the step
-//!   allocates nothing (method §4.5, "Memory").
+//!   allocates nothing (method §4.5, "Memory"): those every scheme shares,
+//!   and a part per scheme's own solves ([`DenseScratch`], [`EventScratch`],
+//!   [`LargeSetScratch`], [`RowsAhead`]).
 //!
 //! The full-step factorisations kept by active set (`factor_cache.rs`) are
 //! a fourth, derived part: a function of the tables and the active set
@@ -399,12 +401,14 @@ impl SimState {
     }
 }
 
-/// The buffers a step works in, sized once (method §4.5, "Memory"). Nothing
-/// they hold is carried from one step to the next but the next step's
-/// active rows (`uh_ahead`, read only while `ahead_ready` says they are of
-/// the committed state): `impulse` is cleared at the step start, every
-/// other buffer is written before it is read, and the sub-step table is
-/// refilled whenever its length changes.
+/// The buffers a step works in, sized once (method §4.5, "Memory"): those
+/// every contact scheme's step shares (the prediction, the end values, the
+/// Gauss-point forces, the sub-step table) and one part per scheme's own
+/// solves. Nothing they hold is carried from one step to the next but the
+/// next step's active rows ([`RowsAhead`], read only while its `ready`
+/// says they are of the committed state): `impulse` is cleared at the step
+/// start, every other buffer is written before it is read, and the
+/// sub-step table is refilled whenever its length changes.
 pub(super) struct Scratch {
     /// The free prediction of the modal states (method §4.3 step 1).
     pub free: Box<ModalState>,
@@ -423,83 +427,42 @@ pub(super) struct Scratch {
     /// Gauss-point forces of the active points (N, method §3.3).
     pub q1: Vec<f64>,
     pub q2: Vec<f64>,
-    /// Trial Gauss-point forces restricted to the interval before an event
-    /// (N).
-    pub rq1: Vec<f64>,
-    pub rq2: Vec<f64>,
     /// Impulse of the step so far per point (N·s).
     pub impulse: Vec<f64>,
     /// Right-hand side and solution of a contact system (`2P`).
     pub rhs: Vec<f64>,
     /// Exact step weights over the current sub-step (method §3.3).
     pub sub: StepTable,
-    /// `|S| x |S|` blocks of the sub-step influence (4 |S|² used).
-    pub gss: Vec<f64>,
-    /// One point's output vector times each of those weights (`4 ns`).
-    pub sub_out_weighted: Vec<f64>,
     /// State increment of the solved sub-step forces, and its projection
     /// (m, m/s; also the active rows' free values, in the set's order, on
     /// their way to `uh`, `vh` in a threaded projection of those rows).
     pub delta: Box<ModalState>,
     pub du: Vec<f64>,
     pub dv: Vec<f64>,
-    /// The sub-step and impulse systems' solver.
-    pub solver: DenseSolver,
-    /// The iterative sub-step solve of large active sets (`large.rs`):
-    /// GMRES and the 2 × 2 block-diagonal preconditioner's inverses per
-    /// active point (empty unless [`SimTables::large_sets`] or
-    /// [`SimTables::iterative_sub_from`] points can be on the road).
-    pub gmres: Gmres,
-    pub jacobi: Vec<[f64; 4]>,
-    /// The Gauss-point forces of a GMRES product by point (its input
-    /// vector scattered for the force kernel).
-    pub gq1: Vec<f64>,
-    pub gq2: Vec<f64>,
     /// `delta` holds the end state of the (sub-)step solved last (its
     /// prediction plus the solved forces: a large compliant set's full
     /// step, or a sub-step whose prediction projected only the active
     /// points, `large.rs`), which `commit` takes as it is.
     pub fused_end: bool,
-    /// The next step's free prediction from the end state formed last
-    /// (large compliant sets, `large.rs`), its active points' free end
-    /// values `uh_ahead`, `vh_ahead` (by point), the points they were
-    /// projected for (`ahead_row`, `ahead_points`), and the other points
-    /// (`others`).
-    pub ahead: Box<ModalState>,
-    pub uh_ahead: Vec<f64>,
-    pub vh_ahead: Vec<f64>,
-    pub ahead_row: Vec<bool>,
-    pub ahead_points: Vec<usize>,
-    pub others: Vec<usize>,
-    /// The last solve formed `ahead` (set by the solve, taken by `commit`).
-    pub ahead_pending: bool,
-    /// `ahead` is the prediction of the committed state (set by `commit`
-    /// after a fused full step, taken by the next `predict`).
-    pub ahead_ready: bool,
-    /// The current prediction is `ahead`'s: its active rows are read from
-    /// `uh_ahead` (taken by the solve's projection of the active rows).
-    pub ahead_use: bool,
     /// The last prediction projected every point's free end values
     /// (`uh`, `vh`), not only the active points'.
     pub projected_all: bool,
-    /// The right-hand side in slot order, and a point's slot mark.
-    pub rhs_slots: Vec<f64>,
-    pub mark: Vec<bool>,
-    /// The candidates of a joint impact and a point's mark of being in its
-    /// set (method §4.4, "Several events at one instant").
-    pub impact_candidates: Vec<usize>,
-    pub impact_in_set: Vec<bool>,
+    /// The direct solves of sub-steps and impacts (rigid and compliant
+    /// contact, the step-end rules over a sub-step).
+    pub dense: DenseScratch,
+    /// The located scheme's events: restricted forces and joint impacts.
+    pub events: EventScratch,
+    /// Large active sets and compliant sub-steps by GMRES (`large.rs`).
+    pub large: LargeSetScratch,
+    /// The next step's active rows, projected by a large compliant set's
+    /// full step (`large.rs`).
+    pub ahead: RowsAhead,
 }
 
 impl Scratch {
     /// Buffers for the tables' points and states.
     pub fn new(tables: &SimTables) -> Self {
         let p = tables.p;
-        let ns = tables.basis.stored_states();
-        // (the buffers of the iterative sub-step solve)
-        let large = tables.large_sets() || tables.p >= tables.iterative_sub_from();
-        // (the next step's active rows, formed by a large compliant set's full step)
-        let ahead = tables.large_sets() && tables.compliant();
         let zero = ModalState::zeros(&tables.basis);
         Scratch {
             free: Box::new(zero.clone()),
@@ -513,27 +476,140 @@ impl Scratch {
             dzbuf: vec![0.0; p],
             q1: vec![0.0; p],
             q2: vec![0.0; p],
-            rq1: vec![0.0; p],
-            rq2: vec![0.0; p],
             impulse: vec![0.0; p],
             rhs: vec![0.0; 2 * p],
             sub: tables.full.clone(),
-            gss: vec![0.0; 4 * p * p],
-            sub_out_weighted: vec![0.0; 4 * ns],
             delta: Box::new(zero),
             du: vec![0.0; p],
             dv: vec![0.0; p],
+            fused_end: false,
+            projected_all: false,
+            dense: DenseScratch::new(tables),
+            events: EventScratch::new(p),
+            large: LargeSetScratch::new(tables),
+            ahead: RowsAhead::new(tables),
+        }
+    }
+}
+
+/// The direct (factorised) solves of a sub-step's Gauss-point system
+/// (method §4.5) and of an impact's impulses (method §4.4, "Impact"), and
+/// the residual compliance's factor on the points on the road (§4.7).
+pub(super) struct DenseScratch {
+    /// `|S| x |S|` blocks of the sub-step influence (4 |S|² used); the
+    /// factor of the residual compliance at an impact (`|S|²` used).
+    pub gss: Vec<f64>,
+    /// One point's output vector times each of the sub-step's four
+    /// weights (`4 ns`).
+    pub sub_out_weighted: Vec<f64>,
+    /// The sub-step and impulse systems' solver.
+    pub solver: DenseSolver,
+}
+
+impl DenseScratch {
+    fn new(tables: &SimTables) -> Self {
+        let p = tables.p;
+        DenseScratch {
+            gss: vec![0.0; 4 * p * p],
+            sub_out_weighted: vec![0.0; 4 * tables.basis.stored_states()],
             solver: DenseSolver::new(2 * p),
-            gmres: Gmres::new(if large { 2 * p } else { 0 }, GMRES_RESTART),
-            jacobi: vec![[0.0; 4]; if large { p } else { 0 }],
-            gq1: vec![0.0; if large { p } else { 0 }],
-            gq2: vec![0.0; if large { p } else { 0 }],
-            rhs_slots: vec![0.0; if large { 2 * p } else { 0 }],
-            mark: vec![false; p],
+        }
+    }
+}
+
+/// The located scheme's events (method §4.4): the trial forces restricted
+/// to the interval before an event, and the candidates of a joint impact.
+pub(super) struct EventScratch {
+    /// Trial Gauss-point forces restricted to the interval before an event
+    /// (N).
+    pub rq1: Vec<f64>,
+    pub rq2: Vec<f64>,
+    /// The candidates of a joint impact and a point's mark of being in its
+    /// set (method §4.4, "Several events at one instant").
+    pub impact_candidates: Vec<usize>,
+    pub impact_in_set: Vec<bool>,
+}
+
+impl EventScratch {
+    fn new(p: usize) -> Self {
+        EventScratch {
+            rq1: vec![0.0; p],
+            rq2: vec![0.0; p],
             impact_candidates: Vec::with_capacity(p),
             impact_in_set: vec![false; p],
-            fused_end: false,
-            ahead: Box::new(if ahead {
+        }
+    }
+}
+
+/// Large active sets (method §4.5, "Large active sets"): the kept
+/// inverse's right-hand side and marks, and the iterative sub-step solve
+/// of compliant sets. Empty but for `mark` unless
+/// [`SimTables::large_sets`] or [`SimTables::iterative_sub_from`] points
+/// can be on the road.
+pub(super) struct LargeSetScratch {
+    /// GMRES of the sub-step system (`contact/krylov.rs`).
+    pub gmres: Gmres,
+    /// The 2 × 2 block-diagonal preconditioner's inverses per active point.
+    pub jacobi: Vec<[f64; 4]>,
+    /// The Gauss-point forces of a GMRES product by point (its input
+    /// vector scattered for the force kernel, N).
+    pub gq1: Vec<f64>,
+    pub gq2: Vec<f64>,
+    /// The right-hand side in slot order, and a point's slot mark.
+    pub rhs_slots: Vec<f64>,
+    pub mark: Vec<bool>,
+}
+
+impl LargeSetScratch {
+    fn new(tables: &SimTables) -> Self {
+        let p = tables.p;
+        let large = tables.large_sets() || p >= tables.iterative_sub_from();
+        let n = |len: usize| if large { len } else { 0 };
+        LargeSetScratch {
+            gmres: Gmres::new(n(2 * p), GMRES_RESTART),
+            jacobi: vec![[0.0; 4]; n(p)],
+            gq1: vec![0.0; n(p)],
+            gq2: vec![0.0; n(p)],
+            rhs_slots: vec![0.0; n(2 * p)],
+            mark: vec![false; p],
+        }
+    }
+}
+
+/// The next step's free prediction from the end state a large compliant
+/// set's full step formed (method §4.5, "One pass over the outputs";
+/// `large.rs`): its active points' free end values by point, the points
+/// they were projected for, and whether the next step may read them.
+/// Empty unless large compliant sets can occur.
+pub(super) struct RowsAhead {
+    /// The next step's free prediction of the modal states.
+    pub free: Box<ModalState>,
+    /// Its active points' free end displacements (m) and velocities (m/s),
+    /// by point.
+    pub uh: Vec<f64>,
+    pub vh: Vec<f64>,
+    /// The points projected ahead: a mark per point, and the list.
+    pub row: Vec<bool>,
+    pub points: Vec<usize>,
+    /// The other points (those off the set, or active without a row).
+    pub others: Vec<usize>,
+    /// The last solve formed `free` (set by the solve, taken by `commit`).
+    pub pending: bool,
+    /// `free` is the prediction of the committed state (set by `commit`
+    /// after a fused full step, taken by the next `predict`).
+    pub ready: bool,
+    /// The current prediction is `free`'s: its active rows are read from
+    /// `uh`, `vh` (taken by the solve's projection of the active rows).
+    pub in_use: bool,
+}
+
+impl RowsAhead {
+    fn new(tables: &SimTables) -> Self {
+        let p = tables.p;
+        let ahead = tables.large_sets() && tables.compliant();
+        let n = |len: usize| if ahead { len } else { 0 };
+        RowsAhead {
+            free: Box::new(if ahead {
                 ModalState::zeros(&tables.basis)
             } else {
                 ModalState {
@@ -541,15 +617,14 @@ impl Scratch {
                     v: Vec::new(),
                 }
             }),
-            uh_ahead: vec![0.0; if ahead { p } else { 0 }],
-            vh_ahead: vec![0.0; if ahead { p } else { 0 }],
-            ahead_row: vec![false; if ahead { p } else { 0 }],
-            ahead_points: Vec::with_capacity(if ahead { p } else { 0 }),
-            others: Vec::with_capacity(if ahead { p } else { 0 }),
-            ahead_pending: false,
-            ahead_ready: false,
-            ahead_use: false,
-            projected_all: false,
+            uh: vec![0.0; n(p)],
+            vh: vec![0.0; n(p)],
+            row: vec![false; n(p)],
+            points: Vec::with_capacity(n(p)),
+            others: Vec::with_capacity(n(p)),
+            pending: false,
+            ready: false,
+            in_use: false,
         }
     }
 }

@@ -11,8 +11,8 @@
 //!    into the current ones (`Simulation::commit`).
 //!
 //! Every scheme's step is built from them (`events.rs`, `steady.rs`,
-//! `paper.rs`, `compliant.rs`). [`Stages`] runs them one at a time, for the
-//! benchmarks.
+//! `active_set.rs` with `paper.rs` and `compliant.rs`). [`Stages`] runs
+//! them one at a time, for the benchmarks.
 
 use super::{GA, GB, Simulation, Table, first_crossing};
 use crate::model::road::ramp;
@@ -71,8 +71,8 @@ impl Simulation {
         }
         self.scratch.projected_all = !fused;
         // (the rows projected ahead by the last step, for this very prediction)
-        let ahead = std::mem::take(&mut self.scratch.ahead_ready);
-        self.scratch.ahead_use =
+        let ahead = std::mem::take(&mut self.scratch.ahead.ready);
+        self.scratch.ahead.in_use =
             ahead && fused && sel == Table::Full && t == self.state.t_s && tau == self.tables.dt_s;
         // a full step from the current time ends at step `steps + 1`
         let step_end = (sel == Table::Full && t == self.state.t_s).then_some(self.state.steps + 1);
@@ -271,8 +271,8 @@ impl Simulation {
         // (the end state formed by the last solve, over this very span:
         // `predict` and `solve_contact` clear the mark)
         let fused = std::mem::take(&mut s.fused_end);
-        let ahead = std::mem::take(&mut s.ahead_pending);
-        s.ahead_ready = ahead && fused && sel == Table::Full;
+        let ahead = std::mem::take(&mut s.ahead.pending);
+        s.ahead.ready = ahead && fused && sel == Table::Full;
         if fused {
             // the end state is formed already (`large.rs`)
             std::mem::swap(&mut st.modal, &mut s.delta);
@@ -358,13 +358,13 @@ impl Stages<'_> {
     /// Whether the next step will read the active rows the last step
     /// projected ahead (`large.rs`), for the tests of that reuse.
     pub fn rows_ahead_ready(&self) -> bool {
-        self.sim.scratch.ahead_ready
+        self.sim.scratch.ahead.ready
     }
 
     /// Makes the next step project its active rows afresh, as a step with
     /// an event does.
     pub fn forget_rows_ahead(&mut self) {
-        self.sim.scratch.ahead_ready = false;
+        self.sim.scratch.ahead.ready = false;
     }
 
     /// The modal states: displacements and velocities (method §3.3).
