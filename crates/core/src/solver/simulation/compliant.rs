@@ -79,7 +79,9 @@ impl ActiveSetRule for CompliantRule {
     }
 
     fn solve(sim: &mut Simulation, t_end: f64, sel: Table) -> Result<(), SolverError> {
-        sim.solve_compliant(t_end, sel)
+        // (through `solve_contact`, as the paper's rule: no end state of
+        // an earlier, larger set's solve is left to `commit`)
+        sim.solve_contact(t_end, sel)
     }
 }
 

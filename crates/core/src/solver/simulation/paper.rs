@@ -15,6 +15,9 @@ impl ActiveSetRule for PaperRule {
     const FIRST_OF_EQUALLY_DEEP: bool = true;
 
     fn start_set(sim: &mut Simulation) {
+        // every point's free prediction: a large set's fused prediction
+        // projected the active rows only
+        sim.ensure_projected_all();
         let (st, s) = (&mut sim.state, &sim.scratch);
         st.active.clear();
         for i in 0..sim.tables.p {
@@ -30,7 +33,10 @@ impl ActiveSetRule for PaperRule {
     }
 
     fn solve(sim: &mut Simulation, t_end: f64, sel: Table) -> Result<(), SolverError> {
-        sim.solve_active(t_end, sel)
+        // (through `solve_contact`: a large set's solve forms the end
+        // state, and a later solve of a smaller set in the same step must
+        // not leave `commit` that stale one)
+        sim.solve_contact(t_end, sel)
     }
 }
 
