@@ -66,8 +66,10 @@ pub struct IdentifyArgs {
     #[arg(long, requires = "data", num_args = 1.., value_name = "NODE")]
     pub nodes: Option<Vec<i64>>,
     /// The polynomial order of the frequency-domain fit whose poles are
-    /// kept (default: the highest of the stabilisation diagram, 40).
-    #[arg(long, requires = "data")]
+    /// kept, 1 to 200 (default: the highest of the stabilisation diagram,
+    /// 40; every order up to it is fitted for the diagram, so high orders
+    /// take longer).
+    #[arg(long, requires = "data", value_name = "1-200")]
     pub order: Option<usize>,
     /// Write the frequency-domain fit into this folder (created when
     /// missing): modes.csv, fit.csv (data and fit per pair, in the file's

@@ -200,6 +200,23 @@ fn reversed_and_inconsistent_driving_points_are_told_apart() {
     assert_eq!(id.driving[0].1, DrivingPoint::Positive);
     assert!(id.contact.as_ref().unwrap().error < 1e-6);
     assert!(id.data.notes.iter().any(|n| n.contains("--flip-direction")));
+    // node 2 is only a reference (the hammer) of this row: nothing to flip
+    let reference_only = FrfOptions {
+        request: FrfRequest {
+            flip: vec![2],
+            ..FrfRequest::default()
+        },
+        ..FrfOptions::default()
+    };
+    let msg = identify_frfs(&path, &reference_only)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("--flip-direction 2")
+            && msg.contains("only a reference")
+            && msg.contains("[1]"),
+        "{msg}"
+    );
 
     // the driving point's residue negated at modes 1, 3, 5
     let path = write_uff(

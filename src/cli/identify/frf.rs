@@ -118,8 +118,8 @@ pub fn identify_frfs(args: &IdentifyArgs, data: &Path) -> CliResult {
     scene.description = format!(
         "Modes fitted in the frequency domain (LSCF, LSFD) to {} over {} to {} Hz: points {} placed 25 mm apart (set their positions).",
         data.display(),
-        id.data.band_hz.0,
-        id.data.band_hz.1,
+        tirecontact::base::error::fmt_sig(id.data.band_hz.0, 6),
+        tirecontact::base::error::fmt_sig(id.data.band_hz.1, 6),
         dof_list(&id)
     );
     scene.points = data_points(contact.dofs.len());
@@ -176,8 +176,8 @@ fn summary(name: &str, id: &FrfIdentification) -> String {
         tirecontact::output::count(id.poles.len(), "mode"),
         id.order,
         id.elapsed_s,
-        id.data.band_hz.0,
-        id.data.band_hz.1,
+        tirecontact::base::error::fmt_sig(id.data.band_hz.0, 6),
+        tirecontact::base::error::fmt_sig(id.data.band_hz.1, 6),
         id.complex.error,
         id.real.error,
         match &id.contact {

@@ -76,10 +76,27 @@ pub fn fmt_num(x: f64) -> String {
     }
 }
 
-/// `n` and the noun, plural unless `n` is 1 ("1 point", "5 points").
+/// `x` rounded to `digits` significant digits, in the shortest form
+/// that reads back as that rounded value (`0.9765649999999999` at 6
+/// digits: `0.976565`; `51.5`; `1e-7`): measured axes and bands in
+/// messages, without binary round-off.
+pub fn fmt_sig(x: f64, digits: usize) -> String {
+    if !x.is_finite() || x == 0.0 {
+        return fmt_num(x);
+    }
+    let rounded: f64 = format!("{x:.*e}", digits.clamp(1, 17) - 1)
+        .parse()
+        .unwrap_or(x);
+    fmt_num(rounded)
+}
+
+/// `n` and the noun, plural unless `n` is 1 ("1 point", "5 points"; a
+/// noun of a noun takes its plural on its head: "3 degrees of freedom").
 pub fn count(n: usize, noun: &str) -> String {
     if n == 1 {
         format!("1 {noun}")
+    } else if let Some((head, tail)) = noun.split_once(" of ") {
+        format!("{n} {head}s of {tail}")
     } else {
         format!("{n} {noun}s")
     }
@@ -92,6 +109,24 @@ mod count_tests {
         assert_eq!(super::count(1, "point"), "1 point");
         assert_eq!(super::count(0, "mode"), "0 modes");
         assert_eq!(super::count(13, "mode"), "13 modes");
+        assert_eq!(super::count(3, "degree of freedom"), "3 degrees of freedom");
+        assert_eq!(super::count(1, "degree of freedom"), "1 degree of freedom");
+    }
+
+    #[test]
+    fn significant_digits_drop_binary_round_off() {
+        use super::fmt_sig;
+        assert_eq!(fmt_sig(0.9765649999999999, 6), "0.976565");
+        assert_eq!(fmt_sig(51.5, 6), "51.5");
+        assert_eq!(fmt_sig(958.4999999999, 6), "958.5");
+        assert_eq!(fmt_sig(1.23456789e-7, 3), "1.23e-7");
+        assert_eq!(fmt_sig(0.0, 6), "0");
+        // every value reads back within half a unit of its last digit
+        for k in 1..2000 {
+            let x = k as f64 * 0.48828125e-3 * 1.000_000_1;
+            let y: f64 = fmt_sig(x, 6).parse().unwrap();
+            assert!((x - y).abs() <= 0.5e-5 * x, "{x} -> {y}");
+        }
     }
 }
 

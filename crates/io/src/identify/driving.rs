@@ -16,6 +16,9 @@ pub enum DrivingPoint {
     /// Residues of both signs: the modes (0-based) with negative ones; no
     /// contact model can be built from this point.
     Mixed { negative_modes: Vec<usize> },
+    /// No counted mode with a residue at the point (no stable mode, or
+    /// every one on a node line): nothing is checked, so nothing passes.
+    NoModes,
 }
 
 /// Residues smaller than this share of the point's largest are not
@@ -42,6 +45,7 @@ pub fn check_values(a: &[f64]) -> DrivingPoint {
     let negative_modes: Vec<usize> = (0..a.len()).filter(|&k| a[k] < -tol).collect();
     let positive = a.iter().filter(|&&v| v > tol).count();
     match (positive, negative_modes.len()) {
+        (0, 0) => DrivingPoint::NoModes,
         (_, 0) => DrivingPoint::Positive,
         (0, _) => DrivingPoint::Negative,
         _ => DrivingPoint::Mixed { negative_modes },
@@ -56,6 +60,9 @@ pub fn describe(d: &DrivingPoint, name: &str, node: i64) -> String {
         }
         DrivingPoint::Negative => format!(
             "driving point {name}: every stable mode's residue negative: the response or reference direction is probably reversed (--flip-direction {node})"
+        ),
+        DrivingPoint::NoModes => format!(
+            "driving point {name}: no stable mode has a residue here: nothing to check; no contact model is built from it"
         ),
         DrivingPoint::Mixed { negative_modes } => format!(
             "driving point {name}: stable modes' residues change sign from mode to mode (negative at modes {negative_modes:?}): the data have no valid driving point here; no contact model is built from it"
@@ -85,6 +92,15 @@ mod tests {
         let mixed = [mode(1.0), mode(-0.2), mode(3.0), mode(-1.0)];
         assert_eq!(check(&pos, &all, 0), DrivingPoint::Positive);
         assert_eq!(check(&neg, &all, 0), DrivingPoint::Negative);
+        // no counted mode: nothing passes
+        assert_eq!(check(&pos, &[false; 4], 0), DrivingPoint::NoModes);
+        assert_eq!(check_values(&[]), DrivingPoint::NoModes);
+        assert_eq!(check_values(&[0.0, 0.0]), DrivingPoint::NoModes);
+        let s = describe(&DrivingPoint::NoModes, "node 3 +Z", 3);
+        assert!(
+            s.contains("no stable mode") && !s.contains("positive"),
+            "{s}"
+        );
         // unstable modes are not counted
         assert_eq!(
             check(&mixed, &[true, false, true, false], 0),

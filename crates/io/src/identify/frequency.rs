@@ -176,6 +176,7 @@ fn contact_model(
     for (dof, d) in driving {
         match d {
             DrivingPoint::Positive => {}
+            DrivingPoint::NoModes => return Err(ContactError::NoModes),
             DrivingPoint::Negative => {
                 return Err(ContactError::Negative {
                     dof: *dof,

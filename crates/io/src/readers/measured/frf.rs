@@ -9,6 +9,7 @@ use super::uff::{self, Record58, Units164};
 use super::{DataError, MAX_POINTS, ParseError, ResponsesError, read_bytes};
 use faer::c64;
 use std::path::Path;
+use tirecontact_core::base::error::{count, fmt_sig};
 use tirecontact_core::model::lscf::{FrfSet, Ordinate};
 
 /// A degree of freedom: a node and a direction (1 X, 2 Y, 3 Z, 4–6
@@ -120,16 +121,16 @@ pub fn read_frfs(path: &Path, req: &FrfRequest) -> Result<MeasuredFrfs, DataErro
     };
     let band_hz = (set.freq_hz[0], set.freq_hz[set.freq_hz.len() - 1]);
     let mut head = vec![format!(
-        "UFF 58: {} FRFs ({}, {}) of {} over {} to {} Hz ({} frequencies)",
-        set.pairs.len(),
+        "UFF 58: {} ({}, {}) of {} over {} to {} Hz ({} frequencies)",
+        count(set.pairs.len(), "FRF"),
         pairs.ordinate.name(),
         pairs.ordinate.units(),
         dofs.iter()
             .map(ToString::to_string)
             .collect::<Vec<_>>()
             .join(", "),
-        band_hz.0,
-        band_hz.1,
+        fmt_sig(band_hz.0, 6),
+        fmt_sig(band_hz.1, 6),
         set.freq_hz.len()
     )];
     let binary = recs.iter().filter(|r| r.binary).count();
@@ -189,18 +190,31 @@ fn check_nodes(recs: &[&Record58], req: &FrfRequest) -> Result<(), ParseError> {
         v.dedup();
         v
     };
-    for (what, list) in [
-        ("--nodes", req.nodes.clone().unwrap_or_default()),
-        ("--flip-direction", req.flip.clone()),
-    ] {
-        if let Some(n) = list.iter().find(|n| !all_nodes.contains(n)) {
-            return Err((
-                String::new(),
-                format!(
-                    "{what} {n}: no FRF has this node; expected one of the file's nodes {all_nodes:?}"
-                ),
-            ));
-        }
+    if let Some(n) = req.nodes.iter().flatten().find(|n| !all_nodes.contains(n)) {
+        return Err((
+            String::new(),
+            format!(
+                "--nodes {n}: no FRF has this node; expected one of the file's nodes {all_nodes:?}"
+            ),
+        ));
+    }
+    // a flip reverses a response direction (the sensor's): a node that is
+    // only a reference (where the force was applied) has none to reverse
+    let mut responses: Vec<i64> = recs.iter().map(|r| r.response_node).collect();
+    responses.sort_unstable();
+    responses.dedup();
+    if let Some(n) = req.flip.iter().find(|n| !responses.contains(n)) {
+        let why = if all_nodes.contains(n) {
+            "this node is only a reference (where the force was applied) in this file; --flip-direction reverses a response direction (a sensor mounted the other way)"
+        } else {
+            "no FRF has this node"
+        };
+        return Err((
+            String::new(),
+            format!(
+                "--flip-direction {n}: {why}; expected one of the response nodes {responses:?}"
+            ),
+        ));
     }
     Ok(())
 }
