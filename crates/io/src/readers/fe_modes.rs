@@ -38,11 +38,13 @@ use std::path::{Path, PathBuf};
 use tirecontact_core::base::modal::Mode;
 
 mod model;
+#[cfg(test)]
+mod tests;
 pub mod uff_shapes;
 
 pub use model::build;
 
-pub use uff_shapes::{FeFile, ModeRecord, UffShapesError};
+pub use uff_shapes::{CoordinateSystem, CsKind, FeFile, ModeRecord, UffShapesError};
 
 /// Default largest distance (m) from a scene point to the node `Nearest`
 /// picks for it.
@@ -405,9 +407,13 @@ pub struct FeModel {
     pub length_factor: f64,
     pub force_factor: f64,
     pub mass_factor: f64,
-    /// What the reading did, one sentence each (units, normalisation,
-    /// modes dropped).
+    /// What the reading did, one sentence each (units, coordinate
+    /// systems, normalisation, modes dropped).
     pub notes: Vec<String>,
+    /// The datasets read (description, count), in the file's order.
+    pub datasets_read: Vec<(String, usize)>,
+    /// The datasets skipped (description, count), in the file's order.
+    pub datasets_skipped: Vec<(String, usize)>,
 }
 
 /// Reads `spec.file` and builds the modal model at `points` (`(x_m, y_m)`).
