@@ -1,7 +1,8 @@
 //! A tyre computed elsewhere: normal modes of a finite-element model read
 //! from a UFF export (method §5.4), without identification. The mode
-//! shapes (dataset 55 or 2414, see [`uff_shapes`]) are sampled at the
-//! file's nodes that stand for the scene's points, along the FE axis
+//! shapes (dataset 55 or 2414, see [`uff_shapes`]; displacements given in
+//! per-node coordinate systems of dataset 2420 turned to the part system
+//! on reading) are sampled at the file's nodes that stand for the scene's points, along the FE axis
 //! normal to the road, converted to SI by the file's units (dataset 164)
 //! and mass-normalised; each mode is a rank-one term of the modal model of
 //! method §2, `A_k = φ_k φ_kᵀ`.

@@ -524,3 +524,45 @@ fn truncated_and_bad_2420_refused_with_file_line_and_reason() {
 fn e_(x: f64) -> String {
     e(x)
 }
+
+/// Dataset 55 written as complex data (type 5, real and imaginary parts
+/// per value, six values per node) reads as the same record written as
+/// real data (type 2).
+#[test]
+fn dataset_55_complex_reads_as_real() {
+    let record = |data_type: i64| {
+        let mut s = String::new();
+        writeln!(s, "{:>6}\n{:>6}", -1, 55).unwrap();
+        for _ in 0..5 {
+            writeln!(s, "NONE").unwrap();
+        }
+        writeln!(
+            s,
+            "{:>10}{:>10}{:>10}{:>10}{:>10}{:>10}",
+            1, 2, 3, 8, data_type, 6
+        )
+        .unwrap();
+        writeln!(s, "{:>10}{:>10}{:>10}{:>10}", 2, 4, 1, 7).unwrap();
+        writeln!(s, "{:13.5E}{:13.5E}{:13.5E}{:13.5E}", 88.5, 1.0, 0.01, 0.0).unwrap();
+        for (n, v) in [(1, [0.1, -0.2, 0.3]), (2, [-0.4, 0.5, 0.6])] {
+            writeln!(s, "{n:>10}").unwrap();
+            let mut vals: Vec<f64> = v.to_vec();
+            vals.extend([0.01, 0.02, 0.03]);
+            for x in vals {
+                if data_type == 5 {
+                    write!(s, "{:13.5E}{:13.5E}", x, 0.0).unwrap();
+                } else {
+                    write!(s, "{x:13.5E}").unwrap();
+                }
+            }
+            writeln!(s).unwrap();
+        }
+        writeln!(s, "{:>6}", -1).unwrap();
+        s
+    };
+    let real = read(&record(2)).unwrap();
+    let complex = read(&record(5)).unwrap();
+    assert_eq!(real.modes, complex.modes);
+    assert_eq!(complex.modes[0].shape[&2], [-0.4, 0.5, 0.6]);
+    assert_eq!((real.complex_modes, complex.complex_modes), (0, 1));
+}

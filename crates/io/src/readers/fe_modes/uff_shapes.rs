@@ -7,7 +7,8 @@
 //! - **55** (data at nodes): records 1–5 ID lines; record 6 `(6I10)` model
 //!   type, analysis type (2 normal mode), data characteristic (2 three
 //!   translations, 3 six: translations and rotations), specific data type
-//!   (8 displacement), data type (2 real single, 4 real double), values per
+//!   (8 displacement), data type (2 real single, 4 real double; 5, 6
+//!   complex single, double: see below), values per
 //!   node `NDV`; for a normal mode record 7 `(8I10)` the number of integer
 //!   values (2) and of real values (4), load case, mode number, and record
 //!   8 `(6E13.5)` frequency (Hz), modal mass, modal viscous damping ratio,
@@ -17,7 +18,7 @@
 //! - **2414** (analysis data): record 1 label, 2 name, 3 dataset location
 //!   (1 data at nodes), 4–8 ID lines, 9 `(6I10)` model type, analysis type
 //!   (2 normal mode), data characteristic, result type (8 displacement),
-//!   data type (2 or 4 real), values per node `NVALDC`; 10 `(8I10)`
+//!   data type (2, 4 real; 5, 6 complex), values per node `NVALDC`; 10 `(8I10)`
 //!   integers 1–8 (the sixth the mode number), 11 `(8I10)` integers 9–10,
 //!   12 `(6E13.5)` reals 1–6: time, frequency (Hz), eigenvalue, modal
 //!   mass, viscous damping ratio, hysteretic damping ratio; 13 reals 7–12;
@@ -27,9 +28,18 @@
 //! - **2411** (nodes, double precision): per node record 1 `(4I10)` label,
 //!   export and displacement coordinate systems, colour; record 2
 //!   `(1P3D25.16)` X, Y, Z.
+//! - **2420** (coordinate systems) and the displacement coordinate system
+//!   of each node: see [`coordinate_systems`]; displacements are turned to
+//!   the part system once the whole file is read.
 //! - **164** (units): read by [`crate::readers::measured::uff`]; `file value
 //!   = SI value × factor` for length and force; time is in seconds, so the
 //!   mass unit's factor is `force / length`.
+//!
+//! Complex data (types 5, 6) give each value as a real and an imaginary
+//! part. Finite-element programs write real normal modes so (NX: imaginary
+//! parts 0): such a record is read as a real normal mode when every
+//! imaginary part is at most [`MAX_IMAGINARY_RATIO`] of the mode's largest
+//! real part, and refused naming the mode and the ratio otherwise.
 //!
 //! Normal-mode records of other results (stresses, strain energy, …) or
 //! on elements are skipped and listed, as are other analyses.
@@ -41,7 +51,7 @@
 use crate::readers::measured::uff::{self, Cursor, Units164};
 use std::collections::BTreeMap;
 
-mod coordinate_systems;
+pub mod coordinate_systems;
 
 pub use coordinate_systems::{CoordinateSystem, CsKind, NodeSystems};
 
@@ -389,7 +399,7 @@ fn real_shape(
         } else {
             nodal.max_im / nodal.max_re
         };
-        if !(ratio <= MAX_IMAGINARY_RATIO) {
+        if ratio.is_nan() || ratio > MAX_IMAGINARY_RATIO {
             return Err(b.err(
                 k,
                 format!(

@@ -125,7 +125,7 @@ pub(super) fn dataset2420(b: &Body, out: &mut FeFile) -> Result<(), UffShapesErr
         }
         let axes = [rows[0], rows[1], rows[2]];
         let deviation = axes_deviation(&axes);
-        if !(deviation <= MAX_AXES_DEVIATION) {
+        if deviation.is_nan() || deviation > MAX_AXES_DEVIATION {
             return Err(b.err(
                 k + 2,
                 format!(
@@ -170,8 +170,7 @@ fn axes_deviation(r: &[[f64; 3]; 3]) -> f64 {
             let dot: f64 = (0..3).map(|c| r[i][c] * r[j][c]).sum();
             let want = if i == j { 1.0 } else { 0.0 };
             let d = (dot - want).abs();
-            // NaN compares false: keep it
-            if !(d <= worst) {
+            if d.is_nan() || d > worst {
                 worst = d;
             }
         }
@@ -254,7 +253,7 @@ pub(super) fn to_part_system(out: &mut FeFile) -> Result<(), UffShapesError> {
                     let q = from_part(cs, at);
                     let r = q[0].hypot(q[1]);
                     let scale = q[0].abs().max(q[1].abs()).max(q[2].abs());
-                    if !(r > 1e-12 * scale) {
+                    if r.is_nan() || r <= 1e-12 * scale {
                         return Err(err(format!(
                             "lies on the axis of its cylindrical displacement coordinate system {} (`{}`): its radial and tangential directions are undefined",
                             cs.label, cs.name
