@@ -89,19 +89,16 @@ fn plate_nodes() -> Vec<Node> {
         .collect()
 }
 
-/// The fixtures' modes in the part system: frequency (Hz), and the
-/// translations at node `n` (index `i`), all three non-zero.
-fn modes() -> Vec<(f64, Box<dyn Fn(usize) -> [f64; 3]>)> {
-    (0..4)
-        .map(|k| {
-            let f = 60.0 + 45.0 * k as f64;
-            let shape = move |i: usize| {
-                let a = 0.7 * (k + 1) as f64 + 0.3 * i as f64;
-                [0.2 * a.sin(), 0.3 * (1.3 * a).cos(), (0.9 * a).sin() + 0.1]
-            };
-            (f, Box::new(shape) as Box<dyn Fn(usize) -> [f64; 3]>)
-        })
-        .collect()
+/// The fixtures' four modes in the part system: frequency (Hz) of mode
+/// `k`.
+fn freq_hz(k: usize) -> f64 {
+    60.0 + 45.0 * k as f64
+}
+
+/// The translations of mode `k` at node index `i`, all three non-zero.
+fn shape(k: usize, i: usize) -> [f64; 3] {
+    let a = 0.7 * (k + 1) as f64 + 0.3 * i as f64;
+    [0.2 * a.sin(), 0.3 * (1.3 * a).cos(), (0.9 * a).sin() + 0.1]
 }
 
 fn e(x: f64) -> String {
@@ -151,7 +148,8 @@ fn uff(
     }
     close(&mut s);
     let by_label: BTreeMap<i64, &System> = systems.iter().map(|c| (c.label, c)).collect();
-    for (k, (f, shape)) in modes().iter().enumerate() {
+    for k in 0..4 {
+        let f = &freq_hz(k);
         open(&mut s, 2414);
         let data_type = if complex.is_some() { 5 } else { 4 };
         writeln!(s, "{:>10}\nmode {}\n{:>10}", k + 1, k + 1, 1).unwrap();
@@ -202,7 +200,7 @@ fn uff(
         )
         .unwrap();
         for (i, (n, p, disp)) in nodes.iter().enumerate() {
-            let u = shape(i);
+            let u = shape(k, i);
             let v = match by_label.get(disp) {
                 Some(cs) if in_systems => {
                     let l = local(&cs.axes, u);
