@@ -564,3 +564,41 @@ fn dataset_55_complex_reads_as_real() {
     assert_eq!(complex.modes[0].shape[&2], [-0.4, 0.5, 0.6]);
     assert_eq!((real.complex_modes, complex.complex_modes), (0, 1));
 }
+
+/// Any line of a 2420 dataset replaced by something malformed: the file is
+/// read or refused with a line and a reason, never a panic.
+#[test]
+fn malformed_2420_lines_never_panic() {
+    let text = uff(&cartesian_systems(), &plate_nodes(), true, None);
+    let lines: Vec<&str> = text.lines().collect();
+    let start = lines.iter().position(|l| l.trim() == "2420").unwrap();
+    let end = start
+        + lines[start..]
+            .iter()
+            .position(|l| l.trim() == "-1")
+            .unwrap();
+    let junk = [
+        "",
+        "x",
+        "        11",
+        "  1.0E+00  NaN  0.0",
+        "  1.0E+999  0.0  0.0",
+        "        11         1         8",
+        "        11         2         8",
+        " -9223372036854775808 0 8",
+        "  1.0D+00  0.0D+00",
+    ];
+    for at in start + 1..end {
+        for j in junk {
+            let mut v = lines.clone();
+            v[at] = j;
+            match read(&(v.join("\n") + "\n")) {
+                Ok(_) => {}
+                Err(e) => {
+                    let m = e.to_string();
+                    assert!(m.contains("line "), "line {}, `{j}`: {m}", at + 1);
+                }
+            }
+        }
+    }
+}
