@@ -602,3 +602,25 @@ fn malformed_2420_lines_never_panic() {
         }
     }
 }
+
+/// Dataset 15 gives coordinates in the node's definition system: turned
+/// to the part system when it is Cartesian.
+#[test]
+fn dataset_15_coordinates_in_a_definition_system() {
+    let systems: Vec<System> = cartesian_systems()
+        .into_iter()
+        .filter(|c| c.label == 15)
+        .collect();
+    let mut text = uff(&systems, &[], false, None);
+    text.push_str(&format!(
+        "{:>6}\n{:>6}\n{:>10}{:>10}{:>10}{:>10}{:13.5E}{:13.5E}{:13.5E}\n{:>6}\n",
+        -1, 15, 1, 15, 0, 8, 1.0, 2.0, 3.0, -1
+    ));
+    let fe = read(&text).unwrap();
+    // origin (100, -50, 20) mm, X along the part's Y, Y along -X
+    let p = fe.nodes[&1];
+    for (got, want) in p.iter().zip([98.0, -49.0, 23.0]) {
+        assert!((got - want).abs() < 1e-12, "{p:?}");
+    }
+    assert_eq!(fe.turned.coordinates, 1);
+}
