@@ -78,6 +78,16 @@ fn print_fe_modes(scene: &tirecontact::Scene) -> CliResult {
     for n in &fe.notes {
         println!("    {n}");
     }
+    for (what, list) in [
+        ("read", &fe.datasets_read),
+        ("skipped", &fe.datasets_skipped),
+    ] {
+        let total: usize = list.iter().map(|(_, n)| n).sum();
+        println!("    datasets {what}: {total}");
+        for (d, n) in list {
+            println!("      {n:>6} × {d}");
+        }
+    }
     println!("    mode  record  dataset  freq_hz  modal_mass_kg  damping_ratio");
     for (k, r) in fe.read.iter().enumerate() {
         println!(

@@ -264,9 +264,10 @@ fn check_names_each_number_it_prints() {
 }
 
 /// `check` of an FE tyre lists the unit factors of its file (mm, N, t:
-/// mass × 0.001), each mode read with its record and dataset, and the node
-/// of each point with its distance (the preset's points sit on nodes);
-/// a node listed that the file lacks is refused naming the record.
+/// mass × 0.001), each mode read with its record and dataset, the node of
+/// each point with its distance (the preset's points sit on nodes), and
+/// the datasets read and skipped, by number and count; a node listed that
+/// the file lacks is refused naming the record.
 #[test]
 fn check_lists_an_fe_tyres_modes_nodes_and_units() {
     let o = bin()
@@ -282,12 +283,28 @@ fn check_lists_an_fe_tyres_modes_nodes_and_units() {
         "       0       3     2414  123.321000  1.000000e3  0.050000  (mode 1000 of the file)",
         "        0   112  0.0000",
         "       14   136  0.0000",
+        "    datasets read: 43\n           1 × dataset 164 (units)\n           1 × dataset 2411 (node coordinates)\n          41 × dataset 2414 (normal mode shapes)\n    datasets skipped: 0\n",
     ] {
         assert!(out.contains(want), "`{want}` missing in: {out}");
     }
     let tmp = temp_dir();
     let text = std::fs::read_to_string("presets/fe_plate.ron").unwrap();
-    std::fs::copy("presets/fe_plate.uff", tmp.path().join("fe_plate.uff")).unwrap();
+    // datasets the reader does not use: skipped, grouped by number
+    let mut uff = std::fs::read_to_string("presets/fe_plate.uff").unwrap();
+    for d in ["151", "2412", "2412", "2400", "2412"] {
+        uff.push_str(&format!("    -1\n{d:>6}\n         1         2\n    -1\n"));
+    }
+    std::fs::write(tmp.path().join("fe_plate.uff"), uff).unwrap();
+    std::fs::write(tmp.path().join("fe.ron"), &text).unwrap();
+    let o = bin()
+        .arg("check")
+        .arg(tmp.path().join("fe.ron"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    let want = "    datasets skipped: 5\n           1 × dataset 151\n           3 × dataset 2412\n           1 × dataset 2400\n";
+    assert!(out.contains(want), "`{want}` missing in: {out}");
     let listed = text.replace(
         "nodes: Nearest",
         "nodes: [112, 113, 114, 115, 116, 122, 123, 124, 125, 126, 132, 133, 134, 135, 999]",

@@ -456,14 +456,26 @@ fn malformed_records_are_refused_by_record_number() {
         e.contains(&format!("record 5 (dataset 55, line {bad})")) && e.contains("`x.1E+00`"),
         "{e}"
     );
-    // complex data in record 4's data definition
+    // complex data in record 4's data definition: each value then has a
+    // real and an imaginary part, and the record's real values are too few
     let id = find_line(&text, "55", 1);
     let e = refused(&edit(
         id + 6,
         "         1         2         2         8         5         3",
     ));
     assert!(
-        e.contains(&format!("record 4 (dataset 55, line {})", id + 6)) && e.contains("data type 5"),
+        e.contains("record 4 (dataset 55, line")
+            && e.contains("node 101: 7 numbers: expected 6")
+            && e.contains("each a real and an imaginary part"),
+        "{e}"
+    );
+    // a data type that is neither real nor complex
+    let e = refused(&edit(
+        id + 6,
+        "         1         2         2         8         3         3",
+    ));
+    assert!(
+        e.contains(&format!("record 4 (dataset 55, line {})", id + 6)) && e.contains("data type 3"),
         "{e}"
     );
     // no modal mass in record 3

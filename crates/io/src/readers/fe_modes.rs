@@ -1,7 +1,8 @@
 //! A tyre computed elsewhere: normal modes of a finite-element model read
 //! from a UFF export (method §5.4), without identification. The mode
-//! shapes (dataset 55 or 2414, see [`uff_shapes`]) are sampled at the
-//! file's nodes that stand for the scene's points, along the FE axis
+//! shapes (dataset 55 or 2414, see [`uff_shapes`]; displacements given in
+//! per-node coordinate systems of dataset 2420 turned to the part system
+//! on reading) are sampled at the file's nodes that stand for the scene's points, along the FE axis
 //! normal to the road, converted to SI by the file's units (dataset 164)
 //! and mass-normalised; each mode is a rank-one term of the modal model of
 //! method §2, `A_k = φ_k φ_kᵀ`.
@@ -38,11 +39,13 @@ use std::path::{Path, PathBuf};
 use tirecontact_core::base::modal::Mode;
 
 mod model;
+#[cfg(test)]
+mod tests;
 pub mod uff_shapes;
 
 pub use model::build;
 
-pub use uff_shapes::{FeFile, ModeRecord, UffShapesError};
+pub use uff_shapes::{CoordinateSystem, CsKind, FeFile, ModeRecord, UffShapesError};
 
 /// Default largest distance (m) from a scene point to the node `Nearest`
 /// picks for it.
@@ -405,9 +408,13 @@ pub struct FeModel {
     pub length_factor: f64,
     pub force_factor: f64,
     pub mass_factor: f64,
-    /// What the reading did, one sentence each (units, normalisation,
-    /// modes dropped).
+    /// What the reading did, one sentence each (units, coordinate
+    /// systems, normalisation, modes dropped).
     pub notes: Vec<String>,
+    /// The datasets read (description, count), in the file's order.
+    pub datasets_read: Vec<(String, usize)>,
+    /// The datasets skipped (description, count), in the file's order.
+    pub datasets_skipped: Vec<(String, usize)>,
 }
 
 /// Reads `spec.file` and builds the modal model at `points` (`(x_m, y_m)`).

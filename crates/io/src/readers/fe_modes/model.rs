@@ -2,6 +2,7 @@
 //! (method §5.4): the modes kept, the node of each point, the shapes
 //! converted to SI and mass-normalised.
 
+use super::uff_shapes::grouped;
 use super::{
     FeDamping, FeFile, FeModel, FeModesError, FeModesSpec, FeNodes, FeShapeUnits,
     MAX_FE_DAMPING_RATIO, MAX_FE_FREQ_HZ, MAX_FE_MODES, MAX_SHAPE, ModeRead, ModeRecord, NodeMap,
@@ -22,6 +23,7 @@ pub fn build(
     }
     let mut notes = Vec::new();
     let (c_l, c_f) = unit_factors(fe, &mut notes);
+    systems_notes(fe, &mut notes);
     let c_m = c_f / c_l;
     let kept = kept_modes(spec, fe, &mut notes)?;
     check_per_mode(spec, kept.len())?;
@@ -48,7 +50,35 @@ pub fn build(
         force_factor: c_f,
         mass_factor: c_m,
         notes,
+        datasets_read: grouped(&fe.read),
+        datasets_skipped: grouped(&fe.other),
     })
+}
+
+/// The coordinate systems the displacements and coordinates were turned
+/// from, and the modes written as complex data, noted.
+fn systems_notes(fe: &FeFile, notes: &mut Vec<String>) {
+    let t = &fe.turned;
+    if t.cartesian + t.cylindrical > 0 {
+        notes.push(format!(
+            "displacements of {} nodes turned to the part system from their displacement coordinate systems (dataset 2420: {} Cartesian, {} cylindrical)",
+            t.cartesian + t.cylindrical,
+            t.cartesian,
+            t.cylindrical
+        ));
+    }
+    if t.coordinates > 0 {
+        notes.push(format!(
+            "coordinates of {} nodes (dataset 15) turned to the part system from their definition coordinate systems",
+            t.coordinates
+        ));
+    }
+    if fe.complex_modes > 0 {
+        notes.push(format!(
+            "{} modes written as complex data read as real normal modes: imaginary parts at most {:e} of each mode's largest real part",
+            fe.complex_modes, fe.largest_imaginary_ratio
+        ));
+    }
 }
 
 /// The file's length and force factors (dataset 164, else SI), noted.

@@ -7,7 +7,8 @@
 //! - **55** (data at nodes): records 1–5 ID lines; record 6 `(6I10)` model
 //!   type, analysis type (2 normal mode), data characteristic (2 three
 //!   translations, 3 six: translations and rotations), specific data type
-//!   (8 displacement), data type (2 real single, 4 real double), values per
+//!   (8 displacement), data type (2 real single, 4 real double; 5, 6
+//!   complex single, double: see below), values per
 //!   node `NDV`; for a normal mode record 7 `(8I10)` the number of integer
 //!   values (2) and of real values (4), load case, mode number, and record
 //!   8 `(6E13.5)` frequency (Hz), modal mass, modal viscous damping ratio,
@@ -17,7 +18,7 @@
 //! - **2414** (analysis data): record 1 label, 2 name, 3 dataset location
 //!   (1 data at nodes), 4–8 ID lines, 9 `(6I10)` model type, analysis type
 //!   (2 normal mode), data characteristic, result type (8 displacement),
-//!   data type (2 or 4 real), values per node `NVALDC`; 10 `(8I10)`
+//!   data type (2, 4 real; 5, 6 complex), values per node `NVALDC`; 10 `(8I10)`
 //!   integers 1–8 (the sixth the mode number), 11 `(8I10)` integers 9–10,
 //!   12 `(6E13.5)` reals 1–6: time, frequency (Hz), eigenvalue, modal
 //!   mass, viscous damping ratio, hysteretic damping ratio; 13 reals 7–12;
@@ -27,9 +28,18 @@
 //! - **2411** (nodes, double precision): per node record 1 `(4I10)` label,
 //!   export and displacement coordinate systems, colour; record 2
 //!   `(1P3D25.16)` X, Y, Z.
+//! - **2420** (coordinate systems) and the displacement coordinate system
+//!   of each node: see [`coordinate_systems`]; displacements are turned to
+//!   the part system once the whole file is read.
 //! - **164** (units): read by [`crate::readers::measured::uff`]; `file value
 //!   = SI value × factor` for length and force; time is in seconds, so the
 //!   mass unit's factor is `force / length`.
+//!
+//! Complex data (types 5, 6) give each value as a real and an imaginary
+//! part. Finite-element programs write real normal modes so (NX: imaginary
+//! parts 0): such a record is read as a real normal mode when every
+//! imaginary part is at most [`MAX_IMAGINARY_RATIO`] of the mode's largest
+//! real part, and refused naming the mode and the ratio otherwise.
 //!
 //! Normal-mode records of other results (stresses, strain energy, …) or
 //! on elements are skipped and listed, as are other analyses.
@@ -40,6 +50,10 @@
 
 use crate::readers::measured::uff::{self, Cursor, Units164};
 use std::collections::BTreeMap;
+
+pub mod coordinate_systems;
+
+pub use coordinate_systems::{CoordinateSystem, CsKind, NodeSystems};
 
 /// A refusal: where (record, dataset, line) and why.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -91,26 +105,54 @@ pub struct FeFile {
     /// Datasets read but not normal modes (place, what): data at nodes of
     /// other analyses, datasets skipped.
     pub other: Vec<(usize, String)>,
+    /// Datasets read (place, what).
+    pub read: Vec<(usize, String)>,
+    /// Coordinate systems (dataset 2420) by label.
+    pub coordinate_systems: BTreeMap<i64, CoordinateSystem>,
+    /// The coordinate systems each node names (datasets 15 and 2411).
+    pub node_systems: BTreeMap<i64, NodeSystems>,
+    /// Nodes whose displacements were turned from their displacement
+    /// coordinate system to the part system, by the system's kind.
+    pub turned: Turned,
+    /// Normal modes written as complex data (types 5, 6) and read as real.
+    pub complex_modes: usize,
+    /// Largest imaginary part of those, relative to the mode's largest
+    /// real part.
+    pub largest_imaginary_ratio: f64,
+}
+
+/// Nodes whose displacements were turned to the part system.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Turned {
+    /// Nodes in Cartesian displacement systems.
+    pub cartesian: usize,
+    /// Nodes in cylindrical displacement systems.
+    pub cylindrical: usize,
+    /// Nodes of dataset 15 whose coordinates were given in a Cartesian
+    /// definition system.
+    pub coordinates: usize,
+}
+
+/// Datasets by description and count, in order of first appearance.
+pub fn grouped(list: &[(usize, String)]) -> Vec<(String, usize)> {
+    let mut seen: Vec<(String, usize)> = Vec::new();
+    for (_, s) in list {
+        match seen.iter_mut().find(|(k, _)| k == s) {
+            Some((_, n)) => *n += 1,
+            None => seen.push((s.clone(), 1)),
+        }
+    }
+    seen
 }
 
 impl FeFile {
     /// What the file holds, for a file without modes: datasets by number
     /// and count, in order of first appearance.
     pub fn holds(&self) -> String {
-        let mut seen: Vec<(String, usize)> = Vec::new();
-        let mut add = |s: String| match seen.iter_mut().find(|(k, _)| *k == s) {
-            Some((_, n)) => *n += 1,
-            None => seen.push((s, 1)),
-        };
-        for (_, d) in &self.node_records {
-            add(format!("dataset {d} (node coordinates)"));
-        }
-        if self.units.is_some() {
-            add("dataset 164 (units)".into());
-        }
-        for (_, w) in &self.other {
-            add(w.clone());
-        }
+        let mut all = self.read.clone();
+        all.extend(self.other.iter().cloned());
+        all.sort_by_key(|(place, _)| *place);
+        let seen = grouped(&all);
         if seen.is_empty() {
             return "no datasets".into();
         }
@@ -191,10 +233,15 @@ impl Body<'_> {
         }
     }
 
-    /// Records "node, then `n` values" from line `k` on: node numbers and
-    /// values (translations X, Y, Z kept).
-    fn nodal(&self, k: usize, n: usize) -> Result<BTreeMap<i64, [f64; 3]>, UffShapesError> {
+    /// Records "node, then `n` values" from line `k` on (`2 n` numbers,
+    /// real and imaginary parts, when `complex`): node numbers and values
+    /// (translations X, Y, Z kept, their real parts), and the largest
+    /// absolute real and imaginary parts of all values.
+    fn nodal(&self, k: usize, n: usize, complex: bool) -> Result<Nodal, UffShapesError> {
+        let per = if complex { 2 } else { 1 };
+        let n_numbers = n * per;
         let mut out = BTreeMap::new();
+        let (mut max_re, mut max_im) = (0.0f64, 0.0f64);
         let mut k = k;
         while k < self.lines.len() {
             let l = self.lines[k].trim();
@@ -215,13 +262,13 @@ impl Body<'_> {
             };
             let at = k;
             k += 1;
-            let mut vals = Vec::with_capacity(n);
-            while vals.len() < n {
+            let mut vals = Vec::with_capacity(n_numbers);
+            while vals.len() < n_numbers {
                 let Some(l) = self.lines.get(k) else {
                     return Err(self.err(
                         k,
                         format!(
-                            "node {node}: {} of its {n} values before the end of the dataset (truncated?)",
+                            "node {node}: {} of its {n_numbers} numbers before the end of the dataset (truncated?)",
                             vals.len()
                         ),
                     ));
@@ -234,20 +281,32 @@ impl Body<'_> {
                 }
                 k += 1;
             }
-            if vals.len() != n {
+            if vals.len() != n_numbers {
                 return Err(self.err(
                     k - 1,
                     format!(
-                        "node {node}: {} values: expected {n} (the values per node of the record's header)",
-                        vals.len()
+                        "node {node}: {} numbers: expected {n_numbers} ({n} values per node in the record's header{})",
+                        vals.len(),
+                        if complex { ", each a real and an imaginary part" } else { "" }
                     ),
                 ));
             }
-            if out.insert(node, [vals[0], vals[1], vals[2]]).is_some() {
+            for pair in vals.chunks(per) {
+                max_re = max_re.max(pair[0].abs());
+                if complex {
+                    max_im = max_im.max(pair[1].abs());
+                }
+            }
+            let t = [vals[0], vals[per], vals[2 * per]];
+            if out.insert(node, t).is_some() {
                 return Err(self.err(at, format!("node {node} given twice: expected once")));
             }
         }
-        Ok(out)
+        Ok(Nodal {
+            shape: out,
+            max_re,
+            max_im,
+        })
     }
 }
 
@@ -277,22 +336,37 @@ fn result_name(t: i64) -> &'static str {
     }
 }
 
-/// Checks the data definition of a normal mode's displacements: real
-/// data, 3 or 6 values per node.
+/// A record's values at nodes.
+struct Nodal {
+    /// Translations X, Y, Z of each node (real parts).
+    shape: BTreeMap<i64, [f64; 3]>,
+    /// Largest absolute real and imaginary part of all its values.
+    max_re: f64,
+    max_im: f64,
+}
+
+/// Checks the data definition of a normal mode's displacements: real data
+/// (2, 4) or complex data (5, 6) whose imaginary parts are checked to be
+/// zero, 3 or 6 values per node. Returns the values per node and whether
+/// they are complex.
 fn check_definition(
     b: &Body,
     k: usize,
     data_type: i64,
     per_node: i64,
-) -> Result<usize, UffShapesError> {
-    if !matches!(data_type, 2 | 4) {
-        return Err(b.err(
-            k,
-            format!(
-                "data type {data_type}: expected real mode shapes (2 single, 4 double precision); complex shapes are not normal modes"
-            ),
-        ));
-    }
+) -> Result<(usize, bool), UffShapesError> {
+    let complex = match data_type {
+        2 | 4 => false,
+        5 | 6 => true,
+        _ => {
+            return Err(b.err(
+                k,
+                format!(
+                    "data type {data_type}: expected mode shapes as real data (2 single, 4 double precision) or as complex data with zero imaginary parts (5 single, 6 double)"
+                ),
+            ));
+        }
+    };
     if !matches!(per_node, 3 | 6) {
         return Err(b.err(
             k,
@@ -301,7 +375,43 @@ fn check_definition(
             ),
         ));
     }
-    Ok(per_node as usize)
+    Ok((per_node as usize, complex))
+}
+
+/// Largest imaginary part accepted in a normal mode written as complex
+/// data, relative to the largest real part of the same mode.
+pub const MAX_IMAGINARY_RATIO: f64 = 1e-6;
+
+/// The shape of a normal mode record: its real parts, the imaginary parts
+/// checked to be zero (below [`MAX_IMAGINARY_RATIO`] of the largest real
+/// part) when the data are complex.
+fn real_shape(
+    b: &Body,
+    k: usize,
+    mode: i64,
+    nodal: Nodal,
+    complex: bool,
+    out: &mut FeFile,
+) -> Result<BTreeMap<i64, [f64; 3]>, UffShapesError> {
+    if complex {
+        let ratio = if nodal.max_im == 0.0 {
+            0.0
+        } else {
+            nodal.max_im / nodal.max_re
+        };
+        if ratio.is_nan() || ratio > MAX_IMAGINARY_RATIO {
+            return Err(b.err(
+                k,
+                format!(
+                    "mode {mode}: complex shape with imaginary parts up to {:.3e}, {:.3e} of its largest real part ({:.6e}): expected at most {MAX_IMAGINARY_RATIO:e} (a real normal mode written as complex data); complex shapes are not normal modes",
+                    nodal.max_im, ratio, nodal.max_re
+                ),
+            ));
+        }
+        out.complex_modes += 1;
+        out.largest_imaginary_ratio = out.largest_imaginary_ratio.max(ratio);
+    }
+    Ok(nodal.shape)
 }
 
 /// Dataset 55.
@@ -329,13 +439,14 @@ fn dataset55(b: &Body, out: &mut FeFile) -> Result<(), UffShapesError> {
         ));
         return Ok(());
     }
-    let n = check_definition(b, 5, def[4], def[5])?;
+    let (n, complex) = check_definition(b, 5, def[4], def[5])?;
     let ints = b.ints(6, 4, "record 7 (2, 4, load case, mode number)")?;
     let reals = b.reals(
         7,
         4,
         "record 8 (frequency in Hz, modal mass, viscous damping ratio, hysteretic damping ratio)",
     )?;
+    let shape = real_shape(b, 5, ints[3], b.nodal(8, n, complex)?, complex, out)?;
     out.modes.push(ModeRecord {
         record: b.record,
         line: b.first - 1,
@@ -344,8 +455,10 @@ fn dataset55(b: &Body, out: &mut FeFile) -> Result<(), UffShapesError> {
         freq_hz: reals[0],
         modal_mass: reals[1],
         viscous_damping: reals[2],
-        shape: b.nodal(8, n)?,
+        shape,
     });
+    out.read
+        .push((b.record, "dataset 55 (normal mode shapes)".into()));
     Ok(())
 }
 
@@ -380,7 +493,7 @@ fn dataset2414(b: &Body, out: &mut FeFile) -> Result<(), UffShapesError> {
         ));
         return Ok(());
     }
-    let n = check_definition(b, 8, def[4], def[5])?;
+    let (n, complex) = check_definition(b, 8, def[4], def[5])?;
     let ints = b.ints(9, 6, "record 10 (integers 1-8: the sixth the mode number)")?;
     b.ints(10, 1, "record 11 (integers 9-10)")?;
     let reals = b.reals(
@@ -395,6 +508,7 @@ fn dataset2414(b: &Body, out: &mut FeFile) -> Result<(), UffShapesError> {
     } else {
         reals[1]
     };
+    let shape = real_shape(b, 8, ints[5], b.nodal(13, n, complex)?, complex, out)?;
     out.modes.push(ModeRecord {
         record: b.record,
         line: b.first - 1,
@@ -403,8 +517,10 @@ fn dataset2414(b: &Body, out: &mut FeFile) -> Result<(), UffShapesError> {
         freq_hz,
         modal_mass: reals[3],
         viscous_damping: reals[4],
-        shape: b.nodal(13, n)?,
+        shape,
     });
+    out.read
+        .push((b.record, "dataset 2414 (normal mode shapes)".into()));
     Ok(())
 }
 
@@ -424,6 +540,31 @@ fn add_node(
     Ok(())
 }
 
+/// Notes the coordinate systems node `node` (line `k`) names, when one is
+/// not the part system (0): `definition` (the system its coordinates are
+/// given in) and `displacement` (the system of its displacements).
+fn add_systems(
+    b: &Body,
+    out: &mut FeFile,
+    k: usize,
+    node: i64,
+    definition: i64,
+    displacement: i64,
+) {
+    if definition != 0 || displacement != 0 {
+        out.node_systems.insert(
+            node,
+            NodeSystems {
+                definition,
+                displacement,
+                record: b.record,
+                dataset: b.dataset,
+                line: b.first + k,
+            },
+        );
+    }
+}
+
 /// Dataset 15: one line per node.
 fn dataset15(b: &Body, out: &mut FeFile) -> Result<(), UffShapesError> {
     for (k, l) in b.lines.iter().enumerate() {
@@ -437,8 +578,14 @@ fn dataset15(b: &Body, out: &mut FeFile) -> Result<(), UffShapesError> {
                 .map(|v| uff::number(v).filter(|x| x.is_finite()))
                 .collect()
         });
-        match (t.len(), node, xyz) {
-            (7, Some(node), Some(x)) => add_node(b, out, k, node, [x[0], x[1], x[2]])?,
+        let systems: Option<Vec<i64>> = t
+            .get(1..3)
+            .and_then(|s| s.iter().map(|v| v.parse().ok()).collect());
+        match (t.len(), node, xyz, systems) {
+            (7, Some(node), Some(x), Some(cs)) => {
+                add_node(b, out, k, node, [x[0], x[1], x[2]])?;
+                add_systems(b, out, k, node, cs[0], cs[1]);
+            }
             _ => {
                 return Err(b.err(
                     k,
@@ -451,6 +598,8 @@ fn dataset15(b: &Body, out: &mut FeFile) -> Result<(), UffShapesError> {
         }
     }
     out.node_records.push((b.record, 15));
+    out.read
+        .push((b.record, "dataset 15 (node coordinates)".into()));
     Ok(())
 }
 
@@ -469,9 +618,12 @@ fn dataset2411(b: &Body, out: &mut FeFile) -> Result<(), UffShapesError> {
         )?;
         let x = b.reals(k + 1, 3, "record 2 (coordinates X, Y, Z)")?;
         add_node(b, out, k, head[0], [x[0], x[1], x[2]])?;
+        add_systems(b, out, k, head[0], 0, head[2]);
         k += 2;
     }
     out.node_records.push((b.record, 2411));
+    out.read
+        .push((b.record, "dataset 2411 (node coordinates)".into()));
     Ok(())
 }
 
@@ -538,6 +690,7 @@ pub fn read(bytes: &[u8]) -> Result<FeFile, UffShapesError> {
             "2414" => dataset2414(&name("2414"), &mut out)?,
             "15" => dataset15(&name("15"), &mut out)?,
             "2411" => dataset2411(&name("2411"), &mut out)?,
+            "2420" => coordinate_systems::dataset2420(&name("2420"), &mut out)?,
             "164" => {
                 let lines: Vec<&str> = body.iter().map(String::as_str).collect();
                 let u = uff::units164(&lines, place, first).map_err(|(at, message)| {
@@ -549,6 +702,7 @@ pub fn read(bytes: &[u8]) -> Result<FeFile, UffShapesError> {
                 if out.units.is_none() {
                     out.units = Some(u);
                 }
+                out.read.push((place, "dataset 164 (units)".into()));
             }
             "58" => out
                 .other
@@ -556,5 +710,6 @@ pub fn read(bytes: &[u8]) -> Result<FeFile, UffShapesError> {
             other => out.other.push((place, format!("dataset {other}"))),
         }
     }
+    coordinate_systems::to_part_system(&mut out)?;
     Ok(out)
 }
