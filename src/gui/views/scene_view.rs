@@ -25,8 +25,9 @@ pub struct SceneViewOptions {
     pub legend_above: bool,
     /// On a patch (points in several rows across the tread, `y_m`): the
     /// row of this point drawn in full, the other rows faded and small
-    /// behind it (classroom mode; they share `x`, and in full every row was
-    /// drawn over the others). `None`: every point in full.
+    /// behind it (the rows share `x`: drawn in full they lie over each
+    /// other, and one line through all of them joins the end of a row to
+    /// the start of the next). `None`: point 0's row.
     pub row_of_point: Option<usize>,
 }
 
@@ -98,15 +99,26 @@ pub fn round_125(x: f64) -> f64 {
     m * e
 }
 
-/// Horizontal extent drawn (m): the contact line and about a wavelength around it.
+/// Horizontal extent drawn (m): the contact line and about a wavelength
+/// around it; on a patch (several rows across the tread) the patch's length
+/// and [`PATCH_MARGIN`] of it on either side (a road texture's drawn
+/// wavelength left a 0.16 m patch a tenth of a 0.7 m window).
 fn x_extent(sim: &Simulation, road: &Road) -> (f64, f64) {
     let pts = &sim.problem().points;
     let lo = pts.iter().map(|p| p.x_m).fold(f64::INFINITY, f64::min);
     let hi = pts.iter().map(|p| p.x_m).fold(f64::NEG_INFINITY, f64::max);
+    if rows_y_m(pts).len() > 1 && hi > lo {
+        let margin = PATCH_MARGIN * (hi - lo);
+        return (lo - margin, hi + margin);
+    }
     let lambda = road.drawn_wavelength_m();
     let margin = (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05);
     (lo - margin, hi + margin)
 }
+
+/// The road drawn on either side of a patch, as a fraction of the patch's
+/// length.
+pub const PATCH_MARGIN: f64 = 0.2;
 
 /// Marks of the height axis (plot units: exaggerated metres; `to_mm`
 /// converts them to true mm) at a 1-2-5 step of true mm, about eight over
@@ -175,13 +187,13 @@ pub fn rows_y_m(points: &[crate::scene::Point]) -> Vec<f64> {
     rows
 }
 
-/// The row drawn in full under `opts` (its index among [`rows_y_m`] and its
-/// `y_m`), where the scene has more than one row.
+/// The row drawn in full under `opts` (its index among [`rows_y_m`], the
+/// number of rows and its `y_m`), where the scene has more than one row.
 fn focus_row(
     points: &[crate::scene::Point],
     opts: &SceneViewOptions,
 ) -> Option<(usize, usize, f64)> {
-    let point = opts.row_of_point?;
+    let point = opts.row_of_point.unwrap_or(0);
     let rows = rows_y_m(points);
     let y = points.get(point.min(points.len().checked_sub(1)?))?.y_m;
     (rows.len() > 1).then(|| (rows.partition_point(|r| *r < y), rows.len(), y))
@@ -502,37 +514,34 @@ impl Geometry {
                 .into_iter()
                 .map(|[x, y]| [x, e * y])
                 .collect();
-        let undeformed: Vec<[f64; 2]> = pts
+        // the points in full along x: the lines join neighbours of one row
+        let mut order: Vec<usize> = (0..pts.len()).filter(|&i| shown[i]).collect();
+        order.sort_by(|&a, &b| pts[a].x_m.total_cmp(&pts[b].x_m));
+        let undeformed: Vec<[f64; 2]> = order
             .iter()
-            .zip(&shown)
-            .filter(|(_, s)| **s)
-            .map(|(p, _)| [p.x_m, e * p.h_m])
+            .map(|&i| [pts[i].x_m, e * pts[i].h_m])
             .collect();
         let every: Vec<[f64; 2]> = pts
             .iter()
             .zip(sim.displacement_m())
             .map(|(p, u)| [p.x_m, e * (p.h_m + u)])
             .collect();
-        let pick = |keep: bool| -> Vec<[f64; 2]> {
-            every
-                .iter()
-                .zip(&shown)
-                .filter(|(_, s)| **s == keep)
-                .map(|(d, _)| *d)
-                .collect()
-        };
-        let (displaced, faded) = (pick(true), pick(false));
+        let displaced: Vec<[f64; 2]> = order.iter().map(|&i| every[i]).collect();
+        let faded: Vec<[f64; 2]> = every
+            .iter()
+            .zip(&shown)
+            .filter(|(_, s)| !**s)
+            .map(|(d, _)| *d)
+            .collect();
         let displaced_all: Vec<[f64; 2]> = every
             .iter()
             .zip(&shown)
             .map(|(d, s)| if *s { *d } else { [f64::NAN; 2] })
             .collect();
-        let contact: Vec<bool> = sim
-            .in_contact()
+        let in_contact = sim.in_contact();
+        let contact: Vec<bool> = order
             .iter()
-            .zip(&shown)
-            .filter(|(_, s)| **s)
-            .map(|(c, _)| *c)
+            .map(|&i| in_contact.get(i).copied().unwrap_or(false))
             .collect();
         let qmax = sim
             .force_n()

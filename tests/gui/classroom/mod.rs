@@ -11,7 +11,7 @@ mod legend;
 mod mode_bar_colours;
 mod mode_bars_layout;
 mod panel;
-mod patch_rows;
+pub(crate) mod patch_rows;
 mod picker_contrast;
 mod scene_ticks;
 mod steady_plot;
