@@ -354,13 +354,17 @@ impl App {
             Command::SoloMode(k) => self.set_mutes(k, true),
             Command::MuteWithCompliantContact => {
                 if let Some(r) = self.classroom.mute_refused.take() {
+                    self.clear_refusal(Some(r.clone()));
                     let contact = crate::scene::Contact::Compliant {
                         stiffness_n_m: vec![crate::gui::panels::contact_panel::DEFAULT_TREAD_N_M],
                     };
                     self.set_mutes_with(r.mode, r.solo, Some(contact));
                 }
             }
-            Command::DismissMuteRefusal => self.classroom.mute_refused = None,
+            Command::DismissMuteRefusal => {
+                let refused = self.classroom.mute_refused.take();
+                self.clear_refusal(refused);
+            }
             Command::UnmuteAll => self.unmute_all(),
             // animation export (app/animation_export.rs)
             Command::ExportFramesDialog => self.open_frames_dialog(),
