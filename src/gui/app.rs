@@ -336,6 +336,8 @@ impl App {
                 height,
             } => self.export_png(&path, width, height),
             Command::ExportCsvDialog => self.export_csv_dialog(),
+            Command::ExportHeatMapDialog => self.open_file_prompt(FileAction::HeatMapPng),
+            Command::ExportHeatMap(path) => self.export_heat_map(&path),
             Command::ExportCsv(path) => self.export_csv(path),
             Command::CsvExportEnded(r) => self.csv_export_ended(r),
             // views and layouts (app/layout.rs)

@@ -34,13 +34,7 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
         }
     };
     let forces = sim.force_n();
-    let max_n = sim
-        .stats()
-        .max_force_n
-        .iter()
-        .copied()
-        .fold(0.0, f64::max)
-        .max(1e-9);
+    let max_n = colour_bar_max_n(sim);
     let on = sim.in_contact().iter().filter(|&&c| c).count();
     let total: f64 = forces.iter().sum();
     ui.label(format!(
@@ -52,6 +46,13 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
         layout.cell_m.0 * 1e3,
         layout.cell_m.1 * 1e3,
     ));
+    if ui
+        .button(HEAT_MAP_PNG_BUTTON)
+        .on_hover_text("the heat map at this time, with its axes in mm and its colour bar in N")
+        .clicked()
+    {
+        cmds.push(Command::ExportHeatMapDialog);
+    }
     let h = (ui.available_height() * 0.55).max(160.0);
     let (resp, painter) = ui.allocate_painter(Vec2::new(ui.available_width(), h), Sense::click());
     let area = resp.rect;
@@ -222,6 +223,19 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
     }
     resp.on_hover_text("click a row to see its points in the time plots");
     totals_plot(ui, &layout, history);
+}
+
+/// The patch view's button exporting its heat map.
+pub const HEAT_MAP_PNG_BUTTON: &str = "Heat map as PNG…";
+
+/// The top of the colour bar (N): the run's largest force so far.
+pub fn colour_bar_max_n(sim: &Simulation) -> f64 {
+    sim.stats()
+        .max_force_n
+        .iter()
+        .copied()
+        .fold(0.0, f64::max)
+        .max(1e-9)
 }
 
 /// Total force (N) and contact area (cm²) against time, from the history.
