@@ -210,6 +210,10 @@ impl App {
     pub fn plot_options(&self) -> &time_plots::TimePlotOptions {
         &self.plot_opts
     }
+    /// The scene view's options (exaggeration, legend).
+    pub fn scene_options(&self) -> &scene_view::SceneViewOptions {
+        &self.scene_opts
+    }
     pub fn time_control(&self) -> &TimeControl {
         &self.time
     }

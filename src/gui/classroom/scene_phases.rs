@@ -34,6 +34,12 @@ pub fn scene_with_phases(
     // the legend in a row above the plot: in a corner it covered the tyre
     let normal_above = std::mem::replace(&mut opts.legend_above, true);
     let normal_row = opts.row_of_point.replace(point);
+    // heights rounded up: the short, wide plot left a 1 mm road flat (not
+    // on a patch, whose road window is zoomed to the patch)
+    let normal_round = std::mem::replace(
+        &mut opts.round_up,
+        scene_view::rows_y_m(&sim.problem().points).len() < 2,
+    );
     // a patch's top view in a column right of the plot: over the plot it
     // covered the phase labels and the road's left end
     let rows = scene_view::rows_y_m(&sim.problem().points).len();
@@ -62,6 +68,7 @@ pub fn scene_with_phases(
     opts.legend_style = normal_legend;
     opts.legend_above = normal_above;
     opts.row_of_point = normal_row;
+    opts.round_up = normal_round;
     ui.advance_cursor_after_rect(plot_ui.min_rect().union(plot_rect));
     if side_px > 0.0 {
         let column = egui::Rect::from_min_max(
@@ -75,7 +82,7 @@ pub fn scene_with_phases(
 /// The top view's column beside the side view: this fraction of the
 /// scene's width, within [`TOP_VIEW_MIN_PX`] and [`TOP_VIEW_MAX_PX`].
 const TOP_VIEW_WIDTH_FRACTION: f32 = 0.2;
-const TOP_VIEW_MIN_PX: f32 = 190.0;
+const TOP_VIEW_MIN_PX: f32 = 165.0;
 const TOP_VIEW_MAX_PX: f32 = 260.0;
 /// Gap (px) between the side view's plot and the top view.
 const TOP_VIEW_GAP_PX: f32 = 8.0;

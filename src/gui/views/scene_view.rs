@@ -29,6 +29,12 @@ pub struct SceneViewOptions {
     /// other, and one line through all of them joins the end of a row to
     /// the start of the next). `None`: point 0's row.
     pub row_of_point: Option<usize>,
+    /// The automatic exaggeration rounded up to the next 1-2-5 value
+    /// instead of down (classroom mode: its short, wide plot rounded a
+    /// factor of 3.3 down to ×2 and the paper preset's 1 mm road looked
+    /// flat; rounded up, the heights fill the plot's height and the road
+    /// window widens a little).
+    pub round_up: bool,
 }
 
 impl Default for SceneViewOptions {
@@ -39,6 +45,7 @@ impl Default for SceneViewOptions {
             legend_style: egui::TextStyle::Body,
             legend_above: false,
             row_of_point: None,
+            round_up: false,
         }
     }
 }
@@ -52,14 +59,36 @@ const HEIGHTS_SPAN: f64 = 5.0;
 /// road, `width_in_heights = (x1 − x0) / hmax`: the largest 1-2-5 value
 /// that does, so that the road spans the plot's width at aspect 1 (a fixed
 /// factor left a short classroom plot a road in the middle third).
-fn auto_exaggeration(ui: &Ui, width_in_heights: f64) -> f64 {
+fn auto_exaggeration(ui: &Ui, width_in_heights: f64, round_up: bool) -> (f64, f64) {
     let avail = ui.available_size();
     let row = ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y;
     // the header, and the legend row (classroom) or the ramp's line
     let above = 2.0 * row;
     let frame_h = (avail.y - above - super::titled_x_axis_px(ui)).max(60.0);
     let frame_w = (avail.x - 44.0 - row).max(100.0);
-    floor_125(f64::from(frame_h / frame_w) * width_in_heights / HEIGHTS_SPAN)
+    let fit = f64::from(frame_h / frame_w) * width_in_heights / HEIGHTS_SPAN;
+    let e = if round_up {
+        ceil_125(fit)
+    } else {
+        floor_125(fit)
+    };
+    (e, fit)
+}
+
+/// The smallest 1, 2 or 5 times a power of ten not below `x` (1 for `x`
+/// at most 1 or not finite).
+pub fn ceil_125(x: f64) -> f64 {
+    let f = floor_125(x);
+    if !(x.is_finite() && x > 1.0) || f >= x {
+        return f;
+    }
+    // the next value of the 1-2-5 sequence above f
+    let e = 10f64.powf(f.log10().floor());
+    match (f / e).round() as u32 {
+        1 => 2.0 * e,
+        2 => 5.0 * e,
+        _ => 10.0 * e,
+    }
 }
 
 /// The largest 1, 2 or 5 times a power of ten not above `x` (1 for `x`
@@ -243,7 +272,7 @@ pub fn show_with(
     extra: impl FnOnce(&mut egui_plot::PlotUi<'_>, &[[f64; 2]], Option<f64>),
 ) -> egui::Rect {
     let scene = sim.problem();
-    let (x0, x1) = x_extent(sim, road);
+    let (mut x0, mut x1) = x_extent(sim, road);
     let u = sim.displacement_m();
     let hmax = scene
         .points
@@ -253,7 +282,14 @@ pub fn show_with(
         .fold(sim.road_profile().scale_m(), f64::max)
         .max(1e-6);
     if opts.auto {
-        opts.exaggeration = auto_exaggeration(ui, (x1 - x0) / hmax);
+        let (e, fit) = auto_exaggeration(ui, (x1 - x0) / hmax, opts.round_up);
+        opts.exaggeration = e;
+        // rounded up, the heights are taller than the plot at the drawn
+        // width: at aspect 1 the plot shows more road, drawn to its edges
+        if e > fit && fit > 0.0 {
+            let (mid, half) = (0.5 * (x0 + x1), 0.5 * (x1 - x0) * e / fit);
+            (x0, x1) = (mid - half, mid + half);
+        }
     }
     let e = opts.exaggeration;
     header(ui, sim, opts);
@@ -740,6 +776,21 @@ mod tests {
             (f64::NAN, 1.0),
         ] {
             assert_eq!(floor_125(x), want, "{x}");
+        }
+        use super::ceil_125;
+        for (x, want) in [
+            (1.0, 1.0),
+            (1.2, 2.0),
+            (2.0, 2.0),
+            (3.3, 5.0),
+            (5.0, 5.0),
+            (6.0, 10.0),
+            (10.0, 10.0),
+            (73.0, 100.0),
+            (0.3, 1.0),
+            (f64::NAN, 1.0),
+        ] {
+            assert_eq!(ceil_125(x), want, "{x}");
         }
     }
 }

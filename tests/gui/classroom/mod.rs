@@ -11,6 +11,7 @@ mod legend;
 mod mode_bar_colours;
 mod mode_bars_layout;
 mod panel;
+mod road_visible;
 pub(crate) mod patch_rows;
 mod picker_contrast;
 mod scene_ticks;
