@@ -132,7 +132,8 @@ fn the_patch_view_starts_empty_and_counts_only_loaded_points() {
             .unwrap_or_else(|| panic!("{preset}: no {NO_FORCE_YET:?} in {all:?}"));
         assert!(label.right() <= 1280.0, "{preset}: cut off at {label:?}");
         assert!(
-            !all.iter().any(|(t, _)| t.contains("e-9") || t.contains("1e-")),
+            !all.iter()
+                .any(|(t, _)| t.contains("e-9") || t.contains("1e-")),
             "{preset}: {all:?}"
         );
         for id in [TOTAL_FORCE_PLOT_ID, CONTACT_AREA_PLOT_ID] {

@@ -49,22 +49,30 @@ pub fn scene_with_phases(
     } else {
         0.0
     };
-    let plot_rect =
-        egui::Rect::from_min_max(whole.min, egui::pos2(whole.right() - side_px, whole.bottom()));
+    let plot_rect = egui::Rect::from_min_max(
+        whole.min,
+        egui::pos2(whole.right() - side_px, whole.bottom()),
+    );
     let mut plot_ui = ui.new_child(
         egui::UiBuilder::new()
             .max_rect(plot_rect)
             .layout(egui::Layout::top_down(egui::Align::Min)),
     );
-    let frame = scene_view::show_with(&mut plot_ui, sim, road, opts, |pui, displaced, labels_floor| {
-        let at = PhasesAt { phases, t_s: t };
-        if displaced.len() > 1 {
-            let lanes = Lanes::of(pui, sim, displaced, labels_floor, body);
-            event_labels(pui, &lanes, displaced, at, body);
-        } else {
-            point_label(pui, displaced, at, heading);
-        }
-    });
+    let frame = scene_view::show_with(
+        &mut plot_ui,
+        sim,
+        road,
+        opts,
+        |pui, displaced, labels_floor| {
+            let at = PhasesAt { phases, t_s: t };
+            if displaced.len() > 1 {
+                let lanes = Lanes::of(pui, sim, displaced, labels_floor, body);
+                event_labels(pui, &lanes, displaced, at, body);
+            } else {
+                point_label(pui, displaced, at, heading);
+            }
+        },
+    );
     opts.legend_style = normal_legend;
     opts.legend_above = normal_above;
     opts.row_of_point = normal_row;

@@ -144,7 +144,9 @@ fn export_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
     }
     if ui
         .button("Contact patch heat map (PNG)…")
-        .on_hover_text("a patch scene's contact force over its points now, as the patch view shows it")
+        .on_hover_text(
+            "a patch scene's contact force over its points now, as the patch view shows it",
+        )
         .clicked()
     {
         cmds.push(Command::ExportHeatMapDialog);

@@ -572,9 +572,7 @@ const HEADER_POINTS: usize = 24;
 /// first shown point where that is past the first [`HEADER_POINTS`].
 pub fn checkbox_start(chosen: &[usize], n: usize) -> usize {
     match chosen.first() {
-        Some(&f) if f >= HEADER_POINTS && n > HEADER_POINTS => {
-            (f - f % 8).min(n - HEADER_POINTS)
-        }
+        Some(&f) if f >= HEADER_POINTS && n > HEADER_POINTS => (f - f % 8).min(n - HEADER_POINTS),
         _ => 0,
     }
 }

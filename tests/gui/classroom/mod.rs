@@ -11,9 +11,9 @@ mod legend;
 mod mode_bar_colours;
 mod mode_bars_layout;
 mod panel;
-mod road_visible;
 pub(crate) mod patch_rows;
 mod picker_contrast;
+mod road_visible;
 mod scene_ticks;
 mod steady_plot;
 mod theme;
@@ -199,8 +199,7 @@ fn muting_below_the_rank_of_rigid_contact_is_refused_with_the_reason() {
     assert!(
         m.error
             && m.text.starts_with("Mute of mode 0 not applied")
-            && m.text
-                .contains("move each of the 3 points on its own")
+            && m.text.contains("move each of the 3 points on its own")
             && m.text.contains("keep more modes playing"),
         "{m:?}"
     );
@@ -226,7 +225,6 @@ fn muting_below_the_rank_of_rigid_contact_is_refused_with_the_reason() {
     assert!(h.query_by_label("Use compliant contact").is_none());
     // the solo applied: its refusal's banner gone with its cause
     assert!(h.state().message().is_none(), "{:?}", h.state().message());
-
 }
 
 #[test]

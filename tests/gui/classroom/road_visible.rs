@@ -34,11 +34,16 @@ fn the_classroom_scene_shows_the_paper_roads_waves() {
             .transform()
             .frame()
             .height();
-        eprintln!("{size:?}: normal x{e_normal} {px_normal:.0} px; classroom x{e} {px:.0} px of {frame_h}");
+        eprintln!(
+            "{size:?}: normal x{e_normal} {px_normal:.0} px; classroom x{e} {px:.0} px of {frame_h}"
+        );
         assert!(
             px >= 0.08 * f64::from(frame_h),
             "{size:?}: the road's waves {px:.0} px of a {frame_h} px plot at x{e}"
         );
-        assert!(e >= e_normal, "{size:?}: x{e} in classroom, x{e_normal} in the normal view");
+        assert!(
+            e >= e_normal,
+            "{size:?}: x{e} in classroom, x{e_normal} in the normal view"
+        );
     }
 }

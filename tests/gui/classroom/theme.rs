@@ -128,7 +128,10 @@ fn banners_do_not_move_the_plots() {
         h.get_by_label("Dismiss").click();
         h.run();
         h.run();
-        assert!(h.state().message().is_none(), "{size:?}: Dismiss out of reach");
+        assert!(
+            h.state().message().is_none(),
+            "{size:?}: Dismiss out of reach"
+        );
         h.run();
         h.run();
         assert!((force_plot_top(&h) - clear).abs() < 0.5);

@@ -30,8 +30,14 @@ fn polylines(shapes: &[Shape], frame: egui::Rect, min: usize) -> Vec<Vec<egui::P
 
 #[test]
 fn a_patch_draws_one_row_and_no_line_between_rows() {
-    for file in ["patch_chip_seal.ron", "patch_texture.ron", "patch_wheel_path.ron"] {
-        let preset = Path::new(env!("CARGO_MANIFEST_DIR")).join("presets").join(file);
+    for file in [
+        "patch_chip_seal.ron",
+        "patch_texture.ron",
+        "patch_wheel_path.ron",
+    ] {
+        let preset = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("presets")
+            .join(file);
         let scene = Scene::load(&preset).unwrap();
         let n = scene.points.len();
         let rows = rows_y_m(&scene.points).len();

@@ -7,7 +7,7 @@ mod export_clip;
 mod export_layout;
 mod legend_ink;
 mod legends;
-mod patch_export;
 mod paper_clip;
+mod patch_export;
 mod run_fit;
 mod solid_curves;

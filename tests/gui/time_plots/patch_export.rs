@@ -91,7 +91,10 @@ fn a_clicked_row_is_told_apart_in_the_time_plots() {
     h.run();
     let (first, last) = (row[0], row[row.len() - 1]);
     let texts = crate::harness::texts(&h);
-    for name in [format!("point {first} (first of 16"), format!("point {last} (last)")] {
+    for name in [
+        format!("point {first} (first of 16"),
+        format!("point {last} (last)"),
+    ] {
         assert!(
             texts.iter().any(|(t, _)| t.starts_with(&name)),
             "no legend entry {name:?}"

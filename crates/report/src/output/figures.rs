@@ -42,7 +42,11 @@ pub const RAMP_STEPS: usize = 256;
 
 /// The series colour index of the ramp at `f` (0 to 1).
 pub fn ramp_index(f: f64) -> usize {
-    let f = if f.is_finite() { f.clamp(0.0, 1.0) } else { 0.0 };
+    let f = if f.is_finite() {
+        f.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     RAMP_BASE + (f * (RAMP_STEPS - 1) as f64).round() as usize
 }
 
@@ -63,7 +67,11 @@ pub fn ramp_rgb(f: f64) -> (u8, u8, u8) {
         (213.0, 94.0, 0.0),
         (136.0, 34.0, 85.0),
     ];
-    let f = if f.is_finite() { f.clamp(0.0, 1.0) } else { 0.0 };
+    let f = if f.is_finite() {
+        f.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let x = f * (STOPS.len() - 1) as f64;
     let k = (x.floor() as usize).min(STOPS.len() - 2);
     let t = x - k as f64;

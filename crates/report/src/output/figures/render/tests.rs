@@ -569,7 +569,16 @@ fn a_short_panel_gets_three_numeric_labels_at_least() {
 fn eight_entries_beside_a_short_plot_stay_in_its_panel() {
     let dense = |k0: usize| -> Vec<(f64, f64)> {
         (0..400)
-            .map(|k| (k as f64, if (k + k0) % 2 == 0 { 0.0 } else { 10.0 }))
+            .map(|k| {
+                (
+                    k as f64,
+                    if (k + k0).is_multiple_of(2) {
+                        0.0
+                    } else {
+                        10.0
+                    },
+                )
+            })
             .collect()
     };
     let panel = |named: bool| Panel {
@@ -578,7 +587,11 @@ fn eight_entries_beside_a_short_plot_stay_in_its_panel() {
         y_label: "u (mm)".into(),
         series: (0..8)
             .map(|i| {
-                let name = if named { format!("point {i}") } else { String::new() };
+                let name = if named {
+                    format!("point {i}")
+                } else {
+                    String::new()
+                };
                 let mut s = Series::line(name, dense(i));
                 s.color = Some(i);
                 s
