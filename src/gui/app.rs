@@ -210,6 +210,10 @@ impl App {
     pub fn plot_options(&self) -> &time_plots::TimePlotOptions {
         &self.plot_opts
     }
+    /// The scene view's options (exaggeration, legend).
+    pub fn scene_options(&self) -> &scene_view::SceneViewOptions {
+        &self.scene_opts
+    }
     pub fn time_control(&self) -> &TimeControl {
         &self.time
     }
@@ -336,6 +340,8 @@ impl App {
                 height,
             } => self.export_png(&path, width, height),
             Command::ExportCsvDialog => self.export_csv_dialog(),
+            Command::ExportHeatMapDialog => self.open_file_prompt(FileAction::HeatMapPng),
+            Command::ExportHeatMap(path) => self.export_heat_map(&path),
             Command::ExportCsv(path) => self.export_csv(path),
             Command::CsvExportEnded(r) => self.csv_export_ended(r),
             // views and layouts (app/layout.rs)
@@ -354,13 +360,17 @@ impl App {
             Command::SoloMode(k) => self.set_mutes(k, true),
             Command::MuteWithCompliantContact => {
                 if let Some(r) = self.classroom.mute_refused.take() {
+                    self.clear_refusal(Some(r.clone()));
                     let contact = crate::scene::Contact::Compliant {
                         stiffness_n_m: vec![crate::gui::panels::contact_panel::DEFAULT_TREAD_N_M],
                     };
                     self.set_mutes_with(r.mode, r.solo, Some(contact));
                 }
             }
-            Command::DismissMuteRefusal => self.classroom.mute_refused = None,
+            Command::DismissMuteRefusal => {
+                let refused = self.classroom.mute_refused.take();
+                self.clear_refusal(refused);
+            }
             Command::UnmuteAll => self.unmute_all(),
             // animation export (app/animation_export.rs)
             Command::ExportFramesDialog => self.open_frames_dialog(),

@@ -73,6 +73,20 @@ pub fn point_color(i: usize) -> Color32 {
     PALETTE[i % PALETTE.len()]
 }
 
+/// Colour of point `i` among the `shown` points (in order) of a plot: its
+/// own colour up to `output::figures::PALETTE_SERIES_MAX` points, beyond
+/// them its step along the colour ramp of the row (the exported figure's).
+pub fn shown_point_color(shown: &[usize], i: usize) -> Color32 {
+    let k = crate::output::figures::point_color_index(shown, i);
+    match crate::output::figures::ramp_fraction(k) {
+        Some(f) => {
+            let (r, g, b) = crate::output::figures::ramp_rgb(f);
+            Color32::from_rgb(r, g, b)
+        }
+        None => point_color(i),
+    }
+}
+
 /// A wall-clock time in readable units: "35 ms" below a second (a fast
 /// sweep read "0.0 s"), "2.4 s" above.
 pub fn wall_time_text(s: f64) -> String {

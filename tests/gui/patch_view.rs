@@ -103,3 +103,69 @@ fn the_patch_plots_have_numbered_axes_with_units() {
         }
     }
 }
+
+/// Before the first step: the time axes run from 0 to the run's duration
+/// and the colour bar says there is no force yet (it ran 0 to 1e-9 N, the
+/// axes -0.5 to 0.5 s). Early in the run the contact area counts only the
+/// points carrying force: with no force there is no area (it showed about
+/// 105 cm² at 0 N, every point touching the road while the preload ramps
+/// in).
+#[test]
+fn the_patch_view_starts_empty_and_counts_only_loaded_points() {
+    use tirecontact::gui::views::patch_view::NO_FORCE_YET;
+    for preset in [
+        "patch_texture.ron",
+        "patch_wheel_path.ron",
+        "patch_chip_seal.ron",
+    ] {
+        let scene = Scene::load(&Path::new("presets").join(preset)).unwrap();
+        let duration_s = scene.duration_s;
+        let mut h = harness_sized(App::new(scene, None).unwrap(), [1280.0, 720.0]);
+        settle(&mut h);
+        h.state_mut().apply(Command::ShowView(View::Patch));
+        settle(&mut h);
+        h.run_steps(3);
+        let all = texts(&h);
+        let (_, label) = all
+            .iter()
+            .find(|(t, _)| t == NO_FORCE_YET)
+            .unwrap_or_else(|| panic!("{preset}: no {NO_FORCE_YET:?} in {all:?}"));
+        assert!(label.right() <= 1280.0, "{preset}: cut off at {label:?}");
+        assert!(
+            !all.iter()
+                .any(|(t, _)| t.contains("e-9") || t.contains("1e-")),
+            "{preset}: {all:?}"
+        );
+        for id in [TOTAL_FORCE_PLOT_ID, CONTACT_AREA_PLOT_ID] {
+            let mem = egui_plot::PlotMemory::load(&h.ctx, egui::Id::unique(id))
+                .unwrap_or_else(|| panic!("{preset}: plot {id} shown"));
+            let b = *mem.transform().bounds();
+            assert!(
+                b.min()[0] >= -0.1 * duration_s && b.max()[0] >= duration_s,
+                "{preset}: {id} time axis {:?} for a run of {duration_s} s",
+                b.range_x()
+            );
+        }
+        // a few steps in: the header's area is the loaded points' cells
+        advance(&mut h, 20);
+        h.run_steps(2);
+        let sim = h.state().simulation();
+        let total: f64 = sim.force_n().iter().sum();
+        let header = texts(&h)
+            .into_iter()
+            .map(|(t, _)| t)
+            .find(|t| t.contains("contact area"))
+            .expect("the header");
+        if total == 0.0 {
+            assert!(
+                header.contains("contact area 0.0 cm²"),
+                "{preset}: {header}"
+            );
+        }
+        let carrying = sim.force_n().iter().filter(|&&f| f > 0.0).count();
+        assert!(
+            header.contains(&format!("({carrying} of ")),
+            "{preset}: {header}"
+        );
+    }
+}

@@ -210,6 +210,7 @@ impl App {
                 (None, None) => format!("{stem}.ron"),
             },
             FileAction::ExportCsv => format!("{stem}.csv"),
+            FileAction::HeatMapPng => format!("{stem}_heat_map.png"),
             FileAction::SweepCsv => "sweep.csv".to_string(),
             FileAction::SweepPng => "sweep.png".to_string(),
             FileAction::PinnedCsv => "reference.csv".to_string(),
@@ -315,6 +316,36 @@ impl App {
         match crate::output::figures::render_png(&fig, path, width, height) {
             Ok(()) => self.info(format!("wrote {} ({width}x{height} px)", path.display())),
             Err(e) => self.error(format!("PNG export failed: {e}")),
+        }
+    }
+
+    /// Writes the contact patch's heat map at the current time to `path`
+    /// (PNG, 1600 × 1000 px), its colour bar from 0 to the run's largest
+    /// force, as the patch view draws it.
+    pub(super) fn export_heat_map(&mut self, path: &Path) {
+        if crate::gui::chrome::web::IN_BROWSER {
+            return self.not_in_browser(FileAction::HeatMapPng.title());
+        }
+        let layout = match crate::output::patch::PatchLayout::of(self.sim.problem()) {
+            Ok(l) => l,
+            Err(e) => return self.error(format!("No heat map: {e}")),
+        };
+        let max_n = crate::gui::views::patch_view::colour_bar_max_n(&self.sim);
+        let title = format!(
+            "{} — contact force at t = {} s",
+            self.doc.scene.name,
+            crate::output::summary::short_num(self.sim.time_s(), 4)
+        );
+        match crate::output::patch::render_heat_map(
+            &layout,
+            self.sim.force_n(),
+            max_n,
+            &title,
+            path,
+            (1600, 1000),
+        ) {
+            Ok(()) => self.info(format!("wrote {} (1600x1000 px)", path.display())),
+            Err(e) => self.error(format!("Heat map export failed: {e}")),
         }
     }
 

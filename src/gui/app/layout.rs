@@ -174,7 +174,11 @@ impl App {
                 );
             }
             View::Scene => {
-                scene_view::show(ui, &self.sim, &self.doc.scene.road, &mut self.scene_opts)
+                // on a patch: the row of the classroom's chosen point, as
+                // its side view draws it
+                let normal_row = self.scene_opts.row_of_point.replace(self.classroom.point);
+                scene_view::show(ui, &self.sim, &self.doc.scene.road, &mut self.scene_opts);
+                self.scene_opts.row_of_point = normal_row;
             }
             View::Green => {
                 green_view::show(ui, &self.doc.scene, &self.modes, &mut self.green_opts);

@@ -15,7 +15,8 @@ impl App {
     /// [`Self::set_mutes`], with the scene's contact law replaced by
     /// `contact` in the same edit when given.
     pub(super) fn set_mutes_with(&mut self, k: usize, solo: bool, contact: Option<Contact>) {
-        self.classroom.mute_refused = None;
+        let refused = self.classroom.mute_refused.take();
+        self.clear_refusal(refused);
         let contact = contact.unwrap_or_else(|| self.doc.scene.contact.clone());
         let (original, base, current) = match &self.mutes {
             Some(m) => (m.original.clone(), m.base.clone(), m.muted.clone()),
@@ -51,6 +52,17 @@ impl App {
                 muted,
                 tyre,
             });
+        }
+    }
+
+    /// Takes down the banner of the refusal `refused` (its cause is gone:
+    /// another mute, the solo applied with compliant contact, or the modes
+    /// kept playing); a message shown since is left.
+    pub(super) fn clear_refusal(&mut self, refused: Option<crate::gui::classroom::MuteRefusal>) {
+        if let Some(r) = refused
+            && self.message.as_ref().is_some_and(|m| m.text == r.text)
+        {
+            self.message = None;
         }
     }
 

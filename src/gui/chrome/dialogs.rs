@@ -31,22 +31,27 @@ pub struct PngSettings {
 const BANNER_MARGIN_PX: f32 = 6.0;
 
 /// The message banner above the views (errors in red, with a dismiss
-/// button). It takes its own room above the views, at least one banner
-/// line high whether or not a message is shown (the views do not move as
-/// one-line messages come and go); a longer message pushes the views down
-/// rather than covering their controls.
+/// button). It takes one banner line of its own above the views whether or
+/// not a message is shown; a longer message unfolds downwards over the top
+/// of the view, in front of it, until dismissed or its cause is gone: the
+/// views never move as messages come and go.
 pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
     let row_px = ui
         .text_style_height(&egui::TextStyle::Body)
         .max(ui.spacing().interact_size.y);
     let size = egui::vec2(ui.available_width(), row_px + 2.0 * BANNER_MARGIN_PX);
-    ui.allocate_ui_with_layout(size, egui::Layout::top_down(egui::Align::Min), |ui| {
-        ui.set_min_size(size);
-        if let Some(m) = msg {
-            ui.set_width(size.x);
-            banner_frame(ui, m, cmds);
-        }
-    });
+    let (strip, _) = ui.allocate_exact_size(size, egui::Sense::hover());
+    if let Some(m) = msg {
+        egui::Area::new(egui::Id::unique("tirecontact.banner"))
+            .order(egui::Order::Foreground)
+            .fixed_pos(strip.min)
+            .constrain(false)
+            .show(ui.ctx(), |ui| {
+                ui.set_width(strip.width());
+                ui.set_max_width(strip.width());
+                banner_frame(ui, m, cmds);
+            });
+    }
 }
 
 /// The progress line of the preparation an edit or a new document waits

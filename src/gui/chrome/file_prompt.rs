@@ -21,6 +21,8 @@ pub enum FileAction {
     SaveAs,
     /// Export the run as CSV.
     ExportCsv,
+    /// Export the contact patch's heat map as PNG.
+    HeatMapPng,
     /// The researcher tools' exports: the sweep as CSV or PNG, the pinned
     /// reference run as CSV.
     SweepCsv,
@@ -37,6 +39,7 @@ impl FileAction {
             FileAction::Open => "Open a scene",
             FileAction::SaveAs => "Save the scene as",
             FileAction::ExportCsv => "Export the run as CSV",
+            FileAction::HeatMapPng => "Export the contact patch's heat map as PNG",
             FileAction::SweepCsv => "Export the sweep as CSV",
             FileAction::SweepPng => "Export the sweep as PNG",
             FileAction::PinnedCsv => "Export the pinned run as CSV",
@@ -48,7 +51,7 @@ impl FileAction {
             FileAction::Open => "Open",
             FileAction::SaveAs | FileAction::ModalPreset => "Save",
             FileAction::ExportCsv | FileAction::SweepCsv | FileAction::PinnedCsv => "Export CSV",
-            FileAction::SweepPng => "Export PNG",
+            FileAction::SweepPng | FileAction::HeatMapPng => "Export PNG",
         }
     }
     /// File-type name and extension of the dialog's filter.
@@ -56,7 +59,7 @@ impl FileAction {
         match self {
             FileAction::Open | FileAction::SaveAs | FileAction::ModalPreset => ("RON scene", "ron"),
             FileAction::ExportCsv | FileAction::SweepCsv | FileAction::PinnedCsv => ("CSV", "csv"),
-            FileAction::SweepPng => ("PNG image", "png"),
+            FileAction::SweepPng | FileAction::HeatMapPng => ("PNG image", "png"),
         }
     }
     fn command(self, path: PathBuf) -> Command {
@@ -64,6 +67,7 @@ impl FileAction {
             FileAction::Open => Command::OpenPath(path),
             FileAction::SaveAs => Command::SavePath(path),
             FileAction::ExportCsv => Command::ExportCsv(path),
+            FileAction::HeatMapPng => Command::ExportHeatMap(path),
             FileAction::SweepCsv => Command::Research(ResearchCommand::ExportSweepCsv(path)),
             FileAction::SweepPng => Command::Research(ResearchCommand::ExportSweepPng(path)),
             FileAction::PinnedCsv => Command::Research(ResearchCommand::ExportPinnedCsv(path)),

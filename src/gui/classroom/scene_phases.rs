@@ -34,20 +34,66 @@ pub fn scene_with_phases(
     // the legend in a row above the plot: in a corner it covered the tyre
     let normal_above = std::mem::replace(&mut opts.legend_above, true);
     let normal_row = opts.row_of_point.replace(point);
-    let frame = scene_view::show_with(ui, sim, road, opts, |pui, displaced, labels_floor| {
-        let at = PhasesAt { phases, t_s: t };
-        if displaced.len() > 1 {
-            let lanes = Lanes::of(pui, sim, displaced, labels_floor, body);
-            event_labels(pui, &lanes, displaced, at, body);
-        } else {
-            point_label(pui, displaced, at, heading);
-        }
-    });
+    // heights rounded up: the short, wide plot left a 1 mm road flat (not
+    // on a patch, whose road window is zoomed to the patch)
+    let normal_round = std::mem::replace(
+        &mut opts.round_up,
+        scene_view::rows_y_m(&sim.problem().points).len() < 2,
+    );
+    // a patch's top view in a column right of the plot: over the plot it
+    // covered the phase labels and the road's left end
+    let rows = scene_view::rows_y_m(&sim.problem().points).len();
+    let whole = ui.available_rect_before_wrap();
+    let side_px = if rows > 1 {
+        (TOP_VIEW_WIDTH_FRACTION * whole.width()).clamp(TOP_VIEW_MIN_PX, TOP_VIEW_MAX_PX)
+    } else {
+        0.0
+    };
+    let plot_rect = egui::Rect::from_min_max(
+        whole.min,
+        egui::pos2(whole.right() - side_px, whole.bottom()),
+    );
+    let mut plot_ui = ui.new_child(
+        egui::UiBuilder::new()
+            .max_rect(plot_rect)
+            .layout(egui::Layout::top_down(egui::Align::Min)),
+    );
+    let frame = scene_view::show_with(
+        &mut plot_ui,
+        sim,
+        road,
+        opts,
+        |pui, displaced, labels_floor| {
+            let at = PhasesAt { phases, t_s: t };
+            if displaced.len() > 1 {
+                let lanes = Lanes::of(pui, sim, displaced, labels_floor, body);
+                event_labels(pui, &lanes, displaced, at, body);
+            } else {
+                point_label(pui, displaced, at, heading);
+            }
+        },
+    );
     opts.legend_style = normal_legend;
     opts.legend_above = normal_above;
     opts.row_of_point = normal_row;
-    top_view(ui, sim, frame, point);
+    opts.round_up = normal_round;
+    ui.advance_cursor_after_rect(plot_ui.min_rect().union(plot_rect));
+    if side_px > 0.0 {
+        let column = egui::Rect::from_min_max(
+            egui::pos2(plot_rect.right() + TOP_VIEW_GAP_PX, frame.top()),
+            egui::pos2(whole.right(), whole.bottom()),
+        );
+        top_view(ui, sim, column, point);
+    }
 }
+
+/// The top view's column beside the side view: this fraction of the
+/// scene's width, within [`TOP_VIEW_MIN_PX`] and [`TOP_VIEW_MAX_PX`].
+const TOP_VIEW_WIDTH_FRACTION: f32 = 0.2;
+const TOP_VIEW_MIN_PX: f32 = 165.0;
+const TOP_VIEW_MAX_PX: f32 = 260.0;
+/// Gap (px) between the side view's plot and the top view.
+const TOP_VIEW_GAP_PX: f32 = 8.0;
 
 /// Caption of the top view of a patch in the classroom's scene.
 pub fn top_view_caption(rows: usize) -> String {
@@ -57,12 +103,12 @@ pub fn top_view_caption(rows: usize) -> String {
 /// Radius (px) of the points of the top view at most.
 pub const TOP_VIEW_DOT_PX: f32 = 4.5;
 
-/// On a patch, a top view of its points in the lower left corner of the
-/// scene plot `frame` (below the road line, left of the points): x along
-/// (as the side view), one line per row across the tread, each point a dot
-/// coloured by its contact state, the row the side view draws in full
-/// underlined and its dots ringed.
-fn top_view(ui: &Ui, sim: &Simulation, frame: egui::Rect, point: usize) {
+/// On a patch, a top view of its points at the top of `column` (right of
+/// the side view's plot, level with its top): x along (as the side view),
+/// one line per row across the tread, each point a dot coloured by its
+/// contact state, the row the side view draws in full underlined and its
+/// dots ringed.
+fn top_view(ui: &Ui, sim: &Simulation, column: egui::Rect, point: usize) {
     let scene = sim.problem();
     let rows = scene_view::rows_y_m(&scene.points);
     if rows.len() < 2 {
@@ -76,16 +122,13 @@ fn top_view(ui: &Ui, sim: &Simulation, frame: egui::Rect, point: usize) {
         .layout_no_wrap(caption, FontId::proportional(text_px), text_color);
     let pad = 6.0;
     let row_px = 10.0;
-    let w = (0.28 * frame.width()).clamp(galley.size().x + 2.0 * pad, 260.0);
+    let w = column.width();
     let h = galley.size().y + pad * 3.0 + row_px * (rows.len() - 1) as f32;
-    if w > frame.width() - 8.0 || h > frame.height() - 8.0 {
+    if galley.size().x + 2.0 * pad > w || h > column.height() {
         return;
     }
-    let rect = egui::Rect::from_min_size(
-        egui::pos2(frame.left() + 4.0, frame.bottom() - 4.0 - h),
-        egui::vec2(w, h),
-    );
-    let painter = ui.painter_at(frame);
+    let rect = egui::Rect::from_min_size(column.min, egui::vec2(w, h));
+    let painter = ui.painter_at(rect.expand(1.0));
     painter.rect(
         rect,
         4.0,

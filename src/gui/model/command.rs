@@ -109,6 +109,10 @@ pub enum Command {
     },
     ExportCsvDialog,
     ExportCsv(PathBuf),
+    /// Ask where to write the contact patch's heat map as PNG.
+    ExportHeatMapDialog,
+    /// Write the contact patch's heat map now as PNG.
+    ExportHeatMap(PathBuf),
     /// Copy a link that carries the scene (and, in a browser, put it in
     /// the page's address).
     Share,

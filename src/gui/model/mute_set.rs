@@ -86,13 +86,24 @@ pub fn refusal(base: &[Mode], muted: &[bool], p: usize, contact: &Contact) -> Op
         Ok(rank) => rank,
         Err(e) => return Some(format!("the playing modes' contact system: {e}")),
     };
-    (rank < p).then(|| {
-        format!(
-            "with rigid contact each of the {p} points must be able to move on its own, \
-             and with these modes playing they can move in only {rank} independent ways. \
-             Use compliant contact, or keep more modes playing."
-        )
-    })
+    (rank < p).then(|| refusal_text(p, playing, rank))
+}
+
+/// Why rigid contact refuses `playing` modes that move `p` points in only
+/// `rank` independent shapes, and the ways out, in plain words.
+fn refusal_text(p: usize, playing: usize, rank: usize) -> String {
+    let who = if playing == 1 {
+        "the one mode playing gives".to_string()
+    } else {
+        format!("the {playing} modes playing give")
+    };
+    format!(
+        "with rigid contact the road sets the height of every point touching it, so \
+         the playing modes must be able to move each of the {p} points on its own \
+         ({p} independent shapes of motion); {who} only {rank}, and the contact \
+         forces would have no unique solution. Use compliant contact (a spring in \
+         the tread takes up what the modes cannot follow), or keep more modes playing."
+    )
 }
 
 #[cfg(test)]
@@ -146,12 +157,15 @@ mod tests {
         assert!(refusal(&base, &[false; 3], 3, &s.contact).is_none());
         let r = refusal(&base, &[false, true, false], 3, &s.contact).unwrap();
         assert!(
-            r.contains("each of the 3 points must be able to move on its own")
-                && r.contains("only 2 independent ways")
+            r.contains("move each of the 3 points on its own")
+                && r.contains("the 2 modes playing give only 2,")
                 && r.contains("keep more modes playing")
                 && !r.contains("mode(s)"),
             "{r}"
         );
+        // a solo: one mode, said so
+        let r = refusal(&base, &[true, false, true], 3, &s.contact).unwrap();
+        assert!(r.contains("the one mode playing gives only 1,"), "{r}");
         let soft = Contact::Compliant {
             stiffness_n_m: vec![2e6],
         };

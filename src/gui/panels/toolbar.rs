@@ -142,6 +142,15 @@ fn export_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
     {
         cmds.push(Command::ExportPngDialog);
     }
+    if ui
+        .button("Contact patch heat map (PNG)…")
+        .on_hover_text(
+            "a patch scene's contact force over its points now, as the patch view shows it",
+        )
+        .clicked()
+    {
+        cmds.push(Command::ExportHeatMapDialog);
+    }
     let csv = ui.add_enabled(!st.exporting_csv, egui::Button::new("Run as CSV…"));
     if csv
         .on_hover_text("the run so far, every step, same columns as `tirecontact run`")

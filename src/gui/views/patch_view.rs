@@ -34,24 +34,48 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
         }
     };
     let forces = sim.force_n();
-    let max_n = sim
-        .stats()
-        .max_force_n
-        .iter()
-        .copied()
-        .fold(0.0, f64::max)
-        .max(1e-9);
-    let on = sim.in_contact().iter().filter(|&&c| c).count();
+    let max_n = colour_bar_max_n(sim);
+    // the colours' scale: the run's largest force, or any scale before it
+    // has one (no cell is coloured then)
+    let scale_n = if max_n > 0.0 { max_n } else { 1.0 };
+    let on = crate::output::patch::carrying_points(forces);
     let total: f64 = forces.iter().sum();
+    // a small force in its own digits: "0.0 N" beside the area of the
+    // points touching the road while the preload ramps in read as a
+    // contradiction
+    let total_text = if total >= 0.1 || total == 0.0 {
+        format!("{total:.1} N")
+    } else {
+        format!("{} N", crate::output::summary::short_num(total, 2))
+    };
+    let (ramp_w, _) = crate::model::road::ramp(sim.time_s(), scene.ramp_s);
+    // on a ramped run all along, so that the map keeps its place
+    if scene.ramp_s > 0.0 {
+        let text = if ramp_w < 1.0 {
+            format!(
+                "preload ramping in ({:.0} %): the points on the road carry little force yet",
+                100.0 * ramp_w
+            )
+        } else {
+            "preload in full".to_string()
+        };
+        ui.label(egui::RichText::new(text).color(ui.visuals().weak_text_color()));
+    }
     ui.label(format!(
-        "t = {:.4} s: total force {:.1} N, contact area {:.1} cm² ({on} of {} points on the road, cell {:.1} × {:.1} mm); click a row to see its points in the time plots",
+        "t = {:.4} s: total force {total_text}, contact area {:.1} cm² ({on} of {} points carrying force, cell {:.1} × {:.1} mm); click a row to see its points in the time plots",
         sim.time_s(),
-        total,
-        on as f64 * layout.cell_area_m2() * 1e4,
+        layout.contact_area_m2(forces) * 1e4,
         layout.xy_m.len(),
         layout.cell_m.0 * 1e3,
         layout.cell_m.1 * 1e3,
     ));
+    if ui
+        .button(HEAT_MAP_PNG_BUTTON)
+        .on_hover_text("the heat map at this time, with its axes in mm and its colour bar in N")
+        .clicked()
+    {
+        cmds.push(Command::ExportHeatMapDialog);
+    }
     let h = (ui.available_height() * 0.55).max(160.0);
     let (resp, painter) = ui.allocate_painter(Vec2::new(ui.available_width(), h), Sense::click());
     let area = resp.rect;
@@ -114,7 +138,7 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
             to_px(x + 0.5 * dx, y - 0.5 * dy),
         );
         if forces[k] > 0.0 {
-            let c = force_colour(forces[k], max_n);
+            let c = force_colour(forces[k], scale_n);
             painter.rect_filled(r.shrink(1.0), 0.0, Color32::from_rgb(c.0, c.1, c.2));
         }
         painter.rect_stroke(
@@ -172,13 +196,19 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
     let steps = 60;
     for s in 0..steps {
         let f0 = s as f64 / steps as f64;
-        let c = force_colour((f0 + 0.5 / steps as f64) * max_n, max_n);
+        // grey while there is no scale to read
+        let fill = if max_n > 0.0 {
+            let c = force_colour((f0 + 0.5 / steps as f64) * scale_n, scale_n);
+            Color32::from_rgb(c.0, c.1, c.2)
+        } else {
+            Color32::from_gray(200)
+        };
         let ya = bar.bottom() - (s as f32 / steps as f32) * bar.height();
         let yb = bar.bottom() - ((s + 1) as f32 / steps as f32) * bar.height();
         painter.rect_filled(
             Rect::from_min_max(Pos2::new(bar.left(), yb), Pos2::new(bar.right(), ya)),
             0.0,
-            Color32::from_rgb(c.0, c.1, c.2),
+            fill,
         );
     }
     painter.rect_stroke(
@@ -194,11 +224,22 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
         font.clone(),
         text,
     );
-    for frac in [0.0, 0.5, 1.0] {
+    if max_n > 0.0 {
+        for frac in [0.0, 0.5, 1.0] {
+            painter.text(
+                Pos2::new(bar.right() + 4.0, bar.bottom() - frac as f32 * bar.height()),
+                Align2::LEFT_CENTER,
+                crate::output::summary::short_num(frac * max_n, 3),
+                font.clone(),
+                text,
+            );
+        }
+    } else {
+        // before any force: no scale to give, said across the bar
         painter.text(
-            Pos2::new(bar.right() + 4.0, bar.bottom() - frac as f32 * bar.height()),
+            Pos2::new(bar.right() + 4.0, bar.center().y),
             Align2::LEFT_CENTER,
-            crate::output::summary::short_num(frac * max_n, 3),
+            NO_FORCE_YET,
             font.clone(),
             text,
         );
@@ -221,11 +262,31 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
         cmds.push(Command::ShowPoints(points));
     }
     resp.on_hover_text("click a row to see its points in the time plots");
-    totals_plot(ui, &layout, history);
+    totals_plot(ui, &layout, history, sim.problem().duration_s);
 }
 
-/// Total force (N) and contact area (cm²) against time, from the history.
-fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History) {
+/// The patch view's button exporting its heat map.
+pub const HEAT_MAP_PNG_BUTTON: &str = "Heat map as PNG…";
+
+/// The colour bar's label before the run has a force (on two lines in the
+/// room right of the bar).
+pub const NO_FORCE_YET: &str = "no force\nyet";
+
+/// The top of the colour bar (N): the run's largest force so far (0 before
+/// any).
+pub fn colour_bar_max_n(sim: &Simulation) -> f64 {
+    sim.stats()
+        .max_force_n
+        .iter()
+        .copied()
+        .filter(|f| f.is_finite())
+        .fold(0.0, f64::max)
+}
+
+/// Total force (N) and contact area (cm², the points carrying force times
+/// the cell) against time, from the history, on a time axis from 0 to the
+/// run's `duration_s` until the run has samples to show.
+fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History, duration_s: f64) {
     let t = history.times();
     let p = history.num_points();
     let total: PlotPoints = (0..t.len())
@@ -244,13 +305,20 @@ fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History) {
             [
                 t[k],
                 (0..p)
-                    .map(|i| history.value(Quantity::Contact, i, k))
-                    .sum::<f64>()
+                    .filter(|&i| history.value(Quantity::Force, i, k) > 0.0)
+                    .count() as f64
                     * cell_cm2,
             ]
         })
         .collect();
     let h = ((ui.available_height() - 8.0) / 2.0).max(80.0);
+    // before the run has two samples: the run's time span (egui_plot's
+    // empty plot ran from -0.5 to 0.5 s); then the samples' own
+    let empty_end_s = if t.len() < 2 && duration_s.is_finite() && duration_s > 0.0 {
+        duration_s
+    } else {
+        0.0
+    };
     // (one curve each, named by its axis: no legend over the data); y
     // numbers at 1-2-5 steps down to 30 px apart (egui_plot's own spacing
     // left a short plot only its 0)
@@ -262,6 +330,8 @@ fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History) {
             .y_axis_label(y_title)
             .allow_scroll(false)
             .include_y(0.0)
+            .include_x(0.0)
+            .include_x(empty_end_s)
     };
     plot(ui, TOTAL_FORCE_PLOT_ID, TOTAL_FORCE_TITLE)
         .show(ui, |pu| pu.line(Line::new(TOTAL_FORCE_TITLE, total)));

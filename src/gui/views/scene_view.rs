@@ -25,9 +25,16 @@ pub struct SceneViewOptions {
     pub legend_above: bool,
     /// On a patch (points in several rows across the tread, `y_m`): the
     /// row of this point drawn in full, the other rows faded and small
-    /// behind it (classroom mode; they share `x`, and in full every row was
-    /// drawn over the others). `None`: every point in full.
+    /// behind it (the rows share `x`: drawn in full they lie over each
+    /// other, and one line through all of them joins the end of a row to
+    /// the start of the next). `None`: point 0's row.
     pub row_of_point: Option<usize>,
+    /// The automatic exaggeration rounded up to the next 1-2-5 value
+    /// instead of down (classroom mode: its short, wide plot rounded a
+    /// factor of 3.3 down to ×2 and the paper preset's 1 mm road looked
+    /// flat; rounded up, the heights fill the plot's height and the road
+    /// window widens a little).
+    pub round_up: bool,
 }
 
 impl Default for SceneViewOptions {
@@ -38,6 +45,7 @@ impl Default for SceneViewOptions {
             legend_style: egui::TextStyle::Body,
             legend_above: false,
             row_of_point: None,
+            round_up: false,
         }
     }
 }
@@ -51,14 +59,36 @@ const HEIGHTS_SPAN: f64 = 5.0;
 /// road, `width_in_heights = (x1 − x0) / hmax`: the largest 1-2-5 value
 /// that does, so that the road spans the plot's width at aspect 1 (a fixed
 /// factor left a short classroom plot a road in the middle third).
-fn auto_exaggeration(ui: &Ui, width_in_heights: f64) -> f64 {
+fn auto_exaggeration(ui: &Ui, width_in_heights: f64, round_up: bool) -> (f64, f64) {
     let avail = ui.available_size();
     let row = ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y;
     // the header, and the legend row (classroom) or the ramp's line
     let above = 2.0 * row;
     let frame_h = (avail.y - above - super::titled_x_axis_px(ui)).max(60.0);
     let frame_w = (avail.x - 44.0 - row).max(100.0);
-    floor_125(f64::from(frame_h / frame_w) * width_in_heights / HEIGHTS_SPAN)
+    let fit = f64::from(frame_h / frame_w) * width_in_heights / HEIGHTS_SPAN;
+    let e = if round_up {
+        ceil_125(fit)
+    } else {
+        floor_125(fit)
+    };
+    (e, fit)
+}
+
+/// The smallest 1, 2 or 5 times a power of ten not below `x` (1 for `x`
+/// at most 1 or not finite).
+pub fn ceil_125(x: f64) -> f64 {
+    let f = floor_125(x);
+    if !(x.is_finite() && x > 1.0) || f >= x {
+        return f;
+    }
+    // the next value of the 1-2-5 sequence above f
+    let e = 10f64.powf(f.log10().floor());
+    match (f / e).round() as u32 {
+        1 => 2.0 * e,
+        2 => 5.0 * e,
+        _ => 10.0 * e,
+    }
 }
 
 /// The largest 1, 2 or 5 times a power of ten not above `x` (1 for `x`
@@ -98,15 +128,26 @@ pub fn round_125(x: f64) -> f64 {
     m * e
 }
 
-/// Horizontal extent drawn (m): the contact line and about a wavelength around it.
+/// Horizontal extent drawn (m): the contact line and about a wavelength
+/// around it; on a patch (several rows across the tread) the patch's length
+/// and [`PATCH_MARGIN`] of it on either side (a road texture's drawn
+/// wavelength left a 0.16 m patch a tenth of a 0.7 m window).
 fn x_extent(sim: &Simulation, road: &Road) -> (f64, f64) {
     let pts = &sim.problem().points;
     let lo = pts.iter().map(|p| p.x_m).fold(f64::INFINITY, f64::min);
     let hi = pts.iter().map(|p| p.x_m).fold(f64::NEG_INFINITY, f64::max);
+    if rows_y_m(pts).len() > 1 && hi > lo {
+        let margin = PATCH_MARGIN * (hi - lo);
+        return (lo - margin, hi + margin);
+    }
     let lambda = road.drawn_wavelength_m();
     let margin = (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05);
     (lo - margin, hi + margin)
 }
+
+/// The road drawn on either side of a patch, as a fraction of the patch's
+/// length.
+pub const PATCH_MARGIN: f64 = 0.2;
 
 /// Marks of the height axis (plot units: exaggerated metres; `to_mm`
 /// converts them to true mm) at a 1-2-5 step of true mm, about eight over
@@ -175,13 +216,13 @@ pub fn rows_y_m(points: &[crate::scene::Point]) -> Vec<f64> {
     rows
 }
 
-/// The row drawn in full under `opts` (its index among [`rows_y_m`] and its
-/// `y_m`), where the scene has more than one row.
+/// The row drawn in full under `opts` (its index among [`rows_y_m`], the
+/// number of rows and its `y_m`), where the scene has more than one row.
 fn focus_row(
     points: &[crate::scene::Point],
     opts: &SceneViewOptions,
 ) -> Option<(usize, usize, f64)> {
-    let point = opts.row_of_point?;
+    let point = opts.row_of_point.unwrap_or(0);
     let rows = rows_y_m(points);
     let y = points.get(point.min(points.len().checked_sub(1)?))?.y_m;
     (rows.len() > 1).then(|| (rows.partition_point(|r| *r < y), rows.len(), y))
@@ -231,7 +272,7 @@ pub fn show_with(
     extra: impl FnOnce(&mut egui_plot::PlotUi<'_>, &[[f64; 2]], Option<f64>),
 ) -> egui::Rect {
     let scene = sim.problem();
-    let (x0, x1) = x_extent(sim, road);
+    let (mut x0, mut x1) = x_extent(sim, road);
     let u = sim.displacement_m();
     let hmax = scene
         .points
@@ -241,7 +282,14 @@ pub fn show_with(
         .fold(sim.road_profile().scale_m(), f64::max)
         .max(1e-6);
     if opts.auto {
-        opts.exaggeration = auto_exaggeration(ui, (x1 - x0) / hmax);
+        let (e, fit) = auto_exaggeration(ui, (x1 - x0) / hmax, opts.round_up);
+        opts.exaggeration = e;
+        // rounded up, the heights are taller than the plot at the drawn
+        // width: at aspect 1 the plot shows more road, drawn to its edges
+        if e > fit && fit > 0.0 {
+            let (mid, half) = (0.5 * (x0 + x1), 0.5 * (x1 - x0) * e / fit);
+            (x0, x1) = (mid - half, mid + half);
+        }
     }
     let e = opts.exaggeration;
     header(ui, sim, opts);
@@ -502,37 +550,34 @@ impl Geometry {
                 .into_iter()
                 .map(|[x, y]| [x, e * y])
                 .collect();
-        let undeformed: Vec<[f64; 2]> = pts
+        // the points in full along x: the lines join neighbours of one row
+        let mut order: Vec<usize> = (0..pts.len()).filter(|&i| shown[i]).collect();
+        order.sort_by(|&a, &b| pts[a].x_m.total_cmp(&pts[b].x_m));
+        let undeformed: Vec<[f64; 2]> = order
             .iter()
-            .zip(&shown)
-            .filter(|(_, s)| **s)
-            .map(|(p, _)| [p.x_m, e * p.h_m])
+            .map(|&i| [pts[i].x_m, e * pts[i].h_m])
             .collect();
         let every: Vec<[f64; 2]> = pts
             .iter()
             .zip(sim.displacement_m())
             .map(|(p, u)| [p.x_m, e * (p.h_m + u)])
             .collect();
-        let pick = |keep: bool| -> Vec<[f64; 2]> {
-            every
-                .iter()
-                .zip(&shown)
-                .filter(|(_, s)| **s == keep)
-                .map(|(d, _)| *d)
-                .collect()
-        };
-        let (displaced, faded) = (pick(true), pick(false));
+        let displaced: Vec<[f64; 2]> = order.iter().map(|&i| every[i]).collect();
+        let faded: Vec<[f64; 2]> = every
+            .iter()
+            .zip(&shown)
+            .filter(|(_, s)| !**s)
+            .map(|(d, _)| *d)
+            .collect();
         let displaced_all: Vec<[f64; 2]> = every
             .iter()
             .zip(&shown)
             .map(|(d, s)| if *s { *d } else { [f64::NAN; 2] })
             .collect();
-        let contact: Vec<bool> = sim
-            .in_contact()
+        let in_contact = sim.in_contact();
+        let contact: Vec<bool> = order
             .iter()
-            .zip(&shown)
-            .filter(|(_, s)| **s)
-            .map(|(c, _)| *c)
+            .map(|&i| in_contact.get(i).copied().unwrap_or(false))
             .collect();
         let qmax = sim
             .force_n()
@@ -731,6 +776,21 @@ mod tests {
             (f64::NAN, 1.0),
         ] {
             assert_eq!(floor_125(x), want, "{x}");
+        }
+        use super::ceil_125;
+        for (x, want) in [
+            (1.0, 1.0),
+            (1.2, 2.0),
+            (2.0, 2.0),
+            (3.3, 5.0),
+            (5.0, 5.0),
+            (6.0, 10.0),
+            (10.0, 10.0),
+            (73.0, 100.0),
+            (0.3, 1.0),
+            (f64::NAN, 1.0),
+        ] {
+            assert_eq!(ceil_125(x), want, "{x}");
         }
     }
 }

@@ -3,7 +3,6 @@
 //! decimation (drawing cost scales with the plot width, not the run length).
 
 use super::legend_place::{self, SHORT_PLOT_PX, legend_text};
-use super::point_color;
 use crate::gui::model::history::{History, Quantity};
 /// The clip level of impact spikes, shared with the exported and
 /// command-line figures.
@@ -381,9 +380,13 @@ pub const IMPACT_LABEL: &str = "impact (impulse / dt, clipped)";
 /// The entries of a time plot's legend: one per shown point, and the
 /// clipped impacts' marks in a clipped force plot (for its size).
 fn legend_names(history: &History, shown: &[bool], def: &PlotDef, clip: bool) -> Vec<String> {
-    let mut names: Vec<String> = (0..history.num_points())
+    let chosen: Vec<usize> = (0..history.num_points())
         .filter(|&i| shown.get(i).copied().unwrap_or(false))
-        .map(|i| format!("point {i}"))
+        .collect();
+    let mut names: Vec<String> = chosen
+        .iter()
+        .map(|&i| crate::output::figures::point_legend_name(&chosen, i))
+        .filter(|n| !n.is_empty())
         .collect();
     if clip && def.what == Quantity::Force {
         names.push(IMPACT_LABEL.to_owned());
@@ -412,12 +415,13 @@ fn draw_series(
     let mut marks = Vec::new();
     let mut lines = Vec::new();
     let buckets = buckets_for(pui);
-    let shown_points = shown
+    let chosen: Vec<usize> = shown
         .iter()
         .enumerate()
         .filter(|(_, s)| **s)
-        .map(|(i, _)| i);
-    for (lane, i) in shown_points.enumerate() {
+        .map(|(i, _)| i)
+        .collect();
+    for (lane, &i) in chosen.iter().enumerate() {
         let mut pts = h.decimated(def.what, i, a, b, buckets, def.scale);
         if def.what == Quantity::Contact {
             // lane of the point, raised while in contact
@@ -431,8 +435,8 @@ fn draw_series(
         }
         ink.add(pui, &pts);
         lines.push(
-            Line::new(format!("point {i}"), pts)
-                .color(point_color(i))
+            Line::new(crate::output::figures::point_legend_name(&chosen, i), pts)
+                .color(super::shown_point_color(&chosen, i))
                 .width(CURVE_WIDTH_PX)
                 .allow_band(false),
         );
@@ -529,11 +533,26 @@ fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
         ui.separator();
         ui.label("points:");
         let n = opts.shown.len();
-        for (i, s) in opts.shown.iter_mut().enumerate().take(24) {
-            ui.checkbox(s, egui::RichText::new(i.to_string()).color(super::point_label_color(ui.visuals(), i)));
+        // more than eight shown: their labels in the lines' ramp colours
+        let chosen: Vec<usize> = (0..n).filter(|&i| opts.shown[i]).collect();
+        let ramp = chosen.len() > crate::output::figures::PALETTE_SERIES_MAX;
+        // 24 boxes, from the first shown point's group of eight (a patch's
+        // row 3 clicked: points 48 to 71, not 0 to 23 all unticked)
+        let start = checkbox_start(&chosen, n);
+        let end = (start + HEADER_POINTS).min(n);
+        if start > 0 {
+            ui.label(format!("(0–{} …)", start - 1));
         }
-        if n > 24 {
-            ui.label(format!("(+{} more)", n - 24));
+        for (i, s) in opts.shown.iter_mut().enumerate().take(end).skip(start) {
+            let color = if ramp && *s {
+                super::shown_point_color(&chosen, i)
+            } else {
+                super::point_label_color(ui.visuals(), i)
+            };
+            ui.checkbox(s, egui::RichText::new(i.to_string()).color(color));
+        }
+        if n > end {
+            ui.label(format!("(+{} more)", n - end));
         }
         if ui.small_button("all").clicked() {
             opts.shown.iter_mut().for_each(|s| *s = true);
@@ -544,6 +563,18 @@ fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
         ui.separator();
         clip_checkbox(ui, &mut opts.clip_impacts);
     });
+}
+
+/// Points with a box of their own above the time plots.
+const HEADER_POINTS: usize = 24;
+
+/// The first point of the header's boxes: 0, or the group of eight of the
+/// first shown point where that is past the first [`HEADER_POINTS`].
+pub fn checkbox_start(chosen: &[usize], n: usize) -> usize {
+    match chosen.first() {
+        Some(&f) if f >= HEADER_POINTS && n > HEADER_POINTS => (f - f % 8).min(n - HEADER_POINTS),
+        _ => 0,
+    }
 }
 
 /// The "clip impact spikes" switch of a force plot.
@@ -562,6 +593,17 @@ pub fn clip_checkbox(ui: &mut Ui, clip_impacts: &mut bool) {
 #[cfg(test)]
 mod tests {
     use super::legend_strip_s;
+
+    #[test]
+    fn the_header_boxes_start_at_the_first_shown_points_group() {
+        use super::checkbox_start;
+        assert_eq!(checkbox_start(&[0, 1, 2], 96), 0);
+        assert_eq!(checkbox_start(&[20, 21], 96), 0);
+        let row: Vec<usize> = (48..64).collect();
+        assert_eq!(checkbox_start(&row, 96), 48);
+        assert_eq!(checkbox_start(&[90], 96), 72);
+        assert_eq!(checkbox_start(&[], 96), 0);
+    }
 
     #[test]
     fn the_legend_strip_takes_the_legend_width_of_the_frame() {

@@ -11,8 +11,9 @@ mod legend;
 mod mode_bar_colours;
 mod mode_bars_layout;
 mod panel;
-mod patch_rows;
+pub(crate) mod patch_rows;
 mod picker_contrast;
+mod road_visible;
 mod scene_ticks;
 mod steady_plot;
 mod theme;
@@ -198,8 +199,7 @@ fn muting_below_the_rank_of_rigid_contact_is_refused_with_the_reason() {
     assert!(
         m.error
             && m.text.starts_with("Mute of mode 0 not applied")
-            && m.text
-                .contains("each of the 3 points must be able to move on its own")
+            && m.text.contains("move each of the 3 points on its own")
             && m.text.contains("keep more modes playing"),
         "{m:?}"
     );
@@ -213,6 +213,7 @@ fn muting_below_the_rank_of_rigid_contact_is_refused_with_the_reason() {
     h.get_by_label("Keep the modes playing").click();
     h.run();
     assert!(h.query_by_label("Use compliant contact").is_none());
+    assert!(h.state().message().is_none(), "the refusal's banner stays");
     assert_eq!(h.state().scene(), &before);
     // "Use compliant contact": the solo applies with a tread spring
     h.get_all_by_label("Solo").nth(1).unwrap().click();
@@ -222,6 +223,8 @@ fn muting_below_the_rank_of_rigid_contact_is_refused_with_the_reason() {
     assert!(!h.state().scene().contact.is_rigid(), "still rigid");
     assert_eq!(h.state().mutes().unwrap().muted, [true, false, true]);
     assert!(h.query_by_label("Use compliant contact").is_none());
+    // the solo applied: its refusal's banner gone with its cause
+    assert!(h.state().message().is_none(), "{:?}", h.state().message());
 }
 
 #[test]

@@ -15,7 +15,7 @@ use tirecontact::gui::{App, Command, View};
 
 /// Centres of the full-size markers (7 px: discs on the road, diamonds in
 /// flight) and of the faded rows' markers inside `frame`.
-fn markers(shapes: &[Shape], frame: egui::Rect) -> (Vec<egui::Pos2>, Vec<egui::Pos2>) {
+pub(crate) fn markers(shapes: &[Shape], frame: egui::Rect) -> (Vec<egui::Pos2>, Vec<egui::Pos2>) {
     let (mut full, mut faded) = (Vec::new(), Vec::new());
     for s in shapes {
         match s {
@@ -102,6 +102,13 @@ fn a_patch_shows_one_row_in_full_and_names_it() {
             xs.windows(2).all(|w| w[1] - w[0] > 3.0),
             "{size:?}: full markers share a place: {xs:?}"
         );
+        // the road window zoomed to the patch: it spans most of the plot
+        let spread = xs.last().copied().unwrap_or(0.0) - xs.first().copied().unwrap_or(0.0);
+        assert!(
+            spread > 0.5 * frame.width(),
+            "{size:?}: patch {spread} px of {} px",
+            frame.width()
+        );
         // the other rows faded, every one of their points drawn
         assert_eq!(faded.len(), n - along, "{size:?}");
         let all = texts(&h);
@@ -119,6 +126,11 @@ fn a_patch_shows_one_row_in_full_and_names_it() {
             .find(|(t, _)| *t == caption)
             .unwrap_or_else(|| panic!("{size:?}: no {caption:?} in {all:?}"));
         assert!(font_px(&h, &caption) >= 20.0, "{caption:?}");
+        // beside the plot, covering neither the road nor the phase labels
+        assert!(
+            cap.left() > frame.right(),
+            "{size:?}: top view at {cap:?} over the plot {frame:?}"
+        );
         let dots: Vec<egui::Pos2> = shapes(&h)
             .iter()
             .filter_map(|s| match s {

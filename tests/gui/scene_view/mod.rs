@@ -6,3 +6,4 @@ mod force_label_tyre;
 mod force_labels;
 mod force_legend;
 mod layout;
+mod patch_rows;

@@ -8,5 +8,6 @@ mod export_layout;
 mod legend_ink;
 mod legends;
 mod paper_clip;
+mod patch_export;
 mod run_fit;
 mod solid_curves;

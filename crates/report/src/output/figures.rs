@@ -25,8 +25,89 @@ pub struct Series {
     pub name: String,
     pub points: Vec<(f64, f64)>,
     pub style: Style,
-    /// Colour index into the palette (`None`: by position).
+    /// Colour index into the palette (`None`: by position), or from
+    /// [`RAMP_BASE`] on a step of the colour ramp ([`ramp_index`]).
     pub color: Option<usize>,
+}
+
+/// The most series told apart by the palette's colours: more (a patch's
+/// row of 16 points) take colours along [`ramp_rgb`] in their order, and
+/// the legend names the first and the last.
+pub const PALETTE_SERIES_MAX: usize = 8;
+
+/// The first [`Series::color`] index of the colour ramp's steps.
+pub const RAMP_BASE: usize = 1 << 16;
+/// Steps of the colour ramp as series colour indices.
+pub const RAMP_STEPS: usize = 256;
+
+/// The series colour index of the ramp at `f` (0 to 1).
+pub fn ramp_index(f: f64) -> usize {
+    let f = if f.is_finite() {
+        f.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    RAMP_BASE + (f * (RAMP_STEPS - 1) as f64).round() as usize
+}
+
+/// The ramp's step of series colour index `index` (0 to 1), if it is one.
+pub fn ramp_fraction(index: usize) -> Option<f64> {
+    (RAMP_BASE..RAMP_BASE + RAMP_STEPS)
+        .contains(&index)
+        .then(|| (index - RAMP_BASE) as f64 / (RAMP_STEPS - 1) as f64)
+}
+
+/// The colour ramp at `f` (0 to 1): blue, green, olive, orange, wine, each
+/// dark enough to read on white and light enough on a dark background.
+pub fn ramp_rgb(f: f64) -> (u8, u8, u8) {
+    const STOPS: [(f64, f64, f64); 5] = [
+        (0.0, 95.0, 155.0),
+        (0.0, 158.0, 115.0),
+        (160.0, 160.0, 20.0),
+        (213.0, 94.0, 0.0),
+        (136.0, 34.0, 85.0),
+    ];
+    let f = if f.is_finite() {
+        f.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let x = f * (STOPS.len() - 1) as f64;
+    let k = (x.floor() as usize).min(STOPS.len() - 2);
+    let t = x - k as f64;
+    let (a, b) = (STOPS[k], STOPS[k + 1]);
+    let mix = |u: f64, v: f64| (u + t * (v - u)).round() as u8;
+    (mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+/// The colour index of point `i` among `chosen` (the points drawn, in
+/// order): its own palette colour up to [`PALETTE_SERIES_MAX`] points, else
+/// its step along the ramp.
+pub fn point_color_index(chosen: &[usize], i: usize) -> usize {
+    let n = chosen.len();
+    if n <= PALETTE_SERIES_MAX {
+        return i;
+    }
+    let rank = chosen.iter().position(|&c| c == i).unwrap_or(0);
+    ramp_index(rank as f64 / (n - 1) as f64)
+}
+
+/// The legend name of point `i` among `chosen`: `point i`; beyond
+/// [`PALETTE_SERIES_MAX`] points only the first and the last are named
+/// (`point 32 (first of 16)`, `point 47 (last)`), the others colours
+/// between them on the ramp.
+pub fn point_legend_name(chosen: &[usize], i: usize) -> String {
+    let n = chosen.len();
+    if n <= PALETTE_SERIES_MAX {
+        return format!("point {i}");
+    }
+    if chosen.first() == Some(&i) {
+        format!("point {i} (first of {n}, colours along the ramp)")
+    } else if chosen.last() == Some(&i) {
+        format!("point {i} (last)")
+    } else {
+        String::new()
+    }
 }
 
 impl Series {

@@ -5,8 +5,10 @@
 //! Rows are the points sharing one `y` (a grid's rows across); the cell of
 //! a point is `Δx Δy`, the spacings of a [`tirecontact_io::scene::PointGrid`] or, for
 //! a list, the smallest spacing along within a row and between rows. The
-//! contact area at a step is the number of points on the road times the
-//! cell.
+//! contact area at a step is the number of points carrying force (a
+//! contact force above 0 N in the step) times the cell: a point that only
+//! touches the road without load, as every point does while the preload
+//! is ramped in from 0, is not counted ([`carrying_points`]).
 
 use crate::output::figures::FigureError;
 #[cfg(feature = "figures")]
@@ -116,6 +118,12 @@ impl PatchLayout {
                 )
             },
         )
+    }
+
+    /// The contact area (m²) of the points' `forces_n` (N): the points
+    /// carrying force times the cell ([`carrying_points`]).
+    pub fn contact_area_m2(&self, forces_n: &[f64]) -> f64 {
+        carrying_points(forces_n) as f64 * self.cell_area_m2()
     }
 
     /// The area of one point's cell (m²).
@@ -233,6 +241,12 @@ impl PatchRecorder {
     }
 }
 
+/// The points counted in the contact area: those whose contact force is
+/// above 0 N.
+pub fn carrying_points(forces_n: &[f64]) -> usize {
+    forces_n.iter().filter(|&&f| f > 0.0).count()
+}
+
 impl Probe for PatchRecorder {
     fn after_step(&mut self, sim: &Simulation) -> std::io::Result<()> {
         let step = sim.steps();
@@ -246,10 +260,9 @@ impl Probe for PatchRecorder {
                 total += f;
                 self.rows_n[base + self.layout.row_of_point[i]] += f;
             }
-            let on = sim.in_contact().iter().filter(|&&c| c).count();
             self.t_s.push(sim.time_s());
             self.total_n.push(total);
-            self.area_m2.push(on as f64 * self.layout.cell_area_m2());
+            self.area_m2.push(self.layout.contact_area_m2(q));
         }
         if self.frames.len() < self.frame_steps.len() && step >= self.frame_steps[self.frames.len()]
         {
@@ -429,5 +442,45 @@ mod tests {
         }
         assert_eq!(force_colour(-1.0, 10.0), RGBColor(255, 255, 255));
         assert_eq!(force_colour(5.0, 0.0), RGBColor(255, 255, 255));
+    }
+}
+
+#[cfg(test)]
+mod area_tests {
+    use super::*;
+    use tirecontact_io::Scene;
+    use tirecontact_io::SceneSimulation;
+
+    /// The area is the points carrying force times the cell at every step,
+    /// none without force (before the first step every point is on the
+    /// road, at 0 N); while the preload ramps in from 0 the points touching
+    /// the road carry little force, and count.
+    #[test]
+    fn the_contact_area_counts_the_points_carrying_force() {
+        let mut scene = Scene::load(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/patch_chip_seal.ron"
+        )))
+        .unwrap();
+        scene.duration_s = 200.0 * scene.dt_s;
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        let mut rec = PatchRecorder::new(&scene, 1, 0).unwrap();
+        let cell = rec.layout.cell_area_m2();
+        assert_eq!(rec.layout.contact_area_m2(sim.force_n()), 0.0, "at rest");
+        let mut loaded = false;
+        while !sim.finished() {
+            sim.step().unwrap();
+            rec.after_step(&sim).unwrap();
+            let k = rec.area_m2.len() - 1;
+            let carrying = sim.force_n().iter().filter(|&&f| f > 0.0).count();
+            assert_eq!(rec.area_m2[k], carrying as f64 * cell, "step {k}");
+            if rec.total_n[k] == 0.0 {
+                assert_eq!(rec.area_m2[k], 0.0, "step {k}: area without force");
+            } else {
+                loaded = true;
+            }
+        }
+        assert!(loaded, "no force in 200 steps");
+        assert_eq!(carrying_points(&[0.0, 1.0, -0.0, 2.5]), 2);
     }
 }

@@ -299,12 +299,13 @@ impl Recording {
         value: &dyn Fn(usize, usize) -> f64,
         name: &dyn Fn(usize) -> String,
     ) -> Vec<Series> {
-        self.chosen(points)
-            .into_iter()
-            .map(|i| {
+        let chosen = self.chosen(points);
+        chosen
+            .iter()
+            .map(|&i| {
                 let pts = (0..self.t_s.len()).map(|k| (self.t_s[k], value(i, k)));
                 let mut s = Series::line(name(i), pts.collect());
-                s.color = Some(i);
+                s.color = Some(super::figures::point_color_index(&chosen, i));
                 s
             })
             .collect()
@@ -323,6 +324,7 @@ impl Recording {
     /// of kN against a rolling force of about 1 kN).
     pub fn figure(&self, spec: &FigureSpec<'_>) -> Figure {
         let points = spec.points;
+        let chosen = self.chosen(points);
         let window = summary::duration_text(self.window_ms(spec.dt_s) * 1e-3, 3);
         let panels = spec
             .panels
@@ -331,7 +333,7 @@ impl Recording {
             .map(|(n, &what)| {
                 let name = |i: usize| {
                     if n == 0 {
-                        format!("point {i}")
+                        super::figures::point_legend_name(&chosen, i)
                     } else {
                         String::new()
                     }

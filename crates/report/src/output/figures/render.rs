@@ -33,6 +33,18 @@ pub const PALETTE: [RGBColor; 10] = [
     RGBColor(140, 86, 75),
 ];
 
+/// The colour of series colour index `index`: the palette's (cycled), or
+/// a step of the colour ramp (`super::ramp_index`).
+pub fn series_color(index: usize) -> RGBColor {
+    match super::ramp_fraction(index) {
+        Some(f) => {
+            let (r, g, b) = super::ramp_rgb(f);
+            RGBColor(r, g, b)
+        }
+        None => PALETTE[index % PALETTE.len()],
+    }
+}
+
 pub(crate) fn register_fonts() {
     // in a browser plotters takes its fonts from the page
     #[cfg(not(target_arch = "wasm32"))]
@@ -511,7 +523,17 @@ where
         // level with the plot's top, in the column's absolute pixels
         let (lx, ly) = legend_area.get_base_pixel();
         let (x, y) = (fs(5.0) as i32, py.start - ly);
-        draw_legend(legend_area, entries, (x, y), legend_wh, fs(14.0))?;
+        // in smaller type where the column's room below the plot's top is
+        // short of the entries (eight in a quarter of 720 px: the last two
+        // drawn over each other at the panel's bottom)
+        let room = legend_area.dim_in_pixel().1 as i32 - y;
+        let font_px = fitted_legend_font(entries.len(), fs(14.0), room);
+        let legend_wh = if font_px == fs(14.0) {
+            legend_wh
+        } else {
+            legend_size(legend_area, entries, font_px)
+        };
+        draw_legend(legend_area, entries, (x, y), legend_wh, font_px)?;
         layout.legend_px = Some([lx + x, ly + y, lx + x + legend_wh.0, ly + y + legend_wh.1]);
     } else if !entries.is_empty() {
         chart
@@ -590,7 +612,7 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    let c = PALETTE[s.color.unwrap_or(k) % PALETTE.len()];
+    let c = series_color(s.color.unwrap_or(k));
     let pts = s
         .points
         .iter()

@@ -84,11 +84,29 @@ pub(super) fn legend_size(
         })
         .max()
         .unwrap_or(0);
-    let row = (1.6 * f64::from(font_px)).round() as i32;
     (
         text_w as i32 + 20 + 3 * 8,
-        row * entries.len() as i32 + 2 * 6,
+        legend_height(entries.len(), font_px),
     )
+}
+
+/// Height (px) of a legend box of `entries` rows in `font_px` text (as
+/// [`legend_size`] lays it out).
+pub(super) fn legend_height(entries: usize, font_px: u32) -> i32 {
+    (1.6 * f64::from(font_px)).round() as i32 * entries as i32 + 2 * 6
+}
+
+/// The least font size (px) a legend is shrunk to.
+pub(super) const LEGEND_MIN_FONT_PX: u32 = 7;
+
+/// The font size (px) of a legend of `entries` rows: `font_px`, or the
+/// largest smaller size whose box fits in `room_px` (at least
+/// [`LEGEND_MIN_FONT_PX`]).
+pub(super) fn fitted_legend_font(entries: usize, font_px: u32, room_px: i32) -> u32 {
+    (LEGEND_MIN_FONT_PX..=font_px.max(LEGEND_MIN_FONT_PX))
+        .rev()
+        .find(|&f| legend_height(entries, f) <= room_px)
+        .unwrap_or(LEGEND_MIN_FONT_PX)
 }
 
 /// Draws the legend box of `entries` with its top left at `(x, y)` of `area`.
@@ -209,7 +227,7 @@ pub(super) fn panel_legend(
         .enumerate()
         .filter(|(_, s)| !s.name.is_empty())
         .map(|(k, s)| {
-            let c = PALETTE[s.color.unwrap_or(k) % PALETTE.len()];
+            let c = series_color(s.color.unwrap_or(k));
             (s.name.clone(), c, key_style(s), stroke_of(s, scale))
         })
         .collect();
@@ -226,6 +244,18 @@ pub(super) fn panel_legend(
 #[cfg(test)]
 mod corner_tests {
     use super::*;
+
+    #[test]
+    fn a_legend_shrinks_its_type_to_fit_its_room() {
+        // eight entries at 14 px: 8 x 22 + 12 = 188 px
+        assert_eq!(legend_height(8, 14), 188);
+        assert_eq!(fitted_legend_font(8, 14, 200), 14);
+        let f = fitted_legend_font(8, 14, 150);
+        assert!(f < 14 && legend_height(8, f) <= 150, "{f}");
+        assert!(legend_height(8, f + 1) > 150, "{f}: not the largest");
+        // no room at all: the least size, never zero
+        assert_eq!(fitted_legend_font(8, 14, 10), LEGEND_MIN_FONT_PX);
+    }
 
     /// A line between two points outside the upper right corner crosses
     /// it: the legend goes to another, empty corner.

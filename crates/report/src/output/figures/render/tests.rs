@@ -560,3 +560,59 @@ fn a_short_panel_gets_three_numeric_labels_at_least() {
         }
     }
 }
+
+/// Eight series in a quarter of a 1280 × 720 figure, every corner of the
+/// plots taken (the legend beside them): the whole legend in its own
+/// panel, its entries apart (the last two were drawn over each other at
+/// the panel's bottom).
+#[test]
+fn eight_entries_beside_a_short_plot_stay_in_its_panel() {
+    let dense = |k0: usize| -> Vec<(f64, f64)> {
+        (0..400)
+            .map(|k| {
+                (
+                    k as f64,
+                    if (k + k0).is_multiple_of(2) {
+                        0.0
+                    } else {
+                        10.0
+                    },
+                )
+            })
+            .collect()
+    };
+    let panel = |named: bool| Panel {
+        title: "a panel".into(),
+        x_label: "time t (s)".into(),
+        y_label: "u (mm)".into(),
+        series: (0..8)
+            .map(|i| {
+                let name = if named {
+                    format!("point {i}")
+                } else {
+                    String::new()
+                };
+                let mut s = Series::line(name, dense(i));
+                s.color = Some(i);
+                s
+            })
+            .collect(),
+        ..Panel::default()
+    };
+    let fig = Figure {
+        title: "t".into(),
+        subtitle: "s".into(),
+        panels: vec![panel(true), panel(false), panel(false), panel(false)],
+    };
+    for (w, h) in [(1280, 720), (800, 600)] {
+        let (_, l) = render_rgb_layout(&fig, w, h).unwrap();
+        let legend = l[0].legend_px.expect("beside the plot");
+        assert!(
+            legend[3] < l[1].plot_px[1],
+            "{w}x{h}: the legend {legend:?} runs into the next panel {:?}",
+            l[1].plot_px
+        );
+        // eight rows, each at least 7 px of text and 1.6 of that apart
+        assert!(legend[3] - legend[1] >= 8 * 11 + 12, "{legend:?}");
+    }
+}
