@@ -50,6 +50,14 @@ pub struct SurfaceGrid {
     pub periodic_y: bool,
     pub z_m: Vec<f64>,
     pub dzdx: Vec<f64>,
+    /// The rows' positions across (m), strictly increasing, where they are
+    /// not evenly spaced (an OpenCRG file's long sections at explicit `v`);
+    /// empty for an even grid. `y0_m` is then the first and `dy_m` the mean
+    /// spacing.
+    pub rows_y_m: Vec<f64>,
+    /// The height (m) taken off the file's heights to refer them to the
+    /// road's mean plane (an OpenCRG file); 0 otherwise.
+    pub datum_m: f64,
 }
 
 /// Where a point sits across the grid: rows `j0`, `j1` and the weight `w`
@@ -100,12 +108,17 @@ impl SurfaceGrid {
             periodic_y: false,
             z_m,
             dzdx,
+            rows_y_m: Vec::new(),
+            datum_m: 0.0,
         }
     }
 
     /// The range of `y` (m) the grid covers; `None` when it repeats across.
     pub fn y_range_m(&self) -> Option<(f64, f64)> {
-        (!self.periodic_y).then(|| (self.y0_m, self.y0_m + (self.ny - 1) as f64 * self.dy_m))
+        (!self.periodic_y).then(|| match self.rows_y_m.last() {
+            Some(&last) => (self.y0_m, last),
+            None => (self.y0_m, self.y0_m + (self.ny - 1) as f64 * self.dy_m),
+        })
     }
 
     /// The range of `x` (m) covered by one period (looped) or by the grid.
@@ -121,6 +134,9 @@ impl SurfaceGrid {
 
     /// The rows a point at `y` (m) blends; `None` outside a file's grid.
     pub fn rows_at(&self, y_m: f64) -> Option<RowBlend> {
+        if !self.rows_y_m.is_empty() {
+            return self.uneven_rows_at(y_m);
+        }
         let u = (y_m - self.y0_m) / self.dy_m;
         if self.periodic_y {
             let u = u.rem_euclid(self.ny as f64);
@@ -143,6 +159,29 @@ impl SurfaceGrid {
             j1: (j0 + 1).min(self.ny - 1),
             w: (u - j0 as f64).clamp(0.0, 1.0),
         })
+    }
+
+    /// [`SurfaceGrid::rows_at`] on rows at the positions `rows_y_m`:
+    /// linear between the two rows around `y`.
+    fn uneven_rows_at(&self, y_m: f64) -> Option<RowBlend> {
+        let y = &self.rows_y_m;
+        let (lo, hi) = (y[0], y[y.len() - 1]);
+        let tol = GRID_TOLERANCE * self.dy_m;
+        if !(y_m >= lo - tol && y_m <= hi + tol) {
+            return None;
+        }
+        if y.len() == 1 {
+            return Some(RowBlend {
+                j0: 0,
+                j1: 0,
+                w: 0.0,
+            });
+        }
+        let yy = y_m.clamp(lo, hi);
+        // rows j0 < j1 with y[j0] <= yy <= y[j1]
+        let j0 = (y.partition_point(|&r| r <= yy).max(1) - 1).min(y.len() - 2);
+        let w = ((yy - y[j0]) / (y[j0 + 1] - y[j0])).clamp(0.0, 1.0);
+        Some(RowBlend { j0, j1: j0 + 1, w })
     }
 
     /// Height (m) and slope along `x` (-) of row `j` at `x` (m).
@@ -175,6 +214,10 @@ impl SurfaceGrid {
     /// is at `x` (m).
     #[inline]
     pub fn sample_blend(&self, rows: RowBlend, x_m: f64) -> Result<(f64, f64), OutOfRange> {
+        // a row of weight 0 is not read (it may hold no height there)
+        if rows.w == 1.0 {
+            return self.sample_row(rows.j1, x_m);
+        }
         let (z0, d0) = self.sample_row(rows.j0, x_m)?;
         if rows.w == 0.0 {
             return Ok((z0, d0));
