@@ -220,6 +220,7 @@ impl CrgRoad {
             dzdx,
             rows_y_m,
             datum_m: datum,
+            file_origin_m: (u_start_m, v_offset_m),
         }
     }
 }

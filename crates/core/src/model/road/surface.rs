@@ -58,6 +58,9 @@ pub struct SurfaceGrid {
     /// The height (m) taken off the file's heights to refer them to the
     /// road's mean plane (an OpenCRG file); 0 otherwise.
     pub datum_m: f64,
+    /// The file's own coordinates (m) of `(x, y) = (0, 0)`: an OpenCRG
+    /// file's `(u, v)` there; `(0, 0)` otherwise.
+    pub file_origin_m: (f64, f64),
 }
 
 /// Where a point sits across the grid: rows `j0`, `j1` and the weight `w`
@@ -110,6 +113,7 @@ impl SurfaceGrid {
             dzdx,
             rows_y_m: Vec::new(),
             datum_m: 0.0,
+            file_origin_m: (0.0, 0.0),
         }
     }
 
@@ -182,6 +186,37 @@ impl SurfaceGrid {
         let j0 = (y.partition_point(|&r| r <= yy).max(1) - 1).min(y.len() - 2);
         let w = ((yy - y[j0]) / (y[j0 + 1] - y[j0])).clamp(0.0, 1.0);
         Some(RowBlend { j0, j1: j0 + 1, w })
+    }
+
+    /// The first node without height (its `(x, y)`, m) that a point
+    /// blending `rows` reads while it moves from `x_from_m` to `x_to_m`
+    /// (the nodes of every interval it crosses, in the rows of weight > 0);
+    /// `None` if there is none. For a grid that is not looped.
+    pub fn gap_on_path(&self, rows: RowBlend, x_from_m: f64, x_to_m: f64) -> Option<(f64, f64)> {
+        let last = self.nx.saturating_sub(1);
+        let index = |x: f64| ((x - self.x0_m) / self.dx_m).clamp(0.0, last as f64);
+        let (a, b) = (index(x_from_m.min(x_to_m)), index(x_from_m.max(x_to_m)));
+        let (m0, m1) = (a.floor() as usize, (b.ceil() as usize).min(last));
+        let mut used = Vec::with_capacity(2);
+        if rows.w < 1.0 {
+            used.push(rows.j0);
+        }
+        if rows.w > 0.0 {
+            used.push(rows.j1);
+        }
+        for m in m0..=m1 {
+            for &j in &used {
+                if !self.z_m[j * self.nx + m].is_finite() {
+                    let y = self
+                        .rows_y_m
+                        .get(j)
+                        .copied()
+                        .unwrap_or(self.y0_m + j as f64 * self.dy_m);
+                    return Some((self.x0_m + m as f64 * self.dx_m, y));
+                }
+            }
+        }
+        None
     }
 
     /// Height (m) and slope along `x` (-) of row `j` at `x` (m).
@@ -258,7 +293,11 @@ impl SurfaceGrid {
         let (mut sum, mut count) = (0.0, 0usize);
         for j in 0..self.ny {
             let row = &self.z_m[j * self.nx..(j + 1) * self.nx];
-            for seg in row.chunks_exact(per) {
+            // (a baseline over cells without height is left out)
+            for seg in row
+                .chunks_exact(per)
+                .filter(|s| s.iter().all(|z| z.is_finite()))
+            {
                 sum += segment_depth(seg);
                 count += 1;
             }

@@ -146,6 +146,7 @@ pub fn generate(
         dzdx: s.iter().map(|v| v.re).collect(),
         rows_y_m: Vec::new(),
         datum_m: 0.0,
+        file_origin_m: (0.0, 0.0),
     }
 }
 
