@@ -113,7 +113,11 @@ fn node_heights_are_the_standards_less_the_mean() {
     set_road(&mut s, None, 0.0);
     let e = refused(&s);
     assert_eq!(e.len(), 48, "{e:?}");
-    assert!(e[0].expected.contains("u = 730 m under x = 0"), "{}", e[0].expected);
+    assert!(
+        e[0].expected.contains("u = 730 m under x = 0"),
+        "{}",
+        e[0].expected
+    );
 }
 
 /// The scene's `y` points to the left, as OpenCRG's `v`: on the banked
