@@ -2,8 +2,10 @@
 //! reference line, `u` along it and `v` across it (positive to the left),
 //! written after a text header of named blocks.
 //!
-//! What is read, after the OpenCRG 1.2 format specification (its sections
-//! "File format", "Data definition" and "Evaluation"):
+//! What is read, after ASAM OpenCRG 1.2: the file format as the
+//! standard's reference loader (`crgLoader`) reads it, and its evaluation
+//! method `crgEvaluv2z` (bilinear grid, reference line height and
+//! banking):
 //!
 //! - `$CT`: comment text, skipped.
 //! - `$ROAD_CRG`: `reference_line_start_u`, `reference_line_end_u`,
