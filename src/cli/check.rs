@@ -44,6 +44,17 @@ pub fn check(path: &Path) -> CliResult {
                 "not looped"
             }
         );
+        if let tirecontact::model::road::Road::Crg { .. } = &scene.road {
+            let (lo, hi) = g.x_range_m();
+            println!(
+                "  OpenCRG road: the file covers u {:.3} m to {:.3} m; x = 0 at u = {:.3} m at the start, y = 0 at v = {:.3} m (y and v to the left); heights from the road's mean plane: {:.4} m (the absolute height offset) taken off the file's",
+                lo + g.file_origin_m.0,
+                hi + g.file_origin_m.0,
+                g.file_origin_m.0,
+                g.file_origin_m.1,
+                g.datum_m
+            );
+        }
     }
     if let (tirecontact::scene::Tyre::Plate { .. }, Some(first), Some(last)) =
         (&scene.tyre, model.modes().first(), model.modes().last())

@@ -388,3 +388,46 @@ fn run_plots_clipped_by_default_and_whole_on_request() {
         std::fs::read(d.join("whole.png")).unwrap()
     );
 }
+
+/// The OpenCRG preset: `check` prints the file's `u` range, where the
+/// patch starts and the height taken off (the road's mean height); `run`
+/// steps it; a duration past the file's end is refused naming the last
+/// time that fits.
+#[test]
+fn check_and_run_the_opencrg_preset() {
+    let o = bin()
+        .args(["check", "presets/patch_belgian_block.ron"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for want in [
+        "road OpenCRG",
+        "1001 × 341 nodes",
+        "the file covers u 730.000 m to 740.000 m; x = 0 at u = 731.000 m",
+        "2.1135 m (the absolute height offset)",
+    ] {
+        assert!(out.contains(want), "`{want}` missing in: {out}");
+    }
+    let o = bin()
+        .args([
+            "run",
+            "presets/patch_belgian_block.ron",
+            "--duration",
+            "0.0005",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("50 steps"));
+    let o = bin()
+        .args(["run", "presets/patch_belgian_block.ron", "--duration", "5"])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("duration_s") && err.contains("a duration <= 1.119375 s"),
+        "{err}"
+    );
+}

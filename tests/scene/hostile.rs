@@ -260,6 +260,16 @@ fn sites(s: &mut Scene) -> Vec<(String, Site<'_>)> {
             ));
         }
         Road::Surface { .. } => {}
+        Road::Crg {
+            u_start_m,
+            v_offset_m,
+            ..
+        } => {
+            if let Some(u) = u_start_m {
+                v.push(("road.u_start_m".into(), Site::F(u)));
+            }
+            v.push(("road.v_offset_m".into(), Site::F(v_offset_m)));
+        }
         Road::Texture {
             seed,
             length_m,

@@ -8,6 +8,7 @@
 mod support;
 
 mod bad_presets;
+mod crg;
 mod fuzz;
 mod hostile;
 mod presets;

@@ -2,6 +2,7 @@
 //! responses and FRFs), FE normal modes (UFF 55/2414 with 15/2411, 164,
 //! 2420), road profiles and surfaces (CSV).
 
+pub mod crg;
 pub mod fe_modes;
 pub mod measured;
 pub mod road;

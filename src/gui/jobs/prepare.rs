@@ -58,7 +58,7 @@ pub fn needs_preparing(scene: &Scene, cache: &ModeCache) -> bool {
 pub fn reads_road_file(road: &Road) -> bool {
     matches!(
         road,
-        Road::Measured { .. } | Road::Surface { .. } | Road::Texture { .. }
+        Road::Measured { .. } | Road::Surface { .. } | Road::Crg { .. } | Road::Texture { .. }
     )
 }
 

@@ -44,6 +44,24 @@ pub const SHIPPED: &[(&str, &str, &str)] = &[
     ),
 ];
 
+/// `(menu name, file name)` of the shipped presets that read a road file
+/// beside them: listed in the desktop's Presets menu when the repository's
+/// `presets/` folder holds them, and opened from there (so that their road
+/// files are found).
+pub const SHIPPED_WITH_FILES: &[(&str, &str)] = &[(
+    "Patch on a Belgian block track (OpenCRG file)",
+    "patch_belgian_block.ron",
+)];
+
+/// The path of a [`SHIPPED_WITH_FILES`] preset in the repository's
+/// `presets/` folder, if it is there.
+pub fn shipped_with_files_path(file: &str) -> Option<std::path::PathBuf> {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("presets")
+        .join(file);
+    p.is_file().then_some(p)
+}
+
 /// `(menu name, file name, RON text)` of every guided preset, in tour order.
 pub const GUIDED: &[(&str, &str, &str)] = &[
     (

@@ -297,11 +297,8 @@ pub fn texture(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
 
 /// A surface road's file and, once read, the facts of its grid.
 pub fn surface(ui: &mut Ui, scene: &Scene, profile: Option<&RoadProfile>) {
-    let Road::Surface { file, looped } = &scene.road else {
-        return;
-    };
-    ui.add(
-        egui::Label::new(format!(
+    let title = match &scene.road {
+        Road::Surface { file, looped } => format!(
             "road surface {} ({})",
             file.display(),
             if *looped {
@@ -309,9 +306,34 @@ pub fn surface(ui: &mut Ui, scene: &Scene, profile: Option<&RoadProfile>) {
             } else {
                 "not looped"
             }
-        ))
-        .wrap(),
-    );
+        ),
+        Road::Crg {
+            file,
+            u_start_m,
+            v_offset_m,
+        } => format!(
+            "OpenCRG road {} (from u = {}, v offset {} m; not looped)",
+            file.display(),
+            u_start_m.map_or("its start".to_string(), |u| format!("{u} m")),
+            v_offset_m
+        ),
+        _ => return,
+    };
+    ui.add(egui::Label::new(title).wrap());
+    if let Some(RoadProfile::Surface(g)) = profile
+        && g.datum_m != 0.0
+    {
+        ui.add(
+            egui::Label::new(
+                egui::RichText::new(format!(
+                    "heights from the road's mean plane: {:.4} m taken off the file's",
+                    g.datum_m
+                ))
+                .weak(),
+            )
+            .wrap(),
+        );
+    }
     if let Some(RoadProfile::Surface(g)) = profile {
         let (x0, x1) = g.x_range_m();
         let y = g

@@ -75,7 +75,9 @@ pub fn show(
             ));
         }
         Road::Random { .. } => super::random_road::show(ui, scene, cmds),
-        Road::Surface { .. } => super::patch_panel::surface(ui, scene, Some(profile)),
+        Road::Surface { .. } | Road::Crg { .. } => {
+            super::patch_panel::surface(ui, scene, Some(profile))
+        }
         Road::Texture { .. } => super::patch_panel::texture(ui, scene, cmds),
     }
     section(ui, "Speed", Apply::Live);

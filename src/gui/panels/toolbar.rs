@@ -102,11 +102,23 @@ fn file_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
     }
 }
 
-/// The shipped presets.
+/// The shipped presets; on the desktop also those reading a road file,
+/// from the repository's `presets/` folder.
 fn preset_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
     for (k, (name, file, _)) in SHIPPED.iter().enumerate() {
         if ui.button(*name).on_hover_text(*file).clicked() {
             cmds.push(Command::OpenPreset(k));
+        }
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    for (name, file) in crate::gui::model::presets::SHIPPED_WITH_FILES {
+        if let Some(path) = crate::gui::model::presets::shipped_with_files_path(file)
+            && ui
+                .button(*name)
+                .on_hover_text(path.display().to_string())
+                .clicked()
+        {
+            cmds.push(Command::OpenPath(path));
         }
     }
 }

@@ -92,6 +92,29 @@ pub enum Road {
         #[serde(default)]
         looped: bool,
     },
+    /// An ASAM OpenCRG road file (method §4.8; OpenCRG 1.2, read by
+    /// `tirecontact_io::readers::crg`): heights on a grid along the
+    /// reference line (`u`) and across it (`v`, positive to the left).
+    /// Point `(x, y)` at time `t` bears on `z(u_start + x + V t, v_offset +
+    /// y)`: the scene's `y` points to the left of the direction of travel,
+    /// as `v` does. Along `u` heights are cubic Hermite curves through the
+    /// nodes (as `Surface`), across linear; at the nodes they are the
+    /// standard's evaluation (grid, reference line slope and banking) less
+    /// the mean height of the file's nodes, so that `h_m` is measured from
+    /// the road's mean plane. The reference line's heading and curvature
+    /// do not change heights along it and are left aside. The road does not
+    /// loop: a run leaving the file's `u` range is refused.
+    Crg {
+        /// Path of the `.crg` file, relative to the scene file's folder.
+        file: PathBuf,
+        /// The `u` (m) under `x = 0` at `t = 0`; default the file's first
+        /// cross section.
+        #[serde(default)]
+        u_start_m: Option<f64>,
+        /// The `v` (m) under `y = 0`; default 0 (the reference line).
+        #[serde(default)]
+        v_offset_m: f64,
+    },
     /// A synthetic road texture (see [`texture`]): an isotropic random
     /// surface whose profiles have the PSD of ISO 8608 class `class` over
     /// `[min_wavenumber_cpm, max_wavenumber_cpm]`, periodic with `length_m`
@@ -151,7 +174,7 @@ impl Road {
                 .iter()
                 .map(|c| c.wavelength_m)
                 .fold(0.0, f64::max),
-            Road::Measured { .. } | Road::Surface { .. } => 0.5,
+            Road::Measured { .. } | Road::Surface { .. } | Road::Crg { .. } => 0.5,
             Road::Random {
                 min_wavenumber_cpm, ..
             }
@@ -169,6 +192,7 @@ impl Road {
             Road::Measured { .. } => "measured",
             Road::Random { .. } => "random",
             Road::Surface { .. } => "surface",
+            Road::Crg { .. } => "OpenCRG",
             Road::Texture { .. } => "texture",
         }
     }
@@ -367,7 +391,7 @@ impl RoadProfile {
                 phase_rad: 0.0,
             }]),
             Road::Harmonics { components } => RoadProfile::Harmonics(components.clone()),
-            Road::Measured { .. } | Road::Surface { .. } => return None,
+            Road::Measured { .. } | Road::Surface { .. } | Road::Crg { .. } => return None,
             Road::Random {
                 class,
                 seed,

@@ -154,6 +154,9 @@ impl PreparedModel {
     fn with_modes(scene: &Scene, modes: Arc<Vec<Mode>>) -> Result<Self, SceneError> {
         let road = crate::scene::load_road(&scene.road, scene.base_dir.as_deref())?;
         let mut errors = scene.surface_errors(&road);
+        if errors.is_empty() {
+            errors = scene.crg_errors(&road);
+        }
         if errors.is_empty()
             && let Some(e) = scene.ramp_error(&road)
         {

@@ -34,6 +34,7 @@ fn road_kind(r: &Road) -> &'static str {
         Road::Measured { .. } => "measured profile",
         Road::Random { .. } => "random",
         Road::Surface { .. } => "surface",
+        Road::Crg { .. } => "OpenCRG road",
         Road::Texture { .. } => "texture",
     }
 }

@@ -198,6 +198,22 @@ pub const FIELDS: &[Field] = &[
     .label("texture period across")
     .min(0.0, false),
     Field::new(
+        "road.u_start_m",
+        "m",
+        "position u along the OpenCRG file's reference line under x = 0 at the start \
+         (default: the file's first cross section)",
+    )
+    .label("OpenCRG start u")
+    .also("the run stays within the file's u range"),
+    Field::new(
+        "road.v_offset_m",
+        "m",
+        "position v across the OpenCRG file (positive to the left of the reference line) \
+         under y = 0",
+    )
+    .label("OpenCRG offset v")
+    .also("every point within the file's v range"),
+    Field::new(
         "road.min_wavenumber_cpm",
         "cycles/m",
         "lowest spatial frequency of the random road or texture: 1 / its longest wavelength",
@@ -597,6 +613,16 @@ fn road_fields<'a>(road: &'a mut Road, f: &mut Vec<(String, &'a mut f64)>) {
             f.push(("road.width_m".into(), width_m));
             f.push(("road.min_wavenumber_cpm".into(), min_wavenumber_cpm));
             f.push(("road.max_wavenumber_cpm".into(), max_wavenumber_cpm));
+        }
+        Road::Crg {
+            u_start_m,
+            v_offset_m,
+            ..
+        } => {
+            if let Some(u) = u_start_m {
+                f.push(("road.u_start_m".into(), u));
+            }
+            f.push(("road.v_offset_m".into(), v_offset_m));
         }
         Road::Measured { .. } | Road::Surface { .. } => {}
     }

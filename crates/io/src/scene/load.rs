@@ -216,6 +216,16 @@ pub fn load_road(road: &Road, base_dir: Option<&Path>) -> Result<RoadProfile, Sc
         Road::Surface { file, looped } => Ok(RoadProfile::Surface(std::sync::Arc::new(
             crate::readers::road::read_surface_csv(&path(file), *looped)?,
         ))),
+        Road::Crg {
+            file,
+            u_start_m,
+            v_offset_m,
+        } => {
+            let crg = crate::readers::crg::read_crg(&path(file))?;
+            Ok(RoadProfile::Surface(std::sync::Arc::new(
+                crg.surface(u_start_m.unwrap_or(crg.u_first_m), *v_offset_m),
+            )))
+        }
         _ => match RoadProfile::generated(road) {
             Some(Ok(profile)) => Ok(profile),
             Some(Err(errors)) => Err(SceneError::Invalid {

@@ -92,6 +92,13 @@ fn needed_file(scene: &Scene) -> Option<ShareError> {
             what: "road surface file",
         });
     }
+    if let Road::Crg { file, .. } = &scene.road {
+        return Some(ShareError::NeedsFile {
+            field: "road.file",
+            path: file.clone(),
+            what: "OpenCRG road file",
+        });
+    }
     None
 }
 
@@ -217,7 +224,7 @@ mod tests {
                     assert!(
                         name.starts_with("measured")
                             || matches!(scene.tyre, Tyre::FeModes { .. })
-                            || matches!(scene.road, Road::Surface { .. }),
+                            || matches!(scene.road, Road::Surface { .. } | Road::Crg { .. }),
                         "{name} refused: {field}"
                     );
                 }

@@ -33,6 +33,84 @@ impl Scene {
             .collect()
     }
 
+    /// What an OpenCRG road (it does not loop) refuses of a run, each
+    /// named: a point starting before the file's first cross section, a
+    /// run lasting past the time the first point reaches its last (the
+    /// last time that fits named), a point whose path crosses a cell
+    /// without height. Empty for other roads.
+    pub fn crg_errors(&self, road: &RoadProfile) -> Vec<FieldError> {
+        let (Road::Crg { .. }, Some(g)) = (&self.road, road.surface()) else {
+            return Vec::new();
+        };
+        let (u0, v0) = g.file_origin_m;
+        let (lo, hi) = g.x_range_m();
+        let tol = tirecontact_core::model::road::surface::GRID_TOLERANCE * g.dx_m;
+        let speed = self.speed_mps.max(0.0);
+        let travel = speed * self.duration_s;
+        let mut e = Vec::new();
+        let points: Vec<(f64, f64)> = self.points.iter().map(|p| (p.x_m, p.y_m)).collect();
+        for (i, &(x, _)) in points.iter().enumerate() {
+            if x < lo - tol || x > hi + tol {
+                e.push(FieldError {
+                    field: format!("points[{i}].x_m"),
+                    value: fmt_num(x),
+                    expected: format!(
+                        "a position on the OpenCRG road at the start: x from {} m to {} m (u from {} m to {} m, u = {} m under x = 0)",
+                        fmt_num(lo),
+                        fmt_num(hi),
+                        fmt_num(lo + u0),
+                        fmt_num(hi + u0),
+                        fmt_num(u0)
+                    ),
+                });
+            }
+        }
+        if !e.is_empty() {
+            return e;
+        }
+        if speed > 0.0
+            && let Some((i, x)) = points
+                .iter()
+                .map(|p| p.0)
+                .enumerate()
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+            && x + travel > hi + tol
+        {
+            let t_last = (hi - x) / speed;
+            e.push(FieldError {
+                field: "duration_s".into(),
+                value: fmt_num(self.duration_s),
+                expected: format!(
+                    "a duration <= {} s: at {} m/s point {i} reaches the end of the OpenCRG road (x = {} m, u = {} m) then; the road does not loop",
+                    fmt_num(t_last),
+                    fmt_num(speed),
+                    fmt_num(hi),
+                    fmt_num(hi + u0)
+                ),
+            });
+            return e;
+        }
+        for (i, &(x, y)) in points.iter().enumerate() {
+            let Some(rows) = g.rows_at(y) else {
+                continue; // refused by `surface_errors`
+            };
+            if let Some((xg, yg)) = g.gap_on_path(rows, x, x + travel) {
+                e.push(FieldError {
+                    field: format!("points[{i}]"),
+                    value: format!("(x {} m, y {} m)", fmt_num(x), fmt_num(y)),
+                    expected: format!(
+                        "a path over heights: the OpenCRG file has no height at u = {} m, v = {} m (x = {} m, y = {} m), which the point reaches within the run",
+                        fmt_num(xg + u0),
+                        fmt_num(yg + v0),
+                        fmt_num(xg),
+                        fmt_num(yg)
+                    ),
+                });
+            }
+        }
+        e
+    }
+
     /// `T_ramp = 0` is allowed only where no point starts below the road
     /// (`z(x_i) - h_i <= 0` for all `i`, method §4).
     pub fn ramp_error(&self, road: &RoadProfile) -> Option<FieldError> {
@@ -100,7 +178,7 @@ impl Scene {
         // is loaded: `PreparedModel`)
         if !matches!(
             self.road,
-            Road::Measured { .. } | Road::Surface { .. } | Road::Texture { .. }
+            Road::Measured { .. } | Road::Surface { .. } | Road::Crg { .. } | Road::Texture { .. }
         ) && let Ok(prof) = load_road(&self.road, None)
             && let Some(e) = self.ramp_error(&prof)
         {
@@ -279,6 +357,27 @@ fn validate_road(v: &mut Validator, road: &Road) {
                     "the path of a CSV of `x_m,y_m,z_m` rows (a height grid)",
                 );
             }
+        }
+        Road::Crg {
+            file,
+            u_start_m,
+            v_offset_m,
+        } => {
+            if file.as_os_str().is_empty() {
+                v.push("road.file", "\"\"", "the path of an OpenCRG (.crg) file");
+            }
+            if let Some(u) = u_start_m {
+                v.finite(
+                    "road.u_start_m",
+                    *u,
+                    "a finite position along the road in m",
+                );
+            }
+            v.finite(
+                "road.v_offset_m",
+                *v_offset_m,
+                "a finite position across the road in m",
+            );
         }
         Road::Texture { .. } => v.errors.extend(road.texture_errors("road")),
     }

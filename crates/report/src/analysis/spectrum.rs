@@ -365,6 +365,7 @@ pub fn markers(
         Road::Measured { .. }
         | Road::Random { .. }
         | Road::Surface { .. }
+        | Road::Crg { .. }
         | Road::Texture { .. } => Vec::new(),
     };
     let mut excitation = Vec::new();

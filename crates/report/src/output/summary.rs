@@ -122,6 +122,12 @@ fn road_text(road: &Road) -> String {
                 .unwrap_or(file.as_os_str())
                 .to_string_lossy()
         ),
+        Road::Crg { file, .. } => format!(
+            "OpenCRG road {}",
+            file.file_name()
+                .unwrap_or(file.as_os_str())
+                .to_string_lossy()
+        ),
         Road::Texture { class, seed, .. } => {
             format!("class {class:?} texture, seed {seed}")
         }

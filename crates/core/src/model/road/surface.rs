@@ -50,6 +50,17 @@ pub struct SurfaceGrid {
     pub periodic_y: bool,
     pub z_m: Vec<f64>,
     pub dzdx: Vec<f64>,
+    /// The rows' positions across (m), strictly increasing, where they are
+    /// not evenly spaced (an OpenCRG file's long sections at explicit `v`);
+    /// empty for an even grid. `y0_m` is then the first and `dy_m` the mean
+    /// spacing.
+    pub rows_y_m: Vec<f64>,
+    /// The height (m) taken off the file's heights to refer them to the
+    /// road's mean plane (an OpenCRG file); 0 otherwise.
+    pub datum_m: f64,
+    /// The file's own coordinates (m) of `(x, y) = (0, 0)`: an OpenCRG
+    /// file's `(u, v)` there; `(0, 0)` otherwise.
+    pub file_origin_m: (f64, f64),
 }
 
 /// Where a point sits across the grid: rows `j0`, `j1` and the weight `w`
@@ -100,12 +111,18 @@ impl SurfaceGrid {
             periodic_y: false,
             z_m,
             dzdx,
+            rows_y_m: Vec::new(),
+            datum_m: 0.0,
+            file_origin_m: (0.0, 0.0),
         }
     }
 
     /// The range of `y` (m) the grid covers; `None` when it repeats across.
     pub fn y_range_m(&self) -> Option<(f64, f64)> {
-        (!self.periodic_y).then(|| (self.y0_m, self.y0_m + (self.ny - 1) as f64 * self.dy_m))
+        (!self.periodic_y).then(|| match self.rows_y_m.last() {
+            Some(&last) => (self.y0_m, last),
+            None => (self.y0_m, self.y0_m + (self.ny - 1) as f64 * self.dy_m),
+        })
     }
 
     /// The range of `x` (m) covered by one period (looped) or by the grid.
@@ -121,6 +138,9 @@ impl SurfaceGrid {
 
     /// The rows a point at `y` (m) blends; `None` outside a file's grid.
     pub fn rows_at(&self, y_m: f64) -> Option<RowBlend> {
+        if !self.rows_y_m.is_empty() {
+            return self.uneven_rows_at(y_m);
+        }
         let u = (y_m - self.y0_m) / self.dy_m;
         if self.periodic_y {
             let u = u.rem_euclid(self.ny as f64);
@@ -143,6 +163,60 @@ impl SurfaceGrid {
             j1: (j0 + 1).min(self.ny - 1),
             w: (u - j0 as f64).clamp(0.0, 1.0),
         })
+    }
+
+    /// [`SurfaceGrid::rows_at`] on rows at the positions `rows_y_m`:
+    /// linear between the two rows around `y`.
+    fn uneven_rows_at(&self, y_m: f64) -> Option<RowBlend> {
+        let y = &self.rows_y_m;
+        let (lo, hi) = (y[0], y[y.len() - 1]);
+        let tol = GRID_TOLERANCE * self.dy_m;
+        if !(y_m >= lo - tol && y_m <= hi + tol) {
+            return None;
+        }
+        if y.len() == 1 {
+            return Some(RowBlend {
+                j0: 0,
+                j1: 0,
+                w: 0.0,
+            });
+        }
+        let yy = y_m.clamp(lo, hi);
+        // rows j0 < j1 with y[j0] <= yy <= y[j1]
+        let j0 = (y.partition_point(|&r| r <= yy).max(1) - 1).min(y.len() - 2);
+        let w = ((yy - y[j0]) / (y[j0 + 1] - y[j0])).clamp(0.0, 1.0);
+        Some(RowBlend { j0, j1: j0 + 1, w })
+    }
+
+    /// The first node without height (its `(x, y)`, m) that a point
+    /// blending `rows` reads while it moves from `x_from_m` to `x_to_m`
+    /// (the nodes of every interval it crosses, in the rows of weight > 0);
+    /// `None` if there is none. For a grid that is not looped.
+    pub fn gap_on_path(&self, rows: RowBlend, x_from_m: f64, x_to_m: f64) -> Option<(f64, f64)> {
+        let last = self.nx.saturating_sub(1);
+        let index = |x: f64| ((x - self.x0_m) / self.dx_m).clamp(0.0, last as f64);
+        let (a, b) = (index(x_from_m.min(x_to_m)), index(x_from_m.max(x_to_m)));
+        let (m0, m1) = (a.floor() as usize, (b.ceil() as usize).min(last));
+        let mut used = Vec::with_capacity(2);
+        if rows.w < 1.0 {
+            used.push(rows.j0);
+        }
+        if rows.w > 0.0 {
+            used.push(rows.j1);
+        }
+        for m in m0..=m1 {
+            for &j in &used {
+                if !self.z_m[j * self.nx + m].is_finite() {
+                    let y = self
+                        .rows_y_m
+                        .get(j)
+                        .copied()
+                        .unwrap_or(self.y0_m + j as f64 * self.dy_m);
+                    return Some((self.x0_m + m as f64 * self.dx_m, y));
+                }
+            }
+        }
+        None
     }
 
     /// Height (m) and slope along `x` (-) of row `j` at `x` (m).
@@ -175,6 +249,10 @@ impl SurfaceGrid {
     /// is at `x` (m).
     #[inline]
     pub fn sample_blend(&self, rows: RowBlend, x_m: f64) -> Result<(f64, f64), OutOfRange> {
+        // a row of weight 0 is not read (it may hold no height there)
+        if rows.w == 1.0 {
+            return self.sample_row(rows.j1, x_m);
+        }
         let (z0, d0) = self.sample_row(rows.j0, x_m)?;
         if rows.w == 0.0 {
             return Ok((z0, d0));
@@ -215,7 +293,11 @@ impl SurfaceGrid {
         let (mut sum, mut count) = (0.0, 0usize);
         for j in 0..self.ny {
             let row = &self.z_m[j * self.nx..(j + 1) * self.nx];
-            for seg in row.chunks_exact(per) {
+            // (a baseline over cells without height is left out)
+            for seg in row
+                .chunks_exact(per)
+                .filter(|s| s.iter().all(|z| z.is_finite()))
+            {
                 sum += segment_depth(seg);
                 count += 1;
             }

@@ -144,6 +144,9 @@ pub fn generate(
         periodic_y: true,
         z_m: c.iter().map(|v| v.re).collect(),
         dzdx: s.iter().map(|v| v.re).collect(),
+        rows_y_m: Vec::new(),
+        datum_m: 0.0,
+        file_origin_m: (0.0, 0.0),
     }
 }
 
