@@ -1,6 +1,8 @@
 use super::*;
+use crate::readers::fe_modes::FeDamping;
+use crate::scene::{Contact, Scene, Tyre};
 use std::collections::BTreeSet;
-use tirecontact_core::model::road::Harmonic;
+use tirecontact_core::model::road::{Harmonic, Road};
 
 /// Every shipped preset, and each with the roads, FE dampings and contact
 /// laws the presets do not all show: every kind of numeric field appears.
