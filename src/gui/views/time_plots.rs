@@ -569,7 +569,7 @@ fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
 const HEADER_POINTS: usize = 24;
 
 /// The first point of the header's boxes: 0, or the group of eight of the
-/// first shown point where that is past the first [`HEADER_POINTS`].
+/// first shown point where that is past the first `HEADER_POINTS`.
 pub fn checkbox_start(chosen: &[usize], n: usize) -> usize {
     match chosen.first() {
         Some(&f) if f >= HEADER_POINTS && n > HEADER_POINTS => (f - f % 8).min(n - HEADER_POINTS),

@@ -537,7 +537,7 @@ pub fn unit(path: &str) -> Option<&'static str> {
     field(path).map(|f| f.unit).filter(|u| !u.is_empty())
 }
 
-/// An axis title of the field at `path`: its [`label`] and its [`unit`],
+/// An axis title of the field at `path`: its [`label()`] and its [`unit()`],
 /// `speed V (m/s)`, `mode 0 frequency (Hz)`; no unit when it has none.
 pub fn axis_label(path: &str) -> String {
     match unit(path) {
