@@ -61,7 +61,7 @@ fn the_grid_is_edited_in_the_side_panel_and_keeps_its_form() {
     // none along: refused, naming the label and the range
     type_into(&mut h, "points.along", "0");
     let text = banner(&h);
-    assert!(text.starts_with("points along (points.along):"), "{text}");
+    assert!(text.starts_with("points along:"), "{text}");
     assert!(text.contains("1 to 2000 points along"), "{text}");
     assert_eq!(h.state().scene().points.grid().unwrap().along, 20);
     // too many in all: the room left at 6 rows across

@@ -138,7 +138,7 @@ fn request_form(
 fn outcome(ui: &mut Ui, scene: &Scene, state: &SweepState, cmds: &mut Vec<Command>) {
     match state {
         SweepState::Idle => {
-            ui.label("No sweep yet: choose a parameter and a range, then Run sweep. Each run summarises its steady part (t ≥ ramp_s).");
+            ui.label("No sweep yet: choose a parameter and a range, then Run sweep. Each run summarises its steady part (from the end of the ramp).");
         }
         SweepState::Running(job) => {
             let f = job.progress();

@@ -305,8 +305,15 @@ pub fn banner_name(name: &str) -> String {
     } else {
         crate::scene::fields::label(name)
     };
-    if label == name {
-        name.to_string()
+    // the path is said only where it adds to the label: "points along",
+    // not "points along (points.along)"
+    let words = |s: &str| {
+        s.chars()
+            .filter(|c| c.is_alphanumeric())
+            .collect::<String>()
+    };
+    if label == name || words(&label) == words(name) {
+        label
     } else {
         format!("{label} ({name})")
     }
@@ -323,5 +330,16 @@ mod tests {
         assert!(parse_number("abc").is_err());
         assert!(parse_number("").is_err());
         assert!(parse_number("inf").is_err());
+    }
+
+    #[test]
+    fn banners_name_a_field_by_its_label_and_the_path_only_where_it_adds() {
+        assert_eq!(
+            banner_name("road.amplitude_m"),
+            "road amplitude a (road.amplitude_m)"
+        );
+        assert_eq!(banner_name("points.along"), "points along");
+        assert_eq!(banner_name("speed_kmh"), "speed V (speed_kmh)");
+        assert_eq!(banner_name("no.such"), "no.such");
     }
 }
