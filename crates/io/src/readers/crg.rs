@@ -244,22 +244,8 @@ pub fn read_crg_limited(path: &Path, max_values: usize) -> Result<CrgRoad, RoadF
         path: path.to_path_buf(),
         message,
     };
-    let file = crate::fsio::read::open_regular(path).map_err(|e| {
-        err(if e.kind() == std::io::ErrorKind::InvalidInput {
-            format!("{e}: expected an OpenCRG file")
-        } else {
-            format!("cannot open: {e}")
-        })
-    })?;
-    let len = file
-        .metadata()
-        .map_err(|e| err(format!("cannot read: {e}")))?
-        .len();
-    if len > MAX_CRG_BYTES {
-        return Err(err(format!(
-            "{len} bytes: expected at most {MAX_CRG_BYTES} bytes ({MAX_CRG_VALUES} values)"
-        )));
-    }
+    let limit = format!("{MAX_CRG_VALUES} values");
+    let (file, len) = super::road::open_capped(path, "an OpenCRG file", MAX_CRG_BYTES, &limit)?;
     let mut r = std::io::BufReader::with_capacity(1 << 16, file.take(len));
     let (header, data_line, data_offset) = read_header(&mut r).map_err(err)?;
     let layout = Layout::of(&header, max_values).map_err(err)?;

@@ -18,24 +18,22 @@ pub struct RoadFileError {
     pub message: String,
 }
 
-/// Opens a road file for reading as CSV: a regular file (a named pipe
-/// would block, a device never end) of at most `max_bytes` (checked before
-/// reading, `limit` saying what that holds), read through a cap one byte
-/// past it and lines of at most [`MAX_LINE_BYTES`]; `rows` names the rows
-/// expected.
-fn open_road_csv(
+/// The regular file at `path` and its length (bytes), refused when it is
+/// not a regular file (`what` it should be) or longer than `max_bytes`
+/// (`limit` says why).
+pub(super) fn open_capped(
     path: &Path,
-    rows: &str,
+    what: &str,
     max_bytes: u64,
     limit: &str,
-) -> Result<csv::Reader<crate::fsio::read::LineCap<std::io::Take<std::fs::File>>>, RoadFileError> {
+) -> Result<(std::fs::File, u64), RoadFileError> {
     let err = |message: String| RoadFileError {
         path: path.to_path_buf(),
         message,
     };
     let file = crate::fsio::read::open_regular(path).map_err(|e| {
         err(if e.kind() == std::io::ErrorKind::InvalidInput {
-            format!("{e}: expected a CSV file of {rows} rows")
+            format!("{e}: expected {what}")
         } else {
             format!("cannot open: {e}")
         })
@@ -49,6 +47,26 @@ fn open_road_csv(
             "{len} bytes: expected at most {max_bytes} bytes ({limit})"
         )));
     }
+    Ok((file, len))
+}
+
+/// Opens a road file for reading as CSV: a regular file (a named pipe
+/// would block, a device never end) of at most `max_bytes` (checked before
+/// reading, `limit` saying what that holds), read through a cap one byte
+/// past it and lines of at most [`MAX_LINE_BYTES`]; `rows` names the rows
+/// expected.
+fn open_road_csv(
+    path: &Path,
+    rows: &str,
+    max_bytes: u64,
+    limit: &str,
+) -> Result<csv::Reader<crate::fsio::read::LineCap<std::io::Take<std::fs::File>>>, RoadFileError> {
+    let (file, _) = open_capped(
+        path,
+        &format!("a CSV file of {rows} rows"),
+        max_bytes,
+        limit,
+    )?;
     Ok(csv::ReaderBuilder::new()
         .has_headers(false)
         .trim(csv::Trim::All)
