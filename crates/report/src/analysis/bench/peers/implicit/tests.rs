@@ -1,0 +1,246 @@
+use super::*;
+use crate::analysis::bench::scenes::many_points;
+use crate::analysis::bench::work_precision::{rms_rel, run_stable, sample};
+use diffsol::Vector;
+use tirecontact_core::solver::simulation::SolverOptions;
+use tirecontact_io::scene::{ContactScheme, Tyre};
+
+/// A bordered block-diagonal matrix of `ns` 2×2 blocks, `p` 1×1 blocks
+/// and a border of `p` (the layout of the Newton matrix of
+/// [`Switched`]), entries from a fixed sequence, and its dense copy.
+fn bordered(
+    ns: usize,
+    p: usize,
+    extra: Option<(usize, usize)>,
+) -> (FaerSparseMat<f64>, faer::Mat<f64>) {
+    let n = 2 * ns + 2 * p;
+    let mut entries = Vec::new();
+    let mut k = 0.0f64;
+    let mut next = || {
+        k += 1.0;
+        (1.7 * k).sin()
+    };
+    for s in 0..ns {
+        for (r, c) in [(s, s), (s, ns + s), (ns + s, s), (ns + s, ns + s)] {
+            let diag = if r == c { 4.0 } else { 0.0 };
+            entries.push((r, c, diag + next()));
+        }
+        for i in 0..p {
+            let w = 2 * ns + p + i;
+            entries.push((ns + s, w, next()));
+            entries.push((w, s, next()));
+            entries.push((w, ns + s, next()));
+        }
+    }
+    for i in 0..p {
+        let (j, w) = (2 * ns + i, 2 * ns + p + i);
+        entries.push((j, j, 3.0 + next()));
+        entries.push((j, w, next()));
+        for l in 0..p {
+            let wl = 2 * ns + p + l;
+            entries.push((w, wl, if l == i { 5.0 } else { 0.0 } + next()));
+        }
+    }
+    if let Some((r, c)) = extra {
+        entries.push((r, c, 1.0));
+    }
+    let mut dense = faer::Mat::<f64>::zeros(n, n);
+    for &(r, c, v) in &entries {
+        dense[(r, c)] += v;
+    }
+    let sparse = FaerSparseMat::try_from_triplets(
+        n,
+        n,
+        entries.iter().map(|&(r, c, _)| (r, c)).collect(),
+        entries.iter().map(|&(_, _, v)| v).collect(),
+        FaerContext::default(),
+    )
+    .unwrap();
+    (sparse, dense)
+}
+
+/// The block elimination solves `N x = b` and `Nᵀ x = b` as faer's
+/// dense LU does, to round-off.
+#[test]
+fn bordered_lu_solves_as_a_dense_lu() {
+    use faer::linalg::solvers::Solve;
+    let (ns, p) = (5, 3);
+    let (sparse, dense) = bordered(ns, p, None);
+    let n = dense.nrows();
+    let mut lu = BorderedLu::for_switched(ns, p);
+    lu.set_matrix(sparse);
+    lu.factor().unwrap();
+    let b: Vec<f64> = (0..n).map(|i| (0.3 * i as f64).cos()).collect();
+    let bm = faer::Mat::from_fn(n, 1, |i, _| b[i]);
+    let dense_lu = dense.partial_piv_lu();
+    for transpose in [false, true] {
+        let want = if transpose {
+            dense.transpose().partial_piv_lu().solve(&bm)
+        } else {
+            dense_lu.solve(&bm)
+        };
+        let mut x = FaerVec::from_vec(b.clone(), FaerContext::default());
+        lu.solve(&mut x, transpose).unwrap();
+        for i in 0..n {
+            assert!(
+                (x[i] - want[(i, 0)]).abs() < 1e-12 * (1.0 + want[(i, 0)].abs()),
+                "transpose {transpose}: x[{i}] = {} against {}",
+                x[i],
+                want[(i, 0)]
+            );
+        }
+    }
+}
+
+/// An entry coupling two modes is outside the form: the solve says so
+/// instead of dropping it.
+#[test]
+fn bordered_lu_refuses_a_matrix_outside_its_form() {
+    let (ns, p) = (4, 2);
+    let (sparse, _) = bordered(ns, p, Some((0, 1)));
+    let mut lu = BorderedLu::for_switched(ns, p);
+    lu.set_matrix(sparse);
+    let err = lu.factor().unwrap_err();
+    assert!(matches!(err, BorderedLuError::OutsideForm { .. }), "{err}");
+    lu.failure = Some(err);
+    let mut x = FaerVec::from_vec(vec![1.0; 2 * ns + 2 * p], FaerContext::default());
+    assert!(lu.solve(&mut x, false).is_err());
+}
+
+/// One point on one mode, 0.5 mm above a 1 mm, 0.2 m sine road at
+/// 20 m/s, no ramp: until it first touches, the tyre is at rest, so its
+/// penalty force would be `k r(t) + c ṙ(t)` with `r(t) = a sin(2π v t / λ) - h`.
+/// The first switch is that function's first zero (found here by
+/// bisection), to far below any step size.
+#[test]
+fn the_first_landing_is_located_at_the_zero_of_the_road_force() {
+    let mut scene = many_points(1, 1);
+    let (a, lambda, v, h) = (0.001, 0.2, 20.0, 0.0005);
+    scene.points[0] = tirecontact_io::scene::Point {
+        x_m: 0.0,
+        y_m: 0.0,
+        h_m: h,
+    };
+    scene.ramp_s = 0.0;
+    let k = 1e10;
+    // the point's mass 1 / φ², φ its modal amplitude (unit modal mass)
+    let phi = match &scene.tyre {
+        Tyre::Modal { modes } => modes[0].shape[0],
+        _ => unreachable!(),
+    };
+    let c = 2.0 * (k / (phi * phi)).sqrt();
+    let w = std::f64::consts::TAU * v / lambda;
+    let force = |t: f64| k * (a * (w * t).sin() - h) + c * a * w * (w * t).cos();
+    assert!(force(0.0) < 0.0);
+    let mut hi = 1e-6;
+    while force(hi) < 0.0 {
+        hi += 1e-6;
+    }
+    let mut lo = hi - 1e-6;
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if force(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let run = run_bdf(&scene, k, 1e-6, 1e-4, 0.01, &ModeCache::new()).unwrap();
+    let first = run.switches[0];
+    assert!(first.on && first.point == 0, "{first:?}");
+    assert!(
+        (first.t_s - hi).abs() < 1e-10,
+        "switch at {} s, the road force crosses zero at {hi} s",
+        first.t_s
+    );
+    // at rest until then
+    for (t, u) in run.run.t_s.iter().zip(&run.run.u_m) {
+        if *t < hi {
+            assert_eq!(u[0], 0.0, "moved at {t} s");
+        }
+    }
+}
+
+/// The located reference of the single-mode preset (dt = 1 µs) and a
+/// BDF penalty run's displacement error against it (RMS relative on
+/// the 40 µs grid), with the switch times of the run.
+fn single_mode_errors(ks: &[f64], rtol: f64) -> (Vec<f64>, Vec<Vec<Switch>>, BaselineRun) {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../presets/single_mode.ron");
+    let scene = Scene::load(&path).unwrap();
+    let (dur, dt, grid) = (0.2, 1e-6, 4e-5);
+    let cache = ModeCache::new();
+    let (reference, _, _) = run_stable(
+        &scene,
+        ContactScheme::Located,
+        dt,
+        dur,
+        SolverOptions::default(),
+        &cache,
+    )
+    .unwrap();
+    let r = sample(
+        &reference.t_s,
+        &reference.u_m,
+        &reference.q_n,
+        grid,
+        1e-3,
+        dt,
+        dur,
+    );
+    let mut errors = Vec::new();
+    let mut switches = Vec::new();
+    for &k in ks {
+        let run = run_bdf(&scene, k, rtol, grid, dur, &cache).unwrap();
+        let s = sample(
+            &run.run.t_s,
+            &run.run.u_m,
+            &run.run.q_n,
+            grid,
+            1e-3,
+            grid,
+            dur,
+        );
+        errors.push(rms_rel(&s.u, &r.u));
+        switches.push(run.switches);
+    }
+    (errors, switches, reference)
+}
+
+/// As the penalty stiffens, the BDF runs converge to the rigid contact
+/// of the located solver (the penalty error falls as about `k^-1/2`),
+/// to 4e-6 at 1e12 N/m; and their contact switches fall where the
+/// located solver's contact begins and ends (its steps of 1 µs; the
+/// penalty's own offset is about `√(m/k)`, 3 µs).
+#[test]
+fn bdf_converges_to_the_located_solution_and_its_switches() {
+    let (errors, switches, reference) = single_mode_errors(&[1e8, 1e10, 1e12], 1e-8);
+    assert!(
+        errors[1] * 20.0 < errors[0] && errors[2] * 20.0 < errors[1] && errors[2] < 1e-5,
+        "errors at k = 1e8, 1e10, 1e12 N/m: {errors:?}"
+    );
+    // the located run's contact changes: its step-mean force turning
+    // positive (a landing: an impact or a force) or zero (leaving)
+    let mut changes = Vec::new();
+    let mut on = false;
+    for (k, q) in reference.q_n.iter().enumerate() {
+        if (q[0] > 0.0) != on {
+            on = !on;
+            // the step's start: the change falls inside the step
+            changes.push((reference.t_s[k] - 1e-6, on));
+        }
+    }
+    let stiff = &switches[2];
+    assert_eq!(
+        stiff.len(),
+        changes.len(),
+        "BDF switches {stiff:?}, located changes {changes:?}"
+    );
+    for (s, &(t, on)) in stiff.iter().zip(&changes) {
+        assert_eq!(s.on, on, "{s:?} against {t} s");
+        assert!(
+            (s.t_s - t).abs() < 1e-5,
+            "switch {s:?}, located change at {t} s"
+        );
+    }
+}

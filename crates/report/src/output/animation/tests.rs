@@ -1,0 +1,226 @@
+use super::*;
+use tirecontact_io::Scene;
+use tirecontact_io::SceneSimulation;
+
+fn settings() -> FrameSettings {
+    FrameSettings {
+        t0_s: 0.0,
+        t1_s: 0.1,
+        fps: 25.0,
+        slow_motion: 2.0,
+        width: 320,
+        height: 240,
+    }
+}
+
+/// Before the ramp the tyre sees its own point heights (interpolated,
+/// held beyond the end points); after it, the road profile itself.
+#[test]
+fn road_in_tyre_frame_blends_point_heights_into_the_road() {
+    let scene = Scene::parse(
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )),
+        "three_points",
+    )
+    .unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    let at_start = road_in_tyre_frame(&sim, -0.1, 0.1, 8);
+    assert_eq!(at_start.len(), 9);
+    for [x, y] in &at_start {
+        // h = -1.5 mm at every point of this preset
+        assert!((y + 0.0015).abs() < 1e-15, "x = {x}: {y}");
+    }
+    while sim.time_s() < scene.ramp_s + 1e-3 {
+        sim.step().unwrap();
+    }
+    for [x, y] in road_in_tyre_frame(&sim, -0.1, 0.1, 8) {
+        let z = sim.road_profile().sample(x + sim.rolled_m()).unwrap().0;
+        assert!((y - z).abs() < 1e-15, "x = {x}: {y} vs {z}");
+    }
+}
+
+/// Under a row across the tread of a patch on a road surface, the road
+/// is the surface at that row's `y`, and before the ramp the heights
+/// of that row's points.
+#[test]
+fn road_under_a_row_is_the_surface_at_its_y() {
+    let mut scene = Scene::parse(
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/patch_texture.ron"
+        )),
+        "patch_texture",
+    )
+    .unwrap();
+    let y_row = scene
+        .points
+        .iter()
+        .map(|p| p.y_m)
+        .fold(f64::INFINITY, f64::min);
+    let row: Vec<(f64, f64)> = scene
+        .points
+        .iter()
+        .filter(|p| p.y_m == y_row)
+        .map(|p| (p.x_m, p.h_m))
+        .collect();
+    assert!(row.len() > 2 && y_row < 0.0);
+    // before the ramp: the row's own heights at its points
+    let sim = Simulation::from_scene(&scene).unwrap();
+    for &(x, h) in &row {
+        let at = road_in_tyre_frame_at(&sim, x, x, 1, Some(y_row));
+        assert!((at[0][1] - h).abs() < 1e-15, "x = {x}: {:?} vs {h}", at[0]);
+    }
+    // after a short ramp: the surface at the row's y, not the
+    // centreline's
+    scene.ramp_s = 1e-4;
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    while sim.time_s() < scene.ramp_s + 1e-9 {
+        sim.step().unwrap();
+    }
+    let mut differs = false;
+    for [x, z] in road_in_tyre_frame_at(&sim, -0.05, 0.05, 20, Some(y_row)) {
+        let want = sim
+            .road_profile()
+            .sample_at(x + sim.rolled_m(), y_row)
+            .unwrap()
+            .0;
+        assert!((z - want).abs() < 1e-15, "x = {x}: {z} vs {want}");
+        let centre = sim.road_profile().sample(x + sim.rolled_m()).unwrap().0;
+        differs |= (z - centre).abs() > 1e-6;
+    }
+    assert!(differs, "the texture is the same across the tread");
+}
+
+#[test]
+fn frame_count_is_interval_times_rate() {
+    assert_eq!(settings().frame_count(), 5);
+    let s = FrameSettings {
+        slow_motion: 20.0,
+        ..settings()
+    };
+    assert_eq!(s.frame_count(), 50);
+    assert!((s.frame_time_s(10) - 0.02).abs() < 1e-15);
+}
+
+#[test]
+fn bad_settings_name_field_value_and_expectation() {
+    let e = FrameSettings {
+        fps: 0.0,
+        ..settings()
+    }
+    .check(1.0)
+    .unwrap_err();
+    assert!(
+        matches!(e, FramesError::Setting { field: "fps", value, .. } if value == 0.0),
+        "{e:?}"
+    );
+    let e = e.to_string();
+    assert!(e.contains("fps = 0") && e.contains("expected"), "{e}");
+    let e = FrameSettings {
+        t1_s: 2.0,
+        ..settings()
+    }
+    .check(1.0)
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("t1_s = 2") && e.contains("duration"), "{e}");
+    let e = FrameSettings {
+        width: 10,
+        ..settings()
+    }
+    .check(1.0)
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("width = 10"), "{e}");
+}
+
+#[test]
+fn cancel_stops_before_writing() {
+    let scene = Scene::parse(
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/single_mode.ron"
+        )),
+        "s",
+    )
+    .unwrap();
+    let sim = Simulation::from_scene(&scene).unwrap();
+    let dir = std::env::temp_dir().join(format!("tc-anim-cancel-{}", std::process::id()));
+    let cancel = AtomicBool::new(true);
+    let progress = AtomicU64::new(0);
+    let r = export_frames(
+        sim,
+        &scene.road,
+        &dir,
+        &settings(),
+        false,
+        &progress,
+        &cancel,
+    );
+    let e = r.unwrap_err();
+    assert!(
+        matches!(e, FramesError::Cancelled { done: 0, total: 5 }),
+        "{e:?}"
+    );
+    assert_eq!(e.to_string(), "cancelled after 0 of 5 frames");
+    assert!(!frame_path(&dir, 0).exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Pixels of `rgb` (rows of `w`) that blend the road's colour with the
+/// white above it by 35 % to 85 %: the road line's antialiased edge
+/// (the fill under it is a 25 % blend, its line 100 %).
+fn road_edge_pixels(img: &image::RgbImage) -> usize {
+    let road = [f64::from(ROAD.0), f64::from(ROAD.1), f64::from(ROAD.2)];
+    img.pixels()
+        .filter(|p| {
+            let a = (255.0 - f64::from(p.0[0])) / (255.0 - road[0]);
+            (0.35..0.85).contains(&a)
+                && (0..3).all(|c| {
+                    let want = a * road[c] + (1.0 - a) * 255.0;
+                    (f64::from(p.0[c]) - want).abs() <= 6.0
+                })
+        })
+        .count()
+}
+
+/// The frames are antialiased: the sloped road line has an edge of
+/// partial blends along its length (a line drawn without antialiasing
+/// has almost none), and the frame has the size asked for.
+#[test]
+fn frames_draw_the_road_antialiased() {
+    let scene = Scene::parse(
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/paper.ron"
+        )),
+        "paper",
+    )
+    .unwrap();
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    for _ in 0..6000 {
+        sim.step().unwrap();
+    }
+    let phases = PhaseTracker::new(sim.num_points(), 0.01);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("f.png");
+    let (w, h) = (640, 360);
+    draw_frame(&sim, &phases, &extents(&sim, &scene.road), &path, w, h).unwrap();
+    let img = image::open(&path).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (w, h));
+    let edge = road_edge_pixels(&img);
+    // the same scene drawn at its size without supersampling
+    let mut rgb = vec![0u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+        draw_frame_on(&root, &sim, &phases, &extents(&sim, &scene.road), w, h).unwrap();
+        root.present().unwrap();
+    }
+    let aliased = road_edge_pixels(&image::RgbImage::from_raw(w, h, rgb).unwrap());
+    assert!(
+        edge >= 200 && edge >= 5 * aliased.max(1),
+        "{edge} blended road-edge pixels antialiased, {aliased} without"
+    );
+}
