@@ -18,6 +18,7 @@ mod invariants;
 mod joint_impacts;
 mod large_sets;
 mod many_points;
+mod merged_events;
 mod paper_scheme;
 mod patch;
 mod phases;

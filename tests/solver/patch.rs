@@ -196,13 +196,18 @@ fn iterative_sub_steps_of_small_sets_agree_with_the_direct_solves() {
         let mut scene = Scene::load(std::path::Path::new(preset)).unwrap();
         scene.duration_s = 0.06;
         let model = PreparedModel::of(&scene).unwrap();
+        // (the sub-steps of every event: no merged event steps)
+        let sub_steps = SolverOptions {
+            merged_events: false,
+            ..SolverOptions::default()
+        };
         let direct = SolverOptions {
             large_set_from: usize::MAX,
             iterative_sub_from: usize::MAX,
-            ..SolverOptions::default()
+            ..sub_steps.clone()
         };
         let mut a = model.simulation(direct).unwrap();
-        let mut b = model.simulation(SolverOptions::default()).unwrap();
+        let mut b = model.simulation(sub_steps).unwrap();
         let (mut du, mut dq, mut u_max, mut q_max) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
         while !a.finished() {
             a.step().unwrap();

@@ -18,6 +18,7 @@ mod events;
 mod factor_cache;
 mod gauss;
 mod large;
+mod merged;
 mod options;
 mod paper;
 mod parts;
@@ -82,6 +83,9 @@ pub struct RunStats {
     pub krylov_applications: u64,
     /// Sub-step GMRES solves that did not converge (solved directly).
     pub krylov_fallbacks: u64,
+    /// Steps of tread springs whose events were taken in one full-step
+    /// solve ([`SolverOptions::merged_events`]).
+    pub merged_steps: u64,
 }
 
 impl RunStats {
@@ -395,7 +399,13 @@ impl Simulation {
                         self.state.stats.steady_steps += 1;
                         (0, solves)
                     }
-                    None => self.located_step(t0, false)?,
+                    None => match self.merged_event_step()? {
+                        Some(taken) => {
+                            self.state.stats.merged_steps += 1;
+                            taken
+                        }
+                        None => self.located_step(t0, false)?,
+                    },
                 }
             }
             ContactScheme::Paper => {

@@ -97,6 +97,7 @@ impl Simulation {
     /// when that loop takes a step without events).
     pub(super) fn compliant_steady_step(&mut self, t0: f64) -> Result<Option<u32>, SolverError> {
         let (p, dt) = (self.tables.p, self.tables.dt_s);
+        self.scratch.merged.trial_ready = false;
         self.state.active.clear();
         for i in 0..p {
             if self.state.contact[i] {
@@ -107,6 +108,7 @@ impl Simulation {
         }
         self.predict(t0, dt, Table::Full)?;
         self.solve_compliant(t0 + dt, Table::Full)?;
+        self.scratch.merged.trial_ready = true;
         for &j in &self.state.active {
             let (q1, q2) = (self.scratch.q1[j], self.scratch.q2[j]);
             let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);

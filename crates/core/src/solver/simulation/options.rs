@@ -96,6 +96,13 @@ pub struct SolverOptions {
     /// bit wherever neither difference arises, and converge to the same
     /// limit as `dt` falls.
     pub joint_impacts: bool,
+    /// Take the landings and releases of tread springs inside the step's
+    /// one full-step solve (method §4.6, "Events in one solve"; a landing
+    /// point's force on the rest of the step, a released point's trial
+    /// force up to its release as a known load) instead of splitting the
+    /// step into sub-steps at each event. The two agree to `O(dt²)`; off,
+    /// every event splits the step as with rigid contact.
+    pub merged_events: bool,
 }
 
 /// The rank cut of identified models (see [`SolverOptions::rank_tolerance`]):
@@ -147,6 +154,7 @@ impl Default for SolverOptions {
             threads: 1,
             parallel_from_madds: crate::base::threads::PARALLEL_FROM,
             joint_impacts: true,
+            merged_events: true,
         }
     }
 }

@@ -13,6 +13,7 @@
 //! a fourth, derived part: a function of the tables and the active set
 //! alone, rebuilt bit for bit when missing.
 
+use super::merged::MergedScratch;
 use super::residual::{add_residual, split_residual};
 use super::{RunStats, SolverOptions};
 use crate::base::threads::Threads;
@@ -457,6 +458,8 @@ pub(super) struct Scratch {
     /// The next step's active rows, projected by a large compliant set's
     /// full step (`large.rs`).
     pub ahead: RowsAhead,
+    /// The merged event step of tread springs (`merged.rs`).
+    pub merged: MergedScratch,
 }
 
 impl Scratch {
@@ -488,6 +491,12 @@ impl Scratch {
             events: EventScratch::new(p),
             large: LargeSetScratch::new(tables),
             ahead: RowsAhead::new(tables),
+            merged: MergedScratch::new(
+                &tables.basis,
+                p,
+                tables.compliant(),
+                tables.options.large_set_from,
+            ),
         }
     }
 }

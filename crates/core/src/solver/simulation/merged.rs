@@ -1,0 +1,632 @@
+//! Events of tread springs in one full-step solve (method §4.6, "Events
+//! in one solve").
+//!
+//! With a tread spring the force is continuous at a landing and at a
+//! release: only the event point's own force has a kink there. The other
+//! points feel that kink through Green functions that start linearly
+//! (`g(0) = 0`), so their responses to it are of third order in the time
+//! since the event, and their forces stay linear over the whole step to the
+//! scheme's own order. The step is then one solve over `[0, dt]` in which
+//!
+//! - a point that **lands** at `θ` carries a linear force on `[θ, dt]`
+//!   only, given by its two Gauss values on that interval (the exact
+//!   weights of a step of `τ = dt − θ`: the response at `dt` of a force
+//!   that ends at `dt` is a step's of `τ` from rest), with the spring law in
+//!   value and rate at `dt` as every active point;
+//! - a point that is **released** at `θ` keeps the trial's linear force up
+//!   to `θ` as a known load (`Φ(dt − θ)` of its response at `θ`), and no
+//!   force after;
+//! - every other active point keeps its two Gauss values over the step.
+//!
+//! Several events in one step: the solve is repeated with each new event
+//! (the earliest of the solution) until none is found, up to
+//! [`MERGED_EVENTS`]. A step this cannot take (a landing point that would
+//! pull, a spring left compressed at the step start, large sets, residual
+//! flexibility, a singular system) goes to the sub-steps of `events.rs`,
+//! which it leaves untouched: nothing is committed before the end.
+//!
+//! Cost: a landing adds a step table at `τ` and two projections of its
+//! unit responses, a release two tables and one projection, each solve a
+//! dense factorisation of the `2|S|` system; the sub-steps instead predict,
+//! fill, solve and project twice per event.
+
+use super::contact::DenseSolver;
+use super::{GA, GB, SQRT3, Simulation, first_crossing};
+use crate::model::convolution::{ModalBasis, ModalState, StepTable};
+use crate::solver::error::SolverError;
+
+/// Events (landings and releases) one merged step takes; a step with more
+/// is taken by the sub-steps.
+pub(super) const MERGED_EVENTS: usize = 8;
+
+/// A point released inside the step: its trial force up to `θ`.
+#[derive(Debug, Clone, Copy)]
+struct Early {
+    point: usize,
+    theta_s: f64,
+    /// The trial's force restricted to `[0, θ]`, at that interval's Gauss
+    /// points (N).
+    rq1: f64,
+    rq2: f64,
+}
+
+/// The buffers of the merged event step, sized once.
+pub(super) struct MergedScratch {
+    /// The table of a landing's remaining interval or of a release's two.
+    tab: StepTable,
+    /// A landing's responses at the step end to unit Gauss values on its
+    /// interval: slot `2 l + c` for late point `l`, value `c`.
+    unit: Vec<ModalState>,
+    /// Their end displacements (m/N) and velocities (m/(N·s)) at every
+    /// point, `(2 l + c) P + i`.
+    unit_x: Vec<f64>,
+    unit_v: Vec<f64>,
+    /// The released points' known loads: their state at the step end and
+    /// its end values at every point (m, m/s).
+    known: ModalState,
+    known_x: Vec<f64>,
+    known_v: Vec<f64>,
+    tmp: ModalState,
+    tmp2: ModalState,
+    /// Point-indexed Gauss values of one source (zero but at that point).
+    g1: Vec<f64>,
+    g2: Vec<f64>,
+    /// The set: the points with a force over the whole step, then the late
+    /// ones (`late_tau_s` by slot).
+    set: Vec<usize>,
+    full: usize,
+    late_tau_s: Vec<f64>,
+    early: Vec<Early>,
+    solver: DenseSolver,
+    rhs: Vec<f64>,
+    /// The trial's set (whose full-step factorisation the bordered solve
+    /// reuses), and per border unknown its column through that
+    /// factorisation's inverse (`A⁻¹ B`, `2|S|` each).
+    trial_set: Vec<usize>,
+    z: Vec<f64>,
+    z0: Vec<f64>,
+    /// The bordered system's Schur complement and its solver.
+    schur: DenseSolver,
+    border: Vec<Border>,
+    y: Vec<f64>,
+    /// The steady trial of this step (prediction over the whole step, the
+    /// carried set solved, every point's end values) is in the scratch.
+    pub trial_ready: bool,
+}
+
+impl MergedScratch {
+    /// For `p` points on `basis`; empty unless `compliant`. The systems
+    /// solved hold fewer than `large_set_from` points.
+    pub fn new(basis: &ModalBasis, p: usize, compliant: bool, large_set_from: usize) -> Self {
+        let (n, states) = if compliant {
+            (p, basis.stored_states())
+        } else {
+            (0, 0)
+        };
+        let cap = n.min(large_set_from);
+        let zero = || ModalState {
+            x: vec![0.0; states],
+            v: vec![0.0; states],
+        };
+        MergedScratch {
+            tab: if compliant {
+                StepTable::new(basis, 1.0)
+            } else {
+                StepTable::default()
+            },
+            unit: (0..2 * MERGED_EVENTS).map(|_| zero()).collect(),
+            unit_x: vec![0.0; 2 * MERGED_EVENTS * n],
+            unit_v: vec![0.0; 2 * MERGED_EVENTS * n],
+            known: zero(),
+            known_x: vec![0.0; n],
+            known_v: vec![0.0; n],
+            tmp: zero(),
+            tmp2: zero(),
+            g1: vec![0.0; n],
+            g2: vec![0.0; n],
+            set: Vec::with_capacity(n),
+            full: 0,
+            late_tau_s: Vec::with_capacity(MERGED_EVENTS),
+            early: Vec::with_capacity(MERGED_EVENTS),
+            solver: DenseSolver::new(2 * cap),
+            rhs: vec![0.0; 2 * cap],
+            trial_set: Vec::with_capacity(n),
+            z: vec![0.0; 4 * MERGED_EVENTS * cap],
+            z0: vec![0.0; 2 * cap],
+            schur: DenseSolver::new(4 * MERGED_EVENTS),
+            border: Vec::with_capacity(2 * MERGED_EVENTS),
+            y: vec![0.0; 4 * MERGED_EVENTS],
+            trial_ready: false,
+        }
+    }
+}
+
+/// Two unknowns bordering the trial's factorised system (method §4.6,
+/// "Events in one solve").
+#[derive(Debug, Clone, Copy)]
+enum Border {
+    /// A trial point left (entry `k` of the trial set): its two unknowns
+    /// held at zero, its two equations freed by two multipliers.
+    Left(usize),
+    /// A late point (slot `l`, point `i`): its two Gauss values on its
+    /// interval and its two equations.
+    Late(usize, usize),
+}
+
+/// The next event of a merged solve.
+enum Next {
+    None,
+    /// Entry of the set (a full-step point) released at `θ`.
+    Release(usize, f64),
+    /// A free point landing at `θ`.
+    Landing(usize, f64),
+    /// Entry of the set (a full-step point) whose force is negative only
+    /// near the step start: free up to `θ`, on the road after it.
+    Reland(usize, f64),
+    /// An event this step cannot take.
+    Unsupported,
+}
+
+impl Simulation {
+    /// Whether a step of tread springs may be taken by
+    /// [`Simulation::merged_event_step`] after its steady trial failed.
+    #[inline]
+    pub(super) fn merged_events_apply(&self) -> bool {
+        self.tables.options.merged_events
+            && self.tables.residual.is_empty()
+            && self.scratch.merged.trial_ready
+            && self.scratch.projected_all
+    }
+
+    /// The step from `t0` with its events in one solve (module doc), after
+    /// [`Simulation::compliant_steady_step`]'s trial. `Some((events,
+    /// solves))` once committed; `None`, with only scratch values changed,
+    /// when the step is the sub-steps'.
+    pub(super) fn merged_event_step(&mut self) -> Result<Option<(u32, u32)>, SolverError> {
+        if !self.merged_events_apply() {
+            return Ok(None);
+        }
+        let dt = self.tables.dt_s;
+        {
+            let m = &mut self.scratch.merged;
+            m.set.clear();
+            m.set.extend_from_slice(&self.state.active);
+            m.full = m.set.len();
+            m.trial_set.clear();
+            m.trial_set.extend_from_slice(&self.state.active);
+            m.late_tau_s.clear();
+            m.early.clear();
+            m.known.reset();
+            m.known_x.fill(0.0);
+            m.known_v.fill(0.0);
+        }
+        let mut solves = 0u32;
+        loop {
+            match self.next_merged_event() {
+                Next::None => break,
+                Next::Unsupported => return Ok(None),
+                _ if self.scratch.merged.late_tau_s.len() + self.scratch.merged.early.len()
+                    >= MERGED_EVENTS =>
+                {
+                    return Ok(None);
+                }
+                Next::Release(k, theta) => self.merged_release(k, theta),
+                Next::Landing(i, theta) => {
+                    if dt - theta <= 1e-9 * dt {
+                        return Ok(None);
+                    }
+                    self.merged_landing(i, dt - theta);
+                }
+                Next::Reland(k, theta) => {
+                    let m = &mut self.scratch.merged;
+                    let j = m.set.remove(k);
+                    m.full -= 1;
+                    self.merged_landing(j, dt - theta);
+                }
+            }
+            let n = self.scratch.merged.set.len();
+            if n >= self.tables.options.large_set_from {
+                return Ok(None);
+            }
+            let bordered = self.tables.options.reuse_factorisation
+                && self.factors.factored
+                && self.factors.current.set == self.scratch.merged.trial_set;
+            let solved = if bordered {
+                self.merged_solve_bordered()
+            } else if n == 0 {
+                // (no force left but the known loads)
+                self.merged_end_values();
+                true
+            } else {
+                self.merged_solve()
+            };
+            if !solved {
+                return Ok(None);
+            }
+            solves += (n > 0) as u32;
+        }
+        // commit: the free prediction plus the full-step forces, the late
+        // points' and the known loads' responses
+        let events = self.scratch.merged.late_tau_s.len() + self.scratch.merged.early.len();
+        let (tb, st, s) = (&self.tables, &mut self.state, &mut self.scratch);
+        let m = &mut s.merged;
+        std::mem::swap(&mut st.modal, &mut s.free);
+        let full = &m.set[..m.full];
+        st.modal
+            .add_gauss_forces_on(&tb.basis, &tb.full, full, &s.q1, &s.q2, &self.threads);
+        for &j in full {
+            s.impulse[j] += 0.5 * dt * (s.q1[j] + s.q2[j]);
+        }
+        for (l, &i) in m.set[m.full..].iter().enumerate() {
+            let (q1, q2) = (s.q1[i], s.q2[i]);
+            for (c, q) in [q1, q2].into_iter().enumerate() {
+                let u = &m.unit[2 * l + c];
+                for (x, y) in st.modal.x.iter_mut().zip(&u.x) {
+                    *x += q * y;
+                }
+                for (x, y) in st.modal.v.iter_mut().zip(&u.v) {
+                    *x += q * y;
+                }
+            }
+            s.impulse[i] += 0.5 * m.late_tau_s[l] * (q1 + q2);
+        }
+        if !m.early.is_empty() {
+            st.modal.add(&m.known);
+        }
+        for e in &m.early {
+            s.impulse[e.point] += 0.5 * e.theta_s * (e.rq1 + e.rq2);
+            st.released[e.point] = true;
+        }
+        st.active.clone_from(&m.set);
+        std::mem::swap(&mut st.u, &mut s.ue);
+        std::mem::swap(&mut st.v, &mut s.ve);
+        std::mem::swap(&mut st.r, &mut s.re);
+        std::mem::swap(&mut st.rd, &mut s.rde);
+        Ok(Some((events as u32, solves)))
+    }
+
+    /// The earliest event of the current solution: a full-step point whose
+    /// linear force crosses zero (as [`Simulation::locate`] finds it), a
+    /// free point whose gap's Hermite cubic crosses the road; a late point
+    /// whose force would pull is not this step's.
+    fn next_merged_event(&self) -> Next {
+        let (p, dt) = (self.tables.p, self.tables.dt_s);
+        let (st, s, m) = (&self.state, &self.scratch, &self.scratch.merged);
+        let mut next = Next::None;
+        let mut first = f64::INFINITY;
+        for (k, &j) in m.set[..m.full].iter().enumerate() {
+            let (qs, qe) = (GA * s.q1[j] - GB * s.q2[j], -GB * s.q1[j] + GA * s.q2[j]);
+            if qe < 0.0 || qs + qe < 0.0 {
+                let unresolved = self.spring_unresolved(j, dt);
+                if unresolved && qs + qe >= 0.0 {
+                    continue;
+                }
+                if qe >= 0.0 && !unresolved {
+                    // negative at the start only: the spring lets go at
+                    // once and takes the road again where the linear
+                    // force turns positive (`qs < -qe <= 0`)
+                    if 0.0 < first {
+                        (first, next) = (0.0, Next::Reland(k, dt * qs / (qs - qe)));
+                    }
+                    continue;
+                }
+                let th = if qs > 0.0 && !unresolved {
+                    dt * qs / (qs - qe)
+                } else {
+                    0.0
+                };
+                if th < first {
+                    (first, next) = (th, Next::Release(k, th));
+                }
+            }
+        }
+        for (l, &j) in m.set[m.full..].iter().enumerate() {
+            let (qs, qe) = (GA * s.q1[j] - GB * s.q2[j], -GB * s.q1[j] + GA * s.q2[j]);
+            let pulls = qe < 0.0 || qs + qe < 0.0;
+            if pulls && !(self.spring_unresolved(j, m.late_tau_s[l]) && qs + qe >= 0.0) {
+                return Next::Unsupported;
+            }
+        }
+        let (u, v, r, rd) = (&st.u[..p], &st.v[..p], &st.r[..p], &st.rd[..p]);
+        let (ue, ve, re, rde) = (&s.ue[..p], &s.ve[..p], &s.re[..p], &s.rde[..p]);
+        // a released point back below the road by the step end is the
+        // sub-steps' (they locate its landing once it rose clear)
+        if m.early
+            .iter()
+            .any(|e| ue[e.point] - re[e.point] < -self.pen_tol_m)
+        {
+            return Next::Unsupported;
+        }
+        for i in 0..p {
+            let (g0, d0) = (u[i] - r[i], (v[i] - rd[i]) * dt);
+            let (g1, d1) = (ue[i] - re[i], (ve[i] - rde[i]) * dt);
+            if let Some(y) = first_crossing(g0, d0, g1, d1, self.pen_tol_m, st.released[i])
+                && !m.set.contains(&i)
+                && !m.early.iter().any(|e| e.point == i)
+            {
+                let th = y * dt;
+                if th < first {
+                    (first, next) = (th, Next::Landing(i, th));
+                }
+            }
+        }
+        next
+    }
+
+    /// Full-step entry `k` released at `θ`: its trial force on `[0, θ]`
+    /// becomes a known load, `Φ(dt − θ)` of its response at `θ`.
+    fn merged_release(&mut self, k: usize, theta: f64) {
+        let dt = self.tables.dt_s;
+        let (tb, s) = (&self.tables, &mut self.scratch);
+        let m = &mut s.merged;
+        let j = m.set.remove(k);
+        m.full -= 1;
+        let (q1, q2) = (s.q1[j], s.q2[j]);
+        let (qs, qe) = (GA * q1 - GB * q2, -GB * q1 + GA * q2);
+        let f = theta / dt;
+        let (ya, yb) = (0.5 - 0.5 / SQRT3, 0.5 + 0.5 / SQRT3);
+        let e = Early {
+            point: j,
+            theta_s: theta,
+            rq1: qs + (qe - qs) * f * ya,
+            rq2: qs + (qe - qs) * f * yb,
+        };
+        m.early.push(e);
+        if theta <= 1e-9 * dt {
+            return;
+        }
+        m.tab.fill(&tb.basis, theta);
+        m.tmp.reset();
+        (m.g1[j], m.g2[j]) = (e.rq1, e.rq2);
+        m.tmp
+            .add_gauss_forces(&tb.basis, &m.tab, &[j], &m.g1, &m.g2);
+        (m.g1[j], m.g2[j]) = (0.0, 0.0);
+        m.tab.fill(&tb.basis, dt - theta);
+        m.tmp.predict_into(&m.tab, &mut m.tmp2);
+        m.known.add(&m.tmp2);
+        let (du, dv) = (&mut s.du, &mut s.dv);
+        m.tmp2.project(&tb.basis, du, dv);
+        for (a, b) in m.known_x.iter_mut().zip(du.iter()) {
+            *a += b;
+        }
+        for (a, b) in m.known_v.iter_mut().zip(dv.iter()) {
+            *a += b;
+        }
+    }
+
+    /// Free point `i` landing `tau` before the step end: its unit
+    /// responses at the step end (a step of `tau` from rest).
+    fn merged_landing(&mut self, i: usize, tau: f64) {
+        let p = self.tables.p;
+        let (tb, m) = (&self.tables, &mut self.scratch.merged);
+        let l = m.late_tau_s.len();
+        m.late_tau_s.push(tau);
+        m.set.push(i);
+        m.tab.fill(&tb.basis, tau);
+        for c in 0..2 {
+            let slot = 2 * l + c;
+            let u = &mut m.unit[slot];
+            u.reset();
+            let (g1, g2) = if c == 0 { (1.0, 0.0) } else { (0.0, 1.0) };
+            (m.g1[i], m.g2[i]) = (g1, g2);
+            u.add_gauss_forces(&tb.basis, &m.tab, &[i], &m.g1, &m.g2);
+            u.project(
+                &tb.basis,
+                &mut m.unit_x[slot * p..(slot + 1) * p],
+                &mut m.unit_v[slot * p..(slot + 1) * p],
+            );
+        }
+        (m.g1[i], m.g2[i]) = (0.0, 0.0);
+    }
+
+    /// Solves the merged system of the set and writes every point's end
+    /// values into `ue`, `ve`; `false` if it is singular.
+    fn merged_solve(&mut self) -> bool {
+        let p = self.tables.p;
+        let dt = self.tables.dt_s;
+        let (tb, st, s) = (&self.tables, &mut self.state, &mut self.scratch);
+        let m = &mut s.merged;
+        let n = m.set.len();
+        let (set, full, late_tau) = (&m.set, m.full, &m.late_tau_s);
+        let g = &tb.full_inf;
+        let kk = &tb.tread_k_n_m;
+        let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
+        let units = [&m.unit_x, &m.unit_v];
+        let entry = |r: usize, c: usize| {
+            let (rb, cb) = ((r >= n) as usize, (c >= n) as usize);
+            let (a, mc) = (set[r % n], c % n);
+            let b = set[mc];
+            let (mut x, tau) = if mc < full {
+                (blocks[2 * rb + cb][a * p + b], dt)
+            } else {
+                let slot = 2 * (mc - full) + cb;
+                (units[rb][slot * p + a], late_tau[mc - full])
+            };
+            if a == b {
+                let rate = SQRT3 / tau;
+                let diag = [[-GB, GA], [-rate, rate]];
+                x += diag[rb][cb] / kk[a];
+            }
+            x
+        };
+        st.stats.factorisations += 1;
+        if m.solver.factor(2 * n, entry).is_err() {
+            return false;
+        }
+        for (k, &a) in set.iter().enumerate() {
+            m.rhs[k] = s.re[a] - s.uh[a] - m.known_x[a];
+            m.rhs[n + k] = s.rde[a] - s.vh[a] - m.known_v[a];
+        }
+        m.solver.solve(&mut m.rhs[..2 * n]);
+        for (k, &b) in set.iter().enumerate() {
+            s.q1[b] = m.rhs[k];
+            s.q2[b] = m.rhs[n + k];
+        }
+        self.merged_end_values();
+        true
+    }
+
+    /// Every point's end values under the known loads and the solved
+    /// forces of the set, into `ue`, `ve`.
+    fn merged_end_values(&mut self) {
+        let p = self.tables.p;
+        let (tb, s) = (&self.tables, &mut self.scratch);
+        let m = &s.merged;
+        let (set, full) = (&m.set, m.full);
+        let (ue, ve) = (&mut s.ue[..p], &mut s.ve[..p]);
+        for i in 0..p {
+            ue[i] = s.uh[i] + m.known_x[i];
+            ve[i] = s.vh[i] + m.known_v[i];
+        }
+        for &j in &set[..full] {
+            let cols = &tb.full_inf_cols[4 * p * j..4 * p * (j + 1)];
+            let (gx1, rest) = cols.split_at(p);
+            let (gx2, rest) = rest.split_at(p);
+            let (gv1, gv2) = rest.split_at(p);
+            let (q1, q2) = (s.q1[j], s.q2[j]);
+            for i in 0..p {
+                ue[i] += gx1[i] * q1 + gx2[i] * q2;
+                ve[i] += gv1[i] * q1 + gv2[i] * q2;
+            }
+        }
+        for (l, &j) in set[full..].iter().enumerate() {
+            for (c, q) in [s.q1[j], s.q2[j]].into_iter().enumerate() {
+                let slot = 2 * l + c;
+                let (ux, uv) = (
+                    &m.unit_x[slot * p..(slot + 1) * p],
+                    &m.unit_v[slot * p..(slot + 1) * p],
+                );
+                for i in 0..p {
+                    ue[i] += ux[i] * q;
+                    ve[i] += uv[i] * q;
+                }
+            }
+        }
+    }
+
+    /// [`Simulation::merged_solve`] through the trial's factorisation
+    /// `A` of the trial set, bordered by the points that left it and the
+    /// late ones (`O(|S|²)` per border unknown instead of a new
+    /// factorisation): `x = A⁻¹(b − B y)` with `(D − R A⁻¹ B) y = d − R A⁻¹ b`.
+    fn merged_solve_bordered(&mut self) -> bool {
+        let p = self.tables.p;
+        let (tb, st, s) = (&self.tables, &mut self.state, &mut self.scratch);
+        let solver = &self.factors.current.solver;
+        let m = &mut s.merged;
+        let trial = &m.trial_set;
+        let n0 = trial.len();
+        let big_n = 2 * n0;
+        m.border.clear();
+        for (k, j) in trial.iter().enumerate() {
+            if !m.set[..m.full].contains(j) {
+                m.border.push(Border::Left(k));
+            }
+        }
+        for (l, &i) in m.set[m.full..].iter().enumerate() {
+            m.border.push(Border::Late(l, i));
+        }
+        let nb = 2 * m.border.len();
+        let g = &tb.full_inf;
+        let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
+        let units = [&m.unit_x, &m.unit_v];
+        // the border columns B and their A⁻¹ B
+        for (b, border) in m.border.iter().enumerate() {
+            for c in 0..2 {
+                let z = &mut m.z[(2 * b + c) * big_n..(2 * b + c + 1) * big_n];
+                match *border {
+                    Border::Left(k) => {
+                        z.fill(0.0);
+                        z[c * n0 + k] = 1.0;
+                    }
+                    Border::Late(l, _) => {
+                        let slot = 2 * l + c;
+                        for (r, &a) in trial.iter().enumerate() {
+                            z[r] = units[0][slot * p + a];
+                            z[n0 + r] = units[1][slot * p + a];
+                        }
+                    }
+                }
+                if big_n > 0 {
+                    solver.solve(z);
+                }
+            }
+        }
+        // A⁻¹ b
+        for (r, &a) in trial.iter().enumerate() {
+            m.z0[r] = s.re[a] - s.uh[a] - m.known_x[a];
+            m.z0[n0 + r] = s.rde[a] - s.vh[a] - m.known_v[a];
+        }
+        if big_n > 0 {
+            solver.solve(&mut m.z0[..big_n]);
+        }
+        // the border rows R against x (`R z` for a column `z`), D, and d
+        let row_dot = |border: Border, rho: usize, z: &[f64]| -> f64 {
+            match border {
+                Border::Left(k) => z[rho * n0 + k],
+                Border::Late(_, i) => {
+                    let mut sum = 0.0;
+                    for (c, &b) in trial.iter().enumerate() {
+                        sum += blocks[2 * rho][i * p + b] * z[c]
+                            + blocks[2 * rho + 1][i * p + b] * z[n0 + c];
+                    }
+                    sum
+                }
+            }
+        };
+        let (border, z, z0, kk) = (&m.border, &m.z, &m.z0, &tb.tread_k_n_m);
+        let late_tau = &m.late_tau_s;
+        let entry = |r: usize, c: usize| -> f64 {
+            let (rb, rho) = (border[r / 2], r % 2);
+            let (cb, cc) = (border[c / 2], c % 2);
+            let d = match (rb, cb) {
+                (Border::Late(_, i), Border::Late(l2, j)) => {
+                    let mut x = units[rho][(2 * l2 + cc) * p + i];
+                    if i == j {
+                        let rate = SQRT3 / late_tau[l2];
+                        let diag = [[-GB, GA], [-rate, rate]];
+                        x += diag[rho][cc] / kk[i];
+                    }
+                    x
+                }
+                _ => 0.0,
+            };
+            d - row_dot(rb, rho, &z[c * big_n..(c + 1) * big_n])
+        };
+        st.stats.factorisations += 1;
+        if m.schur.factor(nb, entry).is_err() {
+            return false;
+        }
+        for (b, &br) in border.iter().enumerate() {
+            for rho in 0..2 {
+                let d = match br {
+                    Border::Left(_) => 0.0,
+                    Border::Late(_, i) => {
+                        if rho == 0 {
+                            s.re[i] - s.uh[i] - m.known_x[i]
+                        } else {
+                            s.rde[i] - s.vh[i] - m.known_v[i]
+                        }
+                    }
+                };
+                m.y[2 * b + rho] = d - row_dot(br, rho, &z0[..big_n]);
+            }
+        }
+        m.schur.solve(&mut m.y[..nb]);
+        // x = A⁻¹ b − A⁻¹ B y
+        for (k, &a) in trial.iter().enumerate() {
+            let (mut x1, mut x2) = (z0[k], z0[n0 + k]);
+            for (c, y) in m.y[..nb].iter().enumerate() {
+                x1 -= z[c * big_n + k] * y;
+                x2 -= z[c * big_n + n0 + k] * y;
+            }
+            (s.q1[a], s.q2[a]) = (x1, x2);
+        }
+        for (b, &br) in border.iter().enumerate() {
+            if let Border::Late(_, i) = br {
+                (s.q1[i], s.q2[i]) = (m.y[2 * b], m.y[2 * b + 1]);
+            }
+        }
+        self.merged_end_values();
+        true
+    }
+}
