@@ -644,7 +644,7 @@ impl ModalState {
     }
 
     /// Point displacements `u` (m) and velocities `v` (m/s) from the state.
-    #[inline]
+    #[inline(always)]
     pub fn project(&self, basis: &ModalBasis, u: &mut [f64], v: &mut [f64]) {
         kernels::project(&basis.out, basis.num_points, &self.x, &self.v, u, v);
     }

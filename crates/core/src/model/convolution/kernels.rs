@@ -168,7 +168,7 @@ unsafe fn project_gathered_avx(
 
 /// `(u_i, v_i) = (a_i · x, a_i · v)` for every point `i` (rows of `out`),
 /// each sum in [`dot2`]'s order.
-#[inline]
+#[inline(always)]
 pub(super) fn project(out: &[f64], p: usize, x: &[f64], v: &[f64], u: &mut [f64], w: &mut [f64]) {
     let ns = x.len();
     assert!(out.len() >= p * ns && v.len() >= ns && u.len() >= p && w.len() >= p);
@@ -195,26 +195,78 @@ unsafe fn project_avx(out: &[f64], p: usize, x: &[f64], v: &[f64], u: &mut [f64]
     let mut i = 0;
     while i < p {
         let rows = (p - i).min(6);
-        let ns = x.len();
-        let idx: [usize; 6] = std::array::from_fn(|r| (i + r.min(rows - 1)) * ns);
-        let (u, w) = (&mut u[i..i + rows], &mut w[i..i + rows]);
         // SAFETY: the caller asserted the lengths; rows i..i + rows exist.
         unsafe {
             match rows {
-                6 => project_rows_avx::<6>(out, idx, x, v, u, w),
-                5 => project_rows_avx::<5>(out, idx, x, v, u, w),
-                4 => project_rows_avx::<4>(out, idx, x, v, u, w),
-                3 => project_rows_avx::<3>(out, idx, x, v, u, w),
-                2 => project_rows_avx::<2>(out, idx, x, v, u, w),
-                _ => project_rows_avx::<1>(out, idx, x, v, u, w),
+                6 => project_block_avx::<6>(out, i, x, v, u, w),
+                5 => project_block_avx::<5>(out, i, x, v, u, w),
+                4 => project_block_avx::<4>(out, i, x, v, u, w),
+                3 => project_block_avx::<3>(out, i, x, v, u, w),
+                2 => project_block_avx::<2>(out, i, x, v, u, w),
+                _ => project_block_avx::<1>(out, i, x, v, u, w),
             }
         }
         i += rows;
     }
 }
 
+/// Rows `i .. i + R` of [`project_avx`]: [`project_rows_avx`] on
+/// consecutive rows, their sums into `u[i + r]`, `w[i + r]`.
+///
+/// # Safety
+/// The CPU supports AVX; `out` holds rows `..i + R` (`x.len()` wide);
+/// `v` holds `x.len()` values; `u` and `w` hold `i + R`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+unsafe fn project_block_avx<const R: usize>(
+    out: &[f64],
+    i: usize,
+    x: &[f64],
+    v: &[f64],
+    u: &mut [f64],
+    w: &mut [f64],
+) {
+    use std::arch::x86_64::*;
+    let ns = x.len();
+    let m = ns - ns % 4;
+    let lanes = |r: __m256d| {
+        let mut a = [0.0f64; 4];
+        // SAFETY: `a` holds four f64.
+        unsafe { _mm256_storeu_pd(a.as_mut_ptr(), r) };
+        (a[0] + a[1]) + (a[2] + a[3])
+    };
+    let (xp, vp) = (x.as_ptr(), v.as_ptr());
+    let mut su = [_mm256_setzero_pd(); R];
+    let mut sv = [_mm256_setzero_pd(); R];
+    // SAFETY (all loads): c + 3 < m <= ns, rows of `out` have ns entries
+    // (the caller's contract), i + r < i + R.
+    unsafe {
+        let base = out.as_ptr().add(i * ns);
+        let mut c = 0;
+        while c < m {
+            let (xc, vc) = (_mm256_loadu_pd(xp.add(c)), _mm256_loadu_pd(vp.add(c)));
+            for r in 0..R {
+                let a = _mm256_loadu_pd(base.add(r * ns + c));
+                su[r] = _mm256_add_pd(su[r], _mm256_mul_pd(a, xc));
+                sv[r] = _mm256_add_pd(sv[r], _mm256_mul_pd(a, vc));
+            }
+            c += 4;
+        }
+    }
+    for r in 0..R {
+        let row = &out[(i + r) * ns..(i + r + 1) * ns];
+        let (mut ru, mut rv) = (lanes(su[r]), lanes(sv[r]));
+        for c in m..ns {
+            ru += row[c] * x[c];
+            rv += row[c] * v[c];
+        }
+        (u[i + r], w[i + r]) = (ru, rv);
+    }
+}
+
 /// The `R` rows of `out` starting at `start[r]` (`x.len()` wide each) of
-/// [`project_avx`] and [`project_gathered_avx`], their sums into `u[r]`,
+/// [`project_gathered_avx`], their sums into `u[r]`,
 /// `w[r]`.
 ///
 /// # Safety
@@ -374,34 +426,44 @@ unsafe fn add_gauss_forces_avx<const RANGE: bool>(
     let inp_t = &inp_t[s0..];
     let (w1x, w1v, w2x, w2v) = (&c.w1x[s0..], &c.w1v[s0..], &c.w2x[s0..], &c.w2v[s0..]);
     let (w1x, w1v, w2x, w2v) = (w1x.as_ptr(), w1v.as_ptr(), w2x.as_ptr(), w2v.as_ptr());
-    let mut b1 = [0.0f64; CHUNK];
-    let mut b2 = [0.0f64; CHUNK];
-    let (p1, p2) = (b1.as_mut_ptr(), b2.as_mut_ptr());
+    // (the chunk's first `len` values: written by its first column group,
+    // which starts its sums from zero, before any is read)
+    let mut b1 = [std::mem::MaybeUninit::<f64>::uninit(); CHUNK];
+    let mut b2 = [std::mem::MaybeUninit::<f64>::uninit(); CHUNK];
+    let (p1, p2) = (b1.as_mut_ptr().cast::<f64>(), b2.as_mut_ptr().cast::<f64>());
     let groups = active.len() - active.len() % 4;
     let mut c0 = 0;
     // SAFETY (all loads and stores): within a chunk, k + 4 <= quads <= len
-    // <= CHUNK and c0 + len <= n; x, v and the weight columns hold s0 + n
+    // <= CHUNK and c0 + len <= n; p1, p2 hold CHUNK values, the first len
+    // written (by the first column group, or zeroed without active
+    // columns) before any is read; x, v and the weight columns hold s0 + n
     // entries, inp_t j stride + s0 + n for every active j (asserted by the
     // caller).
     unsafe {
         while c0 < n {
             let len = CHUNK.min(n - c0);
             let quads = len - len % 4;
-            b1[..len].fill(0.0);
-            b2[..len].fill(0.0);
+            if active.is_empty() {
+                std::ptr::write_bytes(p1, 0, len);
+                std::ptr::write_bytes(p2, 0, len);
+            }
             // the active columns eight, then four at a time, then one at a
-            // time; each state's sums take the columns in the list's order
+            // time; each state's sums take the columns in the list's order,
+            // from zero
             let mut g = 0;
             while g + 8 <= groups {
-                gauss_columns_avx::<8>(&active[g..g + 8], inp_t, stride, c0, q1, q2, p1, p2, len);
+                let (js, first) = (&active[g..g + 8], g == 0);
+                gauss_columns_avx::<8>(js, inp_t, stride, c0, q1, q2, p1, p2, len, first);
                 g += 8;
             }
             while g < groups {
-                gauss_columns_avx::<4>(&active[g..g + 4], inp_t, stride, c0, q1, q2, p1, p2, len);
+                let (js, first) = (&active[g..g + 4], g == 0);
+                gauss_columns_avx::<4>(js, inp_t, stride, c0, q1, q2, p1, p2, len, first);
                 g += 4;
             }
-            for j in active[groups..].chunks(1) {
-                gauss_columns_avx::<1>(j, inp_t, stride, c0, q1, q2, p1, p2, len);
+            for (k, j) in active[groups..].chunks(1).enumerate() {
+                let first = groups + k == 0;
+                gauss_columns_avx::<1>(j, inp_t, stride, c0, q1, q2, p1, p2, len, first);
             }
             // the chunk's responses into the states
             let mut k = 0;
@@ -422,8 +484,9 @@ unsafe fn add_gauss_forces_avx<const RANGE: bool>(
             }
             for k in quads..len {
                 let o = c0 + k;
-                *xp.add(o) += *w1x.add(o) * b1[k] + *w2x.add(o) * b2[k];
-                *vp.add(o) += *w1v.add(o) * b1[k] + *w2v.add(o) * b2[k];
+                let (bb1, bb2) = (*p1.add(k), *p2.add(k));
+                *xp.add(o) += *w1x.add(o) * bb1 + *w2x.add(o) * bb2;
+                *vp.add(o) += *w1v.add(o) * bb1 + *w2v.add(o) * bb2;
             }
             c0 += len;
         }
@@ -433,11 +496,12 @@ unsafe fn add_gauss_forces_avx<const RANGE: bool>(
 /// `G` active columns `js` of [`add_gauss_forces_avx`] added to a chunk's
 /// projections `p1`, `p2` (`len` states from `c0`): each state's sums take
 /// the columns in order, the projections loaded and stored once per `G`
-/// columns.
+/// columns. The `first` group of a chunk starts the sums from zero instead
+/// of loading the projections (the same sums as on zeroed projections).
 ///
 /// # Safety
-/// AVX; `p1`, `p2` hold `len` values; every column `j` of `js` holds
-/// `j * stride + c0 + len` values of `inp_t`.
+/// AVX; `p1`, `p2` hold `len` values, written unless `first`; every
+/// column `j` of `js` holds `j * stride + c0 + len` values of `inp_t`.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 #[allow(clippy::too_many_arguments)]
@@ -451,6 +515,7 @@ unsafe fn gauss_columns_avx<const G: usize>(
     p1: *mut f64,
     p2: *mut f64,
     len: usize,
+    first: bool,
 ) {
     use std::arch::x86_64::*;
     let quads = len - len % 4;
@@ -462,7 +527,11 @@ unsafe fn gauss_columns_avx<const G: usize>(
         let qb: [__m256d; G] = std::array::from_fn(|r| _mm256_set1_pd(q2[js[r]]));
         let mut k = 0;
         while k < quads {
-            let (mut a1, mut a2) = (_mm256_loadu_pd(p1.add(k)), _mm256_loadu_pd(p2.add(k)));
+            let (mut a1, mut a2) = if first {
+                (_mm256_setzero_pd(), _mm256_setzero_pd())
+            } else {
+                (_mm256_loadu_pd(p1.add(k)), _mm256_loadu_pd(p2.add(k)))
+            };
             for r in 0..G {
                 let b = _mm256_loadu_pd(col[r].add(k));
                 a1 = _mm256_add_pd(a1, _mm256_mul_pd(b, qa[r]));
@@ -473,11 +542,17 @@ unsafe fn gauss_columns_avx<const G: usize>(
             k += 4;
         }
         for k in quads..len {
+            let (mut a1, mut a2) = if first {
+                (0.0, 0.0)
+            } else {
+                (*p1.add(k), *p2.add(k))
+            };
             for r in 0..G {
                 let b = *col[r].add(k);
-                *p1.add(k) += b * q1[js[r]];
-                *p2.add(k) += b * q2[js[r]];
+                a1 += b * q1[js[r]];
+                a2 += b * q2[js[r]];
             }
+            (*p1.add(k), *p2.add(k)) = (a1, a2);
         }
     }
 }
