@@ -51,7 +51,7 @@ fn run(
     while !sim.finished() {
         sim.step().unwrap();
         n += 1;
-        if n % every == 0 {
+        if n.is_multiple_of(every) {
             out.push(sim.displacement_m().to_vec());
         }
     }
@@ -117,7 +117,7 @@ fn bordered_merged_solves_agree_with_fresh_factorisations() {
         iterative_sub_from: usize::MAX,
         ..merged(true)
     };
-    let mut a = model.simulation(direct.clone()).unwrap();
+    let mut a = model.simulation(direct).unwrap();
     let fresh = SolverOptions {
         reuse_factorisation: false,
         ..direct
