@@ -93,14 +93,20 @@ fn large_set_methods_agree_with_the_direct_solves() {
         // over 0.03 s, in both solves alike)
         scene.duration_s = if regime == Regime::Rigid { 0.01 } else { 0.04 };
         let model = PreparedModel::of(&scene).unwrap();
+        // (events by sub-steps in both: the merged event step is the
+        // direct solves' alone)
+        let sub_steps = SolverOptions {
+            merged_events: false,
+            ..SolverOptions::default()
+        };
         let direct = SolverOptions {
             large_set_from: usize::MAX,
             iterative_sub_from: usize::MAX,
-            ..SolverOptions::default()
+            ..sub_steps
         };
         let large = SolverOptions {
             large_set_from: 2,
-            ..SolverOptions::default()
+            ..sub_steps
         };
         let mut a = Simulation::new(model.problem(), direct).unwrap();
         let mut b = Simulation::new(model.problem(), large).unwrap();
@@ -162,14 +168,20 @@ fn the_paper_scheme_on_large_sets_agrees_with_the_direct_solves() {
         };
         scene.duration_s = 0.01;
         let model = PreparedModel::of(&scene).unwrap();
+        // (events by sub-steps in both: the merged event step is the
+        // direct solves' alone)
+        let sub_steps = SolverOptions {
+            merged_events: false,
+            ..SolverOptions::default()
+        };
         let direct = SolverOptions {
             large_set_from: usize::MAX,
             iterative_sub_from: usize::MAX,
-            ..SolverOptions::default()
+            ..sub_steps
         };
         let large = SolverOptions {
             large_set_from: 2,
-            ..SolverOptions::default()
+            ..sub_steps
         };
         let mut a = Simulation::new(model.problem(), direct).unwrap();
         let mut b = Simulation::new(model.problem(), large).unwrap();

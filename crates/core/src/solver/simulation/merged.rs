@@ -66,8 +66,8 @@ pub(super) struct MergedScratch {
     known: ModalState,
     known_x: Vec<f64>,
     known_v: Vec<f64>,
-    tmp: ModalState,
-    tmp2: ModalState,
+    /// A released point's load, its state at the step end.
+    load: ModalState,
     /// Point-indexed Gauss values of one source (zero but at that point).
     g1: Vec<f64>,
     g2: Vec<f64>,
@@ -87,7 +87,10 @@ pub(super) struct MergedScratch {
     z0: Vec<f64>,
     /// The bordered system's Schur complement and its solver.
     schur: DenseSolver,
+    /// The borders in the order of the step's events, and how many of
+    /// them have their columns in `z`.
     border: Vec<Border>,
+    z_done: usize,
     y: Vec<f64>,
     /// The steady trial of this step (prediction over the whole step, the
     /// carried set solved, every point's end values) is in the scratch.
@@ -120,8 +123,7 @@ impl MergedScratch {
             known: zero(),
             known_x: vec![0.0; n],
             known_v: vec![0.0; n],
-            tmp: zero(),
-            tmp2: zero(),
+            load: zero(),
             g1: vec![0.0; n],
             g2: vec![0.0; n],
             set: Vec::with_capacity(n),
@@ -131,10 +133,12 @@ impl MergedScratch {
             solver: DenseSolver::new(2 * cap),
             rhs: vec![0.0; 2 * cap],
             trial_set: Vec::with_capacity(n),
-            z: vec![0.0; 4 * MERGED_EVENTS * cap],
+            // (two borders per event at most: a spring that lets go and lands)
+            z: vec![0.0; 8 * MERGED_EVENTS * cap],
             z0: vec![0.0; 2 * cap],
             schur: DenseSolver::new(4 * MERGED_EVENTS),
             border: Vec::with_capacity(2 * MERGED_EVENTS),
+            z_done: 0,
             y: vec![0.0; 4 * MERGED_EVENTS],
             trial_ready: false,
         }
@@ -194,6 +198,8 @@ impl Simulation {
             m.full = m.set.len();
             m.trial_set.clear();
             m.trial_set.extend_from_slice(&self.state.active);
+            m.border.clear();
+            m.z_done = 0;
             m.late_tau_s.clear();
             m.early.clear();
             m.known.reset();
@@ -221,6 +227,9 @@ impl Simulation {
                     let m = &mut self.scratch.merged;
                     let j = m.set.remove(k);
                     m.full -= 1;
+                    if let Some(k0) = m.trial_set.iter().position(|&x| x == j) {
+                        m.border.push(Border::Left(k0));
+                    }
                     self.merged_landing(j, dt - theta);
                 }
             }
@@ -372,20 +381,29 @@ impl Simulation {
             rq2: qs + (qe - qs) * f * yb,
         };
         m.early.push(e);
+        if let Some(k0) = m.trial_set.iter().position(|&x| x == j) {
+            m.border.push(Border::Left(k0));
+        }
         if theta <= 1e-9 * dt {
             return;
         }
-        m.tab.fill(&tb.basis, theta);
-        m.tmp.reset();
-        (m.g1[j], m.g2[j]) = (e.rq1, e.rq2);
-        m.tmp
+        // the linear force over the whole step less its part on
+        // `[θ, dt]` (the Gauss values of that interval, a step of
+        // `dt − θ`): one table instead of `Φ(dt − θ)` of a step of `θ`
+        let tau = dt - theta;
+        let at = |y: f64| qs + (qe - qs) * (theta + tau * y) / dt;
+        m.load.reset();
+        (m.g1[j], m.g2[j]) = (q1, q2);
+        m.load
+            .add_gauss_forces(&tb.basis, &tb.full, &[j], &m.g1, &m.g2);
+        m.tab.fill(&tb.basis, tau);
+        (m.g1[j], m.g2[j]) = (-at(ya), -at(yb));
+        m.load
             .add_gauss_forces(&tb.basis, &m.tab, &[j], &m.g1, &m.g2);
         (m.g1[j], m.g2[j]) = (0.0, 0.0);
-        m.tab.fill(&tb.basis, dt - theta);
-        m.tmp.predict_into(&m.tab, &mut m.tmp2);
-        m.known.add(&m.tmp2);
+        m.known.add(&m.load);
         let (du, dv) = (&mut s.du, &mut s.dv);
-        m.tmp2.project(&tb.basis, du, dv);
+        m.load.project(&tb.basis, du, dv);
         for (a, b) in m.known_x.iter_mut().zip(du.iter()) {
             *a += b;
         }
@@ -402,6 +420,7 @@ impl Simulation {
         let l = m.late_tau_s.len();
         m.late_tau_s.push(tau);
         m.set.push(i);
+        m.border.push(Border::Late(l, i));
         m.tab.fill(&tb.basis, tau);
         for c in 0..2 {
             let slot = 2 * l + c;
@@ -516,21 +535,13 @@ impl Simulation {
         let trial = &m.trial_set;
         let n0 = trial.len();
         let big_n = 2 * n0;
-        m.border.clear();
-        for (k, j) in trial.iter().enumerate() {
-            if !m.set[..m.full].contains(j) {
-                m.border.push(Border::Left(k));
-            }
-        }
-        for (l, &i) in m.set[m.full..].iter().enumerate() {
-            m.border.push(Border::Late(l, i));
-        }
         let nb = 2 * m.border.len();
         let g = &tb.full_inf;
         let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
         let units = [&m.unit_x, &m.unit_v];
-        // the border columns B and their A⁻¹ B
-        for (b, border) in m.border.iter().enumerate() {
+        // the border columns B and their A⁻¹ B (those of earlier solves
+        // of the step kept)
+        for (b, border) in m.border.iter().enumerate().skip(m.z_done) {
             for c in 0..2 {
                 let z = &mut m.z[(2 * b + c) * big_n..(2 * b + c + 1) * big_n];
                 match *border {
@@ -551,6 +562,7 @@ impl Simulation {
                 }
             }
         }
+        m.z_done = m.border.len();
         // A⁻¹ b
         for (r, &a) in trial.iter().enumerate() {
             m.z0[r] = s.re[a] - s.uh[a] - m.known_x[a];

@@ -101,7 +101,9 @@ pub struct SolverOptions {
     /// point's force on the rest of the step, a released point's trial
     /// force up to its release as a known load) instead of splitting the
     /// step into sub-steps at each event. The two agree to `O(dt²)`; off,
-    /// every event splits the step as with rigid contact.
+    /// every event splits the step as with rigid contact. It starts from
+    /// the steady path's trial: without [`SolverOptions::steady_path`],
+    /// events take the sub-steps.
     pub merged_events: bool,
 }
 
