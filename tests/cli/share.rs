@@ -90,6 +90,9 @@ fn a_measured_tyre_is_refused_with_the_field_and_the_reason() {
     assert!(!out.status.success());
     assert!(out.stdout.is_empty());
     let err = String::from_utf8(out.stderr).unwrap();
-    assert!(err.contains("measured_example.ron: tyre.file = "), "{err}");
+    assert!(
+        err.contains("measured_example.ron: the scene reads its measured tyre from "),
+        "{err}"
+    );
     assert!(err.contains("a link carries the scene alone"), "{err}");
 }

@@ -184,7 +184,10 @@ mod tests {
         app.apply(Command::Share);
         assert!(app.shared_link().is_none());
         let m = app.message().unwrap();
-        assert!(m.error && m.text.contains("road.file = road.csv"), "{m:?}");
+        assert!(
+            m.error && m.text.contains("reads its measured road from road.csv"),
+            "{m:?}"
+        );
 
         let app = App::open_link("index.html#scene=v1.%%%", None);
         let m = app.message().unwrap();

@@ -28,7 +28,7 @@ pub const DEFAULT_BASE_URL: &str = "index.html";
 pub enum ShareError {
     /// The scene reads a file that a link cannot carry.
     #[error(
-        "{field} = {}: a link carries the scene alone, not the files it reads; share a scene without a {what}",
+        "the scene reads its {what} from {}: a link carries the scene alone, not the files it reads; share a scene without a {what}",
         .path.display()
     )]
     NeedsFile {
@@ -256,7 +256,11 @@ mod tests {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../presets");
         let measured = Scene::load(&dir.join("measured_example.ron")).unwrap();
         let e = link(&measured, DEFAULT_BASE_URL).unwrap_err();
-        assert!(e.to_string().starts_with("tyre.file = "), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("the scene reads its measured tyre from "),
+            "{e}"
+        );
         assert!(e.to_string().contains("measured tyre"), "{e}");
 
         let mut road = Scene::parse(PAPER, "paper.ron").unwrap();
@@ -265,7 +269,11 @@ mod tests {
             looped: false,
         };
         let e = link(&road, DEFAULT_BASE_URL).unwrap_err();
-        assert!(e.to_string().starts_with("road.file = /etc/passwd"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("the scene reads its measured road from /etc/passwd:"),
+            "{e}"
+        );
         // a hand-made link naming a file is refused too, not read
         let ron = road.to_ron_string();
         let packed = miniz_oxide::deflate::compress_to_vec(ron.as_bytes(), 6);
