@@ -160,7 +160,7 @@ fn small_presets_are_timed_per_step() {
     let md = std::fs::read_to_string(out.join("preset_steps.md")).unwrap();
     assert!(
         md.contains(
-            "| preset | points | modes | dt (s) | steps | µs/step | events/step | real time | k instructions/step |"
+            "| preset | points | modes | dt (s) | steps | µs/step | events/step | real time | instructions/step |"
         ),
         "{md}"
     );

@@ -369,16 +369,16 @@ pub fn steps_markdown(rows: &[PresetSteps], timing: Timing) -> String {
          Each preset as shipped, the fastest of {} runs on {} thread(s), set-up excluded. \
          Columns: *steps*, steps of the timed run; *µs/step*, wall time per step (µs/step); \
          *events/step*, located events per step; *real time*, simulated s per wall s; \
-         *k instructions/step*, callgrind's instructions per rolling step (thousands: the count \
+         *instructions/step*, callgrind's instructions per rolling step (the count \
          of a run to the ramp's end + 0.02 s less that of a run to its end + 0.01 s, over the \
          steps between; `-` where not counted: valgrind not installed, or `--quick`).\n\n\
-         | preset | points | modes | dt (s) | steps | µs/step | events/step | real time | k instructions/step |\n\
+         | preset | points | modes | dt (s) | steps | µs/step | events/step | real time | instructions/step |\n\
          |---|---|---|---|---|---|---|---|---|\n",
         timing.repeats, timing.threads,
     );
     for r in rows {
         s.push_str(&format!(
-            "| {} | {} | {} | {:e} | {} | {:.2} | {:.4} | {:.2}× | {} |\n",
+            "| {} | {} | {} | {:e} | {} | {:.3} | {:.4} | {:.2}× | {} |\n",
             r.name,
             r.points,
             r.modes,
@@ -387,7 +387,7 @@ pub fn steps_markdown(rows: &[PresetSteps], timing: Timing) -> String {
             1e6 * r.step_s,
             r.events_per_step,
             r.real_time(),
-            or_dash(r.instructions_per_step.map(|n| n / 1e3), 1),
+            or_dash(r.instructions_per_step, 0),
         ));
     }
     s
@@ -534,6 +534,6 @@ mod tests {
         assert!(row.ends_with("| - |"), "{row}");
         r.instructions_per_step = Some(12_345.0);
         let md = steps_markdown(&[r], one);
-        assert!(md.contains("| 12.3 |"), "{md}");
+        assert!(md.contains("| 12345 |"), "{md}");
     }
 }
