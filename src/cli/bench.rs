@@ -1,6 +1,7 @@
 //! `tirecontact bench [-o DIR] [--quick] [PRESET...]`: the work-precision
 //! study and the measured effect of each piece of skipped work.
 
+mod presets;
 mod scaling;
 
 use super::{CliResult, load_scene};
@@ -37,11 +38,20 @@ pub struct BenchArgs {
     /// Instead of the work-precision study: each contact-patch preset
     /// (default: the shipped `presets/patch_*.ron`; or the presets given)
     /// timed as shipped and off the road, beside the scaling study's patch
-    /// of the same grid and number of modes (patch_presets.md).
+    /// of the same grid and number of modes and beside its smooth twin (the
+    /// same scene on a 0.1 mm sine road): the cost of one event in
+    /// event-free steps, against the speed goals, by callgrind's
+    /// instructions too where valgrind is installed (patch_presets.md).
     #[arg(long, conflicts_with = "scaling")]
     pub patch_presets: bool,
-    /// Solver threads of each timed run of `--scaling` and
-    /// `--patch-presets` (results do not depend on them).
+    /// Instead of the work-precision study: the small shipped presets
+    /// (single mode, three points, paper, random road; or the presets
+    /// given) timed per step, with callgrind's instructions per rolling
+    /// step where valgrind is installed (preset_steps.md).
+    #[arg(long, conflicts_with_all = ["scaling", "patch_presets"])]
+    pub presets_steps: bool,
+    /// Solver threads of each timed run of `--scaling`, `--patch-presets`
+    /// and `--presets-steps` (results do not depend on them).
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=256))]
     pub threads: u16,
     /// One size of the scaling study, `P,K,CONTACT` with CONTACT `rigid`,
@@ -50,6 +60,11 @@ pub struct BenchArgs {
     /// with `lifted`, then the process's peak memory (what callgrind counts).
     #[arg(long, hide = true)]
     pub scaling_one: Option<String>,
+    /// One run of a preset, `PATH,SECONDS[,smooth]`: loaded, on its smooth
+    /// twin's road with `smooth`, run to SECONDS, its located events printed (what
+    /// callgrind counts for `--patch-presets` and `--presets-steps`).
+    #[arg(long, hide = true, conflicts_with = "scaling_one")]
+    pub preset_one: Option<String>,
 }
 
 /// The scenes studied without preset arguments, relative to the working
@@ -81,8 +96,14 @@ pub fn bench(args: &BenchArgs) -> CliResult {
     if args.scaling {
         return scaling::scaling(args);
     }
+    if let Some(spec) = &args.preset_one {
+        return presets::preset_one(spec, args.threads.into());
+    }
     if args.patch_presets {
-        return scaling::patch_presets(args);
+        return presets::patch_presets(args);
+    }
+    if args.presets_steps {
+        return presets::presets_steps(args);
     }
     let presets = if args.presets.is_empty() {
         let found = default_presets();

@@ -61,7 +61,8 @@ fn the_scaling_study_writes_its_table_and_figure() {
 }
 
 /// `bench --patch-presets` on a small patch written here (2 threads): the
-/// table names it with its grid and modes beside the study's patch; a
+/// table names it with its grid and modes beside the study's patch, then
+/// beside its smooth twin and the goals (no callgrind with `--quick`); a
 /// preset without a patch is refused, named.
 #[test]
 fn patch_presets_are_timed_beside_the_study_patch() {
@@ -104,6 +105,31 @@ fn patch_presets_are_timed_beside_the_study_patch() {
         .unwrap_or_else(|| panic!("{md}"));
     assert!(row.contains("| 4 × 3 |"), "{row}");
     assert!(md.contains("on 2 thread(s)"), "{md}");
+    assert!(md.contains("## Against the smooth twin"), "{md}");
+    assert!(
+        md.contains(
+            "| preset | events/step | twin events/step | µs/step | twin (µs/step) | preset / twin | one event (event-free steps) | M instructions/step | counted events/step | twin (M instructions/step) | twin counted events/step | preset / twin, instructions | one event by instructions (event-free steps) |"
+        ),
+        "{md}"
+    );
+    let twin_row = md
+        .lines()
+        .filter(|l| l.starts_with("| Small patch |"))
+        .nth(1)
+        .unwrap_or_else(|| panic!("{md}"));
+    // not counted with --quick
+    assert!(
+        twin_row.ends_with("| - | - | - | - | - | - |"),
+        "{twin_row}"
+    );
+    assert!(md.contains("## Goals\n"), "{md}");
+    for goal in [
+        "| one located event ≤ 1 event-free step | Small patch |",
+        "| chip seal ≤ 2.5× its smooth twin per step | (not measured) |",
+        "| every shipped patch ≥ 0.4× real time at dt = 1e-5 s on one core | Small patch |",
+    ] {
+        assert!(md.contains(goal), "{goal}: {md}");
+    }
     let line = tmp.path().join("line.ron");
     std::fs::copy("presets/three_points.ron", &line).unwrap();
     let o = bin()
@@ -115,4 +141,50 @@ fn patch_presets_are_timed_beside_the_study_patch() {
     assert!(!o.status.success());
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(e.contains("line.ron") && e.contains("2 rows across"), "{e}");
+}
+
+/// `bench --presets-steps` on two small presets: the table of µs per step
+/// (instructions `-` with `--quick`); the child run of a callgrind count
+/// prints its events only, and a bad one is refused with what was expected.
+#[test]
+fn small_presets_are_timed_per_step() {
+    let tmp = temp_dir();
+    let out = tmp.path().join("steps");
+    let o = bin()
+        .args(["bench", "--presets-steps", "--quick", "-o"])
+        .arg(&out)
+        .args(["presets/single_mode.ron", "presets/three_points.ron"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(out.join("preset_steps.md")).unwrap();
+    assert!(
+        md.contains(
+            "| preset | points | modes | dt (s) | steps | µs/step | events/step | real time | instructions/step |"
+        ),
+        "{md}"
+    );
+    let rows: Vec<&str> = md
+        .lines()
+        .filter(|l| l.starts_with("| Single mode") || l.starts_with("| Three coupled"))
+        .collect();
+    assert_eq!(rows.len(), 2, "{md}");
+    assert!(rows.iter().all(|r| r.ends_with("| - |")), "{md}");
+    let o = bin()
+        .args([
+            "bench",
+            "--preset-one",
+            "presets/three_points.ron,0.001,smooth",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let events = String::from_utf8_lossy(&o.stdout);
+    assert!(events.trim().parse::<u64>().is_ok(), "{events}");
+    for bad in ["presets/three_points.ron", "presets/three_points.ron,-1"] {
+        let o = bin().args(["bench", "--preset-one", bad]).output().unwrap();
+        assert!(!o.status.success());
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert!(e.contains("expected PATH,SECONDS[,smooth]"), "{e}");
+    }
 }

@@ -187,19 +187,22 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
     }
     // instructions per step: callgrind's count of 0.03 s less that of
     // 0.02 s (1000 rolling steps; the set-up and the ramp cancel)
-    let valgrind = !args.quick
-        && std::process::Command::new("valgrind")
-            .arg("--version")
-            .output()
-            .is_ok_and(|o| o.status.success());
-    if valgrind {
+    if callgrind_available(args.quick) {
         bar.set_position(0);
         for s in &mut sizes {
             let (p, k, regime) = (s.row.points, s.row.modes, s.row.regime);
             bar.set_message(format!("callgrind, P = {p}, K = {k}, {}", regime.label()));
             let per_step = |lifted: &str| {
-                let n =
-                    |d: f64| callgrind_count(&exe, (p, k, regime), d, lifted, args.threads, &bar);
+                let n = |d: f64| {
+                    let child = [
+                        "--scaling-one".to_string(),
+                        format!("{p},{k},{},{d}{lifted}", regime.key()),
+                        "--threads".to_string(),
+                        args.threads.to_string(),
+                    ];
+                    let what = format!("P = {p}, K = {k}, {}{lifted}", regime.label());
+                    callgrind_count(&exe, &child, &what, &bar).map(|(n, _)| n)
+                };
                 Some((n(0.03)? - n(0.02)?) / 1000.0)
             };
             s.row.instructions_per_step = per_step("");
@@ -224,64 +227,6 @@ pub fn scaling(args: &BenchArgs) -> CliResult {
         "wrote {}/scaling.csv, scaling.md and scaling.png",
         args.output.display()
     );
-    Ok(())
-}
-
-/// The shipped patch presets (or those given) against the study's patch
-/// of their size, in this process, one after the other
-/// ([`tirecontact::analysis::bench::scaling::presets`]).
-pub fn patch_presets(args: &BenchArgs) -> CliResult {
-    use tirecontact::analysis::bench::scaling::presets;
-    crate::cli::paths::ensure_output_dir("-o", &args.output)?;
-    let paths: Vec<std::path::PathBuf> = if args.presets.is_empty() {
-        let mut found: Vec<_> = std::fs::read_dir("presets")
-            .map_err(|e| {
-                format!("presets/: {e}: run from the repository's folder or name the presets")
-            })?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| {
-                p.file_name()
-                    .and_then(|n| n.to_str())
-                    .is_some_and(|n| n.starts_with("patch_") && n.ends_with(".ron"))
-            })
-            .collect();
-        found.sort();
-        found
-    } else {
-        args.presets.clone()
-    };
-    if paths.is_empty() {
-        return Err(
-            "no patch preset found (presets/patch_*.ron): name the presets to measure".into(),
-        );
-    }
-    let timing = Timing {
-        repeats: if args.quick { 1 } else { 3 },
-        threads: args.threads.into(),
-    };
-    let bar = ProgressBar::new(paths.len() as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{elapsed} [{bar:30}] {pos}/{len} presets {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    let mut rates = Vec::with_capacity(paths.len());
-    for path in &paths {
-        bar.set_message(path.display().to_string());
-        let mut scene = tirecontact::Scene::load(path)?;
-        if args.quick {
-            scene.duration_s = scene.duration_s.min(scene.ramp_s + 0.01);
-        }
-        rates.push(
-            presets::measure_preset(&scene, timing)
-                .map_err(|e| format!("{}: {e}", path.display()))?,
-        );
-        bar.inc(1);
-    }
-    bar.finish_and_clear();
-    let md = presets::markdown(&rates, timing);
-    super::write(&args.output.join("patch_presets.md"), &md)?;
-    println!("{md}");
-    println!("wrote {}/patch_presets.md", args.output.display());
     Ok(())
 }
 
@@ -321,27 +266,31 @@ fn time_size(
     )?)
 }
 
-/// callgrind's instruction count of one run of `d` s of a size (`lifted`:
-/// `",lifted"` for the scene off the road); a warning on the progress bar
-/// and `None` when it counted nothing.
-fn callgrind_count(
+/// Whether callgrind can count: not with `--quick`, and only where
+/// `valgrind` runs.
+pub(super) fn callgrind_available(quick: bool) -> bool {
+    !quick
+        && std::process::Command::new("valgrind")
+            .arg("--version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+}
+
+/// callgrind's instruction count of one child run of this executable,
+/// `tirecontact bench CHILD_ARGS...` (a hidden one-run mode), its profile
+/// discarded, and what the child printed; `what` names the run in a
+/// warning on the progress bar, and `None` when it counted nothing.
+pub(super) fn callgrind_count(
     exe: &std::path::Path,
-    (p, k, regime): (usize, usize, Regime),
-    d: f64,
-    lifted: &str,
-    threads: u16,
+    child_args: &[String],
+    what: &str,
     bar: &ProgressBar,
-) -> Option<f64> {
+) -> Option<(f64, String)> {
     let out = std::process::Command::new("valgrind")
         .args(["--tool=callgrind", "--callgrind-out-file=/dev/null"])
         .arg(exe)
-        .args([
-            "bench",
-            "--scaling-one",
-            &format!("{p},{k},{},{d}{lifted}", regime.key()),
-            "--threads",
-            &threads.to_string(),
-        ])
+        .arg("bench")
+        .args(child_args)
         .output()
         .ok()?;
     let err = String::from_utf8_lossy(&out.stderr);
@@ -351,11 +300,11 @@ fn callgrind_count(
         .and_then(|n| n.trim().parse().ok());
     if n.is_none() || !out.status.success() {
         bar.println(format!(
-            "warning: P = {p}, K = {k}, {}{lifted}: callgrind counted nothing ({}): {}",
-            regime.label(),
+            "warning: {what}: callgrind counted nothing ({}): {}",
             out.status,
             err.lines().last().unwrap_or("").trim()
         ));
+        return None;
     }
-    n
+    Some((n?, String::from_utf8_lossy(&out.stdout).into_owned()))
 }
