@@ -26,9 +26,10 @@
 //! which it leaves untouched: nothing is committed before the end.
 //!
 //! Cost: a landing adds a step table at `τ` and two projections of its
-//! unit responses, a release two tables and one projection, each solve a
-//! dense factorisation of the `2|S|` system; the sub-steps instead predict,
-//! fill, solve and project twice per event.
+//! unit responses, a release one table and one projection, each solve
+//! `O(|S|²)` per new border unknown and a Schur complement of at most
+//! `4 MERGED_EVENTS` unknowns; the sub-steps instead predict, fill, solve
+//! and project twice per event.
 
 use super::contact::DenseSolver;
 use super::{GA, GB, SQRT3, Simulation, first_crossing};
@@ -182,7 +183,7 @@ impl Simulation {
             && self.scratch.projected_all
     }
 
-    /// The step from `t0` with its events in one solve (module doc), after
+    /// The current step with its events in one solve (module doc), after
     /// [`Simulation::compliant_steady_step`]'s trial. `Some((events,
     /// solves))` once committed; `None`, with only scratch values changed,
     /// when the step is the sub-steps'.
