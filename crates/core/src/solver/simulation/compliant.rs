@@ -245,15 +245,8 @@ impl Simulation {
         du.fill(0.0);
         dv.fill(0.0);
         for &j in active {
-            let cols = &self.tables.full_inf_cols[4 * p * j..4 * p * (j + 1)];
-            let (gx1, rest) = cols.split_at(p);
-            let (gx2, rest) = rest.split_at(p);
-            let (gv1, gv2) = rest.split_at(p);
-            let (q1, q2) = (s.q1[j], s.q2[j]);
-            for i in 0..p {
-                du[i] += gx1[i] * q1 + gx2[i] * q2;
-                dv[i] += gv1[i] * q1 + gv2[i] * q2;
-            }
+            self.tables
+                .add_full_step_response(j, s.q1[j], s.q2[j], du, dv);
         }
         for i in 0..p {
             s.ue[i] += du[i];

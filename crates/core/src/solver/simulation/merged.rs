@@ -32,8 +32,9 @@
 //! and project twice per event.
 
 use super::contact::DenseSolver;
+use super::parts::SimTables;
 use super::{GA, GB, SQRT3, Simulation, first_crossing};
-use crate::model::convolution::{ModalBasis, ModalState, StepTable};
+use crate::model::convolution::{ModalState, StepTable};
 use crate::solver::error::SolverError;
 
 /// Events (landings and releases) one merged step takes; a step with more
@@ -99,22 +100,25 @@ pub(super) struct MergedScratch {
 }
 
 impl MergedScratch {
-    /// For `p` points on `basis`; empty unless `compliant`. The systems
-    /// solved hold fewer than `large_set_from` points.
-    pub fn new(basis: &ModalBasis, p: usize, compliant: bool, large_set_from: usize) -> Self {
+    /// Buffers for the tables' points and states; empty unless the
+    /// contact is compliant. The systems solved hold fewer than
+    /// `large_set_from` points.
+    pub fn new(tables: &SimTables) -> Self {
+        let compliant = tables.compliant();
         let (n, states) = if compliant {
-            (p, basis.stored_states())
+            (tables.p, tables.basis.stored_states())
         } else {
             (0, 0)
         };
-        let cap = n.min(large_set_from);
+        let cap = n.min(tables.options.large_set_from);
         let zero = || ModalState {
             x: vec![0.0; states],
             v: vec![0.0; states],
         };
         MergedScratch {
+            // (sized as the full step's; refilled for each event)
             tab: if compliant {
-                StepTable::new(basis, 1.0)
+                tables.full.clone()
             } else {
                 StepTable::default()
             },
@@ -499,15 +503,7 @@ impl Simulation {
             ve[i] = s.vh[i] + m.known_v[i];
         }
         for &j in &set[..full] {
-            let cols = &tb.full_inf_cols[4 * p * j..4 * p * (j + 1)];
-            let (gx1, rest) = cols.split_at(p);
-            let (gx2, rest) = rest.split_at(p);
-            let (gv1, gv2) = rest.split_at(p);
-            let (q1, q2) = (s.q1[j], s.q2[j]);
-            for i in 0..p {
-                ue[i] += gx1[i] * q1 + gx2[i] * q2;
-                ve[i] += gv1[i] * q1 + gv2[i] * q2;
-            }
+            tb.add_full_step_response(j, s.q1[j], s.q2[j], ue, ve);
         }
         for (l, &j) in set[full..].iter().enumerate() {
             for (c, q) in [s.q1[j], s.q2[j]].into_iter().enumerate() {

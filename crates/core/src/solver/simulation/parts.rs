@@ -175,6 +175,24 @@ impl SimTables {
     pub fn compliant(&self) -> bool {
         !self.tread_k_n_m.is_empty()
     }
+
+    /// Adds to every point's end displacement `u` (m) and velocity `v`
+    /// (m/s) the response to point `j`'s full-step Gauss-point forces
+    /// `q1`, `q2` (N, method §4.3 step 3), down its contiguous influence
+    /// columns (`full_inf_cols`).
+    #[inline]
+    pub fn add_full_step_response(&self, j: usize, q1: f64, q2: f64, u: &mut [f64], v: &mut [f64]) {
+        let p = self.p;
+        let cols = &self.full_inf_cols[4 * p * j..4 * p * (j + 1)];
+        let (gx1, rest) = cols.split_at(p);
+        let (gx2, rest) = rest.split_at(p);
+        let (gv1, gv2) = rest.split_at(p);
+        let (u, v) = (&mut u[..p], &mut v[..p]);
+        for i in 0..p {
+            u[i] += gx1[i] * q1 + gx2[i] * q2;
+            v[i] += gv1[i] * q1 + gv2[i] * q2;
+        }
+    }
 }
 
 /// The modal basis of `modes` (rank terms, method §3.4) and the residual
@@ -491,12 +509,7 @@ impl Scratch {
             events: EventScratch::new(p),
             large: LargeSetScratch::new(tables),
             ahead: RowsAhead::new(tables),
-            merged: MergedScratch::new(
-                &tables.basis,
-                p,
-                tables.compliant(),
-                tables.options.large_set_from,
-            ),
+            merged: MergedScratch::new(tables),
         }
     }
 }
