@@ -2,6 +2,7 @@
 //! rows projected ahead) against the direct solves on the scaling study's
 //! scenes.
 
+use crate::support::Gap;
 use tirecontact::analysis::bench::scaling::{Regime, scaling_scene};
 use tirecontact::{PreparedModel, Simulation, SolverOptions};
 
@@ -111,20 +112,14 @@ fn large_set_methods_agree_with_the_direct_solves() {
         let mut a = Simulation::new(model.problem(), direct).unwrap();
         let mut b = Simulation::new(model.problem(), large).unwrap();
         // differences against the largest values of the run
-        let (mut du, mut dq, mut u_max, mut q_max) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        let (mut u, mut q) = (Gap::default(), Gap::default());
         while !a.finished() {
             a.step().unwrap();
             b.step().unwrap();
-            for (x, y) in a.displacement_m().iter().zip(b.displacement_m()) {
-                du = du.max((x - y).abs());
-                u_max = u_max.max(x.abs());
-            }
-            for (x, y) in a.force_n().iter().zip(b.force_n()) {
-                dq = dq.max((x - y).abs());
-                q_max = q_max.max(x.abs());
-            }
+            u.add(a.displacement_m(), b.displacement_m());
+            q.add(a.force_n(), b.force_n());
         }
-        let (worst_u, worst_q) = (du / u_max, dq / q_max);
+        let (worst_u, worst_q) = (u.relative(), q.relative());
         let (sa, sb) = (a.stats(), b.stats());
         eprintln!(
             "P {p}, K {k}: worst relative difference u {worst_u:.1e}, q {worst_q:.1e}; \
@@ -185,15 +180,12 @@ fn the_paper_scheme_on_large_sets_agrees_with_the_direct_solves() {
         };
         let mut a = Simulation::new(model.problem(), direct).unwrap();
         let mut b = Simulation::new(model.problem(), large).unwrap();
-        let (mut du, mut u_max, mut steps) = (0.0f64, 0.0f64, 0);
+        let (mut u, mut steps) = (Gap::default(), 0);
         while !a.finished() {
             a.step().unwrap();
             b.step().unwrap();
             steps += 1;
-            for (x, y) in a.displacement_m().iter().zip(b.displacement_m()) {
-                du = du.max((x - y).abs());
-                u_max = u_max.max(x.abs());
-            }
+            u.add(a.displacement_m(), b.displacement_m());
             let on = |s: &Simulation| s.force_n().iter().filter(|&&q| q > 0.0).count();
             assert_eq!(
                 on(&a),
@@ -202,6 +194,6 @@ fn the_paper_scheme_on_large_sets_agrees_with_the_direct_solves() {
             );
         }
         assert!(b.stats().contact_updates > 0 || b.stats().factorisations > 0);
-        assert!(du / u_max < 1e-9, "P {p}, K {k}: u {:e}", du / u_max);
+        assert!(u.relative() < 1e-9, "P {p}, K {k}: u {:e}", u.relative());
     }
 }

@@ -21,6 +21,29 @@ pub fn rel_rms(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
     (num / den).sqrt()
 }
 
+/// The largest difference between two runs' values and the largest
+/// value of the first, accumulated step by step.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct Gap {
+    pub diff: f64,
+    pub max: f64,
+}
+
+impl Gap {
+    /// Takes in one step's values of both runs.
+    pub fn add(&mut self, a: &[f64], b: &[f64]) {
+        for (x, y) in a.iter().zip(b) {
+            self.diff = self.diff.max((x - y).abs());
+            self.max = self.max.max(x.abs());
+        }
+    }
+
+    /// The largest difference over the largest value.
+    pub fn relative(&self) -> f64 {
+        self.diff / self.max
+    }
+}
+
 /// The shipped preset `presets/NAME.ron`.
 pub fn preset(name: &str) -> tirecontact::Scene {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
