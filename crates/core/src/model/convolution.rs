@@ -30,6 +30,7 @@
 pub mod direct;
 mod kernels;
 mod mode_step;
+mod tau_interp;
 pub mod paper_alpha_beta;
 
 use crate::base::error::BasisError;
@@ -37,6 +38,7 @@ use crate::base::linalg;
 use crate::base::modal::Mode;
 use crate::base::threads::Threads;
 pub use mode_step::{ModeStep, mode_step, mode_steps_into};
+pub use tau_interp::TauInterp;
 use std::f64::consts::TAU;
 use std::ops::Range;
 
@@ -344,6 +346,12 @@ impl StepTable {
         let ns = basis.stored_states();
         self.tau_s = tau_s;
         mode_steps_into(&basis.modes, tau_s, &mut self.per_mode);
+        self.place_per_mode(basis, ns);
+    }
+
+    /// Copies the per-mode steps into every stored state's entries (the
+    /// rows and the columns), sizing them once.
+    fn place_per_mode(&mut self, basis: &ModalBasis, ns: usize) {
         let c = &mut self.soa;
         if self.phi.len() != ns || c.pxx.len() != ns {
             self.phi.resize(ns, [0.0; 4]);

@@ -57,10 +57,9 @@ pub(super) struct MergedScratch {
     /// The table of a landing's remaining interval or of a release's two.
     tab: StepTable,
     /// A landing's responses at the step end to unit Gauss values on its
-    /// interval: slot `2 l + c` for late point `l`, value `c`.
-    unit: Vec<ModalState>,
-    /// Their end displacements (m/N) and velocities (m/(N·s)) at every
-    /// point, `(2 l + c) P + i`.
+    /// interval (slot `2 l + c` for late point `l`, value `c`): end
+    /// displacements (m/N) and velocities (m/(N·s)) at every point,
+    /// `(2 l + c) P + i`.
     unit_x: Vec<f64>,
     unit_v: Vec<f64>,
     /// The released points' known loads: their state at the step end and
@@ -68,7 +67,8 @@ pub(super) struct MergedScratch {
     known: ModalState,
     known_x: Vec<f64>,
     known_v: Vec<f64>,
-    /// A released point's load, its state at the step end.
+    /// A released point's load, or a landing's unit response, as a state
+    /// at the step end.
     load: ModalState,
     /// Point-indexed Gauss values of one source (zero but at that point).
     g1: Vec<f64>,
@@ -122,7 +122,6 @@ impl MergedScratch {
             } else {
                 StepTable::default()
             },
-            unit: (0..2 * MERGED_EVENTS).map(|_| zero()).collect(),
             unit_x: vec![0.0; 2 * MERGED_EVENTS * n],
             unit_v: vec![0.0; 2 * MERGED_EVENTS * n],
             known: zero(),
@@ -273,16 +272,13 @@ impl Simulation {
         }
         for (l, &i) in m.set[m.full..].iter().enumerate() {
             let (q1, q2) = (s.q1[i], s.q2[i]);
-            for (c, q) in [q1, q2].into_iter().enumerate() {
-                let u = &m.unit[2 * l + c];
-                for (x, y) in st.modal.x.iter_mut().zip(&u.x) {
-                    *x += q * y;
-                }
-                for (x, y) in st.modal.v.iter_mut().zip(&u.v) {
-                    *x += q * y;
-                }
-            }
-            s.impulse[i] += 0.5 * m.late_tau_s[l] * (q1 + q2);
+            let tau = m.late_tau_s[l];
+            tb.short_table(tau, &mut m.tab);
+            (m.g1[i], m.g2[i]) = (q1, q2);
+            st.modal
+                .add_gauss_forces(&tb.basis, &m.tab, &[i], &m.g1, &m.g2);
+            (m.g1[i], m.g2[i]) = (0.0, 0.0);
+            s.impulse[i] += 0.5 * tau * (q1 + q2);
         }
         if !m.early.is_empty() {
             st.modal.add(&m.known);
@@ -401,19 +397,28 @@ impl Simulation {
         (m.g1[j], m.g2[j]) = (q1, q2);
         m.load
             .add_gauss_forces(&tb.basis, &tb.full, &[j], &m.g1, &m.g2);
-        m.tab.fill(&tb.basis, tau);
-        (m.g1[j], m.g2[j]) = (-at(ya), -at(yb));
+        tb.short_table(tau, &mut m.tab);
+        let (r1, r2) = (-at(ya), -at(yb));
+        (m.g1[j], m.g2[j]) = (r1, r2);
         m.load
             .add_gauss_forces(&tb.basis, &m.tab, &[j], &m.g1, &m.g2);
         (m.g1[j], m.g2[j]) = (0.0, 0.0);
         m.known.add(&m.load);
-        let (du, dv) = (&mut s.du, &mut s.dv);
-        m.load.project(&tb.basis, du, dv);
-        for (a, b) in m.known_x.iter_mut().zip(du.iter()) {
-            *a += b;
-        }
-        for (a, b) in m.known_v.iter_mut().zip(dv.iter()) {
-            *a += b;
+        match &tb.tau_interp {
+            Some(ti) if ti.has_columns() => {
+                tb.add_full_step_response(j, q1, q2, &mut m.known_x, &mut m.known_v);
+                ti.add_column(tau, j, r1, r2, &mut m.known_x, &mut m.known_v);
+            }
+            _ => {
+                let (du, dv) = (&mut s.du, &mut s.dv);
+                m.load.project(&tb.basis, du, dv);
+                for (a, b) in m.known_x.iter_mut().zip(du.iter()) {
+                    *a += b;
+                }
+                for (a, b) in m.known_v.iter_mut().zip(dv.iter()) {
+                    *a += b;
+                }
+            }
         }
     }
 
@@ -426,19 +431,28 @@ impl Simulation {
         m.late_tau_s.push(tau);
         m.set.push(i);
         m.border.push(Border::Late(l, i));
-        m.tab.fill(&tb.basis, tau);
+        let columns = tb.tau_interp.as_ref().filter(|ti| ti.has_columns());
+        if columns.is_none() {
+            tb.short_table(tau, &mut m.tab);
+        }
         for c in 0..2 {
             let slot = 2 * l + c;
-            let u = &mut m.unit[slot];
-            u.reset();
-            let (g1, g2) = if c == 0 { (1.0, 0.0) } else { (0.0, 1.0) };
-            (m.g1[i], m.g2[i]) = (g1, g2);
-            u.add_gauss_forces(&tb.basis, &m.tab, &[i], &m.g1, &m.g2);
-            u.project(
-                &tb.basis,
+            let (ux, uv) = (
                 &mut m.unit_x[slot * p..(slot + 1) * p],
                 &mut m.unit_v[slot * p..(slot + 1) * p],
             );
+            let (g1, g2) = if c == 0 { (1.0, 0.0) } else { (0.0, 1.0) };
+            if let Some(ti) = columns {
+                ux.fill(0.0);
+                uv.fill(0.0);
+                ti.add_column(tau, i, g1, g2, ux, uv);
+            } else {
+                let u = &mut m.load;
+                u.reset();
+                (m.g1[i], m.g2[i]) = (g1, g2);
+                u.add_gauss_forces(&tb.basis, &m.tab, &[i], &m.g1, &m.g2);
+                u.project(&tb.basis, ux, uv);
+            }
         }
         (m.g1[i], m.g2[i]) = (0.0, 0.0);
     }

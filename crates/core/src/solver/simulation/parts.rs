@@ -17,7 +17,7 @@ use super::merged::MergedScratch;
 use super::residual::{add_residual, split_residual};
 use super::{RunStats, SolverOptions};
 use crate::base::threads::Threads;
-use crate::model::convolution::{Influence, ModalBasis, ModalState, StepTable};
+use crate::model::convolution::{Influence, ModalBasis, ModalState, StepTable, TauInterp};
 use crate::solver::error::BuildError;
 use crate::solver::problem::Problem;
 use crate::solver::simulation::contact::DenseSolver;
@@ -26,6 +26,10 @@ use std::ops::Range;
 
 /// Krylov vectors kept between GMRES restarts.
 const GMRES_RESTART: usize = 30;
+
+/// The most values (f64) the interpolated influence columns of the merged
+/// event step may hold (`4 P² M`, 32 MB): up to about 500 points at `M` = 8.
+const TAU_COLUMN_BUDGET: usize = 1 << 22;
 
 /// What a simulation builds once from the problem, the options and
 /// `dt`, and never changes: the modal basis and its exact step (method
@@ -61,6 +65,11 @@ pub(super) struct SimTables {
     /// weighted sums precondition the iterative sub-step solves
     /// (`large.rs`); empty: rigid.
     pub own_terms: Vec<f64>,
+    /// The Gauss-point weights of a step of any `τ ≤ dt` and their
+    /// influence columns, interpolated in `τ` (method §4.6, "Events in one
+    /// solve"); `None` unless tread-spring events are merged, or when no
+    /// interpolant meets its tolerance.
+    pub tau_interp: Option<TauInterp>,
     /// Heights `h_i` of the points above the road (m, `problem.points[i].h_m`).
     pub h_m: Vec<f64>,
     /// Number of contact points `P`.
@@ -97,10 +106,11 @@ impl SimTables {
         let jump_t = transposed(&jump, p);
         let mut full_inf_cols = Vec::with_capacity(4 * p * p);
         influence_columns(&full_inf, p, 0..p, &mut full_inf_cols);
+        let tau_interp = tau_interp_of(problem, options, &basis, &residual, threads);
         Ok(Self::assemble(
             problem,
             options,
-            (basis, residual, full),
+            (basis, residual, full, tau_interp),
             full_inf,
             full_inf_cols,
             jump,
@@ -111,7 +121,7 @@ impl SimTables {
     fn assemble(
         problem: &Problem,
         options: SolverOptions,
-        (basis, residual, full): (ModalBasis, Vec<f64>, StepTable),
+        (basis, residual, full, tau_interp): (ModalBasis, Vec<f64>, StepTable, Option<TauInterp>),
         full_inf: Influence,
         full_inf_cols: Vec<f64>,
         jump: Vec<f64>,
@@ -139,6 +149,7 @@ impl SimTables {
             residual,
             tread_k_n_m,
             own_terms,
+            tau_interp,
             h_m: problem.points.iter().map(|pt| pt.h_m).collect(),
             p,
             dt_s: problem.dt_s,
@@ -174,6 +185,16 @@ impl SimTables {
     #[inline]
     pub fn compliant(&self) -> bool {
         !self.tread_k_n_m.is_empty()
+    }
+
+    /// The Gauss-point weights of a step of `tau_s ≤ dt` from rest into
+    /// `table`: interpolated when [`SimTables::tau_interp`] is there, else
+    /// exact (method §4.6, "Events in one solve").
+    pub fn short_table(&self, tau_s: f64, table: &mut StepTable) {
+        match &self.tau_interp {
+            Some(ti) => ti.fill_gauss(&self.basis, tau_s, table),
+            None => table.fill(&self.basis, tau_s),
+        }
     }
 
     /// Adds to every point's end displacement `u` (m) and velocity `v`
@@ -249,6 +270,8 @@ pub(super) struct SimTablesBuild {
     jump: Vec<f64>,
     jump_t: Vec<f64>,
     cols: Vec<f64>,
+    /// The short-step interpolant, once built (a stage of its own).
+    tau: Option<Option<TauInterp>>,
     /// Rows of the influence, rows of the jump and points of the columns
     /// done so far.
     inf_rows: usize,
@@ -267,6 +290,7 @@ impl SimTablesBuild {
             jump: Vec::new(),
             jump_t: Vec::new(),
             cols: Vec::new(),
+            tau: None,
             inf_rows: 0,
             jump_rows: 0,
             col_points: 0,
@@ -283,9 +307,15 @@ impl SimTablesBuild {
             None if self.col_points == p && p > 0 => 0,
             None => {
                 let block = block_rows(p, problem.modes.len().max(1));
-                1 + 3 * p.div_ceil(block) + 2
+                1 + 3 * p.div_ceil(block) + 3
             }
-            Some(_) => blocks(self.inf_rows) + blocks(self.jump_rows) + blocks(self.col_points) + 2,
+            Some(_) => {
+                blocks(self.inf_rows)
+                    + blocks(self.jump_rows)
+                    + blocks(self.col_points)
+                    + self.tau.is_none() as usize
+                    + 2
+            }
         }
     }
 
@@ -327,18 +357,44 @@ impl SimTablesBuild {
             influence_columns(&self.inf, p, js, &mut self.cols);
             return Ok(None);
         }
-        let Some(parts) = self.parts.take() else {
+        if self.tau.is_none() {
+            let ti = tau_interp_of(problem, self.options, basis, residual, &Threads::single());
+            self.tau = Some(ti);
+            return Ok(None);
+        }
+        let Some((basis, residual, full)) = self.parts.take() else {
             unreachable!("the basis is the first stage");
         };
         Ok(Some(SimTables::assemble(
             problem,
             self.options,
-            parts,
+            (basis, residual, full, self.tau.take().flatten()),
             std::mem::take(&mut self.inf),
             std::mem::take(&mut self.cols),
             std::mem::take(&mut self.jump),
             std::mem::take(&mut self.jump_t),
         )))
+    }
+}
+
+/// The interpolated short-step weights of [`SimTables::tau_interp`]:
+/// built when the merged event step can use them (tread springs, no
+/// residual compliance, merged events on).
+fn tau_interp_of(
+    problem: &Problem,
+    options: SolverOptions,
+    basis: &ModalBasis,
+    residual: &[f64],
+    threads: &Threads,
+) -> Option<TauInterp> {
+    let p = problem.num_points();
+    let used = options.merged_events
+        && residual.is_empty()
+        && !problem.contact.stiffness_per_point(p).is_empty();
+    if used {
+        TauInterp::new(basis, problem.dt_s, TAU_COLUMN_BUDGET, threads)
+    } else {
+        None
     }
 }
 
