@@ -30,17 +30,17 @@
 pub mod direct;
 mod kernels;
 mod mode_step;
-mod tau_interp;
 pub mod paper_alpha_beta;
+mod tau_interp;
 
 use crate::base::error::BasisError;
 use crate::base::linalg;
 use crate::base::modal::Mode;
 use crate::base::threads::Threads;
 pub use mode_step::{ModeStep, mode_step, mode_steps_into};
-pub use tau_interp::TauInterp;
 use std::f64::consts::TAU;
 use std::ops::Range;
+pub use tau_interp::TauInterp;
 
 /// Dot product with four independent accumulators (lets the compiler use
 /// SIMD lanes; the summation order is fixed, so results are deterministic).
@@ -298,6 +298,9 @@ pub struct StepTable {
     /// The same propagators and Gauss-point weights as separate columns
     /// (structure of arrays, for the vectorised kernels).
     soa: StepColumns,
+    /// Only the Gauss-point weight columns hold this step's values (set
+    /// by [`TauInterp::fill_gauss`], which left every other entry NaN).
+    gauss_only: bool,
 }
 
 impl StepTable {
@@ -345,6 +348,7 @@ impl StepTable {
     pub fn fill(&mut self, basis: &ModalBasis, tau_s: f64) {
         let ns = basis.stored_states();
         self.tau_s = tau_s;
+        self.gauss_only = false;
         mode_steps_into(&basis.modes, tau_s, &mut self.per_mode);
         self.place_per_mode(basis, ns);
     }

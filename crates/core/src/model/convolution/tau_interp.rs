@@ -26,8 +26,7 @@
 //! exact ones at those points too. A step for which no `M` passes (a very
 //! large `ω dt`) has no interpolant, and its events take exact tables.
 
-use super::{Influence, ModalBasis, StepTable};
-use crate::base::threads::Threads;
+use super::{ModalBasis, StepTable};
 use crate::model::convolution::mode_step::{ModeStep, mode_steps_into};
 use std::f64::consts::PI;
 
@@ -46,10 +45,10 @@ pub struct TauInterp {
     /// The nodes `τ_m` (s) and their barycentric weights `β_m`.
     nodes_s: Vec<f64>,
     beta: Vec<f64>,
-    /// Per node, the four Gauss-point weights of every mode, column by
-    /// column (`w1x`, `w1v`, `w2x`, `w2v`): `weights[(m * 4 + c) * K + k]`.
+    /// Per node, the four Gauss-point weights of every stored state, column
+    /// by column (`w1x`, `w1v`, `w2x`, `w2v`): `weights[(m * 4 + c) * ns + s]`.
     weights: Vec<f64>,
-    num_modes: usize,
+    ns: usize,
     /// Per source point `j` and node, its influence columns (end
     /// displacement by `q1`, by `q2`, velocity by `q1`, by `q2` at every
     /// point): `columns[((j * M + m) * 4 + c) * P + i]`; empty when they
@@ -64,13 +63,8 @@ impl TauInterp {
     /// The interpolant of `basis`'s weights on `[0, dt_s]`, with influence
     /// columns when `4 P² M` values fit in `column_budget`; `None` if no
     /// number of nodes up to [`MAX_NODES`] meets [`WEIGHT_TOLERANCE`].
-    pub fn new(
-        basis: &ModalBasis,
-        dt_s: f64,
-        column_budget: usize,
-        threads: &Threads,
-    ) -> Option<Self> {
-        let k_modes = basis.modes.len();
+    pub fn new(basis: &ModalBasis, dt_s: f64, column_budget: usize) -> Option<Self> {
+        let (k_modes, ns) = (basis.modes.len(), basis.stored_states());
         if k_modes == 0 || !(dt_s > 0.0) {
             return None;
         }
@@ -87,13 +81,13 @@ impl TauInterp {
                     }
                 })
                 .collect();
-            let mut weights = vec![0.0; m_nodes * 4 * k_modes];
+            let mut weights = vec![0.0; m_nodes * 4 * ns];
             // (a step of zero length weighs nothing: node 0 stays zero)
             for (m, &tau) in nodes_s.iter().enumerate().skip(1) {
                 mode_steps_into(&basis.modes, tau, &mut steps);
-                for (k, st) in steps.iter().enumerate() {
-                    for (c, w) in gauss_weights(st).into_iter().enumerate() {
-                        weights[(m * 4 + c) * k_modes + k] = w;
+                for (s, &k) in basis.mode_of_state.iter().enumerate() {
+                    for (c, w) in gauss_weights(&steps[k]).into_iter().enumerate() {
+                        weights[(m * 4 + c) * ns + s] = w;
                     }
                 }
             }
@@ -102,7 +96,7 @@ impl TauInterp {
                 nodes_s,
                 beta,
                 weights,
-                num_modes: k_modes,
+                ns,
                 columns: Vec::new(),
                 p: basis.num_points,
                 checked_error: 0.0,
@@ -113,7 +107,7 @@ impl TauInterp {
             interp.checked_error = err;
             let p = basis.num_points;
             if 4 * p * p * m_nodes <= column_budget && p > 0 {
-                interp.fill_columns(basis, threads);
+                interp.fill_columns(basis);
                 let Some(col_err) = interp.column_error(basis) else {
                     continue;
                 };
@@ -153,37 +147,56 @@ impl TauInterp {
         }
     }
 
-    /// Fills `table`'s Gauss-point weights (`w1`, `w2` and their columns)
-    /// for a step of `tau_s ∈ [0, dt]`; its propagator and other weights
-    /// are set to NaN: the table serves force responses from rest only
-    /// ([`ModalState::add_gauss_forces`](super::ModalState::add_gauss_forces)).
+    /// Fills `table`'s Gauss-point weight columns for a step of
+    /// `tau_s ∈ [0, dt]`; its propagator and every other entry (the
+    /// rows `w1`, `w2` included) are NaN: the table serves force responses
+    /// from rest only
+    /// ([`ModalState::add_gauss_forces`](super::ModalState::add_gauss_forces),
+    /// [`StepTable::weight_columns`]).
     pub fn fill_gauss(&self, basis: &ModalBasis, tau_s: f64, table: &mut StepTable) {
-        let (k_modes, ns) = (self.num_modes, basis.stored_states());
+        let ns = self.ns;
+        debug_assert_eq!(ns, basis.stored_states());
         let mut lam = [0.0; MAX_NODES];
         self.factors(tau_s, &mut lam);
         table.tau_s = tau_s;
-        table.per_mode.clear();
-        table.per_mode.resize(
-            k_modes,
-            ModeStep {
-                phi: [f64::NAN; 4],
-                w_const: [f64::NAN; 2],
-                w_gauss: [[0.0; 2]; 2],
-                w_ends: [[f64::NAN; 2]; 2],
-                h: [f64::NAN; 2],
-            },
-        );
-        // the four weights of every mode, summed over the nodes
-        for (m, &l) in lam[..self.nodes_s.len()].iter().enumerate() {
-            let w = &self.weights[m * 4 * k_modes..(m + 1) * 4 * k_modes];
-            for (k, st) in table.per_mode.iter_mut().enumerate() {
-                st.w_gauss[0][0] += l * w[k];
-                st.w_gauss[0][1] += l * w[k_modes + k];
-                st.w_gauss[1][0] += l * w[2 * k_modes + k];
-                st.w_gauss[1][1] += l * w[3 * k_modes + k];
+        let c = &mut table.soa;
+        if !table.gauss_only || c.w1x.len() != ns {
+            // (once: the entries a response from rest does not read)
+            table.gauss_only = true;
+            table.per_mode.clear();
+            for col in [
+                &mut c.pxx, &mut c.pxv, &mut c.pvx, &mut c.pvv, &mut c.w1x, &mut c.w1v, &mut c.w2x,
+                &mut c.w2v,
+            ] {
+                col.clear();
+                col.resize(ns, f64::NAN);
+            }
+            for rows in [&mut table.w1, &mut table.w2, &mut table.w_const] {
+                rows.clear();
+                rows.resize(ns, [f64::NAN; 2]);
+            }
+            table.phi.clear();
+            table.phi.resize(ns, [f64::NAN; 4]);
+        }
+        // each column the nodes' columns weighted by `λ_m(τ)` (node 0's
+        // columns are zero)
+        let m_nodes = self.nodes_s.len();
+        for (ci, col) in [&mut c.w1x, &mut c.w1v, &mut c.w2x, &mut c.w2v]
+            .into_iter()
+            .enumerate()
+        {
+            let col = &mut col[..ns];
+            let node = |m: usize| &self.weights[(m * 4 + ci) * ns..(m * 4 + ci + 1) * ns];
+            let (l1, w) = (lam[1], node(1));
+            for (x, y) in col.iter_mut().zip(w) {
+                *x = l1 * y;
+            }
+            for (m, &l) in lam[..m_nodes].iter().enumerate().skip(2) {
+                for (x, y) in col.iter_mut().zip(node(m)) {
+                    *x += l * y;
+                }
             }
         }
-        table.place_per_mode(basis, ns);
     }
 
     /// Adds to every point's end displacement `u` (m) and velocity `v`
@@ -213,12 +226,12 @@ impl TauInterp {
     /// (in angle) between the nodes, relative to each mode's largest node
     /// value; `None` if above [`WEIGHT_TOLERANCE`].
     fn weight_error(&self, basis: &ModalBasis, steps: &mut Vec<ModeStep>) -> Option<f64> {
-        let (k_modes, m_nodes) = (self.num_modes, self.nodes_s.len());
-        let mut scale = vec![0.0f64; 4 * k_modes];
+        let (ns, m_nodes) = (self.ns, self.nodes_s.len());
+        let mut scale = vec![0.0f64; 4 * ns];
         for m in 0..m_nodes {
             for (s, w) in scale
                 .iter_mut()
-                .zip(&self.weights[m * 4 * k_modes..(m + 1) * 4 * k_modes])
+                .zip(&self.weights[m * 4 * ns..(m + 1) * 4 * ns])
             {
                 *s = s.max(w.abs());
             }
@@ -230,12 +243,14 @@ impl TauInterp {
             let tau = 0.5 * self.dt_s * (1.0 - angle.cos());
             mode_steps_into(&basis.modes, tau, steps);
             self.fill_gauss(basis, tau, &mut table);
-            for (k, (exact, approx)) in steps.iter().zip(&table.per_mode).enumerate() {
-                let (e, a) = (gauss_weights(exact), gauss_weights(approx));
+            for (s, &k) in basis.mode_of_state.iter().enumerate() {
+                let e = gauss_weights(&steps[k]);
+                let c = &table.soa;
+                let a = [c.w1x[s], c.w1v[s], c.w2x[s], c.w2v[s]];
                 for c in 0..4 {
-                    let s = scale[c * k_modes + k];
-                    let err = (e[c] - a[c]).abs() / s;
-                    if s > 0.0 && !(err <= worst) {
+                    let sc = scale[c * ns + s];
+                    let err = (e[c] - a[c]).abs() / sc;
+                    if sc > 0.0 && !(err <= worst) {
                         // (a NaN stays: it fails the check below)
                         worst = err;
                     }
@@ -249,20 +264,39 @@ impl TauInterp {
     }
 
     /// The node influences as columns (`4 P² M` values).
-    fn fill_columns(&mut self, basis: &ModalBasis, threads: &Threads) {
-        let (p, m_nodes) = (self.p, self.nodes_s.len());
+    fn fill_columns(&mut self, basis: &ModalBasis) {
+        use faer::{Accum, Mat, Par, linalg::matmul::matmul};
+        let (p, m_nodes, ns) = (self.p, self.nodes_s.len(), self.ns);
         self.columns = vec![0.0; 4 * p * p * m_nodes];
-        let mut table = StepTable::default();
+        // `G = A diag(w) Bᵀ`: `A[i][s] = a_s[i]`, `B[j][s] = b_s[j]`
+        let a = Mat::from_fn(p, ns, |i, s| basis.out[i * ns + s]);
+        let mut wb = Mat::<f64>::zeros(ns, p);
+        let mut g = Mat::<f64>::zeros(p, p);
+        let inp = basis.inputs_point_major();
         // (node 0, a step of zero length, has zero columns)
         for m in 1..m_nodes {
-            table.fill(basis, self.nodes_s[m]);
-            let g = Influence::new_on(basis, &table, threads);
-            let mats = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
-            for j in 0..p {
-                for (c, mat) in mats.iter().enumerate() {
-                    let col = &mut self.columns[((j * m_nodes + m) * 4 + c) * p..][..p];
+            for c in 0..4 {
+                let w = &self.weights[(m * 4 + c) * ns..(m * 4 + c + 1) * ns];
+                for j in 0..p {
+                    for s in 0..ns {
+                        wb[(s, j)] = w[s] * inp[j * ns + s];
+                    }
+                }
+                matmul(
+                    g.as_mut(),
+                    Accum::Replace,
+                    a.as_ref(),
+                    wb.as_ref(),
+                    1.0,
+                    Par::Seq,
+                );
+                // column `c` of source `j` in the weight order `w1x, w1v,
+                // w2x, w2v` goes to slot `x1, x2, v1, v2`
+                let slot = [0, 2, 1, 3][c];
+                for j in 0..p {
+                    let col = &mut self.columns[((j * m_nodes + m) * 4 + slot) * p..][..p];
                     for (i, x) in col.iter_mut().enumerate() {
-                        *x = mat[i * p + j];
+                        *x = g[(i, j)];
                     }
                 }
             }
@@ -371,7 +405,9 @@ mod tests {
     fn basis(n: usize, p: usize, f0: f64, span: f64, xi: f64, seed: u64) -> ModalBasis {
         let mut r = seed;
         let mut next = || {
-            r = r.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            r = r
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (r >> 11) as f64 / (1u64 << 53) as f64 - 0.5
         };
         let modes: Vec<Mode> = (0..n)
@@ -379,7 +415,11 @@ mod tests {
                 let shape: Vec<f64> = (0..p).map(|_| next()).collect();
                 let other: Vec<f64> = (0..p).map(|_| next()).collect();
                 let residue = (0..p)
-                    .map(|i| (0..p).map(|j| shape[i] * shape[j] + other[i] * other[j]).collect())
+                    .map(|i| {
+                        (0..p)
+                            .map(|j| shape[i] * shape[j] + other[i] * other[j])
+                            .collect()
+                    })
                     .collect();
                 Mode {
                     freq_hz: f0 + span * k as f64 / n.max(1) as f64,
@@ -404,7 +444,10 @@ mod tests {
     /// magnitude in `scale`.
     fn gap(got: &[f64], want: &[f64], scale: &[f64]) -> f64 {
         let s = scale.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        got.iter().zip(want).fold(0.0f64, |m, (a, b)| m.max((a - b).abs())) / s
+        got.iter()
+            .zip(want)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+            / s
     }
 
     proptest! {
@@ -426,7 +469,7 @@ mod tests {
         ) {
             let dt = 10f64.powf(dt_exp);
             let b = basis(n, p, 20.0, f_top_hz, xi, seed);
-            let ti = TauInterp::new(&b, dt, usize::MAX, &Threads::single())
+            let ti = TauInterp::new(&b, dt, usize::MAX)
                 .expect("an interpolant for omega dt below 3.5");
             prop_assert!(ti.has_columns());
             prop_assert!(ti.checked_error <= 100.0 * WEIGHT_TOLERANCE);
@@ -471,12 +514,13 @@ mod tests {
     fn the_full_step_is_a_node() {
         let b = basis(12, 4, 100.0, 1500.0, 0.02, 7);
         let dt = 1e-5;
-        let ti = TauInterp::new(&b, dt, usize::MAX, &Threads::single()).unwrap();
+        let ti = TauInterp::new(&b, dt, usize::MAX).unwrap();
         let (full, mut t) = (StepTable::new(&b, dt), StepTable::default());
         ti.fill_gauss(&b, dt, &mut t);
-        assert_eq!(t.w1, full.w1);
-        assert_eq!(t.w2, full.w2);
+        let ns = b.stored_states();
+        assert_eq!(t.weight_columns(ns), full.weight_columns(ns));
         assert!(t.phi.iter().all(|p| p.iter().all(|x| x.is_nan())));
+        assert!(t.w1.iter().all(|p| p.iter().all(|x| x.is_nan())));
     }
 
     /// Modes far beyond the step (`ω dt` of hundreds) have no interpolant
@@ -484,10 +528,10 @@ mod tests {
     #[test]
     fn no_interpolant_for_very_stiff_steps() {
         let b = basis(6, 3, 1e5, 1e6, 0.01, 3);
-        assert!(TauInterp::new(&b, 1e-3, usize::MAX, &Threads::single()).is_none());
+        assert!(TauInterp::new(&b, 1e-3, usize::MAX).is_none());
         // and the column budget is honoured
         let b = basis(6, 3, 100.0, 1000.0, 0.01, 3);
-        let ti = TauInterp::new(&b, 1e-5, 10, &Threads::single()).unwrap();
+        let ti = TauInterp::new(&b, 1e-5, 10).unwrap();
         assert!(!ti.has_columns());
     }
 }

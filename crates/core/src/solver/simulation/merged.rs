@@ -21,17 +21,23 @@
 //! Several events in one step: the solve is repeated with each new event
 //! (the earliest of the solution) until none is found, up to
 //! [`MERGED_EVENTS`]. A step this cannot take (a landing point that would
-//! pull, a spring left compressed at the step start, large sets, residual
-//! flexibility, a singular system) goes to the sub-steps of `events.rs`,
-//! which it leaves untouched: nothing is committed before the end.
+//! pull, a spring left compressed at the step start, more than
+//! [`MERGED_SET_MAX`] points on the road, residual flexibility, a singular
+//! system) goes to the sub-steps of `events.rs`, which it leaves
+//! untouched: nothing is committed before the end.
 //!
-//! Cost: a landing adds a step table at `τ` and two projections of its
-//! unit responses, a release one table and one projection, each solve
-//! `O(|S|²)` per new border unknown and a Schur complement of at most
-//! `4 MERGED_EVENTS` unknowns; the sub-steps instead predict, fill, solve
-//! and project twice per event.
+//! Cost: a landing's and a release's short-step weights and their
+//! responses at every point come from an interpolant in `τ` built at
+//! set-up ([`TauInterp`](crate::model::convolution::TauInterp), `O(M P)`
+//! each; exact tables and projections where there is none); each solve
+//! is `O(|S|²)` per new border unknown and a Schur complement of at most
+//! `4 MERGED_EVENTS` unknowns through the trial's factorisation, or one
+//! dense factorisation where the trial had none (a large set's trial is
+//! solved through its kept inverse); the sub-steps instead predict, fill,
+//! solve and project twice per event.
 
 use super::contact::DenseSolver;
+use super::contact::bordered::BorderedInverse;
 use super::parts::SimTables;
 use super::{GA, GB, SQRT3, Simulation, first_crossing};
 use crate::model::convolution::{ModalState, StepTable};
@@ -40,6 +46,10 @@ use crate::solver::error::SolverError;
 /// Events (landings and releases) one merged step takes; a step with more
 /// is taken by the sub-steps.
 pub(super) const MERGED_EVENTS: usize = 8;
+
+/// The most points on the road a merged step solves (its dense system is
+/// `2n × 2n`); a step with more is taken by the sub-steps.
+pub(super) const MERGED_SET_MAX: usize = 64;
 
 /// A point released inside the step: its trial force up to `θ`.
 #[derive(Debug, Clone, Copy)]
@@ -85,6 +95,11 @@ pub(super) struct MergedScratch {
     /// reuses), and per border unknown its column through that
     /// factorisation's inverse (`A⁻¹ B`, `2|S|` each).
     trial_set: Vec<usize>,
+    /// The trial was solved through the kept inverse of a large set (in
+    /// its slot order, `trial_set`), not a factorisation; `slots`: a
+    /// right-hand side and solution in that inverse's slot order.
+    trial_kept: bool,
+    slots: Vec<f64>,
     z: Vec<f64>,
     z0: Vec<f64>,
     /// The bordered system's Schur complement and its solver.
@@ -101,8 +116,8 @@ pub(super) struct MergedScratch {
 
 impl MergedScratch {
     /// Buffers for the tables' points and states; empty unless the
-    /// contact is compliant. The systems solved hold fewer than
-    /// `large_set_from` points.
+    /// contact is compliant. The systems solved hold at most
+    /// [`MERGED_SET_MAX`] points.
     pub fn new(tables: &SimTables) -> Self {
         let compliant = tables.compliant();
         let (n, states) = if compliant {
@@ -110,7 +125,7 @@ impl MergedScratch {
         } else {
             (0, 0)
         };
-        let cap = n.min(tables.options.large_set_from);
+        let cap = n.min(MERGED_SET_MAX);
         let zero = || ModalState {
             x: vec![0.0; states],
             v: vec![0.0; states],
@@ -137,6 +152,8 @@ impl MergedScratch {
             solver: DenseSolver::new(2 * cap),
             rhs: vec![0.0; 2 * cap],
             trial_set: Vec::with_capacity(n),
+            trial_kept: false,
+            slots: vec![0.0; 4 * cap],
             // (two borders per event at most: a spring that lets go and lands)
             z: vec![0.0; 8 * MERGED_EVENTS * cap],
             z0: vec![0.0; 2 * cap],
@@ -161,6 +178,34 @@ enum Border {
     Late(usize, usize),
 }
 
+/// What solves the trial's full-step system in the bordered merged solve:
+/// its factorisation (`2n` unknowns, the `q1` then the `q2`) or the kept
+/// inverse of a large set (slot `a`: `q1`, `q2` of its point `a`).
+enum TrialSolver<'a> {
+    Factored(&'a DenseSolver),
+    Kept(&'a BorderedInverse, &'a mut Vec<f64>),
+}
+
+impl TrialSolver<'_> {
+    /// `z ← A⁻¹ z` with `z` in the factorisation's layout (`2n` values).
+    fn solve(&mut self, z: &mut [f64]) {
+        match self {
+            TrialSolver::Factored(solver) => solver.solve(z),
+            TrialSolver::Kept(inv, slots) => {
+                let n = z.len() / 2;
+                let (b, x) = slots.split_at_mut(2 * n);
+                for a in 0..n {
+                    (b[2 * a], b[2 * a + 1]) = (z[a], z[n + a]);
+                }
+                inv.solve(b, &mut x[..2 * n]);
+                for a in 0..n {
+                    (z[a], z[n + a]) = (x[2 * a], x[2 * a + 1]);
+                }
+            }
+        }
+    }
+}
+
 /// The next event of a merged solve.
 enum Next {
     None,
@@ -183,7 +228,6 @@ impl Simulation {
         self.tables.options.merged_events
             && self.tables.residual.is_empty()
             && self.scratch.merged.trial_ready
-            && self.scratch.projected_all
     }
 
     /// The current step with its events in one solve (module doc), after
@@ -194,14 +238,23 @@ impl Simulation {
         if !self.merged_events_apply() {
             return Ok(None);
         }
+        // (a large set's trial projected only its own rows)
+        self.ensure_projected_all();
         let dt = self.tables.dt_s;
+        let kept = self.trial_by_kept_inverse();
         {
             let m = &mut self.scratch.merged;
             m.set.clear();
             m.set.extend_from_slice(&self.state.active);
             m.full = m.set.len();
             m.trial_set.clear();
-            m.trial_set.extend_from_slice(&self.state.active);
+            m.trial_kept = kept;
+            if m.trial_kept {
+                // (the kept inverse's slot order)
+                m.trial_set.extend_from_slice(self.factors.updated.points());
+            } else {
+                m.trial_set.extend_from_slice(&self.state.active);
+            }
             m.border.clear();
             m.z_done = 0;
             m.late_tau_s.clear();
@@ -238,12 +291,13 @@ impl Simulation {
                 }
             }
             let n = self.scratch.merged.set.len();
-            if n >= self.tables.options.large_set_from {
+            if n > MERGED_SET_MAX {
                 return Ok(None);
             }
             let bordered = self.tables.options.reuse_factorisation
-                && self.factors.factored
-                && self.factors.current.set == self.scratch.merged.trial_set;
+                && (self.scratch.merged.trial_kept
+                    || self.factors.factored
+                        && self.factors.current.set == self.scratch.merged.trial_set);
             let solved = if bordered {
                 self.merged_solve_bordered()
             } else if n == 0 {
@@ -263,6 +317,10 @@ impl Simulation {
         let events = self.scratch.merged.late_tau_s.len() + self.scratch.merged.early.len();
         let (tb, st, s) = (&self.tables, &mut self.state, &mut self.scratch);
         let m = &mut s.merged;
+        // (a large set's trial formed its end state and the next step's
+        // rows from it: neither is this step's)
+        s.fused_end = false;
+        s.ahead.pending = false;
         std::mem::swap(&mut st.modal, &mut s.free);
         let full = &m.set[..m.full];
         st.modal
@@ -293,6 +351,18 @@ impl Simulation {
         std::mem::swap(&mut st.r, &mut s.re);
         std::mem::swap(&mut st.rd, &mut s.rde);
         Ok(Some((events as u32, solves)))
+    }
+
+    /// Whether the trial was solved through the kept inverse of a large
+    /// set ([`Simulation::solve_full_large`]), which holds exactly the
+    /// active points.
+    fn trial_by_kept_inverse(&self) -> bool {
+        let inv = &self.factors.updated;
+        self.fused_full_step()
+            && self.factors.updated_valid
+            && inv.points().len() == self.state.active.len()
+            && inv.points().len() <= MERGED_SET_MAX
+            && self.state.active.iter().all(|j| inv.points().contains(j))
     }
 
     /// The earliest event of the current solution: a full-step point whose
@@ -541,8 +611,13 @@ impl Simulation {
     fn merged_solve_bordered(&mut self) -> bool {
         let p = self.tables.p;
         let (tb, st, s) = (&self.tables, &mut self.state, &mut self.scratch);
-        let solver = &self.factors.current.solver;
         let m = &mut s.merged;
+        let trial_solver = if m.trial_kept {
+            TrialSolver::Kept(&self.factors.updated, &mut m.slots)
+        } else {
+            TrialSolver::Factored(&self.factors.current.solver)
+        };
+        let mut solver = trial_solver;
         let trial = &m.trial_set;
         let n0 = trial.len();
         let big_n = 2 * n0;

@@ -106,7 +106,7 @@ impl SimTables {
         let jump_t = transposed(&jump, p);
         let mut full_inf_cols = Vec::with_capacity(4 * p * p);
         influence_columns(&full_inf, p, 0..p, &mut full_inf_cols);
-        let tau_interp = tau_interp_of(problem, options, &basis, &residual, threads);
+        let tau_interp = tau_interp_of(problem, options, &basis, &residual);
         Ok(Self::assemble(
             problem,
             options,
@@ -358,7 +358,7 @@ impl SimTablesBuild {
             return Ok(None);
         }
         if self.tau.is_none() {
-            let ti = tau_interp_of(problem, self.options, basis, residual, &Threads::single());
+            let ti = tau_interp_of(problem, self.options, basis, residual);
             self.tau = Some(ti);
             return Ok(None);
         }
@@ -385,14 +385,13 @@ fn tau_interp_of(
     options: SolverOptions,
     basis: &ModalBasis,
     residual: &[f64],
-    threads: &Threads,
 ) -> Option<TauInterp> {
     let p = problem.num_points();
     let used = options.merged_events
         && residual.is_empty()
         && !problem.contact.stiffness_per_point(p).is_empty();
     if used {
-        TauInterp::new(basis, problem.dt_s, TAU_COLUMN_BUDGET, threads)
+        TauInterp::new(basis, problem.dt_s, TAU_COLUMN_BUDGET)
     } else {
         None
     }
