@@ -139,3 +139,37 @@ fn bordered_merged_solves_agree_with_fresh_factorisations() {
     assert!(u.relative() <= 1e-9, "{u:?}");
     assert!(lowest >= -1e-9 * q_max, "{lowest} N");
 }
+
+/// A large set's merged step, bordered through the kept inverse of its
+/// trial (`large_set_from` lowered so that every set of the patch takes the
+/// large-set methods), agrees with the direct solves step by step.
+#[test]
+fn merged_steps_through_the_kept_inverse_agree_with_direct_solves() {
+    let scene = small_chip_seal(0.02);
+    let model = PreparedModel::of(&scene).unwrap();
+    let direct = SolverOptions {
+        large_set_from: usize::MAX,
+        iterative_sub_from: usize::MAX,
+        ..merged(true)
+    };
+    let kept = SolverOptions {
+        large_set_from: 2,
+        ..merged(true)
+    };
+    let mut a = model.simulation(kept).unwrap();
+    let mut b = model.simulation(direct).unwrap();
+    let mut u = Gap::default();
+    while !a.finished() {
+        a.step().unwrap();
+        b.step().unwrap();
+        u.add(a.displacement_m(), b.displacement_m());
+    }
+    let (sa, sb) = (a.stats(), b.stats());
+    eprintln!(
+        "u differs by {:.2e} of {:.2e} m; merged steps {} and {}, events {} and {}",
+        u.diff, u.max, sa.merged_steps, sb.merged_steps, sa.events, sb.events
+    );
+    assert!(sa.merged_steps > 200, "{sa:?}");
+    assert!(sa.merged_steps.abs_diff(sb.merged_steps) <= sb.merged_steps / 50, "{sa:?} {sb:?}");
+    assert!(u.relative() <= 1e-9, "{u:?}");
+}
