@@ -39,6 +39,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for (name, from, joint_impacts) in runs {
         let options = SolverOptions {
             large_set_from: from,
+            compliant_large_set_from: from,
             iterative_sub_from: from,
             joint_impacts,
             ..SolverOptions::default()

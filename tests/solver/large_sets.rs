@@ -102,6 +102,7 @@ fn large_set_methods_agree_with_the_direct_solves() {
         };
         let direct = SolverOptions {
             large_set_from: usize::MAX,
+            compliant_large_set_from: usize::MAX,
             iterative_sub_from: usize::MAX,
             ..sub_steps
         };
@@ -171,6 +172,7 @@ fn the_paper_scheme_on_large_sets_agrees_with_the_direct_solves() {
         };
         let direct = SolverOptions {
             large_set_from: usize::MAX,
+            compliant_large_set_from: usize::MAX,
             iterative_sub_from: usize::MAX,
             ..sub_steps
         };

@@ -112,6 +112,7 @@ fn bordered_merged_solves_agree_with_fresh_factorisations() {
     // inverse is a reuse too)
     let direct = SolverOptions {
         large_set_from: usize::MAX,
+        compliant_large_set_from: usize::MAX,
         iterative_sub_from: usize::MAX,
         ..merged(true)
     };
@@ -149,6 +150,7 @@ fn merged_steps_through_the_kept_inverse_agree_with_direct_solves() {
     let model = PreparedModel::of(&scene).unwrap();
     let direct = SolverOptions {
         large_set_from: usize::MAX,
+        compliant_large_set_from: usize::MAX,
         iterative_sub_from: usize::MAX,
         ..merged(true)
     };
@@ -170,6 +172,9 @@ fn merged_steps_through_the_kept_inverse_agree_with_direct_solves() {
         u.diff, u.max, sa.merged_steps, sb.merged_steps, sa.events, sb.events
     );
     assert!(sa.merged_steps > 200, "{sa:?}");
-    assert!(sa.merged_steps.abs_diff(sb.merged_steps) <= sb.merged_steps / 50, "{sa:?} {sb:?}");
+    assert!(
+        sa.merged_steps.abs_diff(sb.merged_steps) <= sb.merged_steps / 50,
+        "{sa:?} {sb:?}"
+    );
     assert!(u.relative() <= 1e-9, "{u:?}");
 }

@@ -204,6 +204,7 @@ fn iterative_sub_steps_of_small_sets_agree_with_the_direct_solves() {
         };
         let direct = SolverOptions {
             large_set_from: usize::MAX,
+            compliant_large_set_from: usize::MAX,
             iterative_sub_from: usize::MAX,
             ..sub_steps
         };

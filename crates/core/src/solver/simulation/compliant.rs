@@ -175,8 +175,8 @@ impl Simulation {
     /// compliant one); over a sub-step it is the rigid sub-step solve with
     /// the tread compliance on the diagonal ([`Simulation::fill_sub_block`]).
     pub(super) fn solve_compliant(&mut self, t_end: f64, sel: Table) -> Result<(), SolverError> {
-        let large = self.tables.large_sets()
-            && self.state.active.len() >= self.tables.options.large_set_from;
+        let large =
+            self.tables.large_sets() && self.state.active.len() >= self.tables.large_set_from();
         if sel == Table::Sub {
             if self.iterative_sub_step() && self.solve_sub_iterative() {
                 return Ok(());

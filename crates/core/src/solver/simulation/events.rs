@@ -699,13 +699,16 @@ pub fn first_crossing(
     // (`g0.max(0.0)` as a plain comparison: a NaN becomes 0 as with `max`)
     let g0 = if g0 > 0.0 { g0 } else { 0.0 };
     // cheap rejection (inlined: most free points of most steps): all of the
-    // cubic is above -tol (|H10|, |H11| <= 4/27); past `g1 >= -tol` neither
-    // value is a NaN, so the plain minimum is `f64::min`
-    if g1 >= -tol
-        && (d0 >= 0.0 && d1 <= 0.0
-            || (if g0 < g1 { g0 } else { g1 }) - 0.25 * (d0.abs() + d1.abs()) >= -tol)
-    {
-        return None;
+    // cubic is above -tol. On `[0, 1]` the Hermite basis has `H00 + H01 = 1`
+    // (both >= 0), `0 <= H10 <= 4/27` and `-4/27 <= H11 <= 0`, so the cubic
+    // is at least `min(g0, g1) - 4/27 (max(0, -d0) + max(0, d1))`; past
+    // `g1 >= -tol` neither value is a NaN, so the plain minimum is `f64::min`
+    if g1 >= -tol {
+        let low = if g0 < g1 { g0 } else { g1 };
+        let dip = (if d0 < 0.0 { -d0 } else { 0.0 }) + (if d1 > 0.0 { d1 } else { 0.0 });
+        if low - (4.0 / 27.0) * dip >= -tol {
+            return None;
+        }
     }
     crossing_of_cubic(g0, d0, g1, d1, tol, require_rise)
 }

@@ -74,7 +74,7 @@ impl Simulation {
     pub(super) fn fused_full_step(&self) -> bool {
         self.tables.large_sets()
             && self.tables.options.reuse_factorisation
-            && self.state.active.len() >= self.tables.options.large_set_from
+            && self.state.active.len() >= self.tables.large_set_from()
     }
 
     /// Whether a sub-step's prediction leaves the projection to the solve

@@ -52,6 +52,13 @@ pub struct SolverOptions {
     /// (`usize::MAX`: never; smaller sets keep the direct solves, bit for
     /// bit).
     pub large_set_from: usize,
+    /// With tread springs, the points on the road from which the methods
+    /// of large sets apply (the smaller of this and
+    /// [`SolverOptions::large_set_from`]): a step with events then borders
+    /// the kept inverse of its trial (method §4.6, "Events in one solve")
+    /// instead of factorising each new set, which pays from a few points
+    /// on a rough road (`docs/performance.md`, "Events in one solve").
+    pub compliant_large_set_from: usize,
     /// Points on the road from which a sub-step of tread springs (between
     /// events, method §4.6) is solved by GMRES through the modal states
     /// (`O(|S| K)` per product, about four products a solve) instead of
@@ -117,6 +124,10 @@ pub const IDENTIFIED_RANK_TOLERANCE: f64 = 1e-5;
 /// filling its blocks.
 pub const LARGE_SET_FROM: usize = 24;
 
+/// Default of [`SolverOptions::compliant_large_set_from`]: from 8 points on
+/// the road, as the GMRES sub-steps ([`ITERATIVE_SUB_FROM`]).
+pub const COMPLIANT_LARGE_SET_FROM: usize = 8;
+
 /// Default of [`SolverOptions::iterative_sub_from`]: from this many points
 /// on the road a compliant sub-step's GMRES solve through the states costs
 /// less than filling and factorising its system
@@ -152,6 +163,7 @@ impl Default for SolverOptions {
             rank_tolerance: None,
             steady_path: true,
             large_set_from: LARGE_SET_FROM,
+            compliant_large_set_from: COMPLIANT_LARGE_SET_FROM,
             iterative_sub_from: ITERATIVE_SUB_FROM,
             threads: 1,
             parallel_from_madds: crate::base::threads::PARALLEL_FROM,

@@ -159,11 +159,25 @@ impl SimTables {
         }
     }
 
+    /// The fewest points on the road that take the methods of large sets
+    /// (`large.rs`): [`SolverOptions::large_set_from`], with tread springs
+    /// at most [`SolverOptions::compliant_large_set_from`].
+    #[inline]
+    pub fn large_set_from(&self) -> usize {
+        if self.compliant() {
+            self.options
+                .large_set_from
+                .min(self.options.compliant_large_set_from)
+        } else {
+            self.options.large_set_from
+        }
+    }
+
     /// Whether a large active set can occur and takes the methods of
-    /// `large.rs`: at least [`SolverOptions::large_set_from`] points.
+    /// `large.rs`: at least [`SimTables::large_set_from`] points.
     #[inline]
     pub fn large_sets(&self) -> bool {
-        self.p >= self.options.large_set_from
+        self.p >= self.large_set_from()
     }
 
     /// The fewest points on the road whose compliant sub-steps are solved
@@ -173,9 +187,7 @@ impl SimTables {
     #[inline]
     pub fn iterative_sub_from(&self) -> usize {
         if self.compliant() {
-            self.options
-                .iterative_sub_from
-                .min(self.options.large_set_from)
+            self.options.iterative_sub_from.min(self.large_set_from())
         } else {
             usize::MAX
         }
