@@ -88,7 +88,8 @@ fn the_ring_modes_say_where_their_residues_are() {
     let mut h = harness_sized(App::with_default_preset(), [1280.0, 1600.0]);
     h.run_steps(3);
     let n = h.state().modes().len();
-    h.get_by_label(&format!("{n} identified modes")).click();
+    h.get_by_label(&format!("{n} identified modes, used by the run"))
+        .click();
     h.run_steps(3);
     assert!(h.query_by_label(RING_RESIDUES_NOTE).is_some());
     h.get_by_label("Edit as a modal model").click();

@@ -509,11 +509,14 @@ impl App {
             ),
             View::Workbench => workbench_view::show(
                 ui,
-                &self.doc.scene,
-                self.research.workbench(),
-                self.research.frf_fit(),
-                self.research.workbench_computing(),
-                self.research.workbench_in_use(),
+                &workbench_view::Shown {
+                    scene: &self.doc.scene,
+                    bench: self.research.workbench(),
+                    frf: self.research.frf_fit(),
+                    computing: self.research.workbench_computing(),
+                    in_use: self.research.workbench_in_use(),
+                    run_modes: self.modes.len(),
+                },
                 cmds,
             ),
             _ => {}

@@ -334,7 +334,7 @@ pub(super) fn identified_modes(
     } else {
         "identified modes"
     };
-    egui::CollapsingHeader::new(format!("{} {how}", modes.len()))
+    egui::CollapsingHeader::new(format!("{} {how}, used by the run", modes.len()))
         .id_salt("tirecontact.ring_modes")
         .show(ui, |ui| {
             Grid::new("tirecontact.ring_modes_grid")

@@ -5,10 +5,13 @@
 //! `|G|` of the worst-fitted response pair, data against the picked modes,
 //! and every pair's L2 error. "Use these modes" makes them the scene's
 //! modal tyre; "Save as modal preset…" writes that scene. For a measured
-//! UFF file of FRFs it first shows their frequency-domain fit (method
-//! §6.5): data against fit per pair, the residual terms and the
-//! driving-point check. The logic is `identify::workbench` and
-//! `identify::frequency`; this view draws it and pushes commands.
+//! UFF file of FRFs their frequency-domain fit (method §6.5: data against
+//! fit per pair, the residual terms and the driving-point check) follows,
+//! folded. One line above says how many modes the run uses, how many are
+//! picked and how many the frequency-domain fit found, each named for what
+//! it counts. The whole view scrolls with the mouse wheel. The logic is
+//! `identify::workbench` and `identify::frequency`; this view draws it and
+//! pushes commands.
 
 use super::XTitle;
 use crate::Scene;
@@ -56,43 +59,125 @@ fn category(stability: Stability) -> (&'static str, MarkerShape, Color32) {
     }
 }
 
-pub fn show(
-    ui: &mut Ui,
-    scene: &Scene,
-    bench: Option<&Result<Workbench, String>>,
-    frf: Option<&Result<FrfIdentification, String>>,
-    computing: bool,
-    in_use: bool,
-    cmds: &mut Vec<Command>,
-) {
-    if matches!(scene.tyre, Tyre::Modal { .. }) && !in_use {
+/// Plot id of the `|G|` of the worst-fitted pair (read by the tests).
+pub const PAIR_PLOT_ID: &str = "tirecontact.workbench.pair";
+/// Title of the frequency-domain fit's section (read by the tests).
+pub const FRF_SECTION: &str = "Frequency-domain fit of the FRFs (LSCF poles, LSFD residues)";
+
+/// What the workbench shows: the scene, its identification and the modes
+/// its run uses.
+pub struct Shown<'a> {
+    pub scene: &'a Scene,
+    pub bench: Option<&'a Result<Workbench, String>>,
+    pub frf: Option<&'a Result<FrfIdentification, String>>,
+    pub computing: bool,
+    /// The scene's tyre is the modes used from this workbench.
+    pub in_use: bool,
+    /// Modes the run uses (the side panel's list).
+    pub run_modes: usize,
+}
+
+/// The workbench in a vertical scroll area that takes the mouse wheel:
+/// the counts of modes, the picks and their buttons, the diagram and the
+/// worst pair fill the view; the frequency-domain fit of a file of FRFs
+/// follows them, folded.
+pub fn show(ui: &mut Ui, s: &Shown<'_>, cmds: &mut Vec<Command>) {
+    if matches!(s.scene.tyre, Tyre::Modal { .. }) && !s.in_use {
         ui.label("The workbench identifies a ring or measured tyre from its responses. This scene's tyre is a modal model given mode by mode: open a ring or measured preset (presets/paper.ron, presets/measured_example.ron).");
         return;
     }
-    if computing {
+    egui::ScrollArea::vertical()
+        .id_salt("tirecontact.workbench.scroll")
+        .auto_shrink(false)
+        .show(ui, |ui| body(ui, s, cmds));
+}
+
+/// The count of modes each part of the workbench gives, in one line: the
+/// run's (the side panel's list), the picks' and the frequency-domain
+/// fit's, each named for what it counts.
+pub fn counts_text(
+    run_modes: usize,
+    in_use: bool,
+    picked: Option<usize>,
+    left_out: usize,
+    frf: Option<usize>,
+) -> String {
+    use crate::output::count;
+    let mut parts = vec![format!(
+        "the run uses {} ({}, the side panel's list)",
+        count(run_modes, "mode"),
+        if in_use {
+            "picked here"
+        } else {
+            "identified by LSCE"
+        }
+    )];
+    if let Some(p) = picked {
+        parts.push(if left_out > 0 && !in_use {
+            format!("{p} picked here ({left_out} of the identified left out: no persisting pole)")
+        } else {
+            format!("{p} picked here")
+        });
+    }
+    if let Some(k) = frf {
+        parts.push(format!(
+            "{k} in the frequency-domain fit (LSCF, a check of the FRFs; the run does not use it)"
+        ));
+    }
+    format!("Modes: {}", parts.join(" · "))
+}
+
+fn body(ui: &mut Ui, s: &Shown<'_>, cmds: &mut Vec<Command>) {
+    let (bench, frf) = (s.bench, s.frf);
+    if s.computing {
         ui.horizontal(|ui| {
             ui.spinner();
             ui.label("identifying the tyre's responses (LSCE, every model order)…");
         });
     }
-    if let Some(f) = frf {
-        frf_section(ui, f);
+    let picked = match bench {
+        Some(Ok(w)) => Some((w.modes.len(), w.left_out_hz.len())),
+        _ => None,
+    };
+    let frf_modes = match frf {
+        Some(Ok(f)) => Some(f.poles.len()),
+        _ => None,
+    };
+    if picked.is_some() || frf_modes.is_some() {
+        ui.label(counts_text(
+            s.run_modes,
+            s.in_use,
+            picked.map(|p| p.0),
+            picked.map_or(0, |p| p.1),
+            frf_modes,
+        ));
     }
     let w = match bench {
         Some(Ok(w)) => w,
         Some(Err(e)) if matches!(frf, Some(Ok(_))) => {
             ui.label(format!(
-                "No time-domain identification (LSCE): {e}. The fit above is the frequency-domain one."
+                "No time-domain identification (LSCE): {e}. The frequency-domain fit below is the only one."
             ));
+            if let Some(f) = frf {
+                frf_section(ui, f, true);
+            }
             return;
         }
         Some(Err(e)) => {
             ui.label(
                 RichText::new(format!("No identification: {e}")).color(ui.visuals().error_fg_color),
             );
+            if let Some(f) = frf {
+                frf_section(ui, f, true);
+            }
             return;
         }
-        None => return,
+        None => {
+            if let Some(f) = frf {
+                frf_section(ui, f, true);
+            }
+            return;
+        }
     };
     ui.horizontal_wrapped(|ui| {
         if ui
@@ -124,7 +209,7 @@ pub fn show(
             crate::output::summary::short_num(w.time_error, 3)
         ));
     });
-    if in_use {
+    if s.in_use {
         ui.label(
             "The scene's tyre is the modes used from this diagram: pick or drop poles and \"Use these modes\" again to refine the choice.",
         );
@@ -156,11 +241,18 @@ pub fn show(
         "|G| error (relative L2 over the band) per pair i-j: {}",
         errors.join(", ")
     ));
+    // the diagram and the worst pair share what is left of the view (the
+    // scroll area's height, not its content's): the picks and the diagram
+    // are seen without scrolling; the fit of the FRFs is below them
     let gap = ui.spacing().item_spacing.y;
-    let h_diag = ((ui.available_height() - gap) * 0.62).max(160.0);
+    let left = ui.available_height() - gap;
+    let h_diag = (left * 0.62).max(160.0);
     diagram(ui, w, h_diag, cmds);
     if let Some(f) = worst {
-        pair_plot(ui, w, &f, (ui.available_height()).max(120.0));
+        pair_plot(ui, w, &f, (left - h_diag - gap).max(120.0));
+    }
+    if let Some(f) = frf {
+        frf_section(ui, f, false);
     }
 }
 
@@ -333,7 +425,8 @@ fn pair_plot(ui: &mut Ui, w: &Workbench, f: &crate::identify::workbench::PairFit
             .collect()
     };
     let (i, j) = f.pair;
-    Plot::new("tirecontact.workbench.pair")
+    Plot::new(PAIR_PLOT_ID)
+        .id(egui::Id::unique(PAIR_PLOT_ID))
         .height(h)
         .legend(egui_plot::Legend::default().position(egui_plot::Corner::RightTop))
         .x_title(ui, "frequency f (Hz)")
@@ -364,9 +457,9 @@ const PAIR_COLORS: [Color32; FRF_PAIRS_DRAWN] = [
 
 /// The frequency-domain fit of a measured file of FRFs: its errors, the
 /// driving-point check, the residual terms and data against fit per pair.
-fn frf_section(ui: &mut Ui, f: &Result<FrfIdentification, String>) {
-    egui::CollapsingHeader::new("Frequency-domain fit of the FRFs (LSCF poles, LSFD residues)")
-        .default_open(true)
+fn frf_section(ui: &mut Ui, f: &Result<FrfIdentification, String>, open: bool) {
+    egui::CollapsingHeader::new(FRF_SECTION)
+        .default_open(open)
         .show(ui, |ui| {
             let id = match f {
                 Ok(id) => id,

@@ -8,6 +8,7 @@ mod legends;
 mod spectra_thread;
 mod sweep_note;
 mod workbench;
+mod workbench_fold;
 
 use crate::harness::{advance, harness, wait_fidelity};
 use crate::support::preset;

@@ -11,7 +11,7 @@ use egui_plot::{PlotMemory, PlotPoint};
 use std::path::Path;
 use tirecontact::Scene;
 use tirecontact::gui::ResearchCommand;
-use tirecontact::gui::views::workbench_view::DIAGRAM_PLOT_ID;
+use tirecontact::gui::views::workbench_view::{DIAGRAM_PLOT_ID, FRF_SECTION};
 use tirecontact::gui::{App, Command, View};
 use tirecontact::model::lsce::IdentifyOptions;
 use tirecontact::scene::Tyre;
@@ -200,7 +200,7 @@ fn poles_are_picked_and_dropped_by_clicks_and_the_modes_used_and_saved() {
 
 /// A measured tyre whose file holds FRFs (`tests/data/uff/frf3.uff`:
 /// MODEL3's receptances, every pair): the workbench shows their
-/// frequency-domain fit above the LSCE diagram — its three modes, every
+/// frequency-domain fit below the LSCE diagram — its three modes, every
 /// driving point's check, the residual terms, data against fit.
 #[test]
 fn a_file_of_frfs_shows_its_frequency_domain_fit() {
@@ -232,6 +232,11 @@ fn a_file_of_frfs_shows_its_frequency_domain_fit() {
     }
     assert!(fit.complex.error < 1e-9, "{}", fit.complex.error);
     assert!(matches!(h.state().research().workbench(), Some(Ok(_))));
+    // the fit follows the diagram, folded: scrolled to and opened
+    h.get_by_label(FRF_SECTION).scroll_to_me();
+    h.run_steps(3);
+    h.get_by_label(FRF_SECTION).click();
+    h.run_steps(3);
     for text in [
         "Frequency-domain fit of the FRFs",
         "driving point node 102 +Z: every stable mode's residue positive",
