@@ -18,9 +18,10 @@ use std::f64::consts::TAU;
 
 mod poles;
 mod residues;
-pub use poles::{select, stabilisation};
+pub use poles::{KeptPole, Selection, keep, select, stabilisation};
 pub use residues::{
-    ComplexFit, NEGLIGIBLE_MODE, RealFit, lsfd, real_modes, refine, relative_error, synthesise_real,
+    ComplexFit, NEGLIGIBLE_MODE, RealFit, contributions, lsfd, real_modes, refine, relative_error,
+    synthesise_real,
 };
 
 /// What an FRF's values are: response over force, the response
