@@ -67,9 +67,9 @@ pub struct IdentifyArgs {
     pub nodes: Option<Vec<i64>>,
     /// The polynomial order of the frequency-domain fit up to which modes
     /// are kept, 1 to 200 (default: the highest of the stabilisation
-    /// diagram, 40). A mode is a pole stable against the order below at
-    /// this order or one of the 5 below it, and drawn at each of the 5
-    /// orders below that one; damping ratio below 0.2, inside the band.
+    /// diagram, 40). A mode is a pole stable against the order below at 5
+    /// consecutive orders, the last of them this order or one of the 5
+    /// below it; damping ratio below 0.2, inside the band.
     /// Every order up to it is fitted for the diagram.
     #[arg(long, requires = "data", value_name = "1-200")]
     pub order: Option<usize>,

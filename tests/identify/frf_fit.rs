@@ -47,7 +47,7 @@ const COLUMN: [(usize, usize); 3] = [(0, 0), (1, 0), (2, 0)];
 fn fit(s: &FrfSet) -> (Vec<lscf::Pole>, f64, f64, f64, f64, f64) {
     let opts = FitOptions::default();
     let diagram = lscf::stabilisation(s, (1.0, 1000.0), &opts).unwrap();
-    let (_, selected) = lscf::select(&diagram, &opts);
+    let (_, selected) = lscf::select(&diagram, lscf::references(&s.pairs), &opts);
     let (poles, complex) = lscf::refine(s, &selected, 20).unwrap();
     let real = lscf::real_modes(s, &poles).unwrap();
     assert_eq!(
@@ -324,7 +324,7 @@ fn a_noisy_full_matrix_fits_with_three_references() {
     let d = lscf::stabilisation(&s, (1.0, 1000.0), &opts).unwrap();
     // three references: 40 poles over orders 1..=13
     assert_eq!(d.len(), 13);
-    let (_, sel) = lscf::select(&d, &opts);
+    let (_, sel) = lscf::select(&d, lscf::references(&s.pairs), &opts);
     let (poles, c) = lscf::refine(&s, &sel, 20).unwrap();
     assert_eq!(poles.len(), 6, "{poles:?}");
     for (p, m) in poles.iter().zip(&SIX) {
@@ -368,7 +368,7 @@ proptest::proptest! {
         };
         let opts = FitOptions::default();
         let d = lscf::stabilisation(&s, (1.0, 1000.0), &opts).unwrap();
-        let (_, sel) = lscf::select(&d, &opts);
+        let (_, sel) = lscf::select(&d, lscf::references(&s.pairs), &opts);
         let (poles, c) = lscf::refine(&s, &sel, 20).unwrap();
         let real = lscf::real_modes(&s, &poles).unwrap();
         proptest::prop_assert_eq!(poles.len(), modes.len(), "{:?} vs {:?}", poles, modes);

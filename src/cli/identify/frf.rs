@@ -193,12 +193,14 @@ fn summary(name: &str, id: &FrfIdentification) -> String {
     }
     let _ = writeln!(
         s,
-        "  a mode: a pole stable against the order below (frequency within {} %, damping within {} %, with several references a vector MAC of at least {}) at one of orders {} to {}, drawn at each of the {} orders below that one; damping ratio below {}, inside the band; of poles within {} % one",
+        "  a mode: a pole stable against the order below (frequency within {} %, damping within {} %, with several references a vector MAC of at least {}) at one of orders {} to {} and at each order below it in a run of {} consecutive orders, drawn at the {} orders below; damping ratio below {}, inside the band; of poles within {} % one",
         fmt_sig(100.0 * id.options.freq_tol, 6),
         fmt_sig(100.0 * id.options.damping_tol, 6),
         fmt_sig(id.options.mac_min, 6),
         id.order.saturating_sub(id.options.persist).max(1),
         id.order,
+        (id.options.persist / tirecontact::model::lscf::references(&id.data.set.pairs).max(1))
+            .clamp(1, id.options.persist.max(1)),
         id.options.persist,
         fmt_sig(id.options.max_damping_ratio, 6),
         fmt_sig(100.0 * id.options.freq_tol, 6)

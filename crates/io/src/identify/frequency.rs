@@ -197,7 +197,7 @@ pub fn identify_frfs(path: &Path, opts: &FrfOptions) -> Result<FrfIdentification
         source,
     };
     let diagram = lscf::stabilisation(&data.set, data.band_hz, &opts.fit).map_err(fit_err)?;
-    let selection = lscf::keep(&diagram, &opts.fit);
+    let selection = lscf::keep(&diagram, lscf::references(&data.set.pairs), &opts.fit);
     let order = selection.order;
     let selected: Vec<Pole> = selection.kept.iter().map(|k| k.pole.clone()).collect();
     let (refined, complex) =

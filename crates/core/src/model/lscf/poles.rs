@@ -412,13 +412,16 @@ pub struct Selection {
 /// The kept poles by persistence (method §6.5.1): at each order from the
 /// chosen one down to `persist` orders below it, highest first, a pole is
 /// kept when it is stable (frequency, damping, vector) against the order
-/// below and a pole within the frequency tolerance of it is drawn (not
-/// over-damped) at each of the `persist` orders below; a pole within the
-/// frequency tolerance of one already kept is the same physical pole.
+/// below there and at each order down to the run's start (a run of
+/// `persist` consecutive stable orders with one reference, `persist /
+/// references` with several, 1 at least; each a pole within the frequency
+/// tolerance of it), and a pole within the tolerance is drawn at each of
+/// the `persist` orders below; a pole within the frequency tolerance of
+/// one already kept is the same physical pole.
 /// So a mode is kept when the top order splits it, moves it or leaves its
 /// damping unsettled, as long as it persisted up to within `persist`
 /// orders of the chosen one. Sorted by frequency.
-pub fn keep(diagram: &[DiagramOrder], opts: &FitOptions) -> Selection {
+pub fn keep(diagram: &[DiagramOrder], references: usize, opts: &FitOptions) -> Selection {
     if diagram.is_empty() {
         return Selection {
             order: 0,
@@ -427,15 +430,19 @@ pub fn keep(diagram: &[DiagramOrder], opts: &FitOptions) -> Selection {
     }
     let order = opts.order.unwrap_or(diagram.len()).clamp(1, diagram.len());
     let at = |p: usize| &diagram[p - 1].poles;
-    let drawn = |p: &Pole, q: usize| {
-        at(q)
-            .iter()
-            .any(|b| b.stability != Stability::Damped && same_frequency(p, b, opts))
-    };
     let stable_at = |p: &Pole, q: usize| {
         at(q)
             .iter()
             .any(|b| b.stability == Stability::Stable && same_frequency(p, b, opts))
+    };
+    // an order of a polyreference model adds N_i poles (N_i references):
+    // the run is `persist` orders of one reference, persist / N_i of N_i
+    // (2 at least)
+    let run = (opts.persist / references.max(1)).clamp(1, opts.persist.max(1));
+    let drawn = |p: &Pole, q: usize| {
+        at(q)
+            .iter()
+            .any(|b| b.stability != Stability::Damped && same_frequency(p, b, opts))
     };
     let mut kept: Vec<KeptPole> = Vec::new();
     let lowest_taken = order.saturating_sub(opts.persist).max(1);
@@ -446,11 +453,18 @@ pub fn keep(diagram: &[DiagramOrder], opts: &FitOptions) -> Selection {
             {
                 continue;
             }
+            let first = (1..q)
+                .rev()
+                .take_while(|&b| stable_at(pole, b))
+                .last()
+                .unwrap_or(q);
+            // a run of `persist` consecutive stable orders at least (at
+            // a high order, poles are so dense that one is drawn within
+            // the tolerance of anything: being drawn proves nothing)
             let lowest = q.saturating_sub(opts.persist).max(1);
-            if !(lowest..q).all(|b| drawn(pole, b)) {
+            if q + 1 - first < run || !(lowest..q).all(|b| drawn(pole, b)) {
                 continue;
             }
-            let first = (1..q).rev().take_while(|&b| stable_at(pole, b)).last();
             let last = (q + 1..=diagram.len())
                 .take_while(|&b| stable_at(pole, b))
                 .last();
@@ -466,7 +480,7 @@ pub fn keep(diagram: &[DiagramOrder], opts: &FitOptions) -> Selection {
             kept.push(KeptPole {
                 pole: pole.clone(),
                 order: q,
-                stable_orders: (first.unwrap_or(q), last.unwrap_or(q)),
+                stable_orders: (first, last.unwrap_or(q)),
                 split_hz,
             });
         }
@@ -475,9 +489,19 @@ pub fn keep(diagram: &[DiagramOrder], opts: &FitOptions) -> Selection {
     Selection { order, kept }
 }
 
+/// The number of references `N_i` of the polyreference model of `pairs`
+/// (method §6.5.1): its orders add `N_i` poles each.
+pub fn references(pairs: &[(usize, usize)]) -> usize {
+    layout(pairs).rows[0].len()
+}
+
 /// The chosen order and the poles [`keep`] keeps.
-pub fn select(diagram: &[DiagramOrder], opts: &FitOptions) -> (usize, Vec<Pole>) {
-    let s = keep(diagram, opts);
+pub fn select(
+    diagram: &[DiagramOrder],
+    references: usize,
+    opts: &FitOptions,
+) -> (usize, Vec<Pole>) {
+    let s = keep(diagram, references, opts);
     (s.order, s.kept.into_iter().map(|k| k.pole).collect())
 }
 
@@ -523,7 +547,7 @@ mod tests {
     #[test]
     fn a_mode_split_at_the_top_order_is_kept_by_its_persistence() {
         let d = diagram();
-        let s = keep(&d, &FitOptions::default());
+        let s = keep(&d, 1, &FitOptions::default());
         assert_eq!(s.order, 40);
         let f: Vec<f64> = s.kept.iter().map(|k| k.pole.freq_hz).collect();
         assert_eq!(f.len(), 2, "{f:?}");
@@ -540,7 +564,7 @@ mod tests {
             order: Some(9),
             ..FitOptions::default()
         };
-        let s = keep(&d, &low);
+        let s = keep(&d, 1, &low);
         assert!(s.kept.iter().any(|k| k.pole.freq_hz == 90.0));
         // the over-damped pole is never kept
         assert!(s.kept.iter().all(|k| k.pole.damping_ratio < 0.2));
@@ -559,12 +583,12 @@ mod tests {
                 },
             })
             .collect();
-        let s = keep(&d, &FitOptions::default());
+        let s = keep(&d, 1, &FitOptions::default());
         assert_eq!(s.kept.len(), 1, "{:?}", s.kept);
         assert_eq!(s.kept[0].split_hz, [687.4]);
         assert_eq!(s.kept[0].order, 12);
         // no order: nothing kept, nothing panics
-        assert!(keep(&[], &FitOptions::default()).kept.is_empty());
+        assert!(keep(&[], 1, &FitOptions::default()).kept.is_empty());
     }
 
     /// The reduced matrices built once from the highest order's factored
