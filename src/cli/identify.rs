@@ -65,10 +65,12 @@ pub struct IdentifyArgs {
     /// points, in increasing node number.
     #[arg(long, requires = "data", num_args = 1.., value_name = "NODE")]
     pub nodes: Option<Vec<i64>>,
-    /// The polynomial order of the frequency-domain fit whose poles are
-    /// kept, 1 to 200 (default: the highest of the stabilisation diagram,
-    /// 40; every order up to it is fitted for the diagram, so high orders
-    /// take longer).
+    /// The polynomial order of the frequency-domain fit up to which modes
+    /// are kept, 1 to 200 (default: the highest of the stabilisation
+    /// diagram, 40). A mode is a pole stable against the order below at 5
+    /// consecutive orders, the last of them this order or one of the 5
+    /// below it; damping ratio below 0.2, inside the band.
+    /// Every order up to it is fitted for the diagram.
     #[arg(long, requires = "data", value_name = "1-200")]
     pub order: Option<usize>,
     /// Write the frequency-domain fit into this folder (created when

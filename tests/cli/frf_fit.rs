@@ -49,7 +49,7 @@ fn a_binary_row_of_accelerances_gives_a_fit_and_a_contact_model() {
     assert_eq!(out.matches("row3_58b.uff").count(), 0, "{out}");
     let modes = std::fs::read_to_string(fit.join("modes.csv")).unwrap();
     assert!(
-        modes.starts_with("freq_hz,damping_ratio,stable\n"),
+        modes.starts_with("freq_hz,damping_ratio,stable,note\n"),
         "{modes}"
     );
     assert_eq!(modes.matches(",true").count(), 3, "{modes}");

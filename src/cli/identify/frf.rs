@@ -9,9 +9,12 @@ use crate::cli::paths::{check_output_file, ensure_output_dir};
 use std::fmt::Write as _;
 use std::path::Path;
 use tirecontact::Scene;
+use tirecontact::base::error::fmt_sig;
 use tirecontact::fsio::write_atomic;
 use tirecontact::identify::driving;
-use tirecontact::identify::frequency::{FrfIdentification, FrfOptions, MAX_FIT_ERROR};
+use tirecontact::identify::frequency::{
+    FrfIdentification, FrfOptions, MAX_FIT_ERROR, half_power_width_hz,
+};
 use tirecontact::model::lscf::FitOptions;
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
 use tirecontact::output::stabilisation::{self, Method};
@@ -188,12 +191,60 @@ fn summary(name: &str, id: &FrfIdentification) -> String {
     for n in &id.data.notes {
         let _ = writeln!(s, "  {n}");
     }
-    for (k, p) in id.poles.iter().enumerate() {
+    let _ = writeln!(
+        s,
+        "  a mode: a pole stable against the order below (frequency within {} %, damping within {} %, with several references a vector MAC of at least {}) at one of orders {} to {} and at each order below it in a run of {} consecutive orders, drawn at the {} orders below; damping ratio below {}, inside the band; of poles within {} % one",
+        fmt_sig(100.0 * id.options.freq_tol, 6),
+        fmt_sig(100.0 * id.options.damping_tol, 6),
+        fmt_sig(id.options.mac_min, 6),
+        id.order.saturating_sub(id.options.persist).max(1),
+        id.order,
+        (id.options.persist / tirecontact::model::lscf::references(&id.data.set.pairs).max(1))
+            .clamp(1, id.options.persist.max(1)),
+        id.options.persist,
+        fmt_sig(id.options.max_damping_ratio, 6),
+        fmt_sig(100.0 * id.options.freq_tol, 6)
+    );
+    for (k, (p, run)) in id.poles.iter().zip(&id.persistence).enumerate() {
+        let resolved = if id.unresolved(k) {
+            format!(
+                " (unresolved: half-power width 2·xi·f = {} Hz, below two frequency lines of {} Hz)",
+                fmt_sig(half_power_width_hz(p), 3),
+                fmt_sig(id.line_hz, 6)
+            )
+        } else {
+            String::new()
+        };
+        let split = if run.split_hz.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; split at order {} ({} Hz merged)",
+                run.order,
+                run.split_hz
+                    .iter()
+                    .map(|f| format!("{f:.3}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
         let _ = writeln!(
             s,
-            "  mode {k:2}: {:9.3} Hz  xi {}  stable",
+            "  mode {k:2}: {:9.3} Hz  xi {}{resolved}  stable at orders {} to {} (taken at {}){split}",
             p.freq_hz,
-            sig6(p.damping_ratio)
+            sig6(p.damping_ratio),
+            run.stable_orders.0,
+            run.stable_orders.1,
+            run.order
+        );
+    }
+    for fp in &id.flagged {
+        let _ = writeln!(
+            s,
+            "  pole {:9.3} Hz  xi {}  flagged: {}",
+            fp.pole.freq_hz,
+            sig6(fp.pole.damping_ratio),
+            fp.why
         );
     }
     let units = id.data.set.ordinate.units();
@@ -219,25 +270,51 @@ fn summary(name: &str, id: &FrfIdentification) -> String {
 
 /// `--fit DIR`: modes.csv, fit.csv and fit.png.
 fn write_fit(dir: &Path, name: &str, id: &FrfIdentification) -> CliResult {
-    let mut modes = String::from("freq_hz,damping_ratio,stable\n");
-    let chosen = &id.diagram[id.order - 1].poles;
-    let mut rows: Vec<(f64, f64, bool)> = id
+    let mut modes = String::from("freq_hz,damping_ratio,stable,note\n");
+    let mut rows: Vec<(f64, f64, bool, String)> = id
         .poles
         .iter()
-        .map(|p| (p.freq_hz, p.damping_ratio, true))
+        .enumerate()
+        .map(|(k, p)| {
+            let note = if id.unresolved(k) {
+                format!(
+                    "damping unresolved: half-power width below two lines of {} Hz",
+                    fmt_sig(id.line_hz, 6)
+                )
+            } else {
+                String::new()
+            };
+            (p.freq_hz, p.damping_ratio, true, note)
+        })
         .collect();
-    for p in chosen {
-        let kept = id
-            .poles
-            .iter()
-            .any(|k| (k.freq_hz - p.freq_hz).abs() <= 0.01 * p.freq_hz);
-        if !kept {
-            rows.push((p.freq_hz, p.damping_ratio, false));
+    for fp in &id.flagged {
+        rows.push((
+            fp.pole.freq_hz,
+            fp.pole.damping_ratio,
+            false,
+            format!("flagged: {}", fp.why),
+        ));
+    }
+    if let Some(chosen) = id.order.checked_sub(1).and_then(|o| id.diagram.get(o)) {
+        for p in &chosen.poles {
+            let kept = id
+                .poles
+                .iter()
+                .any(|k| (k.freq_hz - p.freq_hz).abs() <= id.options.freq_tol * p.freq_hz);
+            if !kept {
+                rows.push((
+                    p.freq_hz,
+                    p.damping_ratio,
+                    false,
+                    format!("order {}: not kept", id.order),
+                ));
+            }
         }
     }
     rows.sort_by(|a, b| a.0.total_cmp(&b.0));
-    for (f, xi, st) in rows {
-        let _ = writeln!(modes, "{f:e},{xi:e},{st}");
+    for (f, xi, st, note) in rows {
+        // the note quoted: it holds commas
+        let _ = writeln!(modes, "{f:e},{xi:e},{st},\"{}\"", note.replace('"', "'"));
     }
     let path = dir.join("modes.csv");
     write_atomic(&path, modes.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;

@@ -56,6 +56,11 @@ fn category(stability: Stability) -> (&'static str, MarkerShape, Color32) {
             MarkerShape::Cross,
             Color32::from_rgb(150, 150, 150),
         ),
+        Stability::Damped => (
+            "damping above the limit (not a mode)",
+            MarkerShape::Plus,
+            Color32::from_rgb(204, 121, 167),
+        ),
     }
 }
 
@@ -369,7 +374,12 @@ fn diagram_legend(ui: &mut Ui) -> f32 {
             },
             "summed |G| of the data (dB, scaled)",
         );
-        for (name, shape, color) in Stability::ALL.map(category) {
+        // the time-domain diagram drops over-damped poles: no such marker
+        for (name, shape, color) in Stability::ALL
+            .into_iter()
+            .filter(|&s| s != Stability::Damped)
+            .map(category)
+        {
             entry(ui, &move |p, c, r| marker(p, c, r, shape, color), name);
         }
         entry(

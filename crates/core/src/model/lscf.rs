@@ -18,9 +18,10 @@ use std::f64::consts::TAU;
 
 mod poles;
 mod residues;
-pub use poles::{select, stabilisation};
+pub use poles::{KeptPole, Selection, keep, references, select, stabilisation};
 pub use residues::{
-    ComplexFit, NEGLIGIBLE_MODE, RealFit, lsfd, real_modes, refine, relative_error, synthesise_real,
+    ComplexFit, NEGLIGIBLE_MODE, RealFit, contributions, lsfd, real_modes, refine, relative_error,
+    synthesise_real,
 };
 
 /// What an FRF's values are: response over force, the response
@@ -111,8 +112,9 @@ pub struct FitOptions {
     /// Stable: smallest MAC of the participation vectors (-), when there
     /// are several references.
     pub mac_min: f64,
-    /// A kept pole is stable in frequency at this many orders below the
-    /// chosen one.
+    /// A kept pole is stable (frequency, damping, vector) at this many
+    /// consecutive orders, the last of them the chosen order or one of the
+    /// `persist` below it.
     pub persist: usize,
 }
 

@@ -15,6 +15,9 @@ use std::f64::consts::TAU;
 /// Ordered from least to most stable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Stability {
+    /// Damping ratio at or above the fit's limit: drawn in the diagram,
+    /// never compared with other orders, never a mode.
+    Damped,
     /// No pole of the order below within the frequency tolerance.
     New,
     /// Frequency stable only.
@@ -27,11 +30,12 @@ pub enum Stability {
 
 impl Stability {
     /// Every category, most stable first: the order of a diagram's legend.
-    pub const ALL: [Stability; 4] = [
+    pub const ALL: [Stability; 5] = [
         Stability::Stable,
         Stability::FrequencyDamping,
         Stability::Frequency,
         Stability::New,
+        Stability::Damped,
     ];
 }
 

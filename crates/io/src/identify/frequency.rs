@@ -13,7 +13,7 @@ use faer::c64;
 use std::path::Path;
 use tirecontact_core::base::modal::Mode;
 use tirecontact_core::model::lscf::{
-    self, ComplexFit, FitError, FitOptions, FrfSet, Pole, RealFit,
+    self, ComplexFit, FitError, FitOptions, FrfSet, KeptPole, Pole, RealFit,
 };
 use tirecontact_core::model::stability::DiagramOrder;
 use web_time::Instant;
@@ -24,6 +24,65 @@ pub const MAX_FIT_ERROR: f64 = 0.1;
 
 /// Gauss-Newton steps of the pole refinement ([`lscf::refine`]).
 pub const REFINE_ITERATIONS: usize = 20;
+
+/// Why a fitted pole is not listed as a mode: drawn in the diagram and
+/// reported, but no mode, and out of the driving-point check and the
+/// contact model.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PoleFlag {
+    /// Its damping ratio is at or above the fit's limit (or not positive):
+    /// a term that fits noise or the residual of modes outside the band.
+    Damping { limit: f64 },
+    /// The refinement moved it out of the band (Hz).
+    OutsideBand { band_hz: (f64, f64) },
+    /// The refinement brought it within the frequency tolerance of the
+    /// mode at `into_hz`, which has the larger term in the data: one
+    /// physical pole fitted twice, merged into that mode.
+    Split { into_hz: f64 },
+}
+
+impl std::fmt::Display for PoleFlag {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use tirecontact_core::base::error::fmt_sig;
+        match self {
+            PoleFlag::Damping { limit } => write!(
+                f,
+                "damping ratio outside 0 to {}: not a mode (a structural mode's half-power band would cover {} % of its frequency)",
+                fmt_sig(*limit, 6),
+                fmt_sig(200.0 * limit, 3)
+            ),
+            PoleFlag::OutsideBand { band_hz } => write!(
+                f,
+                "outside the band {} to {} Hz: not a mode",
+                fmt_sig(band_hz.0, 6),
+                fmt_sig(band_hz.1, 6)
+            ),
+            PoleFlag::Split { into_hz } => write!(
+                f,
+                "a split of the mode at {into_hz:.3} Hz (within the frequency tolerance, a smaller term): merged into it"
+            ),
+        }
+    }
+}
+
+/// A fitted pole that is not a mode, and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlaggedPole {
+    pub pole: Pole,
+    pub why: PoleFlag,
+}
+
+/// How a listed mode persists through the stabilisation diagram.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Persistence {
+    /// The order its pole was taken at.
+    pub order: usize,
+    /// The consecutive orders `(first, last)` at which it is stable.
+    pub stable_orders: (usize, usize),
+    /// Other poles of that order within the frequency tolerance (Hz): a
+    /// split pole, merged.
+    pub split_hz: Vec<f64>,
+}
 
 /// Options of [`identify_frfs`].
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -90,8 +149,17 @@ pub struct FrfIdentification {
     pub diagram: Vec<DiagramOrder>,
     /// The polynomial order whose poles were kept.
     pub order: usize,
-    /// The kept poles, refined.
+    /// The modes: the kept poles, refined, by frequency; none flagged.
     pub poles: Vec<Pole>,
+    /// How each mode persists through the diagram (as `poles`).
+    pub persistence: Vec<Persistence>,
+    /// Fitted poles that are not modes, and why.
+    pub flagged: Vec<FlaggedPole>,
+    /// The frequency lines' spacing (Hz): a mode whose half-power width
+    /// `2ξf` is below two lines has a damping the data cannot resolve.
+    pub line_hz: f64,
+    /// The options of the fit (the rule's tolerances).
+    pub options: FitOptions,
     /// Complex residues with residual terms.
     pub complex: ComplexFit,
     /// Real modal constants without residual terms.
@@ -103,6 +171,15 @@ pub struct FrfIdentification {
 }
 
 impl FrfIdentification {
+    /// Whether mode `k`'s half-power width `2ξf` is below two frequency
+    /// lines: its damping is then set by the fit's model, not resolved by
+    /// the data (it moves with band and order).
+    pub fn unresolved(&self, k: usize) -> bool {
+        self.poles
+            .get(k)
+            .is_some_and(|p| half_power_width_hz(p) < 2.0 * self.line_hz)
+    }
+
     /// Whether the fit is good enough to keep without `--accept`: both
     /// errors within [`MAX_FIT_ERROR`].
     pub fn is_good(&self) -> bool {
@@ -120,9 +197,43 @@ pub fn identify_frfs(path: &Path, opts: &FrfOptions) -> Result<FrfIdentification
         source,
     };
     let diagram = lscf::stabilisation(&data.set, data.band_hz, &opts.fit).map_err(fit_err)?;
-    let (order, selected) = lscf::select(&diagram, &opts.fit);
-    let (poles, complex) =
+    let selection = lscf::keep(&diagram, lscf::references(&data.set.pairs), &opts.fit);
+    let order = selection.order;
+    let selected: Vec<Pole> = selection.kept.iter().map(|k| k.pole.clone()).collect();
+    let (refined, complex) =
         lscf::refine(&data.set, &selected, REFINE_ITERATIONS).map_err(fit_err)?;
+    let limits = Limits {
+        band_hz: data.band_hz,
+        max_damping_ratio: opts.fit.max_damping_ratio,
+        freq_tol: opts.fit.freq_tol,
+    };
+    let (mut poles, mut flagged) = flag(&data.set, refined, &complex, &limits);
+    let complex = if flagged.is_empty() {
+        complex
+    } else {
+        // the modes refined again without the flagged poles; any pole the
+        // second refinement flags is left out and the rest fitted once more
+        let (again, fit) = lscf::refine(&data.set, &poles, REFINE_ITERATIONS).map_err(fit_err)?;
+        let (kept, more) = flag(&data.set, again, &fit, &limits);
+        poles = kept;
+        if more.is_empty() {
+            fit
+        } else {
+            flagged.extend(more);
+            lscf::lsfd(&data.set, &poles).map_err(fit_err)?
+        }
+    };
+    flagged.sort_by(|a, b| a.pole.freq_hz.total_cmp(&b.pole.freq_hz));
+    let persistence = poles
+        .iter()
+        .map(|p| persistence_of(p, &selection.kept))
+        .collect();
+    let f = &data.set.freq_hz;
+    let line_hz = if f.len() > 1 {
+        (f[f.len() - 1] - f[0]) / (f.len() - 1) as f64
+    } else {
+        0.0
+    };
     let real = lscf::real_modes(&data.set, &poles).map_err(fit_err)?;
     let driving = driving_points(&data, &real);
     let contact = contact_model(&data.set, &data.dofs, &poles, &real, &driving);
@@ -131,12 +242,99 @@ pub fn identify_frfs(path: &Path, opts: &FrfOptions) -> Result<FrfIdentification
         diagram,
         order,
         poles,
+        persistence,
+        flagged,
+        line_hz,
+        options: opts.fit.clone(),
         complex,
         real,
         driving,
         contact,
         elapsed_s: start.elapsed().as_secs_f64(),
     })
+}
+
+/// The half-power width `2ξf` of a pole (Hz).
+pub fn half_power_width_hz(p: &Pole) -> f64 {
+    2.0 * p.damping_ratio * p.freq_hz
+}
+
+/// What a refined pole must meet to be a mode.
+struct Limits {
+    band_hz: (f64, f64),
+    max_damping_ratio: f64,
+    freq_tol: f64,
+}
+
+/// The refined poles split into modes (by frequency) and flagged poles:
+/// damping outside `0 < ξ < max_damping_ratio`, outside the band, or
+/// within the frequency tolerance of a mode with a larger term in `fit`.
+fn flag(
+    set: &FrfSet,
+    poles: Vec<Pole>,
+    fit: &ComplexFit,
+    limits: &Limits,
+) -> (Vec<Pole>, Vec<FlaggedPole>) {
+    let size = lscf::contributions(set, &poles, fit);
+    let mut flagged = Vec::new();
+    let mut modes: Vec<(Pole, f64)> = Vec::new();
+    for (p, s) in poles.into_iter().zip(size) {
+        let why = if !(p.damping_ratio > 0.0 && p.damping_ratio < limits.max_damping_ratio) {
+            Some(PoleFlag::Damping {
+                limit: limits.max_damping_ratio,
+            })
+        } else if !(limits.band_hz.0..=limits.band_hz.1).contains(&p.freq_hz) {
+            Some(PoleFlag::OutsideBand {
+                band_hz: limits.band_hz,
+            })
+        } else {
+            None
+        };
+        match why {
+            Some(why) => flagged.push(FlaggedPole { pole: p, why }),
+            None => modes.push((p, s)),
+        }
+    }
+    // largest terms first: a smaller pole within the tolerance of a larger
+    // one is its split
+    modes.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let mut kept: Vec<Pole> = Vec::new();
+    for (p, _) in modes {
+        match kept
+            .iter()
+            .find(|k| (k.freq_hz - p.freq_hz).abs() <= limits.freq_tol * k.freq_hz)
+        {
+            Some(k) => flagged.push(FlaggedPole {
+                why: PoleFlag::Split { into_hz: k.freq_hz },
+                pole: p,
+            }),
+            None => kept.push(p),
+        }
+    }
+    kept.sort_by(|a, b| a.freq_hz.total_cmp(&b.freq_hz));
+    (kept, flagged)
+}
+
+/// The persistence of the kept pole nearest `p` in frequency.
+fn persistence_of(p: &Pole, kept: &[KeptPole]) -> Persistence {
+    kept.iter()
+        .min_by(|a, b| {
+            (a.pole.freq_hz - p.freq_hz)
+                .abs()
+                .total_cmp(&(b.pole.freq_hz - p.freq_hz).abs())
+        })
+        .map_or(
+            Persistence {
+                order: 0,
+                stable_orders: (0, 0),
+                split_hz: Vec::new(),
+            },
+            |k| Persistence {
+                order: k.order,
+                stable_orders: k.stable_orders,
+                split_hz: k.split_hz.clone(),
+            },
+        )
 }
 
 /// The check of every measured driving point on the real modal constants.
@@ -264,4 +462,72 @@ fn contact_model(
         error,
         notes,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tirecontact_core::model::lscf::Ordinate;
+    use tirecontact_core::model::stability::Stability;
+
+    fn pole(freq_hz: f64, damping_ratio: f64) -> Pole {
+        Pole {
+            freq_hz,
+            damping_ratio,
+            stability: Stability::Stable,
+        }
+    }
+
+    /// One mode at 50 Hz (ξ = 0.01) in receptance, 30 to 200 Hz every 1 Hz;
+    /// fitted poles holding it, an over-damped pole (ξ = 44.5), a pole
+    /// above the band and a split of the mode: the mode alone is kept.
+    #[test]
+    fn over_damped_out_of_band_and_split_poles_are_flagged_not_modes() {
+        let freq_hz: Vec<f64> = (30..=200).map(f64::from).collect();
+        let w0 = std::f64::consts::TAU * 50.0;
+        let h = vec![
+            freq_hz
+                .iter()
+                .map(|f| {
+                    let w = std::f64::consts::TAU * f;
+                    c64::new(1.0, 0.0) / c64::new(w0 * w0 - w * w, 2.0 * 0.01 * w0 * w)
+                })
+                .collect(),
+        ];
+        let set = FrfSet {
+            freq_hz,
+            ordinate: Ordinate::Receptance,
+            pairs: vec![(0, 0)],
+            h,
+        };
+        let poles = vec![
+            pole(37.0, 44.5),
+            pole(50.0, 0.01),
+            pole(50.3, 0.01),
+            pole(1065.0, 0.01),
+        ];
+        let fit = lscf::lsfd(&set, &poles).unwrap();
+        let limits = Limits {
+            band_hz: (30.0, 200.0),
+            max_damping_ratio: 0.2,
+            freq_tol: 0.01,
+        };
+        let (modes, flagged) = flag(&set, poles, &fit, &limits);
+        assert_eq!(modes.len(), 1, "{modes:?}");
+        assert!((modes[0].freq_hz - 50.0).abs() <= 0.3);
+        let why: Vec<String> = flagged.iter().map(|f| f.why.to_string()).collect();
+        assert_eq!(flagged.len(), 3, "{why:?}");
+        assert!(
+            flagged
+                .iter()
+                .any(|f| f.pole.freq_hz == 37.0 && why[0].contains("0 to 0.2")),
+            "{why:?}"
+        );
+        assert!(
+            why.iter()
+                .any(|w| w.contains("outside the band 30 to 200 Hz"))
+        );
+        assert!(why.iter().any(|w| w.contains("merged into")));
+        assert!(matches!(flagged[0].why, PoleFlag::Damping { .. }));
+    }
 }

@@ -58,6 +58,11 @@ fn marker(stability: Stability, method: Method) -> (String, Style, usize) {
         Stability::FrequencyDamping => ("stable: f, xi".into(), Style::HollowMarkers(5), 0),
         Stability::Frequency => ("stable: f".into(), Style::HollowMarkers(4), 4),
         Stability::New => ("new / not stable".into(), Style::HollowMarkers(2), 8),
+        Stability::Damped => (
+            "damping above the limit (not a mode)".into(),
+            Style::HollowMarkers(2),
+            3,
+        ),
     }
 }
 
@@ -72,6 +77,8 @@ pub fn panel(
 ) -> Panel {
     let mut series: Vec<Series> = Stability::ALL
         .iter()
+        // over-damped poles have a series only when the diagram draws some
+        .filter(|&&s| s != Stability::Damped || points_of(diagram, s).next().is_some())
         .map(|&stability| {
             let (name, style, color) = marker(stability, method);
             Series {

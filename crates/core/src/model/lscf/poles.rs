@@ -51,17 +51,24 @@ pub(super) fn layout(pairs: &[(usize, usize)]) -> Layout {
     }
 }
 
-/// The lag sums of one output (method §6.5.1, eq. LSCF-3): `ρ(d) = Σ_f
-/// cos(ω_f Δt d)`, `σ_i(d) = Re Σ_f e^{jω_fΔt d} H_i`, `τ_ij(d) = Re Σ_f
-/// e^{jω_fΔt d} H_i* H_j` for `d = −p…p`, stored at `d + p`.
+/// The lag sums `τ_ij(d) = Re Σ_f e^{jω_fΔt d} H_i* H_j` of one output
+/// (method §6.5.1, eq. LSCF-3), `d = −p…p` stored at `d + p`: the entries
+/// of `T_o`.
 struct LagSums {
-    sigma: Vec<Vec<f64>>,
     tau: Vec<Vec<Vec<f64>>>,
 }
 
 /// The stabilisation diagram of `set` over orders `1..=opts.max_order`
-/// (method §6.5.1): poles in `band_hz` with `0 < ξ < max_damping_ratio`,
-/// each marked against the order below.
+/// (method §6.5.1): poles in `band_hz` with `ξ > 0`, each marked against
+/// the order below (those with `ξ ≥ max_damping_ratio` drawn as
+/// [`Stability::Damped`]).
+///
+/// Every order reuses the work of the highest: the basis `X` of the
+/// highest order is factored once, `X = Q U` (its leading columns are
+/// every lower order's basis, and the leading columns of `Q` span them),
+/// so `S_oᵀ R⁻¹ S_o` of order `p` is `Σ_{r ≤ p} w_r w_rᵀ` with `w_r` the
+/// rows of `W_o = Qᵀ Y_o`: one rank-one update per order instead of a
+/// decomposition of `R`.
 pub fn stabilisation(
     set: &FrfSet,
     band_hz: (f64, f64),
@@ -76,6 +83,35 @@ pub fn stabilisation(
         None => opts.max_order / ni,
     }
     .max(1);
+    let (dt, phase, scaled, sums) = prepare(set, &lay, p_max);
+    let mut reduced = Reduced::new(&phase, &scaled, sums, ni, p_max)?;
+    let criteria = opts.stability_criteria();
+    let mut diagram: Vec<DiagramOrder> = Vec::with_capacity(p_max);
+    // the poles of the order below and their participation vectors
+    let mut below: Vec<(Pole, Vec<c64>)> = Vec::new();
+    for p in 1..=p_max {
+        let m = reduced.next();
+        let mut poles = poles_of_order(m.as_ref(), ni, p, dt, band_hz)?;
+        mark(&mut poles, &below, &criteria, opts.max_damping_ratio);
+        diagram.push(DiagramOrder {
+            order: p,
+            poles: poles.iter().map(|(pole, _)| pole.clone()).collect(),
+        });
+        below = poles;
+    }
+    Ok(diagram)
+}
+
+/// The sampling step `Δt = 1/(2 f_max)`, the phases `e^{jω_fΔt d}`
+/// (`[f][d + p_max]`, `d = −p_max…p_max`), each output's FRFs scaled to
+/// unit RMS (`[o][i][f]`) and their lag sums.
+#[allow(clippy::type_complexity)]
+fn prepare(
+    set: &FrfSet,
+    lay: &Layout,
+    p_max: usize,
+) -> (f64, Vec<Vec<c64>>, Vec<Vec<Vec<c64>>>, Vec<LagSums>) {
+    let ni = lay.rows[0].len();
     let nf = set.freq_hz.len();
     let f_hi = set.freq_hz[nf - 1];
     let dt = 0.5 / f_hi;
@@ -108,25 +144,19 @@ pub fn stabilisation(
                 .collect()
         })
         .collect();
-    let rho: Vec<f64> = (0..lags)
-        .map(|l| phase.iter().map(|e| e[l].re).sum())
-        .collect();
-    let sums: Vec<LagSums> = lay
+    let scaled: Vec<Vec<Vec<c64>>> = lay
         .rows
         .iter()
         .zip(&scale)
         .map(|(row, &g)| {
-            let hs: Vec<Vec<c64>> = row
-                .iter()
+            row.iter()
                 .map(|&k| set.h[k].iter().map(|v| v * g).collect())
-                .collect();
-            let sigma = (0..ni)
-                .map(|i| {
-                    (0..lags)
-                        .map(|l| (0..nf).map(|f| (phase[f][l] * hs[i][f]).re).sum())
-                        .collect()
-                })
-                .collect();
+                .collect()
+        })
+        .collect();
+    let sums: Vec<LagSums> = scaled
+        .iter()
+        .map(|hs: &Vec<Vec<c64>>| {
             let tau = (0..ni)
                 .map(|i| {
                     (0..ni)
@@ -142,68 +172,117 @@ pub fn stabilisation(
                         .collect()
                 })
                 .collect();
-            LagSums { sigma, tau }
+            LagSums { tau }
         })
         .collect();
-    let criteria = opts.stability_criteria();
-    let mut diagram: Vec<DiagramOrder> = Vec::with_capacity(p_max);
-    // the poles of the order below and their participation vectors
-    let mut below: Vec<(Pole, Vec<c64>)> = Vec::new();
-    for p in 1..=p_max {
-        let mut poles = poles_of_order(&rho, &sums, ni, p, p_max, dt, band_hz, opts)?;
-        mark(&mut poles, &below, &criteria);
-        diagram.push(DiagramOrder {
-            order: p,
-            poles: poles.iter().map(|(pole, _)| pole.clone()).collect(),
-        });
-        below = poles;
-    }
-    Ok(diagram)
+    (dt, phase, scaled, sums)
 }
 
-/// The poles of order `p` (method §6.5.1): the reduced normal equations
-/// `M = Σ_o (T_o − S_oᵀ R⁻¹ S_o)` (eq. LSCF-4) solved with `α_p = I`, the
-/// roots of `det Σ z^r α_r = 0` the eigenvalues of the block companion
-/// matrix, `λ = ln(z) / Δt` (eq. LSCF-5); each pole with its participation
-/// vector (unit norm, one entry per reference), its category not yet known
-/// ([`Stability::New`]).
-fn poles_of_order(
-    rho: &[f64],
-    sums: &[LagSums],
+/// The reduced normal matrices `M` of every order, built from the highest
+/// order's basis factored once (method §6.5.1): [`Reduced::next`] gives
+/// orders 1, 2, … in turn.
+struct Reduced {
+    sums: Vec<LagSums>,
+    /// `W = Qᵀ Y` of every output side by side (`nq × outputs·na_max`).
+    w: Mat<f64>,
+    /// `Σ_o Σ_{r ≤ p} w_o,r w_o,rᵀ` of the last order given.
+    g: Mat<f64>,
     ni: usize,
-    p: usize,
     p_max: usize,
-    dt: f64,
-    band_hz: (f64, f64),
-    opts: &FitOptions,
-) -> Result<Vec<(Pole, Vec<c64>)>, FitError> {
-    let n = p + 1;
-    let lag = |r: usize, s: usize| (s as isize - r as isize + p_max as isize) as usize;
-    let r_mat = Mat::from_fn(n, n, |r, s| rho[lag(r, s)]);
-    let na = n * ni;
-    let mut m = Mat::<f64>::zeros(na, na);
-    // the same R for every output: one decomposition, all outputs' S at once
-    let s_all = Mat::from_fn(n, sums.len() * na, |r, c| {
-        let (o, rest) = (c / na, c % na);
-        let (s, i) = (rest / ni, rest % ni);
-        -sums[o].sigma[i][lag(r, s)]
-    });
-    let (rinv_s, _) = linalg::lstsq(r_mat.as_ref(), s_all.as_ref(), 1e-14)?;
-    for (o, sum) in sums.iter().enumerate() {
-        // S_oᵀ R⁻¹ S_o as one matrix product (a scalar triple loop took a
-        // quarter of a 140-order diagram)
-        let cols = o * na..(o + 1) * na;
-        let s_o = s_all.as_ref().subcols(cols.start, na);
-        let rinv_s_o = rinv_s.as_ref().subcols(cols.start, na);
-        let srs = s_o.transpose() * rinv_s_o;
-        for a in 0..na {
-            let (r, i) = (a / ni, a % ni);
-            for b in 0..na {
-                let (s, j) = (b / ni, b % ni);
-                m[(a, b)] += sum.tau[i][j][lag(r, s)] - srs[(a, b)];
+    /// The last order given.
+    p: usize,
+}
+
+impl Reduced {
+    /// `phase[f][d + p_max] = e^{jω_fΔt d}`, `scaled[o][i][f]` the scaled
+    /// FRFs of output `o`, reference `i`.
+    fn new(
+        phase: &[Vec<c64>],
+        scaled: &[Vec<Vec<c64>>],
+        sums: Vec<LagSums>,
+        ni: usize,
+        p_max: usize,
+    ) -> Result<Self, FitError> {
+        let nf = phase.len();
+        let n_max = p_max + 1;
+        let na_max = n_max * ni;
+        let outs = scaled.len();
+        // the real basis of the highest order, [Re z^r; Im z^r], r = 0…p_max
+        let x = Mat::from_fn(2 * nf, n_max, |row, r| {
+            let e = phase[row % nf][r + p_max];
+            if row < nf { e.re } else { e.im }
+        });
+        linalg::sequential();
+        let q = x.qr().compute_thin_Q();
+        // Y_o = [−z^s H_oi] of every output side by side
+        let y = Mat::from_fn(2 * nf, outs * na_max, |row, c| {
+            let (o, rest) = (c / na_max, c % na_max);
+            let (s, i) = (rest / ni, rest % ni);
+            let f = row % nf;
+            let v = -(phase[f][s + p_max] * scaled[o][i][f]);
+            if row < nf { v.re } else { v.im }
+        });
+        let w = q.transpose() * &y;
+        if !(0..w.nrows()).all(|r| (0..w.ncols()).all(|c| w[(r, c)].is_finite())) {
+            return Err(LinalgError::NonFinite {
+                what: "LSCF projection",
             }
+            .into());
+        }
+        let mut reduced = Reduced {
+            sums,
+            w,
+            g: Mat::zeros(na_max, na_max),
+            ni,
+            p_max,
+            p: 0,
+        };
+        reduced.add_row(0);
+        Ok(reduced)
+    }
+
+    /// Adds row `r` of every output's `W` to `g` (none past `Q`'s columns:
+    /// the basis is then complete).
+    fn add_row(&mut self, r: usize) {
+        if r >= self.w.nrows() {
+            return;
+        }
+        let na_max = self.g.nrows();
+        for o in 0..self.sums.len() {
+            let row = self.w.as_ref().row(r).subcols(o * na_max, na_max);
+            self.g += row.transpose() * row;
         }
     }
+
+    /// `M = Σ_o (T_o − S_oᵀ R⁻¹ S_o)` of the next order (eq. LSCF-4),
+    /// `(p + 1)·N_i` square.
+    fn next(&mut self) -> Mat<f64> {
+        self.p += 1;
+        self.add_row(self.p);
+        let (ni, p_max) = (self.ni, self.p_max);
+        let na = (self.p + 1) * ni;
+        Mat::from_fn(na, na, |a, b| {
+            let (r, i) = (a / ni, a % ni);
+            let (s, j) = (b / ni, b % ni);
+            let l = s + p_max - r;
+            self.sums.iter().map(|o| o.tau[i][j][l]).sum::<f64>() - self.g[(a, b)]
+        })
+    }
+}
+
+/// The poles of order `p` from its reduced normal matrix `m` (method
+/// §6.5.1, eq. LSCF-4, `(p + 1)·N_i` square): `M α = 0` solved with
+/// `α_p = I`, the roots of `det Σ z^r α_r = 0` the eigenvalues of the block
+/// companion matrix, `λ = ln(z) / Δt` (eq. LSCF-5); each pole with its
+/// participation vector (unit norm, one entry per reference), its category
+/// not yet known ([`Stability::New`]).
+fn poles_of_order(
+    m: faer::MatRef<'_, f64>,
+    ni: usize,
+    p: usize,
+    dt: f64,
+    band_hz: (f64, f64),
+) -> Result<Vec<(Pole, Vec<c64>)>, FitError> {
     let k = p * ni;
     let maa = Mat::from_fn(k, k, |a, b| m[(a, b)]);
     let mab = Mat::from_fn(k, ni, |a, b| -m[(a, k + b)]);
@@ -263,11 +342,8 @@ fn poles_of_order(
             damping_ratio: -lam.re / w,
             stability: Stability::New,
         };
-        if pole.freq_hz >= band_hz.0
-            && pole.freq_hz <= band_hz.1
-            && pole.damping_ratio > 0.0
-            && pole.damping_ratio < opts.max_damping_ratio
-        {
+        // over-damped poles stay in the diagram, marked, never compared
+        if pole.freq_hz >= band_hz.0 && pole.freq_hz <= band_hz.1 && pole.damping_ratio > 0.0 {
             poles.push((pole, l));
         }
     }
@@ -283,36 +359,311 @@ fn same_frequency(a: &Pole, b: &Pole, opts: &FitOptions) -> bool {
 /// Each pole (with its participation vector) marked against the poles of
 /// the order below by the LSCF criteria ([`FitOptions::stability_criteria`]:
 /// the best category any pole there gives it, the shape compared the
-/// participation vectors' MAC).
-fn mark(poles: &mut [(Pole, Vec<c64>)], below: &[(Pole, Vec<c64>)], criteria: &Criteria) {
+/// participation vectors' MAC); a pole with `ξ ≥ max_damping_ratio` is
+/// [`Stability::Damped`], and such poles of the order below are compared
+/// with nothing.
+fn mark(
+    poles: &mut [(Pole, Vec<c64>)],
+    below: &[(Pole, Vec<c64>)],
+    criteria: &Criteria,
+    max_damping_ratio: f64,
+) {
+    let below: Vec<&(Pole, Vec<c64>)> = below
+        .iter()
+        .filter(|(q, _)| q.stability != Stability::Damped)
+        .collect();
     for (p, l) in poles {
-        p.stability = criteria.classify(
-            p.freq_hz,
-            p.damping_ratio,
-            below.iter().map(|(q, _)| (q.freq_hz, q.damping_ratio)),
-            |k| mac(l, &below[k].1),
-        );
+        p.stability = if p.damping_ratio >= max_damping_ratio {
+            Stability::Damped
+        } else {
+            criteria.classify(
+                p.freq_hz,
+                p.damping_ratio,
+                below.iter().map(|(q, _)| (q.freq_hz, q.damping_ratio)),
+                |k| mac(l, &below[k].1),
+            )
+        };
     }
 }
 
-/// The kept poles: those of the chosen order that are stable (frequency,
-/// damping, vector) against the order below and stable in frequency at
-/// each of the `persist` orders below; two within the frequency tolerance
-/// keep the first.
-pub fn select(diagram: &[DiagramOrder], opts: &FitOptions) -> (usize, Vec<Pole>) {
+/// A pole kept as a mode by the persistence rule ([`keep`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct KeptPole {
+    pub pole: Pole,
+    /// The order it was taken at.
+    pub order: usize,
+    /// The run of consecutive orders, `(first, last)`, at which a pole
+    /// within the frequency tolerance of it is stable (frequency, damping
+    /// and vector): the orders it persists over.
+    pub stable_orders: (usize, usize),
+    /// Frequencies (Hz) of the other poles of its order within the
+    /// frequency tolerance of it (a split pole), merged into it.
+    pub split_hz: Vec<f64>,
+}
+
+/// The poles [`keep`] kept, by frequency, and the chosen order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Selection {
+    /// The chosen polynomial order (`--order`, else the diagram's highest).
+    pub order: usize,
+    pub kept: Vec<KeptPole>,
+}
+
+/// The kept poles by persistence (method §6.5.1): at each order from the
+/// chosen one down to `persist` orders below it, highest first, a pole is
+/// kept when it is stable (frequency, damping, vector) against the order
+/// below there and at each order down to the run's start (a run of
+/// `persist` consecutive stable orders with one reference, `persist /
+/// references` with several, 1 at least; each a pole within the frequency
+/// tolerance of it), and a pole within the tolerance is drawn at each of
+/// the `persist` orders below; a pole within the frequency tolerance of
+/// one already kept is the same physical pole.
+/// So a mode is kept when the top order splits it, moves it or leaves its
+/// damping unsettled, as long as it persisted up to within `persist`
+/// orders of the chosen one. Sorted by frequency.
+pub fn keep(diagram: &[DiagramOrder], references: usize, opts: &FitOptions) -> Selection {
+    if diagram.is_empty() {
+        return Selection {
+            order: 0,
+            kept: Vec::new(),
+        };
+    }
     let order = opts.order.unwrap_or(diagram.len()).clamp(1, diagram.len());
     let at = |p: usize| &diagram[p - 1].poles;
-    let mut kept: Vec<Pole> = Vec::new();
-    for pole in at(order) {
-        if pole.stability != Stability::Stable {
-            continue;
-        }
-        let lowest = order.saturating_sub(opts.persist).max(1);
-        let persists = (lowest..order).all(|q| at(q).iter().any(|b| same_frequency(pole, b, opts)));
-        let twin = kept.iter().any(|k| same_frequency(k, pole, opts));
-        if persists && !twin {
-            kept.push(pole.clone());
+    let stable_at = |p: &Pole, q: usize| {
+        at(q)
+            .iter()
+            .any(|b| b.stability == Stability::Stable && same_frequency(p, b, opts))
+    };
+    // an order of a polyreference model adds N_i poles (N_i references):
+    // the run is `persist` orders of one reference, persist / N_i of N_i
+    // (2 at least)
+    let run = (opts.persist / references.max(1)).clamp(1, opts.persist.max(1));
+    let drawn = |p: &Pole, q: usize| {
+        at(q)
+            .iter()
+            .any(|b| b.stability != Stability::Damped && same_frequency(p, b, opts))
+    };
+    let mut kept: Vec<KeptPole> = Vec::new();
+    let lowest_taken = order.saturating_sub(opts.persist).max(1);
+    for q in (lowest_taken..=order).rev() {
+        for pole in at(q) {
+            if pole.stability != Stability::Stable
+                || kept.iter().any(|k| same_frequency(&k.pole, pole, opts))
+            {
+                continue;
+            }
+            let first = (1..q)
+                .rev()
+                .take_while(|&b| stable_at(pole, b))
+                .last()
+                .unwrap_or(q);
+            // a run of `persist` consecutive stable orders at least (at
+            // a high order, poles are so dense that one is drawn within
+            // the tolerance of anything: being drawn proves nothing)
+            let lowest = q.saturating_sub(opts.persist).max(1);
+            if q + 1 - first < run || !(lowest..q).all(|b| drawn(pole, b)) {
+                continue;
+            }
+            let last = (q + 1..=diagram.len())
+                .take_while(|&b| stable_at(pole, b))
+                .last();
+            let split_hz = at(q)
+                .iter()
+                .filter(|b| {
+                    b.stability != Stability::Damped
+                        && !std::ptr::eq(*b, pole)
+                        && same_frequency(pole, b, opts)
+                })
+                .map(|b| b.freq_hz)
+                .collect();
+            kept.push(KeptPole {
+                pole: pole.clone(),
+                order: q,
+                stable_orders: (first, last.unwrap_or(q)),
+                split_hz,
+            });
         }
     }
-    (order, kept)
+    kept.sort_by(|a, b| a.pole.freq_hz.total_cmp(&b.pole.freq_hz));
+    Selection { order, kept }
+}
+
+/// The number of references `N_i` of the polyreference model of `pairs`
+/// (method §6.5.1): its orders add `N_i` poles each.
+pub fn references(pairs: &[(usize, usize)]) -> usize {
+    layout(pairs).rows[0].len()
+}
+
+/// The chosen order and the poles [`keep`] keeps.
+pub fn select(
+    diagram: &[DiagramOrder],
+    references: usize,
+    opts: &FitOptions,
+) -> (usize, Vec<Pole>) {
+    let s = keep(diagram, references, opts);
+    (s.order, s.kept.into_iter().map(|k| k.pole).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pole(freq_hz: f64, damping_ratio: f64, stability: Stability) -> Pole {
+        Pole {
+            freq_hz,
+            damping_ratio,
+            stability,
+        }
+    }
+
+    /// A diagram of 40 orders: a dominant pole at 51.5 Hz stable from
+    /// order 13 to 39 and split at 40 into two poles stable in frequency
+    /// only; a pole at 120 Hz stable throughout; a low orders' blend at
+    /// 90 Hz stable from 3 to 10 only; an over-damped pole at every order.
+    fn diagram() -> Vec<DiagramOrder> {
+        use Stability::*;
+        (1..=40)
+            .map(|p| {
+                let mut poles = vec![pole(37.0, 0.45, Damped)];
+                if (3..=10).contains(&p) {
+                    poles.push(pole(90.0, 0.01, if p == 3 { New } else { Stable }));
+                }
+                match p {
+                    1..=12 => poles.push(pole(51.5, 0.0003, Frequency)),
+                    13..=39 => poles.push(pole(51.5 + 1e-4 * p as f64, 0.0003, Stable)),
+                    _ => {
+                        poles.push(pole(51.3, 0.0006, Frequency));
+                        poles.push(pole(51.7, 0.0002, Frequency));
+                    }
+                }
+                poles.push(pole(120.0, 0.01, if p == 1 { New } else { Stable }));
+                poles.sort_by(|a, b| a.freq_hz.total_cmp(&b.freq_hz));
+                DiagramOrder { order: p, poles }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_mode_split_at_the_top_order_is_kept_by_its_persistence() {
+        let d = diagram();
+        let s = keep(&d, 1, &FitOptions::default());
+        assert_eq!(s.order, 40);
+        let f: Vec<f64> = s.kept.iter().map(|k| k.pole.freq_hz).collect();
+        assert_eq!(f.len(), 2, "{f:?}");
+        // taken at order 39, where it is stable; the split poles of that
+        // order are none, its run 13 to 39
+        assert!((f[0] - 51.5039).abs() < 1e-9, "{f:?}");
+        assert_eq!((s.kept[0].order, s.kept[0].stable_orders), (39, (13, 39)));
+        assert!((f[1] - 120.0).abs() < 1e-9);
+        assert_eq!((s.kept[1].order, s.kept[1].stable_orders), (40, (2, 40)));
+        // the old rule's chosen order alone: the 51.5 Hz mode would be lost
+        assert_ne!(d[39].poles[1].stability, Stability::Stable);
+        // an order in the blend's run keeps it; the top order does not
+        let low = FitOptions {
+            order: Some(9),
+            ..FitOptions::default()
+        };
+        let s = keep(&d, 1, &low);
+        assert!(s.kept.iter().any(|k| k.pole.freq_hz == 90.0));
+        // the over-damped pole is never kept
+        assert!(s.kept.iter().all(|k| k.pole.damping_ratio < 0.2));
+    }
+
+    #[test]
+    fn two_stable_poles_of_one_order_within_the_tolerance_are_one_mode() {
+        use Stability::*;
+        let d: Vec<DiagramOrder> = (1..=12)
+            .map(|p| DiagramOrder {
+                order: p,
+                poles: if p < 12 {
+                    vec![pole(687.0, 0.004, if p == 1 { New } else { Stable })]
+                } else {
+                    vec![pole(686.9, 0.004, Stable), pole(687.4, 0.004, Stable)]
+                },
+            })
+            .collect();
+        let s = keep(&d, 1, &FitOptions::default());
+        assert_eq!(s.kept.len(), 1, "{:?}", s.kept);
+        assert_eq!(s.kept[0].split_hz, [687.4]);
+        assert_eq!(s.kept[0].order, 12);
+        // no order: nothing kept, nothing panics
+        assert!(keep(&[], 1, &FitOptions::default()).kept.is_empty());
+    }
+
+    /// The reduced matrices built once from the highest order's factored
+    /// basis equal `T − Sᵀ R⁻¹ S` built for each order from its own basis
+    /// (the sums over frequencies written out, `R` solved by SVD): a row of
+    /// three FRFs of two modes with noise, orders 1 to 30.
+    #[test]
+    fn reduced_matrices_built_once_equal_those_built_per_order() {
+        use crate::model::lscf::{FrfSet, Ordinate};
+        let freq_hz: Vec<f64> = (1..=400).map(|k| 0.5 * k as f64).collect();
+        let mut seed: u64 = 7;
+        let mut noise = move || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
+            0.01 * ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5)
+        };
+        let modes = [
+            (40.0, 0.02, [1.0, 0.5, -0.3]),
+            (130.0, 0.01, [0.7, -0.6, 0.4]),
+        ];
+        let h: Vec<Vec<c64>> = (0..3)
+            .map(|j| {
+                freq_hz
+                    .iter()
+                    .map(|&f| {
+                        let w = TAU * f;
+                        modes
+                            .iter()
+                            .map(|&(fk, xi, sh)| {
+                                let wk = TAU * fk;
+                                c64::new(sh[0] * sh[j], 0.0)
+                                    / c64::new(wk * wk - w * w, 2.0 * xi * wk * w)
+                            })
+                            .sum::<c64>()
+                            * c64::new(1.0 + noise(), noise())
+                    })
+                    .collect()
+            })
+            .collect();
+        let set = FrfSet {
+            freq_hz,
+            ordinate: Ordinate::Receptance,
+            pairs: vec![(0, 0), (0, 1), (0, 2)],
+            h,
+        };
+        let lay = layout(&set.pairs);
+        let p_max = 30;
+        let (_, phase, scaled, sums) = prepare(&set, &lay, p_max);
+        let mut reduced = Reduced::new(&phase, &scaled, sums, 1, p_max).unwrap();
+        let nf = set.freq_hz.len();
+        let z = |f: usize, r: usize| phase[f][r + p_max];
+        for p in 1..=p_max {
+            let m = reduced.next();
+            let n = p + 1;
+            let r_mat = Mat::from_fn(n, n, |r, s| {
+                (0..nf).map(|f| (z(f, r).conj() * z(f, s)).re).sum::<f64>()
+            });
+            let mut direct = Mat::<f64>::zeros(n, n);
+            for hs in &scaled {
+                let h = &hs[0];
+                let s_o = Mat::from_fn(n, n, |r, s| {
+                    (0..nf)
+                        .map(|f| -(z(f, r).conj() * z(f, s) * h[f]).re)
+                        .sum::<f64>()
+                });
+                let t_o = Mat::from_fn(n, n, |r, s| {
+                    (0..nf)
+                        .map(|f| ((z(f, r) * h[f]).conj() * z(f, s) * h[f]).re)
+                        .sum::<f64>()
+                });
+                let (rinv_s, _) = linalg::lstsq(r_mat.as_ref(), s_o.as_ref(), 1e-14).unwrap();
+                direct += &t_o - s_o.transpose() * &rinv_s;
+            }
+            let scale = linalg::frobenius(direct.as_ref());
+            let diff = linalg::frobenius((&m - &direct).as_ref()) / scale;
+            assert!(diff < 1e-9, "order {p}: relative difference {diff:e}");
+        }
+    }
 }

@@ -287,6 +287,15 @@ pub fn refine(
 /// far above the round-off of an exact fit.
 pub const NEGLIGIBLE_MODE: f64 = 1e-7;
 
+/// The L2 norm over every pair and frequency of each pole's own term in
+/// the complex fit `fit` of `poles` (in the set's ordinate): the size of
+/// each mode in the data.
+pub fn contributions(set: &FrfSet, poles: &[Pole], fit: &ComplexFit) -> Vec<f64> {
+    (0..poles.len())
+        .map(|k| mode_contribution(set, &poles[k], &fit.residues, k))
+        .collect()
+}
+
 /// The L2 norm over every pair and frequency of pole `k`'s own term in the
 /// complex fit, `(jω)^q [r/(jω−λ) + r*/(jω−λ*)]` with its residues
 /// `residues[pair][k]`.

@@ -52,11 +52,14 @@ pub(crate) fn binary58(
         8
     };
     let n = h.count * if complex { 2 } else { 1 };
+    // byte offsets from the start of the file: a binary record's line
+    // numbers mean nothing (its values hold newline bytes)
+    let start = c.pos;
     let data = c.take(n * size).ok_or_else(|| {
         (
             at.clone(),
             format!(
-                "{} bytes left: expected {} ({} {} values of {size} bytes, record 7; truncated?)",
+                "{} bytes left after byte {start}: expected {} ({} {} values of {size} bytes, record 7; truncated?)",
                 c.bytes.len() - c.pos.min(c.bytes.len()),
                 n * size,
                 h.count,
@@ -76,7 +79,9 @@ pub(crate) fn binary58(
             return Err((
                 at,
                 format!(
-                    "value {k} is {v}: expected finite numbers (byte order {order}: {}?)",
+                    "value {k} (bytes {} to {} of the file) is {v}: expected finite numbers (byte order {order}: {}?)",
+                    start + k * size,
+                    start + (k + 1) * size - 1,
                     if order == 1 {
                         "little endian"
                     } else {
@@ -88,6 +93,7 @@ pub(crate) fn binary58(
         vals.push(v);
     }
     // the closing `-1`, right after the values or on the next line
+    let end = c.pos;
     let close = c.next_line().unwrap_or(b"");
     let close = if close.trim_ascii().is_empty() {
         c.next_line().unwrap_or(b"")
@@ -98,9 +104,10 @@ pub(crate) fn binary58(
         return Err((
             at,
             format!(
-                "`{}` after the {} bytes of values: expected the closing `    -1` (the values' count, type or byte order wrong?)",
+                "`{}` after the {} bytes of values (bytes {start} to {}): expected the closing `    -1` (the values' count, type or byte order wrong?)",
                 decode(close).trim(),
-                n * size
+                n * size,
+                end.saturating_sub(1)
             ),
         ));
     }

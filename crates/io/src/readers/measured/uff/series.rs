@@ -79,10 +79,7 @@ pub fn parse(bytes: &[u8], nodes: Option<&[i64]>) -> Result<(PairSeries, Vec<Str
 
 /// A file with no dataset 58, naming the datasets it holds.
 fn no_dataset58(skipped: &[(usize, String)]) -> ParseError {
-    let skipped: Vec<String> = skipped
-        .iter()
-        .map(|(k, id)| format!("record {k} is dataset {id}"))
-        .collect();
+    let skipped = record_runs(skipped);
     (
         String::new(),
         format!(
@@ -94,6 +91,28 @@ fn no_dataset58(skipped: &[(usize, String)]) -> ParseError {
             }
         ),
     )
+}
+
+/// Records of their datasets, consecutive records of one dataset as one
+/// run: `records 3 to 184 are dataset 2414` (a file of hundreds of records
+/// in a few words).
+pub(crate) fn record_runs(records: &[(usize, String)]) -> Vec<String> {
+    let mut runs: Vec<(usize, usize, &str)> = Vec::new();
+    for (k, id) in records {
+        match runs.last_mut() {
+            Some(last) if last.2 == id && last.1 + 1 == *k => last.1 = *k,
+            _ => runs.push((*k, *k, id)),
+        }
+    }
+    runs.into_iter()
+        .map(|(a, b, id)| {
+            if a == b {
+                format!("record {a} is dataset {id}")
+            } else {
+                format!("records {a} to {b} are dataset {id}")
+            }
+        })
+        .collect()
 }
 
 /// The datasets 58 by use: the responses to identify from, the coherences
@@ -327,4 +346,26 @@ fn frf_series(r: &Record58, factor: f64, conv: &mut Conversions) -> Result<Serie
         .chain(im.iter_mut())
         .for_each(|v| *v *= factor);
     Ok(Series::Frf { df_hz: df, re, im })
+}
+
+#[cfg(test)]
+mod record_run_tests {
+    use super::record_runs;
+
+    #[test]
+    fn consecutive_records_of_one_dataset_are_one_run() {
+        let mut list: Vec<(usize, String)> = vec![(1, "164".into()), (2, "2411".into())];
+        list.extend((3..=184).map(|k| (k, "2414".to_string())));
+        list.push((186, "2414".into()));
+        assert_eq!(
+            record_runs(&list),
+            [
+                "record 1 is dataset 164",
+                "record 2 is dataset 2411",
+                "records 3 to 184 are dataset 2414",
+                "record 186 is dataset 2414"
+            ]
+        );
+        assert!(record_runs(&[]).is_empty());
+    }
 }

@@ -242,6 +242,29 @@ fn binary_58b_reads_in_both_byte_orders_and_value_sizes() {
         e.0.contains("record 1 (dataset 58b, line 2)") && e.1.contains("expected 1072"),
         "{e:?}"
     );
+    // inside the values, places are byte offsets: the first value's eight
+    // bytes are where the message says the values start
+    let after = "bytes left after byte ";
+    let at = e.1.find(after).unwrap_or_else(|| panic!("{e:?}")) + after.len();
+    let start: usize = e.1[at..]
+        .split(':')
+        .next()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{e:?}"));
+    let first = records(&full).unwrap()[0].re[0];
+    let bytes: [u8; 8] = full[start..start + 8].try_into().unwrap();
+    assert_eq!(f64::from_le_bytes(bytes), first);
+    let mut nan = full.clone();
+    nan[start + 8..start + 16].copy_from_slice(&f64::NAN.to_le_bytes());
+    let e = records(&nan).unwrap_err();
+    assert!(
+        e.1.contains(&format!(
+            "value 1 (bytes {} to {} of the file)",
+            start + 8,
+            start + 15
+        )),
+        "{e:?}"
+    );
     // a floating-point format other than IEEE
     let mut vax = full.clone();
     vax[25] = b'1';
