@@ -32,7 +32,8 @@ pub struct BenchArgs {
     pub presets: Vec<PathBuf>,
     /// The default study's patch row at the chip-seal preset's full size
     /// (16 × 6 points, its 0.05 s ramp, 0.2 s) instead of its cut: the
-    /// figure of the documentation; BDF's runs there take tens of minutes.
+    /// full patch's figure; 8 times the points and the run length of the
+    /// cut, BDF's runs far longer.
     #[arg(long)]
     pub patch_full: bool,
     /// Instead of the work-precision study: the cost of a step against the
