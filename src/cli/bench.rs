@@ -25,9 +25,17 @@ pub struct BenchArgs {
     #[arg(long)]
     pub quick: bool,
     /// Scenes to study (default: the shipped single-mode, three-point and
-    /// paper presets, found from the repository's folder, and a synthetic
-    /// scene of 50 points on 200 modes).
+    /// paper presets, found from the repository's folder, a synthetic
+    /// scene of 50 points on 200 modes, and the chip-seal patch cut to
+    /// 6 × 2 points and 0.025 s with its tread springs, against BDF on the
+    /// same springs).
     pub presets: Vec<PathBuf>,
+    /// The default study's patch row at the chip-seal preset's full size
+    /// (16 × 6 points, its 0.05 s ramp, 0.2 s) instead of its cut: the
+    /// full patch's figure; 8 times the points and the run length of the
+    /// cut, BDF's runs far longer.
+    #[arg(long)]
+    pub patch_full: bool,
     /// Instead of the work-precision study: the cost of a step against the
     /// number of points (5 to 400) and of modes (10 to 400), with rigid
     /// contact and with tread springs, and on a contact patch 20 points
@@ -74,6 +82,28 @@ const DEFAULT_PRESETS: [&str; 3] = [
     "presets/three_points.ron",
     "presets/paper.ron",
 ];
+
+/// The patch preset of the default study's tread-spring row.
+const DEFAULT_PATCH: &str = "presets/patch_chip_seal.ron";
+
+/// The default study's patch row (`work_precision::patch_study`) of
+/// [`DEFAULT_PATCH`]: its scene and configuration; `None` when the preset
+/// is not found from the working folder.
+fn default_patch(full: bool) -> Result<Option<(Scene, Config)>, Box<dyn std::error::Error>> {
+    let path = Path::new(DEFAULT_PATCH);
+    if !path.exists() {
+        eprintln!(
+            "bench: {DEFAULT_PATCH} not found from here: the study runs without its patch row"
+        );
+        return Ok(None);
+    }
+    let preset = load_scene(Some(path))?;
+    Ok(Some(
+        work_precision::patch_study(&preset, full).ok_or_else(|| {
+            format!("{DEFAULT_PATCH}: its points are not a grid as large as the study's cut")
+        })?,
+    ))
+}
 
 /// The large scene of the default study: 50 points on 200 rank-1 modes
 /// (40 Hz to 25 kHz).
@@ -166,6 +196,17 @@ pub fn bench(args: &BenchArgs) -> CliResult {
             bar.set_message(m.to_string())
         })?);
     }
+    // a shipped patch with its tread springs, against BDF on the same springs
+    let patch = if !args.quick && args.presets.is_empty() {
+        default_patch(args.patch_full)?
+    } else {
+        None
+    };
+    if let Some((scene, cfg)) = &patch {
+        rows.extend(work_precision::study(scene, cfg, |m| {
+            bar.set_message(m.to_string())
+        })?);
+    }
     bar.set_message("skipped work, before/after");
     let skip = tirecontact::analysis::bench::skipped::skipped_work(
         &scenes,
@@ -188,7 +229,11 @@ pub fn bench(args: &BenchArgs) -> CliResult {
     md.push('\n');
     md.push_str(&speed(&scenes, args.quick)?);
     write(&args.output.join("work_precision.md"), &md)?;
-    for scene in scenes.iter().chain(&large) {
+    for scene in scenes
+        .iter()
+        .chain(&large)
+        .chain(patch.as_ref().map(|(s, _)| s))
+    {
         let name = file_stem(&scene.name);
         let fig = work_precision::figure(&rows, &scene.name);
         render_png(

@@ -134,3 +134,64 @@ fn the_peer_integrators_agree_on_the_penalty_equations() {
         );
     }
 }
+
+/// The default study's patch row (`patch_study` of the chip-seal preset,
+/// as `tirecontact bench` runs it): the located solver at every time step
+/// and, with the peers, BDF on the same tread springs at every tolerance,
+/// each with a finite error and a CPU time, in the study's table; the
+/// located solver converges at second order (its error at least 3x lower
+/// each halving) and BDF reaches 1e-4 at some tolerance.
+#[test]
+fn the_patch_row_is_in_the_default_study_with_finite_errors() {
+    use tirecontact::analysis::bench::work_precision::{TREAD_ERROR_LEVEL, patch_study};
+    let preset = Scene::load(std::path::Path::new("presets/patch_chip_seal.ron")).unwrap();
+    let (scene, cfg) = patch_study(&preset, false).unwrap();
+    assert_eq!(scene.num_points(), 12);
+    let rows = study(&scene, &cfg, |_| {}).unwrap();
+    let located: Vec<_> = rows
+        .iter()
+        .filter(|r| r.method == Method::Located)
+        .collect();
+    assert_eq!(located.len(), cfg.dts.len());
+    for (r, &dt) in located.iter().zip(&cfg.dts) {
+        assert_eq!(r.dt_s, dt);
+        assert!(
+            r.disp_err.is_finite() && r.force_err.is_finite() && r.cpu_s.is_some(),
+            "{r:?}"
+        );
+    }
+    for w in located.windows(2) {
+        assert!(
+            w[1].disp_err * 3.0 < w[0].disp_err,
+            "located errors {:?}",
+            located.iter().map(|r| r.disp_err).collect::<Vec<_>>()
+        );
+    }
+    let bdf: Vec<_> = rows
+        .iter()
+        .filter(|r| r.method == Method::BdfTread)
+        .collect();
+    if cfg!(feature = "peers") {
+        assert_eq!(bdf.len(), cfg.implicit_rtols.len());
+        for r in &bdf {
+            assert!(
+                r.disp_err.is_finite() && r.force_err.is_finite() && r.cpu_s.is_some(),
+                "{r:?}"
+            );
+        }
+        assert!(
+            bdf.iter().any(|r| r.disp_err < TREAD_ERROR_LEVEL),
+            "{bdf:?}"
+        );
+    } else {
+        assert!(bdf.is_empty());
+    }
+    let md = to_markdown(&rows);
+    assert!(md.contains(&scene.name), "{md}");
+    assert_eq!(
+        md.contains("Tread springs on a contact patch"),
+        cfg!(feature = "peers"),
+        "{md}"
+    );
+    assert_eq!(figure(&rows, &scene.name).panels.len(), 2);
+}

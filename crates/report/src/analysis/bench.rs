@@ -46,6 +46,12 @@ pub enum BenchError {
     #[cfg(feature = "peers")]
     #[error("BDF: the contact switches without end at t = {t_s} s")]
     Chattering { t_s: f64 },
+    /// The implicit peer's tread springs asked of a scene without them.
+    #[cfg(feature = "peers")]
+    #[error(
+        "BDF with tread springs: the scene's contact is not `Compliant` with one stiffness or one a point"
+    )]
+    NoTreadSprings,
     /// No run was timed (zero repeats).
     #[error("no run was timed")]
     NoRun,

@@ -47,13 +47,14 @@ impl tirecontact_core::solver::drive::Probe for BaselineRun {
 }
 
 /// The road height and rate `(r_i, ṙ_i)` (m, m/s) point `i` meets at `t`
-/// (method §4): the profile under the point, less its undeformed height,
-/// ramped in over `ramp_s`.
+/// (method §4): the profile under the point (on a surface, on the point's
+/// own track `y_m` across), less its undeformed height, ramped in over
+/// `ramp_s`.
 pub(crate) fn road_seen(scene: &Scene, road: &RoadProfile, t: f64, i: usize) -> (f64, f64) {
     let pt = scene.points[i];
     let (w, dw) = ramp(t, scene.ramp_s);
     let (z, dz) = road
-        .sample(pt.x_m + scene.speed_mps * t)
+        .sample_at(pt.x_m + scene.speed_mps * t, pt.y_m)
         .unwrap_or((0.0, 0.0));
     (
         w * (z - pt.h_m),

@@ -19,7 +19,11 @@
 //!   `k (r_i - u_i) + c_i (ṙ_i - u̇_i)` crossing zero) is a root the
 //!   integrator locates, and the integration restarts there in the new
 //!   active set, so the kink of `max(0, ·)` is never stepped across
-//!   (module `implicit`).
+//!   (module `implicit`);
+//! * [`run_bdf_tread`]: that BDF integrator on a scene's own undamped
+//!   tread springs, `q_i = k_i max(0, r_i - u_i)`, the law the located
+//!   solver integrates on a contact patch: its switches are the zeros of
+//!   the gaps `r_i - u_i`, located and restarted at in the same way.
 //!
 //! A penalty is a user's choice with two faces: a soft spring lets the
 //! points into the road (the penalty error), a stiff one makes the
@@ -41,7 +45,7 @@ use tirecontact_io::identify::ModeCache;
 use tirecontact_io::scene::Scene;
 
 mod implicit;
-pub use implicit::{ImplicitRun, ImplicitStats, Switch, run_bdf};
+pub use implicit::{ImplicitRun, ImplicitStats, Switch, run_bdf, run_bdf_tread};
 
 /// The modal oscillators of a scene: `η_s'' + 2ξω η_s' + ω² η_s = b_sᵀ q`,
 /// `u = Σ_s a_s η_s`, one per rank term the located runs keep (the

@@ -9,11 +9,11 @@
 use crate::analysis::bench::BenchError;
 use crate::analysis::bench::baselines::{BaselineRun, Kernel, run_baseline};
 mod report;
-pub use report::{figure, to_csv, to_markdown};
+pub use report::{TREAD_ERROR_LEVEL, figure, to_csv, to_markdown, tread_times};
 use tirecontact_core::solver::drive::Watch;
 use tirecontact_core::solver::simulation::{Simulation, SolverOptions};
 use tirecontact_io::identify::{ModeCache, PreparedModel};
-use tirecontact_io::scene::{ContactScheme, Scene};
+use tirecontact_io::scene::{Contact, ContactScheme, Points, Scene};
 use web_time::Instant;
 
 /// The methods compared.
@@ -36,10 +36,14 @@ pub enum Method {
     /// Adaptive implicit BDF, penalty contact, its switches located as
     /// events (`bench::peers::run_bdf`, feature `peers`).
     Bdf,
+    /// Adaptive implicit BDF on a scene's own undamped tread springs, the
+    /// landings and releases located as events
+    /// (`bench::peers::run_bdf_tread`, feature `peers`).
+    BdfTread,
 }
 
 impl Method {
-    pub const ALL: [Method; 7] = [
+    pub const ALL: [Method; 8] = [
         Method::Located,
         Method::Paper,
         Method::AlphaBeta,
@@ -47,6 +51,7 @@ impl Method {
         Method::Newmark,
         Method::Dopri,
         Method::Bdf,
+        Method::BdfTread,
     ];
     /// The methods people use for dynamic contact, swept over penalties.
     pub const PEERS: [Method; 3] = [Method::Newmark, Method::Dopri, Method::Bdf];
@@ -59,6 +64,7 @@ impl Method {
             Method::Newmark => "Newmark + penalty",
             Method::Dopri => "Dormand-Prince 5(4) + penalty",
             Method::Bdf => "BDF, located switches + penalty",
+            Method::BdfTread => "BDF, located switches + tread springs",
         }
     }
     pub fn key(self) -> &'static str {
@@ -70,6 +76,7 @@ impl Method {
             Method::Newmark => "newmark_penalty",
             Method::Dopri => "dopri5_penalty",
             Method::Bdf => "bdf_penalty",
+            Method::BdfTread => "bdf_tread",
         }
     }
 }
@@ -132,6 +139,26 @@ impl Config {
             ..Config::standard()
         }
     }
+    /// The study of a contact patch with tread springs ([`patch_scene`]):
+    /// the located solver over time steps from 1e-4 s to 1.5625e-6 s
+    /// (its reference at 3.9e-7 s, 1e-6 accurate on the chip seal's cut)
+    /// and the BDF peer on the same tread springs over tolerances from
+    /// 1e-3 to 1e-8, over `duration_s`; no penalty sweep (the springs are
+    /// the scene's) and neither the α/β nor the direct baseline (the
+    /// paper's rigid contact, another physics). Looser tolerances make
+    /// BDF's switches chatter and its runs slower (on the chip seal's cut,
+    /// 15 000 switches and 14 s at 1e-2 against 600 and 1.3 s at 1e-4).
+    pub fn patch(duration_s: f64) -> Self {
+        Config {
+            dts: (0..7).map(|k| 1e-4 / 2f64.powi(k)).collect(),
+            duration_s,
+            baselines: false,
+            penalties_n_m: Vec::new(),
+            rtols: Vec::new(),
+            implicit_rtols: (3..=8).map(|e| 10f64.powi(-e)).collect(),
+            ..Config::standard()
+        }
+    }
     /// A small study for tests.
     pub fn quick() -> Self {
         Config {
@@ -156,6 +183,9 @@ pub struct Row {
     pub dt_s: f64,
     pub steps: usize,
     pub wall_s: f64,
+    /// The run's CPU time (s, the process's; `None` where it cannot be
+    /// read): from the tyre's modes to the recorded run, set-up included.
+    pub cpu_s: Option<f64>,
     /// RMS relative displacement error.
     pub disp_err: f64,
     /// RMS relative error of the window-mean forces.
@@ -328,8 +358,105 @@ pub fn time_repeated(
     Ok((Timing::of(runs_s), sim))
 }
 
+/// The process's CPU time (s, all its threads: a helper thread of a
+/// linear-algebra library counts too), where the system tells it.
+pub fn process_cpu_s() -> Option<f64> {
+    #[cfg(unix)]
+    {
+        let mut ts = libc::timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: `ts` is a valid timespec for the call to write
+        let rc = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
+        (rc == 0).then_some(ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64)
+    }
+    #[cfg(not(unix))]
+    None
+}
+
+/// The CPU time (s) since `start`, a reading of [`process_cpu_s`].
+fn cpu_since(start: Option<f64>) -> Option<f64> {
+    Some(process_cpu_s()? - start?)
+}
+
+/// How a patch preset is cut for the default study: the middle `along` ×
+/// `across` points of its grid and a shorter ramp (s), so that a run of a
+/// few hundredths of a second rolls on the road pressed in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchCut {
+    pub along: usize,
+    pub across: usize,
+    pub ramp_s: f64,
+    /// The run's length (s).
+    pub duration_s: f64,
+}
+
+impl PatchCut {
+    /// The default study's cut: 6 × 2 points (30 mm along, 20 mm across,
+    /// in the footprint's middle), a 5 ms ramp, 0.025 s.
+    pub fn default_study() -> Self {
+        PatchCut {
+            along: 6,
+            across: 2,
+            ramp_s: 0.005,
+            duration_s: 0.025,
+        }
+    }
+}
+
+/// `scene` (a patch preset: points on a `Grid(...)`) cut to `cut`: the
+/// grid's spacing and preload kept, `along` × `across` points, its ramp
+/// and run length those of the cut, its name saying the size. `None` when
+/// the scene's points are not a grid or the cut is larger than it.
+pub fn patch_scene(scene: &Scene, cut: &PatchCut) -> Option<Scene> {
+    let grid = *scene.points.grid()?;
+    if cut.along > grid.along || cut.across > grid.across || cut.along * cut.across == 0 {
+        return None;
+    }
+    let mut s = scene.clone();
+    s.points = Points::from_grid(tirecontact_io::scene::PointGrid {
+        along: cut.along,
+        across: cut.across,
+        ..grid
+    });
+    s.ramp_s = cut.ramp_s;
+    s.duration_s = cut.duration_s;
+    s.name = format!(
+        "{} ({} x {} points, {} s)",
+        scene.name, cut.along, cut.across, cut.duration_s
+    );
+    Some(s)
+}
+
+/// The default study's patch row: `preset` (a patch preset) cut to
+/// [`PatchCut::default_study`], or as shipped with `full`, and the study
+/// of it, [`Config::patch`] over its run length. `None` when the preset's
+/// points are not a grid large enough for the cut.
+pub fn patch_study(preset: &Scene, full: bool) -> Option<(Scene, Config)> {
+    let scene = if full {
+        preset.clone()
+    } else {
+        patch_scene(preset, &PatchCut::default_study())?
+    };
+    let cfg = Config::patch(scene.duration_s);
+    Some((scene, cfg))
+}
+
+/// Whether `scene` carries tread springs (`contact: Compliant`).
+fn has_tread_springs(scene: &Scene) -> bool {
+    matches!(scene.contact, Contact::Compliant { .. })
+}
+
 /// The study of one scene. `progress` is told each run as it starts. The
-/// peers ([`Method::PEERS`]) run with the feature `peers` only.
+/// peers ([`Method::PEERS`], [`Method::BdfTread`]) run with the feature
+/// `peers` only.
+///
+/// A scene with tread springs (`contact: Compliant`) is studied on its own
+/// contact law: the located solver over the time steps and the BDF peer on
+/// the same undamped springs over the implicit tolerances
+/// ([`Method::BdfTread`]); the penalty peers and the rigid-contact
+/// baselines (another physics) do not run.
 pub fn study(
     scene: &Scene,
     cfg: &Config,
@@ -345,6 +472,12 @@ pub fn study(
         reference,
     };
     let mut rows = Vec::new();
+    if has_tread_springs(scene) {
+        rows.extend(runs.convolution_rows(Method::Located, &mut progress)?);
+        #[cfg(feature = "peers")]
+        rows.extend(runs.bdf_tread_rows(&mut progress)?);
+        return Ok(rows);
+    }
     for method in [
         Method::Located,
         Method::Paper,
@@ -470,10 +603,12 @@ impl Runs<'_> {
                 self.scene.name,
                 method.label()
             ));
+            let cpu = process_cpu_s();
             let Some((run, wall)) = self.convolution_run(method, dt, duration, steps, progress)?
             else {
                 break;
             };
+            let cpu_s = cpu_since(cpu);
             let (disp_err, force_err) = self.reference.errors(&run, dt, duration);
             let order = observed_order(prev, dt, disp_err);
             prev = Some((dt, disp_err));
@@ -488,6 +623,7 @@ impl Runs<'_> {
                 dt_s: dt,
                 steps,
                 wall_s: wall,
+                cpu_s,
                 disp_err,
                 force_err,
                 order,
@@ -527,8 +663,10 @@ impl Runs<'_> {
                 )?;
                 Ok(Some((run, wall)))
             }
-            Method::Newmark | Method::Dopri | Method::Bdf => {
-                unreachable!("the peers have their own rows (newmark_rows, dopri_rows, bdf_rows)")
+            Method::Newmark | Method::Dopri | Method::Bdf | Method::BdfTread => {
+                unreachable!(
+                    "the peers have their own rows (newmark_rows, dopri_rows, bdf_rows, bdf_tread_rows)"
+                )
             }
             Method::AlphaBeta | Method::Direct => {
                 let kernel = if method == Method::AlphaBeta {
@@ -566,9 +704,10 @@ impl Runs<'_> {
             let mut s = self.scene.clone();
             s.dt_s = dt;
             let steps = (cfg.duration_s / dt).round() as usize;
-            let start = Instant::now();
+            let (start, cpu) = (Instant::now(), process_cpu_s());
             let run = crate::analysis::bench::peers::run_newmark(&s, k, steps, self.cache)?;
             let wall = start.elapsed().as_secs_f64();
+            let cpu_s = cpu_since(cpu);
             let (disp_err, force_err) = self.reference.errors(&run, dt, cfg.duration_s);
             let order = observed_order(prev, dt, disp_err);
             prev = Some((dt, disp_err));
@@ -578,6 +717,7 @@ impl Runs<'_> {
                 dt_s: dt,
                 steps,
                 wall_s: wall,
+                cpu_s,
                 disp_err,
                 force_err,
                 order,
@@ -604,7 +744,7 @@ impl Runs<'_> {
                 "{}: Dormand-Prince + penalty k = {k:e} N/m at rtol = {rtol:e}",
                 self.scene.name
             ));
-            let start = Instant::now();
+            let (start, cpu) = (Instant::now(), process_cpu_s());
             let (run, st) = match crate::analysis::bench::peers::run_dopri(
                 self.scene,
                 k,
@@ -620,6 +760,7 @@ impl Runs<'_> {
                 }
             };
             let wall = start.elapsed().as_secs_f64();
+            let cpu_s = cpu_since(cpu);
             let (disp_err, force_err) = self.reference.errors(&run, dt_out, cfg.duration_s);
             rows.push(Row {
                 scene: self.scene.name.clone(),
@@ -627,6 +768,7 @@ impl Runs<'_> {
                 dt_s: dt_out,
                 steps: st.accepted as usize,
                 wall_s: wall,
+                cpu_s,
                 disp_err,
                 force_err,
                 order: None,
@@ -657,7 +799,7 @@ impl Runs<'_> {
                 "{}: BDF + penalty k = {k:e} N/m at rtol = {rtol:e}",
                 self.scene.name
             ));
-            let start = Instant::now();
+            let (start, cpu) = (Instant::now(), process_cpu_s());
             let (run, st) = match crate::analysis::bench::peers::run_bdf(
                 self.scene,
                 k,
@@ -677,6 +819,7 @@ impl Runs<'_> {
                         dt_s: dt_out,
                         steps: 0,
                         wall_s: start.elapsed().as_secs_f64(),
+                        cpu_s: cpu_since(cpu),
                         disp_err: f64::INFINITY,
                         force_err: f64::INFINITY,
                         order: None,
@@ -688,6 +831,7 @@ impl Runs<'_> {
                 }
             };
             let wall = start.elapsed().as_secs_f64();
+            let cpu_s = cpu_since(cpu);
             let (disp_err, force_err) = self.reference.errors(&run, dt_out, cfg.duration_s);
             rows.push(Row {
                 scene: self.scene.name.clone(),
@@ -695,6 +839,7 @@ impl Runs<'_> {
                 dt_s: dt_out,
                 steps: st.accepted as usize,
                 wall_s: wall,
+                cpu_s,
                 disp_err,
                 force_err,
                 order: None,
@@ -705,6 +850,66 @@ impl Runs<'_> {
                     st.accepted, st.rejected, st.evaluations, st.factorisations, st.switches
                 ),
             });
+        }
+        Ok(rows)
+    }
+}
+
+impl Runs<'_> {
+    /// The rows of BDF on the scene's own tread springs (no damper), its
+    /// landings and releases located, over the implicit tolerances, its
+    /// output on the grid the errors are sampled on; a run that gives up is
+    /// a row of infinite error, its note the reason.
+    #[cfg(feature = "peers")]
+    fn bdf_tread_rows(&self, progress: &mut dyn FnMut(&str)) -> Result<Vec<Row>, BenchError> {
+        let cfg = self.cfg;
+        let dt_out = self.reference.grid_s;
+        let mut rows = Vec::new();
+        for &rtol in &cfg.implicit_rtols {
+            progress(&format!(
+                "{}: BDF + tread springs at rtol = {rtol:e}",
+                self.scene.name
+            ));
+            let (start, cpu) = (Instant::now(), process_cpu_s());
+            let result = crate::analysis::bench::peers::run_bdf_tread(
+                self.scene,
+                rtol,
+                dt_out,
+                cfg.duration_s,
+                self.cache,
+            );
+            let (wall, cpu_s) = (start.elapsed().as_secs_f64(), cpu_since(cpu));
+            let mut row = Row {
+                scene: self.scene.name.clone(),
+                method: Method::BdfTread,
+                dt_s: dt_out,
+                steps: 0,
+                wall_s: wall,
+                cpu_s,
+                disp_err: f64::INFINITY,
+                force_err: f64::INFINITY,
+                order: None,
+                penalty_n_m: None,
+                rtol: Some(rtol),
+                note: String::new(),
+            };
+            match result {
+                Ok(r) => {
+                    let st = r.stats;
+                    (row.disp_err, row.force_err) =
+                        self.reference.errors(&r.run, dt_out, cfg.duration_s);
+                    row.steps = st.accepted as usize;
+                    row.note = format!(
+                        "{} accepted, {} rejected steps, {} evaluations, {} factorisations, {} located switches",
+                        st.accepted, st.rejected, st.evaluations, st.factorisations, st.switches
+                    );
+                }
+                Err(e) => {
+                    progress(&format!("  gave up: {e}"));
+                    row.note = format!("gave up: {e}");
+                }
+            }
+            rows.push(row);
         }
         Ok(rows)
     }
@@ -727,6 +932,77 @@ pub fn fastest_at_error(rows: &[Row], method: Method, target: f64) -> Option<&Ro
         .min_by(|a, b| a.wall_s.total_cmp(&b.wall_s))
 }
 
+/// A refinement (a finer step or a tighter tolerance) that lowers the
+/// error by less than this factor, and every later one too, means the
+/// error stopped falling ([`plateau`]).
+pub const PLATEAU_FACTOR: f64 = 2.0;
+
+/// Where the error of `method` on `scene` stops falling: over its runs in
+/// sweep order (time steps coarse to fine, tolerances loose to tight), the
+/// first run that no later run improves on by [`PLATEAU_FACTOR`]; `None`
+/// when the error still falls at the last run (or it has fewer than two
+/// finite runs).
+pub fn plateau<'a>(rows: &'a [Row], scene: &str, method: Method) -> Option<&'a Row> {
+    let runs: Vec<&Row> = rows
+        .iter()
+        .filter(|r| r.scene == scene && r.method == method && r.disp_err.is_finite())
+        .collect();
+    (0..runs.len().saturating_sub(1)).find_map(|k| {
+        let best_later = runs[k + 1..]
+            .iter()
+            .map(|r| r.disp_err)
+            .fold(f64::INFINITY, f64::min);
+        (best_later * PLATEAU_FACTOR > runs[k].disp_err).then_some(runs[k])
+    })
+}
+
+/// A CPU time (s) at an error, and whether it is an upper bound
+/// ([`cpu_at_error`]).
+pub type CpuAtError = (f64, bool);
+
+/// The CPU time (s) `method` needs on `scene` for displacement error
+/// `target`, on its work-precision curve: the lower envelope of its runs
+/// (by CPU time, each run more accurate than every faster one: what a
+/// user sweeping its step or tolerance gets), interpolated log-log between
+/// the two envelope runs that bracket the error. When the envelope's
+/// fastest run is already more accurate, its time, flagged `true` (an
+/// upper bound: no run of the sweep reaches the error faster). `None`
+/// when no run reaches it or a run has no CPU time.
+pub fn cpu_at_error(rows: &[Row], scene: &str, method: Method, target: f64) -> Option<(f64, bool)> {
+    let mut pts: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r.scene == scene && r.method == method)
+        .filter(|r| r.disp_err.is_finite() && r.disp_err > 0.0)
+        .map(|r| Some((r.cpu_s?.max(1e-9), r.disp_err)))
+        .collect::<Option<_>>()?;
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut best = f64::INFINITY;
+    pts.retain(|&(_, e)| {
+        let keep = e < best;
+        best = best.min(e);
+        keep
+    });
+    let first = *pts.first()?;
+    if first.1 <= target {
+        return Some((first.0, true));
+    }
+    let swapped: Vec<(f64, f64)> = pts.iter().map(|&(t, e)| (e, t)).collect();
+    interpolate_time(&swapped, target).map(|t| (t, false))
+}
+
+/// Log-log interpolation of `(error, time)` points at error `target`
+/// between the first consecutive pair that brackets it.
+fn interpolate_time(pts: &[(f64, f64)], target: f64) -> Option<f64> {
+    pts.windows(2).find_map(|w| {
+        let ((e0, t0), (e1, t1)) = (w[0], w[1]);
+        let (lo, hi) = (e0.min(e1), e0.max(e1));
+        (lo <= target && target <= hi && e0 != e1).then(|| {
+            let f = (target.ln() - e0.ln()) / (e1.ln() - e0.ln());
+            (t0.ln() + f * (t1.ln() - t0.ln())).exp()
+        })
+    })
+}
+
 /// Error levels of the speed-ups against the peers.
 pub const PEER_ERROR_LEVELS: [f64; 3] = [1e-2, 1e-4, 1e-6];
 
@@ -738,12 +1014,5 @@ pub fn time_at_error(rows: &[Row], method: Method, target: f64) -> Option<f64> {
         .filter(|r| r.method == method && r.disp_err.is_finite() && r.disp_err > 0.0)
         .map(|r| (r.disp_err, r.wall_s.max(1e-9)))
         .collect();
-    pts.windows(2).find_map(|w| {
-        let ((e0, t0), (e1, t1)) = (w[0], w[1]);
-        let (lo, hi) = (e0.min(e1), e0.max(e1));
-        (lo <= target && target <= hi && e0 != e1).then(|| {
-            let f = (target.ln() - e0.ln()) / (e1.ln() - e0.ln());
-            (t0.ln() + f * (t1.ln() - t0.ln())).exp()
-        })
-    })
+    interpolate_time(&pts, target)
 }

@@ -1,8 +1,10 @@
-//! The implicit peer: the penalty equations by adaptive variable-order BDF
-//! (`diffsol::Bdf`) with their contact switches located as events.
+//! The implicit peer: the contact equations by adaptive variable-order BDF
+//! (`diffsol::Bdf`) with their contact switches located as events, for
+//! penalty contact ([`run_bdf`]: a spring and its critical damper) and for
+//! the scene's own undamped tread springs ([`run_bdf_tread`]).
 //!
-//! Between two switches each point's force is either its penalty force
-//! `g_i = k (r_i - u_i) + c_i (ṙ_i - u̇_i)` or zero, so the equations are
+//! Between two switches each point's force is either its contact force
+//! `g_i = k_i (r_i - u_i) + c_i (ṙ_i - u̇_i)` or zero, so the equations are
 //! linear and smooth; the kink of `max(0, g_i)` is where `g_i` crosses
 //! zero. Each crossing is a root of [`Switched::roots`], located by
 //! diffsol's root finder on the BDF interpolant; the run moves back to it,
@@ -26,23 +28,26 @@ use faer::linalg::solvers::{PartialPivLu, SolveCore};
 use std::cell::{Cell, RefCell};
 use tirecontact_core::model::road::RoadProfile;
 use tirecontact_io::identify::ModeCache;
-use tirecontact_io::scene::Scene;
+use tirecontact_io::scene::{Contact, Scene};
 
-/// The penalty equations in one mode (a fixed active set `A`), a
+/// The contact equations in one mode (a fixed active set `A`), a
 /// semi-explicit index-1 DAE `M y' = f(t, y)` in `y = [η, η', J, w]`:
 ///
 /// `η_s'' = -ω_s² η_s - 2ξ_s ω_s η_s' + Σ_i b_s[i] w_i`, `J_i' = w_i`,
 /// `0 = [i∈A] g_i - w_i`,
 ///
-/// with `g_i = k (r_i - u_i) + c_i (ṙ_i - u̇_i)` the force point `i` bears
-/// when active (`u = Σ_s a_s η_s`), `w_i` its force (N) and `J_i` its
-/// impulse (N·s). Within a mode `f` is linear in `y`.
+/// with `g_i = k_i (r_i - u_i) + c_i (ṙ_i - u̇_i)` the force point `i`
+/// bears when active (`u = Σ_s a_s η_s`; `c_i = 0` for a tread spring),
+/// `w_i` its force (N) and `J_i` its impulse (N·s). Within a mode `f` is
+/// linear in `y`.
 pub(super) struct Switched<'a> {
     osc: &'a Oscillators,
     scene: &'a Scene,
     road: &'a RoadProfile,
-    k_n_m: f64,
-    c: Vec<f64>,
+    /// Each point's spring (N/m).
+    k_n_m: Vec<f64>,
+    /// Each point's damper (N·s/m).
+    c_ns_m: Vec<f64>,
     /// Whether each point bears its force `g_i` in the current mode.
     active: RefCell<Vec<bool>>,
     /// Offsets of the root functions ([`Switched::roots`]).
@@ -52,13 +57,19 @@ pub(super) struct Switched<'a> {
 }
 
 impl<'a> Switched<'a> {
-    fn new(osc: &'a Oscillators, scene: &'a Scene, road: &'a RoadProfile, k_n_m: f64) -> Self {
+    fn new(
+        osc: &'a Oscillators,
+        scene: &'a Scene,
+        road: &'a RoadProfile,
+        k_n_m: Vec<f64>,
+        c_ns_m: Vec<f64>,
+    ) -> Self {
         Switched {
             osc,
             scene,
             road,
             k_n_m,
-            c: osc.dampers(k_n_m),
+            c_ns_m,
             active: RefCell::new(vec![false; osc.p]),
             shift: RefCell::new(vec![0.0; osc.p]),
             evaluations: Cell::new(0),
@@ -79,7 +90,7 @@ impl<'a> Switched<'a> {
         2 * self.ns() + self.osc.p
     }
 
-    /// `g_i = k (r_i - u_i) + c_i (ṙ_i - u̇_i)` (N) of point `i` at `(t, y)`.
+    /// `g_i = k_i (r_i - u_i) + c_i (ṙ_i - u̇_i)` (N) of point `i` at `(t, y)`.
     fn gap(&self, t: f64, y: &[f64], i: usize) -> f64 {
         let ns = self.ns();
         let a = &self.osc.out[i * ns..(i + 1) * ns];
@@ -89,7 +100,7 @@ impl<'a> Switched<'a> {
             v += a[s] * y[ns + s];
         }
         let (r, rd) = road_seen(self.scene, self.road, t, i);
-        self.k_n_m * (r - u) + self.c[i] * (rd - v)
+        self.k_n_m[i] * (r - u) + self.c_ns_m[i] * (rd - v)
     }
 
     /// `f(t, y)` in the current mode.
@@ -129,7 +140,7 @@ impl<'a> Switched<'a> {
                 let (s, om) = (k, self.osc.omega[k]);
                 out[ns + s] -= om * om * vk;
                 for i in (0..p).filter(|&i| active[i]) {
-                    out[m + i] -= self.k_n_m * self.osc.out[i * ns + s] * vk;
+                    out[m + i] -= self.k_n_m[i] * self.osc.out[i * ns + s] * vk;
                 }
             } else if k < 2 * ns {
                 // ∂/∂η'_s: the mode's velocity, its damper, the points' dampers
@@ -137,7 +148,7 @@ impl<'a> Switched<'a> {
                 out[s] += vk;
                 out[ns + s] -= 2.0 * xi * om * vk;
                 for i in (0..p).filter(|&i| active[i]) {
-                    out[m + i] -= self.c[i] * self.osc.out[i * ns + s] * vk;
+                    out[m + i] -= self.c_ns_m[i] * self.osc.out[i * ns + s] * vk;
                 }
             } else if k >= m {
                 // ∂/∂w_i: the force drives the modes and the impulse
@@ -175,23 +186,22 @@ impl<'a> Switched<'a> {
         }
     }
 
-    /// A root function's value right after its switch (N): the force of a
-    /// penetration of 1e-12 m.
-    fn switch_margin(&self) -> f64 {
-        self.k_n_m * 1e-12
+    /// Point `i`'s root function's value right after its switch (N): the
+    /// force of a penetration of 1e-12 m.
+    fn switch_margin(&self, i: usize) -> f64 {
+        self.k_n_m[i] * 1e-12
     }
 
     /// Puts each point in the mode its force `g_i` says at `(t, y)`, its
     /// root function shifted up to the switch margin if below it (the
     /// start of a run).
     fn start(&self, t: f64, y: &[f64]) {
-        let margin = self.switch_margin();
         let mut active = self.active.borrow_mut();
         let mut shift = self.shift.borrow_mut();
         for i in 0..self.osc.p {
             let g = self.gap(t, y, i);
             active[i] = g > 0.0;
-            shift[i] = (margin - g.abs()).max(0.0);
+            shift[i] = (self.switch_margin(i) - g.abs()).max(0.0);
         }
     }
 
@@ -202,7 +212,7 @@ impl<'a> Switched<'a> {
         let mut active = self.active.borrow_mut();
         active[i] = !active[i];
         let sigma = if active[i] { 1.0 } else { -1.0 };
-        self.shift.borrow_mut()[i] = (self.switch_margin() - sigma * g).max(0.0);
+        self.shift.borrow_mut()[i] = (self.switch_margin(i) - sigma * g).max(0.0);
         active[i]
     }
 
@@ -592,9 +602,59 @@ pub fn run_bdf(
     cache: &ModeCache,
 ) -> Result<ImplicitRun, BenchError> {
     let osc = Oscillators::new(scene, cache)?;
+    let c_ns_m = osc.dampers(k_n_m);
+    run_switched(
+        scene,
+        &osc,
+        vec![k_n_m; osc.p],
+        c_ns_m,
+        rtol,
+        dt_out_s,
+        duration_s,
+    )
+}
+
+/// [`run_bdf`] on the scene's own contact law: its undamped tread springs
+/// (`contact: Compliant`, `q_i = k_i max(0, r_i - u_i)`, `c_i = 0`), the
+/// law the located solver integrates. Each switch, a landing or a release
+/// of a spring, is a zero of the gap `r_i - u_i` (of `k_i (r_i - u_i)`),
+/// located on the BDF interpolant inside the step; the run moves back to
+/// it and restarts there, so no step spans the kink of `max(0, ·)` and the
+/// force is never smoothed. Refuses a scene with rigid contact.
+pub fn run_bdf_tread(
+    scene: &Scene,
+    rtol: f64,
+    dt_out_s: f64,
+    duration_s: f64,
+    cache: &ModeCache,
+) -> Result<ImplicitRun, BenchError> {
+    let p = scene.num_points();
+    let k_n_m = match &scene.contact {
+        Contact::Compliant { stiffness_n_m } if stiffness_n_m.len() == 1 => {
+            vec![stiffness_n_m[0]; p]
+        }
+        Contact::Compliant { stiffness_n_m } if stiffness_n_m.len() == p => stiffness_n_m.clone(),
+        _ => return Err(BenchError::NoTreadSprings),
+    };
+    let osc = Oscillators::new(scene, cache)?;
+    run_switched(scene, &osc, k_n_m, vec![0.0; p], rtol, dt_out_s, duration_s)
+}
+
+/// BDF with located switches on the contact equations of springs `k_n_m`
+/// (N/m) and dampers `c_ns_m` (N·s/m), one each a point: [`run_bdf`]'s
+/// integration.
+fn run_switched(
+    scene: &Scene,
+    osc: &Oscillators,
+    k_n_m: Vec<f64>,
+    c_ns_m: Vec<f64>,
+    rtol: f64,
+    dt_out_s: f64,
+    duration_s: f64,
+) -> Result<ImplicitRun, BenchError> {
     let road = tirecontact_io::scene::load_road(&scene.road, scene.base_dir.as_deref())?;
     let (p, ns) = (osc.p, osc.ns());
-    let sys = Switched::new(&osc, scene, &road, k_n_m);
+    let sys = Switched::new(osc, scene, &road, k_n_m, c_ns_m);
     let (n, m) = (sys.len(), sys.forces_at());
     // every point active while diffsol finds the Jacobian's sparsity
     sys.active.borrow_mut().fill(true);
@@ -629,7 +689,7 @@ pub fn run_bdf(
         overflow_t_s: None,
     };
     let mut recorder = Recorder {
-        osc: &osc,
+        osc,
         dt_out_s,
         n_out,
         next: 1,

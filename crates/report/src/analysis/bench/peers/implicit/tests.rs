@@ -244,3 +244,124 @@ fn bdf_converges_to_the_located_solution_and_its_switches() {
         );
     }
 }
+
+/// [`many_points`]`(points, modes)` on undamped tread springs of
+/// `k_n_m` (N/m) at every point.
+fn on_tread_springs(points: usize, modes: usize, k_n_m: f64) -> Scene {
+    let mut scene = many_points(points, modes);
+    scene.contact = tirecontact_io::scene::Contact::Compliant {
+        stiffness_n_m: vec![k_n_m],
+    };
+    scene
+}
+
+/// One point on one mode on a tread spring, 0.5 mm above a 1 mm, 0.2 m
+/// sine road at 20 m/s, no ramp: at rest until it lands, so its first
+/// landing is where the road reaches its height, `a sin(ω t) = h`, in
+/// closed form; the BDF peer locates it there to far below any step size
+/// (no damper: the root is the gap's, not a penalty force's).
+#[test]
+fn a_tread_spring_lands_where_the_road_reaches_the_point() {
+    let mut scene = on_tread_springs(1, 1, 2e5);
+    let (a, lambda, v, h) = (0.001, 0.2, 20.0, 0.0005);
+    scene.points[0] = tirecontact_io::scene::Point {
+        x_m: 0.0,
+        y_m: 0.0,
+        h_m: h,
+    };
+    scene.ramp_s = 0.0;
+    let w = std::f64::consts::TAU * v / lambda;
+    let landing_s = (h / a).asin() / w;
+    let run = run_bdf_tread(&scene, 1e-6, 1e-4, 0.01, &ModeCache::new()).unwrap();
+    let first = run.switches[0];
+    assert!(first.on && first.point == 0, "{first:?}");
+    assert!(
+        (first.t_s - landing_s).abs() < 1e-10,
+        "landing at {} s, the road reaches the point at {landing_s} s",
+        first.t_s
+    );
+    // it also leaves: a release follows
+    assert!(
+        run.switches.iter().any(|s| !s.on && s.t_s > landing_s),
+        "{:?}",
+        run.switches
+    );
+}
+
+/// A scene with rigid contact has no tread springs to integrate.
+#[test]
+fn the_tread_spring_peer_refuses_rigid_contact() {
+    let scene = many_points(2, 2);
+    assert!(matches!(
+        run_bdf_tread(&scene, 1e-6, 1e-4, 0.01, &ModeCache::new()),
+        Err(BenchError::NoTreadSprings)
+    ));
+}
+
+/// Two points on four modes on undamped tread springs, pressed 1 mm into
+/// a 1 mm sine road: they leave the road and land again. Two independent
+/// integrators of the same equations, the located solver (convolution,
+/// events located inside its steps, second order) at a tiny step and the
+/// BDF peer (its landings and releases located on its interpolant) at
+/// tightening tolerances: BDF's error falls in proportion to its
+/// tolerance (at least 10x for each 100x), as an adaptive integrator's
+/// does when no step spans a kink, until the two agree to the located
+/// reference's own step error (below 1e-8 of the motion).
+#[test]
+fn bdf_with_located_switches_converges_to_the_located_solver_on_tread_springs() {
+    let scene = on_tread_springs(2, 4, 2e5);
+    let (dur, grid) = (0.05, 1e-4);
+    let cache = ModeCache::new();
+    let located = |dt: f64| {
+        let (run, _, events) = run_stable(
+            &scene,
+            ContactScheme::Located,
+            dt,
+            dur,
+            SolverOptions::default(),
+            &cache,
+        )
+        .unwrap();
+        (
+            sample(&run.t_s, &run.u_m, &run.q_n, grid, 1e-3, dt, dur),
+            events,
+        )
+    };
+    let (reference, events) = located(2.5e-7);
+    let (coarser, _) = located(5e-7);
+    // the reference's own error: a second-order step halved
+    let reference_err = rms_rel(&coarser.u, &reference.u) / 3.0;
+    assert!(events > 4, "{events} located events");
+    let rtols = [1e-4, 1e-6, 1e-8, 1e-10];
+    let mut errors = Vec::new();
+    for &rtol in &rtols {
+        let run = run_bdf_tread(&scene, rtol, grid, dur, &cache).unwrap();
+        assert!(
+            run.switches.iter().any(|s| s.on) && run.switches.iter().any(|s| !s.on),
+            "rtol {rtol}: switches {:?}",
+            run.switches
+        );
+        let s = sample(
+            &run.run.t_s,
+            &run.run.u_m,
+            &run.run.q_n,
+            grid,
+            1e-3,
+            grid,
+            dur,
+        );
+        errors.push(rms_rel(&s.u, &reference.u));
+    }
+    // measured: 1.2e-4, 2.0e-6, 4.4e-8, 5.2e-9 against the reference's own
+    // 5.4e-9: about 50x for each 100x, then the reference's floor
+    for k in 1..errors.len() {
+        assert!(
+            errors[k] * 10.0 < errors[k - 1] || errors[k] < 3.0 * reference_err,
+            "BDF errors at rtol {rtols:?}: {errors:?} (reference's own {reference_err:e})"
+        );
+    }
+    assert!(
+        errors[errors.len() - 1] < 2.0 * reference_err && reference_err < 1e-8,
+        "BDF errors at rtol {rtols:?}: {errors:?} (reference's own {reference_err:e})"
+    );
+}
