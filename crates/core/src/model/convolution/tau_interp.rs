@@ -61,11 +61,26 @@ pub struct TauInterp {
 
 impl TauInterp {
     /// The interpolant of `basis`'s weights on `[0, dt_s]`, with influence
-    /// columns when `4 P² M` values fit in `column_budget`; `None` if no
-    /// number of nodes up to [`MAX_NODES`] meets [`WEIGHT_TOLERANCE`].
+    /// columns when `4 P² M` values fit in `column_budget` (and pass their
+    /// check); `None` if no number of nodes up to [`MAX_NODES`] meets
+    /// [`WEIGHT_TOLERANCE`]. [`TauInterp::weights`], then
+    /// [`TauInterp::add_node_column`] for every [`TauInterp::column_stages`]
+    /// and [`TauInterp::finish_columns`], a stage at a time, build the same.
     pub fn new(basis: &ModalBasis, dt_s: f64, column_budget: usize) -> Option<Self> {
+        let mut ti = Self::weights(basis, dt_s)?;
+        if ti.columns_fit(column_budget) {
+            for stage in 0..ti.column_stages() {
+                ti.add_node_column(basis, stage);
+            }
+            ti.finish_columns(basis);
+        }
+        Some(ti)
+    }
+
+    /// [`TauInterp::new`]'s interpolant of the weights alone (no columns).
+    pub fn weights(basis: &ModalBasis, dt_s: f64) -> Option<Self> {
         let (k_modes, ns) = (basis.modes.len(), basis.stored_states());
-        if k_modes == 0 || !(dt_s > 0.0) {
+        if k_modes == 0 || dt_s.is_nan() || dt_s <= 0.0 {
             return None;
         }
         let mut steps = Vec::with_capacity(k_modes);
@@ -105,14 +120,6 @@ impl TauInterp {
                 continue;
             };
             interp.checked_error = err;
-            let p = basis.num_points;
-            if 4 * p * p * m_nodes <= column_budget && p > 0 {
-                interp.fill_columns(basis);
-                let Some(col_err) = interp.column_error(basis) else {
-                    continue;
-                };
-                interp.checked_error = err.max(col_err);
-            }
             return Some(interp);
         }
         None
@@ -250,56 +257,72 @@ impl TauInterp {
                 for c in 0..4 {
                     let sc = scale[c * ns + s];
                     let err = (e[c] - a[c]).abs() / sc;
-                    if sc > 0.0 && !(err <= worst) {
+                    if sc > 0.0 && (err.is_nan() || err > worst) {
                         // (a NaN stays: it fails the check below)
                         worst = err;
                     }
                 }
             }
-            if !(worst <= WEIGHT_TOLERANCE) {
+            if worst.is_nan() || worst > WEIGHT_TOLERANCE {
                 return None;
             }
         }
         Some(worst)
     }
 
-    /// The node influences as columns (`4 P² M` values).
-    fn fill_columns(&mut self, basis: &ModalBasis) {
+    /// Whether the influence columns (`4 P² M` values) fit in `budget`.
+    pub fn columns_fit(&self, budget: usize) -> bool {
+        let p = self.p;
+        p > 0 && 4 * p * p * self.nodes_s.len() <= budget
+    }
+
+    /// The stages of the columns: one per node past the first and weight
+    /// column (`4 (M − 1)`, each a `P × ns × P` product).
+    pub fn column_stages(&self) -> usize {
+        4 * (self.nodes_s.len() - 1)
+    }
+
+    /// Stage `stage` of the columns: `G = A diag(w) Bᵀ` of one node and
+    /// weight column (`A[i][s] = a_s[i]`, `B[j][s] = b_s[j]`), sizing the
+    /// columns at the first (node 0, a step of zero length, has zero
+    /// columns).
+    pub fn add_node_column(&mut self, basis: &ModalBasis, stage: usize) {
         use faer::{Accum, Mat, Par, linalg::matmul::matmul};
         let (p, m_nodes, ns) = (self.p, self.nodes_s.len(), self.ns);
-        self.columns = vec![0.0; 4 * p * p * m_nodes];
-        // `G = A diag(w) Bᵀ`: `A[i][s] = a_s[i]`, `B[j][s] = b_s[j]`
+        if self.columns.len() != 4 * p * p * m_nodes {
+            self.columns = vec![0.0; 4 * p * p * m_nodes];
+        }
+        let (m, c) = (1 + stage / 4, stage % 4);
         let a = Mat::from_fn(p, ns, |i, s| basis.out[i * ns + s]);
-        let mut wb = Mat::<f64>::zeros(ns, p);
-        let mut g = Mat::<f64>::zeros(p, p);
         let inp = basis.inputs_point_major();
-        // (node 0, a step of zero length, has zero columns)
-        for m in 1..m_nodes {
-            for c in 0..4 {
-                let w = &self.weights[(m * 4 + c) * ns..(m * 4 + c + 1) * ns];
-                for j in 0..p {
-                    for s in 0..ns {
-                        wb[(s, j)] = w[s] * inp[j * ns + s];
-                    }
-                }
-                matmul(
-                    g.as_mut(),
-                    Accum::Replace,
-                    a.as_ref(),
-                    wb.as_ref(),
-                    1.0,
-                    Par::Seq,
-                );
-                // column `c` of source `j` in the weight order `w1x, w1v,
-                // w2x, w2v` goes to slot `x1, x2, v1, v2`
-                let slot = [0, 2, 1, 3][c];
-                for j in 0..p {
-                    let col = &mut self.columns[((j * m_nodes + m) * 4 + slot) * p..][..p];
-                    for (i, x) in col.iter_mut().enumerate() {
-                        *x = g[(i, j)];
-                    }
-                }
+        let w = &self.weights[(m * 4 + c) * ns..(m * 4 + c + 1) * ns];
+        let wb = Mat::from_fn(ns, p, |s, j| w[s] * inp[j * ns + s]);
+        let mut g = Mat::<f64>::zeros(p, p);
+        matmul(
+            g.as_mut(),
+            Accum::Replace,
+            a.as_ref(),
+            wb.as_ref(),
+            1.0,
+            Par::Seq,
+        );
+        // weight column `c` (`w1x, w1v, w2x, w2v`) fills slot `x1, x2, v1,
+        // v2` of each source
+        let slot = [0, 2, 1, 3][c];
+        for j in 0..p {
+            let col = &mut self.columns[((j * m_nodes + m) * 4 + slot) * p..][..p];
+            for (i, x) in col.iter_mut().enumerate() {
+                *x = g[(i, j)];
             }
+        }
+    }
+
+    /// Checks the columns built by every stage ([`TauInterp::column_error`]);
+    /// columns that fail are dropped (the weights alone stay).
+    pub fn finish_columns(&mut self, basis: &ModalBasis) {
+        match self.column_error(basis) {
+            Some(err) => self.checked_error = self.checked_error.max(err),
+            None => self.columns = Vec::new(),
         }
     }
 
@@ -344,7 +367,7 @@ impl TauInterp {
                         if scale > 0.0 {
                             for (a, b) in got.iter().zip(want) {
                                 let err = (a - b).abs() / scale;
-                                if !(err <= worst) {
+                                if err.is_nan() || err > worst {
                                     worst = err;
                                 }
                             }

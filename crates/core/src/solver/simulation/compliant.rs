@@ -238,9 +238,18 @@ impl Simulation {
             s.q1[j] = s.rhs[k];
             s.q2[j] = s.rhs[n + k];
         }
-        // every point's response to the active points' forces, source
-        // column by source column over contiguous memory (`full_inf_cols`);
-        // each point sums its terms in the order of the active set
+        self.end_values_by_columns();
+        Ok(())
+    }
+
+    /// Every point's end values into `ue`, `ve`: the free ones (`uh`, `vh`,
+    /// projected for every point) plus the response to the active points'
+    /// full-step forces, source column by source column over contiguous
+    /// memory (`full_inf_cols`); each point sums its terms in the order of
+    /// the active set.
+    pub(super) fn end_values_by_columns(&mut self) {
+        let p = self.tables.p;
+        let (active, s) = (&self.state.active, &mut self.scratch);
         let (du, dv) = (&mut s.du[..p], &mut s.dv[..p]);
         du.fill(0.0);
         dv.fill(0.0);
@@ -249,10 +258,9 @@ impl Simulation {
                 .add_full_step_response(j, s.q1[j], s.q2[j], du, dv);
         }
         for i in 0..p {
-            s.ue[i] += du[i];
-            s.ve[i] += dv[i];
+            s.ue[i] = s.uh[i] + du[i];
+            s.ve[i] = s.vh[i] + dv[i];
         }
-        Ok(())
     }
 }
 

@@ -358,7 +358,7 @@ impl Simulation {
     /// active points.
     fn trial_by_kept_inverse(&self) -> bool {
         let inv = &self.factors.updated;
-        self.fused_full_step()
+        self.large_full_step()
             && self.factors.updated_valid
             && inv.points().len() == self.state.active.len()
             && inv.points().len() <= MERGED_SET_MAX

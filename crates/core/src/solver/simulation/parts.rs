@@ -106,7 +106,11 @@ impl SimTables {
         let jump_t = transposed(&jump, p);
         let mut full_inf_cols = Vec::with_capacity(4 * p * p);
         influence_columns(&full_inf, p, 0..p, &mut full_inf_cols);
-        let tau_interp = tau_interp_of(problem, options, &basis, &residual);
+        let tau_interp = if tau_interp_used(problem, options, &residual) {
+            TauInterp::new(&basis, problem.dt_s, TAU_COLUMN_BUDGET)
+        } else {
+            None
+        };
         Ok(Self::assemble(
             problem,
             options,
@@ -282,8 +286,10 @@ pub(super) struct SimTablesBuild {
     jump: Vec<f64>,
     jump_t: Vec<f64>,
     cols: Vec<f64>,
-    /// The short-step interpolant, once built (a stage of its own).
+    /// The short-step interpolant once its weights are (a stage), and the
+    /// stages of its columns done (the last one checks them).
     tau: Option<Option<TauInterp>>,
+    tau_stages: usize,
     /// Rows of the influence, rows of the jump and points of the columns
     /// done so far.
     inf_rows: usize,
@@ -303,6 +309,7 @@ impl SimTablesBuild {
             jump_t: Vec::new(),
             cols: Vec::new(),
             tau: None,
+            tau_stages: 0,
             inf_rows: 0,
             jump_rows: 0,
             col_points: 0,
@@ -319,15 +326,32 @@ impl SimTablesBuild {
             None if self.col_points == p && p > 0 => 0,
             None => {
                 let block = block_rows(p, problem.modes.len().max(1));
-                1 + 3 * p.div_ceil(block) + 3
+                let tau = if tau_interp_used(problem, self.options, &[]) {
+                    self.tau_stages_left()
+                } else {
+                    0
+                };
+                1 + 3 * p.div_ceil(block) + 2 + tau
             }
             Some(_) => {
                 blocks(self.inf_rows)
                     + blocks(self.jump_rows)
                     + blocks(self.col_points)
-                    + self.tau.is_none() as usize
+                    + self.tau_stages_left()
                     + 2
             }
+        }
+    }
+
+    /// Stages left of [`SimTables::tau_interp`] (an estimate of 24 column
+    /// stages before its weights are known).
+    fn tau_stages_left(&self) -> usize {
+        match &self.tau {
+            None => 1 + 25,
+            Some(Some(ti)) if ti.columns_fit(TAU_COLUMN_BUDGET) => {
+                (ti.column_stages() + 1).saturating_sub(self.tau_stages)
+            }
+            Some(_) => 0,
         }
     }
 
@@ -369,10 +393,26 @@ impl SimTablesBuild {
             influence_columns(&self.inf, p, js, &mut self.cols);
             return Ok(None);
         }
-        if self.tau.is_none() {
-            let ti = tau_interp_of(problem, self.options, basis, residual);
-            self.tau = Some(ti);
-            return Ok(None);
+        match &mut self.tau {
+            None => {
+                let used = tau_interp_used(problem, self.options, residual);
+                self.tau = Some(used.then(|| TauInterp::weights(basis, dt_s)).flatten());
+                return Ok(None);
+            }
+            Some(Some(ti)) if ti.columns_fit(TAU_COLUMN_BUDGET) => {
+                let n = ti.column_stages();
+                if self.tau_stages < n {
+                    ti.add_node_column(basis, self.tau_stages);
+                    self.tau_stages += 1;
+                    return Ok(None);
+                }
+                if self.tau_stages == n {
+                    ti.finish_columns(basis);
+                    self.tau_stages += 1;
+                    return Ok(None);
+                }
+            }
+            Some(_) => {}
         }
         let Some((basis, residual, full)) = self.parts.take() else {
             unreachable!("the basis is the first stage");
@@ -389,24 +429,15 @@ impl SimTablesBuild {
     }
 }
 
-/// The interpolated short-step weights of [`SimTables::tau_interp`]:
-/// built when the merged event step can use them (tread springs, no
-/// residual compliance, merged events on).
-fn tau_interp_of(
-    problem: &Problem,
-    options: SolverOptions,
-    basis: &ModalBasis,
-    residual: &[f64],
-) -> Option<TauInterp> {
-    let p = problem.num_points();
-    let used = options.merged_events
+/// Whether [`SimTables::tau_interp`] is built: when the merged event step
+/// can use it (tread springs, no residual compliance, merged events on).
+fn tau_interp_used(problem: &Problem, options: SolverOptions, residual: &[f64]) -> bool {
+    options.merged_events
         && residual.is_empty()
-        && !problem.contact.stiffness_per_point(p).is_empty();
-    if used {
-        TauInterp::new(basis, problem.dt_s, TAU_COLUMN_BUDGET)
-    } else {
-        None
-    }
+        && !problem
+            .contact
+            .stiffness_per_point(problem.num_points())
+            .is_empty()
 }
 
 /// Rows of a `P × P` table over `states` states per block of about
