@@ -382,6 +382,7 @@ impl Simulation {
         }
         // (read before `had_event` is set below)
         let steady = self.steady_ready();
+        self.scratch.after_event = self.state.had_event;
         // until the step succeeds (an error mid-step may leave either set)
         self.state.had_event = true;
         let compliant = self.tables.compliant();
