@@ -62,8 +62,8 @@ pub struct TauInterp {
 impl TauInterp {
     /// The interpolant of `basis`'s weights on `[0, dt_s]`, with influence
     /// columns when `4 P² M` values fit in `column_budget` (and pass their
-    /// check); `None` if no number of nodes up to [`MAX_NODES`] meets
-    /// [`WEIGHT_TOLERANCE`]. [`TauInterp::weights`], then
+    /// check); `None` if no number of nodes up to `MAX_NODES` (16) meets
+    /// `WEIGHT_TOLERANCE` (1e-11). [`TauInterp::weights`], then
     /// [`TauInterp::add_node_column`] for every [`TauInterp::column_stages`]
     /// and [`TauInterp::finish_columns`], a stage at a time, build the same.
     pub fn new(basis: &ModalBasis, dt_s: f64, column_budget: usize) -> Option<Self> {
@@ -231,7 +231,7 @@ impl TauInterp {
 
     /// The largest error of the interpolated weights at the points halfway
     /// (in angle) between the nodes, relative to each mode's largest node
-    /// value; `None` if above [`WEIGHT_TOLERANCE`].
+    /// value; `None` if above `WEIGHT_TOLERANCE` (1e-11).
     fn weight_error(&self, basis: &ModalBasis, steps: &mut Vec<ModeStep>) -> Option<f64> {
         let (ns, m_nodes) = (self.ns, self.nodes_s.len());
         let mut scale = vec![0.0f64; 4 * ns];
@@ -317,7 +317,7 @@ impl TauInterp {
         }
     }
 
-    /// Checks the columns built by every stage ([`TauInterp::column_error`]);
+    /// Checks the columns built by every stage (against exact sums at a few sources);
     /// columns that fail are dropped (the weights alone stay).
     pub fn finish_columns(&mut self, basis: &ModalBasis) {
         match self.column_error(basis) {
