@@ -35,6 +35,17 @@ fn merged(on: bool) -> SolverOptions {
     }
 }
 
+/// Merged events with direct solves of every set size (no kept inverse,
+/// no GMRES sub-steps).
+fn direct_solves() -> SolverOptions {
+    SolverOptions {
+        large_set_from: usize::MAX,
+        compliant_large_set_from: usize::MAX,
+        iterative_sub_from: usize::MAX,
+        ..merged(true)
+    }
+}
+
 /// Displacements of every point at the times `0, every·dt, …` (m), and
 /// the run's statistics.
 fn run(
@@ -110,12 +121,7 @@ fn bordered_merged_solves_agree_with_fresh_factorisations() {
     let model = PreparedModel::of(&scene).unwrap();
     // (direct solves of every set size in both: the large sets' kept
     // inverse is a reuse too)
-    let direct = SolverOptions {
-        large_set_from: usize::MAX,
-        compliant_large_set_from: usize::MAX,
-        iterative_sub_from: usize::MAX,
-        ..merged(true)
-    };
+    let direct = direct_solves();
     let mut a = model.simulation(direct).unwrap();
     let fresh = SolverOptions {
         reuse_factorisation: false,
@@ -148,12 +154,7 @@ fn bordered_merged_solves_agree_with_fresh_factorisations() {
 fn merged_steps_through_the_kept_inverse_agree_with_direct_solves() {
     let scene = small_chip_seal(0.02);
     let model = PreparedModel::of(&scene).unwrap();
-    let direct = SolverOptions {
-        large_set_from: usize::MAX,
-        compliant_large_set_from: usize::MAX,
-        iterative_sub_from: usize::MAX,
-        ..merged(true)
-    };
+    let direct = direct_solves();
     let kept = SolverOptions {
         large_set_from: 2,
         ..merged(true)
