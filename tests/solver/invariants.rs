@@ -633,3 +633,66 @@ fn static_preload_with_critical_and_overdamped_modes() {
         }
     }
 }
+
+#[test]
+fn crossing_exists_exactly_where_it_is_located() {
+    let mut rng = SplitMix(11);
+    let mut found = 0;
+    for case in 0..20_000 {
+        let mut r = |a: f64, b: f64| a + (b - a) * rng.unit();
+        let g0 = match case % 3 {
+            0 => 0.0,
+            _ => r(-1e-12, 1.0),
+        };
+        let (d0, g1, d1) = (r(-4.0, 4.0), r(-1.0, 1.0), r(-4.0, 4.0));
+        let tol = if case % 2 == 0 { 1e-3 } else { 1e-12 };
+        let rise = case % 5 == 0;
+        use tirecontact::solver::simulation::{crosses, first_crossing};
+        let located = first_crossing(g0, d0, g1, d1, tol, rise);
+        assert_eq!(
+            crosses(g0, d0, g1, d1, tol, rise),
+            located.is_some(),
+            "case {case}: g0 {g0} d0 {d0} g1 {g1} d1 {d1} tol {tol} rise {rise}"
+        );
+        found += located.is_some() as usize;
+    }
+    assert!(found > 2_000, "only {found} crossings among the cases");
+}
+
+/// Grazing and flat crossings (a triple root, a double root beside a
+/// simple one, a tiny slope through the root) are located as the brute
+/// force locates them, to what the cubic's values can resolve there.
+#[test]
+fn flat_crossings_are_located_as_by_bisection() {
+    let mut rng = SplitMix(29);
+    for case in 0..3_000 {
+        let mut r = |a: f64, b: f64| a + (b - a) * rng.unit();
+        let root = r(0.02, 0.98);
+        let scale = 10f64.powf(r(-9.0, 0.0));
+        let eps = match case % 3 {
+            0 => 0.0,
+            1 => scale * 10f64.powf(r(-12.0, -2.0)),
+            _ => scale * r(0.0, 1.0),
+        };
+        // p(y) = -scale (y - root)^3 - eps (y - root), decreasing through the root
+        let p = |y: f64| -scale * (y - root).powi(3) - eps * (y - root);
+        let dp = |y: f64| -3.0 * scale * (y - root).powi(2) - eps;
+        let (g0, d0, g1, d1) = (p(0.0), dp(0.0), p(1.0), dp(1.0));
+        let tol = 1e-3 * p(1.0).abs().min(p(0.0));
+        let got = tirecontact::solver::simulation::first_crossing(g0, d0, g1, d1, tol, false);
+        let want = brute_crossing(g0, d0, g1, d1, tol, false);
+        let (Some(y), Some(w)) = (got, want) else {
+            panic!("case {case}: root {root}: located {got:?}, brute force {want:?}");
+        };
+        // the cubic's rounding (about 1e-16 of its terms) hides the sign of
+        // p within |p| <= 4e-16 (g0 + |d0| + |g1| + |d1|) of its root
+        let noise = 4e-16 * (g0.abs() + d0.abs() + g1.abs() + d1.abs());
+        let resolved = ((noise + eps * 1e-3) / scale)
+            .cbrt()
+            .min(noise / eps.max(1e-300));
+        assert!(
+            (y - w).abs() <= 2.0 * resolved + 1e-12,
+            "case {case}: root {root} scale {scale:e} eps {eps:e}: located {y}, brute force {w}, resolvable {resolved:e}"
+        );
+    }
+}

@@ -31,7 +31,7 @@ use crate::base::threads::Threads;
 use crate::model::road::{PointsRoad, RoadProfile};
 use crate::solver::error::{BuildError, SolverError};
 use crate::solver::problem::{ContactScheme, Point, Problem};
-pub use events::first_crossing;
+pub use events::{crosses, first_crossing};
 use factor_cache::FullFactors;
 pub use options::{IDENTIFIED_RANK_TOLERANCE, SolverOptions};
 use parts::{Scratch, SimState, SimTables, SimTablesBuild};

@@ -61,6 +61,42 @@ fn predict_at<const RANGE: bool>(
     predict_body::<RANGE>(c, s0, x, v, ox, ov)
 }
 
+/// `col = Σ_{m ≥ 1} lam[m] W_m`, `W_m` the column `ci` of node `m` in
+/// `weights` (`(m * 4 + ci) * ns`, `ns` long; node 0's columns are zero):
+/// the interpolated Gauss weights of a short step (method §4.6), node by
+/// node in order, through an AVX2 build where the CPU has it (no FMA: the
+/// same operations, bit-identical).
+#[inline]
+pub(super) fn combine_columns(lam: &[f64], weights: &[f64], ci: usize, ns: usize, col: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            #[target_feature(enable = "avx2")]
+            fn wide(lam: &[f64], weights: &[f64], ci: usize, ns: usize, col: &mut [f64]) {
+                combine_body(lam, weights, ci, ns, col)
+            }
+            // SAFETY: the CPU supports AVX2 (checked just above).
+            return unsafe { wide(lam, weights, ci, ns, col) };
+        }
+    }
+    combine_body(lam, weights, ci, ns, col)
+}
+
+#[inline(always)]
+fn combine_body(lam: &[f64], weights: &[f64], ci: usize, ns: usize, col: &mut [f64]) {
+    let col = &mut col[..ns];
+    let node = |m: usize| &weights[(m * 4 + ci) * ns..(m * 4 + ci + 1) * ns];
+    let (l1, w) = (lam[1], node(1));
+    for (x, y) in col.iter_mut().zip(w) {
+        *x = l1 * y;
+    }
+    for (m, &l) in lam.iter().enumerate().skip(2) {
+        for (x, y) in col.iter_mut().zip(node(m)) {
+            *x += l * y;
+        }
+    }
+}
+
 /// `(u_i, v_i) = (a_i · x, a_i · v)` for the points `i` in `rows` only
 /// (rows of `out`, `ns` wide), each sum in [`dot2`]'s order, as
 /// [`project`] gives them.

@@ -192,17 +192,7 @@ impl TauInterp {
             .into_iter()
             .enumerate()
         {
-            let col = &mut col[..ns];
-            let node = |m: usize| &self.weights[(m * 4 + ci) * ns..(m * 4 + ci + 1) * ns];
-            let (l1, w) = (lam[1], node(1));
-            for (x, y) in col.iter_mut().zip(w) {
-                *x = l1 * y;
-            }
-            for (m, &l) in lam[..m_nodes].iter().enumerate().skip(2) {
-                for (x, y) in col.iter_mut().zip(node(m)) {
-                    *x += l * y;
-                }
-            }
+            super::kernels::combine_columns(&lam[..m_nodes], &self.weights, ci, ns, &mut col[..ns]);
         }
     }
 

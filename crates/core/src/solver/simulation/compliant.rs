@@ -49,7 +49,7 @@
 //! contact (`u = r - q / k`, an `O(1/k)` difference), not through impacts.
 
 use super::active_set::ActiveSetRule;
-use super::{GA, GB, SQRT3, Simulation, Table, first_crossing};
+use super::{GA, GB, SQRT3, Simulation, Table, crosses};
 use crate::solver::error::SolverError;
 
 /// The compliant step-end rule (method §4.6): a point enters where the
@@ -125,7 +125,7 @@ impl Simulation {
             }
             let (g0, d0) = (u[i] - r[i], (v[i] - rd[i]) * dt);
             let (g1, d1) = (ue[i] - re[i], (ve[i] - rde[i]) * dt);
-            if first_crossing(g0, d0, g1, d1, self.pen_tol_m, st.released[i]).is_some() {
+            if crosses(g0, d0, g1, d1, self.pen_tol_m, st.released[i]) {
                 return Ok(None);
             }
         }

@@ -247,6 +247,11 @@ impl Simulation {
             m.set.clear();
             m.set.extend_from_slice(&self.state.active);
             m.full = m.set.len();
+            // (the landing search skips the starting set by `contact`)
+            debug_assert!(
+                m.set.iter().all(|&j| self.state.contact[j])
+                    && self.state.contact.iter().filter(|&&c| c).count() == m.full
+            );
             m.trial_set.clear();
             m.trial_kept = kept;
             if m.trial_kept {
@@ -418,11 +423,16 @@ impl Simulation {
             return Next::Unsupported;
         }
         for i in 0..p {
+            // (the step's starting set, `contact`, holds every full-step
+            // and early point: their compressed springs are far below the
+            // road, where locating a crossing would only be thrown away)
+            if st.contact[i] {
+                continue;
+            }
             let (g0, d0) = (u[i] - r[i], (v[i] - rd[i]) * dt);
             let (g1, d1) = (ue[i] - re[i], (ve[i] - rde[i]) * dt);
             if let Some(y) = first_crossing(g0, d0, g1, d1, self.pen_tol_m, st.released[i])
-                && !m.set.contains(&i)
-                && !m.early.iter().any(|e| e.point == i)
+                && !m.set[m.full..].contains(&i)
             {
                 let th = y * dt;
                 if th < first {

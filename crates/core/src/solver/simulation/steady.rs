@@ -7,7 +7,7 @@
 //! changed anything but scratch values, to the event loop, which then runs
 //! the same trial again. Both give bit-identical results (tested).
 
-use super::{GA, GB, Simulation, Table, first_crossing};
+use super::{GA, GB, Simulation, Table, crosses};
 use crate::solver::error::SolverError;
 use crate::solver::problem::ContactScheme;
 
@@ -151,7 +151,7 @@ fn clear(g0: f64, d0: f64, g1: f64, d1: f64, dt: f64, tol: f64) -> bool {
 /// step ([`first_crossing`] of the Hermite cubic).
 #[inline(always)]
 fn lands(g0: f64, d0: f64, g1: f64, d1: f64, dt: f64, tol: f64) -> bool {
-    g0 < -tol || first_crossing(g0, d0 * dt, g1, d1 * dt, tol, false).is_some()
+    g0 < -tol || crosses(g0, d0 * dt, g1, d1 * dt, tol, false)
 }
 
 #[cfg(test)]
