@@ -205,18 +205,7 @@ impl TauInterp {
         let mut lam = [0.0; MAX_NODES];
         self.factors(tau_s, &mut lam);
         let cols = &self.columns[j * m_nodes * 4 * p..(j + 1) * m_nodes * 4 * p];
-        let (u, v) = (&mut u[..p], &mut v[..p]);
-        for (m, &l) in lam[..m_nodes].iter().enumerate() {
-            let c = &cols[m * 4 * p..(m + 1) * 4 * p];
-            let (a1, a2) = (l * q1, l * q2);
-            let (gx1, rest) = c.split_at(p);
-            let (gx2, rest) = rest.split_at(p);
-            let (gv1, gv2) = rest.split_at(p);
-            for i in 0..p {
-                u[i] += gx1[i] * a1 + gx2[i] * a2;
-                v[i] += gv1[i] * a1 + gv2[i] * a2;
-            }
-        }
+        super::kernels::add_node_columns(&lam[..m_nodes], cols, p, q1, q2, u, v);
     }
 
     /// The largest error of the interpolated weights at the points halfway

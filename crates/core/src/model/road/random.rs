@@ -174,7 +174,9 @@ pub fn sample_periodic(z: &[f64], dz: &[f64], dx_m: f64, x_m: f64) -> (f64, f64)
     let n = z.len();
     let period = dx_m * n as f64;
     let xx = x_m.rem_euclid(period) / dx_m;
-    let m = (xx.floor() as usize).min(n - 1);
+    // (`xx >= 0`: the truncation is the floor, without a libm call; a NaN
+    // gives 0 either way)
+    let m = (xx as usize).min(n - 1);
     let s = (xx - m as f64).clamp(0.0, 1.0);
     let m1 = (m + 1) % n;
     let (z0, z1, d0, d1) = (z[m], z[m1], dz[m] * dx_m, dz[m1] * dx_m);

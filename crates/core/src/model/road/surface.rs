@@ -144,7 +144,8 @@ impl SurfaceGrid {
         let u = (y_m - self.y0_m) / self.dy_m;
         if self.periodic_y {
             let u = u.rem_euclid(self.ny as f64);
-            let j0 = (u.floor() as usize).min(self.ny - 1);
+            // (`u >= 0`: truncation is the floor, without a libm call)
+            let j0 = (u as usize).min(self.ny - 1);
             return Some(RowBlend {
                 j0,
                 j1: (j0 + 1) % self.ny,
@@ -157,7 +158,8 @@ impl SurfaceGrid {
             return None;
         }
         let u = u.clamp(0.0, last);
-        let j0 = (u.floor() as usize).min(self.ny.saturating_sub(2));
+        // (`u >= 0` after the clamp: truncation is the floor)
+        let j0 = (u as usize).min(self.ny.saturating_sub(2));
         Some(RowBlend {
             j0,
             j1: (j0 + 1).min(self.ny - 1),
@@ -238,8 +240,10 @@ impl SurfaceGrid {
                 let (min_m, max_m) = self.x_range_m();
                 return Err(OutOfRange { x_m, min_m, max_m });
             }
+            // (`u >= 0`, not a NaN past the range check: the truncation is
+            // the floor, without a libm call)
             let u = u.clamp(0.0, last);
-            let m = (u.floor() as usize).min(self.nx - 2);
+            let m = (u as usize).min(self.nx - 2);
             (m, m + 1, (u - m as f64).clamp(0.0, 1.0))
         };
         Ok(hermite(z[m], z[m1], d[m], d[m1], self.dx_m, s))
