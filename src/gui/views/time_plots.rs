@@ -26,8 +26,9 @@ pub const GAP_PLOT_ID: &str = "tirecontact.time_plots.gap";
 /// Id of the contact state plot.
 pub const CONTACT_PLOT_ID: &str = "tirecontact.time_plots.contact";
 
-/// Points shown by default.
-const DEFAULT_SHOWN: usize = 8;
+/// Points shown by default: the first 16 (every point of a 5 × 3 patch;
+/// beyond 8 their colours go along a ramp, as in the PNG).
+pub const DEFAULT_SHOWN: usize = 16;
 
 /// Presentation options of the time plots.
 #[derive(Debug, Clone, PartialEq)]
@@ -190,10 +191,7 @@ pub fn show(
         // egui_plot stacks a bottom corner's legend upwards: the entries go
         // in reversed there, so that every legend reads point 0 first (the
         // force plot's flipped as its legend moved between corners)
-        let upwards = matches!(
-            legend_place::corner(ui.ctx(), legend_id),
-            egui_plot::Corner::LeftBottom | egui_plot::Corner::RightBottom
-        );
+        let upwards = legend_place::upwards(ui.ctx(), legend_id);
         let shown_plot = plot.show(ui, move |pui| {
             let (a, b) = if follow {
                 pui.set_plot_bounds_x(t0..=t1_axis);
