@@ -362,10 +362,18 @@ pub const LANE_CLEAR_PX: f32 = 3.5;
 /// Height (in lanes) a contact lane rises while its point is in contact:
 /// 0.7 of a lane where lanes are tall, less where they are a few px apart
 /// (at 0.7, lanes 10 px apart kept 1.8 px between their strokes, which
-/// anti-aliasing closed), at least 0.3. `lane_px`: px per lane.
+/// anti-aliasing closed), at least 0.2 (sixteen lanes at 1280 × 720 are
+/// 6 px apart: a rise of 0.3 left 2.3 px clear). `lane_px`: px per lane.
 pub fn lane_raise(lane_px: f32) -> f64 {
-    let free = (CURVE_WIDTH_PX + LANE_CLEAR_PX) / lane_px.max(1e-3);
-    f64::from((1.0 - free).clamp(0.3, 0.7))
+    let free = (lane_width_px(lane_px) + LANE_CLEAR_PX) / lane_px.max(1e-3);
+    f64::from((1.0 - free).clamp(0.2, 0.7))
+}
+
+/// Stroke width (px) of a contact lane `lane_px` apart from the next: the
+/// curves' width, 1 px where lanes are under 10 px apart (room for a
+/// visible rise).
+pub fn lane_width_px(lane_px: f32) -> f32 {
+    if lane_px < 10.0 { 1.0 } else { CURVE_WIDTH_PX }
 }
 
 /// Spacing (px) from which the contact plot's lane labels fade in, and at
@@ -419,14 +427,17 @@ fn draw_series(
         .filter(|(_, s)| **s)
         .map(|(i, _)| i)
         .collect();
+    let lane_px = pui.transform().dpos_dvalue_y().abs() as f32;
     for (lane, &i) in chosen.iter().enumerate() {
         let mut pts = h.decimated(def.what, i, a, b, buckets, def.scale);
+        let mut width = CURVE_WIDTH_PX;
         if def.what == Quantity::Contact {
             // lane of the point, raised while in contact
-            let raise = lane_raise(pui.transform().dpos_dvalue_y().abs() as f32);
+            let raise = lane_raise(lane_px);
             for p in &mut pts {
                 p[1] = lane as f64 + raise * p[1];
             }
+            width = lane_width_px(lane_px);
         }
         if let Some(top) = clip_top {
             clip_at(&mut pts, top, &mut marks);
@@ -435,7 +446,7 @@ fn draw_series(
         lines.push(
             Line::new(crate::output::figures::point_legend_name(&chosen, i), pts)
                 .color(super::shown_point_color(&chosen, i))
-                .width(CURVE_WIDTH_PX)
+                .width(width)
                 .allow_band(false),
         );
     }
