@@ -114,6 +114,8 @@ pub(crate) struct Handles {
     /// copy it to the clipboard.
     pub(super) shared_link: Option<String>,
     pub(super) copy_link: bool,
+    /// The last Share's link is shown in its window (to copy by hand).
+    pub(super) link_shown: bool,
 }
 
 /// The simulation of `scene` and its modes, the ring's identification
@@ -179,6 +181,7 @@ impl App {
                 fps: FrameRate::new(),
                 shared_link: None,
                 copy_link: false,
+                link_shown: false,
             },
         })
     }
@@ -333,6 +336,7 @@ impl App {
                 }
             }
             Command::CancelOverwrite => self.overwrite = None,
+            Command::CloseLink => self.handles.link_shown = false,
             Command::ExportPngDialog => self.open_png_dialog(),
             Command::ExportPng {
                 path,

@@ -449,3 +449,48 @@ fn a_minimised_window_does_not_simulate() {
     h.run_steps(3);
     assert!(h.state().simulation().time_s() > t_playing);
 }
+
+/// A new duration re-chooses the playback speed when the old one was the
+/// automatic choice or would play the new run in a blink (a 0.002 s run at
+/// 0.25x ended in 8 ms); a chosen speed that still plays it long enough
+/// stays.
+#[test]
+fn a_new_duration_rechooses_a_speed_that_would_end_in_a_blink() {
+    let mut h = harness(App::new(default_scene(), None).unwrap());
+    h.run();
+    let with_duration = |h: &mut egui_kittest::Harness<'_, App>, d: f64| {
+        let mut s = h.state().scene().clone();
+        s.duration_s = d;
+        h.state_mut().apply(Command::EditScene(Box::new(s)));
+        h.run_steps(2);
+        assert_eq!(h.state().scene().duration_s, d);
+        h.state().time_control().speed()
+    };
+    // the automatic choice follows the duration
+    assert_eq!(
+        h.state().time_control().speed(),
+        Speed::watchable(h.state().scene().duration_s)
+    );
+    assert_eq!(with_duration(&mut h, 2.0), Speed::watchable(2.0));
+    // chosen by hand: kept while the run lasts 4 s or more at it
+    h.state_mut().apply(Command::SetSpeed(Speed::Factor(0.25)));
+    assert_eq!(with_duration(&mut h, 1.5), Speed::Factor(0.25));
+    // ... and re-chosen when the run would end in 8 ms
+    let s = with_duration(&mut h, 0.002);
+    assert_eq!(s, Speed::watchable(0.002));
+    let Speed::Factor(f) = s else { panic!("{s:?}") };
+    assert!(0.002 / f >= 2.0, "the run plays {} s", 0.002 / f);
+}
+
+/// An FE tyre's 15 points are all shown when it opens (points 0–7 were).
+#[test]
+fn an_fe_tyre_opens_with_every_point_shown() {
+    let path = std::path::PathBuf::from("presets/fe_plate.ron");
+    let scene = Scene::load(&path).unwrap();
+    assert_eq!(scene.num_points(), 15);
+    let mut h = harness(App::new(scene, Some(path)).unwrap());
+    h.run();
+    let shown = &h.state().plot_options().shown;
+    assert_eq!(shown.len(), 15);
+    assert!(shown.iter().all(|&s| s), "{shown:?}");
+}

@@ -1,6 +1,6 @@
 //! The animation-frames export's messages: its start replaces an earlier
 //! message (a refusal stayed up during the export), and a cancelled export
-//! says where the frames written so far are.
+//! says where the frames written so far are, as information (not an error).
 
 use crate::harness::{harness_sized, settle};
 use crate::support::temp_dir;
@@ -40,6 +40,8 @@ fn the_export_replaces_old_messages_and_a_cancel_says_where_the_frames_are() {
     let r = h.state_mut().wait_frames_export().expect("no export");
     assert!(r.is_err(), "finished before the cancel: {r:?}");
     let m = h.state().message().unwrap();
+    // asked for: information, not an error
+    assert!(!m.error, "a cancel shown as an error: {m:?}");
     let at = std::path::absolute(&dir).unwrap();
     assert!(
         m.text.contains("written so far stay in") && m.text.contains(&at.display().to_string()),

@@ -31,5 +31,6 @@ mod phone;
 mod research;
 mod save_as;
 mod scene_view;
+mod share_window;
 mod status;
 mod time_plots;

@@ -219,3 +219,30 @@ fn the_colour_bar_caption_does_not_crowd_its_top_label() {
         );
     }
 }
+
+/// The plate tyre's parameters are edited in the side panel as the other
+/// tyres' are: a value out of range is refused naming the field, the value
+/// and the range; a good one restarts the run on the new plate.
+#[test]
+fn the_plate_is_edited_in_the_side_panel() {
+    use tirecontact::scene::Tyre;
+    let width = |h: &egui_kittest::Harness<'_, App>| match &h.state().scene().tyre {
+        Tyre::Plate { plate } => plate.width_m,
+        t => panic!("not a plate: {t:?}"),
+    };
+    let mut h = patch_app();
+    let before = width(&h);
+    type_into(&mut h, "tyre.plate.width_m", "20");
+    settle(&mut h);
+    let b = banner(&h);
+    assert!(
+        b.contains("plate width W") && b.contains("got 20 m") && b.contains("from 0.001 to 10 m"),
+        "{b}"
+    );
+    assert_eq!(width(&h), before);
+    advance(&mut h, 5);
+    type_into(&mut h, "tyre.plate.width_m", "0.2");
+    settle(&mut h);
+    assert_eq!(width(&h), 0.2);
+    assert_eq!(h.state().simulation().steps(), 0, "the run restarted");
+}

@@ -157,10 +157,7 @@ fn the_patch_view_starts_empty_and_counts_only_loaded_points() {
             .find(|t| t.contains("contact area"))
             .expect("the header");
         if total == 0.0 {
-            assert!(
-                header.contains("contact area 0.0 cm²"),
-                "{preset}: {header}"
-            );
+            assert!(header.contains("contact area 0 cm²"), "{preset}: {header}");
         }
         let carrying = sim.force_n().iter().filter(|&&f| f > 0.0).count();
         assert!(
@@ -168,4 +165,23 @@ fn the_patch_view_starts_empty_and_counts_only_loaded_points() {
             "{preset}: {header}"
         );
     }
+}
+
+/// The header's figures to three significant digits with their units (it
+/// read "cell 6.0 × 20.0 mm", "438.6 N").
+#[test]
+fn the_patch_header_rounds_to_meaningful_digits() {
+    use tirecontact::gui::views::patch_view::header_text;
+    assert_eq!(
+        header_text(0.090_37, 438.62, 22.8e-4, (19, 96), (0.006, 0.02)),
+        "t = 0.0904 s: total force 439 N, contact area 22.8 cm² (19 of 96 points carrying force, cell 6 × 20 mm)"
+    );
+    assert_eq!(
+        header_text(0.0, 0.0, 0.0, (0, 96), (0.002_5, 0.03)),
+        "t = 0 s: total force 0 N, contact area 0 cm² (0 of 96 points carrying force, cell 2.5 × 30 mm)"
+    );
+    // a small force keeps its digits
+    assert!(
+        header_text(1e-5, 0.012_34, 1e-4, (3, 96), (0.006, 0.02)).contains("total force 0.0123 N")
+    );
 }

@@ -4,6 +4,7 @@
 
 use crate::harness::{harness_sized, settle};
 use crate::support::temp_dir;
+use egui_kittest::kittest::Queryable;
 use tirecontact::Scene;
 use tirecontact::gui::{App, Command};
 
@@ -103,4 +104,63 @@ fn a_save_over_a_shipped_preset_asks_first() {
     h.state_mut().apply(Command::SavePath(other.clone()));
     h.run_steps(2);
     assert!(!h.state().prompt_open());
+}
+
+/// Save As from the question about a shipped preset offers the preset's
+/// name in the user's folder (the home folder before any other), never the
+/// shipped file: offered again, Enter asked the same question in a loop.
+#[test]
+fn save_as_from_the_shipped_question_offers_the_users_folder() {
+    let tmp = temp_dir();
+    let file = shipped_copy(tmp.path());
+    let before = std::fs::read_to_string(&file).unwrap();
+    let mut h = harness_sized(App::with_default_preset(), [1600.0, 1000.0]);
+    settle(&mut h);
+    let open_edit_save = |h: &mut egui_kittest::Harness<'_, App>| {
+        h.state_mut().apply(Command::OpenPath(file.clone()));
+        settle(h);
+        let mut edited = h.state().scene().clone();
+        edited.speed_mps *= 1.5;
+        h.state_mut().apply(Command::EditScene(Box::new(edited)));
+        settle(h);
+        h.state_mut().apply(Command::Save);
+        h.run_steps(2);
+        assert!(h.state().prompt_open(), "no question before the overwrite");
+        h.get_by_label("Save as…").click();
+        h.run_steps(2);
+        h.state()
+            .file_prompt()
+            .expect("no Save As prompt")
+            .path
+            .clone()
+    };
+    // nothing saved yet: the home folder
+    let offer = open_edit_save(&mut h);
+    assert_ne!(std::path::Path::new(&offer), file.as_path());
+    if let Some(home) = std::env::home_dir() {
+        assert_eq!(std::path::Path::new(&offer), home.join("three_points.ron"));
+    }
+    h.key_press(egui::Key::Escape);
+    h.run_steps(2);
+    // a scene saved into a folder of the user's: that folder, and Enter
+    // saves there without a question
+    let mine = tmp.path().join("mine");
+    std::fs::create_dir(&mine).unwrap();
+    h.state_mut()
+        .apply(Command::SavePath(mine.join("first.ron")));
+    h.run_steps(2);
+    assert!(mine.join("first.ron").is_file());
+    let offer = open_edit_save(&mut h);
+    assert_eq!(std::path::Path::new(&offer), mine.join("three_points.ron"));
+    h.key_press(egui::Key::Enter);
+    h.run_steps(2);
+    assert!(!h.state().prompt_open(), "a question after Enter");
+    assert!(!h.state().is_dirty());
+    assert_eq!(
+        Scene::load(&mine.join("three_points.ron"))
+            .unwrap()
+            .speed_mps,
+        h.state().scene().speed_mps
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), before);
 }

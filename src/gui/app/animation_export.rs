@@ -13,13 +13,15 @@ impl App {
     pub fn wait_frames_export(&mut self) -> Option<Result<u64, String>> {
         let job = self.handles.frames_job.take()?;
         let dir = job.dir.clone();
+        let cancelled = job.cancel_requested();
         let r = job.wait();
-        self.frames_done(&dir, &r);
+        self.frames_done(&dir, &r, cancelled);
         Some(r)
     }
 
-    /// Says how the export ended, and where the frames went.
-    fn frames_done(&mut self, dir: &Path, r: &Result<u64, String>) {
+    /// Says how the export ended, and where the frames went: a stop the
+    /// user asked for (`cancelled`) is information, not an error.
+    fn frames_done(&mut self, dir: &Path, r: &Result<u64, String>, cancelled: bool) {
         match r {
             Ok(n) => self.info(format!(
                 "wrote {n} animation frames (frame_00000.png …) into {}",
@@ -31,12 +33,17 @@ impl App {
                 // the frames written before the stop stay: say where
                 let kept = crate::output::animation::old_frames(dir).len();
                 let at = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
-                self.error(format!(
+                let text = format!(
                     "Animation export stopped: {e}. The {} written so far stay in {} \
                      (frame_00000.png …).",
                     crate::base::error::count(kept, "frame"),
                     at.display()
-                ))
+                );
+                if cancelled {
+                    self.info(text);
+                } else {
+                    self.error(text);
+                }
             }
         }
     }
@@ -94,7 +101,7 @@ impl App {
 
     pub(super) fn frames_export_ended(&mut self, r: Result<u64, String>) {
         if let Some(job) = self.handles.frames_job.take() {
-            self.frames_done(&job.dir, &r);
+            self.frames_done(&job.dir, &r, job.cancel_requested());
         }
     }
 }

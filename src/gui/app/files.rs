@@ -155,7 +155,9 @@ impl App {
                 self.modes = modes;
                 self.doc.saved = scene.clone();
                 self.doc.scene = scene;
-                if let Some(dir) = path.as_deref().and_then(Path::parent) {
+                if let Some(dir) = path.as_deref().and_then(Path::parent)
+                    && !is_shipped_folder(dir)
+                {
                     self.last_dir = Some(dir.to_path_buf());
                 }
                 self.doc.path = path;
@@ -203,9 +205,23 @@ impl App {
                     format!("{}{}", d.display(), std::path::MAIN_SEPARATOR)
                 }),
             // the current file, or a name in the folder of the last file
-            // opened or saved (else the working directory)
+            // opened or saved outside the shipped presets (else the working
+            // directory). A shipped preset is never offered (Save As from
+            // the question about overwriting one offered it again, and
+            // Enter asked again): its name in that folder, else in the
+            // home folder.
             FileAction::SaveAs => match (&self.doc.path, &self.last_dir) {
-                (Some(p), _) => p.display().to_string(),
+                (Some(p), _) if !is_shipped_preset(p) => p.display().to_string(),
+                (Some(p), dir) => {
+                    let name = p.file_name().map_or_else(
+                        || format!("{stem}.ron"),
+                        |n| n.to_string_lossy().into_owned(),
+                    );
+                    match dir.clone().or_else(std::env::home_dir) {
+                        Some(d) => d.join(name).display().to_string(),
+                        None => name,
+                    }
+                }
                 (None, Some(d)) => d.join(format!("{stem}.ron")).display().to_string(),
                 (None, None) => format!("{stem}.ron"),
             },
@@ -246,7 +262,9 @@ impl App {
             Ok(()) => {
                 self.doc.scene.description = out.description;
                 self.doc.path = Some(path.to_path_buf());
-                self.last_dir = path.parent().map(Path::to_path_buf);
+                if let Some(dir) = path.parent().filter(|d| !is_shipped_folder(d)) {
+                    self.last_dir = Some(dir.to_path_buf());
+                }
                 self.doc.scene.base_dir = path.parent().map(Path::to_path_buf);
                 self.doc.saved = self.doc.scene.clone();
                 self.info(format!("saved {}", path.display()));
@@ -434,10 +452,16 @@ pub(crate) fn is_shipped_preset(path: &Path) -> bool {
     if !path.is_file() {
         return false;
     }
-    let Some(dir) = std::path::absolute(path)
+    std::path::absolute(path)
         .ok()
         .and_then(|p| p.parent().map(Path::to_path_buf))
-    else {
+        .is_some_and(|dir| is_shipped_folder(&dir))
+}
+
+/// Whether `dir` is a folder of presets shipped with the app (see
+/// [`is_shipped_preset`]).
+pub(crate) fn is_shipped_folder(dir: &Path) -> bool {
+    let Ok(dir) = std::path::absolute(dir) else {
         return false;
     };
     let canonical = |d: &Path| std::fs::canonicalize(d).ok();

@@ -53,14 +53,15 @@ impl App {
         });
     }
 
-    /// Whether a prompt (a file, PNG or frames dialog, or the
-    /// unsaved-changes question) is open.
+    /// Whether a prompt (a file, PNG or frames dialog, the
+    /// unsaved-changes question or the shared link) is open.
     pub fn prompt_open(&self) -> bool {
         self.file_prompt.is_some()
             || self.png_dialog.is_some()
             || self.frames_dialog.is_some()
             || self.confirm.is_some()
             || self.overwrite.is_some()
+            || (self.handles.link_shown && self.handles.shared_link.is_some())
     }
 
     /// What the status bar shows.
@@ -178,6 +179,14 @@ impl App {
             &mut cmds,
         );
         crate::gui::chrome::dialogs::overwrite_window(&ctx, self.overwrite.as_deref(), &mut cmds);
+        crate::gui::chrome::dialogs::link_window(
+            &ctx,
+            self.handles
+                .shared_link
+                .as_deref()
+                .filter(|_| self.handles.link_shown),
+            &mut cmds,
+        );
         crate::gui::chrome::dialogs::png_window(&ctx, views, &mut self.png_dialog, &mut cmds);
         crate::gui::chrome::file_prompt::window(&ctx, &mut self.file_prompt, &mut cmds);
         crate::gui::chrome::frames_dialog::dialog(&ctx, views, &mut self.frames_dialog, &mut cmds);
@@ -194,6 +203,9 @@ impl App {
             && let Some(link) = &self.handles.shared_link
         {
             ctx.copy_text(link.clone());
+            // and in a window: a system without a clipboard (or a page
+            // refused it) leaves it to be copied by hand
+            self.handles.link_shown = true;
         }
         if std::mem::take(&mut self.forget_fields) {
             crate::gui::widgets::fields::forget_all(&ctx);

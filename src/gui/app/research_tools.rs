@@ -86,8 +86,8 @@ impl App {
             // in a browser: the PNG's bytes offered as a download
             ResearchCommand::ExportSweepPngDialog if crate::gui::chrome::web::IN_BROWSER => {
                 let r = self.sweep_figure().and_then(|fig| {
-                    crate::output::figures::render_png_bytes(&fig, 1400, 1400)
-                        .map_err(|e| e.to_string())
+                    let (w, h) = crate::studies::sweep::report::FIGURE_PX;
+                    crate::output::figures::render_png_bytes(&fig, w, h).map_err(|e| e.to_string())
                 });
                 match r {
                     Ok(bytes) => {
@@ -101,9 +101,11 @@ impl App {
                 self.file_prompt = Some(FilePrompt::new(FileAction::SweepPng, "sweep.png"));
             }
             ResearchCommand::ExportSweepPng(path) => {
+                // the size of `sweep --plot`'s figure: at 1400 × 1400 the
+                // y titles were longer than their plots
                 let r = self.sweep_figure().and_then(|fig| {
-                    crate::output::figures::render_png(&fig, &path, 1400, 1400)
-                        .map_err(|e| e.to_string())
+                    let (w, h) = crate::studies::sweep::report::FIGURE_PX;
+                    crate::output::figures::render_png(&fig, &path, w, h).map_err(|e| e.to_string())
                 });
                 self.report_export(&path, "sweep PNG", r);
             }

@@ -268,10 +268,22 @@ impl App {
                         | crate::scene::Tyre::FeModes { .. }
                 ) && matches!(&new.tyre, crate::scene::Tyre::Modal { modes } if *modes == self.modes);
                 let playing = self.time.is_playing();
+                // a new duration re-chooses the speed if it was the old
+                // duration's own choice, or if the new run would be over in
+                // a blink at it (0.002 s at 0.25x: 8 ms)
+                let old_speed = self.time.speed();
+                let rechoose = new.duration_s != old.duration_s
+                    && !self.classroom.on
+                    && (old_speed == Speed::watchable(old.duration_s)
+                        || matches!(old_speed, Speed::Factor(f)
+                            if new.duration_s / f < crate::gui::model::time_control::MIN_WATCH_S));
                 self.sim = sim;
                 self.modes = modes;
                 self.doc.scene = new;
                 self.reset_run();
+                if rechoose {
+                    self.set_watchable_speed();
+                }
                 if playing {
                     self.time.play();
                 }

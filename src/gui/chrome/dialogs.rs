@@ -231,6 +231,50 @@ pub fn overwrite_window(
     }
 }
 
+/// The accessible name of the shared link's text field.
+pub const LINK_FIELD: &str = "link to the scene";
+
+/// The last Share's link in a selectable text field: it was copied to the
+/// clipboard too, but where there is none (or a page was refused it) the
+/// text is copied from here by hand. Close, Escape or a click beside it
+/// closes it.
+pub fn link_window(ctx: &egui::Context, link: Option<&str>, cmds: &mut Vec<Command>) {
+    let Some(link) = link else { return };
+    let shown = egui::Modal::new(egui::Id::unique("tirecontact.link")).show(ctx, |ui| {
+        ui.heading("Link to this scene");
+        ui.set_max_width(560.0);
+        ui.add(
+            egui::Label::new(
+                "Copied to the clipboard. If pasting gives nothing, select the text below \
+                 (Ctrl+A in it) and copy it (Ctrl+C).",
+            )
+            .wrap(),
+        );
+        // a &str: selectable and copyable, never edited
+        let mut text = link;
+        // a long link (a large patch) scrolls instead of growing the window
+        // past the screen
+        egui::ScrollArea::vertical()
+            .max_height(300.0)
+            .show(ui, |ui| {
+                ui.add(
+                    egui::TextEdit::multiline(&mut text)
+                        .desired_width(540.0)
+                        .desired_rows(4)
+                        .font(egui::TextStyle::Monospace),
+                )
+                .accessible_name(LINK_FIELD);
+            });
+        ui.label(egui::RichText::new(format!("{} characters", link.chars().count())).weak());
+        if ui.button("Close").on_hover_text("Escape").clicked() {
+            cmds.push(Command::CloseLink);
+        }
+    });
+    if shown.should_close() && !cmds.contains(&Command::CloseLink) {
+        cmds.push(Command::CloseLink);
+    }
+}
+
 /// PNG export settings: size in pixels, then the file dialog.
 pub fn png_window(
     ctx: &egui::Context,

@@ -70,6 +70,11 @@ impl FramesJob {
         self.job.cancel();
     }
 
+    /// Whether Cancel was asked for.
+    pub fn cancel_requested(&self) -> bool {
+        self.job.cancel_requested()
+    }
+
     /// The result, once the thread has finished.
     pub fn poll(&self) -> Option<Result<u64, String>> {
         self.job.poll().map(Result::flatten)

@@ -176,6 +176,8 @@ pub enum Command {
     /// replace (asked first), or keep it.
     ConfirmOverwrite,
     CancelOverwrite,
+    /// Close the window showing the last Share's link.
+    CloseLink,
     /// The frame's share of the run: take the solver steps the time
     /// control asks for in `frame_s` of wall time (the frame loop pushes it).
     Advance {

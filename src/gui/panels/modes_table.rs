@@ -26,7 +26,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>)
             identification,
             ..
         } => return measured_summary(ui, scene, file, identification, modes, cmds),
-        Tyre::Plate { plate } => return plate_summary(ui, plate, modes),
+        Tyre::Plate { plate } => return plate_summary(ui, scene, plate, modes, cmds),
         Tyre::Modal { .. } | Tyre::FeModes { .. } => {}
     }
     section(ui, "Modes", Apply::Restart);
@@ -228,42 +228,94 @@ fn ring_summary(
     identified_modes(ui, scene, modes, cmds);
 }
 
-/// A plate tyre: its parameters and the number of modes kept (read-only:
-/// the plate is edited in the preset file).
-fn plate_summary(ui: &mut Ui, plate: &crate::model::plate::PlateParams, modes: &[Mode]) {
+/// A plate tyre: its parameters, each edited as the other tyres' (a
+/// refused value named with its field, the value and the range accepted),
+/// and the number of modes kept.
+fn plate_summary(
+    ui: &mut Ui,
+    scene: &Scene,
+    plate: &crate::model::plate::PlateParams,
+    modes: &[Mode],
+    cmds: &mut Vec<Command>,
+) {
+    use crate::model::plate::PlateParams;
     section(
         ui,
         "Tyre: orthotropic plate (docs/method.md §5.3)",
         Apply::Restart,
     );
-    let num = crate::gui::widgets::number::format_number;
+    type Get = fn(&mut PlateParams) -> &mut f64;
+    let rows: [(&str, &str, &str, Get); 10] = [
+        ("width W", "tyre.plate.width_m", "m", |p| &mut p.width_m),
+        ("circumference L", "tyre.plate.circumference_m", "m", |p| {
+            &mut p.circumference_m
+        }),
+        (
+            "mass per area",
+            "tyre.plate.mass_per_area_kg_m2",
+            "kg/m²",
+            |p| &mut p.mass_per_area_kg_m2,
+        ),
+        (
+            "bending along Bx",
+            "tyre.plate.bending_along_nm",
+            "N·m",
+            |p| &mut p.bending_along_nm,
+        ),
+        (
+            "bending across By",
+            "tyre.plate.bending_across_nm",
+            "N·m",
+            |p| &mut p.bending_across_nm,
+        ),
+        (
+            "tension along Tx",
+            "tyre.plate.tension_along_n_m",
+            "N/m",
+            |p| &mut p.tension_along_n_m,
+        ),
+        (
+            "tension across Ty",
+            "tyre.plate.tension_across_n_m",
+            "N/m",
+            |p| &mut p.tension_across_n_m,
+        ),
+        ("foundation s", "tyre.plate.foundation_n_m3", "N/m³", |p| {
+            &mut p.foundation_n_m3
+        }),
+        ("damping ratio", "tyre.plate.damping_ratio", "", |p| {
+            &mut p.damping_ratio
+        }),
+        ("modes up to", "tyre.plate.max_freq_hz", "Hz", |p| {
+            &mut p.max_freq_hz
+        }),
+    ];
     Grid::new("tirecontact.plate")
         .num_columns(2)
         .show(ui, |ui| {
-            let rows = [
-                ("width W", plate.width_m, "m"),
-                ("circumference L", plate.circumference_m, "m"),
-                ("mass per area", plate.mass_per_area_kg_m2, "kg/m²"),
-                ("bending along Bx", plate.bending_along_nm, "N·m"),
-                ("bending across By", plate.bending_across_nm, "N·m"),
-                ("tension along Tx", plate.tension_along_n_m, "N/m"),
-                ("tension across Ty", plate.tension_across_n_m, "N/m"),
-                ("foundation s", plate.foundation_n_m3, "N/m³"),
-                ("damping ratio", plate.damping_ratio, ""),
-                ("modes up to", plate.max_freq_hz, "Hz"),
-            ];
-            for (name, v, unit) in rows {
-                ui.label(name);
-                ui.label(format!("{} {unit}", num(v)));
+            for (label, path, unit, get) in rows {
+                ui.label(label);
+                let mut now = plate.clone();
+                let value = *get(&mut now);
+                push_edit(
+                    cmds,
+                    NumField::new(path, value, unit, Apply::Restart).show(ui, |v| {
+                        let mut s = scene.clone();
+                        if let Tyre::Plate { plate } = &mut s.tyre {
+                            *get(plate) = v;
+                        }
+                        s
+                    }),
+                );
                 ui.end_row();
             }
         });
     let lowest = modes.first().map_or(f64::NAN, |m| m.freq_hz);
     ui.label(
         egui::RichText::new(format!(
-            "{} modes from {} Hz, in closed form at the points; the plate is edited in the preset file",
+            "{} modes from {} Hz, in closed form at the points",
             modes.len(),
-            num(lowest)
+            crate::gui::widgets::number::format_number(lowest)
         ))
         .weak(),
     );

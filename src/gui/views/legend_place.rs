@@ -39,6 +39,20 @@ pub fn corner(ctx: &Context, id: Id) -> Corner {
         .unwrap_or(Corner::RightTop)
 }
 
+/// Whether the legend of plot `id` stacks its entries upwards this frame:
+/// egui_plot lays out a bottom corner's legend from the bottom, so its
+/// entries go in reversed there for it to read first to last downwards as
+/// in a top corner (and as in the PNG figures).
+pub fn upwards(ctx: &Context, id: Id) -> bool {
+    matches!(corner(ctx, id), Corner::LeftBottom | Corner::RightBottom)
+}
+
+/// Puts the legend of plot `id` in corner `c` on the next frame (until its
+/// curves choose another).
+pub fn set_corner(ctx: &Context, id: Id, c: Corner) {
+    ctx.data_mut(|d| d.insert_temp(key(id), c));
+}
+
 /// The legend of plot `id`: in the corner its curves left emptiest on the
 /// last frame, with small text when the plot is short.
 pub fn legend(ctx: &Context, id: Id, plot_height_px: f32) -> Legend {

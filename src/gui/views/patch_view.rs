@@ -14,10 +14,34 @@ use egui_plot::{Line, Plot, PlotPoints};
 /// Road samples per cell side drawn under the heat map.
 const ROAD_SAMPLES_PER_CELL: usize = 3;
 
-/// Draws the patch view; a click on a row pushes [`Command::ShowPoints`].
 /// The colour bar's caption.
 pub const COLOUR_BAR_CAPTION: &str = "force (N)";
 
+/// The patch at time `t_s`, each figure to three significant digits with
+/// its unit: `t = 0.0904 s: total force 439 N, contact area 22.8 cm² (19
+/// of 96 points carrying force, cell 6 × 20 mm)`; `carrying` is `(points
+/// carrying force, points)`, `cell_m` the cell along and across (m).
+pub fn header_text(
+    t_s: f64,
+    total_n: f64,
+    area_m2: f64,
+    carrying: (usize, usize),
+    cell_m: (f64, f64),
+) -> String {
+    let n = |x: f64| crate::output::summary::short_num(x, 3);
+    format!(
+        "t = {} s: total force {} N, contact area {} cm² ({} of {} points carrying force, cell {} × {} mm)",
+        n(t_s),
+        n(total_n),
+        n(area_m2 * 1e4),
+        carrying.0,
+        carrying.1,
+        n(cell_m.0 * 1e3),
+        n(cell_m.1 * 1e3),
+    )
+}
+
+/// Draws the patch view; a click on a row pushes [`Command::ShowPoints`].
 pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Command>) {
     let scene = sim.problem();
     let layout = match PatchLayout::of(scene) {
@@ -40,14 +64,6 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
     let scale_n = if max_n > 0.0 { max_n } else { 1.0 };
     let on = crate::output::patch::carrying_points(forces);
     let total: f64 = forces.iter().sum();
-    // a small force in its own digits: "0.0 N" beside the area of the
-    // points touching the road while the preload ramps in read as a
-    // contradiction
-    let total_text = if total >= 0.1 || total == 0.0 {
-        format!("{total:.1} N")
-    } else {
-        format!("{} N", crate::output::summary::short_num(total, 2))
-    };
     let (ramp_w, _) = crate::model::road::ramp(sim.time_s(), scene.ramp_s);
     // on a ramped run all along, so that the map keeps its place
     if scene.ramp_s > 0.0 {
@@ -62,12 +78,14 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
         ui.label(egui::RichText::new(text).color(ui.visuals().weak_text_color()));
     }
     ui.label(format!(
-        "t = {:.4} s: total force {total_text}, contact area {:.1} cm² ({on} of {} points carrying force, cell {:.1} × {:.1} mm); click a row to see its points in the time plots",
-        sim.time_s(),
-        layout.contact_area_m2(forces) * 1e4,
-        layout.xy_m.len(),
-        layout.cell_m.0 * 1e3,
-        layout.cell_m.1 * 1e3,
+        "{}; click a row to see its points in the time plots",
+        header_text(
+            sim.time_s(),
+            total,
+            layout.contact_area_m2(forces),
+            (on, layout.xy_m.len()),
+            layout.cell_m,
+        )
     ));
     if ui
         .button(HEAT_MAP_PNG_BUTTON)

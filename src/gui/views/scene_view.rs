@@ -54,11 +54,8 @@ impl Default for SceneViewOptions {
 /// `±HEIGHTS_SPAN / 2 · e · hmax` (room for the force arrows and labels).
 const HEIGHTS_SPAN: f64 = 5.0;
 
-/// The exaggeration at which the plot's heights (`HEIGHTS_SPAN · hmax`,
-/// exaggerated) fill the plot's height when its width shows the drawn
-/// road, `width_in_heights = (x1 − x0) / hmax`: the largest 1-2-5 value
-/// that does, so that the road spans the plot's width at aspect 1 (a fixed
-/// factor left a short classroom plot a road in the middle third).
+/// The automatic exaggeration of the plot about to be drawn in `ui`
+/// ([`auto_exaggeration_for`] of the frame the plot will have).
 fn auto_exaggeration(ui: &Ui, width_in_heights: f64, round_up: bool) -> (f64, f64) {
     let avail = ui.available_size();
     let row = ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y;
@@ -66,7 +63,31 @@ fn auto_exaggeration(ui: &Ui, width_in_heights: f64, round_up: bool) -> (f64, f6
     let above = 2.0 * row;
     let frame_h = (avail.y - above - super::titled_x_axis_px(ui)).max(60.0);
     let frame_w = (avail.x - 44.0 - row).max(100.0);
-    let fit = f64::from(frame_h / frame_w) * width_in_heights / HEIGHTS_SPAN;
+    auto_exaggeration_for([frame_w, frame_h], width_in_heights, round_up)
+}
+
+/// The automatic exaggeration `e` of a scene plot whose frame is
+/// `frame_px` (width, height) and whose drawn road is `width_in_heights =
+/// (x1 − x0) / hmax` long, with `fit`, the factor at which the heights
+/// (`HEIGHTS_SPAN · hmax`, exaggerated) fill the frame's height when its
+/// width shows the drawn road at aspect 1; returns `(e, fit)`.
+///
+/// The normal view takes the largest 1-2-5 value not above `fit`, so that
+/// the road spans the plot's width (a fixed factor left a short classroom
+/// plot a road in the middle third); the axis then spans `HEIGHTS_SPAN ·
+/// hmax · fit / e` true metres. `round_up` (classroom) takes the smallest
+/// 1-2-5 value not below `fit` and widens the road window by `e / fit`:
+/// the axis spans `HEIGHTS_SPAN · hmax` true metres whatever the plot's
+/// shape, so the largest height (the road's or the tyre's) takes a fifth
+/// of the plot's height. (Rounded down, the classroom's short, wide plot
+/// took ×2 for a fit of 4.9 on the paper preset, a −20…15 mm axis on which
+/// its 1 mm road looked flat.)
+pub fn auto_exaggeration_for(
+    frame_px: [f32; 2],
+    width_in_heights: f64,
+    round_up: bool,
+) -> (f64, f64) {
+    let fit = f64::from(frame_px[1] / frame_px[0]) * width_in_heights / HEIGHTS_SPAN;
     let e = if round_up {
         ceil_125(fit)
     } else {

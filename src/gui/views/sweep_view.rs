@@ -212,6 +212,15 @@ pub const RIGID_FORCE_NOTE: &str = "Rigid contact: a landing is an impulse. The 
 is the contact force without impacts and the impacts are shown as impulses (N·s); both \
 keep their values when dt shrinks.";
 
+/// The ids of the four plots (max force, impulse, contact, bands); their
+/// legends' ids are `egui::Id::unique` of these.
+pub const PLOT_IDS: [&str; 4] = [
+    "tirecontact.sweep_max",
+    "tirecontact.sweep_impulse",
+    "tirecontact.sweep_contact",
+    "tirecontact.sweep_bands",
+];
+
 /// Named, coloured curves of one plot.
 type Curves = Vec<(String, Color32, Vec<[f64; 2]>)>;
 
@@ -262,10 +271,10 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
         })
         .collect();
     let grid: [(&str, &str, Curves); 4] = [
-        ("tirecontact.sweep_max", Y_TITLES[0], force),
-        ("tirecontact.sweep_impulse", Y_TITLES[1], impulse),
-        ("tirecontact.sweep_contact", Y_TITLES[2], contact),
-        ("tirecontact.sweep_bands", Y_TITLES[3], bands),
+        (PLOT_IDS[0], Y_TITLES[0], force),
+        (PLOT_IDS[1], Y_TITLES[1], impulse),
+        (PLOT_IDS[2], Y_TITLES[2], contact),
+        (PLOT_IDS[3], Y_TITLES[3], bands),
     ];
     let mut it = grid.into_iter();
     for _ in 0..2 {
@@ -277,6 +286,11 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
                 let legend_id = egui::Id::unique(id);
                 let labels: Vec<&str> = series.iter().map(|c| c.0.as_str()).collect();
                 let legend_px = super::legend_place::legend_size(ui, &labels, h);
+                // first to last downwards in every corner, as in the PNG
+                let mut series = series;
+                if super::legend_place::upwards(ui.ctx(), legend_id) {
+                    series.reverse();
+                }
                 super::nice_y_axis(Plot::new(id))
                     .width(w)
                     .height(h)

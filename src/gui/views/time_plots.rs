@@ -26,8 +26,9 @@ pub const GAP_PLOT_ID: &str = "tirecontact.time_plots.gap";
 /// Id of the contact state plot.
 pub const CONTACT_PLOT_ID: &str = "tirecontact.time_plots.contact";
 
-/// Points shown by default.
-const DEFAULT_SHOWN: usize = 8;
+/// Points shown by default: the first 16 (every point of a 5 × 3 patch;
+/// beyond 8 their colours go along a ramp, as in the PNG).
+pub const DEFAULT_SHOWN: usize = 16;
 
 /// Presentation options of the time plots.
 #[derive(Debug, Clone, PartialEq)]
@@ -190,10 +191,7 @@ pub fn show(
         // egui_plot stacks a bottom corner's legend upwards: the entries go
         // in reversed there, so that every legend reads point 0 first (the
         // force plot's flipped as its legend moved between corners)
-        let upwards = matches!(
-            legend_place::corner(ui.ctx(), legend_id),
-            egui_plot::Corner::LeftBottom | egui_plot::Corner::RightBottom
-        );
+        let upwards = legend_place::upwards(ui.ctx(), legend_id);
         let shown_plot = plot.show(ui, move |pui| {
             let (a, b) = if follow {
                 pui.set_plot_bounds_x(t0..=t1_axis);
@@ -364,10 +362,18 @@ pub const LANE_CLEAR_PX: f32 = 3.5;
 /// Height (in lanes) a contact lane rises while its point is in contact:
 /// 0.7 of a lane where lanes are tall, less where they are a few px apart
 /// (at 0.7, lanes 10 px apart kept 1.8 px between their strokes, which
-/// anti-aliasing closed), at least 0.3. `lane_px`: px per lane.
+/// anti-aliasing closed), at least 0.2 (sixteen lanes at 1280 × 720 are
+/// 6 px apart: a rise of 0.3 left 2.3 px clear). `lane_px`: px per lane.
 pub fn lane_raise(lane_px: f32) -> f64 {
-    let free = (CURVE_WIDTH_PX + LANE_CLEAR_PX) / lane_px.max(1e-3);
-    f64::from((1.0 - free).clamp(0.3, 0.7))
+    let free = (lane_width_px(lane_px) + LANE_CLEAR_PX) / lane_px.max(1e-3);
+    f64::from((1.0 - free).clamp(0.2, 0.7))
+}
+
+/// Stroke width (px) of a contact lane `lane_px` apart from the next: the
+/// curves' width, 1 px where lanes are under 10 px apart (room for a
+/// visible rise).
+pub fn lane_width_px(lane_px: f32) -> f32 {
+    if lane_px < 10.0 { 1.0 } else { CURVE_WIDTH_PX }
 }
 
 /// Spacing (px) from which the contact plot's lane labels fade in, and at
@@ -421,14 +427,17 @@ fn draw_series(
         .filter(|(_, s)| **s)
         .map(|(i, _)| i)
         .collect();
+    let lane_px = pui.transform().dpos_dvalue_y().abs() as f32;
     for (lane, &i) in chosen.iter().enumerate() {
         let mut pts = h.decimated(def.what, i, a, b, buckets, def.scale);
+        let mut width = CURVE_WIDTH_PX;
         if def.what == Quantity::Contact {
             // lane of the point, raised while in contact
-            let raise = lane_raise(pui.transform().dpos_dvalue_y().abs() as f32);
+            let raise = lane_raise(lane_px);
             for p in &mut pts {
                 p[1] = lane as f64 + raise * p[1];
             }
+            width = lane_width_px(lane_px);
         }
         if let Some(top) = clip_top {
             clip_at(&mut pts, top, &mut marks);
@@ -437,7 +446,7 @@ fn draw_series(
         lines.push(
             Line::new(crate::output::figures::point_legend_name(&chosen, i), pts)
                 .color(super::shown_point_color(&chosen, i))
-                .width(CURVE_WIDTH_PX)
+                .width(width)
                 .allow_band(false),
         );
     }

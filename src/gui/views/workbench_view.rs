@@ -97,9 +97,10 @@ pub fn show(ui: &mut Ui, s: &Shown<'_>, cmds: &mut Vec<Command>) {
         .show(ui, |ui| body(ui, s, cmds));
 }
 
-/// The count of modes each part of the workbench gives, in one line: the
-/// run's (the side panel's list), the picks' and the frequency-domain
-/// fit's, each named for what it counts.
+/// The count of modes each part of the workbench gives, one a line (in
+/// one line the three wrapped mid-count in a 1280 px window): the run's
+/// (the side panel's list), the picks' and the frequency-domain fit's,
+/// each named for what it counts.
 pub fn counts_text(
     run_modes: usize,
     in_use: bool,
@@ -129,7 +130,7 @@ pub fn counts_text(
             "{k} in the frequency-domain fit (LSCF, a check of the FRFs; the run does not use it)"
         ));
     }
-    format!("Modes: {}", parts.join(" · "))
+    format!("Modes: {}", parts.join("\n· "))
 }
 
 fn body(ui: &mut Ui, s: &Shown<'_>, cmds: &mut Vec<Command>) {

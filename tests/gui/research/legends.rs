@@ -208,4 +208,48 @@ fn sweep_legends_keep_off_the_curves() {
     assert!(n >= 9, "legend entries found: {n}");
     eprintln!("sweep: {ink:.0} px of curve under {n} legend entries");
     assert!(ink <= 10.0, "{ink} px of curve under the legends");
+    // every legend reads first to last downwards in every corner, as the
+    // PNG's do: a bottom corner's legend stacked them upwards
+    use egui_plot::Corner;
+    use tirecontact::gui::views::{legend_place, sweep_view::PLOT_IDS};
+    let bands = [
+        "315 Hz band",
+        "500 Hz band",
+        "800 Hz band",
+        "1250 Hz band",
+        "2000 Hz band",
+    ];
+    for corner in [
+        Corner::LeftBottom,
+        Corner::RightBottom,
+        Corner::LeftTop,
+        Corner::RightTop,
+    ] {
+        for id in PLOT_IDS {
+            legend_place::set_corner(&h.ctx, egui::Id::unique(id), corner);
+        }
+        h.run_steps(1);
+        let tops = |labels: &[&str]| -> Vec<Vec<f32>> {
+            labels
+                .iter()
+                .map(|l| h.get_all_by_label(l).map(|n| n.rect().top()).collect())
+                .collect()
+        };
+        let points = tops(&labels);
+        assert_eq!(points[0].len(), 3, "{corner:?}: point legends {points:?}");
+        for k in 0..3 {
+            // the three point legends, each in its own plot, left to right
+            // and top to bottom alike for every label
+            assert!(
+                points[0][k] < points[1][k] && points[1][k] < points[2][k],
+                "{corner:?}: legend {k} reads point 0..2 at y {:?}",
+                points.iter().map(|p| p[k]).collect::<Vec<_>>()
+            );
+        }
+        let b: Vec<f32> = tops(&bands).iter().map(|t| t[0]).collect();
+        assert!(
+            b.windows(2).all(|w| w[0] < w[1]),
+            "{corner:?}: bands at y {b:?}"
+        );
+    }
 }

@@ -140,6 +140,14 @@ fn a_sweep_from_the_gui_equals_the_library_sweep() {
             png.clone(),
         )));
     assert!(std::fs::metadata(&png).unwrap().len() > 10_000);
+    // the CLI's figure, at the size where every y title fits its plot
+    let bytes = std::fs::read(&png).unwrap();
+    let be = |k: usize| u32::from_be_bytes(bytes[k..k + 4].try_into().unwrap());
+    assert_eq!(
+        (be(16), be(20)),
+        tirecontact::studies::sweep::report::FIGURE_PX,
+        "PNG width and height"
+    );
 }
 
 #[test]

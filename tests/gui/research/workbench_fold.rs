@@ -117,12 +117,26 @@ fn each_count_of_modes_says_what_it_counts() {
         panic!("no fit of the FRFs")
     };
     let lscf = fit.poles.len();
-    // one line with the three counts, each named
+    // the three counts, each named, one a line: in one line they wrapped
+    // mid-count at 1280 px
     let line =
         format!("Modes: the run uses {run} modes (identified by LSCE, the side panel's list)");
     let node = h.get_by_label_contains(&line);
     let a = node.accesskit_node();
     let text = a.label().or_else(|| a.value()).unwrap_or_default();
+    let rows = h
+        .output()
+        .shapes
+        .iter()
+        .find_map(|c| match &c.shape {
+            egui::Shape::Text(t) if t.galley.text().starts_with("Modes: ") => {
+                Some(t.galley.rows.len())
+            }
+            _ => None,
+        })
+        .expect("the counts drawn");
+    assert_eq!(rows, text.lines().count(), "a count wrapped: {text}");
+    assert_eq!(text.lines().count(), 3, "{text}");
     assert!(text.contains(&format!("{picked} picked here")), "{text}");
     if left_out > 0 {
         assert_eq!(picked + left_out, run, "{text}");

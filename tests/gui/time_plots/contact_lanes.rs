@@ -1,6 +1,7 @@
 //! The contact plot draws one lane per shown point, raised while the point
-//! is in contact. On a patch preset at 1280 × 720 (eight lanes about 10 px
-//! apart) a raised lane touched the next lane's floor: the lanes overlapped
+//! is in contact. On a patch preset at 1280 × 720 (then eight lanes about
+//! 10 px apart, now the sixteen points of a row) a raised lane touched the
+//! next lane's floor: the lanes overlapped
 //! by a stroke (1.8 px apart, closed by anti-aliasing). The painted lanes
 //! keep at least 3 px (two strokes) of clear background between the ink of
 //! neighbouring lanes at both window sizes.
@@ -9,7 +10,7 @@ use crate::harness::{advance, harness_sized, shapes};
 use egui::epaint::{ColorMode, PathShape, Shape};
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::views::point_color;
+use tirecontact::gui::views::shown_point_color;
 use tirecontact::gui::views::time_plots::CONTACT_PLOT_ID;
 use tirecontact::gui::{App, Command, View};
 
@@ -32,9 +33,10 @@ fn neighbouring_contact_lanes_never_overlap() {
                 .frame();
             // each lane's ink: its paths' vertical extent and half a stroke
             let shown = h.state().plot_options().shown.clone();
+            let shown_idx: Vec<usize> = (0..shown.len()).filter(|&i| shown[i]).collect();
             let mut lanes: Vec<(usize, f32, f32)> = Vec::new();
-            for (lane, i) in (0..shown.len()).filter(|&i| shown[i]).enumerate() {
-                let c = point_color(i);
+            for (lane, &i) in shown_idx.iter().enumerate() {
+                let c = shown_point_color(&shown_idx, i);
                 let (mut top, mut bottom) = (f32::INFINITY, f32::NEG_INFINITY);
                 for s in shapes(&h) {
                     if let Shape::Path(PathShape {

@@ -19,8 +19,9 @@ pub struct Field {
     /// Its path, `[*]` for every index: `tyre.modes[*].freq_hz`.
     pub path: &'static str,
     /// The editor's name of it: `speed V`; for an indexed field the name
-    /// after its holder (`frequency` of `mode 2`, see [`label`]). Empty:
-    /// the path is its name.
+    /// after its holder (`frequency` of `mode 2`, see [`label`]), with
+    /// `{1}` and `{2}` for the path's further indices (`shape at point
+    /// {1}`). Empty: the path is its name.
     pub label: &'static str,
     /// The holder named before the label of an indexed field (`mode`,
     /// `point`); empty for a field of the scene itself.
@@ -259,12 +260,14 @@ pub const FIELDS: &[Field] = &[
         "1/√kg",
         "this mode's shape at this contact point (mass-normalised): the residue between \
          points i and j is shape[i] × shape[j]",
-    ),
+    )
+    .of("mode", "shape at point {1}"),
     Field::new(
         "tyre.modes[*].residue[*][*]",
         "1/kg",
         "residue A[i][j] of this mode: how much a force at point j moves point i through it",
-    ),
+    )
+    .of("mode", "residue at point {1} of a force at point {2}"),
     Field::new("tyre.ring.radius_m", "m", "radius of the ring's belt").label("ring radius"),
     Field::new("tyre.ring.belt_width_m", "m", "width of the ring's belt").label("belt width"),
     Field::new(
@@ -366,6 +369,12 @@ pub const FIELDS: &[Field] = &[
     .label("nearest node within")
     .shown(1e3, "mm"),
     Field::new("tyre.plate.width_m", "m", "width W of the plate").label("plate width W"),
+    Field::new(
+        "tyre.plate.circumference_m",
+        "m",
+        "circumference L of the plate: the period of its modes along the rolling direction",
+    )
+    .label("plate circumference L"),
     Field::new(
         "tyre.plate.mass_per_area_kg_m2",
         "kg/m²",
@@ -511,13 +520,17 @@ pub fn label(path: &str) -> String {
     if f.holder.is_empty() {
         return f.label.to_string();
     }
-    // the first index of the path names the holder
-    let index = path
-        .split_once('[')
-        .and_then(|(_, rest)| rest.split_once(']'))
-        .map_or("*", |(i, _)| i);
+    // the first index of the path names the holder, the further ones
+    // fill the label's `{1}`, `{2}` (`i`, `j` for every index)
+    let indices = indices(path);
+    let index = indices.first().copied().unwrap_or("*");
+    let mut text = f.label.to_string();
+    for (k, letter) in [(1, "i"), (2, "j")] {
+        let i = indices.get(k).copied().unwrap_or("*");
+        text = text.replace(&format!("{{{k}}}"), if i == "*" { letter } else { i });
+    }
     // a label that ends in "of" takes its holder after it
-    if let Some(head) = f.label.strip_suffix(" of") {
+    if let Some(head) = text.strip_suffix(" of") {
         return if index == "*" {
             format!("{head} of every {}", f.holder)
         } else {
@@ -525,10 +538,19 @@ pub fn label(path: &str) -> String {
         };
     }
     if index == "*" {
-        format!("every {}'s {}", f.holder, f.label)
+        format!("every {}'s {text}", f.holder)
     } else {
-        format!("{} {index} {}", f.holder, f.label)
+        format!("{} {index} {text}", f.holder)
     }
+}
+
+/// The indices of `path` in order: `["2", "0", "1"]` for
+/// `tyre.modes[2].residue[0][1]`.
+fn indices(path: &str) -> Vec<&str> {
+    path.split('[')
+        .skip(1)
+        .filter_map(|rest| rest.split_once(']').map(|(i, _)| i.trim()))
+        .collect()
 }
 
 /// The SI unit of the field at `path`; `None` for an unknown path or a

@@ -15,6 +15,7 @@ use crate::output::figures::FigureError;
 use plotters::prelude::*;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use tirecontact_core::base::error::count;
 use tirecontact_core::solver::drive::Probe;
 use tirecontact_core::solver::problem::RunShape;
 use tirecontact_core::solver::simulation::Simulation;
@@ -23,7 +24,11 @@ use tirecontact_core::solver::simulation::Simulation;
 #[derive(Debug, thiserror::Error)]
 pub enum PatchError {
     #[error(
-        "the scene's {points} point(s) lie in {rows} row(s) across and at most {along} along: expected a patch of at least 2 rows across (points with different y_m) and 2 points along"
+        "the scene's {} {} in {} across the tread and at most {} along it: a patch needs at least 2 rows across (points at different positions y) and 2 points along",
+        count(*points, "point"),
+        if *points == 1 { "lies" } else { "lie" },
+        count(*rows, "row"),
+        count(*along, "point")
     )]
     NotAPatch {
         points: usize,
@@ -482,5 +487,32 @@ mod area_tests {
         }
         assert!(loaded, "no force in 200 steps");
         assert_eq!(carrying_points(&[0.0, 1.0, -0.0, 2.5]), 2);
+    }
+
+    /// Points on one line are no patch: said in words, singular and plural
+    /// right, without the format's field names.
+    #[test]
+    fn a_line_of_points_is_refused_in_words() {
+        let mut scene = Scene::load(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )))
+        .unwrap();
+        let e = PatchLayout::of(&scene).unwrap_err().to_string();
+        assert!(
+            e.starts_with(
+                "the scene's 3 points lie in 1 row across the tread and at most 3 points along it:"
+            ),
+            "{e}"
+        );
+        scene.points.truncate(1);
+        let e = PatchLayout::of(&scene).unwrap_err().to_string();
+        assert!(
+            e.starts_with(
+                "the scene's 1 point lies in 1 row across the tread and at most 1 point along it:"
+            ),
+            "{e}"
+        );
+        assert!(!e.contains("(s)") && !e.contains("y_m"), "{e}");
     }
 }

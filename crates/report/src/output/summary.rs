@@ -87,13 +87,14 @@ fn modes_text(modes: &[Mode]) -> String {
     }
     let f = min_max(modes.iter().map(|m| m.freq_hz));
     let z = min_max(modes.iter().map(|m| m.damping_ratio));
-    format!(
-        "{n} ({} … {} Hz, ξ {} … {})",
-        short_num(f.0, 4),
-        short_num(f.1, 4),
-        short_num(z.0, 3),
-        short_num(z.1, 3)
-    )
+    format!("{n} ({} Hz, ξ {})", range_text(f, 4), range_text(z, 3))
+}
+
+/// `lo … hi` to `digits` significant digits, or one value when both read
+/// the same (`ξ 0.05`, not `ξ 0.05 … 0.05`).
+fn range_text((lo, hi): (f64, f64), digits: usize) -> String {
+    let (a, b) = (short_num(lo, digits), short_num(hi, digits));
+    if a == b { a } else { format!("{a} … {b}") }
 }
 
 fn road_text(road: &Road) -> String {
@@ -245,6 +246,12 @@ mod tests {
         let many: Vec<Mode> = (0..13)
             .map(|k| mode(50.0 + 10.0 * k as f64, 0.02))
             .collect();
-        assert!(scene_summary(&scene, &many).contains("13 modes (50 … 170 Hz, ξ 0.02 … 0.02)"));
+        // one damping ratio for all: said once
+        let s = scene_summary(&scene, &many);
+        assert!(s.contains("13 modes (50 … 170 Hz, ξ 0.02)"), "{s}");
+        let mut varied = many.clone();
+        varied[4].damping_ratio = 0.05;
+        let s = scene_summary(&scene, &varied);
+        assert!(s.contains("13 modes (50 … 170 Hz, ξ 0.02 … 0.05)"), "{s}");
     }
 }

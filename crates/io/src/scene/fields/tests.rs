@@ -146,15 +146,20 @@ fn labels_name_the_holder_and_the_index() {
         label("contact.stiffness_n_m[*]"),
         "tread stiffness of every point"
     );
-    // a field without a name, and a path the format does not have
-    assert_eq!(label("tyre.modes[0].shape[1]"), "tyre.modes[0].shape[1]");
+    // the further indices of a nested field name its points
+    assert_eq!(label("tyre.modes[0].shape[1]"), "mode 0 shape at point 1");
+    assert_eq!(
+        label("tyre.modes[*].residue[*][*]"),
+        "every mode's residue at point i of a force at point j"
+    );
+    // a path the format does not have
     assert_eq!(label("no.such_field"), "no.such_field");
     assert_eq!(axis_label("speed_mps"), "speed V (m/s)");
     assert_eq!(axis_label("tyre.modes[0].freq_hz"), "mode 0 frequency (Hz)");
     assert_eq!(axis_label("points.along"), "points along");
     assert_eq!(
         axis_label("tyre.modes[2].residue[0][1]"),
-        "tyre.modes[2].residue[0][1] (1/kg)"
+        "mode 2 residue at point 0 of a force at point 1 (1/kg)"
     );
 }
 
@@ -174,5 +179,40 @@ fn labels_are_unique_and_bounds_ordered() {
             assert!(lo < hi, "{}: {lo} .. {hi}", f.path);
         }
         assert!(f.shown.0 > 0.0 && !f.what.is_empty(), "{}", f.path);
+    }
+}
+
+/// The shipped presets' descriptions (shown in the visualiser's panel)
+/// speak in words with units: no field of the format by its key
+/// (`stiffness_n_m`) and no RON value (`Compliant(stiffness_n_m: …)`).
+#[test]
+fn preset_descriptions_name_no_field_by_its_key() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../presets");
+    let keys: BTreeSet<String> = FIELDS
+        .iter()
+        .map(|f| {
+            let last = f.path.rsplit('.').next().unwrap_or(f.path);
+            last.split('[').next().unwrap_or(last).to_string()
+        })
+        .filter(|k| k.contains('_'))
+        .collect();
+    assert!(keys.contains("stiffness_n_m") && keys.contains("speed_mps"));
+    for p in std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()) {
+        if p.extension().is_none_or(|x| x != "ron") {
+            continue;
+        }
+        let d = Scene::load(&p).unwrap().description;
+        for k in &keys {
+            assert!(!d.contains(k.as_str()), "{}: `{k}` in {d:?}", p.display());
+        }
+        assert!(
+            !d.split('(').skip(1).any(|rest| {
+                rest.split_once(':').is_some_and(|(key, _)| {
+                    key.contains('_') && key.chars().all(|c| c.is_ascii_lowercase() || c == '_')
+                })
+            }),
+            "{}: a RON value in {d:?}",
+            p.display()
+        );
     }
 }

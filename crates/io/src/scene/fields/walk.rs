@@ -170,6 +170,7 @@ fn tyre_fields<'a>(tyre: &'a mut Tyre, f: &mut Vec<(String, &'a mut f64)>) {
         Tyre::Plate { plate: pl } => {
             let at = |name: &str| format!("tyre.plate.{name}");
             f.push((at("width_m"), &mut pl.width_m));
+            f.push((at("circumference_m"), &mut pl.circumference_m));
             f.push((at("mass_per_area_kg_m2"), &mut pl.mass_per_area_kg_m2));
             f.push((at("bending_along_nm"), &mut pl.bending_along_nm));
             f.push((at("bending_across_nm"), &mut pl.bending_across_nm));

@@ -392,9 +392,9 @@ mod tests {
             ),
             (
                 "tyre.modes[2].residue[0][1]",
-                "tyre.modes[2].residue[0][1] (1/kg)",
+                "mode 2 residue at point 0 of a force at point 1 (1/kg)",
             ),
-            ("tyre.modes[2].shape[1]", "tyre.modes[2].shape[1] (1/√kg)"),
+            ("tyre.modes[2].shape[1]", "mode 2 shape at point 1 (1/√kg)"),
             (
                 "contact.stiffness_n_m[3]",
                 "tread stiffness of point 3 (N/m)",
@@ -428,6 +428,33 @@ mod tests {
         ] {
             assert_eq!(fields::axis_label(param), want);
         }
+    }
+
+    /// Every parameter the sweep offers on a shipped preset has a name in
+    /// words, never its preset path (`speed_mps`, `points[0].x_m`,
+    /// `tyre.modes[0].shape[1]`).
+    #[test]
+    fn every_parameter_of_the_shipped_presets_has_a_name_in_words() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../presets");
+        let mut checked = 0;
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_none_or(|e| e != "ron") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&path).unwrap();
+            let scene = tirecontact_io::scene::Scene::parse(&text, "preset").unwrap();
+            for p in crate::studies::sweep::param_paths(&scene) {
+                let label = fields::label(&p);
+                assert!(
+                    !label.contains('_') && !label.contains('[') && !label.contains('.'),
+                    "{}: `{p}` is labelled {label:?}",
+                    path.display()
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 100, "{checked} parameters");
     }
 
     /// The subtitle names the parameter as the editor does, with the
