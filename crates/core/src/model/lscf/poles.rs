@@ -4,7 +4,7 @@
 
 use super::{FitError, FitOptions, FrfSet, Pole, check, mac};
 use crate::base::linalg::{self, LinalgError};
-use crate::model::stability::{Criteria, DiagramOrder, Stability};
+use crate::model::stability::{self, Criteria, DiagramOrder, Selection, Stability};
 use faer::{Mat, c64};
 use std::f64::consts::TAU;
 
@@ -351,11 +351,6 @@ fn poles_of_order(
     Ok(poles)
 }
 
-/// Whether `a` matches `b` in frequency within the options' tolerance.
-fn same_frequency(a: &Pole, b: &Pole, opts: &FitOptions) -> bool {
-    (a.freq_hz - b.freq_hz).abs() <= opts.freq_tol * a.freq_hz
-}
-
 /// Each pole (with its participation vector) marked against the poles of
 /// the order below by the LSCF criteria ([`FitOptions::stability_criteria`]:
 /// the best category any pole there gives it, the shape compared the
@@ -386,107 +381,11 @@ fn mark(
     }
 }
 
-/// A pole kept as a mode by the persistence rule ([`keep`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct KeptPole {
-    pub pole: Pole,
-    /// The order it was taken at.
-    pub order: usize,
-    /// The run of consecutive orders, `(first, last)`, at which a pole
-    /// within the frequency tolerance of it is stable (frequency, damping
-    /// and vector): the orders it persists over.
-    pub stable_orders: (usize, usize),
-    /// Frequencies (Hz) of the other poles of its order within the
-    /// frequency tolerance of it (a split pole), merged into it.
-    pub split_hz: Vec<f64>,
-}
-
-/// The poles [`keep`] kept, by frequency, and the chosen order.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Selection {
-    /// The chosen polynomial order (`--order`, else the diagram's highest).
-    pub order: usize,
-    pub kept: Vec<KeptPole>,
-}
-
-/// The kept poles by persistence (method §6.5.1): at each order from the
-/// chosen one down to `persist` orders below it, highest first, a pole is
-/// kept when it is stable (frequency, damping, vector) against the order
-/// below there and at each order down to the run's start (a run of
-/// `persist` consecutive stable orders with one reference, `persist /
-/// references` with several, 1 at least; each a pole within the frequency
-/// tolerance of it), and a pole within the tolerance is drawn at each of
-/// the `persist` orders below; a pole within the frequency tolerance of
-/// one already kept is the same physical pole.
-/// So a mode is kept when the top order splits it, moves it or leaves its
-/// damping unsettled, as long as it persisted up to within `persist`
-/// orders of the chosen one. Sorted by frequency.
+/// The kept poles by persistence (method §6.5.1): the shared rule
+/// [`stability::keep`] with the options' chosen order, frequency tolerance
+/// and run length `persist`.
 pub fn keep(diagram: &[DiagramOrder], references: usize, opts: &FitOptions) -> Selection {
-    if diagram.is_empty() {
-        return Selection {
-            order: 0,
-            kept: Vec::new(),
-        };
-    }
-    let order = opts.order.unwrap_or(diagram.len()).clamp(1, diagram.len());
-    let at = |p: usize| &diagram[p - 1].poles;
-    let stable_at = |p: &Pole, q: usize| {
-        at(q)
-            .iter()
-            .any(|b| b.stability == Stability::Stable && same_frequency(p, b, opts))
-    };
-    // an order of a polyreference model adds N_i poles (N_i references):
-    // the run is `persist` orders of one reference, persist / N_i of N_i
-    // (2 at least)
-    let run = (opts.persist / references.max(1)).clamp(1, opts.persist.max(1));
-    let drawn = |p: &Pole, q: usize| {
-        at(q)
-            .iter()
-            .any(|b| b.stability != Stability::Damped && same_frequency(p, b, opts))
-    };
-    let mut kept: Vec<KeptPole> = Vec::new();
-    let lowest_taken = order.saturating_sub(opts.persist).max(1);
-    for q in (lowest_taken..=order).rev() {
-        for pole in at(q) {
-            if pole.stability != Stability::Stable
-                || kept.iter().any(|k| same_frequency(&k.pole, pole, opts))
-            {
-                continue;
-            }
-            let first = (1..q)
-                .rev()
-                .take_while(|&b| stable_at(pole, b))
-                .last()
-                .unwrap_or(q);
-            // a run of `persist` consecutive stable orders at least (at
-            // a high order, poles are so dense that one is drawn within
-            // the tolerance of anything: being drawn proves nothing)
-            let lowest = q.saturating_sub(opts.persist).max(1);
-            if q + 1 - first < run || !(lowest..q).all(|b| drawn(pole, b)) {
-                continue;
-            }
-            let last = (q + 1..=diagram.len())
-                .take_while(|&b| stable_at(pole, b))
-                .last();
-            let split_hz = at(q)
-                .iter()
-                .filter(|b| {
-                    b.stability != Stability::Damped
-                        && !std::ptr::eq(*b, pole)
-                        && same_frequency(pole, b, opts)
-                })
-                .map(|b| b.freq_hz)
-                .collect();
-            kept.push(KeptPole {
-                pole: pole.clone(),
-                order: q,
-                stable_orders: (first, last.unwrap_or(q)),
-                split_hz,
-            });
-        }
-    }
-    kept.sort_by(|a, b| a.pole.freq_hz.total_cmp(&b.pole.freq_hz));
-    Selection { order, kept }
+    stability::keep(diagram, opts.order, references, &opts.persistence())
 }
 
 /// The number of references `N_i` of the polyreference model of `pairs`
