@@ -72,7 +72,7 @@ pub struct IdentifyArgs {
     /// below it; damping ratio below 0.2, inside the band, its term
     /// standing at least 3 times above the fit's residual around it.
     /// Every order up to it is fitted for the diagram (order 200 on three
-    /// FRFs of 1000 lines: about 4 s).
+    /// FRFs of 1000 lines: about 3 s).
     #[arg(long, requires = "data", value_name = "1-200")]
     pub order: Option<usize>,
     /// Write the frequency-domain fit into this folder (created when

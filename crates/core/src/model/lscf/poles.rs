@@ -297,24 +297,8 @@ fn poles_of_order(
             -alpha[(r * ni + i, a - (k - ni))]
         }
     });
-    linalg::sequential();
-    let eig = comp
-        .eigen()
-        .map_err(|_| LinalgError::NoConvergence { what: "eigen" })?;
-    let (u, s) = (eig.U(), eig.S().column_vector());
-    // each eigenpair checked: ‖C v − z v‖ ≤ 1e-8 ‖C‖_F ‖v‖
     let c_norm = linalg::frobenius(comp.as_ref());
-    // C V as one matrix product (the check's sums one by one took a tenth
-    // of a 140-order diagram)
-    let comp_c = Mat::<c64>::from_fn(k, k, |a, b| c64::new(comp[(a, b)], 0.0));
-    let cu = &comp_c * u;
-    for e in 0..k {
-        let v_norm = (0..k).map(|a| u[(a, e)].norm_sqr()).sum::<f64>().sqrt();
-        let res = (0..k)
-            .map(|a| (cu[(a, e)] - s[e] * u[(a, e)]).norm_sqr())
-            .sum::<f64>()
-            .sqrt();
-        let residual = res / (c_norm * v_norm).max(f64::MIN_POSITIVE);
+    let check = |residual: f64| -> Result<(), FitError> {
         if residual.is_nan() || residual > 1e-8 {
             return Err(LinalgError::Rebuild {
                 what: "companion eigenpairs",
@@ -323,15 +307,51 @@ fn poles_of_order(
             }
             .into());
         }
-    }
+        Ok(())
+    };
+    // the roots and, with several references, the participation vectors
+    // (the eigenvectors' first block)
+    let (roots, vectors): (Vec<c64>, Option<Mat<c64>>) = if ni == 1 {
+        // one reference: a participation vector is one entry (any two have
+        // a MAC of 1), so no eigenvectors are computed; the eigenvector of
+        // the companion matrix is known, `x_a = z^a`, and each root is
+        // checked on it
+        let roots = linalg::eigenvalues(comp.as_ref())?;
+        for &z in &roots {
+            check(scalar_companion_residual(comp.as_ref(), z, c_norm))?;
+        }
+        (roots, None)
+    } else {
+        linalg::sequential();
+        let eig = comp
+            .eigen()
+            .map_err(|_| LinalgError::NoConvergence { what: "eigen" })?;
+        let (u, s) = (eig.U(), eig.S().column_vector());
+        // each eigenpair checked: ‖C v − z v‖ ≤ 1e-8 ‖C‖_F ‖v‖
+        // C V as one matrix product (the check's sums one by one took a
+        // tenth of a 140-order diagram)
+        let comp_c = Mat::<c64>::from_fn(k, k, |a, b| c64::new(comp[(a, b)], 0.0));
+        let cu = &comp_c * u;
+        for e in 0..k {
+            let v_norm = (0..k).map(|a| u[(a, e)].norm_sqr()).sum::<f64>().sqrt();
+            let res = (0..k)
+                .map(|a| (cu[(a, e)] - s[e] * u[(a, e)]).norm_sqr())
+                .sum::<f64>()
+                .sqrt();
+            check(res / (c_norm * v_norm).max(f64::MIN_POSITIVE))?;
+        }
+        ((0..k).map(|e| s[e]).collect(), Some(u.to_owned()))
+    };
     let mut poles = Vec::new();
-    for e in 0..k {
-        let z = s[e];
+    for (e, &z) in roots.iter().enumerate() {
         if z.im <= 0.0 || z.norm() >= 1.0 || z.norm() == 0.0 {
             continue;
         }
         let lam = c64::new(z.norm().ln(), z.im.atan2(z.re)) / dt;
-        let mut l: Vec<c64> = (0..ni).map(|i| u[(i, e)]).collect();
+        let mut l: Vec<c64> = match &vectors {
+            Some(u) => (0..ni).map(|i| u[(i, e)]).collect(),
+            None => vec![c64::new(1.0, 0.0)],
+        };
         let norm = l.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
         if norm > 0.0 {
             l.iter_mut().for_each(|v| *v /= norm);
@@ -349,6 +369,36 @@ fn poles_of_order(
     }
     poles.sort_by(|a, b| a.0.freq_hz.total_cmp(&b.0.freq_hz));
     Ok(poles)
+}
+
+/// `‖C x − z x‖ / (‖C‖_F ‖x‖)` for the companion matrix `c` of a scalar
+/// polynomial (ones above the diagonal, the coefficients in its last row)
+/// and its eigenvector at the root `z`, `x_a = z^a` (scaled by `z^{1−k}`
+/// when `|z| > 1`, so that no entry exceeds 1).
+fn scalar_companion_residual(c: faer::MatRef<'_, f64>, z: c64, c_norm: f64) -> f64 {
+    let k = c.nrows();
+    let mut x = vec![c64::new(1.0, 0.0); k];
+    if z.norm() <= 1.0 {
+        for a in 1..k {
+            x[a] = x[a - 1] * z;
+        }
+    } else {
+        let w = c64::new(1.0, 0.0) / z;
+        for a in (0..k.saturating_sub(1)).rev() {
+            x[a] = x[a + 1] * w;
+        }
+    }
+    let mut res = 0.0;
+    for a in 0..k {
+        let cx = if a + 1 < k {
+            x[a + 1]
+        } else {
+            (0..k).map(|b| x[b] * c[(a, b)]).sum::<c64>()
+        };
+        res += (cx - z * x[a]).norm_sqr();
+    }
+    let x_norm = x.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
+    res.sqrt() / (c_norm * x_norm).max(f64::MIN_POSITIVE)
 }
 
 /// Each pole (with its participation vector) marked against the poles of
@@ -488,6 +538,33 @@ mod tests {
         assert_eq!(s.kept[0].order, 12);
         // no order: nothing kept, nothing panics
         assert!(keep(&[], 1, &FitOptions::default()).kept.is_empty());
+    }
+
+    /// A root of a scalar polynomial is checked on the companion matrix's
+    /// known eigenvector: at the roots of `(z − 0.5)(z − 2)(z² + 1)` the
+    /// residual is at round-off, as it is at the eigenvalues computed;
+    /// at a number that is no root it is not.
+    #[test]
+    fn a_scalar_companions_roots_are_checked_on_their_known_eigenvectors() {
+        let alpha = [1.0, -2.5, 2.0, -2.5];
+        let k = alpha.len();
+        let c = Mat::from_fn(k, k, |a, b| {
+            if a + 1 < k {
+                if b == a + 1 { 1.0 } else { 0.0 }
+            } else {
+                -alpha[b]
+            }
+        });
+        let n = linalg::frobenius(c.as_ref());
+        for z in [c64::new(0.5, 0.0), c64::new(2.0, 0.0), c64::new(0.0, 1.0)] {
+            let r = scalar_companion_residual(c.as_ref(), z, n);
+            assert!(r < 1e-15, "{z}: {r:e}");
+        }
+        for z in linalg::eigenvalues(c.as_ref()).unwrap() {
+            let r = scalar_companion_residual(c.as_ref(), z, n);
+            assert!(r < 1e-13, "{z}: {r:e}");
+        }
+        assert!(scalar_companion_residual(c.as_ref(), c64::new(0.6, 0.0), n) > 1e-3);
     }
 
     /// The reduced matrices built once from the highest order's factored
