@@ -69,8 +69,10 @@ pub struct IdentifyArgs {
     /// are kept, 1 to 200 (default: the highest of the stabilisation
     /// diagram, 40). A mode is a pole stable against the order below at 5
     /// consecutive orders, the last of them this order or one of the 5
-    /// below it; damping ratio below 0.2, inside the band.
-    /// Every order up to it is fitted for the diagram.
+    /// below it; damping ratio below 0.2, inside the band, its term
+    /// standing at least 3 times above the fit's residual around it.
+    /// Every order up to it is fitted for the diagram (order 200 on three
+    /// FRFs of 1000 lines: about 3 s).
     #[arg(long, requires = "data", value_name = "1-200")]
     pub order: Option<usize>,
     /// Write the frequency-domain fit into this folder (created when

@@ -246,3 +246,65 @@ fn the_plate_is_edited_in_the_side_panel() {
     assert_eq!(width(&h), 0.2);
     assert_eq!(h.state().simulation().steps(), 0, "the run restarted");
 }
+
+/// An OpenCRG road in the side panel: the file's `u` and `v` ranges and
+/// grid, its absolute height (the mean road plane, the `h` datum) and the
+/// strip the run travels, each computed here from the file as read and
+/// the scene's points, speed and duration.
+#[test]
+fn a_crg_road_shows_its_file_ranges_height_and_travelled_strip() {
+    let scene = Scene::load(Path::new("presets/patch_belgian_block.ron")).unwrap();
+    let crg =
+        tirecontact::readers::crg::read_crg(Path::new("presets/roads/belgian_block.crg")).unwrap();
+    let Road::Crg {
+        u_start_m: Some(u0),
+        v_offset_m: v0,
+        ..
+    } = scene.road.clone()
+    else {
+        panic!("the preset starts at a given u")
+    };
+    let xs: Vec<f64> = scene.points.iter().map(|p| p.x_m).collect();
+    let ys: Vec<f64> = scene.points.iter().map(|p| p.y_m).collect();
+    let lo = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = |v: &[f64]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let (xa, xb, ya, yb) = (lo(&xs), hi(&xs), lo(&ys), hi(&ys));
+    let travel = scene.speed_mps * scene.duration_s;
+    let mut h = harness_sized(App::new(scene, None).unwrap(), [1280.0, 720.0]);
+    settle(&mut h);
+    let expected = [
+        format!(
+            "u {:.3} m to {:.3} m, v {:.3} m to {:.3} m",
+            crg.u_first_m,
+            crg.u_last_m(),
+            crg.v_m[0],
+            crg.v_m[crg.v_m.len() - 1]
+        ),
+        format!(
+            "Δu {:.2} mm, Δv {:.2} mm",
+            crg.u_inc_m * 1e3,
+            (crg.v_m[1] - crg.v_m[0]) * 1e3
+        ),
+        format!("mean road plane at {:.4} m (h datum)", crg.mean_height_m()),
+        format!(
+            "travelled strip: u {:.3} m to {:.3} m",
+            u0 + xa,
+            u0 + xb + travel
+        ),
+        format!(
+            "v {:.3} m to {:.3} m (v offset {v0:.3} m)",
+            v0 + ya,
+            v0 + yb
+        ),
+    ];
+    for text in &expected {
+        assert!(
+            h.query_by_label_contains(text).is_some(),
+            "the road panel does not say `{text}`"
+        );
+    }
+    assert!(
+        h.query_by_label_contains("OpenCRG road roads/belgian_block.crg")
+            .is_some()
+    );
+}

@@ -13,7 +13,7 @@ use tirecontact::base::error::fmt_sig;
 use tirecontact::fsio::write_atomic;
 use tirecontact::identify::driving;
 use tirecontact::identify::frequency::{
-    FrfIdentification, FrfOptions, MAX_FIT_ERROR, half_power_width_hz,
+    FrfIdentification, FrfOptions, MAX_FIT_ERROR, MIN_TERM_TO_RESIDUAL, half_power_width_hz,
 };
 use tirecontact::model::lscf::FitOptions;
 use tirecontact::output::figures::{Figure, Panel, Series, Style, render_png};
@@ -193,7 +193,7 @@ fn summary(name: &str, id: &FrfIdentification) -> String {
     }
     let _ = writeln!(
         s,
-        "  a mode: a pole stable against the order below (frequency within {} %, damping within {} %, with several references a vector MAC of at least {}) at one of orders {} to {} and at each order below it in a run of {} consecutive orders, drawn at the {} orders below; damping ratio below {}, inside the band; of poles within {} % one",
+        "  a mode: a pole stable against the order below (frequency within {} %, damping within {} %, with several references a vector MAC of at least {}) at one of orders {} to {} and at each order below it in a run of {} consecutive orders, drawn at the {} orders below; damping ratio below {}, inside the band, its term over its half-power band (two lines each side at least) {} times the fit's residual there or more; of poles within {} % one",
         fmt_sig(100.0 * id.options.freq_tol, 6),
         fmt_sig(100.0 * id.options.damping_tol, 6),
         fmt_sig(id.options.mac_min, 6),
@@ -203,6 +203,7 @@ fn summary(name: &str, id: &FrfIdentification) -> String {
             .clamp(1, id.options.persist.max(1)),
         id.options.persist,
         fmt_sig(id.options.max_damping_ratio, 6),
+        fmt_sig(MIN_TERM_TO_RESIDUAL, 6),
         fmt_sig(100.0 * id.options.freq_tol, 6)
     );
     for (k, (p, run)) in id.poles.iter().zip(&id.persistence).enumerate() {

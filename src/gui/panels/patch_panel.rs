@@ -320,6 +320,15 @@ pub fn surface(ui: &mut Ui, scene: &Scene, profile: Option<&RoadProfile>) {
         _ => return,
     };
     ui.add(egui::Label::new(title).wrap());
+    if let (Road::Crg { .. }, Some(RoadProfile::Surface(g))) = (&scene.road, profile) {
+        for line in crg_lines(scene, g) {
+            ui.add(egui::Label::new(egui::RichText::new(line).weak()).wrap());
+        }
+        ui.label(
+            egui::RichText::new("the file is the road: edit it, then open the preset again").weak(),
+        );
+        return;
+    }
     if let Some(RoadProfile::Surface(g)) = profile
         && g.datum_m != 0.0
     {
@@ -364,4 +373,58 @@ pub fn surface(ui: &mut Ui, scene: &Scene, profile: Option<&RoadProfile>) {
     ui.label(
         egui::RichText::new("the file is the road: edit it, then open the preset again").weak(),
     );
+}
+
+/// What the side panel says of an OpenCRG road, a line each: the file's
+/// `u` and `v` ranges and grid spacing, its absolute height and how the
+/// heights are referred to the mean road plane, and the strip the run
+/// travels (`u` from `u_start_m` over the points' `x` plus speed ×
+/// duration, `v` of the points' `y` from `v_offset_m`).
+pub fn crg_lines(scene: &Scene, g: &crate::model::road::SurfaceGrid) -> Vec<String> {
+    let (u0, v0) = g.file_origin_m;
+    let (x0, x1) = g.x_range_m();
+    let (y0, y1) = g.y_range_m().unwrap_or((g.y0_m, g.y0_m));
+    let (mut xa, mut xb, mut ya, mut yb) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for p in scene.points.iter() {
+        xa = xa.min(p.x_m);
+        xb = xb.max(p.x_m);
+        ya = ya.min(p.y_m);
+        yb = yb.max(p.y_m);
+    }
+    let travel = scene.speed_mps.max(0.0) * scene.duration_s;
+    let mut lines = vec![
+        format!(
+            "file's grid: u {:.3} m to {:.3} m, v {:.3} m to {:.3} m (v positive to the left); {} × {} nodes, Δu {:.2} mm, Δv {:.2} mm",
+            x0 + u0,
+            x1 + u0,
+            y0 + v0,
+            y1 + v0,
+            g.nx,
+            g.ny,
+            g.dx_m * 1e3,
+            g.dy_m * 1e3
+        ),
+        format!(
+            "absolute height: the file's mean road plane at {:.4} m (h datum); heights here are the file's less it, so h_m is measured from that plane",
+            g.datum_m
+        ),
+    ];
+    if xa.is_finite() {
+        lines.push(format!(
+            "travelled strip: u {:.3} m to {:.3} m (from u = {:.3} m under x = 0, speed × duration {:.3} m), v {:.3} m to {:.3} m (v offset {:.3} m)",
+            u0 + xa,
+            u0 + xb + travel,
+            u0,
+            travel,
+            v0 + ya,
+            v0 + yb,
+            v0
+        ));
+    }
+    lines
 }

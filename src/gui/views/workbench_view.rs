@@ -223,7 +223,7 @@ fn body(ui: &mut Ui, s: &Shown<'_>, cmds: &mut Vec<Command>) {
     if !w.left_out_hz.is_empty() {
         let hz: Vec<String> = w.left_out_hz.iter().map(|f| format!("{f:.0} Hz")).collect();
         ui.label(format!(
-            "Left out of the automatic choice: {} (drawn as new or unstable: the pole is not found at the order below, nor persisting at any other order). Click the pole to pick it anyway.",
+            "Left out of the automatic choice: {} (no pole within the frequency tolerance is stable in frequency, damping and shape over a run of 5 orders near the chosen one). Click the pole to pick it anyway.",
             hz.join(", ")
         ));
     }

@@ -25,7 +25,7 @@
 
 use crate::base::linalg::{self, LinalgError};
 use crate::base::modal::Mode;
-use crate::model::stability::DiagramOrder;
+use crate::model::stability::{DiagramOrder, PersistenceRule};
 use faer::{Mat, MatRef};
 use std::f64::consts::TAU;
 
@@ -158,6 +158,8 @@ pub struct Identification {
     pub modes: Vec<Mode>,
     /// The model order used `M`.
     pub model_order: usize,
+    /// The model order the options gave (`None`: chosen from the diagram).
+    pub given_order: Option<usize>,
     /// Per mode: stable (frequency, damping and MAC) against order `M - 1`.
     pub stable: Vec<bool>,
     /// Per mode: norm of the discarded `cos` part of the complex residue over
@@ -167,6 +169,9 @@ pub struct Identification {
     pub diagram: Vec<DiagramOrder>,
     /// The time errors of every order of the diagram, in its order.
     pub order_errors: Vec<OrderErrors>,
+    /// The rule that keeps a pole of the diagram as a mode
+    /// ([`crate::model::stability::keep`]), with the options' tolerance.
+    pub persistence: PersistenceRule,
     pub report: FitReport,
 }
 

@@ -12,16 +12,17 @@
 //! (method §6.5.2), the data are never divided by `ω`.
 
 use crate::base::linalg::LinalgError;
-use crate::model::stability::{Criteria, DiagramPole, Matching};
+use crate::model::stability::{Criteria, DiagramPole, Matching, PersistenceRule};
 use faer::c64;
 use std::f64::consts::TAU;
 
 mod poles;
 mod residues;
-pub use poles::{KeptPole, Selection, keep, references, select, stabilisation};
+pub use crate::model::stability::{KeptPole, Selection};
+pub use poles::{keep, references, select, stabilisation};
 pub use residues::{
-    ComplexFit, NEGLIGIBLE_MODE, RealFit, contributions, lsfd, real_modes, refine, relative_error,
-    synthesise_real,
+    ComplexFit, NEGLIGIBLE_MODE, RealFit, contributions, lsfd, mode_term, real_modes, refine,
+    relative_error, synthesise_real,
 };
 
 /// What an FRF's values are: response over force, the response
@@ -127,7 +128,7 @@ impl Default for FitOptions {
             freq_tol: 0.01,
             damping_tol: 0.05,
             mac_min: 0.98,
-            persist: 5,
+            persist: crate::model::stability::PERSIST,
         }
     }
 }
@@ -144,6 +145,15 @@ impl FitOptions {
             damping_tol: self.damping_tol,
             mac_min: self.mac_min,
             matching: Matching::Best,
+        }
+    }
+
+    /// The persistence rule of the kept poles (method §6.5.1): the
+    /// frequency tolerance and `persist`.
+    pub fn persistence(&self) -> PersistenceRule {
+        PersistenceRule {
+            freq_tol: self.freq_tol,
+            persist: self.persist,
         }
     }
 }

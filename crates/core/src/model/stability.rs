@@ -153,6 +153,143 @@ pub fn points_of(
     })
 }
 
+/// The run of stable orders of the persistence rule with one reference
+/// ([`PersistenceRule::persist`]'s default).
+pub const PERSIST: usize = 5;
+
+/// The persistence rule that keeps a pole of a stabilisation diagram as a
+/// mode ([`keep`]; method §6.5.1): shared by the frequency-domain fit
+/// (LSCF) and the workbench's automatic choice on an LSCE diagram.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PersistenceRule {
+    /// Two poles within this relative frequency distance are the same
+    /// physical pole (-).
+    pub freq_tol: f64,
+    /// The run of stable orders `P` (with one reference), and how far
+    /// below the chosen order a pole may be taken.
+    pub persist: usize,
+}
+
+impl PersistenceRule {
+    /// Whether `a` matches `b` in frequency within the tolerance.
+    fn same_frequency(&self, a: &DiagramPole, b: &DiagramPole) -> bool {
+        (a.freq_hz - b.freq_hz).abs() <= self.freq_tol * a.freq_hz
+    }
+}
+
+/// A pole kept as a mode by the persistence rule ([`keep`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct KeptPole {
+    pub pole: DiagramPole,
+    /// The order it was taken at.
+    pub order: usize,
+    /// Its place in the diagram: `diagram[at.0].poles[at.1]`.
+    pub at: (usize, usize),
+    /// The run of consecutive orders, `(first, last)`, at which a pole
+    /// within the frequency tolerance of it is stable (frequency, damping
+    /// and shape): the orders it persists over.
+    pub stable_orders: (usize, usize),
+    /// Frequencies (Hz) of the other poles of its order within the
+    /// frequency tolerance of it (a split pole), merged into it.
+    pub split_hz: Vec<f64>,
+}
+
+/// The poles [`keep`] kept, by frequency, and the chosen order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Selection {
+    /// The chosen order (the one given, else the diagram's highest).
+    pub order: usize,
+    pub kept: Vec<KeptPole>,
+}
+
+/// The kept poles by persistence (method §6.5.1) of a diagram whose
+/// `k`-th entry is order `k + 1`: at each order from the chosen one
+/// (`order`, else the highest) down to `persist` orders below it, highest
+/// first, a pole is kept when it is stable (frequency, damping, shape)
+/// against the order below there and at each order down to the run's
+/// start (a run of `persist` consecutive stable orders with one reference,
+/// `persist / references` with several, 1 at least; each a pole within the
+/// frequency tolerance of it), and a pole within the tolerance is drawn at
+/// each of the `persist` orders below; a pole within the frequency
+/// tolerance of one already kept is the same physical pole.
+/// So a mode is kept when the top order splits it, moves it or leaves its
+/// damping unsettled, as long as it persisted up to within `persist`
+/// orders of the chosen one; a pole stable in frequency and damping only
+/// (its shape changing from order to order) is never kept. Sorted by
+/// frequency.
+pub fn keep(
+    diagram: &[DiagramOrder],
+    order: Option<usize>,
+    references: usize,
+    rule: &PersistenceRule,
+) -> Selection {
+    if diagram.is_empty() {
+        return Selection {
+            order: 0,
+            kept: Vec::new(),
+        };
+    }
+    let order = order.unwrap_or(diagram.len()).clamp(1, diagram.len());
+    let at = |p: usize| &diagram[p - 1].poles;
+    let stable_at = |p: &DiagramPole, q: usize| {
+        at(q)
+            .iter()
+            .any(|b| b.stability == Stability::Stable && rule.same_frequency(p, b))
+    };
+    // an order of a polyreference model adds N_i poles (N_i references):
+    // the run is `persist` orders of one reference, persist / N_i of N_i
+    let run = (rule.persist / references.max(1)).clamp(1, rule.persist.max(1));
+    let drawn = |p: &DiagramPole, q: usize| {
+        at(q)
+            .iter()
+            .any(|b| b.stability != Stability::Damped && rule.same_frequency(p, b))
+    };
+    let mut kept: Vec<KeptPole> = Vec::new();
+    let lowest_taken = order.saturating_sub(rule.persist).max(1);
+    for q in (lowest_taken..=order).rev() {
+        for (index, pole) in at(q).iter().enumerate() {
+            if pole.stability != Stability::Stable
+                || kept.iter().any(|k| rule.same_frequency(&k.pole, pole))
+            {
+                continue;
+            }
+            let first = (1..q)
+                .rev()
+                .take_while(|&b| stable_at(pole, b))
+                .last()
+                .unwrap_or(q);
+            // a run of `persist` consecutive stable orders at least (at
+            // a high order, poles are so dense that one is drawn within
+            // the tolerance of anything: being drawn proves nothing)
+            let lowest = q.saturating_sub(rule.persist).max(1);
+            if q + 1 - first < run || !(lowest..q).all(|b| drawn(pole, b)) {
+                continue;
+            }
+            let last = (q + 1..=diagram.len())
+                .take_while(|&b| stable_at(pole, b))
+                .last();
+            let split_hz = at(q)
+                .iter()
+                .filter(|b| {
+                    b.stability != Stability::Damped
+                        && !std::ptr::eq(*b, pole)
+                        && rule.same_frequency(pole, b)
+                })
+                .map(|b| b.freq_hz)
+                .collect();
+            kept.push(KeptPole {
+                pole: pole.clone(),
+                order: q,
+                at: (q - 1, index),
+                stable_orders: (first, last.unwrap_or(q)),
+                split_hz,
+            });
+        }
+    }
+    kept.sort_by(|a, b| a.pole.freq_hz.total_cmp(&b.pole.freq_hz));
+    Selection { order, kept }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

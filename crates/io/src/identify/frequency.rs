@@ -22,6 +22,15 @@ use web_time::Instant;
 /// or of the contact model for a fit to be kept without `--accept` (-).
 pub const MAX_FIT_ERROR: f64 = 0.1;
 
+/// Smallest ratio of a mode's term to the fit's residual over the mode's
+/// half-power band ([`term_to_residual`]) for it to be a mode the data
+/// show (-).
+pub const MIN_TERM_TO_RESIDUAL: f64 = 3.0;
+
+/// The half-width of the band of [`term_to_residual`] at least, in
+/// frequency lines.
+pub const NOISE_BAND_LINES: f64 = 2.0;
+
 /// Gauss-Newton steps of the pole refinement ([`lscf::refine`]).
 pub const REFINE_ITERATIONS: usize = 20;
 
@@ -39,6 +48,11 @@ pub enum PoleFlag {
     /// mode at `into_hz`, which has the larger term in the data: one
     /// physical pole fitted twice, merged into that mode.
     Split { into_hz: f64 },
+    /// Its term stands no higher than the noise around it: over its
+    /// half-power band (at least two lines each side) the term is `ratio`
+    /// times the fit's residual there, below [`MIN_TERM_TO_RESIDUAL`]
+    /// ([`term_to_residual`]).
+    Noise { ratio: f64 },
 }
 
 impl std::fmt::Display for PoleFlag {
@@ -60,6 +74,11 @@ impl std::fmt::Display for PoleFlag {
             PoleFlag::Split { into_hz } => write!(
                 f,
                 "a split of the mode at {into_hz:.3} Hz (within the frequency tolerance, a smaller term): merged into it"
+            ),
+            PoleFlag::Noise { ratio } => write!(
+                f,
+                "its term over its half-power band (two lines each side at least) is {} times the fit's residual there: expected at least {MIN_TERM_TO_RESIDUAL}; noise the fit absorbed, not a mode",
+                fmt_sig(*ratio, 3)
             ),
         }
     }
@@ -278,7 +297,7 @@ fn flag(
     let size = lscf::contributions(set, &poles, fit);
     let mut flagged = Vec::new();
     let mut modes: Vec<(Pole, f64)> = Vec::new();
-    for (p, s) in poles.into_iter().zip(size) {
+    for (k, (p, s)) in poles.into_iter().zip(size).enumerate() {
         let why = if !(p.damping_ratio > 0.0 && p.damping_ratio < limits.max_damping_ratio) {
             Some(PoleFlag::Damping {
                 limit: limits.max_damping_ratio,
@@ -288,7 +307,8 @@ fn flag(
                 band_hz: limits.band_hz,
             })
         } else {
-            None
+            let ratio = term_to_residual(set, &p, fit, k);
+            (ratio < MIN_TERM_TO_RESIDUAL).then_some(PoleFlag::Noise { ratio })
         };
         match why {
             Some(why) => flagged.push(FlaggedPole { pole: p, why }),
@@ -313,6 +333,42 @@ fn flag(
     }
     kept.sort_by(|a, b| a.freq_hz.total_cmp(&b.freq_hz));
     (kept, flagged)
+}
+
+/// The size of pole `k`'s term in the complex fit `fit` against the noise
+/// around it: the L2 norm over every pair of its term
+/// ([`lscf::mode_term`]) over the lines of its half-power band, `|f − f_k|
+/// <= ξ_k f_k` widened to [`NOISE_BAND_LINES`] lines each side, over the
+/// norm of the fit's residual (data less fit) on the same lines (-). A
+/// pole fitted to noise takes a share of the noise there and stands about
+/// as high as what is left; a mode the data show stands above it. Infinite
+/// when the residual there is zero (exact data).
+pub fn term_to_residual(set: &FrfSet, pole: &Pole, fit: &ComplexFit, k: usize) -> f64 {
+    let f = &set.freq_hz;
+    let line_hz = if f.len() > 1 {
+        (f[f.len() - 1] - f[0]) / (f.len() - 1) as f64
+    } else {
+        0.0
+    };
+    let half = (pole.damping_ratio.abs() * pole.freq_hz).max(NOISE_BAND_LINES * line_hz);
+    let lines: Vec<usize> = (0..f.len())
+        .filter(|&i| (f[i] - pole.freq_hz).abs() <= half)
+        .collect();
+    let term = lscf::mode_term(set, pole, &fit.residues, k);
+    let (mut t2, mut r2) = (0.0, 0.0);
+    for (pair, h) in set.h.iter().enumerate() {
+        for &i in &lines {
+            t2 += term[pair][i].norm_sqr();
+            r2 += (h[i] - fit.fit[pair][i]).norm_sqr();
+        }
+    }
+    if r2 > 0.0 {
+        (t2 / r2).sqrt()
+    } else if t2 > 0.0 {
+        f64::INFINITY
+    } else {
+        0.0
+    }
 }
 
 /// The persistence of the kept pole nearest `p` in frequency.

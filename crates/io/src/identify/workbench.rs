@@ -9,7 +9,7 @@ use tirecontact_core::base::modal::{ModalModel, Mode};
 use tirecontact_core::model::lsce::{
     Identification, LsceError, Responses, modes_of_poles, response_magnitudes,
 };
-use tirecontact_core::model::stability::Stability;
+use tirecontact_core::model::stability;
 
 /// A pole of the diagram: its order's index and its index in that order.
 pub type PoleAt = (usize, usize);
@@ -35,8 +35,8 @@ pub struct Workbench {
     /// Relative time error of the picked modes' fit (-).
     pub time_error: f64,
     /// Frequencies (Hz) of the identified modes the automatic choice left
-    /// out: their pole is new at the chosen order (not found at the order
-    /// below) and no order draws a persisting pole within 0.5 % of it.
+    /// out: no pole within the frequency tolerance of them persists
+    /// ([`Workbench::automatic`]).
     pub left_out_hz: Vec<f64>,
     /// `|G|` of each response at [`Self::frequencies`] (m/N), and their
     /// sum over the pairs: the data's, computed once.
@@ -81,66 +81,32 @@ impl Workbench {
         Some((p.freq_hz, p.damping_ratio))
     }
 
-    /// Picks the automatic choice: for each identified mode, the pole of
-    /// the chosen order nearest it when the diagram draws it as persisting
-    /// from the order below; else the persisting pole within 0.5 % of it
-    /// at the nearest other order; else the mode is left out (listed in
-    /// [`Self::left_out_hz`]): a pole drawn as new or unstable is never
-    /// picked without the user's click.
+    /// Picks the automatic choice: the poles the persistence rule keeps
+    /// ([`stability::keep`], the rule of the frequency-domain fit, with
+    /// the identification's frequency tolerance) up to the model order the
+    /// options gave, else the diagram's highest (as the frequency-domain
+    /// fit takes `--order`), each taken at the highest order where it is
+    /// stable. A pole stable
+    /// in frequency and damping only, or at fewer than a run of orders, is
+    /// never picked without the user's click; an identified mode with no
+    /// kept pole within the tolerance is listed in [`Self::left_out_hz`].
     pub fn automatic(&mut self) -> Result<(), LsceError> {
-        self.left_out_hz.clear();
         let id = &self.identification;
-        let Some(oi) = id.diagram.iter().position(|d| d.order == id.model_order) else {
-            self.picked.clear();
-            return self.refit();
-        };
-        let poles = &id.diagram[oi].poles;
-        let mut picked = Vec::new();
-        let mut left_out = Vec::new();
-        for m in &id.modes {
-            let Some(k) = (0..poles.len()).min_by(|&a, &b| {
-                (poles[a].freq_hz - m.freq_hz)
-                    .abs()
-                    .total_cmp(&(poles[b].freq_hz - m.freq_hz).abs())
-            }) else {
-                continue;
-            };
-            if poles[k].stability != Stability::New {
-                picked.push((oi, k));
-            } else if let Some(at) = self.persisting_near(poles[k].freq_hz, oi) {
-                picked.push(at);
-            } else {
-                left_out.push(m.freq_hz);
-            }
-        }
-        picked.sort_unstable();
-        picked.dedup();
-        self.picked = picked;
-        self.left_out_hz = left_out;
+        let selection = stability::keep(&id.diagram, id.given_order, 1, &id.persistence);
+        let tol = id.persistence.freq_tol;
+        self.left_out_hz = id
+            .modes
+            .iter()
+            .filter(|m| {
+                !selection
+                    .kept
+                    .iter()
+                    .any(|k| (k.pole.freq_hz - m.freq_hz).abs() <= tol * m.freq_hz)
+            })
+            .map(|m| m.freq_hz)
+            .collect();
+        self.picked = selection.kept.iter().map(|k| k.at).collect();
         self.refit()
-    }
-
-    /// The pole drawn as persisting (not new) within 0.5 % of `freq_hz`
-    /// at the order nearest the order `oi` (the lower one on a tie).
-    fn persisting_near(&self, freq_hz: f64, oi: usize) -> Option<PoleAt> {
-        let diag = &self.identification.diagram;
-        let mut best: Option<(usize, f64, PoleAt)> = None;
-        for (oj, d) in diag.iter().enumerate() {
-            if oj == oi {
-                continue;
-            }
-            for (k, p) in d.poles.iter().enumerate() {
-                let df = (p.freq_hz - freq_hz).abs();
-                if p.stability == Stability::New || df > SAME_POLE * freq_hz {
-                    continue;
-                }
-                let dist = oj.abs_diff(oi);
-                if best.is_none_or(|(bd, bf, _)| (dist, df) < (bd, bf)) {
-                    best = Some((dist, df, (oj, k)));
-                }
-            }
-        }
-        best.map(|(_, _, at)| at)
     }
 
     /// Picks the pole at `at`, or drops it if picked; a pole within 0.5 %
@@ -288,6 +254,7 @@ pub struct PairFit {
 mod tests {
     use super::*;
     use tirecontact_core::model::lsce::{IdentifyOptions, identify};
+    use tirecontact_core::model::stability::Stability;
 
     /// Responses of a two-point, two-mode model, and their identification.
     fn bench() -> Workbench {
@@ -324,15 +291,10 @@ mod tests {
         assert!(w.pair_fits().iter().all(|p| p.error < 1e-3));
     }
 
-    /// The pole of the chosen order nearest `freq_hz`.
-    fn at_chosen_order(w: &Workbench, freq_hz: f64) -> PoleAt {
-        let id = &w.identification;
-        let oi = id
-            .diagram
-            .iter()
-            .position(|d| d.order == id.model_order)
-            .unwrap();
-        let poles = &id.diagram[oi].poles;
+    /// The pole of the diagram's highest order nearest `freq_hz`.
+    fn at_top_order(w: &Workbench, freq_hz: f64) -> PoleAt {
+        let oi = w.identification.diagram.len() - 1;
+        let poles = &w.identification.diagram[oi].poles;
         let k = (0..poles.len())
             .min_by(|&a, &b| {
                 (poles[a].freq_hz - freq_hz)
@@ -343,38 +305,57 @@ mod tests {
         (oi, k)
     }
 
+    /// Marks every pole within 1 % of `freq_hz` at the orders `orders`
+    /// (diagram indices) as `stability`.
+    fn mark(w: &mut Workbench, freq_hz: f64, orders: std::ops::Range<usize>, s: Stability) {
+        for d in &mut w.identification.diagram[orders] {
+            for p in &mut d.poles {
+                if (p.freq_hz - freq_hz).abs() < 0.01 * freq_hz {
+                    p.stability = s;
+                }
+            }
+        }
+    }
+
+    /// The automatic choice is the persistence rule: a pole not stable at
+    /// the top order is taken at the highest order where it is; a pole
+    /// stable in frequency and damping only (its residues' shape changing
+    /// from order to order), or stable at fewer than 5 consecutive orders,
+    /// is never picked, and its mode is said to be left out.
     #[test]
-    fn the_automatic_choice_takes_no_pole_drawn_as_new() {
+    fn the_automatic_choice_keeps_only_persisting_poles() {
         let mut w = bench();
-        // the 170 Hz pole drawn as new at the chosen order: the same pole
-        // persisting at another order is taken instead
-        let (oi, k) = at_chosen_order(&w, 170.0);
+        let top = w.identification.diagram.len();
+        let (oi, k) = at_top_order(&w, 170.0);
         w.identification.diagram[oi].poles[k].stability = Stability::New;
         w.automatic().unwrap();
         assert_eq!(w.modes.len(), 2);
         assert!(w.left_out_hz.is_empty());
         assert!(!w.picked.contains(&(oi, k)));
         let high = *w.picked.last().unwrap();
+        assert_eq!(high.0, oi - 1, "taken at the order below the top");
         let (f, _) = w.pole(high).unwrap();
         assert!((f - 170.0).abs() < 0.01 * 170.0, "{f}");
-        assert_ne!(
-            w.identification.diagram[high.0].poles[high.1].stability,
-            Stability::New
-        );
-        // drawn as new at every order: left out, and said
-        for d in &mut w.identification.diagram {
-            for p in &mut d.poles {
-                if (p.freq_hz - 170.0).abs() < 0.01 * 170.0 {
-                    p.stability = Stability::New;
-                }
-            }
-        }
+        // stable in frequency and damping only, at every order: left out
+        mark(&mut w, 170.0, 0..top, Stability::FrequencyDamping);
         w.automatic().unwrap();
         assert_eq!(w.modes.len(), 1);
         assert!((w.modes[0].freq_hz - 60.0).abs() < 0.01);
         assert_eq!(w.left_out_hz.len(), 1);
         assert!((w.left_out_hz[0] - 170.0).abs() < 0.01);
-        // a click still picks it
+        // stable at the 4 orders up to the top only: a run too short
+        mark(&mut w, 170.0, top - 4..top, Stability::Stable);
+        w.automatic().unwrap();
+        assert_eq!(w.modes.len(), 1);
+        // at 5: kept
+        mark(&mut w, 170.0, top - 5..top, Stability::Stable);
+        w.automatic().unwrap();
+        assert_eq!(w.modes.len(), 2);
+        assert!(w.left_out_hz.is_empty());
+        // a click still picks a pole the rule leaves out
+        mark(&mut w, 170.0, 0..top, Stability::New);
+        w.automatic().unwrap();
+        assert_eq!(w.modes.len(), 1);
         w.toggle((oi, k)).unwrap();
         assert_eq!(w.modes.len(), 2);
     }
@@ -396,7 +377,7 @@ mod tests {
         assert!(errors.iter().any(|p| p.error > 0.1));
         // picked again from another order: the same mode, fitted again
         let (f, _) = w.pole(high).unwrap();
-        let other = w.identification.diagram.len() - 1;
+        let other = high.0 - 1;
         let at = w
             .nearest(f, w.identification.diagram[other].order as f64, 1.0)
             .unwrap();

@@ -45,7 +45,6 @@
 //! `reference_line_end_z` blended forward when that is given) and `b` the
 //! banking (channel or constant).
 
-use super::road::RoadFileError;
 use std::io::{BufRead, Read};
 use std::path::Path;
 use tirecontact_core::model::road::SurfaceGrid;
@@ -228,21 +227,23 @@ impl CrgRoad {
 }
 
 mod data;
+mod error;
 mod header;
 use data::*;
+pub use error::{CrgError, CrgFault, CrgPlace};
 use header::*;
 
 /// Reads an OpenCRG file (see the module's documentation).
-pub fn read_crg(path: &Path) -> Result<CrgRoad, RoadFileError> {
+pub fn read_crg(path: &Path) -> Result<CrgRoad, CrgError> {
     read_crg_limited(path, MAX_CRG_VALUES)
 }
 
 /// [`read_crg`] with an explicit cap on the grid's values, so that the
 /// limit can be tested on small files.
-pub fn read_crg_limited(path: &Path, max_values: usize) -> Result<CrgRoad, RoadFileError> {
-    let err = |message: String| RoadFileError {
+pub fn read_crg_limited(path: &Path, max_values: usize) -> Result<CrgRoad, CrgError> {
+    let err = |fault: CrgFault| CrgError::Fault {
         path: path.to_path_buf(),
-        message,
+        fault,
     };
     let limit = format!("{MAX_CRG_VALUES} values");
     let (file, len) = super::road::open_capped(path, "an OpenCRG file", MAX_CRG_BYTES, &limit)?;
@@ -389,20 +390,22 @@ mod tests {
         assert!(p.z_m.iter().all(|z| z.is_finite()));
         assert!(read_crg(&data("handmade_sloped_opts.crg")).is_ok());
         let text = std::fs::read_to_string(data("handmade_straight.crg")).unwrap();
-        for (block, name) in [
-            ("$ROAD_CRG_MODS\nscale_length = 2\n", "scale_length"),
-            ("$ROAD_CRG_MODS\nrefpoint_z = 1\n", "refpoint_z"),
+        for (block, name, value) in [
+            ("$ROAD_CRG_MODS\nscale_length = 2\n", "scale_length", "2"),
+            ("$ROAD_CRG_MODS\nrefpoint_z = 1\n", "refpoint_z", "1"),
             (
                 "$ROAD_CRG_OPTS\nborder_smooth_ubeg = 1\n",
                 "border_smooth_ubeg",
+                "1 (heights faded",
             ),
         ] {
             let p = tmp(&format!("{name}.crg"), format!("{block}{text}").as_bytes());
             let e = read_crg(&p).unwrap_err();
-            assert!(
-                e.message.contains(name) && e.message.starts_with("line 2"),
-                "{e}"
-            );
+            let f = e.fault().unwrap();
+            assert_eq!(f.place, CrgPlace::line(2), "{e}");
+            assert!(f.field.ends_with(name) && f.value.starts_with(value), "{e}");
+            assert!(f.expected.contains("a file without it"), "{e}");
+            assert!(e.to_string().contains("line 2: "), "{e}");
         }
         let p = tmp(
             "scaled.crg",
@@ -425,9 +428,15 @@ mod tests {
         let line = bad.lines().position(|l| l.contains("0.00x")).unwrap() + 1;
         let column = bad.lines().nth(line - 1).unwrap().find(" 0.00x").unwrap() + 1;
         let e = read_crg(&tmp("bad_field.crg", bad.as_bytes())).unwrap_err();
+        let f = e.fault().unwrap();
+        assert_eq!(f.place, CrgPlace::column(line, column), "{e}");
+        // the fourteenth cross section (u = 13 m), its fifth channel
+        assert_eq!(f.field, "cross section 14, long section 5", "{e}");
+        assert_eq!(f.value, "` 0.00x0000`", "{e}");
+        assert!(f.expected.starts_with("a number of 10 characters"), "{e}");
         assert!(
-            e.message
-                .starts_with(&format!("line {line}, column {column}:")),
+            e.to_string()
+                .contains(&format!("bad_field.crg: line {line}, column {column}: ")),
             "{e}"
         );
         let short: String = text
@@ -436,14 +445,27 @@ mod tests {
             .map(|l| format!("{l}\n"))
             .collect();
         let e = read_crg(&tmp("short.crg", short.as_bytes())).unwrap_err();
-        assert!(
-            e.message.contains("the data ends in cross section 21"),
+        let f = e.fault().unwrap();
+        assert_eq!(
+            (f.field.as_str(), f.value.as_str()),
+            ("cross section 21", "the data ends in it"),
             "{e}"
         );
-        assert!(e.path.ends_with("short.crg"));
+        assert_eq!(f.place, CrgPlace::line(short.lines().count() + 1), "{e}");
+        assert!(matches!(&e, CrgError::Fault { path, .. } if path.ends_with("short.crg")));
         let huge = text.replacen("0.0111111", "9.9999e20", 1);
+        let line = huge.lines().position(|l| l.contains("9.9999e20")).unwrap() + 1;
         let e = read_crg(&tmp("huge.crg", huge.as_bytes())).unwrap_err();
-        assert!(e.message.contains("expected |z| <="), "{e}");
+        let f = e.fault().unwrap();
+        assert!(
+            matches!(f.place, CrgPlace::Line { line: l, column: Some(_) } if l == line),
+            "{e}"
+        );
+        assert!(
+            f.value.starts_with("999990000000000000000") && f.value.ends_with(" m"),
+            "{e}"
+        );
+        assert!(f.expected.starts_with("|z| <="), "{e}");
     }
 
     /// The Belgian block (KRBI): 1001 cross sections 1 cm apart from u =
@@ -490,8 +512,10 @@ mod tests {
         assert_eq!(d.format, CrgFormat::Kdbi);
         assert_eq!(format!("{:?}", d.z_m), format!("{:?}", r.z_m));
         let e = read_crg_limited(&belgian(), 100_000).unwrap_err();
+        let f = e.fault().unwrap();
+        assert_eq!(f.place, CrgPlace::Header);
         assert!(
-            e.message
+            e.to_string()
                 .contains("341 long sections = 341341 values: expected at most 100000"),
             "{e}"
         );
@@ -515,25 +539,46 @@ mod tests {
             crlf.push(b);
         }
         let e = read_crg(&tmp("crlf.crg", &crlf)).unwrap_err();
+        let f = e.fault().unwrap();
+        // the header's line ends gained a byte each: the data starts later
+        let header_lines = bytes[..end].iter().filter(|b| **b == b'\n').count();
+        assert_eq!(f.place, CrgPlace::Byte((end + header_lines) as u64), "{e}");
+        assert_eq!(f.field, "the data's length", "{e}");
+        let data_len = crlf.len() - end - header_lines;
+        assert_eq!(f.value, format!("{data_len} bytes"), "{e}");
         assert!(
-            e.message.contains("not a whole number of 4-byte values"),
+            f.expected.contains("a whole number of 4-byte values"),
             "{e}"
         );
-        assert!(e.message.starts_with("byte "), "{e}");
-        let e = read_crg(&tmp("cut.crg", &bytes[..end + 4 * 342 * 500])).unwrap_err();
-        assert!(
-            e.message
-                .contains("the data ends after 500 whole cross sections"),
+        let cut = end + 4 * 342 * 500;
+        let e = read_crg(&tmp("cut.crg", &bytes[..cut])).unwrap_err();
+        let f = e.fault().unwrap();
+        assert_eq!(f.place, CrgPlace::Byte(cut as u64), "{e}");
+        assert_eq!(
+            f.value, "the data ends after 500 whole cross sections",
             "{e}"
         );
         let mut extra = bytes.clone();
         let pad = extra.len() - 8;
         extra[pad..pad + 4].copy_from_slice(&1.0f32.to_be_bytes());
         let e = read_crg(&tmp("extra.crg", &extra)).unwrap_err();
-        assert!(
-            e.message.contains(&format!("byte {pad}")) && e.message.contains("padding"),
+        let f = e.fault().unwrap();
+        assert_eq!(f.place, CrgPlace::Byte(pad as u64), "{e}");
+        assert_eq!(
+            (f.field.as_str(), f.value.as_str()),
+            ("padding after the last cross section", "1"),
             "{e}"
         );
+        // a height beyond any road, named by its byte, cross section and
+        // long section
+        let mut absurd = bytes.clone();
+        let at = end + 4 * (342 * 7 + 3);
+        absurd[at..at + 4].copy_from_slice(&3.0e6f32.to_be_bytes());
+        let e = read_crg(&tmp("absurd.crg", &absurd)).unwrap_err();
+        let f = e.fault().unwrap();
+        assert_eq!(f.place, CrgPlace::Byte(at as u64), "{e}");
+        assert_eq!(f.field, "cross section 8, long section 3", "{e}");
+        assert_eq!(f.value, "3000000 m", "{e}");
     }
 
     /// 25 million values (KRBI, 100 MB): read within a few seconds (run

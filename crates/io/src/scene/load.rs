@@ -221,7 +221,8 @@ pub fn load_road(road: &Road, base_dir: Option<&Path>) -> Result<RoadProfile, Sc
             u_start_m,
             v_offset_m,
         } => {
-            let crg = crate::readers::crg::read_crg(&path(file))?;
+            let crg = crate::readers::crg::read_crg(&path(file))
+                .map_err(crate::readers::road::RoadFileError::from)?;
             Ok(RoadProfile::Surface(std::sync::Arc::new(
                 crg.surface(u_start_m.unwrap_or(crg.u_first_m), *v_offset_m),
             )))

@@ -2,7 +2,7 @@
 //! `tyre: Ring(identification: (...))`.
 
 use crate::base::error::FieldError;
-use crate::model::stability::{Criteria, Matching};
+use crate::model::stability::{Criteria, Matching, PERSIST, PersistenceRule};
 use serde::{Deserialize, Serialize};
 
 /// Identification options (method §6): sampling of the responses, band, model
@@ -74,6 +74,16 @@ impl IdentifyOptions {
             damping_tol: self.stable_damping_tol,
             mac_min: self.stable_mac_min,
             matching: Matching::Nearest,
+        }
+    }
+
+    /// The persistence rule of a mode kept from the stabilisation diagram
+    /// (method §6.5.1, shared with the frequency-domain fit): the
+    /// frequency tolerance and a run of [`PERSIST`] stable orders.
+    pub fn persistence(&self) -> PersistenceRule {
+        PersistenceRule {
+            freq_tol: self.stable_freq_tol,
+            persist: PERSIST,
         }
     }
 

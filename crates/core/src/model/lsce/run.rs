@@ -188,10 +188,12 @@ impl LsceRun {
         Ok(Some(Identification {
             modes,
             model_order: *chosen,
+            given_order: self.opts.model_order,
             stable,
             discarded_ratio: model.discarded_ratio.clone(),
             diagram: std::mem::take(&mut self.diagram),
             order_errors: std::mem::take(&mut self.order_errors),
+            persistence: self.opts.persistence(),
             report,
         }))
     }

@@ -4,7 +4,7 @@
 
 use super::{FitError, FitOptions, FrfSet, Pole, check, mac};
 use crate::base::linalg::{self, LinalgError};
-use crate::model::stability::{Criteria, DiagramOrder, Stability};
+use crate::model::stability::{self, Criteria, DiagramOrder, Selection, Stability};
 use faer::{Mat, c64};
 use std::f64::consts::TAU;
 
@@ -297,24 +297,8 @@ fn poles_of_order(
             -alpha[(r * ni + i, a - (k - ni))]
         }
     });
-    linalg::sequential();
-    let eig = comp
-        .eigen()
-        .map_err(|_| LinalgError::NoConvergence { what: "eigen" })?;
-    let (u, s) = (eig.U(), eig.S().column_vector());
-    // each eigenpair checked: ‖C v − z v‖ ≤ 1e-8 ‖C‖_F ‖v‖
     let c_norm = linalg::frobenius(comp.as_ref());
-    // C V as one matrix product (the check's sums one by one took a tenth
-    // of a 140-order diagram)
-    let comp_c = Mat::<c64>::from_fn(k, k, |a, b| c64::new(comp[(a, b)], 0.0));
-    let cu = &comp_c * u;
-    for e in 0..k {
-        let v_norm = (0..k).map(|a| u[(a, e)].norm_sqr()).sum::<f64>().sqrt();
-        let res = (0..k)
-            .map(|a| (cu[(a, e)] - s[e] * u[(a, e)]).norm_sqr())
-            .sum::<f64>()
-            .sqrt();
-        let residual = res / (c_norm * v_norm).max(f64::MIN_POSITIVE);
+    let check = |residual: f64| -> Result<(), FitError> {
         if residual.is_nan() || residual > 1e-8 {
             return Err(LinalgError::Rebuild {
                 what: "companion eigenpairs",
@@ -323,15 +307,51 @@ fn poles_of_order(
             }
             .into());
         }
-    }
+        Ok(())
+    };
+    // the roots and, with several references, the participation vectors
+    // (the eigenvectors' first block)
+    let (roots, vectors): (Vec<c64>, Option<Mat<c64>>) = if ni == 1 {
+        // one reference: a participation vector is one entry (any two have
+        // a MAC of 1), so no eigenvectors are computed; the eigenvector of
+        // the companion matrix is known, `x_a = z^a`, and each root is
+        // checked on it
+        let roots = linalg::eigenvalues(comp.as_ref())?;
+        for &z in &roots {
+            check(scalar_companion_residual(comp.as_ref(), z, c_norm))?;
+        }
+        (roots, None)
+    } else {
+        linalg::sequential();
+        let eig = comp
+            .eigen()
+            .map_err(|_| LinalgError::NoConvergence { what: "eigen" })?;
+        let (u, s) = (eig.U(), eig.S().column_vector());
+        // each eigenpair checked: ‖C v − z v‖ ≤ 1e-8 ‖C‖_F ‖v‖
+        // C V as one matrix product (the check's sums one by one took a
+        // tenth of a 140-order diagram)
+        let comp_c = Mat::<c64>::from_fn(k, k, |a, b| c64::new(comp[(a, b)], 0.0));
+        let cu = &comp_c * u;
+        for e in 0..k {
+            let v_norm = (0..k).map(|a| u[(a, e)].norm_sqr()).sum::<f64>().sqrt();
+            let res = (0..k)
+                .map(|a| (cu[(a, e)] - s[e] * u[(a, e)]).norm_sqr())
+                .sum::<f64>()
+                .sqrt();
+            check(res / (c_norm * v_norm).max(f64::MIN_POSITIVE))?;
+        }
+        ((0..k).map(|e| s[e]).collect(), Some(u.to_owned()))
+    };
     let mut poles = Vec::new();
-    for e in 0..k {
-        let z = s[e];
+    for (e, &z) in roots.iter().enumerate() {
         if z.im <= 0.0 || z.norm() >= 1.0 || z.norm() == 0.0 {
             continue;
         }
         let lam = c64::new(z.norm().ln(), z.im.atan2(z.re)) / dt;
-        let mut l: Vec<c64> = (0..ni).map(|i| u[(i, e)]).collect();
+        let mut l: Vec<c64> = match &vectors {
+            Some(u) => (0..ni).map(|i| u[(i, e)]).collect(),
+            None => vec![c64::new(1.0, 0.0)],
+        };
         let norm = l.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
         if norm > 0.0 {
             l.iter_mut().for_each(|v| *v /= norm);
@@ -351,9 +371,34 @@ fn poles_of_order(
     Ok(poles)
 }
 
-/// Whether `a` matches `b` in frequency within the options' tolerance.
-fn same_frequency(a: &Pole, b: &Pole, opts: &FitOptions) -> bool {
-    (a.freq_hz - b.freq_hz).abs() <= opts.freq_tol * a.freq_hz
+/// `‖C x − z x‖ / (‖C‖_F ‖x‖)` for the companion matrix `c` of a scalar
+/// polynomial (ones above the diagonal, the coefficients in its last row)
+/// and its eigenvector at the root `z`, `x_a = z^a` (scaled by `z^{1−k}`
+/// when `|z| > 1`, so that no entry exceeds 1).
+fn scalar_companion_residual(c: faer::MatRef<'_, f64>, z: c64, c_norm: f64) -> f64 {
+    let k = c.nrows();
+    let mut x = vec![c64::new(1.0, 0.0); k];
+    if z.norm() <= 1.0 {
+        for a in 1..k {
+            x[a] = x[a - 1] * z;
+        }
+    } else {
+        let w = c64::new(1.0, 0.0) / z;
+        for a in (0..k.saturating_sub(1)).rev() {
+            x[a] = x[a + 1] * w;
+        }
+    }
+    let mut res = 0.0;
+    for a in 0..k {
+        let cx = if a + 1 < k {
+            x[a + 1]
+        } else {
+            (0..k).map(|b| x[b] * c[(a, b)]).sum::<c64>()
+        };
+        res += (cx - z * x[a]).norm_sqr();
+    }
+    let x_norm = x.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
+    res.sqrt() / (c_norm * x_norm).max(f64::MIN_POSITIVE)
 }
 
 /// Each pole (with its participation vector) marked against the poles of
@@ -386,107 +431,11 @@ fn mark(
     }
 }
 
-/// A pole kept as a mode by the persistence rule ([`keep`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct KeptPole {
-    pub pole: Pole,
-    /// The order it was taken at.
-    pub order: usize,
-    /// The run of consecutive orders, `(first, last)`, at which a pole
-    /// within the frequency tolerance of it is stable (frequency, damping
-    /// and vector): the orders it persists over.
-    pub stable_orders: (usize, usize),
-    /// Frequencies (Hz) of the other poles of its order within the
-    /// frequency tolerance of it (a split pole), merged into it.
-    pub split_hz: Vec<f64>,
-}
-
-/// The poles [`keep`] kept, by frequency, and the chosen order.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Selection {
-    /// The chosen polynomial order (`--order`, else the diagram's highest).
-    pub order: usize,
-    pub kept: Vec<KeptPole>,
-}
-
-/// The kept poles by persistence (method §6.5.1): at each order from the
-/// chosen one down to `persist` orders below it, highest first, a pole is
-/// kept when it is stable (frequency, damping, vector) against the order
-/// below there and at each order down to the run's start (a run of
-/// `persist` consecutive stable orders with one reference, `persist /
-/// references` with several, 1 at least; each a pole within the frequency
-/// tolerance of it), and a pole within the tolerance is drawn at each of
-/// the `persist` orders below; a pole within the frequency tolerance of
-/// one already kept is the same physical pole.
-/// So a mode is kept when the top order splits it, moves it or leaves its
-/// damping unsettled, as long as it persisted up to within `persist`
-/// orders of the chosen one. Sorted by frequency.
+/// The kept poles by persistence (method §6.5.1): the shared rule
+/// [`stability::keep`] with the options' chosen order, frequency tolerance
+/// and run length `persist`.
 pub fn keep(diagram: &[DiagramOrder], references: usize, opts: &FitOptions) -> Selection {
-    if diagram.is_empty() {
-        return Selection {
-            order: 0,
-            kept: Vec::new(),
-        };
-    }
-    let order = opts.order.unwrap_or(diagram.len()).clamp(1, diagram.len());
-    let at = |p: usize| &diagram[p - 1].poles;
-    let stable_at = |p: &Pole, q: usize| {
-        at(q)
-            .iter()
-            .any(|b| b.stability == Stability::Stable && same_frequency(p, b, opts))
-    };
-    // an order of a polyreference model adds N_i poles (N_i references):
-    // the run is `persist` orders of one reference, persist / N_i of N_i
-    // (2 at least)
-    let run = (opts.persist / references.max(1)).clamp(1, opts.persist.max(1));
-    let drawn = |p: &Pole, q: usize| {
-        at(q)
-            .iter()
-            .any(|b| b.stability != Stability::Damped && same_frequency(p, b, opts))
-    };
-    let mut kept: Vec<KeptPole> = Vec::new();
-    let lowest_taken = order.saturating_sub(opts.persist).max(1);
-    for q in (lowest_taken..=order).rev() {
-        for pole in at(q) {
-            if pole.stability != Stability::Stable
-                || kept.iter().any(|k| same_frequency(&k.pole, pole, opts))
-            {
-                continue;
-            }
-            let first = (1..q)
-                .rev()
-                .take_while(|&b| stable_at(pole, b))
-                .last()
-                .unwrap_or(q);
-            // a run of `persist` consecutive stable orders at least (at
-            // a high order, poles are so dense that one is drawn within
-            // the tolerance of anything: being drawn proves nothing)
-            let lowest = q.saturating_sub(opts.persist).max(1);
-            if q + 1 - first < run || !(lowest..q).all(|b| drawn(pole, b)) {
-                continue;
-            }
-            let last = (q + 1..=diagram.len())
-                .take_while(|&b| stable_at(pole, b))
-                .last();
-            let split_hz = at(q)
-                .iter()
-                .filter(|b| {
-                    b.stability != Stability::Damped
-                        && !std::ptr::eq(*b, pole)
-                        && same_frequency(pole, b, opts)
-                })
-                .map(|b| b.freq_hz)
-                .collect();
-            kept.push(KeptPole {
-                pole: pole.clone(),
-                order: q,
-                stable_orders: (first, last.unwrap_or(q)),
-                split_hz,
-            });
-        }
-    }
-    kept.sort_by(|a, b| a.pole.freq_hz.total_cmp(&b.pole.freq_hz));
-    Selection { order, kept }
+    stability::keep(diagram, opts.order, references, &opts.persistence())
 }
 
 /// The number of references `N_i` of the polyreference model of `pairs`
@@ -589,6 +538,33 @@ mod tests {
         assert_eq!(s.kept[0].order, 12);
         // no order: nothing kept, nothing panics
         assert!(keep(&[], 1, &FitOptions::default()).kept.is_empty());
+    }
+
+    /// A root of a scalar polynomial is checked on the companion matrix's
+    /// known eigenvector: at the roots of `(z − 0.5)(z − 2)(z² + 1)` the
+    /// residual is at round-off, as it is at the eigenvalues computed;
+    /// at a number that is no root it is not.
+    #[test]
+    fn a_scalar_companions_roots_are_checked_on_their_known_eigenvectors() {
+        let alpha = [1.0, -2.5, 2.0, -2.5];
+        let k = alpha.len();
+        let c = Mat::from_fn(k, k, |a, b| {
+            if a + 1 < k {
+                if b == a + 1 { 1.0 } else { 0.0 }
+            } else {
+                -alpha[b]
+            }
+        });
+        let n = linalg::frobenius(c.as_ref());
+        for z in [c64::new(0.5, 0.0), c64::new(2.0, 0.0), c64::new(0.0, 1.0)] {
+            let r = scalar_companion_residual(c.as_ref(), z, n);
+            assert!(r < 1e-15, "{z}: {r:e}");
+        }
+        for z in linalg::eigenvalues(c.as_ref()).unwrap() {
+            let r = scalar_companion_residual(c.as_ref(), z, n);
+            assert!(r < 1e-13, "{z}: {r:e}");
+        }
+        assert!(scalar_companion_residual(c.as_ref(), c64::new(0.6, 0.0), n) > 1e-3);
     }
 
     /// The reduced matrices built once from the highest order's factored

@@ -297,19 +297,32 @@ pub fn contributions(set: &FrfSet, poles: &[Pole], fit: &ComplexFit) -> Vec<f64>
 }
 
 /// The L2 norm over every pair and frequency of pole `k`'s own term in the
-/// complex fit, `(jω)^q [r/(jω−λ) + r*/(jω−λ*)]` with its residues
-/// `residues[pair][k]`.
+/// complex fit ([`mode_term`]).
 fn mode_contribution(set: &FrfSet, pole: &Pole, residues: &[Vec<c64>], k: usize) -> f64 {
+    mode_term(set, pole, residues, k)
+        .iter()
+        .flatten()
+        .map(|v| v.norm_sqr())
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Pole `k`'s own term in a complex fit at every pair and frequency,
+/// `(jω)^q [r/(jω−λ) + r*/(jω−λ*)]` with its residues
+/// `residues[pair][k]` (`[pair][frequency]`, in the set's ordinate).
+pub fn mode_term(set: &FrfSet, pole: &Pole, residues: &[Vec<c64>], k: usize) -> Vec<Vec<c64>> {
     let lam = pole.lambda();
-    let mut sum = 0.0;
     let w = omegas(set);
-    for r in residues {
-        let r = r[k];
-        for &om in &w {
-            let jw = c64::new(0.0, om);
-            let g = set.ordinate.factor(om);
-            sum += (g * (r / (jw - lam) + r.conj() / (jw - lam.conj()))).norm_sqr();
-        }
-    }
-    sum.sqrt()
+    residues
+        .iter()
+        .map(|r| {
+            let r = r[k];
+            w.iter()
+                .map(|&om| {
+                    let jw = c64::new(0.0, om);
+                    set.ordinate.factor(om) * (r / (jw - lam) + r.conj() / (jw - lam.conj()))
+                })
+                .collect()
+        })
+        .collect()
 }

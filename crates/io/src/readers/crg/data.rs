@@ -15,28 +15,30 @@ pub(super) struct Values {
 }
 
 /// Files the values of cross section `k` (`row`: its `nch` values); `at`
-/// says where a refused value is.
+/// says where the value of a channel is.
 pub(super) fn file_row(
     l: &Layout,
     k: usize,
     row: &[f64],
     out: &mut Values,
-    at: &dyn Fn(usize) -> String,
-) -> Result<(), String> {
+    at: &dyn Fn(usize) -> CrgPlace,
+) -> Result<(), CrgFault> {
     if (k + 1) * l.sections.len() > l.max_values {
-        return Err(format!(
-            "{}: more than {} values: expected at most {} (cut the file along u)",
+        return Err(CrgFault::new(
             at(0),
-            l.max_values,
-            l.max_values
+            format!("cross section {}", k + 1),
+            format!("more than {} values", l.max_values),
+            format!("at most {} values (cut the file along u)", l.max_values),
         ));
     }
     for &(c, _) in &l.sections {
         let z = row[c];
         if z.is_finite() && z.abs() > MAX_CRG_ABS_HEIGHT_M {
-            return Err(format!(
-                "{}: height {z} m: expected |z| <= {MAX_CRG_ABS_HEIGHT_M} m (a damaged file?)",
-                at(c)
+            return Err(CrgFault::new(
+                at(c),
+                l.value_name(k, c),
+                format!("{z} m"),
+                format!("|z| <= {MAX_CRG_ABS_HEIGHT_M} m (a damaged file?)"),
             ));
         }
         out.z_m.push(z as f32);
@@ -48,14 +50,11 @@ pub(super) fn file_row(
             // interval before it): a placeholder is allowed there
             let unused = k == 0 && Some(c) == l.slope;
             if !(unused || x.is_finite() && x.abs() <= 10.0) {
-                return Err(format!(
-                    "{}: reference line {} {x}: expected a finite value of at most 10 m/m",
+                return Err(CrgFault::new(
                     at(c),
-                    if Some(c) == l.slope {
-                        "slope"
-                    } else {
-                        "banking"
-                    }
+                    l.value_name(k, c),
+                    x,
+                    "a finite value of at most 10 m/m",
                 ));
             }
             d.push(if unused && !x.is_finite() { 0.0 } else { x });
@@ -83,17 +82,22 @@ pub(super) fn read_binary<R: Read>(
     l: &Layout,
     data_bytes: u64,
     data_offset: u64,
-) -> Result<Values, String> {
+) -> Result<Values, CrgFault> {
     let w = l.format.width() as u64;
     let nch = l.nch() as u64;
     let row_bytes = nch * w;
     if !data_bytes.is_multiple_of(w) {
-        return Err(format!(
-            "byte {data_offset}: the data is {data_bytes} bytes, not a whole number of {w}-byte values ({nch} channels a cross section{}): a damaged file (a line-end conversion?)",
-            l.nu.map_or(String::new(), |nu| format!(
-                ", {nu} cross sections: {} bytes padded to a whole 80-byte record",
-                (nu as u64 * row_bytes).div_ceil(80) * 80
-            ))
+        return Err(CrgFault::new(
+            CrgPlace::Byte(data_offset),
+            "the data's length",
+            format!("{data_bytes} bytes"),
+            format!(
+                "a whole number of {w}-byte values ({nch} channels a cross section{}); it is not: a damaged file (a line-end conversion?)",
+                l.nu.map_or(String::new(), |nu| format!(
+                    ", {nu} cross sections: {} bytes padded to a whole 80-byte record",
+                    (nu as u64 * row_bytes).div_ceil(80) * 80
+                ))
+            ),
         ));
     }
     // without the end of u, as many cross sections as the data holds
@@ -101,46 +105,50 @@ pub(super) fn read_binary<R: Read>(
     let need = nu * row_bytes;
     let padded = need.div_ceil(80) * 80;
     if data_bytes < need {
-        return Err(format!(
-            "byte {}: the data ends after {} whole cross sections: expected {nu} ({need} bytes)",
-            data_offset + data_bytes,
-            data_bytes / row_bytes
+        return Err(CrgFault::new(
+            CrgPlace::Byte(data_offset + data_bytes),
+            "the data's end",
+            format!(
+                "the data ends after {} whole cross sections",
+                data_bytes / row_bytes
+            ),
+            format!("{nu} cross sections ({need} bytes)"),
         ));
     }
     if data_bytes > padded {
-        return Err(format!(
-            "byte {}: {} bytes after the last cross section: expected at most {} bytes of padding to a whole 80-byte record",
-            data_offset + need,
+        return Err(CrgFault::new(
+            CrgPlace::Byte(data_offset + need),
+            "bytes after the last cross section",
             data_bytes - need,
-            padded - need
+            format!(
+                "at most {} bytes of padding to a whole 80-byte record",
+                padded - need
+            ),
         ));
     }
     let mut out = empty_values(l);
     let mut buf = vec![0u8; (nch * w) as usize];
     let mut row = vec![0.0f64; nch as usize];
     for k in 0..nu as usize {
-        r.read_exact(&mut buf).map_err(|e| {
-            format!(
-                "byte {}: cannot read: {e}",
-                data_offset + k as u64 * nch * w
-            )
-        })?;
-        decode(&buf, l.format, &mut row);
         let base = data_offset + k as u64 * nch * w;
+        r.read_exact(&mut buf)
+            .map_err(|e| unreadable(CrgPlace::Byte(base), e))?;
+        decode(&buf, l.format, &mut row);
         file_row(l, k, &row, &mut out, &|c| {
-            format!("byte {}", base + c as u64 * w)
+            CrgPlace::Byte(base + c as u64 * w)
         })?;
     }
     let mut pad = Vec::new();
     r.read_to_end(&mut pad)
-        .map_err(|e| format!("byte {}: cannot read: {e}", data_offset + need))?;
+        .map_err(|e| unreadable(CrgPlace::Byte(data_offset + need), e))?;
     let mut tail = vec![0.0; pad.len() / w as usize];
     decode(&pad, l.format, &mut tail);
     if let Some(i) = tail.iter().position(|x| !x.is_nan()) {
-        return Err(format!(
-            "byte {}: a value {} after the last cross section: expected NaN padding",
-            data_offset + need + i as u64 * w,
-            tail[i]
+        return Err(CrgFault::new(
+            CrgPlace::Byte(data_offset + need + i as u64 * w),
+            "padding after the last cross section",
+            tail[i],
+            "NaN padding",
         ));
     }
     Ok(out)
@@ -169,7 +177,7 @@ pub(super) fn read_text<R: BufRead>(
     r: &mut R,
     l: &Layout,
     first_line: usize,
-) -> Result<Values, String> {
+) -> Result<Values, CrgFault> {
     let w = l.format.width();
     let per_record = 80 / w;
     let nch = l.nch();
@@ -177,20 +185,23 @@ pub(super) fn read_text<R: BufRead>(
     let mut row = vec![0.0f64; nch];
     let mut line_no = first_line;
     let mut buf = Vec::with_capacity(96);
-    let mut next_line = |buf: &mut Vec<u8>, line_no: &mut usize| -> Result<bool, String> {
+    let mut next_line = |buf: &mut Vec<u8>, line_no: &mut usize| -> Result<bool, CrgFault> {
         loop {
             buf.clear();
             let n = r
                 .by_ref()
                 .take(MAX_HEADER_LINE as u64 + 1)
                 .read_until(b'\n', buf)
-                .map_err(|e| format!("line {line_no}: cannot read: {e}"))?;
+                .map_err(|e| unreadable(CrgPlace::line(*line_no), e))?;
             if n == 0 {
                 return Ok(false);
             }
             if n > MAX_HEADER_LINE {
-                return Err(format!(
-                    "line {line_no}: longer than {MAX_HEADER_LINE} bytes: expected records of 80 characters"
+                return Err(CrgFault::new(
+                    CrgPlace::line(*line_no),
+                    "data record",
+                    format!("longer than {MAX_HEADER_LINE} bytes"),
+                    "records of 80 characters",
                 ));
             }
             while matches!(buf.last(), Some(b'\n' | b'\r')) {
@@ -215,26 +226,35 @@ pub(super) fn read_text<R: BufRead>(
                 if c == 0 && l.nu.is_none() {
                     return Ok(out);
                 }
-                return Err(format!(
-                    "line {line_no}: the data ends in cross section {}: expected {} cross sections of {nch} values",
-                    k + 1,
-                    l.nu.map_or("whole".to_string(), |n| n.to_string())
+                return Err(CrgFault::new(
+                    CrgPlace::line(line_no),
+                    format!("cross section {}", k + 1),
+                    "the data ends in it",
+                    format!(
+                        "{} cross sections of {nch} values",
+                        l.nu.map_or("whole".to_string(), |n| n.to_string())
+                    ),
                 ));
             }
             let here = line_no;
             lines.push(here);
             for slot in 0..per_record.min(nch - c) {
+                let place = CrgPlace::column(here, slot * w + 1);
                 let field = buf.get(slot * w..(slot + 1) * w).ok_or_else(|| {
-                    format!(
-                        "line {here}, column {}: the record ends: expected {} values of {w} characters",
-                        slot * w + 1,
-                        per_record.min(nch - c)
+                    CrgFault::new(
+                        place,
+                        l.value_name(k, c),
+                        "the record ends",
+                        format!("{} values of {w} characters", per_record.min(nch - c)),
                     )
                 })?;
-                row[c] = parse_field(field).map_err(|f| {
-                    format!(
-                        "line {here}, column {}: `{f}`: expected a number of {w} characters or a placeholder starting with `*`",
-                        slot * w + 1
+                row[c] = parse_field(field).ok_or_else(|| {
+                    let text: String = field.iter().map(|&b| b as char).collect();
+                    CrgFault::new(
+                        place,
+                        l.value_name(k, c),
+                        format!("`{text}`"),
+                        format!("a number of {w} characters or a placeholder starting with `*`"),
                     )
                 })?;
                 c += 1;
@@ -243,18 +263,22 @@ pub(super) fn read_text<R: BufRead>(
         }
         let at = |ch: usize| {
             let rec = ch / per_record;
-            format!(
-                "line {}, column {}",
+            CrgPlace::column(
                 lines.get(rec).copied().unwrap_or(0),
-                (ch % per_record) * w + 1
+                (ch % per_record) * w + 1,
             )
         };
         file_row(l, k, &row, &mut out, &at)?;
     }
     if next_line(&mut buf, &mut line_no)? {
-        return Err(format!(
-            "line {line_no}: a record after the {} cross sections from reference_line_start_u to reference_line_end_u: expected the end of the file",
-            l.nu.unwrap_or(0)
+        return Err(CrgFault::new(
+            CrgPlace::line(line_no),
+            "data record",
+            format!(
+                "a record after the {} cross sections from reference_line_start_u to reference_line_end_u",
+                l.nu.unwrap_or(0)
+            ),
+            "the end of the file",
         ));
     }
     Ok(out)
@@ -270,32 +294,48 @@ pub(super) fn leading_number(text: &str) -> Option<f64> {
 }
 
 /// One formatted value: a number (Fortran `D` exponents allowed), or NaN
-/// for a placeholder starting with `*` (`**unused**` included).
-pub(super) fn parse_field(field: &[u8]) -> Result<f64, String> {
+/// for a placeholder starting with `*` (`**unused**` included); `None`
+/// for anything else.
+pub(super) fn parse_field(field: &[u8]) -> Option<f64> {
     let text: String = field.iter().map(|&b| b as char).collect();
     let t = text.trim();
     if t.starts_with('*') {
-        return Ok(f64::NAN);
+        return Some(f64::NAN);
     }
     let s = t.replace(['d', 'D'], "e");
     match s.parse::<f64>() {
-        Ok(x) if x.is_finite() => Ok(x),
-        Ok(x) if x.is_nan() => Ok(x),
-        _ => Err(text),
+        Ok(x) if x.is_finite() || x.is_nan() => Some(x),
+        _ => None,
     }
+}
+
+/// A read that failed at `place`.
+pub(super) fn unreadable(place: CrgPlace, e: std::io::Error) -> CrgFault {
+    CrgFault::new(
+        place,
+        "the file",
+        format!("cannot read: {e}"),
+        "a readable file",
+    )
 }
 
 /// Applies the `$ROAD_CRG_MODS` that change heights; refuses those that
 /// would change the grid's geometry or a height reference not applied.
-pub(super) fn apply_mods(h: &Header, v: &mut Values) -> Result<(), String> {
+pub(super) fn apply_mods(h: &Header, v: &mut Values) -> Result<(), CrgFault> {
     let mut nan_mode = None;
     let mut nan_offset = 0.0;
     for (key, value, line) in &h.mods {
         let (key, value, line) = (key.as_str(), *value, *line);
+        let modifier = |expected: &str| {
+            CrgFault::new(
+                CrgPlace::line(line),
+                format!("modifier {key}"),
+                value,
+                expected,
+            )
+        };
         if !value.is_finite() {
-            return Err(format!(
-                "line {line}: modifier {key} = {value}: expected a finite number"
-            ));
+            return Err(modifier("a finite number"));
         }
         match key {
             "scale_z_grid" => {
@@ -307,8 +347,8 @@ pub(super) fn apply_mods(h: &Header, v: &mut Values) -> Result<(), String> {
                 if let Some(s) = v.slope.as_mut() {
                     s.iter_mut().for_each(|x| *x *= value);
                 } else if value != 1.0 {
-                    return Err(format!(
-                        "line {line}: modifier scale_slope = {value} on a constant slope: expected a slope channel or no such modifier"
+                    return Err(modifier(
+                        "a slope channel or no such modifier (the slope is constant)",
                     ));
                 }
             }
@@ -316,8 +356,8 @@ pub(super) fn apply_mods(h: &Header, v: &mut Values) -> Result<(), String> {
                 if let Some(b) = v.bank.as_mut() {
                     b.iter_mut().for_each(|x| *x *= value);
                 } else if value != 1.0 {
-                    return Err(format!(
-                        "line {line}: modifier scale_banking = {value} on a constant banking: expected a banking channel or no such modifier"
+                    return Err(modifier(
+                        "a banking channel or no such modifier (the banking is constant)",
                     ));
                 }
             }
@@ -325,8 +365,8 @@ pub(super) fn apply_mods(h: &Header, v: &mut Values) -> Result<(), String> {
             "grid_nan_mode" => nan_mode = Some((value, line)),
             "grid_nan_offset" => nan_offset = value,
             "scale_length" | "scale_width" | "refpoint_z" => {
-                return Err(format!(
-                    "line {line}: modifier {key} = {value}: expected a file without it (it changes the grid or its height reference; not applied here)"
+                return Err(modifier(
+                    "a file without it (it changes the grid or its height reference; not applied here)",
                 ));
             }
             // plan view and curvature: no height changes along the line
@@ -345,8 +385,11 @@ pub(super) fn apply_mods(h: &Header, v: &mut Values) -> Result<(), String> {
             }
             2 if mode == 2.0 => keep_last(v, nan_offset),
             _ => {
-                return Err(format!(
-                    "line {line}: modifier grid_nan_mode = {mode}: expected 0 (keep), 1 (set to the offset) or 2 (keep the last value)"
+                return Err(CrgFault::new(
+                    CrgPlace::line(line),
+                    "modifier grid_nan_mode",
+                    mode,
+                    "0 (keep), 1 (set to the offset) or 2 (keep the last value)",
                 ));
             }
         }

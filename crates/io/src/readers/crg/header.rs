@@ -40,19 +40,22 @@ pub(super) enum Block {
 pub(super) fn header_line<R: BufRead>(
     r: &mut R,
     line: usize,
-) -> Result<Option<(String, usize)>, String> {
+) -> Result<Option<(String, usize)>, CrgFault> {
     let mut buf = Vec::new();
     let n = r
         .by_ref()
         .take(MAX_HEADER_LINE as u64 + 1)
         .read_until(b'\n', &mut buf)
-        .map_err(|e| format!("line {line}: cannot read: {e}"))?;
+        .map_err(|e| unreadable(CrgPlace::line(line), e))?;
     if n == 0 {
         return Ok(None);
     }
     if buf.last() != Some(&b'\n') && n > MAX_HEADER_LINE {
-        return Err(format!(
-            "line {line}: longer than {MAX_HEADER_LINE} bytes: expected header lines of an OpenCRG file"
+        return Err(CrgFault::new(
+            CrgPlace::line(line),
+            "header line",
+            format!("longer than {MAX_HEADER_LINE} bytes"),
+            "header lines of an OpenCRG file",
         ));
     }
     while matches!(buf.last(), Some(b'\n' | b'\r')) {
@@ -64,15 +67,17 @@ pub(super) fn header_line<R: BufRead>(
 
 /// The header up to the `$$$$` line: its blocks, the line number of the
 /// data's first line and the byte offset of the data.
-pub(super) fn read_header<R: BufRead>(r: &mut R) -> Result<(Header, usize, u64), String> {
+pub(super) fn read_header<R: BufRead>(r: &mut R) -> Result<(Header, usize, u64), CrgFault> {
     let mut h = Header::default();
     let mut block = Block::None;
     let mut offset = 0u64;
     for line in 1usize.. {
         let Some((text, n)) = header_line(r, line)? else {
-            return Err(format!(
-                "ends at line {}: expected the data after a `$$$$` line",
-                line - 1
+            return Err(CrgFault::new(
+                CrgPlace::line(line - 1),
+                "the file",
+                format!("ends at line {}", line - 1),
+                "the data after a `$$$$` line",
             ));
         };
         offset += n as u64;
@@ -92,8 +97,11 @@ pub(super) fn read_header<R: BufRead>(r: &mut R) -> Result<(Header, usize, u64),
                 "ROAD_CRG_OPTS" => Block::Opts,
                 "ROAD_CRG_MODS" => Block::Mods,
                 "ROAD_CRG_FILE" => {
-                    return Err(format!(
-                        "line {line}: block `$ROAD_CRG_FILE` (data in other files): expected one self-contained OpenCRG file"
+                    return Err(CrgFault::new(
+                        CrgPlace::line(line),
+                        "block `$ROAD_CRG_FILE` (data in other files)",
+                        "",
+                        "one self-contained OpenCRG file",
                     ));
                 }
                 _ => Block::None,
@@ -112,8 +120,11 @@ pub(super) fn read_header<R: BufRead>(r: &mut R) -> Result<(Header, usize, u64),
             Block::Road | Block::Mods | Block::Opts => {
                 let Some((key, value)) = body.split_once('=') else {
                     if block == Block::Road {
-                        return Err(format!(
-                            "line {line}: `{body}`: expected `key = value` in block $ROAD_CRG"
+                        return Err(CrgFault::new(
+                            CrgPlace::line(line),
+                            "a line of block $ROAD_CRG",
+                            format!("`{body}`"),
+                            "`key = value` in block $ROAD_CRG",
                         ));
                     }
                     continue;
@@ -121,21 +132,34 @@ pub(super) fn read_header<R: BufRead>(r: &mut R) -> Result<(Header, usize, u64),
                 let key = key.trim().to_ascii_lowercase();
                 let value_text = value.trim();
                 let value = leading_number(value_text).ok_or_else(|| {
-                    format!("line {line}: {key} = `{value_text}`: expected a number")
+                    CrgFault::new(
+                        CrgPlace::line(line),
+                        key.as_str(),
+                        format!("`{value_text}`"),
+                        "a number",
+                    )
                 })?;
                 match block {
                     Block::Road => {
                         if !value.is_finite() {
-                            return Err(format!(
-                                "line {line}: {key} = {value_text}: expected a finite number"
+                            return Err(CrgFault::new(
+                                CrgPlace::line(line),
+                                key,
+                                value_text,
+                                "a finite number",
                             ));
                         }
                         h.keys.insert(key, (value, line));
                     }
                     Block::Opts => {
                         if key == "border_smooth_ubeg" || key == "border_smooth_uend" {
-                            return Err(format!(
-                                "line {line}: option {key} = {value_text} (heights faded towards the reference line at the ends): expected a file without it (not applied here)"
+                            return Err(CrgFault::new(
+                                CrgPlace::line(line),
+                                format!("option {key}"),
+                                format!(
+                                    "{value_text} (heights faded towards the reference line at the ends)"
+                                ),
+                                "a file without it (not applied here)",
                             ));
                         }
                     }
@@ -151,8 +175,11 @@ pub(super) fn read_header<R: BufRead>(r: &mut R) -> Result<(Header, usize, u64),
                         "KRBI" => CrgFormat::Krbi,
                         "KDBI" => CrgFormat::Kdbi,
                         _ => {
-                            return Err(format!(
-                                "line {line}: data format `#:{name}`: expected #:LRFI, #:LDFI, #:KRBI or #:KDBI"
+                            return Err(CrgFault::new(
+                                CrgPlace::line(line),
+                                "data format",
+                                format!("`#:{name}`"),
+                                "#:LRFI, #:LDFI, #:KRBI or #:KDBI",
                             ));
                         }
                     };
@@ -169,7 +196,7 @@ pub(super) fn read_header<R: BufRead>(r: &mut R) -> Result<(Header, usize, u64),
 }
 
 /// A `D:` channel definition (without `D:`): `name,unit`.
-pub(super) fn channel(d: &str, line: usize) -> Result<Channel, String> {
+pub(super) fn channel(d: &str, line: usize) -> Result<Channel, CrgFault> {
     let (name, unit) = d.split_once(',').unwrap_or((d, ""));
     let name = name.trim().to_ascii_lowercase();
     let unit = unit
@@ -178,27 +205,35 @@ pub(super) fn channel(d: &str, line: usize) -> Result<Channel, String> {
         .unwrap_or("")
         .trim()
         .to_ascii_lowercase();
+    let at = CrgPlace::line(line);
     let want_unit = |want: &str| {
         if unit == want {
             Ok(())
         } else {
-            Err(format!(
-                "line {line}: channel `{name}` in `{unit}`: expected the unit `{want}`"
+            Err(CrgFault::new(
+                at,
+                format!("the unit of channel `{name}`"),
+                format!("`{unit}`"),
+                format!("the unit `{want}`"),
             ))
         }
     };
     if let Some(rest) = name.strip_prefix("long section") {
         want_unit("m")?;
         let rest = rest.trim();
-        if let Some(at) = rest.strip_prefix("at v") {
-            let v_text = at.trim().trim_start_matches('=').trim();
-            let v: f64 = v_text.parse().map_err(|_| {
-                format!("line {line}: `long section at v = {v_text}`: expected a position in m")
-            })?;
+        if let Some(at_v) = rest.strip_prefix("at v") {
+            let v_text = at_v.trim().trim_start_matches('=').trim();
+            let position = |expected: &str| {
+                CrgFault::new(
+                    at,
+                    "the v of a long section",
+                    format!("`{v_text}`"),
+                    expected,
+                )
+            };
+            let v: f64 = v_text.parse().map_err(|_| position("a position in m"))?;
             if !v.is_finite() {
-                return Err(format!(
-                    "line {line}: long section at v = {v_text}: expected a finite position"
-                ));
+                return Err(position("a finite position"));
             }
             return Ok(Channel::Section {
                 v_m: Some(v),
@@ -206,7 +241,12 @@ pub(super) fn channel(d: &str, line: usize) -> Result<Channel, String> {
             });
         }
         let number: f64 = rest.parse().map_err(|_| {
-            format!("line {line}: `long section {rest}`: expected `long section N` or `long section at v = …`")
+            CrgFault::new(
+                at,
+                "channel",
+                format!("`long section {rest}`"),
+                "`long section N` or `long section at v = …`",
+            )
         })?;
         return Ok(Channel::Section { v_m: None, number });
     }
@@ -215,13 +255,19 @@ pub(super) fn channel(d: &str, line: usize) -> Result<Channel, String> {
             "slope" => want_unit("m/m").map(|_| Channel::Slope),
             "banking" => want_unit("m/m").map(|_| Channel::Bank),
             "phi" | "x" | "y" => Ok(Channel::Aside),
-            other => Err(format!(
-                "line {line}: channel `reference line {other}`: expected slope, banking, phi, x or y (cross sections evenly spaced by reference_line_increment)"
+            other => Err(CrgFault::new(
+                at,
+                "channel",
+                format!("`reference line {other}`"),
+                "slope, banking, phi, x or y (cross sections evenly spaced by reference_line_increment)",
             )),
         };
     }
-    Err(format!(
-        "line {line}: channel `{name}`: expected `long section …` or `reference line …`"
+    Err(CrgFault::new(
+        at,
+        "channel",
+        format!("`{name}`"),
+        "`long section …` or `reference line …`",
     ))
 }
 
@@ -246,24 +292,30 @@ pub(super) struct Layout {
 }
 
 impl Layout {
-    pub(super) fn of(h: &Header, max_values: usize) -> Result<Self, String> {
+    pub(super) fn of(h: &Header, max_values: usize) -> Result<Self, CrgFault> {
         let key = |k: &str| h.keys.get(k).copied();
         let need = |k: &str| {
             key(k)
                 .map(|(v, _)| v)
-                .ok_or_else(|| format!("block $ROAD_CRG has no {k}: expected it"))
+                .ok_or_else(|| CrgFault::new(CrgPlace::Header, k, "", "a value in block $ROAD_CRG"))
         };
         let (format, _) = h.format.ok_or_else(|| {
-            "block $KD_DEFINITION has no data format: expected #:LRFI, #:LDFI, #:KRBI or #:KDBI"
-                .to_string()
+            CrgFault::new(
+                CrgPlace::Header,
+                "data format (block $KD_DEFINITION)",
+                "",
+                "#:LRFI, #:LDFI, #:KRBI or #:KDBI",
+            )
         })?;
         let u0 = key("reference_line_start_u").map_or(0.0, |k| k.0);
         let du = need("reference_line_increment")?;
-        let line_of = |k: &str| key(k).map_or(0, |(_, l)| l);
+        let line_of = |k: &str| key(k).map_or(CrgPlace::Header, |(_, l)| CrgPlace::line(l));
         if du.is_nan() || du <= 0.0 {
-            return Err(format!(
-                "line {}: reference_line_increment = {du}: expected an increment > 0 m",
-                line_of("reference_line_increment")
+            return Err(CrgFault::new(
+                line_of("reference_line_increment"),
+                "reference_line_increment",
+                du,
+                "an increment > 0 m",
             ));
         }
         let nu = match key("reference_line_end_u") {
@@ -271,8 +323,13 @@ impl Layout {
                 let steps = (u1 - u0) / du;
                 let n = steps.round();
                 if n.is_nan() || n < 1.0 || (steps - n).abs() > 1e-6 * n.max(1.0) || n > 1e12 {
-                    return Err(format!(
-                        "line {line}: reference_line_end_u = {u1}: expected reference_line_start_u = {u0} plus a whole number (>= 1) of increments {du} m"
+                    return Err(CrgFault::new(
+                        CrgPlace::line(line),
+                        "reference_line_end_u",
+                        u1,
+                        format!(
+                            "reference_line_start_u = {u0} plus a whole number (>= 1) of increments {du} m"
+                        ),
                     ));
                 }
                 Some(n as usize + 1)
@@ -292,8 +349,11 @@ impl Layout {
                 Channel::Section { v_m: None, number } => {
                     by_number += 1;
                     if number != by_number as f64 {
-                        return Err(format!(
-                            "line {line}: long section {number}: expected long section {by_number} (numbered in order from 1)"
+                        return Err(CrgFault::new(
+                            CrgPlace::line(line),
+                            "channel",
+                            format!("long section {number}"),
+                            format!("long section {by_number} (numbered in order from 1)"),
                         ));
                     }
                     sections.push((k, f64::NAN));
@@ -301,22 +361,30 @@ impl Layout {
                 Channel::Slope if slope.is_none() => slope = Some(k),
                 Channel::Bank if bank.is_none() => bank = Some(k),
                 Channel::Slope | Channel::Bank => {
-                    return Err(format!(
-                        "line {line}: a second reference line slope or banking channel: expected at most one of each"
+                    return Err(CrgFault::new(
+                        CrgPlace::line(line),
+                        "channel",
+                        "a second reference line slope or banking channel",
+                        "at most one of each",
                     ));
                 }
                 Channel::Aside => {}
             }
         }
         if by_v > 0 && by_number > 0 {
-            return Err(
-                "long sections both numbered and at explicit v: expected one way for all".into(),
-            );
+            return Err(CrgFault::new(
+                CrgPlace::Header,
+                "long sections",
+                "both numbered and at explicit v",
+                "one way for all",
+            ));
         }
         if sections.len() < 2 {
-            return Err(format!(
-                "{} long section(s): expected at least two `D:long section …` channels",
-                sections.len()
+            return Err(CrgFault::new(
+                CrgPlace::Header,
+                "long sections",
+                sections.len(),
+                "at least two `D:long section …` channels",
             ));
         }
         if by_number > 0 {
@@ -335,18 +403,25 @@ impl Layout {
                 (None, None) => -0.5 * gaps * dv,
             };
             if dv.is_nan() || dv <= 0.0 {
-                return Err(format!(
-                    "line {}: long_section_v_increment = {dv}: expected an increment > 0 m",
-                    line_of("long_section_v_increment")
+                return Err(CrgFault::new(
+                    line_of("long_section_v_increment"),
+                    "long_section_v_increment",
+                    dv,
+                    "an increment > 0 m",
                 ));
             }
             if let Some((left, l)) = key("long_section_v_left") {
                 let last = right + (sections.len() - 1) as f64 * dv;
                 if (last - left).abs() > 1e-6 * dv.max(1.0) + 1e-9 {
-                    return Err(format!(
-                        "line {l}: long_section_v_left = {left}: expected long_section_v_right + ({} - 1) × {dv} = {last} ({} numbered long sections)",
-                        sections.len(),
-                        sections.len()
+                    return Err(CrgFault::new(
+                        CrgPlace::line(l),
+                        "long_section_v_left",
+                        left,
+                        format!(
+                            "long_section_v_right + ({} - 1) × {dv} = {last} ({} numbered long sections)",
+                            sections.len(),
+                            sections.len()
+                        ),
                     ));
                 }
             }
@@ -356,18 +431,26 @@ impl Layout {
         } else {
             sections.sort_by(|a, b| a.1.total_cmp(&b.1));
             if let Some(w) = sections.windows(2).find(|w| w[1].1 - w[0].1 < 1e-6) {
-                return Err(format!(
-                    "long sections at v = {} m and v = {} m: expected positions at least 1e-6 m apart",
-                    w[0].1, w[1].1
+                let line = h.channels[w[1].0].1;
+                return Err(CrgFault::new(
+                    CrgPlace::line(line),
+                    "long section",
+                    format!("at v = {} m beside one at v = {} m", w[1].1, w[0].1),
+                    "positions at least 1e-6 m apart",
                 ));
             }
         }
         if let Some(nu) = nu {
             let values = (nu as u128) * (sections.len() as u128);
             if values > max_values as u128 {
-                return Err(format!(
-                    "{nu} cross sections × {} long sections = {values} values: expected at most {max_values} (cut the file along u)",
-                    sections.len()
+                return Err(CrgFault::new(
+                    CrgPlace::Header,
+                    "the grid's size",
+                    format!(
+                        "{nu} cross sections × {} long sections = {values} values",
+                        sections.len()
+                    ),
+                    format!("at most {max_values} (cut the file along u)"),
                 ));
             }
         }
@@ -392,13 +475,31 @@ impl Layout {
         self.channels.len()
     }
 
+    /// The name of the value of channel `c` in cross section `k`: the
+    /// cross section and the channel as the file defines it.
+    pub(super) fn value_name(&self, k: usize, c: usize) -> String {
+        let channel = match self.channels.get(c) {
+            Some(Channel::Section { v_m: Some(v), .. }) => format!("long section at v = {v} m"),
+            Some(Channel::Section { v_m: None, number }) => format!("long section {number}"),
+            Some(Channel::Slope) => "reference line slope".into(),
+            Some(Channel::Bank) => "reference line banking".into(),
+            Some(Channel::Aside) | None => format!("channel {}", c + 1),
+        };
+        format!("cross section {}, {channel}", k + 1)
+    }
+
     /// The heights and reference channels from the values (cross section
     /// by cross section, `nch` each).
-    pub(super) fn road(&self, v: Values) -> Result<CrgRoad, String> {
+    pub(super) fn road(&self, v: Values) -> Result<CrgRoad, CrgFault> {
         let nv = self.sections.len();
         let nu = v.z_m.len() / nv;
         if nu < 2 {
-            return Err(format!("{nu} cross section(s): expected at least two"));
+            return Err(CrgFault::new(
+                CrgPlace::Grid,
+                "cross sections",
+                nu,
+                "at least two",
+            ));
         }
         let Values {
             z_m: by_u,
@@ -440,10 +541,15 @@ impl Layout {
             *z += offset_z_m;
         }
         if let Some(k) = ref_z.iter().position(|z| !z.is_finite()) {
-            return Err(format!(
-                "reference line height at cross section {} (u = {} m) is not finite: expected finite slopes",
-                k + 1,
-                self.u_first_m + k as f64 * self.u_inc_m
+            return Err(CrgFault::new(
+                CrgPlace::Grid,
+                format!(
+                    "reference line height at cross section {} (u = {} m)",
+                    k + 1,
+                    self.u_first_m + k as f64 * self.u_inc_m
+                ),
+                ref_z[k],
+                "a finite height (finite slopes)",
             ));
         }
         let bank = bank.unwrap_or_else(|| vec![self.start_b; nu]);
