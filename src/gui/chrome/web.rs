@@ -10,7 +10,7 @@ pub const IN_BROWSER: bool = cfg!(target_arch = "wasm32");
 
 /// What the browser does not do, shown where the desktop would do it.
 pub const BROWSER_LIMITS: &str = "In the browser, Open reads a preset through the browser's \
-    picker, Save As, Export → Run as CSV, Export → Plots as PNG (1600 × 1200 px) and the sweep's \
+    picker, Save As, Export > Run as CSV, Export > Plots as PNG (1600 × 1200 px) and the sweep's \
     PNG download their file; a preset naming a file beside it (a measured tyre or road) and \
     animation frames (a folder of PNG files) need the desktop app. Background work (a ring's identification, a large patch's set-up, \
     sweeps, spectra, the CSV's re-run) runs in slices within the frames, one core, with its \
