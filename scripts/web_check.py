@@ -10,7 +10,7 @@ URL's folder) of a scene named NAME. Checks, failing with a message:
 1. the page starts: its title ends in "— tirecontact", the canvas is drawn
    (a screenshot has many colours, not one), no console error or uncaught
    exception;
-2. LINK opens its scene: the title becomes "NAME — tirecontact";
+2. LINK opens its scene: the title becomes "NAME (from a link) — tirecontact";
 3. Play (Space) advances the run's time (`data-time-s` on <body>).
 
 With --hash-link LINK2 NAME2, LINK2's fragment set on the open page (a
@@ -340,14 +340,14 @@ def main():
 
         # 2. a share link opens its scene (a new query, so the page loads again)
         b.navigate(f"{folder}/{args.link.replace('index.html', 'index.html?' + str(random.random()), 1)}")
-        want = f"{args.name} — tirecontact"
+        want = f"{args.name} (from a link) — tirecontact"
         b.wait_for(f"title {want!r}", lambda: b.title() == want, 120)
         print(f"web-check: the link opened {want!r}")
         if args.hash_link:
             # another link pasted into the open page's address bar
             fragment = args.hash_link[0].split("#", 1)[1]
             b.evaluate(f"location.hash = {json.dumps(fragment)}")
-            other = f"{args.hash_link[1]} — tirecontact"
+            other = f"{args.hash_link[1]} (from a link) — tirecontact"
             b.wait_for(f"title {other!r}", lambda: b.title() == other, 120)
             print(f"web-check: a link pasted into the open page opened {other!r}")
             b.navigate(f"{folder}/{args.link.replace('index.html', 'index.html?' + str(random.random()), 1)}")

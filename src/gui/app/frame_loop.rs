@@ -202,7 +202,7 @@ impl App {
         let title = self.title();
         if title != self.handles.title {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
-            crate::gui::chrome::web::set_page_title(&self.doc.scene.name);
+            crate::gui::chrome::web::set_page_title(&title);
             self.handles.title = title;
         }
         crate::gui::chrome::web::publish_run(self.sim.time_s(), self.sim.steps());

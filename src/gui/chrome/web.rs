@@ -54,15 +54,16 @@ pub fn show_link(link: &str) {
     let _ = link;
 }
 
-/// Sets the page's title to `NAME — tirecontact` (eframe's web runner
-/// does not show the viewport title); nothing on the desktop.
-pub fn set_page_title(scene_name: &str) {
+/// Sets the page's title to the window's, `NAME (FILE) — tirecontact`
+/// (eframe's web runner does not show the viewport title); nothing on the
+/// desktop.
+pub fn set_page_title(title: &str) {
     #[cfg(target_arch = "wasm32")]
     if let Some(doc) = web_sys::window().and_then(|w| w.document()) {
-        doc.set_title(&format!("{scene_name} — tirecontact"));
+        doc.set_title(title);
     }
     #[cfg(not(target_arch = "wasm32"))]
-    let _ = scene_name;
+    let _ = title;
 }
 
 /// Writes the run's time and steps on the page's `<body>` as

@@ -96,9 +96,12 @@ fn file_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
     {
         cmds.push(Command::Share);
     }
-    ui.separator();
-    if ui.button("Quit").clicked() {
-        cmds.push(Command::Quit);
+    // a page is closed as a browser's tab is
+    if !crate::gui::chrome::web::IN_BROWSER {
+        ui.separator();
+        if ui.button("Quit").clicked() {
+            cmds.push(Command::Quit);
+        }
     }
 }
 

@@ -209,7 +209,11 @@ pub fn show(
             } else {
                 None
             };
-            let mut ink = legend_place::Ink::default();
+            let mut ink = if follow {
+                legend_place::Ink::with_x_bounds(t0, t1_axis)
+            } else {
+                legend_place::Ink::default()
+            };
             draw_series(pui, history, def, &shown, (a, b), top, upwards, &mut ink);
             ink.place(pui, legend_id, legend_px);
         });
