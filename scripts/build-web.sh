@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the visualiser's web page into web/dist/: index.html, the JS glue
-# (tirecontact-web.js) and the WebAssembly (tirecontact-web_bg.wasm). Serve
-# the folder with any static server and open index.html, e.g.
+# (tirecontact-web.js) and the WebAssembly (tirecontact-web_bg.wasm), with
+# gzip (and, if `brotli` is installed, brotli) copies of the last two
+# (.gz, .br) for servers that send pre-compressed files. Serve the folder
+# with any static server and open index.html, e.g.
 #
 #   scripts/build-web.sh && python3 -m http.server -d web/dist 8080
 #
@@ -92,4 +94,15 @@ mkdir -p "$dist"
 "$bindgen" --target web --no-typescript --out-dir "$dist" --out-name tirecontact-web "$input"
 wasm=$dist/tirecontact-web_bg.wasm
 cp web/index.html "$dist/"
-say "web/dist: wasm $(stat -c %s "$wasm") bytes, $(gzip -9 -c "$wasm" | wc -c) bytes gzipped; in $(($(date +%s) - started)) s"
+# pre-compressed copies beside the files, for servers that send them with
+# `Content-Encoding` (nginx's gzip_static / brotli_static, Caddy's
+# `file_server precompressed`); the originals stay for the others
+for f in "$wasm" "$dist/tirecontact-web.js"; do
+    gzip -9 -n -k -f "$f"
+    if command -v brotli >/dev/null 2>&1; then
+        brotli -q 11 -k -f "$f"
+    fi
+done
+br=""
+[ -f "$wasm.br" ] && br=", $(stat -c %s "$wasm.br") bytes brotli"
+say "web/dist: wasm $(stat -c %s "$wasm") bytes, $(stat -c %s "$wasm.gz") bytes gzipped$br; in $(($(date +%s) - started)) s"

@@ -3,11 +3,14 @@
 # (scripts/build-web.sh, unless WEB_SKIP_BUILD=1), serves web/dist on
 # 127.0.0.1 and checks it in headless Chromium (scripts/web_check.py): the
 # app draws with no console error, a `tirecontact share` link opens its
-# scene (the page's title), Play advances the time.
+# scene (the page's title), Play advances the time, at phone sizes
+# (390x844, 360x740, touch) a swipe logs no error, and the link cut short
+# is refused.
 #
 #   scripts/test-web.sh [TIRECONTACT_BIN]     (default target/debug/tirecontact)
 #
-# WEB_SHOTS=DIR also saves screenshots (1280x720, 412x915) there;
+# WEB_SHOTS=DIR also saves screenshots (1280x720, 412x915, 390x844,
+# 360x740, the cut link) there;
 # WEB_SPEED=1 also measures the paper preset's steps per second in the page
 # at the fastest speed, and the real-time factor it plays at when it opens
 # at 1x.

@@ -10,13 +10,21 @@ URL's folder) of a scene named NAME. Checks, failing with a message:
 1. the page starts: its title ends in "— tirecontact", the canvas is drawn
    (a screenshot has many colours, not one), no console error or uncaught
    exception;
-2. LINK opens its scene: the title becomes "NAME — tirecontact";
+2. LINK opens its scene: the title becomes "NAME (from a link) — tirecontact";
 3. Play (Space) advances the run's time (`data-time-s` on <body>).
 
 With --hash-link LINK2 NAME2, LINK2's fragment set on the open page (a
 link pasted into its address bar) must open NAME2's scene.
 
-With --shots, screenshots at 1280x720 and 412x915 go to DIR. With
+4. phones (390x844 and 360x740, touch emulated): the link opens there, the
+   canvas has `touch-action: none`, and a synthetic swipe over it logs no
+   console error (with `touch-action: auto` each swipe logged about 40
+   "Unable to preventDefault inside passive event listener");
+5. the link cut short is refused: the page opens without its scene
+   ("(from a link)" not in the title), with no console error.
+
+With --shots, screenshots at 1280x720, 412x915, 390x844 and 360x740 go
+to DIR. With
 --speed-link, the steps per second of that link's scene at the fastest
 speed are measured and printed.
 """
@@ -194,14 +202,25 @@ class Browser:
             self.evaluate("1")
             time.sleep(0.05)
 
-    def resize(self, width, height):
+    def resize(self, width, height, mobile=False):
         self.call(
             "Emulation.setDeviceMetricsOverride",
             width=width,
             height=height,
             deviceScaleFactor=1,
-            mobile=False,
+            mobile=mobile,
         )
+        if mobile:
+            self.call("Emulation.setTouchEmulationEnabled", enabled=True, maxTouchPoints=5)
+
+    def swipe(self, x, y0, y1, steps=12):
+        """A one-finger vertical swipe from (x, y0) to (x, y1)."""
+        self.call("Input.dispatchTouchEvent", type="touchStart", touchPoints=[{"x": x, "y": y0}])
+        for k in range(1, steps + 1):
+            y = y0 + (y1 - y0) * k / steps
+            self.call("Input.dispatchTouchEvent", type="touchMove", touchPoints=[{"x": x, "y": y}])
+            time.sleep(0.02)
+        self.call("Input.dispatchTouchEvent", type="touchEnd", touchPoints=[])
 
     def evaluate(self, expr):
         r = self.call("Runtime.evaluate", expression=expr, returnByValue=True)
@@ -340,14 +359,14 @@ def main():
 
         # 2. a share link opens its scene (a new query, so the page loads again)
         b.navigate(f"{folder}/{args.link.replace('index.html', 'index.html?' + str(random.random()), 1)}")
-        want = f"{args.name} — tirecontact"
+        want = f"{args.name} (from a link) — tirecontact"
         b.wait_for(f"title {want!r}", lambda: b.title() == want, 120)
         print(f"web-check: the link opened {want!r}")
         if args.hash_link:
             # another link pasted into the open page's address bar
             fragment = args.hash_link[0].split("#", 1)[1]
             b.evaluate(f"location.hash = {json.dumps(fragment)}")
-            other = f"{args.hash_link[1]} — tirecontact"
+            other = f"{args.hash_link[1]} (from a link) — tirecontact"
             b.wait_for(f"title {other!r}", lambda: b.title() == other, 120)
             print(f"web-check: a link pasted into the open page opened {other!r}")
             b.navigate(f"{folder}/{args.link.replace('index.html', 'index.html?' + str(random.random()), 1)}")
@@ -378,6 +397,48 @@ def main():
                 b.errors += phone.errors
             finally:
                 phone.close()
+
+        # 4. phones: a touch screen, a swipe over the canvas
+        for (w, h) in ((390, 844), (360, 740)):
+            phone = Browser(args.chromium, w, h)
+            try:
+                phone.resize(w, h, mobile=True)
+                phone.navigate(f"{folder}/{args.link.replace('index.html', 'index.html?' + str(random.random()), 1)}")
+                phone.wait_for(f"title {want!r} at {w}x{h}", lambda: phone.title() == want, 120)
+                phone.pump(1)
+                touch = phone.evaluate("getComputedStyle(document.getElementById('tirecontact')).touchAction")
+                assert touch == "none", f"the canvas has touch-action {touch!r} at {w}x{h}"
+                before = len(phone.errors)
+                for _ in range(3):
+                    phone.swipe(w // 2, int(0.7 * h), int(0.3 * h))
+                    phone.pump(0.3)
+                logged = phone.errors[before:]
+                assert not logged, f"a swipe at {w}x{h} logged {len(logged)} errors: {logged[:3]}"
+                print(f"web-check: {w}x{h}: touch-action none, three swipes logged no error")
+                if args.shots:
+                    with open(os.path.join(args.shots, f"web_{w}x{h}.png"), "wb") as f:
+                        f.write(phone.screenshot())
+                b.errors += phone.errors
+            finally:
+                phone.close()
+
+        # 5. the link cut short, in a browser with no session kept: refused,
+        # the page opens on its default scene
+        fresh = Browser(args.chromium, 1280, 720)
+        try:
+            cut = args.link[: len(args.link) - 40]
+            fresh.navigate(f"{folder}/{cut}")
+            fresh.wait_for("the page after a cut link", lambda: fresh.title().endswith("— tirecontact"), 120)
+            fresh.pump(1)
+            title = fresh.title()
+            assert "(from a link)" not in title and args.name not in title, f"a cut link opened {title!r}"
+            print(f"web-check: the link cut short was refused (title {title!r})")
+            if args.shots:
+                with open(os.path.join(args.shots, "web_cut_link.png"), "wb") as f:
+                    f.write(fresh.screenshot())
+            b.errors += fresh.errors
+        finally:
+            fresh.close()
 
         if args.speed_link:
             b.navigate(f"{folder}/{args.speed_link.replace('index.html', 'index.html?' + str(random.random()), 1)}")

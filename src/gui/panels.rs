@@ -65,7 +65,8 @@ pub fn side_panel(
         // a box of a fixed height: the fields below stay where they are
         edits_box::show(ui, edits);
         about_panel::show(ui, scene, cmds);
-        ui.horizontal(|ui| {
+        // wrapped: a phone's width cut it at "restarts the ru"
+        ui.horizontal_wrapped(|ui| {
             ui.label("Tags:");
             crate::gui::widgets::fields::tag(ui, crate::gui::widgets::fields::Apply::Live);
             ui.label("applied to the running simulation;");

@@ -27,7 +27,7 @@ fn share_prints_one_line_that_opens_the_same_scene() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert_eq!(text.lines().count(), 1, "{text}");
     let link = text.trim_end();
-    assert!(link.starts_with("index.html#scene=v1."), "{link}");
+    assert!(link.starts_with("index.html#scene=v2."), "{link}");
     let mut back = share::scene_of(link).unwrap();
     let scene = Scene::load(&path).unwrap();
     back.base_dir = scene.base_dir.clone();
@@ -40,13 +40,14 @@ fn share_prints_one_line_that_opens_the_same_scene() {
     ]);
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(
-        text.starts_with("https://example.org/tirecontact/#scene=v1."),
+        text.starts_with("https://example.org/tirecontact/#scene=v2."),
         "{text}"
     );
 }
 
-/// The payload is standard base64url and raw deflate: Python's decoders
-/// (another implementation) give back the scene's RON text exactly.
+/// The payload is standard base64url of raw deflate and the CRC-32 of the
+/// compressed bytes: Python's decoders (another implementation) check the
+/// sum and give back the scene's RON text exactly.
 #[test]
 fn the_link_decodes_with_pythons_base64_and_zlib() {
     if std::process::Command::new("python3")
@@ -62,14 +63,16 @@ fn the_link_decodes_with_pythons_base64_and_zlib() {
     let link = String::from_utf8(out.stdout).unwrap();
     let payload = link
         .trim_end()
-        .split_once("#scene=v1.")
+        .split_once("#scene=v2.")
         .unwrap()
         .1
         .to_string();
     let py = "import sys, base64, zlib\n\
               p = sys.argv[1]\n\
               raw = base64.urlsafe_b64decode(p + '=' * (-len(p) % 4))\n\
-              sys.stdout.write(zlib.decompress(raw, -15).decode('utf-8'))";
+              packed, check = raw[:-4], int.from_bytes(raw[-4:], 'big')\n\
+              assert zlib.crc32(packed) == check, 'check sum'\n\
+              sys.stdout.write(zlib.decompress(packed, -15).decode('utf-8'))";
     let out = std::process::Command::new("python3")
         .args(["-c", py, &payload])
         .output()

@@ -28,6 +28,7 @@ mod panel_edge;
 mod patch_panel;
 mod patch_view;
 mod phone;
+mod phone_touch;
 mod research;
 mod save_as;
 mod scene_view;

@@ -105,7 +105,7 @@ fn a_long_banner_does_not_move_the_views_controls() {
         let texts = texts(&h);
         let banner = texts
             .iter()
-            .filter(|(t, _)| text.starts_with(t.as_str()) || t.contains("refused"))
+            .filter(|(t, _)| text.starts_with(t.as_str()) || t.contains("damaged"))
             .map(|(_, r)| *r)
             .reduce(|a, b| a.union(b))
             .expect("the banner");

@@ -136,7 +136,15 @@ impl App {
             mode_bars: self.classroom.bars,
             exporting_frames: self.handles.frames_job.is_some(),
         };
+        // a phone: classroom mode's presenter layout does not fit it
+        let narrow = ctx.content_rect().width() < crate::gui::widgets::NARROW_PX;
+        if narrow && self.classroom.on {
+            self.set_classroom(false);
+        }
         if !self.classroom.on && legible_small_text(&ctx) {
+            ui.set_style(ctx.global_style());
+        }
+        if touch_targets(&ctx, narrow) {
             ui.set_style(ctx.global_style());
         }
         if self.classroom.sync_style(&ctx) {
@@ -214,7 +222,7 @@ impl App {
         let title = self.title();
         if title != self.handles.title {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
-            crate::gui::chrome::web::set_page_title(&self.doc.scene.name);
+            crate::gui::chrome::web::set_page_title(&title);
             self.handles.title = title;
         }
         crate::gui::chrome::web::publish_run(self.sim.time_s(), self.sim.steps());
@@ -250,6 +258,40 @@ impl eframe::App for App {
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         self.save_session(storage);
+    }
+}
+
+/// Least height (px) of a button, menu row or field in a window narrower
+/// than [`NARROW_PX`](crate::gui::widgets::NARROW_PX) (a phone): a fingertip's target (egui's 18 px rows
+/// gave 20 px buttons and 23 px menu rows).
+pub const TOUCH_TARGET_PX: f32 = 44.0;
+
+/// Gives buttons, menu rows and fields [`TOUCH_TARGET_PX`] in a narrow
+/// window and egui's sizes back in a wide one; whether it changed.
+fn touch_targets(ctx: &egui::Context, narrow: bool) -> bool {
+    let id = egui::Id::unique("tirecontact.touch_targets");
+    let saved: Option<(egui::Vec2, egui::Vec2)> = ctx.data(|d| d.get_temp(id));
+    match (narrow, saved) {
+        (true, None) => {
+            let s = ctx.global_style();
+            ctx.data_mut(|d| {
+                d.insert_temp(id, (s.spacing.interact_size, s.spacing.button_padding))
+            });
+            ctx.all_styles_mut(|s| {
+                s.spacing.interact_size.y = s.spacing.interact_size.y.max(TOUCH_TARGET_PX);
+                s.spacing.button_padding.y = s.spacing.button_padding.y.max(8.0);
+            });
+            true
+        }
+        (false, Some((interact, padding))) => {
+            ctx.data_mut(|d| d.remove::<(egui::Vec2, egui::Vec2)>(id));
+            ctx.all_styles_mut(|s| {
+                s.spacing.interact_size = interact;
+                s.spacing.button_padding = padding;
+            });
+            true
+        }
+        _ => false,
     }
 }
 

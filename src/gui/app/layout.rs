@@ -111,6 +111,8 @@ impl App {
                     if ui.button("Back to the views").clicked() {
                         cmds_left.push(Command::ShowEditPanel(false));
                     }
+                    // a refused value's reason, the views' banner being hidden
+                    crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds_left);
                     self.editor(ui, editable, &edits, cmds_left);
                 });
                 return;

@@ -33,7 +33,13 @@ impl App {
             }
             Err(e) => {
                 let mut app = App::restore(storage);
-                app.error(format!("The link's scene was refused: {e}"));
+                match e {
+                    // whole sentences that say what to do
+                    share::ShareError::Damaged { .. } | share::ShareError::Newer { .. } => {
+                        app.error(e.to_string())
+                    }
+                    e => app.error(format!("The link's scene was refused: {e}")),
+                }
                 app
             }
         }
@@ -152,7 +158,7 @@ mod tests {
         app.apply(Command::EditScene(Box::new(scene.clone())));
         app.apply(Command::Share);
         let link = app.shared_link().expect("a link").to_string();
-        assert!(link.starts_with("index.html#scene=v1."), "{link}");
+        assert!(link.starts_with("index.html#scene=v2."), "{link}");
         assert!(!app.message().unwrap().error, "{:?}", app.message());
         assert!(link.ends_with("&view=1"), "{link}");
         let opened = App::open_link(&link, None);
@@ -191,8 +197,28 @@ mod tests {
 
         let app = App::open_link("index.html#scene=v1.%%%", None);
         let m = app.message().unwrap();
-        assert!(m.error && m.text.contains("refused"), "{m:?}");
+        assert!(
+            m.error
+                && m.text
+                    .starts_with("This link is damaged or cut short (it holds `%`"),
+            "{m:?}"
+        );
         assert_eq!(app.scene().name, default_scene().name);
+        // a link cut short: refused, the last session kept
+        let mut maker = App::with_default_preset();
+        maker.apply(Command::Share);
+        let link = maker.shared_link().unwrap().to_string();
+        let cut = &link[..link.len() / 2];
+        let app = App::open_link(cut, None);
+        let m = app.message().unwrap();
+        assert!(
+            m.error
+                && m.text.starts_with("This link is damaged or cut short (")
+                && m.text
+                    .ends_with("use File > Share link in the visualiser to make a new one."),
+            "{m:?}"
+        );
+        assert_eq!(app.scene(), &default_scene());
         // no scene in the fragment: the last session (here none: the default)
         let app = App::open_link("index.html#view=scene", None);
         assert_eq!(app.scene(), &default_scene());

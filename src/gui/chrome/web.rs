@@ -10,7 +10,7 @@ pub const IN_BROWSER: bool = cfg!(target_arch = "wasm32");
 
 /// What the browser does not do, shown where the desktop would do it.
 pub const BROWSER_LIMITS: &str = "In the browser, Open reads a preset through the browser's \
-    picker, Save As, Export → Run as CSV, Export → Plots as PNG (1600 × 1200 px) and the sweep's \
+    picker, Save As, Export > Run as CSV, Export > Plots as PNG (1600 × 1200 px) and the sweep's \
     PNG download their file; a preset naming a file beside it (a measured tyre or road) and \
     animation frames (a folder of PNG files) need the desktop app. Background work (a ring's identification, a large patch's set-up, \
     sweeps, spectra, the CSV's re-run) runs in slices within the frames, one core, with its \
@@ -54,15 +54,16 @@ pub fn show_link(link: &str) {
     let _ = link;
 }
 
-/// Sets the page's title to `NAME — tirecontact` (eframe's web runner
-/// does not show the viewport title); nothing on the desktop.
-pub fn set_page_title(scene_name: &str) {
+/// Sets the page's title to the window's, `NAME (FILE) — tirecontact`
+/// (eframe's web runner does not show the viewport title); nothing on the
+/// desktop.
+pub fn set_page_title(title: &str) {
     #[cfg(target_arch = "wasm32")]
     if let Some(doc) = web_sys::window().and_then(|w| w.document()) {
-        doc.set_title(&format!("{scene_name} — tirecontact"));
+        doc.set_title(title);
     }
     #[cfg(not(target_arch = "wasm32"))]
-    let _ = scene_name;
+    let _ = title;
 }
 
 /// Writes the run's time and steps on the page's `<body>` as

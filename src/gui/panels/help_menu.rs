@@ -40,7 +40,30 @@ pub const FIRST_STEPS: &[&str] = &[
 /// The Help menu of the menu bar.
 pub fn show(ui: &mut Ui, cmds: &mut Vec<Command>) {
     ui.menu_button("Help", |ui| {
-        ui.set_max_width(460.0);
+        // no wider than the window, and scrolled within its height (on a
+        // phone it was wider than the screen and ran off its bottom)
+        let screen = ui.ctx().content_rect();
+        if screen.width() < crate::gui::widgets::NARROW_PX {
+            let w = screen.width() - 24.0;
+            ui.set_max_width(w);
+            egui::ScrollArea::vertical()
+                .max_height((screen.height() - 48.0).max(120.0))
+                .show(ui, |ui| {
+                    ui.set_max_width(w);
+                    contents(ui, cmds, true);
+                });
+        } else {
+            ui.set_max_width(460.0);
+            contents(ui, cmds, false);
+        }
+    });
+}
+
+/// What the Help menu says; `narrow`: the shortcuts as wrapped lines, not
+/// a table (its rows did not wrap and widened the menu past a phone's
+/// screen).
+fn contents(ui: &mut Ui, cmds: &mut Vec<Command>, narrow: bool) {
+    {
         ui.strong("Getting started");
         for line in FIRST_STEPS {
             ui.label(format!("• {line}"));
@@ -52,21 +75,30 @@ pub fn show(ui: &mut Ui, cmds: &mut Vec<Command>) {
                 .small()
                 .weak(),
         );
-        egui::Grid::new("tirecontact.help.keys")
-            .num_columns(2)
-            .striped(true)
-            .show(ui, |ui| {
-                for (key, what) in SHORTCUTS {
+        if narrow {
+            for (key, what) in SHORTCUTS {
+                ui.horizontal_wrapped(|ui| {
                     ui.label(RichText::new(*key).monospace().strong());
                     ui.label(*what);
-                    ui.end_row();
-                }
-            });
+                });
+            }
+        } else {
+            egui::Grid::new("tirecontact.help.keys")
+                .num_columns(2)
+                .striped(true)
+                .show(ui, |ui| {
+                    for (key, what) in SHORTCUTS {
+                        ui.label(RichText::new(*key).monospace().strong());
+                        ui.label(*what);
+                        ui.end_row();
+                    }
+                });
+        }
         ui.separator();
         ui.strong("Back to the start");
         if ui
             .button("Reopen the default scene")
-            .on_hover_text("File → New: the paper's ring tyre, as at the first launch (asks before dropping unsaved edits)")
+            .on_hover_text("File > New: the paper's ring tyre, as at the first launch (asks before dropping unsaved edits)")
             .clicked()
         {
             cmds.push(Command::New);
@@ -82,5 +114,5 @@ pub fn show(ui: &mut Ui, cmds: &mut Vec<Command>) {
             ui.strong("In the browser");
             ui.label(crate::gui::chrome::web::BROWSER_LIMITS);
         }
-    });
+    }
 }

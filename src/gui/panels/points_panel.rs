@@ -16,6 +16,9 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
     section(ui, "Contact points", Apply::Restart);
     ui.label(egui::RichText::new("h < 0: the undeformed tyre is below the road (preload)").weak());
     let p = scene.num_points();
+    // a phone: each point's Remove on a row of its own, under its position
+    // (beside the three fields it ran past a 390 px screen's edge)
+    let narrow = ui.ctx().content_rect().width() < crate::gui::widgets::NARROW_PX;
     Grid::new("tirecontact.points")
         .striped(true)
         .num_columns(5)
@@ -47,7 +50,14 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
                         .scale(1e3)
                         .show(ui, |v| with_point(scene, i, |pt| pt.h_m = v)),
                 );
-                let remove = ui.add_enabled(p > 1, egui::Button::new("Remove").small());
+                if narrow {
+                    ui.end_row();
+                    ui.label("");
+                }
+                // small beside the fields; a fingertip's size on a phone
+                let button = egui::Button::new("Remove");
+                let button = if narrow { button } else { button.small() };
+                let remove = ui.add_enabled(p > 1, button);
                 if remove
                     .on_hover_text("remove this contact point (restarts the run)")
                     .on_disabled_hover_text("a scene needs at least one point")

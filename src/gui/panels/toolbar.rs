@@ -96,9 +96,12 @@ fn file_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
     {
         cmds.push(Command::Share);
     }
-    ui.separator();
-    if ui.button("Quit").clicked() {
-        cmds.push(Command::Quit);
+    // a page is closed as a browser's tab is
+    if !crate::gui::chrome::web::IN_BROWSER {
+        ui.separator();
+        if ui.button("Quit").clicked() {
+            cmds.push(Command::Quit);
+        }
     }
 }
 
@@ -174,10 +177,13 @@ fn export_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
 
 /// Classroom mode, the views and the mode bars.
 fn view_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
-    // first, so that it stays reachable with classroom mode's large text
+    // first, so that it stays reachable with classroom mode's large text;
+    // not on a phone, whose width its presenter layout does not fit
+    let wide = ui.ctx().content_rect().width() >= NARROW_PX;
     if ui
-        .selectable_label(st.classroom, "Classroom")
+        .add_enabled(wide, egui::Button::selectable(st.classroom, "Classroom"))
         .on_hover_text("large fonts, scene and one plot, slow motion, contact phases labelled")
+        .on_disabled_hover_text("classroom mode needs a window at least 700 px wide")
         .clicked()
     {
         cmds.push(Command::SetClassroom(!st.classroom));
@@ -303,8 +309,31 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         } else {
             "paused".to_string()
         };
-        // whole: wrapped, it broke into "running at 0.1x" and "real time"
-        ui.add(egui::Label::new(RichText::new(rt).weak()).wrap_mode(egui::TextWrapMode::Extend));
+        // whole: wrapped, it broke into "running at 0.1x" and "real time";
+        // as wide playing as paused, so that the row wraps the same way
+        // either way (on a phone "paused" fitted the clock's line and
+        // "running at …" took a line of its own: everything below jumped)
+        let reserve_px = ui
+            .painter()
+            .layout_no_wrap(
+                "running at 0.0123x real time".to_string(),
+                egui::TextStyle::Body.resolve(ui.style()),
+                egui::Color32::WHITE,
+            )
+            .size()
+            .x;
+        let height = ui.spacing().interact_size.y;
+        ui.allocate_ui_with_layout(
+            egui::vec2(reserve_px, height),
+            egui::Layout::left_to_right(egui::Align::Center),
+            |ui| {
+                ui.set_min_size(egui::vec2(reserve_px, height));
+                ui.add(
+                    egui::Label::new(RichText::new(rt).weak())
+                        .wrap_mode(egui::TextWrapMode::Extend),
+                );
+            },
+        );
     });
 }
 

@@ -140,6 +140,16 @@ pub struct Ink {
     curves: Vec<Vec<Pos2>>,
     /// Lowest and highest y of the curves (plot units).
     y_range: Option<(f64, f64)>,
+    /// The x range the plot shows on this frame, when it is set on it: the
+    /// plot's transform is still the last frame's then.
+    x_bounds: Option<(f64, f64)>,
+}
+
+/// The screen x of `x` in a frame spanning `left_px..right_px` that shows
+/// `lo..hi`.
+pub fn screen_x(x: f64, (lo, hi): (f64, f64), (left_px, right_px): (f32, f32)) -> f32 {
+    let f = if hi > lo { (x - lo) / (hi - lo) } else { 0.0 };
+    left_px + (f as f32) * (right_px - left_px)
 }
 
 /// What `Ink::place` keeps of a plot for `headroom`: the curves' y range
@@ -172,6 +182,19 @@ pub fn headroom(ctx: &Context, id: Id, legend_size: Vec2) -> Option<f64> {
 }
 
 impl Ink {
+    /// Ink of a plot whose x range is set to `lo..hi` on this frame (a time
+    /// axis that follows the run): its curves are placed in that range, not
+    /// in the last frame's. Placed by the last frame's axes, a run that
+    /// moved on between two slow frames (5 per second in a browser with
+    /// software WebGL) drew into the legends' strip past the window's end,
+    /// and the legends left it for the top left while playing.
+    pub fn with_x_bounds(lo: f64, hi: f64) -> Self {
+        Self {
+            x_bounds: Some((lo, hi)),
+            ..Self::default()
+        }
+    }
+
     /// Notes a curve given in plot coordinates.
     pub fn add(&mut self, pui: &PlotUi<'_>, pts: &[[f64; 2]]) {
         for p in pts.iter().filter(|p| p[1].is_finite()) {
@@ -179,9 +202,17 @@ impl Ink {
             *lo = lo.min(p[1]);
             *hi = hi.max(p[1]);
         }
+        let frame = *pui.transform().frame();
+        let x_bounds = self.x_bounds;
         self.curves.push(
             pts.iter()
-                .map(|p| pui.screen_from_plot(PlotPoint::new(p[0], p[1])))
+                .map(|p| {
+                    let s = pui.screen_from_plot(PlotPoint::new(p[0], p[1]));
+                    match x_bounds {
+                        Some(b) => Pos2::new(screen_x(p[0], b, (frame.left(), frame.right())), s.y),
+                        None => s,
+                    }
+                })
                 .collect(),
         );
     }
@@ -257,6 +288,55 @@ mod tests {
         assert!((px_above - 50.0).abs() < 1e-9, "{px_above}");
         let top = headroom_top((-3.0, 1.0), 44.0, 200.0);
         assert!((200.0 * (top - 1.0) / (top + 3.0) - 50.0).abs() < 1e-9);
+    }
+
+    /// A run playing at 5 frames per second in a window that follows it,
+    /// with the legends' strip past the window's end (as the time plots):
+    /// placed in the range shown on the frame, the curves never reach the
+    /// strip and the legend stays top right on every frame; placed by the
+    /// last frame's range (the plot's transform then), the newest 0.2 s
+    /// run into the strip and the legend leaves it.
+    #[test]
+    fn a_followed_run_keeps_its_legend_in_the_strip_while_playing() {
+        let frame = Rect::from_min_size(Pos2::ZERO, Vec2::new(600.0, 150.0));
+        let px = (frame.left(), frame.right());
+        let size = Vec2::new(140.0, 60.0);
+        let window_s = 1.0;
+        // the strip is as wide as the legend plus 12 px
+        let strip_s = window_s * f64::from(size.x + 12.0) / f64::from(600.0 - size.x - 12.0);
+        let curve_at = |t_end: f64, range: (f64, f64)| -> Vec<Vec<Pos2>> {
+            // a signal filling the window's height, sampled every 5 ms
+            let n = (window_s / 0.005) as usize;
+            vec![
+                (0..=n)
+                    .map(|k| {
+                        let t = t_end - window_s + k as f64 * 0.005;
+                        let y = 75.0 + 70.0 * (40.0 * t).sin() as f32;
+                        Pos2::new(screen_x(t, range, px), y)
+                    })
+                    .collect(),
+            ]
+        };
+        let (mut now, mut stale) = (Corner::RightTop, Corner::RightTop);
+        let mut stale_moved = 0;
+        for frame_k in 1..50 {
+            let t_end = 1.0 + 0.2 * frame_k as f64;
+            let shown = (t_end - window_s, t_end + strip_s);
+            let last = (t_end - 0.2 - window_s, t_end - 0.2 + strip_s);
+            now = emptiest_corner(frame, size, &curve_at(t_end, shown), now);
+            assert_eq!(now, Corner::RightTop, "frame {frame_k}");
+            stale = emptiest_corner(frame, size, &curve_at(t_end, last), stale);
+            stale_moved += usize::from(stale != Corner::RightTop);
+        }
+        assert!(stale_moved > 0, "the last frame's range kept the strip too");
+    }
+
+    #[test]
+    fn screen_x_maps_the_range_onto_the_frame() {
+        assert_eq!(screen_x(2.0, (2.0, 4.0), (10.0, 110.0)), 10.0);
+        assert_eq!(screen_x(3.0, (2.0, 4.0), (10.0, 110.0)), 60.0);
+        assert_eq!(screen_x(5.0, (2.0, 4.0), (10.0, 110.0)), 160.0);
+        assert_eq!(screen_x(5.0, (2.0, 2.0), (10.0, 110.0)), 10.0);
     }
 
     #[test]

@@ -121,6 +121,12 @@ pub fn show(
 ) {
     opts.fit_points(history.num_points());
     header(ui, opts);
+    // a phone: one legend for the four plots, in a row above them (the
+    // same points in the same colours); their curves get the whole width
+    let narrow = ui.ctx().content_rect().width() < crate::gui::widgets::NARROW_PX;
+    if narrow {
+        shared_legend(ui, history, opts);
+    }
     let t_end = history.last_time().unwrap_or(0.0).max(now_s);
     let window_s = followed_window_s(opts.window_s, duration_s);
     let (t0, t1) = if opts.follow {
@@ -133,13 +139,17 @@ pub fn show(
     // the curves fill the window's width, so every corner of it would cover
     // some: the time axis runs on past the window's end by a strip as wide
     // as the widest legend, where the legends go (top right)
-    let legend_w_px = PLOTS
-        .iter()
-        .map(|def| {
-            let names = legend_names(history, &opts.shown, def, opts.clip_impacts);
-            legend_width_px(ui, &names, h)
-        })
-        .fold(0.0, f32::max);
+    let legend_w_px = if narrow {
+        0.0
+    } else {
+        PLOTS
+            .iter()
+            .map(|def| {
+                let names = legend_names(history, &opts.shown, def, opts.clip_impacts);
+                legend_width_px(ui, &names, h)
+            })
+            .fold(0.0, f32::max)
+    };
     // the frames are the width less the y axes (at least 64 px); a wider
     // axis narrows the strip by a few px (of its share of the frame): 8 px
     // to spare
@@ -180,7 +190,7 @@ pub fn show(
                 t1_axis,
                 axis_px,
             },
-            legend_id,
+            (!narrow).then_some(legend_id),
             y_label,
             opts,
         );
@@ -207,7 +217,11 @@ pub fn show(
             } else {
                 None
             };
-            let mut ink = legend_place::Ink::default();
+            let mut ink = if follow {
+                legend_place::Ink::with_x_bounds(t0, t1_axis)
+            } else {
+                legend_place::Ink::default()
+            };
             draw_series(pui, history, def, &shown, (a, b), top, upwards, &mut ink);
             ink.place(pui, legend_id, legend_px);
         });
@@ -218,6 +232,32 @@ pub fn show(
         opts.axis_px = widest_axis_px;
         ui.ctx().request_repaint();
     }
+}
+
+/// The legend of the four plots in one wrapped row (narrow windows): a
+/// coloured line and the name of each shown point, as in the plots.
+fn shared_legend(ui: &mut Ui, history: &History, opts: &TimePlotOptions) {
+    let chosen: Vec<usize> = (0..history.num_points())
+        .filter(|&i| opts.shown.get(i).copied().unwrap_or(false))
+        .collect();
+    ui.horizontal_wrapped(|ui| {
+        for &i in &chosen {
+            let name = crate::output::figures::point_legend_name(&chosen, i);
+            let row_h = ui.text_style_height(&egui::TextStyle::Body);
+            let (r, _) = ui.allocate_exact_size(egui::vec2(16.0, row_h), egui::Sense::hover());
+            ui.painter().line_segment(
+                [r.left_center(), r.right_center()],
+                egui::Stroke::new(
+                    CURVE_WIDTH_PX.max(2.0),
+                    super::shown_point_color(&chosen, i),
+                ),
+            );
+            ui.label(name);
+        }
+        if opts.clip_impacts {
+            ui.label(egui::RichText::new("marks: impacts (clipped)").weak());
+        }
+    });
 }
 
 /// What the four time plots share: their height, the linked time axis
@@ -240,13 +280,16 @@ fn time_plot<'a>(
     k: usize,
     last: bool,
     axes: &Axes,
-    legend_id: Id,
+    legend_id: Option<Id>,
     y_label: &'a str,
     opts: &TimePlotOptions,
 ) -> Plot<'a> {
-    let mut plot = Plot::new(("tirecontact.time_plot", k))
-        .height(axes.h)
-        .legend(legend_place::legend(ui.ctx(), legend_id, axes.h).follow_insertion_order(true))
+    let mut plot = Plot::new(("tirecontact.time_plot", k)).height(axes.h);
+    if let Some(legend_id) = legend_id {
+        plot = plot
+            .legend(legend_place::legend(ui.ctx(), legend_id, axes.h).follow_insertion_order(true));
+    }
+    plot = plot
         .link_axis(axes.link, [true, false])
         .link_cursor(axes.link, [true, false])
         .y_axis_label(y_label)

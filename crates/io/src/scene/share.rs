@@ -1,9 +1,14 @@
-//! A scene carried by a link: the URL fragment `#scene=v1.` followed by the
-//! base64url (no padding) of the deflate-compressed RON of the scene. The
-//! link holds the whole scene, so a scene that needs files beside it (a
-//! measured tyre's responses, a measured road) cannot travel in one and is
-//! refused, with the reason; so is a link whose scene decompresses to more
-//! than [`MAX_SHARED_SCENE_BYTES`].
+//! A scene carried by a link: the URL fragment `#scene=v2.` followed by the
+//! base64url (no padding) of the deflate-compressed RON of the scene and,
+//! after it, the CRC-32 (big-endian, 4 bytes) of those compressed bytes.
+//! The check sum makes a damaged link (a character changed, dropped or cut
+//! off) refused rather than opened as another scene: a changed character
+//! alters at most 6 bits in a row of the payload, which CRC-32 always
+//! detects. Links of the first format, `#scene=v1.` and the payload without
+//! a check sum, still open. The link holds the whole scene, so a scene that
+//! needs files beside it (a measured tyre's responses, a measured road)
+//! cannot travel in one and is refused, with the reason; so is a link whose
+//! scene decompresses to more than [`MAX_SHARED_SCENE_BYTES`].
 
 use super::{Scene, Tyre};
 use crate::scene::SceneError;
@@ -12,8 +17,12 @@ use base64::engine::general_purpose::URL_SAFE_NO_PAD;
 use std::path::PathBuf;
 use tirecontact_core::model::road::Road;
 
-/// What precedes the payload in the fragment: the key and the format version.
-pub const FRAGMENT_KEY: &str = "scene=v1.";
+/// What precedes the payload in the fragment: the key and the format
+/// version links are made in.
+pub const FRAGMENT_KEY: &str = "scene=v2.";
+
+/// The link versions this program reads: `v1` (no check sum) and `v2`.
+pub const READ_VERSIONS: [u32; 2] = [1, 2];
 
 /// Largest decompressed scene a link may carry (bytes): 1 MiB, a hundred
 /// times the paper preset.
@@ -22,6 +31,9 @@ pub const MAX_SHARED_SCENE_BYTES: usize = 1 << 20;
 /// The base URL of `tirecontact share` when none is given: the page itself,
 /// relative to wherever it is served.
 pub const DEFAULT_BASE_URL: &str = "index.html";
+
+/// Bytes of the check sum that ends a `v2` payload.
+const CHECK_BYTES: usize = 4;
 
 /// Why a scene cannot be put into a link, or a link read back.
 #[derive(Debug, thiserror::Error)]
@@ -44,21 +56,27 @@ pub enum ShareError {
     /// The text has no `scene=` key in its fragment.
     #[error("no scene in the link: expected a fragment `#{FRAGMENT_KEY}…`")]
     NoScene,
-    /// The `scene=` value has a version this program does not read.
-    #[error("scene link version `{version}`: expected `v1` (made by a newer program?)")]
-    Version { version: String },
-    /// The payload is not base64url.
-    #[error("the scene in the link is not base64url: {0}")]
-    Base64(#[from] base64::DecodeError),
-    /// The payload is not a deflate stream.
-    #[error("the scene in the link is not deflate-compressed data: {reason}")]
-    Deflate { reason: String },
-    /// The decompressed scene is not UTF-8 text.
-    #[error("the scene in the link is not UTF-8 text: {0}")]
-    Utf8(#[from] std::string::FromUtf8Error),
-    /// The scene in the link does not parse or is invalid.
+    /// The link's version is a later one than this program reads.
+    #[error(
+        "This link was made by a newer version of the visualiser (link version v{version}; this one reads v1 and v2): open it in the page it came from."
+    )]
+    Newer { version: u32 },
+    /// The link was damaged on its way (a character changed, dropped or
+    /// added, or the link cut short): what gave it away, in words.
+    #[error(
+        "This link is damaged or cut short ({what}); copy the whole link again from where you got it, or use File > Share link in the visualiser to make a new one."
+    )]
+    Damaged { what: String },
+    /// The scene of an intact link does not parse or is invalid (a link
+    /// written by hand, or by a program whose scenes differ).
     #[error(transparent)]
     Scene(#[from] SceneError),
+}
+
+impl ShareError {
+    fn damaged(what: impl Into<String>) -> Self {
+        Self::Damaged { what: what.into() }
+    }
 }
 
 /// The files `scene` reads, as `(field, path, what)`: a measured tyre's
@@ -102,8 +120,9 @@ fn needed_file(scene: &Scene) -> Option<ShareError> {
     None
 }
 
-/// The fragment value of `scene` (without `#`): `scene=v1.` and the
-/// base64url of its deflate-compressed RON.
+/// The fragment value of `scene` (without `#`): `scene=v2.` and the
+/// base64url of its deflate-compressed RON followed by the CRC-32 of the
+/// compressed bytes.
 pub fn fragment(scene: &Scene) -> Result<String, ShareError> {
     if let Some(e) = needed_file(scene) {
         return Err(e);
@@ -115,7 +134,9 @@ pub fn fragment(scene: &Scene) -> Result<String, ShareError> {
             limit: MAX_SHARED_SCENE_BYTES,
         });
     }
-    let packed = miniz_oxide::deflate::compress_to_vec(ron.as_bytes(), 9);
+    let mut packed = miniz_oxide::deflate::compress_to_vec(ron.as_bytes(), 9);
+    let check = crc32fast::hash(&packed);
+    packed.extend_from_slice(&check.to_be_bytes());
     Ok(format!("{FRAGMENT_KEY}{}", URL_SAFE_NO_PAD.encode(packed)))
 }
 
@@ -126,41 +147,103 @@ pub fn link(scene: &Scene, base_url: &str) -> Result<String, ShareError> {
     Ok(format!("{base}#{}", fragment(scene)?))
 }
 
+/// Keys of the fragment besides `scene` (the visualiser's `view` and
+/// `speed`); a short part with another key is ignored.
+const OTHER_KEYS: [&str; 2] = ["view", "speed"];
+
+/// Longest fragment part with an unknown key that is taken for something
+/// else than a damaged scene (a scene's payload is hundreds of characters).
+const MAX_OTHER_PART: usize = 24;
+
 /// The scene of a link, a fragment (`#scene=…`) or a fragment's value
 /// (`scene=…`); `Ok(None)` when it has no `scene=` key (a plain page
-/// link). Other `&`-separated keys of the fragment are ignored.
+/// link). The `view` and `speed` keys of the fragment and short parts
+/// with other keys are ignored; a long part with another key (a scene
+/// whose `scene=` was damaged) is refused as damaged.
 pub fn scene_in(text: &str) -> Result<Option<Scene>, ShareError> {
     let fragment = match text.split_once('#') {
         Some((_, f)) => f,
         None => text,
     };
     let Some(value) = fragment.split('&').find_map(|kv| kv.strip_prefix("scene=")) else {
-        return Ok(None);
+        let stray = fragment.split('&').find(|part| {
+            let key = part.split_once('=').map_or(*part, |(k, _)| k);
+            !OTHER_KEYS.contains(&key) && (part.len() > MAX_OTHER_PART || key.contains("scene"))
+        });
+        return match stray {
+            Some(_) => Err(ShareError::damaged("its `scene=` is missing or misspelt")),
+            None => Ok(None),
+        };
     };
+    if value.is_empty() {
+        return Err(ShareError::damaged("nothing follows `scene=`"));
+    }
     let Some((version, payload)) = value.split_once('.') else {
-        return Err(ShareError::Version {
-            version: value.chars().take(12).collect(),
-        });
+        return Err(ShareError::damaged("no version before its scene"));
     };
-    if version != "v1" {
-        return Err(ShareError::Version {
-            version: version.chars().take(12).collect(),
-        });
+    let number = version
+        .strip_prefix('v')
+        .filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+        .and_then(|n| n.parse::<u32>().ok());
+    let checked = match number {
+        Some(1) => false,
+        Some(2) => true,
+        Some(n) if n > 2 => return Err(ShareError::Newer { version: n }),
+        _ => {
+            return Err(ShareError::damaged(format!(
+                "its version `{}` is not one of a link",
+                version.chars().take(12).collect::<String>()
+            )));
+        }
+    };
+    if payload.is_empty() {
+        return Err(ShareError::damaged("it ends after its version"));
     }
     // tolerate the padding some tools add back
-    let packed = URL_SAFE_NO_PAD.decode(payload.trim_end_matches('='))?;
+    let mut packed = URL_SAFE_NO_PAD
+        .decode(payload.trim_end_matches('='))
+        .map_err(|e| {
+            ShareError::damaged(match e {
+                base64::DecodeError::InvalidByte(_, b) if !b.is_ascii_graphic() => {
+                    "it holds a character a link does not use".to_string()
+                }
+                base64::DecodeError::InvalidByte(_, b) => {
+                    format!("it holds `{}`, a character a link does not use", b as char)
+                }
+                _ => "its length or last character is not that of a whole link".to_string(),
+            })
+        })?;
+    if checked {
+        if packed.len() <= CHECK_BYTES {
+            return Err(ShareError::damaged("it is too short to hold a scene"));
+        }
+        let at = packed.len() - CHECK_BYTES;
+        let stored = u32::from_be_bytes(packed[at..].try_into().expect("4 bytes"));
+        packed.truncate(at);
+        if crc32fast::hash(&packed) != stored {
+            return Err(ShareError::damaged(
+                "its check sum does not match its contents",
+            ));
+        }
+    }
     let ron = miniz_oxide::inflate::decompress_to_vec_with_limit(&packed, MAX_SHARED_SCENE_BYTES)
         .map_err(|e| match e.status {
         miniz_oxide::inflate::TINFLStatus::HasMoreOutput => ShareError::TooLarge {
             bytes: MAX_SHARED_SCENE_BYTES + 1,
             limit: MAX_SHARED_SCENE_BYTES,
         },
-        status => ShareError::Deflate {
-            reason: format!("{status:?}"),
-        },
+        _ => ShareError::damaged("its compressed scene does not unpack"),
     })?;
-    let text = String::from_utf8(ron)?;
-    let scene = Scene::parse(&text, "(scene link)")?;
+    let text = String::from_utf8(ron).map_err(|_| ShareError::damaged("its scene is not text"))?;
+    let scene = match Scene::parse(&text, "(scene link)") {
+        Ok(scene) => scene,
+        // a v1 link has no check sum: a scene that does not read is most
+        // likely a damaged one
+        Err(SceneError::Syntax { .. }) if !checked => {
+            return Err(ShareError::damaged("its scene does not read as a scene"));
+        }
+        Err(e) => return Err(e.into()),
+    };
     if let Some(e) = needed_file(&scene) {
         return Err(e);
     }
@@ -198,7 +281,21 @@ mod tests {
     }
 
     fn payload(link: &str) -> &str {
-        link.split_once("#scene=v1.").unwrap().1
+        link.split_once("#scene=v2.").unwrap().1
+    }
+
+    /// A `v2` link of `bytes` (any bytes, not only a scene's RON) with a
+    /// right check sum: what a hand-made link or another program gives.
+    fn v2_link(bytes: &[u8]) -> String {
+        let mut packed = miniz_oxide::deflate::compress_to_vec(bytes, 6);
+        packed.extend_from_slice(&crc32fast::hash(&packed).to_be_bytes());
+        format!("#scene=v2.{}", URL_SAFE_NO_PAD.encode(packed))
+    }
+
+    /// A `v1` link (no check sum) of `bytes`.
+    fn v1_link(bytes: &[u8]) -> String {
+        let packed = miniz_oxide::deflate::compress_to_vec(bytes, 6);
+        format!("#scene=v1.{}", URL_SAFE_NO_PAD.encode(packed))
     }
 
     #[test]
@@ -207,7 +304,7 @@ mod tests {
         for (name, scene) in shipped() {
             match link(&scene, DEFAULT_BASE_URL) {
                 Ok(url) => {
-                    assert!(url.starts_with("index.html#scene=v1."), "{name}: {url}");
+                    assert!(url.starts_with("index.html#scene=v2."), "{name}: {url}");
                     let p = payload(&url);
                     assert!(
                         p.bytes()
@@ -238,7 +335,7 @@ mod tests {
     fn a_link_keeps_its_base_and_is_much_shorter_than_the_ron() {
         let scene = Scene::parse(PAPER, "paper.ron").unwrap();
         let url = link(&scene, "https://example.org/tc/index.html#old").unwrap();
-        assert!(url.starts_with("https://example.org/tc/index.html#scene=v1."));
+        assert!(url.starts_with("https://example.org/tc/index.html#scene=v2."));
         let ron = scene.to_ron_string();
         assert!(
             payload(&url).len() * 2 < ron.len(),
@@ -276,19 +373,19 @@ mod tests {
         );
         // a hand-made link naming a file is refused too, not read
         let ron = road.to_ron_string();
-        let packed = miniz_oxide::deflate::compress_to_vec(ron.as_bytes(), 6);
-        let url = format!("#scene=v1.{}", URL_SAFE_NO_PAD.encode(packed));
-        let e = scene_of(&url).unwrap_err();
-        assert!(
-            matches!(
-                e,
-                ShareError::NeedsFile {
-                    field: "road.file",
-                    ..
-                }
-            ),
-            "{e}"
-        );
+        for url in [v1_link(ron.as_bytes()), v2_link(ron.as_bytes())] {
+            let e = scene_of(&url).unwrap_err();
+            assert!(
+                matches!(
+                    e,
+                    ShareError::NeedsFile {
+                        field: "road.file",
+                        ..
+                    }
+                ),
+                "{e}"
+            );
+        }
     }
 
     #[test]
@@ -299,12 +396,12 @@ mod tests {
         assert!(matches!(e, ShareError::TooLarge { .. }), "{e}");
         // a small link that inflates past the limit (a compression bomb)
         let ron = scene.to_ron_string();
-        let packed = miniz_oxide::deflate::compress_to_vec(ron.as_bytes(), 9);
-        assert!(packed.len() < 10_000, "{}", packed.len());
-        let url = format!("index.html#scene=v1.{}", URL_SAFE_NO_PAD.encode(packed));
-        let e = scene_of(&url).unwrap_err();
-        assert!(matches!(e, ShareError::TooLarge { .. }), "{e}");
-        assert!(e.to_string().contains("1048576 bytes"), "{e}");
+        for url in [v1_link(ron.as_bytes()), v2_link(ron.as_bytes())] {
+            assert!(url.len() < 10_000, "{}", url.len());
+            let e = scene_of(&url).unwrap_err();
+            assert!(matches!(e, ShareError::TooLarge { .. }), "{e}");
+            assert!(e.to_string().contains("1048576 bytes"), "{e}");
+        }
         // just under the limit passes
         let rest = ron.len() - MAX_SHARED_SCENE_BYTES;
         scene.description = "x".repeat(MAX_SHARED_SCENE_BYTES - 1 - rest);
@@ -313,31 +410,166 @@ mod tests {
         assert_eq!(back.description.len(), scene.description.len());
     }
 
+    /// The start every refusal of a damaged link has, and its advice.
+    const DAMAGED: &str = "This link is damaged or cut short (";
+    const ADVICE: &str = "); copy the whole link again from where you got it, or use File > Share link in the visualiser to make a new one.";
+
+    fn damaged(link: &str) -> String {
+        let e = scene_of(link).unwrap_err();
+        let text = e.to_string();
+        assert!(matches!(e, ShareError::Damaged { .. }), "{link}: {text}");
+        assert!(
+            text.starts_with(DAMAGED) && text.ends_with(ADVICE),
+            "{text}"
+        );
+        text[DAMAGED.len()..text.len() - ADVICE.len()].to_string()
+    }
+
     #[test]
-    fn broken_links_are_refused_with_the_reason() {
+    fn broken_links_are_refused_in_plain_words() {
         assert!(scene_in("index.html").unwrap().is_none());
         assert!(scene_in("index.html#view=scene").unwrap().is_none());
+        assert!(
+            scene_in("index.html#top&view=2&speed=max")
+                .unwrap()
+                .is_none()
+        );
         assert!(matches!(scene_of("index.html"), Err(ShareError::NoScene)));
-        let e = scene_of("#scene=v2.abc").unwrap_err();
-        assert!(e.to_string().contains("`v2`"), "{e}");
-        let e = scene_of("#scene=abc").unwrap_err();
-        assert!(matches!(e, ShareError::Version { .. }), "{e}");
-        let e = scene_of("#scene=v1.a*b").unwrap_err();
-        assert!(matches!(e, ShareError::Base64(_)), "{e}");
-        let e = scene_of("#scene=v1.AAAAAAAA").unwrap_err();
-        assert!(matches!(e, ShareError::Deflate { .. }), "{e}");
-        let packed = miniz_oxide::deflate::compress_to_vec(&[0xff, 0xfe, 0x00], 6);
-        let e = scene_of(&format!("#scene=v1.{}", URL_SAFE_NO_PAD.encode(packed))).unwrap_err();
-        assert!(matches!(e, ShareError::Utf8(_)), "{e}");
-        let packed = miniz_oxide::deflate::compress_to_vec(b"Scene(name: \"x\")", 6);
-        let e = scene_of(&format!("#scene=v1.{}", URL_SAFE_NO_PAD.encode(packed))).unwrap_err();
+        assert_eq!(damaged("index.html#scene="), "nothing follows `scene=`");
+        assert_eq!(damaged("#scene=abc"), "no version before its scene");
+        assert_eq!(damaged("#scene=v2."), "it ends after its version");
+        assert_eq!(
+            damaged("#scene=vx.abc"),
+            "its version `vx` is not one of a link"
+        );
+        assert_eq!(
+            damaged("#scene=.abc"),
+            "its version `` is not one of a link"
+        );
+        assert_eq!(
+            damaged("#scene=v2.a*bc"),
+            "it holds `*`, a character a link does not use"
+        );
+        assert_eq!(
+            damaged("#scene=v2.AAAAA"),
+            "its length or last character is not that of a whole link"
+        );
+        assert_eq!(damaged("#scene=v2.AAAA"), "it is too short to hold a scene");
+        assert_eq!(
+            damaged("#scene=v2.AAAAAAAAAAA"),
+            "its check sum does not match its contents"
+        );
+        assert_eq!(
+            damaged("#scene=v1.AAAAAAAA"),
+            "its compressed scene does not unpack"
+        );
+        assert_eq!(
+            damaged(&v1_link(&[0xff, 0xfe, 0x00])),
+            "its scene is not text"
+        );
+        assert_eq!(
+            damaged(&v2_link(&[0xff, 0xfe, 0x00])),
+            "its scene is not text"
+        );
+        assert_eq!(
+            damaged(&v1_link(b"Scene(nme: \"x\")")),
+            "its scene does not read as a scene"
+        );
+        // the key of the scene damaged: not a plain page link
+        let good = link(&Scene::parse(PAPER, "paper.ron").unwrap(), "").unwrap();
+        for bad in ["#scenf=", "#scene", "#sene="] {
+            let url = good.replacen("#scene=", bad, 1);
+            assert_eq!(
+                damaged(&url),
+                "its `scene=` is missing or misspelt",
+                "{url}"
+            );
+        }
+        // a version from a later program says so
+        let e = scene_of("#scene=v3.abc").unwrap_err();
+        assert!(matches!(e, ShareError::Newer { version: 3 }), "{e}");
+        assert!(e.to_string().contains("newer version"), "{e}");
+        // an intact link whose scene does not read (hand-made, another
+        // program's) keeps the exact reason
+        let e = scene_of(&v2_link(b"Scene(name: \"x\")")).unwrap_err();
         assert!(e.to_string().starts_with("(scene link):"), "{e}");
-        // an invalid value names the field
+        // an invalid value names the field, in either version
         let mut scene = Scene::parse(PAPER, "paper.ron").unwrap();
         scene.dt_s = -1.0;
-        let packed = miniz_oxide::deflate::compress_to_vec(scene.to_ron_string().as_bytes(), 6);
-        let e = scene_of(&format!("#scene=v1.{}", URL_SAFE_NO_PAD.encode(packed))).unwrap_err();
-        assert!(e.to_string().contains("dt_s"), "{e}");
+        let ron = scene.to_ron_string();
+        for url in [v1_link(ron.as_bytes()), v2_link(ron.as_bytes())] {
+            let e = scene_of(&url).unwrap_err();
+            assert!(e.to_string().contains("dt_s"), "{e}");
+        }
+        // no message speaks the decoder's language
+        for url in ["#scene=", "#scene=v1.AAAAAAAA", "#scene=v2.AAAAAAAAAAA"] {
+            let text = scene_of(url).unwrap_err().to_string();
+            for jargon in ["Failed", "newer", "deflate", "base64", "Unexpected"] {
+                assert!(!text.contains(jargon), "{url}: {text}");
+            }
+        }
+    }
+
+    /// Links of the first format (no check sum) still open.
+    #[test]
+    fn a_v1_link_still_opens_its_scene() {
+        let scene = Scene::parse(PAPER, "paper.ron").unwrap();
+        let url = format!(
+            "index.html{}&view=2",
+            v1_link(scene.to_ron_string().as_bytes())
+        );
+        let mut back = scene_of(&url).unwrap();
+        back.base_dir = scene.base_dir.clone();
+        assert_eq!(back, scene);
+    }
+
+    /// Every change of one character of the three-points link (each
+    /// character replaced by each character of the link alphabet and the
+    /// separators, or deleted) is refused or opens the identical scene:
+    /// never another scene.
+    #[test]
+    fn every_one_character_change_of_a_link_is_refused_or_harmless() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../presets");
+        let scene = Scene::load(&dir.join("three_points.ron")).unwrap();
+        let good = link(&scene, DEFAULT_BASE_URL).unwrap();
+        let alphabet: Vec<char> = ('A'..='Z')
+            .chain('a'..='z')
+            .chain('0'..='9')
+            .chain("-_.=&#".chars())
+            .collect();
+        let chars: Vec<char> = good.chars().collect();
+        let payload_at = good.find("v2.").unwrap() + 3;
+        let (mut changes, mut refused, mut same, mut same_in_payload) = (0, 0, 0, 0);
+        let mut check = |url: String, i: usize| {
+            changes += 1;
+            match scene_in(&url) {
+                Err(_) => refused += 1,
+                Ok(Some(mut back)) => {
+                    back.base_dir = scene.base_dir.clone();
+                    assert_eq!(back, scene, "{url} opened another scene");
+                    same += 1;
+                    same_in_payload += usize::from(i >= payload_at);
+                }
+                Ok(None) => panic!("{url} opened as a page without a scene"),
+            }
+        };
+        for i in 0..chars.len() {
+            for &c in alphabet.iter().filter(|&&c| c != chars[i]) {
+                let mut changed = chars.clone();
+                changed[i] = c;
+                check(changed.into_iter().collect(), i);
+            }
+            let mut cut = chars.clone();
+            cut.remove(i);
+            check(cut.into_iter().collect(), i);
+        }
+        assert_eq!(changes, chars.len() * alphabet.len());
+        assert_eq!(refused + same, changes);
+        // every change of the payload is refused; only changes of the base
+        // (`index.html`) and of the version's digit leave the scene as it was
+        assert_eq!(same_in_payload, 0);
+        assert!(same <= 11 * alphabet.len(), "{same} of {changes} opened");
+        eprintln!("{changes} changes: {refused} refused, {same} open the same scene");
     }
 
     proptest::proptest! {
