@@ -175,6 +175,36 @@ fn the_time_plots_give_a_phone_their_width() {
     }
 }
 
+/// All four time plots are on a phone's screen: the last plot's time axis
+/// title ends above the status bar (at 360 × 740 the contact plot was
+/// behind it).
+#[test]
+fn the_four_time_plots_fit_above_the_status_bar_on_a_phone() {
+    for size in PHONES {
+        let h = phone(size);
+        let shown = texts(&h);
+        let axis = shown
+            .iter()
+            .filter(|(t, _)| t == "time t (s)")
+            .map(|(_, r)| r.bottom())
+            .fold(0.0f32, f32::max);
+        let status_top = shown
+            .iter()
+            .filter(|(t, _)| t.contains(" steps · "))
+            .map(|(_, r)| r.top())
+            .fold(f32::INFINITY, f32::min);
+        assert!(axis > 0.0, "at {size:?} no time axis title is drawn");
+        assert!(
+            status_top.is_finite(),
+            "at {size:?} no status bar text found"
+        );
+        assert!(
+            axis <= status_top,
+            "at {size:?} the last plot's time axis ends at {axis} px, below the status bar's top at {status_top} px"
+        );
+    }
+}
+
 /// A refused value's reason shows in the editing panel (the views' banner
 /// is hidden behind it, and a hover text cannot be reached by touch).
 #[test]

@@ -135,7 +135,10 @@ pub fn show(
         (0.0, t_end.max(1e-9))
     };
     let gap = ui.spacing().item_spacing.y;
-    let h = ((ui.available_height() - 3.0 * gap) / 4.0).max(80.0);
+    // (a phone's short screen: the four plots share what height there is,
+    // so none hides behind the status bar; elsewhere at least 80 px each)
+    let min_h = if narrow { 40.0 } else { 80.0 };
+    let h = ((ui.available_height() - 3.0 * gap) / 4.0).max(min_h);
     // the curves fill the window's width, so every corner of it would cover
     // some: the time axis runs on past the window's end by a strip as wide
     // as the widest legend, where the legends go (top right)
