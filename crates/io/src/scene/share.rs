@@ -21,9 +21,6 @@ use tirecontact_core::model::road::Road;
 /// version links are made in.
 pub const FRAGMENT_KEY: &str = "scene=v2.";
 
-/// The link versions this program reads: `v1` (no check sum) and `v2`.
-pub const READ_VERSIONS: [u32; 2] = [1, 2];
-
 /// Largest decompressed scene a link may carry (bytes): 1 MiB, a hundred
 /// times the paper preset.
 pub const MAX_SHARED_SCENE_BYTES: usize = 1 << 20;
@@ -186,7 +183,7 @@ pub fn scene_in(text: &str) -> Result<Option<Scene>, ShareError> {
         .filter(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
         .and_then(|n| n.parse::<u32>().ok());
     let checked = match number {
-        Some(1) => false,
+        Some(1) => false, // (v1: no check sum)
         Some(2) => true,
         Some(n) if n > 2 => return Err(ShareError::Newer { version: n }),
         _ => {
