@@ -473,6 +473,18 @@ fn an_ordinate_known_by_its_units_label_only_is_read_as_such() {
 /// A row of `modes` (accelerance, 1 to 1000 Hz every 1 Hz, no noise)
 /// written as a UFF file.
 fn row_file(dir: &Path, name: &str, modes: &[(f64, f64, [f64; 3])]) -> std::path::PathBuf {
+    write_row(dir, name, |i, j, f_hz| {
+        frf(modes, i, j, f_hz, Ordinate::Accelerance)
+    })
+}
+
+/// The row's accelerances `value(i, j, f_hz)` at 1 to 1000 Hz every 1 Hz
+/// (0 at 0 Hz), pair by pair in `ROW`'s order, written as a UFF file.
+fn write_row(
+    dir: &Path,
+    name: &str,
+    mut value: impl FnMut(usize, usize, f64) -> c64,
+) -> std::path::PathBuf {
     let mut text = String::new();
     for &(i, j) in &ROW {
         let vals: Vec<c64> = (0..=1000)
@@ -480,7 +492,7 @@ fn row_file(dir: &Path, name: &str, modes: &[(f64, f64, [f64; 3])]) -> std::path
                 if k == 0 {
                     c64::new(0.0, 0.0)
                 } else {
-                    frf(modes, i, j, f64::from(k), Ordinate::Accelerance)
+                    value(i, j, f64::from(k))
                 }
             })
             .collect();
@@ -580,29 +592,10 @@ fn noisy_row_file(dir: &Path, name: &str, weak: Option<f64>, seed: u64) -> std::
     if let Some(a) = weak {
         modes.push((560.0, 0.005, [a, a, -a]));
     }
-    let mut text = String::new();
-    for &(i, j) in &ROW {
-        let vals: Vec<c64> = (0..=1000)
-            .map(|k| {
-                if k == 0 {
-                    return c64::new(0.0, 0.0);
-                }
-                let mut n = || 0.01 * 3f64.sqrt() * (2.0 * rng.random::<f64>() - 1.0);
-                frf(&modes, i, j, f64::from(k), Ordinate::Accelerance) * c64::new(1.0 + n(), n())
-            })
-            .collect();
-        text.push_str(&crate::support::frf::uff58(
-            (i as i64 + 1, 3),
-            (j as i64 + 1, 3),
-            12,
-            0.0,
-            1.0,
-            &vals,
-        ));
-    }
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
+    write_row(dir, name, |i, j, f_hz| {
+        let mut n = || 0.01 * 3f64.sqrt() * (2.0 * rng.random::<f64>() - 1.0);
+        frf(&modes, i, j, f_hz, Ordinate::Accelerance) * c64::new(1.0 + n(), n())
+    })
 }
 
 /// `--order 200`.
