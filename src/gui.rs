@@ -44,6 +44,7 @@ pub fn run_with_preset(preset: Option<std::path::PathBuf>) -> eframe::Result {
 /// [`run_with_preset`], starting in classroom mode when `classroom`.
 #[cfg(not(target_arch = "wasm32"))]
 pub fn run_with_options(preset: Option<std::path::PathBuf>, classroom: bool) -> eframe::Result {
+    leave_a_core_to_the_solver();
     let mut options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("tirecontact")
@@ -70,6 +71,23 @@ pub fn run_with_options(preset: Option<std::path::PathBuf>, classroom: bool) -> 
             Ok(Box::new(app))
         }),
     )
+}
+
+/// Software GL (Mesa's llvmpipe: Xvfb, remote desktops, machines without
+/// a GPU driver) rasterises on as many threads as there are cores, while
+/// "as fast as possible" steps the run on a thread of its own: on two
+/// cores the three shared them and the run went at half its speed. Unless
+/// the user set `LP_NUM_THREADS`, the renderer gets one thread fewer than
+/// the cores (at least one); other GL drivers ignore the variable.
+#[cfg(not(target_arch = "wasm32"))]
+fn leave_a_core_to_the_solver() {
+    if std::env::var_os("LP_NUM_THREADS").is_some() {
+        return;
+    }
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    // SAFETY: called on the main thread before eframe starts, when no
+    // other thread of the process reads or writes the environment.
+    unsafe { std::env::set_var("LP_NUM_THREADS", cores.saturating_sub(1).max(1).to_string()) };
 }
 
 /// Starts the visualiser in the page's `canvas` (in a browser): on the

@@ -116,6 +116,19 @@ pub(crate) struct Handles {
     pub(super) copy_link: bool,
     /// The last Share's link is shown in its window (to copy by hand).
     pub(super) link_shown: bool,
+    /// Steps taken between the last two frames and how they ended, for
+    /// this frame's [`Command::Advance`].
+    pub(super) stepped_ahead: Option<(u64, Result<u64, crate::solver::error::RunError>)>,
+    /// While the run steps between frames: the wait before the next frame
+    /// (s), so that drawing leaves the solver its share of the cores.
+    pub(super) paced_delay_s: Option<f64>,
+    pub(super) pacer: crate::gui::model::time_control::FramePacer,
+    /// The thread that steps the run between frames at "as fast as
+    /// possible", and the stand-in state the app holds while it is lent.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub(super) run_ahead: Option<crate::gui::jobs::run_ahead::RunAhead>,
+    #[cfg(not(target_arch = "wasm32"))]
+    pub(super) spare: Option<Box<crate::gui::jobs::run_ahead::Live>>,
 }
 
 /// The simulation of `scene` and its modes, the ring's identification
@@ -182,6 +195,13 @@ impl App {
                 shared_link: None,
                 copy_link: false,
                 link_shown: false,
+                stepped_ahead: None,
+                paced_delay_s: None,
+                pacer: Default::default(),
+                #[cfg(not(target_arch = "wasm32"))]
+                run_ahead: None,
+                #[cfg(not(target_arch = "wasm32"))]
+                spare: None,
             },
         })
     }
@@ -203,6 +223,9 @@ impl App {
     pub fn modes(&self) -> &[Mode] {
         &self.modes
     }
+    /// The run. Between two frames of [`App::frame`] that play "as fast
+    /// as possible" it is with the stepping thread: [`App::reclaim_run`]
+    /// takes it back.
     pub fn simulation(&self) -> &Simulation {
         &self.sim
     }

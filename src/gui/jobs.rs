@@ -5,5 +5,7 @@ pub mod export;
 pub mod frames;
 mod job;
 pub mod prepare;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod run_ahead;
 
 pub use job::{Job, Progress, SLICE_S, SliceWork};

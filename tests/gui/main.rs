@@ -30,6 +30,7 @@ mod patch_view;
 mod phone;
 mod phone_touch;
 mod research;
+mod run_ahead;
 mod save_as;
 mod scene_view;
 mod share_window;

@@ -237,13 +237,25 @@ impl App {
             || crate::gui::chrome::web::picking()
             || (!hidden && (self.time.is_playing() || self.time.pending_steps() > 0))
         {
-            ctx.request_repaint();
+            match self.handles.paced_delay_s {
+                // the run steps between frames: drawing less often leaves
+                // it the cores (input still brings a frame at once)
+                Some(delay_s) if self.time.is_playing() => {
+                    ctx.request_repaint_after(Duration::from_secs_f64(delay_s))
+                }
+                _ => ctx.request_repaint(),
+            }
         }
     }
 }
 
-impl eframe::App for App {
-    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+impl App {
+    /// One frame as eframe runs it: the run taken back from the stepping
+    /// thread, the close request, the frame ([`App::show`]), and the run
+    /// lent again when it plays as fast as possible.
+    pub fn frame(&mut self, ui: &mut egui::Ui) {
+        #[cfg(not(target_arch = "wasm32"))]
+        self.reclaim_run();
         let ctx = ui.ctx().clone();
         if ctx.input(|i| i.viewport().close_requested()) && !self.allow_close && self.is_dirty() {
             ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
@@ -254,9 +266,20 @@ impl eframe::App for App {
             self.quit_requested = false;
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         }
+        #[cfg(not(target_arch = "wasm32"))]
+        self.lend_run(ctx.input(|i| i.viewport().minimized == Some(true)));
+    }
+}
+
+impl eframe::App for App {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        self.frame(ui);
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        // (between frames the run may be with the stepping thread)
+        #[cfg(not(target_arch = "wasm32"))]
+        self.reclaim_run();
         self.save_session(storage);
     }
 }

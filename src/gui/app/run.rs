@@ -326,25 +326,39 @@ impl App {
         self.doc.scene = new;
     }
 
-    /// Takes this frame's solver steps within the time budget.
+    /// Takes this frame's solver steps within the time budget, or, when
+    /// the steps were taken between the frames ([`App::lend_run`]), says how
+    /// they went.
     pub(super) fn advance(&mut self, frame_s: f64) {
         let dt = self.sim.dt_s();
         let want = self.time.steps_this_frame(frame_s, dt);
-        if want == 0 {
-            return;
-        }
-        let before = self.sim.steps();
-        let r = if self.sim.finished() {
-            Ok(0)
-        } else {
-            crate::solver::drive::run(
-                &mut self.sim,
-                want,
-                &mut (&mut self.history, &mut self.phases),
-                Watch::until(Instant::now() + Duration::from_secs_f64(step_budget_s(frame_s))),
-            )
+        let (taken, r) = match self.handles.stepped_ahead.take() {
+            Some((taken, r)) => {
+                self.handles.paced_delay_s = Some(self.handles.pacer.next_delay_s(frame_s));
+                (taken, r)
+            }
+            None => {
+                self.handles.paced_delay_s = None;
+                self.handles.pacer = Default::default();
+                if want == 0 {
+                    return;
+                }
+                let before = self.sim.steps();
+                let r = if self.sim.finished() {
+                    Ok(0)
+                } else {
+                    crate::solver::drive::run(
+                        &mut self.sim,
+                        want,
+                        &mut (&mut self.history, &mut self.phases),
+                        Watch::until(
+                            Instant::now() + Duration::from_secs_f64(step_budget_s(frame_s)),
+                        ),
+                    )
+                };
+                (self.sim.steps() - before, r)
+            }
         };
-        let taken = self.sim.steps() - before;
         match r {
             // the end reached with steps still wanted: the run is complete
             Ok(_) if taken < want && self.sim.finished() => self.run_complete(),
@@ -382,4 +396,113 @@ pub fn modal_model_note(n: usize) -> String {
     format!(
         "The ring is replaced by its {n} identified modes: tune, add or remove them in the Modes table (each edit restarts the run); the Fidelity view keeps the ring as its reference. Save to keep the modal model."
     )
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+impl App {
+    /// At the end of a frame playing "as fast as possible": lends the run
+    /// to the stepping thread until the next frame
+    /// ([`crate::gui::jobs::run_ahead`]), so that it steps while the frame
+    /// is drawn. Elsewhere (other speeds, paused, minimised, the run at its
+    /// end) the steps stay in the frame.
+    pub(super) fn lend_run(&mut self, minimised: bool) {
+        use crate::gui::jobs::run_ahead::{Live, RunAhead};
+        if minimised
+            || !self.time.is_playing()
+            || self.time.speed() != Speed::Max
+            || self.sim.finished()
+            || self.handles.stepped_ahead.is_some()
+        {
+            return;
+        }
+        if self.handles.run_ahead.is_none() {
+            // no thread (the system refused one): the steps stay in the frame
+            self.handles.run_ahead = RunAhead::spawn().ok();
+        }
+        if self.handles.spare.is_none() {
+            // what the app holds while the run is lent: never drawn, since
+            // the run comes back before the frame reads it
+            let Ok((sim, _)) = build(&default_scene(), &self.handles.mode_cache) else {
+                return;
+            };
+            self.handles.spare = Some(Box::new(Live {
+                history: History::new(sim.num_points(), 4096),
+                phases: PhaseTracker::new(sim.num_points(), 0.0),
+                sim,
+            }));
+        }
+        let (Some(ahead), Some(spare)) =
+            (self.handles.run_ahead.as_mut(), self.handles.spare.take())
+        else {
+            return;
+        };
+        let Live {
+            sim,
+            history,
+            phases,
+        } = *spare;
+        let live = Box::new(Live {
+            sim: std::mem::replace(&mut self.sim, sim),
+            history: std::mem::replace(&mut self.history, history),
+            phases: std::mem::replace(&mut self.phases, phases),
+        });
+        if let Err(live) = ahead.lend(live) {
+            self.handles.run_ahead = None;
+            self.take_back(live);
+        }
+    }
+
+    /// At the start of a frame (and before reading the run between
+    /// frames): takes the lent run back (the stepping thread stops after
+    /// the step it is in) and leaves its steps for the next frame's
+    /// [`Command::Advance`]. Nothing lent: does nothing.
+    pub fn reclaim_run(&mut self) {
+        let Some(ahead) = self.handles.run_ahead.as_mut() else {
+            return;
+        };
+        if !ahead.is_lent() {
+            return;
+        }
+        match ahead.reclaim() {
+            Some(back) => {
+                self.take_back(back.live);
+                self.handles.stepped_ahead = Some((back.taken, back.result));
+            }
+            None => {
+                // the thread died with the run: start it again from the scene
+                self.handles.run_ahead = None;
+                self.time.pause();
+                match build(&self.doc.scene, &self.handles.mode_cache) {
+                    Ok((sim, _)) => {
+                        self.sim = sim;
+                        self.reset_run();
+                    }
+                    Err(e) => {
+                        self.error(format!("The run stopped and could not restart: {e}"));
+                        return;
+                    }
+                }
+                self.error(
+                    "The solver's thread stopped unexpectedly: the run restarted from t = 0. \
+                     Your scene is unchanged."
+                        .to_string(),
+                );
+            }
+        }
+    }
+
+    /// Puts `live` back in place of the stand-in, kept for the next lease.
+    fn take_back(&mut self, live: Box<crate::gui::jobs::run_ahead::Live>) {
+        use crate::gui::jobs::run_ahead::Live;
+        let Live {
+            sim,
+            history,
+            phases,
+        } = *live;
+        self.handles.spare = Some(Box::new(Live {
+            sim: std::mem::replace(&mut self.sim, sim),
+            history: std::mem::replace(&mut self.history, history),
+            phases: std::mem::replace(&mut self.phases, phases),
+        }));
+    }
 }

@@ -36,7 +36,7 @@ impl FrameRate {
             self.app_ms = 1e3 * self.busy_s / self.frames as f64;
             if self.log {
                 eprintln!(
-                    "fps {:.1} app_ms {:.1} t_s {t_s:.5} playing {playing}",
+                    "fps {:.1} app_ms {:.1} t_s {t_s:.5} playing {playing} window_s {el:.3}",
                     self.fps, self.app_ms
                 );
             }

@@ -182,6 +182,24 @@ impl History {
         }
     }
 
+    /// At every sample: the points' window-mean forces summed (N), and how
+    /// many points carry force. A pass down each point's column, so that a
+    /// patch's totals over a long run cost a millisecond a frame.
+    pub fn totals(&self) -> (Vec<f64>, Vec<f64>) {
+        let n = self.t.len();
+        let mut force_n = vec![0.0; n];
+        let mut carrying = vec![0.0; n];
+        for q in &self.q {
+            for ((f, c), &v) in force_n.iter_mut().zip(carrying.iter_mut()).zip(q) {
+                *f += f64::from(v);
+                if v > 0.0 {
+                    *c += 1.0;
+                }
+            }
+        }
+        (force_n, carrying)
+    }
+
     /// Sample indices `[lo, hi)` whose times lie in `[t0, t1]`, widened by one
     /// sample on each side so that lines reach the edges.
     pub fn index_range(&self, t0: f64, t1: f64) -> (usize, usize) {
@@ -314,6 +332,48 @@ mod tests {
     fn small_series_are_not_decimated() {
         let t = [0.0, 1.0, 2.0];
         assert_eq!(decimate_min_max(&t, |k| k as f64, 10).len(), 3);
+    }
+
+    /// The column-wise totals are the sums over the points sample by
+    /// sample, on a patch whose points come and go, through merged windows.
+    #[test]
+    fn totals_sum_the_points_sample_by_sample() {
+        let mut scene = Scene::parse(
+            include_str!(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/presets/patch_texture.ron"
+            )),
+            "patch_texture",
+        )
+        .unwrap();
+        // more steps than the least capacity (1024 samples): windows merge
+        scene.duration_s = 2500.0 * scene.dt_s;
+        scene.ramp_s = 100.0 * scene.dt_s;
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        let p = scene.num_points();
+        let mut h = History::new(p, 0);
+        h.record_initial(&sim);
+        while !sim.finished() {
+            sim.step().unwrap();
+            h.after_step(&sim);
+        }
+        assert!(h.stride() > 1, "the windows merged");
+        let (force_n, carrying) = h.totals();
+        assert_eq!(force_n.len(), h.len());
+        let mut some_carry = false;
+        for k in 0..h.len() {
+            let f: f64 = (0..p).map(|i| h.value(Quantity::Force, i, k)).sum();
+            let c = (0..p)
+                .filter(|&i| h.value(Quantity::Force, i, k) > 0.0)
+                .count();
+            assert!(
+                (force_n[k] - f).abs() <= 1e-9 * f.abs().max(1.0),
+                "sample {k}"
+            );
+            assert_eq!(carrying[k], c as f64, "sample {k}");
+            some_carry |= c > 0 && c < p;
+        }
+        assert!(some_carry, "some samples have points on and off the road");
     }
 
     #[test]

@@ -88,6 +88,45 @@ pub fn step_budget_s(frame_s: f64) -> f64 {
     (0.5 * frame_s).clamp(MIN_STEP_BUDGET_S, MAX_STEP_BUDGET_S)
 }
 
+/// Share of the wall time that drawing may take while the run steps on its
+/// own thread ("as fast as possible" on the desktop): the frames wait
+/// twice as long as they take to draw. Under software GL, the renderer's
+/// threads and the solver share the cores; a faster renderer draws at more
+/// frames a second, and input still brings a frame at once.
+pub const DRAW_SHARE_AT_MAX: f64 = 1.0 / 3.0;
+
+/// Longest wait between two frames while the run steps on its own thread (s).
+pub const MAX_PACE_DELAY_S: f64 = 0.5;
+
+/// Frame pacing while the run steps on its own thread: from the interval
+/// between frames and the wait asked before it, the drawing's time, and
+/// the wait that keeps it to [`DRAW_SHARE_AT_MAX`] of the wall time.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FramePacer {
+    /// Smoothed time to draw a frame (s).
+    draw_s: f64,
+    /// The wait asked after the last frame (s).
+    delay_s: f64,
+}
+
+impl FramePacer {
+    /// The wait before the next frame, after one that came `frame_s` after
+    /// the last.
+    pub fn next_delay_s(&mut self, frame_s: f64) -> f64 {
+        if !frame_s.is_finite() || frame_s < 0.0 {
+            return self.delay_s;
+        }
+        let draw_s = (frame_s - self.delay_s).clamp(0.0, MAX_FRAME_S);
+        self.draw_s = if self.draw_s == 0.0 {
+            draw_s
+        } else {
+            0.7 * self.draw_s + 0.3 * draw_s
+        };
+        self.delay_s = (self.draw_s * (1.0 / DRAW_SHARE_AT_MAX - 1.0)).clamp(0.0, MAX_PACE_DELAY_S);
+        self.delay_s
+    }
+}
+
 /// Steps requested per frame at `Speed::Max` (the time budget cuts it short).
 pub const MAX_SPEED_STEPS: u64 = 1 << 40;
 
@@ -223,6 +262,34 @@ mod tests {
     use super::*;
 
     const DT: f64 = 1e-5;
+
+    /// Frames that take `draw_s` to draw and then wait as asked settle to
+    /// drawing a third of the time, for slow and fast renderers; the wait
+    /// stays bounded, and nonsense intervals change nothing.
+    #[test]
+    fn paced_frames_draw_a_third_of_the_time() {
+        for draw_s in [0.002, 0.016, 0.06, 0.14] {
+            let mut pacer = FramePacer::default();
+            let mut delay_s = 0.0;
+            for _ in 0..60 {
+                delay_s = pacer.next_delay_s(draw_s + delay_s);
+            }
+            let share = draw_s / (draw_s + delay_s);
+            assert!(
+                (share - DRAW_SHARE_AT_MAX).abs() < 1e-6,
+                "{draw_s}: {share}"
+            );
+            for bad in [f64::NAN, -1.0, f64::INFINITY] {
+                assert_eq!(pacer.next_delay_s(bad), delay_s);
+            }
+        }
+        let mut pacer = FramePacer::default();
+        let mut delay_s = 0.0;
+        for _ in 0..60 {
+            delay_s = pacer.next_delay_s(0.3 + delay_s);
+        }
+        assert_eq!(delay_s, MAX_PACE_DELAY_S);
+    }
 
     #[test]
     fn paused_takes_no_steps() {

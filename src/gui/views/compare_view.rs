@@ -5,8 +5,9 @@
 //! plot can clip impact spikes (fit the force without impacts, mark ▼).
 
 use super::XTitle;
+use super::time_plots::DEFAULT_SHOWN;
 use super::time_plots::{clip_at, clip_checkbox, clip_level, force_range, impact_marks, y_range};
-use super::{axis_title, legend_place, point_color};
+use super::{axis_title, legend_place, shown_point_color};
 use crate::Scene;
 use crate::analysis::compare::{PinnedRun, RunDifference};
 use crate::gui::model::command::{Command, ResearchCommand};
@@ -57,7 +58,7 @@ pub fn show(ui: &mut Ui, c: &Compared<'_>, opts: &mut CompareOptions, cmds: &mut
     } = *c;
     let p = history.num_points();
     if opts.shown.len() != p {
-        opts.shown = (0..p).map(|i| i < 8).collect();
+        opts.shown = (0..p).map(|i| i < DEFAULT_SHOWN).collect();
     }
     controls(ui, pinned.is_some(), opts, cmds);
     summary(ui, c);
@@ -291,7 +292,7 @@ fn run_plots(
                 ink.add(pui, &pts);
                 pui.line(
                     Line::new(CURRENT, pts)
-                        .color(point_color(i))
+                        .color(shown_point_color(shown, i))
                         .width(1.5)
                         .allow_band(false),
                 );
@@ -309,7 +310,7 @@ fn run_plots(
                         ink.add(pui, &pts);
                         pui.line(
                             Line::new(REFERENCE, pts)
-                                .color(point_color(i).gamma_multiply(0.6))
+                                .color(shown_point_color(shown, i).gamma_multiply(0.6))
                                 .width(1.5)
                                 .style(LineStyle::dashed_dense()),
                         );
@@ -394,7 +395,7 @@ fn difference_plots(
                 ink.add(pui, &pts);
                 pui.line(
                     Line::new(DIFFERENCE, pts)
-                        .color(point_color(i))
+                        .color(shown_point_color(shown, i))
                         .width(1.5)
                         .allow_band(false),
                 );

@@ -4,7 +4,7 @@
 //! the time plots.
 
 use crate::gui::model::command::Command;
-use crate::gui::model::history::{History, Quantity};
+use crate::gui::model::history::{History, decimate_min_max};
 use crate::gui::views::XTitle;
 use crate::output::patch::{PatchLayout, force_colour};
 use crate::solver::simulation::Simulation;
@@ -306,29 +306,13 @@ pub fn colour_bar_max_n(sim: &Simulation) -> f64 {
 /// run's `duration_s` until the run has samples to show.
 fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History, duration_s: f64) {
     let t = history.times();
-    let p = history.num_points();
-    let total: PlotPoints = (0..t.len())
-        .map(|k| {
-            [
-                t[k],
-                (0..p)
-                    .map(|i| history.value(Quantity::Force, i, k))
-                    .sum::<f64>(),
-            ]
-        })
-        .collect();
+    let (force_n, carrying) = history.totals();
     let cell_cm2 = layout.cell_area_m2() * 1e4;
-    let area: PlotPoints = (0..t.len())
-        .map(|k| {
-            [
-                t[k],
-                (0..p)
-                    .filter(|&i| history.value(Quantity::Force, i, k) > 0.0)
-                    .count() as f64
-                    * cell_cm2,
-            ]
-        })
-        .collect();
+    // min/max pairs per pixel column: what the plot can show of thousands
+    // of samples, peaks kept
+    let buckets = ui.available_width().max(1.0) as usize;
+    let total = PlotPoints::new(decimate_min_max(t, |k| force_n[k], buckets));
+    let area = PlotPoints::new(decimate_min_max(t, |k| carrying[k] * cell_cm2, buckets));
     let h = ((ui.available_height() - 8.0) / 2.0).max(80.0);
     // before the run has two samples: the run's time span (egui_plot's
     // empty plot ran from -0.5 to 0.5 s); then the samples' own

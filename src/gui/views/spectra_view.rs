@@ -5,7 +5,8 @@
 //! history's length), only drawn here.
 
 use super::XTitle;
-use super::point_color;
+use super::shown_point_color;
+use super::time_plots::DEFAULT_SHOWN;
 use crate::Scene;
 use crate::analysis::spectrum::run::DEFAULT_BANDS_HZ;
 use crate::analysis::spectrum::{Spectrum, band_label, markers};
@@ -108,7 +109,7 @@ pub fn show(
 ) {
     let p = scene.num_points();
     if opts.shown.len() != p {
-        opts.shown = (0..p).map(|i| i < 8).collect();
+        opts.shown = (0..p).map(|i| i < DEFAULT_SHOWN).collect();
     }
     controls(ui, opts, cmds);
     ui.label(RichText::new(excitation_text(scene)).color(EXCITATION_COLOR));
@@ -194,8 +195,15 @@ fn legend_row(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &SpectraOptions)
     let total_color = ui.visuals().strong_text_color();
     ui.horizontal_wrapped(|ui| {
         ui.spacing_mut().item_spacing.x = 12.0;
-        for (i, _) in opts.shown.iter().enumerate().filter(|(_, s)| **s) {
-            item(ui, &format!("point {i}"), point_color(i), Key::Line, &style);
+        let shown = shown_indices(&opts.shown);
+        for &i in &shown {
+            item(
+                ui,
+                &format!("point {i}"),
+                shown_point_color(&shown, i),
+                Key::Line,
+                &style,
+            );
         }
         if opts.total {
             item(ui, TOTAL_NAME, total_color, Key::Line, &style);
@@ -287,11 +295,18 @@ fn narrow(
     unit: &str,
 ) {
     // the top level and the floor of the drawn curves
+    let shown = shown_indices(&pl.shown);
     let curves: Vec<(String, Color32, Vec<[f64; 2]>)> = specs
         .iter()
         .enumerate()
         .filter(|(i, _)| pl.shown.get(*i).copied().unwrap_or(false))
-        .map(|(i, sp)| (format!("{unit}{i}: point {i}"), point_color(i), sp))
+        .map(|(i, sp)| {
+            (
+                format!("{unit}{i}: point {i}"),
+                shown_point_color(&shown, i),
+                sp,
+            )
+        })
         .chain(
             total
                 .filter(|_| pl.total)
@@ -348,12 +363,13 @@ fn bands(ui: &mut Ui, pl: &Plots, s: &crate::analysis::spectrum::run::RunSpectra
         .x_axis_formatter(|m, _| log_label(m.value))
         .allow_scroll(false)
         .show(ui, |pui| {
+            let shown = shown_indices(&pl.shown);
             let mut series: Vec<(String, Color32, &Spectrum)> = s
                 .force
                 .iter()
                 .enumerate()
                 .filter(|(i, _)| pl.shown.get(*i).copied().unwrap_or(false))
-                .map(|(i, sp)| (format!("q{i}: point {i}"), point_color(i), sp))
+                .map(|(i, sp)| (format!("q{i}: point {i}"), shown_point_color(&shown, i), sp))
                 .collect();
             if pl.total {
                 series.push((format!("q {TOTAL_NAME}"), pl.total_color, &s.total_force));
@@ -534,4 +550,9 @@ mod tests {
         assert_eq!(log_label(2.0f64.log10() + 2.0), "200");
         assert_eq!(log_label(3.0f64.log10() + 2.0), "");
     }
+}
+
+/// The indices of the points ticked in `shown`.
+fn shown_indices(shown: &[bool]) -> Vec<usize> {
+    (0..shown.len()).filter(|&i| shown[i]).collect()
 }
