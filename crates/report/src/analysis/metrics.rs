@@ -186,7 +186,11 @@ impl ContactMetrics {
         self.total_smooth_sq_sum += total_smooth * total_smooth;
         self.in_contact_sum += touching as u64;
         self.in_contact_max = self.in_contact_max.max(touching);
-        self.window_pos = (self.window_pos + 1) % w;
+        // (the next slot without an integer division)
+        self.window_pos += 1;
+        if self.window_pos == w {
+            self.window_pos = 0;
+        }
         self.window_filled = (self.window_filled + 1).min(w);
         if self.window_filled == w {
             for (m, s) in self.window_max_n.iter_mut().zip(&self.window_sum) {

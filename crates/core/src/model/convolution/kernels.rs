@@ -480,8 +480,12 @@ fn add_gauss_forces_at<const RANGE: bool>(
     );
     #[cfg(target_arch = "x86_64")]
     {
-        // (fewer states than a lane: the plain loop, without the chunk's set-up)
         if n >= 4 && std::arch::is_x86_feature_detected!("avx") {
+            if n < AVX_CHUNKED_FROM_STATES {
+                // SAFETY: as below
+                unsafe { add_gauss_forces_small_avx(c, s0, inp_t, stride, active, q1, q2, x, v) };
+                return;
+            }
             // SAFETY: the CPU supports AVX (checked just above); the lengths
             // the kernel reads were asserted above.
             unsafe { add_gauss_forces_avx::<RANGE>(c, s0, inp_t, stride, active, q1, q2, x, v) };
@@ -489,6 +493,77 @@ fn add_gauss_forces_at<const RANGE: bool>(
         }
     }
     add_gauss_forces_body::<RANGE>(c, s0, inp_t, stride, active, q1, q2, x, v);
+}
+
+/// Fewest states for which [`add_gauss_forces`] streams the active
+/// columns in chunks ([`add_gauss_forces_avx`]); fewer take
+/// [`add_gauss_forces_small_avx`], whose set-up is a few instructions (a
+/// single-mode scene's step spent 60 more in the chunked kernel's).
+#[cfg(target_arch = "x86_64")]
+const AVX_CHUNKED_FROM_STATES: usize = 16;
+
+/// [`add_gauss_forces`] with AVX lanes for a few states: four states at a
+/// time, the active columns summed into them in the list's order from
+/// zero, the rest one by one. Same operations in the same order as
+/// [`add_gauss_forces_body`] (no FMA): bit-identical.
+///
+/// # Safety
+/// AVX; `x`, `v` and the weight columns from `s0` hold `x.len()` states,
+/// `inp_t` `j * stride + s0 + x.len()` values for every active `j`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn add_gauss_forces_small_avx(
+    c: &StepColumns,
+    s0: usize,
+    inp_t: &[f64],
+    stride: usize,
+    active: &[usize],
+    q1: &[f64],
+    q2: &[f64],
+    x: &mut [f64],
+    v: &mut [f64],
+) {
+    use std::arch::x86_64::*;
+    let n = x.len();
+    let quads = n - n % 4;
+    let (xp, vp) = (x.as_mut_ptr(), v.as_mut_ptr());
+    let (w1x, w1v, w2x, w2v) = (&c.w1x[s0..], &c.w1v[s0..], &c.w2x[s0..], &c.w2v[s0..]);
+    let base = inp_t.as_ptr().wrapping_add(s0);
+    // SAFETY: k + 4 <= quads <= n, and every column holds n states from s0
+    // (as the caller guarantees)
+    unsafe {
+        let mut k = 0;
+        while k < quads {
+            let (mut b1, mut b2) = (_mm256_setzero_pd(), _mm256_setzero_pd());
+            for &j in active {
+                let b = _mm256_loadu_pd(base.add(j * stride + k));
+                b1 = _mm256_add_pd(b1, _mm256_mul_pd(b, _mm256_set1_pd(q1[j])));
+                b2 = _mm256_add_pd(b2, _mm256_mul_pd(b, _mm256_set1_pd(q2[j])));
+            }
+            let dx = _mm256_add_pd(
+                _mm256_mul_pd(_mm256_loadu_pd(w1x.as_ptr().add(k)), b1),
+                _mm256_mul_pd(_mm256_loadu_pd(w2x.as_ptr().add(k)), b2),
+            );
+            let dv = _mm256_add_pd(
+                _mm256_mul_pd(_mm256_loadu_pd(w1v.as_ptr().add(k)), b1),
+                _mm256_mul_pd(_mm256_loadu_pd(w2v.as_ptr().add(k)), b2),
+            );
+            _mm256_storeu_pd(xp.add(k), _mm256_add_pd(_mm256_loadu_pd(xp.add(k)), dx));
+            _mm256_storeu_pd(vp.add(k), _mm256_add_pd(_mm256_loadu_pd(vp.add(k)), dv));
+            k += 4;
+        }
+        for k in quads..n {
+            let (mut b1, mut b2) = (0.0, 0.0);
+            for &j in active {
+                let b = *base.add(j * stride + k);
+                b1 += b * q1[j];
+                b2 += b * q2[j];
+            }
+            *xp.add(k) += w1x[k] * b1 + w2x[k] * b2;
+            *vp.add(k) += w1v[k] * b1 + w2v[k] * b2;
+        }
+    }
 }
 
 /// States per chunk of [`add_gauss_forces_avx`]: the chunk's force

@@ -224,16 +224,20 @@ impl SurfaceGrid {
     /// Height (m) and slope along `x` (-) of row `j` at `x` (m).
     #[inline]
     fn sample_row(&self, j: usize, x_m: f64) -> Result<(f64, f64), OutOfRange> {
-        let (z, d) = (
-            &self.z_m[j * self.nx..(j + 1) * self.nx],
-            &self.dzdx[j * self.nx..(j + 1) * self.nx],
-        );
+        let cell = self.cell(x_m)?;
+        Ok(self.row_at(j, cell))
+    }
+
+    /// The cell of `x` (m) along the rows: its first and last columns and
+    /// the fraction `s` across it (the same for every row).
+    #[inline]
+    fn cell(&self, x_m: f64) -> Result<(usize, usize, f64), OutOfRange> {
         let u = (x_m - self.x0_m) / self.dx_m;
-        let (m, m1, s) = if self.looped {
+        if self.looped {
             let u = rem_euclid_exact(u, self.nx as f64);
             // (`u >= 0`: the truncation is the floor, without a libm call)
             let m = (u as usize).min(self.nx - 1);
-            (m, (m + 1) % self.nx, (u - m as f64).clamp(0.0, 1.0))
+            Ok((m, (m + 1) % self.nx, (u - m as f64).clamp(0.0, 1.0)))
         } else {
             let last = (self.nx - 1) as f64;
             if !(u >= -GRID_TOLERANCE && u <= last + GRID_TOLERANCE) {
@@ -244,24 +248,35 @@ impl SurfaceGrid {
             // the floor, without a libm call)
             let u = u.clamp(0.0, last);
             let m = (u as usize).min(self.nx - 2);
-            (m, m + 1, (u - m as f64).clamp(0.0, 1.0))
-        };
-        Ok(hermite(z[m], z[m1], d[m], d[m1], self.dx_m, s))
+            Ok((m, m + 1, (u - m as f64).clamp(0.0, 1.0)))
+        }
+    }
+
+    /// Height (m) and slope along `x` (-) of row `j` in the cell `(m, m1, s)`
+    /// of [`SurfaceGrid::cell`].
+    #[inline]
+    fn row_at(&self, j: usize, (m, m1, s): (usize, usize, f64)) -> (f64, f64) {
+        let (z, d) = (
+            &self.z_m[j * self.nx..(j + 1) * self.nx],
+            &self.dzdx[j * self.nx..(j + 1) * self.nx],
+        );
+        hermite(z[m], z[m1], d[m], d[m1], self.dx_m, s)
     }
 
     /// Height (m) and slope along `x` (-) where a point blending `rows`
-    /// is at `x` (m).
+    /// is at `x` (m): the two rows' values in the one cell of `x`.
     #[inline]
     pub fn sample_blend(&self, rows: RowBlend, x_m: f64) -> Result<(f64, f64), OutOfRange> {
         // a row of weight 0 is not read (it may hold no height there)
         if rows.w == 1.0 {
             return self.sample_row(rows.j1, x_m);
         }
-        let (z0, d0) = self.sample_row(rows.j0, x_m)?;
+        let cell = self.cell(x_m)?;
+        let (z0, d0) = self.row_at(rows.j0, cell);
         if rows.w == 0.0 {
             return Ok((z0, d0));
         }
-        let (z1, d1) = self.sample_row(rows.j1, x_m)?;
+        let (z1, d1) = self.row_at(rows.j1, cell);
         Ok((
             (1.0 - rows.w) * z0 + rows.w * z1,
             (1.0 - rows.w) * d0 + rows.w * d1,
