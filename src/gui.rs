@@ -65,6 +65,13 @@ pub fn run_with_options(preset: Option<std::path::PathBuf>, classroom: bool) -> 
                 None => App::restore(cc.storage),
             };
             let mut app = app;
+            if let Some(gl) = &cc.gl {
+                use eframe::glow::HasContext;
+                // SAFETY: a string query of the context eframe has just
+                // made current on this thread
+                let renderer = unsafe { gl.get_parameter_string(eframe::glow::RENDERER) };
+                app.set_software_renderer(model::time_control::is_software_renderer(&renderer));
+            }
             if classroom {
                 app.apply(Command::SetClassroom(true));
             }

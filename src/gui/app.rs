@@ -123,6 +123,8 @@ pub(crate) struct Handles {
     /// (s), so that drawing leaves the solver its share of the cores.
     pub(super) paced_delay_s: Option<f64>,
     pub(super) pacer: crate::gui::model::time_control::FramePacer,
+    /// The window is drawn by a software renderer (frames are paced).
+    pub(super) software_renderer: bool,
     /// The thread that steps the run between frames at "as fast as
     /// possible", and the stand-in state the app holds while it is lent.
     #[cfg(not(target_arch = "wasm32"))]
@@ -198,12 +200,19 @@ impl App {
                 stepped_ahead: None,
                 paced_delay_s: None,
                 pacer: Default::default(),
+                software_renderer: false,
                 #[cfg(not(target_arch = "wasm32"))]
                 run_ahead: None,
                 #[cfg(not(target_arch = "wasm32"))]
                 spare: None,
             },
         })
+    }
+
+    /// Says that the window is drawn by a software renderer
+    /// ([`crate::gui::model::time_control::is_software_renderer`]).
+    pub fn set_software_renderer(&mut self, software: bool) {
+        self.handles.software_renderer = software;
     }
 
     /// The app on the embedded default preset.

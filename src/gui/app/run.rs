@@ -334,7 +334,10 @@ impl App {
         let want = self.time.steps_this_frame(frame_s, dt);
         let (taken, r) = match self.handles.stepped_ahead.take() {
             Some((taken, r)) => {
-                self.handles.paced_delay_s = Some(self.handles.pacer.next_delay_s(frame_s));
+                self.handles.paced_delay_s = self
+                    .handles
+                    .software_renderer
+                    .then(|| self.handles.pacer.next_delay_s(frame_s));
                 (taken, r)
             }
             None => {

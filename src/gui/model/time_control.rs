@@ -89,11 +89,21 @@ pub fn step_budget_s(frame_s: f64) -> f64 {
 }
 
 /// Share of the wall time that drawing may take while the run steps on its
-/// own thread ("as fast as possible" on the desktop): the frames wait
-/// twice as long as they take to draw. Under software GL, the renderer's
-/// threads and the solver share the cores; a faster renderer draws at more
-/// frames a second, and input still brings a frame at once.
+/// own thread ("as fast as possible" on the desktop) under a software
+/// renderer ([`is_software_renderer`]), whose threads and the solver share
+/// the cores: the frames wait twice as long as they take to draw (input
+/// still brings a frame at once). A GPU's frames are not paced.
 pub const DRAW_SHARE_AT_MAX: f64 = 1.0 / 3.0;
+
+/// Whether the GL renderer named `renderer` (`GL_RENDERER`) draws on the
+/// processor (Mesa's llvmpipe and softpipe, SwiftShader): there drawing
+/// competes with the solver for the cores, and frames are paced.
+pub fn is_software_renderer(renderer: &str) -> bool {
+    let name = renderer.to_ascii_lowercase();
+    ["llvmpipe", "softpipe", "swiftshader", "software rasterizer"]
+        .iter()
+        .any(|k| name.contains(k))
+}
 
 /// Longest wait between two frames while the run steps on its own thread (s).
 pub const MAX_PACE_DELAY_S: f64 = 0.5;
@@ -289,6 +299,26 @@ mod tests {
             delay_s = pacer.next_delay_s(0.3 + delay_s);
         }
         assert_eq!(delay_s, MAX_PACE_DELAY_S);
+    }
+
+    #[test]
+    fn software_renderers_are_told_from_gpus() {
+        for soft in [
+            "llvmpipe (LLVM 19.1.7, 256 bits)",
+            "softpipe",
+            "Google SwiftShader",
+            "ANGLE (Google, Vulkan 1.3.0 (SwiftShader Device (Subzero)), SwiftShader driver)",
+        ] {
+            assert!(is_software_renderer(soft), "{soft}");
+        }
+        for gpu in [
+            "Mesa Intel(R) UHD Graphics 620 (KBL GT2)",
+            "NVIDIA GeForce RTX 3060/PCIe/SSE2",
+            "AMD Radeon RX 6600 (radeonsi, navi23, LLVM 15.0.6, DRM 3.49)",
+            "Apple M2",
+        ] {
+            assert!(!is_software_renderer(gpu), "{gpu}");
+        }
     }
 
     #[test]

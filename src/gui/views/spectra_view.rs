@@ -494,6 +494,11 @@ fn draw_markers(
     }
 }
 
+/// The indices of the points ticked in `shown`.
+fn shown_indices(shown: &[bool]) -> Vec<usize> {
+    (0..shown.len()).filter(|&i| shown[i]).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -550,9 +555,4 @@ mod tests {
         assert_eq!(log_label(2.0f64.log10() + 2.0), "200");
         assert_eq!(log_label(3.0f64.log10() + 2.0), "");
     }
-}
-
-/// The indices of the points ticked in `shown`.
-fn shown_indices(shown: &[bool]) -> Vec<usize> {
-    (0..shown.len()).filter(|&i| shown[i]).collect()
 }
