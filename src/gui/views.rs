@@ -148,6 +148,17 @@ pub fn point_label_color(v: &egui::Visuals, i: usize) -> Color32 {
     point_text_color(i, v.panel_fill, v.strong_text_color())
 }
 
+/// Colour of point `i`'s checkbox label among the ticked points `chosen`:
+/// the colour of its curve when more than eight are shown (the ramp's,
+/// [`shown_point_color`]), else its own readable label colour.
+pub fn checkbox_point_color(v: &egui::Visuals, chosen: &[usize], i: usize) -> Color32 {
+    if chosen.len() > crate::output::figures::PALETTE_SERIES_MAX && chosen.contains(&i) {
+        shown_point_color(chosen, i)
+    } else {
+        point_label_color(v, i)
+    }
+}
+
 /// Colour of a point in contact / in flight in the scene view.
 pub const CONTACT_COLOR: Color32 = Color32::from_rgb(0, 158, 115);
 pub const FLIGHT_COLOR: Color32 = Color32::from_rgb(213, 94, 0);

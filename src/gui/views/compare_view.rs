@@ -121,8 +121,11 @@ fn controls(ui: &mut Ui, pinned: bool, opts: &mut CompareOptions, cmds: &mut Vec
         clip_checkbox(ui, &mut opts.clip_impacts);
         ui.separator();
         ui.label("points (curve colours):");
+        // (more than eight shown: the labels in their curves' ramp colours)
+        let chosen: Vec<usize> = (0..opts.shown.len()).filter(|&i| opts.shown[i]).collect();
         for (i, s) in opts.shown.iter_mut().enumerate().take(24) {
-            ui.checkbox(s, RichText::new(i.to_string()).color(super::point_label_color(ui.visuals(), i)));
+            let color = super::checkbox_point_color(ui.visuals(), &chosen, i);
+            ui.checkbox(s, RichText::new(i.to_string()).color(color));
         }
     });
 }

@@ -251,11 +251,11 @@ fn controls(ui: &mut Ui, opts: &mut SpectraOptions, cmds: &mut Vec<Command>) {
         .accessible_name("highest frequency");
         ui.separator();
         ui.label("points:");
+        // (more than eight shown: the labels in their curves' ramp colours)
+        let chosen: Vec<usize> = (0..opts.shown.len()).filter(|&i| opts.shown[i]).collect();
         for (i, s) in opts.shown.iter_mut().enumerate().take(24) {
-            ui.checkbox(
-                s,
-                RichText::new(i.to_string()).color(super::point_label_color(ui.visuals(), i)),
-            );
+            let color = super::checkbox_point_color(ui.visuals(), &chosen, i);
+            ui.checkbox(s, RichText::new(i.to_string()).color(color));
         }
         ui.checkbox(&mut opts.total, "total force");
     });

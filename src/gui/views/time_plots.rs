@@ -590,7 +590,6 @@ fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
         let n = opts.shown.len();
         // more than eight shown: their labels in the lines' ramp colours
         let chosen: Vec<usize> = (0..n).filter(|&i| opts.shown[i]).collect();
-        let ramp = chosen.len() > crate::output::figures::PALETTE_SERIES_MAX;
         // 24 boxes, from the first shown point's group of eight (a patch's
         // row 3 clicked: points 48 to 71, not 0 to 23 all unticked)
         let start = checkbox_start(&chosen, n);
@@ -599,11 +598,7 @@ fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
             ui.label(format!("(0–{} …)", start - 1));
         }
         for (i, s) in opts.shown.iter_mut().enumerate().take(end).skip(start) {
-            let color = if ramp && *s {
-                super::shown_point_color(&chosen, i)
-            } else {
-                super::point_label_color(ui.visuals(), i)
-            };
+            let color = super::checkbox_point_color(ui.visuals(), &chosen, i);
             ui.checkbox(s, egui::RichText::new(i.to_string()).color(color));
         }
         if n > end {
