@@ -327,7 +327,9 @@ mod tests {
                     std::thread::sleep(Duration::from_millis(1));
                     left -= 1;
                     p.add(1);
-                    if deadline.is_some_and(|d| web_time::Instant::now() >= d) {
+                    // (the slice that does the last unit gives the result,
+                    // even past its deadline on a loaded machine)
+                    if left > 0 && deadline.is_some_and(|d| web_time::Instant::now() >= d) {
                         return None;
                     }
                 }

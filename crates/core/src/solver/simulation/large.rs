@@ -353,13 +353,23 @@ impl Simulation {
 
     /// The componentwise backward error of the last [`Self::solve_by_updated`].
     fn updated_backward_error(&self) -> f64 {
-        let s = &self.scratch;
-        self.factors.updated.backward_error_on(
-            full_entry(&self.tables),
-            &s.large.rhs_slots,
-            &s.rhs,
-            &self.threads,
-        )
+        let (s, inv) = (&self.scratch, &self.factors.updated);
+        let n = inv.n();
+        if self.threads.worth(n * n) {
+            return inv.backward_error_on(
+                full_entry(&self.tables),
+                &s.large.rhs_slots,
+                &s.rhs,
+                &self.threads,
+            );
+        }
+        let be = full_backward_error(&self.tables, inv.points(), &s.large.rhs_slots, &s.rhs);
+        debug_assert_eq!(
+            be.to_bits(),
+            inv.backward_error(full_entry(&self.tables), &s.large.rhs_slots, &s.rhs)
+                .to_bits()
+        );
+        be
     }
 
     /// The sub-step solve of a large compliant active set by GMRES (after
@@ -520,6 +530,53 @@ fn own_block_body(ab: &[f64], w: [&[f64]; 4]) -> [f64; 4] {
 /// 1: slope) of point `i` and unknown `c` (0: `q1`, 1: `q2`) of point `j`
 /// (method §4.6): the influence blocks plus, on a point's own block, the
 /// tread compliance.
+/// [`BorderedInverse::backward_error`](super::contact::bordered::BorderedInverse::backward_error)
+/// of the full-step system of `points` (slot order) for [`full_entry`]'s
+/// matrix, each equation's entries read along its point's rows of the two
+/// influence blocks (not asked of the entry function one by one, with its
+/// block choice and division for each): the same sums in the same order,
+/// so the same value to the bit.
+fn full_backward_error(
+    tb: &super::parts::SimTables,
+    points: &[usize],
+    b: &[f64],
+    x: &[f64],
+) -> f64 {
+    let g = &tb.full_inf;
+    let blocks = [[&g.gx1, &g.gx2], [&g.gv1, &g.gv2]];
+    let rate = SQRT3 / tb.dt_s;
+    let diag = [[-GB, GA], [-rate, rate]];
+    let (p, kk) = (tb.p, &tb.tread_k_n_m);
+    let mut worst = 0.0f64;
+    for (a, &i) in points.iter().enumerate() {
+        for r in 0..2 {
+            let e = 2 * a + r;
+            let (row1, row2) = (
+                &blocks[r][0][i * p..(i + 1) * p],
+                &blocks[r][1][i * p..(i + 1) * p],
+            );
+            let (mut sum, mut mag) = (0.0, b[e].abs());
+            for (c, &j) in points.iter().enumerate() {
+                let (mut m1, mut m2) = (row1[j], row2[j]);
+                if j == i && !kk.is_empty() {
+                    m1 += diag[r][0] / kk[i];
+                    m2 += diag[r][1] / kk[i];
+                }
+                let (t1, t2) = (m1 * x[2 * c], m2 * x[2 * c + 1]);
+                sum += t1;
+                mag += t1.abs();
+                sum += t2;
+                mag += t2.abs();
+            }
+            let res = (b[e] - sum).abs();
+            if res > 0.0 {
+                worst = worst.max(if mag > 0.0 { res / mag } else { f64::INFINITY });
+            }
+        }
+    }
+    worst
+}
+
 fn full_entry(tb: &super::parts::SimTables) -> impl Fn(usize, usize, usize, usize) -> f64 + '_ {
     let g = &tb.full_inf;
     let blocks = [&g.gx1, &g.gx2, &g.gv1, &g.gv2];
