@@ -230,7 +230,7 @@ impl SurfaceGrid {
 
     /// The cell of `x` (m) along the rows: its first and last columns and
     /// the fraction `s` across it (the same for every row).
-    #[inline]
+    #[inline(always)]
     fn cell(&self, x_m: f64) -> Result<(usize, usize, f64), OutOfRange> {
         let u = (x_m - self.x0_m) / self.dx_m;
         if self.looped {
@@ -253,8 +253,9 @@ impl SurfaceGrid {
     }
 
     /// Height (m) and slope along `x` (-) of row `j` in the cell `(m, m1, s)`
-    /// of [`SurfaceGrid::cell`].
-    #[inline]
+    /// of [`SurfaceGrid::cell`]. (Inlined, so that the two rows of a
+    /// blend share the cell's Hermite basis values.)
+    #[inline(always)]
     fn row_at(&self, j: usize, (m, m1, s): (usize, usize, f64)) -> (f64, f64) {
         let (z, d) = (
             &self.z_m[j * self.nx..(j + 1) * self.nx],
@@ -375,7 +376,7 @@ pub fn segment_depth(seg: &[f64]) -> f64 {
 
 /// Cubic Hermite interpolation over one interval of length `h` at
 /// fraction `s`: height and slope.
-#[inline]
+#[inline(always)]
 fn hermite(z0: f64, z1: f64, d0: f64, d1: f64, h: f64, s: f64) -> (f64, f64) {
     let (d0, d1) = (d0 * h, d1 * h);
     let (s2, s3) = (s * s, s * s * s);
