@@ -332,6 +332,7 @@ impl App {
     pub(super) fn advance(&mut self, frame_s: f64) {
         let dt = self.sim.dt_s();
         let want = self.time.steps_this_frame(frame_s, dt);
+        let between_frames = self.handles.stepped_ahead.is_some();
         let (taken, r) = match self.handles.stepped_ahead.take() {
             Some((taken, r)) => {
                 self.handles.paced_delay_s = self
@@ -373,7 +374,11 @@ impl App {
                 ));
             }
         }
-        self.time.report(taken, dt, frame_s);
+        if between_frames {
+            self.time.report_between_frames(taken, dt, frame_s);
+        } else {
+            self.time.report(taken, dt, frame_s);
+        }
     }
 
     /// Pauses at the end of the run and says so.

@@ -255,9 +255,20 @@ impl TimeControl {
     /// `frame_s` wall seconds. Steps the budget could not take are dropped
     /// (the run goes slower than asked, it does not pile up a debt).
     pub fn report(&mut self, taken: u64, dt_s: f64, frame_s: f64) {
+        self.record(taken, dt_s, frame_s.min(MAX_FRAME_S));
+    }
+
+    /// Reports steps taken between two frames `frame_s` apart, by the
+    /// stepping thread over that whole interval (however long: nothing was
+    /// asked per frame, so nothing is cut at [`MAX_FRAME_S`]).
+    pub fn report_between_frames(&mut self, taken: u64, dt_s: f64, frame_s: f64) {
+        self.record(taken, dt_s, frame_s);
+    }
+
+    fn record(&mut self, taken: u64, dt_s: f64, span_s: f64) {
         self.pending_steps = self.pending_steps.saturating_sub(taken);
-        if self.playing && frame_s > 0.0 && frame_s.is_finite() {
-            let f = taken as f64 * dt_s / frame_s.min(MAX_FRAME_S);
+        if self.playing && span_s > 0.0 && span_s.is_finite() {
+            let f = taken as f64 * dt_s / span_s;
             self.achieved = if self.achieved == 0.0 {
                 f
             } else {
@@ -420,6 +431,28 @@ mod tests {
         tc.set_speed(Speed::Factor(-1.0));
         tc.set_speed(Speed::Factor(f64::NAN));
         assert_eq!(tc.speed(), Speed::Factor(2.0));
+    }
+
+    /// Steps taken between frames are counted over the whole interval,
+    /// even past the longest frame honoured in the frame's own steps.
+    #[test]
+    fn steps_between_slow_frames_give_their_own_factor() {
+        let mut tc = TimeControl::default();
+        tc.set_speed(Speed::Max);
+        tc.play();
+        // 0.6 s apart, 0.18 s of simulated time: 0.3x, not 0.18 / 0.35
+        for _ in 0..50 {
+            tc.report_between_frames(18_000, DT, 0.6);
+        }
+        assert!(
+            (tc.achieved_factor() - 0.3).abs() < 1e-9,
+            "{}",
+            tc.achieved_factor()
+        );
+        let mut cut = TimeControl::default();
+        cut.play();
+        cut.report(18_000, DT, 0.6);
+        assert!((cut.achieved_factor() - 0.18 / MAX_FRAME_S).abs() < 1e-9);
     }
 
     #[test]
