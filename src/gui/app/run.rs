@@ -499,6 +499,12 @@ impl App {
         }
     }
 
+    /// Whether the run is with the stepping thread (between two frames
+    /// that play as fast as possible).
+    pub fn run_is_lent(&self) -> bool {
+        self.handles.run_ahead.as_ref().is_some_and(|a| a.is_lent())
+    }
+
     /// Puts `live` back in place of the stand-in, kept for the next lease.
     fn take_back(&mut self, live: Box<crate::gui::jobs::run_ahead::Live>) {
         use crate::gui::jobs::run_ahead::Live;
