@@ -15,6 +15,7 @@
 //!   factorising it. A solve that does not reach [`GMRES_TOLERANCE`] in
 //!   [`GMRES_MAX_APPLICATIONS`] falls back to the direct one.
 
+use super::contact::bordered::row_backward_error;
 use super::{GA, GB, SQRT3, Simulation, Table};
 use crate::solver::error::SolverError;
 
@@ -568,10 +569,7 @@ fn full_backward_error(
                 sum += t2;
                 mag += t2.abs();
             }
-            let res = (b[e] - sum).abs();
-            if res > 0.0 {
-                worst = worst.max(if mag > 0.0 { res / mag } else { f64::INFINITY });
-            }
+            worst = worst.max(row_backward_error(b[e], sum, mag));
         }
     }
     worst

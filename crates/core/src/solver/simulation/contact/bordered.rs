@@ -366,12 +366,22 @@ impl BorderedInverse {
                 s += t;
                 mag += t.abs();
             }
-            let r = (b[e] - s).abs();
-            if r > 0.0 {
-                worst = worst.max(if mag > 0.0 { r / mag } else { f64::INFINITY });
-            }
+            worst = worst.max(row_backward_error(b[e], s, mag));
         }
         worst
+    }
+}
+
+/// One equation's componentwise backward error: its residual `|b_e - s|`
+/// against `mag = Σ_u |M_eu x_u| + |b_e|` (0 without a residual, infinite
+/// for a residual over nothing).
+#[inline]
+pub(crate) fn row_backward_error(b_e: f64, s: f64, mag: f64) -> f64 {
+    let r = (b_e - s).abs();
+    if r > 0.0 {
+        if mag > 0.0 { r / mag } else { f64::INFINITY }
+    } else {
+        0.0
     }
 }
 
