@@ -13,6 +13,7 @@ pub mod paper_figures;
 pub mod patch;
 pub mod record;
 pub mod sampler;
+pub mod sci;
 #[cfg(feature = "figures")]
 pub mod stabilisation;
 pub mod summary;
