@@ -221,17 +221,10 @@ impl SurfaceGrid {
         None
     }
 
-    /// Height (m) and slope along `x` (-) of row `j` at `x` (m).
-    #[inline]
-    fn sample_row(&self, j: usize, x_m: f64) -> Result<(f64, f64), OutOfRange> {
-        let cell = self.cell(x_m)?;
-        Ok(self.row_at(j, cell))
-    }
-
     /// The cell of `x` (m) along the rows: its first and last columns and
     /// the fraction `s` across it (the same for every row).
     #[inline(always)]
-    fn cell(&self, x_m: f64) -> Result<(usize, usize, f64), OutOfRange> {
+    pub(crate) fn cell(&self, x_m: f64) -> Result<(usize, usize, f64), OutOfRange> {
         let u = (x_m - self.x0_m) / self.dx_m;
         if self.looped {
             let u = rem_euclid_exact(u, self.nx as f64);
@@ -252,36 +245,50 @@ impl SurfaceGrid {
         }
     }
 
-    /// Height (m) and slope along `x` (-) of row `j` in the cell `(m, m1, s)`
-    /// of [`SurfaceGrid::cell`]. (Inlined, so that the two rows of a
-    /// blend share the cell's Hermite basis values.)
+    /// The cubic of row `j` over the cell `(m, m1)` in powers of the
+    /// fraction `s` ([`hermite_cubic`]).
     #[inline(always)]
-    fn row_at(&self, j: usize, (m, m1, s): (usize, usize, f64)) -> (f64, f64) {
+    fn row_cubic(&self, j: usize, m: usize, m1: usize) -> [f64; 4] {
         let (z, d) = (
             &self.z_m[j * self.nx..(j + 1) * self.nx],
             &self.dzdx[j * self.nx..(j + 1) * self.nx],
         );
-        hermite(z[m], z[m1], d[m], d[m1], self.dx_m, s)
+        hermite_cubic(z[m], z[m1], d[m] * self.dx_m, d[m1] * self.dx_m)
+    }
+
+    /// The height of a point blending `rows` over the cell `(m, m1)` as a
+    /// cubic in the fraction `s` across it: the blend of the two rows'
+    /// cubics (a row of weight 0 is not read: it may hold no height there).
+    /// [`SurfaceGrid::cubic_at`] evaluates it.
+    #[inline]
+    pub fn blend_cubic(&self, rows: RowBlend, m: usize, m1: usize) -> [f64; 4] {
+        if rows.w == 1.0 {
+            return self.row_cubic(rows.j1, m, m1);
+        }
+        let a = self.row_cubic(rows.j0, m, m1);
+        if rows.w == 0.0 {
+            return a;
+        }
+        let b = self.row_cubic(rows.j1, m, m1);
+        let w = rows.w;
+        std::array::from_fn(|k| (1.0 - w) * a[k] + w * b[k])
+    }
+
+    /// Height (m) and slope along `x` (-) of the cell cubic `c` at the
+    /// fraction `s`.
+    #[inline(always)]
+    pub fn cubic_at(&self, c: &[f64; 4], s: f64) -> (f64, f64) {
+        let z = ((c[3] * s + c[2]) * s + c[1]) * s + c[0];
+        let dz = ((3.0 * c[3] * s + 2.0 * c[2]) * s + c[1]) / self.dx_m;
+        (z, dz)
     }
 
     /// Height (m) and slope along `x` (-) where a point blending `rows`
-    /// is at `x` (m): the two rows' values in the one cell of `x`.
+    /// is at `x` (m): the blended cubic of the cell of `x` at its fraction.
     #[inline]
     pub fn sample_blend(&self, rows: RowBlend, x_m: f64) -> Result<(f64, f64), OutOfRange> {
-        // a row of weight 0 is not read (it may hold no height there)
-        if rows.w == 1.0 {
-            return self.sample_row(rows.j1, x_m);
-        }
-        let cell = self.cell(x_m)?;
-        let (z0, d0) = self.row_at(rows.j0, cell);
-        if rows.w == 0.0 {
-            return Ok((z0, d0));
-        }
-        let (z1, d1) = self.row_at(rows.j1, cell);
-        Ok((
-            (1.0 - rows.w) * z0 + rows.w * z1,
-            (1.0 - rows.w) * d0 + rows.w * d1,
-        ))
+        let (m, m1, s) = self.cell(x_m)?;
+        Ok(self.cubic_at(&self.blend_cubic(rows, m, m1), s))
     }
 
     /// Height (m) and slope (-) at `(x, y)`; `y` outside a file's grid is
@@ -374,21 +381,17 @@ pub fn segment_depth(seg: &[f64]) -> f64 {
     0.5 * (peak(0..half) + peak(half..seg.len()))
 }
 
-/// Cubic Hermite interpolation over one interval of length `h` at
-/// fraction `s`: height and slope.
+/// The cubic Hermite interpolant through `z0` at `s = 0` and `z1` at
+/// `s = 1` with slopes `d0`, `d1` per unit of `s` (a node's `dz/dx` times
+/// the spacing), in powers of `s`: `z(s) = c0 + c1 s + c2 s² + c3 s³`.
 #[inline(always)]
-fn hermite(z0: f64, z1: f64, d0: f64, d1: f64, h: f64, s: f64) -> (f64, f64) {
-    let (d0, d1) = (d0 * h, d1 * h);
-    let (s2, s3) = (s * s, s * s * s);
-    let zv = (2.0 * s3 - 3.0 * s2 + 1.0) * z0
-        + (s3 - 2.0 * s2 + s) * d0
-        + (-2.0 * s3 + 3.0 * s2) * z1
-        + (s3 - s2) * d1;
-    let dv = ((6.0 * s2 - 6.0 * s) * (z0 - z1)
-        + (3.0 * s2 - 4.0 * s + 1.0) * d0
-        + (3.0 * s2 - 2.0 * s) * d1)
-        / h;
-    (zv, dv)
+fn hermite_cubic(z0: f64, z1: f64, d0: f64, d1: f64) -> [f64; 4] {
+    [
+        z0,
+        d0,
+        3.0 * (z1 - z0) - 2.0 * d0 - d1,
+        2.0 * (z0 - z1) + d0 + d1,
+    ]
 }
 
 #[cfg(test)]
@@ -475,5 +478,58 @@ mod tests {
         // shorter than a baseline: no MPD
         let g = SurfaceGrid::from_heights((0.0, dx, 100), (0.0, 0.01, 2), false, vec![0.0; 200]);
         assert!(g.mpd_m().is_none());
+    }
+
+    /// The cell cubic in powers of `s` is the cubic Hermite interpolant:
+    /// it equals the textbook basis form (`h00 z0 + h10 d0 + h01 z1 + h11
+    /// d1` and its derivative) to round-off over random cells, and passes
+    /// through the nodes' heights and slopes at both ends.
+    #[test]
+    fn the_cell_cubic_is_the_hermite_interpolant() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let h = 0.002;
+        let g = SurfaceGrid::from_heights((0.0, h, 2), (0.0, 0.01, 1), false, vec![0.0; 2]);
+        for _ in 0..10_000 {
+            let scale = 10f64.powi((next() * 12.0) as i32);
+            let (z0, z1) = (next() * scale, next() * scale);
+            let (dz0, dz1) = (next() * scale / h, next() * scale / h);
+            let c = hermite_cubic(z0, z1, dz0 * h, dz1 * h);
+            for s in [0.0, 1e-9, 0.25, 0.5, 0.7, 1.0 - 1e-12, 1.0, next() + 0.5] {
+                let (zz, dd) = g.cubic_at(&c, s);
+                let (s2, s3) = (s * s, s * s * s);
+                let want = (2.0 * s3 - 3.0 * s2 + 1.0) * z0
+                    + (s3 - 2.0 * s2 + s) * dz0 * h
+                    + (-2.0 * s3 + 3.0 * s2) * z1
+                    + (s3 - s2) * dz1 * h;
+                let dwant = (6.0 * s2 - 6.0 * s) * (z0 - z1) / h
+                    + (3.0 * s2 - 4.0 * s + 1.0) * dz0
+                    + (3.0 * s2 - 2.0 * s) * dz1;
+                let size = z0.abs() + z1.abs() + (dz0.abs() + dz1.abs()) * h;
+                assert!(
+                    (zz - want).abs() <= 1e-14 * size,
+                    "z at s = {s}: {zz} vs {want}"
+                );
+                assert!(
+                    (dd - dwant).abs() <= 1e-13 * size / h,
+                    "dz at s = {s}: {dd} vs {dwant}"
+                );
+            }
+            // the nodes
+            assert_eq!(g.cubic_at(&c, 0.0), (z0, dz0 * h / h));
+            let (ze, de) = g.cubic_at(&c, 1.0);
+            assert!(
+                (ze - z1).abs()
+                    <= 4.0 * f64::EPSILON * (z0.abs() + z1.abs() + (dz0.abs() + dz1.abs()) * h)
+            );
+            assert!(
+                (de - dz1).abs() <= 1e-14 * (z0.abs() + z1.abs() + (dz0.abs() + dz1.abs()) * h) / h
+            );
+        }
     }
 }
