@@ -319,7 +319,7 @@ pub fn run(args: &RunArgs) -> CliResult {
             // written beside `path` and renamed at the end: a failed run keeps the old file
             let f = tirecontact::fsio::AtomicFile::create(path)
                 .map_err(|e| format!("{}: {e}", path.display()))?;
-            Some(RunWriter::new(f, scene.num_points(), args.every)?)
+            Some(RunWriter::piped(f, scene.num_points(), args.every)?)
         }
         None => None,
     };

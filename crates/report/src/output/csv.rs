@@ -67,7 +67,10 @@ const BLOCK_VALUES: usize = 1 << 16;
 /// on the thread count: `{:.9e}` for every number, `0`/`1` for the contact
 /// flags, comma-separated, one `\n`-terminated line per row.
 pub struct RunWriter<W: Write> {
-    out: W,
+    /// The output; with [`RunWriter::piped`], the formatting thread's.
+    out: Option<W>,
+    /// The formatting thread of [`RunWriter::piped`].
+    pipe: Option<Pipe<W>>,
     p: usize,
     sampler: Sampler,
     /// Rows not yet formatted, `1 + 5 p` numbers each.
@@ -100,7 +103,8 @@ impl<W: Write> RunWriter<W> {
         let width = 1 + 5 * p;
         let block_rows = (block_values / width).max(1);
         Ok(RunWriter {
-            out,
+            out: Some(out),
+            pipe: None,
             p,
             sampler: Sampler::new(p, Stride::Every(every), LastWindow::Partial),
             rows: Vec::with_capacity(block_rows * width),
@@ -150,6 +154,24 @@ impl<W: Write> RunWriter<W> {
         if nrows == 0 {
             return Ok(());
         }
+        if let Some(pipe) = &self.pipe {
+            let spare = pipe
+                .spare
+                .try_recv()
+                .unwrap_or_else(|_| Vec::with_capacity(self.rows.capacity()));
+            let block = std::mem::replace(&mut self.rows, spare);
+            if pipe.blocks.send(block).is_err() {
+                // the thread stopped on an error: its result says which
+                return Err(match self.pipe.take().map(Pipe::join) {
+                    Some(Err(e)) => e,
+                    _ => std::io::Error::other("the CSV thread stopped"),
+                });
+            }
+            return Ok(());
+        }
+        let Some(out) = self.out.as_mut() else {
+            return Err(std::io::Error::other("the CSV output was closed"));
+        };
         let parts = self
             .text
             .len()
@@ -176,7 +198,7 @@ impl<W: Write> RunWriter<W> {
             });
         }
         for text in &self.text[..parts] {
-            self.out.write_all(text)?;
+            out.write_all(text)?;
         }
         self.rows.clear();
         Ok(())
@@ -186,8 +208,67 @@ impl<W: Write> RunWriter<W> {
         if !self.rows.is_empty() {
             self.write_block()?;
         }
-        self.out.flush()?;
-        Ok(self.out)
+        let mut out = match (self.pipe.take(), self.out.take()) {
+            (Some(pipe), _) => pipe.join()?,
+            (None, Some(out)) => out,
+            (None, None) => return Err(std::io::Error::other("the CSV output was closed")),
+        };
+        out.flush()?;
+        Ok(out)
+    }
+}
+
+impl<W: Write + Send + 'static> RunWriter<W> {
+    /// [`RunWriter::new`] whose blocks are formatted and written by a thread
+    /// of their own while the run goes on (the same bytes): a long `run -o`
+    /// then waits on the solver or on the formatting, not on both.
+    pub fn piped(out: W, p: usize, every: u64) -> std::io::Result<Self> {
+        let mut w = Self::with_layout(out, p, every, 1, BLOCK_VALUES)?;
+        let Some(mut out) = w.out.take() else {
+            return Err(std::io::Error::other("the CSV output was closed"));
+        };
+        // one block queued while one is formatted and one filled
+        let (blocks, queued) = std::sync::mpsc::sync_channel::<Vec<f64>>(1);
+        let (give_back, spare) = std::sync::mpsc::sync_channel::<Vec<f64>>(2);
+        let worker = std::thread::Builder::new()
+            .name("csv".into())
+            .spawn(move || {
+                let mut text = Vec::new();
+                for mut rows in queued {
+                    format_rows(&rows, p, &mut text);
+                    out.write_all(&text)?;
+                    rows.clear();
+                    // (a full channel: the buffer is dropped)
+                    let _ = give_back.try_send(rows);
+                }
+                Ok(out)
+            })?;
+        w.pipe = Some(Pipe {
+            blocks,
+            spare,
+            worker,
+        });
+        Ok(w)
+    }
+}
+
+/// The formatting thread of [`RunWriter::piped`]: blocks of rows go to it,
+/// their emptied buffers come back.
+struct Pipe<W> {
+    blocks: std::sync::mpsc::SyncSender<Vec<f64>>,
+    spare: std::sync::mpsc::Receiver<Vec<f64>>,
+    worker: std::thread::JoinHandle<std::io::Result<W>>,
+}
+
+impl<W> Pipe<W> {
+    /// Closes the queue and waits for the thread: the output once every
+    /// block is written, or the first error.
+    fn join(self) -> std::io::Result<W> {
+        drop(self.blocks);
+        match self.worker.join() {
+            Ok(r) => r,
+            Err(_) => Err(std::io::Error::other("the CSV thread panicked")),
+        }
     }
 }
 
@@ -326,6 +407,56 @@ mod tests {
                     "every {every}, {threads} threads, {block_rows} rows per block: rows differ"
                 );
             }
+            // formatted on a thread of its own while the run goes on
+            let mut sim = Simulation::from_scene(&scene).unwrap();
+            let mut w = RunWriter::piped(Vec::new(), sim.num_points(), every).unwrap();
+            w.write_initial(&sim).unwrap();
+            for _ in 0..steps {
+                sim.step().unwrap();
+                w.after_step(&sim).unwrap();
+            }
+            let got = String::from_utf8(w.finish().unwrap()).unwrap();
+            assert!(got == want, "every {every}, piped: rows differ");
         }
+    }
+
+    /// A piped writer's failing output is an error of the run (at a later
+    /// block or at the end), not a panic or a silent loss.
+    #[test]
+    fn a_piped_writer_reports_the_output_error() {
+        struct Full(usize);
+        impl Write for Full {
+            fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+                if self.0 < b.len() {
+                    return Err(std::io::Error::other("disk full"));
+                }
+                self.0 -= b.len();
+                Ok(b.len())
+            }
+            fn flush(&mut self) -> std::io::Result<()> {
+                Ok(())
+            }
+        }
+        let scene = Scene::load(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )))
+        .unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        let mut w = RunWriter::piped(Full(200_000), sim.num_points(), 1).unwrap();
+        let mut failed = None;
+        w.write_initial(&sim).unwrap();
+        for _ in 0..20_000 {
+            sim.step().unwrap();
+            if let Err(e) = w.after_step(&sim) {
+                failed = Some(e);
+                break;
+            }
+        }
+        let e = match failed {
+            Some(e) => e,
+            None => w.finish().err().expect("the output filled up"),
+        };
+        assert_eq!(e.to_string(), "disk full");
     }
 }
