@@ -91,7 +91,10 @@ pub struct ContactMetrics {
     window_sum: Vec<f64>,
     window_pos: usize,
     window_filled: usize,
-    window_max_n: Vec<f64>,
+    /// The largest full-window sum (N): the largest mean times the
+    /// window, divided only for the summary (`s ↦ s / w` keeps the order of
+    /// sums under rounding, so that the largest mean is the same number).
+    window_max_sum_n: Vec<f64>,
     /// The summed force of every steady step (N): the band levels' signal,
     /// kept only when asked for ([`ContactMetrics::keeping_total_force`]).
     total_n: Vec<f64>,
@@ -131,7 +134,7 @@ impl ContactMetrics {
             window_sum: vec![0.0; p],
             window_pos: 0,
             window_filled: 0,
-            window_max_n: vec![0.0; p],
+            window_max_sum_n: vec![0.0; p],
             total_n: Vec::new(),
             keep_total: false,
             steady_steps,
@@ -151,8 +154,7 @@ impl ContactMetrics {
     pub fn after_step(&mut self, sim: &Simulation) {
         // the impact tracker needs the step before the first one summarised
         let tracker = self.tracker.get_or_insert_with(ImpactTracker::default);
-        self.part_n.fill(0.0);
-        tracker.add_step(sim, &mut self.part_n);
+        tracker.step_parts(sim, &mut self.part_n);
         // a step belongs to the steady part when it starts at or after start_s
         if sim.time_s() - sim.dt_s() < self.start_s - 1e-9 * sim.dt_s() {
             return;
@@ -193,8 +195,8 @@ impl ContactMetrics {
         }
         self.window_filled = (self.window_filled + 1).min(w);
         if self.window_filled == w {
-            for (m, s) in self.window_max_n.iter_mut().zip(&self.window_sum) {
-                *m = m.max(s / w as f64);
+            for (m, &s) in self.window_max_sum_n.iter_mut().zip(&self.window_sum) {
+                *m = m.max(s);
             }
         }
     }
@@ -212,7 +214,8 @@ impl ContactMetrics {
         let seconds = (self.steps as f64 * self.dt_s).max(f64::MIN_POSITIVE);
         let per_step = |x: &[u64]| x.iter().map(|&c| c as f64 / n).collect();
         let window_force_max_n = if self.window_filled == self.window_steps {
-            self.window_max_n.clone()
+            let w = self.window_steps as f64;
+            self.window_max_sum_n.iter().map(|s| s / w).collect()
         } else {
             let k = self.window_filled.max(1) as f64;
             self.window_sum.iter().map(|s| s / k).collect()
@@ -274,5 +277,42 @@ mod tests {
         let last: f64 = sim.force_n().iter().sum();
         assert_eq!(*kept.total_force_n().last().unwrap(), last);
         assert_eq!(plain.summary(), kept.summary());
+    }
+
+    /// The largest 1 ms mean force is the largest mean over every full
+    /// window of the step forces, summed afresh window by window (not by
+    /// the running sum), to round-off; the largest force and the contact
+    /// fraction agree with the same history.
+    #[test]
+    fn the_window_maximum_is_the_brute_force_one() {
+        struct History(Vec<Vec<f64>>);
+        impl tirecontact_core::solver::drive::Probe for History {
+            fn after_step(&mut self, sim: &tirecontact_core::Simulation) -> std::io::Result<()> {
+                self.0.push(sim.force_n().to_vec());
+                Ok(())
+            }
+        }
+        let mut scene = crate::analysis::bench::scenes::many_points(3, 5);
+        scene.duration_s = 0.03;
+        let model = PreparedModel::of(&scene).unwrap();
+        let mut metrics = ContactMetrics::new(&scene, Some(0.0));
+        let mut history = History(Vec::new());
+        let mut sim = model.simulation(SolverOptions::default()).unwrap();
+        run_to_end(&mut sim, &mut (&mut metrics, &mut history), Watch::none()).unwrap();
+        let w = metrics.window_steps;
+        let steps = history.0.len();
+        assert!(steps > 2 * w, "{steps} steps, window {w}");
+        let summary = metrics.summary();
+        for i in 0..sim.num_points() {
+            let want = (0..=steps - w)
+                .map(|k| (k..k + w).map(|n| history.0[n][i]).sum::<f64>() / w as f64)
+                .fold(0.0f64, f64::max);
+            let got = summary.window_force_max_n[i];
+            assert!(want > 0.0, "point {i} bears a force");
+            assert!(
+                (got - want).abs() <= 1e-9 * want,
+                "point {i}: {got} N against {want} N"
+            );
+        }
     }
 }

@@ -74,6 +74,28 @@ impl ImpactTracker {
         self.q_prev.extend_from_slice(sim.force_n());
     }
 
+    /// Each point's impact part of the step just taken into `parts`: what
+    /// [`ImpactTracker::add_step`] adds to zeros, the same numbers, without
+    /// clearing `parts` first or dividing where there is no impulse.
+    pub fn step_parts(&mut self, sim: &tirecontact_core::Simulation, parts: &mut [f64]) {
+        let scene = sim.problem();
+        if scene.contact_scheme == tirecontact_io::scene::ContactScheme::Paper
+            && scene.contact.is_rigid()
+        {
+            parts.fill(0.0);
+            return self.add_step(sim, parts);
+        }
+        let dt = sim.dt_s();
+        let impulses = sim.impact_impulse_ns();
+        for (i, s) in parts.iter_mut().enumerate() {
+            // (`0 + j / dt` as `add_step` adds it: the same sign of zero)
+            *s = match impulses.get(i) {
+                Some(&j) if j != 0.0 => 0.0 + j / dt,
+                _ => 0.0,
+            };
+        }
+    }
+
     /// Adds each point's impact part of the step just taken to `sums`.
     pub fn add_step(&mut self, sim: &tirecontact_core::Simulation, sums: &mut [f64]) {
         let scene = sim.problem();
@@ -118,5 +140,35 @@ mod tests {
         // a point whose force fell keeps it
         assert_eq!(paper_impact_n(&[300.0, 30.0], &[0.0, 40.0], 1), 0.0);
         assert_eq!(paper_impact_n(&[300.0], &[0.0], 3), 0.0);
+    }
+
+    /// `step_parts` writes what `add_step` adds to zeros, bit for bit, on
+    /// the paper's scheme and on the located one with impacts.
+    #[test]
+    fn step_parts_are_what_add_step_adds_to_zeros() {
+        for preset in ["three_points.ron", "paper.ron"] {
+            let scene = tirecontact_io::scene::Scene::load(
+                &std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../presets"))
+                    .join(preset),
+            )
+            .unwrap();
+            use tirecontact_io::SceneSimulation as _;
+            let mut sim = tirecontact_core::Simulation::from_scene(&scene).unwrap();
+            let p = sim.num_points();
+            let (mut a, mut b) = (ImpactTracker::default(), ImpactTracker::default());
+            let (mut added, mut set) = (vec![0.0; p], vec![7.0; p]);
+            let mut impacts = 0;
+            for _ in 0..20_000 {
+                sim.step().unwrap();
+                added.fill(0.0);
+                a.add_step(&sim, &mut added);
+                b.step_parts(&sim, &mut set);
+                for i in 0..p {
+                    assert_eq!(added[i].to_bits(), set[i].to_bits(), "{preset}, point {i}");
+                }
+                impacts += added.iter().filter(|&&x| x > 0.0).count();
+            }
+            assert!(impacts > 0, "{preset}: the run has impacts");
+        }
     }
 }
