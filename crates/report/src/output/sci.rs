@@ -7,9 +7,9 @@
 //! back to big-number arithmetic, and writing a patch's CSV took longer
 //! than its steps. Here the ten digits are the rounded integer part of
 //! `N = |x| 10^(9 - e)`, `e` the decimal exponent of `x`, computed as the
-//! 53-bit `m` times a 128-bit `10^(9 - e)` ([`POW10`]). The table is built
+//! 53-bit `m` times a 128-bit `10^(9 - e)` from a table (`POW10`), built
 //! by repeated multiplication and division by 10 from `10^0`, each entry
-//! truncated: its relative error is below `319 2^-127`, so `N` (below
+//! truncated: its relative error is below `320 2^-127`, so `N` (below
 //! `2^37`) is known to a few units of `2^-80`. Wherever that leaves the
 //! rounding in doubt, the fraction of `N` within a few of those units of
 //! one half (an exact tie, or a value too close to one to tell), the
