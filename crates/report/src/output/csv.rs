@@ -218,6 +218,18 @@ impl<W: Write> RunWriter<W> {
     }
 }
 
+impl<W: Write> Drop for RunWriter<W> {
+    /// A piped writer dropped without [`RunWriter::finish`] (a run that
+    /// failed) waits for its thread, so that the output is dropped before
+    /// the writer is gone (an atomic file then removes its temporary file,
+    /// as it does without the thread).
+    fn drop(&mut self) {
+        if let Some(pipe) = self.pipe.take() {
+            let _ = pipe.join();
+        }
+    }
+}
+
 impl<W: Write + Send + 'static> RunWriter<W> {
     /// [`RunWriter::new`] whose blocks are formatted and written by a thread
     /// of their own while the run goes on (the same bytes): a long `run -o`
@@ -418,6 +430,46 @@ mod tests {
             let got = String::from_utf8(w.finish().unwrap()).unwrap();
             assert!(got == want, "every {every}, piped: rows differ");
         }
+    }
+
+    /// A piped writer dropped without `finish` (a failed run) has dropped
+    /// its output when the drop returns, even while the thread is still
+    /// writing: an atomic file's temporary file does not outlive the run.
+    #[test]
+    fn a_dropped_piped_writer_drops_its_output_first() {
+        use std::sync::Arc;
+        use std::sync::atomic::{AtomicBool, Ordering};
+        struct Slow(Arc<AtomicBool>);
+        impl Write for Slow {
+            fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+                std::thread::sleep(std::time::Duration::from_millis(20));
+                Ok(b.len())
+            }
+            fn flush(&mut self) -> std::io::Result<()> {
+                Ok(())
+            }
+        }
+        impl Drop for Slow {
+            fn drop(&mut self) {
+                self.0.store(true, Ordering::SeqCst);
+            }
+        }
+        let scene = Scene::load(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )))
+        .unwrap();
+        let mut sim = Simulation::from_scene(&scene).unwrap();
+        let dropped = Arc::new(AtomicBool::new(false));
+        let mut w = RunWriter::piped(Slow(dropped.clone()), sim.num_points(), 1).unwrap();
+        w.write_initial(&sim).unwrap();
+        for _ in 0..20_000 {
+            sim.step().unwrap();
+            w.after_step(&sim).unwrap();
+        }
+        assert!(!dropped.load(Ordering::SeqCst), "still writing");
+        drop(w);
+        assert!(dropped.load(Ordering::SeqCst), "the output outlived the writer");
     }
 
     /// A piped writer's failing output is an error of the run (at a later
