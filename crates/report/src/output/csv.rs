@@ -469,7 +469,10 @@ mod tests {
         }
         assert!(!dropped.load(Ordering::SeqCst), "still writing");
         drop(w);
-        assert!(dropped.load(Ordering::SeqCst), "the output outlived the writer");
+        assert!(
+            dropped.load(Ordering::SeqCst),
+            "the output outlived the writer"
+        );
     }
 
     /// A piped writer's failing output is an error of the run (at a later
