@@ -355,14 +355,23 @@ impl PointsRoad {
         z: &mut [f64],
         dz: &mut [f64],
     ) -> Result<(), (usize, OutOfRange)> {
-        for (i, &x) in x_m.iter().enumerate() {
-            let xs = x + s_m;
-            let Some(rows) = rows[i] else {
-                return Err((i, Self::off_the_grid(g, xs)));
+        let p = x_m.len();
+        let (rows, cells, z, dz) = (&rows[..p], &mut cells[..p], &mut z[..p], &mut dz[..p]);
+        for i in 0..p {
+            let xs = x_m[i] + s_m;
+            let (m, m1, frac) = match g.cell(xs) {
+                Ok(cell) => cell,
+                // (off the grid across is said first, as `sample_all` does)
+                Err(e) => {
+                    return Err((i, rows[i].map_or_else(|| Self::off_the_grid(g, xs), |_| e)));
+                }
             };
-            let (m, m1, frac) = g.cell(xs).map_err(|e| (i, e))?;
             let cc = &mut cells[i];
             if cc.m != m {
+                // (a point off the grid across never has a cell)
+                let Some(rows) = rows[i] else {
+                    return Err((i, Self::off_the_grid(g, xs)));
+                };
                 *cc = CellCubic {
                     m,
                     c: g.blend_cubic(rows, m, m1),

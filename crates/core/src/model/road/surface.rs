@@ -226,11 +226,14 @@ impl SurfaceGrid {
     #[inline(always)]
     pub(crate) fn cell(&self, x_m: f64) -> Result<(usize, usize, f64), OutOfRange> {
         let u = (x_m - self.x0_m) / self.dx_m;
+        // (cells are counted in i64, whose conversions from and to f64 are
+        // single instructions: `u` is below the grid's size)
         if self.looped {
             let u = rem_euclid_exact(u, self.nx as f64);
             // (`u >= 0`: the truncation is the floor, without a libm call)
-            let m = (u as usize).min(self.nx - 1);
-            Ok((m, (m + 1) % self.nx, (u - m as f64).clamp(0.0, 1.0)))
+            let k = (u as i64).min(self.nx as i64 - 1);
+            let m = k as usize;
+            Ok((m, (m + 1) % self.nx, (u - k as f64).clamp(0.0, 1.0)))
         } else {
             let last = (self.nx - 1) as f64;
             if !(u >= -GRID_TOLERANCE && u <= last + GRID_TOLERANCE) {
@@ -240,8 +243,9 @@ impl SurfaceGrid {
             // (`u >= 0`, not a NaN past the range check: the truncation is
             // the floor, without a libm call)
             let u = u.clamp(0.0, last);
-            let m = (u as usize).min(self.nx - 2);
-            Ok((m, m + 1, (u - m as f64).clamp(0.0, 1.0)))
+            let k = (u as i64).min(self.nx as i64 - 2);
+            let m = k as usize;
+            Ok((m, m + 1, (u - k as f64).clamp(0.0, 1.0)))
         }
     }
 
