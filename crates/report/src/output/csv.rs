@@ -67,10 +67,8 @@ const BLOCK_VALUES: usize = 1 << 16;
 /// on the thread count: `{:.9e}` for every number, `0`/`1` for the contact
 /// flags, comma-separated, one `\n`-terminated line per row.
 pub struct RunWriter<W: Write> {
-    /// The output; with [`RunWriter::piped`], the formatting thread's.
-    out: Option<W>,
-    /// The formatting thread of [`RunWriter::piped`].
-    pipe: Option<Pipe<W>>,
+    /// Where the formatted rows go.
+    sink: Sink<W>,
     p: usize,
     sampler: Sampler,
     /// Rows not yet formatted, `1 + 5 p` numbers each.
@@ -103,8 +101,7 @@ impl<W: Write> RunWriter<W> {
         let width = 1 + 5 * p;
         let block_rows = (block_values / width).max(1);
         Ok(RunWriter {
-            out: Some(out),
-            pipe: None,
+            sink: Sink::Inline(out),
             p,
             sampler: Sampler::new(p, Stride::Every(every), LastWindow::Partial),
             rows: Vec::with_capacity(block_rows * width),
@@ -154,23 +151,24 @@ impl<W: Write> RunWriter<W> {
         if nrows == 0 {
             return Ok(());
         }
-        if let Some(pipe) = &self.pipe {
-            let spare = pipe
-                .spare
-                .try_recv()
-                .unwrap_or_else(|_| Vec::with_capacity(self.rows.capacity()));
-            let block = std::mem::replace(&mut self.rows, spare);
-            if pipe.blocks.send(block).is_err() {
+        let out = match &mut self.sink {
+            Sink::Inline(out) => out,
+            Sink::Piped(pipe) => {
+                let spare = pipe
+                    .spare
+                    .try_recv()
+                    .unwrap_or_else(|_| Vec::with_capacity(self.rows.capacity()));
+                let block = std::mem::replace(&mut self.rows, spare);
+                if pipe.blocks.send(block).is_ok() {
+                    return Ok(());
+                }
                 // the thread stopped on an error: its result says which
-                return Err(match self.pipe.take().map(Pipe::join) {
-                    Some(Err(e)) => e,
-                    _ => std::io::Error::other("the CSV thread stopped"),
+                return Err(match self.sink.close() {
+                    Err(e) => e,
+                    Ok(_) => std::io::Error::other("the CSV thread stopped"),
                 });
             }
-            return Ok(());
-        }
-        let Some(out) = self.out.as_mut() else {
-            return Err(std::io::Error::other("the CSV output was closed"));
+            Sink::Closed => return Err(std::io::Error::other("the CSV output was closed")),
         };
         let parts = self
             .text
@@ -208,11 +206,7 @@ impl<W: Write> RunWriter<W> {
         if !self.rows.is_empty() {
             self.write_block()?;
         }
-        let mut out = match (self.pipe.take(), self.out.take()) {
-            (Some(pipe), _) => pipe.join()?,
-            (None, Some(out)) => out,
-            (None, None) => return Err(std::io::Error::other("the CSV output was closed")),
-        };
+        let mut out = self.sink.close()?;
         out.flush()?;
         Ok(out)
     }
@@ -224,8 +218,8 @@ impl<W: Write> Drop for RunWriter<W> {
     /// the writer is gone (an atomic file then removes its temporary file,
     /// as it does without the thread).
     fn drop(&mut self) {
-        if let Some(pipe) = self.pipe.take() {
-            let _ = pipe.join();
+        if let Sink::Piped(_) = self.sink {
+            let _ = self.sink.close();
         }
     }
 }
@@ -236,9 +230,7 @@ impl<W: Write + Send + 'static> RunWriter<W> {
     /// then waits on the solver or on the formatting, not on both.
     pub fn piped(out: W, p: usize, every: u64) -> std::io::Result<Self> {
         let mut w = Self::with_layout(out, p, every, 1, BLOCK_VALUES)?;
-        let Some(mut out) = w.out.take() else {
-            return Err(std::io::Error::other("the CSV output was closed"));
-        };
+        let mut out = w.sink.close()?;
         // one block queued while one is formatted and one filled
         let (blocks, queued) = std::sync::mpsc::sync_channel::<Vec<f64>>(1);
         let (give_back, spare) = std::sync::mpsc::sync_channel::<Vec<f64>>(2);
@@ -255,12 +247,33 @@ impl<W: Write + Send + 'static> RunWriter<W> {
                 }
                 Ok(out)
             })?;
-        w.pipe = Some(Pipe {
+        w.sink = Sink::Piped(Pipe {
             blocks,
             spare,
             worker,
         });
         Ok(w)
+    }
+}
+
+/// Where a [`RunWriter`]'s rows go: formatted in the writer's own
+/// thread(s) into the output, to the formatting thread of
+/// [`RunWriter::piped`], or nowhere once the output was handed back.
+enum Sink<W> {
+    Inline(W),
+    Piped(Pipe<W>),
+    Closed,
+}
+
+impl<W> Sink<W> {
+    /// The output, once every block sent is written (a piped sink's thread
+    /// joined), or the first error; the sink is closed after.
+    fn close(&mut self) -> std::io::Result<W> {
+        match std::mem::replace(self, Sink::Closed) {
+            Sink::Inline(out) => Ok(out),
+            Sink::Piped(pipe) => pipe.join(),
+            Sink::Closed => Err(std::io::Error::other("the CSV output was closed")),
+        }
     }
 }
 
