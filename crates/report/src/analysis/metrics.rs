@@ -281,8 +281,7 @@ mod tests {
 
     /// The largest 1 ms mean force is the largest mean over every full
     /// window of the step forces, summed afresh window by window (not by
-    /// the running sum), to round-off; the largest force and the contact
-    /// fraction agree with the same history.
+    /// the running sum), to round-off.
     #[test]
     fn the_window_maximum_is_the_brute_force_one() {
         struct History(Vec<Vec<f64>>);

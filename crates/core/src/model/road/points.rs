@@ -507,15 +507,12 @@ mod tests {
     #[test]
     fn cached_surface_cells_equal_direct_sampling() {
         use super::super::surface::SurfaceGrid;
+        use rand_chacha::ChaCha8Rng;
+        use rand_chacha::rand_core::{RngCore, SeedableRng};
         let (nx, ny, dx, dy) = (37, 5, 0.002, 0.01);
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
         let z: Vec<f64> = (0..nx * ny)
-            .map(|_| {
-                seed ^= seed << 13;
-                seed ^= seed >> 7;
-                seed ^= seed << 17;
-                (seed >> 11) as f64 / (1u64 << 53) as f64 * 2e-3
-            })
+            .map(|_| (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64 * 2e-3)
             .collect();
         let g = SurfaceGrid::from_heights((0.0, dx, nx), (0.0, dy, ny), true, z);
         let xs = [-0.03, -0.011, 0.0, 0.0013, 0.02, 0.05];

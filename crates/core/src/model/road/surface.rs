@@ -490,13 +490,10 @@ mod tests {
     /// through the nodes' heights and slopes at both ends.
     #[test]
     fn the_cell_cubic_is_the_hermite_interpolant() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        use rand_chacha::ChaCha8Rng;
+        use rand_chacha::rand_core::{RngCore, SeedableRng};
+        let mut rng = ChaCha8Rng::seed_from_u64(4);
+        let mut next = || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
         let h = 0.002;
         let g = SurfaceGrid::from_heights((0.0, h, 2), (0.0, 0.01, 1), false, vec![0.0; 2]);
         for _ in 0..10_000 {
