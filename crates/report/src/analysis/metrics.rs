@@ -85,7 +85,8 @@ pub struct ContactMetrics {
     in_contact_sum: u64,
     in_contact_max: usize,
     /// The last `window_steps` step-mean forces per point, a ring buffer
-    /// (point-major), their sums and the largest full-window mean.
+    /// (step-major: a step writes one contiguous row of `P` forces), their
+    /// sums and the largest full-window mean.
     window: Vec<f64>,
     window_steps: usize,
     window_sum: Vec<f64>,
@@ -162,11 +163,13 @@ impl ContactMetrics {
         self.steps += 1;
         let (q, c) = (sim.force_n(), sim.in_contact());
         let w = self.window_steps;
+        let p = self.part_n.len();
+        let row = &mut self.window[self.window_pos * p..(self.window_pos + 1) * p];
         if self.keep_total {
             self.total_n.push(q.iter().sum());
         }
         let (mut total_smooth, mut touching) = (0.0, 0usize);
-        for i in 0..self.part_n.len() {
+        for i in 0..p {
             let impact_n = self.part_n[i];
             let smooth = q[i] - impact_n;
             total_smooth += smooth;
@@ -180,7 +183,7 @@ impl ContactMetrics {
                 self.impulse_max_ns[i] = self.impulse_max_ns[i].max(impulse);
             }
             self.contact_steps[i] += u64::from(c[i]);
-            let slot = &mut self.window[i * w + self.window_pos];
+            let slot = &mut row[i];
             self.window_sum[i] += q[i] - *slot;
             *slot = q[i];
         }
