@@ -14,7 +14,10 @@
 //! The matrix is general (the rows of end values and slopes make it
 //! non-symmetric). Round-off grows with each update: the caller checks the
 //! residual of its solves ([`BorderedInverse::backward_error`]) and
-//! refactorises from scratch when it grows.
+//! refactorises from scratch when it grows. For that check the system
+//! itself is kept beside its inverse, in slot order, bordered and shrunk
+//! with it (`O(n)` a join, `O(n²)` moves a leave), so that a residual reads
+//! contiguous rows rather than gathering each entry from the tables.
 
 use crate::base::threads::Threads;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -39,6 +42,9 @@ pub struct BorderedInverse {
     /// The border: the new unknowns' columns `c` and equations' rows `r`.
     cb: Vec<f64>,
     rb: Vec<f64>,
+    /// `M` itself in slot order, row-major with row stride `cap` (a join
+    /// writes its border in place).
+    mat: Vec<f64>,
     /// Updates since the inverse was last formed from a factorisation.
     pub updates: usize,
 }
@@ -84,6 +90,7 @@ impl BorderedInverse {
             y: vec![0.0; cap * B],
             cb: vec![0.0; cap * B],
             rb: vec![0.0; cap * B],
+            mat: vec![0.0; cap * cap],
             updates: 0,
         }
     }
@@ -99,13 +106,25 @@ impl BorderedInverse {
     }
 
     /// Sets the inverse of the system of `points` from `inv` (`n × n`
-    /// row-major, in slot order: a new factorisation's).
-    pub fn set(&mut self, points: &[usize], inv: &[f64]) {
+    /// row-major, in slot order: a new factorisation's); `entry` as for
+    /// [`BorderedInverse::join`] gives the system it inverts.
+    pub fn set(
+        &mut self,
+        points: &[usize],
+        inv: &[f64],
+        entry: impl Fn(usize, usize, usize, usize) -> f64,
+    ) {
         let n = B * points.len();
         assert!(n <= self.cap, "contact system larger than its buffers");
         self.points.clear();
         self.points.extend_from_slice(points);
         self.inv[..n * n].copy_from_slice(&inv[..n * n]);
+        let cap = self.cap;
+        for e in 0..n {
+            for (u, m) in self.mat[e * cap..e * cap + n].iter_mut().enumerate() {
+                *m = entry(points[e / B], e % B, points[u / B], u % B);
+            }
+        }
         self.updates = 0;
     }
 
@@ -229,6 +248,18 @@ impl BorderedInverse {
             row[n + 1] = z[r * B + 1];
         }
         std::mem::swap(&mut self.inv, &mut self.next);
+        // the border of the system itself
+        let cap = self.cap;
+        for t in 0..B {
+            for k in 0..n {
+                self.mat[k * cap + n + t] = cb[t * n + k];
+            }
+            let row = &mut self.mat[(n + t) * cap..(n + t) * cap + m];
+            row[..n].copy_from_slice(&rb[t * n..(t + 1) * n]);
+            for c in 0..B {
+                row[n + c] = d(t, c);
+            }
+        }
         self.points.push(point);
         self.updates += 1;
         true
@@ -282,6 +313,16 @@ impl BorderedInverse {
             }
         }
         std::mem::swap(&mut self.inv, &mut self.next);
+        // the system without the slot's rows and columns, moved up in place
+        let cap = self.cap;
+        for i in 0..m {
+            let from = keep(i) * cap;
+            let to = i * cap;
+            if from != to {
+                self.mat.copy_within(from..from + r0, to);
+            }
+            self.mat.copy_within(from + r0 + B..from + n, to + r0);
+        }
         self.points.remove(k);
         self.updates += 1;
         true
@@ -310,14 +351,10 @@ impl BorderedInverse {
 
     /// The componentwise backward error of a solution `x` of `M x = b`,
     /// `max_e |b_e - (M x)_e| / (Σ_u |M_eu x_u| + |b_e|)` (about the
-    /// unit round-off times a small factor for a backward-stable solve).
-    pub fn backward_error(
-        &self,
-        entry: impl Fn(usize, usize, usize, usize) -> f64,
-        b: &[f64],
-        x: &[f64],
-    ) -> f64 {
-        self.rows_backward_error(&entry, b, x, 0..self.n())
+    /// unit round-off times a small factor for a backward-stable solve),
+    /// from the kept system's rows.
+    pub fn backward_error(&self, b: &[f64], x: &[f64]) -> f64 {
+        self.rows_backward_error(b, x, 0..self.n())
     }
 
     /// [`BorderedInverse::backward_error`] on `threads` when it pays
@@ -325,51 +362,124 @@ impl BorderedInverse {
     /// each range's largest error is computed as on one thread and the
     /// largest of them taken (a maximum, exact in any order), so the
     /// result is the same for any number of threads.
-    pub fn backward_error_on(
-        &self,
-        entry: impl Fn(usize, usize, usize, usize) -> f64 + Sync,
-        b: &[f64],
-        x: &[f64],
-        threads: &Threads,
-    ) -> f64 {
+    pub fn backward_error_on(&self, b: &[f64], x: &[f64], threads: &Threads) -> f64 {
         let n = self.n();
         if !threads.worth(n * n) {
-            return self.backward_error(entry, b, x);
+            return self.backward_error(b, x);
         }
         // (a non-negative f64's bits order as the values do)
         let worst = AtomicU64::new(0);
         threads.run(&|k| {
             let r = Threads::part_range(n, threads.count(), ROW_ALIGN, k);
-            let w = self.rows_backward_error(&entry, b, x, r);
+            let w = self.rows_backward_error(b, x, r);
             worst.fetch_max(w.to_bits(), Ordering::Relaxed);
         });
         f64::from_bits(worst.into_inner())
     }
 
     /// The largest componentwise backward error of the equations `rows`
-    /// ([`BorderedInverse::backward_error`]; 0 for none).
-    fn rows_backward_error(
-        &self,
-        entry: &impl Fn(usize, usize, usize, usize) -> f64,
-        b: &[f64],
-        x: &[f64],
-        rows: std::ops::Range<usize>,
-    ) -> f64 {
-        let n = self.n();
-        let pts = &self.points;
-        let entry = |e: usize, u: usize| entry(pts[e / B], e % B, pts[u / B], u % B);
+    /// ([`BorderedInverse::backward_error`]; 0 for none), each row's sum and
+    /// magnitude by [`sum_and_magnitude`].
+    fn rows_backward_error(&self, b: &[f64], x: &[f64], rows: std::ops::Range<usize>) -> f64 {
+        let (n, cap) = (self.n(), self.cap);
+        let x = &x[..n];
         let mut worst = 0.0f64;
         for e in rows {
-            let (mut s, mut mag) = (0.0, b[e].abs());
-            for (u, &xu) in x[..n].iter().enumerate() {
-                let t = entry(e, u) * xu;
-                s += t;
-                mag += t.abs();
-            }
-            worst = worst.max(row_backward_error(b[e], s, mag));
+            let (s, m) = sum_and_magnitude(&self.mat[e * cap..e * cap + n], x);
+            worst = worst.max(row_backward_error(b[e], s, b[e].abs() + m));
         }
         worst
     }
+}
+
+/// `(Σ a_k x_k, Σ |a_k x_k|)` in eight interleaved partial sums each
+/// (vector lanes): by [`sum_and_magnitude_avx`] where the CPU has AVX, the
+/// same operations in the same order either way.
+#[inline]
+fn sum_and_magnitude(a: &[f64], x: &[f64]) -> (f64, f64) {
+    assert_eq!(a.len(), x.len());
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: the CPU supports AVX (checked just above); the
+            // lengths are equal (asserted above).
+            return unsafe { sum_and_magnitude_avx(a, x) };
+        }
+    }
+    sum_and_magnitude_lanes(a, x)
+}
+
+/// [`sum_and_magnitude`] in plain code: lanes `k` and `k + 4` of each
+/// group of eight terms, the lanes then summed as [`dot_lanes`] sums its.
+#[inline]
+fn sum_and_magnitude_lanes(a: &[f64], x: &[f64]) -> (f64, f64) {
+    const L: usize = 8;
+    let (mut s, mut m) = ([0.0f64; L], [0.0f64; L]);
+    let (ca, cx) = (a.chunks_exact(L), x.chunks_exact(L));
+    let (ra, rx) = (ca.remainder(), cx.remainder());
+    for (p, q) in ca.zip(cx) {
+        for k in 0..L {
+            let t = p[k] * q[k];
+            s[k] += t;
+            m[k] += t.abs();
+        }
+    }
+    let fold = |v: [f64; L]| ((v[0] + v[4]) + (v[1] + v[5])) + ((v[2] + v[6]) + (v[3] + v[7]));
+    let (mut ts, mut tm) = (0.0, 0.0);
+    for (p, q) in ra.iter().zip(rx) {
+        let t = p * q;
+        ts += t;
+        tm += t.abs();
+    }
+    (fold(s) + ts, fold(m) + tm)
+}
+
+/// [`sum_and_magnitude_lanes`] with AVX registers (no FMA: bit-identical).
+///
+/// # Safety
+/// The CPU supports AVX; `a.len() == x.len()`.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+unsafe fn sum_and_magnitude_avx(a: &[f64], x: &[f64]) -> (f64, f64) {
+    use std::arch::x86_64::*;
+    let n = a.len();
+    let full = n - n % 8;
+    let (ap, xp) = (a.as_ptr(), x.as_ptr());
+    let sign = _mm256_set1_pd(-0.0);
+    let (mut s0, mut s1) = (_mm256_setzero_pd(), _mm256_setzero_pd());
+    let (mut m0, mut m1) = (_mm256_setzero_pd(), _mm256_setzero_pd());
+    let mut c = 0;
+    // SAFETY (all loads): c + 8 <= full <= n for both slices.
+    unsafe {
+        while c < full {
+            let t0 = _mm256_mul_pd(_mm256_loadu_pd(ap.add(c)), _mm256_loadu_pd(xp.add(c)));
+            let t1 = _mm256_mul_pd(
+                _mm256_loadu_pd(ap.add(c + 4)),
+                _mm256_loadu_pd(xp.add(c + 4)),
+            );
+            s0 = _mm256_add_pd(s0, t0);
+            s1 = _mm256_add_pd(s1, t1);
+            m0 = _mm256_add_pd(m0, _mm256_andnot_pd(sign, t0));
+            m1 = _mm256_add_pd(m1, _mm256_andnot_pd(sign, t1));
+            c += 8;
+        }
+    }
+    let fold = |lo: __m256d, hi: __m256d| {
+        let (mut l, mut h) = ([0.0f64; 4], [0.0f64; 4]);
+        // SAFETY: `l`, `h` hold four f64.
+        unsafe {
+            _mm256_storeu_pd(l.as_mut_ptr(), lo);
+            _mm256_storeu_pd(h.as_mut_ptr(), hi);
+        }
+        ((l[0] + h[0]) + (l[1] + h[1])) + ((l[2] + h[2]) + (l[3] + h[3]))
+    };
+    let (mut ts, mut tm) = (0.0, 0.0);
+    for (p, q) in a[full..].iter().zip(&x[full..]) {
+        let t = p * q;
+        ts += t;
+        tm += t.abs();
+    }
+    (fold(s0, s1) + ts, fold(m0, m1) + tm)
 }
 
 /// One equation's componentwise backward error: its residual `|b_e - s|`
@@ -602,6 +712,34 @@ mod tests {
         }
     }
 
+    /// The backward error's row sums: the AVX build gives the plain lanes'
+    /// values bit for bit, and both are the left-to-right sum and
+    /// magnitude to round-off, for every remainder of the eight lanes.
+    #[test]
+    fn row_sums_and_magnitudes_in_lanes() {
+        let mut rng = Rng(0x51_7cc1_b727_220a);
+        for n in [0usize, 1, 3, 7, 8, 9, 15, 16, 17, 40, 67] {
+            let a: Vec<f64> = (0..n)
+                .map(|k| rng.next() * 10f64.powi((k % 9) as i32 - 4))
+                .collect();
+            let x: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+            let (s1, m1) = sum_and_magnitude(&a, &x);
+            let (s2, m2) = sum_and_magnitude_lanes(&a, &x);
+            assert_eq!(
+                (s1.to_bits(), m1.to_bits()),
+                (s2.to_bits(), m2.to_bits()),
+                "n {n}"
+            );
+            let m: f64 = a.iter().zip(&x).map(|(p, q)| (p * q).abs()).sum();
+            let s: f64 = a.iter().zip(&x).map(|(p, q)| p * q).sum();
+            let tol = 2.0 * n as f64 * f64::EPSILON * m;
+            assert!(
+                (s1 - s).abs() <= tol && (m1 - m).abs() <= tol,
+                "n {n}: {s1} {s}, {m1} {m}"
+            );
+        }
+    }
+
     #[test]
     fn updates_follow_joins_and_leaves() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
@@ -630,7 +768,7 @@ mod tests {
                 let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
                 let mut x = vec![0.0; n];
                 inv.solve(&b, &mut x);
-                let be = inv.backward_error(point_entry(&m, p), &b, &x);
+                let be = inv.backward_error(&b, &x);
                 let entry =
                     |e: usize, u: usize| point_entry(&m, p)(set[e / 2], e % 2, set[u / 2], u % 2);
                 assert!(be < 1e-12, "p {p}, round {round}: backward error {be:e}");
