@@ -184,17 +184,13 @@ impl BorderedInverse {
         }
         let d = |r: usize, c: usize| entry(point, r, point, c);
         let inv = &self.inv[..n * n];
-        // X = B c (column-major), Y = r B
+        // X = B c (column-major; each entry in the lanes of `dot_lanes`,
+        // rows four at a time), Y = r B
         let (x, y) = (&mut self.x[..n * B], &mut self.y[..B * n]);
         let (c0, c1) = cb.split_at(n);
-        for (i, row) in inv.chunks_exact(n.max(1)).take(n).enumerate() {
-            let (mut a, mut b) = (0.0, 0.0);
-            for ((v, p), q) in row.iter().zip(c0).zip(c1) {
-                a += v * p;
-                b += v * q;
-            }
-            (x[i], x[n + i]) = (a, b);
-        }
+        let (x0, x1) = x.split_at_mut(n);
+        rows_times_dispatch(inv, c0, x0);
+        rows_times_dispatch(inv, c1, x1);
         y.fill(0.0);
         let (y0, y1) = y.split_at_mut(n);
         let (r0, r1) = rb.split_at(n);
@@ -307,9 +303,14 @@ impl BorderedInverse {
             let w = [a0 * z[0] + a1 * z[2], a0 * z[1] + a1 * z[3]];
             let (c0, c1) = (&inv[r0 * n..(r0 + 1) * n], &inv[r1 * n..(r1 + 1) * n]);
             let dst = &mut next[i * m..(i + 1) * m];
-            for (j, d) in dst.iter_mut().enumerate() {
-                let jj = keep(j);
-                *d = src[jj] - (w[0] * c0[jj] + w[1] * c1[jj]);
+            // the columns before the slot and after it (`keep`), as two
+            // plain runs the compiler puts in vector lanes
+            let (d0, d1) = dst.split_at_mut(r0);
+            for (lo, hi, d) in [(0, r0, d0), (r0 + B, n, d1)] {
+                let (s, a, b) = (&src[lo..hi], &c0[lo..hi], &c1[lo..hi]);
+                for (k, d) in d.iter_mut().enumerate() {
+                    *d = s[k] - (w[0] * a[k] + w[1] * b[k]);
+                }
             }
         }
         std::mem::swap(&mut self.inv, &mut self.next);
