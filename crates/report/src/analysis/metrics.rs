@@ -169,23 +169,27 @@ impl ContactMetrics {
             self.total_n.push(q.iter().sum());
         }
         let (mut total_smooth, mut touching) = (0.0, 0usize);
+        // (every per-point slice cut to `p` first: one length check each,
+        // none per point)
+        let (q, c, part_n) = (&q[..p], &c[..p], &self.part_n[..p]);
+        let (force_max, force_sq) = (&mut self.force_max_n[..p], &mut self.force_sq_sum[..p]);
+        let (window_sum, contact_steps) = (&mut self.window_sum[..p], &mut self.contact_steps[..p]);
         for i in 0..p {
-            let impact_n = self.part_n[i];
+            let impact_n = part_n[i];
             let smooth = q[i] - impact_n;
             total_smooth += smooth;
             touching += usize::from(c[i]);
-            self.force_max_n[i] = self.force_max_n[i].max(smooth);
-            self.force_sq_sum[i] += smooth * smooth;
+            force_max[i] = force_max[i].max(smooth);
+            force_sq[i] += smooth * smooth;
             if impact_n > 0.0 {
                 let impulse = impact_n * self.dt_s;
                 self.impact_steps[i] += 1;
                 self.impulse_sum_ns[i] += impulse;
                 self.impulse_max_ns[i] = self.impulse_max_ns[i].max(impulse);
             }
-            self.contact_steps[i] += u64::from(c[i]);
-            let slot = &mut row[i];
-            self.window_sum[i] += q[i] - *slot;
-            *slot = q[i];
+            contact_steps[i] += u64::from(c[i]);
+            window_sum[i] += q[i] - row[i];
+            row[i] = q[i];
         }
         self.total_smooth_max_n = self.total_smooth_max_n.max(total_smooth);
         self.total_smooth_sq_sum += total_smooth * total_smooth;
