@@ -383,7 +383,12 @@ impl Simulation {
         }
         // (read before `had_event` is set below)
         let steady = self.steady_ready();
-        self.scratch.after_event = self.state.had_event;
+        self.scratch.quiet_steps = if self.state.had_event {
+            0
+        } else {
+            self.scratch.quiet_steps.saturating_add(1)
+        };
+        self.scratch.after_event = self.scratch.quiet_steps < large::FUSE_AFTER_QUIET_STEPS;
         // until the step succeeds (an error mid-step may leave either set)
         self.state.had_event = true;
         let compliant = self.tables.compliant();
