@@ -102,7 +102,8 @@ const AVX_CHUNKED_FROM_STATES: usize = 16;
 ///
 /// # Safety
 /// AVX; `x`, `v` and the weight columns from `s0` hold `x.len()` states,
-/// `inp_t` `j * stride + s0 + x.len()` values for every active `j`.
+/// `inp_t` `j * stride + s0 + x.len()` values and `q1`, `q2` more than
+/// `j` values for every active `j`.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 #[allow(clippy::too_many_arguments)]

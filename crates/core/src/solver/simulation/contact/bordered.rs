@@ -162,8 +162,9 @@ impl BorderedInverse {
     }
 
     /// [`BorderedInverse::join`]'s work, built once for the baseline CPU
-    /// and once with AVX2 (the element-wise updates in four lanes, the sums
-    /// in order: no FMA, the same values to the bit).
+    /// and once with AVX2 (the element-wise updates in four lanes, `X` in
+    /// [`dot_lanes`]' lanes, the other sums in order: no FMA, the same
+    /// values to the bit either way).
     #[inline(always)]
     fn join_body(
         &mut self,
@@ -306,10 +307,10 @@ impl BorderedInverse {
             // the columns before the slot and after it (`keep`), as two
             // plain runs the compiler puts in vector lanes
             let (d0, d1) = dst.split_at_mut(r0);
-            for (lo, hi, d) in [(0, r0, d0), (r0 + B, n, d1)] {
+            for (lo, hi, run) in [(0, r0, d0), (r0 + B, n, d1)] {
                 let (s, a, b) = (&src[lo..hi], &c0[lo..hi], &c1[lo..hi]);
-                for (k, d) in d.iter_mut().enumerate() {
-                    *d = s[k] - (w[0] * a[k] + w[1] * b[k]);
+                for (t, o) in run.iter_mut().enumerate() {
+                    *o = s[t] - (w[0] * a[t] + w[1] * b[t]);
                 }
             }
         }
@@ -679,9 +680,6 @@ mod tests {
         inv
     }
 
-    /// Joins and leaves in a random order over many sets: each updated
-    /// inverse solves its system with a backward error near round-off and
-    /// agrees with an inverse formed from scratch.
     /// The inverse's product takes rows four at a time; each row's value
     /// must be bit for bit that of [`dot_lanes`] on the row alone, in the
     /// dispatched build and the portable one, for every remainder of the
@@ -741,6 +739,9 @@ mod tests {
         }
     }
 
+    /// Joins and leaves in a random order over many sets: each updated
+    /// inverse solves its system with a backward error near round-off and
+    /// agrees with an inverse formed from scratch.
     #[test]
     fn updates_follow_joins_and_leaves() {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
@@ -802,5 +803,11 @@ mod tests {
         let mut x = [0.0; 2];
         inv.solve(&[2.0, 0.5], &mut x);
         assert!((x[0] - 1.0).abs() < 1e-15 && x[1].abs() < 1e-15, "{x:?}");
+        // the kept system is still the one point's: the exact solution
+        // has no residual, a wrong one the residual it should
+        assert_eq!(inv.backward_error(&[2.0, 0.5], &[1.0, 0.0]), 0.0);
+        let be = inv.backward_error(&[2.0, 0.5], &[1.0, 1.0]);
+        // residuals (1, 3) against magnitudes (2 + 1 + 2, 0.5 + 3 + 0.5)
+        assert!((be - 0.75).abs() < 1e-15, "{be}");
     }
 }
