@@ -239,7 +239,7 @@ impl Simulation {
             return Ok(None);
         }
         // (a large set's trial projected only its own rows)
-        self.ensure_projected_all();
+        self.free_values_after_trial();
         let dt = self.tables.dt_s;
         let kept = self.trial_by_kept_inverse();
         {
@@ -441,6 +441,57 @@ impl Simulation {
             }
         }
         next
+    }
+
+    /// Every point's free end values `uh`, `vh` for the merged solve. A
+    /// trial that fused its projection into its solve (a large set's,
+    /// [`Simulation::fused_full_step`]) projected only the set's rows of
+    /// its prediction, and the other points' end values from its end state:
+    /// theirs are those end values less the response to the trial's forces,
+    /// summed down the influence columns (`O(P |S|)`, against `O(P K)` to
+    /// project every point again). Round-off apart, the same values.
+    fn free_values_after_trial(&mut self) {
+        if self.scratch.projected_all {
+            return;
+        }
+        if !self.scratch.fused_end {
+            return self.ensure_projected_all();
+        }
+        let p = self.tables.p;
+        let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
+        let (du, dv) = (&mut s.du[..p], &mut s.dv[..p]);
+        du.fill(0.0);
+        dv.fill(0.0);
+        for &j in &st.active {
+            tb.add_full_step_response(j, s.q1[j], s.q2[j], du, dv);
+        }
+        // (the trial's set is the contact set: its rows are projected)
+        for i in 0..p {
+            if !st.contact[i] {
+                s.uh[i] = s.ue[i] - du[i];
+                s.vh[i] = s.ve[i] - dv[i];
+            }
+        }
+        s.projected_all = true;
+        // (checked against the projection itself in debug builds: every
+        // solver test that merges events after a fused trial runs it)
+        #[cfg(debug_assertions)]
+        {
+            let (mut u, mut v) = (vec![0.0; p], vec![0.0; p]);
+            s.free.project_on(&tb.basis, &mut u, &mut v, &self.threads);
+            let scale = |w: &[f64]| w.iter().fold(f64::MIN_POSITIVE, |m, x| m.max(x.abs()));
+            let (su, sv) = (scale(&u), scale(&v));
+            for i in (0..p).filter(|&i| !st.contact[i]) {
+                debug_assert!(
+                    (s.uh[i] - u[i]).abs() <= 1e-10 * su && (s.vh[i] - v[i]).abs() <= 1e-10 * sv,
+                    "point {i}: free values {} m, {} m/s from the trial, {} m, {} m/s projected",
+                    s.uh[i],
+                    s.vh[i],
+                    u[i],
+                    v[i]
+                );
+            }
+        }
     }
 
     /// Full-step entry `k` released at `θ`: its trial force on `[0, θ]`
