@@ -474,13 +474,14 @@ impl Simulation {
         }
         s.projected_all = true;
         // (checked against the projection itself in debug builds: every
-        // solver test that merges events after a fused trial runs it)
+        // solver test that merges events after a fused trial runs it; the
+        // known loads' buffers, cleared by the merged step next, hold it)
         #[cfg(debug_assertions)]
         {
-            let (mut u, mut v) = (vec![0.0; p], vec![0.0; p]);
-            s.free.project_on(&tb.basis, &mut u, &mut v, &self.threads);
+            let (u, v) = (&mut s.merged.known_x, &mut s.merged.known_v);
+            s.free.project_on(&tb.basis, u, v, &self.threads);
             let scale = |w: &[f64]| w.iter().fold(f64::MIN_POSITIVE, |m, x| m.max(x.abs()));
-            let (su, sv) = (scale(&u), scale(&v));
+            let (su, sv) = (scale(u), scale(v));
             for i in (0..p).filter(|&i| !st.contact[i]) {
                 debug_assert!(
                     (s.uh[i] - u[i]).abs() <= 1e-10 * su && (s.vh[i] - v[i]).abs() <= 1e-10 * sv,
