@@ -789,6 +789,36 @@ mod tests {
         }
     }
 
+    /// A leaving point whose block of the inverse is singular (the points
+    /// left would make a singular system: `det (M⁻¹)_kk = det M_rest /
+    /// det M`) is refused, and the inverse and the kept system left as
+    /// they were.
+    #[test]
+    fn a_singular_leave_is_refused() {
+        // two points coupled only across: each one's own block is zero,
+        // the system a permutation, its own inverse
+        let m = [
+            0.0, 0.0, 1.0, 0.0, //
+            0.0, 0.0, 0.0, 1.0, //
+            1.0, 0.0, 0.0, 0.0, //
+            0.0, 1.0, 0.0, 0.0,
+        ];
+        let entry = point_entry(&m, 2);
+        let mut inv = BorderedInverse::new(2);
+        inv.set(&[0, 1], &m, &entry);
+        assert!(!inv.leave(1));
+        assert!(!inv.leave(0));
+        assert_eq!(inv.points(), &[0, 1]);
+        assert_eq!(inv.updates, 0);
+        let b = [1.0, 2.0, 3.0, 4.0];
+        let mut x = [0.0; 4];
+        inv.solve(&b, &mut x);
+        assert_eq!(x, [3.0, 4.0, 1.0, 2.0]);
+        assert_eq!(inv.backward_error(&b, &x), 0.0);
+        // (a wrong solution shows its residual: the kept system is whole)
+        assert!(inv.backward_error(&b, &[3.0, 4.0, 1.0, 3.0]) > 0.1);
+    }
+
     /// A joining point whose block makes the system singular is refused
     /// and the inverse left as it was.
     #[test]
