@@ -388,7 +388,6 @@ impl Simulation {
         } else {
             self.scratch.quiet_steps.saturating_add(1)
         };
-        self.scratch.after_event = self.scratch.quiet_steps < large::FUSE_AFTER_QUIET_STEPS;
         // until the step succeeds (an error mid-step may leave either set)
         self.state.had_event = true;
         let compliant = self.tables.compliant();

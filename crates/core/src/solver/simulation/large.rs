@@ -107,7 +107,7 @@ impl Simulation {
     #[inline]
     pub(super) fn fused_full_step(&self) -> bool {
         self.large_full_step()
-            && !(self.scratch.after_event
+            && !(self.scratch.quiet_steps < FUSE_AFTER_QUIET_STEPS
                 && self.tables.compliant()
                 && self.tables.options.merged_events)
     }

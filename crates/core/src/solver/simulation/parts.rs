@@ -566,14 +566,11 @@ pub(super) struct Scratch {
     pub q2: Vec<f64>,
     /// Impulse of the step so far per point (N·s).
     pub impulse: Vec<f64>,
-    /// One of the last [`FUSE_AFTER_QUIET_STEPS`](super::large::FUSE_AFTER_QUIET_STEPS)
-    /// steps had an event (read from the state at the step's start): with
-    /// merged tread-spring events, a large set's full step then projects
-    /// every point's free values instead of fusing the projection into its
-    /// solve ([`Simulation::fused_full_step`](super::Simulation)).
-    pub after_event: bool,
-    /// Steps since the last step with an event (saturating; `0` after a
-    /// step with one).
+    /// Steps since the last step with an event, counted at the current
+    /// step's start (saturating; `0` after a step with one): with merged
+    /// tread-spring events, a large set's full step fuses its projection
+    /// into its solve only after a few
+    /// ([`Simulation::fused_full_step`](super::Simulation)).
     pub quiet_steps: u32,
     /// Right-hand side and solution of a contact system (`2P`).
     pub rhs: Vec<f64>,
@@ -631,7 +628,6 @@ impl Scratch {
             du: vec![0.0; p],
             dv: vec![0.0; p],
             fused_end: false,
-            after_event: false,
             quiet_steps: u32::MAX,
             projected_all: false,
             dense: DenseScratch::new(tables),
