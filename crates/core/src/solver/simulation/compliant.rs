@@ -248,6 +248,19 @@ impl Simulation {
     /// memory (`full_inf_cols`); each point sums its terms in the order of
     /// the active set.
     pub(super) fn end_values_by_columns(&mut self) {
+        self.forces_response_by_columns();
+        let s = &mut self.scratch;
+        for i in 0..self.tables.p {
+            s.ue[i] = s.uh[i] + s.du[i];
+            s.ve[i] = s.vh[i] + s.dv[i];
+        }
+    }
+
+    /// The response at every point to the active points' full-step forces
+    /// into `du`, `dv` (m, m/s), source column by source column over
+    /// contiguous memory (`full_inf_cols`); each point sums its terms in
+    /// the order of the active set.
+    pub(super) fn forces_response_by_columns(&mut self) {
         let p = self.tables.p;
         let (active, s) = (&self.state.active, &mut self.scratch);
         let (du, dv) = (&mut s.du[..p], &mut s.dv[..p]);
@@ -256,10 +269,6 @@ impl Simulation {
         for &j in active {
             self.tables
                 .add_full_step_response(j, s.q1[j], s.q2[j], du, dv);
-        }
-        for i in 0..p {
-            s.ue[i] = s.uh[i] + du[i];
-            s.ve[i] = s.vh[i] + dv[i];
         }
     }
 }

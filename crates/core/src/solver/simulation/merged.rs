@@ -457,19 +457,14 @@ impl Simulation {
         if !self.scratch.fused_end {
             return self.ensure_projected_all();
         }
+        self.forces_response_by_columns();
         let p = self.tables.p;
-        let (tb, st, s) = (&self.tables, &self.state, &mut self.scratch);
-        let (du, dv) = (&mut s.du[..p], &mut s.dv[..p]);
-        du.fill(0.0);
-        dv.fill(0.0);
-        for &j in &st.active {
-            tb.add_full_step_response(j, s.q1[j], s.q2[j], du, dv);
-        }
+        let (st, s) = (&self.state, &mut self.scratch);
         // (the trial's set is the contact set: its rows are projected)
         for i in 0..p {
             if !st.contact[i] {
-                s.uh[i] = s.ue[i] - du[i];
-                s.vh[i] = s.ve[i] - dv[i];
+                s.uh[i] = s.ue[i] - s.du[i];
+                s.vh[i] = s.ve[i] - s.dv[i];
             }
         }
         s.projected_all = true;
@@ -479,7 +474,7 @@ impl Simulation {
         #[cfg(debug_assertions)]
         {
             let (u, v) = (&mut s.merged.known_x, &mut s.merged.known_v);
-            s.free.project_on(&tb.basis, u, v, &self.threads);
+            s.free.project_on(&self.tables.basis, u, v, &self.threads);
             let scale = |w: &[f64]| w.iter().fold(f64::MIN_POSITIVE, |m, x| m.max(x.abs()));
             let (su, sv) = (scale(u), scale(v));
             for i in (0..p).filter(|&i| !st.contact[i]) {
