@@ -233,7 +233,9 @@ impl SurfaceGrid {
             // (`u >= 0`: the truncation is the floor, without a libm call)
             let k = (u as i64).min(self.nx as i64 - 1);
             let m = k as usize;
-            Ok((m, (m + 1) % self.nx, (u - k as f64).clamp(0.0, 1.0)))
+            // (the wrap without an integer division)
+            let m1 = if m + 1 == self.nx { 0 } else { m + 1 };
+            Ok((m, m1, (u - k as f64).clamp(0.0, 1.0)))
         } else {
             let last = (self.nx - 1) as f64;
             if !(u >= -GRID_TOLERANCE && u <= last + GRID_TOLERANCE) {
@@ -348,8 +350,10 @@ fn rem_euclid_exact(u: f64, n: f64) -> f64 {
         return u;
     }
     if (0.0..4_503_599_627_370_496.0).contains(&u) {
-        // (`u / n >= 0` below 2^52: the truncation is the floor)
-        let k = (u / n) as u64 as f64;
+        // (`u / n >= 0` below 2^52: the truncation is the floor, and a
+        // signed conversion is one instruction where an unsigned one is
+        // several)
+        let k = (u / n) as i64 as f64;
         let r = u - k * n;
         if r < 0.0 {
             return u - (k - 1.0) * n;

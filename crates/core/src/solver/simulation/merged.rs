@@ -77,6 +77,9 @@ pub(super) struct MergedScratch {
     known: ModalState,
     known_x: Vec<f64>,
     known_v: Vec<f64>,
+    /// `known`, `known_x` and `known_v` hold zeros (no release wrote
+    /// them since they were cleared): a step without one clears nothing.
+    known_clear: bool,
     /// A released point's load, or a landing's unit response, as a state
     /// at the step end.
     load: ModalState,
@@ -142,6 +145,7 @@ impl MergedScratch {
             known: zero(),
             known_x: vec![0.0; n],
             known_v: vec![0.0; n],
+            known_clear: true,
             load: zero(),
             g1: vec![0.0; n],
             g2: vec![0.0; n],
@@ -264,9 +268,12 @@ impl Simulation {
             m.z_done = 0;
             m.late_tau_s.clear();
             m.early.clear();
-            m.known.reset();
-            m.known_x.fill(0.0);
-            m.known_v.fill(0.0);
+            if !m.known_clear {
+                m.known.reset();
+                m.known_x.fill(0.0);
+                m.known_v.fill(0.0);
+                m.known_clear = true;
+            }
         }
         let mut solves = 0u32;
         loop {
@@ -473,6 +480,7 @@ impl Simulation {
         // known loads' buffers, cleared by the merged step next, hold it)
         #[cfg(debug_assertions)]
         {
+            s.merged.known_clear = false;
             let (u, v) = (&mut s.merged.known_x, &mut s.merged.known_v);
             s.free.project_on(&self.tables.basis, u, v, &self.threads);
             let scale = |w: &[f64]| w.iter().fold(f64::MIN_POSITIVE, |m, x| m.max(x.abs()));
@@ -530,6 +538,7 @@ impl Simulation {
         m.load
             .add_gauss_forces(&tb.basis, &m.tab, &[j], &m.g1, &m.g2);
         (m.g1[j], m.g2[j]) = (0.0, 0.0);
+        m.known_clear = false;
         m.known.add(&m.load);
         match &tb.tau_interp {
             Some(ti) if ti.has_columns() => {
