@@ -528,18 +528,27 @@ impl Simulation {
         // `dt − θ`): one table instead of `Φ(dt − θ)` of a step of `θ`
         let tau = dt - theta;
         let at = |y: f64| qs + (qe - qs) * (theta + tau * y) / dt;
-        m.load.reset();
+        let columns = tb.tau_interp.as_ref().is_some_and(|ti| ti.has_columns());
+        // (the step's first release, where its load is not projected: the
+        // load formed in the clear known state itself, the same sums)
+        let direct = columns && m.known_clear;
+        let load = if direct {
+            &mut m.known
+        } else {
+            m.load.reset();
+            &mut m.load
+        };
         (m.g1[j], m.g2[j]) = (q1, q2);
-        m.load
-            .add_gauss_forces(&tb.basis, &tb.full, &[j], &m.g1, &m.g2);
+        load.add_gauss_forces(&tb.basis, &tb.full, &[j], &m.g1, &m.g2);
         tb.short_table(tau, &mut m.tab);
         let (r1, r2) = (-at(ya), -at(yb));
         (m.g1[j], m.g2[j]) = (r1, r2);
-        m.load
-            .add_gauss_forces(&tb.basis, &m.tab, &[j], &m.g1, &m.g2);
+        load.add_gauss_forces(&tb.basis, &m.tab, &[j], &m.g1, &m.g2);
         (m.g1[j], m.g2[j]) = (0.0, 0.0);
+        if !direct {
+            m.known.add(&m.load);
+        }
         m.known_clear = false;
-        m.known.add(&m.load);
         match &tb.tau_interp {
             Some(ti) if ti.has_columns() => {
                 tb.add_full_step_response(j, q1, q2, &mut m.known_x, &mut m.known_v);
