@@ -25,14 +25,36 @@ pub struct PointsRoad {
     /// end and its blended cubic ([`SurfaceGrid::blend_cubic`]): a point
     /// crosses a cell in several steps (a 2 mm cell in 13 steps of 0.15
     /// mm), and the cubic is the same numbers whenever it is formed.
-    cells: Vec<CellCubic>,
+    cells: SurfaceCells,
 }
 
-/// A cell (`m`: its first column; `usize::MAX`: none yet) and its cubic.
-#[derive(Debug, Clone, Copy)]
-struct CellCubic {
-    m: usize,
-    c: [f64; 4],
+/// The points' cells on a surface, one array per field so that the
+/// points' fractions and cubics go through the lanes together.
+#[derive(Debug, Clone)]
+struct SurfaceCells {
+    /// The cell's first column `m` (`usize::MAX`: none yet).
+    m: Vec<usize>,
+    /// The cell's start `L` in columns along the road, unwrapped (`m`
+    /// plus whole loops), where the fraction across the cell is `u - L`
+    /// (`u`: the point's position in columns); NaN where that is not
+    /// known to be exact (before a point's first cell, behind the grid's
+    /// origin): such a point takes its cell from [`SurfaceGrid::cell`].
+    lo: Vec<f64>,
+    /// The cell's cubic in powers of that fraction, by power.
+    c: [Vec<f64>; 4],
+    /// Scratch: the points' fractions in their cells at this sample.
+    frac: Vec<f64>,
+}
+
+impl SurfaceCells {
+    fn new(p: usize) -> Self {
+        SurfaceCells {
+            m: vec![usize::MAX; p],
+            lo: vec![f64::NAN; p],
+            c: std::array::from_fn(|_| vec![0.0; p]),
+            frac: vec![0.0; p],
+        }
+    }
 }
 
 /// `(sin, cos)` of `κ_h s_n` at the step ends `s_n = s_0 + n ds` of a
@@ -81,13 +103,7 @@ impl PointsRoad {
                 .collect(),
             _ => Vec::new(),
         };
-        let cells = vec![
-            CellCubic {
-                m: usize::MAX,
-                c: [0.0; 4],
-            };
-            rows.len()
-        ];
+        let cells = SurfaceCells::new(rows.len());
         PointsRoad {
             profile,
             x_m: x_m.to_vec(),
@@ -343,43 +359,131 @@ impl PointsRoad {
         }
     }
 
-    /// [`PointsRoad::sample_all`] on a surface, each point's cell cubic
-    /// formed only when it enters a new cell (the same values: the cubic
-    /// does not depend on when it is formed).
+    /// [`PointsRoad::sample_all`] on a surface through the points' cached
+    /// cells: the fraction `u - m` of every point in its cell, then the
+    /// cell and its cubic again only where that fraction left `[0, 1)`,
+    /// then the cubics at the fractions. Where a point stays in its cell,
+    /// `u - m` is exact and is the fraction [`SurfaceGrid::cell`] gives
+    /// (which takes the same `u` and subtracts the same `m`): the same
+    /// numbers as sampling each point directly, bit for bit, with the
+    /// first and last loops in lanes.
+    #[inline]
     fn sample_surface_cached(
         g: &SurfaceGrid,
         x_m: &[f64],
         rows: &[Option<RowBlend>],
-        cells: &mut [CellCubic],
+        cells: &mut SurfaceCells,
+        s_m: f64,
+        z: &mut [f64],
+        dz: &mut [f64],
+    ) -> Result<(), (usize, OutOfRange)> {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx") {
+                #[target_feature(enable = "avx")]
+                fn wide(
+                    g: &SurfaceGrid,
+                    x_m: &[f64],
+                    rows: &[Option<RowBlend>],
+                    cells: &mut SurfaceCells,
+                    s_m: f64,
+                    z: &mut [f64],
+                    dz: &mut [f64],
+                ) -> Result<(), (usize, OutOfRange)> {
+                    PointsRoad::surface_cells_body(g, x_m, rows, cells, s_m, z, dz)
+                }
+                // SAFETY: the CPU supports AVX (checked just above).
+                return unsafe { wide(g, x_m, rows, cells, s_m, z, dz) };
+            }
+        }
+        Self::surface_cells_body(g, x_m, rows, cells, s_m, z, dz)
+    }
+
+    /// [`PointsRoad::sample_surface_cached`]'s work, built once for the
+    /// baseline CPU and once with AVX (no FMA: the same values either way).
+    #[inline(always)]
+    fn surface_cells_body(
+        g: &SurfaceGrid,
+        x_m: &[f64],
+        rows: &[Option<RowBlend>],
+        cells: &mut SurfaceCells,
         s_m: f64,
         z: &mut [f64],
         dz: &mut [f64],
     ) -> Result<(), (usize, OutOfRange)> {
         let p = x_m.len();
-        let (rows, cells, z, dz) = (&rows[..p], &mut cells[..p], &mut z[..p], &mut dz[..p]);
+        let (x0, dx) = (g.x0_m, g.dx_m);
+        let (rows, cm) = (&rows[..p], &mut cells.m[..p]);
+        let (lo, frac) = (&mut cells.lo[..p], &mut cells.frac[..p]);
+        let [c0, c1, c2, c3] = &mut cells.c;
+        let (c0, c1, c2, c3) = (&mut c0[..p], &mut c1[..p], &mut c2[..p], &mut c3[..p]);
+        let (z, dz) = (&mut z[..p], &mut dz[..p]);
+        // the fractions in the cached cells (the operations of
+        // `SurfaceGrid::cell`: `u = (x + s - x0) / dx`, then `u - m`), and
+        // how many left their cell (or have none: NaN)
+        let mut moved = 0usize;
         for i in 0..p {
-            let xs = x_m[i] + s_m;
-            let (m, m1, frac) = match g.cell(xs) {
-                Ok(cell) => cell,
-                // (off the grid across is said first, as `sample_all` does)
-                Err(e) => {
-                    return Err((i, rows[i].map_or_else(|| Self::off_the_grid(g, xs), |_| e)));
+            let f = (x_m[i] + s_m - x0) / dx - lo[i];
+            frac[i] = f;
+            moved += usize::from(!(0.0..1.0).contains(&f));
+        }
+        if moved > 0 {
+            for i in 0..p {
+                let f = frac[i];
+                if (0.0..1.0).contains(&f) {
+                    continue;
                 }
-            };
-            let cc = &mut cells[i];
-            if cc.m != m {
-                // (a point off the grid across never has a cell)
-                let Some(rows) = rows[i] else {
-                    return Err((i, Self::off_the_grid(g, xs)));
+                let xs = x_m[i] + s_m;
+                let (m, m1, fr) = match g.cell(xs) {
+                    Ok(cell) => cell,
+                    // (off the grid across is said first, as `sample_all` does)
+                    Err(e) => {
+                        return Err((i, rows[i].map_or_else(|| Self::off_the_grid(g, xs), |_| e)));
+                    }
                 };
-                *cc = CellCubic {
-                    m,
-                    c: g.blend_cubic(rows, m, m1),
-                };
+                if cm[i] != m {
+                    // (a point off the grid across never has a cell)
+                    let Some(rows) = rows[i] else {
+                        return Err((i, Self::off_the_grid(g, xs)));
+                    };
+                    let c = g.blend_cubic(rows, m, m1);
+                    (c0[i], c1[i], c2[i], c3[i]) = (c[0], c[1], c[2], c[3]);
+                    cm[i] = m;
+                }
+                lo[i] = Self::cell_start(g, xs, m, fr);
+                frac[i] = fr;
             }
-            (z[i], dz[i]) = g.cubic_at(&cc.c, frac);
+        }
+        // the cubics at the fractions (`SurfaceGrid::cubic_at`)
+        for i in 0..p {
+            let s = frac[i];
+            z[i] = ((c3[i] * s + c2[i]) * s + c1[i]) * s + c0[i];
+            dz[i] = ((3.0 * c3[i] * s + 2.0 * c2[i]) * s + c1[i]) / dx;
         }
         Ok(())
+    }
+
+    /// The start `L` of a point's cell `m` along the road, in columns and
+    /// unwrapped ([`SurfaceCells::lo`]), from the point at `xs_m` and its
+    /// fraction `frac` there. Where `u` is past the origin and inside the
+    /// cell, `u - L` for a later `u` in the same cell is exact, and so is
+    /// the fraction [`SurfaceGrid::cell`] gives (`u` less whole loops,
+    /// exactly, then less `m`): the same number. NaN (no shortcut) behind
+    /// the origin, and where the fraction was clamped at a grid's end.
+    #[inline]
+    fn cell_start(g: &SurfaceGrid, xs_m: f64, m: usize, frac: f64) -> f64 {
+        if !g.looped {
+            // (inside the cell `u - m` is the fraction, unclamped)
+            return m as f64;
+        }
+        let u = (xs_m - g.x0_m) / g.dx_m;
+        let start = u - frac;
+        let whole = (0.0..4_503_599_627_370_496.0).contains(&start) && start as i64 as f64 == start;
+        if whole && u - start == frac {
+            start
+        } else {
+            f64::NAN
+        }
     }
 
     /// The error of a point outside a surface's grid across.
@@ -502,46 +606,80 @@ mod tests {
 
     /// A surface sampled at step ends through the per-point cell cubics
     /// equals the direct sampling bit for bit: rolling forward by steps
-    /// shorter and longer than a cell, backwards, across the loop's wrap,
-    /// and on points that blend two rows, one row or sit on a row.
+    /// shorter and longer than a cell, backwards, across a looped grid's
+    /// wrap (many times) and from behind its origin, along a grid that is
+    /// not looped up to its last column, and on points that blend two
+    /// rows, one row or sit on a row.
     #[test]
     fn cached_surface_cells_equal_direct_sampling() {
         use super::super::surface::SurfaceGrid;
         use rand_chacha::ChaCha8Rng;
         use rand_chacha::rand_core::{RngCore, SeedableRng};
-        let (nx, ny, dx, dy) = (37, 5, 0.002, 0.01);
-        let mut rng = ChaCha8Rng::seed_from_u64(3);
-        let z: Vec<f64> = (0..nx * ny)
-            .map(|_| (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64 * 2e-3)
-            .collect();
-        let g = SurfaceGrid::from_heights((0.0, dx, nx), (0.0, dy, ny), true, z);
-        let xs = [-0.03, -0.011, 0.0, 0.0013, 0.02, 0.05];
-        let ys = [0.0, 0.004, 0.01, 0.0375, 0.04, 0.017];
-        let profile = Arc::new(RoadProfile::Surface(Arc::new(g)));
-        let mut cached = PointsRoad::new(profile.clone(), &xs, &ys);
-        let direct = PointsRoad::new(profile, &xs, &ys);
-        let (mut z1, mut d1, mut z2, mut d2) = ([0.0; 6], [0.0; 6], [0.0; 6], [0.0; 6]);
-        let mut s = 0.0;
-        for n in 1..3_000u64 {
-            s += match n % 500 {
-                0 => -0.013,
-                1..=99 => 1.5e-4,
-                100..=199 => 2.7e-3,
-                _ => 4e-5,
+        for (looped, nx) in [(true, 37), (false, 900)] {
+            let (ny, dx, dy) = (5, 0.002, 0.01);
+            let mut rng = ChaCha8Rng::seed_from_u64(3);
+            let z: Vec<f64> = (0..nx * ny)
+                .map(|_| (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64 * 2e-3)
+                .collect();
+            let g = SurfaceGrid::from_heights((0.0, dx, nx), (0.0, dy, ny), looped, z);
+            // (on the grid that is not looped, the points start inside it)
+            let shift = if looped { 0.0 } else { 0.031 };
+            let xs = [-0.03, -0.011, 0.0, 0.0013, 0.02, 0.05].map(|x| x + shift);
+            let ys = [0.0, 0.004, 0.01, 0.0375, 0.04, 0.017];
+            let profile = Arc::new(RoadProfile::Surface(Arc::new(g)));
+            let mut cached = PointsRoad::new(profile.clone(), &xs, &ys);
+            let direct = PointsRoad::new(profile, &xs, &ys);
+            let (mut z1, mut d1, mut z2, mut d2) = ([0.0; 6], [0.0; 6], [0.0; 6], [0.0; 6]);
+            let mut s = 0.0;
+            // (the grid that is not looped is 1.798 m long: its last
+            // column is reached by the end)
+            let (steps, every) = if looped {
+                (3_000u64, 500)
+            } else {
+                (2_480, 1_000)
             };
-            cached.sample_step(n, s, 1.5e-4, &mut z1, &mut d1).unwrap();
-            direct.sample_all(s, false, &mut z2, &mut d2).unwrap();
-            for i in 0..6 {
-                assert_eq!(
-                    z1[i].to_bits(),
-                    z2[i].to_bits(),
-                    "height, point {i}, step {n}"
+            for n in 1..steps {
+                s += match n % every {
+                    0 => -0.013,
+                    1..=99 => 1.5e-4,
+                    100..=199 => {
+                        if looped {
+                            2.7e-3
+                        } else {
+                            5e-3
+                        }
+                    }
+                    _ => 4e-5,
+                };
+                let last = !looped && n + 1 == steps;
+                if last {
+                    // exactly onto the last column: the fraction 1 of the last cell
+                    s = 1.798 - xs[5];
+                }
+                cached.sample_step(n, s, 1.5e-4, &mut z1, &mut d1).unwrap();
+                direct.sample_all(s, false, &mut z2, &mut d2).unwrap();
+                for i in 0..6 {
+                    assert_eq!(
+                        z1[i].to_bits(),
+                        z2[i].to_bits(),
+                        "height, point {i}, step {n}, looped {looped}"
+                    );
+                    assert_eq!(
+                        d1[i].to_bits(),
+                        d2[i].to_bits(),
+                        "slope, point {i}, step {n}, looped {looped}"
+                    );
+                }
+            }
+            if !looped {
+                // past the end: refused, as when sampled directly
+                let past = 1.8 - xs[5] + 0.01;
+                assert!(
+                    cached
+                        .sample_step(steps, past, 1.5e-4, &mut z1, &mut d1)
+                        .is_err()
                 );
-                assert_eq!(
-                    d1[i].to_bits(),
-                    d2[i].to_bits(),
-                    "slope, point {i}, step {n}"
-                );
+                assert!(direct.sample_all(past, false, &mut z2, &mut d2).is_err());
             }
         }
     }
