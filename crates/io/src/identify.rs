@@ -64,8 +64,10 @@ pub struct RingIdentifyRun {
     x_m: Vec<f64>,
     opts: IdentifyOptions,
     start: Instant,
-    /// What is sampled, and the rows sampled so far.
+    /// What is sampled, the rows sampled so far (their pairs and data
+    /// move to LSCE once every row is in).
     sampling: ModalModel,
+    rows_sampled: usize,
     pairs: Vec<(usize, usize)>,
     data: Vec<Vec<f64>>,
     lsce: Option<LsceRun>,
@@ -104,6 +106,7 @@ impl RingIdentifyRun {
             opts: opts.clone(),
             start,
             sampling: ring.sampling_model(x_m, opts.dt_s()),
+            rows_sampled: 0,
             pairs: Vec::with_capacity(p * (p + 1) / 2),
             data: Vec::with_capacity(p * (p + 1) / 2),
             lsce: None,
@@ -148,15 +151,13 @@ impl RingIdentifyRun {
     pub fn stage(&mut self) -> Result<Option<RingIdentification>, LsceError> {
         self.stages_done += 1;
         let (opts, p) = (&self.opts, self.x_m.len());
-        let row = if self.pairs.is_empty() {
-            0
-        } else {
-            self.pairs[self.pairs.len() - 1].0 + 1
-        };
+        // (counted apart from the pairs, which LSCE takes)
+        let row = self.rows_sampled;
         if row < p {
             let (pairs, data) = sampled_row(&self.sampling, row, opts.dt_s(), opts.num_samples());
             self.pairs.extend(pairs);
             self.data.extend(data);
+            self.rows_sampled += 1;
             return Ok(None);
         }
         if self.identification.is_none() {
@@ -414,4 +415,40 @@ fn points_xy(scene: &Scene) -> Vec<(f64, f64)> {
 /// The points' positions along the tyre (m).
 fn positions(scene: &Scene) -> Vec<f64> {
     scene.points.iter().map(|p| p.x_m).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A ring identified a stage at a time takes the stages it announces,
+    /// each row of responses sampled once (LSCE takes the sampled pairs:
+    /// counting the rows from them sampled every row again), and gives
+    /// what [`identify_ring`] gives.
+    #[test]
+    fn a_ring_run_takes_the_stages_it_announces() {
+        // (the paper's ring and identification, three of its points)
+        let (ring, opts) = (RingParams::default(), IdentifyOptions::default());
+        let x_m = [-0.025, 0.0, 0.025];
+        let mut run = RingIdentifyRun::new(&ring, &x_m, &opts).unwrap();
+        let announced = run.num_stages();
+        let mut calls = 0;
+        let staged = loop {
+            calls += 1;
+            assert!(
+                calls <= announced,
+                "more stages than the {announced} announced"
+            );
+            if let Some(id) = run.stage().unwrap() {
+                break id;
+            }
+        };
+        assert_eq!((calls, run.stages_done()), (announced, announced));
+        // every pair once, in row order
+        let pairs = &staged.responses.pairs;
+        assert_eq!(pairs.len(), 6);
+        assert!(pairs.windows(2).all(|w| w[0] < w[1]), "{pairs:?}");
+        let whole = identify_ring(&ring, &x_m, &opts).unwrap();
+        assert_eq!(staged.identification.modes, whole.identification.modes);
+    }
 }
