@@ -106,6 +106,9 @@ pub(super) struct MergedScratch {
     slots: Vec<f64>,
     z: Vec<f64>,
     z0: Vec<f64>,
+    /// The kept inverse's trial solution in `z0`'s layout: `z0` itself
+    /// while no release has added a known load (the same right-hand side).
+    trial_x: Vec<f64>,
     /// The bordered system's Schur complement and its solver.
     schur: DenseSolver,
     /// The borders in the order of the step's events, and how many of
@@ -162,6 +165,7 @@ impl MergedScratch {
             // (two borders per event at most: a spring that lets go and lands)
             z: vec![0.0; 8 * MERGED_EVENTS * cap],
             z0: vec![0.0; 2 * cap],
+            trial_x: vec![0.0; 2 * cap],
             schur: DenseSolver::new(4 * MERGED_EVENTS),
             border: Vec::with_capacity(2 * MERGED_EVENTS),
             z_done: 0,
@@ -232,8 +236,13 @@ impl Simulation {
             m.trial_set.clear();
             m.trial_kept = kept;
             if m.trial_kept {
-                // (the kept inverse's slot order)
+                // (the kept inverse's slot order, and the trial's solution
+                // in it: `A⁻¹ b` of the bordered solve before any release)
                 m.trial_set.extend_from_slice(self.factors.updated.points());
+                let n0 = m.trial_set.len();
+                for (r, &a) in m.trial_set.iter().enumerate() {
+                    (m.trial_x[r], m.trial_x[n0 + r]) = (self.scratch.q1[a], self.scratch.q2[a]);
+                }
             } else {
                 m.trial_set.extend_from_slice(&self.state.active);
             }

@@ -105,6 +105,13 @@ impl BorderedInverse {
         B * self.points.len()
     }
 
+    /// Entry `(r, c)` of the inverse `M⁻¹` (slot order): column `c` is
+    /// `M⁻¹ e_c`, read where a solve would sum it.
+    #[inline]
+    pub fn inverse_entry(&self, r: usize, c: usize) -> f64 {
+        self.inv[r * self.n() + c]
+    }
+
     /// Sets the inverse of the system of `points` from `inv` (`n × n`
     /// row-major, in slot order: a new factorisation's); `entry` as for
     /// [`BorderedInverse::join`] gives the system it inverts.

@@ -16,6 +16,30 @@ enum TrialSolver<'a> {
 }
 
 impl TrialSolver<'_> {
+    /// `z ← A⁻¹ e_u` (`u`: unknown `c n + k` in the factorisation's
+    /// layout, `c` of trial entry `k`): through the kept inverse the
+    /// column itself (`O(n)`, the entries a solve would sum with zeros),
+    /// through a factorisation a solve.
+    fn unit(&mut self, c: usize, k: usize, z: &mut [f64]) {
+        let n = z.len() / 2;
+        match self {
+            TrialSolver::Factored(solver) => {
+                z.fill(0.0);
+                z[c * n + k] = 1.0;
+                solver.solve(z);
+            }
+            TrialSolver::Kept(inv, _) => {
+                let col = 2 * k + c;
+                for a in 0..n {
+                    (z[a], z[n + a]) = (
+                        inv.inverse_entry(2 * a, col),
+                        inv.inverse_entry(2 * a + 1, col),
+                    );
+                }
+            }
+        }
+    }
+
     /// `z ← A⁻¹ z` with `z` in the factorisation's layout (`2n` values).
     fn solve(&mut self, z: &mut [f64]) {
         match self {
@@ -64,8 +88,16 @@ impl Simulation {
                 let z = &mut m.z[(2 * b + c) * big_n..(2 * b + c + 1) * big_n];
                 match *border {
                     Border::Left(k) => {
-                        z.fill(0.0);
-                        z[c * n0 + k] = 1.0;
+                        solver.unit(c, k, z);
+                        // (debug builds: the column is what a solve gives)
+                        #[cfg(debug_assertions)]
+                        {
+                            let e = &mut m.rhs[..big_n];
+                            e.fill(0.0);
+                            e[c * n0 + k] = 1.0;
+                            solver.solve(e);
+                            debug_assert!(e.iter().zip(z.iter()).all(|(a, b)| a == b));
+                        }
                     }
                     Border::Late(l, _) => {
                         let slot = 2 * l + c;
@@ -73,21 +105,41 @@ impl Simulation {
                             z[r] = units[0][slot * p + a];
                             z[n0 + r] = units[1][slot * p + a];
                         }
+                        if big_n > 0 {
+                            solver.solve(z);
+                        }
                     }
-                }
-                if big_n > 0 {
-                    solver.solve(z);
                 }
             }
         }
         m.z_done = m.border.len();
-        // A⁻¹ b
-        for (r, &a) in trial.iter().enumerate() {
-            m.z0[r] = s.re[a] - s.uh[a] - m.known_x[a];
-            m.z0[n0 + r] = s.rde[a] - s.vh[a] - m.known_v[a];
-        }
-        if big_n > 0 {
-            solver.solve(&mut m.z0[..big_n]);
+        // A⁻¹ b: the kept inverse's trial solution while the known loads
+        // are zero (`b` is then the trial's right-hand side, `re - uh`)
+        if m.trial_kept && m.known_clear {
+            m.z0[..big_n].copy_from_slice(&m.trial_x[..big_n]);
+            // (debug builds: the same numbers as the solve)
+            #[cfg(debug_assertions)]
+            {
+                let b = &mut m.rhs[..big_n];
+                for (r, &a) in trial.iter().enumerate() {
+                    b[r] = s.re[a] - s.uh[a] - m.known_x[a];
+                    b[n0 + r] = s.rde[a] - s.vh[a] - m.known_v[a];
+                }
+                solver.solve(b);
+                debug_assert!(
+                    b.iter()
+                        .zip(&m.z0[..big_n])
+                        .all(|(x, y)| x.to_bits() == y.to_bits())
+                );
+            }
+        } else {
+            for (r, &a) in trial.iter().enumerate() {
+                m.z0[r] = s.re[a] - s.uh[a] - m.known_x[a];
+                m.z0[n0 + r] = s.rde[a] - s.vh[a] - m.known_v[a];
+            }
+            if big_n > 0 {
+                solver.solve(&mut m.z0[..big_n]);
+            }
         }
         // the border rows R against x (`R z` for a column `z`), D, and d
         let row_dot = |border: Border, rho: usize, z: &[f64]| -> f64 {
