@@ -370,7 +370,7 @@ pub fn steps_markdown(rows: &[PresetSteps], timing: Timing) -> String {
          Columns: *steps*, steps of the timed run; *µs/step*, wall time per step (µs/step); \
          *events/step*, located events per step; *real time*, simulated s per wall s; \
          *instructions/step*, callgrind's instructions per rolling step (the count \
-         of a run to the ramp's end + 0.02 s less that of a run to its end + 0.01 s, over the \
+         of a run to the ramp's end + 0.21 s less that of a run to its end + 0.01 s, over the \
          steps between; `-` where not counted: valgrind not installed, or `--quick`).\n\n\
          | preset | points | modes | dt (s) | steps | µs/step | events/step | real time | instructions/step |\n\
          |---|---|---|---|---|---|---|---|---|\n",
