@@ -37,8 +37,9 @@ struct SurfaceCells {
     /// The cell's start `L` in columns along the road, unwrapped (`m`
     /// plus whole loops), where the fraction across the cell is `u - L`
     /// (`u`: the point's position in columns); NaN where that is not
-    /// known to be exact (before a point's first cell, behind the grid's
-    /// origin): such a point takes its cell from [`SurfaceGrid::cell`].
+    /// known to be exact (before a point's first cell; on a looped grid,
+    /// behind its origin or where the fraction was clamped): such a point
+    /// takes its cell from [`SurfaceGrid::cell`].
     lo: Vec<f64>,
     /// The cell's cubic in powers of that fraction, by power.
     c: [Vec<f64>; 4],
@@ -468,8 +469,10 @@ impl PointsRoad {
     /// fraction `frac` there. Where `u` is past the origin and inside the
     /// cell, `u - L` for a later `u` in the same cell is exact, and so is
     /// the fraction [`SurfaceGrid::cell`] gives (`u` less whole loops,
-    /// exactly, then less `m`): the same number. NaN (no shortcut) behind
-    /// the origin, and where the fraction was clamped at a grid's end.
+    /// exactly, then less `m`): the same number. On a looped grid NaN (no
+    /// shortcut) behind the origin and where the fraction was clamped; on
+    /// one that is not looped `m` itself (`u - m` outside `[0, 1)` sends
+    /// the point to [`SurfaceGrid::cell`]).
     #[inline]
     fn cell_start(g: &SurfaceGrid, xs_m: f64, m: usize, frac: f64) -> f64 {
         if !g.looped {

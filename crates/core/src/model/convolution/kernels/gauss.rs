@@ -1,9 +1,10 @@
 //! The force kernel: the response of the states to the active points'
 //! Gauss-point forces over a step (method §3.3), `(x, v) += w1 (b · q1) +
-//! w2 (b · q2)`. A scalar body, and on x86-64 with AVX two lane builds
-//! picked by size: four states at a time for a few states, chunks of
-//! states with the active columns streamed in groups for many. No FMA:
-//! every build gives the same values to the bit.
+//! w2 (b · q2)`. A scalar body, and on x86-64 with AVX three lane builds
+//! picked by size: four states at a time for a few states, blocks of 16
+//! states in registers for tens of them, chunks of states with the active
+//! columns streamed in groups for hundreds. No FMA: every build gives the
+//! same values to the bit.
 
 use super::super::StepColumns;
 
@@ -97,7 +98,7 @@ fn add_gauss_forces_at<const RANGE: bool>(
 /// [`BLOCK`] states in registers ([`add_gauss_forces_blocked_avx`]);
 /// fewer take [`add_gauss_forces_small_avx`], whose set-up is a few
 /// instructions (a single-mode scene's step spent 60 more in the chunked
-/// kernel's).
+/// kernel's, which these sizes took before).
 #[cfg(target_arch = "x86_64")]
 const AVX_BLOCKED_FROM_STATES: usize = BLOCK;
 
@@ -105,7 +106,7 @@ const AVX_BLOCKED_FROM_STATES: usize = BLOCK;
 /// columns in chunks ([`add_gauss_forces_avx`]): below, every active
 /// column of a block of states is in the cache, and the chunked kernel's
 /// stores and reloads of its projections are the larger cost (the paper's
-/// preset spent 110 instructions a step more in it).
+/// preset spent 102 instructions a step more in it).
 #[cfg(target_arch = "x86_64")]
 const AVX_CHUNKED_FROM_STATES: usize = CHUNK;
 
