@@ -77,12 +77,20 @@ fn add_gauss_forces_at<const RANGE: bool>(
         if n >= 4 && std::arch::is_x86_feature_detected!("avx") {
             if n < AVX_BLOCKED_FROM_STATES {
                 // SAFETY: as below
-                unsafe { add_gauss_forces_small_avx(c, s0, inp_t, stride, active, q1, q2, x, v) };
+                unsafe {
+                    add_gauss_forces_registers_avx::<false>(
+                        c, s0, inp_t, stride, active, q1, q2, x, v,
+                    )
+                };
                 return;
             }
             if n < AVX_CHUNKED_FROM_STATES {
                 // SAFETY: as below
-                unsafe { add_gauss_forces_blocked_avx(c, s0, inp_t, stride, active, q1, q2, x, v) };
+                unsafe {
+                    add_gauss_forces_registers_avx::<true>(
+                        c, s0, inp_t, stride, active, q1, q2, x, v,
+                    )
+                };
                 return;
             }
             // SAFETY: the CPU supports AVX (checked just above); the lengths
@@ -95,8 +103,8 @@ fn add_gauss_forces_at<const RANGE: bool>(
 }
 
 /// Fewest states for which [`add_gauss_forces`] keeps blocks of
-/// [`BLOCK`] states in registers ([`add_gauss_forces_blocked_avx`]);
-/// fewer take [`add_gauss_forces_small_avx`], whose set-up is a few
+/// [`BLOCK`] states in registers ([`add_gauss_forces_registers_avx`]);
+/// fewer take its build without blocks, whose set-up is a few
 /// instructions (a single-mode scene's step spent 60 more in the chunked
 /// kernel's, which these sizes took before).
 #[cfg(target_arch = "x86_64")]
@@ -110,10 +118,12 @@ const AVX_BLOCKED_FROM_STATES: usize = BLOCK;
 #[cfg(target_arch = "x86_64")]
 const AVX_CHUNKED_FROM_STATES: usize = CHUNK;
 
-/// [`add_gauss_forces`] with AVX lanes for a few states: four states at a
-/// time, the active columns summed into them in the list's order from
-/// zero, the rest one by one. Same operations in the same order as
-/// [`add_gauss_forces_body`] (no FMA): bit-identical.
+/// [`add_gauss_forces`] with AVX lanes for up to a few hundred states,
+/// every sum in registers: with `BLOCKS`, blocks of [`BLOCK`] states while
+/// the active columns go by in the list's order from zero; then four
+/// states at a time, then one by one (without `BLOCKS` only these: a few
+/// states, whose kernel's set-up is a few instructions). Same operations
+/// in the same order as [`add_gauss_forces_body`] (no FMA): bit-identical.
 ///
 /// # Safety
 /// AVX; `x`, `v` and the weight columns from `s0` hold `x.len()` states,
@@ -122,66 +132,7 @@ const AVX_CHUNKED_FROM_STATES: usize = CHUNK;
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 #[allow(clippy::too_many_arguments)]
-unsafe fn add_gauss_forces_small_avx(
-    c: &StepColumns,
-    s0: usize,
-    inp_t: &[f64],
-    stride: usize,
-    active: &[usize],
-    q1: &[f64],
-    q2: &[f64],
-    x: &mut [f64],
-    v: &mut [f64],
-) {
-    use std::arch::x86_64::*;
-    let n = x.len();
-    let quads = n - n % 4;
-    let (xp, vp) = (x.as_mut_ptr(), v.as_mut_ptr());
-    // (raw pointers throughout: this kernel is the whole force step of a
-    // small scene, where bounds checks on every column and force were a
-    // fifth of its instructions; the caller asserted every length)
-    let base = inp_t.as_ptr().wrapping_add(s0);
-    let w = [&c.w1x, &c.w2x, &c.w1v, &c.w2v].map(|col| col.as_ptr().wrapping_add(s0));
-    let (q1p, q2p) = (q1.as_ptr(), q2.as_ptr());
-    // SAFETY: k + 4 <= quads <= n, every column holds n states from s0 and
-    // every active j indexes q1, q2 (as the caller guarantees)
-    unsafe {
-        let mut k = 0;
-        while k < quads {
-            let (mut b1, mut b2) = (_mm256_setzero_pd(), _mm256_setzero_pd());
-            for &j in active {
-                let b = _mm256_loadu_pd(base.add(j * stride + k));
-                b1 = _mm256_add_pd(b1, _mm256_mul_pd(b, _mm256_set1_pd(*q1p.add(j))));
-                b2 = _mm256_add_pd(b2, _mm256_mul_pd(b, _mm256_set1_pd(*q2p.add(j))));
-            }
-            add_response_quad(w, k, b1, b2, xp, vp);
-            k += 4;
-        }
-        for k in quads..n {
-            let (mut b1, mut b2) = (0.0, 0.0);
-            for &j in active {
-                let b = *base.add(j * stride + k);
-                b1 += b * *q1p.add(j);
-                b2 += b * *q2p.add(j);
-            }
-            *xp.add(k) += *w[0].add(k) * b1 + *w[1].add(k) * b2;
-            *vp.add(k) += *w[2].add(k) * b1 + *w[3].add(k) * b2;
-        }
-    }
-}
-
-/// [`add_gauss_forces`] with AVX lanes for tens of states: blocks of
-/// [`BLOCK`] states whose sums stay in registers while the active columns
-/// go by in the list's order from zero, then four states at a time, then
-/// one by one. Same operations in the same order as
-/// [`add_gauss_forces_body`] (no FMA): bit-identical.
-///
-/// # Safety
-/// As [`add_gauss_forces_small_avx`].
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx")]
-#[allow(clippy::too_many_arguments)]
-unsafe fn add_gauss_forces_blocked_avx(
+unsafe fn add_gauss_forces_registers_avx<const BLOCKS: bool>(
     c: &StepColumns,
     s0: usize,
     inp_t: &[f64],
@@ -195,8 +146,12 @@ unsafe fn add_gauss_forces_blocked_avx(
     use std::arch::x86_64::*;
     const LANES: usize = BLOCK / 4;
     let n = x.len();
-    let (full, quads) = (n - n % BLOCK, n - n % 4);
+    let full = if BLOCKS { n - n % BLOCK } else { 0 };
+    let quads = n - n % 4;
     let (xp, vp) = (x.as_mut_ptr(), v.as_mut_ptr());
+    // (raw pointers throughout: this kernel is the whole force step of a
+    // small scene, where bounds checks on every column and force were a
+    // fifth of its instructions; the caller asserted every length)
     let base = inp_t.as_ptr().wrapping_add(s0);
     let w = [&c.w1x, &c.w2x, &c.w1v, &c.w2v].map(|col| col.as_ptr().wrapping_add(s0));
     let (q1p, q2p) = (q1.as_ptr(), q2.as_ptr());
