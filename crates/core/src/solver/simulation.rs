@@ -11,6 +11,7 @@
 //! (`active_set.rs`).
 
 mod active_set;
+mod columns;
 mod compliant;
 pub mod contact;
 mod contributions;

@@ -266,10 +266,8 @@ impl Simulation {
         let (du, dv) = (&mut s.du[..p], &mut s.dv[..p]);
         du.fill(0.0);
         dv.fill(0.0);
-        for &j in active {
-            self.tables
-                .add_full_step_response(j, s.q1[j], s.q2[j], du, dv);
-        }
+        self.tables
+            .add_set_full_step_response(active, &s.q1, &s.q2, du, dv);
     }
 }
 

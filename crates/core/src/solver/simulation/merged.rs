@@ -643,9 +643,7 @@ impl Simulation {
             ue[i] = s.uh[i] + m.known_x[i];
             ve[i] = s.vh[i] + m.known_v[i];
         }
-        for &j in &set[..full] {
-            tb.add_full_step_response(j, s.q1[j], s.q2[j], ue, ve);
-        }
+        tb.add_set_full_step_response(&set[..full], &s.q1, &s.q2, ue, ve);
         for (l, &j) in set[full..].iter().enumerate() {
             for (c, q) in [s.q1[j], s.q2[j]].into_iter().enumerate() {
                 let slot = 2 * l + c;

@@ -13,6 +13,7 @@
 //! a fourth, derived part: a function of the tables and the active set
 //! alone, rebuilt bit for bit when missing.
 
+use super::columns::{add_set_response, column_response};
 use super::merged::MergedScratch;
 use super::residual::{add_residual, split_residual};
 use super::{RunStats, SolverOptions};
@@ -228,27 +229,29 @@ impl SimTables {
             if std::arch::is_x86_feature_detected!("avx2") {
                 #[target_feature(enable = "avx2")]
                 fn wide(cols: &[f64], p: usize, q1: f64, q2: f64, u: &mut [f64], v: &mut [f64]) {
-                    columns_response(cols, p, q1, q2, u, v)
+                    column_response(cols, p, 0..p, q1, q2, u, v)
                 }
                 // SAFETY: the CPU supports AVX2 (checked just above).
                 return unsafe { wide(cols, p, q1, q2, u, v) };
             }
         }
-        columns_response(cols, p, q1, q2, u, v)
+        column_response(cols, p, 0..p, q1, q2, u, v)
     }
-}
 
-/// `u += G_x1 q1 + G_x2 q2`, `v += G_v1 q1 + G_v2 q2` down one point's four
-/// contiguous influence columns `cols` (`x1, x2, v1, v2`, `p` values each).
-#[inline(always)]
-fn columns_response(cols: &[f64], p: usize, q1: f64, q2: f64, u: &mut [f64], v: &mut [f64]) {
-    let (gx1, rest) = cols.split_at(p);
-    let (gx2, rest) = rest.split_at(p);
-    let (gv1, gv2) = rest.split_at(p);
-    let (u, v) = (&mut u[..p], &mut v[..p]);
-    for i in 0..p {
-        u[i] += gx1[i] * q1 + gx2[i] * q2;
-        v[i] += gv1[i] * q1 + gv2[i] * q2;
+    /// [`SimTables::add_full_step_response`] of every point of `set` in
+    /// turn, with the forces `q1[j]`, `q2[j]` indexed by point: the same
+    /// values to the bit, each point's sums kept in registers over the
+    /// whole set ([`add_set_response`]).
+    #[inline]
+    pub fn add_set_full_step_response(
+        &self,
+        set: &[usize],
+        q1: &[f64],
+        q2: &[f64],
+        u: &mut [f64],
+        v: &mut [f64],
+    ) {
+        add_set_response(&self.full_inf_cols, self.p, set, q1, q2, u, v);
     }
 }
 
