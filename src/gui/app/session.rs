@@ -78,11 +78,19 @@ impl App {
         App::with_default_preset()
     }
 
+    /// The session to keep: the scene as edited, unsaved changes included
+    /// (a window closed by the system keeps them), except after a quit
+    /// that discarded them, which keeps the last saved version.
     pub(super) fn session(&self) -> Session {
+        let (scene, dirty) = if self.allow_close {
+            (&self.doc.saved, false)
+        } else {
+            (&self.doc.scene, self.is_dirty())
+        };
         Session {
-            scene_ron: self.doc.scene.to_ron_string(),
+            scene_ron: scene.to_ron_string(),
             path: self.doc.path.clone(),
-            dirty: self.is_dirty(),
+            dirty,
             classroom: self.classroom.on,
             classroom_point: self.classroom.point,
             theme_before_classroom: self.classroom.user_theme(),
@@ -168,6 +176,30 @@ mod tests {
         let mut storage = MemStorage::default();
         App::with_default_preset().save_session(&mut storage);
         assert!(!App::restore(Some(&storage)).title().contains("from a link"));
+    }
+
+    /// Unsaved edits come back after a restart, but not once "Discard
+    /// changes" answered the quit: the next session has the saved scene.
+    #[test]
+    fn edits_discarded_on_quit_do_not_come_back() {
+        let mut app = App::with_default_preset();
+        let saved_speed = app.doc.scene.speed_mps;
+        let mut edited = app.doc.scene.clone();
+        edited.speed_mps = saved_speed / 2.0;
+        app.apply(Command::EditScene(Box::new(edited)));
+        assert!(app.is_dirty());
+        let mut storage = MemStorage::default();
+        app.save_session(&mut storage);
+        let restored = App::restore(Some(&storage));
+        assert_eq!(restored.doc.scene.speed_mps, saved_speed / 2.0, "kept");
+        assert!(restored.is_dirty());
+        app.apply(Command::Quit);
+        assert!(matches!(app.confirm, Some(Discarding::Quit)), "asks first");
+        app.discard_and(Discarding::Quit);
+        app.save_session(&mut storage);
+        let restored = App::restore(Some(&storage));
+        assert_eq!(restored.doc.scene.speed_mps, saved_speed, "discarded");
+        assert!(!restored.is_dirty());
     }
 
     #[test]
