@@ -48,18 +48,38 @@ pub const SHIPPED: &[(&str, &str, &str)] = &[
 /// beside them: listed in the desktop's Presets menu when the repository's
 /// `presets/` folder holds them, and opened from there (so that their road
 /// files are found).
-pub const SHIPPED_WITH_FILES: &[(&str, &str)] = &[(
-    "Patch on a Belgian block track (OpenCRG file)",
-    "patch_belgian_block.ron",
-)];
+pub const SHIPPED_WITH_FILES: &[(&str, &str)] = &[
+    (
+        "Patch on a chip seal (surface file, 96 points)",
+        "patch_chip_seal.ron",
+    ),
+    (
+        "Patch across a wheel path (surface file, 96 points)",
+        "patch_wheel_path.ron",
+    ),
+    (
+        "Patch on a Belgian block track (OpenCRG file)",
+        "patch_belgian_block.ron",
+    ),
+    (
+        "Measured: five points from a UFF file",
+        "measured_example.ron",
+    ),
+    ("FE modes of a plate (UFF file)", "fe_plate.ron"),
+];
 
-/// The path of a [`SHIPPED_WITH_FILES`] preset in the repository's
-/// `presets/` folder, if it is there.
+/// The path of a [`SHIPPED_WITH_FILES`] preset: in the repository's
+/// `presets/` folder, else in a `presets/` folder beside the executable
+/// (an installed copy), if it is there.
 pub fn shipped_with_files_path(file: &str) -> Option<std::path::PathBuf> {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("presets")
-        .join(file);
-    p.is_file().then_some(p)
+    let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+    let beside = std::env::current_exe()
+        .ok()
+        .and_then(|exe| exe.parent().map(|d| d.join("presets")));
+    std::iter::once(repo)
+        .chain(beside)
+        .map(|dir| dir.join(file))
+        .find(|p| p.is_file())
 }
 
 /// `(menu name, file name, RON text)` of every guided preset, in tour order.
@@ -132,7 +152,7 @@ pub const GUIDED: &[(&str, &str, &str)] = &[
 
 #[cfg(test)]
 mod tests {
-    use super::GUIDED;
+    use super::*;
     use crate::Scene;
 
     #[test]
@@ -159,5 +179,31 @@ mod tests {
             })
             .count();
         assert_eq!(on_disk, GUIDED.len());
+    }
+
+    /// Every preset of the repository's `presets/` folder is in a menu:
+    /// built in, guided, or opened from the folder (those reading a file
+    /// beside them), and each of the latter opens with its file.
+    #[test]
+    fn every_shipped_preset_is_in_a_menu_and_opens() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+        let listed: Vec<&str> = SHIPPED
+            .iter()
+            .map(|(_, f, _)| *f)
+            .chain(GUIDED.iter().map(|(_, f, _)| *f))
+            .chain(SHIPPED_WITH_FILES.iter().map(|(_, f)| *f))
+            .collect();
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let name = entry.unwrap().file_name().into_string().unwrap();
+            if name.ends_with(".ron") {
+                assert!(listed.contains(&name.as_str()), "{name} is in no menu");
+            }
+        }
+        for (_, file) in SHIPPED_WITH_FILES {
+            let path = shipped_with_files_path(file).expect(file);
+            if let Err(e) = Scene::load(&path) {
+                panic!("{}: {e}", path.display());
+            }
+        }
     }
 }

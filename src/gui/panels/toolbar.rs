@@ -65,13 +65,7 @@ fn file_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
     {
         cmds.push(Command::OpenDialog);
     }
-    ui.menu_button("Open shipped preset", |ui| {
-        for (k, (name, file, _)) in SHIPPED.iter().enumerate() {
-            if ui.button(*name).on_hover_text(*file).clicked() {
-                cmds.push(Command::OpenPreset(k));
-            }
-        }
-    });
+    ui.menu_button("Open shipped preset", |ui| preset_items(ui, cmds));
     ui.separator();
     if ui
         .add(egui::Button::new("Save").shortcut_text("Ctrl+S"))
