@@ -29,6 +29,18 @@ fn a_narrow_window_keeps_the_editing_panel_behind_a_button() {
     h.get_by_label("Back to the views").click();
     h.run_steps(2);
     assert!(h.query_by_label("road.amplitude_m").is_none());
+    // a view chosen from the View menu while editing comes in its place
+    h.get_by_label("Edit the scene").click();
+    h.run_steps(2);
+    assert!(h.query_by_label("road.amplitude_m").is_some());
+    h.get_by_label("View").click();
+    h.run_steps(2);
+    h.get_by_label("Time plots").click();
+    h.run_steps(2);
+    assert!(
+        h.query_by_label("road.amplitude_m").is_none(),
+        "the editing panel stayed over the chosen view"
+    );
     // a wide window: the panel beside the views, as before
     let mut wide = harness_sized(App::with_default_preset(), [1280.0, 720.0]);
     settle(&mut wide);

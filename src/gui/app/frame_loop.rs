@@ -135,6 +135,8 @@ impl App {
             classroom: self.classroom.on,
             mode_bars: self.classroom.bars,
             exporting_frames: self.handles.frames_job.is_some(),
+            editing: self.edit_panel_open
+                && ctx.content_rect().width() < crate::gui::widgets::NARROW_PX,
         };
         // a phone: classroom mode's presenter layout does not fit it
         let narrow = ctx.content_rect().width() < crate::gui::widgets::NARROW_PX;

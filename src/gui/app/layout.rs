@@ -10,6 +10,8 @@ impl App {
         // the presenter layout has one view; another one leaves it
         self.set_classroom(false);
         self.view = v;
+        // (a phone: the views come back in place of the editing panel)
+        self.edit_panel_open = false;
     }
 
     /// Classroom mode on (presenter layout, slow motion) or off; off gives

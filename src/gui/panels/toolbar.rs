@@ -20,6 +20,9 @@ pub struct ToolbarStatus {
     pub classroom: bool,
     pub mode_bars: bool,
     pub exporting_frames: bool,
+    /// The editing panel is shown in place of the views (a phone): a view
+    /// chosen, even the current one, brings the views back.
+    pub editing: bool,
 }
 
 /// The menu bar. Long but flat: the File, Presets, View and Help menus one
@@ -192,7 +195,7 @@ fn view_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         let r = ui
             .selectable_label(st.view == v, v.label())
             .on_hover_text(format!("key {key}"));
-        if r.clicked() && st.view != v {
+        if r.clicked() && (st.view != v || st.editing) {
             cmds.push(Command::ShowView(v));
         }
     }
@@ -206,7 +209,7 @@ fn view_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             let r = ui
                 .selectable_label(st.view == v, v.label())
                 .on_hover_text(format!("key {}", k + 4));
-            if r.clicked() && st.view != v {
+            if r.clicked() && (st.view != v || st.editing) {
                 cmds.push(Command::ShowView(v));
             }
         }
