@@ -289,3 +289,36 @@ fn a_refused_path_keeps_the_keyboard_in_the_prompt() {
     assert_eq!(h.state().view(), view, "`2` switched the view");
     assert!(h.state().simulation().steps() >= steps, "`r` reset the run");
 }
+
+/// Save As into a folder that does not exist is refused in the prompt,
+/// which stays open with the path as typed and says why; nothing is
+/// written and the scene stays unsaved.
+#[test]
+fn save_as_into_a_missing_folder_keeps_the_prompt_and_the_path() {
+    let tmp = temp_dir();
+    let mut h = harness_sized(App::with_default_preset(), [1280.0, 720.0]);
+    settle(&mut h);
+    h.state_mut().apply(Command::SaveAsDialog);
+    h.run_steps(2);
+    let typed = tmp
+        .path()
+        .join("nodir")
+        .join("p1.ron")
+        .display()
+        .to_string();
+    h.event(egui::Event::Text(typed.clone()));
+    h.run_steps(1);
+    h.key_press(egui::Key::Enter);
+    h.run_steps(3);
+    let p = h
+        .state()
+        .file_prompt()
+        .expect("a missing folder closed the prompt");
+    assert_eq!(p.path, typed);
+    assert!(
+        p.note.as_deref().is_some_and(|n| n.contains("no folder")),
+        "{:?}",
+        p.note
+    );
+    assert!(!tmp.path().join("nodir").exists());
+}

@@ -348,7 +348,7 @@ pub fn png_window(
         return;
     }
     if go {
-        match crate::gui::chrome::file_prompt::typed_path(&s.path, "png") {
+        match crate::gui::chrome::file_prompt::typed_path_to_write(&s.path, "png") {
             Ok(path) => cmds.push(Command::ExportPng {
                 path,
                 width: s.width,

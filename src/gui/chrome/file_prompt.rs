@@ -192,6 +192,20 @@ pub fn typed_path(text: &str, ext: &str) -> Result<PathBuf, String> {
     Ok(p)
 }
 
+/// [`typed_path`] of a file to write: its folder must exist too, so that a
+/// path that cannot be written is refused in the prompt, which stays open
+/// with the path as typed, rather than after it closed.
+pub fn typed_path_to_write(text: &str, ext: &str) -> Result<PathBuf, String> {
+    let p = typed_path(text, ext)?;
+    match p.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => Err(format!(
+            "There is no folder {}: type the path of an existing folder.",
+            dir.display()
+        )),
+        _ => Ok(p),
+    }
+}
+
 /// Enter confirms and Escape cancels a prompt (as its buttons), whether or
 /// not its path field has the keyboard.
 pub fn confirm_keys(ctx: &egui::Context) -> (bool, bool) {
@@ -241,7 +255,12 @@ pub fn window(ctx: &egui::Context, prompt: &mut Option<FilePrompt>, cmds: &mut V
                     .clicked()
                     || enter
                 {
-                    match typed_path(&p.path, p.action.filter().1) {
+                    let check = if p.action == FileAction::Open {
+                        typed_path
+                    } else {
+                        typed_path_to_write
+                    };
+                    match check(&p.path, p.action.filter().1) {
                         Ok(path) => {
                             cmds.push(p.action.command(path));
                             if let Some(d) = p.then.take() {
