@@ -37,6 +37,30 @@ pub fn band_text(f: &FidelityFigures, p: usize) -> String {
     )
 }
 
+/// Why a scene has no source Green functions to compare its modes with,
+/// by the kind of its tyre, and how to get a reference.
+fn no_reference_text(tyre: &crate::scene::Tyre) -> String {
+    use crate::scene::Tyre;
+    let what = match tyre {
+        Tyre::Modal { .. } => {
+            "Its tyre is a modal model given directly (not derived from a ring tyre in this session)"
+        }
+        Tyre::Plate { .. } => {
+            "Its tyre is an orthotropic plate whose modes are in closed form: the modal model is the plate itself, not fitted to it"
+        }
+        Tyre::FeModes { .. } => {
+            "Its tyre's modes are read from a finite-element model's file as they are, not fitted to responses"
+        }
+        Tyre::Measured { .. } => {
+            "Its tyre is identified from measured responses, which this view does not compare the modes with (the Identification view, key 8, shows the fit against them)"
+        }
+        Tyre::Ring { .. } => "Its ring tyre is not the reference of this session",
+    };
+    format!(
+        "{what}, so there is nothing to measure its fidelity against. Open a ring-tyre preset (e.g. presets/paper.ron) and press “Edit as a modal model” in the tyre panel: the ring is then kept here as the reference while you detune or remove modes."
+    )
+}
+
 pub fn show(
     ui: &mut Ui,
     scene: &Scene,
@@ -48,7 +72,7 @@ pub fn show(
 ) {
     let Some(reference) = reference else {
         ui.label(RichText::new("No source Green functions for this scene.").strong());
-        ui.label("Its tyre is a modal model given directly (not derived from a ring tyre in this session), so there is nothing to measure its fidelity against. Open a ring-tyre preset (e.g. presets/paper.ron) and press “Edit as a modal model” in the tyre panel: the ring is then kept here as the reference while you detune or remove modes.");
+        ui.label(no_reference_text(&scene.tyre));
         return;
     };
     let p = scene.num_points();
@@ -268,4 +292,28 @@ fn pick(ui: &mut Ui, id: &str, name: &str, v: &mut usize, p: usize) {
         })
         .response
         .accessible_name(name);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::no_reference_text;
+    use crate::scene::{Scene, Tyre};
+
+    /// Each shipped preset without a reference is told what its tyre is:
+    /// the plate and FE presets were called modal models given directly.
+    #[test]
+    fn the_missing_reference_names_the_tyre() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+        for (file, says) in [
+            ("single_mode.ron", "modal model given directly"),
+            ("patch_texture.ron", "orthotropic plate"),
+            ("fe_plate.ron", "finite-element"),
+            ("measured_example.ron", "measured responses"),
+        ] {
+            let scene = Scene::load(&dir.join(file)).unwrap();
+            assert!(!matches!(scene.tyre, Tyre::Ring { .. }), "{file}");
+            let text = no_reference_text(&scene.tyre);
+            assert!(text.contains(says), "{file}: {text}");
+        }
+    }
 }
