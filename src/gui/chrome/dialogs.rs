@@ -298,10 +298,12 @@ pub fn png_window(
             ui.label("Displacement, force, gap and contact of the shown points over the whole run, with the scene parameters as subtitle.");
             egui::Grid::new("tirecontact.png").show(ui, |ui| {
                 ui.label("width");
-                ui.add(egui::DragValue::new(&mut s.width).range(200..=8000).suffix(" px"));
+                ui.add(egui::DragValue::new(&mut s.width).range(200..=8000).suffix(" px"))
+                    .on_hover_text("200 to 8000 px: a value outside is brought to the nearest");
                 ui.end_row();
                 ui.label("height");
-                ui.add(egui::DragValue::new(&mut s.height).range(200..=8000).suffix(" px"));
+                ui.add(egui::DragValue::new(&mut s.height).range(200..=8000).suffix(" px"))
+                    .on_hover_text("200 to 8000 px: a value outside is brought to the nearest");
                 ui.end_row();
             });
             ui.horizontal(|ui| {

@@ -102,7 +102,8 @@ fn request_form(
         )
         .accessible_name("sweep to");
         ui.label("steps");
-        ui.add(egui::DragValue::new(&mut form.steps).range(1..=500))
+        ui.add(egui::DragValue::new(&mut form.steps).range(2..=500))
+            .on_hover_text("runs from `from` to `to`, both included: 2 to 500")
             .accessible_name("sweep steps");
         ui.separator();
         let run = ui.add_enabled(
