@@ -311,6 +311,30 @@ impl Recording {
             .collect()
     }
 
+    /// The contact panel's lanes: lane `n` of point `chosen[n]` at `n`,
+    /// raised by 0.7 while in contact, drawn as steps (a change is a
+    /// vertical edge at the sample that has it): a one-sample contact is a
+    /// narrow box, not a thick line's spike.
+    fn contact_lanes(&self, chosen: &[usize], name: &dyn Fn(usize) -> String) -> Vec<Series> {
+        chosen
+            .iter()
+            .enumerate()
+            .map(|(lane, &i)| {
+                let y = |k: usize| lane as f64 + if self.contact[i][k] { 0.7 } else { 0.0 };
+                let mut pts = Vec::with_capacity(2 * self.t_s.len());
+                for k in 0..self.t_s.len() {
+                    if k > 0 && self.contact[i][k] != self.contact[i][k - 1] {
+                        pts.push((self.t_s[k], y(k - 1)));
+                    }
+                    pts.push((self.t_s[k], y(k)));
+                }
+                let mut s = Series::line(name(i), pts);
+                s.color = Some(super::figures::point_color_index(chosen, i));
+                s
+            })
+            .collect()
+    }
+
     /// Length of a sample's window (ms) for steps of `dt_s`.
     pub fn window_ms(&self, dt_s: f64) -> f64 {
         self.every as f64 * dt_s * 1e3
@@ -368,14 +392,7 @@ impl Recording {
                     ),
                     RunPanel::Contact => {
                         let chosen = self.chosen(points);
-                        let lanes = self.series(
-                            points,
-                            &|i, k| {
-                                let lane = chosen.iter().position(|&c| c == i).unwrap_or(0);
-                                lane as f64 + if self.contact[i][k] { 0.7 } else { 0.0 }
-                            },
-                            &name,
-                        );
+                        let lanes = self.contact_lanes(&chosen, &name);
                         Panel {
                             // the lanes named after their points
                             y_names: chosen.iter().map(|i| format!("p{i}")).collect(),
@@ -471,6 +488,45 @@ mod tests {
                     .all(|s| s.name != CLIPPED_IMPACTS)
             );
         }
+    }
+
+    /// The contact lanes are steps: every segment is horizontal (a state)
+    /// or vertical (a change at a sample), so that a thick line draws no
+    /// spike at a short contact; each lane sits at its height, raised while
+    /// in contact, and keeps every sample.
+    #[test]
+    fn the_contact_lanes_are_drawn_as_steps() {
+        let (rec, dt) = record(ContactScheme::Located);
+        let fig = rec.figure(&FigureSpec {
+            title: "t",
+            subtitle: "s",
+            dt_s: dt,
+            clip_impacts: true,
+            points: None,
+            panels: &[RunPanel::Contact],
+        });
+        let lanes = &fig.panels[0].series;
+        assert_eq!(lanes.len(), rec.contact.len());
+        let mut changes = 0;
+        for (lane, s) in lanes.iter().enumerate() {
+            let lane = lane as f64;
+            assert!(s.points.iter().all(|p| p.1 == lane || p.1 == lane + 0.7));
+            for w in s.points.windows(2) {
+                let (a, b) = (w[0], w[1]);
+                assert!(a.0 == b.0 || a.1 == b.1, "lane {lane}: {a:?} to {b:?}");
+                changes += usize::from(a.1 != b.1);
+            }
+            assert_eq!(
+                s.points.len() - changes_in(&rec.contact[lane as usize]),
+                rec.t_s.len()
+            );
+        }
+        assert!(changes > 0, "the run has landings and releases");
+    }
+
+    /// Changes of state between consecutive samples.
+    fn changes_in(c: &[bool]) -> usize {
+        c.windows(2).filter(|w| w[0] != w[1]).count()
     }
 
     /// Merging the samples of a run recorded every step into windows of
