@@ -259,7 +259,13 @@ fn extents(sim: &Simulation, road: &Road) -> Extents {
         .map(|p| p.x_m)
         .fold(f64::NEG_INFINITY, f64::max);
     let lambda = road.drawn_wavelength_m();
-    let margin = (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05);
+    // (a patch, several rows: the window is the patch and half its length
+    // each side, whatever the road's wavelengths)
+    let margin = if drawn_row_y_m(&scene.points).is_some() {
+        (0.5 * (hi - lo)).max(0.01)
+    } else {
+        (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05)
+    };
     let hmax = scene
         .points
         .iter()
@@ -330,6 +336,22 @@ fn px(scale: f64) -> impl Fn(f64) -> i32 + Copy {
 }
 
 /// Draws the current state of `sim` on `root` (`width × height` px).
+/// The row across the tread drawn in full in a frame, where the points
+/// form several rows (distinct `y_m`, a patch): the one nearest the
+/// centreline (the first of two as near). `None` for a single row, drawn
+/// whole. The other rows are drawn small and grey, without labels, as the
+/// visualiser's scene view draws them: 96 labels over one line were a
+/// block of text.
+pub fn drawn_row_y_m(points: &[tirecontact_core::solver::problem::Point]) -> Option<f64> {
+    let mut rows: Vec<f64> = points.iter().map(|p| p.y_m).collect();
+    rows.sort_by(f64::total_cmp);
+    rows.dedup();
+    if rows.len() < 2 {
+        return None;
+    }
+    rows.into_iter().min_by(|a, b| a.abs().total_cmp(&b.abs()))
+}
+
 fn draw_frame_on(
     root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
     sim: &Simulation,
@@ -344,12 +366,22 @@ fn draw_frame_on(
     let scale = (f64::from(height.min(width)) / 720.0).clamp(0.5, 4.0);
     let fs = px(scale);
     root.fill(&WHITE)?;
-    let caption = format!(
-        "{} — t = {:.4} s, V = {:.1} km/h",
-        scene.name,
-        t,
-        scene.speed_mps * 3.6
-    );
+    let row = drawn_row_y_m(&scene.points);
+    let caption = match row {
+        Some(y) => format!(
+            "{} — t = {:.4} s, V = {:.1} km/h, row y = {:.0} mm (the others grey)",
+            scene.name,
+            t,
+            scene.speed_mps * 3.6,
+            y * 1e3
+        ),
+        None => format!(
+            "{} — t = {:.4} s, V = {:.1} km/h",
+            scene.name,
+            t,
+            scene.speed_mps * 3.6
+        ),
+    };
     let mut chart = ChartBuilder::on(root)
         .caption(caption, ("sans-serif", fs(26.0)))
         .margin(fs(12.0))
@@ -364,8 +396,8 @@ fn draw_frame_on(
         .axis_desc_style(("sans-serif", fs(20.0)))
         .light_line_style(WHITE.mix(0.0))
         .draw()?;
-    draw_road(&mut chart, sim, ext, scale)?;
-    let disp = draw_tyre(&mut chart, sim, scale)?;
+    draw_road(&mut chart, sim, ext, row, scale)?;
+    let disp = draw_tyre(&mut chart, sim, row, scale)?;
     draw_points(&mut chart, sim, &disp, scale)?;
     draw_phase_labels(&mut chart, phases, t, &disp, ext, height, scale)?;
     chart
@@ -379,16 +411,17 @@ fn draw_frame_on(
     Ok(())
 }
 
-/// The road under the tyre ([`road_in_tyre_frame`]), filled down to the
-/// bottom of the frame.
+/// The road under the tyre ([`road_in_tyre_frame_at`], under the row
+/// drawn in full), filled down to the bottom of the frame.
 fn draw_road(
     chart: &mut FrameChart<'_, '_>,
     sim: &Simulation,
     ext: &Extents,
+    row_y_m: Option<f64>,
     scale: f64,
 ) -> Result<(), DrawError> {
     let fs = px(scale);
-    let road: Vec<(f64, f64)> = road_in_tyre_frame(sim, ext.x0, ext.x1, 600)
+    let road: Vec<(f64, f64)> = road_in_tyre_frame_at(sim, ext.x0, ext.x1, 600, row_y_m)
         .into_iter()
         .map(|[x, y]| (x, 1e3 * y))
         .collect();
@@ -412,27 +445,48 @@ fn draw_road(
     Ok(())
 }
 
-/// The tyre's contact line, undeformed and displaced. Returns the displaced
-/// points `(x (m), height (mm), index)`, by position.
+/// The tyre's contact line, undeformed and displaced: the row drawn in
+/// full (all the points of a single row), the other rows' points small and
+/// grey. Returns the displaced points of that row `(x (m), height (mm),
+/// index)`, by position.
 fn draw_tyre(
     chart: &mut FrameChart<'_, '_>,
     sim: &Simulation,
+    row_y_m: Option<f64>,
     scale: f64,
 ) -> Result<Vec<(f64, f64, usize)>, DrawError> {
     let fs = px(scale);
     let scene = sim.problem();
-    let mut und: Vec<(f64, f64)> = scene.points.iter().map(|p| (p.x_m, 1e3 * p.h_m)).collect();
+    let in_row = |y: f64| row_y_m.is_none_or(|r| y == r);
+    let u = sim.displacement_m();
+    // the other rows: small grey points under the row drawn in full
+    chart.draw_series(
+        scene
+            .points
+            .iter()
+            .zip(u)
+            .filter(|(p, _)| !in_row(p.y_m))
+            .map(|(p, u)| {
+                Circle::new((p.x_m, 1e3 * (p.h_m + u)), fs(4.0), BLACK.mix(0.3).filled())
+            }),
+    )?;
+    let mut und: Vec<(f64, f64)> = scene
+        .points
+        .iter()
+        .filter(|p| in_row(p.y_m))
+        .map(|p| (p.x_m, 1e3 * p.h_m))
+        .collect();
     und.sort_by(|a, b| a.0.total_cmp(&b.0));
     chart
         .draw_series(LineSeries::new(und, BLACK.mix(0.4).stroke_width(1)))?
         .label("undeformed tyre")
         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + fs(20.0), y)], BLACK.mix(0.4)));
-    let u = sim.displacement_m();
     let mut disp: Vec<(f64, f64, usize)> = scene
         .points
         .iter()
         .zip(u)
         .enumerate()
+        .filter(|(_, (p, _))| in_row(p.y_m))
         .map(|(i, (p, u))| (p.x_m, 1e3 * (p.h_m + u), i))
         .collect();
     disp.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -474,10 +528,47 @@ fn draw_points(
     Ok(())
 }
 
+/// Most points of the drawn row labelled one by one in a frame; a row of
+/// more gets one line of counts per phase ([`phase_counts`]).
+pub const MAX_LABELLED_POINTS: usize = 6;
+
+/// `"12 in contact · 3 in free flight · 1 IMPACT"`: how many points are in
+/// each phase (events in capitals), the phases in a fixed order, those
+/// with none left out.
+pub fn phase_counts(phases: impl Iterator<Item = ContactPhase>) -> String {
+    let order = [
+        ContactPhase::InContact,
+        ContactPhase::FreeFlight,
+        ContactPhase::Impact,
+        ContactPhase::Release,
+    ];
+    let mut n = [0usize; 4];
+    for ph in phases {
+        if let Some(k) = order.iter().position(|&o| o == ph) {
+            n[k] += 1;
+        }
+    }
+    order
+        .iter()
+        .zip(n)
+        .filter(|(_, c)| *c > 0)
+        .map(|(ph, c)| {
+            let name = if ph.is_event() {
+                ph.label().to_uppercase()
+            } else {
+                ph.label().to_string()
+            };
+            format!("{c} {name}")
+        })
+        .collect::<Vec<_>>()
+        .join(" · ")
+}
+
 /// Each point's contact phase at time `t`, written above it: events in
 /// capitals. With several points the labels go above the highest point, in
 /// lanes of text height by point index (i % 3), so that close neighbours'
-/// labels do not overlap.
+/// labels do not overlap; with more than [`MAX_LABELLED_POINTS`], one line
+/// of counts per phase instead.
 fn draw_phase_labels(
     chart: &mut FrameChart<'_, '_>,
     phases: &PhaseTracker,
@@ -491,6 +582,20 @@ fn draw_phase_labels(
     let top = disp.iter().map(|d| d.1).fold(f64::NEG_INFINITY, f64::max);
     let plot_px = (f64::from(height) - f64::from(fs(26.0 + 55.0 + 24.0))).max(50.0);
     let lane = 2.0 * ext.y_mm * f64::from(fs(30.0)) / plot_px;
+    if disp.len() > MAX_LABELLED_POINTS {
+        // one line of counts per phase over the row (the points' colours
+        // say which is which)
+        let text = phase_counts(disp.iter().map(|d| phases.phase(d.2, t)));
+        let x = 0.5 * (ext.x0 + ext.x1);
+        let style = ("sans-serif", fs(22.0)).into_font().color(&BLACK).pos(
+            plotters::style::text_anchor::Pos::new(
+                plotters::style::text_anchor::HPos::Center,
+                plotters::style::text_anchor::VPos::Bottom,
+            ),
+        );
+        chart.draw_series(std::iter::once(Text::new(text, (x, top + lane), style)))?;
+        return Ok(());
+    }
     let several = disp.len() > 1;
     for d in disp {
         let ph = phases.phase(d.2, t);

@@ -224,3 +224,59 @@ fn frames_draw_the_road_antialiased() {
         "{edge} blended road-edge pixels antialiased, {aliased} without"
     );
 }
+
+/// A patch's frames draw one row in full, the one nearest the centreline,
+/// with its road and labels; a single row is drawn whole.
+#[test]
+fn a_patch_is_drawn_by_its_centre_row() {
+    let load = |text: &str, name: &str| Scene::parse(text, name).unwrap();
+    let patch = load(
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/patch_texture.ron"
+        )),
+        "patch_texture",
+    );
+    let sim = Simulation::from_scene(&patch).unwrap();
+    let points = &sim.problem().points;
+    let y = drawn_row_y_m(points).expect("a patch has rows");
+    let nearest = points
+        .iter()
+        .map(|p| p.y_m.abs())
+        .fold(f64::INFINITY, f64::min);
+    assert_eq!(y.abs(), nearest);
+    let in_row = points.iter().filter(|p| p.y_m == y).count();
+    assert!(
+        in_row > 1 && in_row < points.len(),
+        "{in_row} of {}",
+        points.len()
+    );
+    let paper = load(
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/paper.ron"
+        )),
+        "paper",
+    );
+    let sim = Simulation::from_scene(&paper).unwrap();
+    assert_eq!(drawn_row_y_m(&sim.problem().points), None);
+}
+
+/// The counts line says how many points are in each phase, events in
+/// capitals, in a fixed order, without the empty ones.
+#[test]
+fn phase_counts_name_each_phase_once() {
+    use tirecontact_core::solver::phase::ContactPhase as P;
+    let phases = [
+        P::InContact,
+        P::FreeFlight,
+        P::InContact,
+        P::Impact,
+        P::InContact,
+    ];
+    assert_eq!(
+        phase_counts(phases.into_iter()),
+        "3 in contact · 1 free flight · 1 IMPACT"
+    );
+    assert_eq!(phase_counts(std::iter::empty()), "");
+}
