@@ -1,5 +1,6 @@
-//! Presets shipped inside the binary: those of the Presets menu, and the
-//! guided tour's (classroom mode) pairs of presets that differ in one thing
+//! Presets shipped with the app: those of the Presets menu (inside the
+//! binary, and on the desktop those reading a file beside them, from a
+//! `presets/` folder), and the guided tour's (classroom mode) pairs of presets that differ in one thing
 //! (tyre stiffness, damping, speed, road wavelength), each with a
 //! description of what to watch, shown large in classroom mode.
 
@@ -44,10 +45,10 @@ pub const SHIPPED: &[(&str, &str, &str)] = &[
     ),
 ];
 
-/// `(menu name, file name)` of the shipped presets that read a road file
-/// beside them: listed in the desktop's Presets menu when the repository's
-/// `presets/` folder holds them, and opened from there (so that their road
-/// files are found).
+/// `(menu name, file name)` of the shipped presets that read a file beside
+/// them (a road or a tyre's): listed in the desktop's Presets menu when a
+/// `presets/` folder holds them ([`shipped_with_files_path`]), and opened
+/// from there (so that their files are found).
 pub const SHIPPED_WITH_FILES: &[(&str, &str)] = &[
     (
         "Patch on a chip seal (surface file, 96 points)",

@@ -102,8 +102,9 @@ fn file_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
     }
 }
 
-/// The shipped presets; on the desktop also those reading a road file,
-/// from the repository's `presets/` folder.
+/// The shipped presets; on the desktop also those reading a file beside
+/// them, from a `presets/` folder (the repository's, or one beside the
+/// executable).
 fn preset_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
     for (k, (name, file, _)) in SHIPPED.iter().enumerate() {
         if ui.button(*name).on_hover_text(*file).clicked() {

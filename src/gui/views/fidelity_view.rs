@@ -299,8 +299,7 @@ mod tests {
     use super::no_reference_text;
     use crate::scene::{Scene, Tyre};
 
-    /// Each shipped preset without a reference is told what its tyre is:
-    /// the plate and FE presets were called modal models given directly.
+    /// Each shipped preset without a reference is told what its tyre is.
     #[test]
     fn the_missing_reference_names_the_tyre() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");

@@ -245,7 +245,8 @@ struct Extents {
 }
 
 /// The drawn window: the points with a margin of the road's longest
-/// wavelength (`road`, the scene's description of it).
+/// wavelength (`road`, the scene's description of it), or for a patch
+/// (several rows) half the patch's length each side.
 fn extents(sim: &Simulation, road: &Road) -> Extents {
     let scene = sim.problem();
     let lo = scene
@@ -335,13 +336,11 @@ fn px(scale: f64) -> impl Fn(f64) -> i32 + Copy {
     move |s: f64| (s * scale).round() as i32
 }
 
-/// Draws the current state of `sim` on `root` (`width × height` px).
 /// The row across the tread drawn in full in a frame, where the points
 /// form several rows (distinct `y_m`, a patch): the one nearest the
 /// centreline (the first of two as near). `None` for a single row, drawn
 /// whole. The other rows are drawn small and grey, without labels, as the
-/// visualiser's scene view draws them: 96 labels over one line were a
-/// block of text.
+/// visualiser's scene view draws the rows it does not show in full.
 pub fn drawn_row_y_m(points: &[tirecontact_core::solver::problem::Point]) -> Option<f64> {
     let mut rows: Vec<f64> = points.iter().map(|p| p.y_m).collect();
     rows.sort_by(f64::total_cmp);
@@ -352,6 +351,7 @@ pub fn drawn_row_y_m(points: &[tirecontact_core::solver::problem::Point]) -> Opt
     rows.into_iter().min_by(|a, b| a.abs().total_cmp(&b.abs()))
 }
 
+/// Draws the current state of `sim` on `root` (`width × height` px).
 fn draw_frame_on(
     root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
     sim: &Simulation,
@@ -532,7 +532,7 @@ fn draw_points(
 /// more gets one line of counts per phase ([`phase_counts`]).
 pub const MAX_LABELLED_POINTS: usize = 6;
 
-/// `"12 in contact · 3 in free flight · 1 IMPACT"`: how many points are in
+/// `"12 in contact · 3 free flight · 1 IMPACT"`: how many points are in
 /// each phase (events in capitals), the phases in a fixed order, those
 /// with none left out.
 pub fn phase_counts(phases: impl Iterator<Item = ContactPhase>) -> String {

@@ -244,9 +244,9 @@ impl Simulation {
 
     /// Every point's end values into `ue`, `ve`: the free ones (`uh`, `vh`,
     /// projected for every point) plus the response to the active points'
-    /// full-step forces, source column by source column over contiguous
-    /// memory (`full_inf_cols`); each point sums its terms in the order of
-    /// the active set.
+    /// full-step forces, down their contiguous influence columns
+    /// (`full_inf_cols`, in row blocks: `columns.rs`); each point sums its
+    /// terms in the order of the active set.
     pub(super) fn end_values_by_columns(&mut self) {
         self.forces_response_by_columns();
         let s = &mut self.scratch;
@@ -257,9 +257,9 @@ impl Simulation {
     }
 
     /// The response at every point to the active points' full-step forces
-    /// into `du`, `dv` (m, m/s), source column by source column over
-    /// contiguous memory (`full_inf_cols`); each point sums its terms in
-    /// the order of the active set.
+    /// into `du`, `dv` (m, m/s), down their contiguous influence columns
+    /// (`full_inf_cols`, in row blocks: `columns.rs`); each point sums its
+    /// terms in the order of the active set.
     pub(super) fn forces_response_by_columns(&mut self) {
         let p = self.tables.p;
         let (active, s) = (&self.state.active, &mut self.scratch);

@@ -225,8 +225,8 @@ fn frames_draw_the_road_antialiased() {
     );
 }
 
-/// A patch's frames draw one row in full, the one nearest the centreline,
-/// with its road and labels; a single row is drawn whole.
+/// A patch's frames draw one row in full, the one nearest the centreline;
+/// a single row is drawn whole.
 #[test]
 fn a_patch_is_drawn_by_its_centre_row() {
     let load = |text: &str, name: &str| Scene::parse(text, name).unwrap();
