@@ -375,7 +375,7 @@ fn save_as_open_and_csv_work_by_typing_the_path() {
     assert!(!h.state().is_dirty(), "{:?}", h.state().message());
     assert_eq!(Scene::load(&file).unwrap().duration_s, 0.5);
 
-    // a folder that does not exist: the error names the path
+    // a folder that does not exist: the prompt stays, its note names it
     h.state_mut().apply(Command::SaveAsDialog);
     h.run();
     let bad = dir.join("no_such_folder").join("x.ron");
@@ -384,8 +384,14 @@ fn save_as_open_and_csv_work_by_typing_the_path() {
     h.run();
     h.get_by_label("Save").click();
     h.run();
-    let m = h.state().message().expect("an error").clone();
-    assert!(m.error && m.text.contains("no_such_folder"), "{}", m.text);
+    let prompt = h.state().file_prompt().expect("the prompt closed");
+    assert_eq!(prompt.path, bad.display().to_string());
+    let note = prompt.note.clone().unwrap_or_default();
+    assert!(note.contains("no_such_folder"), "{note}");
+    h.key_press(egui::Key::Escape);
+    h.run();
+    h.run();
+    assert!(h.state().file_prompt().is_none());
 
     // File > Open… (Ctrl+O) with a typed path opens it
     h.state_mut().apply(Command::New);
