@@ -312,9 +312,10 @@ impl Recording {
     }
 
     /// The contact panel's lanes: lane `n` of point `chosen[n]` at `n`,
-    /// raised by 0.7 while in contact, drawn as steps (a change is a
-    /// vertical edge at the sample that has it): a one-sample contact is a
-    /// narrow box, not a thick line's spike.
+    /// raised by 0.7 while in contact, drawn as steps: window `k`'s state
+    /// over its span `[t_{k-1}, t_k]`, a change a vertical edge at the
+    /// window's start. A one-window contact is a narrow box, not a thick
+    /// line's spike.
     fn contact_lanes(&self, chosen: &[usize], name: &dyn Fn(usize) -> String) -> Vec<Series> {
         chosen
             .iter()
@@ -324,7 +325,7 @@ impl Recording {
                 let mut pts = Vec::with_capacity(2 * self.t_s.len());
                 for k in 0..self.t_s.len() {
                     if k > 0 && self.contact[i][k] != self.contact[i][k - 1] {
-                        pts.push((self.t_s[k], y(k - 1)));
+                        pts.push((self.t_s[k - 1], y(k)));
                     }
                     pts.push((self.t_s[k], y(k)));
                 }
@@ -491,9 +492,10 @@ mod tests {
     }
 
     /// The contact lanes are steps: every segment is horizontal (a state)
-    /// or vertical (a change at a sample), so that a thick line draws no
-    /// spike at a short contact; each lane sits at its height, raised while
-    /// in contact, and keeps every sample.
+    /// or vertical (a change), so that a thick line draws no spike at a
+    /// short contact; each lane sits at its height, raised while in
+    /// contact, keeps every sample, and draws each window's state over the
+    /// window (`t_s` is a window's end).
     #[test]
     fn the_contact_lanes_are_drawn_as_steps() {
         let (rec, dt) = record(ContactScheme::Located);
@@ -516,10 +518,19 @@ mod tests {
                 assert!(a.0 == b.0 || a.1 == b.1, "lane {lane}: {a:?} to {b:?}");
                 changes += usize::from(a.1 != b.1);
             }
-            assert_eq!(
-                s.points.len() - changes_in(&rec.contact[lane as usize]),
-                rec.t_s.len()
-            );
+            let c = &rec.contact[lane as usize];
+            assert_eq!(s.points.len() - changes_in(c), rec.t_s.len());
+            // the drawn height inside window k is window k's state
+            for k in 1..rec.t_s.len() {
+                let mid = 0.5 * (rec.t_s[k - 1] + rec.t_s[k]);
+                let drawn = s
+                    .points
+                    .windows(2)
+                    .find(|w| w[0].1 == w[1].1 && w[0].0 <= mid && mid <= w[1].0)
+                    .map(|w| w[0].1);
+                let want = lane + if c[k] { 0.7 } else { 0.0 };
+                assert_eq!(drawn, Some(want), "lane {lane}, window {k}");
+            }
         }
         assert!(changes > 0, "the run has landings and releases");
     }
