@@ -150,11 +150,7 @@ fn phase_color(p: ContactPhase) -> Color32 {
 
 /// `p0: IMPACT` (events in capitals).
 pub fn phase_text(i: usize, p: ContactPhase) -> String {
-    if p.is_event() {
-        format!("p{i}: {}", p.label().to_uppercase())
-    } else {
-        format!("p{i}: {}", p.label())
-    }
+    format!("p{i}: {}", p.shown())
 }
 
 /// A strip of the phases of every point (also what the tests read), or,
@@ -174,12 +170,7 @@ pub fn phase_strip(ui: &mut Ui, t_s: f64, phases: &PhaseTracker) {
             .size()
             .x
     };
-    let all = [
-        ContactPhase::Impact,
-        ContactPhase::Release,
-        ContactPhase::InContact,
-        ContactPhase::FreeFlight,
-    ];
+    let all = ContactPhase::ALL;
     // every label in a slot as wide as its widest text, so that the strip
     // keeps its layout as phases change, on one row
     let gap = ui.spacing().item_spacing.x;
@@ -258,11 +249,7 @@ pub fn phase_strip(ui: &mut Ui, t_s: f64, phases: &PhaseTracker) {
 
 /// `12 IMPACT` (events in capitals): how many points are in phase `p`.
 pub fn count_text(count: usize, p: ContactPhase) -> String {
-    if p.is_event() {
-        format!("{count} {}", p.label().to_uppercase())
-    } else {
-        format!("{count} {}", p.label())
-    }
+    format!("{count} {}", p.shown())
 }
 
 /// Point picker shared by the plot and the bars.

@@ -28,6 +28,25 @@ pub enum ContactPhase {
 }
 
 impl ContactPhase {
+    /// Every phase, the events first: the order in which counts of points
+    /// per phase are shown.
+    pub const ALL: [ContactPhase; 4] = [
+        ContactPhase::Impact,
+        ContactPhase::Release,
+        ContactPhase::InContact,
+        ContactPhase::FreeFlight,
+    ];
+
+    /// [`ContactPhase::label`] as shown beside a point or a count: the
+    /// events (impact, release) in capitals.
+    pub fn shown(self) -> String {
+        if self.is_event() {
+            self.label().to_uppercase()
+        } else {
+            self.label().to_string()
+        }
+    }
+
     /// Plain words for the screen.
     pub fn label(self) -> &'static str {
         match self {

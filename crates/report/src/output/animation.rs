@@ -242,6 +242,8 @@ struct Extents {
     x0: f64,
     x1: f64,
     y_mm: f64,
+    /// The row drawn in full ([`drawn_row_y_m`]), `None` for a single row.
+    row_y_m: Option<f64>,
 }
 
 /// The drawn window: the points with a margin of the road's longest
@@ -262,7 +264,8 @@ fn extents(sim: &Simulation, road: &Road) -> Extents {
     let lambda = road.drawn_wavelength_m();
     // (a patch, several rows: the window is the patch and half its length
     // each side, whatever the road's wavelengths)
-    let margin = if drawn_row_y_m(&scene.points).is_some() {
+    let row_y_m = drawn_row_y_m(&scene.points);
+    let margin = if row_y_m.is_some() {
         (0.5 * (hi - lo)).max(0.01)
     } else {
         (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05)
@@ -277,6 +280,7 @@ fn extents(sim: &Simulation, road: &Road) -> Extents {
         x0: lo - margin,
         x1: hi + margin,
         y_mm: 2.5 * hmax * 1e3,
+        row_y_m,
     }
 }
 
@@ -366,22 +370,16 @@ fn draw_frame_on(
     let scale = (f64::from(height.min(width)) / 720.0).clamp(0.5, 4.0);
     let fs = px(scale);
     root.fill(&WHITE)?;
-    let row = drawn_row_y_m(&scene.points);
-    let caption = match row {
-        Some(y) => format!(
-            "{} — t = {:.4} s, V = {:.1} km/h, row y = {:.0} mm (the others grey)",
-            scene.name,
-            t,
-            scene.speed_mps * 3.6,
-            y * 1e3
-        ),
-        None => format!(
-            "{} — t = {:.4} s, V = {:.1} km/h",
-            scene.name,
-            t,
-            scene.speed_mps * 3.6
-        ),
-    };
+    let row = ext.row_y_m;
+    let row_text = row.map_or(String::new(), |y| {
+        format!(", row y = {:.0} mm (the others grey)", y * 1e3)
+    });
+    let caption = format!(
+        "{} — t = {:.4} s, V = {:.1} km/h{row_text}",
+        scene.name,
+        t,
+        scene.speed_mps * 3.6
+    );
     let mut chart = ChartBuilder::on(root)
         .caption(caption, ("sans-serif", fs(26.0)))
         .margin(fs(12.0))
@@ -532,34 +530,22 @@ fn draw_points(
 /// more gets one line of counts per phase ([`phase_counts`]).
 pub const MAX_LABELLED_POINTS: usize = 6;
 
-/// `"12 in contact · 3 free flight · 1 IMPACT"`: how many points are in
-/// each phase (events in capitals), the phases in a fixed order, those
-/// with none left out.
+/// `"1 IMPACT · 12 in contact · 3 free flight"`: how many points are in
+/// each phase, in the order and words of the visualiser's phase strip
+/// ([`ContactPhase::ALL`], [`ContactPhase::shown`]), those with none left
+/// out.
 pub fn phase_counts(phases: impl Iterator<Item = ContactPhase>) -> String {
-    let order = [
-        ContactPhase::InContact,
-        ContactPhase::FreeFlight,
-        ContactPhase::Impact,
-        ContactPhase::Release,
-    ];
     let mut n = [0usize; 4];
     for ph in phases {
-        if let Some(k) = order.iter().position(|&o| o == ph) {
+        if let Some(k) = ContactPhase::ALL.iter().position(|&o| o == ph) {
             n[k] += 1;
         }
     }
-    order
+    ContactPhase::ALL
         .iter()
         .zip(n)
         .filter(|(_, c)| *c > 0)
-        .map(|(ph, c)| {
-            let name = if ph.is_event() {
-                ph.label().to_uppercase()
-            } else {
-                ph.label().to_string()
-            };
-            format!("{c} {name}")
-        })
+        .map(|(ph, c)| format!("{c} {}", ph.shown()))
         .collect::<Vec<_>>()
         .join(" · ")
 }
@@ -604,11 +590,7 @@ fn draw_phase_labels(
             ContactPhase::InContact => CONTACT,
             ContactPhase::FreeFlight => FLIGHT,
         };
-        let text = if ph.is_event() {
-            ph.label().to_uppercase()
-        } else {
-            ph.label().to_string()
-        };
+        let text = ph.shown();
         let size = match (several, ph.is_event()) {
             (true, _) => 22.0,
             (false, true) => 26.0,

@@ -33,6 +33,7 @@ pub(super) fn column_response(
     let (gx1, rest) = c.split_at(p);
     let (gx2, rest) = rest.split_at(p);
     let (gv1, gv2) = rest.split_at(p);
+    let (u, v) = (&mut u[..p], &mut v[..p]);
     for i in rows {
         u[i] += gx1[i] * q1 + gx2[i] * q2;
         v[i] += gv1[i] * q1 + gv2[i] * q2;
@@ -69,20 +70,20 @@ pub(super) fn add_set_response(
         }),
         "a point of the set without influence columns or forces"
     );
+    // the rows in whole blocks of four in AVX lanes where the CPU has it,
+    // then the rest (every row without it) column by column
     #[cfg(target_arch = "x86_64")]
-    {
-        if std::arch::is_x86_feature_detected!("avx") {
-            // SAFETY: the CPU supports AVX (checked just above); every
-            // index was checked against its slice above.
-            let done = unsafe { set_response_avx(cols, p, set, q1, q2, u, v) };
-            for &j in set {
-                column_response(columns(cols, p, j), p, done..p, q1[j], q2[j], u, v);
-            }
-            return;
-        }
-    }
+    let done = if std::arch::is_x86_feature_detected!("avx") {
+        // SAFETY: the CPU supports AVX (checked just above); every index
+        // was checked against its slice above, and the set is not empty.
+        unsafe { set_response_avx(cols, p, set, q1, q2, u, v) }
+    } else {
+        0
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let done = 0;
     for &j in set {
-        column_response(columns(cols, p, j), p, 0..p, q1[j], q2[j], u, v);
+        column_response(columns(cols, p, j), p, done..p, q1[j], q2[j], u, v);
     }
 }
 
