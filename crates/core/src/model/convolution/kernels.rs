@@ -159,6 +159,50 @@ fn node_columns_body(
     }
 }
 
+/// One point's responses to unit Gauss values by the nodes' influence
+/// columns `cols` (as [`add_node_columns`]): `ux1 = Σ_m lam[m] G_x1`,
+/// `uv1` with `G_v1`, `ux2`, `uv2` with the `q2` columns, summed from zero
+/// node by node in order. One pass over the columns gives what
+/// [`add_node_columns`] gives into zeroed outputs with `(q1, q2) = (1, 0)`
+/// and then `(0, 1)`, bit for bit: the term multiplied by zero adds a
+/// signed zero to a sum that starts at `+0` and so is never `-0`.
+#[inline]
+pub(super) fn unit_node_columns(lam: &[f64], cols: &[f64], p: usize, out: [&mut [f64]; 4]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            #[target_feature(enable = "avx2")]
+            fn wide(lam: &[f64], cols: &[f64], p: usize, out: [&mut [f64]; 4]) {
+                unit_columns_body(lam, cols, p, out)
+            }
+            // SAFETY: the CPU supports AVX2 (checked just above).
+            return unsafe { wide(lam, cols, p, out) };
+        }
+    }
+    unit_columns_body(lam, cols, p, out)
+}
+
+#[inline(always)]
+fn unit_columns_body(lam: &[f64], cols: &[f64], p: usize, out: [&mut [f64]; 4]) {
+    let [ux1, uv1, ux2, uv2] = out;
+    let (ux1, uv1, ux2, uv2) = (&mut ux1[..p], &mut uv1[..p], &mut ux2[..p], &mut uv2[..p]);
+    for o in [&mut *ux1, &mut *uv1, &mut *ux2, &mut *uv2] {
+        o.fill(0.0);
+    }
+    for (m, &l) in lam.iter().enumerate() {
+        let c = &cols[m * 4 * p..(m + 1) * 4 * p];
+        let (gx1, rest) = c.split_at(p);
+        let (gx2, rest) = rest.split_at(p);
+        let (gv1, gv2) = rest.split_at(p);
+        for i in 0..p {
+            ux1[i] += gx1[i] * l;
+            uv1[i] += gv1[i] * l;
+            ux2[i] += gx2[i] * l;
+            uv2[i] += gv2[i] * l;
+        }
+    }
+}
+
 /// `(u_i, v_i) = (a_i · x, a_i · v)` for the points `i` in `rows` only
 /// (rows of `out`, `ns` wide), each sum in [`dot2`]'s order, as
 /// [`project`] gives them.

@@ -49,10 +49,12 @@ pub struct TauInterp {
     /// by column (`w1x`, `w1v`, `w2x`, `w2v`): `weights[(m * 4 + c) * ns + s]`.
     weights: Vec<f64>,
     ns: usize,
-    /// Per source point `j` and node, its influence columns (end
-    /// displacement by `q1`, by `q2`, velocity by `q1`, by `q2` at every
-    /// point): `columns[((j * M + m) * 4 + c) * P + i]`; empty when they
-    /// would exceed the budget given to [`TauInterp::new`].
+    /// Per source point `j` and node past the first, its influence columns
+    /// (end displacement by `q1`, by `q2`, velocity by `q1`, by `q2` at
+    /// every point): `columns[((j * (M − 1) + m − 1) * 4 + c) * P + i]`
+    /// for node `m ≥ 1` (node 0, a step of zero length, has zero columns,
+    /// neither stored nor summed); empty when they would exceed the budget
+    /// given to [`TauInterp::new`].
     columns: Vec<f64>,
     p: usize,
     /// The largest relative error found at set-up (weights, columns).
@@ -61,7 +63,7 @@ pub struct TauInterp {
 
 impl TauInterp {
     /// The interpolant of `basis`'s weights on `[0, dt_s]`, with influence
-    /// columns when `4 P² M` values fit in `column_budget` (and pass their
+    /// columns when `4 P² (M − 1)` values fit in `column_budget` (and pass their
     /// check); `None` if no number of nodes up to `MAX_NODES` (16) meets
     /// `WEIGHT_TOLERANCE` (1e-11). [`TauInterp::weights`], then
     /// [`TauInterp::add_node_column`] for every [`TauInterp::column_stages`]
@@ -204,8 +206,22 @@ impl TauInterp {
         let (p, m_nodes) = (self.p, self.nodes_s.len());
         let mut lam = [0.0; MAX_NODES];
         self.factors(tau_s, &mut lam);
-        let cols = &self.columns[j * m_nodes * 4 * p..(j + 1) * m_nodes * 4 * p];
-        super::kernels::add_node_columns(&lam[..m_nodes], cols, p, q1, q2, u, v);
+        let cols = self.source_columns(j);
+        super::kernels::add_node_columns(&lam[1..m_nodes], cols, p, q1, q2, u, v);
+    }
+
+    /// Point `j`'s responses at every point to unit Gauss values on a step
+    /// of `tau_s` from rest, in one pass over its interpolated influence
+    /// columns: `out = [u by q1, v by q1, u by q2, v by q2]` (m/N, m/(N·s)),
+    /// overwritten; bit for bit [`TauInterp::add_column`] into zeros with
+    /// `(q1, q2) = (1, 0)` and `(0, 1)`. Requires
+    /// [`TauInterp::has_columns`].
+    pub fn unit_columns(&self, tau_s: f64, j: usize, out: [&mut [f64]; 4]) {
+        let (p, m_nodes) = (self.p, self.nodes_s.len());
+        let mut lam = [0.0; MAX_NODES];
+        self.factors(tau_s, &mut lam);
+        let cols = self.source_columns(j);
+        super::kernels::unit_node_columns(&lam[1..m_nodes], cols, p, out);
     }
 
     /// The largest error of the interpolated weights at the points halfway
@@ -249,10 +265,11 @@ impl TauInterp {
         Some(worst)
     }
 
-    /// Whether the influence columns (`4 P² M` values) fit in `budget`.
+    /// Whether the influence columns (`4 P² (M − 1)` values) fit in
+    /// `budget`.
     pub fn columns_fit(&self, budget: usize) -> bool {
         let p = self.p;
-        p > 0 && 4 * p * p * self.nodes_s.len() <= budget
+        p > 0 && 4 * p * p * (self.nodes_s.len() - 1) <= budget
     }
 
     /// The stages of the columns: one per node past the first and weight
@@ -268,8 +285,8 @@ impl TauInterp {
     pub fn add_node_column(&mut self, basis: &ModalBasis, stage: usize) {
         use faer::{Accum, Mat, Par, linalg::matmul::matmul};
         let (p, m_nodes, ns) = (self.p, self.nodes_s.len(), self.ns);
-        if self.columns.len() != 4 * p * p * m_nodes {
-            self.columns = vec![0.0; 4 * p * p * m_nodes];
+        if self.columns.len() != 4 * p * p * (m_nodes - 1) {
+            self.columns = vec![0.0; 4 * p * p * (m_nodes - 1)];
         }
         let (m, c) = (1 + stage / 4, stage % 4);
         let a = Mat::from_fn(p, ns, |i, s| basis.out[i * ns + s]);
@@ -289,7 +306,7 @@ impl TauInterp {
         // v2` of each source
         let slot = [0, 2, 1, 3][c];
         for j in 0..p {
-            let col = &mut self.columns[((j * m_nodes + m) * 4 + slot) * p..][..p];
+            let col = &mut self.columns[((j * (m_nodes - 1) + m - 1) * 4 + slot) * p..][..p];
             for (i, x) in col.iter_mut().enumerate() {
                 *x = g[(i, j)];
             }
@@ -362,10 +379,19 @@ impl TauInterp {
 
     /// The largest magnitude of column kind `c` of source `j` over the nodes.
     fn column_scale(&self, j: usize, c: usize) -> f64 {
-        let (p, m_nodes) = (self.p, self.nodes_s.len());
-        (0..m_nodes)
-            .flat_map(|m| &self.columns[((j * m_nodes + m) * 4 + c) * p..][..p])
+        let p = self.p;
+        self.source_columns(j)
+            .chunks_exact(p)
+            .skip(c)
+            .step_by(4)
+            .flatten()
             .fold(0.0f64, |a, x| a.max(x.abs()))
+    }
+
+    /// Source `j`'s columns, node by node from node 1 (`4 P` values each).
+    fn source_columns(&self, j: usize) -> &[f64] {
+        let len = 4 * self.p * (self.nodes_s.len() - 1);
+        &self.columns[j * len..(j + 1) * len]
     }
 }
 
@@ -487,6 +513,20 @@ mod tests {
             full.add_gauss_forces(&b, &StepTable::new(&b, dt), &all, &q1, &q2);
             let (uf, vf) = ends(&b, &full);
             for tau in taus {
+                // both unit responses in one pass: `add_column` into zeros
+                // with unit values, bit for bit, at every source
+                for j in 0..p {
+                    let mut units = vec![vec![f64::NAN; p]; 4];
+                    let [a, b2, c, d] = &mut units[..] else { unreachable!() };
+                    ti.unit_columns(tau, j, [a, b2, c, d]);
+                    for (k, (g1, g2)) in [(1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
+                        let (mut u, mut v) = (vec![0.0; p], vec![0.0; p]);
+                        ti.add_column(tau, j, g1, g2, &mut u, &mut v);
+                        let bits = |w: &[f64]| w.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                        prop_assert_eq!(bits(&units[2 * k]), bits(&u), "tau {} source {}: u", tau, j);
+                        prop_assert_eq!(bits(&units[2 * k + 1]), bits(&v), "tau {} source {}: v", tau, j);
+                    }
+                }
                 exact.fill(&b, tau);
                 ti.fill_gauss(&b, tau, &mut approx);
                 let (mut se, mut sa) = (ModalState::zeros(&b), ModalState::zeros(&b));

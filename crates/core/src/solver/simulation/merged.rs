@@ -559,9 +559,14 @@ impl Simulation {
         m.set.push(i);
         m.border.push(Border::Late(l, i));
         let columns = tb.tau_interp.as_ref().filter(|ti| ti.has_columns());
-        if columns.is_none() {
-            tb.short_table(tau, &mut m.tab);
+        if let Some(ti) = columns {
+            // (both units in one pass over the point's columns)
+            let (x1, x2) = m.unit_x[2 * l * p..(2 * l + 2) * p].split_at_mut(p);
+            let (v1, v2) = m.unit_v[2 * l * p..(2 * l + 2) * p].split_at_mut(p);
+            ti.unit_columns(tau, i, [x1, v1, x2, v2]);
+            return;
         }
+        tb.short_table(tau, &mut m.tab);
         for c in 0..2 {
             let slot = 2 * l + c;
             let (ux, uv) = (
@@ -569,17 +574,11 @@ impl Simulation {
                 &mut m.unit_v[slot * p..(slot + 1) * p],
             );
             let (g1, g2) = if c == 0 { (1.0, 0.0) } else { (0.0, 1.0) };
-            if let Some(ti) = columns {
-                ux.fill(0.0);
-                uv.fill(0.0);
-                ti.add_column(tau, i, g1, g2, ux, uv);
-            } else {
-                let u = &mut m.load;
-                u.reset();
-                (m.g1[i], m.g2[i]) = (g1, g2);
-                u.add_gauss_forces(&tb.basis, &m.tab, &[i], &m.g1, &m.g2);
-                u.project(&tb.basis, ux, uv);
-            }
+            let u = &mut m.load;
+            u.reset();
+            (m.g1[i], m.g2[i]) = (g1, g2);
+            u.add_gauss_forces(&tb.basis, &m.tab, &[i], &m.g1, &m.g2);
+            u.project(&tb.basis, ux, uv);
         }
         (m.g1[i], m.g2[i]) = (0.0, 0.0);
     }

@@ -29,7 +29,7 @@ use std::ops::Range;
 const GMRES_RESTART: usize = 30;
 
 /// The most values (f64) the interpolated influence columns of the merged
-/// event step may hold (`4 P² M`, 32 MB): up to about 500 points at `M` = 8.
+/// event step may hold (`4 P² (M − 1)`, 32 MB): about 390 points at `M` = 8.
 const TAU_COLUMN_BUDGET: usize = 1 << 22;
 
 /// What a simulation builds once from the problem, the options and
