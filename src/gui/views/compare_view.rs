@@ -61,7 +61,7 @@ pub fn show(ui: &mut Ui, c: &Compared<'_>, opts: &mut CompareOptions, cmds: &mut
         opts.shown = (0..p).map(|i| i < DEFAULT_SHOWN).collect();
     }
     controls(ui, pinned.is_some(), opts, cmds);
-    summary(ui, c);
+    summary(ui, c, opts.clip_impacts);
     // the reference's point drawn with each current point (the one at the
     // same place, if any)
     let matched = pinned.map_or_else(Vec::new, |pin| pin.matched(&c.scene.points));
@@ -131,8 +131,10 @@ fn controls(ui: &mut Ui, pinned: bool, opts: &mut CompareOptions, cmds: &mut Vec
 }
 
 /// What is pinned, how the scenes differ, and the RMS difference per
-/// point compared.
-fn summary(ui: &mut Ui, c: &Compared<'_>) {
+/// point compared: of the force the force plot draws, the force without
+/// impacts while impacts are clipped, else the whole force (impulses as
+/// `impulse / dt` spikes, which dominate its RMS).
+fn summary(ui: &mut Ui, c: &Compared<'_>, clip_impacts: bool) {
     let Some(pin) = c.pinned else {
         ui.label("No reference pinned: play a run, press “Pin as reference”, then change parameters; the pinned run is drawn dashed over the new one.");
         return;
@@ -141,7 +143,12 @@ fn summary(ui: &mut Ui, c: &Compared<'_>) {
     for note in pin.unlike(c.scene, c.num_modes) {
         ui.label(RichText::new(format!("Unlike runs: {note}")).color(ui.visuals().warn_fg_color));
     }
-    if let Some(d) = c.diff {
+    let (diff, force) = if clip_impacts {
+        (c.diff_smooth, "force without impacts")
+    } else {
+        (c.diff, "force with impacts (impulse / dt)")
+    };
+    if let Some(d) = diff {
         let rms: Vec<String> = (0..d.rms_dq_n.len())
             .filter(|&i| d.matched.get(i).copied().flatten().is_some())
             .map(|i| {
@@ -154,7 +161,7 @@ fn summary(ui: &mut Ui, c: &Compared<'_>) {
             .collect();
         if !rms.is_empty() {
             ui.label(format!(
-                "RMS of current − reference over {} common samples: {}",
+                "RMS of current − reference ({force}; displacement) over {} common samples: {}",
                 d.t_s.len(),
                 rms.join("; ")
             ));

@@ -191,8 +191,47 @@ fn the_compare_force_difference_is_clipped_at_both_edges() {
     assert!(hi < 0.5 * raw.1, "axis top {hi} N vs spikes {} N", raw.1);
     assert!(lo <= bottom && lo >= bottom - margin, "{lo} vs {bottom} N");
 
+    // the RMS line is of the force the plot draws: without impacts here
+    let rms_of = |d: &[f64]| (d.iter().map(|x| x * x).sum::<f64>() / d.len() as f64).sqrt();
+    let diff_smooth = pin_smooth.difference(
+        &scene.points,
+        &recording_without_impacts(h.state().history()),
+    );
+    let want = rms_of(&diff_smooth.dq_n[0]);
+    let (text, got) = rms_line(&h);
+    assert!(text.contains("force without impacts"), "{text}");
+    assert!(
+        (got - want).abs() <= 1e-3 * want && got <= smooth.1.max(-smooth.0),
+        "RMS {got} N shown, {want} N of the force without impacts (its difference within {smooth:?} N): {text}"
+    );
+
     h.get_by_label("clip impact spikes").click();
     h.run_steps(4);
     let (lo, hi) = y_axis(&h, FORCE_DIFF_PLOT_ID);
     assert!(hi >= raw.1 && lo <= raw.0, "{lo}..{hi} vs {raw:?} N");
+    // unclipped: the RMS of the whole force, its spikes included
+    let diff_raw = pin.difference(&scene.points, &h.state().history().to_recording());
+    let want = rms_of(&diff_raw.dq_n[0]);
+    let (text, got) = rms_line(&h);
+    assert!(text.contains("force with impacts"), "{text}");
+    assert!(
+        (got - want).abs() <= 1e-3 * want,
+        "RMS {got} N shown, {want} N: {text}"
+    );
+}
+
+/// The compare view's RMS line and its force RMS of point 0 (N).
+fn rms_line(h: &Harness<'_, App>) -> (String, f64) {
+    let text = crate::harness::texts(h)
+        .into_iter()
+        .map(|(t, _)| t)
+        .find(|t| t.contains("RMS of current − reference"))
+        .expect("an RMS line");
+    let value = text
+        .split("p0: ")
+        .nth(1)
+        .and_then(|rest| rest.split(" N").next())
+        .and_then(|v| v.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("no force RMS of p0 in {text}"));
+    (text, value)
 }
