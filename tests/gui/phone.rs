@@ -142,6 +142,55 @@ fn a_long_banner_does_not_move_the_views_controls() {
     }
 }
 
+/// A message of several lines covers the top of the view only for a
+/// while: it folds to its first line after `BANNER_UNFOLDED_S`, uncovering
+/// the time plots' "follow latest" row; "More" unfolds it and "Less" folds
+/// it again, and the message stays until dismissed.
+#[test]
+fn a_long_banner_folds_and_uncovers_the_view() {
+    use tirecontact::gui::chrome::dialogs::BANNER_UNFOLDED_S;
+    let size = [400.0, 800.0];
+    let app = App::open_link("index.html#scene=v1.%%%", None);
+    let text = app.message().unwrap().text.clone();
+    let mut h = harness_sized(app, size);
+    settle(&mut h);
+    h.run_steps(2);
+    let banner = |h: &egui_kittest::Harness<'_, App>| {
+        texts(h)
+            .into_iter()
+            .filter(|(t, _)| !t.is_empty() && text.starts_with(t.as_str()))
+            .map(|(_, r)| r)
+            .reduce(|a, b| a.union(b))
+            .expect("the banner")
+    };
+    let follow = h.get_by_label("follow latest").rect();
+    let whole = banner(&h);
+    assert!(
+        whole.bottom() > follow.top(),
+        "the unfolded banner {whole:?} does not reach the follow row {follow:?}"
+    );
+    assert!(h.query_by_label("Less").is_some(), "no way to fold it");
+    // (the harness steps 1/60 s a frame)
+    h.run_steps((BANNER_UNFOLDED_S * 60.0) as usize + 10);
+    let folded = banner(&h);
+    assert!(
+        folded.bottom() <= follow.top() && folded.height() < 0.5 * whole.height(),
+        "folded banner {folded:?} (was {whole:?}), follow row {follow:?}"
+    );
+    assert!(h.state().message().is_some(), "the message is kept");
+    h.get_by_label("More").click();
+    h.run_steps(2);
+    let again = banner(&h);
+    assert!(
+        (again.height() - whole.height()).abs() < 1.0,
+        "{again:?} vs {whole:?}"
+    );
+    h.get_by_label("Less").click();
+    h.run_steps(2);
+    assert!(banner(&h).bottom() <= follow.top());
+    assert!(h.query_by_label("More").is_some());
+}
+
 /// A scene opened from a link says so in the status bar, with its name
 /// (not "built-in preset").
 #[test]

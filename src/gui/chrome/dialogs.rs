@@ -30,11 +30,26 @@ pub struct PngSettings {
 /// Inner margin (px) of the message banner's frame.
 const BANNER_MARGIN_PX: f32 = 6.0;
 
+/// How long (s) a message of several lines is shown whole before it folds
+/// to its first line, uncovering the top of the view under it.
+pub const BANNER_UNFOLDED_S: f64 = 8.0;
+
+/// A message's folding, kept by egui per message: when it was first shown
+/// and whether the user unfolded (`Some(true)`) or folded it (`Some(false)`);
+/// `None` folds it [`BANNER_UNFOLDED_S`] after it was first shown.
+#[derive(Debug, Clone, Copy)]
+struct Fold {
+    since_s: f64,
+    open: Option<bool>,
+}
+
 /// The message banner above the views (errors in red, with a dismiss
 /// button). It takes one banner line of its own above the views whether or
 /// not a message is shown; a longer message unfolds downwards over the top
-/// of the view, in front of it, until dismissed or its cause is gone: the
-/// views never move as messages come and go.
+/// of the view, in front of it, and folds back to its first line after
+/// [`BANNER_UNFOLDED_S`] (the whole text on hover and behind "More") until
+/// dismissed or its cause is gone: the views never move as messages come
+/// and go, and no control stays covered.
 pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
     let row_px = ui
         .text_style_height(&egui::TextStyle::Body)
@@ -42,6 +57,24 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
     let size = egui::vec2(ui.available_width(), row_px + 2.0 * BANNER_MARGIN_PX);
     let (strip, _) = ui.allocate_exact_size(size, egui::Sense::hover());
     if let Some(m) = msg {
+        let key = egui::Id::unique(("tirecontact.banner.fold", m.error, &m.text));
+        let now = ui.input(|i| i.time);
+        let fold = ui.data_mut(|d| {
+            *d.get_temp_mut_or_insert_with(key, || Fold {
+                since_s: now,
+                open: None,
+            })
+        });
+        let folded = match fold.open {
+            Some(open) => !open,
+            None => {
+                let left_s = fold.since_s + BANNER_UNFOLDED_S - now;
+                if left_s > 0.0 {
+                    ui.ctx().request_repaint_after_secs(left_s as f32);
+                }
+                left_s <= 0.0
+            }
+        };
         egui::Area::new(egui::Id::unique("tirecontact.banner"))
             .order(egui::Order::Foreground)
             .fixed_pos(strip.min)
@@ -49,7 +82,17 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
             .show(ui.ctx(), |ui| {
                 ui.set_width(strip.width());
                 ui.set_max_width(strip.width());
-                banner_frame(ui, m, cmds);
+                if let Some(open) = banner_frame(ui, m, folded, cmds) {
+                    ui.data_mut(|d| {
+                        d.insert_temp(
+                            key,
+                            Fold {
+                                open: Some(open),
+                                ..fold
+                            },
+                        )
+                    });
+                }
             });
     }
 }
@@ -108,8 +151,10 @@ fn job_row(
     });
 }
 
-/// The banner's frame, text and Dismiss button.
-fn banner_frame(ui: &mut Ui, m: &Message, cmds: &mut Vec<Command>) {
+/// The banner's frame, text and Dismiss button; a text of several lines
+/// shown `folded` to its first line, and a button that unfolds it (or
+/// folds it back): `Some(open)` when pressed.
+fn banner_frame(ui: &mut Ui, m: &Message, folded: bool, cmds: &mut Vec<Command>) -> Option<bool> {
     let (fill, color) = if m.error {
         (Color32::from_rgb(255, 235, 235), ERROR_COLOR)
     } else {
@@ -118,34 +163,56 @@ fn banner_frame(ui: &mut Ui, m: &Message, cmds: &mut Vec<Command>) {
             Color32::from_rgb(0, 110, 80),
         )
     };
+    let mut toggled = None;
     egui::Frame::new()
         .fill(fill)
         .inner_margin(BANNER_MARGIN_PX)
         .corner_radius(4.0)
         .show(ui, |ui| {
             ui.horizontal_top(|ui| {
-                // wrapped to the room left of Dismiss: unwrapped, a long
+                // wrapped to the room left of the buttons: unwrapped, a long
                 // message (a refused field's reason) widened the central
                 // panel past the window, cutting off Dismiss and the plots
-                let dismiss_px = 80.0;
-                let w = (ui.available_width() - dismiss_px).max(100.0);
+                let buttons_px = 130.0;
+                let w = (ui.available_width() - buttons_px).max(100.0);
+                // a quoted source line and its caret in monospace
+                let job = crate::gui::chrome::banner_text::layout(ui, &m.text, color);
+                let rows = egui::WidgetText::from(job.clone())
+                    .into_galley(ui, Some(egui::TextWrapMode::Wrap), w, egui::TextStyle::Body)
+                    .rows
+                    .len();
+                let foldable = rows > 1;
                 ui.allocate_ui_with_layout(
                     egui::vec2(w, 0.0),
                     egui::Layout::top_down(egui::Align::Min),
                     |ui| {
                         ui.set_max_width(w);
-                        // a quoted source line and its caret in monospace
-                        let job = crate::gui::chrome::banner_text::layout(ui, &m.text, color);
-                        ui.add(egui::Label::new(job).wrap());
+                        if foldable && folded {
+                            ui.add(egui::Label::new(job).truncate())
+                                .on_hover_text(&m.text);
+                        } else {
+                            ui.add(egui::Label::new(job).wrap());
+                        }
                     },
                 );
                 ui.with_layout(egui::Layout::right_to_left(egui::Align::Min), |ui| {
                     if ui.small_button("Dismiss").clicked() {
                         cmds.push(Command::DismissMessage);
                     }
+                    if foldable {
+                        let (label, hover) = if folded {
+                            ("More", "show the whole message")
+                        } else {
+                            ("Less", "fold the message to its first line")
+                        };
+                        if ui.small_button(label).on_hover_text(hover).clicked() {
+                            toggled = Some(folded);
+                        }
+                    }
                 });
             });
         });
+    toggled
 }
 
 /// Asks before dropping unsaved edits, naming them (`edits`, with units).
