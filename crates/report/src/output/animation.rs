@@ -237,11 +237,13 @@ pub fn frame_path(dir: &Path, k: u64) -> PathBuf {
     dir.join(format!("frame_{k:05}.png"))
 }
 
-/// Fixed drawing ranges of a scene for every frame: x (m) and height (mm).
+/// Fixed drawing ranges of a scene for every frame: x (m) and height
+/// `[y0_mm, y1_mm]` (mm).
 struct Extents {
     x0: f64,
     x1: f64,
-    y_mm: f64,
+    y0_mm: f64,
+    y1_mm: f64,
     /// The row drawn in full ([`drawn_row_y_m`]), `None` for a single row.
     row_y_m: Option<f64>,
 }
@@ -270,18 +272,55 @@ fn extents(sim: &Simulation, road: &Road) -> Extents {
     } else {
         (0.5 * (hi - lo)).max(0.6 * lambda.min(2.0)).max(0.05)
     };
-    let hmax = scene
+    let (x0, x1) = (lo - margin, hi + margin);
+    // the heights drawn: the road, the points' own heights (the undeformed
+    // tyre, the road before the ramp) and zero; a quarter of their span
+    // below, most of it above for the labels and the legend
+    let (z0, z1) = scene
         .points
         .iter()
-        .map(|p| p.h_m.abs())
-        .fold(sim.road_profile().scale_m(), f64::max)
-        .max(1e-6);
+        .map(|p| p.h_m)
+        .fold(road_range_over_run_m(sim, x0, x1, row_y_m), |(a, b), h| {
+            (a.min(h), b.max(h))
+        });
+    let (z0, z1) = (z0.min(0.0), z1.max(0.0));
+    let span = (z1 - z0).max(1e-6);
     Extents {
-        x0: lo - margin,
-        x1: hi + margin,
-        y_mm: 2.5 * hmax * 1e3,
+        x0,
+        x1,
+        y0_mm: 1e3 * (z0 - 0.25 * span),
+        y1_mm: 1e3 * (z1 + 0.9 * span),
         row_y_m,
     }
+}
+
+/// The lowest and highest road heights (m) the frames can draw: of the
+/// road under the window `[x0, x1]` (tyre frame) from `sim`'s time to the
+/// end of its run, at the frames' resolution (at most 200 000 samples),
+/// under the row `row_y_m` of a patch; `(0, 0)` where none is sampled. Not
+/// the whole road's: a long measured track reaches heights far from the
+/// stretch a run rolls over.
+fn road_range_over_run_m(sim: &Simulation, x0: f64, x1: f64, row_y_m: Option<f64>) -> (f64, f64) {
+    let scene = sim.problem();
+    let start_m = sim.rolled_m();
+    let travel_m = scene.speed_mps.abs() * (scene.duration_s - sim.time_s()).max(0.0);
+    let (a, b) = (x0 + start_m, x1 + start_m + travel_m);
+    let step_m = ((x1 - x0) / 600.0).max((b - a) / 200_000.0);
+    if !(step_m > 0.0 && b > a) {
+        return (0.0, 0.0);
+    }
+    let n = ((b - a) / step_m).ceil() as usize;
+    let road = sim.road_profile();
+    (0..=n)
+        .filter_map(|k| {
+            let x = a + (b - a) * k as f64 / n as f64;
+            match row_y_m {
+                Some(y) => road.sample_at(x, y),
+                None => road.sample(x),
+            }
+            .ok()
+        })
+        .fold((0.0, 0.0), |(lo, hi), (z, _)| (z.min(lo), z.max(hi)))
 }
 
 const ROAD: RGBColor = RGBColor(140, 86, 75);
@@ -385,7 +424,7 @@ fn draw_frame_on(
         .margin(fs(12.0))
         .x_label_area_size(fs(55.0))
         .y_label_area_size(fs(80.0))
-        .build_cartesian_2d(ext.x0..ext.x1, -ext.y_mm..ext.y_mm)?;
+        .build_cartesian_2d(ext.x0..ext.x1, ext.y0_mm..ext.y1_mm)?;
     chart
         .configure_mesh()
         .x_desc("position along the contact line x (m)")
@@ -423,7 +462,7 @@ fn draw_road(
         .into_iter()
         .map(|[x, y]| (x, 1e3 * y))
         .collect();
-    let floor = -ext.y_mm;
+    let floor = ext.y0_mm;
     chart.draw_series(std::iter::once(Polygon::new(
         road.iter()
             .copied()
@@ -567,7 +606,7 @@ fn draw_phase_labels(
     let fs = px(scale);
     let top = disp.iter().map(|d| d.1).fold(f64::NEG_INFINITY, f64::max);
     let plot_px = (f64::from(height) - f64::from(fs(26.0 + 55.0 + 24.0))).max(50.0);
-    let lane = 2.0 * ext.y_mm * f64::from(fs(30.0)) / plot_px;
+    let lane = (ext.y1_mm - ext.y0_mm) * f64::from(fs(30.0)) / plot_px;
     if disp.len() > MAX_LABELLED_POINTS {
         // one line of counts per phase over the row (the points' colours
         // say which is which)
@@ -605,7 +644,7 @@ fn draw_phase_labels(
         let y = if several {
             top + lane * (0.5 + (d.2 % 3) as f64)
         } else {
-            d.1 + 0.22 * ext.y_mm
+            d.1 + 0.11 * (ext.y1_mm - ext.y0_mm)
         };
         chart.draw_series(std::iter::once(Text::new(
             format!("p{}: {text}", d.2),

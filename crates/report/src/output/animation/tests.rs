@@ -280,3 +280,60 @@ fn phase_counts_name_each_phase_once() {
     );
     assert_eq!(phase_counts(std::iter::empty()), "");
 }
+
+/// The frames' height range is set by the road the run rolls over, not by
+/// the whole road: on a road of a 0.1 m swell 2 km long and 1 mm ripples,
+/// it fits the few millimetres drawn (where the whole road's ±0.1 m made
+/// the drawn road a flat line), and every frame's road stays inside it.
+#[test]
+fn the_height_range_fits_the_road_rolled_over() {
+    use tirecontact_core::model::road::Harmonic;
+    let mut scene = Scene::parse(
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )),
+        "three_points",
+    )
+    .unwrap();
+    let harmonic = |amplitude_m: f64, wavelength_m: f64| Harmonic {
+        amplitude_m,
+        wavelength_m,
+        phase_rad: 0.0,
+    };
+    scene.road = Road::Harmonics {
+        components: vec![harmonic(0.1, 2000.0), harmonic(0.001, 0.05)],
+    };
+    scene.duration_s = 0.05;
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    let ext = extents(&sim, &scene.road);
+    // the drawn heights: the road over the run, the points' heights, zero
+    let (mut lo, mut hi) = scene.points.iter().fold((0.0f64, 0.0f64), |(a, b), p| {
+        (a.min(1e3 * p.h_m), b.max(1e3 * p.h_m))
+    });
+    loop {
+        for [_, y] in road_in_tyre_frame(&sim, ext.x0, ext.x1, 600) {
+            let y_mm = 1e3 * y;
+            assert!(
+                ext.y0_mm < y_mm && y_mm < ext.y1_mm,
+                "t = {} s: road at {y_mm} mm outside {} to {} mm",
+                sim.time_s(),
+                ext.y0_mm,
+                ext.y1_mm
+            );
+            (lo, hi) = (lo.min(y_mm), hi.max(y_mm));
+        }
+        if sim.time_s() >= scene.duration_s - 1e-9 {
+            break;
+        }
+        for _ in 0..50 {
+            sim.step().unwrap();
+        }
+    }
+    assert!(
+        ext.y1_mm - ext.y0_mm <= 2.5 * (hi - lo),
+        "{} to {} mm for heights from {lo} to {hi} mm",
+        ext.y0_mm,
+        ext.y1_mm
+    );
+}
