@@ -34,11 +34,14 @@ const BANNER_MARGIN_PX: f32 = 6.0;
 /// to its first line, uncovering the top of the view under it.
 pub const BANNER_UNFOLDED_S: f64 = 8.0;
 
-/// A message's folding, kept by egui per message: when it was first shown
-/// and whether the user unfolded (`Some(true)`) or folded it (`Some(false)`);
-/// `None` folds it [`BANNER_UNFOLDED_S`] after it was first shown.
+/// The folding of the message shown (`message`, a hash of its kind and
+/// text), kept by egui while it is shown: when it was first shown and
+/// whether the user unfolded (`Some(true)`) or folded it (`Some(false)`);
+/// `None` folds it [`BANNER_UNFOLDED_S`] after it was first shown. Another
+/// message, or the same one after none was shown, starts afresh.
 #[derive(Debug, Clone, Copy)]
 struct Fold {
+    message: egui::Id,
     since_s: f64,
     open: Option<bool>,
 }
@@ -56,45 +59,57 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
         .max(ui.spacing().interact_size.y);
     let size = egui::vec2(ui.available_width(), row_px + 2.0 * BANNER_MARGIN_PX);
     let (strip, _) = ui.allocate_exact_size(size, egui::Sense::hover());
-    if let Some(m) = msg {
-        let key = egui::Id::unique(("tirecontact.banner.fold", m.error, &m.text));
-        let now = ui.input(|i| i.time);
-        let fold = ui.data_mut(|d| {
-            *d.get_temp_mut_or_insert_with(key, || Fold {
+    let key = egui::Id::unique("tirecontact.banner.fold");
+    let Some(m) = msg else {
+        ui.data_mut(|d| d.remove::<Fold>(key));
+        return;
+    };
+    let message = egui::Id::unique(("tirecontact.banner.message", m.error, &m.text));
+    let now = ui.input(|i| i.time);
+    let fold = ui.data_mut(|d| {
+        let fold = d.get_temp_mut_or_insert_with(key, || Fold {
+            message,
+            since_s: now,
+            open: None,
+        });
+        if fold.message != message {
+            *fold = Fold {
+                message,
                 since_s: now,
                 open: None,
-            })
-        });
-        let folded = match fold.open {
-            Some(open) => !open,
-            None => {
-                let left_s = fold.since_s + BANNER_UNFOLDED_S - now;
-                if left_s > 0.0 {
-                    ui.ctx().request_repaint_after_secs(left_s as f32);
-                }
-                left_s <= 0.0
+            };
+        }
+        *fold
+    });
+    let folded = match fold.open {
+        Some(open) => !open,
+        None => {
+            let left_s = fold.since_s + BANNER_UNFOLDED_S - now;
+            if left_s > 0.0 {
+                ui.ctx().request_repaint_after_secs(left_s as f32);
             }
-        };
-        egui::Area::new(egui::Id::unique("tirecontact.banner"))
-            .order(egui::Order::Foreground)
-            .fixed_pos(strip.min)
-            .constrain(false)
-            .show(ui.ctx(), |ui| {
-                ui.set_width(strip.width());
-                ui.set_max_width(strip.width());
-                if let Some(open) = banner_frame(ui, m, folded, cmds) {
-                    ui.data_mut(|d| {
-                        d.insert_temp(
-                            key,
-                            Fold {
-                                open: Some(open),
-                                ..fold
-                            },
-                        )
-                    });
-                }
-            });
-    }
+            left_s <= 0.0
+        }
+    };
+    egui::Area::new(egui::Id::unique("tirecontact.banner"))
+        .order(egui::Order::Foreground)
+        .fixed_pos(strip.min)
+        .constrain(false)
+        .show(ui.ctx(), |ui| {
+            ui.set_width(strip.width());
+            ui.set_max_width(strip.width());
+            if let Some(open) = banner_frame(ui, m, folded, cmds) {
+                ui.data_mut(|d| {
+                    d.insert_temp(
+                        key,
+                        Fold {
+                            open: Some(open),
+                            ..fold
+                        },
+                    )
+                });
+            }
+        });
 }
 
 /// The progress line of the preparation an edit or a new document waits
@@ -171,8 +186,8 @@ fn banner_frame(ui: &mut Ui, m: &Message, folded: bool, cmds: &mut Vec<Command>)
         .show(ui, |ui| {
             ui.horizontal_top(|ui| {
                 // wrapped to the room left of the buttons: unwrapped, a long
-                // message (a refused field's reason) widened the central
-                // panel past the window, cutting off Dismiss and the plots
+                // message (a refused field's reason) would widen the central
+                // panel past the window and cut off Dismiss and the plots
                 let buttons_px = 130.0;
                 let w = (ui.available_width() - buttons_px).max(100.0);
                 // a quoted source line and its caret in monospace
@@ -427,5 +442,73 @@ pub fn png_window(
         }
     } else if !open {
         *settings = None;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One frame at `t_s` of a 400 px wide window showing `msg` in the
+    /// banner: the banner's height (px), if shown.
+    fn frame(ctx: &egui::Context, t_s: f64, msg: Option<&Message>) -> Option<f32> {
+        let raw = egui::RawInput {
+            time: Some(t_s),
+            screen_rect: Some(egui::Rect::from_min_size(
+                egui::Pos2::ZERO,
+                egui::vec2(400.0, 800.0),
+            )),
+            ..Default::default()
+        };
+        let mut cmds = Vec::new();
+        let mut out = ctx.run_ui(raw, |ui| banner(ui, msg, &mut cmds));
+        // (no painter takes the font textures here)
+        out.textures_delta.clear();
+        msg?;
+        ctx.memory(|m| m.area_rect(egui::Id::unique("tirecontact.banner")))
+            .map(|r| r.height())
+    }
+
+    /// A message folds [`BANNER_UNFOLDED_S`] after it is first shown; the
+    /// same message shown again after none was, or another message, is
+    /// shown whole for that long again, even after the user unfolded or
+    /// folded the first.
+    #[test]
+    fn each_showing_of_a_message_folds_after_its_own_delay() {
+        let ctx = egui::Context::default();
+        let long = |text: &str| Message {
+            error: true,
+            text: format!(
+                "{text}: {}",
+                "a reason long enough to wrap at phone width ".repeat(4)
+            ),
+        };
+        let (a, b) = (long("first"), long("second"));
+        let whole = frame(&ctx, 0.0, Some(&a)).unwrap();
+        assert_eq!(frame(&ctx, 1.0, Some(&a)), Some(whole));
+        let folded = frame(&ctx, BANNER_UNFOLDED_S + 0.1, Some(&a)).unwrap();
+        assert!(folded < 0.6 * whole, "{folded} px folded, {whole} px whole");
+        // unfolded by the user: stays so while shown
+        ctx.data_mut(|d| {
+            let key = egui::Id::unique("tirecontact.banner.fold");
+            let f = d.get_temp::<Fold>(key).unwrap();
+            d.insert_temp(
+                key,
+                Fold {
+                    open: Some(true),
+                    ..f
+                },
+            );
+        });
+        assert_eq!(frame(&ctx, 30.0, Some(&a)), Some(whole));
+        // dismissed, then shown again: whole, then folded after the delay
+        assert_eq!(frame(&ctx, 31.0, None), None);
+        assert_eq!(frame(&ctx, 32.0, Some(&a)), Some(whole));
+        assert_eq!(
+            frame(&ctx, 32.0 + BANNER_UNFOLDED_S + 0.1, Some(&a)),
+            Some(folded)
+        );
+        // another message replacing it: whole again
+        assert_eq!(frame(&ctx, 50.0, Some(&b)), Some(whole));
     }
 }

@@ -5,7 +5,7 @@
 use crate::gui::jobs::Job;
 use crate::gui::jobs::export::{LiveEdit, replay};
 use crate::identify::{ModeCache, PreparedModel};
-use crate::output::animation::{FrameSettings, FrameWriter, frames_error};
+use crate::output::animation::{FrameSettings, FrameWriter, RoadChange, frames_error};
 use crate::{Scene, SolverOptions};
 use std::path::PathBuf;
 
@@ -40,9 +40,20 @@ impl FramesJob {
         let total = settings.frame_count();
         let road = start.road.clone();
         let job = Job::spawn("frames export", total, move |progress| {
+            // (the axes span the roads and speeds of the edits replayed)
+            let dt_s = sim.dt_s();
+            let changes: Vec<RoadChange<'_>> = edits
+                .iter()
+                .map(|e| RoadChange {
+                    t_s: e.step as f64 * dt_s,
+                    profile: &e.profile,
+                    speed_mps: e.speed_mps,
+                })
+                .collect();
             let mut frames = FrameWriter::new(
                 &sim,
                 &road,
+                &changes,
                 &d,
                 &settings,
                 clear_old,

@@ -13,8 +13,8 @@ use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use tirecontact_core::Simulation;
-use tirecontact_core::model::road::Road;
 use tirecontact_core::model::road::ramp;
+use tirecontact_core::model::road::{Road, RoadProfile};
 use tirecontact_core::solver::drive::{Probe, Watch, run_to_end};
 use tirecontact_core::solver::error::RunError;
 use tirecontact_core::solver::phase::{ContactPhase, PhaseTracker};
@@ -248,10 +248,27 @@ struct Extents {
     row_y_m: Option<f64>,
 }
 
+/// A change of road or speed that a run takes at `t_s` (a live edit
+/// replayed from the visualiser): the frames' height axis spans the road
+/// rolled over after it too.
+#[derive(Debug, Clone, Copy)]
+pub struct RoadChange<'a> {
+    pub t_s: f64,
+    pub profile: &'a RoadProfile,
+    pub speed_mps: f64,
+}
+
 /// The drawn window: the points with a margin of the road's longest
 /// wavelength (`road`, the scene's description of it), or for a patch
-/// (several rows) half the patch's length each side.
-fn extents(sim: &Simulation, road: &Road) -> Extents {
+/// (several rows) half the patch's length each side; the heights of the
+/// frames drawn over `frames_s` (from, to), with the road `changes`
+/// ([`RoadChange`], in time order) the run will take.
+fn extents(
+    sim: &Simulation,
+    road: &Road,
+    frames_s: (f64, f64),
+    changes: &[RoadChange<'_>],
+) -> Extents {
     let scene = sim.problem();
     let lo = scene
         .points
@@ -276,13 +293,10 @@ fn extents(sim: &Simulation, road: &Road) -> Extents {
     // the heights drawn: the road, the points' own heights (the undeformed
     // tyre, the road before the ramp) and zero; a quarter of their span
     // below, most of it above for the labels and the legend
-    let (z0, z1) = scene
-        .points
-        .iter()
-        .map(|p| p.h_m)
-        .fold(road_range_over_run_m(sim, x0, x1, row_y_m), |(a, b), h| {
-            (a.min(h), b.max(h))
-        });
+    let (z0, z1) = scene.points.iter().map(|p| p.h_m).fold(
+        road_range_m(sim, (x0, x1), row_y_m, frames_s, changes),
+        |(a, b), h| (a.min(h), b.max(h)),
+    );
     let (z0, z1) = (z0.min(0.0), z1.max(0.0));
     let span = (z1 - z0).max(1e-6);
     Extents {
@@ -295,22 +309,64 @@ fn extents(sim: &Simulation, road: &Road) -> Extents {
 }
 
 /// The lowest and highest road heights (m) the frames can draw: of the
-/// road under the window `[x0, x1]` (tyre frame) from `sim`'s time to the
-/// end of its run, at the frames' resolution (at most 200 000 samples),
-/// under the row `row_y_m` of a patch; `(0, 0)` where none is sampled. Not
-/// the whole road's: a long measured track reaches heights far from the
-/// stretch a run rolls over.
-fn road_range_over_run_m(sim: &Simulation, x0: f64, x1: f64, row_y_m: Option<f64>) -> (f64, f64) {
-    let scene = sim.problem();
-    let start_m = sim.rolled_m();
-    let travel_m = scene.speed_mps.abs() * (scene.duration_s - sim.time_s()).max(0.0);
-    let (a, b) = (x0 + start_m, x1 + start_m + travel_m);
-    let step_m = ((x1 - x0) / 600.0).max((b - a) / 200_000.0);
+/// road under the window `(x0, x1)` (tyre frame) over the frames' times
+/// `frames_s` from `sim`'s time on, at the frames' resolution (at most
+/// 200 000 samples a stretch of road), under the row `row_y_m` of a patch,
+/// with each road and speed of `changes` from its time; `(0, 0)` where none
+/// is sampled. Not the whole road's: a long measured track reaches heights
+/// far from the stretch a run rolls over.
+fn road_range_m(
+    sim: &Simulation,
+    (x0, x1): (f64, f64),
+    row_y_m: Option<f64>,
+    frames_s: (f64, f64),
+    changes: &[RoadChange<'_>],
+) -> (f64, f64) {
+    let t_end = sim.problem().duration_s;
+    let (from_s, to_s) = (frames_s.0.max(sim.time_s()), frames_s.1.min(t_end));
+    // the stretches of one road at one speed: (start time, road, speed)
+    let first = RoadChange {
+        t_s: sim.time_s(),
+        profile: sim.road_profile(),
+        speed_mps: sim.problem().speed_mps,
+    };
+    let stretches: Vec<RoadChange<'_>> = std::iter::once(first)
+        .chain(changes.iter().copied().filter(|c| c.t_s >= first.t_s))
+        .collect();
+    let mut rolled_m = sim.rolled_m();
+    let mut range = (0.0f64, 0.0f64);
+    for (k, c) in stretches.iter().enumerate() {
+        let end_s = stretches.get(k + 1).map_or(t_end, |n| n.t_s);
+        let (a_s, b_s) = (c.t_s.max(from_s), end_s.min(to_s));
+        if a_s <= b_s {
+            let start_m = rolled_m + c.speed_mps * (a_s - c.t_s);
+            let travel_m = c.speed_mps * (b_s - a_s);
+            let (lo, hi) = (
+                start_m.min(start_m + travel_m),
+                start_m.max(start_m + travel_m),
+            );
+            let (z0, z1) = road_range_between_m(c.profile, x0 + lo, x1 + hi, x1 - x0, row_y_m);
+            range = (range.0.min(z0), range.1.max(z1));
+        }
+        rolled_m += c.speed_mps * (end_s - c.t_s);
+    }
+    range
+}
+
+/// The lowest and highest heights (m) of `road` over `[a, b]` (m), sampled
+/// at `window_m / 600` (at most 200 000 samples), under the row `row_y_m`.
+fn road_range_between_m(
+    road: &RoadProfile,
+    a: f64,
+    b: f64,
+    window_m: f64,
+    row_y_m: Option<f64>,
+) -> (f64, f64) {
+    let step_m = (window_m / 600.0).max((b - a) / 200_000.0);
     if !(step_m > 0.0 && b > a) {
         return (0.0, 0.0);
     }
     let n = ((b - a) / step_m).ceil() as usize;
-    let road = sim.road_profile();
     (0..=n)
         .filter_map(|k| {
             let x = a + (b - a) * k as f64 / n as f64;
@@ -705,11 +761,13 @@ pub struct FrameWriter<'a> {
 impl<'a> FrameWriter<'a> {
     /// Checks `settings` against `sim`'s scene and creates `dir`. Frames of
     /// an earlier export in `dir` would mix with the new ones (a shorter
-    /// export left the old scene's last frames behind): they are removed
-    /// with `clear_old`, else refused.
+    /// export leaves a longer one's last frames): they are removed with
+    /// `clear_old`, else refused. `changes`: the road and
+    /// speed changes the run will take (its axes span their roads too).
     pub fn new(
         sim: &Simulation,
         road: &Road,
+        changes: &[RoadChange<'_>],
         dir: &Path,
         settings: &FrameSettings,
         clear_old: bool,
@@ -733,7 +791,7 @@ impl<'a> FrameWriter<'a> {
         Ok(FrameWriter {
             dir: dir.to_path_buf(),
             settings: *settings,
-            ext: extents(sim, road),
+            ext: extents(sim, road, (settings.t0_s, settings.t1_s), changes),
             phases: PhaseTracker::new(sim.num_points(), settings.frame_dt_s().max(dt_s)),
             dt_s,
             next: 0,
@@ -812,7 +870,7 @@ pub fn export_frames(
     progress: &AtomicU64,
     cancel: &AtomicBool,
 ) -> Result<u64, FramesError> {
-    let mut frames = FrameWriter::new(&sim, road, dir, settings, clear_old, progress, cancel)?;
+    let mut frames = FrameWriter::new(&sim, road, &[], dir, settings, clear_old, progress, cancel)?;
     run_to_end(&mut sim, &mut frames, Watch::none())?;
     frames.finish(&sim).map_err(|e| RunError::from(e).into())
 }

@@ -207,7 +207,15 @@ fn frames_draw_the_road_antialiased() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("f.png");
     let (w, h) = (640, 360);
-    draw_frame(&sim, &phases, &extents(&sim, &scene.road), &path, w, h).unwrap();
+    draw_frame(
+        &sim,
+        &phases,
+        &extents(&sim, &scene.road, (0.0, scene.duration_s), &[]),
+        &path,
+        w,
+        h,
+    )
+    .unwrap();
     let img = image::open(&path).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (w, h));
     let edge = road_edge_pixels(&img);
@@ -215,7 +223,15 @@ fn frames_draw_the_road_antialiased() {
     let mut rgb = vec![0u8; (w * h * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-        draw_frame_on(&root, &sim, &phases, &extents(&sim, &scene.road), w, h).unwrap();
+        draw_frame_on(
+            &root,
+            &sim,
+            &phases,
+            &extents(&sim, &scene.road, (0.0, scene.duration_s), &[]),
+            w,
+            h,
+        )
+        .unwrap();
         root.present().unwrap();
     }
     let aliased = road_edge_pixels(&image::RgbImage::from_raw(w, h, rgb).unwrap());
@@ -281,13 +297,39 @@ fn phase_counts_name_each_phase_once() {
     assert_eq!(phase_counts(std::iter::empty()), "");
 }
 
-/// The frames' height range is set by the road the run rolls over, not by
-/// the whole road: on a road of a 0.1 m swell 2 km long and 1 mm ripples,
-/// it fits the few millimetres drawn (where the whole road's ±0.1 m made
-/// the drawn road a flat line), and every frame's road stays inside it.
+/// Every frame's road, drawn at `sim`'s time, inside `ext`'s heights:
+/// the lowest and highest drawn (mm).
+fn drawn_road_mm(sim: &Simulation, ext: &Extents) -> (f64, f64) {
+    let mut range = (f64::INFINITY, f64::NEG_INFINITY);
+    for [_, y] in road_in_tyre_frame(sim, ext.x0, ext.x1, 600) {
+        let y_mm = 1e3 * y;
+        assert!(
+            ext.y0_mm < y_mm && y_mm < ext.y1_mm,
+            "t = {} s: road at {y_mm} mm outside {} to {} mm",
+            sim.time_s(),
+            ext.y0_mm,
+            ext.y1_mm
+        );
+        range = (range.0.min(y_mm), range.1.max(y_mm));
+    }
+    range
+}
+
+fn harmonic(amplitude_m: f64, wavelength_m: f64) -> tirecontact_core::model::road::Harmonic {
+    tirecontact_core::model::road::Harmonic {
+        amplitude_m,
+        wavelength_m,
+        phase_rad: 0.0,
+    }
+}
+
+/// The frames' height range is set by the road the run rolls over: on a
+/// road of a 0.1 m swell 20 m long, rolled over from its trough to its
+/// crest (10 m at 100 m/s), it spans the heights drawn over the run (the
+/// window's road at the start, around the trough, is not enough), every
+/// frame's road inside it.
 #[test]
 fn the_height_range_fits_the_road_rolled_over() {
-    use tirecontact_core::model::road::Harmonic;
     let mut scene = Scene::parse(
         include_str!(concat!(
             env!("CARGO_MANIFEST_DIR"),
@@ -296,33 +338,24 @@ fn the_height_range_fits_the_road_rolled_over() {
         "three_points",
     )
     .unwrap();
-    let harmonic = |amplitude_m: f64, wavelength_m: f64| Harmonic {
-        amplitude_m,
-        wavelength_m,
-        phase_rad: 0.0,
+    let swell = tirecontact_core::model::road::Harmonic {
+        phase_rad: -0.5 * std::f64::consts::PI,
+        ..harmonic(0.1, 20.0)
     };
     scene.road = Road::Harmonics {
-        components: vec![harmonic(0.1, 2000.0), harmonic(0.001, 0.05)],
+        components: vec![swell, harmonic(0.001, 0.05)],
     };
-    scene.duration_s = 0.05;
+    (scene.speed_mps, scene.duration_s, scene.dt_s) = (100.0, 0.11, 1e-4);
     let mut sim = Simulation::from_scene(&scene).unwrap();
-    let ext = extents(&sim, &scene.road);
+    let ext = extents(&sim, &scene.road, (0.0, scene.duration_s), &[]);
     // the drawn heights: the road over the run, the points' heights, zero
     let (mut lo, mut hi) = scene.points.iter().fold((0.0f64, 0.0f64), |(a, b), p| {
         (a.min(1e3 * p.h_m), b.max(1e3 * p.h_m))
     });
+    let first = drawn_road_mm(&sim, &ext);
     loop {
-        for [_, y] in road_in_tyre_frame(&sim, ext.x0, ext.x1, 600) {
-            let y_mm = 1e3 * y;
-            assert!(
-                ext.y0_mm < y_mm && y_mm < ext.y1_mm,
-                "t = {} s: road at {y_mm} mm outside {} to {} mm",
-                sim.time_s(),
-                ext.y0_mm,
-                ext.y1_mm
-            );
-            (lo, hi) = (lo.min(y_mm), hi.max(y_mm));
-        }
+        let (a, b) = drawn_road_mm(&sim, &ext);
+        (lo, hi) = (lo.min(a), hi.max(b));
         if sim.time_s() >= scene.duration_s - 1e-9 {
             break;
         }
@@ -331,9 +364,63 @@ fn the_height_range_fits_the_road_rolled_over() {
         }
     }
     assert!(
+        hi - first.1 > 50.0,
+        "the road rises by {} mm over the run only",
+        hi - first.1
+    );
+    assert!(
         ext.y1_mm - ext.y0_mm <= 2.5 * (hi - lo),
         "{} to {} mm for heights from {lo} to {hi} mm",
         ext.y0_mm,
         ext.y1_mm
     );
+}
+
+/// A road and speed changed during the run (a live edit replayed) are in
+/// the frames' height range from their time on: after a change to a road
+/// ten times higher and a faster speed, every frame's road is inside it.
+#[test]
+fn the_height_range_spans_the_roads_of_changes() {
+    let mut scene = Scene::parse(
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )),
+        "three_points",
+    )
+    .unwrap();
+    scene.road = Road::Harmonics {
+        components: vec![harmonic(0.001, 0.05)],
+    };
+    scene.duration_s = 0.04;
+    let high = RoadProfile::Harmonics(vec![harmonic(0.01, 0.3)]);
+    let (t_change, speed) = (0.02, 2.0 * scene.speed_mps);
+    let mut sim = Simulation::from_scene(&scene).unwrap();
+    let change = RoadChange {
+        t_s: t_change,
+        profile: &high,
+        speed_mps: speed,
+    };
+    let ext = extents(&sim, &scene.road, (0.0, scene.duration_s), &[change]);
+    let without = extents(&sim, &scene.road, (0.0, scene.duration_s), &[]);
+    assert!(
+        ext.y1_mm > 5.0 * without.y1_mm,
+        "{} vs {} mm",
+        ext.y1_mm,
+        without.y1_mm
+    );
+    let mut changed = false;
+    while sim.time_s() < scene.duration_s - 1e-9 {
+        if !changed && sim.time_s() >= t_change - 1e-9 {
+            sim.set_road(high.clone());
+            sim.set_speed(speed);
+            changed = true;
+        }
+        drawn_road_mm(&sim, &ext);
+        for _ in 0..20 {
+            sim.step().unwrap();
+        }
+    }
+    assert!(changed);
+    drawn_road_mm(&sim, &ext);
 }
