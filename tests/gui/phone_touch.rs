@@ -225,6 +225,22 @@ fn a_refused_value_says_why_while_editing_on_a_phone() {
     assert!(h.query_by_label("Back to the views").is_some());
 }
 
+/// The mode bars, which need room beside the view, are not offered on a
+/// phone (the toggle showed them on while no bars were drawn).
+#[test]
+fn mode_bars_are_not_offered_on_a_phone() {
+    let mut h = phone(PHONES[0]);
+    h.state_mut().apply(Command::ShowModeBars(true));
+    h.run_steps(2);
+    h.get_by_label("View").click();
+    h.run_steps(2);
+    assert!(
+        h.get_by_label("Mode bars").accesskit_node().is_disabled(),
+        "Mode bars offered at 390 px"
+    );
+    assert_eq!(h.query_all_by_label("Mute").count(), 0);
+}
+
 /// Classroom mode is not offered on a phone, and a session that left it on
 /// opens in the normal layout there.
 #[test]

@@ -136,16 +136,21 @@ impl App {
             });
             return;
         }
+        // the side panels give way in a small window: the view keeps at
+        // least 40 % of the width
+        let w = ui.available_width();
         egui::Panel::left("tirecontact.edit")
             .resizable(true)
-            .default_size(380.0)
+            .default_size(380.0f32.min(0.35 * w))
+            .max_size(0.35 * w)
             .show(ui, |ui| {
                 self.editor(ui, editable, &edits, cmds_left);
             });
         if self.classroom.bars {
             egui::Panel::right("tirecontact.mode_bars")
                 .resizable(true)
-                .default_size(320.0)
+                .default_size(320.0f32.min(0.25 * w))
+                .max_size(0.25 * w)
                 .show(ui, |ui| {
                     classroom::mode_bars(
                         ui,

@@ -13,7 +13,7 @@ use crate::gui::research::fidelity::FidelityRef;
 use crate::gui::research::fidelity_job::FidelityJob;
 use crate::gui::research::spectra::{HistoryKey, SpectraInput};
 use crate::gui::research::spectra_job::{INLINE_MAX_WORK, SpectraJob, SpectraPoll};
-use crate::gui::research::sweep_job::{SweepState, default_threads};
+use crate::gui::research::sweep_job::default_threads;
 use crate::gui::research::workbench_job::{WorkbenchJob, key_of, scene_key};
 use crate::gui::views::{
     compare_view, fidelity_view, spectra_view, sweep_view, wall_time_text, workbench_view,
@@ -312,10 +312,11 @@ impl App {
             || (self.view == View::Workbench && self.research.workbench_job.is_some())
     }
 
-    /// A sweep's end: its outcome kept, and said in the banner.
+    /// A sweep's end: its outcome kept (a cancelled or failed sweep keeps
+    /// the last finished one's results), and said in the banner.
     fn sweep_ended(&mut self, end: SweepEnd) {
-        let (error, text) = match self.research.sweep.end(end) {
-            SweepState::Finished(r) => (
+        let (error, text) = match &end {
+            SweepEnd::Done(r) => (
                 false,
                 format!(
                     "sweep of {} done: {} runs ({} failed) on {} threads in {}",
@@ -326,12 +327,15 @@ impl App {
                     wall_time_text(r.wall_s)
                 ),
             ),
-            SweepState::Cancelled => (
-                false,
-                "sweep cancelled; no results kept, the app is unchanged".to_string(),
-            ),
-            SweepState::Failed(e) => (true, format!("sweep failed: {e}")),
-            _ => (false, String::new()),
+            SweepEnd::Cancelled => (false, "sweep cancelled".to_string()),
+            SweepEnd::Failed(e) => (true, format!("sweep failed: {e}")),
+        };
+        let done = matches!(end, SweepEnd::Done(_));
+        let (_, kept) = self.research.sweep.end(end);
+        let text = match (done, kept) {
+            (true, _) => text,
+            (false, true) => format!("{text}; the previous sweep's results are kept"),
+            (false, false) => format!("{text}; no results kept, the app is unchanged"),
         };
         self.research_message(error, text);
     }

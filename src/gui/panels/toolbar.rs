@@ -216,9 +216,17 @@ fn view_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         }
     });
     ui.separator();
+    // (a phone shows one view at a time: no room for the bars beside it)
+    let roomy = ui.ctx().content_rect().width() >= NARROW_PX;
     if ui
-        .selectable_label(st.mode_bars, "Mode bars")
+        .add_enabled(
+            roomy,
+            egui::Button::selectable(st.mode_bars && roomy, "Mode bars"),
+        )
         .on_hover_text("per-mode contributions to a point's displacement, with mute and solo")
+        .on_disabled_hover_text(format!(
+            "the mode bars need a window at least {NARROW_PX:.0} px wide, beside the view"
+        ))
         .clicked()
     {
         cmds.push(Command::ShowModeBars(!st.mode_bars));

@@ -21,6 +21,9 @@ pub struct SweepJob {
     started: web_time::Instant,
     scene_name: String,
     columns: Columns,
+    /// The last finished sweep's results, kept if this one is cancelled or
+    /// fails.
+    previous: Option<Box<SweepResult>>,
 }
 
 /// Worker threads for a sweep: every core.
@@ -97,6 +100,7 @@ impl SweepJob {
             runs,
             job,
             started: web_time::Instant::now(),
+            previous: None,
         }
     }
 
@@ -174,7 +178,12 @@ impl SweepState {
         if self.is_running() {
             return Err("a sweep is already running: cancel it first".into());
         }
-        *self = SweepState::Running(SweepJob::start(base, request, threads, cache)?);
+        let mut job = SweepJob::start(base, request, threads, cache)?;
+        job.previous = match std::mem::take(self) {
+            SweepState::Finished(r) => Some(Box::new(r)),
+            _ => None,
+        };
+        *self = SweepState::Running(job);
         Ok(())
     }
 
@@ -192,14 +201,24 @@ impl SweepState {
         }
     }
 
-    /// Moves to the outcome `end` of the job ([`SweepState::ended`]).
-    pub fn end(&mut self, end: SweepEnd) -> &SweepState {
-        *self = match end {
-            SweepEnd::Done(r) => SweepState::Finished(r),
-            SweepEnd::Cancelled => SweepState::Cancelled,
-            SweepEnd::Failed(e) => SweepState::Failed(e),
+    /// Moves to the outcome `end` of the job ([`SweepState::ended`]). A
+    /// sweep cancelled or failed leaves the results of the sweep finished
+    /// before it, if any (returned as `true`), not an empty view.
+    pub fn end(&mut self, end: SweepEnd) -> (&SweepState, bool) {
+        let previous = match std::mem::take(self) {
+            SweepState::Running(job) => job.previous,
+            _ => None,
         };
-        self
+        let (state, kept) = match (end, previous) {
+            (SweepEnd::Done(r), _) => (SweepState::Finished(r), false),
+            (SweepEnd::Cancelled | SweepEnd::Failed(_), Some(r)) => {
+                (SweepState::Finished(*r), true)
+            }
+            (SweepEnd::Cancelled, None) => (SweepState::Cancelled, false),
+            (SweepEnd::Failed(e), None) => (SweepState::Failed(e), false),
+        };
+        *self = state;
+        (self, kept)
     }
 
     /// The finished result, if any.
@@ -295,6 +314,44 @@ mod tests {
         .unwrap();
         assert_eq!(res.points, lib);
         assert_eq!(res.failed(), 0);
+    }
+
+    /// Waits for the running sweep's end and moves to it: whether earlier
+    /// results were kept.
+    fn finish(st: &mut SweepState) -> bool {
+        loop {
+            if let Some(end) = st.ended() {
+                return st.end(end).1;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+    }
+
+    /// A sweep cancelled after one finished leaves that one's results (the
+    /// view had shown nothing, and the banner said "no results kept"); the
+    /// first sweep cancelled leaves none.
+    #[test]
+    fn a_cancelled_sweep_keeps_the_results_before_it() {
+        let s = scene();
+        let cache = || Arc::new(ModeCache::new());
+        let mut st = SweepState::Idle;
+        st.start(&s, req("speed_mps", 10.0, 20.0, 3), 2, cache())
+            .unwrap();
+        st.cancel();
+        assert!(!finish(&mut st));
+        assert!(matches!(st, SweepState::Cancelled));
+        st.start(&s, req("speed_mps", 10.0, 20.0, 3), 2, cache())
+            .unwrap();
+        assert!(!finish(&mut st));
+        let first = st.result().expect("the first sweep's results").clone();
+        st.start(&s, req("speed_mps", 5.0, 30.0, 400), 2, cache())
+            .unwrap();
+        assert!(st.result().is_none(), "running");
+        st.cancel();
+        assert!(finish(&mut st), "the results before it are kept");
+        let kept = st.result().expect("results after the cancel");
+        assert_eq!(kept.points, first.points);
+        assert_eq!(kept.request, first.request);
     }
 
     /// The browser's sweep: run in slices within the polls, each poll

@@ -202,3 +202,30 @@ fn short_plots_legends_are_legible() {
         "legend text {sizes:?} px"
     );
 }
+
+/// In the smallest window (900 × 600) with the editing panel and the mode
+/// bars both open, the side panels give way and the time plots keep a
+/// readable width (they were squeezed to about 120 px, their legends over
+/// the curves).
+#[test]
+fn side_panels_leave_the_time_plots_room_in_a_small_window() {
+    use egui_plot::PlotMemory;
+    use tirecontact::gui::views::time_plots::FORCE_PLOT_ID;
+    let scene = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    let mut h = crate::harness::harness_sized(App::new(scene, None).unwrap(), [900.0, 600.0]);
+    h.run();
+    h.state_mut()
+        .apply(tirecontact::gui::Command::ShowModeBars(true));
+    advance(&mut h, 2_000);
+    h.run_steps(2);
+    let mem = PlotMemory::load(&h.ctx, egui::Id::unique(FORCE_PLOT_ID)).expect("plot shown");
+    let frame = *mem.transform().frame();
+    assert!(
+        frame.width() >= 250.0 && frame.right() <= 900.0,
+        "force plot {frame:?} in a 900 px window"
+    );
+    assert!(
+        h.get_all_by_label("Mute").count() > 0,
+        "the mode bars are shown"
+    );
+}
