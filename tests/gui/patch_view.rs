@@ -185,3 +185,25 @@ fn the_patch_header_rounds_to_meaningful_digits() {
         header_text(1e-5, 0.012_34, 1e-4, (3, 96), (0.006, 0.02)).contains("total force 0.0123 N")
     );
 }
+
+/// The heat map export is offered for a patch only: for a scene of one row
+/// of points it is disabled, saying why, before any file is asked for.
+#[test]
+fn the_heat_map_export_is_offered_for_a_patch_only() {
+    use egui_kittest::kittest::{NodeT, Queryable};
+    for (preset, offered) in [
+        ("presets/paper.ron", false),
+        ("presets/patch_texture.ron", true),
+    ] {
+        let scene = tirecontact::Scene::load(std::path::Path::new(preset)).unwrap();
+        let mut h = crate::harness::harness_sized(
+            tirecontact::gui::App::new(scene, None).unwrap(),
+            [1280.0, 720.0],
+        );
+        h.run_steps(2);
+        h.get_by_label("Export").click();
+        h.run_steps(2);
+        let item = h.get_by_label("Contact patch heat map (PNG)…");
+        assert_eq!(!item.accesskit_node().is_disabled(), offered, "{preset}");
+    }
+}

@@ -135,6 +135,10 @@ impl App {
             classroom: self.classroom.on,
             mode_bars: self.classroom.bars,
             exporting_frames: self.handles.frames_job.is_some(),
+            patch: {
+                let y0 = self.doc.scene.points.first().map(|p| p.y_m);
+                self.doc.scene.points.iter().any(|p| Some(p.y_m) != y0)
+            },
             editing: self.edit_panel_open
                 && ctx.content_rect().width() < crate::gui::widgets::NARROW_PX,
         };

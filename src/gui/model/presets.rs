@@ -69,18 +69,25 @@ pub const SHIPPED_WITH_FILES: &[(&str, &str)] = &[
     ("FE modes of a plate (UFF file)", "fe_plate.ron"),
 ];
 
-/// The path of a [`SHIPPED_WITH_FILES`] preset: in the repository's
-/// `presets/` folder, else in a `presets/` folder beside the executable
-/// (an installed copy), if it is there.
+/// The path of a [`SHIPPED_WITH_FILES`] preset: the first of
+/// [`preset_dirs`] that holds it.
 pub fn shipped_with_files_path(file: &str) -> Option<std::path::PathBuf> {
-    let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+    preset_dirs()
+        .into_iter()
+        .map(|dir| dir.join(file))
+        .find(|p| p.is_file())
+}
+
+/// Where the presets that read files are looked for, in order: a `presets/`
+/// folder beside the executable (an installed copy and its presets), one in
+/// the working folder, then the repository's the program was built from.
+pub fn preset_dirs() -> Vec<std::path::PathBuf> {
     let beside = std::env::current_exe()
         .ok()
         .and_then(|exe| exe.parent().map(|d| d.join("presets")));
-    std::iter::once(repo)
-        .chain(beside)
-        .map(|dir| dir.join(file))
-        .find(|p| p.is_file())
+    let here = std::env::current_dir().ok().map(|d| d.join("presets"));
+    let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets");
+    beside.into_iter().chain(here).chain([repo]).collect()
 }
 
 /// `(menu name, file name, RON text)` of every guided preset, in tour order.
@@ -180,6 +187,24 @@ mod tests {
             })
             .count();
         assert_eq!(on_disk, GUIDED.len());
+    }
+
+    /// An installed copy's presets (beside the executable) come before the
+    /// working folder's and the repository's the program was built from.
+    #[test]
+    fn presets_beside_the_executable_come_first() {
+        let dirs = preset_dirs();
+        let exe_dir = std::env::current_exe()
+            .unwrap()
+            .parent()
+            .unwrap()
+            .to_path_buf();
+        assert_eq!(dirs[0], exe_dir.join("presets"));
+        assert_eq!(
+            dirs.last().unwrap(),
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("presets")
+        );
+        assert_eq!(dirs.len(), 3, "{dirs:?}");
     }
 
     /// Every preset of the repository's `presets/` folder is in a menu:

@@ -20,6 +20,9 @@ pub struct ToolbarStatus {
     pub classroom: bool,
     pub mode_bars: bool,
     pub exporting_frames: bool,
+    /// The scene's points lie in several rows across the tread (a patch):
+    /// its heat map can be exported.
+    pub patch: bool,
     /// The editing panel is shown in place of the views (a phone): a view
     /// chosen, even the current one, brings the views back.
     pub editing: bool,
@@ -156,9 +159,12 @@ fn export_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         cmds.push(Command::ExportPngDialog);
     }
     if ui
-        .button("Contact patch heat map (PNG)…")
+        .add_enabled(st.patch, egui::Button::new("Contact patch heat map (PNG)…"))
         .on_hover_text(
             "a patch scene's contact force over its points now, as the patch view shows it",
+        )
+        .on_disabled_hover_text(
+            "this scene's points are in one row: a heat map needs a patch, points in rows across the tread (e.g. presets/patch_texture.ron)",
         )
         .clicked()
     {

@@ -87,8 +87,14 @@ pub struct Shown<'a> {
 /// worst pair fill the view; the frequency-domain fit of a file of FRFs
 /// follows them, folded.
 pub fn show(ui: &mut Ui, s: &Shown<'_>, cmds: &mut Vec<Command>) {
-    if matches!(s.scene.tyre, Tyre::Modal { .. }) && !s.in_use {
-        ui.label("The workbench identifies a ring or measured tyre from its responses. This scene's tyre is a modal model given mode by mode: open a ring or measured preset (presets/paper.ron, presets/measured_example.ron).");
+    let given = match s.scene.tyre {
+        Tyre::Modal { .. } => Some("a modal model given mode by mode"),
+        Tyre::Plate { .. } => Some("an orthotropic plate, whose modes are in closed form"),
+        Tyre::FeModes { .. } => Some("the modes of a finite-element model, read as they are"),
+        Tyre::Ring { .. } | Tyre::Measured { .. } => None,
+    };
+    if let Some(what) = given.filter(|_| !s.in_use) {
+        ui.label(format!("The workbench identifies a ring or measured tyre from its responses. This scene's tyre is {what}, with nothing to identify: open a ring or measured preset (presets/paper.ron, presets/measured_example.ron)."));
         return;
     }
     egui::ScrollArea::vertical()

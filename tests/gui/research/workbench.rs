@@ -250,3 +250,21 @@ fn a_file_of_frfs_shows_its_frequency_domain_fit() {
         );
     }
 }
+
+/// A plate tyre (as an FE-modes or modal one) has nothing to identify: the
+/// view says what its tyre is, not an error.
+#[test]
+fn a_plate_tyre_has_nothing_to_identify_and_no_error() {
+    let scene = Scene::load(Path::new("presets/patch_texture.ron")).unwrap();
+    let mut h = harness_sized(App::new(scene, None).unwrap(), [1280.0, 720.0]);
+    settle(&mut h);
+    h.state_mut().apply(Command::ShowView(View::Workbench));
+    for _ in 0..5 {
+        h.run_steps(2);
+    }
+    assert!(
+        h.query_by_label_contains("an orthotropic plate").is_some(),
+        "the view does not name the plate"
+    );
+    assert!(h.query_by_label_contains("No identification").is_none());
+}
