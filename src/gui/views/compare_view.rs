@@ -65,7 +65,8 @@ pub fn show(ui: &mut Ui, c: &Compared<'_>, opts: &mut CompareOptions, cmds: &mut
     // the reference's point drawn with each current point (the one at the
     // same place, if any)
     let matched = pinned.map_or_else(Vec::new, |pin| pin.matched(&c.scene.points));
-    let rows = if opts.difference && pinned.is_some() {
+    // (no difference plots where no point is compared: the summary says so)
+    let rows = if opts.difference && matched.iter().any(Option::is_some) {
         4
     } else {
         2

@@ -103,6 +103,11 @@ pub fn show(ui: &mut Ui, s: &Shown<'_>, cmds: &mut Vec<Command>) {
         .show(ui, |ui| body(ui, s, cmds));
 }
 
+/// A relative error `x` as a percentage, three significant digits.
+fn percent(x: f64) -> String {
+    format!("{} %", crate::output::summary::short_num(100.0 * x, 3))
+}
+
 /// The count of modes each part of the workbench gives, one a line (in
 /// one line the three wrapped mid-count in a 1280 px window): the run's
 /// (the side panel's list), the picks' and the frequency-domain fit's,
@@ -216,9 +221,9 @@ fn body(ui: &mut Ui, s: &Shown<'_>, cmds: &mut Vec<Command>) {
         }
         ui.separator();
         ui.label(format!(
-            "{} picked; time error of their fit {}",
+            "{} picked; time error of their fit {} (relative L2)",
             crate::output::count(w.modes.len(), "mode"),
-            crate::output::summary::short_num(w.time_error, 3)
+            percent(w.time_error)
         ));
     });
     if s.in_use {
@@ -240,14 +245,7 @@ fn body(ui: &mut Ui, s: &Shown<'_>, cmds: &mut Vec<Command>) {
         .cloned();
     let errors: Vec<String> = fits
         .iter()
-        .map(|f| {
-            format!(
-                "{}-{}: {}",
-                f.pair.0,
-                f.pair.1,
-                crate::output::summary::short_num(f.error, 2)
-            )
-        })
+        .map(|f| format!("{}-{}: {}", f.pair.0, f.pair.1, percent(f.error)))
         .collect();
     ui.label(format!(
         "|G| error (relative L2 over the band) per pair i-j: {}",
@@ -488,7 +486,7 @@ fn frf_section(ui: &mut Ui, f: &Result<FrfIdentification, String>, open: bool) {
                 }
             };
             let set = &id.data.set;
-            let short = |x: f64| crate::output::summary::short_num(x, 3);
+            let short = percent;
             ui.label(format!(
                 "{} at LSCF order {} over {} to {} Hz ({}); relative L2 error, all pairs: complex modes with residual terms {}, real modes {}",
                 crate::output::count(id.poles.len(), "mode"),

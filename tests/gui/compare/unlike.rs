@@ -89,3 +89,37 @@ fn unlike_scenes_are_said_and_compared_only_where_they_match() {
         "a curve reaches y = {highest} px, above the ▼ marks at {mark_top} px"
     );
 }
+
+/// A reference with no point at the place of any current point: the view
+/// says nothing is compared and draws no difference plots (they showed
+/// empty axes over meaningless ranges).
+#[test]
+fn no_difference_plots_when_nothing_is_compared() {
+    use tirecontact::gui::views::compare_view::FORCE_DIFF_PLOT_ID;
+    let paper = Scene::load(Path::new("presets/paper.ron")).unwrap();
+    let mut h = harness_sized(App::new(paper.clone(), None).unwrap(), [1280.0, 720.0]);
+    settle(&mut h);
+    advance(&mut h, 2000);
+    h.state_mut().apply(Command::ShowView(View::Compare));
+    h.run_steps(2);
+    h.get_by_label("Pin as reference").click();
+    h.run_steps(2);
+    assert!(
+        PlotMemory::load(&h.ctx, egui::Id::unique(FORCE_DIFF_PLOT_ID)).is_some(),
+        "the premise: difference plots shown against the run itself"
+    );
+    let mut moved = paper.clone();
+    for p in moved.points.iter_mut() {
+        p.x_m += 0.005;
+    }
+    h.state_mut().apply(Command::EditScene(Box::new(moved)));
+    settle(&mut h);
+    advance(&mut h, 2000);
+    h.ctx.memory_mut(|m| m.data.clear());
+    h.run_steps(4);
+    assert!(h.query_by_label_contains("nothing is compared").is_some());
+    assert!(
+        PlotMemory::load(&h.ctx, egui::Id::unique(FORCE_DIFF_PLOT_ID)).is_none(),
+        "a difference plot with nothing compared"
+    );
+}

@@ -124,6 +124,11 @@ fn poles_are_picked_and_dropped_by_clicks_and_the_modes_used_and_saved() {
     assert_eq!(now.len(), 2, "{now:?}");
     assert!(now.iter().all(|f| (f - 131.0).abs() > 1.0));
     assert!(h.query_by_label_contains("2 modes picked;").is_some());
+    // errors as percentages, as in the fidelity view
+    assert!(
+        h.query_by_label_contains(" % (relative L2)").is_some(),
+        "the fit's time error without its unit"
+    );
     // clicked again: picked back
     click_pole(&mut h, f131, order);
     assert_eq!(picked_freqs(&h).len(), 3);
