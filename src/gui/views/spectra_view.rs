@@ -76,9 +76,16 @@ pub fn db_marks(input: egui_plot::GridInput) -> Vec<egui_plot::GridMark> {
 }
 
 /// A level axis (dB) with [`db_marks`] and whole-dB labels.
+/// A level axis in dB, set by the curves alone: frequencies zoom and pan
+/// (double-click restores them), levels do not (a zoom over the levels
+/// squashed the curves to a line, with no way back).
 fn db_y_axis(plot: Plot<'_>) -> Plot<'_> {
     plot.y_grid_spacer(db_marks)
         .y_axis_formatter(|m, _| format!("{:.0}", m.value))
+        .allow_zoom([true, false])
+        .allow_drag([true, false])
+        .allow_axis_zoom_drag([true, false])
+        .allow_boxed_zoom(false)
 }
 
 /// x coordinate of a frequency on the plot (log10 when `log`).
@@ -326,6 +333,7 @@ fn narrow(
     let frame_px = f64::from(pl.h - super::titled_x_axis_px(ui));
     let label_db = rows_px * RANGE_DB / (frame_px - rows_px).max(1.0);
     let mut plot = db_y_axis(Plot::new(id))
+        .id(egui::Id::unique(id))
         .height(pl.h)
         .x_title(ui, pl.x_label())
         .y_axis_label(y_label)
@@ -346,7 +354,14 @@ fn narrow(
             pui.line(Line::new(name, pts).color(c).width(1.2).allow_band(false));
         }
         if top.is_finite() {
-            draw_markers(pui, &pl.marks.excitation_hz, &pl.modal, pl.log, label_px);
+            draw_markers(
+                pui,
+                &pl.marks.excitation_hz,
+                &pl.modal,
+                pl.log,
+                label_px,
+                top + label_db,
+            );
         }
     });
 }
@@ -427,17 +442,19 @@ fn label_row_px(ui: &Ui) -> f32 {
 /// Vertical markers with labels: the road excitation harmonics (red,
 /// labelled `V/λ 100 Hz`, `2V/λ`, … while they are a label apart) and the
 /// modal frequencies (grey, labelled `fk` where there is room), the labels
-/// in the room kept at the plot's top, in small text.
+/// in small text from the level `top` (dB) down: the room kept above the
+/// curves.
 fn draw_markers(
     pui: &mut egui_plot::PlotUi<'_>,
     excitation: &[(u32, f64)],
     modal: &[f64],
     log: bool,
     label_px: f32,
+    top: f64,
 ) {
-    let b = pui.plot_bounds();
+    // (labels from `top`, a level set by the curves: placed at the axis
+    // top, they raised the automatic axis a margin further every frame)
     let t = *pui.transform();
-    let top = b.max()[1];
     // a label's width in px, estimated from its characters (small text)
     let width_px = |s: &str| 0.62 * label_px * s.chars().count() as f32;
     let x_px = |f: f64| t.position_from_point_x(fx(f, log));

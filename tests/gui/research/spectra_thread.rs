@@ -52,3 +52,57 @@ fn a_long_run_s_spectra_arrive_from_a_background_thread() {
         assert_eq!(a.amplitude, b.amplitude);
     }
 }
+
+/// A spectrum's level axis is set by its curves: it stays the same from
+/// frame to frame (the marker labels, placed at the axis top, raised it
+/// every frame), and a zoom (Ctrl + wheel, a pinch) or a drag moves the
+/// frequencies only.
+#[test]
+fn the_spectrum_level_axis_stays_under_zoom_and_drag() {
+    use egui_plot::PlotMemory;
+    let scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    let mut h = harness(App::new(scene, None).unwrap());
+    h.run();
+    advance(&mut h, 8_000);
+    h.state_mut().apply(Command::ShowView(View::Spectra));
+    for _ in 0..200 {
+        if h.state().research().spectra().is_some() {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.run_steps(1);
+    }
+    h.run_steps(2);
+    let id = egui::Id::unique("tirecontact.spectra_q");
+    let bounds = |h: &egui_kittest::Harness<'_, App>| {
+        *PlotMemory::load(&h.ctx, id)
+            .expect("force spectrum shown")
+            .bounds()
+    };
+    let before = bounds(&h);
+    // idle frames leave it as it is
+    h.run_steps(5);
+    assert_eq!(bounds(&h), before, "the axis moved by itself");
+    let frame = *PlotMemory::load(&h.ctx, id).unwrap().transform().frame();
+    h.hover_at(frame.center());
+    h.run_steps(1);
+    h.event(egui::Event::Zoom(4.0));
+    h.run_steps(1);
+
+    h.drag_at(frame.center());
+    h.hover_at(frame.center() + egui::vec2(40.0, 60.0));
+    h.run_steps(1);
+    h.drop_at(frame.center() + egui::vec2(40.0, 60.0));
+    h.run_steps(2);
+    let after = bounds(&h);
+    assert_ne!(
+        (after.min()[0], after.max()[0]),
+        (before.min()[0], before.max()[0]),
+        "the premise: the frequencies zoomed"
+    );
+    assert_eq!(
+        (after.min()[1], after.max()[1]),
+        (before.min()[1], before.max()[1]),
+        "the level axis moved"
+    );
+}
