@@ -203,8 +203,16 @@ fn banner_frame(ui: &mut Ui, m: &Message, folded: bool, cmds: &mut Vec<Command>)
                     |ui| {
                         ui.set_max_width(w);
                         if foldable && folded {
-                            ui.add(egui::Label::new(job).truncate())
-                                .on_hover_text(&m.text);
+                            // (a layout job keeps its own wrapping: its first
+                            // row, elided, within the room left of the buttons)
+                            let mut job = job;
+                            job.wrap = egui::text::TextWrapping {
+                                max_width: w,
+                                max_rows: 1,
+                                break_anywhere: false,
+                                overflow_character: Some('…'),
+                            };
+                            ui.add(egui::Label::new(job)).on_hover_text(&m.text);
                         } else {
                             ui.add(egui::Label::new(job).wrap());
                         }
@@ -452,6 +460,16 @@ mod tests {
     /// One frame at `t_s` of a 400 px wide window showing `msg` in the
     /// banner: the banner's height (px), if shown.
     fn frame(ctx: &egui::Context, t_s: f64, msg: Option<&Message>) -> Option<f32> {
+        frame_texts(ctx, t_s, msg).0
+    }
+
+    /// [`frame`], and the texts painted: whether each was elided, and its
+    /// left and right edges (px).
+    fn frame_texts(
+        ctx: &egui::Context,
+        t_s: f64,
+        msg: Option<&Message>,
+    ) -> (Option<f32>, Vec<(String, bool, f32, f32)>) {
         let raw = egui::RawInput {
             time: Some(t_s),
             screen_rect: Some(egui::Rect::from_min_size(
@@ -464,9 +482,24 @@ mod tests {
         let mut out = ctx.run_ui(raw, |ui| banner(ui, msg, &mut cmds));
         // (no painter takes the font textures here)
         out.textures_delta.clear();
-        msg?;
-        ctx.memory(|m| m.area_rect(egui::Id::unique("tirecontact.banner")))
-            .map(|r| r.height())
+        let texts = out
+            .shapes
+            .iter()
+            .filter_map(|c| match &c.shape {
+                egui::Shape::Text(t) => Some((
+                    t.galley.text().to_owned(),
+                    t.galley.elided,
+                    t.visual_bounding_rect().left(),
+                    t.visual_bounding_rect().right(),
+                )),
+                _ => None,
+            })
+            .collect();
+        let height = msg.and_then(|_| {
+            ctx.memory(|m| m.area_rect(egui::Id::unique("tirecontact.banner")))
+                .map(|r| r.height())
+        });
+        (height, texts)
     }
 
     /// A message folds [`BANNER_UNFOLDED_S`] after it is first shown; the
@@ -486,8 +519,24 @@ mod tests {
         let (a, b) = (long("first"), long("second"));
         let whole = frame(&ctx, 0.0, Some(&a)).unwrap();
         assert_eq!(frame(&ctx, 1.0, Some(&a)), Some(whole));
-        let folded = frame(&ctx, BANNER_UNFOLDED_S + 0.1, Some(&a)).unwrap();
+        let (folded, texts) = frame_texts(&ctx, BANNER_UNFOLDED_S + 0.1, Some(&a));
+        let folded = folded.unwrap();
         assert!(folded < 0.6 * whole, "{folded} px folded, {whole} px whole");
+        // its first row, elided, left of the More and Dismiss buttons
+        let (_, elided, _, right) = texts
+            .iter()
+            .find(|(t, ..)| t.starts_with("first"))
+            .expect("the message's text");
+        let more_left = texts
+            .iter()
+            .filter(|(t, ..)| t == "More" || t == "Dismiss")
+            .map(|&(_, _, left, _)| left)
+            .fold(f32::INFINITY, f32::min);
+        assert!(*elided, "folded text not elided");
+        assert!(
+            *right < 400.0 - 100.0 && *right < more_left,
+            "text to {right} px, buttons from {more_left}"
+        );
         // unfolded by the user: stays so while shown
         ctx.data_mut(|d| {
             let key = egui::Id::unique("tirecontact.banner.fold");
