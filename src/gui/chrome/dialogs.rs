@@ -463,13 +463,16 @@ mod tests {
         frame_texts(ctx, t_s, msg).0
     }
 
-    /// [`frame`], and the texts painted: whether each was elided, and its
-    /// left and right edges (px).
+    /// A painted text: its string, whether it was elided, its left and
+    /// right edges (px).
+    type Painted = (String, bool, f32, f32);
+
+    /// [`frame`], and the texts painted.
     fn frame_texts(
         ctx: &egui::Context,
         t_s: f64,
         msg: Option<&Message>,
-    ) -> (Option<f32>, Vec<(String, bool, f32, f32)>) {
+    ) -> (Option<f32>, Vec<Painted>) {
         let raw = egui::RawInput {
             time: Some(t_s),
             screen_rect: Some(egui::Rect::from_min_size(
