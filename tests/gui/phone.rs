@@ -230,3 +230,32 @@ fn a_phone_window_keeps_every_view_inside_it() {
         assert!(past.is_empty(), "{view:?}: past the right edge: {past:?}");
     }
 }
+
+/// Where the flat menu bar does not fit (900 × 600 in a research view,
+/// classroom mode at 1280 × 720) its view items fold into a View menu and
+/// Help stays in the window; a wide window keeps them on the bar.
+#[test]
+fn the_menu_bar_folds_its_view_items_where_they_do_not_fit() {
+    use tirecontact::gui::{Command, View};
+    let mut small = harness_sized(App::with_default_preset(), [900.0, 600.0]);
+    settle(&mut small);
+    small.state_mut().apply(Command::ShowView(View::Workbench));
+    small.run_steps(3);
+    inside(&small, "Help", [900.0, 600.0]);
+    assert!(small.query_by_label("View").is_some(), "no View menu");
+    let mut class = harness_sized(App::with_default_preset(), [1280.0, 720.0]);
+    class.state_mut().apply(Command::SetClassroom(true));
+    settle(&mut class);
+    class.run_steps(3);
+    inside(&class, "Help", [1280.0, 720.0]);
+    inside(&class, "Classroom", [1280.0, 720.0]);
+    let mut wide = harness_sized(App::with_default_preset(), [1600.0, 1000.0]);
+    settle(&mut wide);
+    wide.run_steps(3);
+    assert!(
+        wide.query_by_label("View").is_none(),
+        "view items folded at 1600 px"
+    );
+    assert!(wide.query_by_label("Mode bars").is_some());
+    inside(&wide, "Help", [1600.0, 1000.0]);
+}

@@ -1,6 +1,7 @@
 //! The session kept in eframe's storage between runs of the app: the scene
-//! (with its file and unsaved-changes state) and classroom mode with its
-//! chosen point, restored at the next start.
+//! (with its file and unsaved-changes state), classroom mode with its
+//! chosen point, and whether the mode bars are shown, restored at the next
+//! start.
 
 use super::*;
 
@@ -19,6 +20,10 @@ pub(super) struct Session {
     /// The point classroom mode's plot and bars show.
     #[serde(default)]
     classroom_point: usize,
+    /// The mode bars were shown beside the views (absent from older
+    /// sessions: off).
+    #[serde(default)]
+    mode_bars: bool,
     /// The theme preference to give back when classroom mode ends (egui
     /// keeps classroom mode's light one between runs).
     #[serde(default)]
@@ -65,6 +70,7 @@ impl App {
                         app.set_classroom(true);
                     }
                     app.doc.from_link = s.from_link && s.path.is_none();
+                    app.classroom.bars = s.mode_bars;
                     let last = app.doc.scene.num_points().saturating_sub(1);
                     app.classroom.point = s.classroom_point.min(last);
                     app.message = Some(Message {
@@ -93,6 +99,7 @@ impl App {
             dirty,
             classroom: self.classroom.on,
             classroom_point: self.classroom.point,
+            mode_bars: self.classroom.bars,
             theme_before_classroom: self.classroom.user_theme(),
             from_link: self.doc.from_link,
         }
@@ -127,6 +134,19 @@ mod tests {
             self.0.remove(key);
         }
         fn flush(&mut self) {}
+    }
+
+    /// The mode bars shown at the end of a session are shown at the next,
+    /// and hidden ones stay hidden.
+    #[test]
+    fn the_mode_bars_are_restored() {
+        for shown in [true, false] {
+            let mut app = App::with_default_preset();
+            app.apply(Command::ShowModeBars(shown));
+            let mut storage = MemStorage::default();
+            app.save_session(&mut storage);
+            assert_eq!(App::restore(Some(&storage)).classroom.bars, shown);
+        }
     }
 
     #[test]

@@ -29,12 +29,30 @@ pub struct ToolbarStatus {
 }
 
 /// The menu bar. Long but flat: the File, Presets, View and Help menus one
-/// after another, each item as it appears. In a window narrower than
-/// [`NARROW_PX`] (a phone) it folds into three menus, Menu (File, Presets,
-/// Guided tour, Export), View and Help, so that it fits the width.
+/// after another, each item as it appears. Where the view items do not fit
+/// on the line (the width the flat bar took when last drawn is more than
+/// the window's) they fold into a View menu; in a window narrower than
+/// [`NARROW_PX`] (a phone) the bar folds into three menus, Menu (File,
+/// Presets, Guided tour, Export), View and Help, so that it fits the width.
 pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
-    let narrow = ui.available_width() < NARROW_PX;
+    let width = ui.available_width();
+    let narrow = width < NARROW_PX;
+    let flat_id = Id::unique("tirecontact.menu_bar.flat_px");
+    let flat_px = ui.data(|d| d.get_temp::<f32>(flat_id)).unwrap_or(0.0);
+    let compact = !narrow && flat_px > width;
     egui::MenuBar::new().ui(ui, |ui| {
+        let left = ui.min_rect().left();
+        if compact {
+            ui.menu_button("File", |ui| file_items(ui, cmds));
+            ui.menu_button("Presets", |ui| preset_items(ui, cmds));
+            ui.menu_button("Guided tour", |ui| guided_items(ui, cmds));
+            ui.menu_button("Export", |ui| export_items(ui, st, cmds));
+            // (classroom mode's own toggle stays on the bar: one click out)
+            classroom_toggle(ui, st, cmds);
+            ui.menu_button("View", |ui| view_tabs(ui, st, cmds));
+            super::help_menu::show(ui, cmds);
+            return;
+        }
         if narrow {
             ui.menu_button("Menu", |ui| {
                 ui.menu_button("File", |ui| file_items(ui, cmds));
@@ -53,6 +71,12 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             ui.separator();
         }
         super::help_menu::show(ui, cmds);
+        if !narrow {
+            // (the flat bar's width, whether or not it fitted: it folds from
+            // the next frame while the window is narrower)
+            let used = ui.min_rect().right() - left;
+            ui.data_mut(|d| d.insert_temp(flat_id, used));
+        }
     });
 }
 
@@ -181,8 +205,15 @@ fn export_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
 
 /// Classroom mode, the views and the mode bars.
 fn view_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
-    // first, so that it stays reachable with classroom mode's large text;
-    // not on a phone, whose width its presenter layout does not fit
+    // first, so that it stays reachable with classroom mode's large text
+    classroom_toggle(ui, st, cmds);
+    ui.separator();
+    view_tabs(ui, st, cmds);
+}
+
+/// The classroom mode toggle; not on a phone, whose width its presenter
+/// layout does not fit.
+fn classroom_toggle(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
     let wide = ui.ctx().content_rect().width() >= NARROW_PX;
     if ui
         .add_enabled(wide, egui::Button::selectable(st.classroom, "Classroom"))
@@ -192,7 +223,10 @@ fn view_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
     {
         cmds.push(Command::SetClassroom(!st.classroom));
     }
-    ui.separator();
+}
+
+/// The views' tabs, the research tools' menu and the mode bars' toggle.
+fn view_tabs(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
     // the main views as tabs, the researcher tools in a menu
     // (the patch view, key 9, is a main view)
     let (tabs, tools) = View::ALL.split_at(3);
