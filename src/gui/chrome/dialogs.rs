@@ -66,20 +66,18 @@ pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
     };
     let message = egui::Id::unique(("tirecontact.banner.message", m.error, &m.text));
     let now = ui.input(|i| i.time);
+    // (kept while this message is shown, else started afresh)
     let fold = ui.data_mut(|d| {
-        let fold = d.get_temp_mut_or_insert_with(key, || Fold {
-            message,
-            since_s: now,
-            open: None,
-        });
-        if fold.message != message {
-            *fold = Fold {
+        let fold = d
+            .get_temp::<Fold>(key)
+            .filter(|f| f.message == message)
+            .unwrap_or(Fold {
                 message,
                 since_s: now,
                 open: None,
-            };
-        }
-        *fold
+            });
+        d.insert_temp(key, fold);
+        fold
     });
     let folded = match fold.open {
         Some(open) => !open,

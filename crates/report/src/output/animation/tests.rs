@@ -1,6 +1,19 @@
 use super::*;
+use tirecontact_core::model::road::RoadProfile;
 use tirecontact_io::Scene;
 use tirecontact_io::SceneSimulation;
+
+/// The three-points preset (a line of points on a ring tyre).
+fn three_points() -> Scene {
+    Scene::parse(
+        include_str!(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../presets/three_points.ron"
+        )),
+        "three_points",
+    )
+    .unwrap()
+}
 
 fn settings() -> FrameSettings {
     FrameSettings {
@@ -17,14 +30,7 @@ fn settings() -> FrameSettings {
 /// held beyond the end points); after it, the road profile itself.
 #[test]
 fn road_in_tyre_frame_blends_point_heights_into_the_road() {
-    let scene = Scene::parse(
-        include_str!(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../presets/three_points.ron"
-        )),
-        "three_points",
-    )
-    .unwrap();
+    let scene = three_points();
     let mut sim = Simulation::from_scene(&scene).unwrap();
     let at_start = road_in_tyre_frame(&sim, -0.1, 0.1, 8);
     assert_eq!(at_start.len(), 9);
@@ -330,14 +336,7 @@ fn harmonic(amplitude_m: f64, wavelength_m: f64) -> tirecontact_core::model::roa
 /// frame's road inside it.
 #[test]
 fn the_height_range_fits_the_road_rolled_over() {
-    let mut scene = Scene::parse(
-        include_str!(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../presets/three_points.ron"
-        )),
-        "three_points",
-    )
-    .unwrap();
+    let mut scene = three_points();
     let swell = tirecontact_core::model::road::Harmonic {
         phase_rad: -0.5 * std::f64::consts::PI,
         ..harmonic(0.1, 20.0)
@@ -381,14 +380,7 @@ fn the_height_range_fits_the_road_rolled_over() {
 /// ten times higher and a faster speed, every frame's road is inside it.
 #[test]
 fn the_height_range_spans_the_roads_of_changes() {
-    let mut scene = Scene::parse(
-        include_str!(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../presets/three_points.ron"
-        )),
-        "three_points",
-    )
-    .unwrap();
+    let mut scene = three_points();
     scene.road = Road::Harmonics {
         components: vec![harmonic(0.001, 0.05)],
     };
