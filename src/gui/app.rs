@@ -20,6 +20,7 @@ use crate::gui::model::mute_set::Mutes;
 use crate::gui::model::presets::GUIDED;
 use crate::gui::model::presets::SHIPPED;
 use crate::gui::model::time_control::{Speed, TimeControl};
+use crate::gui::model::undo::{Direction, EditHistory};
 use crate::identify::{ModeCache, PreparedModel};
 use crate::output::animation::FrameSettings;
 use crate::solver::phase::PhaseTracker;
@@ -81,8 +82,11 @@ pub struct App {
     pub(super) file_prompt: Option<crate::gui::chrome::file_prompt::FilePrompt>,
     /// The banner text of the last field refusal (a good edit clears it).
     field_refusal: Option<String>,
-    /// A new document came in: the next frame forgets the fields' texts.
+    /// A new document came in, or an undo or redo changed the scene under
+    /// the fields: the next frame forgets the fields' texts.
     forget_fields: bool,
+    /// The scene edits to undo and redo (the document's, never persisted).
+    pub(super) undo: EditHistory,
     /// Work under way and caches: never persisted.
     pub(crate) handles: Handles,
 }
@@ -125,6 +129,11 @@ pub(crate) struct Handles {
     pub(super) pacer: crate::gui::model::time_control::FramePacer,
     /// The window is drawn by a software renderer (frames are paced).
     pub(super) software_renderer: bool,
+    /// A pointer button was held down at the last frame (the edits of one
+    /// drag make one undo step).
+    pub(super) pointer_down: bool,
+    /// Where the status bar was drawn in the last frame.
+    pub(super) status_rect: egui::Rect,
     /// The thread that steps the run between frames at "as fast as
     /// possible", and the stand-in state the app holds while it is lent.
     #[cfg(not(target_arch = "wasm32"))]
@@ -187,6 +196,7 @@ impl App {
             file_prompt: None,
             field_refusal: None,
             forget_fields: false,
+            undo: EditHistory::default(),
             handles: Handles {
                 csv_job: None,
                 frames_job: None,
@@ -201,6 +211,8 @@ impl App {
                 paced_delay_s: None,
                 pacer: Default::default(),
                 software_renderer: false,
+                pointer_down: false,
+                status_rect: egui::Rect::NOTHING,
                 #[cfg(not(target_arch = "wasm32"))]
                 run_ahead: None,
                 #[cfg(not(target_arch = "wasm32"))]
@@ -266,6 +278,10 @@ impl App {
     }
     pub fn message(&self) -> Option<&Message> {
         self.message.as_ref()
+    }
+    /// Where the status bar was drawn in the last frame (points).
+    pub fn status_bar_rect(&self) -> egui::Rect {
+        self.handles.status_rect
     }
     pub fn is_dirty(&self) -> bool {
         self.doc.scene != self.doc.saved
@@ -348,6 +364,8 @@ impl App {
             Command::CancelCsvExport => self.cancel_csv_export(),
             Command::SetSpeed(s) => self.time.set_speed(s),
             Command::EditScene(scene) => self.edit(*scene),
+            Command::Undo => self.undo_redo(Direction::Undo),
+            Command::Redo => self.undo_redo(Direction::Redo),
             // the document and its files (app/files.rs)
             Command::New => self.guard(Discarding::New),
             // the file first, then the unsaved-changes guard (OpenPath)

@@ -48,11 +48,13 @@ pub(crate) fn push_edit(cmds: &mut Vec<Command>, c: Option<Command>) {
 }
 
 /// The whole editing side panel. `edits`: what changed since the scene was
-/// opened or saved (its description does not say).
+/// opened or saved (its description does not say); `undo`: what Undo and
+/// Redo would change (`None`: nothing).
 pub fn side_panel(
     ui: &mut egui::Ui,
     scene: &Scene,
     edits: &[String],
+    undo: [Option<&str>; 2],
     modes: &[Mode],
     road: &crate::model::road::RoadProfile,
     cmds: &mut Vec<Command>,
@@ -64,6 +66,7 @@ pub fn side_panel(
         }
         // a box of a fixed height: the fields below stay where they are
         edits_box::show(ui, edits);
+        edits_box::undo_buttons(ui, undo, cmds);
         about_panel::show(ui, scene, cmds);
         // wrapped: a phone's width cut it at "restarts the ru"
         ui.horizontal_wrapped(|ui| {

@@ -36,3 +36,4 @@ mod scene_view;
 mod share_window;
 mod status;
 mod time_plots;
+mod undo;

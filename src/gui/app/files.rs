@@ -168,6 +168,7 @@ impl App {
                 self.research_new_document();
                 self.forget_fields = true;
                 self.field_refusal = None;
+                self.undo.clear();
                 self.info(what.to_string());
             }
             Err(e) => self.error(format!(

@@ -35,6 +35,17 @@ impl App {
             if i.modifiers.command && i.key_pressed(egui::Key::O) {
                 cmds.push(Command::OpenDialog);
             }
+            // (a text field's own undo has its keys while it has the focus)
+            if i.modifiers.command && i.key_pressed(egui::Key::Z) {
+                cmds.push(if i.modifiers.shift {
+                    Command::Redo
+                } else {
+                    Command::Undo
+                });
+            }
+            if i.modifiers.command && i.key_pressed(egui::Key::Y) {
+                cmds.push(Command::Redo);
+            }
             for (key, view) in [
                 (egui::Key::Num1, View::TimePlots),
                 (egui::Key::Num2, View::Scene),
@@ -121,6 +132,11 @@ impl App {
         if self.research_busy() {
             ctx.request_repaint();
         }
+        // the edits of one drag make one undo step
+        self.handles.pointer_down = ctx.input(|i| i.pointer.any_down());
+        if !self.handles.pointer_down {
+            self.undo.end_drag();
+        }
         let mut cmds = Vec::new();
         self.keyboard(&ctx, &mut cmds);
         let status = toolbar::ToolbarStatus {
@@ -141,6 +157,8 @@ impl App {
             },
             editing: self.edit_panel_open
                 && ctx.content_rect().width() < crate::gui::widgets::NARROW_PX,
+            undo: self.undo.undo_label().map(str::to_string),
+            redo: self.undo.redo_label().map(str::to_string),
         };
         // a phone: classroom mode's presenter layout does not fit it
         let narrow = ctx.content_rect().width() < crate::gui::widgets::NARROW_PX;
@@ -170,6 +188,7 @@ impl App {
         let bottom = egui::Panel::bottom("tirecontact.status").show(ui, |ui| {
             status_bar::show(ui, &bar);
         });
+        self.handles.status_rect = bottom.response.rect;
         // the dialogs open in the views' area, never over the menu bar
         let content = ctx.content_rect();
         let views = egui::Rect::from_x_y_ranges(

@@ -93,6 +93,7 @@ impl App {
                 ui,
                 &self.doc.scene,
                 edits,
+                [self.undo.undo_label(), self.undo.redo_label()],
                 &self.modes,
                 self.sim.road_profile(),
                 cmds,

@@ -279,6 +279,8 @@ impl App {
                             if new.duration_s / f < crate::gui::model::time_control::MIN_WATCH_S));
                 self.sim = sim;
                 self.modes = modes;
+                self.undo
+                    .landed(&self.doc.scene, &new, self.handles.pointer_down);
                 self.doc.scene = new;
                 self.reset_run();
                 if rechoose {
@@ -323,7 +325,19 @@ impl App {
                 speed_mps: new.speed_mps,
             });
         }
+        self.undo
+            .landed(&self.doc.scene, &new, self.handles.pointer_down);
         self.doc.scene = new;
+    }
+
+    /// Undo or redo the last scene edit: the scene it gives back is applied
+    /// as an edit (which may restart the run or wait for a file), and the
+    /// fields show it from the next frame.
+    pub(super) fn undo_redo(&mut self, dir: crate::gui::model::undo::Direction) {
+        if let Some(scene) = self.undo.request(dir) {
+            self.edit(scene);
+            self.forget_fields = true;
+        }
     }
 
     /// Takes this frame's solver steps within the time budget, or, when

@@ -82,6 +82,10 @@ pub enum Command {
     /// Replace the scene by an edited, already validated one. Road and speed
     /// changes apply live; anything else restarts the run.
     EditScene(Box<Scene>),
+    /// Take the last scene edit back (Ctrl+Z), or make the last one taken
+    /// back again (Ctrl+Shift+Z, Ctrl+Y): each is itself a scene edit.
+    Undo,
+    Redo,
     /// New scene (the embedded default preset), after confirmation if dirty.
     New,
     /// Open a preset through the file dialog, after confirmation if dirty.

@@ -4,6 +4,7 @@
 //! under the pointer (the next click landed on the label above the field
 //! meant).
 
+use crate::gui::model::command::Command;
 use egui::{RichText, Ui};
 
 /// Rows of body text the box shows; a longer note scrolls inside it.
@@ -30,4 +31,26 @@ pub fn show(ui: &mut Ui, edits: &[String]) {
                 ui.label(RichText::new(NO_EDITS).italics().weak());
             }
         });
+}
+
+/// Undo and Redo beside the edits (the File menu has them too, with their
+/// keys): each disabled when there is nothing, saying on hover what it
+/// would change.
+pub fn undo_buttons(ui: &mut Ui, [undo, redo]: [Option<&str>; 2], cmds: &mut Vec<Command>) {
+    ui.horizontal(|ui| {
+        for (label, what, key, cmd) in [
+            ("Undo", undo, "Ctrl+Z", Command::Undo),
+            ("Redo", redo, "Ctrl+Shift+Z", Command::Redo),
+        ] {
+            let r = ui.add_enabled(what.is_some(), egui::Button::new(label).small());
+            let r = match what {
+                Some(w) if !w.is_empty() => r.on_hover_text(format!("{w} ({key})")),
+                Some(_) => r.on_hover_text(format!("the name or description ({key})")),
+                None => r.on_disabled_hover_text("no scene edit to take back or make again"),
+            };
+            if r.clicked() {
+                cmds.push(cmd);
+            }
+        }
+    });
 }

@@ -17,6 +17,8 @@ pub const SHORTCUTS: &[(&str, &str)] = &[
         "research: spectra, sweep, A/B compare, fidelity, identification",
     ),
     ("9", "contact patch (points across the tread)"),
+    ("Ctrl+Z", "undo the last scene edit"),
+    ("Ctrl+Shift+Z, Ctrl+Y", "redo it"),
     ("Ctrl+O", "open a preset file"),
     ("Ctrl+S", "save"),
     ("Ctrl+Shift+S", "save as"),

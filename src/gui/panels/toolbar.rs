@@ -26,6 +26,10 @@ pub struct ToolbarStatus {
     /// The editing panel is shown in place of the views (a phone): a view
     /// chosen, even the current one, brings the views back.
     pub editing: bool,
+    /// What Undo and Redo would take back or make again (in words, with
+    /// units); `None` when there is nothing.
+    pub undo: Option<String>,
+    pub redo: Option<String>,
 }
 
 /// The menu bar. Long but flat: the File, Presets, View and Help menus one
@@ -43,7 +47,7 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
     egui::MenuBar::new().ui(ui, |ui| {
         let left = ui.min_rect().left();
         if compact {
-            ui.menu_button("File", |ui| file_items(ui, cmds));
+            ui.menu_button("File", |ui| file_items(ui, st, cmds));
             ui.menu_button("Presets", |ui| preset_items(ui, cmds));
             ui.menu_button("Guided tour", |ui| guided_items(ui, cmds));
             ui.menu_button("Export", |ui| export_items(ui, st, cmds));
@@ -55,14 +59,14 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
         }
         if narrow {
             ui.menu_button("Menu", |ui| {
-                ui.menu_button("File", |ui| file_items(ui, cmds));
+                ui.menu_button("File", |ui| file_items(ui, st, cmds));
                 ui.menu_button("Presets", |ui| preset_items(ui, cmds));
                 ui.menu_button("Guided tour", |ui| guided_items(ui, cmds));
                 ui.menu_button("Export", |ui| export_items(ui, st, cmds));
             });
             ui.menu_button("View", |ui| view_items(ui, st, cmds));
         } else {
-            ui.menu_button("File", |ui| file_items(ui, cmds));
+            ui.menu_button("File", |ui| file_items(ui, st, cmds));
             ui.menu_button("Presets", |ui| preset_items(ui, cmds));
             ui.menu_button("Guided tour", |ui| guided_items(ui, cmds));
             ui.menu_button("Export", |ui| export_items(ui, st, cmds));
@@ -81,7 +85,9 @@ pub fn menu_bar(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
 }
 
 /// The File menu's items.
-fn file_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
+fn file_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
+    undo_items(ui, st, cmds);
+    ui.separator();
     if ui
         .button("New")
         .on_hover_text("the default scene")
@@ -127,6 +133,40 @@ fn file_items(ui: &mut Ui, cmds: &mut Vec<Command>) {
             cmds.push(Command::Quit);
         }
     }
+}
+
+/// Undo and Redo, each saying what it would change (shortened; in full on
+/// hover), disabled when there is nothing to undo or redo.
+fn undo_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
+    for (label, what, key, cmd) in [
+        ("Undo", &st.undo, "Ctrl+Z", Command::Undo),
+        ("Redo", &st.redo, "Ctrl+Shift+Z", Command::Redo),
+    ] {
+        let text = match what.as_deref() {
+            Some(w) if !w.is_empty() => format!("{label} {}", shortened(w, 40)),
+            _ => label.to_string(),
+        };
+        let button = egui::Button::new(text).shortcut_text(key);
+        let r = ui.add_enabled(what.is_some(), button);
+        let r = match what.as_deref() {
+            Some(w) if !w.is_empty() => r.on_hover_text(w),
+            Some(_) => r,
+            None => r.on_disabled_hover_text(format!("no scene edit to {}", label.to_lowercase())),
+        };
+        if r.clicked() {
+            cmds.push(cmd);
+        }
+    }
+}
+
+/// `text` cut to `max` characters with an ellipsis.
+fn shortened(text: &str, max: usize) -> String {
+    if text.chars().count() <= max {
+        return text.to_string();
+    }
+    let mut s: String = text.chars().take(max - 1).collect();
+    s.push('…');
+    s
 }
 
 /// The shipped presets; on the desktop also those reading a file beside

@@ -30,18 +30,32 @@ fn harness(size: [f32; 2], classroom: bool) -> Harness<'static, App> {
     h
 }
 
-/// The status bar's labels: document, run, history, frame rate.
+/// The status bar's labels: document, run, history, frame rate (those
+/// inside the bar and painted: the side panel's rows scrolled out of sight
+/// under it are in the accessibility tree too).
 fn status_labels(h: &Harness<'_, App>) -> Vec<(String, Rect)> {
     let fps = h.get_by_label_contains(" fps");
     let y = fps.rect().center().y;
+    let bar = h.state().status_bar_rect().expand(1.0);
+    // (painted where the node is: a widget out of its panel's sight is
+    // not; an elided text keeps its start)
+    let painted = crate::harness::texts(h);
+    let shown = |text: &str, r: Rect| {
+        let start: String = text.chars().take(4).collect();
+        painted
+            .iter()
+            .any(|(t, p)| p.intersects(r) && t.starts_with(&start))
+    };
     let mut v: Vec<(String, Rect)> = h
         .query_all_by(|n| n.role() == egui::accesskit::Role::Label)
         .filter(|n| n.rect().top() <= y && n.rect().bottom() >= y)
+        .filter(|n| bar.contains_rect(n.rect()))
         .map(|n| {
             let a = n.accesskit_node();
             let text = a.label().or_else(|| a.value()).unwrap_or_default();
             (text, n.rect())
         })
+        .filter(|(text, r)| shown(text, *r))
         .collect();
     v.sort_by(|a, b| a.1.left().total_cmp(&b.1.left()));
     v

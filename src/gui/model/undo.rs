@@ -1,0 +1,313 @@
+//! Undo and redo of scene edits, without egui: two bounded stacks of whole
+//! scenes, each with the words of the change it undoes ("speed V 8 -> 16
+//! m/s"). An undo or redo is a scene edit like any other (it may restart
+//! the run, wait for a file or a ring's identification, or be refused), so
+//! the stacks move only when the edit lands: [`EditHistory::request`] says
+//! which scene is wanted, [`EditHistory::landed`] is told of every edit
+//! that took effect and recognises the requested one. The edits of one
+//! drag of a control (the pointer held down over one quantity) make one
+//! step.
+
+use crate::Scene;
+
+/// Edits kept to undo (the oldest are dropped first).
+pub const MAX_UNDO: usize = 100;
+
+/// Which way an undo-stack move goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Direction {
+    Undo,
+    Redo,
+}
+
+/// A scene to go back (or forward) to and what changed from it.
+#[derive(Debug, Clone)]
+struct Step {
+    scene: Scene,
+    /// The change, in words with units (empty when only the name or the
+    /// description changed).
+    what: String,
+    /// What the change touched, its numbers left out ("speed V -> m/s"):
+    /// the edits of one drag over the same quantity merge.
+    key: String,
+}
+
+/// The undo and redo stacks of a document.
+#[derive(Debug, Clone, Default)]
+pub struct EditHistory {
+    undo: Vec<Step>,
+    redo: Vec<Step>,
+    /// The undo or redo asked for and not landed yet: the scene it edits
+    /// to.
+    requested: Option<(Direction, Scene)>,
+    /// The top undo step was made while the pointer was held down (a drag
+    /// still going on may add to it).
+    dragging: bool,
+}
+
+/// The words of a change from `before` to `after`.
+fn describe(before: &Scene, after: &Scene) -> String {
+    let edits = crate::scene::edits_since(before, after);
+    if edits.is_empty() {
+        let what = match (
+            before.name != after.name,
+            before.description != after.description,
+        ) {
+            (true, true) => "name and description",
+            (true, false) => "name",
+            (false, true) => "description",
+            (false, false) => "",
+        };
+        return what.to_string();
+    }
+    edits.join("; ")
+}
+
+/// `what` without its numbers: the quantities a change touched.
+fn key_of(what: &str) -> String {
+    what.split_whitespace()
+        .filter(|w| {
+            !w.chars()
+                .next()
+                .is_some_and(|c| c.is_ascii_digit() || (c == '-' && w.len() > 2) || c == '.')
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+impl EditHistory {
+    /// The words of the change the next undo takes back.
+    pub fn undo_label(&self) -> Option<&str> {
+        self.undo.last().map(|s| s.what.as_str())
+    }
+
+    /// The words of the change the next redo makes again.
+    pub fn redo_label(&self) -> Option<&str> {
+        self.redo.last().map(|s| s.what.as_str())
+    }
+
+    /// The scene an undo or redo edits to (to be applied as an edit), and
+    /// noted as requested; `None` when there is nothing to undo or redo.
+    pub fn request(&mut self, dir: Direction) -> Option<Scene> {
+        let stack = match dir {
+            Direction::Undo => &self.undo,
+            Direction::Redo => &self.redo,
+        };
+        let scene = stack.last()?.scene.clone();
+        self.requested = Some((dir, scene.clone()));
+        self.dragging = false;
+        Some(scene)
+    }
+
+    /// An edit from `before` to `after` took effect. The requested undo or
+    /// redo when `after` is its scene: the stacks move by one. Otherwise a
+    /// new edit: it goes on the undo stack (merged with the one before
+    /// while `dragging`, the pointer held down since that one, over the
+    /// same quantity) and the redo stack is emptied.
+    pub fn landed(&mut self, before: &Scene, after: &Scene, dragging: bool) {
+        if before == after {
+            return;
+        }
+        if let Some((dir, wanted)) = self.requested.take()
+            && wanted == *after
+        {
+            let (from, to) = match dir {
+                Direction::Undo => (&mut self.undo, &mut self.redo),
+                Direction::Redo => (&mut self.redo, &mut self.undo),
+            };
+            if let Some(step) = from.pop() {
+                to.push(Step {
+                    scene: before.clone(),
+                    ..step
+                });
+            }
+            self.dragging = false;
+            return;
+        }
+        let what = describe(before, after);
+        let key = key_of(&what);
+        self.redo.clear();
+        if dragging
+            && self.dragging
+            && let Some(top) = self.undo.last_mut()
+            && top.key == key
+        {
+            // the same drag: the step still goes back to where it began
+            top.what = describe(&top.scene, after);
+            return;
+        }
+        self.undo.push(Step {
+            scene: before.clone(),
+            what,
+            key,
+        });
+        if self.undo.len() > MAX_UNDO {
+            self.undo.remove(0);
+        }
+        self.dragging = dragging;
+    }
+
+    /// The pointer was let go: the next edit starts a new step.
+    pub fn end_drag(&mut self) {
+        self.dragging = false;
+    }
+
+    /// A new document: nothing to undo or redo.
+    pub fn clear(&mut self) {
+        *self = EditHistory::default();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene() -> Scene {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/presets/three_points.ron");
+        Scene::parse(&std::fs::read_to_string(path).unwrap(), path).unwrap()
+    }
+
+    fn with_speed(s: &Scene, v: f64) -> Scene {
+        Scene {
+            speed_mps: v,
+            ..s.clone()
+        }
+    }
+
+    /// Applies an undo or redo the way the app does: the requested scene
+    /// lands as an edit.
+    fn go(h: &mut EditHistory, current: &mut Scene, dir: Direction) -> bool {
+        let Some(next) = h.request(dir) else {
+            return false;
+        };
+        h.landed(current, &next, false);
+        *current = next;
+        true
+    }
+
+    #[test]
+    fn undo_and_redo_walk_the_edits_back_and_forth() {
+        let s0 = scene();
+        let mut h = EditHistory::default();
+        let mut cur = s0.clone();
+        let speeds = [2.0, 3.0, 4.0];
+        for &v in &speeds {
+            let next = with_speed(&cur, v);
+            h.landed(&cur, &next, false);
+            cur = next;
+        }
+        assert_eq!(h.undo_label(), Some("speed V 3 -> 4 m/s"));
+        assert!(h.redo_label().is_none());
+        assert!(go(&mut h, &mut cur, Direction::Undo));
+        assert_eq!(cur.speed_mps, 3.0);
+        assert_eq!(h.redo_label(), Some("speed V 3 -> 4 m/s"));
+        assert!(go(&mut h, &mut cur, Direction::Undo));
+        assert!(go(&mut h, &mut cur, Direction::Undo));
+        assert_eq!(cur, s0, "three undos give the scene as opened back");
+        assert!(!go(&mut h, &mut cur, Direction::Undo), "nothing left");
+        assert!(go(&mut h, &mut cur, Direction::Redo));
+        assert!(go(&mut h, &mut cur, Direction::Redo));
+        assert_eq!(cur.speed_mps, 3.0);
+        // a new edit drops what could be redone
+        let next = with_speed(&cur, 9.0);
+        h.landed(&cur, &next, false);
+        cur = next;
+        assert!(h.redo_label().is_none());
+        assert!(go(&mut h, &mut cur, Direction::Undo));
+        assert_eq!(cur.speed_mps, 3.0);
+    }
+
+    #[test]
+    fn a_requested_undo_that_never_lands_moves_nothing() {
+        let s0 = scene();
+        let mut h = EditHistory::default();
+        let s1 = with_speed(&s0, 5.0);
+        h.landed(&s0, &s1, false);
+        // the undo is asked for, but the user's next edit lands instead
+        // (the undo was refused or waited for a file and was replaced)
+        let _ = h.request(Direction::Undo);
+        let s2 = with_speed(&s1, 6.0);
+        h.landed(&s1, &s2, false);
+        assert_eq!(h.undo_label(), Some("speed V 5 -> 6 m/s"));
+        let mut cur = s2;
+        assert!(go(&mut h, &mut cur, Direction::Undo));
+        assert!(go(&mut h, &mut cur, Direction::Undo));
+        assert_eq!(cur, s0);
+    }
+
+    #[test]
+    fn one_drag_over_one_quantity_is_one_step() {
+        let s0 = scene();
+        let mut h = EditHistory::default();
+        let mut cur = s0.clone();
+        for k in 1..=30 {
+            let next = with_speed(&cur, 1.0 + 0.1 * k as f64);
+            h.landed(&cur, &next, true);
+            cur = next;
+        }
+        h.end_drag();
+        let whole = format!("speed V {} -> 4 m/s", s0.speed_mps);
+        assert_eq!(
+            h.undo_label(),
+            Some(whole.as_str()),
+            "the drag from its start"
+        );
+        // a second drag is a second step
+        let next = with_speed(&cur, 7.0);
+        h.landed(&cur, &next, true);
+        cur = next;
+        assert!(go(&mut h, &mut cur, Direction::Undo));
+        assert_eq!(cur.speed_mps, 4.0);
+        assert!(go(&mut h, &mut cur, Direction::Undo));
+        assert_eq!(cur, s0);
+        // a drag over another quantity does not merge into the speed's
+        let mut h = EditHistory::default();
+        let a = with_speed(&s0, 2.0);
+        h.landed(&s0, &a, true);
+        let b = Scene {
+            dt_s: a.dt_s / 2.0,
+            ..a.clone()
+        };
+        h.landed(&a, &b, true);
+        let mut cur = b;
+        assert!(go(&mut h, &mut cur, Direction::Undo));
+        assert_eq!(cur, a);
+    }
+
+    #[test]
+    fn the_stack_keeps_the_latest_edits_and_a_new_document_empties_it() {
+        let s0 = scene();
+        let mut h = EditHistory::default();
+        let mut cur = s0.clone();
+        for k in 0..MAX_UNDO + 20 {
+            let next = with_speed(&cur, 1.0 + k as f64);
+            h.landed(&cur, &next, false);
+            cur = next;
+        }
+        let mut undone = 0;
+        while go(&mut h, &mut cur, Direction::Undo) {
+            undone += 1;
+        }
+        assert_eq!(undone, MAX_UNDO);
+        assert_eq!(cur.speed_mps, 20.0, "the oldest edits were dropped");
+        h.clear();
+        assert!(h.undo_label().is_none() && h.redo_label().is_none());
+    }
+
+    #[test]
+    fn a_change_of_the_text_alone_is_named() {
+        let s0 = scene();
+        let renamed = Scene {
+            name: "mine".into(),
+            ..s0.clone()
+        };
+        let mut h = EditHistory::default();
+        h.landed(&s0, &renamed, false);
+        assert_eq!(h.undo_label(), Some("name"));
+        // an edit that changes nothing is not a step
+        h.landed(&renamed, &renamed.clone(), false);
+        let mut cur = renamed;
+        assert!(go(&mut h, &mut cur, Direction::Undo));
+        assert!(!go(&mut h, &mut cur, Direction::Undo));
+    }
+}

@@ -1,0 +1,131 @@
+//! Undo and redo of scene edits: by the keys, the File menu and the buttons
+//! beside the edits; a live edit and one that restarts the run; the fields
+//! show the scene given back; the unsaved marker follows; a new document
+//! starts with nothing to undo.
+
+use crate::harness::{harness, texts, type_into};
+use egui_kittest::kittest::{NodeT, Queryable};
+use tirecontact::Scene;
+use tirecontact::gui::{App, Command};
+
+fn three_points() -> App {
+    let path = format!("{}/presets/three_points.ron", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    App::new(Scene::parse(&text, &path).unwrap(), None).unwrap()
+}
+
+/// The text the field `name` shows.
+fn shown(h: &egui_kittest::Harness<'_, App>, name: &str) -> String {
+    h.get_by_label(name).value().unwrap_or_default()
+}
+
+fn ctrl(h: &mut egui_kittest::Harness<'_, App>, shift: bool, key: egui::Key) {
+    let m = if shift {
+        egui::Modifiers::COMMAND | egui::Modifiers::SHIFT
+    } else {
+        egui::Modifiers::COMMAND
+    };
+    h.key_press_modifiers(m, key);
+    h.run();
+    h.run();
+}
+
+#[test]
+fn the_keys_take_edits_back_and_make_them_again() {
+    let mut h = harness(three_points());
+    h.run();
+    let v0 = h.state().scene().speed_mps;
+    let dt0 = h.state().scene().dt_s;
+    assert!(!h.state().is_dirty());
+    // a live edit (speed), then one that restarts the run (time step)
+    type_into(&mut h, "speed_mps", &format!("{}", 2.0 * v0));
+    // (the field is in µs)
+    type_into(&mut h, "dt_s", &format!("{}", dt0 * 1e6 / 2.0));
+    let dt1 = h.state().scene().dt_s;
+    assert!((dt1 - dt0 / 2.0).abs() < 1e-12, "{dt1}");
+    // (Enter took the focus off the field: the keys are the app's)
+
+    ctrl(&mut h, false, egui::Key::Z);
+    assert_eq!(h.state().scene().dt_s, dt0, "Ctrl+Z: the time step back");
+    assert_eq!(h.state().scene().speed_mps, 2.0 * v0, "only the last edit");
+    assert_eq!(
+        h.state().simulation().dt_s(),
+        dt0,
+        "the run restarted on it"
+    );
+    let field_s = shown(&h, "dt_s").parse::<f64>().unwrap() * 1e-6;
+    assert!((field_s - dt0).abs() < 1e-12, "the field shows {field_s} s");
+
+    ctrl(&mut h, false, egui::Key::Z);
+    assert_eq!(h.state().scene().speed_mps, v0);
+    assert_eq!(shown(&h, "speed_mps").parse::<f64>().unwrap(), v0);
+    assert!(!h.state().is_dirty(), "every edit undone: nothing unsaved");
+
+    // nothing left to undo: the scene stays
+    ctrl(&mut h, false, egui::Key::Z);
+    assert_eq!(h.state().scene().speed_mps, v0);
+
+    ctrl(&mut h, true, egui::Key::Z);
+    assert_eq!(h.state().scene().speed_mps, 2.0 * v0, "Ctrl+Shift+Z redoes");
+    ctrl(&mut h, false, egui::Key::Y);
+    assert_eq!(h.state().scene().dt_s, dt1, "and Ctrl+Y");
+    assert!(h.state().is_dirty());
+}
+
+#[test]
+fn the_menu_and_the_buttons_say_what_they_would_change() {
+    let mut h = harness(three_points());
+    h.run();
+    // before any edit: Undo disabled in the File menu and beside the edits
+    h.get_by_label("File").click();
+    h.run();
+    let undos: Vec<bool> = h
+        .query_all_by_label_contains("Undo")
+        .map(|n| n.accesskit_node().is_disabled())
+        .collect();
+    assert!(undos.len() == 2 && undos.iter().all(|&d| d), "{undos:?}");
+    h.key_press(egui::Key::Escape);
+    h.run();
+    let v0 = h.state().scene().speed_mps;
+    type_into(&mut h, "speed_mps", &format!("{}", 3.0 * v0));
+    let said = format!("Undo speed V {v0} -> {} m/s", 3.0 * v0);
+    h.get_by_label("File").click();
+    h.run();
+    assert!(
+        texts(&h).iter().any(|(t, _)| t == &said),
+        "the File menu does not say {said:?}"
+    );
+    h.get_by_label_contains(&said).click();
+    h.run();
+    h.run();
+    assert_eq!(h.state().scene().speed_mps, v0, "the menu's Undo");
+    // the buttons beside the edits: Redo now
+    let redo = h
+        .query_all_by_label_contains("Redo")
+        .find(|n| !n.accesskit_node().is_disabled())
+        .expect("an enabled Redo beside the edits");
+    redo.click();
+    h.run();
+    h.run();
+    assert_eq!(h.state().scene().speed_mps, 3.0 * v0, "the button's Redo");
+}
+
+#[test]
+fn a_new_document_has_nothing_to_undo() {
+    let mut h = harness(three_points());
+    h.run();
+    let v0 = h.state().scene().speed_mps;
+    type_into(&mut h, "speed_mps", &format!("{}", 2.0 * v0));
+    h.state_mut().apply(Command::OpenPreset(0));
+    h.run();
+    h.state_mut().apply(Command::ConfirmDiscard);
+    h.run();
+    let opened = h.state().scene().clone();
+    h.state_mut().apply(Command::Undo);
+    h.run();
+    assert_eq!(
+        *h.state().scene(),
+        opened,
+        "the edit of the other file stays there"
+    );
+}
