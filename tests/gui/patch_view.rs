@@ -168,21 +168,80 @@ fn the_patch_view_starts_empty_and_counts_only_loaded_points() {
 }
 
 /// The header's figures to three significant digits with their units (it
-/// read "cell 6.0 × 20.0 mm", "438.6 N").
+/// read "cell 6.0 × 20.0 mm", "438.6 N"); the points carrying force and
+/// those in contact at the step's end both said where they differ (the
+/// status bar's "11 in contact" stood beside "13 carrying force").
 #[test]
 fn the_patch_header_rounds_to_meaningful_digits() {
     use tirecontact::gui::views::patch_view::header_text;
     assert_eq!(
-        header_text(0.090_37, 438.62, 22.8e-4, (19, 96), (0.006, 0.02)),
-        "t = 0.0904 s: total force 439 N, contact area 22.8 cm² (19 of 96 points carrying force, cell 6 × 20 mm)"
+        header_text(0.090_37, 438.62, 22.8e-4, (19, 19, 96), (0.006, 0.02)),
+        "t = 0.0904 s: total force 439 N, contact area 22.8 cm² (19 of 96 points in contact and carrying force, cell 6 × 20 mm)"
     );
     assert_eq!(
-        header_text(0.0, 0.0, 0.0, (0, 96), (0.002_5, 0.03)),
-        "t = 0 s: total force 0 N, contact area 0 cm² (0 of 96 points carrying force, cell 2.5 × 30 mm)"
+        header_text(0.0, 0.0, 0.0, (0, 0, 96), (0.002_5, 0.03)),
+        "t = 0 s: total force 0 N, contact area 0 cm² (0 of 96 points in contact and carrying force, cell 2.5 × 30 mm)"
+    );
+    assert!(
+        header_text(0.05, 300.0, 1e-3, (13, 11, 96), (0.006, 0.02)).contains(
+            "13 of 96 points carrying force over the last step, 11 in contact at its end"
+        )
     );
     // a small force keeps its digits
     assert!(
-        header_text(1e-5, 0.012_34, 1e-4, (3, 96), (0.006, 0.02)).contains("total force 0.0123 N")
+        header_text(1e-5, 0.012_34, 1e-4, (3, 3, 96), (0.006, 0.02))
+            .contains("total force 0.0123 N")
+    );
+}
+
+/// The status bar and the patch view count the same points at the same
+/// instant: the header's points in contact are the status bar's.
+#[test]
+fn the_patch_header_and_the_status_bar_agree_on_the_points_in_contact() {
+    let path = format!("{}/presets/patch_chip_seal.ron", env!("CARGO_MANIFEST_DIR"));
+    let app = tirecontact::gui::App::new(
+        tirecontact::Scene::load(std::path::Path::new(&path)).unwrap(),
+        None,
+    )
+    .unwrap();
+    let mut h = crate::harness::harness(app);
+    h.run();
+    h.state_mut().apply(tirecontact::gui::Command::ShowView(
+        tirecontact::gui::View::Patch,
+    ));
+    // through the ramp and some rolling steps, until a step releases a point
+    let mut seen = false;
+    for _ in 0..60 {
+        crate::harness::advance(&mut h, 200);
+        h.run_steps(1);
+        let texts = crate::harness::texts(&h);
+        let status = texts
+            .iter()
+            .find_map(|(t, _)| {
+                t.strip_suffix(" in contact")
+                    .and_then(|s| s.rsplit(' ').next())
+            })
+            .and_then(|n| n.parse::<usize>().ok())
+            .expect("the status bar's count");
+        let header = texts
+            .iter()
+            .find(|(t, _)| t.starts_with("t = ") && t.contains("points"))
+            .map(|(t, _)| t.clone())
+            .expect("the patch header");
+        let said = if header.contains("at its end") {
+            seen = true;
+            format!(", {status} in contact at its end")
+        } else {
+            format!("({status} of 96 points in contact")
+        };
+        assert!(header.contains(&said), "status {status}: {header}");
+        if seen {
+            break;
+        }
+    }
+    assert!(
+        seen,
+        "no step released a point inside it: both counts never differed"
     );
 }
 

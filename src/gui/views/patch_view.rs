@@ -19,23 +19,34 @@ pub const COLOUR_BAR_CAPTION: &str = "force (N)";
 
 /// The patch at time `t_s`, each figure to three significant digits with
 /// its unit: `t = 0.0904 s: total force 439 N, contact area 22.8 cm² (19
-/// of 96 points carrying force, cell 6 × 20 mm)`; `carrying` is `(points
-/// carrying force, points)`, `cell_m` the cell along and across (m).
+/// of 96 points in contact and carrying force, cell 6 × 20 mm)`.
+/// `points` is `(points carrying force over the last step, points in
+/// contact at its end, points)`: where they differ (a point released inside
+/// the step carried force in it; the status bar counts the points in
+/// contact at the end) both are said. `cell_m` is the cell along and
+/// across (m).
 pub fn header_text(
     t_s: f64,
     total_n: f64,
     area_m2: f64,
-    carrying: (usize, usize),
+    points: (usize, usize, usize),
     cell_m: (f64, f64),
 ) -> String {
     let n = |x: f64| crate::output::summary::short_num(x, 3);
+    let (carrying, touching, all) = points;
+    let who = if carrying == touching {
+        format!("{carrying} of {all} points in contact and carrying force")
+    } else {
+        format!(
+            "{carrying} of {all} points carrying force over the last step, \
+             {touching} in contact at its end"
+        )
+    };
     format!(
-        "t = {} s: total force {} N, contact area {} cm² ({} of {} points carrying force, cell {} × {} mm)",
+        "t = {} s: total force {} N, contact area {} cm² ({who}, cell {} × {} mm)",
         n(t_s),
         n(total_n),
         n(area_m2 * 1e4),
-        carrying.0,
-        carrying.1,
         n(cell_m.0 * 1e3),
         n(cell_m.1 * 1e3),
     )
@@ -83,7 +94,11 @@ pub fn show(ui: &mut Ui, sim: &Simulation, history: &History, cmds: &mut Vec<Com
             sim.time_s(),
             total,
             layout.contact_area_m2(forces),
-            (on, layout.xy_m.len()),
+            (
+                on,
+                sim.in_contact().iter().filter(|&&c| c).count(),
+                layout.xy_m.len(),
+            ),
             layout.cell_m,
         )
     ));
