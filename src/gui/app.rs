@@ -87,6 +87,9 @@ pub struct App {
     forget_fields: bool,
     /// The scene edits to undo and redo (the document's, never persisted).
     pub(super) undo: EditHistory,
+    /// "Save first" saved the scene: what the save said, to be said with
+    /// the message of the scene that replaces it.
+    pub(super) saved_note: Option<String>,
     /// Work under way and caches: never persisted.
     pub(crate) handles: Handles,
 }
@@ -134,6 +137,9 @@ pub(crate) struct Handles {
     pub(super) pointer_down: bool,
     /// Where the status bar was drawn in the last frame.
     pub(super) status_rect: egui::Rect,
+    /// Another scene came in: the editing panel scrolls back to its top
+    /// when next drawn.
+    pub(super) editor_to_top: bool,
     /// The thread that steps the run between frames at "as fast as
     /// possible", and the stand-in state the app holds while it is lent.
     #[cfg(not(target_arch = "wasm32"))]
@@ -197,6 +203,7 @@ impl App {
             field_refusal: None,
             forget_fields: false,
             undo: EditHistory::default(),
+            saved_note: None,
             handles: Handles {
                 csv_job: None,
                 frames_job: None,
@@ -213,6 +220,7 @@ impl App {
                 software_renderer: false,
                 pointer_down: false,
                 status_rect: egui::Rect::NOTHING,
+                editor_to_top: false,
                 #[cfg(not(target_arch = "wasm32"))]
                 run_ahead: None,
                 #[cfg(not(target_arch = "wasm32"))]
@@ -444,7 +452,7 @@ impl App {
             Command::Share => self.share(),
             Command::ContinueAfterSave(d) => {
                 if !self.is_dirty() && self.overwrite.is_none() {
-                    self.discard_and(d);
+                    self.discard_after_save(d);
                 }
             }
         }

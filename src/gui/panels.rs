@@ -49,9 +49,11 @@ pub(crate) fn push_edit(cmds: &mut Vec<Command>, c: Option<Command>) {
 
 /// The whole editing side panel. `edits`: what changed since the scene was
 /// opened or saved (its description does not say); `undo`: what Undo and
-/// Redo would change (`None`: nothing).
+/// Redo would change (`None`: nothing); `to_top`: scroll back to the top
+/// (another scene came in).
 pub fn side_panel(
     ui: &mut egui::Ui,
+    to_top: bool,
     scene: &Scene,
     edits: &[String],
     undo: [Option<&str>; 2],
@@ -59,7 +61,11 @@ pub fn side_panel(
     road: &crate::model::road::RoadProfile,
     cmds: &mut Vec<Command>,
 ) {
-    egui::ScrollArea::vertical().show(ui, |ui| {
+    let mut area = egui::ScrollArea::vertical();
+    if to_top {
+        area = area.vertical_scroll_offset(0.0);
+    }
+    area.show(ui, |ui| {
         ui.heading(&scene.name);
         if !scene.description.is_empty() && !about_panel::is_open(ui) {
             ui.label(egui::RichText::new(&scene.description).weak());

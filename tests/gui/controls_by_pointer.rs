@@ -545,6 +545,19 @@ fn save_first_saves_then_does_the_held_action() {
     assert_eq!(Scene::load(&file).unwrap().duration_s, 0.5);
     assert_eq!(h.state().scene().num_points(), 3, "the preset did not open");
     assert!(!h.state().is_dirty());
+    // the banner says the save as well as what opened (the opening's
+    // message alone took the save's place)
+    let said = |h: &Harness<'_, App>| {
+        h.state()
+            .message()
+            .map(|m| m.text.clone())
+            .unwrap_or_default()
+    };
+    let m = said(&h);
+    assert!(
+        m.contains(&format!("saved {}", file.display())) && m.contains("opened"),
+        "{m}"
+    );
 
     // a cancelled prompt keeps the scene and its edits (a scene without a
     // file: the built-in default)
@@ -575,4 +588,9 @@ fn save_first_saves_then_does_the_held_action() {
     h.run();
     assert_eq!(Scene::load(&file).unwrap().duration_s, 0.125);
     assert_eq!(h.state().scene().num_points(), 1, "the preset did not open");
+    let m = said(&h);
+    assert!(
+        m.starts_with(&format!("saved {}, then", file.display())),
+        "{m}"
+    );
 }

@@ -16,6 +16,7 @@ mod compare;
 mod controls_by_pointer;
 mod dialog_place;
 mod edited_description;
+mod editor_scroll;
 mod field_help;
 mod frames_export;
 mod guidance;

@@ -63,7 +63,7 @@ impl App {
             Some(p) => {
                 self.save_to(&p);
                 if !self.is_dirty() {
-                    self.discard_and(d);
+                    self.discard_after_save(d);
                 }
             }
             None => {
@@ -73,6 +73,18 @@ impl App {
                 }
             }
         }
+    }
+
+    /// [`Self::discard_and`] after "Save first" saved the scene: the
+    /// message of the scene that replaces it says the save too (it took
+    /// the save's place in the banner, and the user saw no sign of it).
+    pub(super) fn discard_after_save(&mut self, d: Discarding) {
+        self.saved_note = self
+            .message
+            .as_ref()
+            .filter(|m| !m.error)
+            .map(|m| m.text.clone());
+        self.discard_and(d);
     }
 
     pub(super) fn discard_and(&mut self, d: Discarding) {
@@ -169,11 +181,19 @@ impl App {
                 self.forget_fields = true;
                 self.field_refusal = None;
                 self.undo.clear();
-                self.info(what.to_string());
+                self.handles.editor_to_top = true;
+                let what = match self.saved_note.take() {
+                    Some(saved) => format!("{saved}, then {what}"),
+                    None => what.to_string(),
+                };
+                self.info(what);
             }
-            Err(e) => self.error(format!(
-                "Cannot use this scene; the current scene is kept.\n{e}"
-            )),
+            Err(e) => {
+                self.saved_note = None;
+                self.error(format!(
+                    "Cannot use this scene; the current scene is kept.\n{e}"
+                ))
+            }
         }
     }
 

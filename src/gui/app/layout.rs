@@ -87,10 +87,19 @@ impl App {
 
     /// The editing panel's fields (disabled while an edit waits for its
     /// preparation).
-    fn editor(&self, ui: &mut egui::Ui, editable: bool, edits: &[String], cmds: &mut Vec<Command>) {
+    /// `to_top`: a new document came in, the panel scrolls back to its top.
+    fn editor(
+        &self,
+        ui: &mut egui::Ui,
+        editable: bool,
+        to_top: bool,
+        edits: &[String],
+        cmds: &mut Vec<Command>,
+    ) {
         ui.add_enabled_ui(editable, |ui| {
             panels::side_panel(
                 ui,
+                to_top,
                 &self.doc.scene,
                 edits,
                 [self.undo.undo_label(), self.undo.redo_label()],
@@ -107,6 +116,7 @@ impl App {
         // the running scene: no further edit until the waiting one applies
         let editable = self.handles.prepare_job.is_none();
         let edits = self.edits();
+        let to_top = std::mem::take(&mut self.handles.editor_to_top);
         if ui.available_width() < NARROW_PX {
             // a phone: the editing panel behind a button, not over the views
             if self.edit_panel_open {
@@ -116,10 +126,12 @@ impl App {
                     }
                     // a refused value's reason, the views' banner being hidden
                     crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds_left);
-                    self.editor(ui, editable, &edits, cmds_left);
+                    self.editor(ui, editable, to_top, &edits, cmds_left);
                 });
                 return;
             }
+            // (for the editing panel when it is shown)
+            self.handles.editor_to_top = to_top;
             egui::Panel::top("tirecontact.edit_button").show(ui, |ui| {
                 if ui
                     .button("Edit the scene")
@@ -145,7 +157,7 @@ impl App {
             .default_size(380.0f32.min(0.35 * w))
             .max_size(0.35 * w)
             .show(ui, |ui| {
-                self.editor(ui, editable, &edits, cmds_left);
+                self.editor(ui, editable, to_top, &edits, cmds_left);
             });
         if self.classroom.bars {
             egui::Panel::right("tirecontact.mode_bars")

@@ -188,7 +188,11 @@ impl App {
             if self.message.as_ref().is_some_and(|m| m.text == note) {
                 self.message = None;
             }
-            self.info("Cancelled: the current scene is kept.".to_string());
+            let text = match self.saved_note.take() {
+                Some(saved) => format!("{saved}; the next scene was cancelled: this one is kept."),
+                None => "Cancelled: the current scene is kept.".to_string(),
+            };
+            self.info(text);
         }
     }
 
