@@ -175,3 +175,53 @@ pub fn texts(h: &Harness<'_, App>) -> Vec<(String, egui::Rect)> {
         })
         .collect()
 }
+
+/// The top (px) of the status bar: of its run label ("… steps · …").
+pub fn status_top(h: &Harness<'_, App>) -> f32 {
+    let top = texts(h)
+        .iter()
+        .filter(|(t, _)| t.contains(" steps · "))
+        .map(|(_, r)| r.top())
+        .fold(f32::INFINITY, f32::min);
+    assert!(top.is_finite(), "no status bar text found");
+    top
+}
+
+/// Turns the mouse wheel `times` times by `dy_px` (negative: scrolls the
+/// content up) with the pointer at `at`, then lets the scrolling settle.
+pub fn wheel(h: &mut Harness<'_, App>, at: egui::Pos2, dy_px: f32, times: usize) {
+    h.hover_at(at);
+    h.run_steps(1);
+    for _ in 0..times {
+        h.event(egui::Event::MouseWheel {
+            unit: egui::MouseWheelUnit::Point,
+            delta: egui::vec2(0.0, dy_px),
+            phase: egui::TouchPhase::Move,
+            source: egui::MouseWheelSource::Unknown,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run_steps(2);
+    }
+    h.run_steps(30);
+}
+
+/// Rotated texts (y axis titles) and their painted bounds.
+pub fn rotated_texts(h: &Harness<'_, App>) -> Vec<(String, egui::Rect)> {
+    shapes(h)
+        .into_iter()
+        .filter_map(|s| match s {
+            egui::Shape::Text(t) if t.angle != 0.0 => {
+                Some((t.galley.text().to_owned(), t.visual_bounding_rect()))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// The frame (px) of the plot of id `egui::Id::unique(id)` as last drawn.
+pub fn plot_frame(h: &Harness<'_, App>, id: &str) -> egui::Rect {
+    *egui_plot::PlotMemory::load(&h.ctx, egui::Id::unique(id))
+        .unwrap_or_else(|| panic!("plot {id} not shown"))
+        .transform()
+        .frame()
+}

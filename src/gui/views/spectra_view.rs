@@ -5,6 +5,7 @@
 //! history's length), only drawn here.
 
 use super::XTitle;
+use super::axis_title;
 use super::shown_point_color;
 use super::time_plots::DEFAULT_SHOWN;
 use crate::Scene;
@@ -104,6 +105,27 @@ pub fn excitation_text(scene: &Scene) -> String {
     }
 }
 
+/// Plot ids of the force, displacement and band level plots (their frames
+/// are read by the tests).
+pub const PLOT_IDS: [&str; 3] = [
+    "tirecontact.spectra_q",
+    "tirecontact.spectra_u",
+    "tirecontact.spectra_bands",
+];
+/// The y titles of the three plots, full and short (the short one where
+/// the full one is longer than its plot's frame).
+pub const Y_TITLES: [(&str, &str); 3] = [
+    ("force level (dB re 1 N)", "q (dB re 1 N)"),
+    ("displacement level (dB re 1 m)", "u (dB re 1 m)"),
+    ("band level (dB re 1 N)", "band (dB re 1 N)"),
+];
+/// Least height (px) of a spectrum plot: its marker labels, level axis and
+/// y title readable. Where the three do not fit the view at this height,
+/// the view scrolls.
+pub const MIN_PLOT_PX: f32 = 200.0;
+
+/// The view in a vertical scroll area that takes the mouse wheel: the
+/// three plots share the view's height, each at least [`MIN_PLOT_PX`].
 pub fn show(
     ui: &mut Ui,
     scene: &Scene,
@@ -118,6 +140,54 @@ pub fn show(
     if opts.shown.len() != p {
         opts.shown = (0..p).map(|i| i < DEFAULT_SHOWN).collect();
     }
+    // (the content's height, not the scrolled one: inside the area the
+    // room left below the cursor moves with the scroll offset)
+    let view_px = ui.available_height();
+    egui::ScrollArea::vertical()
+        .id_salt("tirecontact.spectra.scroll")
+        .auto_shrink(false)
+        .show(ui, |ui| {
+            let top = ui.cursor().top();
+            body(
+                ui,
+                Shown {
+                    scene,
+                    modes,
+                    cache,
+                    computing,
+                    playing,
+                    view_px,
+                    top,
+                },
+                opts,
+                cmds,
+            );
+        });
+}
+
+/// What the view's body draws, and where it began.
+struct Shown<'a> {
+    scene: &'a Scene,
+    modes: &'a [Mode],
+    cache: &'a HistoryCache<Result<HistorySpectra, String>>,
+    computing: Option<f64>,
+    playing: bool,
+    /// Height (px) of the view.
+    view_px: f32,
+    /// The body's top (px, scrolled with it).
+    top: f32,
+}
+
+fn body(ui: &mut Ui, what: Shown<'_>, opts: &mut SpectraOptions, cmds: &mut Vec<Command>) {
+    let Shown {
+        scene,
+        modes,
+        cache,
+        computing,
+        playing,
+        view_px,
+        top,
+    } = what;
     controls(ui, opts, cmds);
     ui.label(RichText::new(excitation_text(scene)).color(EXCITATION_COLOR));
     if let Some(f) = computing {
@@ -149,10 +219,12 @@ pub fn show(
     let nyquist = 0.5 * hs.span.sample_rate_hz;
     let max_hz = opts.max_hz.min(nyquist);
     let gap = ui.spacing().item_spacing.y;
-    // three plots and the band caption line below them
+    // three plots and the band caption line below them, in the view's
+    // height left below the rows above them
     let caption = ui.text_style_height(&egui::TextStyle::Body) + gap;
+    let left_px = view_px - (ui.cursor().top() - top);
     let pl = Plots {
-        h: ((ui.available_height() - 3.0 * gap - caption) / 3.0).max(120.0),
+        h: ((left_px - 3.0 * gap - caption) / 3.0).max(MIN_PLOT_PX),
         max_hz,
         log: opts.log_x,
         marks: markers(scene, modes, max_hz, HARMONICS),
@@ -169,8 +241,8 @@ pub fn show(
     narrow(
         ui,
         &pl,
-        "tirecontact.spectra_q",
-        "force level (dB re 1 N)",
+        PLOT_IDS[0],
+        Y_TITLES[0],
         &s.force,
         Some(&s.total_force),
         "q",
@@ -178,8 +250,8 @@ pub fn show(
     narrow(
         ui,
         &pl,
-        "tirecontact.spectra_u",
-        "displacement level (dB re 1 m)",
+        PLOT_IDS[1],
+        Y_TITLES[1],
         &s.displacement,
         None,
         "u",
@@ -296,7 +368,7 @@ fn narrow(
     ui: &mut Ui,
     pl: &Plots,
     id: &str,
-    y_label: &str,
+    (y_label, y_short): (&str, &str),
     specs: &[Spectrum],
     total: Option<&Spectrum>,
     unit: &str,
@@ -332,11 +404,13 @@ fn narrow(
     let rows_px = f64::from(2.0 * label_row_px(ui));
     let frame_px = f64::from(pl.h - super::titled_x_axis_px(ui));
     let label_db = rows_px * RANGE_DB / (frame_px - rows_px).max(1.0);
+    let title_id = egui::Id::unique(id).with("y_title");
+    let title = axis_title::fit_plot(ui, title_id, y_label, y_short, pl.h, true);
     let mut plot = db_y_axis(Plot::new(id))
         .id(egui::Id::unique(id))
         .height(pl.h)
         .x_title(ui, pl.x_label())
-        .y_axis_label(y_label)
+        .y_axis_label(title.text.clone())
         .y_axis_min_width(64.0)
         .allow_scroll(false);
     if pl.log {
@@ -348,7 +422,7 @@ fn narrow(
         plot = plot.include_y(top + label_db);
     }
     let label_px = label_row_px(ui);
-    plot.show(ui, |pui| {
+    let r = plot.show(ui, |pui| {
         for (name, c, pts) in curves {
             let pts: Vec<[f64; 2]> = pts.into_iter().map(|p| [p[0], p[1].max(floor)]).collect();
             pui.line(Line::new(name, pts).color(c).width(1.2).allow_band(false));
@@ -364,15 +438,20 @@ fn narrow(
             );
         }
     });
+    axis_title::after_plot(ui, title_id, &title, y_label, &r);
 }
 
 /// Third-octave bands of the forces, drawn as steps over the band edges.
 fn bands(ui: &mut Ui, pl: &Plots, s: &crate::analysis::spectrum::run::RunSpectra, nyquist: f64) {
     let hi = DEFAULT_BANDS_HZ.1.min(nyquist / 10f64.powf(0.05));
-    db_y_axis(Plot::new("tirecontact.spectra_bands"))
+    let (y_label, y_short) = Y_TITLES[2];
+    let title_id = egui::Id::unique(PLOT_IDS[2]).with("y_title");
+    let title = axis_title::fit_plot(ui, title_id, y_label, y_short, pl.h, true);
+    let r = db_y_axis(Plot::new(PLOT_IDS[2]))
+        .id(egui::Id::unique(PLOT_IDS[2]))
         .height(pl.h)
         .x_title(ui, "third-octave band (Hz, log scale; IEC 61260 base 10)")
-        .y_axis_label("band level (dB re 1 N)")
+        .y_axis_label(title.text.clone())
         .y_axis_min_width(64.0)
         .x_grid_spacer(super::log_marks)
         .x_axis_formatter(|m, _| log_label(m.value))
@@ -410,6 +489,7 @@ fn bands(ui: &mut Ui, pl: &Plots, s: &crate::analysis::spectrum::run::RunSpectra
                 }
             }
         });
+    axis_title::after_plot(ui, title_id, &title, y_label, &r);
     if hi > DEFAULT_BANDS_HZ.0 {
         ui.label(
             RichText::new(format!(
