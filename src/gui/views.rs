@@ -173,6 +173,16 @@ pub fn nice_step(x: f64) -> f64 {
         .unwrap_or(10.0 * p)
 }
 
+/// The 1-2-5 step below `step` (a 1, 2 or 5 times a power of ten).
+pub fn finer_125(step: f64) -> f64 {
+    let p = 10f64.powf(step.log10().floor());
+    match (step / p).round() as i64 {
+        1 => 0.5 * p,
+        2 => p,
+        _ => 2.0 * p,
+    }
+}
+
 /// Decimals that show a multiple of `step` exactly (0.05 → 2, 0.2 → 1, 100 → 0).
 pub fn decimals_for_step(step: f64) -> usize {
     (-step.log10() - 1e-9).ceil().max(0.0) as usize
@@ -211,7 +221,10 @@ pub fn axis_number(value: f64, step: f64, widest: f64) -> String {
 }
 
 /// Grid marks at 1-2-5 steps whose labelled (major) step is at least
-/// `label_px` apart, with nested finer and coarser steps.
+/// `label_px` apart, with nested finer and coarser steps. Where that step
+/// has fewer than two marks on the axis (a short plot: one label, as the
+/// A/B compare view's displacement difference showed), the next finer
+/// 1-2-5 step is labelled.
 pub fn nice_marks(input: egui_plot::GridInput, label_px: f64) -> Vec<egui_plot::GridMark> {
     {
         let unit = input.base_step_size.abs();
@@ -220,7 +233,12 @@ pub fn nice_marks(input: egui_plot::GridInput, label_px: f64) -> Vec<egui_plot::
         }
         // labelled steps >= label_px (the grid's minimum spacing is 8 px), with
         // nested finer and coarser steps: 1 → (0.5, 5), 2 → (1, 10), 5 → (1, 10)
-        let major = nice_step(label_px / 8.0 * unit);
+        let mut major = nice_step(label_px / 8.0 * unit);
+        let (lo, hi) = input.bounds;
+        let on_axis = |step: f64| (hi / step).floor() - (lo / step).ceil() + 1.0;
+        if on_axis(major) < 2.0 {
+            major = finer_125(major);
+        }
         let mantissa = (major / 10f64.powf(major.log10().floor())).round();
         let (fine, coarse) = match mantissa as i64 {
             1 => (0.5, 5.0),
@@ -228,7 +246,6 @@ pub fn nice_marks(input: egui_plot::GridInput, label_px: f64) -> Vec<egui_plot::
             _ => (0.2, 2.0),
         };
         let steps = [major * fine, major, major * coarse];
-        let (lo, hi) = input.bounds;
         let mut marks: Vec<egui_plot::GridMark> = Vec::new();
         let first = (lo / steps[0]).ceil() as i64;
         let last = (hi / steps[0]).floor() as i64;

@@ -47,7 +47,35 @@ pub struct Compared<'a> {
     pub diff_smooth: Option<&'a RunDifference>,
 }
 
+/// Least height (px) of a plot of the view: its curves, legend and axis
+/// readable. Where the plots do not fit the view at this height, the view
+/// scrolls.
+pub const MIN_PLOT_PX: f32 = 160.0;
+
+/// The view in a vertical scroll area that takes the mouse wheel: the
+/// plots share the view's height, each at least [`MIN_PLOT_PX`].
 pub fn show(ui: &mut Ui, c: &Compared<'_>, opts: &mut CompareOptions, cmds: &mut Vec<Command>) {
+    // (the content's height, not the scrolled one: inside the area the
+    // room left below the cursor moves with the scroll offset)
+    let view_px = ui.available_height();
+    egui::ScrollArea::vertical()
+        .id_salt("tirecontact.compare.scroll")
+        .auto_shrink(false)
+        .show(ui, |ui| {
+            let top = ui.cursor().top();
+            body(ui, c, opts, cmds, (view_px, top));
+        });
+}
+
+/// The view's rows; `(view_px, top)`: the view's height and the top of
+/// its content (px, scrolled with it).
+fn body(
+    ui: &mut Ui,
+    c: &Compared<'_>,
+    opts: &mut CompareOptions,
+    cmds: &mut Vec<Command>,
+    (view_px, top): (f32, f32),
+) {
     let Compared {
         history,
         pinned,
@@ -81,8 +109,10 @@ pub fn show(ui: &mut Ui, c: &Compared<'_>, opts: &mut CompareOptions, cmds: &mut
                 .unwrap_or(0.0),
         )
         .max(1e-9);
+    // the plots share the view's height left below the rows above them
+    let left_px = view_px - (ui.cursor().top() - top);
     let grid = Grid {
-        h: ((ui.available_height() - (rows - 1) as f32 * gap) / rows as f32).max(90.0),
+        h: ((left_px - (rows - 1) as f32 * gap) / rows as f32).max(MIN_PLOT_PX),
         link: Id::unique("tirecontact.compare_axes"),
         t_end,
         buckets: (ui.available_width() as usize).clamp(100, 3000),
@@ -337,8 +367,15 @@ fn run_plots(
     }
 }
 
+/// Least half span of the displacement difference's axis (mm): 1 µm, the
+/// distance within which points are compared as the same.
+pub const MIN_HALF_SPAN_MM: f64 = 1e-3;
+/// Least half span of the force difference's axis (N).
+pub const MIN_HALF_SPAN_N: f64 = 1e-2;
+
 /// The differences current − reference, both edges clipped when impacts
-/// are.
+/// are. Each axis spans at least twice its least half span
+/// ([`MIN_HALF_SPAN_MM`], [`MIN_HALF_SPAN_N`]) around the difference.
 fn difference_plots(
     ui: &mut Ui,
     grid: &Grid,
@@ -348,10 +385,22 @@ fn difference_plots(
     let (h, buckets) = (grid.h, grid.buckets);
     let shown = grid.shown.as_slice();
     let diffs = [
-        (&d.du_m, "Δu = current − ref (mm)", "Δu (mm)", 1e3),
-        (&d.dq_n, "Δq = current − ref (N)", "Δq (N)", 1.0),
+        (
+            &d.du_m,
+            "Δu = current − ref (mm)",
+            "Δu (mm)",
+            1e3,
+            MIN_HALF_SPAN_MM,
+        ),
+        (
+            &d.dq_n,
+            "Δq = current − ref (N)",
+            "Δq (N)",
+            1.0,
+            MIN_HALF_SPAN_N,
+        ),
     ];
-    for (k, (series, y_label, y_short, scale)) in diffs.into_iter().enumerate() {
+    for (k, (series, y_label, y_short, scale, min_half)) in diffs.into_iter().enumerate() {
         let legend_id = Id::unique(("tirecontact.compare_diff.legend", k));
         let labels: &[&str] = if grid.clip_impacts && k == 1 {
             &[DIFFERENCE, IMPACT_LABEL]
@@ -373,6 +422,17 @@ fn difference_plots(
         // upper clip level)
         if let Some(y) = legend_place::headroom(ui.ctx(), legend_id, legend_px) {
             plot = plot.include_y(y);
+        }
+        // a (nearly) constant difference, as of a run compared with
+        // itself: egui_plot gave a flat line an axis as high as the time
+        // axis is wide, with a single labelled tick in a short plot
+        let values = shown
+            .iter()
+            .filter_map(|&i| series.get(i))
+            .flat_map(|y| y.iter().map(|v| v * scale));
+        if let Some((lo, hi)) = y_range(values).filter(|(lo, hi)| hi - lo < 2.0 * min_half) {
+            let mid = 0.5 * (lo + hi);
+            plot = plot.include_y(mid - min_half).include_y(mid + min_half);
         }
         plot = plot.id(Id::unique(if k == 1 {
             FORCE_DIFF_PLOT_ID

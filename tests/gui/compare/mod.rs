@@ -3,5 +3,6 @@
 
 mod clip;
 mod current;
+mod fit;
 mod titles;
 mod unlike;

@@ -1,7 +1,7 @@
-//! The A/B compare view's y axis titles fit their plots: at 1280 × 720 the
-//! four stacked plots are short and egui_plot drew each full title (rotated,
-//! centred on its plot, never shortened) longer than the plot, into the
-//! neighbours' titles. Read from the painted (rotated) text shapes; a
+//! The A/B compare view's y axis titles fit their plots: in a small window
+//! the four stacked plots are short and egui_plot drew each full title
+//! (rotated, centred on its plot, never shortened) longer than the plot,
+//! into the neighbours' titles. Read from the painted (rotated) text shapes; a
 //! shortened title shows the full one on hover over the axis.
 
 use crate::harness::advance;
@@ -59,11 +59,17 @@ fn frame(h: &Harness<'_, App>, id: &str) -> Rect {
         .frame()
 }
 
-/// A run pinned, the scene edited and run again: four plots.
-fn compare(size: [f32; 2]) -> Harness<'static, App> {
+/// A run pinned, the scene edited and run again: four plots; the text
+/// `text_scale` times egui's size (a large-text setting).
+fn compare(size: [f32; 2], text_scale: f32) -> Harness<'static, App> {
     let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
     scene.duration_s = 0.03;
     let mut h = crate::harness::harness_sized(App::new(scene.clone(), None).unwrap(), size);
+    h.ctx.all_styles_mut(|s| {
+        for f in s.text_styles.values_mut() {
+            f.size *= text_scale;
+        }
+    });
     h.run();
     advance(&mut h, 3000);
     h.state_mut().apply(Command::ShowView(View::Compare));
@@ -81,13 +87,18 @@ fn compare(size: [f32; 2]) -> Harness<'static, App> {
     h
 }
 
-/// Checks the titles; returns the plots whose title was shortened.
+/// Checks the titles of the plots in view (the view scrolls to the
+/// others); returns the plots whose title was shortened.
 fn check(h: &Harness<'_, App>, size: [f32; 2]) -> Vec<usize> {
     let texts = rotated_texts(h);
+    let bottom = crate::harness::status_top(h);
     let mut titles = Vec::new();
     let mut shortened = Vec::new();
     for (k, (id, full, short)) in PLOTS.iter().enumerate() {
         let f = frame(h, id);
+        if f.bottom() > bottom {
+            continue;
+        }
         let (text, r) = texts
             .iter()
             .find(|(t, r)| {
@@ -118,6 +129,7 @@ fn check(h: &Harness<'_, App>, size: [f32; 2]) -> Vec<usize> {
         }
         titles.push((text.clone(), *r));
     }
+    assert!(!titles.is_empty(), "{size:?}: no plot in view");
     for (i, (a, ra)) in titles.iter().enumerate() {
         for (b, rb) in &titles[i + 1..] {
             assert!(
@@ -131,27 +143,35 @@ fn check(h: &Harness<'_, App>, size: [f32; 2]) -> Vec<usize> {
 
 #[test]
 fn compare_titles_fit_their_plots_and_show_in_full_on_hover() {
-    let mut h = compare([1280.0, 720.0]);
+    // the plots keep a least height: in large text some full titles are
+    // longer than that
+    let small = [1280.0, 720.0];
+    let mut h = compare(small, 1.5);
+    let bottom = crate::harness::status_top(&h);
     // the premise: some full title in body text (egui_plot's default) is
     // longer than its plot
     let body = egui::TextStyle::Body.resolve(&h.ctx.global_style());
     let too_long: Vec<&str> = PLOTS
         .iter()
         .filter(|(id, full, _)| {
+            let f = frame(&h, id);
+            if f.bottom() > bottom {
+                return false;
+            }
             let len = h.ctx.fonts_mut(|f| {
                 f.layout_no_wrap(full.to_string(), body.clone(), egui::Color32::WHITE)
                     .size()
                     .x
             });
-            len > frame(&h, id).height()
+            len > f.height()
         })
         .map(|p| p.1)
         .collect();
     assert!(
         !too_long.is_empty(),
-        "the premise: full titles fit at 1280 × 720"
+        "the premise: full titles fit at {small:?} in large text"
     );
-    let shortened = check(&h, [1280.0, 720.0]);
+    let shortened = check(&h, small);
     assert!(!shortened.is_empty(), "{too_long:?} are not shortened");
     // hovering the axis of a shortened title shows it in full
     let k = shortened[0];
@@ -167,6 +187,8 @@ fn compare_titles_fit_their_plots_and_show_in_full_on_hover() {
         "hovering the axis of {id} shows {full:?}"
     );
 
-    let h = compare([1600.0, 1000.0]);
-    check(&h, [1600.0, 1000.0]);
+    for size in [[900.0, 600.0], [1280.0, 720.0], [1600.0, 1000.0]] {
+        let h = compare(size, 1.0);
+        check(&h, size);
+    }
 }
