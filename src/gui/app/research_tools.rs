@@ -218,10 +218,12 @@ impl App {
     }
 
     /// A new document (opened or new scene): a held ring reference belongs
-    /// to the old one.
+    /// to the old one, and so does a cancelled or failed sweep's note (a
+    /// finished sweep's results stay: they name their scene).
     pub(crate) fn research_new_document(&mut self) {
         self.research.fidelity_ref = FidelityRef::of_scene(&self.doc.scene);
         self.research.workbench_used = None;
+        self.research.sweep.new_document();
     }
 
     /// The research jobs' ends this frame, as commands (never blocks).

@@ -221,6 +221,15 @@ impl SweepState {
         (self, kept)
     }
 
+    /// A new document: a cancelled or failed sweep's note, which speaks of
+    /// the scene it ran on, goes (back to idle); finished results stay, as
+    /// they name their scene, and a running sweep runs on.
+    pub fn new_document(&mut self) {
+        if matches!(self, SweepState::Cancelled | SweepState::Failed(_)) {
+            *self = SweepState::Idle;
+        }
+    }
+
     /// The finished result, if any.
     pub fn result(&self) -> Option<&SweepResult> {
         match self {

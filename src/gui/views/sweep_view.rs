@@ -34,7 +34,16 @@ pub fn show(
         form.param = paths.first().cloned().unwrap_or_default();
     }
     request_form(ui, scene, &paths, state.is_running(), form, cmds);
-    outcome(ui, scene, state, cmds);
+    // (the content's height, not the scrolled one: inside the area the
+    // room left below the cursor moves with the scroll offset)
+    let view_px = ui.available_height();
+    egui::ScrollArea::vertical()
+        .id_salt("tirecontact.sweep.scroll")
+        .auto_shrink(false)
+        .show(ui, |ui| {
+            let top = ui.cursor().top();
+            outcome(ui, scene, state, cmds, (view_px, top));
+        });
 }
 
 /// The parameter, its range and steps, Run and Cancel.
@@ -136,7 +145,15 @@ fn request_form(
 }
 
 /// The sweep's progress, or how it ended, with its exports and plots.
-fn outcome(ui: &mut Ui, scene: &Scene, state: &SweepState, cmds: &mut Vec<Command>) {
+/// `(view_px, top)`: the height of the view below the form and the top of
+/// the scrolled content (px, scrolled with it).
+fn outcome(
+    ui: &mut Ui,
+    scene: &Scene,
+    state: &SweepState,
+    cmds: &mut Vec<Command>,
+    (view_px, top): (f32, f32),
+) {
     match state {
         SweepState::Idle => {
             ui.label("No sweep yet: choose a parameter and a range, then Run sweep. Each run summarises its steady part (from the end of the ramp).");
@@ -201,7 +218,8 @@ fn outcome(ui: &mut Ui, scene: &Scene, state: &SweepState, cmds: &mut Vec<Comman
             if scene.contact.is_rigid() {
                 ui.label(RichText::new(RIGID_FORCE_NOTE).weak());
             }
-            plots(ui, r);
+            let left_px = view_px - (ui.cursor().top() - top);
+            plots(ui, r, left_px);
         }
     }
 }
@@ -214,7 +232,7 @@ is the contact force without impacts and the impacts are shown as impulses (N·s
 keep their values when dt shrinks.";
 
 /// The ids of the four plots (max force, impulse, contact, bands); their
-/// legends' ids are `egui::Id::unique` of these.
+/// plots' and legends' ids are `egui::Id::unique` of these.
 pub const PLOT_IDS: [&str; 4] = [
     "tirecontact.sweep_max",
     "tirecontact.sweep_impulse",
@@ -225,7 +243,22 @@ pub const PLOT_IDS: [&str; 4] = [
 /// Named, coloured curves of one plot.
 type Curves = Vec<(String, Color32, Vec<[f64; 2]>)>;
 
-fn plots(ui: &mut Ui, r: &SweepResult) {
+/// Short y titles of the four plots, in [`PLOT_IDS`]' order: where the
+/// full one (the figure's) is longer than its plot's frame.
+pub const SHORT_Y_TITLES: [&str; 4] = [
+    "max force (N)",
+    "impulse (N·s)",
+    "in contact (%)",
+    "band level (dB re 1 N)",
+];
+
+/// Least height (px) of a plot of the view: its points, legend and axes
+/// readable. Where two rows do not fit the view at this height, the view
+/// scrolls.
+pub const MIN_PLOT_PX: f32 = 180.0;
+
+/// The four plots in two rows sharing `left_px` of height.
+fn plots(ui: &mut Ui, r: &SweepResult, left_px: f32) {
     use crate::studies::sweep::report::{Y_TITLES, band_series_name, contact_curves};
     // the sweep figure's labels (one labelling for the view and the PNG)
     let x_label = crate::scene::fields::axis_label(&r.request.param);
@@ -236,7 +269,7 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
         .collect();
     let gap = ui.spacing().item_spacing;
     let w = ((ui.available_width() - gap.x) / 2.0).max(200.0);
-    let h = ((ui.available_height() - gap.y) / 2.0).max(150.0);
+    let h = ((left_px - gap.y) / 2.0).max(MIN_PLOT_PX);
     // one labelling with the figure: a curve per point, or all the points'
     let [force, impulse, contact] = contact_curves(&r.columns, &r.points).map(|curves| -> Curves {
         curves
@@ -271,17 +304,17 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
             )
         })
         .collect();
-    let grid: [(&str, &str, Curves); 4] = [
-        (PLOT_IDS[0], Y_TITLES[0], force),
-        (PLOT_IDS[1], Y_TITLES[1], impulse),
-        (PLOT_IDS[2], Y_TITLES[2], contact),
-        (PLOT_IDS[3], Y_TITLES[3], bands),
+    let grid: [(&str, (&str, &str), Curves); 4] = [
+        (PLOT_IDS[0], (Y_TITLES[0], SHORT_Y_TITLES[0]), force),
+        (PLOT_IDS[1], (Y_TITLES[1], SHORT_Y_TITLES[1]), impulse),
+        (PLOT_IDS[2], (Y_TITLES[2], SHORT_Y_TITLES[2]), contact),
+        (PLOT_IDS[3], (Y_TITLES[3], SHORT_Y_TITLES[3]), bands),
     ];
     let mut it = grid.into_iter();
     for _ in 0..2 {
         ui.horizontal(|ui| {
             for _ in 0..2 {
-                let Some((id, y_label, series)) = it.next() else {
+                let Some((id, (y_label, y_short), series)) = it.next() else {
                     return;
                 };
                 let legend_id = egui::Id::unique(id);
@@ -292,7 +325,12 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
                 if super::legend_place::upwards(ui.ctx(), legend_id) {
                     series.reverse();
                 }
-                super::nice_y_axis(Plot::new(id))
+                // the title fits the frame: a full one longer than the
+                // plot ran into the text above it
+                let title_id = legend_id.with("y_title");
+                let title = super::axis_title::fit_plot(ui, title_id, y_label, y_short, h, true);
+                let r = super::nice_y_axis(Plot::new(id))
+                    .id(legend_id)
                     .width(w)
                     .height(h)
                     .legend(
@@ -300,7 +338,7 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
                             .follow_insertion_order(true),
                     )
                     .x_title(ui, x_label.clone())
-                    .y_axis_label(y_label)
+                    .y_axis_label(title.text.clone())
                     .y_axis_min_width(56.0)
                     .allow_scroll(false)
                     .show(ui, |pui| {
@@ -317,6 +355,7 @@ fn plots(ui: &mut Ui, r: &SweepResult) {
                         }
                         ink.place(pui, legend_id, legend_px);
                     });
+                super::axis_title::after_plot(ui, title_id, &title, y_label, &r);
             }
         });
     }

@@ -8,6 +8,7 @@ mod legends;
 mod spectra_fit;
 mod spectra_thread;
 mod sweep_note;
+mod sweep_view_fit;
 mod workbench;
 mod workbench_fold;
 

@@ -1,0 +1,137 @@
+//! The sweep view: a cancelled sweep's note speaks of the scene it ran on,
+//! so another document clears it, as it would a failure's, while a
+//! finished sweep's results stay (they name their scene); and in a small
+//! window (1280 × 720 with the mode bars) each plot's y title lies beside
+//! its own frame, none running into the text above the plots.
+
+use crate::harness::{harness_sized, plot_frame, rotated_texts, settle, texts};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use std::path::Path;
+use tirecontact::Scene;
+use tirecontact::gui::views::sweep_view::{PLOT_IDS, SHORT_Y_TITLES};
+use tirecontact::gui::{App, Command, SweepState, View};
+use tirecontact::studies::sweep::report::Y_TITLES;
+
+const CANCELLED: &str = "The sweep was cancelled";
+
+fn wait_sweep(h: &mut Harness<'_, App>) {
+    for _ in 0..20_000 {
+        if !h.state().research().sweep().is_running() {
+            h.run_steps(2);
+            return;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+        h.run_steps(1);
+    }
+    panic!("the sweep did not end");
+}
+
+/// Opens the preset `path`, discarding edits.
+fn open(h: &mut Harness<'_, App>, path: &str) {
+    h.state_mut().apply(Command::OpenPath(path.into()));
+    h.run_steps(1);
+    h.state_mut().apply(Command::ConfirmDiscard);
+    settle(h);
+    h.run_steps(2);
+}
+
+#[test]
+fn another_document_clears_a_cancelled_sweep_s_note_and_keeps_results() {
+    let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    // runs far longer than the test takes to cancel
+    scene.duration_s = 10.0;
+    let mut h = harness_sized(App::new(scene, None).unwrap(), [1280.0, 720.0]);
+    h.run();
+    h.state_mut().apply(Command::ShowView(View::Sweep));
+    h.run_steps(2);
+    h.get_by_label("Run sweep").click();
+    h.run_steps(2);
+    h.get_by_label("Cancel").click();
+    wait_sweep(&mut h);
+    assert!(matches!(
+        h.state().research().sweep(),
+        SweepState::Cancelled
+    ));
+    assert!(h.query_by_label_contains(CANCELLED).is_some());
+    let single = Scene::load(Path::new("presets/single_mode.ron")).unwrap();
+    open(&mut h, "presets/single_mode.ron");
+    assert_eq!(h.state().scene().name, single.name);
+    assert!(
+        h.query_by_label_contains(CANCELLED).is_none(),
+        "the note of the sweep cancelled on another scene stays"
+    );
+    assert!(matches!(h.state().research().sweep(), SweepState::Idle));
+    assert!(h.query_by_label_contains("No sweep yet").is_some());
+
+    // a finished sweep's results stay, naming their scene
+    let mut short = h.state().scene().clone();
+    short.duration_s = short.ramp_s + 0.05;
+    h.state_mut().apply(Command::EditScene(Box::new(short)));
+    h.run_steps(2);
+    h.get_by_label("Run sweep").click();
+    h.run_steps(1);
+    wait_sweep(&mut h);
+    assert!(
+        matches!(h.state().research().sweep(), SweepState::Finished(_)),
+        "{:?} {:?}",
+        h.state().research().sweep(),
+        h.state().message()
+    );
+    open(&mut h, "presets/three_points.ron");
+    assert_ne!(h.state().scene().name, single.name);
+    assert!(matches!(
+        h.state().research().sweep(),
+        SweepState::Finished(_)
+    ));
+    let named = format!("(scene “{}”)", single.name);
+    assert!(h.query_by_label_contains(&named).is_some(), "{named}");
+}
+
+#[test]
+fn the_sweep_plots_titles_stay_beside_their_frames() {
+    let size = [1280.0, 720.0];
+    let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    scene.duration_s = 0.05;
+    let mut h = harness_sized(App::new(scene, None).unwrap(), size);
+    h.run();
+    h.state_mut().apply(Command::ShowModeBars(true));
+    h.state_mut().apply(Command::ShowView(View::Sweep));
+    h.run_steps(2);
+    h.get_by_label("Run sweep").click();
+    h.run_steps(1);
+    wait_sweep(&mut h);
+    h.run_steps(4);
+    let rotated = rotated_texts(&h);
+    // the lowest text above the plots: the line naming the sweep
+    let above = texts(&h)
+        .into_iter()
+        .filter(|(t, _)| t.contains("runs of speed V"))
+        .map(|(_, r)| r.bottom())
+        .fold(f32::NEG_INFINITY, f32::max);
+    assert!(above.is_finite(), "no line naming the sweep");
+    for (k, id) in PLOT_IDS.iter().enumerate() {
+        let f = plot_frame(&h, id);
+        let (text, r) = rotated
+            .iter()
+            .find(|(t, r)| {
+                (t == Y_TITLES[k] || t == SHORT_Y_TITLES[k])
+                    && r.right() <= f.left() + 0.5
+                    && r.left() >= f.left() - 80.0
+            })
+            .unwrap_or_else(|| panic!("no y title of {id} beside {f:?} in {rotated:?}"));
+        eprintln!("{id}: {text:?} at {r:?}, frame {f:?}");
+        assert!(
+            r.top() >= f.top() - 0.5 && r.bottom() <= f.bottom() + 0.5,
+            "the title {text:?} of {id} spans {:.1}..{:.1} px, its frame {:.1}..{:.1} px",
+            r.top(),
+            r.bottom(),
+            f.top(),
+            f.bottom()
+        );
+        assert!(
+            r.top() >= above,
+            "{text:?} at {r:?} runs into the text above, to {above} px"
+        );
+    }
+}
