@@ -69,6 +69,10 @@ pub struct Classroom {
         crate::gui::model::command::View,
         crate::gui::model::time_control::Speed,
     )>,
+    /// Classroom mode was turned off because the window narrowed to a
+    /// phone's width: it comes back when the window widens again, unless
+    /// a view or the mode was chosen meanwhile.
+    pub back_when_wide: bool,
 }
 
 impl Classroom {

@@ -160,18 +160,28 @@ impl App {
             undo: self.undo.undo_label().map(str::to_string),
             redo: self.undo.redo_label().map(str::to_string),
         };
-        // a phone: classroom mode's presenter layout does not fit it
+        // a phone: classroom mode's presenter layout does not fit it; it
+        // comes back when the window widens again
         let narrow = ctx.content_rect().width() < crate::gui::widgets::NARROW_PX;
         if narrow && self.classroom.on {
             self.set_classroom(false);
+            self.classroom.back_when_wide = true;
+        } else if !narrow && self.classroom.back_when_wide {
+            self.set_classroom(true);
         }
         if !self.classroom.on && legible_small_text(&ctx) {
             ui.set_style(ctx.global_style());
         }
-        if touch_targets(&ctx, narrow) {
-            ui.set_style(ctx.global_style());
-        }
-        if self.classroom.sync_style(&ctx) {
+        // the phone's and classroom mode's sizes each apply to the plain
+        // style: the one going is undone before the other is applied (the
+        // phone's, applied over classroom mode's, kept its sizes and gave
+        // them back to the widened window)
+        let restyled = if narrow {
+            self.classroom.sync_style(&ctx) | touch_targets(&ctx, true)
+        } else {
+            touch_targets(&ctx, false) | self.classroom.sync_style(&ctx)
+        };
+        if restyled {
             ui.set_style(ctx.global_style());
         }
         // impacts and releases stay up EVENT_HOLD_WALL_S of wall-clock time

@@ -18,6 +18,7 @@ impl App {
     /// back the view and the speed it replaced, unless the user changed
     /// them meanwhile.
     pub(super) fn set_classroom(&mut self, on: bool) {
+        self.classroom.back_when_wide = false;
         let slow = Speed::Factor(classroom::SLOW_MOTION);
         if on && !self.classroom.on {
             self.classroom.before = Some((self.view, self.time.speed()));

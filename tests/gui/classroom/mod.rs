@@ -12,6 +12,7 @@ mod mode_bar_colours;
 mod mode_bars_layout;
 mod panel;
 pub(crate) mod patch_rows;
+mod phone_back;
 mod picker_contrast;
 mod road_visible;
 mod scene_ticks;
