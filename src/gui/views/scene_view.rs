@@ -464,14 +464,17 @@ fn header(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
     });
 }
 
-/// The legend: a row of keys above the plot (classroom mode), or inside it.
+/// The legend: a row of keys above the plot (classroom mode, in its large
+/// text; a phone, compact: in a corner of the narrow plot its six entries
+/// covered about half of it), or inside it.
 fn with_legend<'a>(
     ui: &mut Ui,
     mut plot: Plot<'a>,
     opts: &SceneViewOptions,
     tyre_color: Color32,
 ) -> Plot<'a> {
-    if opts.legend_above {
+    let phone = ui.ctx().content_rect().width() < crate::gui::widgets::NARROW_PX;
+    if opts.legend_above || phone {
         use super::scene_legend::{Entry, Key, row};
         let mut entries = vec![
             Entry {
@@ -514,12 +517,22 @@ fn with_legend<'a>(
             color: FORCE_COLOR,
             key: Key::Disc,
         });
-        row(
-            ui,
-            &entries,
-            &opts.legend_style,
-            super::scene_legend::ROW_MIN_PX,
-        );
+        if opts.legend_above {
+            row(
+                ui,
+                &entries,
+                &opts.legend_style,
+                super::scene_legend::ROW_MIN_PX,
+            );
+        } else {
+            // from small text up to body text as the row has room, its
+            // rows as high as their text: the keys are not touch targets
+            // (a phone's rows are at least 44 px high)
+            ui.scope(|ui| {
+                ui.spacing_mut().interact_size.y = 0.0;
+                row(ui, &entries, &egui::TextStyle::Small, 0.0);
+            });
+        }
     } else {
         plot = plot.legend(
             Legend::default()

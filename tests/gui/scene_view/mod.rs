@@ -7,3 +7,4 @@ mod force_labels;
 mod force_legend;
 mod layout;
 mod patch_rows;
+mod phone_legend;
