@@ -145,6 +145,13 @@ fn the_patch_view_starts_empty_and_counts_only_loaded_points() {
                 "{preset}: {id} time axis {:?} for a run of {duration_s} s",
                 b.range_x()
             );
+            // a force and an area are never negative: before the first
+            // force, 0 to 1, not around 0
+            assert!(
+                b.min()[1] == 0.0 && b.max()[1] >= 1.0,
+                "{preset}: {id} value axis {:?} before any force",
+                b.range_y()
+            );
         }
         // a few steps in: the header's area is the loaded points' cells
         advance(&mut h, 20);

@@ -339,8 +339,12 @@ fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History, duration_s:
     // (one curve each, named by its axis: no legend over the data); y
     // numbers at 1-2-5 steps down to 30 px apart (egui_plot's own spacing
     // left a short plot only its 0)
-    let plot = |ui: &Ui, id: &'static str, y_title: &'static str| {
-        super::nice_y_axis(Plot::new(id))
+    // (both quantities are never negative: before any force, the axis runs
+    // from 0 to 1 without margins, not around 0 into negative values)
+    let any_force = force_n.iter().any(|&f| f > 0.0);
+    let any_area = carrying.iter().any(|&c| c > 0.0);
+    let plot = |ui: &Ui, id: &'static str, y_title: &'static str, some: bool| {
+        let p = super::nice_y_axis(Plot::new(id))
             .id(egui::Id::unique(id))
             .height(h)
             .x_title(ui, "time t (s)")
@@ -348,11 +352,16 @@ fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History, duration_s:
             .allow_scroll(false)
             .include_y(0.0)
             .include_x(0.0)
-            .include_x(empty_end_s)
+            .include_x(empty_end_s);
+        if some {
+            p
+        } else {
+            p.include_y(1.0).set_margin_fraction(egui::vec2(0.05, 0.0))
+        }
     };
-    plot(ui, TOTAL_FORCE_PLOT_ID, TOTAL_FORCE_TITLE)
+    plot(ui, TOTAL_FORCE_PLOT_ID, TOTAL_FORCE_TITLE, any_force)
         .show(ui, |pu| pu.line(Line::new(TOTAL_FORCE_TITLE, total)));
-    plot(ui, CONTACT_AREA_PLOT_ID, CONTACT_AREA_TITLE)
+    plot(ui, CONTACT_AREA_PLOT_ID, CONTACT_AREA_TITLE, any_area)
         .show(ui, |pu| pu.line(Line::new(CONTACT_AREA_TITLE, area)));
 }
 
