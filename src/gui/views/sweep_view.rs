@@ -257,7 +257,13 @@ pub const SHORT_Y_TITLES: [&str; 4] = [
 /// scrolls.
 pub const MIN_PLOT_PX: f32 = 180.0;
 
-/// The four plots in two rows sharing `left_px` of height.
+/// Least width (px) of a plot side by side with another; a narrower view
+/// (a phone) stacks the four plots in one column.
+pub const MIN_PLOT_WIDTH_PX: f32 = 200.0;
+
+/// The four plots in two rows sharing `left_px` of height (one column of
+/// four where two side by side would be narrower than
+/// [`MIN_PLOT_WIDTH_PX`]).
 fn plots(ui: &mut Ui, r: &SweepResult, left_px: f32) {
     use crate::studies::sweep::report::{Y_TITLES, band_series_name, contact_curves};
     // the sweep figure's labels (one labelling for the view and the PNG)
@@ -268,7 +274,12 @@ fn plots(ui: &mut Ui, r: &SweepResult, left_px: f32) {
         .filter_map(|p| p.result.as_ref().ok().map(|s| (p.value, s)))
         .collect();
     let gap = ui.spacing().item_spacing;
-    let w = ((ui.available_width() - gap.x) / 2.0).max(200.0);
+    let columns = if ui.available_width() - gap.x >= 2.0 * MIN_PLOT_WIDTH_PX {
+        2
+    } else {
+        1
+    };
+    let w = ((ui.available_width() - gap.x * (columns - 1) as f32) / columns as f32).max(1.0);
     let h = ((left_px - gap.y) / 2.0).max(MIN_PLOT_PX);
     // one labelling with the figure: a curve per point, or all the points'
     let [force, impulse, contact] = contact_curves(&r.columns, &r.points).map(|curves| -> Curves {
@@ -311,9 +322,9 @@ fn plots(ui: &mut Ui, r: &SweepResult, left_px: f32) {
         (PLOT_IDS[3], (Y_TITLES[3], SHORT_Y_TITLES[3]), bands),
     ];
     let mut it = grid.into_iter();
-    for _ in 0..2 {
+    for _ in 0..4 / columns {
         ui.horizontal(|ui| {
-            for _ in 0..2 {
+            for _ in 0..columns {
                 let Some((id, (y_label, y_short), series)) = it.next() else {
                     return;
                 };

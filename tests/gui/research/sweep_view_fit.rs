@@ -135,3 +135,36 @@ fn the_sweep_plots_titles_stay_beside_their_frames() {
         );
     }
 }
+
+/// On a phone the four plots stack in one column inside the window (two
+/// side by side ran off its right edge).
+#[test]
+fn on_a_phone_the_sweep_plots_stay_inside_the_window() {
+    let size = [412.0, 915.0];
+    let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    scene.duration_s = 0.05;
+    let mut h = harness_sized(App::new(scene, None).unwrap(), size);
+    h.run();
+    h.state_mut().apply(Command::ShowView(View::Sweep));
+    h.run_steps(2);
+    h.get_by_label("Run sweep").click();
+    h.run_steps(1);
+    wait_sweep(&mut h);
+    h.run_steps(4);
+    let mut lefts = Vec::new();
+    for id in PLOT_IDS {
+        let f = plot_frame(&h, id);
+        assert!(
+            f.left() >= 0.0 && f.right() <= size[0],
+            "{id}: frame {f:?} outside a {} px window",
+            size[0]
+        );
+        assert!(f.width() >= 150.0, "{id}: frame {f:?} too narrow to read");
+        lefts.push(f.left());
+    }
+    // one column: the frames one under another
+    assert!(
+        lefts.iter().all(|&l| (l - lefts[0]).abs() < 1.0),
+        "{lefts:?}"
+    );
+}
