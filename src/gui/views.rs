@@ -190,12 +190,32 @@ pub fn decimals_for_step(step: f64) -> usize {
 
 /// A value axis with 1-2-5 ticks and labels every ~30 px: egui_plot's default
 /// powers of ten leave a 0–700 N axis with the single label "0".
+/// The labels of one axis share their decimals, those of its labelled
+/// step (each label took its own mark's: "0.0005", "0.000", "0.001").
 pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
-    plot.y_grid_spacer(|input| nice_marks(input, 30.0))
-        .y_axis_formatter(|mark, range| {
-            let widest = range.start().abs().max(range.end().abs());
-            axis_number(mark.value, mark.step_size, widest)
-        })
+    // the labelled step the spacer chose, for the formatter of the same axis
+    let major = std::rc::Rc::new(std::cell::Cell::new(f64::NAN));
+    let chosen = std::rc::Rc::clone(&major);
+    plot.y_grid_spacer(move |input| {
+        chosen.set(labelled_step(&input, 30.0).unwrap_or(f64::NAN));
+        nice_marks(input, 30.0)
+    })
+    .y_axis_formatter(move |mark, range| {
+        let widest = range.start().abs().max(range.end().abs());
+        tick_label(mark, major.get(), widest)
+    })
+}
+
+/// A tick label of an axis labelled every `major`: a multiple of `major`
+/// with `major`'s decimals, a finer mark with its own (`major` NaN: the
+/// mark's own).
+pub fn tick_label(mark: egui_plot::GridMark, major: f64, widest: f64) -> String {
+    let step = if major.is_finite() && major > 0.0 {
+        mark.step_size.min(major)
+    } else {
+        mark.step_size
+    };
+    axis_number(mark.value, step, widest)
 }
 
 /// A tick label: the decimals a multiple of `step` needs, and on an axis
@@ -227,18 +247,11 @@ pub fn axis_number(value: f64, step: f64, widest: f64) -> String {
 /// 1-2-5 step is labelled.
 pub fn nice_marks(input: egui_plot::GridInput, label_px: f64) -> Vec<egui_plot::GridMark> {
     {
-        let unit = input.base_step_size.abs();
-        if unit.is_nan() || unit <= 0.0 || !unit.is_finite() {
+        let Some(major) = labelled_step(&input, label_px) else {
             return Vec::new();
-        }
-        // labelled steps >= label_px (the grid's minimum spacing is 8 px), with
-        // nested finer and coarser steps: 1 → (0.5, 5), 2 → (1, 10), 5 → (1, 10)
-        let mut major = nice_step(label_px / 8.0 * unit);
+        };
         let (lo, hi) = input.bounds;
-        let on_axis = |step: f64| (hi / step).floor() - (lo / step).ceil() + 1.0;
-        if on_axis(major) < 2.0 {
-            major = finer_125(major);
-        }
+        // nested finer and coarser steps: 1 → (0.5, 5), 2 → (1, 10), 5 → (1, 10)
         let mantissa = (major / 10f64.powf(major.log10().floor())).round();
         let (fine, coarse) = match mantissa as i64 {
             1 => (0.5, 5.0),
@@ -264,6 +277,24 @@ pub fn nice_marks(input: egui_plot::GridInput, label_px: f64) -> Vec<egui_plot::
         }
         marks
     }
+}
+
+/// The labelled (major) step of [`nice_marks`]: the 1-2-5 step at least
+/// `label_px` apart (the grid's minimum spacing is 8 px), or the next finer
+/// one where it has fewer than two marks on the axis; `None` for an axis
+/// without a scale.
+pub fn labelled_step(input: &egui_plot::GridInput, label_px: f64) -> Option<f64> {
+    let unit = input.base_step_size.abs();
+    if unit.is_nan() || unit <= 0.0 || !unit.is_finite() {
+        return None;
+    }
+    let mut major = nice_step(label_px / 8.0 * unit);
+    let (lo, hi) = input.bounds;
+    let on_axis = |step: f64| (hi / step).floor() - (lo / step).ceil() + 1.0;
+    if on_axis(major) < 2.0 {
+        major = finer_125(major);
+    }
+    Some(major)
 }
 
 /// Grid marks of a log10 axis: decades, and 2..9 when few decades show.
@@ -295,6 +326,51 @@ pub fn log_marks(input: egui_plot::GridInput) -> Vec<egui_plot::GridMark> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every label of an axis has the decimals of its labelled step, over
+    /// ranges of many scales and plot heights (a 1-2-5 step of mantissa 5
+    /// labelled "0.0005", "0.000", "0.001" on one axis).
+    #[test]
+    fn the_labels_of_one_axis_share_their_decimals() {
+        let decimals = |t: &str| t.split('.').nth(1).map_or(0, str::len);
+        let mut mixed_before = 0;
+        for exp in -6..=4 {
+            for mantissa in [1.0, 1.3, 2.4, 3.7, 6.1] {
+                let half = mantissa * 10f64.powi(exp);
+                for (lo, hi) in [(-half, half), (0.0, half), (0.3 * half, 2.0 * half)] {
+                    for px in [80.0, 105.0, 160.0, 300.0, 700.0] {
+                        let input = egui_plot::GridInput {
+                            bounds: (lo, hi),
+                            base_step_size: (hi - lo) / px * 8.0,
+                        };
+                        let major = labelled_step(&input, 30.0).unwrap();
+                        let widest = lo.abs().max(hi.abs());
+                        let labelled: Vec<_> = nice_marks(input, 30.0)
+                            .into_iter()
+                            .filter(|m| m.step_size >= major * (1.0 - 1e-9))
+                            .collect();
+                        assert!(labelled.len() >= 2, "{lo}..{hi} at {px} px: {labelled:?}");
+                        let texts: Vec<String> = labelled
+                            .iter()
+                            .map(|&m| tick_label(m, major, widest))
+                            .collect();
+                        assert!(
+                            texts.iter().all(|t| decimals(t) == decimals(&texts[0])),
+                            "{lo}..{hi} at {px} px: {texts:?}"
+                        );
+                        let own: Vec<String> = labelled
+                            .iter()
+                            .map(|m| axis_number(m.value, m.step_size, widest))
+                            .collect();
+                        mixed_before +=
+                            usize::from(own.iter().any(|t| decimals(t) != decimals(&own[0])));
+                    }
+                }
+            }
+        }
+        // (the cases above do meet the mixed labels of each mark's own step)
+        assert!(mixed_before > 0);
+    }
 
     #[test]
     fn wall_times_below_a_second_are_in_milliseconds() {
