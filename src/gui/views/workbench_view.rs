@@ -26,6 +26,9 @@ use egui_plot::{Line, LineStyle, MarkerShape, Plot, Points};
 
 /// Plot id of the stabilisation diagram (read by the tests).
 pub const DIAGRAM_PLOT_ID: &str = "tirecontact.workbench.diagram";
+
+/// Least height (px) of the stabilisation diagram's frame and axes.
+pub const MIN_DIAGRAM_PX: f32 = 140.0;
 /// Legend entry of the picked poles.
 pub const PICKED: &str = "picked (click a pole to pick or drop it)";
 /// Colour of the picked poles' rings.
@@ -282,7 +285,9 @@ fn diagram(ui: &mut Ui, w: &Workbench, h: f32, cmds: &mut Vec<Command>) {
             (a.min(*v), b.max(*v))
         });
     let freqs = w.frequencies();
-    let h = h - diagram_legend(ui);
+    // (the legend's rows are tall on a phone, where touch targets are:
+    // the diagram keeps a readable height below them)
+    let h = (h - diagram_legend(ui)).max(MIN_DIAGRAM_PX);
     let r = Plot::new("tirecontact.workbench.diagram")
         .id(egui::Id::unique(DIAGRAM_PLOT_ID))
         .height(h)

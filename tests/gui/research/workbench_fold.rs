@@ -15,8 +15,13 @@ const SIZE: [f32; 2] = [1280.0, 720.0];
 
 /// The measured preset's workbench at 1280 × 720, identified.
 fn measured_workbench() -> Harness<'static, App> {
+    measured_workbench_sized(SIZE)
+}
+
+/// The measured preset's workbench in a window of `size`, identified.
+fn measured_workbench_sized(size: [f32; 2]) -> Harness<'static, App> {
     let scene = crate::support::preset("measured_example");
-    let mut h = harness_sized(App::new(scene, None).unwrap(), SIZE);
+    let mut h = harness_sized(App::new(scene, None).unwrap(), size);
     settle(&mut h);
     h.state_mut().apply(Command::ShowView(View::Workbench));
     h.run_steps(1);
@@ -157,5 +162,22 @@ fn each_count_of_modes_says_what_it_counts() {
     assert!(
         h.query_by_label(&format!("{run} identified modes, used by the run"))
             .is_some()
+    );
+}
+
+/// On a phone the diagram keeps a readable height under its legend, whose
+/// rows are touch-target tall there (it was squeezed to about 20 px, its
+/// caption over it).
+#[test]
+fn on_a_phone_the_diagram_keeps_its_height() {
+    let h = measured_workbench_sized([412.0, 915.0]);
+    let diagram = *PlotMemory::load(&h.ctx, egui::Id::unique(DIAGRAM_PLOT_ID))
+        .expect("the diagram")
+        .transform()
+        .frame();
+    assert!(diagram.height() >= 100.0, "the diagram's frame {diagram:?}");
+    assert!(
+        diagram.right() <= 412.0,
+        "the diagram's frame {diagram:?} leaves the window"
     );
 }
