@@ -368,7 +368,22 @@ fn diagram_legend(ui: &mut Ui) -> f32 {
     let top = ui.cursor().top();
     ui.horizontal_wrapped(|ui| {
         let size = ui.text_style_height(&egui::TextStyle::Body);
+        // (a marker and its name on one row: where the name does not fit
+        // the rest of the row, both go to the next; the marker was left at
+        // a row's end without its name)
         let entry = |ui: &mut Ui, draw: &dyn Fn(&egui::Painter, egui::Pos2, f32), name: &str| {
+            let font = egui::TextStyle::Body.resolve(ui.style());
+            let name_px = ui
+                .painter()
+                .layout_no_wrap(name.to_string(), font, Color32::PLACEHOLDER)
+                .size()
+                .x;
+            let need = size + ui.spacing().item_spacing.x + name_px;
+            if ui.available_size_before_wrap().x < need
+                && ui.cursor().left() > ui.min_rect().left() + 1.0
+            {
+                ui.end_row();
+            }
             let (rect, _) = ui.allocate_exact_size(egui::vec2(size, size), egui::Sense::hover());
             draw(ui.painter(), rect.center(), size * 0.3);
             ui.label(name);

@@ -181,3 +181,50 @@ fn on_a_phone_the_diagram_keeps_its_height() {
         "the diagram's frame {diagram:?} leaves the window"
     );
 }
+
+/// Each marker of the diagram's legend sits on its name's row, the name in
+/// one line (a name that did not fit the rest of a row wrapped onto the
+/// next, its marker left at the row's end).
+#[test]
+fn on_a_phone_each_legend_marker_sits_beside_its_name() {
+    use tirecontact::gui::views::workbench_view::{PICKED, PICKED_COLOR};
+    let h = measured_workbench_sized([412.0, 915.0]);
+    let texts = crate::harness::texts(&h);
+    let row_px = texts
+        .iter()
+        .find(|(t, _)| t == "stable in f")
+        .map(|(_, r)| r.height())
+        .expect("a one-word legend name");
+    for name in [
+        "summed |G| of the data (dB, scaled)",
+        "stable in f, ξ and shape",
+        "stable in f and ξ",
+        "new or unstable",
+        PICKED,
+    ] {
+        let (_, r) = texts
+            .iter()
+            .find(|(t, _)| t == name)
+            .unwrap_or_else(|| panic!("no legend name {name:?}"));
+        assert!(r.height() < 1.5 * row_px, "{name:?} wraps: {r:?}");
+    }
+    let (_, name) = texts.iter().find(|(t, _)| t == PICKED).unwrap();
+    let diagram = *PlotMemory::load(&h.ctx, egui::Id::unique(DIAGRAM_PLOT_ID))
+        .expect("the diagram")
+        .transform()
+        .frame();
+    let rings: Vec<egui::Pos2> = crate::harness::shapes(&h)
+        .into_iter()
+        .filter_map(|s| match s {
+            egui::Shape::Circle(c) if c.stroke.color == PICKED_COLOR => Some(c.center),
+            _ => None,
+        })
+        .filter(|c| c.y < diagram.top())
+        .collect();
+    assert_eq!(rings.len(), 1, "one ring in the legend: {rings:?}");
+    let ring = rings[0];
+    assert!(
+        ring.y >= name.top() && ring.y <= name.bottom() && ring.x <= name.left(),
+        "the ring at {ring:?}, its name at {name:?}"
+    );
+}
