@@ -594,15 +594,19 @@ fn header(ui: &mut Ui, opts: &mut TimePlotOptions) {
         // row 3 clicked: points 48 to 71, not 0 to 23 all unticked)
         let start = checkbox_start(&chosen, n);
         let end = (start + HEADER_POINTS).min(n);
+        // (each note whole on one row: it wrapped at a row's end)
+        let note = |ui: &mut Ui, text: String| {
+            ui.add(egui::Label::new(text).wrap_mode(egui::TextWrapMode::Extend));
+        };
         if start > 0 {
-            ui.label(format!("(0–{} …)", start - 1));
+            note(ui, format!("(0–{} …)", start - 1));
         }
         for (i, s) in opts.shown.iter_mut().enumerate().take(end).skip(start) {
             let color = super::checkbox_point_color(ui.visuals(), &chosen, i);
             ui.checkbox(s, egui::RichText::new(i.to_string()).color(color));
         }
         if n > end {
-            ui.label(format!("(+{} more)", n - end));
+            note(ui, format!("(+{} more)", n - end));
         }
         if ui.small_button("all").clicked() {
             opts.shown.iter_mut().for_each(|s| *s = true);

@@ -5,6 +5,7 @@ mod axes_align;
 mod contact_lanes;
 mod export_clip;
 mod export_layout;
+mod header_notes;
 mod legend_ink;
 mod legends;
 mod paper_clip;
