@@ -85,8 +85,9 @@ pub struct App {
     /// A new document came in, or an undo or redo changed the scene under
     /// the fields: the next frame forgets the fields' texts.
     forget_fields: bool,
-    /// The scene edits to undo and redo (the document's, never persisted).
-    pub(super) undo: EditHistory,
+    /// The scene edits to undo and redo, each with the mode mutes of its
+    /// scene (the document's, never persisted).
+    pub(super) undo: EditHistory<Option<Mutes>>,
     /// "Save first" saved the scene: what the save said, to be said with
     /// the message of the scene that replaces it.
     pub(super) saved_note: Option<String>,
@@ -350,6 +351,8 @@ impl App {
         });
     }
     fn error(&mut self, text: impl Into<String>) {
+        // (a save's note waits for the scene that follows it, not a failure)
+        self.saved_note = None;
         self.message = Some(Message {
             error: true,
             text: text.into(),

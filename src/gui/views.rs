@@ -207,15 +207,16 @@ pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
 }
 
 /// A tick label of an axis labelled every `major`: a multiple of `major`
-/// with `major`'s decimals, a finer mark with its own (`major` NaN: the
-/// mark's own).
+/// with `major`'s decimals, none for a finer mark (it would bring its own
+/// decimals); `major` NaN: the mark's own decimals.
 pub fn tick_label(mark: egui_plot::GridMark, major: f64, widest: f64) -> String {
-    let step = if major.is_finite() && major > 0.0 {
-        mark.step_size.min(major)
-    } else {
-        mark.step_size
-    };
-    axis_number(mark.value, step, widest)
+    if !(major.is_finite() && major > 0.0) {
+        return axis_number(mark.value, mark.step_size, widest);
+    }
+    if mark.step_size < major * (1.0 - 1e-9) {
+        return String::new();
+    }
+    axis_number(mark.value, major, widest)
 }
 
 /// A tick label: the decimals a multiple of `step` needs, and on an axis
@@ -345,14 +346,18 @@ mod tests {
                         };
                         let major = labelled_step(&input, 30.0).unwrap();
                         let widest = lo.abs().max(hi.abs());
-                        let labelled: Vec<_> = nice_marks(input, 30.0)
-                            .into_iter()
-                            .filter(|m| m.step_size >= major * (1.0 - 1e-9))
-                            .collect();
-                        assert!(labelled.len() >= 2, "{lo}..{hi} at {px} px: {labelled:?}");
-                        let texts: Vec<String> = labelled
+                        let marks = nice_marks(input, 30.0);
+                        // (every mark: egui_plot labels any mark 20 px
+                        // from the next, finer ones included)
+                        let texts: Vec<String> = marks
                             .iter()
                             .map(|&m| tick_label(m, major, widest))
+                            .filter(|t| !t.is_empty())
+                            .collect();
+                        assert!(texts.len() >= 2, "{lo}..{hi} at {px} px: {texts:?}");
+                        let labelled: Vec<_> = marks
+                            .into_iter()
+                            .filter(|m| m.step_size >= major * (1.0 - 1e-9))
                             .collect();
                         assert!(
                             texts.iter().all(|t| decimals(t) == decimals(&texts[0])),

@@ -8,10 +8,14 @@ use egui_kittest::kittest::{NodeT, Queryable};
 use tirecontact::Scene;
 use tirecontact::gui::{App, Command};
 
-fn three_points() -> App {
+fn three_points_scene() -> Scene {
     let path = format!("{}/presets/three_points.ron", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap();
-    App::new(Scene::parse(&text, &path).unwrap(), None).unwrap()
+    Scene::parse(&text, &path).unwrap()
+}
+
+fn three_points() -> App {
+    App::new(three_points_scene(), None).unwrap()
 }
 
 /// The text the field `name` shows.
@@ -128,4 +132,52 @@ fn a_new_document_has_nothing_to_undo() {
         opened,
         "the edit of the other file stays there"
     );
+}
+
+/// A mute is a scene edit: undone and redone with the mode bars' marks
+/// (the tyre with zeroed modes came back with no mode marked muted, and
+/// un-muting could not give the original back).
+#[test]
+fn mutes_are_undone_and_redone_with_their_marks() {
+    // (tread springs: a mute of rigid contact is refused)
+    let mut scene = three_points_scene();
+    scene.contact = tirecontact::scene::Contact::Compliant {
+        stiffness_n_m: vec![2.0e5],
+    };
+    let mut h = harness(App::new(scene, None).unwrap());
+    h.run();
+    let original = h.state().scene().tyre.clone();
+    h.state_mut().apply(Command::ToggleMute(0));
+    h.run();
+    h.state_mut().apply(Command::ToggleMute(1));
+    h.run();
+    let muted = |h: &egui_kittest::Harness<'_, App>| h.state().mutes().map(|m| m.muted.clone());
+    assert_eq!(muted(&h), Some(vec![true, true, false]));
+    h.state_mut().apply(Command::Undo);
+    h.run();
+    assert_eq!(
+        muted(&h),
+        Some(vec![true, false, false]),
+        "the second mute undone"
+    );
+    assert_eq!(
+        h.state().mutes().map(|m| &m.tyre),
+        Some(&h.state().scene().tyre),
+        "the marks are those of the tyre"
+    );
+    h.state_mut().apply(Command::Undo);
+    h.run();
+    assert_eq!(muted(&h), None);
+    assert_eq!(h.state().scene().tyre, original);
+    h.state_mut().apply(Command::Redo);
+    h.run();
+    assert_eq!(
+        muted(&h),
+        Some(vec![true, false, false]),
+        "the first mute again"
+    );
+    // and un-muting gives the original tyre back
+    h.state_mut().apply(Command::UnmuteAll);
+    h.run();
+    assert_eq!(h.state().scene().tyre, original);
 }

@@ -157,8 +157,17 @@ impl App {
             },
             editing: self.edit_panel_open
                 && ctx.content_rect().width() < crate::gui::widgets::NARROW_PX,
-            undo: self.undo.undo_label().map(str::to_string),
-            redo: self.undo.redo_label().map(str::to_string),
+            // (not while an edit or a document is prepared: it would drop it)
+            undo: self
+                .undo
+                .undo_label()
+                .filter(|_| self.handles.prepare_job.is_none())
+                .map(str::to_string),
+            redo: self
+                .undo
+                .redo_label()
+                .filter(|_| self.handles.prepare_job.is_none())
+                .map(str::to_string),
         };
         // a phone: classroom mode's presenter layout does not fit it; it
         // comes back when the window widens again

@@ -217,8 +217,10 @@ impl App {
 
     /// Applies an edited scene: road and speed live, everything else restarts.
     pub(super) fn edit(&mut self, new: Scene) {
-        // the latest edit or document wins over one still waiting
+        // the latest edit or document wins over one still waiting (and the
+        // note of a save made before it, if any)
         self.handles.prepare_job = None;
+        self.saved_note = None;
         if let Err(errors) = new.validate() {
             let list: Vec<String> = errors.iter().map(ToString::to_string).collect();
             self.error(format!("Edit refused: {}", list.join("; ")));
@@ -283,8 +285,7 @@ impl App {
                             if new.duration_s / f < crate::gui::model::time_control::MIN_WATCH_S));
                 self.sim = sim;
                 self.modes = modes;
-                self.undo
-                    .landed(&self.doc.scene, &new, self.handles.pointer_down);
+                self.edit_landed(&new);
                 self.doc.scene = new;
                 self.reset_run();
                 if rechoose {
@@ -329,15 +330,33 @@ impl App {
                 speed_mps: new.speed_mps,
             });
         }
-        self.undo
-            .landed(&self.doc.scene, &new, self.handles.pointer_down);
+        self.edit_landed(&new);
         self.doc.scene = new;
+    }
+
+    /// Tells the undo stacks that the edit to `new` lands (before the
+    /// document takes it); an undo or redo landing gives back the mode
+    /// mutes of its scene.
+    fn edit_landed(&mut self, new: &Scene) {
+        let mutes = self.mutes.clone();
+        if let Some(back) = self
+            .undo
+            .landed(&self.doc.scene, mutes, new, self.handles.pointer_down)
+        {
+            self.mutes = back;
+        }
     }
 
     /// Undo or redo the last scene edit: the scene it gives back is applied
     /// as an edit (which may restart the run or wait for a file), and the
-    /// fields show it from the next frame.
+    /// fields show it from the next frame. Nothing while an edit or a
+    /// document is being prepared.
     pub(super) fn undo_redo(&mut self, dir: crate::gui::model::undo::Direction) {
+        // (an edit or a document being prepared is not dropped for it: its
+        // menu items are disabled meanwhile)
+        if self.handles.prepare_job.is_some() {
+            return;
+        }
         if let Some(scene) = self.undo.request(dir) {
             self.edit(scene);
             self.forget_fields = true;

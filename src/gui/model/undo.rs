@@ -4,9 +4,10 @@
 //! the run, wait for a file or a ring's identification, or be refused), so
 //! the stacks move only when the edit lands: [`EditHistory::request`] says
 //! which scene is wanted, [`EditHistory::landed`] is told of every edit
-//! that took effect and recognises the requested one. The edits of one
-//! drag of a control (the pointer held down over one quantity) make one
-//! step.
+//! that took effect and recognises the requested one, giving back what the
+//! app kept beside that scene (`S`: the visualiser's mode mutes). The edits
+//! of one drag of a control (the pointer held down over one quantity) make
+//! one step.
 
 use crate::Scene;
 
@@ -22,8 +23,10 @@ pub enum Direction {
 
 /// A scene to go back (or forward) to and what changed from it.
 #[derive(Debug, Clone)]
-struct Step {
+struct Step<S> {
     scene: Scene,
+    /// What the app kept beside the scene then, given back with it.
+    side: S,
     /// The change, in words with units (empty when only the name or the
     /// description changed).
     what: String,
@@ -32,17 +35,29 @@ struct Step {
     key: String,
 }
 
-/// The undo and redo stacks of a document.
-#[derive(Debug, Clone, Default)]
-pub struct EditHistory {
-    undo: Vec<Step>,
-    redo: Vec<Step>,
+/// The undo and redo stacks of a document; `S`: what the app keeps beside
+/// each scene and gets back with it.
+#[derive(Debug, Clone)]
+pub struct EditHistory<S = ()> {
+    undo: Vec<Step<S>>,
+    redo: Vec<Step<S>>,
     /// The undo or redo asked for and not landed yet: the scene it edits
     /// to.
     requested: Option<(Direction, Scene)>,
     /// The top undo step was made while the pointer was held down (a drag
     /// still going on may add to it).
     dragging: bool,
+}
+
+impl<S> Default for EditHistory<S> {
+    fn default() -> Self {
+        EditHistory {
+            undo: Vec::new(),
+            redo: Vec::new(),
+            requested: None,
+            dragging: false,
+        }
+    }
 }
 
 /// The words of a change from `before` to `after`.
@@ -63,19 +78,24 @@ fn describe(before: &Scene, after: &Scene) -> String {
     edits.join("; ")
 }
 
+/// Whether a word of a change's words is a number ("12", "-5", ".5").
+fn is_number(w: &str) -> bool {
+    let digits = w.strip_prefix('-').unwrap_or(w);
+    digits
+        .chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_digit() || c == '.')
+}
+
 /// `what` without its numbers: the quantities a change touched.
 fn key_of(what: &str) -> String {
     what.split_whitespace()
-        .filter(|w| {
-            !w.chars()
-                .next()
-                .is_some_and(|c| c.is_ascii_digit() || (c == '-' && w.len() > 2) || c == '.')
-        })
+        .filter(|w| !is_number(w))
         .collect::<Vec<_>>()
         .join(" ")
 }
 
-impl EditHistory {
+impl<S: Clone> EditHistory<S> {
     /// The words of the change the next undo takes back.
     pub fn undo_label(&self) -> Option<&str> {
         self.undo.last().map(|s| s.what.as_str())
@@ -99,14 +119,16 @@ impl EditHistory {
         Some(scene)
     }
 
-    /// An edit from `before` to `after` took effect. The requested undo or
-    /// redo when `after` is its scene: the stacks move by one. Otherwise a
-    /// new edit: it goes on the undo stack (merged with the one before
-    /// while `dragging`, the pointer held down since that one, over the
-    /// same quantity) and the redo stack is emptied.
-    pub fn landed(&mut self, before: &Scene, after: &Scene, dragging: bool) {
+    /// An edit from `before` (with `side` kept beside it) to `after` took
+    /// effect. The requested undo or redo when `after` is its scene: the
+    /// stacks move by one and what was kept beside `after` is given back.
+    /// Otherwise a new edit: it goes on the undo stack (merged with the one
+    /// before while `dragging`, the pointer held down since that one, over
+    /// the same quantity; a drag back to where it began is no step) and the
+    /// redo stack is emptied.
+    pub fn landed(&mut self, before: &Scene, side: S, after: &Scene, dragging: bool) -> Option<S> {
         if before == after {
-            return;
+            return None;
         }
         if let Some((dir, wanted)) = self.requested.take()
             && wanted == *after
@@ -115,14 +137,15 @@ impl EditHistory {
                 Direction::Undo => (&mut self.undo, &mut self.redo),
                 Direction::Redo => (&mut self.redo, &mut self.undo),
             };
-            if let Some(step) = from.pop() {
-                to.push(Step {
-                    scene: before.clone(),
-                    ..step
-                });
-            }
             self.dragging = false;
-            return;
+            let step = from.pop()?;
+            let back = step.side.clone();
+            to.push(Step {
+                scene: before.clone(),
+                side,
+                ..step
+            });
+            return Some(back);
         }
         let what = describe(before, after);
         let key = key_of(&what);
@@ -132,12 +155,19 @@ impl EditHistory {
             && let Some(top) = self.undo.last_mut()
             && top.key == key
         {
-            // the same drag: the step still goes back to where it began
-            top.what = describe(&top.scene, after);
-            return;
+            if top.scene == *after {
+                // dragged back to where it began: nothing to undo
+                self.undo.pop();
+                self.dragging = false;
+            } else {
+                // the same drag: the step still goes back to where it began
+                top.what = describe(&top.scene, after);
+            }
+            return None;
         }
         self.undo.push(Step {
             scene: before.clone(),
+            side,
             what,
             key,
         });
@@ -145,6 +175,7 @@ impl EditHistory {
             self.undo.remove(0);
         }
         self.dragging = dragging;
+        None
     }
 
     /// The pointer was let go: the next edit starts a new step.
@@ -180,7 +211,7 @@ mod tests {
         let Some(next) = h.request(dir) else {
             return false;
         };
-        h.landed(current, &next, false);
+        h.landed(current, (), &next, false);
         *current = next;
         true
     }
@@ -193,7 +224,7 @@ mod tests {
         let speeds = [2.0, 3.0, 4.0];
         for &v in &speeds {
             let next = with_speed(&cur, v);
-            h.landed(&cur, &next, false);
+            h.landed(&cur, (), &next, false);
             cur = next;
         }
         assert_eq!(h.undo_label(), Some("speed V 3 -> 4 m/s"));
@@ -210,7 +241,7 @@ mod tests {
         assert_eq!(cur.speed_mps, 3.0);
         // a new edit drops what could be redone
         let next = with_speed(&cur, 9.0);
-        h.landed(&cur, &next, false);
+        h.landed(&cur, (), &next, false);
         cur = next;
         assert!(h.redo_label().is_none());
         assert!(go(&mut h, &mut cur, Direction::Undo));
@@ -222,12 +253,12 @@ mod tests {
         let s0 = scene();
         let mut h = EditHistory::default();
         let s1 = with_speed(&s0, 5.0);
-        h.landed(&s0, &s1, false);
+        h.landed(&s0, (), &s1, false);
         // the undo is asked for, but the user's next edit lands instead
         // (the undo was refused or waited for a file and was replaced)
         let _ = h.request(Direction::Undo);
         let s2 = with_speed(&s1, 6.0);
-        h.landed(&s1, &s2, false);
+        h.landed(&s1, (), &s2, false);
         assert_eq!(h.undo_label(), Some("speed V 5 -> 6 m/s"));
         let mut cur = s2;
         assert!(go(&mut h, &mut cur, Direction::Undo));
@@ -242,7 +273,7 @@ mod tests {
         let mut cur = s0.clone();
         for k in 1..=30 {
             let next = with_speed(&cur, 1.0 + 0.1 * k as f64);
-            h.landed(&cur, &next, true);
+            h.landed(&cur, (), &next, true);
             cur = next;
         }
         h.end_drag();
@@ -254,7 +285,7 @@ mod tests {
         );
         // a second drag is a second step
         let next = with_speed(&cur, 7.0);
-        h.landed(&cur, &next, true);
+        h.landed(&cur, (), &next, true);
         cur = next;
         assert!(go(&mut h, &mut cur, Direction::Undo));
         assert_eq!(cur.speed_mps, 4.0);
@@ -263,15 +294,69 @@ mod tests {
         // a drag over another quantity does not merge into the speed's
         let mut h = EditHistory::default();
         let a = with_speed(&s0, 2.0);
-        h.landed(&s0, &a, true);
+        h.landed(&s0, (), &a, true);
         let b = Scene {
             dt_s: a.dt_s / 2.0,
             ..a.clone()
         };
-        h.landed(&a, &b, true);
+        h.landed(&a, (), &b, true);
         let mut cur = b;
         assert!(go(&mut h, &mut cur, Direction::Undo));
         assert_eq!(cur, a);
+    }
+
+    #[test]
+    fn a_drag_back_to_where_it_began_is_no_step() {
+        let s0 = scene();
+        let mut h = EditHistory::default();
+        let s1 = with_speed(&s0, 30.0);
+        h.landed(&s0, (), &s1, false);
+        h.end_drag();
+        let mut cur = s1.clone();
+        for v in [31.0, 32.0, 31.0, 30.0] {
+            let next = with_speed(&cur, v);
+            h.landed(&cur, (), &next, true);
+            cur = next;
+        }
+        h.end_drag();
+        assert_eq!(
+            h.undo_label(),
+            Some(format!("speed V {} -> 30 m/s", s0.speed_mps).as_str())
+        );
+        assert!(
+            go(&mut h, &mut cur, Direction::Undo),
+            "the edit before the drag"
+        );
+        assert_eq!(cur, s0);
+    }
+
+    #[test]
+    fn what_was_kept_beside_a_scene_comes_back_with_it() {
+        let s0 = scene();
+        let mut h: EditHistory<u32> = EditHistory::default();
+        let s1 = with_speed(&s0, 5.0);
+        assert_eq!(h.landed(&s0, 7, &s1, false), None);
+        let back = h.request(Direction::Undo).unwrap();
+        assert_eq!(
+            h.landed(&s1, 9, &back, false),
+            Some(7),
+            "the undo gives 7 back"
+        );
+        let fwd = h.request(Direction::Redo).unwrap();
+        assert_eq!(
+            h.landed(&back, 7, &fwd, false),
+            Some(9),
+            "the redo gives 9 back"
+        );
+    }
+
+    #[test]
+    fn numbers_leave_a_change_s_key() {
+        assert_eq!(key_of("speed V -5 -> 12.5 m/s"), "speed V -> m/s");
+        assert_eq!(
+            key_of("mode 0 frequency .5 -> -0.25 Hz"),
+            "mode frequency -> Hz"
+        );
     }
 
     #[test]
@@ -281,7 +366,7 @@ mod tests {
         let mut cur = s0.clone();
         for k in 0..MAX_UNDO + 20 {
             let next = with_speed(&cur, 1.0 + k as f64);
-            h.landed(&cur, &next, false);
+            h.landed(&cur, (), &next, false);
             cur = next;
         }
         let mut undone = 0;
@@ -302,10 +387,10 @@ mod tests {
             ..s0.clone()
         };
         let mut h = EditHistory::default();
-        h.landed(&s0, &renamed, false);
+        h.landed(&s0, (), &renamed, false);
         assert_eq!(h.undo_label(), Some("name"));
         // an edit that changes nothing is not a step
-        h.landed(&renamed, &renamed.clone(), false);
+        h.landed(&renamed, (), &renamed.clone(), false);
         let mut cur = renamed;
         assert!(go(&mut h, &mut cur, Direction::Undo));
         assert!(!go(&mut h, &mut cur, Direction::Undo));

@@ -33,15 +33,23 @@ pub fn show(ui: &mut Ui, edits: &[String]) {
         });
 }
 
+/// Undo and Redo: each one's name, what it would change (`None`: nothing
+/// now), its keys and its command (the File menu's and the buttons').
+pub fn undo_actions(
+    [undo, redo]: [Option<&str>; 2],
+) -> [(&'static str, Option<&str>, &'static str, Command); 2] {
+    [
+        ("Undo", undo, "Ctrl+Z", Command::Undo),
+        ("Redo", redo, "Ctrl+Shift+Z", Command::Redo),
+    ]
+}
+
 /// Undo and Redo beside the edits (the File menu has them too, with their
 /// keys): each disabled when there is nothing, saying on hover what it
 /// would change.
-pub fn undo_buttons(ui: &mut Ui, [undo, redo]: [Option<&str>; 2], cmds: &mut Vec<Command>) {
+pub fn undo_buttons(ui: &mut Ui, undo: [Option<&str>; 2], cmds: &mut Vec<Command>) {
     ui.horizontal(|ui| {
-        for (label, what, key, cmd) in [
-            ("Undo", undo, "Ctrl+Z", Command::Undo),
-            ("Redo", redo, "Ctrl+Shift+Z", Command::Redo),
-        ] {
+        for (label, what, key, cmd) in undo_actions(undo) {
             let r = ui.add_enabled(what.is_some(), egui::Button::new(label).small());
             let r = match what {
                 Some(w) if !w.is_empty() => r.on_hover_text(format!("{w} ({key})")),

@@ -138,20 +138,21 @@ fn file_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
 /// Undo and Redo, each saying what it would change (shortened; in full on
 /// hover), disabled when there is nothing to undo or redo.
 fn undo_items(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
-    for (label, what, key, cmd) in [
-        ("Undo", &st.undo, "Ctrl+Z", Command::Undo),
-        ("Redo", &st.redo, "Ctrl+Shift+Z", Command::Redo),
-    ] {
-        let text = match what.as_deref() {
+    let actions = super::edits_box::undo_actions([st.undo.as_deref(), st.redo.as_deref()]);
+    for (label, what, key, cmd) in actions {
+        let text = match what {
             Some(w) if !w.is_empty() => format!("{label} {}", shortened(w, 40)),
             _ => label.to_string(),
         };
         let button = egui::Button::new(text).shortcut_text(key);
         let r = ui.add_enabled(what.is_some(), button);
-        let r = match what.as_deref() {
+        let r = match what {
             Some(w) if !w.is_empty() => r.on_hover_text(w),
             Some(_) => r,
-            None => r.on_disabled_hover_text(format!("no scene edit to {}", label.to_lowercase())),
+            None => r.on_disabled_hover_text(format!(
+                "nothing to {} now (no scene edit, or one being prepared)",
+                label.to_lowercase()
+            )),
         };
         if r.clicked() {
             cmds.push(cmd);

@@ -466,7 +466,7 @@ fn header(ui: &mut Ui, sim: &Simulation, opts: &mut SceneViewOptions) {
 
 /// The legend: a row of keys above the plot (classroom mode, in its large
 /// text; a phone, compact: in a corner of the narrow plot its six entries
-/// covered about half of it), or inside it.
+/// would cover about half of it), or inside it.
 fn with_legend<'a>(
     ui: &mut Ui,
     mut plot: Plot<'a>,
