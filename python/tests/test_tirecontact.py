@@ -282,6 +282,9 @@ def test_study_rows_and_run_row_make_the_table(tmp_path):
 
 def test_ctrl_c_stops_a_long_run():
     code = (
+        # (Python leaves Ctrl+C ignored in a process started with it ignored,
+        # as a shell's background job is: the handler is put back)
+        "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         "import tirecontact as tc, sys\n"
         f"s = tc.Scene.load({str(PRESETS / 'paper.ron')!r})\n"
         "tc.run(s, duration_s=0.01)\n"
