@@ -190,6 +190,37 @@ pub fn decimals_for_step(step: f64) -> usize {
 
 /// A value axis with 1-2-5 ticks and labels every ~30 px: egui_plot's default
 /// powers of ten leave a 0–700 N axis with the single label "0".
+/// Where a scrolling view's content began: the view's height and the
+/// content's top (px, scrolled with it), from [`scrolling_view`].
+#[derive(Debug, Clone, Copy)]
+pub struct ViewRoom {
+    view_px: f32,
+    top: f32,
+}
+
+impl ViewRoom {
+    /// The view's height left below the cursor (px), the same whatever the
+    /// scroll offset: plots sized from it share the view's height.
+    pub fn left_px(&self, ui: &egui::Ui) -> f32 {
+        self.view_px - (ui.cursor().top() - self.top)
+    }
+}
+
+/// A view in a vertical scroll area that takes the mouse wheel; `add`
+/// draws it, with the room the view had (the content's height, not the
+/// scrolled one: inside the area the room below the cursor moves with the
+/// scroll offset).
+pub fn scrolling_view(ui: &mut egui::Ui, id_salt: &str, add: impl FnOnce(&mut egui::Ui, ViewRoom)) {
+    let view_px = ui.available_height();
+    egui::ScrollArea::vertical()
+        .id_salt(id_salt)
+        .auto_shrink(false)
+        .show(ui, |ui| {
+            let top = ui.cursor().top();
+            add(ui, ViewRoom { view_px, top });
+        });
+}
+
 /// The labels of one axis share their decimals, those of its labelled
 /// step (each label took its own mark's: "0.0005", "0.000", "0.001").
 pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {

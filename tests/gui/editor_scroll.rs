@@ -2,7 +2,7 @@
 //! (it kept the old scene's scroll, and a shorter scene opened on its
 //! modes table, its name and description out of sight).
 
-use crate::harness::{harness, settle};
+use crate::harness::{harness, settle, wheel};
 use egui_kittest::kittest::Queryable;
 use tirecontact::Scene;
 use tirecontact::gui::{App, Command};
@@ -23,19 +23,8 @@ fn another_scene_opens_at_the_top_of_the_editing_panel() {
     };
     let top = tags(&h);
     let heading_top = heading(&h);
-    h.hover_at(h.get_by_label("Tags:").rect().center());
-    h.run_steps(1);
-    for _ in 0..8 {
-        h.event(egui::Event::MouseWheel {
-            unit: egui::MouseWheelUnit::Point,
-            delta: egui::vec2(0.0, -120.0),
-            phase: egui::TouchPhase::Move,
-            source: egui::MouseWheelSource::Unknown,
-            modifiers: egui::Modifiers::NONE,
-        });
-        h.run_steps(2);
-    }
-    h.run_steps(30);
+    let at = h.get_by_label("Tags:").rect().center();
+    wheel(&mut h, at, -120.0, 8);
     assert!(
         tags(&h) < top - 500.0,
         "the panel did not scroll: {} -> {}",

@@ -55,26 +55,18 @@ pub const MIN_PLOT_PX: f32 = 160.0;
 /// The view in a vertical scroll area that takes the mouse wheel: the
 /// plots share the view's height, each at least [`MIN_PLOT_PX`].
 pub fn show(ui: &mut Ui, c: &Compared<'_>, opts: &mut CompareOptions, cmds: &mut Vec<Command>) {
-    // (the content's height, not the scrolled one: inside the area the
-    // room left below the cursor moves with the scroll offset)
-    let view_px = ui.available_height();
-    egui::ScrollArea::vertical()
-        .id_salt("tirecontact.compare.scroll")
-        .auto_shrink(false)
-        .show(ui, |ui| {
-            let top = ui.cursor().top();
-            body(ui, c, opts, cmds, (view_px, top));
-        });
+    super::scrolling_view(ui, "tirecontact.compare.scroll", |ui, room| {
+        body(ui, c, opts, cmds, room)
+    });
 }
 
-/// The view's rows; `(view_px, top)`: the view's height and the top of
-/// its content (px, scrolled with it).
+/// The view's rows; `room`: where the view's content began.
 fn body(
     ui: &mut Ui,
     c: &Compared<'_>,
     opts: &mut CompareOptions,
     cmds: &mut Vec<Command>,
-    (view_px, top): (f32, f32),
+    room: super::ViewRoom,
 ) {
     let Compared {
         history,
@@ -110,7 +102,7 @@ fn body(
         )
         .max(1e-9);
     // the plots share the view's height left below the rows above them
-    let left_px = view_px - (ui.cursor().top() - top);
+    let left_px = room.left_px(ui);
     let grid = Grid {
         h: ((left_px - (rows - 1) as f32 * gap) / rows as f32).max(MIN_PLOT_PX),
         link: Id::unique("tirecontact.compare_axes"),

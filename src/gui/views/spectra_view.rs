@@ -140,29 +140,21 @@ pub fn show(
     if opts.shown.len() != p {
         opts.shown = (0..p).map(|i| i < DEFAULT_SHOWN).collect();
     }
-    // (the content's height, not the scrolled one: inside the area the
-    // room left below the cursor moves with the scroll offset)
-    let view_px = ui.available_height();
-    egui::ScrollArea::vertical()
-        .id_salt("tirecontact.spectra.scroll")
-        .auto_shrink(false)
-        .show(ui, |ui| {
-            let top = ui.cursor().top();
-            body(
-                ui,
-                Shown {
-                    scene,
-                    modes,
-                    cache,
-                    computing,
-                    playing,
-                    view_px,
-                    top,
-                },
-                opts,
-                cmds,
-            );
-        });
+    super::scrolling_view(ui, "tirecontact.spectra.scroll", |ui, room| {
+        body(
+            ui,
+            Shown {
+                scene,
+                modes,
+                cache,
+                computing,
+                playing,
+                room,
+            },
+            opts,
+            cmds,
+        )
+    });
 }
 
 /// What the view's body draws, and where it began.
@@ -172,10 +164,8 @@ struct Shown<'a> {
     cache: &'a HistoryCache<Result<HistorySpectra, String>>,
     computing: Option<f64>,
     playing: bool,
-    /// Height (px) of the view.
-    view_px: f32,
-    /// The body's top (px, scrolled with it).
-    top: f32,
+    /// Where the view's content began.
+    room: super::ViewRoom,
 }
 
 fn body(ui: &mut Ui, what: Shown<'_>, opts: &mut SpectraOptions, cmds: &mut Vec<Command>) {
@@ -185,8 +175,7 @@ fn body(ui: &mut Ui, what: Shown<'_>, opts: &mut SpectraOptions, cmds: &mut Vec<
         cache,
         computing,
         playing,
-        view_px,
-        top,
+        room,
     } = what;
     controls(ui, opts, cmds);
     ui.label(RichText::new(excitation_text(scene)).color(EXCITATION_COLOR));
@@ -222,7 +211,7 @@ fn body(ui: &mut Ui, what: Shown<'_>, opts: &mut SpectraOptions, cmds: &mut Vec<
     // three plots and the band caption line below them, in the view's
     // height left below the rows above them
     let caption = ui.text_style_height(&egui::TextStyle::Body) + gap;
-    let left_px = view_px - (ui.cursor().top() - top);
+    let left_px = room.left_px(ui);
     let pl = Plots {
         h: ((left_px - 3.0 * gap - caption) / 3.0).max(MIN_PLOT_PX),
         max_hz,

@@ -34,16 +34,9 @@ pub fn show(
         form.param = paths.first().cloned().unwrap_or_default();
     }
     request_form(ui, scene, &paths, state.is_running(), form, cmds);
-    // (the content's height, not the scrolled one: inside the area the
-    // room left below the cursor moves with the scroll offset)
-    let view_px = ui.available_height();
-    egui::ScrollArea::vertical()
-        .id_salt("tirecontact.sweep.scroll")
-        .auto_shrink(false)
-        .show(ui, |ui| {
-            let top = ui.cursor().top();
-            outcome(ui, scene, state, cmds, (view_px, top));
-        });
+    super::scrolling_view(ui, "tirecontact.sweep.scroll", |ui, room| {
+        outcome(ui, scene, state, cmds, room)
+    });
 }
 
 /// The parameter, its range and steps, Run and Cancel.
@@ -145,14 +138,13 @@ fn request_form(
 }
 
 /// The sweep's progress, or how it ended, with its exports and plots.
-/// `(view_px, top)`: the height of the view below the form and the top of
-/// the scrolled content (px, scrolled with it).
+/// `room`: where the view's content began, below the form.
 fn outcome(
     ui: &mut Ui,
     scene: &Scene,
     state: &SweepState,
     cmds: &mut Vec<Command>,
-    (view_px, top): (f32, f32),
+    room: super::ViewRoom,
 ) {
     match state {
         SweepState::Idle => {
@@ -218,7 +210,7 @@ fn outcome(
             if scene.contact.is_rigid() {
                 ui.label(RichText::new(RIGID_FORCE_NOTE).weak());
             }
-            let left_px = view_px - (ui.cursor().top() - top);
+            let left_px = room.left_px(ui);
             plots(ui, r, left_px);
         }
     }

@@ -4,6 +4,7 @@
 //! window (1280 × 720 with the mode bars) each plot's y title lies beside
 //! its own frame, none running into the text above the plots.
 
+use super::wait_sweep;
 use crate::harness::{harness_sized, plot_frame, rotated_texts, settle, texts};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -14,18 +15,6 @@ use tirecontact::gui::{App, Command, SweepState, View};
 use tirecontact::studies::sweep::report::Y_TITLES;
 
 const CANCELLED: &str = "The sweep was cancelled";
-
-fn wait_sweep(h: &mut Harness<'_, App>) {
-    for _ in 0..20_000 {
-        if !h.state().research().sweep().is_running() {
-            h.run_steps(2);
-            return;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(5));
-        h.run_steps(1);
-    }
-    panic!("the sweep did not end");
-}
 
 /// Opens the preset `path`, discarding edits.
 fn open(h: &mut Harness<'_, App>, path: &str) {
@@ -88,20 +77,26 @@ fn another_document_clears_a_cancelled_sweep_s_note_and_keeps_results() {
     assert!(h.query_by_label_contains(&named).is_some(), "{named}");
 }
 
-#[test]
-fn the_sweep_plots_titles_stay_beside_their_frames() {
-    let size = [1280.0, 720.0];
+/// A short sweep of the three-points preset run to its end in the Sweep
+/// view, in a window of `size`, with the mode bars or not.
+fn finished_sweep(size: [f32; 2], mode_bars: bool) -> Harness<'static, App> {
     let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
     scene.duration_s = 0.05;
     let mut h = harness_sized(App::new(scene, None).unwrap(), size);
     h.run();
-    h.state_mut().apply(Command::ShowModeBars(true));
+    h.state_mut().apply(Command::ShowModeBars(mode_bars));
     h.state_mut().apply(Command::ShowView(View::Sweep));
     h.run_steps(2);
     h.get_by_label("Run sweep").click();
     h.run_steps(1);
     wait_sweep(&mut h);
     h.run_steps(4);
+    h
+}
+
+#[test]
+fn the_sweep_plots_titles_stay_beside_their_frames() {
+    let h = finished_sweep([1280.0, 720.0], true);
     let rotated = rotated_texts(&h);
     // the lowest text above the plots: the line naming the sweep
     let above = texts(&h)
@@ -141,16 +136,7 @@ fn the_sweep_plots_titles_stay_beside_their_frames() {
 #[test]
 fn on_a_phone_the_sweep_plots_stay_inside_the_window() {
     let size = [412.0, 915.0];
-    let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
-    scene.duration_s = 0.05;
-    let mut h = harness_sized(App::new(scene, None).unwrap(), size);
-    h.run();
-    h.state_mut().apply(Command::ShowView(View::Sweep));
-    h.run_steps(2);
-    h.get_by_label("Run sweep").click();
-    h.run_steps(1);
-    wait_sweep(&mut h);
-    h.run_steps(4);
+    let h = finished_sweep(size, false);
     let mut lefts = Vec::new();
     for id in PLOT_IDS {
         let f = plot_frame(&h, id);
