@@ -201,14 +201,7 @@ impl BorderedInverse {
         rows_times_dispatch(inv, c1, x1);
         y.fill(0.0);
         let (y0, y1) = y.split_at_mut(n);
-        let (r0, r1) = rb.split_at(n);
-        for (k, row) in inv.chunks_exact(n.max(1)).take(n).enumerate() {
-            let (a, b) = (r0[k], r1[k]);
-            for ((v, p), q) in row.iter().zip(y0.iter_mut()).zip(y1.iter_mut()) {
-                *p += a * v;
-                *q += b * v;
-            }
-        }
+        accumulate_rows(inv, n, rb, y0, y1);
         // Schur complement d - r X
         let mut s = [0.0; 4];
         for r in 0..B {
@@ -236,8 +229,8 @@ impl BorderedInverse {
             let xz = [x0 * z[0] + x1 * z[2], x0 * z[1] + x1 * z[3]];
             let (dst, src) = (&mut next[i * m..i * m + n], &inv[i * n..(i + 1) * n]);
             let (y0, y1) = y.split_at(n);
-            for j in 0..n {
-                dst[j] = src[j] + xz[0] * y0[j] + xz[1] * y1[j];
+            for (((d, &s), &a), &b) in dst.iter_mut().zip(src).zip(y0).zip(y1) {
+                *d = s + xz[0] * a + xz[1] * b;
             }
             next[i * m + n] = -xz[0];
             next[i * m + n + 1] = -xz[1];
@@ -316,8 +309,8 @@ impl BorderedInverse {
             let (d0, d1) = dst.split_at_mut(r0);
             for (lo, hi, run) in [(0, r0, d0), (r0 + B, n, d1)] {
                 let (s, a, b) = (&src[lo..hi], &c0[lo..hi], &c1[lo..hi]);
-                for (t, o) in run.iter_mut().enumerate() {
-                    *o = s[t] - (w[0] * a[t] + w[1] * b[t]);
+                for (((o, &s), &a), &b) in run.iter_mut().zip(s).zip(a).zip(b) {
+                    *o = s - (w[0] * a + w[1] * b);
                 }
             }
         }
@@ -592,6 +585,45 @@ unsafe fn rows_times_avx(a: &[f64], b: &[f64], x: &mut [f64]) {
     }
     for k in full..x.len() {
         x[k] = dot_lanes(&a[k * n..(k + 1) * n], b);
+    }
+}
+
+/// `Y = r B` of a join: `y0[j] += r0[k] B[k][j]`, `y1[j] += r1[k] B[k][j]`
+/// over the rows `k` of the `n × n` row-major `inv` (`rb`: `r0` then `r1`,
+/// `n` each), each entry summed over `k` in row order. Four rows per pass
+/// over `y0`, `y1`, so that each entry is loaded and stored once per four
+/// rows; the same additions in the same order as one row per pass.
+#[inline(always)]
+fn accumulate_rows(inv: &[f64], n: usize, rb: &[f64], y0: &mut [f64], y1: &mut [f64]) {
+    const R: usize = 4;
+    let (r0, r1) = rb.split_at(n);
+    let (y0, y1) = (&mut y0[..n], &mut y1[..n]);
+    let rows = &inv[..n * n];
+    let full = n - n % R;
+    let mut k = 0;
+    while k < full {
+        let a = [r0[k], r0[k + 1], r0[k + 2], r0[k + 3]];
+        let b = [r1[k], r1[k + 1], r1[k + 2], r1[k + 3]];
+        let (v0, rest) = rows[k * n..(k + R) * n].split_at(n);
+        let (v1, rest) = rest.split_at(n);
+        let (v2, v3) = rest.split_at(n);
+        let it = y0.iter_mut().zip(y1.iter_mut());
+        for (((((p, q), &e0), &e1), &e2), &e3) in it.zip(v0).zip(v1).zip(v2).zip(v3) {
+            *p = (((*p + a[0] * e0) + a[1] * e1) + a[2] * e2) + a[3] * e3;
+            *q = (((*q + b[0] * e0) + b[1] * e1) + b[2] * e2) + b[3] * e3;
+        }
+        k += R;
+    }
+    for k in full..n {
+        let (a, b) = (r0[k], r1[k]);
+        for ((p, q), v) in y0
+            .iter_mut()
+            .zip(y1.iter_mut())
+            .zip(&rows[k * n..(k + 1) * n])
+        {
+            *p += a * v;
+            *q += b * v;
+        }
     }
 }
 

@@ -102,6 +102,34 @@ fn rows_four_at_a_time_equal_each_row_alone_bit_for_bit() {
     }
 }
 
+/// A join's `Y = r B`, four rows of `B` per pass, must be bit for bit
+/// the sum one row at a time (each entry over the rows in order), for
+/// every remainder of the four rows.
+#[test]
+fn join_rows_four_at_a_time_equal_one_row_at_a_time_bit_for_bit() {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    for n in [0usize, 1, 2, 3, 4, 5, 6, 7, 8, 9, 13, 30, 67] {
+        let inv: Vec<f64> = (0..n * n)
+            .map(|k| rng.next() * 10f64.powi((k % 9) as i32 - 4))
+            .collect();
+        let rb: Vec<f64> = (0..2 * n)
+            .map(|k| rng.next() * 10f64.powi((k % 5) as i32 - 2))
+            .collect();
+        let (mut e0, mut e1) = (vec![0.0; n], vec![0.0; n]);
+        for k in 0..n {
+            for j in 0..n {
+                e0[j] += rb[k] * inv[k * n + j];
+                e1[j] += rb[n + k] * inv[k * n + j];
+            }
+        }
+        let (mut y0, mut y1) = (vec![0.0; n], vec![0.0; n]);
+        accumulate_rows(&inv, n, &rb, &mut y0, &mut y1);
+        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&y0), bits(&e0), "first row of Y, n {n}");
+        assert_eq!(bits(&y1), bits(&e1), "second row of Y, n {n}");
+    }
+}
+
 /// The backward error's row sums: the AVX build gives the plain lanes'
 /// values bit for bit, and both are the left-to-right sum and
 /// magnitude to round-off, for every remainder of the eight lanes.
