@@ -4,5 +4,6 @@
 mod clip;
 mod current;
 mod fit;
+mod rms;
 mod titles;
 mod unlike;
