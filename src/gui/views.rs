@@ -45,11 +45,19 @@ pub trait XTitle {
     /// its x formatter, which it replaces.
     #[must_use]
     fn x_title(self, ui: &egui::Ui, title: impl Into<egui::WidgetText>) -> Self;
+    /// The plot's linear x axis labelled by [`nice_x_axis`]; set after
+    /// [`XTitle::x_title`].
+    #[must_use]
+    fn nice_x(self) -> Self;
 }
 
 impl XTitle for egui_plot::Plot<'_> {
     fn x_title(self, ui: &egui::Ui, title: impl Into<egui::WidgetText>) -> Self {
         self.custom_x_axes(vec![titled_x_axis(ui, title)])
+    }
+
+    fn nice_x(self) -> Self {
+        nice_x_axis(self)
     }
 }
 
@@ -188,8 +196,6 @@ pub fn decimals_for_step(step: f64) -> usize {
     (-step.log10() - 1e-9).ceil().max(0.0) as usize
 }
 
-/// A value axis with 1-2-5 ticks and labels every ~30 px: egui_plot's default
-/// powers of ten leave a 0–700 N axis with the single label "0".
 /// Where a scrolling view's content began: the view's height and the
 /// content's top (px, scrolled with it), from [`scrolling_view`].
 #[derive(Debug, Clone, Copy)]
@@ -221,20 +227,66 @@ pub fn scrolling_view(ui: &mut egui::Ui, id_salt: &str, add: impl FnOnce(&mut eg
         });
 }
 
-/// The labels of one axis share their decimals, those of its labelled
-/// step (each label took its own mark's: "0.0005", "0.000", "0.001").
+/// A value axis with 1-2-5 ticks and labels every ~30 px: egui_plot's default
+/// powers of ten leave a 0–700 N axis with the single label "0". The labels
+/// of one axis share their decimals, those of its labelled step (each label
+/// took its own mark's: "0.0005", "0.000", "0.001").
 pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
-    // the labelled step the spacer chose, for the formatter of the same axis
-    let major = std::rc::Rc::new(std::cell::Cell::new(f64::NAN));
-    let chosen = std::rc::Rc::clone(&major);
-    plot.y_grid_spacer(move |input| {
-        chosen.set(labelled_step(&input, 30.0).unwrap_or(f64::NAN));
-        nice_marks(input, 30.0)
-    })
-    .y_axis_formatter(move |mark, range| {
+    let axis = LabelledAxis::new(30.0);
+    let marks = axis.clone();
+    plot.y_grid_spacer(move |input| marks.marks(input))
+        .y_axis_formatter(move |mark, range| axis.label(mark, range))
+}
+
+/// Horizontal distance (px) at least between the labelled marks of a
+/// linear x axis ([`nice_x_axis`]).
+pub const X_LABEL_PX: f64 = 80.0;
+
+/// A linear x axis (time, a swept parameter) labelled as [`nice_y_axis`]:
+/// 1-2-5 marks, every label with the decimals of the labelled step (egui_plot's
+/// default gave each label its own mark's: "0.09, 0.1, 0.11").
+pub fn nice_x_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
+    let axis = LabelledAxis::new(X_LABEL_PX);
+    let marks = axis.clone();
+    plot.x_grid_spacer(move |input| marks.marks(input))
+        .x_axis_formatter(move |mark, range| axis.label(mark, range))
+}
+
+/// The grid spacer and the tick labels of one axis, sharing the labelled
+/// step the spacer chose ([`labelled_step`]): every label has its decimals,
+/// marks finer than it have none ([`tick_label`]).
+#[derive(Debug, Clone)]
+pub struct LabelledAxis {
+    label_px: f64,
+    major: std::rc::Rc<std::cell::Cell<f64>>,
+}
+
+impl LabelledAxis {
+    /// An axis whose labelled marks are at least `label_px` apart.
+    pub fn new(label_px: f64) -> Self {
+        LabelledAxis {
+            label_px,
+            major: std::rc::Rc::new(std::cell::Cell::new(f64::NAN)),
+        }
+    }
+
+    /// The grid marks of the axis ([`nice_marks`]); remembers their
+    /// labelled step for [`Self::label`].
+    pub fn marks(&self, input: egui_plot::GridInput) -> Vec<egui_plot::GridMark> {
+        self.major
+            .set(labelled_step(&input, self.label_px).unwrap_or(f64::NAN));
+        nice_marks(input, self.label_px)
+    }
+
+    /// The label of `mark` on the axis showing `range`.
+    pub fn label(
+        &self,
+        mark: egui_plot::GridMark,
+        range: &std::ops::RangeInclusive<f64>,
+    ) -> String {
         let widest = range.start().abs().max(range.end().abs());
-        tick_label(mark, major.get(), widest)
-    })
+        tick_label(mark, self.major.get(), widest)
+    }
 }
 
 /// A tick label of an axis labelled every `major`: a multiple of `major`

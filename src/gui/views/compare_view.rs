@@ -259,7 +259,7 @@ impl Grid {
         if last {
             plot = plot.x_title(ui, "time t (s)");
         }
-        plot
+        plot.nice_x()
     }
 }
 

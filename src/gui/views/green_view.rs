@@ -103,6 +103,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], opts: &mut GreenOptions)
         .height(half)
         .legend(Legend::default().position(Corner::RightTop))
         .x_title(ui, "time t (s)")
+        .nice_x()
         .y_axis_label("g_ij(t) (mm/(N·s))")
         .allow_scroll(false)
         .show(ui, |pui| {

@@ -348,6 +348,7 @@ fn totals_plot(ui: &mut Ui, layout: &PatchLayout, history: &History, duration_s:
             .id(egui::Id::unique(id))
             .height(h)
             .x_title(ui, "time t (s)")
+            .nice_x()
             .y_axis_label(y_title)
             .allow_scroll(false)
             .include_y(0.0)

@@ -406,6 +406,8 @@ fn narrow(
         plot = plot
             .x_grid_spacer(super::log_marks)
             .x_axis_formatter(|m, _| log_label(m.value));
+    } else {
+        plot = plot.nice_x();
     }
     if top.is_finite() {
         plot = plot.include_y(top + label_db);

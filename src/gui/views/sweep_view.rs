@@ -341,6 +341,7 @@ fn plots(ui: &mut Ui, r: &SweepResult, left_px: f32) {
                             .follow_insertion_order(true),
                     )
                     .x_title(ui, x_label.clone())
+                    .nice_x()
                     .y_axis_label(title.text.clone())
                     .y_axis_min_width(56.0)
                     .allow_scroll(false)

@@ -300,29 +300,24 @@ fn time_plot<'a>(
         .allow_scroll(false)
         .auto_bounds([!opts.follow, true]);
     // time labels shown down to 40 px apart (the default hides x labels
-    // closer than 60 px: a narrow plot kept one label)
+    // closer than 60 px: a narrow plot kept one label); 1-2-5 time steps labelled from TIME_LABEL_SPACING's end on (powers
+    // of ten left a narrow plot one label), every label with the decimals
+    // of the labelled step (each mark's own mixed "0.09, 0.1, 0.11")
+    let axis = super::LabelledAxis::new(f64::from(*TIME_LABEL_SPACING.end()));
+    let marks = axis.clone();
     let mut x_axis = AxisHints::new_x()
         .label_spacing(TIME_LABEL_SPACING)
-        .formatter(|mark, _| {
-            format!(
-                "{:.*}",
-                super::decimals_for_step(mark.step_size),
-                mark.value
-            )
-        });
+        .formatter(move |mark, range| axis.label(mark, range));
     if last {
         x_axis = x_axis
             .label("time t (s)")
             .min_thickness(super::titled_x_axis_px(ui));
     }
-    // 1-2-5 time steps labelled from TIME_LABEL_SPACING's end on (powers
-    // of ten left a narrow plot one label)
-    let label_px = f64::from(*TIME_LABEL_SPACING.end());
     // no time is labelled past the window's end (a 0.2 s run's axis read
     // on to 0.22 s in the legends' strip)
     let last_label_s = axes.t1 + 1e-9 * axes.t1.abs();
     plot = plot.custom_x_axes(vec![x_axis]).x_grid_spacer(move |g| {
-        let mut marks = super::nice_marks(g, label_px);
+        let mut marks = marks.marks(g);
         marks.retain(|m| m.value <= last_label_s);
         marks
     });

@@ -12,3 +12,4 @@ mod paper_clip;
 mod patch_export;
 mod run_fit;
 mod solid_curves;
+mod time_labels;
