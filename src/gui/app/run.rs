@@ -336,8 +336,10 @@ impl App {
 
     /// Tells the undo stacks that the edit to `new` lands (before the
     /// document takes it); an undo or redo landing gives back the mode
-    /// mutes of its scene.
+    /// mutes of its scene. A cancelled or failed sweep's note goes.
     fn edit_landed(&mut self, new: &Scene) {
+        // notes of the scene before the edit go with it
+        self.research.sweep.scene_edited();
         let mutes = self.mutes.clone();
         if let Some(back) = self
             .undo

@@ -39,6 +39,9 @@ pub struct SweepResult {
     pub request: SweepRequest,
     /// Name of the base scene.
     pub scene_name: String,
+    /// The base scene as it was when the sweep started: the results are
+    /// its, and say so once the scene is edited.
+    pub base: Box<crate::Scene>,
     /// What the runs' tables and plots hold (per point, or the patch's).
     pub columns: crate::studies::sweep::report::Columns,
     pub points: Vec<SweepPoint>,
@@ -48,6 +51,14 @@ pub struct SweepResult {
 }
 
 impl SweepResult {
+    /// Whether `scene` is not the one swept (its name and folder aside).
+    pub fn differs_from(&self, scene: &crate::Scene) -> bool {
+        let mut base = (*self.base).clone();
+        base.name.clone_from(&scene.name);
+        base.base_dir.clone_from(&scene.base_dir);
+        base != *scene
+    }
+
     /// Runs that failed.
     pub fn failed(&self) -> usize {
         self.points.iter().filter(|p| p.result.is_err()).count()

@@ -20,6 +20,7 @@ pub struct SweepJob {
     job: Job<Result<Vec<SweepPoint>, SweepError>>,
     started: web_time::Instant,
     scene_name: String,
+    base: Box<Scene>,
     columns: Columns,
     /// The last finished sweep's results, kept if this one is cancelled or
     /// fails.
@@ -94,6 +95,7 @@ impl SweepJob {
     ) -> Self {
         SweepJob {
             scene_name: base.name.clone(),
+            base: Box::new(base.clone()),
             columns: Columns::of(base, &[request.param.as_str()]),
             request,
             threads,
@@ -139,6 +141,7 @@ impl SweepJob {
             Ok(points) => SweepEnd::Done(SweepResult {
                 request: self.request.clone(),
                 scene_name: self.scene_name.clone(),
+                base: self.base.clone(),
                 columns: self.columns,
                 points,
                 wall_s: self.started.elapsed().as_secs_f64(),
@@ -228,6 +231,14 @@ impl SweepState {
         if matches!(self, SweepState::Cancelled | SweepState::Failed(_)) {
             *self = SweepState::Idle;
         }
+    }
+
+    /// The scene was edited: a cancelled or failed sweep's note, which
+    /// speaks of the scene before the edit, goes (back to idle), as for a
+    /// new document; finished results stay and say they are of the scene
+    /// as it was ([`SweepResult::differs_from`]).
+    pub fn scene_edited(&mut self) {
+        self.new_document();
     }
 
     /// The finished result, if any.

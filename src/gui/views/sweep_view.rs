@@ -207,7 +207,11 @@ fn outcome(
                     cmds.push(Command::Research(ResearchCommand::ExportSweepPngDialog));
                 }
             });
-            if scene.contact.is_rigid() {
+            if r.differs_from(scene) {
+                ui.label(RichText::new(OTHER_SCENE_NOTE).color(Color32::from_rgb(180, 90, 0)));
+            }
+            // the swept scene's contact, which the results are of
+            if r.base.contact.is_rigid() {
                 ui.label(RichText::new(RIGID_FORCE_NOTE).weak());
             }
             let left_px = room.left_px(ui);
@@ -215,6 +219,12 @@ fn outcome(
         }
     }
 }
+
+/// Under finished results once the scene differs from the one swept (an
+/// edit, another document).
+pub const OTHER_SCENE_NOTE: &str = "These results are of the scene as it was when the sweep \
+ran; the current scene differs from it (it has been edited, or another one is open). Run \
+sweep again for the current scene.";
 
 /// What the force figures of a rigid-contact sweep hold: the force without
 /// impacts, and the impacts as impulses (as impulse / dt they would be tens

@@ -10,7 +10,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::path::Path;
 use tirecontact::Scene;
-use tirecontact::gui::views::sweep_view::{PLOT_IDS, SHORT_Y_TITLES};
+use tirecontact::gui::views::sweep_view::{OTHER_SCENE_NOTE, PLOT_IDS, SHORT_Y_TITLES};
 use tirecontact::gui::{App, Command, SweepState, View};
 use tirecontact::studies::sweep::report::Y_TITLES;
 
@@ -75,6 +75,66 @@ fn another_document_clears_a_cancelled_sweep_s_note_and_keeps_results() {
     ));
     let named = format!("(scene “{}”)", single.name);
     assert!(h.query_by_label_contains(&named).is_some(), "{named}");
+}
+
+/// A scene edit clears a cancelled sweep's note (it speaks of the scene
+/// before the edit), as another document does; finished results stay and
+/// say they are of the scene as it was, until the scene is that one again.
+#[test]
+fn a_scene_edit_clears_a_cancelled_sweep_s_note_and_marks_results() {
+    let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
+    // runs far longer than the test takes to cancel
+    scene.duration_s = 10.0;
+    let mut h = harness_sized(App::new(scene, None).unwrap(), [1280.0, 720.0]);
+    h.run();
+    h.state_mut().apply(Command::ShowView(View::Sweep));
+    h.run_steps(2);
+    h.get_by_label("Run sweep").click();
+    h.run_steps(2);
+    h.get_by_label("Cancel").click();
+    wait_sweep(&mut h);
+    assert!(h.query_by_label_contains(CANCELLED).is_some());
+    // a live edit (the speed): the run goes on, the note goes
+    let mut faster = h.state().scene().clone();
+    faster.speed_mps *= 1.1;
+    h.state_mut().apply(Command::EditScene(Box::new(faster)));
+    h.run_steps(2);
+    assert!(
+        h.query_by_label_contains(CANCELLED).is_none(),
+        "the note of the sweep cancelled before the edit stays"
+    );
+    assert!(matches!(h.state().research().sweep(), SweepState::Idle));
+
+    // finished results of the scene as it was
+    let mut short = h.state().scene().clone();
+    short.duration_s = short.ramp_s + 0.05;
+    h.state_mut()
+        .apply(Command::EditScene(Box::new(short.clone())));
+    h.run_steps(2);
+    h.get_by_label("Run sweep").click();
+    h.run_steps(1);
+    wait_sweep(&mut h);
+    h.run_steps(2);
+    assert!(matches!(
+        h.state().research().sweep(),
+        SweepState::Finished(_)
+    ));
+    assert!(h.query_by_label(OTHER_SCENE_NOTE).is_none());
+    let mut edited = short.clone();
+    edited.speed_mps *= 1.1;
+    h.state_mut().apply(Command::EditScene(Box::new(edited)));
+    h.run_steps(2);
+    assert!(matches!(
+        h.state().research().sweep(),
+        SweepState::Finished(_)
+    ));
+    assert!(
+        h.query_by_label(OTHER_SCENE_NOTE).is_some(),
+        "results of the scene before the edit, not said"
+    );
+    h.state_mut().apply(Command::EditScene(Box::new(short)));
+    h.run_steps(2);
+    assert!(h.query_by_label(OTHER_SCENE_NOTE).is_none());
 }
 
 /// A short sweep of the three-points preset run to its end in the Sweep
