@@ -14,9 +14,14 @@ pub(super) struct Session {
     scene_ron: String,
     path: Option<PathBuf>,
     dirty: bool,
-    /// Classroom mode was on (absent from sessions before it was saved).
+    /// Classroom mode was on, or chosen and set aside while the window is
+    /// a phone's width (absent from sessions before it was saved).
     #[serde(default)]
     classroom: bool,
+    /// Classroom mode was set aside at a phone's width: egui's theme
+    /// preference is then the user's own, not classroom mode's light one.
+    #[serde(default)]
+    classroom_set_aside: bool,
     /// The point classroom mode's plot and bars show.
     #[serde(default)]
     classroom_point: usize,
@@ -61,12 +66,19 @@ impl App {
                             .unwrap_or_else(default_scene);
                     }
                     if s.classroom {
-                        // a session of a version that did not keep it: the
-                        // app has no theme setting, so the system's
-                        app.classroom.theme_before = Some(
-                            s.theme_before_classroom
-                                .unwrap_or(egui::ThemePreference::System),
-                        );
+                        // set aside at a phone's width: the theme egui
+                        // kept is the user's, taken when classroom mode
+                        // starts; else a session of a version that did not
+                        // keep it: the app has no theme setting, so the
+                        // system's
+                        app.classroom.theme_before = if s.classroom_set_aside {
+                            None
+                        } else {
+                            Some(
+                                s.theme_before_classroom
+                                    .unwrap_or(egui::ThemePreference::System),
+                            )
+                        };
                         app.set_classroom(true);
                     }
                     app.doc.from_link = s.from_link && s.path.is_none();
@@ -97,7 +109,10 @@ impl App {
             scene_ron: scene.to_ron_string(),
             path: self.doc.path.clone(),
             dirty,
-            classroom: self.classroom.on,
+            // the mode the user chose: one set aside at a phone's width
+            // comes back on a wide window
+            classroom: self.classroom.on || self.classroom.back_when_wide,
+            classroom_set_aside: !self.classroom.on && self.classroom.back_when_wide,
             classroom_point: self.classroom.point,
             mode_bars: self.classroom.bars,
             theme_before_classroom: self.classroom.user_theme(),

@@ -82,3 +82,54 @@ fn widening_a_phone_window_restores_the_desktop_and_classroom_mode() {
     assert_eq!(h.state().view(), View::TimePlots);
     assert!(same(sizes(&h), plain), "{:?} vs {plain:?}", sizes(&h));
 }
+
+#[derive(Default)]
+struct MemStorage(std::collections::HashMap<String, String>);
+
+impl eframe::Storage for MemStorage {
+    fn get_string(&self, key: &str) -> Option<String> {
+        self.0.get(key).cloned()
+    }
+    fn set_string(&mut self, key: &str, value: String) {
+        self.0.insert(key.to_string(), value);
+    }
+    fn remove_string(&mut self, key: &str) {
+        self.0.remove(key);
+    }
+    fn flush(&mut self) {}
+}
+
+/// A session closed at a phone's width keeps the classroom mode the user
+/// chose: set aside on the phone, it comes back at the next start in a
+/// wide window; a view chosen on the phone ends it, and the session says so.
+#[test]
+fn a_session_closed_at_a_phone_s_width_keeps_classroom_mode() {
+    use eframe::App as _;
+    let desktop = [1280.0, 720.0];
+    let mut h = harness_sized(App::with_default_preset(), desktop);
+    settle(&mut h);
+    h.state_mut().apply(Command::SetClassroom(true));
+    h.run_steps(3);
+    h.set_size(egui::vec2(412.0, 915.0));
+    h.run_steps(3);
+    assert!(!h.state().classroom(), "classroom mode on a phone");
+    let mut storage = MemStorage::default();
+    h.state_mut().save(&mut storage);
+    let restored = App::restore(Some(&storage));
+    assert!(
+        restored.classroom(),
+        "the next start lost the classroom mode set aside on the phone"
+    );
+    assert_eq!(restored.view(), View::Scene);
+    let mut again = harness_sized(restored, desktop);
+    settle(&mut again);
+    again.run_steps(3);
+    assert!(again.state().classroom());
+
+    // a view chosen on the phone: classroom mode is over
+    h.state_mut().apply(Command::ShowView(View::TimePlots));
+    h.run_steps(3);
+    let mut storage = MemStorage::default();
+    h.state_mut().save(&mut storage);
+    assert!(!App::restore(Some(&storage)).classroom());
+}
