@@ -181,3 +181,51 @@ fn mutes_are_undone_and_redone_with_their_marks() {
     h.run();
     assert_eq!(h.state().scene().tyre, original);
 }
+
+/// Undo and redo past a Save As into another folder keep the document's
+/// folder (relative road files are read from it): the scene given back is
+/// the edit's, its folder where the document is saved now.
+#[test]
+fn undo_past_a_save_as_keeps_the_folder_of_the_document() {
+    let tmp = crate::support::temp_dir();
+    let (old_dir, new_dir) = (tmp.path().join("old"), tmp.path().join("new"));
+    std::fs::create_dir(&old_dir).unwrap();
+    std::fs::create_dir(&new_dir).unwrap();
+    let mut scene = three_points_scene();
+    scene.base_dir = Some(old_dir.clone());
+    let mut h = harness(App::new(scene.clone(), None).unwrap());
+    h.run();
+    let mut faster = scene.clone();
+    faster.speed_mps *= 2.0;
+    h.state_mut().apply(Command::EditScene(Box::new(faster)));
+    h.run();
+    h.state_mut()
+        .apply(Command::SavePath(new_dir.join("moved.ron")));
+    h.run_steps(2);
+    assert_eq!(
+        h.state().scene().base_dir.as_deref(),
+        Some(new_dir.as_path())
+    );
+
+    h.state_mut().apply(Command::Undo);
+    h.run_steps(2);
+    assert_eq!(
+        h.state().scene().speed_mps,
+        scene.speed_mps,
+        "the edit undone"
+    );
+    assert_eq!(
+        h.state().scene().base_dir.as_deref(),
+        Some(new_dir.as_path()),
+        "the undo brought back the folder of before the Save As"
+    );
+    h.state_mut().apply(Command::Redo);
+    h.run_steps(2);
+    assert_eq!(h.state().scene().speed_mps, 2.0 * scene.speed_mps, "redone");
+    assert_eq!(
+        h.state().scene().base_dir.as_deref(),
+        Some(new_dir.as_path())
+    );
+    // the undo and the redo moved along the stacks (no new edit of their own)
+    assert!(!h.state().is_dirty(), "the saved scene, redone");
+}

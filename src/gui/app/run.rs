@@ -359,7 +359,9 @@ impl App {
         if self.handles.prepare_job.is_some() {
             return;
         }
-        if let Some(scene) = self.undo.request(dir) {
+        // (the document's folder stays: it is where the document is saved)
+        let base_dir = self.doc.scene.base_dir.clone();
+        if let Some(scene) = self.undo.request(dir, base_dir.as_deref()) {
             self.edit(scene);
             self.forget_fields = true;
         }

@@ -108,12 +108,16 @@ impl<S: Clone> EditHistory<S> {
 
     /// The scene an undo or redo edits to (to be applied as an edit), and
     /// noted as requested; `None` when there is nothing to undo or redo.
-    pub fn request(&mut self, dir: Direction) -> Option<Scene> {
+    /// Its `base_dir` is `base_dir`, the document's: the folder relative
+    /// files are read from goes with where the document is saved (a Save
+    /// As between the edits moved it), not with the edits.
+    pub fn request(&mut self, dir: Direction, base_dir: Option<&std::path::Path>) -> Option<Scene> {
         let stack = match dir {
             Direction::Undo => &self.undo,
             Direction::Redo => &self.redo,
         };
-        let scene = stack.last()?.scene.clone();
+        let mut scene = stack.last()?.scene.clone();
+        scene.base_dir = base_dir.map(std::path::Path::to_path_buf);
         self.requested = Some((dir, scene.clone()));
         self.dragging = false;
         Some(scene)
@@ -208,7 +212,7 @@ mod tests {
     /// Applies an undo or redo the way the app does: the requested scene
     /// lands as an edit.
     fn go(h: &mut EditHistory, current: &mut Scene, dir: Direction) -> bool {
-        let Some(next) = h.request(dir) else {
+        let Some(next) = h.request(dir, current.base_dir.as_deref()) else {
             return false;
         };
         h.landed(current, (), &next, false);
@@ -256,7 +260,7 @@ mod tests {
         h.landed(&s0, (), &s1, false);
         // the undo is asked for, but the user's next edit lands instead
         // (the undo was refused or waited for a file and was replaced)
-        let _ = h.request(Direction::Undo);
+        let _ = h.request(Direction::Undo, s0.base_dir.as_deref());
         let s2 = with_speed(&s1, 6.0);
         h.landed(&s1, (), &s2, false);
         assert_eq!(h.undo_label(), Some("speed V 5 -> 6 m/s"));
@@ -336,13 +340,13 @@ mod tests {
         let mut h: EditHistory<u32> = EditHistory::default();
         let s1 = with_speed(&s0, 5.0);
         assert_eq!(h.landed(&s0, 7, &s1, false), None);
-        let back = h.request(Direction::Undo).unwrap();
+        let back = h.request(Direction::Undo, s0.base_dir.as_deref()).unwrap();
         assert_eq!(
             h.landed(&s1, 9, &back, false),
             Some(7),
             "the undo gives 7 back"
         );
-        let fwd = h.request(Direction::Redo).unwrap();
+        let fwd = h.request(Direction::Redo, s0.base_dir.as_deref()).unwrap();
         assert_eq!(
             h.landed(&back, 7, &fwd, false),
             Some(9),
