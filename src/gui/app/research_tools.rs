@@ -195,7 +195,7 @@ impl App {
         Ok(crate::studies::sweep::report::figure(
             &format!(
                 "{}: sweep of {}",
-                res.scene_name,
+                res.base.name,
                 crate::scene::fields::label(&res.request.param)
             ),
             &crate::studies::sweep::report::sweep_subtitle(

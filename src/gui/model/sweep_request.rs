@@ -37,10 +37,8 @@ impl SweepRequest {
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepResult {
     pub request: SweepRequest,
-    /// Name of the base scene.
-    pub scene_name: String,
-    /// The base scene as it was when the sweep started: the results are
-    /// its, and say so once the scene is edited.
+    /// The base scene as it was when the sweep started (its name names the
+    /// results): the results are its, and say so once the scene is edited.
     pub base: Box<crate::Scene>,
     /// What the runs' tables and plots hold (per point, or the patch's).
     pub columns: crate::studies::sweep::report::Columns,

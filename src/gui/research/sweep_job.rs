@@ -19,7 +19,6 @@ pub struct SweepJob {
     pub runs: usize,
     job: Job<Result<Vec<SweepPoint>, SweepError>>,
     started: web_time::Instant,
-    scene_name: String,
     base: Box<Scene>,
     columns: Columns,
     /// The last finished sweep's results, kept if this one is cancelled or
@@ -94,7 +93,6 @@ impl SweepJob {
         job: Job<Result<Vec<SweepPoint>, SweepError>>,
     ) -> Self {
         SweepJob {
-            scene_name: base.name.clone(),
             base: Box::new(base.clone()),
             columns: Columns::of(base, &[request.param.as_str()]),
             request,
@@ -140,7 +138,6 @@ impl SweepJob {
         match r {
             Ok(points) => SweepEnd::Done(SweepResult {
                 request: self.request.clone(),
-                scene_name: self.scene_name.clone(),
                 base: self.base.clone(),
                 columns: self.columns,
                 points,

@@ -153,14 +153,14 @@ fn controls(ui: &mut Ui, pinned: bool, opts: &mut CompareOptions, cmds: &mut Vec
     });
 }
 
-/// What is pinned, how the scenes differ, and the RMS difference per
-/// point compared: of the force the force plot draws, the force without
-/// impacts while impacts are clipped, else the whole force (impulses as
-/// `impulse / dt` spikes, which dominate its RMS).
 /// Under the RMS of the force difference with impacts: why it exceeds the
 /// forces plotted without impacts.
 pub const IMPACT_RMS_NOTE: &str = "With impacts, each run's impulse / dt spikes (one step each, tens of kN) fall at other steps once the runs differ, and they set the force RMS: it can exceed the forces plotted without impacts. The RMS without impacts is in brackets.";
 
+/// What is pinned, how the scenes differ, and the RMS difference per
+/// point compared: of the force the force plot draws, the force without
+/// impacts while impacts are clipped, else the whole force (impulses as
+/// `impulse / dt` spikes, which dominate its RMS).
 fn summary(ui: &mut Ui, c: &Compared<'_>, clip_impacts: bool) {
     let Some(pin) = c.pinned else {
         ui.label("No reference pinned: play a run, press “Pin as reference”, then change parameters; the pinned run is drawn dashed over the new one.");
@@ -176,10 +176,7 @@ fn summary(ui: &mut Ui, c: &Compared<'_>, clip_impacts: bool) {
         (c.diff, "force with impacts (impulse / dt)")
     };
     if let Some(d) = diff {
-        // with impacts, each run's impulse / dt spikes (tens of kN for one
-        // step) fall at other steps once the runs differ: they set the
-        // force RMS, which then reads larger than the forces plotted
-        // without impacts; that RMS is given beside it
+        // with impacts, the RMS without them beside it ([`IMPACT_RMS_NOTE`])
         let smooth = c.diff_smooth.filter(|_| !clip_impacts);
         let rms: Vec<String> = (0..d.rms_dq_n.len())
             .filter(|&i| d.matched.get(i).copied().flatten().is_some())

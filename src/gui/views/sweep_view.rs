@@ -190,7 +190,7 @@ fn outcome(
                     r.failed(),
                     r.threads,
                     super::wall_time_text(r.wall_s),
-                    r.scene_name
+                    r.base.name
                 ));
                 if ui
                     .button("Export CSV…")

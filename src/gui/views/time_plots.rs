@@ -300,9 +300,10 @@ fn time_plot<'a>(
         .allow_scroll(false)
         .auto_bounds([!opts.follow, true]);
     // time labels shown down to 40 px apart (the default hides x labels
-    // closer than 60 px: a narrow plot kept one label); 1-2-5 time steps labelled from TIME_LABEL_SPACING's end on (powers
-    // of ten left a narrow plot one label), every label with the decimals
-    // of the labelled step (each mark's own mixed "0.09, 0.1, 0.11")
+    // closer than 60 px: a narrow plot kept one label); 1-2-5 time steps
+    // labelled from TIME_LABEL_SPACING's end on (powers of ten left a
+    // narrow plot one label), every label with the decimals of the
+    // labelled step (each mark's own mixed "0.09, 0.1, 0.11")
     let axis = super::LabelledAxis::new(f64::from(*TIME_LABEL_SPACING.end()));
     let marks = axis.clone();
     let mut x_axis = AxisHints::new_x()

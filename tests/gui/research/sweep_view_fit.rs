@@ -25,8 +25,9 @@ fn open(h: &mut Harness<'_, App>, path: &str) {
     h.run_steps(2);
 }
 
-#[test]
-fn another_document_clears_a_cancelled_sweep_s_note_and_keeps_results() {
+/// The three-points preset (10 s long) in the sweep view, a sweep of it
+/// started and cancelled.
+fn cancelled_sweep() -> Harness<'static, App> {
     let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
     // runs far longer than the test takes to cancel
     scene.duration_s = 10.0;
@@ -38,6 +39,12 @@ fn another_document_clears_a_cancelled_sweep_s_note_and_keeps_results() {
     h.run_steps(2);
     h.get_by_label("Cancel").click();
     wait_sweep(&mut h);
+    h
+}
+
+#[test]
+fn another_document_clears_a_cancelled_sweep_s_note_and_keeps_results() {
+    let mut h = cancelled_sweep();
     assert!(matches!(
         h.state().research().sweep(),
         SweepState::Cancelled
@@ -82,17 +89,7 @@ fn another_document_clears_a_cancelled_sweep_s_note_and_keeps_results() {
 /// say they are of the scene as it was, until the scene is that one again.
 #[test]
 fn a_scene_edit_clears_a_cancelled_sweep_s_note_and_marks_results() {
-    let mut scene = Scene::load(Path::new("presets/three_points.ron")).unwrap();
-    // runs far longer than the test takes to cancel
-    scene.duration_s = 10.0;
-    let mut h = harness_sized(App::new(scene, None).unwrap(), [1280.0, 720.0]);
-    h.run();
-    h.state_mut().apply(Command::ShowView(View::Sweep));
-    h.run_steps(2);
-    h.get_by_label("Run sweep").click();
-    h.run_steps(2);
-    h.get_by_label("Cancel").click();
-    wait_sweep(&mut h);
+    let mut h = cancelled_sweep();
     assert!(h.query_by_label_contains(CANCELLED).is_some());
     // a live edit (the speed): the run goes on, the note goes
     let mut faster = h.state().scene().clone();
