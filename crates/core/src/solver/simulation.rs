@@ -376,7 +376,10 @@ impl Simulation {
     /// only as far as modal states go; call `reset` to restart.
     pub fn step(&mut self) -> Result<StepReport, SolverError> {
         let t0 = self.state.t_s;
-        self.scratch.impulse.fill(0.0);
+        // (cleared as the last step read it, unless that step failed)
+        if !std::mem::replace(&mut self.scratch.impulse_clear, false) {
+            self.scratch.impulse.fill(0.0);
+        }
         if self.state.had_event {
             self.state.impact_impulse.fill(0.0);
             self.state.released.fill(false);
@@ -454,12 +457,13 @@ impl Simulation {
         // failed simulation is reset)
         let mut sum = 0.0;
         let inv_dt = 1.0 / tb.dt_s;
-        let (q, imp) = (&mut st.q_mean[..p], &self.scratch.impulse[..p]);
+        let (q, imp) = (&mut st.q_mean[..p], &mut self.scratch.impulse[..p]);
         let (u, v, r) = (&st.u[..p], &st.v[..p], &st.r[..p]);
         let max_force = &mut st.stats.max_force_n[..p];
         let contact_steps = &mut st.stats.contact_steps[..p];
         for i in 0..p {
             let qi = imp[i] * inv_dt;
+            imp[i] = 0.0;
             q[i] = qi;
             sum += u[i] + v[i] + qi;
             // a compliant contact's compression is its spring's, not a penetration
@@ -474,6 +478,7 @@ impl Simulation {
             }
             contact_steps[i] += contact[i] as u64;
         }
+        self.scratch.impulse_clear = true;
         if !sum.is_finite() {
             return Err(self.non_finite());
         }

@@ -31,8 +31,10 @@ pub(super) fn predict_range(
     predict_at::<true>(c, s0, x, v, ox, ov)
 }
 
-/// [`predict_body`] through an AVX2 build where the CPU supports AVX2.
-#[inline]
+/// [`predict_body`] in 4-wide AVX lanes where the CPU has AVX. (Inlined
+/// into its caller: a few-mode scene's step calls it for one or two lanes,
+/// where a call's set-up would cost as much as the lanes.)
+#[inline(always)]
 fn predict_at<const RANGE: bool>(
     c: &StepColumns,
     s0: usize,
@@ -43,23 +45,99 @@ fn predict_at<const RANGE: bool>(
 ) {
     #[cfg(target_arch = "x86_64")]
     {
-        if std::arch::is_x86_feature_detected!("avx2") {
-            #[target_feature(enable = "avx2")]
-            fn wide<const RANGE: bool>(
-                c: &StepColumns,
-                s0: usize,
-                x: &[f64],
-                v: &[f64],
-                ox: &mut [f64],
-                ov: &mut [f64],
-            ) {
-                predict_body::<RANGE>(c, s0, x, v, ox, ov)
-            }
-            // SAFETY: the CPU supports AVX2 (checked just above).
-            return unsafe { wide::<RANGE>(c, s0, x, v, ox, ov) };
+        if std::arch::is_x86_feature_detected!("avx") {
+            // SAFETY: the CPU supports AVX (checked just above).
+            unsafe { predict_avx(c, if RANGE { s0 } else { 0 }, x, v, ox, ov) };
+            return;
         }
     }
+    predict_scalar::<RANGE>(c, s0, x, v, ox, ov)
+}
+
+/// [`predict_body`] in the baseline build (a CPU without AVX).
+#[inline(never)]
+fn predict_scalar<const RANGE: bool>(
+    c: &StepColumns,
+    s0: usize,
+    x: &[f64],
+    v: &[f64],
+    ox: &mut [f64],
+    ov: &mut [f64],
+) {
     predict_body::<RANGE>(c, s0, x, v, ox, ov)
+}
+
+/// [`predict_body`] from state `s0` of the step's columns: whole lanes of
+/// four states in AVX registers, one lane a pass (a few-mode scene's
+/// stored states are one or two lanes), then any states past them one by
+/// one. Each state alone with the same operations (no FMA): bit-identical.
+///
+/// # Safety
+/// The CPU supports AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+unsafe fn predict_avx(
+    c: &StepColumns,
+    s0: usize,
+    x: &[f64],
+    v: &[f64],
+    ox: &mut [f64],
+    ov: &mut [f64],
+) {
+    use std::arch::x86_64::*;
+    let n = x.len();
+    let cols = [&c.pxx, &c.pxv, &c.pvx, &c.pvv];
+    // (one check of every length: the lanes read through pointers)
+    assert!(
+        s0.checked_add(n)
+            .is_some_and(|end| cols.iter().all(|col| col.len() >= end))
+            && v.len() >= n
+            && ox.len() >= n
+            && ov.len() >= n,
+        "a step's columns or states shorter than the states predicted"
+    );
+    let lanes = n - n % 4;
+    let [a, b, cc, d] = cols.map(|col| col.as_ptr().wrapping_add(s0));
+    let (xp, vp, oxp, ovp) = (x.as_ptr(), v.as_ptr(), ox.as_mut_ptr(), ov.as_mut_ptr());
+    let mut s = 0;
+    // SAFETY (the loads and stores): s + 3 < lanes <= n, and every column
+    // holds n values from s0, every state slice n (asserted above).
+    unsafe {
+        while s < lanes {
+            let (xs, vs) = (_mm256_loadu_pd(xp.add(s)), _mm256_loadu_pd(vp.add(s)));
+            let at = |col: *const f64| _mm256_loadu_pd(col.add(s));
+            let pos = _mm256_add_pd(_mm256_mul_pd(at(a), xs), _mm256_mul_pd(at(b), vs));
+            let vel = _mm256_add_pd(_mm256_mul_pd(at(cc), xs), _mm256_mul_pd(at(d), vs));
+            _mm256_storeu_pd(oxp.add(s), pos);
+            _mm256_storeu_pd(ovp.add(s), vel);
+            s += 4;
+        }
+    }
+    if lanes < n {
+        predict_past_lanes(
+            c,
+            s0 + lanes,
+            &x[lanes..],
+            &v[lanes..n],
+            &mut ox[lanes..n],
+            &mut ov[lanes..n],
+        );
+    }
+}
+
+/// The states past the whole lanes of [`predict_avx`] (none where the
+/// states are stored in whole lanes, as the solver's are), one by one.
+#[cold]
+#[inline(never)]
+fn predict_past_lanes(
+    c: &StepColumns,
+    s0: usize,
+    x: &[f64],
+    v: &[f64],
+    ox: &mut [f64],
+    ov: &mut [f64],
+) {
+    predict_body::<true>(c, s0, x, v, ox, ov)
 }
 
 /// `col = Σ_{m ≥ 1} lam[m] W_m`, `W_m` the column `ci` of node `m` in

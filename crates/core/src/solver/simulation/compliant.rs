@@ -442,10 +442,14 @@ mod step_end_rule {
                     with_events += 1;
                     continue;
                 }
+                // (a finished step keeps its impulses as the step's mean
+                // forces, impulse / dt, and clears them)
+                let inv_dt = 1.0 / b.tables.dt_s;
+                let b_mean: Vec<f64> = b.scratch.impulse.iter().map(|j| j * inv_dt).collect();
                 for (x, y, what) in [
                     (&a.state.u, &b.state.u, "displacements"),
                     (&a.state.v, &b.state.v, "velocities"),
-                    (&a.scratch.impulse, &b.scratch.impulse, "impulses"),
+                    (&a.state.q_mean, &b_mean, "mean forces"),
                 ] {
                     assert_eq!(bits(x), bits(y), "k = {k:e}: {what} at step {step}");
                 }

@@ -569,6 +569,10 @@ pub(super) struct Scratch {
     pub q2: Vec<f64>,
     /// Impulse of the step so far per point (N·s).
     pub impulse: Vec<f64>,
+    /// Whether `impulse` is all zeros: the last step that finished read
+    /// and cleared it (a step that failed half-way leaves it to be zeroed
+    /// by the next).
+    pub impulse_clear: bool,
     /// Steps since the last step with an event, counted at the current
     /// step's start (saturating; `0` after a step with one): with merged
     /// tread-spring events, a large set's full step fuses its projection
@@ -625,6 +629,7 @@ impl Scratch {
             q1: vec![0.0; p],
             q2: vec![0.0; p],
             impulse: vec![0.0; p],
+            impulse_clear: true,
             rhs: vec![0.0; 2 * p],
             sub: tables.full.clone(),
             delta: Box::new(zero),

@@ -99,6 +99,26 @@ fn add_gauss_forces_at<const RANGE: bool>(
             return;
         }
     }
+    add_gauss_forces_scalar::<RANGE>(c, s0, inp_t, stride, active, q1, q2, x, v);
+}
+
+/// [`add_gauss_forces_body`] in the baseline build (a CPU without AVX, or
+/// fewer than four states), out of line: inlined, its set-up made every
+/// call of the dispatch above pay for it, a few-mode scene's step
+/// included.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn add_gauss_forces_scalar<const RANGE: bool>(
+    c: &StepColumns,
+    s0: usize,
+    inp_t: &[f64],
+    stride: usize,
+    active: &[usize],
+    q1: &[f64],
+    q2: &[f64],
+    x: &mut [f64],
+    v: &mut [f64],
+) {
     add_gauss_forces_body::<RANGE>(c, s0, inp_t, stride, active, q1, q2, x, v);
 }
 
