@@ -55,11 +55,18 @@ fn preset_bar(len: usize) -> ProgressBar {
 
 /// Loads a preset to time: with `--quick`, cut to 10 ms past its ramp.
 fn load_timed(path: &Path, quick: bool) -> Result<Scene, Box<dyn std::error::Error>> {
+    Ok(load_timed_cut(path, quick)?.0)
+}
+
+/// [`load_timed`], and whether the preset was cut.
+fn load_timed_cut(path: &Path, quick: bool) -> Result<(Scene, bool), Box<dyn std::error::Error>> {
     let mut scene = Scene::load(path)?;
+    let shipped_s = scene.duration_s;
     if quick {
         scene.duration_s = scene.duration_s.min(scene.ramp_s + 0.01);
     }
-    Ok(scene)
+    let cut = scene.duration_s < shipped_s;
+    Ok((scene, cut))
 }
 
 /// callgrind's instructions per rolling step of the preset at `path` (its
@@ -205,11 +212,11 @@ pub fn patch_presets(args: &BenchArgs) -> CliResult {
     let mut rates = Vec::with_capacity(paths.len());
     for path in &paths {
         bar.set_message(path.display().to_string());
-        let scene = load_timed(path, args.quick)?;
-        rates.push(
-            presets::measure_preset(&scene, timing)
-                .map_err(|e| format!("{}: {e}", path.display()))?,
-        );
+        let (scene, cut) = load_timed_cut(path, args.quick)?;
+        let mut rate = presets::measure_preset(&scene, timing)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        rate.cut_to_s = cut.then_some(scene.duration_s);
+        rates.push(rate);
         scenes.push(scene);
         bar.inc(1);
     }
