@@ -16,7 +16,7 @@ use crate::gui::model::command::{Command, ResearchCommand};
 use crate::gui::research::spectra::{HistoryCache, HistorySpectra};
 use crate::gui::research::state::SpectraOptions;
 use egui::{Color32, RichText, Ui};
-use egui_plot::{Line, LineStyle, Plot, PlotPoint, Text, VLine};
+use egui_plot::{Line, LineStyle, Plot, VLine};
 
 /// Harmonics of the road excitation marked.
 pub const HARMONICS: u32 = 10;
@@ -412,23 +412,25 @@ fn narrow(
     if top.is_finite() {
         plot = plot.include_y(top + label_db);
     }
-    let label_px = label_row_px(ui);
     let r = plot.show(ui, |pui| {
         for (name, c, pts) in curves {
             let pts: Vec<[f64; 2]> = pts.into_iter().map(|p| [p[0], p[1].max(floor)]).collect();
             pui.line(Line::new(name, pts).color(c).width(1.2).allow_band(false));
         }
         if top.is_finite() {
-            draw_markers(
-                pui,
-                &pl.marks.excitation_hz,
-                &pl.modal,
-                pl.log,
-                label_px,
-                top + label_db,
-            );
+            marker_lines(pui, &pl.marks.excitation_hz, &pl.modal, pl.log);
         }
     });
+    if top.is_finite() {
+        marker_labels(
+            ui,
+            &r.transform,
+            &pl.marks.excitation_hz,
+            &pl.modal,
+            pl.log,
+            top + label_db,
+        );
+    }
     axis_title::after_plot(ui, title_id, &title, y_label, &r);
 }
 
@@ -510,74 +512,122 @@ fn label_row_px(ui: &Ui) -> f32 {
     ui.text_style_height(&egui::TextStyle::Small) + 2.0
 }
 
-/// Vertical markers with labels: the road excitation harmonics (red,
-/// labelled `V/λ 100 Hz`, `2V/λ`, … while they are a label apart) and the
-/// modal frequencies (grey, labelled `fk` where there is room), the labels
-/// in small text from the level `top` (dB) down: the room kept above the
-/// curves.
-fn draw_markers(
+/// The vertical markers: the road excitation harmonics (red, dashed) and
+/// the modal frequencies (grey, dotted).
+fn marker_lines(
     pui: &mut egui_plot::PlotUi<'_>,
     excitation: &[(u32, f64)],
     modal: &[f64],
     log: bool,
-    label_px: f32,
-    top: f64,
 ) {
-    // (labels from `top`, a level set by the curves: placed at the axis
-    // top, they raised the automatic axis a margin further every frame)
-    let t = *pui.transform();
-    // a label's width in px, estimated from its characters (small text)
-    let width_px = |s: &str| 0.62 * label_px * s.chars().count() as f32;
-    let x_px = |f: f64| t.position_from_point_x(fx(f, log));
-    let small = |s: String, c: Color32| RichText::new(s).small().color(c);
-    let mut last_right = f32::NEG_INFINITY;
-    for &(n, f) in excitation {
+    for &(_, f) in excitation {
         pui.vline(
             VLine::new(EXCITATION_NAME, fx(f, log))
                 .color(EXCITATION_COLOR)
                 .width(1.0)
                 .style(LineStyle::dashed_loose()),
         );
-        let label = if n == 1 {
-            format!("V/λ {f:.0} Hz")
-        } else {
-            format!("{n}V/λ")
-        };
-        let x = x_px(f) + 2.0;
-        if x >= last_right + 4.0 && x + width_px(&label) <= t.frame().right() {
-            last_right = x + width_px(&label);
-            pui.text(
-                Text::new(
-                    EXCITATION_NAME,
-                    PlotPoint::new(fx(f, log), top),
-                    small(label, EXCITATION_COLOR),
-                )
-                .anchor(egui::Align2::LEFT_TOP),
-            );
-        }
     }
-    // the modes' labels one row lower, each clear of the one before
-    let row_below = f64::from(label_px) * t.dvalue_dpos()[1].abs();
-    let mut last_right = f32::NEG_INFINITY;
-    for (k, &f) in modal.iter().enumerate() {
+    for &f in modal {
         pui.vline(
             VLine::new(MODES_NAME, fx(f, log))
                 .color(MODE_COLOR)
                 .width(1.0)
                 .style(LineStyle::dotted_loose()),
         );
-        let label = format!("f{k}");
-        let x = x_px(f) + 2.0;
-        if x >= last_right + 4.0 && x + width_px(&label) <= t.frame().right() {
-            last_right = x + width_px(&label);
-            pui.text(
-                Text::new(
-                    MODES_NAME,
-                    PlotPoint::new(fx(f, log), top - row_below),
-                    small(label, MODE_COLOR),
-                )
-                .anchor(egui::Align2::LEFT_TOP),
-            );
+    }
+}
+
+/// Gap (px) a marker label keeps from the one before it in its row.
+const LABEL_GAP_PX: f32 = 4.0;
+
+/// Where the marker labels go (px): each label's left edge just right of
+/// its marker (`x_px`) and its `width_px`, in row `row` (0: the road
+/// excitation's, 1: the modes' below it), from `top_px` down, one row
+/// `row_px` high. A label is left out where it would reach the frame's
+/// `right_px` or come within [`LABEL_GAP_PX`] of the one before it in its
+/// row; the rows do not overlap, so no two labels do. Returns, per label
+/// in the order given, its rect or `None`.
+fn place_marker_labels(
+    labels: &[(usize, f32, f32)],
+    top_px: f32,
+    row_px: f32,
+    right_px: f32,
+) -> Vec<Option<egui::Rect>> {
+    let mut last_right = [f32::NEG_INFINITY; 2];
+    labels
+        .iter()
+        .map(|&(row, x_px, width_px)| {
+            let row = row.min(1);
+            let left = x_px + 2.0;
+            if left < last_right[row] + LABEL_GAP_PX || left + width_px > right_px {
+                return None;
+            }
+            last_right[row] = left + width_px;
+            let top = top_px + row as f32 * row_px;
+            Some(egui::Rect::from_min_size(
+                egui::pos2(left, top),
+                egui::vec2(width_px, row_px),
+            ))
+        })
+        .collect()
+}
+
+/// The markers' labels, in small text from the level `top` (dB) down (the
+/// room kept above the curves): the road excitation harmonics'
+/// (`V/λ 100 Hz`, `2V/λ`, …) in one row, the modal frequencies' (`fk`) in
+/// the row below, each where it is clear of the one before it in its row
+/// ([`place_marker_labels`], from the labels' laid-out widths). Painted
+/// over the plot by the transform the plot was drawn with: as plot items
+/// placed by the transform of the frame before, they overlapped in the
+/// frame drawn after a zoom out.
+fn marker_labels(
+    ui: &Ui,
+    t: &egui_plot::PlotTransform,
+    excitation: &[(u32, f64)],
+    modal: &[f64],
+    log: bool,
+    top: f64,
+) {
+    let font = egui::TextStyle::Small.resolve(ui.style());
+    let texts: Vec<(usize, f64, String, Color32)> = excitation
+        .iter()
+        .map(|&(n, f)| {
+            let label = if n == 1 {
+                format!("V/λ {f:.0} Hz")
+            } else {
+                format!("{n}V/λ")
+            };
+            (0, f, label, EXCITATION_COLOR)
+        })
+        .chain(
+            modal
+                .iter()
+                .enumerate()
+                .map(|(k, &f)| (1, f, format!("f{k}"), MODE_COLOR)),
+        )
+        .collect();
+    let galleys: Vec<_> = texts
+        .iter()
+        .map(|(_, _, s, c)| ui.painter().layout_no_wrap(s.clone(), font.clone(), *c))
+        .collect();
+    let frame = *t.frame();
+    let boxes: Vec<(usize, f32, f32)> = texts
+        .iter()
+        .zip(&galleys)
+        .map(|((row, f, _, _), g)| (*row, t.position_from_point_x(fx(*f, log)), g.size().x))
+        .collect();
+    let row_px = label_row_px(ui);
+    let top_px = t.position_from_point_y(top);
+    let painter = ui.painter_at(frame);
+    for ((g, (_, _, _, c)), rect) in galleys.into_iter().zip(&texts).zip(place_marker_labels(
+        &boxes,
+        top_px,
+        row_px,
+        frame.right(),
+    )) {
+        if let Some(rect) = rect.filter(|r| frame.contains(r.left_top())) {
+            painter.galley(rect.min, g, *c);
         }
     }
 }

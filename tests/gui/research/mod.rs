@@ -5,6 +5,7 @@
 use crate::support::temp_dir;
 mod fidelity_fit;
 mod legends;
+mod marker_labels;
 mod spectra_fit;
 mod spectra_thread;
 mod sweep_note;
