@@ -291,6 +291,7 @@ fn diagram(ui: &mut Ui, w: &Workbench, h: f32, cmds: &mut Vec<Command>) {
     let r = Plot::new("tirecontact.workbench.diagram")
         .id(egui::Id::unique(DIAGRAM_PLOT_ID))
         .height(h)
+        .width(ui.available_width() - x_label_room_px(ui, w.band_hz.1))
         .x_title(ui, "frequency f (Hz)")
         .y_axis_label("model order")
         .include_x(w.band_hz.0)
@@ -341,6 +342,23 @@ fn diagram(ui: &mut Ui, w: &Workbench, h: f32, cmds: &mut Vec<Command>) {
             cmds.push(Command::Research(ResearchCommand::WorkbenchToggle(p)));
         }
     }
+}
+
+/// Room (px) a plot whose frequency axis reaches about `top_hz` keeps on
+/// its right: half its widest tick label. egui_plot centres a tick label
+/// on its mark, and the axis (the band and egui_plot's 5 % margin) can end
+/// on a labelled one, whose label then ran half past the plot into the
+/// view's edge and was cut.
+fn x_label_room_px(ui: &Ui, top_hz: f64) -> f32 {
+    // (a label past the band's end, with a decimal when zoomed in)
+    let widest = format!("{:.1}", 1.1 * top_hz.abs());
+    let font = egui::TextStyle::Body.resolve(ui.style());
+    let px = ui
+        .painter()
+        .layout_no_wrap(widest, font, Color32::PLACEHOLDER)
+        .size()
+        .x;
+    0.5 * px
 }
 
 /// The poles of a stabilisation diagram at their frequency and model
@@ -460,9 +478,11 @@ fn pair_plot(ui: &mut Ui, w: &Workbench, f: &crate::identify::workbench::PairFit
             .collect()
     };
     let (i, j) = f.pair;
+    let top_hz = freqs.iter().copied().fold(0.0, f64::max);
     Plot::new(PAIR_PLOT_ID)
         .id(egui::Id::unique(PAIR_PLOT_ID))
         .height(h)
+        .width(ui.available_width() - x_label_room_px(ui, top_hz))
         .legend(egui_plot::Legend::default().position(egui_plot::Corner::RightTop))
         .x_title(ui, "frequency f (Hz)")
         .y_axis_label(format!("|G{i}{j}| (dB re 1 m/N)"))

@@ -11,6 +11,7 @@ mod spectra_thread;
 mod sweep_note;
 mod sweep_view_fit;
 mod workbench;
+mod workbench_axis;
 mod workbench_fold;
 
 use crate::harness::{advance, harness, wait_fidelity};
