@@ -232,7 +232,7 @@ pub fn scrolling_view(ui: &mut egui::Ui, id_salt: &str, add: impl FnOnce(&mut eg
 /// of one axis share their decimals, those of its labelled step (each label
 /// took its own mark's: "0.0005", "0.000", "0.001").
 pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
-    let axis = LabelledAxis::new(30.0);
+    let axis = LabelledAxis::new(30.0, Y_SHOWN_PX);
     let marks = axis.clone();
     plot.y_grid_spacer(move |input| marks.marks(input))
         .y_axis_formatter(move |mark, range| axis.label(mark, range))
@@ -242,40 +242,70 @@ pub fn nice_y_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
 /// linear x axis ([`nice_x_axis`]).
 pub const X_LABEL_PX: f64 = 80.0;
 
+/// Spacing (px) of the marks at and below which egui_plot does not paint
+/// the tick labels of an x axis (its default label spacing, 60 to 80 px).
+pub const X_SHOWN_PX: f64 = 60.0;
+
+/// Spacing (px) of the marks at and below which egui_plot does not paint
+/// the tick labels of a y axis (its default label spacing, 20 to 30 px).
+pub const Y_SHOWN_PX: f64 = 20.0;
+
 /// A linear x axis (time, a swept parameter) labelled as [`nice_y_axis`]:
 /// 1-2-5 marks, every label with the decimals of the labelled step (egui_plot's
 /// default gave each label its own mark's: "0.09, 0.1, 0.11").
 pub fn nice_x_axis(plot: egui_plot::Plot<'_>) -> egui_plot::Plot<'_> {
-    let axis = LabelledAxis::new(X_LABEL_PX);
+    let axis = LabelledAxis::new(X_LABEL_PX, X_SHOWN_PX);
     let marks = axis.clone();
     plot.x_grid_spacer(move |input| marks.marks(input))
         .x_axis_formatter(move |mark, range| axis.label(mark, range))
 }
 
-/// The grid spacer and the tick labels of one axis, sharing the labelled
-/// step the spacer chose ([`labelled_step`]): every label has its decimals,
-/// marks finer than it have none ([`tick_label`]).
+/// Which marks of an axis are labelled, and how: those of a step size of
+/// at least `labelled`, with the decimals of a multiple of `decimals_of`
+/// (the labelled step, or the rounding of the two end labels of a narrow
+/// axis: [`axis_marks`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxisScale {
+    pub labelled: f64,
+    pub decimals_of: f64,
+}
+
+/// The grid spacer and the tick labels of one axis, sharing the scale the
+/// spacer chose ([`axis_marks`]): every label has its decimals, marks
+/// finer than its labelled step have none ([`tick_label`]).
 #[derive(Debug, Clone)]
 pub struct LabelledAxis {
     label_px: f64,
-    major: std::rc::Rc<std::cell::Cell<f64>>,
+    shown_px: f64,
+    scale: std::rc::Rc<std::cell::Cell<Option<AxisScale>>>,
 }
 
 impl LabelledAxis {
-    /// An axis whose labelled marks are at least `label_px` apart.
-    pub fn new(label_px: f64) -> Self {
+    /// An axis whose labelled marks are at least `label_px` apart, drawn
+    /// by egui_plot with labels only where marks are more than `shown_px`
+    /// apart ([`X_SHOWN_PX`], [`Y_SHOWN_PX`], or the axis's own label
+    /// spacing's start).
+    pub fn new(label_px: f64, shown_px: f64) -> Self {
         LabelledAxis {
             label_px,
-            major: std::rc::Rc::new(std::cell::Cell::new(f64::NAN)),
+            shown_px,
+            scale: std::rc::Rc::new(std::cell::Cell::new(None)),
         }
     }
 
-    /// The grid marks of the axis ([`nice_marks`]); remembers their
-    /// labelled step for [`Self::label`].
+    /// The grid marks of the axis ([`axis_marks`]); remembers their scale
+    /// for [`Self::label`].
     pub fn marks(&self, input: egui_plot::GridInput) -> Vec<egui_plot::GridMark> {
-        self.major
-            .set(labelled_step(&input, self.label_px).unwrap_or(f64::NAN));
-        nice_marks(input, self.label_px)
+        match axis_marks(&input, self.label_px, self.shown_px) {
+            Some((scale, marks)) => {
+                self.scale.set(Some(scale));
+                marks
+            }
+            None => {
+                self.scale.set(None);
+                Vec::new()
+            }
+        }
     }
 
     /// The label of `mark` on the axis showing `range`.
@@ -285,21 +315,21 @@ impl LabelledAxis {
         range: &std::ops::RangeInclusive<f64>,
     ) -> String {
         let widest = range.start().abs().max(range.end().abs());
-        tick_label(mark, self.major.get(), widest)
+        tick_label(mark, self.scale.get(), widest)
     }
 }
 
-/// A tick label of an axis labelled every `major`: a multiple of `major`
-/// with `major`'s decimals, none for a finer mark (it would bring its own
-/// decimals); `major` NaN: the mark's own decimals.
-pub fn tick_label(mark: egui_plot::GridMark, major: f64, widest: f64) -> String {
-    if !(major.is_finite() && major > 0.0) {
+/// A tick label of an axis of `scale`: a labelled mark with the scale's
+/// decimals, none for a finer mark (it would bring its own decimals);
+/// `scale` `None`: the mark's own decimals.
+pub fn tick_label(mark: egui_plot::GridMark, scale: Option<AxisScale>, widest: f64) -> String {
+    let Some(s) = scale.filter(|s| s.labelled.is_finite() && s.labelled > 0.0) else {
         return axis_number(mark.value, mark.step_size, widest);
-    }
-    if mark.step_size < major * (1.0 - 1e-9) {
+    };
+    if mark.step_size < s.labelled * (1.0 - 1e-9) {
         return String::new();
     }
-    axis_number(mark.value, major, widest)
+    axis_number(mark.value, s.decimals_of, widest)
 }
 
 /// A tick label: the decimals a multiple of `step` needs, and on an axis
@@ -324,32 +354,76 @@ pub fn axis_number(value: f64, step: f64, widest: f64) -> String {
     grouped
 }
 
-/// Grid marks at 1-2-5 steps whose labelled (major) step is at least
-/// `label_px` apart, with nested finer and coarser steps. Where that step
-/// has fewer than two marks on the axis (a short plot: one label, as the
-/// A/B compare view's displacement difference showed), the next finer
-/// 1-2-5 step is labelled.
-pub fn nice_marks(input: egui_plot::GridInput, label_px: f64) -> Vec<egui_plot::GridMark> {
-    {
-        let Some(major) = labelled_step(&input, label_px) else {
-            return Vec::new();
-        };
-        let (lo, hi) = input.bounds;
-        // nested finer and coarser steps: 1 → (0.5, 5), 2 → (1, 10), 5 → (1, 10)
-        let mantissa = (major / 10f64.powf(major.log10().floor())).round();
-        let (fine, coarse) = match mantissa as i64 {
-            1 => (0.5, 5.0),
-            2 => (0.5, 5.0),
-            _ => (0.2, 2.0),
-        };
-        let steps = [major * fine, major, major * coarse];
-        let mut marks: Vec<egui_plot::GridMark> = Vec::new();
-        let first = (lo / steps[0]).ceil() as i64;
-        let last = (hi / steps[0]).floor() as i64;
-        if last - first > 10_000 {
-            return Vec::new();
+/// Grid marks at 1-2-5 steps whose labelled step is at least `label_px`
+/// apart, with nested finer and coarser steps ([`axis_marks`]).
+pub fn nice_marks(
+    input: egui_plot::GridInput,
+    label_px: f64,
+    shown_px: f64,
+) -> Vec<egui_plot::GridMark> {
+    axis_marks(&input, label_px, shown_px).map_or_else(Vec::new, |(_, marks)| marks)
+}
+
+/// The grid marks of an axis and the scale of its labels: 1-2-5 steps
+/// whose labelled (major) step is at least `label_px` apart, with nested
+/// finer and coarser steps. Where that step has fewer than two marks on
+/// the axis (a short or narrow plot: one label, as the A/B compare view's
+/// displacement difference showed), the next finer 1-2-5 step is labelled
+/// if its marks are more than `shown_px` apart, egui_plot painting no
+/// label of a closer step (a narrow sweep or spectra axis lost its labels
+/// so); else the two marks nearest the axis's ends at the roundest values
+/// more than `shown_px` apart are. `None` for an axis without a scale.
+pub fn axis_marks(
+    input: &egui_plot::GridInput,
+    label_px: f64,
+    shown_px: f64,
+) -> Option<(AxisScale, Vec<egui_plot::GridMark>)> {
+    // the value of a pixel (base_step_size: egui_plot's 8 px least grid spacing)
+    let unit = input.base_step_size.abs() / 8.0;
+    let (lo, hi) = input.bounds;
+    if !(unit.is_finite() && unit > 0.0 && lo.is_finite() && hi.is_finite()) {
+        return None;
+    }
+    let on_axis = |step: f64| (hi / step).floor() - (lo / step).ceil() + 1.0;
+    // (half a pixel over egui_plot's limit, which it compares in f32)
+    let shown = |step: f64| step / unit > shown_px + 0.5;
+    let major = nice_step(label_px * unit);
+    if on_axis(major) >= 2.0 {
+        return nested_marks(lo, hi, major);
+    }
+    let finer = finer_125(major);
+    if shown(finer) && on_axis(finer) >= 2.0 {
+        return nested_marks(lo, hi, finer);
+    }
+    let mut round = finer;
+    while round / unit >= 0.5 {
+        let (a, b) = ((lo / round).ceil() * round, (hi / round).floor() * round);
+        if b > a && shown(b - a) {
+            return Some(end_marks(a, b, round, unit));
         }
-        for n in first..=last {
+        round = finer_125(round);
+    }
+    // too narrow for two labels
+    nested_marks(lo, hi, major)
+}
+
+/// Marks of `lo..hi` at multiples of `major` (labelled) and of the nested
+/// finer and coarser 1-2-5 steps: 1 → (0.5, 5), 2 → (1, 10), 5 → (1, 10).
+fn nested_marks(lo: f64, hi: f64, major: f64) -> Option<(AxisScale, Vec<egui_plot::GridMark>)> {
+    let mantissa = (major / 10f64.powf(major.log10().floor())).round();
+    let (fine, coarse) = match mantissa as i64 {
+        1 => (0.5, 5.0),
+        2 => (0.5, 5.0),
+        _ => (0.2, 2.0),
+    };
+    let steps = [major * fine, major, major * coarse];
+    let first = (lo / steps[0]).ceil() as i64;
+    let last = (hi / steps[0]).floor() as i64;
+    if last - first > 10_000 {
+        return None;
+    }
+    let marks = (first..=last)
+        .map(|n| {
             let value = n as f64 * steps[0];
             let step_size = steps
                 .iter()
@@ -357,28 +431,40 @@ pub fn nice_marks(input: egui_plot::GridInput, label_px: f64) -> Vec<egui_plot::
                 .copied()
                 .find(|s| (value / s - (value / s).round()).abs() < 1e-6)
                 .unwrap_or(steps[0]);
-            marks.push(egui_plot::GridMark { value, step_size });
-        }
-        marks
-    }
+            egui_plot::GridMark { value, step_size }
+        })
+        .collect();
+    let scale = AxisScale {
+        labelled: major,
+        decimals_of: major,
+    };
+    Some((scale, marks))
 }
 
-/// The labelled (major) step of [`nice_marks`]: the 1-2-5 step at least
-/// `label_px` apart (the grid's minimum spacing is 8 px), or the next finer
-/// one where it has fewer than two marks on the axis; `None` for an axis
-/// without a scale.
-pub fn labelled_step(input: &egui_plot::GridInput, label_px: f64) -> Option<f64> {
-    let unit = input.base_step_size.abs();
-    if unit.is_nan() || unit <= 0.0 || !unit.is_finite() {
-        return None;
+/// The two labelled marks `a` and `b` near a narrow axis's ends (multiples
+/// of `round`, given the step between them), and grid marks at the
+/// multiples of `round` between them where they are 8 px apart or more
+/// (`unit`: the value of a pixel).
+fn end_marks(a: f64, b: f64, round: f64, unit: f64) -> (AxisScale, Vec<egui_plot::GridMark>) {
+    let span = b - a;
+    let end = |value| egui_plot::GridMark {
+        value,
+        step_size: span,
+    };
+    let n = (span / round).round() as i64;
+    let mut marks = vec![end(a)];
+    if round / unit >= 8.0 && n <= 10_000 {
+        marks.extend((1..n).map(|k| egui_plot::GridMark {
+            value: a + k as f64 * round,
+            step_size: round,
+        }));
     }
-    let mut major = nice_step(label_px / 8.0 * unit);
-    let (lo, hi) = input.bounds;
-    let on_axis = |step: f64| (hi / step).floor() - (lo / step).ceil() + 1.0;
-    if on_axis(major) < 2.0 {
-        major = finer_125(major);
-    }
-    Some(major)
+    marks.push(end(b));
+    let scale = AxisScale {
+        labelled: span,
+        decimals_of: round,
+    };
+    (scale, marks)
 }
 
 /// Grid marks of a log10 axis: decades, and 2..9 when few decades show.
@@ -427,14 +513,14 @@ mod tests {
                             bounds: (lo, hi),
                             base_step_size: (hi - lo) / px * 8.0,
                         };
-                        let major = labelled_step(&input, 30.0).unwrap();
+                        let (scale, marks) = axis_marks(&input, 30.0, Y_SHOWN_PX).unwrap();
+                        let major = scale.labelled;
                         let widest = lo.abs().max(hi.abs());
-                        let marks = nice_marks(input, 30.0);
                         // (every mark: egui_plot labels any mark 20 px
                         // from the next, finer ones included)
                         let texts: Vec<String> = marks
                             .iter()
-                            .map(|&m| tick_label(m, major, widest))
+                            .map(|&m| tick_label(m, Some(scale), widest))
                             .filter(|t| !t.is_empty())
                             .collect();
                         assert!(texts.len() >= 2, "{lo}..{hi} at {px} px: {texts:?}");

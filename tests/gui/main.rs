@@ -24,6 +24,7 @@ mod identify_thread;
 mod keyboard_prompts;
 mod legends_clear;
 mod mode_fields;
+mod narrow_axes;
 mod native_dialog;
 mod panel_edge;
 mod patch_panel;

@@ -304,7 +304,10 @@ fn time_plot<'a>(
     // labelled from TIME_LABEL_SPACING's end on (powers of ten left a
     // narrow plot one label), every label with the decimals of the
     // labelled step (each mark's own mixed "0.09, 0.1, 0.11")
-    let axis = super::LabelledAxis::new(f64::from(*TIME_LABEL_SPACING.end()));
+    let axis = super::LabelledAxis::new(
+        f64::from(*TIME_LABEL_SPACING.end()),
+        f64::from(*TIME_LABEL_SPACING.start()),
+    );
     let marks = axis.clone();
     let mut x_axis = AxisHints::new_x()
         .label_spacing(TIME_LABEL_SPACING)

@@ -142,6 +142,7 @@ fn labelled(bounds: (f64, f64), px: f64) -> Vec<f64> {
             base_step_size: 8.0 * range / px,
         },
         30.0,
+        tirecontact::gui::views::Y_SHOWN_PX,
     )
     .into_iter()
     .filter(|m| m.step_size * px / range > 20.0 && m.value >= bounds.0 && m.value <= bounds.1)

@@ -3,7 +3,7 @@
 //! "0.09, 0.1, 0.11" on one axis.
 
 use tirecontact::gui::views::time_plots::TIME_LABEL_SPACING;
-use tirecontact::gui::views::{LabelledAxis, X_LABEL_PX};
+use tirecontact::gui::views::{LabelledAxis, X_LABEL_PX, X_SHOWN_PX};
 
 /// The non-empty labels of an axis from `lo` to `hi` s drawn `px` wide
 /// (egui_plot's grid input: its smallest step spans 8 px).
@@ -26,8 +26,11 @@ fn decimals(label: &str) -> usize {
 
 #[test]
 fn time_axis_labels_share_one_decimal_count() {
-    let time_px = f64::from(*TIME_LABEL_SPACING.end());
-    for label_px in [time_px, X_LABEL_PX] {
+    let time_px = (
+        f64::from(*TIME_LABEL_SPACING.end()),
+        f64::from(*TIME_LABEL_SPACING.start()),
+    );
+    for (label_px, shown_px) in [time_px, (X_LABEL_PX, X_SHOWN_PX)] {
         for (lo, hi, px) in [
             (0.0, 0.12, 600.0),
             (0.0, 0.12, 1200.0),
@@ -37,7 +40,7 @@ fn time_axis_labels_share_one_decimal_count() {
             (0.08, 0.13, 900.0),
             (0.0, 12.0, 700.0),
         ] {
-            let axis = LabelledAxis::new(label_px);
+            let axis = LabelledAxis::new(label_px, shown_px);
             let got = labels(&axis, lo, hi, px);
             assert!(got.len() >= 2, "{lo}..{hi} s, {px} px: {got:?}");
             let d = decimals(&got[0]);
