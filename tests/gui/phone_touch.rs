@@ -258,3 +258,50 @@ fn classroom_mode_is_not_offered_on_a_phone() {
     assert!(h.query_by_label("Edit the scene").is_some());
     assert!(!h.state().classroom());
 }
+
+/// On a phone a row of text alone is as high as its text, while buttons
+/// keep their fingertip height: `ui.horizontal` takes the touch target's
+/// 44 px as every row's least height, so the transport's "paused" line and
+/// the status bar were button rows with their text in the middle, and the
+/// message banner's strip (kept whether or not a message shows) left an
+/// empty band under "Edit the scene". Measured from the nodes' and texts'
+/// rects, in units of the "paused" line's text height.
+#[test]
+fn rows_of_text_are_as_high_as_their_text_on_a_phone() {
+    for size in PHONES {
+        let h = phone(size);
+        let rect = |label: &str| {
+            h.query_all_by_label(label)
+                .next()
+                .unwrap_or_else(|| panic!("no {label} at {size:?}"))
+                .rect()
+        };
+        let paused = rect("paused");
+        let edit = rect("Edit the scene");
+        let follow = rect("follow latest");
+        let line = paused.height();
+        assert!(edit.height() >= 44.0, "at {size:?} Edit the scene {edit:?}");
+        // under "paused": half an item spacing, the top panel's margin and
+        // edge, and the button panel's margin
+        let under_paused = edit.top() - paused.bottom();
+        assert!(
+            under_paused <= line,
+            "at {size:?} {under_paused} px under the paused line ({line} px of text)"
+        );
+        // between "Edit the scene" and the view's first row: the banner's
+        // strip (a line and its margins) and the panels' edges, less than
+        // a second strip
+        let band = follow.top() - edit.bottom();
+        assert!(
+            band <= 2.0 * (line + 12.0),
+            "at {size:?} a {band} px band under Edit the scene (lines of {line} px)"
+        );
+        // the status bar: its line of text and its panel's margins
+        let status_top = crate::harness::status_top(&h);
+        assert!(
+            size[1] - status_top <= 2.0 * line,
+            "at {size:?} the status bar's text starts {} px above the window's bottom",
+            size[1] - status_top
+        );
+    }
+}

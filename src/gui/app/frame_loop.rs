@@ -336,7 +336,7 @@ pub const TOUCH_TARGET_PX: f32 = 44.0;
 /// Gives buttons, menu rows and fields [`TOUCH_TARGET_PX`] in a narrow
 /// window and egui's sizes back in a wide one; whether it changed.
 fn touch_targets(ctx: &egui::Context, narrow: bool) -> bool {
-    let id = egui::Id::unique("tirecontact.touch_targets");
+    let id = crate::gui::widgets::touch_targets_id();
     let saved: Option<(egui::Vec2, egui::Vec2)> = ctx.data(|d| d.get_temp(id));
     match (narrow, saved) {
         (true, None) => {

@@ -54,9 +54,9 @@ struct Fold {
 /// dismissed or its cause is gone: the views never move as messages come
 /// and go, and no control stays covered.
 pub fn banner(ui: &mut Ui, msg: Option<&Message>, cmds: &mut Vec<Command>) {
-    let row_px = ui
-        .text_style_height(&egui::TextStyle::Body)
-        .max(ui.spacing().interact_size.y);
+    // as high as the banner's row of text and small buttons (a phone's
+    // touch-target height left an empty band under it)
+    let row_px = crate::gui::widgets::text_row_px(ui);
     let size = egui::vec2(ui.available_width(), row_px + 2.0 * BANNER_MARGIN_PX);
     let (strip, _) = ui.allocate_exact_size(size, egui::Sense::hover());
     let key = egui::Id::unique("tirecontact.banner.fold");

@@ -212,12 +212,16 @@ pub fn show(ui: &mut Ui, status: &Status) {
     };
     let mut other_px = 2.0 * separator_px + text_px(ui, "0000 fps") + 2.0 * gap;
     if status.exporting_csv {
-        other_px += separator_px + ui.spacing().interact_size.y + gap + text_px(ui, "writing CSV…");
+        other_px += separator_px
+            + ui.text_style_height(&egui::TextStyle::Body)
+            + gap
+            + text_px(ui, "writing CSV…");
     }
     let full_px = [0, 1, 2].map(|k| text_px(ui, &texts[k].full));
     let short_px = [0, 1, 2].map(|k| text_px(ui, &texts[k].short));
     let f = fit(full_px, short_px, other_px, ui.available_width());
-    ui.horizontal(|ui| {
+    // a row of text (a phone's touch-target height made it 47 px high)
+    crate::gui::widgets::text_row(ui, |ui| {
         for (k, t) in texts.iter().enumerate() {
             if k == 2 && f.no_history {
                 break;
@@ -249,7 +253,7 @@ pub fn show(ui: &mut Ui, status: &Status) {
         }
         if status.exporting_csv {
             ui.separator();
-            ui.spinner();
+            ui.add(egui::Spinner::new().size(ui.text_style_height(&egui::TextStyle::Body)));
             ui.label("writing CSV…");
         }
         ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {

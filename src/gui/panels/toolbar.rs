@@ -409,7 +409,13 @@ pub fn transport(ui: &mut Ui, st: &ToolbarStatus, cmds: &mut Vec<Command>) {
             )
             .size()
             .x;
-        let height = ui.spacing().interact_size.y;
+        // a row of text where it wraps to one of its own (a phone): as high
+        // as its text, not as a button
+        let height = crate::gui::widgets::text_row_px(ui);
+        if ui.available_size_before_wrap().x < reserve_px {
+            ui.end_row();
+            ui.set_row_height(height);
+        }
         ui.allocate_ui_with_layout(
             egui::vec2(reserve_px, height),
             egui::Layout::left_to_right(egui::Align::Center),
