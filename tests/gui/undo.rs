@@ -229,3 +229,46 @@ fn undo_past_a_save_as_keeps_the_folder_of_the_document() {
     // the undo and the redo moved along the stacks (no new edit of their own)
     assert!(!h.state().is_dirty(), "the saved scene, redone");
 }
+
+/// A save writes the edits into the description; an undo past the save
+/// takes back the edit and keeps the description the save wrote (it gave
+/// back the text of before the save, the saved lines gone without a
+/// word), and a second save adds the undone change after them. A redo
+/// gives back the saved scene.
+#[test]
+fn undo_past_a_save_keeps_the_description_it_wrote() {
+    let tmp = crate::support::temp_dir();
+    let path = tmp.path().join("faster.ron");
+    let mut h = harness(three_points());
+    h.run();
+    let v0 = h.state().scene().speed_mps;
+    let opened = h.state().scene().description.clone();
+    type_into(&mut h, "speed_mps", &format!("{}", 2.0 * v0));
+    h.state_mut().apply(Command::SavePath(path.clone()));
+    h.run_steps(2);
+    let saved = Scene::load(&path).unwrap().description;
+    assert_ne!(saved, opened, "the save wrote the edit into the description");
+    assert_eq!(h.state().scene().description, saved);
+
+    ctrl(&mut h, false, egui::Key::Z);
+    assert_eq!(h.state().scene().speed_mps, v0, "the edit undone");
+    assert_eq!(
+        h.state().scene().description,
+        saved,
+        "the undo took back the description the save wrote"
+    );
+    assert!(h.state().is_dirty(), "the undone edit is unsaved");
+    // saved again: the text of the first save, then the undone change
+    h.state_mut().apply(Command::SavePath(path.clone()));
+    h.run_steps(2);
+    let again = Scene::load(&path).unwrap().description;
+    let undone = format!("speed V {} -> {v0} m/s", 2.0 * v0);
+    assert!(
+        again.starts_with(saved.trim_end()) && again.contains(&undone),
+        "{again:?}"
+    );
+
+    ctrl(&mut h, true, egui::Key::Z);
+    assert_eq!(h.state().scene().speed_mps, 2.0 * v0, "redone");
+    assert_eq!(h.state().scene().description, again);
+}

@@ -281,6 +281,8 @@ impl App {
         );
         match out.save(path) {
             Ok(()) => {
+                self.undo
+                    .described(&self.doc.scene.description, &out.description);
                 self.doc.scene.description = out.description;
                 self.doc.path = Some(path.to_path_buf());
                 if let Some(dir) = path.parent().filter(|d| !is_shipped_folder(d)) {

@@ -88,6 +88,8 @@ impl App {
                 );
                 let name = format!("{stem}.ron");
                 web::download(&name, out.to_ron_string().into_bytes());
+                self.undo
+                    .described(&self.doc.scene.description, &out.description);
                 self.doc.scene.description = out.description;
                 self.doc.saved = self.doc.scene.clone();
                 self.info(format!("{name} offered as a download"));

@@ -182,6 +182,24 @@ impl<S: Clone> EditHistory<S> {
         None
     }
 
+    /// A save wrote the description `before` as `after` (with the edits
+    /// since the scene was opened or saved added): every scene to go back
+    /// or forward to with the description `before` takes `after`. An undo
+    /// or redo past the save keeps the text the save wrote; it gave back
+    /// the description of before the save, the saved lines gone from the
+    /// document without a word. A scene with another description (an edit
+    /// of it) keeps its own.
+    pub fn described(&mut self, before: &str, after: &str) {
+        if before == after {
+            return;
+        }
+        for step in self.undo.iter_mut().chain(self.redo.iter_mut()) {
+            if step.scene.description == before {
+                step.scene.description = after.to_string();
+            }
+        }
+    }
+
     /// The pointer was let go: the next edit starts a new step.
     pub fn end_drag(&mut self) {
         self.dragging = false;
