@@ -247,7 +247,10 @@ fn undo_past_a_save_keeps_the_description_it_wrote() {
     h.state_mut().apply(Command::SavePath(path.clone()));
     h.run_steps(2);
     let saved = Scene::load(&path).unwrap().description;
-    assert_ne!(saved, opened, "the save wrote the edit into the description");
+    assert_ne!(
+        saved, opened,
+        "the save wrote the edit into the description"
+    );
     assert_eq!(h.state().scene().description, saved);
 
     ctrl(&mut h, false, egui::Key::Z);
