@@ -8,6 +8,7 @@ mod scene_phases;
 
 pub use mode_bars::{
     MODE_BARS_PLOT_ID, MODE_BARS_Y_LABEL, mode_bar_color, mode_bars, mode_bars_min_px,
+    mode_bars_panel,
 };
 pub use scene_phases::{TOP_VIEW_DOT_PX, scene_with_phases, top_view_caption};
 

@@ -166,14 +166,16 @@ impl App {
                 .default_size(320.0f32.min(0.25 * w))
                 .max_size(0.25 * w)
                 .show(ui, |ui| {
-                    classroom::mode_bars(
-                        ui,
-                        &self.sim,
-                        &self.modes,
-                        self.mutes.as_ref(),
-                        &mut self.classroom,
-                        cmds,
-                    );
+                    classroom::mode_bars_panel(ui, |ui| {
+                        classroom::mode_bars(
+                            ui,
+                            &self.sim,
+                            &self.modes,
+                            self.mutes.as_ref(),
+                            &mut self.classroom,
+                            cmds,
+                        );
+                    });
                 });
         }
         egui::CentralPanel::default().show(ui, |ui| {

@@ -61,8 +61,10 @@ pub fn mode_bars(
     let label_w = mode_bars_label_w(ui);
     // a refused mute's line under the plot takes a row
     let note = if cls.mute_refused.is_some() { 1.0 } else { 0.0 };
-    let h =
-        (ui.available_height() - row * (n as f32 + 1.2 + note)).max(bars_plot_min_px(ui, label_w));
+    let one_line = rows_fit_one_line(ui, &c, modes, mutes);
+    let per_mode = if one_line { 1.0 } else { TWO_LINE_ROWS };
+    let h = (ui.available_height() - row * (per_mode * n as f32 + 1.2 + note))
+        .max(bars_plot_min_px(ui, label_w));
     Plot::new("tirecontact.mode_bars")
         .id(egui::Id::unique(MODE_BARS_PLOT_ID))
         .height(h)
@@ -104,13 +106,69 @@ pub fn mode_bars(
         .show(ui, |pui| {
             pui.bar_chart(BarChart::new("now (mm)", bars).color(bar_key));
         });
-    // many modes in a short panel: the rows scroll under the plot
     if let Some(r) = &cls.mute_refused {
         refusal_note(ui, r, cmds);
     }
+    // many modes in a short panel: the rows scroll under the plot; where
+    // not even two of them would show (a small window, the plot at its
+    // least height) they follow it, and the panel scrolls (`mode_bars_panel`)
+    let shown = row * per_mode * (n.min(2) as f32);
+    if ui.available_height() >= shown {
+        egui::ScrollArea::vertical()
+            .id_salt("tirecontact.mode_mutes_scroll")
+            .show(ui, |ui| mute_rows(ui, &c, modes, mutes, one_line, cmds));
+    } else {
+        mute_rows(ui, &c, modes, mutes, one_line, cmds);
+    }
+}
+
+/// The contents of a panel holding the mode bars (`add`) in a vertical
+/// scroll area: in a window too short for the bars' plot at its least
+/// height and their Mute/Solo rows, the rows are reached by scrolling
+/// instead of lying below the window's edge.
+pub fn mode_bars_panel<R>(ui: &mut Ui, add: impl FnOnce(&mut Ui) -> R) -> R {
     egui::ScrollArea::vertical()
-        .id_salt("tirecontact.mode_mutes_scroll")
-        .show(ui, |ui| mute_rows(ui, &c, modes, mutes, cmds));
+        .id_salt("tirecontact.mode_bars_panel_scroll")
+        .auto_shrink([false, true])
+        .show(ui, add)
+        .inner
+}
+
+/// Rows (of Mute/Solo height) a mode takes when its row is split in two:
+/// the frequency and part of u, then Mute and Solo, and a separator.
+const TWO_LINE_ROWS: f32 = 2.4;
+
+/// Whether a mode's frequency, part of u, Mute and Solo fit on one row of
+/// the panel's width; else each mode takes two (a narrow panel: at
+/// 720 × 600 the Solo buttons ran past the window's right edge).
+fn rows_fit_one_line(ui: &Ui, c: &[f64], modes: &[Mode], mutes: Option<&Mutes>) -> bool {
+    let body = egui::TextStyle::Body.resolve(ui.style());
+    let text_w = |s: String| {
+        ui.painter()
+            .layout_no_wrap(s, body.clone(), Color32::WHITE)
+            .size()
+            .x
+    };
+    let sp = ui.spacing();
+    let col_min = sp.interact_size.x;
+    let mut label_w: f32 = 0.0;
+    let mut value_w: f32 = 0.0;
+    for (k, v) in c.iter().enumerate() {
+        let f = modes.get(k).map_or(0.0, |m| m.freq_hz);
+        label_w = label_w.max(text_w(format!("{k}: {f:.0} Hz")));
+        value_w = value_w.max(text_w(format!("{:+.3} mm", v * 1e3)));
+    }
+    if mutes.is_some() {
+        // "muted" is strong: a little wider than its body width
+        value_w = value_w.max(text_w("muted".to_owned()) * 1.1);
+    }
+    let button_w =
+        text_w("Mute".to_owned()).max(text_w("Solo".to_owned())) + 2.0 * sp.button_padding.x;
+    let need = label_w.max(col_min)
+        + value_w.max(col_min)
+        + 2.0 * button_w.max(col_min)
+        + 3.0 * sp.item_spacing.x;
+    need <= ui.available_width()
 }
 
 /// Fill of a mode's bar: the theme's strong text colour, grey when muted.
@@ -130,39 +188,56 @@ fn mute_rows(
     c: &[f64],
     modes: &[Mode],
     mutes: Option<&Mutes>,
+    one_line: bool,
     cmds: &mut Vec<Command>,
 ) {
     let muted = |k: usize| mutes.is_some_and(|m| m.muted.get(k).copied().unwrap_or(false));
-    egui::Grid::new("tirecontact.mode_mutes")
-        .striped(true)
-        .num_columns(4)
-        .show(ui, |ui| {
-            for (k, v) in c.iter().enumerate() {
-                let f = modes.get(k).map_or(0.0, |m| m.freq_hz);
-                ui.label(format!("{k}: {f:.0} Hz"));
-                if muted(k) {
-                    ui.label(RichText::new("muted").color(Color32::GRAY).strong());
-                } else {
-                    ui.label(format!("{:+.3} mm", v * 1e3));
+    let text = |ui: &mut Ui, k: usize, v: f64| {
+        let f = modes.get(k).map_or(0.0, |m| m.freq_hz);
+        ui.label(format!("{k}: {f:.0} Hz"));
+        if muted(k) {
+            ui.label(RichText::new("muted").color(Color32::GRAY).strong());
+        } else {
+            ui.label(format!("{:+.3} mm", v * 1e3));
+        }
+    };
+    let buttons = |ui: &mut Ui, k: usize, cmds: &mut Vec<Command>| {
+        let m = ui
+            .selectable_label(muted(k), "Mute")
+            .on_hover_text("remove this mode's contribution (residue × 0); restarts the run; click again to bring it back");
+        if m.clicked() {
+            cmds.push(Command::ToggleMute(k));
+        }
+        let soloed =
+            mutes.is_some_and(|ms| ms.muted.iter().enumerate().all(|(j, x)| *x == (j != k)));
+        let s = ui
+            .selectable_label(soloed, "Solo")
+            .on_hover_text("mute every other mode; click again to bring them back");
+        if s.clicked() {
+            cmds.push(Command::SoloMode(k));
+        }
+    };
+    if one_line {
+        egui::Grid::new("tirecontact.mode_mutes")
+            .striped(true)
+            .num_columns(4)
+            .show(ui, |ui| {
+                for (k, v) in c.iter().enumerate() {
+                    text(ui, k, *v);
+                    buttons(ui, k, cmds);
+                    ui.end_row();
                 }
-                let m = ui
-                    .selectable_label(muted(k), "Mute")
-                    .on_hover_text("remove this mode's contribution (residue × 0); restarts the run; click again to bring it back");
-                if m.clicked() {
-                    cmds.push(Command::ToggleMute(k));
-                }
-                let soloed = mutes.is_some_and(|ms| {
-                    ms.muted.iter().enumerate().all(|(j, x)| *x == (j != k))
-                });
-                let s = ui
-                    .selectable_label(soloed, "Solo")
-                    .on_hover_text("mute every other mode; click again to bring them back");
-                if s.clicked() {
-                    cmds.push(Command::SoloMode(k));
-                }
-                ui.end_row();
+            });
+    } else {
+        // a narrow panel: the mode's figures, then its buttons below them
+        for (k, v) in c.iter().enumerate() {
+            if k > 0 {
+                ui.separator();
             }
-        });
+            ui.horizontal_wrapped(|ui| text(ui, k, *v));
+            ui.horizontal_wrapped(|ui| buttons(ui, k, cmds));
+        }
+    }
     if mutes.is_some() && ui.button("Un-mute all").clicked() {
         cmds.push(Command::UnmuteAll);
     }

@@ -9,6 +9,7 @@ mod label_gap;
 mod labels;
 mod legend;
 mod mode_bar_colours;
+mod mode_bars_fit;
 mod mode_bars_layout;
 mod panel;
 pub(crate) mod patch_rows;
