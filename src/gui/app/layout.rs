@@ -45,24 +45,27 @@ impl App {
             .resizable(true)
             .default_size(0.34 * ui.available_width())
             .show(ui, |ui| {
-                let reserve_px = classroom::mode_bars_min_px(ui, self.modes.len());
-                let edits = self.edits();
-                classroom::explanation(
-                    ui,
-                    &self.doc.scene.name,
-                    &self.doc.scene.description,
-                    &edits,
-                    reserve_px,
-                );
-                ui.separator();
-                classroom::mode_bars(
-                    ui,
-                    &self.sim,
-                    &self.modes,
-                    self.mutes.as_ref(),
-                    &mut self.classroom,
-                    cmds,
-                );
+                // a short window: the panel scrolls down to the Mute/Solo rows
+                classroom::mode_bars_panel(ui, |ui| {
+                    let reserve_px = classroom::mode_bars_min_px(ui, self.modes.len());
+                    let edits = self.edits();
+                    classroom::explanation(
+                        ui,
+                        &self.doc.scene.name,
+                        &self.doc.scene.description,
+                        &edits,
+                        reserve_px,
+                    );
+                    ui.separator();
+                    classroom::mode_bars(
+                        ui,
+                        &self.sim,
+                        &self.modes,
+                        self.mutes.as_ref(),
+                        &mut self.classroom,
+                        cmds,
+                    );
+                });
             });
         egui::CentralPanel::default().show(ui, |ui| {
             crate::gui::chrome::dialogs::banner(ui, self.message.as_ref(), cmds);

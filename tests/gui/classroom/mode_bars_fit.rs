@@ -1,6 +1,7 @@
-//! The mode bars' Mute and Solo buttons in small desktop windows: each one
-//! lies inside the window, or is brought into it by scrolling to it, and
-//! a click on it mutes or solos its mode.
+//! The mode bars' Mute and Solo buttons in small desktop windows, beside
+//! the views and in classroom mode: each one lies inside the window, or is
+//! brought into it by scrolling to it, and a click on it mutes or solos its
+//! mode.
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -55,6 +56,34 @@ fn the_mode_bars_buttons_lie_in_small_desktop_windows() {
             h.state().mutes().map(|m| m.muted.clone()),
             Some(vec![true, true, false]),
             "{size:?}: the click on Solo 2"
+        );
+    }
+}
+
+#[test]
+fn classroom_mode_keeps_the_mute_rows_reachable_in_small_windows() {
+    for size in [[720.0, 600.0], [900.0, 600.0], [1280.0, 720.0]] {
+        for preset in ["guided_1a_soft_tyre.ron", "three_points.ron", "paper.ron"] {
+            let what = format!("classroom, {preset} at {size:?}");
+            let mut h = crate::harness::harness_sized(super::app_on(preset), size);
+            crate::harness::settle(&mut h);
+            h.state_mut().apply(Command::SetClassroom(true));
+            h.run_steps(4);
+            each_reachable(&mut h, "Mute", size, &what);
+            each_reachable(&mut h, "Solo", size, &what);
+        }
+        // scrolled to, the last Mute takes a click
+        let mut h = crate::harness::harness_sized(super::app_on("guided_1a_soft_tyre.ron"), size);
+        crate::harness::settle(&mut h);
+        h.state_mut().apply(Command::SetClassroom(true));
+        h.run_steps(4);
+        each_reachable(&mut h, "Mute", size, "classroom");
+        h.get_all_by_label("Mute").nth(2).unwrap().click();
+        h.run_steps(3);
+        assert_eq!(
+            h.state().mutes().map(|m| m.muted.clone()),
+            Some(vec![false, false, true]),
+            "classroom at {size:?}: the click on Mute 2"
         );
     }
 }
