@@ -293,6 +293,7 @@ fn diagram(ui: &mut Ui, w: &Workbench, h: f32, cmds: &mut Vec<Command>) {
         .height(h)
         .width(ui.available_width() - x_label_room_px(ui, w.band_hz.1))
         .x_title(ui, "frequency f (Hz)")
+        .nice_x()
         .y_axis_label("model order")
         .include_x(w.band_hz.0)
         .include_x(w.band_hz.1)
@@ -485,6 +486,7 @@ fn pair_plot(ui: &mut Ui, w: &Workbench, f: &crate::identify::workbench::PairFit
         .width(ui.available_width() - x_label_room_px(ui, top_hz))
         .legend(egui_plot::Legend::default().position(egui_plot::Corner::RightTop))
         .x_title(ui, "frequency f (Hz)")
+        .nice_x()
         .y_axis_label(format!("|G{i}{j}| (dB re 1 m/N)"))
         .allow_scroll(false)
         .show(ui, |pui| {
@@ -614,6 +616,7 @@ fn frf_section(ui: &mut Ui, f: &Result<FrfIdentification, String>, open: bool) {
                 .height(260.0)
                 .legend(egui_plot::Legend::default().position(egui_plot::Corner::LeftBottom))
                 .x_title(ui, "frequency f (Hz)")
+        .nice_x()
                 .y_axis_label(format!("|H| (dB re 1 {units})"))
                 .allow_scroll(false)
                 .show(ui, |pui| {
