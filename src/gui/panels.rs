@@ -75,7 +75,7 @@ pub fn side_panel(
         edits_box::undo_buttons(ui, undo, cmds);
         about_panel::show(ui, scene, cmds);
         // wrapped: a phone's width cut it at "restarts the ru"
-        ui.horizontal_wrapped(|ui| {
+        crate::gui::widgets::text_row_wrapped(ui, |ui| {
             ui.label("Tags:");
             crate::gui::widgets::fields::tag(ui, crate::gui::widgets::fields::Apply::Live);
             ui.label("applied to the running simulation;");

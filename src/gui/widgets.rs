@@ -37,3 +37,14 @@ pub fn text_row<R>(
     let size = egui::vec2(ui.available_size_before_wrap().x, text_row_px(ui));
     ui.allocate_ui_with_layout(size, egui::Layout::left_to_right(egui::Align::Center), add)
 }
+
+/// Rows of text alone that wrap at the width available
+/// (`ui.horizontal_wrapped`), the first [`text_row_px`] high.
+pub fn text_row_wrapped<R>(
+    ui: &mut egui::Ui,
+    add: impl FnOnce(&mut egui::Ui) -> R,
+) -> egui::InnerResponse<R> {
+    let size = egui::vec2(ui.available_size_before_wrap().x, text_row_px(ui));
+    let layout = egui::Layout::left_to_right(egui::Align::Center).with_main_wrap(true);
+    ui.allocate_ui_with_layout(size, layout, add)
+}

@@ -305,3 +305,65 @@ fn rows_of_text_are_as_high_as_their_text_on_a_phone() {
         );
     }
 }
+
+/// In the phone's editing panel a row of text alone (the "Tags:" line, a
+/// section's heading, a table's header) is as high as its text, while the
+/// fields, lists and buttons beside them keep their fingertip height.
+/// `ui.horizontal` and egui's grids take the touch target's 44 px as every
+/// row's least height: there the text sat in the middle of a 44 px row.
+/// A line of text `line` px high centred in a row of R px leaves
+/// (R - line) / 2 besides the item spacing to its neighbour: at most a
+/// quarter of a line for a row at most a line and a half high.
+#[test]
+fn the_phone_editors_rows_of_text_are_as_high_as_their_text() {
+    use std::path::Path;
+    for size in PHONES {
+        for preset in ["paper.ron", "three_points.ron"] {
+            let p = Path::new("presets").join(preset);
+            let app = App::new(tirecontact::Scene::load(&p).unwrap(), Some(p)).unwrap();
+            let mut h = harness_sized(app, size);
+            settle(&mut h);
+            h.get_by_label("Edit the scene").click();
+            h.run_steps(3);
+            let style = h.ctx.global_style();
+            let spacing = style.spacing.item_spacing.y;
+            let body = style.text_styles[&egui::TextStyle::Body].clone();
+            let line = h.ctx.fonts_mut(|f| f.row_height(&body));
+            let rect = |h: &egui_kittest::Harness<'_, App>, label: &str| {
+                h.query_all_by_label(label)
+                    .next()
+                    .unwrap_or_else(|| panic!("no {label} at {size:?} in {preset}"))
+                    .rect()
+            };
+            // the "Tags:" line, its wrapped row as high as the label's node
+            let tags = rect(&h, "Tags:");
+            assert!(
+                tags.height() <= 1.5 * line,
+                "at {size:?} in {preset}: the Tags row is {tags:?} ({line} px lines)"
+            );
+            // a heading or header above a row of fields or lists
+            let mut pairs = vec![("Road", "road type")];
+            if preset == "three_points.ron" {
+                pairs.push(("damping ratio", "tyre.modes[0].damping_ratio"));
+            }
+            let check = |h: &egui_kittest::Harness<'_, App>, text: &str, next: &str| {
+                let t = rect(h, text);
+                let n = rect(h, next);
+                assert!(n.height() >= 44.0, "at {size:?} {next} is {n:?}");
+                let gap = n.top() - t.bottom();
+                assert!(
+                    gap <= spacing + 0.25 * line,
+                    "at {size:?} in {preset}: {gap} px between {text:?} and {next} \
+                     ({line} px lines, item spacing {spacing} px)"
+                );
+            };
+            for (text, next) in pairs {
+                check(&h, text, next);
+            }
+            // further down: the contact section's heading above Rigid
+            h.get_by_label("Rigid").scroll_to_me();
+            h.run_steps(3);
+            check(&h, "Contact", "Rigid");
+        }
+    }
+}

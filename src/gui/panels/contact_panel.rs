@@ -46,6 +46,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
     let p = scene.num_points();
     let per_point = stiffness_n_m.len() > 1;
     Grid::new("tirecontact.contact")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
         .num_columns(2)
         .show(ui, |ui| {
             for (i, &k) in stiffness_n_m.iter().enumerate() {

@@ -31,6 +31,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>)
     );
     let num = crate::gui::widgets::number::format_number;
     Grid::new("tirecontact.fe_modes")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
         .num_columns(2)
         .show(ui, |ui| {
             ui.label("file");

@@ -32,6 +32,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>)
     section(ui, "Modes", Apply::Restart);
     let p = scene.num_points();
     Grid::new("tirecontact.modes")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
         .striped(true)
         .num_columns(4)
         .show(ui, |ui| {
@@ -121,23 +122,25 @@ pub fn show(ui: &mut Ui, scene: &Scene, modes: &[Mode], cmds: &mut Vec<Command>)
 }
 
 fn shape_grid(ui: &mut Ui, scene: &Scene, k: usize, m: &Mode, cmds: &mut Vec<Command>) {
-    Grid::new(("tirecontact.shape", k)).show(ui, |ui| {
-        for (i, &a) in m.shape.iter().enumerate() {
-            ui.label(format!("point {i}"));
-            let name = format!("tyre.modes[{k}].shape[{i}]");
-            push_edit(
-                cmds,
-                NumField::new(&name, a, "1/√kg", Apply::Restart).show(ui, |v| {
-                    with_mode(scene, k, |m| {
-                        if let Some(x) = m.shape.get_mut(i) {
-                            *x = v;
-                        }
-                    })
-                }),
-            );
-            ui.end_row();
-        }
-    });
+    Grid::new(("tirecontact.shape", k))
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
+        .show(ui, |ui| {
+            for (i, &a) in m.shape.iter().enumerate() {
+                ui.label(format!("point {i}"));
+                let name = format!("tyre.modes[{k}].shape[{i}]");
+                push_edit(
+                    cmds,
+                    NumField::new(&name, a, "1/√kg", Apply::Restart).show(ui, |v| {
+                        with_mode(scene, k, |m| {
+                            if let Some(x) = m.shape.get_mut(i) {
+                                *x = v;
+                            }
+                        })
+                    }),
+                );
+                ui.end_row();
+            }
+        });
 }
 
 fn residue_grid(ui: &mut Ui, scene: &Scene, k: usize, m: &Mode, cmds: &mut Vec<Command>) {
@@ -149,33 +152,36 @@ fn residue_grid(ui: &mut Ui, scene: &Scene, k: usize, m: &Mode, cmds: &mut Vec<C
         return;
     }
     ui.label("row i = receiving point, column j = loaded point");
-    Grid::new(("tirecontact.residue", k)).show(ui, |ui| {
-        // the points' indices: columns j above, rows i on the left
-        ui.label(RichText::new("i \\ j").weak());
-        for j in 0..p {
-            ui.label(RichText::new(j.to_string()).weak());
-        }
-        ui.end_row();
-        for (i, row) in m.residue.iter().enumerate() {
-            ui.label(RichText::new(i.to_string()).weak());
-            for (j, &a) in row.iter().enumerate() {
-                let name = format!("tyre.modes[{k}].residue[{i}][{j}]");
-                push_edit(
-                    cmds,
-                    NumField::new(&name, a, "", Apply::Restart)
-                        .width(60.0)
-                        .show(ui, |v| {
-                            with_mode(scene, k, |m| {
-                                if let Some(x) = m.residue.get_mut(i).and_then(|r| r.get_mut(j)) {
-                                    *x = v;
-                                }
-                            })
-                        }),
-                );
+    Grid::new(("tirecontact.residue", k))
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
+        .show(ui, |ui| {
+            // the points' indices: columns j above, rows i on the left
+            ui.label(RichText::new("i \\ j").weak());
+            for j in 0..p {
+                ui.label(RichText::new(j.to_string()).weak());
             }
             ui.end_row();
-        }
-    });
+            for (i, row) in m.residue.iter().enumerate() {
+                ui.label(RichText::new(i.to_string()).weak());
+                for (j, &a) in row.iter().enumerate() {
+                    let name = format!("tyre.modes[{k}].residue[{i}][{j}]");
+                    push_edit(
+                        cmds,
+                        NumField::new(&name, a, "", Apply::Restart)
+                            .width(60.0)
+                            .show(ui, |v| {
+                                with_mode(scene, k, |m| {
+                                    if let Some(x) = m.residue.get_mut(i).and_then(|r| r.get_mut(j))
+                                    {
+                                        *x = v;
+                                    }
+                                })
+                            }),
+                    );
+                }
+                ui.end_row();
+            }
+        });
 }
 
 /// The scene with mode `k` changed by `f`.
@@ -197,30 +203,33 @@ fn ring_summary(
     cmds: &mut Vec<Command>,
 ) {
     section(ui, "Tyre: ring model (docs/method.md §5)", Apply::Restart);
-    Grid::new("tirecontact.ring").num_columns(2).show(ui, |ui| {
-        let rows = [
-            ("radius", ring.radius_m, "m"),
-            ("belt width", ring.belt_width_m, "m"),
-            ("mass per length", ring.mass_per_length_kg_m, "kg/m"),
-            ("inflation", ring.inflation_pa * 1e-5, "bar"),
-            ("radial stiffness", ring.radial_stiffness_n_m2, "N/m²"),
-            (
-                "tangential stiffness",
-                ring.tangential_stiffness_n_m2,
-                "N/m²",
-            ),
-            ("bending stiffness EI", ring.bending_stiffness_n_m2, "N m²"),
-            ("damping ratio", ring.damping_ratio, ""),
-        ];
-        for (name, v, unit) in rows {
-            ui.label(name);
-            ui.label(format!(
-                "{} {unit}",
-                crate::gui::widgets::number::format_number(v)
-            ));
-            ui.end_row();
-        }
-    });
+    Grid::new("tirecontact.ring")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
+        .num_columns(2)
+        .show(ui, |ui| {
+            let rows = [
+                ("radius", ring.radius_m, "m"),
+                ("belt width", ring.belt_width_m, "m"),
+                ("mass per length", ring.mass_per_length_kg_m, "kg/m"),
+                ("inflation", ring.inflation_pa * 1e-5, "bar"),
+                ("radial stiffness", ring.radial_stiffness_n_m2, "N/m²"),
+                (
+                    "tangential stiffness",
+                    ring.tangential_stiffness_n_m2,
+                    "N/m²",
+                ),
+                ("bending stiffness EI", ring.bending_stiffness_n_m2, "N m²"),
+                ("damping ratio", ring.damping_ratio, ""),
+            ];
+            for (name, v, unit) in rows {
+                ui.label(name);
+                ui.label(format!(
+                    "{} {unit}",
+                    crate::gui::widgets::number::format_number(v)
+                ));
+                ui.end_row();
+            }
+        });
     ui.label(
         egui::RichText::new("ring parameters are edited in the preset file; the modes below are identified from the ring by LSCE at the points' positions")
             .weak(),
@@ -291,6 +300,7 @@ fn plate_summary(
         }),
     ];
     Grid::new("tirecontact.plate")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
         .num_columns(2)
         .show(ui, |ui| {
             for (label, path, unit, get) in rows {
@@ -338,6 +348,7 @@ fn measured_summary(
     );
     let num = crate::gui::widgets::number::format_number;
     Grid::new("tirecontact.measured")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
         .num_columns(2)
         .show(ui, |ui| {
             ui.label("data file");
@@ -390,6 +401,7 @@ pub(super) fn identified_modes(
         .id_salt("tirecontact.ring_modes")
         .show(ui, |ui| {
             Grid::new("tirecontact.ring_modes_grid")
+                .min_row_height(crate::gui::widgets::text_row_px(ui))
                 .striped(true)
                 .show(ui, |ui| {
                     ui.label("#");

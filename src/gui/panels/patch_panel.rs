@@ -47,6 +47,7 @@ pub fn grid(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
         .weak(),
     );
     Grid::new("tirecontact.patch_grid")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
         .num_columns(2)
         .show(ui, |ui| {
             ui.label("points along");
@@ -213,6 +214,7 @@ pub fn texture(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
         .weak(),
     );
     Grid::new("tirecontact.texture")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
         .num_columns(2)
         .show(ui, |ui| {
             ui.label("ISO 8608 class");

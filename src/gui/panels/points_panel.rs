@@ -20,6 +20,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
     // (beside the three fields it ran past a 390 px screen's edge)
     let narrow = ui.ctx().content_rect().width() < crate::gui::widgets::NARROW_PX;
     Grid::new("tirecontact.points")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
         .striped(true)
         .num_columns(5)
         .show(ui, |ui| {

@@ -83,6 +83,7 @@ pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
         s
     };
     Grid::new("tirecontact.random_road")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
         .num_columns(2)
         .show(ui, |ui| {
             ui.label("ISO 8608 class");

@@ -21,41 +21,44 @@ pub fn show(
             amplitude_m,
             wavelength_m,
         } => {
-            Grid::new("tirecontact.road").num_columns(2).show(ui, |ui| {
-                ui.label("amplitude a");
-                push_edit(
-                    cmds,
-                    NumField::new("road.amplitude_m", *amplitude_m, "mm", Apply::Live)
-                        .scale(1e3)
-                        .show(ui, |v| {
-                            with_road(
-                                scene,
-                                Road::Sine {
-                                    amplitude_m: v,
-                                    wavelength_m: *wavelength_m,
-                                },
-                            )
-                        }),
-                );
-                ui.end_row();
-                ui.label("wavelength λ");
-                push_edit(
-                    cmds,
-                    NumField::new("road.wavelength_m", *wavelength_m, "m", Apply::Live).show(
-                        ui,
-                        |v| {
-                            with_road(
-                                scene,
-                                Road::Sine {
-                                    amplitude_m: *amplitude_m,
-                                    wavelength_m: v,
-                                },
-                            )
-                        },
-                    ),
-                );
-                ui.end_row();
-            });
+            Grid::new("tirecontact.road")
+                .min_row_height(crate::gui::widgets::text_row_px(ui))
+                .num_columns(2)
+                .show(ui, |ui| {
+                    ui.label("amplitude a");
+                    push_edit(
+                        cmds,
+                        NumField::new("road.amplitude_m", *amplitude_m, "mm", Apply::Live)
+                            .scale(1e3)
+                            .show(ui, |v| {
+                                with_road(
+                                    scene,
+                                    Road::Sine {
+                                        amplitude_m: v,
+                                        wavelength_m: *wavelength_m,
+                                    },
+                                )
+                            }),
+                    );
+                    ui.end_row();
+                    ui.label("wavelength λ");
+                    push_edit(
+                        cmds,
+                        NumField::new("road.wavelength_m", *wavelength_m, "m", Apply::Live).show(
+                            ui,
+                            |v| {
+                                with_road(
+                                    scene,
+                                    Road::Sine {
+                                        amplitude_m: *amplitude_m,
+                                        wavelength_m: v,
+                                    },
+                                )
+                            },
+                        ),
+                    );
+                    ui.end_row();
+                });
             if *wavelength_m > 0.0 {
                 ui.label(
                     egui::RichText::new(format!(
@@ -82,6 +85,7 @@ pub fn show(
     }
     section(ui, "Speed", Apply::Live);
     Grid::new("tirecontact.speed")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
         .num_columns(2)
         .show(ui, |ui| {
             ui.label("speed V");
@@ -175,6 +179,7 @@ fn road_type(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
 
 fn harmonics(ui: &mut Ui, scene: &Scene, comps: &[Harmonic], cmds: &mut Vec<Command>) {
     Grid::new("tirecontact.harmonics")
+        .min_row_height(crate::gui::widgets::text_row_px(ui))
         .striped(true)
         .num_columns(4)
         .show(ui, |ui| {

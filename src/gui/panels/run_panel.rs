@@ -10,7 +10,8 @@ use egui::{Grid, Ui};
 
 pub fn show(ui: &mut Ui, scene: &Scene, cmds: &mut Vec<Command>) {
     section(ui, "Time stepping", Apply::Restart);
-    Grid::new("tirecontact.run").num_columns(2).show(ui, |ui| {
+    Grid::new("tirecontact.run")
+.min_row_height(crate::gui::widgets::text_row_px(ui)).num_columns(2).show(ui, |ui| {
         ui.label("ramp")
             .on_hover_text("preload and road are ramped in smoothly over this time");
         push_edit(

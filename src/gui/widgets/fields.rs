@@ -42,7 +42,7 @@ impl Apply {
 
 /// A section heading with its live/restart tag.
 pub fn section(ui: &mut Ui, title: &str, apply: Apply) {
-    ui.horizontal(|ui| {
+    super::text_row(ui, |ui| {
         ui.strong(title);
         tag(ui, apply);
     });
