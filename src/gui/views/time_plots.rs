@@ -124,9 +124,6 @@ pub fn show(
     // a phone: one legend for the four plots, in a row above them (the
     // same points in the same colours); their curves get the whole width
     let narrow = ui.ctx().content_rect().width() < crate::gui::widgets::NARROW_PX;
-    if narrow {
-        shared_legend(ui, history, opts);
-    }
     let t_end = history.last_time().unwrap_or(0.0).max(now_s);
     let window_s = followed_window_s(opts.window_s, duration_s);
     let (t0, t1) = if opts.follow {
@@ -138,25 +135,27 @@ pub fn show(
     // (a phone's short screen: the four plots share what height there is,
     // so none hides behind the status bar; elsewhere at least 80 px each)
     let min_h = if narrow { 40.0 } else { 80.0 };
-    let h = ((ui.available_height() - 3.0 * gap) / 4.0).max(min_h);
-    // the curves fill the window's width, so every corner of it would cover
-    // some: the time axis runs on past the window's end by a strip as wide
-    // as the widest legend, where the legends go (top right)
-    let legend_w_px = if narrow {
-        0.0
-    } else {
-        PLOTS
-            .iter()
-            .map(|def| {
-                let names = legend_names(history, &opts.shown, def, opts.clip_impacts);
-                legend_width_px(ui, &names, h)
-            })
-            .fold(0.0, f32::max)
-    };
+    let plot_h = |ui: &Ui| ((ui.available_height() - 3.0 * gap) / 4.0).max(min_h);
     // the frames are the width less the y axes (at least 64 px); a wider
     // axis narrows the strip by a few px (of its share of the frame): 8 px
     // to spare
     let frame_w_px = ui.available_width() - 64.0;
+    // the curves fill the window's width, so every corner of it would cover
+    // some: the time axis runs on past the window's end by a strip as wide
+    // as the widest legend, where the legends go (top right); a strip that
+    // would take more than `MAX_LEGEND_STRIP` of the frame (a patch's long
+    // legend beside the mode bars) gives way to the shared row of a phone
+    let widest_px = if narrow {
+        0.0
+    } else {
+        widest_legend_px(ui, history, opts, plot_h(ui))
+    };
+    let shared = narrow || widest_px + 12.0 > MAX_LEGEND_STRIP * frame_w_px;
+    if shared {
+        shared_legend(ui, history, opts);
+    }
+    let h = plot_h(ui);
+    let legend_w_px = if shared { 0.0 } else { widest_px };
     let t1_axis = t1 + legend_strip_s(t1 - t0, legend_w_px, frame_w_px);
     let link = Id::unique("tirecontact.time_axes");
     if t_end < opts.axis_t_s {
@@ -193,7 +192,7 @@ pub fn show(
                 t1_axis,
                 axis_px,
             },
-            (!narrow).then_some(legend_id),
+            (!shared).then_some(legend_id),
             y_label,
             opts,
         );
@@ -237,6 +236,22 @@ pub fn show(
     }
 }
 
+/// Largest share of a time plot's frame the legends' strip past the
+/// window's end takes; a wider legend goes to one row above the four plots.
+pub const MAX_LEGEND_STRIP: f32 = 0.4;
+
+/// Width (px) of the widest of the four plots' legends at plot height
+/// `plot_h_px`.
+fn widest_legend_px(ui: &Ui, history: &History, opts: &TimePlotOptions, plot_h_px: f32) -> f32 {
+    PLOTS
+        .iter()
+        .map(|def| {
+            let names = legend_names(history, &opts.shown, def, opts.clip_impacts);
+            legend_width_px(ui, &names, plot_h_px)
+        })
+        .fold(0.0, f32::max)
+}
+
 /// The legend of the four plots in one wrapped row (narrow windows): a
 /// coloured line and the name of each shown point, as in the plots.
 fn shared_legend(ui: &mut Ui, history: &History, opts: &TimePlotOptions) {
@@ -246,6 +261,11 @@ fn shared_legend(ui: &mut Ui, history: &History, opts: &TimePlotOptions) {
     ui.horizontal_wrapped(|ui| {
         for &i in &chosen {
             let name = crate::output::figures::point_legend_name(&chosen, i);
+            // (many points: the first and the last are named, the colours
+            // between them run along the ramp, as in the plots' legends)
+            if name.is_empty() {
+                continue;
+            }
             let row_h = ui.text_style_height(&egui::TextStyle::Body);
             let (r, _) = ui.allocate_exact_size(egui::vec2(16.0, row_h), egui::Sense::hover());
             ui.painter().line_segment(

@@ -229,3 +229,40 @@ fn side_panels_leave_the_time_plots_room_in_a_small_window() {
         "the mode bars are shown"
     );
 }
+
+/// A patch's legend ("point 0 (first of 16, colours along the ramp)") beside
+/// the mode bars at 1280 × 800: the strip past the window's end it needed
+/// took half of each time plot, the curves squeezed into the other half.
+/// Wider than `MAX_LEGEND_STRIP` of the frame, it goes to one row above the
+/// four plots, as on a phone: the newest samples stay in the right part of
+/// the frame, and the legend's first name is still shown.
+#[test]
+fn a_wide_legend_leaves_the_curves_most_of_the_plot() {
+    use egui_plot::PlotMemory;
+    use tirecontact::gui::views::time_plots::{FORCE_PLOT_ID, MAX_LEGEND_STRIP};
+    let scene = Scene::load(Path::new("presets/patch_chip_seal.ron")).unwrap();
+    let mut h = crate::harness::harness_sized(App::new(scene, None).unwrap(), [1280.0, 800.0]);
+    h.run();
+    h.state_mut()
+        .apply(tirecontact::gui::Command::ShowModeBars(true));
+    // past the 0.1 s window: the followed window is full
+    advance(&mut h, 12_000);
+    h.run_steps(3);
+    let mem = PlotMemory::load(&h.ctx, egui::Id::unique(FORCE_PLOT_ID)).expect("plot shown");
+    let frame = *mem.transform().frame();
+    let t_end = h.state().simulation().time_s();
+    let newest_x = mem.transform().position_from_point_x(t_end);
+    let share = (newest_x - frame.left()) / frame.width();
+    assert!(
+        share >= 1.0 - MAX_LEGEND_STRIP,
+        "the curves end at {newest_x} px, {share:.2} of the force plot {frame:?}"
+    );
+    // the first and the last names, side by side (the unnamed points
+    // between them laid empty labels that put the two over each other)
+    let first = h.get_by_label_contains("first of 16").rect();
+    let last = h.get_by_label_contains("(last)").rect();
+    assert!(
+        !first.intersects(last),
+        "the shared legend's names overlap: {first:?} and {last:?}"
+    );
+}
