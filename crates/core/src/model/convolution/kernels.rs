@@ -127,6 +127,7 @@ unsafe fn predict_avx(
 
 /// The states past the whole lanes of [`predict_avx`] (none where the
 /// states are stored in whole lanes, as the solver's are), one by one.
+#[cfg(target_arch = "x86_64")]
 #[cold]
 #[inline(never)]
 fn predict_past_lanes(
