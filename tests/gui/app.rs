@@ -1,7 +1,7 @@
 //! The visualiser driven headless with egui_kittest (no GPU): time control,
 //! editing, refused values, broken presets, unsaved changes, export.
 
-use crate::harness::{harness, settle, type_into};
+use crate::harness::{MemStorage, harness, settle, type_into};
 use crate::support::temp_dir;
 use egui_kittest::kittest::Queryable;
 use tirecontact::Scene;
@@ -391,22 +391,6 @@ fn every_shipped_preset_opens() {
         h.run();
         assert_eq!(h.state().simulation().steps(), 20);
     }
-}
-
-#[derive(Default)]
-struct MemStorage(std::collections::HashMap<String, String>);
-
-impl eframe::Storage for MemStorage {
-    fn get_string(&self, key: &str) -> Option<String> {
-        self.0.get(key).cloned()
-    }
-    fn set_string(&mut self, key: &str, value: String) {
-        self.0.insert(key.to_string(), value);
-    }
-    fn remove_string(&mut self, key: &str) {
-        self.0.remove(key);
-    }
-    fn flush(&mut self) {}
 }
 
 #[test]

@@ -225,3 +225,21 @@ pub fn plot_frame(h: &Harness<'_, App>, id: &str) -> egui::Rect {
         .transform()
         .frame()
 }
+
+/// An in-memory session store: what the app saves at the end of a session
+/// and reads at the next start.
+#[derive(Default)]
+pub struct MemStorage(pub std::collections::HashMap<String, String>);
+
+impl eframe::Storage for MemStorage {
+    fn get_string(&self, key: &str) -> Option<String> {
+        self.0.get(key).cloned()
+    }
+    fn set_string(&mut self, key: &str, value: String) {
+        self.0.insert(key.to_string(), value);
+    }
+    fn remove_string(&mut self, key: &str) {
+        self.0.remove(key);
+    }
+    fn flush(&mut self) {}
+}

@@ -3,7 +3,7 @@
 //! targets), and the wide window gets back the desktop's sizes and
 //! classroom mode, as before it was narrowed.
 
-use crate::harness::{harness_sized, settle};
+use crate::harness::{MemStorage, harness_sized, settle};
 use egui_kittest::Harness;
 use tirecontact::gui::{App, Command, View};
 
@@ -81,22 +81,6 @@ fn widening_a_phone_window_restores_the_desktop_and_classroom_mode() {
     assert!(!h.state().classroom());
     assert_eq!(h.state().view(), View::TimePlots);
     assert!(same(sizes(&h), plain), "{:?} vs {plain:?}", sizes(&h));
-}
-
-#[derive(Default)]
-struct MemStorage(std::collections::HashMap<String, String>);
-
-impl eframe::Storage for MemStorage {
-    fn get_string(&self, key: &str) -> Option<String> {
-        self.0.get(key).cloned()
-    }
-    fn set_string(&mut self, key: &str, value: String) {
-        self.0.insert(key.to_string(), value);
-    }
-    fn remove_string(&mut self, key: &str) {
-        self.0.remove(key);
-    }
-    fn flush(&mut self) {}
 }
 
 /// A session closed at a phone's width keeps the classroom mode the user

@@ -2,6 +2,7 @@
 //! message banner does not move the views' plots (it overlays them).
 
 use super::{app_on, harness};
+use crate::harness::MemStorage;
 use egui_kittest::kittest::Queryable;
 use tirecontact::gui::Command;
 
@@ -30,22 +31,6 @@ fn leaving_classroom_gives_back_the_users_theme() {
 }
 
 /// eframe's storage in memory.
-#[derive(Default)]
-struct MemStorage(std::collections::HashMap<String, String>);
-
-impl eframe::Storage for MemStorage {
-    fn get_string(&self, key: &str) -> Option<String> {
-        self.0.get(key).cloned()
-    }
-    fn set_string(&mut self, key: &str, value: String) {
-        self.0.insert(key.to_string(), value);
-    }
-    fn remove_string(&mut self, key: &str) {
-        self.0.remove(key);
-    }
-    fn flush(&mut self) {}
-}
-
 /// A session that ended in classroom mode: egui keeps the theme preference
 /// between runs (classroom mode's light one), and leaving classroom mode in
 /// the next run gives back the user's dark theme.
