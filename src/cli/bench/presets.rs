@@ -53,13 +53,9 @@ fn preset_bar(len: usize) -> ProgressBar {
     bar
 }
 
-/// Loads a preset to time: with `--quick`, cut to 10 ms past its ramp.
-fn load_timed(path: &Path, quick: bool) -> Result<Scene, Box<dyn std::error::Error>> {
-    Ok(load_timed_cut(path, quick)?.0)
-}
-
-/// [`load_timed`], and whether the preset was cut.
-fn load_timed_cut(path: &Path, quick: bool) -> Result<(Scene, bool), Box<dyn std::error::Error>> {
+/// Loads a preset to time: with `--quick`, cut to 10 ms past its ramp;
+/// and whether it was cut.
+fn load_timed(path: &Path, quick: bool) -> Result<(Scene, bool), Box<dyn std::error::Error>> {
     let mut scene = Scene::load(path)?;
     let shipped_s = scene.duration_s;
     if quick {
@@ -212,7 +208,7 @@ pub fn patch_presets(args: &BenchArgs) -> CliResult {
     let mut rates = Vec::with_capacity(paths.len());
     for path in &paths {
         bar.set_message(path.display().to_string());
-        let (scene, cut) = load_timed_cut(path, args.quick)?;
+        let (scene, cut) = load_timed(path, args.quick)?;
         let mut rate = presets::measure_preset(&scene, timing)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         rate.cut_to_s = cut.then_some(scene.duration_s);
@@ -273,7 +269,7 @@ pub fn presets_steps(args: &BenchArgs) -> CliResult {
     let mut rows = Vec::with_capacity(paths.len());
     for path in &paths {
         bar.set_message(path.display().to_string());
-        let scene = load_timed(path, args.quick)?;
+        let (scene, _) = load_timed(path, args.quick)?;
         rows.push(
             presets::measure_steps(&scene, timing)
                 .map_err(|e| format!("{}: {e}", path.display()))?,

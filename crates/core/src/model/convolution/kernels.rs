@@ -54,7 +54,8 @@ fn predict_at<const RANGE: bool>(
     predict_scalar::<RANGE>(c, s0, x, v, ox, ov)
 }
 
-/// [`predict_body`] in the baseline build (a CPU without AVX).
+/// [`predict_body`] in the baseline build (a CPU without AVX, and the
+/// states past [`predict_avx`]'s whole lanes).
 #[inline(never)]
 fn predict_scalar<const RANGE: bool>(
     c: &StepColumns,
@@ -113,8 +114,10 @@ unsafe fn predict_avx(
             s += 4;
         }
     }
+    // (the states past the whole lanes, one by one: none where the states
+    // are stored in whole lanes, as the solver's are)
     if lanes < n {
-        predict_past_lanes(
+        predict_scalar::<true>(
             c,
             s0 + lanes,
             &x[lanes..],
@@ -123,22 +126,6 @@ unsafe fn predict_avx(
             &mut ov[lanes..n],
         );
     }
-}
-
-/// The states past the whole lanes of [`predict_avx`] (none where the
-/// states are stored in whole lanes, as the solver's are), one by one.
-#[cfg(target_arch = "x86_64")]
-#[cold]
-#[inline(never)]
-fn predict_past_lanes(
-    c: &StepColumns,
-    s0: usize,
-    x: &[f64],
-    v: &[f64],
-    ox: &mut [f64],
-    ov: &mut [f64],
-) {
-    predict_body::<true>(c, s0, x, v, ox, ov)
 }
 
 /// `col = Σ_{m ≥ 1} lam[m] W_m`, `W_m` the column `ci` of node `m` in
